@@ -1,0 +1,103 @@
+//! Allocate: give each live target a physical texture, aliasing targets whose
+//! lifetimes do not overlap, and lay out the uniform blocks.
+//!
+//! Lifetime of a target: from the pass that writes it to the last pass that
+//! reads it (the output lives to the end). Two targets share a physical
+//! texture only when format and scale match and the first is dead before the
+//! second is written, so no pass ever reads and writes the same texture.
+
+use crate::ir::*;
+use crate::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
+use crate::prune::Live;
+use crate::report::Report;
+use std::collections::BTreeMap;
+
+#[derive(Debug, Clone, Default)]
+pub struct Allocation {
+    /// Live targets in creation order, with their physical index.
+    pub targets: Vec<(TargetRef, usize)>,
+    pub physical: Vec<PhysicalTexture>,
+    /// Byte offsets of uniform and per-object parameter slots.
+    pub param_offsets: BTreeMap<ParamId, u64>,
+    pub style_uniform_size: u64,
+    pub object_uniform_size: u64,
+}
+
+impl Allocation {
+    pub fn target_index(&self, t: TargetRef) -> Option<usize> {
+        self.targets.iter().position(|(x, _)| *x == t)
+    }
+}
+
+pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Report) -> Allocation {
+    let mut alloc = Allocation::default();
+    let position = |p: PassId| live.passes.iter().position(|x| *x == p).unwrap_or(0);
+    // Last use of each target, by execution position.
+    let mut last_use: BTreeMap<TargetRef, usize> = BTreeMap::new();
+    for (pos, pid) in live.passes.iter().enumerate() {
+        let pass = ir.pass(*pid);
+        let roots: Vec<ExprId> = crate::dag::pass_roots(pass);
+        for id in ir.reachable(&roots) {
+            if let ExprKind::Target(t) = ir.expr(id).kind {
+                let e = last_use.entry(t).or_insert(pos);
+                *e = (*e).max(pos);
+            }
+        }
+    }
+    if let Some(out) = ir.output {
+        last_use.insert(out, usize::MAX);
+    }
+    // Each physical texture: (format, scale, last position it is busy).
+    let mut busy_until: Vec<usize> = Vec::new();
+    for pid in &live.passes {
+        let pass = ir.pass(*pid);
+        let pos = position(*pid);
+        for (i, o) in pass.outputs.iter().enumerate() {
+            let t = TargetRef { pass: *pid, output: i as u32 };
+            if !live.targets.contains(&t) {
+                continue;
+            }
+            let end = last_use.get(&t).copied().unwrap_or(pos);
+            let reuse = alloc.physical.iter().enumerate().position(|(pi, ph)| {
+                ph.format == o.format && ph.scale == pass.scale && busy_until[pi] < pos
+            });
+            let phys = match reuse {
+                Some(pi) => {
+                    report.push(
+                        "aliased",
+                        format!("target `{}.{}`", pass.name, o.name),
+                        format!("shares physical texture #{pi} with a target that is dead by then"),
+                    );
+                    busy_until[pi] = end;
+                    pi
+                }
+                None => {
+                    alloc.physical.push(PhysicalTexture { format: o.format, scale: pass.scale });
+                    busy_until.push(end);
+                    alloc.physical.len() - 1
+                }
+            };
+            alloc.targets.push((t, phys));
+        }
+    }
+    let mut style_slots = 0u64;
+    let mut object_slots = 0u64;
+    for (i, b) in bindings.iter().enumerate() {
+        let id = ParamId(i as u32);
+        match b {
+            ParamBinding::Uniform => {
+                alloc.param_offsets.insert(id, style_slots * 16);
+                style_slots += 1;
+            }
+            ParamBinding::PerObject => {
+                alloc.param_offsets.insert(id, OBJECT_PARAMS_OFFSET + object_slots * 16);
+                object_slots += 1;
+            }
+            _ => {}
+        }
+    }
+    alloc.style_uniform_size = style_slots * 16;
+    let has_render = live.passes.iter().any(|p| matches!(ir.pass(*p).kind, PassKind::Render { .. }));
+    alloc.object_uniform_size = if has_render { OBJECT_PARAMS_OFFSET + object_slots * 16 } else { 0 };
+    alloc
+}

@@ -1,0 +1,87 @@
+//! Build the pass DAG: which pass reads which, a topological execution
+//! order, and a clear error for any dependency cycle.
+
+use crate::ir::*;
+use dsl::{codes, Diagnostic, Span};
+
+#[derive(Debug, Clone, Default)]
+pub struct PassGraph {
+    /// For each pass, the passes it reads, with the span of one read of each.
+    pub reads: Vec<Vec<(PassId, Span)>>,
+    /// Passes in execution order. Empty when there is a cycle.
+    pub order: Vec<PassId>,
+}
+
+/// Expressions a pass evaluates: its output values and vertex modifiers.
+pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
+    let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
+    roots.extend(pass.inflate);
+    roots
+}
+
+pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
+    let n = ir.passes.len();
+    let mut reads: Vec<Vec<(PassId, Span)>> = vec![Vec::new(); n];
+    for (pi, pass) in ir.passes.iter().enumerate() {
+        for id in ir.reachable(&pass_roots(pass)) {
+            let e = ir.expr(id);
+            if let ExprKind::Target(t) = e.kind {
+                if !reads[pi].iter().any(|(p, _)| *p == t.pass) {
+                    reads[pi].push((t.pass, e.span));
+                }
+            }
+        }
+    }
+    // Depth-first search with colours; a grey node reached again closes a cycle.
+    let mut colour = vec![0u8; n];
+    let mut order = Vec::new();
+    let mut cycle_found = false;
+    for start in 0..n {
+        if colour[start] != 0 || cycle_found {
+            continue;
+        }
+        let mut stack: Vec<(usize, usize)> = vec![(start, 0)];
+        colour[start] = 1;
+        while let Some((node, next)) = stack.pop() {
+            if next < reads[node].len() {
+                stack.push((node, next + 1));
+                let (dep, span) = reads[node][next];
+                let d = dep.0 as usize;
+                match colour[d] {
+                    0 => {
+                        colour[d] = 1;
+                        stack.push((d, 0));
+                    }
+                    1 => {
+                        let mut path: Vec<usize> = stack.iter().map(|(p, _)| *p).collect();
+                        if let Some(pos) = path.iter().position(|p| *p == d) {
+                            path.drain(..pos);
+                        }
+                        let names: Vec<&str> = path.iter().map(|p| ir.passes[*p].name.as_str()).collect();
+                        let mut diag = Diagnostic::error(
+                            codes::PASS_CYCLE,
+                            format!("passes depend on each other in a cycle: {} -> {}", names.join(" -> "), ir.passes[d].name),
+                        )
+                        .with_primary(span, format!("`{}` reads `{}` here", ir.passes[node].name, ir.passes[d].name));
+                        for w in path.windows(2) {
+                            if let Some((_, s)) = reads[w[0]].iter().find(|(p, _)| p.0 as usize == w[1]) {
+                                diag = diag.with_secondary(*s, format!("`{}` reads `{}`", ir.passes[w[0]].name, ir.passes[w[1]].name));
+                            }
+                        }
+                        diags.push(diag.with_help("a pass can only read passes that run before it; compute one of these values in a separate pass"));
+                        cycle_found = true;
+                        break;
+                    }
+                    _ => {}
+                }
+            } else {
+                colour[node] = 2;
+                order.push(PassId(node as u32));
+            }
+        }
+    }
+    if cycle_found {
+        order.clear();
+    }
+    PassGraph { reads, order }
+}

@@ -1,0 +1,28 @@
+//! A readable text dump of the IR (for `npr compile --dump-ir`).
+
+use crate::ir::*;
+use std::fmt::Write;
+
+pub fn dump(ir: &Ir) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "style {:?}", ir.style_name);
+    for (i, p) in ir.params.iter().enumerate() {
+        let _ = writeln!(s, "param #{i} {} : {:?} {:?} default=e{} range={:?} keys={} per_object={}", p.name, p.ty, p.unit, p.default.0, p.range, p.keys.len(), p.per_object);
+    }
+    for (i, t) in ir.textures.iter().enumerate() {
+        let _ = writeln!(s, "texture #{i} {} : {:?}", t.name, t.source);
+    }
+    for (i, p) in ir.passes.iter().enumerate() {
+        let _ = writeln!(s, "pass #{i} {} : {:?} scale={}", p.name, p.kind, p.scale);
+        for l in &p.lets {
+            let _ = writeln!(s, "  let {} = e{}", l.name, l.value.0);
+        }
+        for o in &p.outputs {
+            let _ = writeln!(s, "  out {} : {} = e{}", o.name, o.format.name(), o.value.0);
+        }
+    }
+    for (i, e) in ir.exprs.iter().enumerate() {
+        let _ = writeln!(s, "e{i} : {:?} {:?} = {:?}", e.ty, e.unit, e.kind);
+    }
+    s
+}

@@ -1,0 +1,146 @@
+//! Assemble `manifest.json` from the IR, the allocation and the emitted passes.
+
+use crate::allocate::Allocation;
+use crate::consteval::const_eval;
+use crate::emit::wgsl::EmittedPass;
+use crate::ir::*;
+use crate::manifest::*;
+use crate::prune::Live;
+use dsl::SourceMap;
+
+pub fn build(
+    ir: &Ir,
+    live: &Live,
+    alloc: &Allocation,
+    bindings: &[ParamBinding],
+    emitted: &[(PassId, EmittedPass)],
+    sources: &SourceMap,
+    source_name: &str,
+) -> Manifest {
+    let targets = alloc
+        .targets
+        .iter()
+        .map(|(t, phys)| {
+            let pass = ir.pass(t.pass);
+            TargetManifest {
+                name: ir.target_name(*t),
+                format: pass.outputs[t.output as usize].format,
+                scale: pass.scale,
+                physical: *phys,
+            }
+        })
+        .collect();
+    let mut attributes: Vec<Attribute> = Vec::new();
+    let passes = emitted
+        .iter()
+        .map(|(pid, e)| {
+            let pass = ir.pass(*pid);
+            for a in &e.attributes {
+                if !attributes.contains(a) {
+                    attributes.push(*a);
+                }
+            }
+            let outputs = (0..pass.outputs.len())
+                .filter_map(|i| alloc.target_index(TargetRef { pass: *pid, output: i as u32 }))
+                .collect();
+            PassManifest {
+                name: pass.name.clone(),
+                kind: match &pass.kind {
+                    PassKind::Render { tag } => PassKindManifest::Render {
+                        tag: tag.clone(),
+                        attributes: e.attributes.clone(),
+                    },
+                    PassKind::Image { .. } => PassKindManifest::Image,
+                },
+                scale: pass.scale,
+                shader: format!("{}.wgsl", pass.name),
+                vertex_entry: "vs_main".into(),
+                fragment_entry: "fs_main".into(),
+                outputs,
+                clear: pass.clear,
+                bindings: e.bindings.clone(),
+                line: sources.line_col(pass.name_span.file, pass.name_span.start).0,
+            }
+        })
+        .collect();
+    attributes.sort();
+    let textures = ir
+        .textures
+        .iter()
+        .map(|t| TextureManifest {
+            name: t.name.clone(),
+            source: match &t.source {
+                TextureSource::Image { path, resolved, srgb } => TextureSourceManifest::Image {
+                    path: path.clone(),
+                    resolved: resolved.clone(),
+                    srgb: *srgb,
+                },
+                TextureSource::Noise { size, octaves, seed, gradient, channels, frequency } => TextureSourceManifest::Noise {
+                    size: *size,
+                    octaves: *octaves,
+                    seed: *seed,
+                    gradient: *gradient,
+                    channels: *channels,
+                    frequency: *frequency,
+                },
+            },
+            wrap_repeat: t.wrap_repeat,
+            filter_linear: t.filter_linear,
+            mips: t.mips,
+        })
+        .collect();
+    let params = ir
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let d = ir.expr(p.default);
+            let (default, percent) = match &d.kind {
+                ExprKind::PercentOfHeight(f) => (vec![*f * 100.0], true),
+                _ => (const_eval(ir, p.default).map(|c| c.as_f64s()).unwrap_or_default(), false),
+            };
+            let (ty, variants) = match &p.ty {
+                ParamTy::Enum(v) => (format!("enum({})", v.join("|")), v.clone()),
+                ParamTy::Range(_) => ("range".to_string(), Vec::new()),
+                ParamTy::Value(t) => (
+                    match p.unit {
+                        stdlib::Unit::None => t.describe().to_string(),
+                        u => u.name().to_string(),
+                    },
+                    Vec::new(),
+                ),
+            };
+            ParamManifest {
+                name: p.name.clone(),
+                doc: p.doc.clone(),
+                ty,
+                unit: p.unit.name().to_string(),
+                components: p.value_ty.components().unwrap_or(1),
+                default,
+                default_percent_of_height: percent,
+                range: p.range,
+                enum_variants: variants,
+                keyframes: p.keys.iter().map(|k| (k.time_s, k.value.clone())).collect(),
+                interpolation: p.interpolation.clone(),
+                binding: bindings[i],
+                offset: alloc.param_offsets.get(&ParamId(i as u32)).copied(),
+            }
+        })
+        .collect();
+    let output = ir.output.and_then(|o| alloc.target_index(o)).unwrap_or(0);
+    let _ = live;
+    Manifest {
+        version: MANIFEST_VERSION,
+        style: ir.style_name.clone(),
+        source: source_name.to_string(),
+        passes,
+        targets,
+        physical: alloc.physical.clone(),
+        textures,
+        params,
+        style_uniform_size: alloc.style_uniform_size,
+        object_uniform_size: alloc.object_uniform_size,
+        scene_attributes: attributes,
+        output,
+    }
+}

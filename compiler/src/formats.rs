@@ -1,0 +1,79 @@
+//! Target texture formats a pass output may declare, and what values fit them.
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Format {
+    R8unorm,
+    Rg8unorm,
+    Rgba8unorm,
+    Rgba8unormSrgb,
+    R16float,
+    Rg16float,
+    Rgba16float,
+    R32float,
+    Rg32float,
+    Rgba32float,
+}
+
+impl Format {
+    pub const ALL: &'static [(&'static str, Format)] = &[
+        ("r8unorm", Format::R8unorm),
+        ("rg8unorm", Format::Rg8unorm),
+        ("rgba8unorm", Format::Rgba8unorm),
+        ("rgba8unorm_srgb", Format::Rgba8unormSrgb),
+        ("r16float", Format::R16float),
+        ("rg16float", Format::Rg16float),
+        ("rgba16float", Format::Rgba16float),
+        ("r32float", Format::R32float),
+        ("rg32float", Format::Rg32float),
+        ("rgba32float", Format::Rgba32float),
+    ];
+
+    pub fn parse(name: &str) -> Option<Format> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
+    }
+
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(_, f)| *f == self)
+            .map(|(n, _)| *n)
+            .unwrap_or("?")
+    }
+
+    /// Number of channels, which must equal the components of the value written.
+    pub fn channels(self) -> u32 {
+        use Format::*;
+        match self {
+            R8unorm | R16float | R32float => 1,
+            Rg8unorm | Rg16float | Rg32float => 2,
+            Rgba8unorm | Rgba8unormSrgb | Rgba16float | Rgba32float => 4,
+        }
+    }
+
+    /// unorm targets clamp to [0, 1]; float targets keep any value.
+    pub fn is_unorm(self) -> bool {
+        matches!(
+            self,
+            Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb
+        )
+    }
+
+    /// 32-bit float formats are not filterable without an optional feature.
+    pub fn is_filterable(self) -> bool {
+        !matches!(self, Format::R32float | Format::Rg32float | Format::Rgba32float)
+    }
+
+    pub fn bytes_per_pixel(self) -> u32 {
+        use Format::*;
+        match self {
+            R8unorm => 1,
+            Rg8unorm | R16float => 2,
+            Rgba8unorm | Rgba8unormSrgb | Rg16float | R32float => 4,
+            Rgba16float | Rg32float => 8,
+            Rgba32float => 16,
+        }
+    }
+}

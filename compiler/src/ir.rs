@@ -1,0 +1,537 @@
+//! The compiler's intermediate representation: an arena graph with spans.
+//!
+//! Expressions live in one arena ([`Ir::exprs`]) and refer to each other by
+//! [`ExprId`]. Sharing is allowed (a `let` used twice is one node referenced
+//! twice), so the graph is a DAG, never a tree. A node is always created
+//! after its operands, so iterating the arena in order visits operands first
+//! (the typechecker relies on this).
+
+use dsl::Span;
+use serde::Serialize;
+use stdlib::Unit;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct ExprId(pub u32);
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct ParamId(pub u32);
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct TextureId(pub u32);
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct PassId(pub u32);
+
+/// A pass output: (pass, index into that pass's outputs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct TargetRef {
+    pub pass: PassId,
+    pub output: u32,
+}
+
+/// Value types. Colours are `Vec4`. Handles are textures passed to operators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Ty {
+    /// Not yet known (before typecheck) or the type of an erroneous node.
+    Unknown,
+    Float,
+    Int,
+    Bool,
+    Vec2,
+    Vec3,
+    Vec4,
+    /// A pass target used as a texture (passed to an operator, or read at `screen_uv`).
+    Target(TargetRef),
+    /// A declared texture (passed to an operator, or sampled at `uv`).
+    Texture(TextureId),
+}
+
+impl Ty {
+    pub fn components(self) -> Option<u32> {
+        match self {
+            Ty::Float | Ty::Int | Ty::Bool => Some(1),
+            Ty::Vec2 => Some(2),
+            Ty::Vec3 => Some(3),
+            Ty::Vec4 => Some(4),
+            _ => None,
+        }
+    }
+
+    pub fn float_vec(n: u32) -> Ty {
+        match n {
+            1 => Ty::Float,
+            2 => Ty::Vec2,
+            3 => Ty::Vec3,
+            _ => Ty::Vec4,
+        }
+    }
+
+    pub fn is_numeric(self) -> bool {
+        matches!(self, Ty::Float | Ty::Int | Ty::Vec2 | Ty::Vec3 | Ty::Vec4)
+    }
+
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            Ty::Float => "f32",
+            Ty::Int => "i32",
+            Ty::Bool => "bool",
+            Ty::Vec2 => "vec2<f32>",
+            Ty::Vec3 => "vec3<f32>",
+            Ty::Vec4 => "vec4<f32>",
+            _ => "<handle>",
+        }
+    }
+
+    pub fn describe(self) -> &'static str {
+        match self {
+            Ty::Unknown => "an unknown type",
+            Ty::Float => "float",
+            Ty::Int => "int",
+            Ty::Bool => "bool",
+            Ty::Vec2 => "vec2",
+            Ty::Vec3 => "vec3",
+            Ty::Vec4 => "vec4",
+            Ty::Target(_) => "a pass target",
+            Ty::Texture(_) => "a texture",
+        }
+    }
+}
+
+/// A compile-time constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum Const {
+    Float(f64),
+    Int(i64),
+    Bool(bool),
+    /// vec2..vec4 (colours included).
+    Vec(Vec<f64>),
+}
+
+impl Const {
+    pub fn as_f64s(&self) -> Vec<f64> {
+        match self {
+            Const::Float(v) => vec![*v],
+            Const::Int(v) => vec![*v as f64],
+            Const::Bool(b) => vec![if *b { 1.0 } else { 0.0 }],
+            Const::Vec(v) => v.clone(),
+        }
+    }
+
+    pub fn scalar(&self) -> Option<f64> {
+        match self {
+            Const::Float(v) => Some(*v),
+            Const::Int(v) => Some(*v as f64),
+            Const::Bool(b) => Some(if *b { 1.0 } else { 0.0 }),
+            Const::Vec(_) => None,
+        }
+    }
+}
+
+/// Values the runtime provides.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub enum Builtin {
+    Uv,
+    NormalWorld,
+    NormalView,
+    PositionWorld,
+    PositionView,
+    Tangent,
+    ViewDir,
+    Depth,
+    FragCoord,
+    ScreenUv,
+    Resolution,
+    Time,
+    Frame,
+    Eye,
+    LightDir,
+    LightColor,
+    LightIntensity,
+    CameraPosition,
+    CameraNear,
+    CameraFar,
+}
+
+impl Builtin {
+    /// (spelling, builtin) for every name a style can write.
+    pub const SPELLINGS: &'static [(&'static str, Builtin)] = &[
+        ("uv", Builtin::Uv),
+        ("normal", Builtin::NormalWorld),
+        ("normal.world", Builtin::NormalWorld),
+        ("normal.view", Builtin::NormalView),
+        ("position", Builtin::PositionWorld),
+        ("position.world", Builtin::PositionWorld),
+        ("position.view", Builtin::PositionView),
+        ("tangent", Builtin::Tangent),
+        ("view_dir", Builtin::ViewDir),
+        ("depth", Builtin::Depth),
+        ("frag_coord", Builtin::FragCoord),
+        ("screen_uv", Builtin::ScreenUv),
+        ("resolution", Builtin::Resolution),
+        ("time", Builtin::Time),
+        ("frame", Builtin::Frame),
+        ("eye", Builtin::Eye),
+        ("light.dir", Builtin::LightDir),
+        ("light.color", Builtin::LightColor),
+        ("light.intensity", Builtin::LightIntensity),
+        ("camera.position", Builtin::CameraPosition),
+        ("camera.near", Builtin::CameraNear),
+        ("camera.far", Builtin::CameraFar),
+    ];
+
+    pub fn name(self) -> &'static str {
+        Self::SPELLINGS
+            .iter()
+            .rev()
+            .find(|(_, b)| *b == self)
+            .map(|(s, _)| *s)
+            .unwrap_or("?")
+    }
+
+    pub fn ty_unit(self) -> (Ty, Unit) {
+        use Builtin::*;
+        match self {
+            Uv | ScreenUv => (Ty::Vec2, Unit::None),
+            NormalWorld | NormalView | Tangent | ViewDir | LightDir => (Ty::Vec3, Unit::None),
+            PositionWorld | PositionView | CameraPosition => (Ty::Vec3, Unit::Meters),
+            Depth | CameraNear | CameraFar => (Ty::Float, Unit::Meters),
+            FragCoord | Resolution => (Ty::Vec2, Unit::Px),
+            Time => (Ty::Float, Unit::Seconds),
+            Frame | Eye => (Ty::Int, Unit::None),
+            LightColor => (Ty::Vec3, Unit::None),
+            LightIntensity => (Ty::Float, Unit::None),
+        }
+    }
+
+    /// Only meaningful on scene geometry (needs vertex data).
+    pub fn needs_geometry(self) -> bool {
+        use Builtin::*;
+        matches!(
+            self,
+            Uv | NormalWorld | NormalView | PositionWorld | PositionView | Tangent | ViewDir | Depth
+        )
+    }
+}
+
+/// WGSL built-in functions and constructors the language exposes directly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Intrinsic {
+    /// `vec2(..)`, `vec3(..)`, `vec4(..)`: components flattened, or one scalar splatted.
+    Construct(u32),
+    /// Component-wise, same type in and out: abs, floor, sin, ...
+    Map(&'static str),
+    /// Same-typed operands, same type out: min, max, pow, step, atan2.
+    Map2(&'static str),
+    /// clamp(x, lo, hi), smoothstep(lo, hi, x), mix(a, b, t).
+    Map3(&'static str),
+    /// Vector to scalar: length.
+    Length,
+    Dot,
+    Distance,
+    Normalize,
+    Cross,
+}
+
+impl Intrinsic {
+    pub fn lookup(name: &str) -> Option<Intrinsic> {
+        Some(match name {
+            "vec2" => Intrinsic::Construct(2),
+            "vec3" => Intrinsic::Construct(3),
+            "vec4" => Intrinsic::Construct(4),
+            "abs" | "floor" | "ceil" | "fract" | "round" | "sqrt" | "exp" | "exp2" | "log"
+            | "log2" | "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sign" | "saturate" => {
+                Intrinsic::Map(Self::static_name(name))
+            }
+            "min" | "max" | "pow" | "step" | "atan2" => Intrinsic::Map2(Self::static_name(name)),
+            "clamp" | "smoothstep" | "mix" => Intrinsic::Map3(Self::static_name(name)),
+            "length" => Intrinsic::Length,
+            "dot" => Intrinsic::Dot,
+            "distance" => Intrinsic::Distance,
+            "normalize" => Intrinsic::Normalize,
+            "cross" => Intrinsic::Cross,
+            _ => return None,
+        })
+    }
+
+    pub const NAMES: &'static [&'static str] = &[
+        "vec2",
+        "vec3",
+        "vec4",
+        "abs",
+        "floor",
+        "ceil",
+        "fract",
+        "round",
+        "sqrt",
+        "exp",
+        "exp2",
+        "log",
+        "log2",
+        "sin",
+        "cos",
+        "tan",
+        "asin",
+        "acos",
+        "atan",
+        "sign",
+        "saturate",
+        "min",
+        "max",
+        "pow",
+        "step",
+        "atan2",
+        "clamp",
+        "smoothstep",
+        "mix",
+        "length",
+        "dot",
+        "distance",
+        "normalize",
+        "cross",
+    ];
+
+    fn static_name(name: &str) -> &'static str {
+        Self::NAMES.iter().find(|n| **n == name).copied().unwrap_or("abs")
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Intrinsic::Construct(2) => "vec2",
+            Intrinsic::Construct(3) => "vec3",
+            Intrinsic::Construct(_) => "vec4",
+            Intrinsic::Map(n) | Intrinsic::Map2(n) | Intrinsic::Map3(n) => n,
+            Intrinsic::Length => "length",
+            Intrinsic::Dot => "dot",
+            Intrinsic::Distance => "distance",
+            Intrinsic::Normalize => "normalize",
+            Intrinsic::Cross => "cross",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Callee {
+    Intrinsic(Intrinsic),
+    /// A stdlib operator, by index into `stdlib::all()`.
+    Operator(u32),
+}
+
+/// Implicit conversions inserted by the typechecker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Conversion {
+    IntToFloat,
+    /// Scalar to vecN.
+    Splat(u32),
+    /// vec3 colour to vec4 with alpha 1.
+    Rgb1,
+    /// vec4 to vec3 (drop alpha) where a vec3 is expected.
+    Rgb,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum ExprKind {
+    Const(Const),
+    /// `50%`: a fraction of the output image height, in px.
+    PercentOfHeight(f64),
+    Param(ParamId),
+    Builtin(Builtin),
+    /// A pass target: a handle (when passed to an operator) or a value read at `screen_uv`.
+    Target(TargetRef),
+    /// A texture: a handle, or a value sampled at `uv` (render) / `screen_uv` (image).
+    Texture(TextureId),
+    /// `.xyz`, `.rg`: component indices.
+    Swizzle { base: ExprId, components: Vec<u8> },
+    Unary { op: dsl::ast::UnOp, operand: ExprId },
+    Binary { op: dsl::ast::BinOp, lhs: ExprId, rhs: ExprId },
+    /// Arguments in the callee's parameter order, defaults filled in.
+    Call { callee: Callee, args: Vec<ExprId> },
+    Select { cond: ExprId, then: ExprId, otherwise: ExprId },
+    Convert { conversion: Conversion, operand: ExprId },
+    /// Placeholder for an expression that failed to resolve (diagnostic already reported).
+    Error,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub ty: Ty,
+    pub unit: Unit,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum ParamTy {
+    Value(Ty),
+    Enum(Vec<String>),
+    Range(Ty),
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Keyframe {
+    pub time_s: f64,
+    pub value: Vec<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Param {
+    pub name: String,
+    pub doc: String,
+    pub ty: ParamTy,
+    pub value_ty: Ty,
+    pub unit: Unit,
+    pub per_object: bool,
+    pub default: ExprId,
+    pub range: Option<(f64, f64)>,
+    pub keys: Vec<Keyframe>,
+    pub interpolation: String,
+    pub span: Span,
+    pub name_span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum TextureSource {
+    Image { path: String, resolved: String, srgb: bool },
+    Noise { size: u32, octaves: u32, seed: u32, gradient: bool, channels: u32, frequency: u32 },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Texture {
+    pub name: String,
+    pub doc: String,
+    pub source: TextureSource,
+    pub wrap_repeat: bool,
+    pub filter_linear: bool,
+    pub mips: bool,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub enum PassKind {
+    /// Draws scene objects; `tag: None` draws all of them.
+    Render { tag: Option<String> },
+    /// A fullscreen pass over its inputs.
+    Image { inputs: Vec<PassId> },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PassOutput {
+    pub name: String,
+    pub format: crate::formats::Format,
+    pub value: ExprId,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Let {
+    pub name: String,
+    pub value: ExprId,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Pass {
+    pub name: String,
+    pub doc: String,
+    pub kind: PassKind,
+    pub scale: f64,
+    pub clear: [f64; 4],
+    /// `vertex { inflate: ... }` in px (render passes only).
+    pub inflate: Option<ExprId>,
+    pub lets: Vec<Let>,
+    pub outputs: Vec<PassOutput>,
+    pub span: Span,
+    pub name_span: Span,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Ir {
+    pub style_name: String,
+    pub params: Vec<Param>,
+    pub textures: Vec<Texture>,
+    pub passes: Vec<Pass>,
+    pub exprs: Vec<Expr>,
+    pub output: Option<TargetRef>,
+    pub output_span: Span,
+}
+
+impl Ir {
+    pub fn add(&mut self, kind: ExprKind, span: Span) -> ExprId {
+        self.exprs.push(Expr {
+            kind,
+            ty: Ty::Unknown,
+            unit: Unit::None,
+            span,
+        });
+        ExprId(self.exprs.len() as u32 - 1)
+    }
+
+    pub fn add_typed(&mut self, kind: ExprKind, ty: Ty, unit: Unit, span: Span) -> ExprId {
+        self.exprs.push(Expr {
+            kind,
+            ty,
+            unit,
+            span,
+        });
+        ExprId(self.exprs.len() as u32 - 1)
+    }
+
+    pub fn expr(&self, id: ExprId) -> &Expr {
+        &self.exprs[id.0 as usize]
+    }
+
+    pub fn expr_mut(&mut self, id: ExprId) -> &mut Expr {
+        &mut self.exprs[id.0 as usize]
+    }
+
+    pub fn pass(&self, id: PassId) -> &Pass {
+        &self.passes[id.0 as usize]
+    }
+
+    pub fn target_name(&self, t: TargetRef) -> String {
+        let pass = self.pass(t.pass);
+        let out = pass
+            .outputs
+            .get(t.output as usize)
+            .map(|o| o.name.as_str())
+            .unwrap_or("?");
+        format!("{}.{}", pass.name, out)
+    }
+
+    /// The operands of a node, in order.
+    pub fn operands(&self, id: ExprId) -> Vec<ExprId> {
+        match &self.expr(id).kind {
+            ExprKind::Swizzle { base, .. } => vec![*base],
+            ExprKind::Unary { operand, .. } | ExprKind::Convert { operand, .. } => vec![*operand],
+            ExprKind::Binary { lhs, rhs, .. } => vec![*lhs, *rhs],
+            ExprKind::Call { args, .. } => args.clone(),
+            ExprKind::Select {
+                cond,
+                then,
+                otherwise,
+            } => vec![*cond, *then, *otherwise],
+            _ => Vec::new(),
+        }
+    }
+
+    /// Every node reachable from `roots` (each once), operands before users.
+    pub fn reachable(&self, roots: &[ExprId]) -> Vec<ExprId> {
+        let mut seen = vec![false; self.exprs.len()];
+        let mut order = Vec::new();
+        let mut stack: Vec<(ExprId, bool)> = roots.iter().rev().map(|r| (*r, false)).collect();
+        while let Some((id, expanded)) = stack.pop() {
+            let i = id.0 as usize;
+            if expanded {
+                order.push(id);
+                continue;
+            }
+            if seen[i] {
+                continue;
+            }
+            seen[i] = true;
+            stack.push((id, true));
+            for op in self.operands(id).into_iter().rev() {
+                if !seen[op.0 as usize] {
+                    stack.push((op, false));
+                }
+            }
+        }
+        order
+    }
+}

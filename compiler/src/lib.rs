@@ -1,0 +1,93 @@
+//! The npr compiler: `.npr` source to validated WGSL plus a manifest.
+//!
+//! See [`pipeline`] for the order of the stages. User errors come back as
+//! [`dsl::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
+//! as emitted WGSL that naga rejects, is a separate [`InternalError`].
+
+pub mod allocate;
+pub mod consteval;
+pub mod dag;
+pub mod dump;
+pub mod emit;
+pub mod formats;
+pub mod ir;
+pub mod load;
+pub mod manifest;
+pub mod pipeline;
+pub mod prune;
+pub mod report;
+pub mod resolve;
+pub mod specialize;
+pub mod typecheck;
+pub mod validate;
+
+use dsl::{Diagnostic, SourceMap, Span};
+use std::path::Path;
+
+#[derive(Debug, Clone, Default)]
+pub struct CompileOptions {
+    /// Keep every live parameter as a uniform (for live tweaking) instead of folding it.
+    pub keep_params: bool,
+    /// Record a dump of the IR after each stage.
+    pub dump_ir: bool,
+}
+
+#[derive(Debug, Clone)]
+pub struct Compiled {
+    pub manifest: manifest::Manifest,
+    /// (file name, WGSL) per live pass, in execution order.
+    pub shaders: Vec<(String, String)>,
+    pub report: report::Report,
+    pub warnings: Vec<Diagnostic>,
+    pub timings: Vec<(&'static str, std::time::Duration)>,
+    pub dumps: Vec<(&'static str, String)>,
+}
+
+impl Compiled {
+    pub fn shader(&self, file: &str) -> Option<&str> {
+        self.shaders.iter().find(|(f, _)| f == file).map(|(_, s)| s.as_str())
+    }
+}
+
+/// A bug in npr. Reported with the `.npr` span that produced the bad code.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("internal compiler error: {message}\n{detail}")]
+pub struct InternalError {
+    pub message: String,
+    pub detail: String,
+    pub span: Option<Span>,
+    pub wgsl: Option<String>,
+}
+
+impl InternalError {
+    /// As a diagnostic pointing at the `.npr` source (code E9001).
+    pub fn to_diagnostic(&self) -> Diagnostic {
+        let mut d = Diagnostic::error(dsl::codes::INTERNAL, format!("internal compiler error: {}", self.message))
+            .with_note(self.detail.clone())
+            .with_help("this is a bug in npr, not in your style; please report it with this .npr file");
+        if let Some(s) = self.span {
+            d = d.with_primary(s, "the code generated for this failed validation");
+        }
+        d
+    }
+}
+
+#[derive(Debug, Clone)]
+pub enum CompileError {
+    User(Vec<Diagnostic>),
+    Internal(InternalError),
+}
+
+/// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
+pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
+    let mut diags = Vec::new();
+    let loaded = load::load_file(path, sources, &mut diags).map_err(|_| CompileError::User(diags.clone()))?;
+    pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
+}
+
+/// Compile source text; relative paths (textures, `use`) resolve against `dir`.
+pub fn compile_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
+    let mut diags = Vec::new();
+    let loaded = load::load_source(name, text, dir, sources, &mut diags);
+    pipeline::run(loaded, sources, name, opts, diags)
+}

@@ -1,0 +1,137 @@
+//! Loading: parse the root `.npr` file and every file it `use`s.
+//!
+//! Items of a used file come before the items of the file that uses it, so a
+//! style can build on another's parameters and passes. `use` cycles and
+//! unreadable files are reported at the `use` that caused them.
+
+use dsl::ast::{Ast, Item, UseTarget};
+use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
+use std::path::{Path, PathBuf};
+
+/// The parsed style: the root file's header, every item in dependency order,
+/// and the directory each item's relative paths resolve against.
+pub struct Loaded {
+    pub root: Ast,
+    pub root_file: FileId,
+    pub items: Vec<(Item, PathBuf)>,
+}
+
+/// Read and parse `path` and its `use`s.
+pub fn load_file(
+    path: &Path,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+) -> Result<Loaded, ()> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        diags.push(
+            Diagnostic::error(
+                codes::BAD_USE,
+                format!("cannot read style file `{}`: {e}", path.display()),
+            )
+            .with_help("check the path; style files usually end in `.npr`"),
+        );
+    })?;
+    let name = path.display().to_string();
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    Ok(load_source(&name, &text, &dir, sources, diags))
+}
+
+/// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
+pub fn load_source(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+) -> Loaded {
+    let file = sources.add(name, text);
+    let (ast, mut parse_diags) = dsl::parse(file, text);
+    diags.append(&mut parse_diags);
+    let mut items = Vec::new();
+    let own = Path::new(name).file_name().map(|f| dir.join(f)).unwrap_or_else(|| dir.to_path_buf());
+    let mut stack = vec![canonical(&own)];
+    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack);
+    Loaded {
+        root: ast,
+        root_file: file,
+        items,
+    }
+}
+
+fn canonical(p: &Path) -> PathBuf {
+    p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// Depth limit for nested `use`, far above any real style.
+const MAX_USE_DEPTH: usize = 32;
+
+fn expand_uses(
+    ast: &Ast,
+    dir: &Path,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+    items: &mut Vec<(Item, PathBuf)>,
+    stack: &mut Vec<PathBuf>,
+) {
+    for item in &ast.items {
+        let Item::Use(u) = item else {
+            items.push((item.clone(), dir.to_path_buf()));
+            continue;
+        };
+        match &u.target {
+            UseTarget::Module(path) => {
+                let joined: Vec<&str> = path.iter().map(|p| p.name.as_str()).collect();
+                diags.push(
+                    Diagnostic::error(
+                        codes::BAD_USE,
+                        format!("unknown module `{}`", joined.join("::")),
+                    )
+                    .with_primary(u.span, "no such module")
+                    .with_help(
+                        "stdlib operators are available without `use`; to share declarations, \
+                         `use \"other.npr\"` with a path relative to this file",
+                    ),
+                );
+            }
+            UseTarget::File(rel) => {
+                let path = dir.join(rel);
+                let key = canonical(&path);
+                if stack.contains(&key) {
+                    diags.push(
+                        Diagnostic::error(codes::BAD_USE, format!("`use` cycle through `{rel}`"))
+                            .with_primary(u.span, "this file is already being loaded")
+                            .with_help("remove one of the `use` lines that form the cycle"),
+                    );
+                    continue;
+                }
+                if stack.len() >= MAX_USE_DEPTH {
+                    diags.push(
+                        Diagnostic::error(codes::LIMIT_EXCEEDED, "`use` nested too deeply")
+                            .with_primary(u.span, format!("more than {MAX_USE_DEPTH} levels")),
+                    );
+                    continue;
+                }
+                let text = match std::fs::read_to_string(&path) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        diags.push(use_error(u.span, rel, &e.to_string()));
+                        continue;
+                    }
+                };
+                let file = sources.add(path.display().to_string(), text.clone());
+                let (used, mut d) = dsl::parse(file, &text);
+                diags.append(&mut d);
+                let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+                stack.push(key);
+                expand_uses(&used, &sub_dir, sources, diags, items, stack);
+                stack.pop();
+            }
+        }
+    }
+}
+
+fn use_error(span: Span, rel: &str, err: &str) -> Diagnostic {
+    Diagnostic::error(codes::BAD_USE, format!("cannot read `{rel}`: {err}"))
+        .with_primary(span, "used here")
+        .with_help("paths in `use` are relative to the file that contains the `use`")
+}

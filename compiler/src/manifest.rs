@@ -1,0 +1,203 @@
+//! `manifest.json`: everything the runner needs to execute a compiled style.
+//!
+//! The manifest is the contract between compiler and runner. It lists the
+//! passes in execution order, the logical targets and the physical textures
+//! they alias onto, the bindings of every pass, the uniform layouts, the
+//! parameters (with defaults, ranges, and what the compiler did with them),
+//! and the scene attributes the style requires.
+//!
+//! Uniform layout invariant: every parameter slot in the style and object
+//! uniform blocks is one `vec4<f32>` (16 bytes), whatever its type; ints and
+//! bools are stored as floats. This keeps WGSL's alignment rules out of the
+//! runner.
+
+use crate::formats::Format;
+use serde::{Deserialize, Serialize};
+
+/// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
+pub const MANIFEST_VERSION: u32 = 1;
+
+/// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
+pub const FRAME_UNIFORM_SIZE: u64 = 272;
+/// Byte offset of the first parameter slot in the per-object block (after model and normal matrices).
+pub const OBJECT_PARAMS_OFFSET: u64 = 128;
+/// Alignment of per-object dynamic offsets.
+pub const OBJECT_STRIDE_ALIGN: u64 = 256;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    pub version: u32,
+    pub style: String,
+    pub source: String,
+    /// Passes in execution order (a topological order of the pass DAG).
+    pub passes: Vec<PassManifest>,
+    /// Logical render targets, by index.
+    pub targets: Vec<TargetManifest>,
+    /// Physical textures; several targets with disjoint lifetimes may share one.
+    pub physical: Vec<PhysicalTexture>,
+    pub textures: Vec<TextureManifest>,
+    pub params: Vec<ParamManifest>,
+    /// Size in bytes of the style uniform block (0 = none).
+    pub style_uniform_size: u64,
+    /// Size in bytes of one object's uniform block, before alignment (0 = no render pass).
+    pub object_uniform_size: u64,
+    /// Vertex attributes the scene must provide.
+    pub scene_attributes: Vec<Attribute>,
+    /// The target that is the final image.
+    pub output: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum Attribute {
+    Position,
+    Normal,
+    Uv,
+    Tangent,
+}
+
+impl Attribute {
+    pub fn name(self) -> &'static str {
+        match self {
+            Attribute::Position => "position",
+            Attribute::Normal => "normal",
+            Attribute::Uv => "uv",
+            Attribute::Tangent => "tangent",
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum PassKindManifest {
+    Render {
+        /// Draw only objects with this tag; `None` draws every object.
+        tag: Option<String>,
+        /// Vertex attributes in location order (location = index).
+        attributes: Vec<Attribute>,
+    },
+    Image,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PassManifest {
+    pub name: String,
+    pub kind: PassKindManifest,
+    /// Resolution relative to the output size.
+    pub scale: f64,
+    /// The WGSL file (relative to the manifest) holding this pass's shader.
+    pub shader: String,
+    pub vertex_entry: String,
+    pub fragment_entry: String,
+    /// Targets written, in `@location` order.
+    pub outputs: Vec<usize>,
+    pub clear: [f64; 4],
+    /// Group 0 bindings, by binding number.
+    pub bindings: Vec<Binding>,
+    /// `.npr` line of the pass declaration (for messages).
+    pub line: usize,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Binding {
+    pub binding: u32,
+    pub resource: Resource,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Resource {
+    /// The fixed `Frame` block ([`FRAME_UNIFORM_SIZE`] bytes).
+    FrameUniforms,
+    /// The style parameter block.
+    StyleUniforms,
+    /// A logical target read as `texture_2d<f32>` (unfilterable-safe: read with `textureLoad`
+    /// or with the clamp sampler when the format is filterable).
+    Target { target: usize, filterable: bool },
+    /// A declared texture.
+    Texture { texture: usize },
+    /// The sampler of a declared texture (its wrap and filter settings).
+    TextureSampler { texture: usize },
+    /// A bilinear clamp-to-edge sampler (for `sample()` on targets).
+    LinearClampSampler,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TargetManifest {
+    /// `pass.output`
+    pub name: String,
+    pub format: Format,
+    pub scale: f64,
+    /// Index into [`Manifest::physical`].
+    pub physical: usize,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PhysicalTexture {
+    pub format: Format,
+    pub scale: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum TextureSourceManifest {
+    /// A file, `path` as written and `resolved` against the style's directory.
+    Image {
+        path: String,
+        resolved: String,
+        srgb: bool,
+    },
+    /// Generated tileable noise.
+    Noise {
+        size: u32,
+        octaves: u32,
+        seed: u32,
+        gradient: bool,
+        channels: u32,
+        frequency: u32,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TextureManifest {
+    pub name: String,
+    pub source: TextureSourceManifest,
+    pub wrap_repeat: bool,
+    pub filter_linear: bool,
+    pub mips: bool,
+}
+
+/// What the compiler did with a parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ParamBinding {
+    /// Folded into the shaders as a constant.
+    Folded,
+    /// A slot in the style uniform block (animated, or `--keep-params`).
+    Uniform,
+    /// A slot in the per-object uniform block, bound by the scene.
+    PerObject,
+    /// Not used by anything the output depends on.
+    Removed,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamManifest {
+    pub name: String,
+    pub doc: String,
+    /// `float`, `int`, `bool`, `vec2`..`vec4`, `color`, `enum(a|b)`, `range`, or a unit type (`px`, ...).
+    pub ty: String,
+    pub unit: String,
+    pub components: u32,
+    /// Default value, in canonical units (px, m, s, Hz, radians). Enum: the variant index.
+    pub default: Vec<f64>,
+    /// When the default was written in `%` of the image height: the runner multiplies by height/100.
+    pub default_percent_of_height: bool,
+    pub range: Option<(f64, f64)>,
+    pub enum_variants: Vec<String>,
+    pub keyframes: Vec<(f64, Vec<f64>)>,
+    pub interpolation: String,
+    pub binding: ParamBinding,
+    /// Byte offset of the slot in its uniform block (style or object), when bound.
+    pub offset: Option<u64>,
+}

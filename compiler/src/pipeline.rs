@@ -1,0 +1,102 @@
+//! The compiler pipeline, in order: load → resolve → typecheck → build the
+//! pass DAG → prune → specialize → prune again (what folding made dead) →
+//! allocate → emit → validate. Each stage is timed, and `dump_ir` records the
+//! IR after each stage.
+
+use crate::emit::wgsl::Emitter;
+use crate::ir::Ir;
+use crate::load::Loaded;
+use crate::report::Report;
+use crate::{CompileError, CompileOptions, Compiled, InternalError};
+use dsl::{Diagnostic, SourceMap};
+use std::time::Instant;
+
+struct Stages<'o> {
+    opts: &'o CompileOptions,
+    timings: Vec<(&'static str, std::time::Duration)>,
+    dumps: Vec<(&'static str, String)>,
+    last: Instant,
+}
+
+impl Stages<'_> {
+    fn done(&mut self, stage: &'static str, ir: &Ir) {
+        let now = Instant::now();
+        self.timings.push((stage, now - self.last));
+        if self.opts.dump_ir {
+            self.dumps.push((stage, crate::dump::dump(ir)));
+        }
+        self.last = Instant::now();
+    }
+}
+
+fn fail_if_errors(diags: &[Diagnostic]) -> Result<(), CompileError> {
+    if diags.iter().any(Diagnostic::is_error) {
+        return Err(CompileError::User(diags.to_vec()));
+    }
+    Ok(())
+}
+
+pub fn run(loaded: Loaded, sources: &SourceMap, source_name: &str, opts: &CompileOptions, mut diags: Vec<Diagnostic>) -> Result<Compiled, CompileError> {
+    let mut st = Stages { opts, timings: Vec::new(), dumps: Vec::new(), last: Instant::now() };
+    if loaded.root.style.is_none() && !diags.iter().any(Diagnostic::is_error) {
+        diags.push(
+            Diagnostic::error(dsl::codes::STYLE_HEADER, "missing `style` header")
+                .with_help("start the file with `style \"Name\"`"),
+        );
+    }
+    let mut ir = crate::resolve::resolve(&loaded, &mut diags);
+    st.done("resolve", &ir);
+    crate::typecheck::typecheck(&mut ir, &mut diags);
+    st.done("typecheck", &ir);
+    fail_if_errors(&diags)?;
+    let graph = crate::dag::build(&ir, &mut diags);
+    st.done("dag", &ir);
+    fail_if_errors(&diags)?;
+    let mut scratch = Report::default();
+    let live = crate::prune::prune(&ir, &graph, &mut scratch);
+    st.done("prune", &ir);
+    let mut report = Report::default();
+    let bindings = crate::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
+    st.done("specialize", &ir);
+    // Folding may have made passes, targets and params dead: prune again.
+    let graph = crate::dag::build(&ir, &mut diags);
+    let live = crate::prune::prune(&ir, &graph, &mut report);
+    let bindings: Vec<_> = bindings
+        .into_iter()
+        .enumerate()
+        .map(|(i, b)| if live.params.contains(&crate::ir::ParamId(i as u32)) { b } else { crate::manifest::ParamBinding::Removed })
+        .collect();
+    st.done("prune-after-specialize", &ir);
+    let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report);
+    st.done("allocate", &ir);
+    let emitter = Emitter { ir: &ir, alloc: &alloc, bindings: &bindings, sources };
+    let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
+    let manifest = crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name);
+    for a in &manifest.scene_attributes {
+        report.push("requires", format!("attribute `{}`", a.name()), "read by a live render pass".into());
+    }
+    st.done("emit", &ir);
+    let mut shaders = Vec::new();
+    for (pid, e) in emitted {
+        let pass = ir.pass(pid);
+        let file = format!("{}.wgsl", pass.name);
+        if let Err(message) = crate::validate::validate_wgsl(&file, &e.wgsl) {
+            return Err(CompileError::Internal(InternalError {
+                message: format!("emitted WGSL for pass `{}` failed naga validation", pass.name),
+                detail: message,
+                span: Some(pass.span),
+                wgsl: Some(e.wgsl),
+            }));
+        }
+        shaders.push((file, e.wgsl));
+    }
+    st.done("validate", &ir);
+    Ok(Compiled {
+        manifest,
+        shaders,
+        report,
+        warnings: diags,
+        timings: st.timings,
+        dumps: st.dumps,
+    })
+}

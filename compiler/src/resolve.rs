@@ -1,0 +1,1124 @@
+//! Resolve: turn the AST into IR, binding every name to what it means.
+//!
+//! Names resolve, innermost first, to: block `let`s, pass `let`s, parameters,
+//! textures, builtins, and enum variants. `pass.output` is a target;
+//! `position.view` and `light.dir` are builtins; any other `.xyz` is a
+//! swizzle. Calls bind to a WGSL intrinsic or a stdlib operator, and their
+//! arguments are put in parameter order with defaults filled in. Types are
+//! left for the typechecker, except for literals and leaves.
+
+use crate::consteval::const_eval;
+use crate::formats::Format;
+use crate::ir::*;
+use crate::load::Loaded;
+use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
+use dsl::diagnostic::did_you_mean;
+use dsl::{codes, Diagnostic, Span};
+use std::collections::HashMap;
+use std::path::Path;
+use stdlib::Unit;
+
+/// Resolution limits, stated in the error messages.
+pub const MAX_PASSES: usize = 64;
+pub const MAX_OUTPUTS_PER_PASS: usize = 8;
+pub const MAX_NOISE_SIZE: u32 = 4096;
+
+pub fn resolve(loaded: &Loaded, diags: &mut Vec<Diagnostic>) -> Ir {
+    let mut r = Resolver {
+        ir: Ir::default(),
+        diags,
+        names: HashMap::new(),
+        pass_outputs: Vec::new(),
+        scopes: Vec::new(),
+        current_pass: None,
+    };
+    r.ir.style_name = match &loaded.root.style {
+        Some(h) => h.name.clone(),
+        None => String::from("untitled"),
+    };
+    r.declare_all(&loaded.items);
+    r.resolve_all(&loaded.items);
+    r.ir
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Symbol {
+    Param(ParamId),
+    Texture(TextureId),
+    Pass(PassId),
+}
+
+struct Resolver<'d> {
+    ir: Ir,
+    diags: &'d mut Vec<Diagnostic>,
+    names: HashMap<String, (Symbol, Span)>,
+    /// Output names of each pass, declared before bodies are resolved.
+    pass_outputs: Vec<Vec<String>>,
+    /// Let scopes: innermost last. Each maps a name to its value node.
+    scopes: Vec<Vec<(String, ExprId)>>,
+    current_pass: Option<PassId>,
+}
+
+impl Resolver<'_> {
+    fn error(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    fn declare(&mut self, name: &ast::Ident, sym: Symbol) {
+        if let Some((_, prev)) = self.names.get(&name.name) {
+            let prev = *prev;
+            self.error(
+                Diagnostic::error(
+                    codes::DUPLICATE_NAME,
+                    format!("`{}` is declared twice", name.name),
+                )
+                .with_primary(name.span, "declared again here")
+                .with_secondary(prev, "first declared here")
+                .with_help("rename one of them"),
+            );
+            return;
+        }
+        self.names.insert(name.name.clone(), (sym, name.span));
+    }
+
+    /// First walk: give every param, texture and pass an id, so that any
+    /// declaration can refer to any other regardless of order.
+    fn declare_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
+        for (item, dir) in items {
+            match item {
+                Item::Param(p) => {
+                    let id = ParamId(self.ir.params.len() as u32);
+                    self.declare(&p.name, Symbol::Param(id));
+                    let param = self.param_shell(p);
+                    self.ir.params.push(param);
+                }
+                Item::Texture(t) => {
+                    let id = TextureId(self.ir.textures.len() as u32);
+                    self.declare(&t.name, Symbol::Texture(id));
+                    let tex = self.texture(t, dir);
+                    self.ir.textures.push(tex);
+                }
+                Item::Pass(p) => {
+                    if self.ir.passes.len() == MAX_PASSES {
+                        self.error(
+                            Diagnostic::error(codes::LIMIT_EXCEEDED, "too many passes")
+                                .with_primary(p.name.span, format!("pass number {}", MAX_PASSES + 1))
+                                .with_help(format!("a style may have at most {MAX_PASSES} passes")),
+                        );
+                        continue;
+                    }
+                    let id = PassId(self.ir.passes.len() as u32);
+                    self.declare(&p.name, Symbol::Pass(id));
+                    self.pass_outputs
+                        .push(p.body.outputs.iter().map(|o| o.name.name.clone()).collect());
+                    self.ir.passes.push(Pass {
+                        name: p.name.name.clone(),
+                        doc: p.doc.clone(),
+                        kind: PassKind::Image { inputs: Vec::new() },
+                        scale: 1.0,
+                        clear: [0.0, 0.0, 0.0, 0.0],
+                        inflate: None,
+                        lets: Vec::new(),
+                        outputs: Vec::new(),
+                        span: p.span,
+                        name_span: p.name.span,
+                    });
+                }
+                Item::Output(_) | Item::Use(_) => {}
+            }
+        }
+    }
+
+    fn resolve_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
+        let mut param_index = 0;
+        let mut pass_index = 0;
+        let mut output_seen: Option<Span> = None;
+        for (item, _) in items {
+            match item {
+                Item::Param(p) => {
+                    self.param_body(ParamId(param_index), p);
+                    param_index += 1;
+                }
+                Item::Pass(p) => {
+                    if pass_index < self.ir.passes.len() {
+                        self.pass_body(PassId(pass_index as u32), p);
+                    }
+                    pass_index += 1;
+                }
+                Item::Output(o) => {
+                    if let Some(prev) = output_seen {
+                        self.error(
+                            Diagnostic::error(codes::NO_OUTPUT, "more than one `output`")
+                                .with_primary(o.span, "second output")
+                                .with_secondary(prev, "first output")
+                                .with_help("a style has exactly one final image"),
+                        );
+                        continue;
+                    }
+                    output_seen = Some(o.span);
+                    self.ir.output_span = o.span;
+                    self.ir.output = self.output(o);
+                }
+                Item::Texture(_) | Item::Use(_) => {}
+            }
+        }
+        if output_seen.is_none() && !self.ir.passes.is_empty() {
+            let last = self.ir.passes.last().map(|p| p.name_span).unwrap_or_default();
+            self.error(
+                Diagnostic::error(codes::NO_OUTPUT, "the style has no `output`")
+                    .with_primary(last, "the last pass")
+                    .with_help("add `output <pass>.<target>` to say which target is the final image"),
+            );
+        }
+    }
+
+    fn output(&mut self, o: &ast::OutputDecl) -> Option<TargetRef> {
+        let Some((Symbol::Pass(pass), _)) = self.names.get(&o.pass.name).copied() else {
+            let passes: Vec<String> = self.ir.passes.iter().map(|p| p.name.clone()).collect();
+            let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("no pass named `{}`", o.pass.name))
+                .with_primary(o.pass.span, "not a pass");
+            if let Some(s) = did_you_mean(&o.pass.name, passes.iter().map(String::as_str)) {
+                d = d.with_help(format!("did you mean `{s}`?"));
+            }
+            self.error(d);
+            return None;
+        };
+        self.target_of(pass, &o.target)
+    }
+
+    fn target_of(&mut self, pass: PassId, field: &ast::Ident) -> Option<TargetRef> {
+        let outs = &self.pass_outputs[pass.0 as usize];
+        if let Some(i) = outs.iter().position(|o| *o == field.name) {
+            return Some(TargetRef {
+                pass,
+                output: i as u32,
+            });
+        }
+        let mut d = Diagnostic::error(
+            codes::UNKNOWN_NAME,
+            format!(
+                "pass `{}` has no output `{}`",
+                self.ir.pass(pass).name,
+                field.name
+            ),
+        )
+        .with_primary(field.span, "unknown output");
+        if let Some(s) = did_you_mean(&field.name, outs.iter().map(String::as_str)) {
+            d = d.with_help(format!("did you mean `{s}`?"));
+        } else {
+            d = d.with_help(format!("its outputs are: {}", outs.join(", ")));
+        }
+        self.error(d);
+        None
+    }
+
+    // ---------------------------------------------------------------- params
+
+    fn param_shell(&mut self, p: &ast::ParamDecl) -> Param {
+        let (ty, value_ty, unit) = self.param_type(&p.ty);
+        Param {
+            name: p.name.name.clone(),
+            doc: p.doc.clone(),
+            ty,
+            value_ty,
+            unit,
+            per_object: p.per_object,
+            default: ExprId(0),
+            range: None,
+            keys: Vec::new(),
+            interpolation: "linear".into(),
+            span: p.span,
+            name_span: p.name.span,
+        }
+    }
+
+    fn param_type(&mut self, t: &ast::TypeExpr) -> (ParamTy, Ty, Unit) {
+        match t {
+            ast::TypeExpr::Enum { variants, .. } => (
+                ParamTy::Enum(variants.iter().map(|v| v.name.clone()).collect()),
+                Ty::Int,
+                Unit::None,
+            ),
+            ast::TypeExpr::Named(id) => {
+                let v = |ty| (ParamTy::Value(ty), ty, Unit::None);
+                let u = |unit| (ParamTy::Value(Ty::Float), Ty::Float, unit);
+                match id.name.as_str() {
+                    "float" => v(Ty::Float),
+                    "int" => v(Ty::Int),
+                    "bool" => v(Ty::Bool),
+                    "vec2" => v(Ty::Vec2),
+                    "vec3" => v(Ty::Vec3),
+                    "vec4" | "color" => v(Ty::Vec4),
+                    "px" => u(Unit::Px),
+                    "m" | "mm" => u(Unit::Meters),
+                    "s" => u(Unit::Seconds),
+                    "Hz" => u(Unit::Hertz),
+                    "deg" => u(Unit::Radians),
+                    "range" => (ParamTy::Range(Ty::Vec2), Ty::Vec2, Unit::None),
+                    "blend" => (
+                        ParamTy::Enum(vec!["linear".into(), "cubic".into(), "quintic".into()]),
+                        Ty::Int,
+                        Unit::None,
+                    ),
+                    other => {
+                        let known = [
+                            "float", "int", "bool", "vec2", "vec3", "vec4", "color", "px", "m",
+                            "mm", "s", "Hz", "deg", "range", "blend",
+                        ];
+                        let mut d = Diagnostic::error(
+                            codes::UNKNOWN_TYPE,
+                            format!("unknown parameter type `{other}`"),
+                        )
+                        .with_primary(id.span, "not a type");
+                        d = match did_you_mean(other, known) {
+                            Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                            None if other == "texture" => d.with_help(
+                                "textures are declared with `texture name = image(\"file.png\")`, not as parameters",
+                            ),
+                            None => d.with_help(format!("parameter types are: {}, or enum(a, b, ...)", known.join(", "))),
+                        };
+                        self.error(d);
+                        (ParamTy::Value(Ty::Float), Ty::Unknown, Unit::None)
+                    }
+                }
+            }
+        }
+    }
+
+    fn param_body(&mut self, id: ParamId, p: &ast::ParamDecl) {
+        let variants = match &self.ir.params[id.0 as usize].ty {
+            ParamTy::Enum(v) => Some(v.clone()),
+            _ => None,
+        };
+        let default = match (&variants, &p.default.kind) {
+            (Some(vs), AK::Name(n)) => match vs.iter().position(|v| *v == n.name) {
+                Some(i) => self.ir.add_typed(
+                    ExprKind::Const(Const::Int(i as i64)),
+                    Ty::Int,
+                    Unit::None,
+                    n.span,
+                ),
+                None => {
+                    let mut d = Diagnostic::error(
+                        codes::UNKNOWN_NAME,
+                        format!("`{}` is not a variant of this enum", n.name),
+                    )
+                    .with_primary(n.span, "unknown variant");
+                    d = match did_you_mean(&n.name, vs.iter().map(String::as_str)) {
+                        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                        None => d.with_help(format!("the variants are: {}", vs.join(", "))),
+                    };
+                    self.error(d);
+                    self.ir.add(ExprKind::Error, n.span)
+                }
+            },
+            _ => self.expr(&p.default),
+        };
+        let range = p.range.as_ref().and_then(|r| {
+            let lo = self.expr(&r.lo);
+            let hi = self.expr(&r.hi);
+            let lo_v = self.const_scalar(lo, "a range bound");
+            let hi_v = self.const_scalar(hi, "a range bound");
+            let (lo_v, hi_v) = (lo_v?, hi_v?);
+            if lo_v > hi_v {
+                self.error(
+                    Diagnostic::error(codes::OUT_OF_RANGE, "empty range")
+                        .with_primary(r.span, format!("{lo_v} is greater than {hi_v}"))
+                        .with_help("write the lower bound first: `in lo..hi`"),
+                );
+                return None;
+            }
+            Some((lo_v, hi_v))
+        });
+        let mut keys = Vec::new();
+        let mut interpolation = String::from("linear");
+        if let Some(anim) = &p.animate {
+            if let Some(i) = &anim.interpolation {
+                if !["linear", "step", "smooth"].contains(&i.name.as_str()) {
+                    self.error(
+                        Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown interpolation `{}`", i.name))
+                            .with_primary(i.span, "not an interpolation")
+                            .with_help("use `linear`, `step` or `smooth`"),
+                    );
+                }
+                interpolation = i.name.clone();
+            }
+            for k in &anim.keys {
+                let t = self.expr(&k.time);
+                let v = self.expr(&k.value);
+                let t_unit = self.ir.expr(t).unit;
+                if t_unit != Unit::Seconds && t_unit != Unit::None {
+                    self.error(
+                        Diagnostic::error(codes::UNIT_MISMATCH, "keyframe time must be in seconds")
+                            .with_primary(k.time.span, format!("this is in {}", t_unit.name()))
+                            .with_help("write times like `2s` or `0.5s`"),
+                    );
+                }
+                let (Some(tv), Some(vv)) = (self.const_scalar(t, "a keyframe time"), self.const_values(v)) else {
+                    continue;
+                };
+                if let Some(prev) = keys.last().map(|k: &Keyframe| k.time_s) {
+                    if tv <= prev {
+                        self.error(
+                            Diagnostic::error(codes::OUT_OF_RANGE, "keyframe times must increase")
+                                .with_primary(k.time.span, format!("{tv}s is not after {prev}s"))
+                                .with_help("list keyframes in time order"),
+                        );
+                    }
+                }
+                if let Some((lo, hi)) = range {
+                    if let Some(bad) = vv.iter().find(|x| **x < lo || **x > hi) {
+                        self.error(
+                            Diagnostic::error(codes::OUT_OF_RANGE, "keyframe value outside the parameter's range")
+                                .with_primary(k.value.span, format!("{bad} is outside {lo}..{hi}"))
+                                .with_secondary(p.range.as_ref().map(|r| r.span).unwrap_or(p.span), "range declared here"),
+                        );
+                    }
+                }
+                keys.push(Keyframe {
+                    time_s: tv,
+                    value: vv,
+                });
+            }
+        }
+        let param = &mut self.ir.params[id.0 as usize];
+        param.default = default;
+        param.range = range;
+        param.keys = keys;
+        param.interpolation = interpolation;
+    }
+
+    fn const_scalar(&mut self, id: ExprId, what: &str) -> Option<f64> {
+        let v = self.const_values(id)?;
+        if v.len() != 1 {
+            let span = self.ir.expr(id).span;
+            self.error(
+                Diagnostic::error(codes::TYPE_MISMATCH, format!("{what} must be a single number"))
+                    .with_primary(span, format!("this has {} components", v.len())),
+            );
+            return None;
+        }
+        Some(v[0])
+    }
+
+    fn const_values(&mut self, id: ExprId) -> Option<Vec<f64>> {
+        if matches!(self.ir.expr(id).kind, ExprKind::Error) {
+            return None;
+        }
+        match const_eval(&self.ir, id) {
+            Some(c) => Some(c.as_f64s()),
+            None => {
+                let span = self.ir.expr(id).span;
+                self.error(
+                    Diagnostic::error(codes::NOT_CONSTANT, "this must be a constant")
+                        .with_primary(span, "not known at compile time")
+                        .with_help("use literals such as `0.5`, `2px`, `#ff0000` or `vec2(0.1, 0.2)`"),
+                );
+                None
+            }
+        }
+    }
+
+    // -------------------------------------------------------------- textures
+
+    fn texture(&mut self, t: &ast::TextureDecl, dir: &Path) -> Texture {
+        let mut tex = Texture {
+            name: t.name.name.clone(),
+            doc: t.doc.clone(),
+            source: TextureSource::Noise {
+                size: 1,
+                octaves: 1,
+                seed: 0,
+                gradient: false,
+                channels: 1,
+                frequency: 4,
+            },
+            wrap_repeat: true,
+            filter_linear: true,
+            mips: false,
+            span: t.span,
+        };
+        let callee = t.source.callee.name.as_str();
+        match callee {
+            "image" => {
+                let mut path = None;
+                let mut srgb = true;
+                for a in &t.source.args {
+                    match (&a.name, &a.value.kind) {
+                        (None, AK::Str(s)) => path = Some((s.clone(), a.value.span)),
+                        (None, AK::Name(n)) if n.name == "srgb" => srgb = true,
+                        (None, AK::Name(n)) if n.name == "linear" => srgb = false,
+                        _ => self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `image`")
+                                .with_primary(a.span, "not understood")
+                                .with_help("write `image(\"path.png\", srgb)` or `image(\"path.png\", linear)`"),
+                        ),
+                    }
+                }
+                match path {
+                    Some((p, span)) => {
+                        let resolved = dir.join(&p);
+                        if !resolved.is_file() {
+                            self.error(
+                                Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
+                                    .with_primary(span, format!("looked for {}", resolved.display()))
+                                    .with_help("paths are relative to the .npr file; generate a texture with `noise(...)` if you have none"),
+                            );
+                        }
+                        tex.source = TextureSource::Image {
+                            path: p,
+                            resolved: resolved.display().to_string(),
+                            srgb,
+                        };
+                    }
+                    None => self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, "`image` needs a file path")
+                            .with_primary(t.source.span, "no path given")
+                            .with_help("write `image(\"textures/paper.png\", srgb)`"),
+                    ),
+                }
+            }
+            "noise" => {
+                let get = |name: &str, default: f64, lo: f64, hi: f64, this: &mut Self| -> f64 {
+                    let Some(a) = t.source.args.iter().find(|a| a.name.as_ref().is_some_and(|n| n.name == name)) else {
+                        return default;
+                    };
+                    let id = this.expr(&a.value);
+                    let Some(v) = this.const_scalar(id, "a noise setting") else {
+                        return default;
+                    };
+                    if v < lo || v > hi || v.fract() != 0.0 {
+                        let code = if name == "size" && v > hi { codes::LIMIT_EXCEEDED } else { codes::OUT_OF_RANGE };
+                        this.error(
+                            Diagnostic::error(code, format!("noise `{name}` must be a whole number in {lo}..{hi}"))
+                                .with_primary(a.value.span, format!("{v} is not allowed")),
+                        );
+                        return default;
+                    }
+                    v
+                };
+                for a in &t.source.args {
+                    let known = ["size", "octaves", "seed", "kind", "channels", "frequency"];
+                    match &a.name {
+                        Some(n) if known.contains(&n.name.as_str()) => {}
+                        _ => {
+                            let mut d = Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `noise`")
+                                .with_primary(a.span, "not a noise setting");
+                            if let Some(s) = a.name.as_ref().and_then(|n| did_you_mean(&n.name, known)) {
+                                d = d.with_help(format!("did you mean `{s}`?"));
+                            } else {
+                                d = d.with_help(format!("noise settings are: {}", known.join(", ")));
+                            }
+                            self.error(d);
+                        }
+                    }
+                }
+                let size = get("size", 256.0, 1.0, MAX_NOISE_SIZE as f64, self) as u32;
+                let octaves = get("octaves", 4.0, 1.0, 12.0, self) as u32;
+                let seed = get("seed", 0.0, 0.0, u32::MAX as f64, self) as u32;
+                let channels = get("channels", 1.0, 1.0, 4.0, self) as u32;
+                let frequency = get("frequency", 4.0, 1.0, 256.0, self) as u32;
+                let mut gradient = false;
+                if let Some(a) = t.source.args.iter().find(|a| a.name.as_ref().is_some_and(|n| n.name == "kind")) {
+                    match &a.value.kind {
+                        AK::Name(n) if n.name == "value" => gradient = false,
+                        AK::Name(n) if n.name == "gradient" => gradient = true,
+                        _ => self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, "noise `kind` must be `value` or `gradient`")
+                                .with_primary(a.value.span, "unknown kind"),
+                        ),
+                    }
+                }
+                tex.source = TextureSource::Noise {
+                    size,
+                    octaves,
+                    seed,
+                    gradient,
+                    channels,
+                    frequency,
+                };
+                tex.wrap_repeat = true;
+            }
+            other => {
+                let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown texture source `{other}`"))
+                    .with_primary(t.source.callee.span, "not a texture source");
+                d = match did_you_mean(other, ["image", "noise"]) {
+                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                    None => d.with_help("textures come from `image(\"file.png\")` or `noise(size: 256, octaves: 4)`"),
+                };
+                self.error(d);
+            }
+        }
+        for s in &t.options {
+            let value = match &s.value.kind {
+                AK::Name(n) => n.name.as_str(),
+                AK::Bool(true) => "on",
+                AK::Bool(false) => "off",
+                _ => "",
+            };
+            match (s.key.name.as_str(), value) {
+                ("wrap", "repeat") => tex.wrap_repeat = true,
+                ("wrap", "clamp") => tex.wrap_repeat = false,
+                ("filter", "linear") => tex.filter_linear = true,
+                ("filter", "nearest") => tex.filter_linear = false,
+                ("mips", "on") => tex.mips = true,
+                ("mips", "off") => tex.mips = false,
+                (key, _) => {
+                    let help = match key {
+                        "wrap" => "`wrap` is `repeat` or `clamp`",
+                        "filter" => "`filter` is `linear` or `nearest`",
+                        "mips" => "`mips` is `on` or `off`",
+                        _ => "texture options are `wrap`, `filter` and `mips`",
+                    };
+                    self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, format!("bad texture option `{key}`"))
+                            .with_primary(s.span, "not understood")
+                            .with_help(help),
+                    );
+                }
+            }
+        }
+        tex
+    }
+
+    // ---------------------------------------------------------------- passes
+
+    fn pass_body(&mut self, id: PassId, p: &ast::PassDecl) {
+        self.current_pass = Some(id);
+        let kind = match p.kind.kind.name.as_str() {
+            "render" => {
+                let tag = match p.kind.args.as_slice() {
+                    [] => None,
+                    [a] if a.name == "scene" => None,
+                    [a] => Some(a.name.clone()),
+                    [_, extra, ..] => {
+                        self.error(
+                            Diagnostic::error(codes::BAD_PASS_INPUT, "a render pass draws one set of objects")
+                                .with_primary(extra.span, "unexpected")
+                                .with_help("write `render(scene)` for all objects or `render(tag)` for tagged ones"),
+                        );
+                        None
+                    }
+                };
+                PassKind::Render { tag }
+            }
+            "image" => {
+                let mut inputs = Vec::new();
+                for a in &p.kind.args {
+                    match self.names.get(&a.name).copied() {
+                        Some((Symbol::Pass(pid), _)) => inputs.push(pid),
+                        _ => {
+                            let passes: Vec<String> = self.ir.passes.iter().map(|p| p.name.clone()).collect();
+                            let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("no pass named `{}`", a.name))
+                                .with_primary(a.span, "not a pass");
+                            if let Some(s) = did_you_mean(&a.name, passes.iter().map(String::as_str)) {
+                                d = d.with_help(format!("did you mean `{s}`?"));
+                            }
+                            self.error(d);
+                        }
+                    }
+                }
+                PassKind::Image { inputs }
+            }
+            other => {
+                let kinds = ["render", "image"];
+                let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown pass kind `{other}`"))
+                    .with_primary(p.kind.kind.span, "not a pass kind");
+                d = match did_you_mean(other, kinds) {
+                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                    None if ["compute", "reduce", "lines"].contains(&other) => {
+                        d.with_help(format!("`{other}` passes are reserved for a later version; use `render` or `image`"))
+                    }
+                    None => d.with_help("passes are `render(scene)` or `image(inputs...)`"),
+                };
+                self.error(d);
+                PassKind::Image { inputs: Vec::new() }
+            }
+        };
+        let scale = match &p.scale {
+            None => 1.0,
+            Some(e) => {
+                let sid = self.expr(e);
+                match self.const_scalar(sid, "a pass scale") {
+                    Some(s) if s > 0.0 && s <= 4.0 => s,
+                    Some(s) => {
+                        self.error(
+                            Diagnostic::error(codes::OUT_OF_RANGE, "pass scale out of range")
+                                .with_primary(e.span, format!("{s} is outside (0, 4]"))
+                                .with_help("a scale is relative to the output size, e.g. `scale 1/2`"),
+                        );
+                        1.0
+                    }
+                    None => 1.0,
+                }
+            }
+        };
+        for m in &p.modifiers {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, format!("unsupported pass modifier `{}`", m.key.name))
+                    .with_primary(m.span, "not supported yet")
+                    .with_help("stereo pass modifiers are reserved for a later version"),
+            );
+        }
+        let mut inflate = None;
+        for s in &p.body.vertex {
+            if s.key.name == "inflate" && matches!(kind, PassKind::Render { .. }) {
+                inflate = Some(self.expr(&s.value));
+            } else {
+                self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
+                        .with_primary(s.key.span, "not a vertex modifier")
+                        .with_help("render passes support `vertex { inflate: 2px }`"),
+                );
+            }
+        }
+        let mut clear = [0.0, 0.0, 0.0, 0.0];
+        for s in &p.body.settings {
+            match s.key.name.as_str() {
+                "clear" => {
+                    let cid = self.expr(&s.value);
+                    if let Some(v) = self.const_values(cid) {
+                        match v.len() {
+                            1 => clear = [v[0], v[0], v[0], 1.0],
+                            4 => clear = [v[0], v[1], v[2], v[3]],
+                            3 => clear = [v[0], v[1], v[2], 1.0],
+                            n => self.error(
+                                Diagnostic::error(codes::TYPE_MISMATCH, "`clear` must be a colour")
+                                    .with_primary(s.value.span, format!("this has {n} components")),
+                            ),
+                        }
+                    }
+                }
+                other => self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
+                        .with_primary(s.key.span, "not a pass setting")
+                        .with_help("pass settings are: `clear: #rrggbb`"),
+                ),
+            }
+        }
+        self.scopes.push(Vec::new());
+        let mut lets = Vec::new();
+        for l in &p.body.lets {
+            let v = self.expr(&l.value);
+            lets.push(Let {
+                name: l.name.name.clone(),
+                value: v,
+                span: l.span,
+            });
+            if let Some(scope) = self.scopes.last_mut() {
+                scope.push((l.name.name.clone(), v));
+            }
+        }
+        if p.body.outputs.len() > MAX_OUTPUTS_PER_PASS {
+            self.error(
+                Diagnostic::error(codes::LIMIT_EXCEEDED, "too many outputs in one pass")
+                    .with_primary(p.body.outputs[MAX_OUTPUTS_PER_PASS].span, "one too many")
+                    .with_help(format!(
+                        "a pass can write at most {MAX_OUTPUTS_PER_PASS} targets (the colour attachment limit); split it into two passes"
+                    )),
+            );
+        }
+        let mut outputs = Vec::new();
+        let mut seen: Vec<&str> = Vec::new();
+        for o in p.body.outputs.iter().take(MAX_OUTPUTS_PER_PASS) {
+            if seen.contains(&o.name.name.as_str()) {
+                self.error(
+                    Diagnostic::error(codes::DUPLICATE_NAME, format!("output `{}` is declared twice", o.name.name))
+                        .with_primary(o.name.span, "declared again here"),
+                );
+            }
+            seen.push(&o.name.name);
+            let format = match Format::parse(&o.format.name) {
+                Some(f) => f,
+                None => {
+                    let names = Format::ALL.iter().map(|(n, _)| *n);
+                    let mut d = Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown texture format `{}`", o.format.name))
+                        .with_primary(o.format.span, "not a target format");
+                    d = match did_you_mean(&o.format.name, names) {
+                        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                        None => d.with_help(format!(
+                            "formats are: {}",
+                            Format::ALL.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                        )),
+                    };
+                    self.error(d);
+                    Format::Rgba8unorm
+                }
+            };
+            let value = self.expr(&o.value);
+            outputs.push(PassOutput {
+                name: o.name.name.clone(),
+                format,
+                value,
+                span: o.span,
+            });
+        }
+        self.scopes.pop();
+        let pass = &mut self.ir.passes[id.0 as usize];
+        pass.kind = kind;
+        pass.scale = scale;
+        pass.clear = clear;
+        pass.inflate = inflate;
+        pass.lets = lets;
+        pass.outputs = outputs;
+        self.current_pass = None;
+    }
+
+    // ----------------------------------------------------------- expressions
+
+    fn expr(&mut self, e: &ast::Expr) -> ExprId {
+        let span = e.span;
+        match &e.kind {
+            AK::Number { value, is_int, unit } => {
+                let (v, unit) = match unit {
+                    None => (*value, Unit::None),
+                    Some(UnitSuffix::Px) => (*value, Unit::Px),
+                    Some(UnitSuffix::Percent) => {
+                        return self.ir.add_typed(ExprKind::PercentOfHeight(*value / 100.0), Ty::Float, Unit::Px, span)
+                    }
+                    Some(UnitSuffix::M) => (*value, Unit::Meters),
+                    Some(UnitSuffix::Mm) => (*value * 1e-3, Unit::Meters),
+                    Some(UnitSuffix::S) => (*value, Unit::Seconds),
+                    Some(UnitSuffix::Hz) => (*value, Unit::Hertz),
+                    Some(UnitSuffix::Deg) => (value.to_radians(), Unit::Radians),
+                };
+                if *is_int && unit == Unit::None && v.abs() < 2f64.powi(31) {
+                    self.ir.add_typed(ExprKind::Const(Const::Int(v as i64)), Ty::Int, unit, span)
+                } else {
+                    self.ir.add_typed(ExprKind::Const(Const::Float(v)), Ty::Float, unit, span)
+                }
+            }
+            AK::Bool(b) => self.ir.add_typed(ExprKind::Const(Const::Bool(*b)), Ty::Bool, Unit::None, span),
+            AK::Color(c) => self.ir.add_typed(ExprKind::Const(Const::Vec(c.to_vec())), Ty::Vec4, Unit::None, span),
+            AK::Str(_) => {
+                self.error(
+                    Diagnostic::error(codes::TYPE_MISMATCH, "a string is not a value")
+                        .with_primary(span, "strings are only used for file paths")
+                        .with_help("to pick an enum variant, write its name without quotes"),
+                );
+                self.ir.add(ExprKind::Error, span)
+            }
+            AK::Name(id) => self.name(id),
+            AK::Field { base, field } => self.field(base, field, span),
+            AK::Call(call) => self.call(call),
+            AK::Unary { op, operand } => {
+                let o = self.expr(operand);
+                self.ir.add(ExprKind::Unary { op: *op, operand: o }, span)
+            }
+            AK::Binary { op, lhs, rhs } => {
+                let l = self.expr(lhs);
+                let r = self.expr(rhs);
+                self.ir.add(ExprKind::Binary { op: *op, lhs: l, rhs: r }, span)
+            }
+            AK::If { cond, then, otherwise } => {
+                let c = self.expr(cond);
+                let t = self.expr(then);
+                let o = self.expr(otherwise);
+                self.ir.add(ExprKind::Select { cond: c, then: t, otherwise: o }, span)
+            }
+            AK::Block { lets, value } => {
+                self.scopes.push(Vec::new());
+                for l in lets {
+                    let v = self.expr(&l.value);
+                    if let Some(s) = self.scopes.last_mut() {
+                        s.push((l.name.name.clone(), v));
+                    }
+                }
+                let v = self.expr(value);
+                self.scopes.pop();
+                v
+            }
+            AK::Range { lo, hi } => {
+                let l = self.expr(lo);
+                let h = self.expr(hi);
+                self.ir.add(ExprKind::Call { callee: Callee::Intrinsic(Intrinsic::Construct(2)), args: vec![l, h] }, span)
+            }
+        }
+    }
+
+    fn name(&mut self, id: &ast::Ident) -> ExprId {
+        let span = id.span;
+        for scope in self.scopes.iter().rev() {
+            if let Some((_, v)) = scope.iter().rev().find(|(n, _)| *n == id.name) {
+                return *v;
+            }
+        }
+        match self.names.get(&id.name).copied() {
+            Some((Symbol::Param(p), _)) => {
+                let param = &self.ir.params[p.0 as usize];
+                let (ty, unit) = (param.value_ty, param.unit);
+                return self.ir.add_typed(ExprKind::Param(p), ty, unit, span);
+            }
+            Some((Symbol::Texture(t), _)) => {
+                return self.ir.add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span);
+            }
+            Some((Symbol::Pass(p), _)) => {
+                let outs = self.pass_outputs[p.0 as usize].clone();
+                let d = Diagnostic::error(codes::TYPE_MISMATCH, format!("`{}` is a pass, not a value", id.name))
+                    .with_primary(span, "a pass")
+                    .with_help(match outs.first() {
+                        Some(o) => format!("read one of its targets, e.g. `{}.{o}`", id.name),
+                        None => "this pass has no outputs".to_string(),
+                    });
+                self.error(d);
+                return self.ir.add(ExprKind::Error, span);
+            }
+            None => {}
+        }
+        if let Some((_, b)) = Builtin::SPELLINGS.iter().find(|(s, _)| *s == id.name) {
+            let (ty, unit) = b.ty_unit();
+            return self.ir.add_typed(ExprKind::Builtin(*b), ty, unit, span);
+        }
+        // Enum variants are global constants (their index).
+        for p in &self.ir.params {
+            if let ParamTy::Enum(vs) = &p.ty {
+                if let Some(i) = vs.iter().position(|v| *v == id.name) {
+                    return self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span);
+                }
+            }
+        }
+        let mut candidates: Vec<String> = self.names.keys().cloned().collect();
+        candidates.extend(Builtin::SPELLINGS.iter().map(|(s, _)| s.to_string()));
+        for scope in &self.scopes {
+            candidates.extend(scope.iter().map(|(n, _)| n.clone()));
+        }
+        let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown name `{}`", id.name))
+            .with_primary(span, "not found in this scope");
+        if let Some(s) = did_you_mean(&id.name, candidates.iter().map(String::as_str)) {
+            d = d.with_help(format!("did you mean `{s}`?"));
+        } else {
+            d = d.with_help("declare it with `param` or `let`, or use a builtin such as `uv`, `normal`, `time`");
+        }
+        self.error(d);
+        self.ir.add(ExprKind::Error, span)
+    }
+
+    fn field(&mut self, base: &ast::Expr, field: &ast::Ident, span: Span) -> ExprId {
+        if let AK::Name(b) = &base.kind {
+            let shadowed = self.scopes.iter().any(|s| s.iter().any(|(n, _)| *n == b.name));
+            if !shadowed {
+                if let Some((Symbol::Pass(p), _)) = self.names.get(&b.name).copied() {
+                    return match self.target_of(p, field) {
+                        Some(t) => self.ir.add_typed(ExprKind::Target(t), Ty::Target(t), Unit::None, span),
+                        None => self.ir.add(ExprKind::Error, span),
+                    };
+                }
+                let spelled = format!("{}.{}", b.name, field.name);
+                if let Some((_, bi)) = Builtin::SPELLINGS.iter().find(|(s, _)| *s == spelled) {
+                    let (ty, unit) = bi.ty_unit();
+                    return self.ir.add_typed(ExprKind::Builtin(*bi), ty, unit, span);
+                }
+                if matches!(b.name.as_str(), "light" | "camera") {
+                    let members: Vec<&str> = Builtin::SPELLINGS
+                        .iter()
+                        .filter_map(|(s, _)| s.strip_prefix(&format!("{}.", b.name)))
+                        .collect();
+                    let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("`{}` has no member `{}`", b.name, field.name))
+                        .with_primary(field.span, "unknown member");
+                    d = match did_you_mean(&field.name, members.iter().copied()) {
+                        Some(s) => d.with_help(format!("did you mean `{}.{s}`?", b.name)),
+                        None => d.with_help(format!("its members are: {}", members.join(", "))),
+                    };
+                    self.error(d);
+                    return self.ir.add(ExprKind::Error, span);
+                }
+            }
+        }
+        let b = self.expr(base);
+        let comps: Option<Vec<u8>> = field
+            .name
+            .chars()
+            .map(|c| match c {
+                'x' | 'r' => Some(0),
+                'y' | 'g' => Some(1),
+                'z' | 'b' => Some(2),
+                'w' | 'a' => Some(3),
+                _ => None,
+            })
+            .collect();
+        match comps {
+            Some(c) if !c.is_empty() && c.len() <= 4 => self.ir.add(ExprKind::Swizzle { base: b, components: c }, span),
+            _ => {
+                self.error(
+                    Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown field `{}`", field.name))
+                        .with_primary(field.span, "not a swizzle or member")
+                        .with_help("swizzles use up to four of x, y, z, w (or r, g, b, a)"),
+                );
+                self.ir.add(ExprKind::Error, span)
+            }
+        }
+    }
+
+    fn call(&mut self, call: &ast::Call) -> ExprId {
+        let name = call.callee.name.as_str();
+        let span = call.span;
+        if let Some(intr) = Intrinsic::lookup(name) {
+            let mut args = Vec::new();
+            for a in &call.args {
+                if let Some(n) = &a.name {
+                    self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` takes no named arguments"))
+                            .with_primary(n.span, "named argument")
+                            .with_help("pass the arguments by position"),
+                    );
+                }
+                args.push(self.expr(&a.value));
+            }
+            return self.ir.add(ExprKind::Call { callee: Callee::Intrinsic(intr), args }, span);
+        }
+        let Some(index) = stdlib::all().iter().position(|o| o.name == name) else {
+            let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
+            names.extend(Intrinsic::NAMES.iter().copied());
+            let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown operator `{name}`"))
+                .with_primary(call.callee.span, "no such operator or function");
+            d = match did_you_mean(name, names) {
+                Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                None => d.with_help("`npr doc` lists the stdlib operators"),
+            };
+            self.error(d);
+            for a in &call.args {
+                self.expr(&a.value);
+            }
+            return self.ir.add(ExprKind::Error, span);
+        };
+        let op = &stdlib::all()[index];
+        let mut slots: Vec<Option<ExprId>> = vec![None; op.params.len()];
+        let mut positional = 0usize;
+        let mut ok = true;
+        for a in &call.args {
+            let slot = match &a.name {
+                None => {
+                    // Positional arguments fill the parameters not yet given, in order.
+                    while positional < slots.len() && slots[positional].is_some() {
+                        positional += 1;
+                    }
+                    if positional >= slots.len() {
+                        self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, format!("too many arguments to `{name}`"))
+                                .with_primary(a.span, "extra argument")
+                                .with_help(format!("`{name}` takes {}", signature(op))),
+                        );
+                        ok = false;
+                        continue;
+                    }
+                    positional
+                }
+                Some(n) => match op.params.iter().position(|p| p.name == n.name) {
+                    Some(i) if slots[i].is_none() => i,
+                    Some(_) => {
+                        self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, format!("argument `{}` given twice", n.name))
+                                .with_primary(n.span, "given again here"),
+                        );
+                        ok = false;
+                        continue;
+                    }
+                    None => {
+                        let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` has no parameter `{}`", n.name))
+                            .with_primary(n.span, "unknown argument name");
+                        d = match did_you_mean(&n.name, op.params.iter().map(|p| p.name)) {
+                            Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                            None => d.with_help(format!("`{name}` takes {}", signature(op))),
+                        };
+                        self.error(d);
+                        ok = false;
+                        continue;
+                    }
+                },
+            };
+            let param = &op.params[slot];
+            let value = match (param.ty, &a.value.kind) {
+                (stdlib::Ty::Enum(variants), AK::Name(v)) if !self.is_bound(&v.name) => {
+                    match variants.iter().position(|x| *x == v.name) {
+                        Some(i) => self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, v.span),
+                        None => {
+                            let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("`{}` is not a choice of `{}`", v.name, param.name))
+                                .with_primary(v.span, "unknown variant");
+                            d = match did_you_mean(&v.name, variants.iter().copied()) {
+                                Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                                None => d.with_help(format!("choices are: {}", variants.join(", "))),
+                            };
+                            self.error(d);
+                            ok = false;
+                            continue;
+                        }
+                    }
+                }
+                _ => self.expr(&a.value),
+            };
+            slots[slot] = Some(value);
+        }
+        let mut args = Vec::new();
+        for (i, p) in op.params.iter().enumerate() {
+            if let Some(v) = slots[i] {
+                args.push(v);
+                continue;
+            }
+            let v = match p.default {
+                stdlib::Default::Required => {
+                    if ok {
+                        self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, format!("missing argument `{}` to `{name}`", p.name))
+                                .with_primary(span, format!("`{}` is required", p.name))
+                                .with_help(format!("`{name}` takes {}", signature(op))),
+                        );
+                    }
+                    ok = false;
+                    self.ir.add(ExprKind::Error, span)
+                }
+                stdlib::Default::Number(x) => {
+                    let (ty, c) = match p.ty {
+                        stdlib::Ty::Int => (Ty::Int, Const::Int(x as i64)),
+                        stdlib::Ty::Bool => (Ty::Bool, Const::Bool(x != 0.0)),
+                        _ => (Ty::Float, Const::Float(x)),
+                    };
+                    self.ir.add_typed(ExprKind::Const(c), ty, p.unit, span)
+                }
+                stdlib::Default::Variant(v) => {
+                    let i = match p.ty {
+                        stdlib::Ty::Enum(vs) => vs.iter().position(|x| *x == v).unwrap_or(0),
+                        _ => 0,
+                    };
+                    self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span)
+                }
+                stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
+                    Some((_, bi)) => {
+                        let (ty, unit) = bi.ty_unit();
+                        self.ir.add_typed(ExprKind::Builtin(*bi), ty, unit, span)
+                    }
+                    None => self.ir.add(ExprKind::Error, span),
+                },
+            };
+            args.push(v);
+        }
+        if !ok {
+            return self.ir.add(ExprKind::Error, span);
+        }
+        self.ir.add(ExprKind::Call { callee: Callee::Operator(index as u32), args }, span)
+    }
+
+    fn is_bound(&self, name: &str) -> bool {
+        self.scopes.iter().any(|s| s.iter().any(|(n, _)| n == name)) || self.names.contains_key(name)
+    }
+}
+
+/// `(x: float, steps: int = 3)` — an operator's signature for help lines.
+pub fn signature(op: &stdlib::Operator) -> String {
+    let params: Vec<String> = op
+        .params
+        .iter()
+        .map(|p| {
+            let ty = match p.ty {
+                stdlib::Ty::Enum(v) => v.join("|"),
+                t => format!("{t:?}").to_lowercase(),
+            };
+            match p.default {
+                stdlib::Default::Required => format!("{}: {ty}", p.name),
+                stdlib::Default::Number(x) => format!("{}: {ty} = {x}", p.name),
+                stdlib::Default::Builtin(b) => format!("{}: {ty} = {b}", p.name),
+                stdlib::Default::Variant(v) => format!("{}: {ty} = {v}", p.name),
+            }
+        })
+        .collect();
+    format!("({})", params.join(", "))
+}

@@ -1,0 +1,95 @@
+//! Specialize: fold parameters that can never change into constants, then
+//! fold constant expressions, so that `if` on a folded parameter leaves only
+//! the branch taken (a disabled feature emits no code).
+//!
+//! A parameter stays a uniform when it is animated, when `--keep-params` asks
+//! for live tweaking; per-object parameters go to the object block.
+
+use crate::consteval::const_eval;
+use crate::ir::*;
+use crate::manifest::ParamBinding;
+use crate::prune::Live;
+use crate::report::Report;
+
+pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Report) -> Vec<ParamBinding> {
+    let mut bindings = vec![ParamBinding::Removed; ir.params.len()];
+    for (i, p) in ir.params.iter().enumerate() {
+        if !live.params.contains(&ParamId(i as u32)) {
+            continue;
+        }
+        bindings[i] = if p.per_object {
+            report.push("kept", format!("param `{}`", p.name), "per object: the scene binds it".into());
+            ParamBinding::PerObject
+        } else if !p.keys.is_empty() {
+            report.push("kept", format!("param `{}`", p.name), "animated: a uniform updated each frame".into());
+            ParamBinding::Uniform
+        } else if keep_params {
+            report.push("kept", format!("param `{}`", p.name), "--keep-params: a uniform for live tweaking".into());
+            ParamBinding::Uniform
+        } else {
+            report.push("folded", format!("param `{}`", p.name), "neither animated nor per object: a constant".into());
+            ParamBinding::Folded
+        };
+    }
+    // Substitute folded parameters with their default's node kind.
+    for i in 0..ir.exprs.len() {
+        if let ExprKind::Param(p) = ir.exprs[i].kind {
+            if bindings[p.0 as usize] == ParamBinding::Folded {
+                let d = ir.params[p.0 as usize].default;
+                let folded = match const_eval(ir, d) {
+                    Some(c) => ExprKind::Const(retype(c, ir.exprs[i].ty)),
+                    None => ir.expr(d).kind.clone(),
+                };
+                ir.exprs[i].kind = folded;
+            }
+        }
+    }
+    // Fold constants bottom-up (operands precede users, except conversions
+    // added by the typechecker, so iterate until nothing changes).
+    loop {
+        let mut changed = false;
+        for i in 0..ir.exprs.len() {
+            let id = ExprId(i as u32);
+            let foldable = matches!(
+                ir.exprs[i].kind,
+                ExprKind::Unary { .. }
+                    | ExprKind::Binary { .. }
+                    | ExprKind::Convert { .. }
+                    | ExprKind::Swizzle { .. }
+                    | ExprKind::Call { callee: Callee::Intrinsic(Intrinsic::Construct(_)), .. }
+            );
+            if foldable {
+                if let Some(c) = const_eval(ir, id) {
+                    ir.exprs[i].kind = ExprKind::Const(retype(c, ir.exprs[i].ty));
+                    changed = true;
+                }
+            }
+            if let ExprKind::Select { cond, then, otherwise } = ir.exprs[i].kind {
+                if let Some(Const::Bool(b)) = const_eval(ir, cond) {
+                    let chosen = if b { then } else { otherwise };
+                    ir.exprs[i].kind = ir.expr(chosen).kind.clone();
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    bindings
+}
+
+/// Make a constant match the node's type (e.g. integer division folds to a float).
+fn retype(c: Const, ty: Ty) -> Const {
+    match ty {
+        Ty::Int => Const::Int(c.scalar().unwrap_or(0.0) as i64),
+        Ty::Float => Const::Float(c.scalar().unwrap_or(0.0)),
+        Ty::Bool => Const::Bool(c.scalar().unwrap_or(0.0) != 0.0),
+        Ty::Vec2 | Ty::Vec3 | Ty::Vec4 => {
+            let n = ty.components().unwrap_or(4) as usize;
+            let v = c.as_f64s();
+            Const::Vec(if v.len() == 1 { vec![v[0]; n] } else { v.into_iter().take(n).collect() })
+        }
+        _ => c,
+    }
+}

@@ -1,0 +1,290 @@
+//! User-facing diagnostics: an error code, a primary span with a label, a help
+//! line, rendered like rustc (codespan-reporting) or as JSON.
+//!
+//! Every stage of npr reports user errors through [`Diagnostic`]; the code
+//! table in [`codes`] is the single list of error codes, and each one has a
+//! snapshot test of its rendered message.
+
+use crate::span::{SourceMap, Span};
+use codespan_reporting::diagnostic as cs;
+use codespan_reporting::files::SimpleFiles;
+use codespan_reporting::term;
+use serde::Serialize;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+    Note,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Label {
+    pub span: Span,
+    pub message: String,
+    pub primary: bool,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    /// A stable code from [`codes`], e.g. `E0101`.
+    pub code: &'static str,
+    pub message: String,
+    pub labels: Vec<Label>,
+    pub help: Option<String>,
+    pub notes: Vec<String>,
+}
+
+impl Diagnostic {
+    pub fn error(code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            severity: Severity::Error,
+            code,
+            message: message.into(),
+            labels: Vec::new(),
+            help: None,
+            notes: Vec::new(),
+        }
+    }
+
+    pub fn warning(code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(code, message)
+        }
+    }
+
+    /// The primary label: where the problem is.
+    pub fn with_primary(mut self, span: Span, label: impl Into<String>) -> Self {
+        self.labels.push(Label {
+            span,
+            message: label.into(),
+            primary: true,
+        });
+        self
+    }
+
+    /// A secondary label: related context.
+    pub fn with_secondary(mut self, span: Span, label: impl Into<String>) -> Self {
+        self.labels.push(Label {
+            span,
+            message: label.into(),
+            primary: false,
+        });
+        self
+    }
+
+    pub fn with_help(mut self, help: impl Into<String>) -> Self {
+        self.help = Some(help.into());
+        self
+    }
+
+    pub fn with_note(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+
+    pub fn primary_span(&self) -> Option<Span> {
+        self.labels.iter().find(|l| l.primary).map(|l| l.span)
+    }
+}
+
+/// Did you mean …? The closest candidate by Jaro-Winkler similarity, if close enough.
+pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .into_iter()
+        .map(|c| (strsim::jaro_winkler(name, c), c))
+        .filter(|(score, _)| *score > 0.8)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, c)| c)
+}
+
+/// Render diagnostics like rustc. `color` adds ANSI colours (for terminals).
+pub fn render(diags: &[Diagnostic], sources: &SourceMap, color: bool) -> String {
+    let mut files = SimpleFiles::new();
+    for f in sources.files() {
+        files.add(f.name.clone(), f.text.clone());
+    }
+    let config = term::Config::default();
+    let mut out: Vec<u8> = Vec::new();
+    for d in diags {
+        let cs_diag = to_codespan(d);
+        if color {
+            let mut w = term::termcolor::Ansi::new(&mut out);
+            let _ = term::emit_to_write_style(&mut w, &config, &files, &cs_diag);
+        } else {
+            let mut w = term::termcolor::NoColor::new(&mut out);
+            let _ = term::emit_to_write_style(&mut w, &config, &files, &cs_diag);
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn to_codespan(d: &Diagnostic) -> cs::Diagnostic<usize> {
+    let sev = match d.severity {
+        Severity::Error => cs::Severity::Error,
+        Severity::Warning => cs::Severity::Warning,
+        Severity::Note => cs::Severity::Note,
+    };
+    let labels = d
+        .labels
+        .iter()
+        .map(|l| {
+            let style = if l.primary {
+                cs::LabelStyle::Primary
+            } else {
+                cs::LabelStyle::Secondary
+            };
+            cs::Label::new(style, l.span.file.0 as usize, l.span.range()).with_message(&l.message)
+        })
+        .collect();
+    let mut notes: Vec<String> = d.notes.clone();
+    if let Some(h) = &d.help {
+        notes.push(format!("help: {h}"));
+    }
+    cs::Diagnostic::new(sev)
+        .with_code(d.code)
+        .with_message(&d.message)
+        .with_labels(labels)
+        .with_notes(notes)
+}
+
+/// One diagnostic as JSON, with file names and 1-based line/column resolved.
+#[derive(Debug, Serialize)]
+pub struct JsonDiagnostic<'a> {
+    pub severity: Severity,
+    pub code: &'a str,
+    pub message: &'a str,
+    pub help: Option<&'a str>,
+    pub notes: &'a [String],
+    pub labels: Vec<JsonLabel<'a>>,
+    pub rendered: String,
+}
+
+#[derive(Debug, Serialize)]
+pub struct JsonLabel<'a> {
+    pub file: String,
+    pub byte_start: u32,
+    pub byte_end: u32,
+    pub line: usize,
+    pub column: usize,
+    pub message: &'a str,
+    pub primary: bool,
+}
+
+/// Machine-readable diagnostics: one JSON object per line (like `cargo --message-format json`).
+pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
+    let mut out = String::new();
+    for d in diags {
+        let labels = d
+            .labels
+            .iter()
+            .map(|l| {
+                let (line, column) = sources.line_col(l.span.file, l.span.start);
+                JsonLabel {
+                    file: sources
+                        .get(l.span.file)
+                        .map(|f| f.name.clone())
+                        .unwrap_or_default(),
+                    byte_start: l.span.start,
+                    byte_end: l.span.end,
+                    line,
+                    column,
+                    message: &l.message,
+                    primary: l.primary,
+                }
+            })
+            .collect();
+        let j = JsonDiagnostic {
+            severity: d.severity,
+            code: d.code,
+            message: &d.message,
+            help: d.help.as_deref(),
+            notes: &d.notes,
+            labels,
+            rendered: render(std::slice::from_ref(d), sources, false),
+        };
+        out.push_str(&serde_json::to_string(&j).unwrap_or_default());
+        out.push('\n');
+    }
+    out
+}
+
+/// The table of error codes. Each code has one meaning, forever.
+pub mod codes {
+    /// Syntax error: the text does not match the grammar.
+    pub const SYNTAX: &str = "E0001";
+    /// The style header `style "..."` is missing or repeated.
+    pub const STYLE_HEADER: &str = "E0002";
+    /// A name is declared twice.
+    pub const DUPLICATE_NAME: &str = "E0003";
+    /// `use` of a file that cannot be read, or a `use` cycle.
+    pub const BAD_USE: &str = "E0004";
+    /// Unknown name (parameter, builtin, let, pass, texture).
+    pub const UNKNOWN_NAME: &str = "E0101";
+    /// Unknown operator or function.
+    pub const UNKNOWN_OPERATOR: &str = "E0102";
+    /// Unknown or misused argument name, or a missing required argument.
+    pub const BAD_ARGUMENT: &str = "E0103";
+    /// Unknown type, texture format, field or swizzle.
+    pub const UNKNOWN_TYPE: &str = "E0104";
+    /// Type mismatch.
+    pub const TYPE_MISMATCH: &str = "E0201";
+    /// Unit mismatch (e.g. px + m).
+    pub const UNIT_MISMATCH: &str = "E0202";
+    /// A literal, default or keyframe outside its declared range, or an empty range.
+    pub const OUT_OF_RANGE: &str = "E0203";
+    /// An expression that must be constant is not.
+    pub const NOT_CONSTANT: &str = "E0204";
+    /// A dependency cycle between passes.
+    pub const PASS_CYCLE: &str = "E0301";
+    /// A value written into a target of an incompatible format.
+    pub const FORMAT_MISMATCH: &str = "E0302";
+    /// No `output`, or an output that names no target.
+    pub const NO_OUTPUT: &str = "E0303";
+    /// A pass reads a target that is not listed in its inputs, or a render-only builtin in an image pass.
+    pub const BAD_PASS_INPUT: &str = "E0304";
+    /// A texture file is missing or unreadable.
+    pub const MISSING_TEXTURE: &str = "E0401";
+    /// A mesh file is missing or unreadable.
+    pub const UNREADABLE_MESH: &str = "E0402";
+    /// The scene lacks a vertex attribute the style needs (UVs, tangents).
+    pub const MISSING_ATTRIBUTE: &str = "E0403";
+    /// A size or resource request past a stated limit.
+    pub const LIMIT_EXCEEDED: &str = "E0404";
+    /// A scene file is malformed.
+    pub const BAD_SCENE: &str = "E0405";
+    /// Internal compiler error (a bug in npr, not in the style).
+    pub const INTERNAL: &str = "E9001";
+
+    /// Every user-facing code with a one-line description (for `npr explain` and the docs).
+    pub const ALL: &[(&str, &str)] = &[
+        (SYNTAX, "syntax error"),
+        (STYLE_HEADER, "missing or repeated style header"),
+        (DUPLICATE_NAME, "name declared twice"),
+        (BAD_USE, "bad use of another file"),
+        (UNKNOWN_NAME, "unknown name"),
+        (UNKNOWN_OPERATOR, "unknown operator"),
+        (BAD_ARGUMENT, "bad argument"),
+        (UNKNOWN_TYPE, "unknown type, format or field"),
+        (TYPE_MISMATCH, "type mismatch"),
+        (UNIT_MISMATCH, "unit mismatch"),
+        (OUT_OF_RANGE, "value outside its declared range"),
+        (NOT_CONSTANT, "expression must be constant"),
+        (PASS_CYCLE, "dependency cycle between passes"),
+        (FORMAT_MISMATCH, "value incompatible with target format"),
+        (NO_OUTPUT, "missing or bad output"),
+        (BAD_PASS_INPUT, "bad pass input"),
+        (MISSING_TEXTURE, "missing texture file"),
+        (UNREADABLE_MESH, "unreadable mesh"),
+        (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
+        (LIMIT_EXCEEDED, "limit exceeded"),
+        (BAD_SCENE, "malformed scene file"),
+    ];
+}

@@ -1,0 +1,156 @@
+//! Parameter values at run time: keyframe interpolation for animated
+//! parameters, and the byte layout of the style and per-object uniform
+//! blocks (one `vec4<f32>` slot per parameter, see the manifest).
+
+use crate::scene::Object;
+use compiler::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
+use dsl::{codes, Diagnostic};
+
+/// Value of a parameter at `time_s` (keyframes, or the default).
+pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {
+    let keys = &p.keyframes;
+    if keys.is_empty() {
+        return p.default.clone();
+    }
+    if time_s <= keys[0].0 {
+        return keys[0].1.clone();
+    }
+    let last = &keys[keys.len() - 1];
+    if time_s >= last.0 {
+        return last.1.clone();
+    }
+    let i = keys.iter().rposition(|(t, _)| *t <= time_s).unwrap_or(0);
+    let (t0, v0) = &keys[i];
+    let (t1, v1) = &keys[i + 1];
+    let span = (t1 - t0).max(f64::MIN_POSITIVE);
+    let mut u = ((time_s - t0) / span).clamp(0.0, 1.0);
+    match p.interpolation.as_str() {
+        "step" => u = 0.0,
+        // Smoothstep easing 3u² − 2u³: zero velocity at each key.
+        "smooth" => u = u * u * (3.0 - 2.0 * u),
+        _ => {}
+    }
+    v0.iter().zip(v1).map(|(a, b)| a + (b - a) * u).collect()
+}
+
+fn slot(values: &[f64]) -> [f32; 4] {
+    let mut s = [0.0f32; 4];
+    for (i, v) in values.iter().take(4).enumerate() {
+        s[i] = *v as f32;
+    }
+    s
+}
+
+fn percent(p: &ParamManifest, v: Vec<f64>, height: u32) -> Vec<f64> {
+    if p.default_percent_of_height {
+        v.into_iter().map(|x| x / 100.0 * height as f64).collect()
+    } else {
+        v
+    }
+}
+
+/// The style uniform block at `time_s`.
+pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
+    let mut out = vec![0u8; m.style_uniform_size as usize];
+    for p in &m.params {
+        if p.binding != ParamBinding::Uniform {
+            continue;
+        }
+        let Some(off) = p.offset else { continue };
+        let v = percent(p, value_at(p, time_s), height);
+        let bytes: [u8; 16] = bytemuck::cast(slot(&v));
+        let off = off as usize;
+        if off + 16 <= out.len() {
+            out[off..off + 16].copy_from_slice(&bytes);
+        }
+    }
+    out
+}
+
+/// The per-object parameter slots (after the two matrices) for one object.
+/// A binding with the wrong number of components is reported (E0405).
+pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>) -> Vec<u8> {
+    let size = m.object_uniform_size.saturating_sub(OBJECT_PARAMS_OFFSET) as usize;
+    let mut out = vec![0u8; size];
+    for p in &m.params {
+        if p.binding != ParamBinding::PerObject {
+            continue;
+        }
+        let Some(off) = p.offset else { continue };
+        let mut v = p.default.clone();
+        if let Some(bound) = o.params.get(&p.name) {
+            let n = p.components as usize;
+            // A colour may be given as rgb; alpha defaults to 1.
+            if bound.len() == n || (n == 4 && bound.len() == 3) {
+                v = bound.clone();
+                if v.len() == 3 && n == 4 {
+                    v.push(1.0);
+                }
+                if let Some((lo, hi)) = p.range {
+                    if let Some(bad) = v.iter().find(|x| **x < lo || **x > hi) {
+                        let mut d = Diagnostic::error(codes::OUT_OF_RANGE, format!("object `{}` binds `{}` outside its range", o.name, p.name))
+                            .with_help(format!("`{}` is declared in {lo}..{hi}", p.name));
+                        if let Some(s) = o.param_spans.get(&p.name) {
+                            d = d.with_primary(*s, format!("{bad} is outside {lo}..{hi}"));
+                        }
+                        diags.push(d);
+                    }
+                }
+            } else {
+                let mut d = Diagnostic::error(codes::BAD_SCENE, format!("object `{}` binds `{}` with {} value(s), expected {n}", o.name, p.name, bound.len()))
+                    .with_help(format!("`{}` is a {}", p.name, p.ty));
+                if let Some(s) = o.param_spans.get(&p.name) {
+                    d = d.with_primary(*s, "wrong number of components");
+                }
+                diags.push(d);
+            }
+        }
+        let start = (off - OBJECT_PARAMS_OFFSET) as usize;
+        if start + 16 <= out.len() {
+            let bytes: [u8; 16] = bytemuck::cast(slot(&v));
+            out[start..start + 16].copy_from_slice(&bytes);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn param(keys: Vec<(f64, Vec<f64>)>, interpolation: &str) -> ParamManifest {
+        ParamManifest {
+            name: "glow".into(),
+            doc: String::new(),
+            ty: "float".into(),
+            unit: String::new(),
+            components: 1,
+            default: vec![0.2],
+            default_percent_of_height: false,
+            range: Some((0.0, 1.0)),
+            enum_variants: vec![],
+            keyframes: keys,
+            interpolation: interpolation.into(),
+            binding: ParamBinding::Uniform,
+            offset: Some(0),
+        }
+    }
+
+    #[test]
+    fn keyframes_interpolate_exactly() {
+        let p = param(vec![(0.0, vec![0.1]), (8.0, vec![0.3])], "linear");
+        assert_eq!(value_at(&p, -1.0), vec![0.1]);
+        assert!((value_at(&p, 4.0)[0] - 0.2).abs() < 1e-12);
+        assert!((value_at(&p, 2.0)[0] - 0.15).abs() < 1e-12);
+        assert_eq!(value_at(&p, 9.0), vec![0.3]);
+        let s = param(vec![(0.0, vec![0.1]), (8.0, vec![0.3])], "step");
+        assert_eq!(value_at(&s, 7.9), vec![0.1]);
+        let e = param(vec![(0.0, vec![0.0]), (1.0, vec![1.0])], "smooth");
+        assert!((value_at(&e, 0.25)[0] - 0.15625).abs() < 1e-12);
+    }
+
+    #[test]
+    fn no_keyframes_gives_default() {
+        assert_eq!(value_at(&param(vec![], "linear"), 3.0), vec![0.2]);
+    }
+}

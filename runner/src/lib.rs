@@ -1,0 +1,70 @@
+//! npr runner: executes a compiled style headless on wgpu.
+//!
+//! - [`device`]: a headless device (Vulkan, then GL), or bring your own.
+//! - [`scene`]: TOML scenes with primitives, OBJ and glTF meshes, cameras, a light.
+//! - [`render`]: the [`Renderer`], which runs the passes of a manifest.
+//! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
+//! - [`harness`]: golden-image comparison for tests.
+//!
+//! Embedding in your own wgpu application: build a [`StyleProgram`] from
+//! `compiler::compile_file`, load a [`scene::Scene`], then
+//! `Renderer::new(&device, &queue, &program, &scene)` and call
+//! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
+
+pub mod animation;
+pub mod device;
+pub mod harness;
+pub mod output;
+pub mod program;
+pub mod readback;
+pub mod render;
+pub mod scene;
+pub mod texgen;
+pub mod textures;
+
+pub use device::{DeviceError, Gpu};
+pub use program::StyleProgram;
+pub use readback::TargetImage;
+pub use render::{FrameSpec, Renderer};
+
+use dsl::Diagnostic;
+
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// Problems with the user's input (scene, textures), as diagnostics.
+    #[error("{} error(s) in the input", .0.len())]
+    User(Vec<Diagnostic>),
+    /// A size or resource request past a stated limit.
+    #[error("limit exceeded: {0}")]
+    Limit(String),
+    #[error(transparent)]
+    Device(#[from] DeviceError),
+    /// A bug in npr.
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+impl RunError {
+    /// As diagnostics (user errors keep their spans).
+    pub fn diagnostics(&self) -> Vec<Diagnostic> {
+        match self {
+            RunError::User(d) => d.clone(),
+            RunError::Limit(m) => vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, m.clone())
+                .with_help(format!("the largest image is {0}x{0}", render::MAX_OUTPUT_SIZE))],
+            RunError::Device(e) => vec![Diagnostic::error(dsl::codes::INTERNAL, e.to_string())],
+            RunError::Internal(m) => vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())
+                .with_help("this is a bug in npr; please report it")],
+        }
+    }
+
+    pub fn is_user_error(&self) -> bool {
+        matches!(self, RunError::User(_) | RunError::Limit(_))
+    }
+}
+
+/// Render one frame and read back the output target.
+pub fn render_frame(gpu: &Gpu, program: &StyleProgram, scene: &scene::Scene, spec: &FrameSpec) -> Result<TargetImage, RunError> {
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    r.render(scene, spec)?;
+    r.read_output()
+}

@@ -1,0 +1,108 @@
+//! Writing images: 8-bit sRGB PNG for display targets, 16-bit PNG or EXR for
+//! float targets, and a contact sheet of every target. Every file is written
+//! to a temporary name in the same directory and renamed into place, so a
+//! crash never leaves a half-written image.
+
+use crate::readback::TargetImage;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Write `bytes` to `path` atomically (temp file + rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+fn encode(img: image::DynamicImage, format: image::ImageFormat) -> std::io::Result<Vec<u8>> {
+    let mut buf = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut buf, format).map_err(std::io::Error::other)?;
+    Ok(buf.into_inner())
+}
+
+/// Write a target: `.png` (8-bit for unorm targets, 16-bit for float targets)
+/// or `.exr` (32-bit float, values unclamped).
+pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
+    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase()).unwrap_or_default();
+    let bytes = match ext.as_str() {
+        "exr" => {
+            let px: Vec<f32> = img.to_rgba_f32().into_iter().flatten().collect();
+            let buf = image::Rgba32FImage::from_raw(img.width, img.height, px)
+                .ok_or_else(|| std::io::Error::other("bad image size"))?;
+            encode(image::DynamicImage::ImageRgba32F(buf), image::ImageFormat::OpenExr)?
+        }
+        "png" | "" => {
+            if img.is_float() {
+                let px: Vec<u16> = img
+                    .to_rgba_f32()
+                    .into_iter()
+                    .flat_map(|p| {
+                        let p = if img.format.channels() == 1 { [p[0], p[0], p[0], 1.0] } else { p };
+                        p.map(|c| (if c.is_finite() { c } else { 0.0 }.clamp(0.0, 1.0) * 65535.0).round() as u16)
+                    })
+                    .collect();
+                let buf = image::ImageBuffer::<image::Rgba<u16>, _>::from_raw(img.width, img.height, px)
+                    .ok_or_else(|| std::io::Error::other("bad image size"))?;
+                encode(image::DynamicImage::ImageRgba16(buf), image::ImageFormat::Png)?
+            } else {
+                encode(image::DynamicImage::ImageRgba8(img.to_rgba8()), image::ImageFormat::Png)?
+            }
+        }
+        other => return Err(std::io::Error::other(format!("unsupported image extension `.{other}`: use .png or .exr"))),
+    };
+    write_atomic(path, &bytes)
+}
+
+pub fn write_png8(img: &image::RgbaImage, path: &Path) -> std::io::Result<()> {
+    write_atomic(path, &encode(image::DynamicImage::ImageRgba8(img.clone()), image::ImageFormat::Png)?)
+}
+
+/// Lay out thumbnails of every target in a grid (row-major, in the order
+/// given), each scaled to `cell` px wide. Returns the sheet and the names in
+/// cell order (written beside it as `contact_sheet.txt`).
+pub fn contact_sheet(images: &[TargetImage], cell: u32) -> image::RgbaImage {
+    let cols = (images.len() as f64).sqrt().ceil().max(1.0) as u32;
+    let rows = (images.len() as u32).div_ceil(cols).max(1);
+    let aspect = images.first().map(|i| i.height as f64 / i.width as f64).unwrap_or(1.0);
+    let cell_h = ((cell as f64 * aspect).round() as u32).max(1);
+    let gap = 4;
+    let mut sheet = image::RgbaImage::from_pixel(cols * (cell + gap) + gap, rows * (cell_h + gap) + gap, image::Rgba([40, 40, 40, 255]));
+    for (i, img) in images.iter().enumerate() {
+        let thumb = image::imageops::resize(&img.to_rgba8(), cell, cell_h, image::imageops::FilterType::Triangle);
+        let (cx, cy) = (i as u32 % cols, i as u32 / cols);
+        image::imageops::overlay(&mut sheet, &thumb, (gap + cx * (cell + gap)) as i64, (gap + cy * (cell_h + gap)) as i64);
+    }
+    sheet
+}
+
+/// Write every target as `<dir>/<NN>_<pass>.<target>.png` plus `contact_sheet.png`
+/// and `contact_sheet.txt` (the grid order). Returns the files written.
+pub fn dump_targets(images: &[TargetImage], dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    let mut index = String::new();
+    for (i, img) in images.iter().enumerate() {
+        let path = dir.join(format!("{i:02}_{}.png", img.name));
+        write_target(img, &path)?;
+        index.push_str(&format!("{i:02} {} {}x{} {}\n", img.name, img.width, img.height, img.format.name()));
+        written.push(path);
+    }
+    let sheet = contact_sheet(images, 256);
+    let sheet_path = dir.join("contact_sheet.png");
+    write_png8(&sheet, &sheet_path)?;
+    written.push(sheet_path);
+    let idx = dir.join("contact_sheet.txt");
+    write_atomic(&idx, index.as_bytes())?;
+    written.push(idx);
+    Ok(written)
+}

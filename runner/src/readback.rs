@@ -1,0 +1,117 @@
+//! Copy a GPU texture back to memory, and convert texels to floats.
+
+use crate::RunError;
+use compiler::formats::Format;
+
+/// A target read back from the GPU, rows tightly packed.
+#[derive(Debug, Clone)]
+pub struct TargetImage {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub format: Format,
+    pub bytes: Vec<u8>,
+}
+
+impl TargetImage {
+    /// Texel (x, y) as RGBA floats; missing channels are 0 (alpha 1).
+    pub fn texel(&self, x: u32, y: u32) -> [f32; 4] {
+        let bpp = self.format.bytes_per_pixel() as usize;
+        let i = (y as usize * self.width as usize + x as usize) * bpp;
+        let b = &self.bytes[i..i + bpp];
+        let channels = self.format.channels() as usize;
+        let mut out = [0.0, 0.0, 0.0, 1.0];
+        for (c, slot) in out.iter_mut().enumerate().take(channels) {
+            *slot = match self.format {
+                Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => b[c] as f32 / 255.0,
+                Format::R16float | Format::Rg16float | Format::Rgba16float => {
+                    half::f16::from_bits(u16::from_le_bytes([b[2 * c], b[2 * c + 1]])).to_f32()
+                }
+                Format::R32float | Format::Rg32float | Format::Rgba32float => {
+                    f32::from_le_bytes([b[4 * c], b[4 * c + 1], b[4 * c + 2], b[4 * c + 3]])
+                }
+            };
+        }
+        out
+    }
+
+    pub fn to_rgba_f32(&self) -> Vec<[f32; 4]> {
+        let mut v = Vec::with_capacity((self.width * self.height) as usize);
+        for y in 0..self.height {
+            for x in 0..self.width {
+                v.push(self.texel(x, y));
+            }
+        }
+        v
+    }
+
+    /// 8-bit RGBA for display: unorm targets byte for byte (their values are
+    /// display-referred), float targets clamped to [0, 1]. One-channel targets
+    /// show as grey, two-channel as red/green.
+    pub fn to_rgba8(&self) -> image::RgbaImage {
+        let mut img = image::RgbaImage::new(self.width, self.height);
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let t = self.texel(x, y);
+                let t = if self.format.channels() == 1 { [t[0], t[0], t[0], 1.0] } else { t };
+                let q = |v: f32| (if v.is_finite() { v } else { 0.0 }.clamp(0.0, 1.0) * 255.0).round() as u8;
+                img.put_pixel(x, y, image::Rgba([q(t[0]), q(t[1]), q(t[2]), q(t[3])]));
+            }
+        }
+        img
+    }
+
+    pub fn is_float(&self) -> bool {
+        !self.format.is_unorm()
+    }
+}
+
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    width: u32,
+    height: u32,
+    format: Format,
+    name: &str,
+) -> Result<TargetImage, RunError> {
+    let bpp = format.bytes_per_pixel();
+    let unpadded = width * bpp;
+    let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("npr readback"),
+        size: padded as u64 * height as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr readback") });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+        },
+        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+    );
+    queue.submit([encoder.finish()]);
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))?;
+    rx.recv()
+        .map_err(|e| RunError::Internal(format!("readback channel closed: {e}")))?
+        .map_err(|e| RunError::Internal(format!("readback map failed: {e}")))?;
+    let mapped = slice.get_mapped_range().map_err(|e| RunError::Internal(format!("readback range failed: {e:?}")))?;
+    let mut bytes = Vec::with_capacity((unpadded * height) as usize);
+    for row in 0..height as usize {
+        let start = row * padded as usize;
+        bytes.extend_from_slice(&mapped[start..start + unpadded as usize]);
+    }
+    drop(mapped);
+    buffer.unmap();
+    Ok(TargetImage { name: name.to_string(), width, height, format, bytes })
+}

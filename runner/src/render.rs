@@ -1,0 +1,609 @@
+//! Execute a compiled style on wgpu: pipelines, targets, uniforms, draws,
+//! and read-back.
+//!
+//! A [`Renderer`] borrows a device and queue, so it works in someone else's
+//! wgpu application as well as headless. It builds every pipeline once (the
+//! cache lives as long as the renderer), allocates the physical textures of
+//! the manifest (aliased targets share one), and re-allocates only when the
+//! output size changes.
+
+use crate::scene::{Mesh, Scene};
+use crate::textures::{self, GpuTexture};
+use crate::{animation, readback, RunError};
+use compiler::formats::Format;
+use compiler::manifest::*;
+use glam::Mat4;
+use std::collections::BTreeMap;
+use wgpu::util::DeviceExt;
+
+pub const MAX_OUTPUT_SIZE: u32 = 16384;
+
+/// Where and when to render.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameSpec {
+    pub width: u32,
+    pub height: u32,
+    pub time_s: f64,
+    pub frame: u32,
+    /// 0 = left (or mono), 1 = right.
+    pub eye: u32,
+}
+
+struct GpuMesh {
+    buffers: BTreeMap<Attribute, wgpu::Buffer>,
+    index: wgpu::Buffer,
+    index_count: u32,
+}
+
+struct PassPipeline {
+    pipeline: wgpu::RenderPipeline,
+    layout0: wgpu::BindGroupLayout,
+}
+
+pub struct Renderer<'d> {
+    device: &'d wgpu::Device,
+    queue: &'d wgpu::Queue,
+    pub manifest: Manifest,
+    pipelines: Vec<PassPipeline>,
+    object_group: wgpu::BindGroup,
+    textures: Vec<GpuTexture>,
+    linear_clamp: wgpu::Sampler,
+    meshes: Vec<GpuMesh>,
+    frame_buffer: wgpu::Buffer,
+    style_buffer: wgpu::Buffer,
+    object_buffer: wgpu::Buffer,
+    object_stride: u64,
+    object_params: Vec<Vec<u8>>,
+    object_models: Vec<Mat4>,
+    object_tags: Vec<Vec<String>>,
+    sized: Option<SizedResources>,
+}
+
+/// Everything that depends on the output size, built once per size: the
+/// physical textures, and per pass its attachment views, depth view and
+/// bind group (so a frame only writes uniforms and records draws).
+struct SizedResources {
+    width: u32,
+    height: u32,
+    physical: Vec<wgpu::Texture>,
+    passes: Vec<SizedPass>,
+}
+
+struct SizedPass {
+    color_views: Vec<wgpu::TextureView>,
+    depth_view: Option<wgpu::TextureView>,
+    group0: wgpu::BindGroup,
+}
+
+/// Size of a target at `scale` of the output: at least 1 px, rounded to nearest.
+pub fn scaled_size(width: u32, height: u32, scale: f64) -> (u32, u32) {
+    let s = |v: u32| ((v as f64 * scale).round() as u32).max(1);
+    (s(width), s(height))
+}
+
+pub fn wgpu_format(f: Format) -> wgpu::TextureFormat {
+    use wgpu::TextureFormat as T;
+    match f {
+        Format::R8unorm => T::R8Unorm,
+        Format::Rg8unorm => T::Rg8Unorm,
+        Format::Rgba8unorm => T::Rgba8Unorm,
+        Format::Rgba8unormSrgb => T::Rgba8UnormSrgb,
+        Format::R16float => T::R16Float,
+        Format::Rg16float => T::Rg16Float,
+        Format::Rgba16float => T::Rgba16Float,
+        Format::R32float => T::R32Float,
+        Format::Rg32float => T::Rg32Float,
+        Format::Rgba32float => T::Rgba32Float,
+    }
+}
+
+fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
+    match a {
+        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
+        Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
+        Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
+    }
+}
+
+impl<'d> Renderer<'d> {
+    /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
+    /// come back as `RunError::User`.
+    pub fn new(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &crate::StyleProgram,
+        scene: &Scene,
+    ) -> Result<Renderer<'d>, RunError> {
+        let manifest = program.manifest.clone();
+        // The scene must provide every attribute the style reads.
+        let required: Vec<crate::scene::Attribute> = manifest
+            .scene_attributes
+            .iter()
+            .map(|a| match a {
+                Attribute::Position => crate::scene::Attribute::Position,
+                Attribute::Normal => crate::scene::Attribute::Normal,
+                Attribute::Uv => crate::scene::Attribute::Uv,
+                Attribute::Tangent => crate::scene::Attribute::Tangent,
+            })
+            .collect();
+        let why = format!("style \"{}\"", manifest.style);
+        let diags = scene.check_attributes(&required, &why);
+        if !diags.is_empty() {
+            return Err(RunError::User(diags));
+        }
+        let textures = textures::load_all(device, queue, &manifest)?;
+        let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("npr linear clamp"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("npr object"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(manifest.object_uniform_size.max(16)),
+                },
+                count: None,
+            }],
+        });
+        let mut pipelines = Vec::new();
+        for pass in &manifest.passes {
+            let wgsl = program
+                .shaders
+                .get(&pass.shader)
+                .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
+            pipelines.push(build_pipeline(device, &manifest, pass, wgsl, &object_layout)?);
+        }
+        let meshes = scene.objects.iter().map(|o| upload_mesh(device, &o.mesh)).collect();
+        let object_stride = manifest.object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN).max(1) * OBJECT_STRIDE_ALIGN;
+        let object_count = scene.objects.len().max(1) as u64;
+        let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr objects"),
+            size: object_stride * object_count,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut object_params = Vec::new();
+        let mut diags = Vec::new();
+        for o in &scene.objects {
+            object_params.push(animation::object_param_bytes(&manifest, o, &mut diags));
+        }
+        if !diags.is_empty() {
+            return Err(RunError::User(diags));
+        }
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr frame"),
+            size: FRAME_UNIFORM_SIZE,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let style_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr style params"),
+            size: manifest.style_uniform_size.max(16),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let object_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("npr object"),
+            layout: &object_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &object_buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(manifest.object_uniform_size.max(16)),
+                }),
+            }],
+        });
+        Ok(Renderer {
+            device,
+            queue,
+            pipelines,
+            object_group,
+            textures,
+            linear_clamp,
+            meshes,
+            frame_buffer,
+            style_buffer,
+            object_buffer,
+            object_stride,
+            object_params,
+            object_models: scene.objects.iter().map(|o| o.model).collect(),
+            object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            manifest,
+            sized: None,
+        })
+    }
+
+    fn ensure_size(&mut self, width: u32, height: u32) {
+        if self.sized.as_ref().is_some_and(|s| s.width == width && s.height == height) {
+            return;
+        }
+        let physical: Vec<wgpu::Texture> = self
+            .manifest
+            .physical
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let (w, h) = scaled_size(width, height, p.scale);
+                self.device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(&format!("npr physical #{i}")),
+                    size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu_format(p.format),
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::TEXTURE_BINDING
+                        | wgpu::TextureUsages::COPY_SRC,
+                    view_formats: &[],
+                })
+            })
+            .collect();
+        let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
+        let mut passes = Vec::new();
+        for (pi, pass) in self.manifest.passes.iter().enumerate() {
+            let (w, h) = scaled_size(width, height, pass.scale);
+            let view_of_target = |t: usize| physical[self.manifest.targets[t].physical].create_view(&Default::default());
+            let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
+            let depth_view = matches!(pass.kind, PassKindManifest::Render { .. }).then(|| {
+                depth
+                    .entry((w, h))
+                    .or_insert_with(|| {
+                        self.device.create_texture(&wgpu::TextureDescriptor {
+                            label: Some("npr depth"),
+                            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                            mip_level_count: 1,
+                            sample_count: 1,
+                            dimension: wgpu::TextureDimension::D2,
+                            format: wgpu::TextureFormat::Depth32Float,
+                            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                            view_formats: &[],
+                        })
+                    })
+                    .create_view(&Default::default())
+            });
+            let views: Vec<(u32, wgpu::TextureView)> = pass
+                .bindings
+                .iter()
+                .filter_map(|b| match &b.resource {
+                    Resource::Target { target, .. } => Some((b.binding, view_of_target(*target))),
+                    Resource::Texture { texture } => Some((b.binding, self.textures[*texture].texture.create_view(&Default::default()))),
+                    _ => None,
+                })
+                .collect();
+            let entries: Vec<wgpu::BindGroupEntry> = pass
+                .bindings
+                .iter()
+                .filter_map(|b| {
+                    let resource = match &b.resource {
+                        Resource::FrameUniforms => self.frame_buffer.as_entire_binding(),
+                        Resource::StyleUniforms => self.style_buffer.as_entire_binding(),
+                        Resource::Target { .. } | Resource::Texture { .. } => {
+                            wgpu::BindingResource::TextureView(views.iter().find(|(n, _)| *n == b.binding).map(|(_, v)| v)?)
+                        }
+                        Resource::TextureSampler { texture } => wgpu::BindingResource::Sampler(&self.textures[*texture].sampler),
+                        Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
+                    };
+                    Some(wgpu::BindGroupEntry { binding: b.binding, resource })
+                })
+                .collect();
+            let group0 = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(&pass.name),
+                layout: &self.pipelines[pi].layout0,
+                entries: &entries,
+            });
+            passes.push(SizedPass { color_views, depth_view, group0 });
+        }
+        self.sized = Some(SizedResources { width, height, physical, passes });
+    }
+
+    /// Write the per-frame, style and object uniforms for `spec`.
+    fn write_uniforms(&self, scene: &Scene, spec: &FrameSpec) {
+        let pose = scene.camera.pose(spec.time_s);
+        let aspect = spec.width as f32 / spec.height as f32;
+        let view = pose.view(spec.eye);
+        let proj = pose.projection(aspect);
+        let view_proj = proj * view;
+        let cam = pose.position(spec.eye);
+        let mut frame: Vec<f32> = Vec::with_capacity(68);
+        frame.extend_from_slice(&view.to_cols_array());
+        frame.extend_from_slice(&proj.to_cols_array());
+        frame.extend_from_slice(&view_proj.to_cols_array());
+        frame.extend_from_slice(&[cam.x, cam.y, cam.z, 1.0]);
+        let l = scene.light.direction.normalize_or_zero();
+        frame.extend_from_slice(&[l.x, l.y, l.z, scene.light.intensity]);
+        let c = scene.light.color;
+        frame.extend_from_slice(&[c[0], c[1], c[2], 1.0]);
+        frame.extend_from_slice(&[spec.width as f32, spec.height as f32, spec.time_s as f32, spec.frame as f32]);
+        frame.extend_from_slice(&[spec.eye as f32, pose.near, pose.far, 0.0]);
+        debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
+        self.queue.write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));
+        let style = animation::style_param_bytes(&self.manifest, spec.time_s, spec.height);
+        if !style.is_empty() {
+            self.queue.write_buffer(&self.style_buffer, 0, &style);
+        }
+        for (i, model) in self.object_models.iter().enumerate() {
+            let normal_matrix = model.inverse().transpose();
+            let normal_matrix = if normal_matrix.is_finite() { normal_matrix } else { Mat4::IDENTITY };
+            let mut bytes: Vec<u8> = Vec::new();
+            bytes.extend_from_slice(bytemuck::cast_slice(&model.to_cols_array()));
+            bytes.extend_from_slice(bytemuck::cast_slice(&normal_matrix.to_cols_array()));
+            bytes.extend_from_slice(&self.object_params[i]);
+            self.queue.write_buffer(&self.object_buffer, i as u64 * self.object_stride, &bytes);
+        }
+    }
+
+    /// Render one frame; every target stays on the GPU for [`Renderer::read_target`].
+    pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
+        self.prepare(scene, spec)?;
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr frame") });
+        self.encode(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+
+    /// Record every pass of the style into `encoder` (after [`Renderer::prepare`]).
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.encode_passes(encoder, self.manifest.passes.len());
+    }
+
+    /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
+    /// records the passes into your own command encoder.
+    pub fn prepare(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
+        if spec.width == 0 || spec.height == 0 || spec.width > MAX_OUTPUT_SIZE || spec.height > MAX_OUTPUT_SIZE {
+            return Err(RunError::Limit(format!(
+                "image size {}x{} is outside 1..={MAX_OUTPUT_SIZE} (the 2D texture limit)",
+                spec.width, spec.height
+            )));
+        }
+        self.ensure_size(spec.width, spec.height);
+        self.write_uniforms(scene, spec);
+        Ok(())
+    }
+
+    /// Run the frame only up to (and including) the pass that writes `target`,
+    /// and read it back: for targets whose texture a later pass reuses.
+    pub fn render_until_target(&mut self, scene: &Scene, spec: &FrameSpec, target: usize) -> Result<readback::TargetImage, RunError> {
+        let writer = self
+            .manifest
+            .passes
+            .iter()
+            .position(|p| p.outputs.contains(&target))
+            .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
+        self.prepare(scene, spec)?;
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr partial frame") });
+        self.encode_passes(&mut encoder, writer + 1);
+        self.queue.submit([encoder.finish()]);
+        self.read_target(target)
+    }
+
+    fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize) {
+        let Some(sized) = self.sized.as_ref() else { return };
+        for (pi, pass) in self.manifest.passes.iter().enumerate().take(count) {
+            let res = &sized.passes[pi];
+            let clear = wgpu::Color { r: pass.clear[0], g: pass.clear[1], b: pass.clear[2], a: pass.clear[3] };
+            let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = res
+                .color_views
+                .iter()
+                .map(|v| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view: v,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear), store: wgpu::StoreOp::Store },
+                    })
+                })
+                .collect();
+            let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(&pass.name),
+                color_attachments: &attachments,
+                depth_stencil_attachment: res.depth_view.as_ref().map(|v| wgpu::RenderPassDepthStencilAttachment {
+                    view: v,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            rp.set_pipeline(&self.pipelines[pi].pipeline);
+            rp.set_bind_group(0, &res.group0, &[]);
+            match &pass.kind {
+                PassKindManifest::Image => rp.draw(0..3, 0..1),
+                PassKindManifest::Render { tag, attributes } => {
+                    for (oi, mesh) in self.meshes.iter().enumerate() {
+                        if let Some(tag) = tag {
+                            if !self.object_tags[oi].iter().any(|t| t == tag) {
+                                continue;
+                            }
+                        }
+                        rp.set_bind_group(1, &self.object_group, &[(oi as u64 * self.object_stride) as u32]);
+                        for (slot, a) in attributes.iter().enumerate() {
+                            if let Some(buf) = mesh.buffers.get(a) {
+                                rp.set_vertex_buffer(slot as u32, buf.slice(..));
+                            }
+                        }
+                        rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
+                        rp.draw_indexed(0..mesh.index_count, 0, 0..1);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Read a logical target back to the CPU.
+    pub fn read_target(&self, target: usize) -> Result<readback::TargetImage, RunError> {
+        let sized = self.sized.as_ref().ok_or_else(|| RunError::Internal("read before render".into()))?;
+        let t = self
+            .manifest
+            .targets
+            .get(target)
+            .ok_or_else(|| RunError::Internal(format!("no target #{target}")))?;
+        let (w, h) = scaled_size(sized.width, sized.height, t.scale);
+        readback::read_texture(self.device, self.queue, &sized.physical[t.physical], w, h, t.format, &t.name)
+    }
+
+    /// Read the style's final image.
+    pub fn read_output(&self) -> Result<readback::TargetImage, RunError> {
+        self.read_target(self.manifest.output)
+    }
+
+    /// Whether a target still holds its own contents at the end of the frame
+    /// (false when a later target was aliased onto the same physical texture).
+    pub fn target_survives_frame(&self, target: usize) -> bool {
+        let phys = self.manifest.targets[target].physical;
+        let last_writer = self
+            .manifest
+            .passes
+            .iter()
+            .flat_map(|p| p.outputs.iter())
+            .filter(|t| self.manifest.targets[**t].physical == phys)
+            .last();
+        last_writer == Some(&target)
+    }
+}
+
+fn build_pipeline(
+    device: &wgpu::Device,
+    manifest: &Manifest,
+    pass: &PassManifest,
+    wgsl: &str,
+    object_layout: &wgpu::BindGroupLayout,
+) -> Result<PassPipeline, RunError> {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = pass
+        .bindings
+        .iter()
+        .map(|b| wgpu::BindGroupLayoutEntry {
+            binding: b.binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: match &b.resource {
+                Resource::FrameUniforms | Resource::StyleUniforms => wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                Resource::Target { filterable, .. } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: *filterable },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Resource::Texture { .. } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Resource::TextureSampler { .. } | Resource::LinearClampSampler => {
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
+                }
+            },
+            count: None,
+        })
+        .collect();
+    let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&pass.name), entries: &entries });
+    let is_render = matches!(pass.kind, PassKindManifest::Render { .. });
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
+        if is_render { vec![Some(&layout0), Some(object_layout)] } else { vec![Some(&layout0)] };
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&pass.name),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    });
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(&pass.shader),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    let attributes: Vec<Attribute> = match &pass.kind {
+        PassKindManifest::Render { attributes, .. } => attributes.clone(),
+        PassKindManifest::Image => Vec::new(),
+    };
+    let vertex_attrs: Vec<[wgpu::VertexAttribute; 1]> = attributes
+        .iter()
+        .enumerate()
+        .map(|(loc, a)| [wgpu::VertexAttribute { format: attribute_format(*a).0, offset: 0, shader_location: loc as u32 }])
+        .collect();
+    let buffers: Vec<Option<wgpu::VertexBufferLayout>> = attributes
+        .iter()
+        .zip(&vertex_attrs)
+        .map(|(a, attrs)| {
+            Some(wgpu::VertexBufferLayout {
+                array_stride: attribute_format(*a).1,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: attrs,
+            })
+        })
+        .collect();
+    let targets: Vec<Option<wgpu::ColorTargetState>> = pass
+        .outputs
+        .iter()
+        .map(|t| {
+            Some(wgpu::ColorTargetState {
+                format: wgpu_format(manifest.targets[*t].format),
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        })
+        .collect();
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(&pass.name),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some(&pass.vertex_entry),
+            compilation_options: Default::default(),
+            buffers: &buffers,
+        },
+        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+        depth_stencil: is_render.then_some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(&pass.fragment_entry),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    if let Some(err) = pollster::block_on(scope.pop()) {
+        return Err(RunError::Internal(format!("pipeline for pass `{}` rejected by wgpu: {err}", pass.name)));
+    }
+    Ok(PassPipeline { pipeline, layout0 })
+}
+
+fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
+    let mut buffers = BTreeMap::new();
+    let mk = |label: &str, data: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: if data.is_empty() { &[0u8; 16] } else { data },
+            usage: wgpu::BufferUsages::VERTEX,
+        })
+    };
+    buffers.insert(Attribute::Position, mk("positions", bytemuck::cast_slice(&mesh.positions)));
+    buffers.insert(Attribute::Normal, mk("normals", bytemuck::cast_slice(&mesh.normals)));
+    if let Some(uv) = &mesh.uvs {
+        buffers.insert(Attribute::Uv, mk("uvs", bytemuck::cast_slice(uv)));
+    }
+    if let Some(t) = &mesh.tangents {
+        buffers.insert(Attribute::Tangent, mk("tangents", bytemuck::cast_slice(t)));
+    }
+    let index = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("indices"),
+        contents: if mesh.indices.is_empty() { &[0u8; 16] } else { bytemuck::cast_slice(&mesh.indices) },
+        usage: wgpu::BufferUsages::INDEX,
+    });
+    GpuMesh { buffers, index, index_count: mesh.indices.len() as u32 }
+}

@@ -1,0 +1,217 @@
+//! The camera: keyframed eye and target, a perspective lens, and an optional
+//! interpupillary distance that makes it stereo.
+
+use glam::{Mat4, Vec3};
+
+/// Where the camera is at one moment of an animation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraKey {
+    pub time_s: f64,
+    pub position: Vec3,
+    pub target: Vec3,
+}
+
+/// A perspective camera whose eye and target may move over time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Camera {
+    /// At least one key, sorted by strictly increasing time. A still camera
+    /// has exactly one.
+    keys: Vec<CameraKey>,
+    pub up: Vec3,
+    pub fov_y_rad: f32,
+    pub near: f32,
+    pub far: f32,
+    /// Interpupillary distance in metres; `Some` makes the camera stereo.
+    pub ipd_m: Option<f32>,
+}
+
+/// The camera at one instant: everything needed for view and projection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraPose {
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    pub fov_y_rad: f32,
+    pub near: f32,
+    pub far: f32,
+    pub ipd_m: Option<f32>,
+}
+
+impl Camera {
+    /// A still camera with a 40° vertical field of view, near 0.1, far 100.
+    pub fn looking_at(position: Vec3, target: Vec3) -> Camera {
+        Camera {
+            keys: vec![CameraKey {
+                time_s: 0.0,
+                position,
+                target,
+            }],
+            up: Vec3::Y,
+            fov_y_rad: 40f32.to_radians(),
+            near: 0.1,
+            far: 100.0,
+            ipd_m: None,
+        }
+    }
+
+    /// A keyframed camera. Keys are sorted by time; of keys with equal times
+    /// only the last is kept. Returns `None` for an empty key list.
+    pub fn with_keys(mut keys: Vec<CameraKey>, template: &Camera) -> Option<Camera> {
+        keys.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+        // Keep the last of equal times: scanning in reverse keeps the first seen.
+        keys.reverse();
+        keys.dedup_by(|later, earlier| later.time_s == earlier.time_s);
+        keys.reverse();
+        if keys.is_empty() {
+            return None;
+        }
+        Some(Camera {
+            keys,
+            ..template.clone()
+        })
+    }
+
+    pub fn keys(&self) -> &[CameraKey] {
+        &self.keys
+    }
+
+    pub fn is_stereo(&self) -> bool {
+        self.ipd_m.is_some()
+    }
+
+    /// The time of the last key: how long the camera animation lasts.
+    pub fn duration_s(&self) -> f64 {
+        match (self.keys.first(), self.keys.last()) {
+            (Some(first), Some(last)) => last.time_s - first.time_s,
+            _ => 0.0,
+        }
+    }
+
+    /// The pose at `time_s`: position and target interpolated linearly
+    /// between the surrounding keys, held at the first/last key outside them.
+    pub fn pose(&self, time_s: f64) -> CameraPose {
+        let (position, target) = self.interpolate(time_s);
+        CameraPose {
+            eye: position,
+            target,
+            up: self.up,
+            fov_y_rad: self.fov_y_rad,
+            near: self.near,
+            far: self.far,
+            ipd_m: self.ipd_m,
+        }
+    }
+
+    fn interpolate(&self, time_s: f64) -> (Vec3, Vec3) {
+        let Some(first) = self.keys.first() else {
+            // Unreachable through the constructors; a harmless default.
+            return (Vec3::Z, Vec3::ZERO);
+        };
+        // NaN time compares false everywhere and lands on the first key.
+        let after = self.keys.partition_point(|key| key.time_s <= time_s);
+        if after == 0 {
+            return (first.position, first.target);
+        }
+        let before = &self.keys[after - 1];
+        let Some(next) = self.keys.get(after) else {
+            return (before.position, before.target);
+        };
+        let fraction = ((time_s - before.time_s) / (next.time_s - before.time_s)) as f32;
+        (
+            before.position.lerp(next.position, fraction),
+            before.target.lerp(next.target, fraction),
+        )
+    }
+}
+
+impl CameraPose {
+    /// Unit vector from the eye towards the target (-Z if they coincide).
+    pub fn forward(&self) -> Vec3 {
+        (self.target - self.eye)
+            .try_normalize()
+            .unwrap_or(Vec3::NEG_Z)
+    }
+
+    /// Unit vector to the camera's right. When `up` is parallel to the view
+    /// direction (looking straight down, say) another up is substituted, so a
+    /// keyframed path through such a pose never yields NaN.
+    pub fn right(&self) -> Vec3 {
+        let forward = self.forward();
+        [self.up, Vec3::Y, Vec3::Z, Vec3::X]
+            .into_iter()
+            .find_map(|up| forward.cross(up).try_normalize())
+            .unwrap_or(Vec3::X)
+    }
+
+    /// The camera's up, orthogonal to forward and right.
+    pub fn true_up(&self) -> Vec3 {
+        self.right().cross(self.forward())
+    }
+
+    /// Eye position: eye 0 is the left eye (or the only one), eye 1 the
+    /// right. Stereo eyes sit ±ipd/2 along the camera's right axis.
+    pub fn position(&self, eye_index: u32) -> Vec3 {
+        self.eye + self.eye_offset(eye_index)
+    }
+
+    /// World-to-view matrix (right-handed, looking down -Z). Stereo eyes are
+    /// parallel (no toe-in): the target moves with the eye.
+    pub fn view(&self, eye_index: u32) -> Mat4 {
+        let offset = self.eye_offset(eye_index);
+        Mat4::look_at_rh(self.eye + offset, self.target + offset, self.true_up())
+    }
+
+    /// Right-handed perspective with wgpu's 0..1 depth range.
+    pub fn projection(&self, aspect: f32) -> Mat4 {
+        Mat4::perspective_rh(self.fov_y_rad, aspect, self.near, self.far)
+    }
+
+    fn eye_offset(&self, eye_index: u32) -> Vec3 {
+        match self.ipd_m {
+            None => Vec3::ZERO,
+            Some(ipd) => {
+                let side = if eye_index == 0 { -0.5 } else { 0.5 };
+                self.right() * (side * ipd)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(time_s: f64, x: f32) -> CameraKey {
+        CameraKey {
+            time_s,
+            position: Vec3::new(x, 0.0, 5.0),
+            target: Vec3::new(x, 0.0, 0.0),
+        }
+    }
+
+    #[test]
+    fn keys_are_sorted_and_equal_times_keep_the_last() {
+        let template = Camera::looking_at(Vec3::Z, Vec3::ZERO);
+        let camera =
+            Camera::with_keys(vec![key(2.0, 2.0), key(0.0, 0.0), key(2.0, 3.0)], &template)
+                .expect("non-empty");
+        assert_eq!(camera.keys().len(), 2);
+        assert_eq!(camera.keys()[1].position.x, 3.0);
+        assert!(Camera::with_keys(vec![], &template).is_none());
+    }
+
+    #[test]
+    fn looking_straight_down_the_up_axis_gives_a_finite_view() {
+        let pose = Camera::looking_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO).pose(0.0);
+        assert!(pose.view(0).is_finite());
+        assert!((pose.right().length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn nan_time_is_the_first_key() {
+        let template = Camera::looking_at(Vec3::Z, Vec3::ZERO);
+        let camera =
+            Camera::with_keys(vec![key(0.0, 0.0), key(1.0, 1.0)], &template).expect("keys");
+        assert_eq!(camera.pose(f64::NAN).eye.x, 0.0);
+    }
+}

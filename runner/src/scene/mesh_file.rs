@@ -1,0 +1,92 @@
+//! Loading a mesh file named in a scene: picks the reader by extension,
+//! turns OS and parser failures into messages for E0402 diagnostics, and
+//! enforces the triangle limit.
+
+use super::mesh::{Mesh, MAX_TRIANGLES};
+use super::{gltf_file, obj_file};
+use dsl::codes;
+use std::path::Path;
+
+/// Why a mesh file could not be used. The scene parser attaches the span of
+/// the `mesh = "..."` string and turns this into a [`dsl::Diagnostic`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshLoadError {
+    /// [`codes::UNREADABLE_MESH`] or [`codes::LIMIT_EXCEEDED`].
+    pub code: &'static str,
+    pub message: String,
+    pub help: String,
+}
+
+impl MeshLoadError {
+    pub fn unreadable(message: impl Into<String>, help: impl Into<String>) -> Self {
+        MeshLoadError {
+            code: codes::UNREADABLE_MESH,
+            message: message.into(),
+            help: help.into(),
+        }
+    }
+
+    pub fn too_many_triangles(path: &Path, triangles: usize) -> Self {
+        MeshLoadError {
+            code: codes::LIMIT_EXCEEDED,
+            message: format!(
+                "mesh `{}` has {triangles} triangles, more than the limit of {MAX_TRIANGLES}",
+                path.display()
+            ),
+            help: "decimate the mesh (e.g. Blender's Decimate modifier or MeshLab's quadric edge collapse)"
+                .into(),
+        }
+    }
+}
+
+/// The file extensions a scene may name, for messages.
+pub const SUPPORTED_EXTENSIONS: &str = "`.obj`, `.gltf` or `.glb`";
+
+/// Reads, parses and checks one mesh file. Never panics: a panic inside a
+/// third-party parser (on a malformed file) is caught and reported as E0402.
+pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    if !matches!(extension.as_str(), "obj" | "gltf" | "glb") {
+        return Err(MeshLoadError::unreadable(
+            format!("unsupported mesh format `{}`", path.display()),
+            format!(
+                "npr reads {SUPPORTED_EXTENSIONS} meshes; convert the file, or use a `primitive`"
+            ),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|err| {
+        MeshLoadError::unreadable(
+            format!("cannot read mesh file `{}`: {err}", path.display()),
+            "mesh paths are relative to the folder of the scene file",
+        )
+    })?;
+    let source = path.display().to_string();
+    let base_dir = path.parent().unwrap_or(Path::new("."));
+    let parsed = std::panic::catch_unwind(|| match extension.as_str() {
+        "obj" => obj_file::parse_obj(&bytes, &source),
+        _ => gltf_file::parse_gltf(&bytes, base_dir, &source),
+    });
+    let mesh = parsed.unwrap_or_else(|_| {
+        Err(MeshLoadError::unreadable(
+            format!("the mesh reader failed on `{source}`"),
+            "the file is probably malformed; re-export it from a modelling tool",
+        ))
+    })?;
+    if mesh.triangle_count() > MAX_TRIANGLES {
+        return Err(MeshLoadError::too_many_triangles(
+            path,
+            mesh.triangle_count(),
+        ));
+    }
+    mesh.validate().map_err(|problem| {
+        MeshLoadError::unreadable(
+            format!("mesh `{source}` is unusable: {problem}"),
+            "re-export the mesh as triangles from a modelling tool",
+        )
+    })?;
+    Ok(mesh)
+}

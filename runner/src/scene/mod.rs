@@ -1,0 +1,171 @@
+//! Scenes: the objects, camera and light a style is rendered with, read
+//! from a TOML file.
+//!
+//! # Scene file format
+//!
+//! ```toml
+//! background = "#202020"          # optional: "#rrggbb", "#rrggbbaa" or [r, g, b(, a)]; default black
+//!
+//! [camera]                        # required
+//! position = [0.0, 0.5, 3.0]      # the eye (required unless every key has one)
+//! target = [0.0, 0.0, 0.0]        # the point looked at (likewise)
+//! up = [0.0, 1.0, 0.0]            # optional, default +Y; must not be parallel to the view
+//! fov = 40.0                      # optional: vertical field of view in degrees, in (0, 180); default 40
+//! near = 0.1                      # optional: > 0; default 0.1
+//! far = 100.0                     # optional: > near; default 100
+//! ipd = 0.064                     # optional: eye separation in metres; makes the camera stereo
+//!
+//! [[camera.keys]]                 # optional keyframes: linear in position and target,
+//! time = 0.0                      # held before the first and after the last key;
+//! position = [0.0, 0.5, 3.0]      # position/target default to [camera]'s own
+//! [[camera.keys]]
+//! time = 4.0
+//! position = [2.0, 0.5, 2.0]
+//!
+//! [light]                         # optional; one directional light
+//! direction = [0.5, 1.0, 0.8]     # towards the light; normalized on load
+//! color = [1.0, 1.0, 1.0]         # or "#rrggbb"; default white
+//! intensity = 1.0                 # >= 0; default 1
+//!
+//! [[object]]
+//! name = "spot"                   # optional: default the file stem or primitive kind (made unique)
+//! mesh = "../models/spot.obj"     # relative to the scene file: .obj, .gltf or .glb
+//! translate = [0.0, 0.0, 0.0]     # optional
+//! rotate = [0.0, 30.0, 0.0]       # optional, degrees: about Y first, then X, then Z
+//! scale = 1.0                     # optional: > 0, a number or [x, y, z]
+//! tags = ["caster"]               # optional: for `render(scene, tag: ...)` passes
+//! casts_shadows = true            # optional, default true
+//! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
+//!
+//! [[object]]
+//! primitive = { kind = "sphere", radius = 1.0, segments = 64, rings = 32 }
+//! translate = [1.5, 0.0, 0.0]
+//! ```
+//!
+//! Each object has exactly one of `mesh` and `primitive`. Primitive kinds and
+//! their fields, with defaults:
+//!
+//! | kind       | fields (default)                                               |
+//! |------------|----------------------------------------------------------------|
+//! | `sphere`   | `radius` (1), `segments` (64), `rings` (32)                    |
+//! | `cube`     | `size` (1)                                                     |
+//! | `torus`    | `major` (1), `minor` (0.25), `segments` (64), `sides` (32)     |
+//! | `plane`    | `size` (1), `subdivisions` (1)                                 |
+//! | `cylinder` | `radius` (0.5), `height` (1), `segments` (64)                  |
+//!
+//! See [`primitives`] for their geometry.
+//!
+//! The model matrix is `translate · rotate · scale`, with the rotation
+//! `Rz · Rx · Ry` (a vertex turns about Y first).
+//!
+//! Parameter bindings: a number is one component, a boolean is 1 or 0, an
+//! array is 1 to 4 components, a colour string `"#rrggbb"` is 4 components
+//! (alpha 1) holding the bytes / 255, the same convention as colour literals
+//! in `.npr` styles (no sRGB decoding).
+//!
+//! # Limits and errors
+//!
+//! Every problem is a [`dsl::Diagnostic`] pointing into the scene file, and
+//! as many are collected as the file allows: malformed TOML, unknown or
+//! mistyped fields and bad values are E0405 (`BAD_SCENE`); a missing,
+//! unreadable or unsupported mesh file E0402 (`UNREADABLE_MESH`); a mesh or
+//! primitive over [`MAX_TRIANGLES`] triangles, or a count over
+//! [`MAX_SEGMENTS`], E0404 (`LIMIT_EXCEEDED`). A style that reads an
+//! attribute some mesh lacks is E0403, from [`Scene::check_attributes`].
+//!
+//! # Meshes
+//!
+//! OBJ files are read with `tobj` (triangulated, single index; all models
+//! merged). glTF files are read with the `gltf` crate: every triangle
+//! primitive of the default scene, node transforms baked in. Coordinates
+//! are kept as in the file. See [`Mesh`] for the attribute conventions.
+
+mod attributes;
+mod camera;
+mod geometry;
+mod gltf_file;
+mod light;
+mod mesh;
+mod mesh_file;
+mod obj_file;
+mod parse;
+mod parse_camera;
+mod parse_object;
+mod parse_primitive;
+pub mod primitives;
+mod toml_fields;
+
+pub use camera::{Camera, CameraKey, CameraPose};
+pub use light::Light;
+pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
+pub use mesh_file::{load_mesh_file, MeshLoadError};
+pub use primitives::{Primitive, MAX_SEGMENTS};
+
+use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Everything a style is rendered with.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub objects: Vec<Object>,
+    pub camera: Camera,
+    pub light: Light,
+    /// RGBA, as written (see the module docs on colours).
+    pub background: [f32; 4],
+}
+
+/// One placed mesh.
+#[derive(Debug, Clone)]
+pub struct Object {
+    /// Unique within the scene.
+    pub name: String,
+    /// Shared between objects naming the same file or primitive.
+    pub mesh: Arc<Mesh>,
+    /// Object-to-world.
+    pub model: glam::Mat4,
+    pub tags: Vec<String>,
+    /// Per-object parameter bindings: 1 component for a number or boolean,
+    /// N for an array, 4 for a colour.
+    pub params: BTreeMap<String, Vec<f64>>,
+    /// Where each binding's value was written.
+    pub param_spans: BTreeMap<String, Span>,
+    /// Where the mesh or primitive was declared (for E0403).
+    pub mesh_span: Span,
+    pub casts_shadows: bool,
+}
+
+impl Object {
+    pub fn has_tag(&self, tag: &str) -> bool {
+        self.tags.iter().any(|t| t == tag)
+    }
+}
+
+impl Scene {
+    pub fn triangle_count(&self) -> usize {
+        self.objects.iter().map(|o| o.mesh.triangle_count()).sum()
+    }
+}
+
+/// Reads a scene file, adds it to `sources` (so diagnostics can be rendered
+/// against it) and parses it with [`parse_scene`]. Mesh paths are relative
+/// to the file's folder.
+pub fn load_scene(path: &Path, sources: &mut SourceMap) -> Result<Scene, Vec<Diagnostic>> {
+    let text = std::fs::read_to_string(path).map_err(|err| {
+        vec![Diagnostic::error(
+            codes::BAD_SCENE,
+            format!("cannot read scene file `{}`: {err}", path.display()),
+        )
+        .with_help("check the path to the scene file (a UTF-8 TOML file)")]
+    })?;
+    let file = sources.add(path.display().to_string(), text.clone());
+    let base_dir = path.parent().unwrap_or(Path::new("."));
+    parse_scene(&text, file, base_dir)
+}
+
+/// Parses scene TOML `text`, whose spans refer to `file`, loading meshes
+/// relative to `base_dir`. Returns every diagnostic found, in file order.
+pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, Vec<Diagnostic>> {
+    parse::parse_scene(text, file, base_dir)
+}

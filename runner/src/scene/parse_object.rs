@@ -1,0 +1,296 @@
+//! `[[object]]` in a scene: the mesh or primitive, the transform, tags,
+//! shadows and per-object parameter bindings.
+
+use super::mesh::Mesh;
+use super::mesh_file::{load_mesh_file, MeshLoadError};
+use super::parse_primitive::parse_primitive;
+use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
+use super::Object;
+use dsl::{Diagnostic, Span};
+use glam::{Mat4, Quat, Vec3};
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::de::DeValue;
+
+/// Meshes already loaded while reading one scene: objects naming the same
+/// file or the same primitive share one [`Mesh`].
+#[derive(Default)]
+pub struct MeshCache {
+    files: HashMap<PathBuf, Result<Arc<Mesh>, MeshLoadError>>,
+    primitives: HashMap<String, Arc<Mesh>>,
+}
+
+/// An object as read, with what duplicate-name checking needs.
+pub struct ObjectDecl {
+    pub object: Object,
+    /// Where the name was written; `None` when it was derived.
+    pub name_span: Option<Span>,
+}
+
+/// Reads one `[[object]]`. `None` after reporting what is wrong; every field
+/// is still checked, so one object can yield several diagnostics.
+pub fn parse_object(
+    mut fields: Fields,
+    base_dir: &Path,
+    cache: &mut MeshCache,
+    report: &mut Report,
+) -> Option<ObjectDecl> {
+    let errors_before = report.diagnostics.len();
+    let explicit_name = fields.string("name", report);
+    if let Some(name) = &explicit_name {
+        if name.value.trim().is_empty() {
+            report.bad_scene(
+                name.span,
+                "an object name cannot be empty",
+                "empty name",
+                "write e.g. `name = \"spot\"`, or leave `name` out to use the mesh's name",
+            );
+        }
+        fields.set_context(format!("object `{}`", name.value));
+    }
+    let mesh = read_mesh(&mut fields, base_dir, cache, report);
+    let model = read_transform(&mut fields, report);
+    let tags = read_tags(&mut fields, report);
+    let casts_shadows = fields
+        .boolean("casts_shadows", report)
+        .is_none_or(|flag| flag.value);
+    let (params, param_spans) = read_params(&mut fields, report);
+    fields.finish(report);
+    if report.diagnostics.len() > errors_before {
+        return None;
+    }
+    let (mesh, mesh_span, derived_name) = mesh?;
+    let name_span = explicit_name.as_ref().map(|name| name.span);
+    Some(ObjectDecl {
+        object: Object {
+            name: explicit_name.map_or(derived_name, |name| name.value),
+            mesh,
+            model: model?,
+            tags,
+            params,
+            param_spans,
+            mesh_span,
+            casts_shadows,
+        },
+        name_span,
+    })
+}
+
+/// The object's mesh (from `mesh` or `primitive`), where it was declared,
+/// and a name for objects without one (the file stem or primitive kind).
+fn read_mesh(
+    fields: &mut Fields,
+    base_dir: &Path,
+    cache: &mut MeshCache,
+    report: &mut Report,
+) -> Option<(Arc<Mesh>, Span, String)> {
+    let file = fields.string("mesh", report);
+    let primitive_span = fields.span_of("primitive", report);
+    let primitive = fields.table("primitive", "the primitive", report);
+    match (file, primitive_span) {
+        (Some(file), Some(primitive_span)) => {
+            report.push(
+                Diagnostic::error(
+                    dsl::codes::BAD_SCENE,
+                    format!("{} has both `mesh` and `primitive`", fields.context()),
+                )
+                .with_primary(primitive_span, "second shape")
+                .with_secondary(file.span, "first shape")
+                .with_help("an object has one shape: remove `mesh` or `primitive`"),
+            );
+            None
+        }
+        (Some(file), None) => {
+            let path = base_dir.join(&file.value);
+            let loaded = cache
+                .files
+                .entry(path.clone())
+                .or_insert_with(|| load_mesh_file(&path).map(Arc::new));
+            match loaded {
+                Ok(mesh) => {
+                    let stem = Path::new(&file.value)
+                        .file_stem()
+                        .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
+                    Some((Arc::clone(mesh), file.span, stem))
+                }
+                Err(err) => {
+                    report.push(
+                        Diagnostic::error(err.code, err.message.clone())
+                            .with_primary(file.span, "this mesh")
+                            .with_help(err.help.clone()),
+                    );
+                    None
+                }
+            }
+        }
+        (None, Some(span)) => {
+            let primitive = parse_primitive(primitive?, report)?;
+            let description = primitive.description();
+            let kind = description
+                .split('(')
+                .next()
+                .unwrap_or("primitive")
+                .to_string();
+            let mesh = cache
+                .primitives
+                .entry(description)
+                .or_insert_with(|| Arc::new(primitive.build()));
+            Some((Arc::clone(mesh), span, kind))
+        }
+        (None, None) => {
+            // A `mesh` of the wrong type was already reported.
+            if fields.span_of("mesh", report).is_none() {
+                report.bad_scene(
+                    fields.header(),
+                    format!("{} has neither `mesh` nor `primitive`", fields.context()),
+                    "no shape",
+                    "add `mesh = \"model.obj\"` or `primitive = { kind = \"sphere\" }`",
+                );
+            }
+            None
+        }
+    }
+}
+
+/// `translate`, `rotate` (degrees; Y, then X, then Z) and `scale`, composed
+/// as translate · rotate · scale.
+fn read_transform(fields: &mut Fields, report: &mut Report) -> Option<Mat4> {
+    let translate = fields
+        .vec3("translate", report)
+        .map_or(Vec3::ZERO, |t| t.value);
+    let rotate = fields
+        .vec3("rotate", report)
+        .map_or(Vec3::ZERO, |r| r.value);
+    let scale = match fields.number_or_vec3("scale", report) {
+        Some(scale) if scale.value.cmple(Vec3::ZERO).any() => {
+            report.bad_scene(
+                scale.span,
+                "`scale` must be positive",
+                "must be > 0",
+                "write e.g. `scale = 1.0` or `scale = [1.0, 2.0, 1.0]`; mirror a mesh in a modelling tool instead",
+            );
+            return None;
+        }
+        Some(scale) => scale.value,
+        None => Vec3::ONE,
+    };
+    let rotate = rotate * (std::f32::consts::PI / 180.0);
+    // Quaternion products apply right to left: Y first, then X, then Z.
+    let rotation = Quat::from_rotation_z(rotate.z)
+        * Quat::from_rotation_x(rotate.x)
+        * Quat::from_rotation_y(rotate.y);
+    Some(Mat4::from_scale_rotation_translation(
+        scale, rotation, translate,
+    ))
+}
+
+fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
+    let tags = fields.strings("tags", report).unwrap_or_default();
+    let mut unique: Vec<String> = Vec::new();
+    for tag in tags {
+        if tag.value.trim().is_empty() {
+            report.bad_scene(
+                tag.span,
+                "a tag cannot be empty",
+                "empty tag",
+                "write e.g. `tags = [\"caster\"]`",
+            );
+        } else if !unique.contains(&tag.value) {
+            unique.push(tag.value);
+        }
+    }
+    unique
+}
+
+/// The `params` table: each binding is a number, a boolean (1 or 0), an
+/// array of 1 to 4 numbers, or a colour string (4 components).
+#[allow(clippy::type_complexity)]
+fn read_params(
+    fields: &mut Fields,
+    report: &mut Report,
+) -> (BTreeMap<String, Vec<f64>>, BTreeMap<String, Span>) {
+    let mut params = BTreeMap::new();
+    let mut spans = BTreeMap::new();
+    let Some(mut table) = fields.table("params", "`params`", report) else {
+        return (params, spans);
+    };
+    for (name, value) in table.entries(report) {
+        if !is_identifier(&name.value) {
+            report.bad_scene(
+                name.span,
+                format!("`{}` is not a parameter name", name.value),
+                "not an identifier",
+                "parameter names are letters, digits and `_`, not starting with a digit, as in the style",
+            );
+            continue;
+        }
+        if let Some(components) = param_value(&name, value, report) {
+            spans.insert(name.value.clone(), components.span);
+            params.insert(name.value, components.value);
+        }
+    }
+    table.finish(report);
+    (params, spans)
+}
+
+fn param_value(
+    name: &At<String>,
+    value: &toml::Spanned<DeValue>,
+    report: &mut Report,
+) -> Option<At<Vec<f64>>> {
+    let span = report.span(value.span());
+    let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, or a colour `\"#rrggbb\"`";
+    let components = match value.get_ref() {
+        DeValue::Integer(_) | DeValue::Float(_) => {
+            super::toml_fields::expect_number(value, &name.value, report).map(|n| vec![n.value])?
+        }
+        DeValue::Boolean(flag) => vec![if *flag { 1.0 } else { 0.0 }],
+        DeValue::String(text) => match parse_hex_color(text) {
+            Some(color) => color,
+            None => {
+                report.bad_scene(
+                    span,
+                    format!("`{}` is not a colour", name.value),
+                    "expected `#rrggbb` or `#rrggbbaa`",
+                    help,
+                );
+                return None;
+            }
+        },
+        DeValue::Array(_) => {
+            let numbers = expect_numbers(value, &name.value, report)?;
+            if !(1..=4).contains(&numbers.value.len()) {
+                report.bad_scene(
+                    span,
+                    format!("`{}` has {} components", name.value, numbers.value.len()),
+                    "expected 1 to 4 numbers",
+                    help,
+                );
+                return None;
+            }
+            numbers.value
+        }
+        other => {
+            report.bad_scene(
+                span,
+                format!("`{}` cannot be {}", name.value, describe(other)),
+                "not a parameter value",
+                help,
+            );
+            return None;
+        }
+    };
+    Some(At {
+        value: components,
+        span,
+    })
+}
+
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|first| first.is_ascii_alphabetic() || first == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}

@@ -1,0 +1,178 @@
+//! Declared textures on the GPU: decoded image files (sRGB or linear, with an
+//! optional mip chain) and generated noise, each with its sampler.
+
+use crate::texgen::{self, NoiseSpec};
+use crate::RunError;
+use compiler::manifest::{Manifest, TextureManifest, TextureSourceManifest};
+use dsl::{codes, Diagnostic};
+
+pub struct GpuTexture {
+    pub texture: wgpu::Texture,
+    pub sampler: wgpu::Sampler,
+}
+
+/// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most GPUs).
+pub const MAX_TEXTURE_SIZE: u32 = 16384;
+
+pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Result<Vec<GpuTexture>, RunError> {
+    let mut out = Vec::new();
+    let mut diags = Vec::new();
+    for t in &m.textures {
+        match load_one(device, queue, t) {
+            Ok(g) => out.push(g),
+            Err(d) => {
+                diags.push(d);
+                // Keep indices aligned; a 1×1 placeholder is never rendered since we return Err.
+                out.push(placeholder(device));
+            }
+        }
+    }
+    if !diags.is_empty() {
+        return Err(RunError::User(diags));
+    }
+    Ok(out)
+}
+
+fn placeholder(device: &wgpu::Device) -> GpuTexture {
+    let texture = device.create_texture(&desc(1, 1, 1, wgpu::TextureFormat::Rgba8Unorm));
+    GpuTexture { texture, sampler: device.create_sampler(&Default::default()) }
+}
+
+fn desc(w: u32, h: u32, mips: u32, format: wgpu::TextureFormat) -> wgpu::TextureDescriptor<'static> {
+    wgpu::TextureDescriptor {
+        label: Some("npr texture"),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: mips,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    }
+}
+
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn linear_to_srgb(c: f32) -> f32 {
+    if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Halve an RGBA float image with a 2×2 box filter (odd edges clamp).
+pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u32, u32) {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let mut out = vec![[0.0f32; 4]; (nw * nh) as usize];
+    for y in 0..nh {
+        for x in 0..nw {
+            let mut acc = [0.0f32; 4];
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let sx = (2 * x + dx).min(w - 1);
+                let sy = (2 * y + dy).min(h - 1);
+                let p = pixels[(sy * w + sx) as usize];
+                for c in 0..4 {
+                    acc[c] += p[c] * 0.25;
+                }
+            }
+            out[(y * nw + x) as usize] = acc;
+        }
+    }
+    (out, nw, nh)
+}
+
+fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> Result<GpuTexture, Diagnostic> {
+    // Linear-light RGBA pixels plus the GPU format they are stored in.
+    let (pixels, w, h, srgb, half_float) = match &t.source {
+        TextureSourceManifest::Image { path, resolved, srgb } => {
+            let img = image::open(resolved).map_err(|e| {
+                Diagnostic::error(codes::MISSING_TEXTURE, format!("cannot read texture `{}` ({path}): {e}", t.name))
+                    .with_help("use a PNG or EXR file; paths are relative to the .npr file")
+            })?;
+            if img.width() > MAX_TEXTURE_SIZE || img.height() > MAX_TEXTURE_SIZE {
+                return Err(Diagnostic::error(
+                    codes::LIMIT_EXCEEDED,
+                    format!("texture `{}` is {}x{}, over the {MAX_TEXTURE_SIZE} px limit", t.name, img.width(), img.height()),
+                )
+                .with_help("downscale the image file"));
+            }
+            let rgba = img.to_rgba32f();
+            let (w, h) = rgba.dimensions();
+            let mut px: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();
+            if *srgb {
+                for p in &mut px {
+                    for c in &mut p[..3] {
+                        *c = srgb_to_linear(*c);
+                    }
+                }
+            }
+            (px, w, h, *srgb, false)
+        }
+        TextureSourceManifest::Noise { size, octaves, seed, gradient, channels, frequency } => {
+            let img = texgen::generate(&NoiseSpec {
+                size: *size,
+                octaves: *octaves,
+                seed: *seed,
+                gradient: *gradient,
+                channels: *channels,
+                frequency: *frequency,
+            });
+            (img.pixels, img.size, img.size, false, true)
+        }
+    };
+    let mut levels = vec![(pixels, w, h)];
+    if t.mips {
+        while levels.last().is_some_and(|(_, w, h)| *w > 1 || *h > 1) {
+            let (p, w, h) = levels.last().map(|(p, w, h)| downsample_box(p, *w, *h)).unwrap_or_default();
+            levels.push((p, w, h));
+        }
+    }
+    let format = if half_float {
+        wgpu::TextureFormat::Rgba16Float
+    } else if srgb {
+        wgpu::TextureFormat::Rgba8UnormSrgb
+    } else {
+        wgpu::TextureFormat::Rgba8Unorm
+    };
+    let texture = device.create_texture(&desc(w, h, levels.len() as u32, format));
+    for (mip, (px, lw, lh)) in levels.iter().enumerate() {
+        let (bytes, bpp): (Vec<u8>, u32) = if half_float {
+            let halves: Vec<u16> = px.iter().flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits())).collect();
+            (bytemuck::cast_slice(&halves).to_vec(), 8)
+        } else {
+            let enc = |c: f32| if srgb { linear_to_srgb(c) } else { c };
+            (
+                px.iter()
+                    .flat_map(|p| [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+                    .collect(),
+                4,
+            )
+        };
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: mip as u32, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            &bytes,
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(lw * bpp), rows_per_image: Some(*lh) },
+            wgpu::Extent3d { width: *lw, height: *lh, depth_or_array_layers: 1 },
+        );
+    }
+    let address = if t.wrap_repeat { wgpu::AddressMode::Repeat } else { wgpu::AddressMode::ClampToEdge };
+    let filter = if t.filter_linear { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(&t.name),
+        address_mode_u: address,
+        address_mode_v: address,
+        address_mode_w: address,
+        mag_filter: filter,
+        min_filter: filter,
+        mipmap_filter: if t.filter_linear { wgpu::MipmapFilterMode::Linear } else { wgpu::MipmapFilterMode::Nearest },
+        ..Default::default()
+    });
+    Ok(GpuTexture { texture, sampler })
+}

@@ -1,0 +1,363 @@
+//! Command definitions (clap) and their implementations.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use compiler::{CompileError, CompileOptions, Compiled};
+use dsl::{Diagnostic, SourceMap};
+use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_USER: i32 = 1;
+pub const EXIT_INTERNAL: i32 = 2;
+
+#[derive(Parser, Debug)]
+#[command(name = "npr", version, about = "Style language and shader-graph compiler for non-photorealistic rendering")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+    /// How to print diagnostics.
+    #[arg(long, global = true, value_enum, default_value_t = MessageFormat::Human)]
+    pub message_format: MessageFormat,
+}
+
+#[derive(Copy, Clone, Debug, ValueEnum, PartialEq, Eq)]
+pub enum MessageFormat {
+    Human,
+    Json,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Parse and check a style; print diagnostics only.
+    Check { style: PathBuf },
+    /// Compile a style to WGSL (one file per pass) plus manifest.json.
+    Compile {
+        style: PathBuf,
+        /// Output directory.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Print what was removed, folded or kept, and why.
+        #[arg(long)]
+        report: bool,
+        /// Keep parameters as uniforms (for live tweaking) instead of folding them.
+        #[arg(long)]
+        keep_params: bool,
+        /// Write the IR after each compiler stage into OUT/ir/.
+        #[arg(long)]
+        dump_ir: bool,
+        /// Print the time taken by each compiler stage.
+        #[arg(long)]
+        time_passes: bool,
+    },
+    /// Render a style on a scene to an image.
+    Render {
+        style: PathBuf,
+        /// Scene file (TOML).
+        #[arg(long)]
+        scene: PathBuf,
+        /// Output image (.png or .exr). With --frames, `{frame}` in the name is
+        /// replaced by the frame number (otherwise `_NNNN` is appended).
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Output size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "512x512", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Time in seconds (for animated parameters and cameras).
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        /// Render frames A..B (exclusive) at --fps.
+        #[arg(long, value_parser = parse_frames)]
+        frames: Option<(u32, u32)>,
+        #[arg(long, default_value_t = 24.0)]
+        fps: f64,
+        /// Which eye to render for stereo cameras (0 = left, 1 = right).
+        #[arg(long, default_value_t = 0)]
+        eye: u32,
+        /// Write every target as an image, plus a contact sheet, into DIR.
+        #[arg(long)]
+        dump_passes: Option<PathBuf>,
+        #[arg(long)]
+        keep_params: bool,
+    },
+    /// Benchmarks; see docs/PERFORMANCE.md.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Compile time of our front end and code generation against naga's own
+    /// parse + validate of the WGSL we emit, measured in the same run.
+    Compile {
+        styles: Vec<PathBuf>,
+        #[arg(long, default_value_t = 50)]
+        iterations: u32,
+    },
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 512x512")?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
+    if w == 0 || h == 0 {
+        return Err("width and height must be at least 1".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_frames(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 0..48")?;
+    let a: u32 = a.trim().parse().map_err(|_| format!("bad frame `{a}`"))?;
+    let b: u32 = b.trim().parse().map_err(|_| format!("bad frame `{b}`"))?;
+    if b <= a {
+        return Err(format!("empty frame range {a}..{b}"));
+    }
+    Ok((a, b))
+}
+
+struct Printer {
+    format: MessageFormat,
+    color: bool,
+}
+
+impl Printer {
+    fn diagnostics(&self, diags: &[Diagnostic], sources: &SourceMap) {
+        if diags.is_empty() {
+            return;
+        }
+        match self.format {
+            MessageFormat::Json => print!("{}", dsl::diagnostic::render_json(diags, sources)),
+            MessageFormat::Human => eprint!("{}", dsl::diagnostic::render(diags, sources, self.color)),
+        }
+    }
+}
+
+pub fn run(cli: Cli) -> i32 {
+    let printer = Printer { format: cli.message_format, color: std::io::stderr().is_terminal() };
+    let mut sources = SourceMap::new();
+    match cli.command {
+        Command::Check { style } => match compile(&style, &mut sources, &CompileOptions::default(), &printer) {
+            Ok(c) => {
+                printer.diagnostics(&c.warnings, &sources);
+                if printer.format == MessageFormat::Human {
+                    eprintln!(
+                        "ok: style \"{}\": {} pass(es), {} target(s)",
+                        c.manifest.style,
+                        c.manifest.passes.len(),
+                        c.manifest.targets.len()
+                    );
+                }
+                EXIT_OK
+            }
+            Err(code) => code,
+        },
+        Command::Compile { style, out, report, keep_params, dump_ir, time_passes } => {
+            let opts = CompileOptions { keep_params, dump_ir };
+            let c = match compile(&style, &mut sources, &opts, &printer) {
+                Ok(c) => c,
+                Err(code) => return code,
+            };
+            printer.diagnostics(&c.warnings, &sources);
+            if let Err(e) = write_compiled(&c, &out) {
+                eprintln!("error: cannot write {}: {e}", out.display());
+                return EXIT_USER;
+            }
+            if report {
+                print!("{}", c.report.render());
+            }
+            if time_passes {
+                let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
+                for (stage, d) in &c.timings {
+                    println!("{stage:<24} {:>9.3} ms", d.as_secs_f64() * 1e3);
+                }
+                println!("{:<24} {:>9.3} ms", "total", total * 1e3);
+            }
+            eprintln!("compiled {} pass(es) into {}", c.shaders.len(), out.display());
+            EXIT_OK
+        }
+        Command::Bench(cmd) => bench(cmd, &printer),
+        Command::Render { style, scene, out, size, time, frames, fps, eye, dump_passes, keep_params } => {
+            let opts = CompileOptions { keep_params, dump_ir: false };
+            let c = match compile(&style, &mut sources, &opts, &printer) {
+                Ok(c) => c,
+                Err(code) => return code,
+            };
+            printer.diagnostics(&c.warnings, &sources);
+            let scene = match runner::scene::load_scene(&scene, &mut sources) {
+                Ok(s) => s,
+                Err(d) => {
+                    printer.diagnostics(&d, &sources);
+                    return EXIT_USER;
+                }
+            };
+            let gpu = match Gpu::headless() {
+                Ok(g) => g,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return EXIT_USER;
+                }
+            };
+            let program = StyleProgram::from_compiled(&c);
+            match render(&gpu, &program, &scene, size, time, frames, fps, eye, out.as_deref(), dump_passes.as_deref()) {
+                Ok(()) => EXIT_OK,
+                Err(e) => {
+                    printer.diagnostics(&e.diagnostics(), &sources);
+                    if e.is_user_error() {
+                        EXIT_USER
+                    } else {
+                        EXIT_INTERNAL
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
+    match cmd {
+        BenchCommand::Compile { styles, iterations } => {
+            println!("| style | npr front end + codegen (ms) | naga parse+validate of output (ms) | ratio |");
+            println!("|---|---:|---:|---:|");
+            for style in styles {
+                let mut ours = Vec::new();
+                let mut naga_time = Vec::new();
+                for _ in 0..iterations.max(1) {
+                    let mut sources = SourceMap::new();
+                    let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
+                        Ok(c) => c,
+                        Err(code) => return code,
+                    };
+                    let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
+                    let validate: f64 = c.timings.iter().filter(|(s, _)| *s == "validate").map(|(_, d)| d.as_secs_f64()).sum();
+                    ours.push(total - validate);
+                    naga_time.push(validate);
+                }
+                let median = |v: &mut Vec<f64>| {
+                    v.sort_by(f64::total_cmp);
+                    v[v.len() / 2]
+                };
+                let (o, n) = (median(&mut ours), median(&mut naga_time));
+                println!("| {} | {:.3} | {:.3} | {:.2}x |", style.display(), o * 1e3, n * 1e3, o / n.max(1e-12));
+            }
+            EXIT_OK
+        }
+    }
+}
+
+fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer: &Printer) -> Result<Compiled, i32> {
+    match compiler::compile_file(style, sources, opts) {
+        Ok(c) => Ok(c),
+        Err(CompileError::User(diags)) => {
+            printer.diagnostics(&diags, sources);
+            Err(EXIT_USER)
+        }
+        Err(CompileError::Internal(e)) => {
+            printer.diagnostics(&[e.to_diagnostic()], sources);
+            if let Some(w) = &e.wgsl {
+                eprintln!("--- generated WGSL ---\n{w}");
+            }
+            Err(EXIT_INTERNAL)
+        }
+    }
+}
+
+fn write_compiled(c: &Compiled, out: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(out)?;
+    for (file, wgsl) in &c.shaders {
+        runner::output::write_atomic(&out.join(file), wgsl.as_bytes())?;
+    }
+    let manifest = serde_json::to_string_pretty(&c.manifest).map_err(std::io::Error::other)?;
+    runner::output::write_atomic(&out.join("manifest.json"), manifest.as_bytes())?;
+    runner::output::write_atomic(&out.join("report.txt"), c.report.render().as_bytes())?;
+    if !c.dumps.is_empty() {
+        for (i, (stage, text)) in c.dumps.iter().enumerate() {
+            runner::output::write_atomic(&out.join("ir").join(format!("{i:02}_{stage}.txt")), text.as_bytes())?;
+        }
+    }
+    Ok(())
+}
+
+fn frame_path(out: &Path, frame: u32) -> PathBuf {
+    let s = out.to_string_lossy();
+    if s.contains("{frame}") {
+        return PathBuf::from(s.replace("{frame}", &format!("{frame:04}")));
+    }
+    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "frame".into());
+    let ext = out.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "png".into());
+    out.with_file_name(format!("{stem}_{frame:04}.{ext}"))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn render(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    scene: &runner::scene::Scene,
+    (width, height): (u32, u32),
+    time: f64,
+    frames: Option<(u32, u32)>,
+    fps: f64,
+    eye: u32,
+    out: Option<&Path>,
+    dump: Option<&Path>,
+) -> Result<(), RunError> {
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let io = |e: std::io::Error, p: &Path| RunError::User(vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, format!("cannot write {}: {e}", p.display()))
+        .with_help("check that the directory exists and is writable")]);
+    let frame_list: Vec<u32> = match frames {
+        Some((a, b)) => (a..b).collect(),
+        None => vec![(time * fps).round().max(0.0) as u32],
+    };
+    let bar = if frames.is_some() {
+        let b = indicatif::ProgressBar::new(frame_list.len() as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed_precise} eta {eta}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        Some(b)
+    } else {
+        None
+    };
+    for &frame in &frame_list {
+        let t = if frames.is_some() { frame as f64 / fps } else { time };
+        r.render(scene, &FrameSpec { width, height, time_s: t, frame, eye })?;
+        if let Some(out) = out {
+            let path = if frames.is_some() { frame_path(out, frame) } else { out.to_path_buf() };
+            let img = r.read_output()?;
+            runner::output::write_target(&img, &path).map_err(|e| io(e, &path))?;
+            if frames.is_none() {
+                eprintln!("wrote {} ({}x{}, {})", path.display(), img.width, img.height, gpu.describe());
+            }
+        }
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    }
+    if let Some(b) = bar {
+        b.finish();
+    }
+    if let Some(dir) = dump {
+        let images = dump_all_targets(&mut r, scene, width, height, time, eye)?;
+        let written = runner::output::dump_targets(&images, dir).map_err(|e| io(e, dir))?;
+        eprintln!("wrote {} files into {}", written.len(), dir.display());
+    }
+    Ok(())
+}
+
+/// Read every target. Targets aliased onto a texture that a later pass
+/// reuses are captured by re-running the frame up to the pass that wrote
+/// them (by rendering with aliasing-aware reads: render, read the survivors,
+/// and for the others render again and read right after their pass).
+pub fn dump_all_targets(r: &mut Renderer, scene: &runner::scene::Scene, width: u32, height: u32, time: f64, eye: u32) -> Result<Vec<runner::TargetImage>, RunError> {
+    let spec = FrameSpec { width, height, time_s: time, frame: 0, eye };
+    r.render(scene, &spec)?;
+    let mut images = Vec::new();
+    for t in 0..r.manifest.targets.len() {
+        if r.target_survives_frame(t) {
+            images.push(r.read_target(t)?);
+        } else {
+            images.push(r.render_until_target(scene, &spec, t)?);
+        }
+    }
+    Ok(images)
+}

@@ -1,0 +1,152 @@
+//! The npr operator standard library.
+//!
+//! Each operator is a WGSL function (in `stdlib/wgsl/<name>.wgsl`) plus
+//! metadata: its signature, parameter types, units, defaults, ranges, docs,
+//! and the paper and equation numbers it implements. Each also has a CPU f64
+//! reference implementation in [`reference`], used by the accuracy tests.
+//!
+//! WGSL conventions (the compiler relies on them):
+//! - operator `foo` is the WGSL function `npr_foo`; private helpers in the same
+//!   file are prefixed `npr_foo__`;
+//! - parameters appear in the WGSL signature in the order of [`Operator::params`];
+//! - a [`Ty::Texture`] parameter is one `texture_2d<f32>` argument, read with
+//!   `textureLoad` (so unfilterable float targets work); a [`Ty::SampledTexture`]
+//!   parameter is two arguments, `texture_2d<f32>` then `sampler`;
+//! - an [`Ty::Enum`] parameter is an `i32` holding the variant's index;
+//! - a [`Ty::Color`] is a `vec4<f32>` with straight (not premultiplied) alpha;
+//! - quantities with a [`Unit`] arrive in the canonical unit: px, metres,
+//!   seconds, hertz, radians.
+
+pub mod operators;
+pub mod reference;
+
+use serde::Serialize;
+
+/// A value type in the operator signatures (and in the compiler's type system).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Ty {
+    Float,
+    Int,
+    Bool,
+    Vec2,
+    Vec3,
+    Vec4,
+    /// An RGBA colour, `vec4<f32>`.
+    Color,
+    /// A texture read with `textureLoad`: `texture_2d<f32>`.
+    Texture,
+    /// A texture read with a sampler: `texture_2d<f32>, sampler`.
+    SampledTexture,
+    /// A compile-time choice among named variants, passed as `i32`.
+    Enum(&'static [&'static str]),
+}
+
+impl Ty {
+    /// The WGSL type of a value of this type (textures: the texture part).
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            Ty::Float => "f32",
+            Ty::Int | Ty::Enum(_) => "i32",
+            Ty::Bool => "bool",
+            Ty::Vec2 => "vec2<f32>",
+            Ty::Vec3 => "vec3<f32>",
+            Ty::Vec4 | Ty::Color => "vec4<f32>",
+            Ty::Texture | Ty::SampledTexture => "texture_2d<f32>",
+        }
+    }
+}
+
+/// The physical dimension of a quantity, in its canonical unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub enum Unit {
+    /// A plain number.
+    None,
+    /// Screen pixels (a `%` of the image height converts to px at run time).
+    Px,
+    /// Metres (`mm` converts at compile time).
+    Meters,
+    Seconds,
+    Hertz,
+    /// Angles: written in `deg`, passed in radians.
+    Radians,
+}
+
+impl Unit {
+    pub fn name(self) -> &'static str {
+        match self {
+            Unit::None => "a plain number",
+            Unit::Px => "px",
+            Unit::Meters => "m",
+            Unit::Seconds => "s",
+            Unit::Hertz => "Hz",
+            Unit::Radians => "deg",
+        }
+    }
+}
+
+/// What a parameter gets when the call omits it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Default {
+    /// The argument must be given.
+    Required,
+    Number(f64),
+    /// A builtin value such as `screen_uv`.
+    Builtin(&'static str),
+    /// An enum variant by name.
+    Variant(&'static str),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Param {
+    pub name: &'static str,
+    pub ty: Ty,
+    pub unit: Unit,
+    pub default: Default,
+    /// Inclusive bounds a constant argument must lie in.
+    pub range: Option<(f64, f64)>,
+    pub doc: &'static str,
+}
+
+/// Where an operator can run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Stage {
+    /// Any fragment shader.
+    Any,
+    /// Only in `image` passes (it reads other targets at neighbouring pixels).
+    Image,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Operator {
+    pub name: &'static str,
+    pub doc: &'static str,
+    /// Source: paper and equation numbers, or a textbook reference.
+    pub reference: &'static str,
+    pub params: &'static [Param],
+    pub returns: Ty,
+    pub stage: Stage,
+    /// The WGSL source defining `npr_<name>` (and its private helpers).
+    pub wgsl: &'static str,
+    /// Other operators whose WGSL functions this one calls.
+    pub depends: &'static [&'static str],
+}
+
+impl Operator {
+    pub fn wgsl_fn(&self) -> String {
+        format!("npr_{}", self.name)
+    }
+
+    pub fn param(&self, name: &str) -> Option<&Param> {
+        self.params.iter().find(|p| p.name == name)
+    }
+}
+
+/// Every operator in the standard library.
+pub fn all() -> &'static [Operator] {
+    operators::ALL
+}
+
+/// Look an operator up by its `.npr` name.
+pub fn find(name: &str) -> Option<&'static Operator> {
+    operators::ALL.iter().find(|o| o.name == name)
+}

@@ -1,0 +1,66 @@
+//! Every example style compiles; its WGSL and manifest are snapshot-tested,
+//! and naga parses and validates every emitted module.
+
+use compiler::CompileOptions;
+use dsl::SourceMap;
+use std::path::{Path, PathBuf};
+
+fn examples() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("examples dir")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "npr"))
+        .collect();
+    v.sort();
+    assert!(v.len() >= 3, "expected at least three examples, found {v:?}");
+    v
+}
+
+fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
+    let mut sources = SourceMap::new();
+    match compiler::compile_file(path, &mut sources, &CompileOptions { keep_params, dump_ir: false }) {
+        Ok(c) => c,
+        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.unwrap_or_default()),
+    }
+}
+
+#[test]
+fn every_example_compiles_and_validates_with_naga() {
+    for path in examples() {
+        for keep in [false, true] {
+            let c = compile(&path, keep);
+            assert!(!c.shaders.is_empty(), "{}", path.display());
+            for (file, wgsl) in &c.shaders {
+                let module = naga::front::wgsl::parse_str(wgsl).unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
+                naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
+                    .validate(&module)
+                    .unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
+                assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
+                assert!(module.entry_points.iter().any(|e| e.name == "vs_main"));
+            }
+        }
+    }
+}
+
+#[test]
+fn compile_snapshots() {
+    for path in examples() {
+        let c = compile(&path, false);
+        let name = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
+        let mut manifest = c.manifest.clone();
+        // Absolute paths differ between machines.
+        manifest.source = format!("examples/{name}.npr");
+        for t in &mut manifest.textures {
+            if let compiler::manifest::TextureSourceManifest::Image { resolved, path, .. } = &mut t.source {
+                *resolved = path.clone();
+            }
+        }
+        insta::assert_json_snapshot!(format!("{name}__manifest"), manifest);
+        for (file, wgsl) in &c.shaders {
+            insta::assert_snapshot!(format!("{name}__{file}"), wgsl);
+        }
+        insta::assert_snapshot!(format!("{name}__report"), c.report.render());
+    }
+}

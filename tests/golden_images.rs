@@ -1,0 +1,80 @@
+//! Golden-image tests: each example style rendered on its scene through the
+//! real wgpu runner, compared with `examples/golden/*.png`.
+//!
+//! Tolerance: every channel within 2/255 except at most 0.5% of pixels (the
+//! outliers allowed are edge pixels whose coverage can differ between
+//! rasterizers), plus a mean FLIP bound of 0.01. On failure the actual and
+//! diff images are written to `target/npr-test-output/`.
+//! Regenerate after an intended change with `NPR_UPDATE_GOLDENS=1 cargo test --test golden_images`.
+
+use runner::harness::{compare_with_golden, Tolerance};
+use runner::{FrameSpec, Gpu, StyleProgram};
+use std::path::Path;
+use std::sync::OnceLock;
+
+const SIZE: u32 = 192;
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| Gpu::headless().unwrap_or_else(|e| panic!("golden tests need a GPU adapter: {e}")))
+}
+
+fn render_example(style: &str, scene: &str) -> image::RgbaImage {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut sources = dsl::SourceMap::new();
+    let compiled = compiler::compile_file(&root.join(style), &mut sources, &Default::default())
+        .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
+    let scene = runner::scene::load_scene(&root.join(scene), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let program = StyleProgram::from_compiled(&compiled);
+    let img = runner::render_frame(gpu(), &program, &scene, &FrameSpec { width: SIZE, height: SIZE, time_s: 0.0, frame: 0, eye: 0 })
+        .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
+    img.to_rgba8()
+}
+
+fn golden(name: &str, style: &str, scene: &str) {
+    let actual = render_example(style, scene);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/golden").join(format!("{name}.png"));
+    let per_pixel = compare_with_golden(&actual, &path, Tolerance::PerPixel { max_abs: 2, outlier_fraction: 0.005 });
+    assert!(per_pixel.passed, "{name}: {} (images in {:?})", per_pixel.summary, per_pixel.written);
+    let flip = compare_with_golden(&actual, &path, Tolerance::Flip { max_mean: 0.01 });
+    assert!(flip.passed, "{name}: {}", flip.summary);
+}
+
+#[test]
+fn toon_on_spot() {
+    golden("toon_spot", "examples/toon.npr", "examples/scenes/spot.toml");
+}
+
+#[test]
+fn outline_on_spot() {
+    golden("outline_spot", "examples/outline.npr", "examples/scenes/spot.toml");
+}
+
+#[test]
+fn rounded_shadows_on_spot() {
+    golden("rounded_shadows_spot", "examples/rounded_shadows.npr", "examples/scenes/spot.toml");
+}
+
+#[test]
+fn toon_on_analytic_spheres() {
+    golden("toon_spheres", "examples/toon.npr", "examples/scenes/spheres.toml");
+}
+
+#[test]
+fn a_broken_image_fails_the_comparison() {
+    // The harness must be able to fail: a golden compared with an altered copy.
+    let actual = render_example("examples/toon.npr", "examples/scenes/spot.toml");
+    let mut altered = actual.clone();
+    for p in altered.pixels_mut().take((SIZE * SIZE / 10) as usize) {
+        p.0 = [255, 0, 255, 255];
+    }
+    let dir = std::env::temp_dir().join(format!("npr-golden-self-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let golden = dir.join("reference.png");
+    runner::output::write_png8(&actual, &golden).expect("write");
+    let c = compare_with_golden(&altered, &golden, Tolerance::PerPixel { max_abs: 2, outlier_fraction: 0.005 });
+    assert!(!c.passed && c.outlier_fraction > 0.05, "{}", c.summary);
+    let written = c.written.expect("actual and diff written on failure");
+    assert!(written.0.exists() && written.1.exists());
+}
