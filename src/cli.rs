@@ -94,6 +94,18 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 50)]
         iterations: u32,
     },
+    /// Runner overhead per frame: `Renderer::render` (uniform updates,
+    /// recording, submit, wait) against the bare passes — the same pipelines
+    /// and bind groups recorded and submitted with no per-frame work of ours.
+    Frame {
+        style: PathBuf,
+        #[arg(long)]
+        scene: PathBuf,
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        #[arg(long, default_value_t = 60)]
+        frames: u32,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -241,6 +253,38 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                 println!("| {} | {:.3} | {:.3} | {:.2}x |", style.display(), o * 1e3, n * 1e3, o / n.max(1e-12));
             }
             EXIT_OK
+        }
+        BenchCommand::Frame { style, scene, size, frames } => {
+            let mut sources = SourceMap::new();
+            let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
+                Ok(c) => c,
+                Err(code) => return code,
+            };
+            let scene = match runner::scene::load_scene(&scene, &mut sources) {
+                Ok(s) => s,
+                Err(d) => {
+                    printer.diagnostics(&d, &sources);
+                    return EXIT_USER;
+                }
+            };
+            let gpu = match Gpu::headless() {
+                Ok(g) => g,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return EXIT_USER;
+                }
+            };
+            match runner::bench::frame_overhead(&gpu, &StyleProgram::from_compiled(&c), &scene, size, frames) {
+                Ok(r) => {
+                    println!("device: {}", gpu.describe());
+                    println!("{}", r.table());
+                    EXIT_OK
+                }
+                Err(e) => {
+                    printer.diagnostics(&e.diagnostics(), &sources);
+                    EXIT_INTERNAL
+                }
+            }
         }
     }
 }

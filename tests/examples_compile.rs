@@ -22,7 +22,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
     match compiler::compile_file(path, &mut sources, &CompileOptions { keep_params, dump_ir: false }) {
         Ok(c) => c,
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.unwrap_or_default()),
+        Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.clone().unwrap_or_default()),
     }
 }
 

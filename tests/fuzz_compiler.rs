@@ -32,7 +32,7 @@ fn check(text: &str) {
             }
             let _ = dsl::diagnostic::render(&diags, &sources, false);
         }
-        Err(CompileError::Internal(e)) => panic!("internal compiler error on input:\n{text}\n{e}\n{}", e.wgsl.unwrap_or_default()),
+        Err(CompileError::Internal(e)) => panic!("internal compiler error on input:\n{text}\n{e}\n{}", e.wgsl.clone().unwrap_or_default()),
     }
 }
 
@@ -54,7 +54,7 @@ proptest! {
             match kind {
                 0 => { let end = (at + 7).min(text.len()); let mut e = end; while !text.is_char_boundary(e) { e -= 1; } text.replace_range(at..e, ""); }
                 1 => text.insert_str(at, TOKENS[tok]),
-                _ => { text.insert_str(at, " "); text.insert_str(at, TOKENS[tok]); }
+                _ => { text.insert(at, ' '); text.insert_str(at, TOKENS[tok]); }
             }
         }
         check(&text);

@@ -81,7 +81,9 @@ pub enum CompileError {
 /// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
 pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let loaded = load::load_file(path, sources, &mut diags).map_err(|_| CompileError::User(diags.clone()))?;
+    let Some(loaded) = load::load_file(path, sources, &mut diags) else {
+        return Err(CompileError::User(diags));
+    };
     pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
 }
 

@@ -16,24 +16,22 @@ pub struct Loaded {
     pub items: Vec<(Item, PathBuf)>,
 }
 
-/// Read and parse `path` and its `use`s.
-pub fn load_file(
-    path: &Path,
-    sources: &mut SourceMap,
-    diags: &mut Vec<Diagnostic>,
-) -> Result<Loaded, ()> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        diags.push(
-            Diagnostic::error(
-                codes::BAD_USE,
-                format!("cannot read style file `{}`: {e}", path.display()),
-            )
-            .with_help("check the path; style files usually end in `.npr`"),
-        );
-    })?;
+/// Read and parse `path` and its `use`s. `None` when the file cannot be read
+/// (the diagnostic is in `diags`).
+pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => {
+            diags.push(
+                Diagnostic::error(codes::BAD_USE, format!("cannot read style file `{}`: {e}", path.display()))
+                    .with_help("check the path; style files usually end in `.npr`"),
+            );
+            return None;
+        }
+    };
     let name = path.display().to_string();
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    Ok(load_source(&name, &text, &dir, sources, diags))
+    Some(load_source(&name, &text, &dir, sources, diags))
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.

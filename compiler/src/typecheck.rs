@@ -74,7 +74,7 @@ impl Checker<'_> {
             .add_typed(ExprKind::Convert { conversion, operand: id }, ty, unit, span)
     }
 
-    fn to_float(&mut self, id: ExprId) -> ExprId {
+    fn promote_int(&mut self, id: ExprId) -> ExprId {
         if self.vt(id) == Ty::Int {
             self.convert(id, Conversion::IntToFloat)
         } else {
@@ -274,7 +274,7 @@ impl Checker<'_> {
                 let (l, r) = if tl == Ty::Int && tr == Ty::Int {
                     (lhs, rhs)
                 } else {
-                    (self.to_float(lhs), self.to_float(rhs))
+                    (self.promote_int(lhs), self.promote_int(rhs))
                 };
                 let ty = if tl == Ty::Int && tr == Ty::Int {
                     Ty::Int
@@ -364,14 +364,14 @@ impl Checker<'_> {
                 let mut out = Vec::new();
                 let mut unit = Unit::None;
                 for a in &args {
-                    let a2 = self.to_float(*a);
+                    let a2 = self.promote_int(*a);
                     unit = self.same_unit(a2, out.last().copied().unwrap_or(a2), "combine", span);
                     out.push(a2);
                 }
                 (out, Ty::float_vec(n), unit)
             }
             Intrinsic::Map(f) => {
-                let a = self.to_float(args[0]);
+                let a = self.promote_int(args[0]);
                 let t = self.vt(a);
                 let trig = ["sin", "cos", "tan"].contains(&f);
                 if trig && !matches!(first_unit, Unit::None | Unit::Radians) {
@@ -406,7 +406,7 @@ impl Checker<'_> {
                     let unit = self.same_unit(a, b, "mix", span);
                     // mix(a, b, t): t is a scalar or the same type as a and b.
                     let w = if self.vt(args[2]).components() == Some(1) {
-                        self.to_float(args[2])
+                        self.promote_int(args[2])
                     } else {
                         match self.coerce(args[2], t) {
                             Some(w) => w,
@@ -436,7 +436,7 @@ impl Checker<'_> {
                 }
             }
             Intrinsic::Length | Intrinsic::Normalize => {
-                let a = self.to_float(args[0]);
+                let a = self.promote_int(args[0]);
                 let t = self.vt(a);
                 if t.components() == Some(1) {
                     return self.type_error(a, "a vector", None);
@@ -639,7 +639,7 @@ impl Checker<'_> {
                                 .with_help("write it in px, or in % of the image height"),
                         );
                     } else {
-                        let f = self.to_float(inflate);
+                        let f = self.promote_int(inflate);
                         self.ir.passes[pi].inflate = Some(f);
                     }
                 }

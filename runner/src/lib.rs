@@ -12,6 +12,7 @@
 //! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
 
 pub mod animation;
+pub mod bench;
 pub mod device;
 pub mod harness;
 pub mod output;

@@ -463,8 +463,7 @@ impl<'d> Renderer<'d> {
             .passes
             .iter()
             .flat_map(|p| p.outputs.iter())
-            .filter(|t| self.manifest.targets[**t].physical == phys)
-            .last();
+            .rfind(|t| self.manifest.targets[**t].physical == phys);
         last_writer == Some(&target)
     }
 }

@@ -58,7 +58,6 @@ struct PassCtx {
     named: BTreeMap<ExprId, String>,
     target_names: BTreeMap<TargetRef, String>,
     uses_linear_sampler: bool,
-    uses_frame: bool,
 }
 
 impl Emitter<'_> {
@@ -239,7 +238,6 @@ impl Emitter<'_> {
             named: BTreeMap::new(),
             target_names,
             uses_linear_sampler,
-            uses_frame,
         };
         if is_render {
             self.render_vertex(&mut w, pass, &attributes, &builtins, &vert_nodes, &mut ctx);
@@ -500,7 +498,7 @@ impl Emitter<'_> {
         match self.ir.expr(id).kind {
             ExprKind::Texture(t) => format!("samp_{}", self.ir.textures[t.0 as usize].name),
             _ => {
-                debug_assert!(ctx.uses_linear_sampler && ctx.uses_frame || ctx.uses_linear_sampler);
+                debug_assert!(ctx.uses_linear_sampler, "a target passed as a sampled texture needs the clamp sampler");
                 "samp_linear_clamp".into()
             }
         }

@@ -1,0 +1,60 @@
+//! Frame-time measurements for `npr bench frame` (benchmarks, never tests).
+//!
+//! Ratios are taken in one run with interleaved samples, so machine load
+//! affects both sides alike.
+
+use crate::{FrameSpec, Gpu, RunError, StyleProgram};
+use std::time::Instant;
+
+pub struct FrameOverhead {
+    pub width: u32,
+    pub height: u32,
+    pub frames: u32,
+    /// Median seconds per frame of `Renderer::render` + GPU wait.
+    pub runner_s: f64,
+    /// Median seconds per frame of the bare passes + GPU wait.
+    pub bare_s: f64,
+}
+
+impl FrameOverhead {
+    pub fn table(&self) -> String {
+        format!(
+            "| size | frames | runner (ms/frame) | bare passes (ms/frame) | ratio |\n|---|---:|---:|---:|---:|\n| {}x{} | {} | {:.3} | {:.3} | {:.3}x |",
+            self.width,
+            self.height,
+            self.frames,
+            self.runner_s * 1e3,
+            self.bare_s * 1e3,
+            self.runner_s / self.bare_s.max(1e-12)
+        )
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
+}
+
+pub fn frame_overhead(gpu: &Gpu, program: &StyleProgram, scene: &crate::scene::Scene, (width, height): (u32, u32), frames: u32) -> Result<FrameOverhead, RunError> {
+    let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let wait = || gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")));
+    let spec = |frame: u32| FrameSpec { width, height, time_s: frame as f64 / 24.0, frame, eye: 0 };
+    // Warm up: pipelines compiled, textures allocated.
+    r.render(scene, &spec(0))?;
+    wait()?;
+    let mut ours = Vec::new();
+    let mut bare = Vec::new();
+    for f in 0..frames.max(1) {
+        let t = Instant::now();
+        r.render(scene, &spec(f))?;
+        wait()?;
+        ours.push(t.elapsed().as_secs_f64());
+        let t = Instant::now();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        r.encode(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        wait()?;
+        bare.push(t.elapsed().as_secs_f64());
+    }
+    Ok(FrameOverhead { width, height, frames, runner_s: median(ours), bare_s: median(bare) })
+}
