@@ -12,7 +12,11 @@ pub const EXIT_USER: i32 = 1;
 pub const EXIT_INTERNAL: i32 = 2;
 
 #[derive(Parser, Debug)]
-#[command(name = "npr", version, about = "Style language and shader-graph compiler for non-photorealistic rendering")]
+#[command(
+    name = "npr",
+    version,
+    about = "Style language and shader-graph compiler for non-photorealistic rendering"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -146,7 +150,10 @@ impl Printer {
 }
 
 pub fn run(cli: Cli) -> i32 {
-    let printer = Printer { format: cli.message_format, color: std::io::stderr().is_terminal() };
+    let printer = Printer {
+        format: cli.message_format,
+        color: std::io::stderr().is_terminal(),
+    };
     let mut sources = SourceMap::new();
     match cli.command {
         Command::Check { style } => match compile(&style, &mut sources, &CompileOptions::default(), &printer) {
@@ -164,7 +171,14 @@ pub fn run(cli: Cli) -> i32 {
             }
             Err(code) => code,
         },
-        Command::Compile { style, out, report, keep_params, dump_ir, time_passes } => {
+        Command::Compile {
+            style,
+            out,
+            report,
+            keep_params,
+            dump_ir,
+            time_passes,
+        } => {
             let opts = CompileOptions { keep_params, dump_ir };
             let c = match compile(&style, &mut sources, &opts, &printer) {
                 Ok(c) => c,
@@ -189,8 +203,22 @@ pub fn run(cli: Cli) -> i32 {
             EXIT_OK
         }
         Command::Bench(cmd) => bench(cmd, &printer),
-        Command::Render { style, scene, out, size, time, frames, fps, eye, dump_passes, keep_params } => {
-            let opts = CompileOptions { keep_params, dump_ir: false };
+        Command::Render {
+            style,
+            scene,
+            out,
+            size,
+            time,
+            frames,
+            fps,
+            eye,
+            dump_passes,
+            keep_params,
+        } => {
+            let opts = CompileOptions {
+                keep_params,
+                dump_ir: false,
+            };
             let c = match compile(&style, &mut sources, &opts, &printer) {
                 Ok(c) => c,
                 Err(code) => return code,
@@ -211,7 +239,18 @@ pub fn run(cli: Cli) -> i32 {
                 }
             };
             let program = StyleProgram::from_compiled(&c);
-            match render(&gpu, &program, &scene, size, time, frames, fps, eye, out.as_deref(), dump_passes.as_deref()) {
+            match render(
+                &gpu,
+                &program,
+                &scene,
+                size,
+                time,
+                frames,
+                fps,
+                eye,
+                out.as_deref(),
+                dump_passes.as_deref(),
+            ) {
                 Ok(()) => EXIT_OK,
                 Err(e) => {
                     printer.diagnostics(&e.diagnostics(), &sources);
@@ -241,7 +280,12 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                         Err(code) => return code,
                     };
                     let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
-                    let validate: f64 = c.timings.iter().filter(|(s, _)| *s == "validate").map(|(_, d)| d.as_secs_f64()).sum();
+                    let validate: f64 = c
+                        .timings
+                        .iter()
+                        .filter(|(s, _)| *s == "validate")
+                        .map(|(_, d)| d.as_secs_f64())
+                        .sum();
                     ours.push(total - validate);
                     naga_time.push(validate);
                 }
@@ -250,11 +294,22 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                     v[v.len() / 2]
                 };
                 let (o, n) = (median(&mut ours), median(&mut naga_time));
-                println!("| {} | {:.3} | {:.3} | {:.2}x |", style.display(), o * 1e3, n * 1e3, o / n.max(1e-12));
+                println!(
+                    "| {} | {:.3} | {:.3} | {:.2}x |",
+                    style.display(),
+                    o * 1e3,
+                    n * 1e3,
+                    o / n.max(1e-12)
+                );
             }
             EXIT_OK
         }
-        BenchCommand::Frame { style, scene, size, frames } => {
+        BenchCommand::Frame {
+            style,
+            scene,
+            size,
+            frames,
+        } => {
             let mut sources = SourceMap::new();
             let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
                 Ok(c) => c,
@@ -327,8 +382,14 @@ fn frame_path(out: &Path, frame: u32) -> PathBuf {
     if s.contains("{frame}") {
         return PathBuf::from(s.replace("{frame}", &format!("{frame:04}")));
     }
-    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "frame".into());
-    let ext = out.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "png".into());
+    let stem = out
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "frame".into());
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "png".into());
     out.with_file_name(format!("{stem}_{frame:04}.{ext}"))
 }
 
@@ -346,8 +407,13 @@ fn render(
     dump: Option<&Path>,
 ) -> Result<(), RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let io = |e: std::io::Error, p: &Path| RunError::User(vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, format!("cannot write {}: {e}", p.display()))
-        .with_help("check that the directory exists and is writable")]);
+    let io = |e: std::io::Error, p: &Path| {
+        RunError::User(vec![Diagnostic::error(
+            dsl::codes::LIMIT_EXCEEDED,
+            format!("cannot write {}: {e}", p.display()),
+        )
+        .with_help("check that the directory exists and is writable")])
+    };
     let frame_list: Vec<u32> = match frames {
         Some((a, b)) => (a..b).collect(),
         None => vec![(time * fps).round().max(0.0) as u32],
@@ -364,13 +430,32 @@ fn render(
     };
     for &frame in &frame_list {
         let t = if frames.is_some() { frame as f64 / fps } else { time };
-        r.render(scene, &FrameSpec { width, height, time_s: t, frame, eye })?;
+        r.render(
+            scene,
+            &FrameSpec {
+                width,
+                height,
+                time_s: t,
+                frame,
+                eye,
+            },
+        )?;
         if let Some(out) = out {
-            let path = if frames.is_some() { frame_path(out, frame) } else { out.to_path_buf() };
+            let path = if frames.is_some() {
+                frame_path(out, frame)
+            } else {
+                out.to_path_buf()
+            };
             let img = r.read_output()?;
             runner::output::write_target(&img, &path).map_err(|e| io(e, &path))?;
             if frames.is_none() {
-                eprintln!("wrote {} ({}x{}, {})", path.display(), img.width, img.height, gpu.describe());
+                eprintln!(
+                    "wrote {} ({}x{}, {})",
+                    path.display(),
+                    img.width,
+                    img.height,
+                    gpu.describe()
+                );
             }
         }
         if let Some(b) = &bar {
@@ -392,8 +477,21 @@ fn render(
 /// reuses are captured by re-running the frame up to the pass that wrote
 /// them (by rendering with aliasing-aware reads: render, read the survivors,
 /// and for the others render again and read right after their pass).
-pub fn dump_all_targets(r: &mut Renderer, scene: &runner::scene::Scene, width: u32, height: u32, time: f64, eye: u32) -> Result<Vec<runner::TargetImage>, RunError> {
-    let spec = FrameSpec { width, height, time_s: time, frame: 0, eye };
+pub fn dump_all_targets(
+    r: &mut Renderer,
+    scene: &runner::scene::Scene,
+    width: u32,
+    height: u32,
+    time: f64,
+    eye: u32,
+) -> Result<Vec<runner::TargetImage>, RunError> {
+    let spec = FrameSpec {
+        width,
+        height,
+        time_s: time,
+        frame: 0,
+        eye,
+    };
     r.render(scene, &spec)?;
     let mut images = Vec::new();
     for t in 0..r.manifest.targets.len() {

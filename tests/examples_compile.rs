@@ -19,7 +19,14 @@ fn examples() -> Vec<PathBuf> {
 
 fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
     let mut sources = SourceMap::new();
-    match compiler::compile_file(path, &mut sources, &CompileOptions { keep_params, dump_ir: false }) {
+    match compiler::compile_file(
+        path,
+        &mut sources,
+        &CompileOptions {
+            keep_params,
+            dump_ir: false,
+        },
+    ) {
         Ok(c) => c,
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.clone().unwrap_or_default()),
@@ -33,10 +40,14 @@ fn every_example_compiles_and_validates_with_naga() {
             let c = compile(&path, keep);
             assert!(!c.shaders.is_empty(), "{}", path.display());
             for (file, wgsl) in &c.shaders {
-                let module = naga::front::wgsl::parse_str(wgsl).unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
-                naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
-                    .validate(&module)
+                let module = naga::front::wgsl::parse_str(wgsl)
                     .unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
+                naga::valid::Validator::new(
+                    naga::valid::ValidationFlags::all(),
+                    naga::valid::Capabilities::default(),
+                )
+                .validate(&module)
+                .unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
                 assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
                 assert!(module.entry_points.iter().any(|e| e.name == "vs_main"));
             }

@@ -12,10 +12,67 @@ const SEEDS: &[&str] = &[
 ];
 
 const TOKENS: &[&str] = &[
-    "style", "\"S\"", "param", "object", "pass", "texture", "output", "let", "out", "render", "image", "scene", "(", ")", "{", "}",
-    ":", "=", ",", ".", "..", "+", "-", "*", "/", "%", "<", "&&", "if", "else", "x", "p", "p.c", "float", "int", "color", "px", "2px",
-    "50%", "1m", "3", "0.5", "#ff0000", "rgba8unorm", "r8unorm", "toon", "lambert", "gaussian", "normal", "uv", "light.dir", "in", "animate",
-    "0s", "\n", "vec4", "mix", "scale", "1/2", "noise", "size",
+    "style",
+    "\"S\"",
+    "param",
+    "object",
+    "pass",
+    "texture",
+    "output",
+    "let",
+    "out",
+    "render",
+    "image",
+    "scene",
+    "(",
+    ")",
+    "{",
+    "}",
+    ":",
+    "=",
+    ",",
+    ".",
+    "..",
+    "+",
+    "-",
+    "*",
+    "/",
+    "%",
+    "<",
+    "&&",
+    "if",
+    "else",
+    "x",
+    "p",
+    "p.c",
+    "float",
+    "int",
+    "color",
+    "px",
+    "2px",
+    "50%",
+    "1m",
+    "3",
+    "0.5",
+    "#ff0000",
+    "rgba8unorm",
+    "r8unorm",
+    "toon",
+    "lambert",
+    "gaussian",
+    "normal",
+    "uv",
+    "light.dir",
+    "in",
+    "animate",
+    "0s",
+    "\n",
+    "vec4",
+    "mix",
+    "scale",
+    "1/2",
+    "noise",
+    "size",
 ];
 
 fn check(text: &str) {
@@ -27,12 +84,18 @@ fn check(text: &str) {
             for d in &diags {
                 for l in &d.labels {
                     let f = sources.get(l.span.file).expect("file exists");
-                    assert!(l.span.end as usize <= f.text.len() && l.span.start <= l.span.end, "{d:?}");
+                    assert!(
+                        l.span.end as usize <= f.text.len() && l.span.start <= l.span.end,
+                        "{d:?}"
+                    );
                 }
             }
             let _ = dsl::diagnostic::render(&diags, &sources, false);
         }
-        Err(CompileError::Internal(e)) => panic!("internal compiler error on input:\n{text}\n{e}\n{}", e.wgsl.clone().unwrap_or_default()),
+        Err(CompileError::Internal(e)) => panic!(
+            "internal compiler error on input:\n{text}\n{e}\n{}",
+            e.wgsl.clone().unwrap_or_default()
+        ),
     }
 }
 

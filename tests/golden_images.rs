@@ -7,7 +7,7 @@
 //! diff images are written to `target/npr-test-output/`.
 //! Regenerate after an intended change with `NPR_UPDATE_GOLDENS=1 cargo test --test golden_images`.
 
-use runner::harness::{compare_with_golden, Tolerance};
+use runner::harness::{compare_with_golden, compare_with_golden_file, Tolerance};
 use runner::{FrameSpec, Gpu, StyleProgram};
 use std::path::Path;
 use std::sync::OnceLock;
@@ -27,16 +27,40 @@ fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let scene = runner::scene::load_scene(&root.join(scene), &mut sources)
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
     let program = StyleProgram::from_compiled(&compiled);
-    let img = runner::render_frame(gpu(), &program, &scene, &FrameSpec { width: SIZE, height: SIZE, time_s: 0.0, frame: 0, eye: 0 })
-        .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
+    let img = runner::render_frame(
+        gpu(),
+        &program,
+        &scene,
+        &FrameSpec {
+            width: SIZE,
+            height: SIZE,
+            time_s: 0.0,
+            frame: 0,
+            eye: 0,
+        },
+    )
+    .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
     img.to_rgba8()
 }
 
 fn golden(name: &str, style: &str, scene: &str) {
     let actual = render_example(style, scene);
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/golden").join(format!("{name}.png"));
-    let per_pixel = compare_with_golden(&actual, &path, Tolerance::PerPixel { max_abs: 2, outlier_fraction: 0.005 });
-    assert!(per_pixel.passed, "{name}: {} (images in {:?})", per_pixel.summary, per_pixel.written);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/golden")
+        .join(format!("{name}.png"));
+    let per_pixel = compare_with_golden(
+        &actual,
+        &path,
+        Tolerance::PerPixel {
+            max_abs: 2,
+            outlier_fraction: 0.005,
+        },
+    );
+    assert!(
+        per_pixel.passed,
+        "{name}: {} (images in {:?})",
+        per_pixel.summary, per_pixel.written
+    );
     let flip = compare_with_golden(&actual, &path, Tolerance::Flip { max_mean: 0.01 });
     assert!(flip.passed, "{name}: {}", flip.summary);
 }
@@ -53,7 +77,11 @@ fn outline_on_spot() {
 
 #[test]
 fn rounded_shadows_on_spot() {
-    golden("rounded_shadows_spot", "examples/rounded_shadows.npr", "examples/scenes/spot.toml");
+    golden(
+        "rounded_shadows_spot",
+        "examples/rounded_shadows.npr",
+        "examples/scenes/spot.toml",
+    );
 }
 
 #[test]
@@ -73,7 +101,15 @@ fn a_broken_image_fails_the_comparison() {
     std::fs::create_dir_all(&dir).expect("dir");
     let golden = dir.join("reference.png");
     runner::output::write_png8(&actual, &golden).expect("write");
-    let c = compare_with_golden(&altered, &golden, Tolerance::PerPixel { max_abs: 2, outlier_fraction: 0.005 });
+    let c = compare_with_golden_file(
+        &altered,
+        &golden,
+        Tolerance::PerPixel {
+            max_abs: 2,
+            outlier_fraction: 0.005,
+        },
+        false,
+    );
     assert!(!c.passed && c.outlier_fraction > 0.05, "{}", c.summary);
     let written = c.written.expect("actual and diff written on failure");
     assert!(written.0.exists() && written.1.exists());

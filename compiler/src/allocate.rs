@@ -53,14 +53,19 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
         let pass = ir.pass(*pid);
         let pos = position(*pid);
         for (i, o) in pass.outputs.iter().enumerate() {
-            let t = TargetRef { pass: *pid, output: i as u32 };
+            let t = TargetRef {
+                pass: *pid,
+                output: i as u32,
+            };
             if !live.targets.contains(&t) {
                 continue;
             }
             let end = last_use.get(&t).copied().unwrap_or(pos);
-            let reuse = alloc.physical.iter().enumerate().position(|(pi, ph)| {
-                ph.format == o.format && ph.scale == pass.scale && busy_until[pi] < pos
-            });
+            let reuse = alloc
+                .physical
+                .iter()
+                .enumerate()
+                .position(|(pi, ph)| ph.format == o.format && ph.scale == pass.scale && busy_until[pi] < pos);
             let phys = match reuse {
                 Some(pi) => {
                     report.push(
@@ -72,7 +77,10 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
                     pi
                 }
                 None => {
-                    alloc.physical.push(PhysicalTexture { format: o.format, scale: pass.scale });
+                    alloc.physical.push(PhysicalTexture {
+                        format: o.format,
+                        scale: pass.scale,
+                    });
                     busy_until.push(end);
                     alloc.physical.len() - 1
                 }
@@ -97,7 +105,14 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
         }
     }
     alloc.style_uniform_size = style_slots * 16;
-    let has_render = live.passes.iter().any(|p| matches!(ir.pass(*p).kind, PassKind::Render { .. }));
-    alloc.object_uniform_size = if has_render { OBJECT_PARAMS_OFFSET + object_slots * 16 } else { 0 };
+    let has_render = live
+        .passes
+        .iter()
+        .any(|p| matches!(ir.pass(*p).kind, PassKind::Render { .. }));
+    alloc.object_uniform_size = if has_render {
+        OBJECT_PARAMS_OFFSET + object_slots * 16
+    } else {
+        0
+    };
     alloc
 }

@@ -38,10 +38,7 @@ pub fn const_eval(ir: &Ir, id: ExprId) -> Option<Const> {
             }
             (comps.len() == *n as usize).then_some(Const::Vec(comps))
         }
-        ExprKind::Convert {
-            conversion,
-            operand,
-        } => {
+        ExprKind::Convert { conversion, operand } => {
             let v = const_eval(ir, *operand)?;
             match conversion {
                 Conversion::IntToFloat => Some(Const::Float(v.scalar()?)),
@@ -64,11 +61,7 @@ pub fn const_eval(ir: &Ir, id: ExprId) -> Option<Const> {
                 Const::Vec(picked)
             })
         }
-        ExprKind::Select {
-            cond,
-            then,
-            otherwise,
-        } => match const_eval(ir, *cond)? {
+        ExprKind::Select { cond, then, otherwise } => match const_eval(ir, *cond)? {
             Const::Bool(true) => const_eval(ir, *then),
             Const::Bool(false) => const_eval(ir, *otherwise),
             _ => None,

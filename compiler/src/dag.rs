@@ -60,12 +60,22 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
                         let names: Vec<&str> = path.iter().map(|p| ir.passes[*p].name.as_str()).collect();
                         let mut diag = Diagnostic::error(
                             codes::PASS_CYCLE,
-                            format!("passes depend on each other in a cycle: {} -> {}", names.join(" -> "), ir.passes[d].name),
+                            format!(
+                                "passes depend on each other in a cycle: {} -> {}",
+                                names.join(" -> "),
+                                ir.passes[d].name
+                            ),
                         )
-                        .with_primary(span, format!("`{}` reads `{}` here", ir.passes[node].name, ir.passes[d].name));
+                        .with_primary(
+                            span,
+                            format!("`{}` reads `{}` here", ir.passes[node].name, ir.passes[d].name),
+                        );
                         for w in path.windows(2) {
                             if let Some((_, s)) = reads[w[0]].iter().find(|(p, _)| p.0 as usize == w[1]) {
-                                diag = diag.with_secondary(*s, format!("`{}` reads `{}`", ir.passes[w[0]].name, ir.passes[w[1]].name));
+                                diag = diag.with_secondary(
+                                    *s,
+                                    format!("`{}` reads `{}`", ir.passes[w[0]].name, ir.passes[w[1]].name),
+                                );
                             }
                         }
                         diags.push(diag.with_help("a pass can only read passes that run before it; compute one of these values in a separate pass"));

@@ -7,7 +7,17 @@ pub fn dump(ir: &Ir) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "style {:?}", ir.style_name);
     for (i, p) in ir.params.iter().enumerate() {
-        let _ = writeln!(s, "param #{i} {} : {:?} {:?} default=e{} range={:?} keys={} per_object={}", p.name, p.ty, p.unit, p.default.0, p.range, p.keys.len(), p.per_object);
+        let _ = writeln!(
+            s,
+            "param #{i} {} : {:?} {:?} default=e{} range={:?} keys={} per_object={}",
+            p.name,
+            p.ty,
+            p.unit,
+            p.default.0,
+            p.range,
+            p.keys.len(),
+            p.per_object
+        );
     }
     for (i, t) in ir.textures.iter().enumerate() {
         let _ = writeln!(s, "texture #{i} {} : {:?}", t.name, t.source);

@@ -235,10 +235,8 @@ impl Intrinsic {
             "vec2" => Intrinsic::Construct(2),
             "vec3" => Intrinsic::Construct(3),
             "vec4" => Intrinsic::Construct(4),
-            "abs" | "floor" | "ceil" | "fract" | "round" | "sqrt" | "exp" | "exp2" | "log"
-            | "log2" | "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sign" | "saturate" => {
-                Intrinsic::Map(Self::static_name(name))
-            }
+            "abs" | "floor" | "ceil" | "fract" | "round" | "sqrt" | "exp" | "exp2" | "log" | "log2" | "sin" | "cos"
+            | "tan" | "asin" | "acos" | "atan" | "sign" | "saturate" => Intrinsic::Map(Self::static_name(name)),
             "min" | "max" | "pow" | "step" | "atan2" => Intrinsic::Map2(Self::static_name(name)),
             "clamp" | "smoothstep" | "mix" => Intrinsic::Map3(Self::static_name(name)),
             "length" => Intrinsic::Length,
@@ -337,13 +335,33 @@ pub enum ExprKind {
     /// A texture: a handle, or a value sampled at `uv` (render) / `screen_uv` (image).
     Texture(TextureId),
     /// `.xyz`, `.rg`: component indices.
-    Swizzle { base: ExprId, components: Vec<u8> },
-    Unary { op: dsl::ast::UnOp, operand: ExprId },
-    Binary { op: dsl::ast::BinOp, lhs: ExprId, rhs: ExprId },
+    Swizzle {
+        base: ExprId,
+        components: Vec<u8>,
+    },
+    Unary {
+        op: dsl::ast::UnOp,
+        operand: ExprId,
+    },
+    Binary {
+        op: dsl::ast::BinOp,
+        lhs: ExprId,
+        rhs: ExprId,
+    },
     /// Arguments in the callee's parameter order, defaults filled in.
-    Call { callee: Callee, args: Vec<ExprId> },
-    Select { cond: ExprId, then: ExprId, otherwise: ExprId },
-    Convert { conversion: Conversion, operand: ExprId },
+    Call {
+        callee: Callee,
+        args: Vec<ExprId>,
+    },
+    Select {
+        cond: ExprId,
+        then: ExprId,
+        otherwise: ExprId,
+    },
+    Convert {
+        conversion: Conversion,
+        operand: ExprId,
+    },
     /// Placeholder for an expression that failed to resolve (diagnostic already reported).
     Error,
 }
@@ -387,8 +405,19 @@ pub struct Param {
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
-    Image { path: String, resolved: String, srgb: bool },
-    Noise { size: u32, octaves: u32, seed: u32, gradient: bool, channels: u32, frequency: u32 },
+    Image {
+        path: String,
+        resolved: String,
+        srgb: bool,
+    },
+    Noise {
+        size: u32,
+        octaves: u32,
+        seed: u32,
+        gradient: bool,
+        channels: u32,
+        frequency: u32,
+    },
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -463,12 +492,7 @@ impl Ir {
     }
 
     pub fn add_typed(&mut self, kind: ExprKind, ty: Ty, unit: Unit, span: Span) -> ExprId {
-        self.exprs.push(Expr {
-            kind,
-            ty,
-            unit,
-            span,
-        });
+        self.exprs.push(Expr { kind, ty, unit, span });
         ExprId(self.exprs.len() as u32 - 1)
     }
 
@@ -501,11 +525,7 @@ impl Ir {
             ExprKind::Unary { operand, .. } | ExprKind::Convert { operand, .. } => vec![*operand],
             ExprKind::Binary { lhs, rhs, .. } => vec![*lhs, *rhs],
             ExprKind::Call { args, .. } => args.clone(),
-            ExprKind::Select {
-                cond,
-                then,
-                otherwise,
-            } => vec![*cond, *then, *otherwise],
+            ExprKind::Select { cond, then, otherwise } => vec![*cond, *then, *otherwise],
             _ => Vec::new(),
         }
     }

@@ -62,9 +62,12 @@ pub struct InternalError {
 impl InternalError {
     /// As a diagnostic pointing at the `.npr` source (code E9001).
     pub fn to_diagnostic(&self) -> Diagnostic {
-        let mut d = Diagnostic::error(dsl::codes::INTERNAL, format!("internal compiler error: {}", self.message))
-            .with_note(self.detail.clone())
-            .with_help("this is a bug in npr, not in your style; please report it with this .npr file");
+        let mut d = Diagnostic::error(
+            dsl::codes::INTERNAL,
+            format!("internal compiler error: {}", self.message),
+        )
+        .with_note(self.detail.clone())
+        .with_help("this is a bug in npr, not in your style; please report it with this .npr file");
         if let Some(s) = self.span {
             d = d.with_primary(s, "the code generated for this failed validation");
         }
@@ -88,7 +91,13 @@ pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions)
 }
 
 /// Compile source text; relative paths (textures, `use`) resolve against `dir`.
-pub fn compile_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
+pub fn compile_source(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    opts: &CompileOptions,
+) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
     let loaded = load::load_source(name, text, dir, sources, &mut diags);
     pipeline::run(loaded, sources, name, opts, diags)

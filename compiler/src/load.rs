@@ -23,8 +23,11 @@ pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnosti
         Ok(t) => t,
         Err(e) => {
             diags.push(
-                Diagnostic::error(codes::BAD_USE, format!("cannot read style file `{}`: {e}", path.display()))
-                    .with_help("check the path; style files usually end in `.npr`"),
+                Diagnostic::error(
+                    codes::BAD_USE,
+                    format!("cannot read style file `{}`: {e}", path.display()),
+                )
+                .with_help("check the path; style files usually end in `.npr`"),
             );
             return None;
         }
@@ -35,18 +38,15 @@ pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnosti
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
-pub fn load_source(
-    name: &str,
-    text: &str,
-    dir: &Path,
-    sources: &mut SourceMap,
-    diags: &mut Vec<Diagnostic>,
-) -> Loaded {
+pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Loaded {
     let file = sources.add(name, text);
     let (ast, mut parse_diags) = dsl::parse(file, text);
     diags.append(&mut parse_diags);
     let mut items = Vec::new();
-    let own = Path::new(name).file_name().map(|f| dir.join(f)).unwrap_or_else(|| dir.to_path_buf());
+    let own = Path::new(name)
+        .file_name()
+        .map(|f| dir.join(f))
+        .unwrap_or_else(|| dir.to_path_buf());
     let mut stack = vec![canonical(&own)];
     expand_uses(&ast, dir, sources, diags, &mut items, &mut stack);
     Loaded {
@@ -80,15 +80,12 @@ fn expand_uses(
             UseTarget::Module(path) => {
                 let joined: Vec<&str> = path.iter().map(|p| p.name.as_str()).collect();
                 diags.push(
-                    Diagnostic::error(
-                        codes::BAD_USE,
-                        format!("unknown module `{}`", joined.join("::")),
-                    )
-                    .with_primary(u.span, "no such module")
-                    .with_help(
-                        "stdlib operators are available without `use`; to share declarations, \
+                    Diagnostic::error(codes::BAD_USE, format!("unknown module `{}`", joined.join("::")))
+                        .with_primary(u.span, "no such module")
+                        .with_help(
+                            "stdlib operators are available without `use`; to share declarations, \
                          `use \"other.npr\"` with a path relative to this file",
-                    ),
+                        ),
                 );
             }
             UseTarget::File(rel) => {

@@ -142,11 +142,7 @@ pub struct PhysicalTexture {
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum TextureSourceManifest {
     /// A file, `path` as written and `resolved` against the style's directory.
-    Image {
-        path: String,
-        resolved: String,
-        srgb: bool,
-    },
+    Image { path: String, resolved: String, srgb: bool },
     /// Generated tileable noise.
     Noise {
         size: u32,

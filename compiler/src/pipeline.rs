@@ -6,6 +6,7 @@
 use crate::emit::wgsl::Emitter;
 use crate::ir::Ir;
 use crate::load::Loaded;
+use crate::manifest::ParamBinding;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
 use dsl::{Diagnostic, SourceMap};
@@ -36,8 +37,19 @@ fn fail_if_errors(diags: &[Diagnostic]) -> Result<(), CompileError> {
     Ok(())
 }
 
-pub fn run(loaded: Loaded, sources: &SourceMap, source_name: &str, opts: &CompileOptions, mut diags: Vec<Diagnostic>) -> Result<Compiled, CompileError> {
-    let mut st = Stages { opts, timings: Vec::new(), dumps: Vec::new(), last: Instant::now() };
+pub fn run(
+    loaded: Loaded,
+    sources: &SourceMap,
+    source_name: &str,
+    opts: &CompileOptions,
+    mut diags: Vec<Diagnostic>,
+) -> Result<Compiled, CompileError> {
+    let mut st = Stages {
+        opts,
+        timings: Vec::new(),
+        dumps: Vec::new(),
+        last: Instant::now(),
+    };
     if loaded.root.style.is_none() && !diags.iter().any(Diagnostic::is_error) {
         diags.push(
             Diagnostic::error(dsl::codes::STYLE_HEADER, "missing `style` header")
@@ -59,21 +71,49 @@ pub fn run(loaded: Loaded, sources: &SourceMap, source_name: &str, opts: &Compil
     let bindings = crate::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
     st.done("specialize", &ir);
     // Folding may have made passes, targets and params dead: prune again.
+    // Folded parameters no longer appear in the IR; they stay "folded", not "removed".
     let graph = crate::dag::build(&ir, &mut diags);
-    let live = crate::prune::prune(&ir, &graph, &mut report);
+    let mut second = Report::default();
+    let live = crate::prune::prune(&ir, &graph, &mut second);
+    let folded: Vec<String> = bindings
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| **b == ParamBinding::Folded)
+        .map(|(i, _)| format!("param `{}`", ir.params[i].name))
+        .collect();
+    for e in second.entries {
+        if !folded.contains(&e.what) && !report.entries.contains(&e) {
+            report.entries.push(e);
+        }
+    }
     let bindings: Vec<_> = bindings
         .into_iter()
         .enumerate()
-        .map(|(i, b)| if live.params.contains(&crate::ir::ParamId(i as u32)) { b } else { crate::manifest::ParamBinding::Removed })
+        .map(|(i, b)| {
+            if b == ParamBinding::Folded || live.params.contains(&crate::ir::ParamId(i as u32)) {
+                b
+            } else {
+                ParamBinding::Removed
+            }
+        })
         .collect();
     st.done("prune-after-specialize", &ir);
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report);
     st.done("allocate", &ir);
-    let emitter = Emitter { ir: &ir, alloc: &alloc, bindings: &bindings, sources };
+    let emitter = Emitter {
+        ir: &ir,
+        alloc: &alloc,
+        bindings: &bindings,
+        sources,
+    };
     let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
     let manifest = crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name);
     for a in &manifest.scene_attributes {
-        report.push("requires", format!("attribute `{}`", a.name()), "read by a live render pass".into());
+        report.push(
+            "requires",
+            format!("attribute `{}`", a.name()),
+            "read by a live render pass".into(),
+        );
     }
     st.done("emit", &ir);
     let mut shaders = Vec::new();

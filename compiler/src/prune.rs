@@ -30,7 +30,12 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
             .outputs
             .iter()
             .enumerate()
-            .filter(|(i, _)| live.targets.contains(&TargetRef { pass: *pid, output: *i as u32 }))
+            .filter(|(i, _)| {
+                live.targets.contains(&TargetRef {
+                    pass: *pid,
+                    output: *i as u32,
+                })
+            })
             .map(|(_, o)| o)
             .collect();
         if live_outputs.is_empty() {
@@ -38,7 +43,10 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
             continue;
         }
         for (i, o) in pass.outputs.iter().enumerate() {
-            if !live.targets.contains(&TargetRef { pass: *pid, output: i as u32 }) {
+            if !live.targets.contains(&TargetRef {
+                pass: *pid,
+                output: i as u32,
+            }) {
                 report.removed(format!("target `{}.{}`", pass.name, o.name), "nothing reads it");
             }
         }
@@ -61,7 +69,10 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
         }
         for l in &pass.lets {
             if !ir.reachable(&roots).contains(&l.value) {
-                report.removed(format!("let `{}` in pass `{}`", l.name, pass.name), "no live output uses it");
+                report.removed(
+                    format!("let `{}` in pass `{}`", l.name, pass.name),
+                    "no live output uses it",
+                );
             }
         }
     }

@@ -68,13 +68,10 @@ impl Resolver<'_> {
         if let Some((_, prev)) = self.names.get(&name.name) {
             let prev = *prev;
             self.error(
-                Diagnostic::error(
-                    codes::DUPLICATE_NAME,
-                    format!("`{}` is declared twice", name.name),
-                )
-                .with_primary(name.span, "declared again here")
-                .with_secondary(prev, "first declared here")
-                .with_help("rename one of them"),
+                Diagnostic::error(codes::DUPLICATE_NAME, format!("`{}` is declared twice", name.name))
+                    .with_primary(name.span, "declared again here")
+                    .with_secondary(prev, "first declared here")
+                    .with_help("rename one of them"),
             );
             return;
         }
@@ -189,18 +186,11 @@ impl Resolver<'_> {
     fn target_of(&mut self, pass: PassId, field: &ast::Ident) -> Option<TargetRef> {
         let outs = &self.pass_outputs[pass.0 as usize];
         if let Some(i) = outs.iter().position(|o| *o == field.name) {
-            return Some(TargetRef {
-                pass,
-                output: i as u32,
-            });
+            return Some(TargetRef { pass, output: i as u32 });
         }
         let mut d = Diagnostic::error(
             codes::UNKNOWN_NAME,
-            format!(
-                "pass `{}` has no output `{}`",
-                self.ir.pass(pass).name,
-                field.name
-            ),
+            format!("pass `{}` has no output `{}`", self.ir.pass(pass).name, field.name),
         )
         .with_primary(field.span, "unknown output");
         if let Some(s) = did_you_mean(&field.name, outs.iter().map(String::as_str)) {
@@ -262,20 +252,19 @@ impl Resolver<'_> {
                     ),
                     other => {
                         let known = [
-                            "float", "int", "bool", "vec2", "vec3", "vec4", "color", "px", "m",
-                            "mm", "s", "Hz", "deg", "range", "blend",
+                            "float", "int", "bool", "vec2", "vec3", "vec4", "color", "px", "m", "mm", "s", "Hz", "deg",
+                            "range", "blend",
                         ];
-                        let mut d = Diagnostic::error(
-                            codes::UNKNOWN_TYPE,
-                            format!("unknown parameter type `{other}`"),
-                        )
-                        .with_primary(id.span, "not a type");
+                        let mut d = Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown parameter type `{other}`"))
+                            .with_primary(id.span, "not a type");
                         d = match did_you_mean(other, known) {
                             Some(s) => d.with_help(format!("did you mean `{s}`?")),
                             None if other == "texture" => d.with_help(
                                 "textures are declared with `texture name = image(\"file.png\")`, not as parameters",
                             ),
-                            None => d.with_help(format!("parameter types are: {}, or enum(a, b, ...)", known.join(", "))),
+                            None => {
+                                d.with_help(format!("parameter types are: {}, or enum(a, b, ...)", known.join(", ")))
+                            }
                         };
                         self.error(d);
                         (ParamTy::Value(Ty::Float), Ty::Unknown, Unit::None)
@@ -292,12 +281,9 @@ impl Resolver<'_> {
         };
         let default = match (&variants, &p.default.kind) {
             (Some(vs), AK::Name(n)) => match vs.iter().position(|v| *v == n.name) {
-                Some(i) => self.ir.add_typed(
-                    ExprKind::Const(Const::Int(i as i64)),
-                    Ty::Int,
-                    Unit::None,
-                    n.span,
-                ),
+                Some(i) => self
+                    .ir
+                    .add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, n.span),
                 None => {
                     let mut d = Diagnostic::error(
                         codes::UNKNOWN_NAME,
@@ -371,14 +357,14 @@ impl Resolver<'_> {
                         self.error(
                             Diagnostic::error(codes::OUT_OF_RANGE, "keyframe value outside the parameter's range")
                                 .with_primary(k.value.span, format!("{bad} is outside {lo}..{hi}"))
-                                .with_secondary(p.range.as_ref().map(|r| r.span).unwrap_or(p.span), "range declared here"),
+                                .with_secondary(
+                                    p.range.as_ref().map(|r| r.span).unwrap_or(p.span),
+                                    "range declared here",
+                                ),
                         );
                     }
                 }
-                keys.push(Keyframe {
-                    time_s: tv,
-                    value: vv,
-                });
+                keys.push(Keyframe { time_s: tv, value: vv });
             }
         }
         let param = &mut self.ir.params[id.0 as usize];
@@ -480,7 +466,12 @@ impl Resolver<'_> {
             }
             "noise" => {
                 let get = |name: &str, default: f64, lo: f64, hi: f64, this: &mut Self| -> f64 {
-                    let Some(a) = t.source.args.iter().find(|a| a.name.as_ref().is_some_and(|n| n.name == name)) else {
+                    let Some(a) = t
+                        .source
+                        .args
+                        .iter()
+                        .find(|a| a.name.as_ref().is_some_and(|n| n.name == name))
+                    else {
                         return default;
                     };
                     let id = this.expr(&a.value);
@@ -488,7 +479,11 @@ impl Resolver<'_> {
                         return default;
                     };
                     if v < lo || v > hi || v.fract() != 0.0 {
-                        let code = if name == "size" && v > hi { codes::LIMIT_EXCEEDED } else { codes::OUT_OF_RANGE };
+                        let code = if name == "size" && v > hi {
+                            codes::LIMIT_EXCEEDED
+                        } else {
+                            codes::OUT_OF_RANGE
+                        };
                         this.error(
                             Diagnostic::error(code, format!("noise `{name}` must be a whole number in {lo}..{hi}"))
                                 .with_primary(a.value.span, format!("{v} is not allowed")),
@@ -519,7 +514,12 @@ impl Resolver<'_> {
                 let channels = get("channels", 1.0, 1.0, 4.0, self) as u32;
                 let frequency = get("frequency", 4.0, 1.0, 256.0, self) as u32;
                 let mut gradient = false;
-                if let Some(a) = t.source.args.iter().find(|a| a.name.as_ref().is_some_and(|n| n.name == "kind")) {
+                if let Some(a) = t
+                    .source
+                    .args
+                    .iter()
+                    .find(|a| a.name.as_ref().is_some_and(|n| n.name == "kind"))
+                {
                     match &a.value.kind {
                         AK::Name(n) if n.name == "value" => gradient = false,
                         AK::Name(n) if n.name == "gradient" => gradient = true,
@@ -626,9 +626,9 @@ impl Resolver<'_> {
                     .with_primary(p.kind.kind.span, "not a pass kind");
                 d = match did_you_mean(other, kinds) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                    None if ["compute", "reduce", "lines"].contains(&other) => {
-                        d.with_help(format!("`{other}` passes are reserved for a later version; use `render` or `image`"))
-                    }
+                    None if ["compute", "reduce", "lines"].contains(&other) => d.with_help(format!(
+                        "`{other}` passes are reserved for a later version; use `render` or `image`"
+                    )),
                     None => d.with_help("passes are `render(scene)` or `image(inputs...)`"),
                 };
                 self.error(d);
@@ -655,9 +655,12 @@ impl Resolver<'_> {
         };
         for m in &p.modifiers {
             self.error(
-                Diagnostic::error(codes::BAD_ARGUMENT, format!("unsupported pass modifier `{}`", m.key.name))
-                    .with_primary(m.span, "not supported yet")
-                    .with_help("stereo pass modifiers are reserved for a later version"),
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT,
+                    format!("unsupported pass modifier `{}`", m.key.name),
+                )
+                .with_primary(m.span, "not supported yet")
+                .with_help("stereo pass modifiers are reserved for a later version"),
             );
         }
         let mut inflate = None;
@@ -723,8 +726,11 @@ impl Resolver<'_> {
         for o in p.body.outputs.iter().take(MAX_OUTPUTS_PER_PASS) {
             if seen.contains(&o.name.name.as_str()) {
                 self.error(
-                    Diagnostic::error(codes::DUPLICATE_NAME, format!("output `{}` is declared twice", o.name.name))
-                        .with_primary(o.name.span, "declared again here"),
+                    Diagnostic::error(
+                        codes::DUPLICATE_NAME,
+                        format!("output `{}` is declared twice", o.name.name),
+                    )
+                    .with_primary(o.name.span, "declared again here"),
                 );
             }
             seen.push(&o.name.name);
@@ -732,8 +738,11 @@ impl Resolver<'_> {
                 Some(f) => f,
                 None => {
                     let names = Format::ALL.iter().map(|(n, _)| *n);
-                    let mut d = Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown texture format `{}`", o.format.name))
-                        .with_primary(o.format.span, "not a target format");
+                    let mut d = Diagnostic::error(
+                        codes::UNKNOWN_TYPE,
+                        format!("unknown texture format `{}`", o.format.name),
+                    )
+                    .with_primary(o.format.span, "not a target format");
                     d = match did_you_mean(&o.format.name, names) {
                         Some(s) => d.with_help(format!("did you mean `{s}`?")),
                         None => d.with_help(format!(
@@ -774,7 +783,9 @@ impl Resolver<'_> {
                     None => (*value, Unit::None),
                     Some(UnitSuffix::Px) => (*value, Unit::Px),
                     Some(UnitSuffix::Percent) => {
-                        return self.ir.add_typed(ExprKind::PercentOfHeight(*value / 100.0), Ty::Float, Unit::Px, span)
+                        return self
+                            .ir
+                            .add_typed(ExprKind::PercentOfHeight(*value / 100.0), Ty::Float, Unit::Px, span)
                     }
                     Some(UnitSuffix::M) => (*value, Unit::Meters),
                     Some(UnitSuffix::Mm) => (*value * 1e-3, Unit::Meters),
@@ -783,13 +794,19 @@ impl Resolver<'_> {
                     Some(UnitSuffix::Deg) => (value.to_radians(), Unit::Radians),
                 };
                 if *is_int && unit == Unit::None && v.abs() < 2f64.powi(31) {
-                    self.ir.add_typed(ExprKind::Const(Const::Int(v as i64)), Ty::Int, unit, span)
+                    self.ir
+                        .add_typed(ExprKind::Const(Const::Int(v as i64)), Ty::Int, unit, span)
                 } else {
-                    self.ir.add_typed(ExprKind::Const(Const::Float(v)), Ty::Float, unit, span)
+                    self.ir
+                        .add_typed(ExprKind::Const(Const::Float(v)), Ty::Float, unit, span)
                 }
             }
-            AK::Bool(b) => self.ir.add_typed(ExprKind::Const(Const::Bool(*b)), Ty::Bool, Unit::None, span),
-            AK::Color(c) => self.ir.add_typed(ExprKind::Const(Const::Vec(c.to_vec())), Ty::Vec4, Unit::None, span),
+            AK::Bool(b) => self
+                .ir
+                .add_typed(ExprKind::Const(Const::Bool(*b)), Ty::Bool, Unit::None, span),
+            AK::Color(c) => self
+                .ir
+                .add_typed(ExprKind::Const(Const::Vec(c.to_vec())), Ty::Vec4, Unit::None, span),
             AK::Str(_) => {
                 self.error(
                     Diagnostic::error(codes::TYPE_MISMATCH, "a string is not a value")
@@ -808,13 +825,27 @@ impl Resolver<'_> {
             AK::Binary { op, lhs, rhs } => {
                 let l = self.expr(lhs);
                 let r = self.expr(rhs);
-                self.ir.add(ExprKind::Binary { op: *op, lhs: l, rhs: r }, span)
+                self.ir.add(
+                    ExprKind::Binary {
+                        op: *op,
+                        lhs: l,
+                        rhs: r,
+                    },
+                    span,
+                )
             }
             AK::If { cond, then, otherwise } => {
                 let c = self.expr(cond);
                 let t = self.expr(then);
                 let o = self.expr(otherwise);
-                self.ir.add(ExprKind::Select { cond: c, then: t, otherwise: o }, span)
+                self.ir.add(
+                    ExprKind::Select {
+                        cond: c,
+                        then: t,
+                        otherwise: o,
+                    },
+                    span,
+                )
             }
             AK::Block { lets, value } => {
                 self.scopes.push(Vec::new());
@@ -831,7 +862,13 @@ impl Resolver<'_> {
             AK::Range { lo, hi } => {
                 let l = self.expr(lo);
                 let h = self.expr(hi);
-                self.ir.add(ExprKind::Call { callee: Callee::Intrinsic(Intrinsic::Construct(2)), args: vec![l, h] }, span)
+                self.ir.add(
+                    ExprKind::Call {
+                        callee: Callee::Intrinsic(Intrinsic::Construct(2)),
+                        args: vec![l, h],
+                    },
+                    span,
+                )
             }
         }
     }
@@ -850,7 +887,9 @@ impl Resolver<'_> {
                 return self.ir.add_typed(ExprKind::Param(p), ty, unit, span);
             }
             Some((Symbol::Texture(t), _)) => {
-                return self.ir.add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span);
+                return self
+                    .ir
+                    .add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span);
             }
             Some((Symbol::Pass(p), _)) => {
                 let outs = self.pass_outputs[p.0 as usize].clone();
@@ -873,7 +912,9 @@ impl Resolver<'_> {
         for p in &self.ir.params {
             if let ParamTy::Enum(vs) = &p.ty {
                 if let Some(i) = vs.iter().position(|v| *v == id.name) {
-                    return self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span);
+                    return self
+                        .ir
+                        .add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span);
                 }
             }
         }
@@ -913,8 +954,11 @@ impl Resolver<'_> {
                         .iter()
                         .filter_map(|(s, _)| s.strip_prefix(&format!("{}.", b.name)))
                         .collect();
-                    let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("`{}` has no member `{}`", b.name, field.name))
-                        .with_primary(field.span, "unknown member");
+                    let mut d = Diagnostic::error(
+                        codes::UNKNOWN_NAME,
+                        format!("`{}` has no member `{}`", b.name, field.name),
+                    )
+                    .with_primary(field.span, "unknown member");
                     d = match did_you_mean(&field.name, members.iter().copied()) {
                         Some(s) => d.with_help(format!("did you mean `{}.{s}`?", b.name)),
                         None => d.with_help(format!("its members are: {}", members.join(", "))),
@@ -964,7 +1008,13 @@ impl Resolver<'_> {
                 }
                 args.push(self.expr(&a.value));
             }
-            return self.ir.add(ExprKind::Call { callee: Callee::Intrinsic(intr), args }, span);
+            return self.ir.add(
+                ExprKind::Call {
+                    callee: Callee::Intrinsic(intr),
+                    args,
+                },
+                span,
+            );
         }
         let Some(index) = stdlib::all().iter().position(|o| o.name == name) else {
             let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
@@ -1014,8 +1064,9 @@ impl Resolver<'_> {
                         continue;
                     }
                     None => {
-                        let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` has no parameter `{}`", n.name))
-                            .with_primary(n.span, "unknown argument name");
+                        let mut d =
+                            Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` has no parameter `{}`", n.name))
+                                .with_primary(n.span, "unknown argument name");
                         d = match did_you_mean(&n.name, op.params.iter().map(|p| p.name)) {
                             Some(s) => d.with_help(format!("did you mean `{s}`?")),
                             None => d.with_help(format!("`{name}` takes {}", signature(op))),
@@ -1030,10 +1081,16 @@ impl Resolver<'_> {
             let value = match (param.ty, &a.value.kind) {
                 (stdlib::Ty::Enum(variants), AK::Name(v)) if !self.is_bound(&v.name) => {
                     match variants.iter().position(|x| *x == v.name) {
-                        Some(i) => self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, v.span),
+                        Some(i) => {
+                            self.ir
+                                .add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, v.span)
+                        }
                         None => {
-                            let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("`{}` is not a choice of `{}`", v.name, param.name))
-                                .with_primary(v.span, "unknown variant");
+                            let mut d = Diagnostic::error(
+                                codes::BAD_ARGUMENT,
+                                format!("`{}` is not a choice of `{}`", v.name, param.name),
+                            )
+                            .with_primary(v.span, "unknown variant");
                             d = match did_you_mean(&v.name, variants.iter().copied()) {
                                 Some(s) => d.with_help(format!("did you mean `{s}`?")),
                                 None => d.with_help(format!("choices are: {}", variants.join(", "))),
@@ -1058,9 +1115,12 @@ impl Resolver<'_> {
                 stdlib::Default::Required => {
                     if ok {
                         self.error(
-                            Diagnostic::error(codes::BAD_ARGUMENT, format!("missing argument `{}` to `{name}`", p.name))
-                                .with_primary(span, format!("`{}` is required", p.name))
-                                .with_help(format!("`{name}` takes {}", signature(op))),
+                            Diagnostic::error(
+                                codes::BAD_ARGUMENT,
+                                format!("missing argument `{}` to `{name}`", p.name),
+                            )
+                            .with_primary(span, format!("`{}` is required", p.name))
+                            .with_help(format!("`{name}` takes {}", signature(op))),
                         );
                     }
                     ok = false;
@@ -1079,7 +1139,8 @@ impl Resolver<'_> {
                         stdlib::Ty::Enum(vs) => vs.iter().position(|x| *x == v).unwrap_or(0),
                         _ => 0,
                     };
-                    self.ir.add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span)
+                    self.ir
+                        .add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span)
                 }
                 stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
                     Some((_, bi)) => {
@@ -1094,7 +1155,13 @@ impl Resolver<'_> {
         if !ok {
             return self.ir.add(ExprKind::Error, span);
         }
-        self.ir.add(ExprKind::Call { callee: Callee::Operator(index as u32), args }, span)
+        self.ir.add(
+            ExprKind::Call {
+                callee: Callee::Operator(index as u32),
+                args,
+            },
+            span,
+        )
     }
 
     fn is_bound(&self, name: &str) -> bool {

@@ -15,19 +15,36 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
     let mut bindings = vec![ParamBinding::Removed; ir.params.len()];
     for (i, p) in ir.params.iter().enumerate() {
         if !live.params.contains(&ParamId(i as u32)) {
+            report.removed(format!("param `{}`", p.name), "no live expression reads it");
             continue;
         }
         bindings[i] = if p.per_object {
-            report.push("kept", format!("param `{}`", p.name), "per object: the scene binds it".into());
+            report.push(
+                "kept",
+                format!("param `{}`", p.name),
+                "per object: the scene binds it".into(),
+            );
             ParamBinding::PerObject
         } else if !p.keys.is_empty() {
-            report.push("kept", format!("param `{}`", p.name), "animated: a uniform updated each frame".into());
+            report.push(
+                "kept",
+                format!("param `{}`", p.name),
+                "animated: a uniform updated each frame".into(),
+            );
             ParamBinding::Uniform
         } else if keep_params {
-            report.push("kept", format!("param `{}`", p.name), "--keep-params: a uniform for live tweaking".into());
+            report.push(
+                "kept",
+                format!("param `{}`", p.name),
+                "--keep-params: a uniform for live tweaking".into(),
+            );
             ParamBinding::Uniform
         } else {
-            report.push("folded", format!("param `{}`", p.name), "neither animated nor per object: a constant".into());
+            report.push(
+                "folded",
+                format!("param `{}`", p.name),
+                "neither animated nor per object: a constant".into(),
+            );
             ParamBinding::Folded
         };
     }
@@ -56,7 +73,10 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
                     | ExprKind::Binary { .. }
                     | ExprKind::Convert { .. }
                     | ExprKind::Swizzle { .. }
-                    | ExprKind::Call { callee: Callee::Intrinsic(Intrinsic::Construct(_)), .. }
+                    | ExprKind::Call {
+                        callee: Callee::Intrinsic(Intrinsic::Construct(_)),
+                        ..
+                    }
             );
             if foldable {
                 if let Some(c) = const_eval(ir, id) {
@@ -88,7 +108,11 @@ fn retype(c: Const, ty: Ty) -> Const {
         Ty::Vec2 | Ty::Vec3 | Ty::Vec4 => {
             let n = ty.components().unwrap_or(4) as usize;
             let v = c.as_f64s();
-            Const::Vec(if v.len() == 1 { vec![v[0]; n] } else { v.into_iter().take(n).collect() })
+            Const::Vec(if v.len() == 1 {
+                vec![v[0]; n]
+            } else {
+                v.into_iter().take(n).collect()
+            })
         }
         _ => c,
     }

@@ -70,8 +70,15 @@ impl Checker<'_> {
             Conversion::Rgb1 => Ty::Vec4,
             Conversion::Rgb => Ty::Vec3,
         };
-        self.ir
-            .add_typed(ExprKind::Convert { conversion, operand: id }, ty, unit, span)
+        self.ir.add_typed(
+            ExprKind::Convert {
+                conversion,
+                operand: id,
+            },
+            ty,
+            unit,
+            span,
+        )
     }
 
     fn promote_int(&mut self, id: ExprId) -> ExprId {
@@ -125,11 +132,14 @@ impl Checker<'_> {
             (x, y) if x == y => x,
             (x, y) => {
                 self.err(
-                    Diagnostic::error(codes::UNIT_MISMATCH, format!("cannot {what} {} and {}", x.name(), y.name()))
-                        .with_primary(span, format!("{} and {} do not mix", x.name(), y.name()))
-                        .with_secondary(self.span(a), format!("this is in {}", x.name()))
-                        .with_secondary(self.span(b), format!("this is in {}", y.name()))
-                        .with_help("convert one side first, or use plain numbers where no unit is meant"),
+                    Diagnostic::error(
+                        codes::UNIT_MISMATCH,
+                        format!("cannot {what} {} and {}", x.name(), y.name()),
+                    )
+                    .with_primary(span, format!("{} and {} do not mix", x.name(), y.name()))
+                    .with_secondary(self.span(a), format!("this is in {}", x.name()))
+                    .with_secondary(self.span(b), format!("this is in {}", y.name()))
+                    .with_help("convert one side first, or use plain numbers where no unit is meant"),
                 );
                 x
             }
@@ -192,11 +202,21 @@ impl Checker<'_> {
                     return;
                 };
                 let unit = self.same_unit(t, o, "choose between", span);
-                self.ir.expr_mut(id).kind = ExprKind::Select { cond, then: t, otherwise: o };
+                self.ir.expr_mut(id).kind = ExprKind::Select {
+                    cond,
+                    then: t,
+                    otherwise: o,
+                };
                 self.set(id, ty, unit);
             }
-            ExprKind::Call { callee: Callee::Intrinsic(intr), args } => self.intrinsic(id, intr, args, span),
-            ExprKind::Call { callee: Callee::Operator(index), args } => self.operator(id, index, args, span),
+            ExprKind::Call {
+                callee: Callee::Intrinsic(intr),
+                args,
+            } => self.intrinsic(id, intr, args, span),
+            ExprKind::Call {
+                callee: Callee::Operator(index),
+                args,
+            } => self.operator(id, index, args, span),
             // Leaves are typed at creation.
             _ => {}
         }
@@ -240,12 +260,21 @@ impl Checker<'_> {
                 self.set(id, Ty::Bool, Unit::None);
             }
             BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge | BinOp::Eq | BinOp::Ne => {
-                let scalar = |t: Ty| matches!(t, Ty::Float | Ty::Int) || (t == Ty::Bool && matches!(op, BinOp::Eq | BinOp::Ne));
+                let scalar =
+                    |t: Ty| matches!(t, Ty::Float | Ty::Int) || (t == Ty::Bool && matches!(op, BinOp::Eq | BinOp::Ne));
                 if !scalar(tl) {
-                    return self.type_error(lhs, "a number", Some("compare single components, e.g. `c.r > 0.5`".into()));
+                    return self.type_error(
+                        lhs,
+                        "a number",
+                        Some("compare single components, e.g. `c.r > 0.5`".into()),
+                    );
                 }
                 if !scalar(tr) {
-                    return self.type_error(rhs, "a number", Some("compare single components, e.g. `c.r > 0.5`".into()));
+                    return self.type_error(
+                        rhs,
+                        "a number",
+                        Some("compare single components, e.g. `c.r > 0.5`".into()),
+                    );
                 }
                 let Some((l, r, _)) = self.unify(lhs, rhs) else {
                     return self.type_error(rhs, tl.describe(), None);
@@ -264,9 +293,12 @@ impl Checker<'_> {
                 let (nl, nr) = (tl.components().unwrap_or(1), tr.components().unwrap_or(1));
                 if nl != 1 && nr != 1 && nl != nr {
                     self.err(
-                        Diagnostic::error(codes::TYPE_MISMATCH, format!("cannot {} {} and {}", verb(op), tl.describe(), tr.describe()))
-                            .with_primary(span, "vectors of different sizes")
-                            .with_help("use a swizzle such as `.rgb` or `.xy` to match sizes"),
+                        Diagnostic::error(
+                            codes::TYPE_MISMATCH,
+                            format!("cannot {} {} and {}", verb(op), tl.describe(), tr.describe()),
+                        )
+                        .with_primary(span, "vectors of different sizes")
+                        .with_help("use a swizzle such as `.rgb` or `.xy` to match sizes"),
                     );
                     return;
                 }
@@ -298,9 +330,12 @@ impl Checker<'_> {
             (Unit::Seconds, Unit::Hertz) | (Unit::Hertz, Unit::Seconds) => Unit::None,
             (x, y) => {
                 self.err(
-                    Diagnostic::error(codes::UNIT_MISMATCH, format!("cannot multiply {} by {}", x.name(), y.name()))
-                        .with_primary(span, "this product has no unit npr knows")
-                        .with_help("scale by a plain number instead"),
+                    Diagnostic::error(
+                        codes::UNIT_MISMATCH,
+                        format!("cannot multiply {} by {}", x.name(), y.name()),
+                    )
+                    .with_primary(span, "this product has no unit npr knows")
+                    .with_help("scale by a plain number instead"),
                 );
                 x
             }
@@ -315,9 +350,12 @@ impl Checker<'_> {
             (Unit::None, Unit::Hertz) => Unit::Seconds,
             (x, y) => {
                 self.err(
-                    Diagnostic::error(codes::UNIT_MISMATCH, format!("cannot divide {} by {}", x.name(), y.name()))
-                        .with_primary(span, "this quotient has no unit npr knows")
-                        .with_help("divide by a plain number or by the same unit"),
+                    Diagnostic::error(
+                        codes::UNIT_MISMATCH,
+                        format!("cannot divide {} by {}", x.name(), y.name()),
+                    )
+                    .with_primary(span, "this quotient has no unit npr knows")
+                    .with_help("divide by a plain number or by the same unit"),
                 );
                 x
             }
@@ -338,8 +376,11 @@ impl Checker<'_> {
         if let Some(n) = want_args {
             if args.len() != n {
                 self.err(
-                    Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` takes {n} argument(s), found {}", args.len()))
-                        .with_primary(span, "wrong number of arguments"),
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        format!("`{name}` takes {n} argument(s), found {}", args.len()),
+                    )
+                    .with_primary(span, "wrong number of arguments"),
                 );
                 return;
             }
@@ -355,9 +396,12 @@ impl Checker<'_> {
                 let total: u32 = args.iter().map(|a| self.vt(*a).components().unwrap_or(1)).sum();
                 if !(total == n || (args.len() == 1 && total == 1)) {
                     self.err(
-                        Diagnostic::error(codes::TYPE_MISMATCH, format!("`{name}` needs {n} components, found {total}"))
-                            .with_primary(span, "wrong number of components")
-                            .with_help(format!("give {n} numbers, or one number to repeat")),
+                        Diagnostic::error(
+                            codes::TYPE_MISMATCH,
+                            format!("`{name}` needs {n} components, found {total}"),
+                        )
+                        .with_primary(span, "wrong number of components")
+                        .with_help(format!("give {n} numbers, or one number to repeat")),
                     );
                     return;
                 }
@@ -376,9 +420,12 @@ impl Checker<'_> {
                 let trig = ["sin", "cos", "tan"].contains(&f);
                 if trig && !matches!(first_unit, Unit::None | Unit::Radians) {
                     self.err(
-                        Diagnostic::error(codes::UNIT_MISMATCH, format!("`{f}` needs an angle, found {}", first_unit.name()))
-                            .with_primary(span, "not an angle")
-                            .with_help("angles are written in `deg` (converted to radians) or as plain numbers"),
+                        Diagnostic::error(
+                            codes::UNIT_MISMATCH,
+                            format!("`{f}` needs an angle, found {}", first_unit.name()),
+                        )
+                        .with_primary(span, "not an angle")
+                        .with_help("angles are written in `deg` (converted to radians) or as plain numbers"),
                     );
                 }
                 let unit = match f {
@@ -415,7 +462,11 @@ impl Checker<'_> {
                     };
                     (vec![a, b, w], t, unit)
                 } else {
-                    let widest = args.iter().map(|a| self.vt(*a).components().unwrap_or(1)).max().unwrap_or(1);
+                    let widest = args
+                        .iter()
+                        .map(|a| self.vt(*a).components().unwrap_or(1))
+                        .max()
+                        .unwrap_or(1);
                     let t = Ty::float_vec(widest);
                     let mut out = Vec::new();
                     for a in &args {
@@ -465,7 +516,10 @@ impl Checker<'_> {
                 }
             }
         };
-        self.ir.expr_mut(id).kind = ExprKind::Call { callee: Callee::Intrinsic(intr), args: new_args };
+        self.ir.expr_mut(id).kind = ExprKind::Call {
+            callee: Callee::Intrinsic(intr),
+            args: new_args,
+        };
         self.set(id, ty, unit);
     }
 
@@ -490,7 +544,10 @@ impl Checker<'_> {
             _ => Ty::Vec4,
         };
         let _ = span;
-        self.ir.expr_mut(id).kind = ExprKind::Call { callee: Callee::Operator(index), args: out };
+        self.ir.expr_mut(id).kind = ExprKind::Call {
+            callee: Callee::Operator(index),
+            args: out,
+        };
         self.set(id, ty, Unit::None);
     }
 
@@ -545,21 +602,33 @@ impl Checker<'_> {
         let unit = self.unit(a);
         if unit != Unit::None && unit != p.unit {
             self.err(
-                Diagnostic::error(codes::UNIT_MISMATCH, format!("`{}` of `{}` expects {}, found {}", p.name, op.name, p.unit.name(), unit.name()))
-                    .with_primary(self.span(a), format!("this is in {}", unit.name()))
-                    .with_help(match p.unit {
-                        Unit::None => "pass a plain number".to_string(),
-                        u => format!("write the value in {}", u.name()),
-                    }),
+                Diagnostic::error(
+                    codes::UNIT_MISMATCH,
+                    format!(
+                        "`{}` of `{}` expects {}, found {}",
+                        p.name,
+                        op.name,
+                        p.unit.name(),
+                        unit.name()
+                    ),
+                )
+                .with_primary(self.span(a), format!("this is in {}", unit.name()))
+                .with_help(match p.unit {
+                    Unit::None => "pass a plain number".to_string(),
+                    u => format!("write the value in {}", u.name()),
+                }),
             );
             return None;
         }
         if let (Some((lo, hi)), Some(v)) = (p.range, const_eval(self.ir, a).and_then(|c| c.scalar())) {
             if v < lo || v > hi {
                 self.err(
-                    Diagnostic::error(codes::OUT_OF_RANGE, format!("`{}` of `{}` is out of range", p.name, op.name))
-                        .with_primary(self.span(a), format!("{v} is outside {lo}..{hi}"))
-                        .with_help(p.doc.to_string()),
+                    Diagnostic::error(
+                        codes::OUT_OF_RANGE,
+                        format!("`{}` of `{}` is out of range", p.name, op.name),
+                    )
+                    .with_primary(self.span(a), format!("{v} is outside {lo}..{hi}"))
+                    .with_help(p.doc.to_string()),
                 );
                 return None;
             }
@@ -586,36 +655,56 @@ impl Checker<'_> {
                 || (have == Ty::Vec3 && want == Ty::Vec4 && matches!(p.ty, ParamTy::Value(_)));
             if !ok {
                 self.err(
-                    Diagnostic::error(codes::TYPE_MISMATCH, format!("default of `{}` has the wrong type", p.name))
-                        .with_primary(self.span(d), format!("expected {}, found {}", want.describe(), have.describe()))
-                        .with_secondary(p.name_span, "parameter declared here"),
+                    Diagnostic::error(
+                        codes::TYPE_MISMATCH,
+                        format!("default of `{}` has the wrong type", p.name),
+                    )
+                    .with_primary(
+                        self.span(d),
+                        format!("expected {}, found {}", want.describe(), have.describe()),
+                    )
+                    .with_secondary(p.name_span, "parameter declared here"),
                 );
                 continue;
             }
             let du = self.unit(d);
             if du != Unit::None && du != p.unit {
                 self.err(
-                    Diagnostic::error(codes::UNIT_MISMATCH, format!("default of `{}` is in {}, but the parameter is {}", p.name, du.name(), p.unit.name()))
-                        .with_primary(self.span(d), format!("this is in {}", du.name()))
-                        .with_secondary(p.name_span, "parameter declared here")
-                        .with_help(format!("write the default in {}", p.unit.name())),
+                    Diagnostic::error(
+                        codes::UNIT_MISMATCH,
+                        format!(
+                            "default of `{}` is in {}, but the parameter is {}",
+                            p.name,
+                            du.name(),
+                            p.unit.name()
+                        ),
+                    )
+                    .with_primary(self.span(d), format!("this is in {}", du.name()))
+                    .with_secondary(p.name_span, "parameter declared here")
+                    .with_help(format!("write the default in {}", p.unit.name())),
                 );
                 continue;
             }
             if let (Some((lo, hi)), Some(c)) = (p.range, const_eval(self.ir, d)) {
                 if let Some(bad) = c.as_f64s().into_iter().find(|v| *v < lo || *v > hi) {
                     self.err(
-                        Diagnostic::error(codes::OUT_OF_RANGE, format!("default of `{}` is outside its range", p.name))
-                            .with_primary(self.span(d), format!("{bad} is outside {lo}..{hi}"))
-                            .with_help("change the default or widen the range"),
+                        Diagnostic::error(
+                            codes::OUT_OF_RANGE,
+                            format!("default of `{}` is outside its range", p.name),
+                        )
+                        .with_primary(self.span(d), format!("{bad} is outside {lo}..{hi}"))
+                        .with_help("change the default or widen the range"),
                     );
                 }
             }
             if p.per_object && !p.keys.is_empty() {
                 self.err(
-                    Diagnostic::error(codes::BAD_ARGUMENT, format!("object param `{}` cannot be animated", p.name))
-                        .with_primary(p.name_span, "per object and animated")
-                        .with_help("animate a style param and multiply it by the object param"),
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        format!("object param `{}` cannot be animated", p.name),
+                    )
+                    .with_primary(p.name_span, "per object and animated")
+                    .with_help("animate a style param and multiply it by the object param"),
                 );
             }
         }
@@ -634,9 +723,12 @@ impl Checker<'_> {
                         self.type_error(inflate, "a width in px", None);
                     } else if u != Unit::Px && u != Unit::None {
                         self.err(
-                            Diagnostic::error(codes::UNIT_MISMATCH, format!("`inflate` is a width in px, found {}", u.name()))
-                                .with_primary(self.span(inflate), format!("this is in {}", u.name()))
-                                .with_help("write it in px, or in % of the image height"),
+                            Diagnostic::error(
+                                codes::UNIT_MISMATCH,
+                                format!("`inflate` is a width in px, found {}", u.name()),
+                            )
+                            .with_primary(self.span(inflate), format!("this is in {}", u.name()))
+                            .with_help("write it in px, or in % of the image height"),
                         );
                     } else {
                         let f = self.promote_int(inflate);
@@ -650,9 +742,15 @@ impl Checker<'_> {
                 match e.kind {
                     ExprKind::Builtin(b) if b.needs_geometry() && !is_render => {
                         self.err(
-                            Diagnostic::error(codes::BAD_PASS_INPUT, format!("`{}` is only available in render passes", b.name()))
-                                .with_primary(e.span, "no geometry in an image pass")
-                                .with_help(format!("write `{}` to a target in a render pass and read that target here", b.name())),
+                            Diagnostic::error(
+                                codes::BAD_PASS_INPUT,
+                                format!("`{}` is only available in render passes", b.name()),
+                            )
+                            .with_primary(e.span, "no geometry in an image pass")
+                            .with_help(format!(
+                                "write `{}` to a target in a render pass and read that target here",
+                                b.name()
+                            )),
                         );
                     }
                     ExprKind::Target(t) => {
@@ -660,10 +758,13 @@ impl Checker<'_> {
                             if t.pass.0 as usize != pi && !inputs.contains(&t.pass) {
                                 let other = self.ir.pass(t.pass).name.clone();
                                 self.err(
-                                    Diagnostic::error(codes::BAD_PASS_INPUT, format!("pass `{}` reads `{other}` without listing it", pass.name))
-                                        .with_primary(e.span, "read here")
-                                        .with_secondary(pass.name_span, "inputs declared here")
-                                        .with_help(format!("add `{other}` to the inputs: `image(..., {other})`")),
+                                    Diagnostic::error(
+                                        codes::BAD_PASS_INPUT,
+                                        format!("pass `{}` reads `{other}` without listing it", pass.name),
+                                    )
+                                    .with_primary(e.span, "read here")
+                                    .with_secondary(pass.name_span, "inputs declared here")
+                                    .with_help(format!("add `{other}` to the inputs: `image(..., {other})`")),
                                 );
                             }
                         }
@@ -687,15 +788,23 @@ impl Checker<'_> {
                     let n = t.components().unwrap_or(0);
                     let help = match (n, want) {
                         (1, 4) => "write `vec4(x, x, x, 1.0)`, or use a one-channel format such as r8unorm".to_string(),
-                        (4, 1) => "pick one channel, e.g. `.r`, or use a four-channel format such as rgba8unorm".to_string(),
+                        (4, 1) => {
+                            "pick one channel, e.g. `.r`, or use a four-channel format such as rgba8unorm".to_string()
+                        }
                         (3, 4) => "add alpha: `vec4(c, 1.0)`, or use a colour (`#rrggbb`)".to_string(),
-                        _ => format!("{} has {want} channel(s): write a value with {want} component(s)", o.format.name()),
+                        _ => format!(
+                            "{} has {want} channel(s): write a value with {want} component(s)",
+                            o.format.name()
+                        ),
                     };
                     self.err(
-                        Diagnostic::error(codes::FORMAT_MISMATCH, format!("cannot write {} into a {} target", t.describe(), o.format.name()))
-                            .with_primary(self.span(o.value), format!("this is {}", t.describe()))
-                            .with_secondary(o.span, format!("`{}` is {}", o.name, o.format.name()))
-                            .with_help(help),
+                        Diagnostic::error(
+                            codes::FORMAT_MISMATCH,
+                            format!("cannot write {} into a {} target", t.describe(), o.format.name()),
+                        )
+                        .with_primary(self.span(o.value), format!("this is {}", t.describe()))
+                        .with_secondary(o.span, format!("`{}` is {}", o.name, o.format.name()))
+                        .with_help(help),
                     );
                     continue;
                 }

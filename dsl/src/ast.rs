@@ -287,11 +287,21 @@ pub enum ExprKind {
     Name(Ident),
     /// `base.field`: a swizzle (`.rg`), a pass target (`shadow.r`), or a
     /// builtin member (`position.world`, `light.dir`).
-    Field { base: Box<Expr>, field: Ident },
+    Field {
+        base: Box<Expr>,
+        field: Ident,
+    },
     /// `callee(args, name: value)`.
     Call(Call),
-    Unary { op: UnOp, operand: Box<Expr> },
-    Binary { op: BinOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    Unary {
+        op: UnOp,
+        operand: Box<Expr>,
+    },
+    Binary {
+        op: BinOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
     /// `if cond { a } else { b }` as an expression.
     If {
         cond: Box<Expr>,
@@ -299,9 +309,15 @@ pub enum ExprKind {
         otherwise: Box<Expr>,
     },
     /// `{ let a = ...; let b = ...; value }` — a block with local lets.
-    Block { lets: Vec<LetBinding>, value: Box<Expr> },
+    Block {
+        lets: Vec<LetBinding>,
+        value: Box<Expr>,
+    },
     /// `lo..hi` as a value (the default of a `range` parameter).
-    Range { lo: Box<Expr>, hi: Box<Expr> },
+    Range {
+        lo: Box<Expr>,
+        hi: Box<Expr>,
+    },
 }
 
 /// A call with positional and named arguments, in source order.

@@ -188,10 +188,7 @@ pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
             .map(|l| {
                 let (line, column) = sources.line_col(l.span.file, l.span.start);
                 JsonLabel {
-                    file: sources
-                        .get(l.span.file)
-                        .map(|f| f.name.clone())
-                        .unwrap_or_default(),
+                    file: sources.get(l.span.file).map(|f| f.name.clone()).unwrap_or_default(),
                     byte_start: l.span.start,
                     byte_end: l.span.end,
                     line,

@@ -77,7 +77,10 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
     if !reported {
         diags.push(b.syntax_error(first, 0, source));
     }
-    if ast.style.is_none() && !diags.iter().any(|d| d.code == codes::STYLE_HEADER) && !source.trim_start().starts_with("style") {
+    if ast.style.is_none()
+        && !diags.iter().any(|d| d.code == codes::STYLE_HEADER)
+        && !source.trim_start().starts_with("style")
+    {
         diags.push(missing_header(b.file));
     }
     (ast, diags)
@@ -100,7 +103,11 @@ fn item_starts(source: &str) -> Vec<usize> {
         // that is the usual shape of a broken declaration followed by good ones.
         if depth <= 0 || indent == 0 {
             let starts_item = ITEM_KEYWORDS.iter().any(|k| {
-                trimmed.starts_with(k) && trimmed[k.len()..].chars().next().is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
+                trimmed.starts_with(k)
+                    && trimmed[k.len()..]
+                        .chars()
+                        .next()
+                        .is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
             });
             if starts_item {
                 depth = 0;
@@ -132,7 +139,15 @@ fn item_starts(source: &str) -> Vec<usize> {
 /// English names for rules in "expected ..." messages.
 fn rule_name(r: &Rule) -> String {
     match r {
-        Rule::expr | Rule::or_expr | Rule::and_expr | Rule::comparison | Rule::sum | Rule::product | Rule::unary | Rule::postfix | Rule::primary => "an expression",
+        Rule::expr
+        | Rule::or_expr
+        | Rule::and_expr
+        | Rule::comparison
+        | Rule::sum
+        | Rule::product
+        | Rule::unary
+        | Rule::postfix
+        | Rule::primary => "an expression",
         Rule::ident => "a name",
         Rule::number | Rule::number_value => "a number",
         Rule::string | Rule::string_inner => "a string",
@@ -177,26 +192,43 @@ impl Builder {
         };
         let start = start.min(source.len());
         let end = end.clamp(start, source.len());
-        let found: String = source[start..].chars().take_while(|c| !c.is_whitespace()).take(12).collect();
-        let found_text = if found.is_empty() { "end of file".to_string() } else { format!("`{found}`") };
+        let found: String = source[start..]
+            .chars()
+            .take_while(|c| !c.is_whitespace())
+            .take(12)
+            .collect();
+        let found_text = if found.is_empty() {
+            "end of file".to_string()
+        } else {
+            format!("`{found}`")
+        };
         let (message, label) = match &e.variant {
             ErrorVariant::ParsingError { positives, negatives } => {
                 let mut names: Vec<String> = positives.iter().map(rule_name).collect();
                 names.sort();
                 names.dedup();
                 let expected = match names.len() {
-                    0 => negatives.iter().map(rule_name).next().map(|n| format!("not {n}")).unwrap_or_else(|| "something else".into()),
+                    0 => negatives
+                        .iter()
+                        .map(rule_name)
+                        .next()
+                        .map(|n| format!("not {n}"))
+                        .unwrap_or_else(|| "something else".into()),
                     1 => names[0].clone(),
                     _ => {
                         let last = names.pop().unwrap_or_default();
                         format!("{} or {last}", names.join(", "))
                     }
                 };
-                (format!("expected {expected}, found {found_text}"), format!("expected {expected}"))
+                (
+                    format!("expected {expected}, found {found_text}"),
+                    format!("expected {expected}"),
+                )
             }
             ErrorVariant::CustomError { message } => (message.clone(), message.clone()),
         };
-        let mut d = Diagnostic::error(codes::SYNTAX, message).with_primary(Span::new(self.file, start, end.max(start)), label);
+        let mut d =
+            Diagnostic::error(codes::SYNTAX, message).with_primary(Span::new(self.file, start, end.max(start)), label);
         let before = &source[..start];
         if before.matches('"').count() % 2 == 1 || found.starts_with('"') && !found[1..].contains('"') {
             d = d.with_help("a string is missing its closing `\"`");
@@ -204,6 +236,8 @@ impl Builder {
             d = d.with_help("write `a % b` with spaces for modulo; `50%` (no space) is a percentage");
         } else if found.starts_with('#') {
             d = d.with_help("colours are written `#rrggbb` or `#rrggbbaa` with hex digits");
+        } else if before.matches('(').count() > before.matches(')').count() {
+            d = d.with_help("a `(` is not closed");
         } else if source[start..].trim_start().is_empty() && before.matches('{').count() > before.matches('}').count() {
             d = d.with_help("a `{` is not closed");
         }
@@ -248,7 +282,10 @@ impl Builder {
     }
 
     fn ident(&self, p: P) -> Ident {
-        Ident { name: p.as_str().to_string(), span: self.span(&p) }
+        Ident {
+            name: p.as_str().to_string(),
+            span: self.span(&p),
+        }
     }
 
     fn string(&self, p: P) -> String {
@@ -272,7 +309,13 @@ impl Builder {
     fn doc(&self, p: P) -> String {
         p.into_inner()
             .filter(|d| d.as_rule() == Rule::doc_text)
-            .map(|d| d.as_str().strip_prefix(' ').unwrap_or(d.as_str()).trim_end().to_string())
+            .map(|d| {
+                d.as_str()
+                    .strip_prefix(' ')
+                    .unwrap_or(d.as_str())
+                    .trim_end()
+                    .to_string()
+            })
             .collect::<Vec<_>>()
             .join("\n")
     }
@@ -308,7 +351,16 @@ impl Builder {
                 _ => {}
             }
         }
-        Some(ParamDecl { doc, per_object, name: name?, ty: ty?, default: default?, range, animate, span })
+        Some(ParamDecl {
+            doc,
+            per_object,
+            name: name?,
+            ty: ty?,
+            default: default?,
+            range,
+            animate,
+            span,
+        })
     }
 
     fn type_expr(&self, p: P) -> Option<TypeExpr> {
@@ -316,7 +368,10 @@ impl Builder {
         Some(match inner.as_rule() {
             Rule::enum_type => {
                 let span = self.span(&inner);
-                TypeExpr::Enum { variants: inner.into_inner().map(|v| self.ident(v)).collect(), span }
+                TypeExpr::Enum {
+                    variants: inner.into_inner().map(|v| self.ident(v)).collect(),
+                    span,
+                }
             }
             _ => TypeExpr::Named(self.ident(inner)),
         })
@@ -330,7 +385,13 @@ impl Builder {
                 let mut it = inner.into_inner();
                 let lo = self.expr(it.next()?)?;
                 let hi = self.expr(it.next()?)?;
-                Some(Expr { kind: ExprKind::Range { lo: Box::new(lo), hi: Box::new(hi) }, span })
+                Some(Expr {
+                    kind: ExprKind::Range {
+                        lo: Box::new(lo),
+                        hi: Box::new(hi),
+                    },
+                    span,
+                })
             }
             _ => self.expr(inner),
         }
@@ -341,8 +402,15 @@ impl Builder {
         let mut it = p.into_inner();
         let lo = self.expr(it.next()?)?;
         let hi = self.expr(it.next()?)?;
-        let span = Span { start: lo.span.start, ..span };
-        Some(RangeExpr { lo: Box::new(lo), hi: Box::new(hi), span })
+        let span = Span {
+            start: lo.span.start,
+            ..span
+        };
+        Some(RangeExpr {
+            lo: Box::new(lo),
+            hi: Box::new(hi),
+            span,
+        })
     }
 
     fn animate(&self, p: P) -> Option<Animation> {
@@ -357,12 +425,20 @@ impl Builder {
                     let mut it = i.into_inner();
                     let time = self.expr(it.next()?)?;
                     let value = self.expr(it.next()?)?;
-                    keys.push(Keyframe { time, value, span: kspan });
+                    keys.push(Keyframe {
+                        time,
+                        value,
+                        span: kspan,
+                    });
                 }
                 _ => {}
             }
         }
-        Some(Animation { interpolation, keys, span })
+        Some(Animation {
+            interpolation,
+            keys,
+            span,
+        })
     }
 
     fn texture_decl(&self, p: P) -> Option<TextureDecl> {
@@ -380,7 +456,13 @@ impl Builder {
                 _ => {}
             }
         }
-        Some(TextureDecl { doc, name: name?, source: source?, options, span })
+        Some(TextureDecl {
+            doc,
+            name: name?,
+            source: source?,
+            options,
+            span,
+        })
     }
 
     fn settings(&self, p: P) -> Vec<Setting> {
@@ -411,7 +493,11 @@ impl Builder {
                     let kspan = self.span(&i);
                     let mut it = i.into_inner();
                     let k = self.ident(it.next()?);
-                    kind = Some(PassKind { kind: k, args: it.map(|a| self.ident(a)).collect(), span: kspan });
+                    kind = Some(PassKind {
+                        kind: k,
+                        args: it.map(|a| self.ident(a)).collect(),
+                        span: kspan,
+                    });
                 }
                 Rule::scale_clause => scale = Some(self.expr(i.into_inner().next()?)?),
                 Rule::pass_modifier => {
@@ -419,13 +505,25 @@ impl Builder {
                     let mut it = i.into_inner();
                     let key = self.ident(it.next()?);
                     let value = self.expr(it.next()?)?;
-                    modifiers.push(Setting { key, value, span: mspan });
+                    modifiers.push(Setting {
+                        key,
+                        value,
+                        span: mspan,
+                    });
                 }
                 Rule::pass_body => body = self.pass_body(i)?,
                 _ => {}
             }
         }
-        Some(PassDecl { doc, name: name?, kind: kind?, scale, modifiers, body, span })
+        Some(PassDecl {
+            doc,
+            name: name?,
+            kind: kind?,
+            scale,
+            modifiers,
+            body,
+            span,
+        })
     }
 
     fn pass_body(&self, p: P) -> Option<PassBody> {
@@ -445,7 +543,12 @@ impl Builder {
                     let name = self.ident(it.next()?);
                     let format = self.ident(it.next()?);
                     let value = self.expr(it.next()?)?;
-                    body.outputs.push(OutputTarget { name, format, value, span });
+                    body.outputs.push(OutputTarget {
+                        name,
+                        format,
+                        value,
+                        span,
+                    });
                 }
                 Rule::setting => body.settings.push(self.setting(s)?),
                 _ => {}
@@ -505,7 +608,14 @@ impl Builder {
                 _ => BinOp::Or,
             };
             let span = lhs.span.to(rhs.span);
-            lhs = Expr { kind: ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) }, span };
+            lhs = Expr {
+                kind: ExprKind::Binary {
+                    op,
+                    lhs: Box::new(lhs),
+                    rhs: Box::new(rhs),
+                },
+                span,
+            };
         }
         Some(lhs)
     }
@@ -524,10 +634,23 @@ impl Builder {
             let span = span.to(e.span);
             // Fold `-literal` so that `-1` is a literal (ranges, defaults).
             if let (UnOp::Neg, ExprKind::Number { value, is_int, unit }) = (op, &e.kind) {
-                e = Expr { kind: ExprKind::Number { value: -value, is_int: *is_int, unit: *unit }, span };
+                e = Expr {
+                    kind: ExprKind::Number {
+                        value: -value,
+                        is_int: *is_int,
+                        unit: *unit,
+                    },
+                    span,
+                };
                 continue;
             }
-            e = Expr { kind: ExprKind::Unary { op, operand: Box::new(e) }, span };
+            e = Expr {
+                kind: ExprKind::Unary {
+                    op,
+                    operand: Box::new(e),
+                },
+                span,
+            };
         }
         Some(e)
     }
@@ -538,7 +661,13 @@ impl Builder {
         for f in it {
             let field = self.ident(f);
             let span = e.span.to(field.span);
-            e = Expr { kind: ExprKind::Field { base: Box::new(e), field }, span };
+            e = Expr {
+                kind: ExprKind::Field {
+                    base: Box::new(e),
+                    field,
+                },
+                span,
+            };
         }
         Some(e)
     }
@@ -576,7 +705,8 @@ impl Builder {
             Rule::boolean => ExprKind::Bool(p.as_str() == "true"),
             Rule::color => {
                 let hex = &p.as_str()[1..];
-                let byte = |i: usize| u8::from_str_radix(hex.get(i..i + 2).unwrap_or("ff"), 16).unwrap_or(255) as f64 / 255.0;
+                let byte =
+                    |i: usize| u8::from_str_radix(hex.get(i..i + 2).unwrap_or("ff"), 16).unwrap_or(255) as f64 / 255.0;
                 let a = if hex.len() == 8 { byte(6) } else { 1.0 };
                 ExprKind::Color([byte(0), byte(2), byte(4), a])
             }
@@ -588,8 +718,16 @@ impl Builder {
                 let cond = self.expr(it.next()?)?;
                 let then = self.block(it.next()?)?;
                 let other = it.next()?;
-                let otherwise = if other.as_rule() == Rule::if_expr { self.primary_inner(other)? } else { self.block(other)? };
-                ExprKind::If { cond: Box::new(cond), then: Box::new(then), otherwise: Box::new(otherwise) }
+                let otherwise = if other.as_rule() == Rule::if_expr {
+                    self.primary_inner(other)?
+                } else {
+                    self.block(other)?
+                };
+                ExprKind::If {
+                    cond: Box::new(cond),
+                    then: Box::new(then),
+                    otherwise: Box::new(otherwise),
+                }
             }
             Rule::block_expr => return self.block(p),
             _ => self.expr(p)?.kind,
@@ -611,7 +749,13 @@ impl Builder {
         if lets.is_empty() {
             return Some(Expr { span, ..value });
         }
-        Some(Expr { kind: ExprKind::Block { lets, value: Box::new(value) }, span })
+        Some(Expr {
+            kind: ExprKind::Block {
+                lets,
+                value: Box::new(value),
+            },
+            span,
+        })
     }
 
     fn call(&self, p: P) -> Option<Call> {
@@ -626,7 +770,11 @@ impl Builder {
                 2 => (Some(self.ident(parts[0].clone())), self.expr(parts[1].clone())?),
                 _ => (None, self.expr(parts.into_iter().next()?)?),
             };
-            args.push(Arg { name, value, span: aspan });
+            args.push(Arg {
+                name,
+                value,
+                span: aspan,
+            });
         }
         Some(Call { callee, args, span })
     }
@@ -653,10 +801,21 @@ mod tests {
     #[test]
     fn precedence_and_units() {
         let e = first_param_default("style \"S\"\nparam a: px = 1px + 2px * 3");
-        let ExprKind::Binary { op: BinOp::Add, rhs, .. } = e.kind else { panic!("{e:?}") };
+        let ExprKind::Binary {
+            op: BinOp::Add, rhs, ..
+        } = e.kind
+        else {
+            panic!("{e:?}")
+        };
         assert!(matches!(rhs.kind, ExprKind::Binary { op: BinOp::Mul, .. }));
         let e = first_param_default("style \"S\"\nparam a: px = 50%");
-        assert!(matches!(e.kind, ExprKind::Number { unit: Some(UnitSuffix::Percent), .. }));
+        assert!(matches!(
+            e.kind,
+            ExprKind::Number {
+                unit: Some(UnitSuffix::Percent),
+                ..
+            }
+        ));
         let e = first_param_default("style \"S\"\nparam a: m = 10mm");
         assert!(matches!(e.kind, ExprKind::Number { value, unit: Some(UnitSuffix::Mm), .. } if value == 10.0));
     }
@@ -679,7 +838,10 @@ mod tests {
         let src = "style \"S\"\nparam a: float = (1 +\nparam b: float = 2\npass p: image() {\n  out c: r8unorm = ]\n}\noutput p.c\n";
         let (ast, d) = parse(FileId(0), src);
         assert_eq!(d.iter().filter(|d| d.code == codes::SYNTAX).count(), 2, "{d:?}");
-        assert!(ast.items.iter().any(|i| matches!(i, Item::Param(p) if p.name.name == "b")));
+        assert!(ast
+            .items
+            .iter()
+            .any(|i| matches!(i, Item::Param(p) if p.name.name == "b")));
         assert!(ast.items.iter().any(|i| matches!(i, Item::Output(_))));
     }
 

@@ -84,9 +84,7 @@ impl SourceMap {
 
     /// The source text a span covers ("" when out of range).
     pub fn snippet(&self, span: Span) -> &str {
-        self.get(span.file)
-            .and_then(|f| f.text.get(span.range()))
-            .unwrap_or("")
+        self.get(span.file).and_then(|f| f.text.get(span.range())).unwrap_or("")
     }
 }
 

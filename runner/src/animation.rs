@@ -88,8 +88,11 @@ pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>)
                 }
                 if let Some((lo, hi)) = p.range {
                     if let Some(bad) = v.iter().find(|x| **x < lo || **x > hi) {
-                        let mut d = Diagnostic::error(codes::OUT_OF_RANGE, format!("object `{}` binds `{}` outside its range", o.name, p.name))
-                            .with_help(format!("`{}` is declared in {lo}..{hi}", p.name));
+                        let mut d = Diagnostic::error(
+                            codes::OUT_OF_RANGE,
+                            format!("object `{}` binds `{}` outside its range", o.name, p.name),
+                        )
+                        .with_help(format!("`{}` is declared in {lo}..{hi}", p.name));
                         if let Some(s) = o.param_spans.get(&p.name) {
                             d = d.with_primary(*s, format!("{bad} is outside {lo}..{hi}"));
                         }
@@ -97,8 +100,16 @@ pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>)
                     }
                 }
             } else {
-                let mut d = Diagnostic::error(codes::BAD_SCENE, format!("object `{}` binds `{}` with {} value(s), expected {n}", o.name, p.name, bound.len()))
-                    .with_help(format!("`{}` is a {}", p.name, p.ty));
+                let mut d = Diagnostic::error(
+                    codes::BAD_SCENE,
+                    format!(
+                        "object `{}` binds `{}` with {} value(s), expected {n}",
+                        o.name,
+                        p.name,
+                        bound.len()
+                    ),
+                )
+                .with_help(format!("`{}` is a {}", p.name, p.ty));
                 if let Some(s) = o.param_spans.get(&p.name) {
                     d = d.with_primary(*s, "wrong number of components");
                 }

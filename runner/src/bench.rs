@@ -35,10 +35,26 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
-pub fn frame_overhead(gpu: &Gpu, program: &StyleProgram, scene: &crate::scene::Scene, (width, height): (u32, u32), frames: u32) -> Result<FrameOverhead, RunError> {
+pub fn frame_overhead(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    scene: &crate::scene::Scene,
+    (width, height): (u32, u32),
+    frames: u32,
+) -> Result<FrameOverhead, RunError> {
     let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let wait = || gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")));
-    let spec = |frame: u32| FrameSpec { width, height, time_s: frame as f64 / 24.0, frame, eye: 0 };
+    let wait = || {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+    };
+    let spec = |frame: u32| FrameSpec {
+        width,
+        height,
+        time_s: frame as f64 / 24.0,
+        frame,
+        eye: 0,
+    };
     // Warm up: pipelines compiled, textures allocated.
     r.render(scene, &spec(0))?;
     wait()?;
@@ -56,5 +72,11 @@ pub fn frame_overhead(gpu: &Gpu, program: &StyleProgram, scene: &crate::scene::S
         wait()?;
         bare.push(t.elapsed().as_secs_f64());
     }
-    Ok(FrameOverhead { width, height, frames, runner_s: median(ours), bare_s: median(bare) })
+    Ok(FrameOverhead {
+        width,
+        height,
+        frames,
+        runner_s: median(ours),
+        bare_s: median(bare),
+    })
 }

@@ -45,9 +45,11 @@ impl Gpu {
             let Ok(adapter) = adapter else { continue };
             let info = adapter.get_info();
             let mut limits = wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits());
-            limits.max_color_attachments = limits.max_color_attachments.max(8).min(adapter.limits().max_color_attachments);
-            limits.max_color_attachment_bytes_per_sample =
-                adapter.limits().max_color_attachment_bytes_per_sample;
+            limits.max_color_attachments = limits
+                .max_color_attachments
+                .max(8)
+                .min(adapter.limits().max_color_attachments);
+            limits.max_color_attachment_bytes_per_sample = adapter.limits().max_color_attachment_bytes_per_sample;
             limits.max_texture_dimension_2d = adapter.limits().max_texture_dimension_2d;
             let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
             let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -56,8 +58,15 @@ impl Gpu {
                 required_limits: limits,
                 ..Default::default()
             }))
-            .map_err(|source| DeviceError::RequestDevice { adapter: info.name.clone(), source })?;
-            return Ok(Gpu { device, queue, adapter_info: info });
+            .map_err(|source| DeviceError::RequestDevice {
+                adapter: info.name.clone(),
+                source,
+            })?;
+            return Ok(Gpu {
+                device,
+                queue,
+                adapter_info: info,
+            });
         }
         Err(DeviceError::NoAdapter)
     }

@@ -30,6 +30,11 @@ pub struct Comparison {
 /// otherwise a missing golden is a failure.
 pub fn compare_with_golden(actual: &image::RgbaImage, golden: &Path, tol: Tolerance) -> Comparison {
     let update = std::env::var("NPR_UPDATE_GOLDENS").is_ok_and(|v| v == "1");
+    compare_with_golden_file(actual, golden, tol, update)
+}
+
+/// As [`compare_with_golden`], with the update mode given explicitly.
+pub fn compare_with_golden_file(actual: &image::RgbaImage, golden: &Path, tol: Tolerance, update: bool) -> Comparison {
     let expected = match image::open(golden) {
         Ok(img) if !update => img.to_rgba8(),
         _ if update => {
@@ -50,7 +55,10 @@ pub fn compare_with_golden(actual: &image::RgbaImage, golden: &Path, tol: Tolera
                 max_abs: 255,
                 outlier_fraction: 1.0,
                 flip_mean: None,
-                summary: format!("cannot read golden {}: {e} (run with NPR_UPDATE_GOLDENS=1 to create it)", golden.display()),
+                summary: format!(
+                    "cannot read golden {}: {e} (run with NPR_UPDATE_GOLDENS=1 to create it)",
+                    golden.display()
+                ),
                 written,
             };
         }
@@ -63,29 +71,59 @@ pub fn compare_with_golden(actual: &image::RgbaImage, golden: &Path, tol: Tolera
             max_abs: 255,
             outlier_fraction: 1.0,
             flip_mean: None,
-            summary: format!("size {:?} differs from golden {:?}", actual.dimensions(), expected.dimensions()),
+            summary: format!(
+                "size {:?} differs from golden {:?}",
+                actual.dimensions(),
+                expected.dimensions()
+            ),
             written,
         };
     }
-    let (max_abs, outliers) = per_pixel(actual, &expected, match tol {
-        Tolerance::PerPixel { max_abs, .. } => max_abs,
-        Tolerance::Flip { .. } => 0,
-    });
+    let (max_abs, outliers) = per_pixel(
+        actual,
+        &expected,
+        match tol {
+            Tolerance::PerPixel { max_abs, .. } => max_abs,
+            Tolerance::Flip { .. } => 0,
+        },
+    );
     let total = (actual.width() * actual.height()).max(1) as f64;
     let outlier_fraction = outliers as f64 / total;
     let (passed, flip_mean, summary) = match tol {
-        Tolerance::PerPixel { max_abs: bound, outlier_fraction: allowed } => (
+        Tolerance::PerPixel {
+            max_abs: bound,
+            outlier_fraction: allowed,
+        } => (
             outlier_fraction <= allowed,
             None,
-            format!("max |Δ| = {max_abs}/255, {:.4}% of pixels over {bound} (allowed {:.4}%)", outlier_fraction * 100.0, allowed * 100.0),
+            format!(
+                "max |Δ| = {max_abs}/255, {:.4}% of pixels over {bound} (allowed {:.4}%)",
+                outlier_fraction * 100.0,
+                allowed * 100.0
+            ),
         ),
         Tolerance::Flip { max_mean } => {
             let mean = flip_mean(actual, &expected);
-            (mean <= max_mean, Some(mean), format!("mean FLIP = {mean:.5} (allowed {max_mean}), max |Δ| = {max_abs}/255"))
+            (
+                mean <= max_mean,
+                Some(mean),
+                format!("mean FLIP = {mean:.5} (allowed {max_mean}), max |Δ| = {max_abs}/255"),
+            )
         }
     };
-    let written = if passed { None } else { write_failure(actual, Some(&expected), golden) };
-    Comparison { passed, max_abs, outlier_fraction, flip_mean, summary, written }
+    let written = if passed {
+        None
+    } else {
+        write_failure(actual, Some(&expected), golden)
+    };
+    Comparison {
+        passed,
+        max_abs,
+        outlier_fraction,
+        flip_mean,
+        summary,
+        written,
+    }
 }
 
 /// (largest channel difference, number of pixels whose difference exceeds `bound`).
@@ -93,7 +131,12 @@ pub fn per_pixel(a: &image::RgbaImage, b: &image::RgbaImage, bound: u8) -> (u8, 
     let mut max = 0u8;
     let mut over = 0usize;
     for (pa, pb) in a.pixels().zip(b.pixels()) {
-        let d = pa.0.iter().zip(pb.0.iter()).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0);
+        let d =
+            pa.0.iter()
+                .zip(pb.0.iter())
+                .map(|(x, y)| x.abs_diff(*y))
+                .max()
+                .unwrap_or(0);
         max = max.max(d);
         if d > bound {
             over += 1;
@@ -113,9 +156,18 @@ pub fn flip_mean(a: &image::RgbaImage, b: &image::RgbaImage) -> f32 {
     nv_flip::FlipPool::from_image(&map).mean()
 }
 
-fn write_failure(actual: &image::RgbaImage, expected: Option<&image::RgbaImage>, golden: &Path) -> Option<(PathBuf, PathBuf)> {
-    let dir = std::env::var_os("NPR_TEST_OUTPUT").map(PathBuf::from).unwrap_or_else(|| PathBuf::from("target/npr-test-output"));
-    let stem = golden.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "image".into());
+fn write_failure(
+    actual: &image::RgbaImage,
+    expected: Option<&image::RgbaImage>,
+    golden: &Path,
+) -> Option<(PathBuf, PathBuf)> {
+    let dir = std::env::var_os("NPR_TEST_OUTPUT")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("target/npr-test-output"));
+    let stem = golden
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "image".into());
     let actual_path = dir.join(format!("{stem}.actual.png"));
     let diff_path = dir.join(format!("{stem}.diff.png"));
     crate::output::write_png8(actual, &actual_path).ok()?;

@@ -53,8 +53,10 @@ impl RunError {
             RunError::Limit(m) => vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, m.clone())
                 .with_help(format!("the largest image is {0}x{0}", render::MAX_OUTPUT_SIZE))],
             RunError::Device(e) => vec![Diagnostic::error(dsl::codes::INTERNAL, e.to_string())],
-            RunError::Internal(m) => vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())
-                .with_help("this is a bug in npr; please report it")],
+            RunError::Internal(m) => {
+                vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())
+                    .with_help("this is a bug in npr; please report it")]
+            }
         }
     }
 
@@ -64,7 +66,12 @@ impl RunError {
 }
 
 /// Render one frame and read back the output target.
-pub fn render_frame(gpu: &Gpu, program: &StyleProgram, scene: &scene::Scene, spec: &FrameSpec) -> Result<TargetImage, RunError> {
+pub fn render_frame(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    scene: &scene::Scene,
+    spec: &FrameSpec,
+) -> Result<TargetImage, RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     r.render(scene, spec)?;
     r.read_output()

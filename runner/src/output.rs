@@ -9,9 +9,15 @@ use std::path::{Path, PathBuf};
 
 /// Write `bytes` to `path` atomically (temp file + rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)?;
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -34,7 +40,10 @@ fn encode(img: image::DynamicImage, format: image::ImageFormat) -> std::io::Resu
 /// Write a target: `.png` (8-bit for unorm targets, 16-bit for float targets)
 /// or `.exr` (32-bit float, values unclamped).
 pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
-    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase()).unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
     let bytes = match ext.as_str() {
         "exr" => {
             let px: Vec<f32> = img.to_rgba_f32().into_iter().flatten().collect();
@@ -48,7 +57,11 @@ pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
                     .to_rgba_f32()
                     .into_iter()
                     .flat_map(|p| {
-                        let p = if img.format.channels() == 1 { [p[0], p[0], p[0], 1.0] } else { p };
+                        let p = if img.format.channels() == 1 {
+                            [p[0], p[0], p[0], 1.0]
+                        } else {
+                            p
+                        };
                         p.map(|c| (if c.is_finite() { c } else { 0.0 }.clamp(0.0, 1.0) * 65535.0).round() as u16)
                     })
                     .collect();
@@ -59,13 +72,20 @@ pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
                 encode(image::DynamicImage::ImageRgba8(img.to_rgba8()), image::ImageFormat::Png)?
             }
         }
-        other => return Err(std::io::Error::other(format!("unsupported image extension `.{other}`: use .png or .exr"))),
+        other => {
+            return Err(std::io::Error::other(format!(
+                "unsupported image extension `.{other}`: use .png or .exr"
+            )))
+        }
     };
     write_atomic(path, &bytes)
 }
 
 pub fn write_png8(img: &image::RgbaImage, path: &Path) -> std::io::Result<()> {
-    write_atomic(path, &encode(image::DynamicImage::ImageRgba8(img.clone()), image::ImageFormat::Png)?)
+    write_atomic(
+        path,
+        &encode(image::DynamicImage::ImageRgba8(img.clone()), image::ImageFormat::Png)?,
+    )
 }
 
 /// Lay out thumbnails of every target in a grid (row-major, in the order
@@ -77,11 +97,20 @@ pub fn contact_sheet(images: &[TargetImage], cell: u32) -> image::RgbaImage {
     let aspect = images.first().map(|i| i.height as f64 / i.width as f64).unwrap_or(1.0);
     let cell_h = ((cell as f64 * aspect).round() as u32).max(1);
     let gap = 4;
-    let mut sheet = image::RgbaImage::from_pixel(cols * (cell + gap) + gap, rows * (cell_h + gap) + gap, image::Rgba([40, 40, 40, 255]));
+    let mut sheet = image::RgbaImage::from_pixel(
+        cols * (cell + gap) + gap,
+        rows * (cell_h + gap) + gap,
+        image::Rgba([40, 40, 40, 255]),
+    );
     for (i, img) in images.iter().enumerate() {
         let thumb = image::imageops::resize(&img.to_rgba8(), cell, cell_h, image::imageops::FilterType::Triangle);
         let (cx, cy) = (i as u32 % cols, i as u32 / cols);
-        image::imageops::overlay(&mut sheet, &thumb, (gap + cx * (cell + gap)) as i64, (gap + cy * (cell_h + gap)) as i64);
+        image::imageops::overlay(
+            &mut sheet,
+            &thumb,
+            (gap + cx * (cell + gap)) as i64,
+            (gap + cy * (cell_h + gap)) as i64,
+        );
     }
     sheet
 }
@@ -94,7 +123,13 @@ pub fn dump_targets(images: &[TargetImage], dir: &Path) -> std::io::Result<Vec<P
     for (i, img) in images.iter().enumerate() {
         let path = dir.join(format!("{i:02}_{}.png", img.name));
         write_target(img, &path)?;
-        index.push_str(&format!("{i:02} {} {}x{} {}\n", img.name, img.width, img.height, img.format.name()));
+        index.push_str(&format!(
+            "{i:02} {} {}x{} {}\n",
+            img.name,
+            img.width,
+            img.height,
+            img.format.name()
+        ));
         written.push(path);
     }
     let sheet = contact_sheet(images, 256);

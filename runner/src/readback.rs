@@ -53,7 +53,11 @@ impl TargetImage {
         for y in 0..self.height {
             for x in 0..self.width {
                 let t = self.texel(x, y);
-                let t = if self.format.channels() == 1 { [t[0], t[0], t[0], 1.0] } else { t };
+                let t = if self.format.channels() == 1 {
+                    [t[0], t[0], t[0], 1.0]
+                } else {
+                    t
+                };
                 let q = |v: f32| (if v.is_finite() { v } else { 0.0 }.clamp(0.0, 1.0) * 255.0).round() as u8;
                 img.put_pixel(x, y, image::Rgba([q(t[0]), q(t[1]), q(t[2]), q(t[3])]));
             }
@@ -84,14 +88,29 @@ pub fn read_texture(
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr readback") });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("npr readback"),
+    });
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
         },
-        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
     );
     queue.submit([encoder.finish()]);
     let slice = buffer.slice(..);
@@ -105,7 +124,9 @@ pub fn read_texture(
     rx.recv()
         .map_err(|e| RunError::Internal(format!("readback channel closed: {e}")))?
         .map_err(|e| RunError::Internal(format!("readback map failed: {e}")))?;
-    let mapped = slice.get_mapped_range().map_err(|e| RunError::Internal(format!("readback range failed: {e:?}")))?;
+    let mapped = slice
+        .get_mapped_range()
+        .map_err(|e| RunError::Internal(format!("readback range failed: {e:?}")))?;
     let mut bytes = Vec::with_capacity((unpadded * height) as usize);
     for row in 0..height as usize {
         let start = row * padded as usize;
@@ -113,5 +134,11 @@ pub fn read_texture(
     }
     drop(mapped);
     buffer.unmap();
-    Ok(TargetImage { name: name.to_string(), width, height, format, bytes })
+    Ok(TargetImage {
+        name: name.to_string(),
+        width,
+        height,
+        format,
+        bytes,
+    })
 }

@@ -105,6 +105,24 @@ fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
     }
 }
 
+/// E0403 for every object that lacks a vertex attribute the style reads.
+pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<dsl::Diagnostic> {
+    let required: Vec<crate::scene::Attribute> = manifest
+        .scene_attributes
+        .iter()
+        .map(|a| match a {
+            Attribute::Position => crate::scene::Attribute::Position,
+            Attribute::Normal => crate::scene::Attribute::Normal,
+            Attribute::Uv => crate::scene::Attribute::Uv,
+            Attribute::Tangent => crate::scene::Attribute::Tangent,
+        })
+        .collect();
+    scene.check_attributes(
+        &required,
+        &format!("style \"{}\" needs per-vertex data", manifest.style),
+    )
+}
+
 impl<'d> Renderer<'d> {
     /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
     /// come back as `RunError::User`.
@@ -115,19 +133,7 @@ impl<'d> Renderer<'d> {
         scene: &Scene,
     ) -> Result<Renderer<'d>, RunError> {
         let manifest = program.manifest.clone();
-        // The scene must provide every attribute the style reads.
-        let required: Vec<crate::scene::Attribute> = manifest
-            .scene_attributes
-            .iter()
-            .map(|a| match a {
-                Attribute::Position => crate::scene::Attribute::Position,
-                Attribute::Normal => crate::scene::Attribute::Normal,
-                Attribute::Uv => crate::scene::Attribute::Uv,
-                Attribute::Tangent => crate::scene::Attribute::Tangent,
-            })
-            .collect();
-        let why = format!("style \"{}\"", manifest.style);
-        let diags = scene.check_attributes(&required, &why);
+        let diags = check_scene(&manifest, scene);
         if !diags.is_empty() {
             return Err(RunError::User(diags));
         }
@@ -221,7 +227,11 @@ impl<'d> Renderer<'d> {
     }
 
     fn ensure_size(&mut self, width: u32, height: u32) {
-        if self.sized.as_ref().is_some_and(|s| s.width == width && s.height == height) {
+        if self
+            .sized
+            .as_ref()
+            .is_some_and(|s| s.width == width && s.height == height)
+        {
             return;
         }
         let physical: Vec<wgpu::Texture> = self
@@ -233,7 +243,11 @@ impl<'d> Renderer<'d> {
                 let (w, h) = scaled_size(width, height, p.scale);
                 self.device.create_texture(&wgpu::TextureDescriptor {
                     label: Some(&format!("npr physical #{i}")),
-                    size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                    size: wgpu::Extent3d {
+                        width: w,
+                        height: h,
+                        depth_or_array_layers: 1,
+                    },
                     mip_level_count: 1,
                     sample_count: 1,
                     dimension: wgpu::TextureDimension::D2,
@@ -249,7 +263,8 @@ impl<'d> Renderer<'d> {
         let mut passes = Vec::new();
         for (pi, pass) in self.manifest.passes.iter().enumerate() {
             let (w, h) = scaled_size(width, height, pass.scale);
-            let view_of_target = |t: usize| physical[self.manifest.targets[t].physical].create_view(&Default::default());
+            let view_of_target =
+                |t: usize| physical[self.manifest.targets[t].physical].create_view(&Default::default());
             let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
             let depth_view = matches!(pass.kind, PassKindManifest::Render { .. }).then(|| {
                 depth
@@ -257,7 +272,11 @@ impl<'d> Renderer<'d> {
                     .or_insert_with(|| {
                         self.device.create_texture(&wgpu::TextureDescriptor {
                             label: Some("npr depth"),
-                            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                            size: wgpu::Extent3d {
+                                width: w,
+                                height: h,
+                                depth_or_array_layers: 1,
+                            },
                             mip_level_count: 1,
                             sample_count: 1,
                             dimension: wgpu::TextureDimension::D2,
@@ -273,7 +292,10 @@ impl<'d> Renderer<'d> {
                 .iter()
                 .filter_map(|b| match &b.resource {
                     Resource::Target { target, .. } => Some((b.binding, view_of_target(*target))),
-                    Resource::Texture { texture } => Some((b.binding, self.textures[*texture].texture.create_view(&Default::default()))),
+                    Resource::Texture { texture } => Some((
+                        b.binding,
+                        self.textures[*texture].texture.create_view(&Default::default()),
+                    )),
                     _ => None,
                 })
                 .collect();
@@ -284,13 +306,18 @@ impl<'d> Renderer<'d> {
                     let resource = match &b.resource {
                         Resource::FrameUniforms => self.frame_buffer.as_entire_binding(),
                         Resource::StyleUniforms => self.style_buffer.as_entire_binding(),
-                        Resource::Target { .. } | Resource::Texture { .. } => {
-                            wgpu::BindingResource::TextureView(views.iter().find(|(n, _)| *n == b.binding).map(|(_, v)| v)?)
+                        Resource::Target { .. } | Resource::Texture { .. } => wgpu::BindingResource::TextureView(
+                            views.iter().find(|(n, _)| *n == b.binding).map(|(_, v)| v)?,
+                        ),
+                        Resource::TextureSampler { texture } => {
+                            wgpu::BindingResource::Sampler(&self.textures[*texture].sampler)
                         }
-                        Resource::TextureSampler { texture } => wgpu::BindingResource::Sampler(&self.textures[*texture].sampler),
                         Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
                     };
-                    Some(wgpu::BindGroupEntry { binding: b.binding, resource })
+                    Some(wgpu::BindGroupEntry {
+                        binding: b.binding,
+                        resource,
+                    })
                 })
                 .collect();
             let group0 = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -298,9 +325,18 @@ impl<'d> Renderer<'d> {
                 layout: &self.pipelines[pi].layout0,
                 entries: &entries,
             });
-            passes.push(SizedPass { color_views, depth_view, group0 });
+            passes.push(SizedPass {
+                color_views,
+                depth_view,
+                group0,
+            });
         }
-        self.sized = Some(SizedResources { width, height, physical, passes });
+        self.sized = Some(SizedResources {
+            width,
+            height,
+            physical,
+            passes,
+        });
     }
 
     /// Write the per-frame, style and object uniforms for `spec`.
@@ -320,29 +356,42 @@ impl<'d> Renderer<'d> {
         frame.extend_from_slice(&[l.x, l.y, l.z, scene.light.intensity]);
         let c = scene.light.color;
         frame.extend_from_slice(&[c[0], c[1], c[2], 1.0]);
-        frame.extend_from_slice(&[spec.width as f32, spec.height as f32, spec.time_s as f32, spec.frame as f32]);
+        frame.extend_from_slice(&[
+            spec.width as f32,
+            spec.height as f32,
+            spec.time_s as f32,
+            spec.frame as f32,
+        ]);
         frame.extend_from_slice(&[spec.eye as f32, pose.near, pose.far, 0.0]);
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
-        self.queue.write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));
         let style = animation::style_param_bytes(&self.manifest, spec.time_s, spec.height);
         if !style.is_empty() {
             self.queue.write_buffer(&self.style_buffer, 0, &style);
         }
         for (i, model) in self.object_models.iter().enumerate() {
             let normal_matrix = model.inverse().transpose();
-            let normal_matrix = if normal_matrix.is_finite() { normal_matrix } else { Mat4::IDENTITY };
+            let normal_matrix = if normal_matrix.is_finite() {
+                normal_matrix
+            } else {
+                Mat4::IDENTITY
+            };
             let mut bytes: Vec<u8> = Vec::new();
             bytes.extend_from_slice(bytemuck::cast_slice(&model.to_cols_array()));
             bytes.extend_from_slice(bytemuck::cast_slice(&normal_matrix.to_cols_array()));
             bytes.extend_from_slice(&self.object_params[i]);
-            self.queue.write_buffer(&self.object_buffer, i as u64 * self.object_stride, &bytes);
+            self.queue
+                .write_buffer(&self.object_buffer, i as u64 * self.object_stride, &bytes);
         }
     }
 
     /// Render one frame; every target stays on the GPU for [`Renderer::read_target`].
     pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         self.prepare(scene, spec)?;
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr frame") });
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("npr frame"),
+        });
         self.encode(&mut encoder);
         self.queue.submit([encoder.finish()]);
         Ok(())
@@ -369,7 +418,12 @@ impl<'d> Renderer<'d> {
 
     /// Run the frame only up to (and including) the pass that writes `target`,
     /// and read it back: for targets whose texture a later pass reuses.
-    pub fn render_until_target(&mut self, scene: &Scene, spec: &FrameSpec, target: usize) -> Result<readback::TargetImage, RunError> {
+    pub fn render_until_target(
+        &mut self,
+        scene: &Scene,
+        spec: &FrameSpec,
+        target: usize,
+    ) -> Result<readback::TargetImage, RunError> {
         let writer = self
             .manifest
             .passes
@@ -377,7 +431,9 @@ impl<'d> Renderer<'d> {
             .position(|p| p.outputs.contains(&target))
             .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
         self.prepare(scene, spec)?;
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("npr partial frame") });
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("npr partial frame"),
+        });
         self.encode_passes(&mut encoder, writer + 1);
         self.queue.submit([encoder.finish()]);
         self.read_target(target)
@@ -387,7 +443,12 @@ impl<'d> Renderer<'d> {
         let Some(sized) = self.sized.as_ref() else { return };
         for (pi, pass) in self.manifest.passes.iter().enumerate().take(count) {
             let res = &sized.passes[pi];
-            let clear = wgpu::Color { r: pass.clear[0], g: pass.clear[1], b: pass.clear[2], a: pass.clear[3] };
+            let clear = wgpu::Color {
+                r: pass.clear[0],
+                g: pass.clear[1],
+                b: pass.clear[2],
+                a: pass.clear[3],
+            };
             let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = res
                 .color_views
                 .iter()
@@ -396,7 +457,10 @@ impl<'d> Renderer<'d> {
                         view: v,
                         depth_slice: None,
                         resolve_target: None,
-                        ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear), store: wgpu::StoreOp::Store },
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(clear),
+                            store: wgpu::StoreOp::Store,
+                        },
                     })
                 })
                 .collect();
@@ -405,7 +469,10 @@ impl<'d> Renderer<'d> {
                 color_attachments: &attachments,
                 depth_stencil_attachment: res.depth_view.as_ref().map(|v| wgpu::RenderPassDepthStencilAttachment {
                     view: v,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
                     stencil_ops: None,
                 }),
                 timestamp_writes: None,
@@ -439,14 +506,25 @@ impl<'d> Renderer<'d> {
 
     /// Read a logical target back to the CPU.
     pub fn read_target(&self, target: usize) -> Result<readback::TargetImage, RunError> {
-        let sized = self.sized.as_ref().ok_or_else(|| RunError::Internal("read before render".into()))?;
+        let sized = self
+            .sized
+            .as_ref()
+            .ok_or_else(|| RunError::Internal("read before render".into()))?;
         let t = self
             .manifest
             .targets
             .get(target)
             .ok_or_else(|| RunError::Internal(format!("no target #{target}")))?;
         let (w, h) = scaled_size(sized.width, sized.height, t.scale);
-        readback::read_texture(self.device, self.queue, &sized.physical[t.physical], w, h, t.format, &t.name)
+        readback::read_texture(
+            self.device,
+            self.queue,
+            &sized.physical[t.physical],
+            w,
+            h,
+            t.format,
+            &t.name,
+        )
     }
 
     /// Read the style's final image.
@@ -488,7 +566,9 @@ fn build_pipeline(
                     min_binding_size: None,
                 },
                 Resource::Target { filterable, .. } => wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: *filterable },
+                    sample_type: wgpu::TextureSampleType::Float {
+                        filterable: *filterable,
+                    },
                     view_dimension: wgpu::TextureViewDimension::D2,
                     multisampled: false,
                 },
@@ -504,10 +584,16 @@ fn build_pipeline(
             count: None,
         })
         .collect();
-    let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&pass.name), entries: &entries });
+    let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(&pass.name),
+        entries: &entries,
+    });
     let is_render = matches!(pass.kind, PassKindManifest::Render { .. });
-    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-        if is_render { vec![Some(&layout0), Some(object_layout)] } else { vec![Some(&layout0)] };
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = if is_render {
+        vec![Some(&layout0), Some(object_layout)]
+    } else {
+        vec![Some(&layout0)]
+    };
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&pass.name),
         bind_group_layouts: &layouts,
@@ -525,7 +611,13 @@ fn build_pipeline(
     let vertex_attrs: Vec<[wgpu::VertexAttribute; 1]> = attributes
         .iter()
         .enumerate()
-        .map(|(loc, a)| [wgpu::VertexAttribute { format: attribute_format(*a).0, offset: 0, shader_location: loc as u32 }])
+        .map(|(loc, a)| {
+            [wgpu::VertexAttribute {
+                format: attribute_format(*a).0,
+                offset: 0,
+                shader_location: loc as u32,
+            }]
+        })
         .collect();
     let buffers: Vec<Option<wgpu::VertexBufferLayout>> = attributes
         .iter()
@@ -558,7 +650,10 @@ fn build_pipeline(
             compilation_options: Default::default(),
             buffers: &buffers,
         },
-        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
         depth_stencil: is_render.then_some(wgpu::DepthStencilState {
             format: wgpu::TextureFormat::Depth32Float,
             depth_write_enabled: Some(true),
@@ -577,7 +672,10 @@ fn build_pipeline(
         cache: None,
     });
     if let Some(err) = pollster::block_on(scope.pop()) {
-        return Err(RunError::Internal(format!("pipeline for pass `{}` rejected by wgpu: {err}", pass.name)));
+        return Err(RunError::Internal(format!(
+            "pipeline for pass `{}` rejected by wgpu: {err}",
+            pass.name
+        )));
     }
     Ok(PassPipeline { pipeline, layout0 })
 }
@@ -591,7 +689,10 @@ fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
             usage: wgpu::BufferUsages::VERTEX,
         })
     };
-    buffers.insert(Attribute::Position, mk("positions", bytemuck::cast_slice(&mesh.positions)));
+    buffers.insert(
+        Attribute::Position,
+        mk("positions", bytemuck::cast_slice(&mesh.positions)),
+    );
     buffers.insert(Attribute::Normal, mk("normals", bytemuck::cast_slice(&mesh.normals)));
     if let Some(uv) = &mesh.uvs {
         buffers.insert(Attribute::Uv, mk("uvs", bytemuck::cast_slice(uv)));
@@ -601,8 +702,16 @@ fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
     }
     let index = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("indices"),
-        contents: if mesh.indices.is_empty() { &[0u8; 16] } else { bytemuck::cast_slice(&mesh.indices) },
+        contents: if mesh.indices.is_empty() {
+            &[0u8; 16]
+        } else {
+            bytemuck::cast_slice(&mesh.indices)
+        },
         usage: wgpu::BufferUsages::INDEX,
     });
-    GpuMesh { buffers, index, index_count: mesh.indices.len() as u32 }
+    GpuMesh {
+        buffers,
+        index,
+        index_count: mesh.indices.len() as u32,
+    }
 }

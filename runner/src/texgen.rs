@@ -27,7 +27,10 @@ pub fn generate(spec: &NoiseSpec) -> NoiseImage {
     let size = spec.size.max(1);
     let mut pixels = vec![[0.0f32, 0.0, 0.0, 1.0]; (size * size) as usize];
     for c in 0..spec.channels.clamp(1, 4) {
-        let seed = spec.seed.wrapping_mul(0x9E37_79B9).wrapping_add(c.wrapping_mul(0x85EB_CA6B));
+        let seed = spec
+            .seed
+            .wrapping_mul(0x9E37_79B9)
+            .wrapping_add(c.wrapping_mul(0x85EB_CA6B));
         for y in 0..size {
             for x in 0..size {
                 let u = (x as f64 + 0.5) / size as f64;
@@ -55,7 +58,8 @@ pub fn fbm(u: f64, v: f64, spec: &NoiseSpec, seed: u32) -> f64 {
         let period = spec.frequency.max(1).saturating_mul(1 << o.min(20));
         let n = if spec.gradient {
             // Perlin gradient noise lies in about [-0.7, 0.7] in 2D; map to [0, 1].
-            (gradient_noise(u * period as f64, v * period as f64, period, seed.wrapping_add(o)) / 1.4 + 0.5).clamp(0.0, 1.0)
+            (gradient_noise(u * period as f64, v * period as f64, period, seed.wrapping_add(o)) / 1.4 + 0.5)
+                .clamp(0.0, 1.0)
         } else {
             value_noise(u * period as f64, v * period as f64, period, seed.wrapping_add(o))
         };
@@ -123,7 +127,14 @@ mod tests {
     use super::*;
 
     fn spec(gradient: bool) -> NoiseSpec {
-        NoiseSpec { size: 64, octaves: 4, seed: 7, gradient, channels: 2, frequency: 4 }
+        NoiseSpec {
+            size: 64,
+            octaves: 4,
+            seed: 7,
+            gradient,
+            channels: 2,
+            frequency: 4,
+        }
     }
 
     #[test]

@@ -35,13 +35,20 @@ pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Res
 
 fn placeholder(device: &wgpu::Device) -> GpuTexture {
     let texture = device.create_texture(&desc(1, 1, 1, wgpu::TextureFormat::Rgba8Unorm));
-    GpuTexture { texture, sampler: device.create_sampler(&Default::default()) }
+    GpuTexture {
+        texture,
+        sampler: device.create_sampler(&Default::default()),
+    }
 }
 
 fn desc(w: u32, h: u32, mips: u32, format: wgpu::TextureFormat) -> wgpu::TextureDescriptor<'static> {
     wgpu::TextureDescriptor {
         label: Some("npr texture"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
         mip_level_count: mips,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -93,13 +100,21 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
     let (pixels, w, h, srgb, half_float) = match &t.source {
         TextureSourceManifest::Image { path, resolved, srgb } => {
             let img = image::open(resolved).map_err(|e| {
-                Diagnostic::error(codes::MISSING_TEXTURE, format!("cannot read texture `{}` ({path}): {e}", t.name))
-                    .with_help("use a PNG or EXR file; paths are relative to the .npr file")
+                Diagnostic::error(
+                    codes::MISSING_TEXTURE,
+                    format!("cannot read texture `{}` ({path}): {e}", t.name),
+                )
+                .with_help("use a PNG or EXR file; paths are relative to the .npr file")
             })?;
             if img.width() > MAX_TEXTURE_SIZE || img.height() > MAX_TEXTURE_SIZE {
                 return Err(Diagnostic::error(
                     codes::LIMIT_EXCEEDED,
-                    format!("texture `{}` is {}x{}, over the {MAX_TEXTURE_SIZE} px limit", t.name, img.width(), img.height()),
+                    format!(
+                        "texture `{}` is {}x{}, over the {MAX_TEXTURE_SIZE} px limit",
+                        t.name,
+                        img.width(),
+                        img.height()
+                    ),
                 )
                 .with_help("downscale the image file"));
             }
@@ -115,7 +130,14 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
             }
             (px, w, h, *srgb, false)
         }
-        TextureSourceManifest::Noise { size, octaves, seed, gradient, channels, frequency } => {
+        TextureSourceManifest::Noise {
+            size,
+            octaves,
+            seed,
+            gradient,
+            channels,
+            frequency,
+        } => {
             let img = texgen::generate(&NoiseSpec {
                 size: *size,
                 octaves: *octaves,
@@ -130,7 +152,10 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
     let mut levels = vec![(pixels, w, h)];
     if t.mips {
         while levels.last().is_some_and(|(_, w, h)| *w > 1 || *h > 1) {
-            let (p, w, h) = levels.last().map(|(p, w, h)| downsample_box(p, *w, *h)).unwrap_or_default();
+            let (p, w, h) = levels
+                .last()
+                .map(|(p, w, h)| downsample_box(p, *w, *h))
+                .unwrap_or_default();
             levels.push((p, w, h));
         }
     }
@@ -144,26 +169,52 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
     let texture = device.create_texture(&desc(w, h, levels.len() as u32, format));
     for (mip, (px, lw, lh)) in levels.iter().enumerate() {
         let (bytes, bpp): (Vec<u8>, u32) = if half_float {
-            let halves: Vec<u16> = px.iter().flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits())).collect();
+            let halves: Vec<u16> = px
+                .iter()
+                .flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits()))
+                .collect();
             (bytemuck::cast_slice(&halves).to_vec(), 8)
         } else {
             let enc = |c: f32| if srgb { linear_to_srgb(c) } else { c };
             (
                 px.iter()
-                    .flat_map(|p| [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+                    .flat_map(|p| {
+                        [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+                    })
                     .collect(),
                 4,
             )
         };
         queue.write_texture(
-            wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: mip as u32, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
             &bytes,
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(lw * bpp), rows_per_image: Some(*lh) },
-            wgpu::Extent3d { width: *lw, height: *lh, depth_or_array_layers: 1 },
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(lw * bpp),
+                rows_per_image: Some(*lh),
+            },
+            wgpu::Extent3d {
+                width: *lw,
+                height: *lh,
+                depth_or_array_layers: 1,
+            },
         );
     }
-    let address = if t.wrap_repeat { wgpu::AddressMode::Repeat } else { wgpu::AddressMode::ClampToEdge };
-    let filter = if t.filter_linear { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
+    let address = if t.wrap_repeat {
+        wgpu::AddressMode::Repeat
+    } else {
+        wgpu::AddressMode::ClampToEdge
+    };
+    let filter = if t.filter_linear {
+        wgpu::FilterMode::Linear
+    } else {
+        wgpu::FilterMode::Nearest
+    };
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some(&t.name),
         address_mode_u: address,
@@ -171,7 +222,11 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
         address_mode_w: address,
         mag_filter: filter,
         min_filter: filter,
-        mipmap_filter: if t.filter_linear { wgpu::MipmapFilterMode::Linear } else { wgpu::MipmapFilterMode::Nearest },
+        mipmap_filter: if t.filter_linear {
+            wgpu::MipmapFilterMode::Linear
+        } else {
+            wgpu::MipmapFilterMode::Nearest
+        },
         ..Default::default()
     });
     Ok(GpuTexture { texture, sampler })

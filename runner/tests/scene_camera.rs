@@ -53,9 +53,7 @@ fn the_field_of_view_reaches_the_top_edge() {
     assert!((pose.fov_y_rad - 50f32.to_radians()).abs() < 1e-6);
     // A point at half the fov above the view axis lands on y = 1.
     let distance = 3.0;
-    let up_edge = pose.eye
-        + pose.forward() * distance
-        + pose.true_up() * distance * (pose.fov_y_rad / 2.0).tan();
+    let up_edge = pose.eye + pose.forward() * distance + pose.true_up() * distance * (pose.fov_y_rad / 2.0).tan();
     let projected = ndc(&pose, 0, 1.0, up_edge);
     assert!(
         (projected.y - 1.0).abs() < 1e-4 && projected.x.abs() < 1e-4,

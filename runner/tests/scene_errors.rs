@@ -66,10 +66,7 @@ fn malformed_toml_points_at_the_syntax_error() {
 
 #[test]
 fn unclosed_array_is_one_error_not_a_cascade() {
-    let (diagnostics, _) = errors_in(
-        "[camera]\nposition = [0.0, 0.5, 3.0\nfov = 40\n",
-        Path::new("."),
-    );
+    let (diagnostics, _) = errors_in("[camera]\nposition = [0.0, 0.5, 3.0\nfov = 40\n", Path::new("."));
     assert_eq!(diagnostics.len(), 1, "{diagnostics:#?}");
     assert_eq!(diagnostics[0].code, codes::BAD_SCENE);
 }
@@ -83,10 +80,7 @@ fn unknown_primitive_kind_suggests_the_closest() {
     );
     assert!(d.message.contains("sphre"));
     assert!(
-        d.help
-            .as_deref()
-            .unwrap_or_default()
-            .contains("did you mean `sphere`?"),
+        d.help.as_deref().unwrap_or_default().contains("did you mean `sphere`?"),
         "{d:#?}"
     );
     let d = single_error(
@@ -108,10 +102,7 @@ fn missing_mesh_file_reports_the_os_error() {
         "\"no-such-model.obj\"",
     );
     assert!(d.message.contains("no-such-model.obj"), "{d:#?}");
-    assert!(
-        d.message.contains("os error"),
-        "the OS error is included: {d:#?}"
-    );
+    assert!(d.message.contains("os error"), "the OS error is included: {d:#?}");
 }
 
 #[test]
@@ -122,30 +113,20 @@ fn unreadable_mesh_files_are_e0402() {
     // Not JSON, not GLB.
     std::fs::write(dir.join("broken.gltf"), "this is not glTF").expect("write");
     std::fs::write(dir.join("empty.obj"), "# nothing here\n").expect("write");
-    let text = with_object("mesh = \"folder.obj\"\n[[object]]\nmesh = \"broken.gltf\"\n[[object]]\nmesh = \"empty.obj\"");
+    let text =
+        with_object("mesh = \"folder.obj\"\n[[object]]\nmesh = \"broken.gltf\"\n[[object]]\nmesh = \"empty.obj\"");
     let (diagnostics, sources) = errors_in(&text, &dir);
     let spans: Vec<&str> = diagnostics
         .iter()
         .map(|d| sources.snippet(d.primary_span().expect("span")))
         .collect();
-    assert_eq!(
-        spans,
-        ["\"folder.obj\"", "\"broken.gltf\"", "\"empty.obj\""]
-    );
+    assert_eq!(spans, ["\"folder.obj\"", "\"broken.gltf\"", "\"empty.obj\""]);
     assert!(
         diagnostics.iter().all(|d| d.code == codes::UNREADABLE_MESH),
         "{diagnostics:#?}"
     );
-    assert!(
-        diagnostics[0].message.contains("os error"),
-        "{:#?}",
-        diagnostics[0]
-    );
-    assert!(
-        diagnostics[2].message.contains("no triangles"),
-        "{:#?}",
-        diagnostics[2]
-    );
+    assert!(diagnostics[0].message.contains("os error"), "{:#?}", diagnostics[0]);
+    assert!(diagnostics[2].message.contains("no triangles"), "{:#?}", diagnostics[2]);
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -156,10 +137,7 @@ fn unsupported_mesh_extension_names_the_supported_ones() {
         codes::UNREADABLE_MESH,
         "\"model.stl\"",
     );
-    assert!(
-        d.help.as_deref().unwrap_or_default().contains(".obj"),
-        "{d:#?}"
-    );
+    assert!(d.help.as_deref().unwrap_or_default().contains(".obj"), "{d:#?}");
 }
 
 #[test]
@@ -206,15 +184,8 @@ fn an_object_needs_exactly_one_shape() {
     let both = with_object("mesh = \"a.obj\"\nprimitive = { kind = \"cube\" }");
     let d = single_error(&both, codes::BAD_SCENE, "{ kind = \"cube\" }");
     assert!(d.message.contains("both"), "{d:#?}");
-    let d = single_error(
-        &with_object("name = \"ghost\""),
-        codes::BAD_SCENE,
-        "[[object]]",
-    );
-    assert!(
-        d.message.contains("neither") && d.message.contains("ghost"),
-        "{d:#?}"
-    );
+    let d = single_error(&with_object("name = \"ghost\""), codes::BAD_SCENE, "[[object]]");
+    assert!(d.message.contains("neither") && d.message.contains("ghost"), "{d:#?}");
 }
 
 #[test]
@@ -243,11 +214,7 @@ fn bad_values_point_at_the_value() {
     single_error(&format!("{CAMERA}fov = 0\n"), codes::BAD_SCENE, "0");
     single_error(&format!("{CAMERA}fov = -5.0\n"), codes::BAD_SCENE, "-5.0");
     single_error(&format!("{CAMERA}near = 0.0\n"), codes::BAD_SCENE, "0.0");
-    single_error(
-        &format!("{CAMERA}near = 5.0\nfar = 1.0\n"),
-        codes::BAD_SCENE,
-        "1.0",
-    );
+    single_error(&format!("{CAMERA}near = 5.0\nfar = 1.0\n"), codes::BAD_SCENE, "1.0");
     single_error(&format!("{CAMERA}ipd = -0.06\n"), codes::BAD_SCENE, "-0.06");
     single_error(&format!("{CAMERA}fov = inf\n"), codes::BAD_SCENE, "inf");
     single_error(
@@ -260,11 +227,7 @@ fn bad_values_point_at_the_value() {
         codes::BAD_SCENE,
         "[0.0, 0.0, 0.0]",
     );
-    single_error(
-        &format!("{CAMERA}[light]\nintensity = -1\n"),
-        codes::BAD_SCENE,
-        "-1",
-    );
+    single_error(&format!("{CAMERA}[light]\nintensity = -1\n"), codes::BAD_SCENE, "-1");
     single_error(
         &format!("background = \"#12345\"\n{CAMERA}"),
         codes::BAD_SCENE,
@@ -284,20 +247,9 @@ fn bad_values_point_at_the_value() {
 
 #[test]
 fn wrong_types_point_at_the_value() {
-    let d = single_error(
-        &format!("{CAMERA}fov = \"wide\"\n"),
-        codes::BAD_SCENE,
-        "\"wide\"",
-    );
-    assert!(
-        d.message.contains("must be a number, not a string"),
-        "{d:#?}"
-    );
-    single_error(
-        &format!("{CAMERA}up = [0.0, 1.0]\n"),
-        codes::BAD_SCENE,
-        "[0.0, 1.0]",
-    );
+    let d = single_error(&format!("{CAMERA}fov = \"wide\"\n"), codes::BAD_SCENE, "\"wide\"");
+    assert!(d.message.contains("must be a number, not a string"), "{d:#?}");
+    single_error(&format!("{CAMERA}up = [0.0, 1.0]\n"), codes::BAD_SCENE, "[0.0, 1.0]");
     single_error(
         &with_object("primitive = { kind = \"cube\" }\ntags = \"hero\""),
         codes::BAD_SCENE,
@@ -308,11 +260,7 @@ fn wrong_types_point_at_the_value() {
         codes::BAD_SCENE,
         "1",
     );
-    single_error(
-        &with_object("primitive = \"cube\""),
-        codes::BAD_SCENE,
-        "\"cube\"",
-    );
+    single_error(&with_object("primitive = \"cube\""), codes::BAD_SCENE, "\"cube\"");
     single_error(
         &with_object("primitive = { kind = \"cube\" }\nparams = { tint = \"red\" }"),
         codes::BAD_SCENE,
@@ -332,40 +280,31 @@ fn wrong_types_point_at_the_value() {
 
 #[test]
 fn unknown_fields_suggest_the_closest_known_one() {
-    let d = single_error("[camera]\npositon = [0.0, 0.5, 3.0]\nposition = [0.0, 0.5, 3.0]\ntarget = [0.0, 0.0, 0.0]\n", codes::BAD_SCENE, "positon");
-    assert!(
-        d.help.as_deref().unwrap_or_default().contains("`position`"),
-        "{d:#?}"
+    let d = single_error(
+        "[camera]\npositon = [0.0, 0.5, 3.0]\nposition = [0.0, 0.5, 3.0]\ntarget = [0.0, 0.0, 0.0]\n",
+        codes::BAD_SCENE,
+        "positon",
     );
+    assert!(d.help.as_deref().unwrap_or_default().contains("`position`"), "{d:#?}");
     let d = single_error(
         &format!("{CAMERA}[[objects]]\nmesh = \"a.obj\"\n"),
         codes::BAD_SCENE,
         "objects",
     );
-    assert!(
-        d.help.as_deref().unwrap_or_default().contains("`object`"),
-        "{d:#?}"
-    );
+    assert!(d.help.as_deref().unwrap_or_default().contains("`object`"), "{d:#?}");
     let d = single_error(
         &with_object("primitive = { kind = \"sphere\", radius = 1.0, segmnets = 8 }"),
         codes::BAD_SCENE,
         "segmnets",
     );
-    assert!(
-        d.help.as_deref().unwrap_or_default().contains("`segments`"),
-        "{d:#?}"
-    );
+    assert!(d.help.as_deref().unwrap_or_default().contains("`segments`"), "{d:#?}");
 }
 
 #[test]
 fn camera_problems() {
     let d = single_error("background = \"#000000\"\n", codes::BAD_SCENE, "");
     assert!(d.message.contains("camera"), "{d:#?}");
-    let d = single_error(
-        "[camera]\nposition = [0.0, 0.0, 3.0]\n",
-        codes::BAD_SCENE,
-        "[camera]",
-    );
+    let d = single_error("[camera]\nposition = [0.0, 0.0, 3.0]\n", codes::BAD_SCENE, "[camera]");
     assert!(d.message.contains("target"), "{d:#?}");
     single_error(
         "[camera]\nposition = [1.0, 1.0, 1.0]\ntarget = [1.0, 1.0, 1.0]\n",
@@ -377,35 +316,27 @@ fn camera_problems() {
         codes::BAD_SCENE,
         "[0.0, 5.0, 0.0]",
     );
-    assert!(
-        d.help.as_deref().unwrap_or_default().contains("up"),
-        "{d:#?}"
-    );
+    assert!(d.help.as_deref().unwrap_or_default().contains("up"), "{d:#?}");
     let keys = "[camera]\ntarget = [0.0, 0.0, 0.0]\n[[camera.keys]]\ntime = 1.0\nposition = [0.0, 0.0, 3.0]\n[[camera.keys]]\ntime = 1.0\nposition = [1.0, 0.0, 3.0]\n";
     let (diagnostics, sources) = errors_in(keys, Path::new("."));
     assert_eq!(diagnostics.len(), 1);
     let span = diagnostics[0].primary_span().expect("span");
     // The second key's time.
-    assert_eq!(
-        span.start as usize,
-        keys.rfind("1.0\nposition").expect("written")
-    );
+    assert_eq!(span.start as usize, keys.rfind("1.0\nposition").expect("written"));
     assert_eq!(sources.snippet(span), "1.0");
     // A key with nothing to inherit: both missing fields, at the key.
-    let (diagnostics, sources) =
-        errors_in("[camera]\n[[camera.keys]]\ntime = 0.0\n", Path::new("."));
+    let (diagnostics, sources) = errors_in("[camera]\n[[camera.keys]]\ntime = 0.0\n", Path::new("."));
     assert_eq!(diagnostics.len(), 2);
     for d in &diagnostics {
-        assert_eq!(
-            sources.snippet(d.primary_span().expect("span")),
-            "[[camera.keys]]"
-        );
+        assert_eq!(sources.snippet(d.primary_span().expect("span")), "[[camera.keys]]");
     }
 }
 
 #[test]
 fn duplicate_object_names_point_at_the_second() {
-    let text = with_object("name = \"a\"\nprimitive = { kind = \"cube\" }\n[[object]]\nname = \"a\"\nprimitive = { kind = \"plane\" }");
+    let text = with_object(
+        "name = \"a\"\nprimitive = { kind = \"cube\" }\n[[object]]\nname = \"a\"\nprimitive = { kind = \"plane\" }",
+    );
     let (diagnostics, sources) = errors_in(&text, Path::new("."));
     assert_eq!(diagnostics.len(), 1);
     let span = diagnostics[0].primary_span().expect("span");
@@ -442,10 +373,7 @@ fn an_unreadable_scene_file_is_an_error_not_a_panic() {
     let result = load_scene(Path::new("/definitely/not/here/scene.toml"), &mut sources);
     let diagnostics = result.expect_err("error");
     assert_eq!(diagnostics[0].code, codes::BAD_SCENE);
-    assert!(
-        diagnostics[0].message.contains("os error"),
-        "{diagnostics:#?}"
-    );
+    assert!(diagnostics[0].message.contains("os error"), "{diagnostics:#?}");
 }
 
 /// Every prefix of a valid scene, and a few mutations, parse without

@@ -41,11 +41,7 @@ fn assert_sound_attributes(mesh: &Mesh) {
     if let Some(tangents) = &mesh.tangents {
         for (t, n) in tangents.iter().zip(&mesh.normals) {
             let t3 = Vec3::new(t[0], t[1], t[2]);
-            assert!(
-                (t3.length() - 1.0).abs() < 1e-5,
-                "{}: tangent {t:?}",
-                mesh.source
-            );
+            assert!((t3.length() - 1.0).abs() < 1e-5, "{}: tangent {t:?}", mesh.source);
             assert!(
                 t3.dot(Vec3::from_array(*n)).abs() < 1e-5,
                 "{}: tangent {t:?} vs normal {n:?}",
@@ -59,12 +55,8 @@ fn assert_sound_attributes(mesh: &Mesh) {
 /// On a closed, consistently wound mesh, the smooth normals point away from
 /// the centroid almost everywhere.
 fn fraction_facing_outwards(mesh: &Mesh) -> f32 {
-    let centroid: Vec3 = mesh
-        .positions
-        .iter()
-        .map(|p| Vec3::from_array(*p))
-        .sum::<Vec3>()
-        / mesh.positions.len() as f32;
+    let centroid: Vec3 =
+        mesh.positions.iter().map(|p| Vec3::from_array(*p)).sum::<Vec3>() / mesh.positions.len() as f32;
     let outwards = mesh
         .positions
         .iter()
@@ -120,11 +112,7 @@ fn cow_has_computed_normals_and_no_uvs() {
     assert!(cow.uvs.is_none() && cow.tangents.is_none());
     assert!(!cow.has(Attribute::Uv) && !cow.has(Attribute::Tangent));
     assert_sound_attributes(cow);
-    assert!(
-        fraction_facing_outwards(cow) > 0.7,
-        "{}",
-        fraction_facing_outwards(cow)
-    );
+    assert!(fraction_facing_outwards(cow) > 0.7, "{}", fraction_facing_outwards(cow));
 }
 
 #[test]
@@ -143,27 +131,13 @@ fn check_attributes_flags_only_the_cow() {
     let diagnostic = &diagnostics[0];
     assert_eq!(diagnostic.code, dsl::codes::MISSING_ATTRIBUTE);
     let span = diagnostic.primary_span().expect("points at the mesh");
-    assert_eq!(
-        sources.snippet(span),
-        "\"../../../../shared/assets/models/cow.obj\""
-    );
-    assert!(
-        diagnostic
-            .message
-            .contains("the style `hatching` reads `uv`")
-            && diagnostic.message.contains("`cow`")
-    );
+    assert_eq!(sources.snippet(span), "\"../../../../shared/assets/models/cow.obj\"");
+    assert!(diagnostic.message.contains("the style `hatching` reads `uv`") && diagnostic.message.contains("`cow`"));
     let help = diagnostic.help.as_deref().unwrap_or_default();
-    assert!(
-        help.contains("spot.obj has UVs; cow.obj does not"),
-        "{help}"
-    );
+    assert!(help.contains("spot.obj has UVs; cow.obj does not"), "{help}");
     assert!(help.contains("use a primitive"), "{help}");
     let rendered = dsl::diagnostic::render(&diagnostics, &sources, false);
-    assert!(
-        rendered.contains("E0403") && rendered.contains("cow.obj"),
-        "{rendered}"
-    );
+    assert!(rendered.contains("E0403") && rendered.contains("cow.obj"), "{rendered}");
 
     // Tangents come with UVs, so the same object lacks them.
     assert_eq!(
@@ -173,9 +147,7 @@ fn check_attributes_flags_only_the_cow() {
         1
     );
     assert_eq!(
-        scene
-            .check_attributes(&[Attribute::Uv, Attribute::Tangent], "x")
-            .len(),
+        scene.check_attributes(&[Attribute::Uv, Attribute::Tangent], "x").len(),
         1
     );
     assert!(scene
@@ -187,10 +159,7 @@ fn check_attributes_flags_only_the_cow() {
 fn the_scene_file_sets_light_background_transforms_and_params() {
     let (scene, sources) = load_spot_cow();
     assert_eq!(scene.objects.len(), 3);
-    assert_eq!(
-        scene.background,
-        [32.0 / 255.0, 32.0 / 255.0, 32.0 / 255.0, 1.0]
-    );
+    assert_eq!(scene.background, [32.0 / 255.0, 32.0 / 255.0, 32.0 / 255.0, 1.0]);
     assert!((scene.light.direction - Vec3::new(0.5, 1.0, 0.8).normalize()).length() < 1e-6);
     assert_eq!((scene.light.color, scene.light.intensity), ([1.0; 3], 2.0));
 
@@ -199,10 +168,7 @@ fn the_scene_file_sets_light_background_transforms_and_params() {
     assert!(spot.casts_shadows && spot.has_tag("hero"));
     // Rotated 90° about Y: +X goes to -Z.
     assert!((spot.model.transform_vector3(Vec3::X) - Vec3::NEG_Z).length() < 1e-6);
-    assert_eq!(
-        spot.params["tint"],
-        vec![1.0, 128.0 / 255.0, 128.0 / 255.0, 1.0]
-    );
+    assert_eq!(spot.params["tint"], vec![1.0, 128.0 / 255.0, 128.0 / 255.0, 1.0]);
     assert_eq!(spot.params["breakup"], vec![0.5]);
     assert_eq!(spot.params["offset"], vec![1.0, 2.0]);
     assert_eq!(spot.params["wobble"], vec![1.0]);
@@ -218,14 +184,8 @@ fn the_scene_file_sets_light_background_transforms_and_params() {
 
     // The unnamed sphere is named after its kind.
     let sphere = object(&scene, "sphere");
-    assert_eq!(
-        sphere.mesh.source,
-        "sphere(radius=0.5, segments=64, rings=32)"
-    );
-    assert_eq!(
-        sources.snippet(sphere.mesh_span),
-        "{ kind = \"sphere\", radius = 0.5 }"
-    );
+    assert_eq!(sphere.mesh.source, "sphere(radius=0.5, segments=64, rings=32)");
+    assert_eq!(sources.snippet(sphere.mesh_span), "{ kind = \"sphere\", radius = 0.5 }");
     assert_eq!(scene.triangle_count(), 5856 + 5804 + 2 * 64 * 31);
 }
 
@@ -270,12 +230,7 @@ struct QuadAsset {
     nodes: &'static str,
 }
 
-const POSITIONS: [[f32; 3]; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [1.0, 1.0, 0.0],
-    [0.0, 1.0, 0.0],
-];
+const POSITIONS: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 const UVS: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 const INDICES: [u16; 6] = [0, 1, 2, 0, 2, 3];
 
@@ -297,27 +252,21 @@ impl QuadAsset {
         let mut views = Vec::new();
         let mut accessors = Vec::new();
         let mut attributes = Vec::new();
-        let mut add =
-            |bytes: &mut Vec<u8>, data: Vec<u8>, accessor: String, attribute: Option<&str>| {
-                views.push(format!(
-                    r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-                    bytes.len(),
-                    data.len()
-                ));
-                bytes.extend(data);
-                let index = accessors.len();
-                accessors.push(accessor.replace("VIEW", &(views.len() - 1).to_string()));
-                if let Some(name) = attribute {
-                    attributes.push(format!(r#""{name}":{index}"#));
-                }
-                index
-            };
-        let floats = |values: &[f32]| {
-            values
-                .iter()
-                .flat_map(|v| v.to_le_bytes())
-                .collect::<Vec<u8>>()
+        let mut add = |bytes: &mut Vec<u8>, data: Vec<u8>, accessor: String, attribute: Option<&str>| {
+            views.push(format!(
+                r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+                bytes.len(),
+                data.len()
+            ));
+            bytes.extend(data);
+            let index = accessors.len();
+            accessors.push(accessor.replace("VIEW", &(views.len() - 1).to_string()));
+            if let Some(name) = attribute {
+                attributes.push(format!(r#""{name}":{index}"#));
+            }
+            index
         };
+        let floats = |values: &[f32]| values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>();
         add(
             &mut bytes,
             floats(POSITIONS.as_flattened()),
@@ -372,7 +321,9 @@ impl QuadAsset {
     fn gltf_with_data_uri(&self) -> Vec<u8> {
         let (bytes, _) = self.build(&|_| String::new());
         let encoded = base64(&bytes);
-        let (_, json) = self.build(&|length| format!(r#"{{"byteLength":{length},"uri":"data:application/octet-stream;base64,{encoded}"}}"#));
+        let (_, json) = self.build(&|length| {
+            format!(r#"{{"byteLength":{length},"uri":"data:application/octet-stream;base64,{encoded}"}}"#)
+        });
         json.into_bytes()
     }
 
@@ -404,11 +355,7 @@ fn base64(bytes: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for chunk in bytes.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
         let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
         for k in 0..4 {
             if k <= chunk.len() {
@@ -432,7 +379,8 @@ fn scratch_dir(test: &str) -> PathBuf {
 /// Loads `file` (written into `dir`) as the only object of a scene.
 fn load_single_mesh(dir: &Path, file: &str, bytes: &[u8]) -> Arc<Mesh> {
     std::fs::write(dir.join(file), bytes).expect("write asset");
-    let text = format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n");
+    let text =
+        format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n");
     match parse_scene(&text, dsl::FileId(0), dir) {
         Ok(scene) => Arc::clone(&scene.objects[0].mesh),
         Err(diagnostics) => panic!("{diagnostics:#?}"),
@@ -444,11 +392,7 @@ const NESTED_NODES: &str = r#"[{"translation":[1,2,3],"children":[1]},{"scale":[
 #[test]
 fn gltf_round_trip_bakes_node_transforms() {
     let dir = scratch_dir("gltf-round-trip");
-    let mesh = load_single_mesh(
-        &dir,
-        "quad.gltf",
-        &QuadAsset::plain(NESTED_NODES).gltf_with_data_uri(),
-    );
+    let mesh = load_single_mesh(&dir, "quad.gltf", &QuadAsset::plain(NESTED_NODES).gltf_with_data_uri());
     let expected: Vec<[f32; 3]> = POSITIONS
         .iter()
         .map(|p| [2.0 * p[0] + 1.0, 2.0 * p[1] + 2.0, 3.0])
@@ -462,10 +406,7 @@ fn gltf_round_trip_bakes_node_transforms() {
     );
     assert_eq!(mesh.indices, INDICES.map(u32::from));
     // Derived tangents match what a glTF exporter writes for this layout.
-    assert_eq!(
-        mesh.tangents.as_deref(),
-        Some(&[[1.0, 0.0, 0.0, 1.0]; 4][..])
-    );
+    assert_eq!(mesh.tangents.as_deref(), Some(&[[1.0, 0.0, 0.0, 1.0]; 4][..]));
     assert!(mesh.source.ends_with("quad.gltf"));
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -500,10 +441,7 @@ fn a_mirroring_node_flips_winding_and_tangent_handedness() {
         assert!((b - a).cross(c - a).z > 0.0, "{triangle:?} winds clockwise");
     }
     let tangents = mesh.tangents.as_ref().expect("TANGENT given");
-    assert!(
-        tangents.iter().all(|t| *t == [-1.0, 0.0, 0.0, -1.0]),
-        "{tangents:?}"
-    );
+    assert!(tangents.iter().all(|t| *t == [-1.0, 0.0, 0.0, -1.0]), "{tangents:?}");
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -533,17 +471,12 @@ fn base64_encoder_matches_rfc_4648_vectors() {
 /// Loads `file` expecting one E0402 on its `mesh` string.
 fn mesh_error(dir: &Path, file: &str, bytes: &[u8]) -> dsl::Diagnostic {
     std::fs::write(dir.join(file), bytes).expect("write asset");
-    let text = format!(
-        "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n"
-    );
+    let text =
+        format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n");
     let diagnostics = parse_scene(&text, dsl::FileId(0), dir).expect_err("a broken asset");
     assert_eq!(diagnostics.len(), 1, "{diagnostics:#?}");
     let diagnostic = diagnostics.into_iter().next().expect("one");
-    assert_eq!(
-        diagnostic.code,
-        dsl::codes::UNREADABLE_MESH,
-        "{diagnostic:#?}"
-    );
+    assert_eq!(diagnostic.code, dsl::codes::UNREADABLE_MESH, "{diagnostic:#?}");
     let span = diagnostic.primary_span().expect("span");
     assert_eq!(&text[span.range()], format!("\"{file}\""));
     diagnostic

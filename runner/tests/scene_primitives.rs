@@ -62,11 +62,7 @@ fn check_common(mesh: &Mesh) {
     for triangle in mesh.indices.chunks_exact(3) {
         let [a, b, c] = [0, 1, 2].map(|k| v3(mesh.positions[triangle[k] as usize]));
         let face = (b - a).cross(c - a);
-        assert!(
-            face.length() > 0.0,
-            "{}: degenerate triangle {triangle:?}",
-            mesh.source
-        );
+        assert!(face.length() > 0.0, "{}: degenerate triangle {triangle:?}", mesh.source);
         let vertex_normals: Vec3 = triangle.iter().map(|&i| v3(mesh.normals[i as usize])).sum();
         assert!(
             face.dot(vertex_normals) > 0.0,
@@ -120,10 +116,7 @@ fn sphere_normals_are_position_over_radius() {
     for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
         let p = v3(*p);
         assert!((p.length() - radius).abs() < 1e-5 * radius);
-        assert!(
-            (p / radius - v3(*n)).length() < 1e-5,
-            "normal {n:?} at {p:?}"
-        );
+        assert!((p / radius - v3(*n)).length() < 1e-5, "normal {n:?} at {p:?}");
     }
     check_tangents_match_uv_derivatives(&mesh, |p| p.y.abs() < 0.9 * radius);
 }
@@ -147,10 +140,7 @@ fn cube_faces_are_axis_aligned() {
     assert_eq!(mesh.vertex_count(), 24);
     for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
         // Exactly one axis, ±1, and the vertex lies on that face's plane.
-        let axis = n
-            .iter()
-            .position(|c| c.abs() == 1.0)
-            .expect("axis-aligned normal");
+        let axis = n.iter().position(|c| c.abs() == 1.0).expect("axis-aligned normal");
         assert_eq!(n.iter().filter(|c| **c == 0.0).count(), 2, "{n:?}");
         assert!((p[axis] - n[axis] * size / 2.0).abs() < 1e-6);
         assert!(p.iter().all(|c| c.abs() <= size / 2.0 + 1e-6));
@@ -175,10 +165,7 @@ fn torus_normals_point_away_from_the_tube_centre() {
         let p = v3(*p);
         let ring_centre = Vec3::new(p.x, 0.0, p.z).normalize() * major;
         let expected = (p - ring_centre) / minor;
-        assert!(
-            (expected.length() - 1.0).abs() < 1e-5,
-            "{p:?} is not on the tube"
-        );
+        assert!((expected.length() - 1.0).abs() < 1e-5, "{p:?} is not on the tube");
         assert!((expected - v3(*n)).length() < 1e-5, "normal {n:?} at {p:?}");
     }
     check_tangents_match_uv_derivatives(&mesh, |_| true);
@@ -209,10 +196,7 @@ fn cylinder_has_radial_sides_and_flat_caps() {
         let p = v3(*p);
         if n[1] == 0.0 {
             let radial = Vec3::new(p.x, 0.0, p.z) / radius;
-            assert!(
-                (radial - v3(*n)).length() < 1e-5,
-                "side normal {n:?} at {p:?}"
-            );
+            assert!((radial - v3(*n)).length() < 1e-5, "side normal {n:?} at {p:?}");
         } else {
             assert_eq!(n[1].abs(), 1.0);
             assert!(

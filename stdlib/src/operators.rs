@@ -3,7 +3,14 @@
 use crate::{Default, Operator, Param, Stage, Ty, Unit};
 
 const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
-    Param { name, ty, unit: Unit::None, default: Default::Required, range: None, doc }
+    Param {
+        name,
+        ty,
+        unit: Unit::None,
+        default: Default::Required,
+        range: None,
+        doc,
+    }
 }
 
 const UV_SCREEN: Param = Param {
@@ -20,7 +27,10 @@ pub static ALL: &[Operator] = &[
         name: "lambert",
         doc: "Lambert diffuse term max(n·l, 0); zero vectors give 0.",
         reference: "Lambert 1760; any graphics text",
-        params: &[p("n", Ty::Vec3, "surface normal"), p("l", Ty::Vec3, "direction towards the light")],
+        params: &[
+            p("n", Ty::Vec3, "surface normal"),
+            p("l", Ty::Vec3, "direction towards the light"),
+        ],
         returns: Ty::Float,
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/lambert.wgsl"),
@@ -30,7 +40,10 @@ pub static ALL: &[Operator] = &[
         name: "half_lambert",
         doc: "Half-Lambert (0.5·n·l + 0.5)²: soft falloff that keeps form on the shadow side.",
         reference: "Mitchell et al., Shading in Valve's Source Engine, SIGGRAPH 2006 course",
-        params: &[p("n", Ty::Vec3, "surface normal"), p("l", Ty::Vec3, "direction towards the light")],
+        params: &[
+            p("n", Ty::Vec3, "surface normal"),
+            p("l", Ty::Vec3, "direction towards the light"),
+        ],
         returns: Ty::Float,
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/half_lambert.wgsl"),
@@ -42,7 +55,14 @@ pub static ALL: &[Operator] = &[
         reference: "Lake et al., Stylized Rendering Techniques for Scalable Real-Time 3D Animation, NPAR 2000",
         params: &[
             p("x", Ty::Float, "the value to quantize, clamped to [0, 1]"),
-            Param { name: "steps", ty: Ty::Int, unit: Unit::None, default: Default::Number(3.0), range: Some((1.0, 16.0)), doc: "number of bands" },
+            Param {
+                name: "steps",
+                ty: Ty::Int,
+                unit: Unit::None,
+                default: Default::Number(3.0),
+                range: Some((1.0, 16.0)),
+                doc: "number of bands",
+            },
         ],
         returns: Ty::Float,
         stage: Stage::Any,
@@ -55,8 +75,22 @@ pub static ALL: &[Operator] = &[
         reference: "Age of Sail (Harvill et al. 2019), §5.1 thresholded shadow shapes",
         params: &[
             p("x", Ty::Float, "the value to threshold"),
-            Param { name: "lo", ty: Ty::Float, unit: Unit::None, default: Default::Number(0.45), range: None, doc: "lower edge of the band" },
-            Param { name: "hi", ty: Ty::Float, unit: Unit::None, default: Default::Number(0.55), range: None, doc: "upper edge of the band" },
+            Param {
+                name: "lo",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.45),
+                range: None,
+                doc: "lower edge of the band",
+            },
+            Param {
+                name: "hi",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.55),
+                range: None,
+                doc: "upper edge of the band",
+            },
         ],
         returns: Ty::Float,
         stage: Stage::Any,
@@ -70,8 +104,22 @@ pub static ALL: &[Operator] = &[
         params: &[
             p("src", Ty::Texture, "the target or texture to blur"),
             UV_SCREEN,
-            Param { name: "sigma", ty: Ty::Float, unit: Unit::Px, default: Default::Number(2.0), range: Some((0.3, 16.0)), doc: "standard deviation in texels of `src`" },
-            Param { name: "axis", ty: Ty::Enum(&["x", "y"]), unit: Unit::None, default: Default::Variant("x"), range: None, doc: "blur direction" },
+            Param {
+                name: "sigma",
+                ty: Ty::Float,
+                unit: Unit::Px,
+                default: Default::Number(2.0),
+                range: Some((0.3, 16.0)),
+                doc: "standard deviation in texels of `src`",
+            },
+            Param {
+                name: "axis",
+                ty: Ty::Enum(&["x", "y"]),
+                unit: Unit::None,
+                default: Default::Variant("x"),
+                range: None,
+                doc: "blur direction",
+            },
         ],
         returns: Ty::Vec4,
         stage: Stage::Image,
@@ -92,7 +140,10 @@ pub static ALL: &[Operator] = &[
         name: "sobel",
         doc: "Sobel gradient magnitude of channel r (e.g. depth), each axis scaled by 1/8.",
         reference: "Sobel & Feldman 1968; the Sobel baseline of the LSA contours paper",
-        params: &[p("src", Ty::Texture, "the target to differentiate (channel r)"), UV_SCREEN],
+        params: &[
+            p("src", Ty::Texture, "the target to differentiate (channel r)"),
+            UV_SCREEN,
+        ],
         returns: Ty::Float,
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/sobel.wgsl"),
@@ -106,8 +157,22 @@ pub static ALL: &[Operator] = &[
             p("normals", Ty::Texture, "view-space normals encoded as n·0.5 + 0.5"),
             p("depth", Ty::Texture, "linear depth in metres (channel r)"),
             UV_SCREEN,
-            Param { name: "depth_threshold", ty: Ty::Float, unit: Unit::Meters, default: Default::Number(0.1), range: Some((0.0, 100.0)), doc: "depth difference that counts as an edge" },
-            Param { name: "normal_threshold", ty: Ty::Float, unit: Unit::None, default: Default::Number(0.4), range: Some((0.0, 2.0)), doc: "normal difference that counts as an edge" },
+            Param {
+                name: "depth_threshold",
+                ty: Ty::Float,
+                unit: Unit::Meters,
+                default: Default::Number(0.1),
+                range: Some((0.0, 100.0)),
+                doc: "depth difference that counts as an edge",
+            },
+            Param {
+                name: "normal_threshold",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.4),
+                range: Some((0.0, 2.0)),
+                doc: "normal difference that counts as an edge",
+            },
         ],
         returns: Ty::Float,
         stage: Stage::Image,
@@ -140,7 +205,14 @@ pub static ALL: &[Operator] = &[
         reference: "luma-preserving saturation (Haeberli 1993)",
         params: &[
             p("c", Ty::Color, "colour"),
-            Param { name: "amount", ty: Ty::Float, unit: Unit::None, default: Default::Number(1.0), range: Some((0.0, 4.0)), doc: "saturation factor" },
+            Param {
+                name: "amount",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(1.0),
+                range: Some((0.0, 4.0)),
+                doc: "saturation factor",
+            },
         ],
         returns: Ty::Color,
         stage: Stage::Any,
@@ -154,7 +226,14 @@ pub static ALL: &[Operator] = &[
         params: &[
             p("base", Ty::Color, "the underlying colour"),
             p("blend", Ty::Color, "the colour overlaid"),
-            Param { name: "opacity", ty: Ty::Float, unit: Unit::None, default: Default::Number(1.0), range: Some((0.0, 1.0)), doc: "how much of the overlay result to use" },
+            Param {
+                name: "opacity",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(1.0),
+                range: Some((0.0, 1.0)),
+                doc: "how much of the overlay result to use",
+            },
         ],
         returns: Ty::Color,
         stage: Stage::Any,
@@ -167,7 +246,14 @@ pub static ALL: &[Operator] = &[
         reference: "bilinear texture filtering",
         params: &[
             p("tex", Ty::SampledTexture, "texture or target to read"),
-            Param { name: "uv", ty: Ty::Vec2, unit: Unit::None, default: Default::Builtin("screen_uv"), range: None, doc: "where to read, in [0, 1]²" },
+            Param {
+                name: "uv",
+                ty: Ty::Vec2,
+                unit: Unit::None,
+                default: Default::Builtin("screen_uv"),
+                range: None,
+                doc: "where to read, in [0, 1]²",
+            },
         ],
         returns: Ty::Vec4,
         stage: Stage::Any,

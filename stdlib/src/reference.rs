@@ -117,7 +117,13 @@ pub fn sobel(src: &ImageF64, uv: [f64; 2]) -> f64 {
     (gx * gx + gy * gy).sqrt() / 8.0
 }
 
-pub fn normal_depth_edges(normals: &ImageF64, depth: &ImageF64, uv: [f64; 2], depth_threshold: f64, normal_threshold: f64) -> f64 {
+pub fn normal_depth_edges(
+    normals: &ImageF64,
+    depth: &ImageF64,
+    uv: [f64; 2],
+    depth_threshold: f64,
+    normal_threshold: f64,
+) -> f64 {
     let (nx, ny) = normals.pixel_of(uv);
     let (dx, dy) = depth.pixel_of(uv);
     let n = |i: i64, j: i64| {
@@ -151,13 +157,22 @@ pub fn luminance(c: [f64; 4]) -> f64 {
 
 pub fn saturation(c: [f64; 4], amount: f64) -> [f64; 4] {
     let g = luminance(c);
-    [g + (c[0] - g) * amount, g + (c[1] - g) * amount, g + (c[2] - g) * amount, c[3]]
+    [
+        g + (c[0] - g) * amount,
+        g + (c[1] - g) * amount,
+        g + (c[2] - g) * amount,
+        c[3],
+    ]
 }
 
 pub fn overlay(base: [f64; 4], blend: [f64; 4], opacity: f64) -> [f64; 4] {
     let ch = |i: usize| {
         let (b, s) = (base[i], blend[i]);
-        let o = if b < 0.5 { 2.0 * b * s } else { 1.0 - 2.0 * (1.0 - b) * (1.0 - s) };
+        let o = if b < 0.5 {
+            2.0 * b * s
+        } else {
+            1.0 - 2.0 * (1.0 - b) * (1.0 - s)
+        };
         b + (o - b) * opacity
     };
     [ch(0), ch(1), ch(2), base[3]]
@@ -170,13 +185,12 @@ pub fn sample(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
     let (x0, y0) = (x0 as i64, y0 as i64);
-    let mut out = [0.0; 4];
-    for c in 0..4 {
-        let top = tex.load(x0, y0)[c] * (1.0 - fx) + tex.load(x0 + 1, y0)[c] * fx;
-        let bottom = tex.load(x0, y0 + 1)[c] * (1.0 - fx) + tex.load(x0 + 1, y0 + 1)[c] * fx;
-        out[c] = top * (1.0 - fy) + bottom * fy;
-    }
-    out
+    let (a, b, c, d) = (tex.load(x0, y0), tex.load(x0 + 1, y0), tex.load(x0, y0 + 1), tex.load(x0 + 1, y0 + 1));
+    std::array::from_fn(|i| {
+        let top = a[i] * (1.0 - fx) + b[i] * fx;
+        let bottom = c[i] * (1.0 - fx) + d[i] * fx;
+        top * (1.0 - fy) + bottom * fy
+    })
 }
 
 /// Operators that have a reference here (checked by the completeness test).

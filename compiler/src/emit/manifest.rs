@@ -41,7 +41,12 @@ pub fn build(
                 }
             }
             let outputs = (0..pass.outputs.len())
-                .filter_map(|i| alloc.target_index(TargetRef { pass: *pid, output: i as u32 }))
+                .filter_map(|i| {
+                    alloc.target_index(TargetRef {
+                        pass: *pid,
+                        output: i as u32,
+                    })
+                })
                 .collect();
             PassManifest {
                 name: pass.name.clone(),
@@ -75,7 +80,14 @@ pub fn build(
                     resolved: resolved.clone(),
                     srgb: *srgb,
                 },
-                TextureSource::Noise { size, octaves, seed, gradient, channels, frequency } => TextureSourceManifest::Noise {
+                TextureSource::Noise {
+                    size,
+                    octaves,
+                    seed,
+                    gradient,
+                    channels,
+                    frequency,
+                } => TextureSourceManifest::Noise {
                     size: *size,
                     octaves: *octaves,
                     seed: *seed,
@@ -97,7 +109,10 @@ pub fn build(
             let d = ir.expr(p.default);
             let (default, percent) = match &d.kind {
                 ExprKind::PercentOfHeight(f) => (vec![*f * 100.0], true),
-                _ => (const_eval(ir, p.default).map(|c| c.as_f64s()).unwrap_or_default(), false),
+                _ => (
+                    const_eval(ir, p.default).map(|c| c.as_f64s()).unwrap_or_default(),
+                    false,
+                ),
             };
             let (ty, variants) = match &p.ty {
                 ParamTy::Enum(v) => (format!("enum({})", v.join("|")), v.clone()),

@@ -53,8 +53,7 @@ fn short_name(source: &str) -> String {
     if source.ends_with(')') {
         return source.to_string();
     }
-    Path::new(source).file_name().map_or_else(
-        || source.to_string(),
-        |name| name.to_string_lossy().into_owned(),
-    )
+    Path::new(source)
+        .file_name()
+        .map_or_else(|| source.to_string(), |name| name.to_string_lossy().into_owned())
 }

@@ -127,9 +127,7 @@ impl Camera {
 impl CameraPose {
     /// Unit vector from the eye towards the target (-Z if they coincide).
     pub fn forward(&self) -> Vec3 {
-        (self.target - self.eye)
-            .try_normalize()
-            .unwrap_or(Vec3::NEG_Z)
+        (self.target - self.eye).try_normalize().unwrap_or(Vec3::NEG_Z)
     }
 
     /// Unit vector to the camera's right. When `up` is parallel to the view
@@ -193,8 +191,7 @@ mod tests {
     fn keys_are_sorted_and_equal_times_keep_the_last() {
         let template = Camera::looking_at(Vec3::Z, Vec3::ZERO);
         let camera =
-            Camera::with_keys(vec![key(2.0, 2.0), key(0.0, 0.0), key(2.0, 3.0)], &template)
-                .expect("non-empty");
+            Camera::with_keys(vec![key(2.0, 2.0), key(0.0, 0.0), key(2.0, 3.0)], &template).expect("non-empty");
         assert_eq!(camera.keys().len(), 2);
         assert_eq!(camera.keys()[1].position.x, 3.0);
         assert!(Camera::with_keys(vec![], &template).is_none());
@@ -210,8 +207,7 @@ mod tests {
     #[test]
     fn nan_time_is_the_first_key() {
         let template = Camera::looking_at(Vec3::Z, Vec3::ZERO);
-        let camera =
-            Camera::with_keys(vec![key(0.0, 0.0), key(1.0, 1.0)], &template).expect("keys");
+        let camera = Camera::with_keys(vec![key(0.0, 0.0), key(1.0, 1.0)], &template).expect("keys");
         assert_eq!(camera.pose(f64::NAN).eye.x, 0.0);
     }
 }

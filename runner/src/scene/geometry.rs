@@ -29,22 +29,13 @@ pub fn smooth_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> 
     });
     group_of_vertex
         .iter()
-        .map(|&group| {
-            group_sums[group]
-                .try_normalize()
-                .unwrap_or(Vec3::Y)
-                .to_array()
-        })
+        .map(|&group| group_sums[group].try_normalize().unwrap_or(Vec3::Y).to_array())
         .collect()
 }
 
 /// Normals read from a file, made unit length. Zero or non-finite ones (and
 /// the whole array if its length is wrong) are replaced by smooth normals.
-pub fn repair_normals(
-    positions: &[[f32; 3]],
-    indices: &[u32],
-    given: Vec<[f32; 3]>,
-) -> Vec<[f32; 3]> {
+pub fn repair_normals(positions: &[[f32; 3]], indices: &[u32], given: Vec<[f32; 3]>) -> Vec<[f32; 3]> {
     if given.len() != positions.len() {
         return smooth_normals(positions, indices);
     }
@@ -67,12 +58,7 @@ pub fn repair_normals(
 /// "green up" work). Triangles with degenerate UVs add
 /// nothing; a vertex left without a usable direction gets an arbitrary unit
 /// vector orthogonal to its normal.
-pub fn uv_tangents(
-    positions: &[[f32; 3]],
-    normals: &[[f32; 3]],
-    uvs: &[[f32; 2]],
-    indices: &[u32],
-) -> Vec<[f32; 4]> {
+pub fn uv_tangents(positions: &[[f32; 3]], normals: &[[f32; 3]], uvs: &[[f32; 2]], indices: &[u32]) -> Vec<[f32; 4]> {
     let mut along_u = vec![Vec3::ZERO; positions.len()];
     let mut towards_image_top = vec![Vec3::ZERO; positions.len()];
     for_each_triangle(positions, indices, |corners, p| {
@@ -126,14 +112,8 @@ pub fn repair_tangents(normals: &[[f32; 3]], given: Vec<[f32; 4]>) -> Vec<[f32; 
 pub fn any_orthogonal(normal: Vec3) -> Vec3 {
     // Project out the normal from the axis least aligned with it: always far
     // from parallel, so the result is well conditioned.
-    let axis = if normal.x.abs() < 0.9 {
-        Vec3::X
-    } else {
-        Vec3::Y
-    };
-    (axis - normal * normal.dot(axis))
-        .try_normalize()
-        .unwrap_or(Vec3::Z)
+    let axis = if normal.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+    (axis - normal * normal.dot(axis)).try_normalize().unwrap_or(Vec3::Z)
 }
 
 /// Gram-Schmidt: `direction` made orthogonal to `normal` and unit length,
@@ -165,23 +145,11 @@ fn corner_uvs(uvs: &[[f32; 2]], corners: [usize; 3]) -> Option<[Vec2; 3]> {
 
 /// Calls `visit` with the vertex indices and positions of every triangle
 /// whose indices are all in range (others are skipped, not a panic).
-fn for_each_triangle(
-    positions: &[[f32; 3]],
-    indices: &[u32],
-    mut visit: impl FnMut([usize; 3], [Vec3; 3]),
-) {
+fn for_each_triangle(positions: &[[f32; 3]], indices: &[u32], mut visit: impl FnMut([usize; 3], [Vec3; 3])) {
     for triangle in indices.chunks_exact(3) {
-        let corners = [
-            triangle[0] as usize,
-            triangle[1] as usize,
-            triangle[2] as usize,
-        ];
+        let corners = [triangle[0] as usize, triangle[1] as usize, triangle[2] as usize];
         let position = |vertex: usize| positions.get(vertex).map(|p| Vec3::from_array(*p));
-        if let (Some(a), Some(b), Some(c)) = (
-            position(corners[0]),
-            position(corners[1]),
-            position(corners[2]),
-        ) {
+        if let (Some(a), Some(b), Some(c)) = (position(corners[0]), position(corners[1]), position(corners[2])) {
             visit(corners, [a, b, c]);
         }
     }
@@ -195,11 +163,7 @@ fn weld_by_position(positions: &[[f32; 3]]) -> (Vec<usize>, usize) {
         .iter()
         .map(|p| {
             // `+ 0.0` turns -0.0 into 0.0 so the two weld together.
-            let key = [
-                (p[0] + 0.0).to_bits(),
-                (p[1] + 0.0).to_bits(),
-                (p[2] + 0.0).to_bits(),
-            ];
+            let key = [(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits(), (p[2] + 0.0).to_bits()];
             let next = group_of_position.len();
             *group_of_position.entry(key).or_insert(next)
         })
@@ -266,20 +230,10 @@ mod tests {
         let normals = smooth_normals(&positions, &[0, 1, 2]);
         // u along +x, v down along -y (an unmirrored image): the image top is
         // +y = +cross(z, x), so w = +1.
-        let tangents = uv_tangents(
-            &positions,
-            &normals,
-            &[[0.0, 1.0], [1.0, 1.0], [0.0, 0.0]],
-            &[0, 1, 2],
-        );
+        let tangents = uv_tangents(&positions, &normals, &[[0.0, 1.0], [1.0, 1.0], [0.0, 0.0]], &[0, 1, 2]);
         assert_eq!(tangents[0], [1.0, 0.0, 0.0, 1.0]);
         // v mirrored: handedness flips.
-        let tangents = uv_tangents(
-            &positions,
-            &normals,
-            &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            &[0, 1, 2],
-        );
+        let tangents = uv_tangents(&positions, &normals, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 2]);
         assert_eq!(tangents[0], [1.0, 0.0, 0.0, -1.0]);
     }
 
@@ -313,11 +267,7 @@ mod tests {
     #[test]
     fn repaired_normals_are_unit_and_zero_ones_are_recomputed() {
         let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        let normals = repair_normals(
-            &positions,
-            &[0, 1, 2],
-            vec![[0.0, 0.0, 2.0], [0.0; 3], [f32::NAN; 3]],
-        );
+        let normals = repair_normals(&positions, &[0, 1, 2], vec![[0.0, 0.0, 2.0], [0.0; 3], [f32::NAN; 3]]);
         assert_eq!(normals, vec![[0.0, 0.0, 1.0]; 3]);
     }
 }

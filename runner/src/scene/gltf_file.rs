@@ -24,29 +24,20 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
             "the file is not valid glTF 2.0; check it with the Khronos glTF validator",
         )
     };
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice(bytes).map_err(|err| malformed(err.to_string()))?;
-    let buffers = gltf::import_buffers(&document, Some(base_dir), blob)
-        .map_err(|err| malformed(format!("buffer: {err}")))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|err| malformed(err.to_string()))?;
+    let buffers =
+        gltf::import_buffers(&document, Some(base_dir), blob).map_err(|err| malformed(format!("buffer: {err}")))?;
 
     let mut merged = MergedPrimitives::new();
-    let roots: Vec<gltf::Node> = match document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-    {
+    let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => root_nodes(&document),
     };
-    let mut pending: Vec<(gltf::Node, Mat4, usize)> = roots
-        .into_iter()
-        .rev()
-        .map(|node| (node, Mat4::IDENTITY, 0))
-        .collect();
+    let mut pending: Vec<(gltf::Node, Mat4, usize)> =
+        roots.into_iter().rev().map(|node| (node, Mat4::IDENTITY, 0)).collect();
     while let Some((node, parent, depth)) = pending.pop() {
         if depth > MAX_NODE_DEPTH {
-            return Err(malformed(format!(
-                "the node hierarchy is deeper than {MAX_NODE_DEPTH}"
-            )));
+            return Err(malformed(format!("the node hierarchy is deeper than {MAX_NODE_DEPTH}")));
         }
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         if let Some(mesh) = node.mesh() {
@@ -62,12 +53,7 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         }
         // Reversed so that children pop in document order.
         let children: Vec<gltf::Node> = node.children().collect();
-        pending.extend(
-            children
-                .into_iter()
-                .rev()
-                .map(|child| (child, world, depth + 1)),
-        );
+        pending.extend(children.into_iter().rev().map(|child| (child, world, depth + 1)));
     }
     Ok(Mesh::from_parts(
         merged.positions,
@@ -157,9 +143,7 @@ impl MergedPrimitives {
             .map(|normals| normals.collect())
             .filter(|normals: &Vec<[f32; 3]>| normals.len() == vertex_count);
         extend_or_drop(&mut self.normals, normals, |n| {
-            (normal_matrix * Vec3::from_array(n))
-                .normalize_or_zero()
-                .to_array()
+            (normal_matrix * Vec3::from_array(n)).normalize_or_zero().to_array()
         });
         let uvs: Option<Vec<[f32; 2]>> = reader
             .read_tex_coords(0)
@@ -193,11 +177,7 @@ impl MergedPrimitives {
     }
 }
 
-fn extend_or_drop<T: Copy>(
-    merged: &mut Option<Vec<T>>,
-    part: Option<Vec<T>>,
-    convert: impl Fn(T) -> T,
-) {
+fn extend_or_drop<T: Copy>(merged: &mut Option<Vec<T>>, part: Option<Vec<T>>, convert: impl Fn(T) -> T) {
     match (merged.as_mut(), part) {
         (Some(all), Some(part)) => all.extend(part.into_iter().map(convert)),
         _ => *merged = None,

@@ -121,10 +121,7 @@ impl Mesh {
             return Err("it contains no triangles".into());
         }
         if !self.indices.chunks_exact(3).remainder().is_empty() {
-            return Err(format!(
-                "its index count {} is not a multiple of 3",
-                self.indices.len()
-            ));
+            return Err(format!("its index count {} is not a multiple of 3", self.indices.len()));
         }
         if let Some(bad) = self.indices.iter().find(|&&i| i as usize >= vertex_count) {
             return Err(format!(

@@ -33,8 +33,7 @@ impl MeshLoadError {
                 "mesh `{}` has {triangles} triangles, more than the limit of {MAX_TRIANGLES}",
                 path.display()
             ),
-            help: "decimate the mesh (e.g. Blender's Decimate modifier or MeshLab's quadric edge collapse)"
-                .into(),
+            help: "decimate the mesh (e.g. Blender's Decimate modifier or MeshLab's quadric edge collapse)".into(),
         }
     }
 }
@@ -53,9 +52,7 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
     if !matches!(extension.as_str(), "obj" | "gltf" | "glb") {
         return Err(MeshLoadError::unreadable(
             format!("unsupported mesh format `{}`", path.display()),
-            format!(
-                "npr reads {SUPPORTED_EXTENSIONS} meshes; convert the file, or use a `primitive`"
-            ),
+            format!("npr reads {SUPPORTED_EXTENSIONS} meshes; convert the file, or use a `primitive`"),
         ));
     }
     let bytes = std::fs::read(path).map_err(|err| {
@@ -77,10 +74,7 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
         ))
     })?;
     if mesh.triangle_count() > MAX_TRIANGLES {
-        return Err(MeshLoadError::too_many_triangles(
-            path,
-            mesh.triangle_count(),
-        ));
+        return Err(MeshLoadError::too_many_triangles(path, mesh.triangle_count()));
     }
     mesh.validate().map_err(|problem| {
         MeshLoadError::unreadable(

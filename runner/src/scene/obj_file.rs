@@ -19,15 +19,13 @@ pub fn parse_obj(bytes: &[u8], source: &str) -> Result<Mesh, MeshLoadError> {
         ..Default::default()
     };
     // Materials are irrelevant to npr: refuse to open .mtl files at all.
-    let (models, _materials) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    })
-    .map_err(|err| {
-        MeshLoadError::unreadable(
-            format!("cannot parse OBJ file `{source}`: {err}"),
-            "the file is not valid Wavefront OBJ; re-export it from a modelling tool",
-        )
-    })?;
+    let (models, _materials) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| Err(tobj::LoadError::OpenFileFailed))
+        .map_err(|err| {
+            MeshLoadError::unreadable(
+                format!("cannot parse OBJ file `{source}`: {err}"),
+                "the file is not valid Wavefront OBJ; re-export it from a modelling tool",
+            )
+        })?;
 
     let mut merged = MergedArrays::default();
     for model in &models {
@@ -139,8 +137,7 @@ f 1/1 2/2 3/3 4/4
 
     #[test]
     fn two_objects_are_merged_with_offset_indices() {
-        let text =
-            "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 4 5 6\n";
+        let text = "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 4 5 6\n";
         let mesh = parse_obj(text.as_bytes(), "two.obj").expect("valid OBJ");
         assert_eq!(mesh.vertex_count(), 6);
         assert_eq!(mesh.triangle_count(), 2);

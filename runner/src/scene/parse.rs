@@ -42,11 +42,7 @@ pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, V
         .map_or_else(Light::default, |fields| parse_light(fields, &mut report));
 
     let mut cache = MeshCache::default();
-    let object_tables = root.tables(
-        "object",
-        |index| format!("object #{}", index + 1),
-        &mut report,
-    );
+    let object_tables = root.tables("object", |index| format!("object #{}", index + 1), &mut report);
     let declarations: Vec<ObjectDecl> = object_tables
         .into_iter()
         .filter_map(|fields| parse_object(fields, base_dir, &mut cache, &mut report))

@@ -34,16 +34,10 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
         }
     }
     let fov_deg = fov.as_ref().map_or(DEFAULT_FOV_DEG, |fov| fov.value);
-    if let Some(fov) = fov
-        .as_ref()
-        .filter(|fov| !(fov.value > 0.0 && fov.value < 180.0))
-    {
+    if let Some(fov) = fov.as_ref().filter(|fov| !(fov.value > 0.0 && fov.value < 180.0)) {
         report.bad_scene(
             fov.span,
-            format!(
-                "`fov` must be between 0 and 180 degrees (exclusive), not {}",
-                fov.value
-            ),
+            format!("`fov` must be between 0 and 180 degrees (exclusive), not {}", fov.value),
             "out of range",
             "`fov` is the vertical field of view in degrees, e.g. `fov = 40.0`",
         );
@@ -104,15 +98,7 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
     } else {
         key_tables
             .into_iter()
-            .filter_map(|key_fields| {
-                parse_key(
-                    key_fields,
-                    position.as_ref(),
-                    target.as_ref(),
-                    up_axis,
-                    report,
-                )
-            })
+            .filter_map(|key_fields| parse_key(key_fields, position.as_ref(), target.as_ref(), up_axis, report))
             .collect()
     };
     check_distinct_times(&keys, report);
@@ -139,12 +125,8 @@ fn parse_key(
     report: &mut Report,
 ) -> Option<At<CameraKey>> {
     let time = fields.number("time", report);
-    let position = fields
-        .vec3("position", report)
-        .or_else(|| default_position.cloned());
-    let target = fields
-        .vec3("target", report)
-        .or_else(|| default_target.cloned());
+    let position = fields.vec3("position", report).or_else(|| default_position.cloned());
+    let target = fields.vec3("target", report).or_else(|| default_target.cloned());
     if time.is_none() && fields.span_of("time", report).is_none() {
         fields.missing("time", "time = 0.0", report);
     }
@@ -155,19 +137,14 @@ fn parse_key(
         if value.is_none() && fields.span_of(key, report).is_none() {
             report.bad_scene(
                 fields.header(),
-                format!(
-                    "{} has no `{key}`, and [camera] has none to inherit",
-                    fields.context()
-                ),
+                format!("{} has no `{key}`, and [camera] has none to inherit", fields.context()),
                 format!("`{key}` is required here"),
                 format!("add `{example}` to this key or to [camera]"),
             );
         }
     }
     // Point view errors at this key's own `position` when it has one.
-    let view_span = fields
-        .span_of("position", report)
-        .unwrap_or(fields.header());
+    let view_span = fields.span_of("position", report).unwrap_or(fields.header());
     fields.finish(report);
     let (time, position, target) = (time?, position?, target?);
     check_view(position.value, target.value, up, view_span, report);
@@ -191,8 +168,7 @@ fn check_view(position: Vec3, target: Vec3, up: Vec3, span: Span, report: &mut R
             "looks nowhere",
             "move `position` away from `target`",
         );
-    } else if up.length_squared() > 0.0 && forward.normalize().cross(up.normalize()).length() < 1e-6
-    {
+    } else if up.length_squared() > 0.0 && forward.normalize().cross(up.normalize()).length() < 1e-6 {
         report.bad_scene(
             span,
             "the camera looks straight along its `up` axis",

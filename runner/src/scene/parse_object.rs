@@ -52,9 +52,7 @@ pub fn parse_object(
     let mesh = read_mesh(&mut fields, base_dir, cache, report);
     let model = read_transform(&mut fields, report);
     let tags = read_tags(&mut fields, report);
-    let casts_shadows = fields
-        .boolean("casts_shadows", report)
-        .is_none_or(|flag| flag.value);
+    let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
     let (params, param_spans) = read_params(&mut fields, report);
     fields.finish(report);
     if report.diagnostics.len() > errors_before {
@@ -127,11 +125,7 @@ fn read_mesh(
         (None, Some(span)) => {
             let primitive = parse_primitive(primitive?, report)?;
             let description = primitive.description();
-            let kind = description
-                .split('(')
-                .next()
-                .unwrap_or("primitive")
-                .to_string();
+            let kind = description.split('(').next().unwrap_or("primitive").to_string();
             let mesh = cache
                 .primitives
                 .entry(description)
@@ -156,12 +150,8 @@ fn read_mesh(
 /// `translate`, `rotate` (degrees; Y, then X, then Z) and `scale`, composed
 /// as translate · rotate · scale.
 fn read_transform(fields: &mut Fields, report: &mut Report) -> Option<Mat4> {
-    let translate = fields
-        .vec3("translate", report)
-        .map_or(Vec3::ZERO, |t| t.value);
-    let rotate = fields
-        .vec3("rotate", report)
-        .map_or(Vec3::ZERO, |r| r.value);
+    let translate = fields.vec3("translate", report).map_or(Vec3::ZERO, |t| t.value);
+    let rotate = fields.vec3("rotate", report).map_or(Vec3::ZERO, |r| r.value);
     let scale = match fields.number_or_vec3("scale", report) {
         Some(scale) if scale.value.cmple(Vec3::ZERO).any() => {
             report.bad_scene(
@@ -177,12 +167,8 @@ fn read_transform(fields: &mut Fields, report: &mut Report) -> Option<Mat4> {
     };
     let rotate = rotate * (std::f32::consts::PI / 180.0);
     // Quaternion products apply right to left: Y first, then X, then Z.
-    let rotation = Quat::from_rotation_z(rotate.z)
-        * Quat::from_rotation_x(rotate.x)
-        * Quat::from_rotation_y(rotate.y);
-    Some(Mat4::from_scale_rotation_translation(
-        scale, rotation, translate,
-    ))
+    let rotation = Quat::from_rotation_z(rotate.z) * Quat::from_rotation_x(rotate.x) * Quat::from_rotation_y(rotate.y);
+    Some(Mat4::from_scale_rotation_translation(scale, rotation, translate))
 }
 
 fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
@@ -206,10 +192,7 @@ fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
 /// The `params` table: each binding is a number, a boolean (1 or 0), an
 /// array of 1 to 4 numbers, or a colour string (4 components).
 #[allow(clippy::type_complexity)]
-fn read_params(
-    fields: &mut Fields,
-    report: &mut Report,
-) -> (BTreeMap<String, Vec<f64>>, BTreeMap<String, Span>) {
+fn read_params(fields: &mut Fields, report: &mut Report) -> (BTreeMap<String, Vec<f64>>, BTreeMap<String, Span>) {
     let mut params = BTreeMap::new();
     let mut spans = BTreeMap::new();
     let Some(mut table) = fields.table("params", "`params`", report) else {
@@ -234,11 +217,7 @@ fn read_params(
     (params, spans)
 }
 
-fn param_value(
-    name: &At<String>,
-    value: &toml::Spanned<DeValue>,
-    report: &mut Report,
-) -> Option<At<Vec<f64>>> {
+fn param_value(name: &At<String>, value: &toml::Spanned<DeValue>, report: &mut Report) -> Option<At<Vec<f64>>> {
     let span = report.span(value.span());
     let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, or a colour `\"#rrggbb\"`";
     let components = match value.get_ref() {

@@ -100,13 +100,7 @@ fn size(fields: &mut Fields, key: &'static str, default: f32, report: &mut Repor
 }
 
 /// A whole count in `minimum..=MAX_SEGMENTS`; past the maximum is E0404.
-fn count(
-    fields: &mut Fields,
-    key: &'static str,
-    default: u32,
-    minimum: u32,
-    report: &mut Report,
-) -> u32 {
+fn count(fields: &mut Fields, key: &'static str, default: u32, minimum: u32, report: &mut Report) -> u32 {
     let Some(value) = fields.integer(key, report) else {
         return default;
     };
@@ -115,9 +109,11 @@ fn count(
             Diagnostic::error(
                 codes::LIMIT_EXCEEDED,
                 format!("`{key}` is {}, more than the limit of {MAX_SEGMENTS}", value.value),
-                )
+            )
             .with_primary(value.span, format!("at most {MAX_SEGMENTS}"))
-            .with_help(format!("use at most `{key} = {MAX_SEGMENTS}`; finer tessellation is invisible at npr's resolutions")),
+            .with_help(format!(
+                "use at most `{key} = {MAX_SEGMENTS}`; finer tessellation is invisible at npr's resolutions"
+            )),
         );
         return default;
     }

@@ -55,16 +55,14 @@ impl Primitive {
     /// computed without building, so limits can be checked first.
     pub fn triangle_count(&self) -> u64 {
         match *self {
-            Primitive::Sphere {
-                segments, rings, ..
-            } => 2 * u64::from(segment_count(segments)) * (u64::from(ring_count(rings)) - 1),
-            Primitive::Cube { .. } => 12,
-            Primitive::Torus {
-                segments, sides, ..
-            } => 2 * u64::from(segment_count(segments)) * u64::from(segment_count(sides)),
-            Primitive::Plane { subdivisions, .. } => {
-                2 * u64::from(subdivision_count(subdivisions)).pow(2)
+            Primitive::Sphere { segments, rings, .. } => {
+                2 * u64::from(segment_count(segments)) * (u64::from(ring_count(rings)) - 1)
             }
+            Primitive::Cube { .. } => 12,
+            Primitive::Torus { segments, sides, .. } => {
+                2 * u64::from(segment_count(segments)) * u64::from(segment_count(sides))
+            }
+            Primitive::Plane { subdivisions, .. } => 2 * u64::from(subdivision_count(subdivisions)).pow(2),
             Primitive::Cylinder { segments, .. } => 4 * u64::from(segment_count(segments)),
         }
     }
@@ -138,26 +136,12 @@ pub fn sphere(radius: f32, segments: u32, rings: u32) -> Mesh {
         for segment in 0..=segments {
             let u = f64::from(segment) / f64::from(segments);
             let azimuth = TAU * u;
-            let normal = DVec3::new(
-                polar.sin() * azimuth.cos(),
-                polar.cos(),
-                -polar.sin() * azimuth.sin(),
-            );
+            let normal = DVec3::new(polar.sin() * azimuth.cos(), polar.cos(), -polar.sin() * azimuth.sin());
             // d(position)/du; unlike the polar derivative it does not vanish
             // at the poles, so pole vertices get a proper tangent too.
             let along_u = DVec3::new(-azimuth.sin(), 0.0, -azimuth.cos());
-            let towards_north = DVec3::new(
-                -polar.cos() * azimuth.cos(),
-                polar.sin(),
-                polar.cos() * azimuth.sin(),
-            );
-            builder.vertex(
-                normal * f64::from(radius),
-                normal,
-                [u, v],
-                along_u,
-                towards_north,
-            );
+            let towards_north = DVec3::new(-polar.cos() * azimuth.cos(), polar.sin(), polar.cos() * azimuth.sin());
+            builder.vertex(normal * f64::from(radius), normal, [u, v], along_u, towards_north);
         }
     }
     let row = segments + 1;
@@ -281,13 +265,7 @@ pub fn cylinder(radius: f32, height: f32, segments: u32) -> Mesh {
             let azimuth = TAU * u;
             let outwards = DVec3::new(azimuth.cos(), 0.0, -azimuth.sin());
             let along_u = DVec3::new(-azimuth.sin(), 0.0, -azimuth.cos());
-            builder.vertex(
-                outwards * r + DVec3::Y * y,
-                outwards,
-                [u, v],
-                along_u,
-                DVec3::Y,
-            );
+            builder.vertex(outwards * r + DVec3::Y * y, outwards, [u, v], along_u, DVec3::Y);
         }
     }
     builder.grid(1, segments);
@@ -354,14 +332,7 @@ impl Builder {
 
     /// `along_u` and `towards_image_top` need not be unit or orthogonal to
     /// the normal: the tangent frame is orthonormalized here.
-    fn vertex(
-        &mut self,
-        position: DVec3,
-        normal: DVec3,
-        uv: [f64; 2],
-        along_u: DVec3,
-        towards_image_top: DVec3,
-    ) {
+    fn vertex(&mut self, position: DVec3, normal: DVec3, uv: [f64; 2], along_u: DVec3, towards_image_top: DVec3) {
         let normal = normal.normalize_or(DVec3::Y);
         self.positions.push(position.as_vec3().to_array());
         self.normals.push(normal.as_vec3().to_array());
@@ -392,12 +363,7 @@ impl Builder {
         for row in 0..rows {
             for column in 0..columns {
                 let top_left = first + row * stride + column;
-                self.quad(
-                    top_left,
-                    top_left + stride,
-                    top_left + stride + 1,
-                    top_left + 1,
-                );
+                self.quad(top_left, top_left + stride, top_left + stride + 1, top_left + 1);
             }
         }
     }

@@ -122,10 +122,7 @@ impl<'t, 'i> Fields<'t, 'i> {
         let span = report.span(value.span());
         match value.get_ref() {
             DeValue::Integer(int) => match i64::from_str_radix(int.as_str(), int.radix()) {
-                Ok(parsed) => Some(At {
-                    value: parsed,
-                    span,
-                }),
+                Ok(parsed) => Some(At { value: parsed, span }),
                 Err(_) => {
                     report.bad_scene(
                         span,
@@ -256,29 +253,18 @@ impl<'t, 'i> Fields<'t, 'i> {
         let DeValue::Array(items) = value.get_ref() else {
             report.bad_scene(
                 report.span(value.span()),
-                format!(
-                    "`{key}` must be an array of strings, not {}",
-                    describe(value.get_ref())
-                ),
+                format!("`{key}` must be an array of strings, not {}", describe(value.get_ref())),
                 "expected `[\"...\", ...]`",
                 format!("write e.g. `{key} = [\"caster\"]`"),
             );
             return None;
         };
-        let strings: Vec<Option<At<String>>> = items
-            .iter()
-            .map(|item| expect_string(item, key, report))
-            .collect();
+        let strings: Vec<Option<At<String>>> = items.iter().map(|item| expect_string(item, key, report)).collect();
         strings.into_iter().collect()
     }
 
     /// A sub-table (`[camera]` or an inline `{ ... }`).
-    pub fn table(
-        &mut self,
-        key: &'static str,
-        context: &str,
-        report: &mut Report,
-    ) -> Option<Fields<'t, 'i>> {
+    pub fn table(&mut self, key: &'static str, context: &str, report: &mut Report) -> Option<Fields<'t, 'i>> {
         let value = self.raw(key)?;
         let span = report.span(value.span());
         match value.get_ref() {
@@ -309,10 +295,7 @@ impl<'t, 'i> Fields<'t, 'i> {
         let DeValue::Array(items) = value.get_ref() else {
             report.bad_scene(
                 report.span(value.span()),
-                format!(
-                    "`{key}` must be an array of tables, not {}",
-                    describe(value.get_ref())
-                ),
+                format!("`{key}` must be an array of tables, not {}", describe(value.get_ref())),
                 "expected `[[...]]` tables",
                 format!("write each entry as a `[[{key}]]` section"),
             );
@@ -325,10 +308,7 @@ impl<'t, 'i> Fields<'t, 'i> {
                 DeValue::Table(table) => tables.push(Fields::new(table, span, context(index))),
                 other => report.bad_scene(
                     span,
-                    format!(
-                        "each `{key}` entry must be a table, not {}",
-                        describe(other)
-                    ),
+                    format!("each `{key}` entry must be a table, not {}", describe(other)),
                     "expected a table",
                     format!("write each entry as a `[[{key}]]` section"),
                 ),
@@ -378,8 +358,7 @@ impl<'t, 'i> Fields<'t, 'i> {
     }
 }
 
-const COLOR_HELP: &str =
-    "write a colour as `\"#rrggbb\"`, `\"#rrggbbaa\"` or `[r, g, b]` with components from 0 to 1";
+const COLOR_HELP: &str = "write a colour as `\"#rrggbb\"`, `\"#rrggbbaa\"` or `[r, g, b]` with components from 0 to 1";
 
 /// `#rrggbb` or `#rrggbbaa` as bytes / 255, alpha 1 unless written: the
 /// same convention as colour literals in `.npr` styles (no sRGB decoding).
@@ -406,9 +385,7 @@ pub fn parse_hex_color(text: &str) -> Option<Vec<f64>> {
 pub fn expect_number(value: &Spanned<DeValue>, key: &str, report: &mut Report) -> Option<At<f64>> {
     let span = report.span(value.span());
     let number = match value.get_ref() {
-        DeValue::Integer(int) => i64::from_str_radix(int.as_str(), int.radix())
-            .ok()
-            .map(|n| n as f64),
+        DeValue::Integer(int) => i64::from_str_radix(int.as_str(), int.radix()).ok().map(|n| n as f64),
         DeValue::Float(float) => float.as_str().parse::<f64>().ok(),
         other => {
             report.bad_scene(
@@ -422,10 +399,7 @@ pub fn expect_number(value: &Spanned<DeValue>, key: &str, report: &mut Report) -
     };
     match number {
         // Scene values end up as f32: anything larger would become infinite.
-        Some(number) if number.is_finite() && number.abs() <= f64::from(f32::MAX) => Some(At {
-            value: number,
-            span,
-        }),
+        Some(number) if number.is_finite() && number.abs() <= f64::from(f32::MAX) => Some(At { value: number, span }),
         _ => {
             report.bad_scene(
                 span,
@@ -439,33 +413,20 @@ pub fn expect_number(value: &Spanned<DeValue>, key: &str, report: &mut Report) -
 }
 
 /// An array of numbers (any length, including zero).
-pub fn expect_numbers(
-    value: &Spanned<DeValue>,
-    key: &str,
-    report: &mut Report,
-) -> Option<At<Vec<f64>>> {
+pub fn expect_numbers(value: &Spanned<DeValue>, key: &str, report: &mut Report) -> Option<At<Vec<f64>>> {
     let span = report.span(value.span());
     let DeValue::Array(items) = value.get_ref() else {
         report.bad_scene(
             span,
-            format!(
-                "`{key}` must be an array of numbers, not {}",
-                describe(value.get_ref())
-            ),
+            format!("`{key}` must be an array of numbers, not {}", describe(value.get_ref())),
             "expected `[...]`",
             format!("write e.g. `{key} = [0.0, 1.0, 0.0]`"),
         );
         return None;
     };
-    let numbers: Vec<Option<At<f64>>> = items
-        .iter()
-        .map(|item| expect_number(item, key, report))
-        .collect();
+    let numbers: Vec<Option<At<f64>>> = items.iter().map(|item| expect_number(item, key, report)).collect();
     let numbers: Option<Vec<f64>> = numbers.into_iter().map(|n| n.map(|n| n.value)).collect();
-    Some(At {
-        value: numbers?,
-        span,
-    })
+    Some(At { value: numbers?, span })
 }
 
 /// Three numbers: `[x, y, z]`.
@@ -488,11 +449,7 @@ pub fn expect_vec3(value: &Spanned<DeValue>, key: &str, report: &mut Report) -> 
     }
 }
 
-pub fn expect_string(
-    value: &Spanned<DeValue>,
-    key: &str,
-    report: &mut Report,
-) -> Option<At<String>> {
+pub fn expect_string(value: &Spanned<DeValue>, key: &str, report: &mut Report) -> Option<At<String>> {
     let span = report.span(value.span());
     match value.get_ref() {
         DeValue::String(text) => Some(At {
@@ -540,10 +497,7 @@ mod tests {
 
     #[test]
     fn hex_colours_are_bytes_over_255_with_alpha_one_by_default() {
-        assert_eq!(
-            parse_hex_color("#ff0080"),
-            Some(vec![1.0, 0.0, 128.0 / 255.0, 1.0])
-        );
+        assert_eq!(parse_hex_color("#ff0080"), Some(vec![1.0, 0.0, 128.0 / 255.0, 1.0]));
         assert_eq!(parse_hex_color("#FF000000"), Some(vec![1.0, 0.0, 0.0, 0.0]));
         for bad in ["ff0080", "#ff008", "#gg0080", "#ff00800", "#ffé080", ""] {
             assert_eq!(parse_hex_color(bad), None, "{bad}");
@@ -565,19 +519,9 @@ mod tests {
             diagnostics: Vec::new(),
         };
         let mut fields = Fields::new(document.get_ref(), Span::default(), "[camera]");
-        assert_eq!(
-            fields.number("fov", &mut report).map(|n| n.value),
-            Some(1.0)
-        );
+        assert_eq!(fields.number("fov", &mut report).map(|n| n.value), Some(1.0));
         fields.finish(&mut report);
-        let helps: Vec<&str> = report
-            .diagnostics
-            .iter()
-            .filter_map(|d| d.help.as_deref())
-            .collect();
-        assert_eq!(
-            helps,
-            ["did you mean `fov`?", "the fields of [camera] are: `fov`"]
-        );
+        let helps: Vec<&str> = report.diagnostics.iter().filter_map(|d| d.help.as_deref()).collect();
+        assert_eq!(helps, ["did you mean `fov`?", "the fields of [camera] are: `fov`"]);
     }
 }

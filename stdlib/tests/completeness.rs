@@ -1,0 +1,140 @@
+//! Every declared operator has WGSL that naga accepts, a WGSL signature that
+//! matches its metadata, a CPU reference, docs, and defaults inside its ranges.
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use stdlib::{Default, Ty};
+
+fn wgsl_with_deps(op: &stdlib::Operator) -> String {
+    let mut src = String::new();
+    for d in op.depends {
+        src.push_str(
+            stdlib::find(d)
+                .unwrap_or_else(|| panic!("{}: unknown dependency {d}", op.name))
+                .wgsl,
+        );
+        src.push('\n');
+    }
+    src.push_str(op.wgsl);
+    src
+}
+
+fn naga_type_matches(module: &naga::Module, ty: naga::Handle<naga::Type>, want: Ty) -> bool {
+    use naga::{ScalarKind, TypeInner, VectorSize};
+    let inner = &module.types[ty].inner;
+    match (want, inner) {
+        (Ty::Float, TypeInner::Scalar(s)) => s.kind == ScalarKind::Float,
+        (Ty::Int | Ty::Enum(_), TypeInner::Scalar(s)) => s.kind == ScalarKind::Sint,
+        (Ty::Bool, TypeInner::Scalar(s)) => s.kind == ScalarKind::Bool,
+        (
+            Ty::Vec2,
+            TypeInner::Vector {
+                size: VectorSize::Bi, ..
+            },
+        ) => true,
+        (
+            Ty::Vec3,
+            TypeInner::Vector {
+                size: VectorSize::Tri, ..
+            },
+        ) => true,
+        (
+            Ty::Vec4 | Ty::Color,
+            TypeInner::Vector {
+                size: VectorSize::Quad, ..
+            },
+        ) => true,
+        (Ty::Texture | Ty::SampledTexture, TypeInner::Image { .. }) => true,
+        _ => false,
+    }
+}
+
+#[test]
+fn every_operator_is_complete() {
+    assert!(!stdlib::all().is_empty());
+    for op in stdlib::all() {
+        let src = wgsl_with_deps(op);
+        let module =
+            naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{}: {}", op.name, e.emit_to_string(&src)));
+        Validator::new(ValidationFlags::all(), Capabilities::all())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{}: {}", op.name, e.emit_to_string(&src)));
+        let fname = op.wgsl_fn();
+        let (_, f) = module
+            .functions
+            .iter()
+            .find(|(_, f)| f.name.as_deref() == Some(fname.as_str()))
+            .unwrap_or_else(|| panic!("{}: WGSL has no function {fname}", op.name));
+        // Expand metadata parameters to WGSL arguments: a sampled texture is (texture, sampler).
+        let mut expected: Vec<Option<Ty>> = Vec::new();
+        for p in op.params {
+            expected.push(Some(p.ty));
+            if p.ty == Ty::SampledTexture {
+                expected.push(None);
+            }
+        }
+        assert_eq!(f.arguments.len(), expected.len(), "{}: argument count", op.name);
+        for (arg, want) in f.arguments.iter().zip(&expected) {
+            match want {
+                Some(t) => assert!(
+                    naga_type_matches(&module, arg.ty, *t),
+                    "{}: argument {:?} is not {t:?}",
+                    op.name,
+                    arg.name
+                ),
+                None => assert!(
+                    matches!(module.types[arg.ty].inner, naga::TypeInner::Sampler { .. }),
+                    "{}: expected a sampler",
+                    op.name
+                ),
+            }
+        }
+        let ret = f
+            .result
+            .as_ref()
+            .unwrap_or_else(|| panic!("{}: no return value", op.name));
+        assert!(
+            naga_type_matches(&module, ret.ty, op.returns),
+            "{}: return type is not {:?}",
+            op.name,
+            op.returns
+        );
+        assert!(
+            !op.doc.is_empty() && !op.reference.is_empty(),
+            "{}: missing doc or reference",
+            op.name
+        );
+        assert!(
+            stdlib::reference::has_reference(op.name),
+            "{}: no CPU reference",
+            op.name
+        );
+        for p in op.params {
+            assert!(!p.doc.is_empty(), "{}.{}: no doc", op.name, p.name);
+            if let (Default::Number(v), Some((lo, hi))) = (p.default, p.range) {
+                assert!(
+                    lo <= v && v <= hi,
+                    "{}.{}: default {v} outside {lo}..{hi}",
+                    op.name,
+                    p.name
+                );
+            }
+            if let (Default::Variant(v), Ty::Enum(vs)) = (p.default, p.ty) {
+                assert!(
+                    vs.contains(&v),
+                    "{}.{}: default variant {v} not in {vs:?}",
+                    op.name,
+                    p.name
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn operator_names_are_unique() {
+    let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
+    names.sort();
+    let n = names.len();
+    names.dedup();
+    assert_eq!(n, names.len());
+}

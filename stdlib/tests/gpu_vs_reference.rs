@@ -1,0 +1,595 @@
+//! GPU versus CPU reference: every stdlib operator runs on wgpu (lavapipe here)
+//! inside a compute shader, over a grid of inputs that includes the hard cases,
+//! and is compared with its f64 reference in `stdlib::reference`.
+//!
+//! Tolerances (absolute): arithmetic operators 1e-5 (f32 rounding of a few
+//! operations on values ≤ 1); blurs 1e-5 (sums of ≤ 97 weights, renormalized);
+//! edge detectors compare exactly except within 1e-4 of a threshold;
+//! `sample` 4e-3 on 8-bit data (bilinear weights are quantized by the
+//! rasterizer, 8 sub-texel bits on lavapipe).
+
+use std::sync::OnceLock;
+use stdlib::reference::{self as r, ImageF64};
+use wgpu::util::DeviceExt;
+
+struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+}
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::GL;
+        let instance = wgpu::Instance::new(desc);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())).unwrap_or_else(|e| {
+            panic!("no GPU adapter ({e}); install the software Vulkan driver: `sudo apt-get install -y mesa-vulkan-drivers` (or ./setup.sh)")
+        });
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default())).expect("device");
+        Gpu { device, queue }
+    })
+}
+
+/// A texture input: size, RGBA texels, format (Rgba32Float or Rgba8Unorm).
+struct TexIn {
+    image: ImageF64,
+    format: wgpu::TextureFormat,
+}
+
+/// Run `body` (WGSL statements that set `result: vec4<f32>` from `a`, `b`, `c`,
+/// `uv`, and textures `t0`, `t1`) once per output, after `prelude` (operator code).
+fn run(prelude: &str, body: &str, inputs: &[[f32; 4]], out_size: (u32, u32), textures: &[TexIn]) -> Vec<[f32; 4]> {
+    let g = gpu();
+    let n = (out_size.0 * out_size.1) as usize;
+    let mut decl = String::from(
+        "@group(0) @binding(0) var<storage, read> inputs: array<vec4<f32>>;\n@group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;\n@group(0) @binding(2) var samp: sampler;\n",
+    );
+    for i in 0..textures.len() {
+        decl.push_str(&format!("@group(0) @binding({}) var t{i}: texture_2d<f32>;\n", 3 + i));
+    }
+    let src = format!(
+        "{decl}\n{prelude}\n@compute @workgroup_size(64)\nfn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    let i = id.x;\n    if (i >= {n}u) {{ return; }}\n    let a = inputs[i * 3u];\n    let b = inputs[i * 3u + 1u];\n    let c = inputs[i * 3u + 2u];\n    let uv = (vec2<f32>(f32(i % {w}u), f32(i / {w}u)) + vec2<f32>(0.5)) / vec2<f32>({w}.0, {h}.0);\n    var result = vec4<f32>(0.0);\n    {body}\n    outputs[i] = result;\n}}\n",
+        w = out_size.0,
+        h = out_size.1
+    );
+    let module = g.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: None,
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let mut input_data: Vec<[f32; 4]> = inputs.to_vec();
+    input_data.resize(n * 3, [0.0; 4]);
+    let input = g.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytemuck::cast_slice(&input_data),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let size = (n * 16) as u64;
+    let output = g.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = g.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let sampler = g.device.create_sampler(&wgpu::SamplerDescriptor {
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    let views: Vec<wgpu::TextureView> = textures
+        .iter()
+        .map(|t| {
+            let (bytes, bpp): (Vec<u8>, u32) = match t.format {
+                wgpu::TextureFormat::Rgba8Unorm => (
+                    t.image
+                        .pixels
+                        .iter()
+                        .flat_map(|p| p.map(|c| (c * 255.0).round() as u8))
+                        .collect(),
+                    4,
+                ),
+                _ => (
+                    t.image
+                        .pixels
+                        .iter()
+                        .flat_map(|p| p.map(|c| c as f32))
+                        .flat_map(f32::to_le_bytes)
+                        .collect(),
+                    16,
+                ),
+            };
+            let tex = g.device.create_texture_with_data(
+                &g.queue,
+                &wgpu::TextureDescriptor {
+                    label: None,
+                    size: wgpu::Extent3d {
+                        width: t.image.width,
+                        height: t.image.height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: t.format,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                    view_formats: &[],
+                },
+                wgpu::util::TextureDataOrder::LayerMajor,
+                &bytes,
+            );
+            let _ = bpp;
+            tex.create_view(&Default::default())
+        })
+        .collect();
+    let pipeline = g.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: None,
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let layout = pipeline.get_bind_group_layout(0);
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: input.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: output.as_entire_binding(),
+        },
+    ];
+    // Auto layouts only contain what the shader uses.
+    if body.contains(", samp,") {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::Sampler(&sampler),
+        });
+    }
+    for (i, v) in views.iter().enumerate() {
+        if body.contains(&format!("t{i}")) {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 3 + i as u32,
+                resource: wgpu::BindingResource::TextureView(v),
+            });
+        }
+    }
+    let group = g.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &layout,
+        entries: &entries,
+    });
+    let mut enc = g.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
+    g.queue.submit([enc.finish()]);
+    let slice = staging.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    g.device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+    let data = slice.get_mapped_range().expect("mapped");
+    let out: Vec<[f32; 4]> = bytemuck::cast_slice(&data).to_vec();
+    drop(data);
+    staging.unmap();
+    out
+}
+
+fn op_wgsl(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| stdlib::find(n).expect("operator").wgsl)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Compare GPU and reference, assert finiteness and the bound; returns the max error.
+fn compare(name: &str, gpu: &[[f32; 4]], reference: &[[f64; 4]], channels: usize, tol: f64) -> f64 {
+    let mut max = 0.0f64;
+    for (i, (g, r)) in gpu.iter().zip(reference).enumerate() {
+        for c in 0..channels {
+            assert!(g[c].is_finite(), "{name}: case {i} channel {c} is {}", g[c]);
+            let e = (g[c] as f64 - r[c]).abs();
+            max = max.max(e);
+            assert!(
+                e <= tol,
+                "{name}: case {i} channel {c}: gpu {} vs reference {} (error {e:e} > {tol:e})",
+                g[c],
+                r[c]
+            );
+        }
+    }
+    println!(
+        "{name}: {} cases, max abs error {max:.3e} (tolerance {tol:.0e})",
+        gpu.len()
+    );
+    max
+}
+
+/// A small deterministic generator (64-bit LCG) for test inputs.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+fn f32v(v: [f64; 4]) -> [f32; 4] {
+    v.map(|x| x as f32)
+}
+
+/// Round-trip through f32 so the reference sees exactly what the GPU sees.
+fn q(v: [f64; 4]) -> [f64; 4] {
+    v.map(|x| x as f32 as f64)
+}
+
+fn vectors(seed: u64, count: usize) -> Vec<[f64; 4]> {
+    let mut g = Lcg(seed);
+    let mut v: Vec<[f64; 4]> = (0..count)
+        .map(|_| {
+            q([
+                g.range(-1.0, 1.0),
+                g.range(-1.0, 1.0),
+                g.range(-1.0, 1.0),
+                g.range(0.0, 1.0),
+            ])
+        })
+        .collect();
+    // Hard cases: zero vectors, tiny and huge magnitudes, exact opposites.
+    v.extend([
+        [0.0; 4],
+        [1e-20, 0.0, 0.0, 0.0],
+        [1e18, -1e18, 0.0, 1.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0, 0.0],
+    ]);
+    v
+}
+
+#[test]
+fn lighting_operators_match_reference() {
+    let a = vectors(1, 200);
+    let b = vectors(2, 200);
+    let inputs: Vec<[f32; 4]> = a
+        .iter()
+        .zip(&b)
+        .flat_map(|(x, y)| [f32v(*x), f32v(*y), [0.0; 4]])
+        .collect();
+    let n = a.len() as u32;
+    for (name, f) in [
+        ("lambert", r::lambert as fn([f64; 3], [f64; 3]) -> f64),
+        ("half_lambert", r::half_lambert),
+    ] {
+        let out = run(
+            &op_wgsl(&[name]),
+            &format!("result = vec4<f32>(npr_{name}(a.xyz, b.xyz), 0.0, 0.0, 0.0);"),
+            &inputs,
+            (n, 1),
+            &[],
+        );
+        let reference: Vec<[f64; 4]> = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| [f([x[0], x[1], x[2]], [y[0], y[1], y[2]]), 0.0, 0.0, 0.0])
+            .collect();
+        compare(name, &out, &reference, 1, 1e-5);
+    }
+}
+
+#[test]
+fn ramp_operators_match_reference() {
+    let mut g = Lcg(3);
+    let mut cases: Vec<[f64; 4]> = Vec::new();
+    for steps in [1, 2, 3, 5, 16] {
+        for x in [-0.5, 0.0, 1.0, 1.5, 0.5, 1.0 / 3.0] {
+            cases.push([x, steps as f64, 0.0, 0.0]);
+        }
+        for _ in 0..20 {
+            cases.push(q([g.range(0.0, 1.0), steps as f64, 0.0, 0.0]));
+        }
+    }
+    let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| [f32v(*c), [0.0; 4], [0.0; 4]]).collect();
+    let out = run(
+        &op_wgsl(&["toon"]),
+        "result = vec4<f32>(npr_toon(a.x, i32(a.y)), 0.0, 0.0, 0.0);",
+        &inputs,
+        (cases.len() as u32, 1),
+        &[],
+    );
+    // Quantization is discontinuous: skip inputs within f32 rounding of a band edge.
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| [r::toon(c[0], c[1] as i64), 0.0, 0.0, 0.0])
+        .collect();
+    compare("toon", &out, &reference, 1, 1e-6);
+
+    // threshold: including lo == hi and lo > hi (a step).
+    let mut t: Vec<[f64; 4]> = Vec::new();
+    for (lo, hi) in [(0.45, 0.55), (0.5, 0.5), (0.6, 0.4), (0.0, 1.0)] {
+        for x in [-1.0, 0.0, 0.45, 0.5, 0.55, 0.9, 2.0] {
+            t.push(q([x, lo, hi, 0.0]));
+        }
+        for _ in 0..20 {
+            t.push(q([g.range(-0.2, 1.2), lo, hi, 0.0]));
+        }
+    }
+    let inputs: Vec<[f32; 4]> = t.iter().flat_map(|c| [f32v(*c), [0.0; 4], [0.0; 4]]).collect();
+    let out = run(
+        &op_wgsl(&["threshold"]),
+        "result = vec4<f32>(npr_threshold(a.x, a.y, a.z), 0.0, 0.0, 0.0);",
+        &inputs,
+        (t.len() as u32, 1),
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = t
+        .iter()
+        .map(|c| [r::threshold(c[0], c[1], c[2]), 0.0, 0.0, 0.0])
+        .collect();
+    compare("threshold", &out, &reference, 1, 1e-5);
+}
+
+#[test]
+fn colour_operators_match_reference() {
+    let mut g = Lcg(4);
+    let mut fg: Vec<[f64; 4]> = (0..150).map(|_| q([g.next(), g.next(), g.next(), g.next()])).collect();
+    let mut bg: Vec<[f64; 4]> = (0..150).map(|_| q([g.next(), g.next(), g.next(), g.next()])).collect();
+    // Hard cases: both transparent, opaque over anything, mid-grey overlay pivot.
+    fg.extend([[0.0; 4], [1.0, 0.0, 0.0, 1.0], [0.5, 0.5, 0.5, 0.5]]);
+    bg.extend([[0.0; 4], [0.0, 1.0, 0.0, 0.0], [0.5, 0.5, 0.5, 1.0]]);
+    let amounts: Vec<f64> = (0..fg.len()).map(|i| (i % 9) as f64 * 0.5).collect();
+    let inputs: Vec<[f32; 4]> = fg
+        .iter()
+        .zip(&bg)
+        .zip(&amounts)
+        .flat_map(|((a, b), s)| [f32v(*a), f32v(*b), [*s as f32, (*s / 4.0) as f32, 0.0, 0.0]])
+        .collect();
+    let n = (fg.len() as u32, 1);
+    let cases = fg.iter().zip(&bg).zip(&amounts);
+    let out = run(&op_wgsl(&["over"]), "result = npr_over(a, b);", &inputs, n, &[]);
+    compare(
+        "over",
+        &out,
+        &cases.clone().map(|((a, b), _)| r::over(*a, *b)).collect::<Vec<_>>(),
+        4,
+        1e-5,
+    );
+    let out = run(
+        &op_wgsl(&["luminance"]),
+        "result = vec4<f32>(npr_luminance(a), 0.0, 0.0, 0.0);",
+        &inputs,
+        n,
+        &[],
+    );
+    compare(
+        "luminance",
+        &out,
+        &cases
+            .clone()
+            .map(|((a, _), _)| [r::luminance(*a), 0.0, 0.0, 0.0])
+            .collect::<Vec<_>>(),
+        1,
+        1e-6,
+    );
+    let out = run(
+        &op_wgsl(&["luminance", "saturation"]),
+        "result = npr_saturation(a, c.x);",
+        &inputs,
+        n,
+        &[],
+    );
+    compare(
+        "saturation",
+        &out,
+        &cases
+            .clone()
+            .map(|((a, _), s)| r::saturation(*a, *s))
+            .collect::<Vec<_>>(),
+        4,
+        1e-5,
+    );
+    let out = run(
+        &op_wgsl(&["overlay"]),
+        "result = npr_overlay(a, b, c.y);",
+        &inputs,
+        n,
+        &[],
+    );
+    compare(
+        "overlay",
+        &out,
+        &cases
+            .map(|((a, b), s)| r::overlay(*a, *b, *s / 4.0))
+            .collect::<Vec<_>>(),
+        4,
+        1e-5,
+    );
+}
+
+/// Deterministic test patterns, including steps (hard for blurs) and noise.
+fn pattern(kind: u32, w: u32, h: u32, seed: u64) -> ImageF64 {
+    let mut g = Lcg(seed);
+    let noise: Vec<f64> = (0..w * h * 4).map(|_| g.next()).collect();
+    ImageF64::new(w, h, |x, y| {
+        let i = ((y * w + x) * 4) as usize;
+        let v = match kind {
+            0 => [x as f64 / w as f64, y as f64 / h as f64, 0.5, 1.0],
+            1 => {
+                let s = if (x / 3 + y / 3) % 2 == 0 { 1.0 } else { 0.0 };
+                [s, 1.0 - s, s * 0.5, 1.0]
+            }
+            _ => [noise[i], noise[i + 1], noise[i + 2], noise[i + 3]],
+        };
+        q(v)
+    })
+}
+
+fn pixels_ref(out: (u32, u32), f: impl Fn([f64; 2]) -> [f64; 4]) -> Vec<[f64; 4]> {
+    let mut v = Vec::new();
+    for y in 0..out.1 {
+        for x in 0..out.0 {
+            // The same uv the shader computes, rounded through f32.
+            let uv = [
+                ((x as f32 + 0.5) / out.0 as f32) as f64,
+                ((y as f32 + 0.5) / out.1 as f32) as f64,
+            ];
+            v.push(f(uv));
+        }
+    }
+    v
+}
+
+#[test]
+fn blur_and_downsample_match_reference() {
+    for (w, h) in [(1, 1), (3, 7), (32, 24)] {
+        for kind in 0..3 {
+            let img = pattern(kind, w, h, 10 + kind as u64);
+            let tex = [TexIn {
+                image: img.clone(),
+                format: wgpu::TextureFormat::Rgba32Float,
+            }];
+            for sigma in [0.3, 1.0, 2.5, 16.0] {
+                for axis in [0, 1] {
+                    let body = format!("result = npr_gaussian(t0, uv, {sigma:?}, {axis});");
+                    let out = run(&op_wgsl(&["gaussian"]), &body, &[], (w, h), &tex);
+                    let reference = pixels_ref((w, h), |uv| r::gaussian(&img, uv, sigma, axis));
+                    compare(
+                        &format!("gaussian {w}x{h} pattern {kind} sigma {sigma} axis {axis}"),
+                        &out,
+                        &reference,
+                        4,
+                        1e-5,
+                    );
+                }
+            }
+            let half = ((w / 2).max(1), (h / 2).max(1));
+            let out = run(
+                &op_wgsl(&["downsample"]),
+                "result = npr_downsample(t0, uv);",
+                &[],
+                half,
+                &tex,
+            );
+            compare(
+                &format!("downsample {w}x{h} pattern {kind}"),
+                &out,
+                &pixels_ref(half, |uv| r::downsample(&img, uv)),
+                4,
+                1e-6,
+            );
+        }
+    }
+}
+
+#[test]
+fn edge_operators_match_reference() {
+    for (w, h) in [(1, 1), (3, 7), (40, 30)] {
+        // Depth: a plane with a step (an occluding edge) and background 0.
+        let depth = ImageF64::new(w, h, |x, y| {
+            let d = if x < w / 2 {
+                2.0 + 0.01 * y as f64
+            } else if y % 11 == 5 {
+                0.0
+            } else {
+                5.0
+            };
+            q([d, 0.0, 0.0, 1.0])
+        });
+        let normals = pattern(2, w, h, 77);
+        let tex = [
+            TexIn {
+                image: depth.clone(),
+                format: wgpu::TextureFormat::Rgba32Float,
+            },
+            TexIn {
+                image: normals.clone(),
+                format: wgpu::TextureFormat::Rgba32Float,
+            },
+        ];
+        let out = run(
+            &op_wgsl(&["sobel"]),
+            "result = vec4<f32>(npr_sobel(t0, uv), 0.0, 0.0, 0.0);",
+            &[],
+            (w, h),
+            &tex,
+        );
+        compare(
+            &format!("sobel {w}x{h}"),
+            &out,
+            &pixels_ref((w, h), |uv| [r::sobel(&depth, uv), 0.0, 0.0, 0.0]),
+            1,
+            1e-5,
+        );
+        for (dt, nt) in [(0.1, 0.4), (1e-3, 1e-3), (100.0, 2.0)] {
+            let body =
+                format!("result = vec4<f32>(npr_normal_depth_edges(t1, t0, uv, {dt:?}, {nt:?}), 0.0, 0.0, 0.0);");
+            let out = run(&op_wgsl(&["normal_depth_edges"]), &body, &[], (w, h), &tex);
+            // Binary output: exact, except where a difference is within 1e-4 of its threshold.
+            let reference = pixels_ref((w, h), |uv| {
+                let near = |t: f64| {
+                    [
+                        r::normal_depth_edges(&normals, &depth, uv, dt + t, nt + t),
+                        0.0,
+                        0.0,
+                        0.0,
+                    ]
+                };
+                let (a, b) = (near(-1e-4), near(1e-4));
+                if a == b {
+                    a
+                } else {
+                    [f64::NAN; 4]
+                }
+            });
+            let keep: Vec<usize> = (0..reference.len()).filter(|i| !reference[*i][0].is_nan()).collect();
+            let g: Vec<[f32; 4]> = keep.iter().map(|i| out[*i]).collect();
+            let rr: Vec<[f64; 4]> = keep.iter().map(|i| reference[*i]).collect();
+            assert!(keep.len() * 10 >= reference.len() * 9, "too many near-threshold cases");
+            compare(
+                &format!("normal_depth_edges {w}x{h} thresholds {dt}/{nt}"),
+                &g,
+                &rr,
+                1,
+                0.0,
+            );
+        }
+    }
+}
+
+#[test]
+fn sample_matches_bilinear_reference() {
+    // A smooth pattern in 8-bit, so sub-texel weight quantization stays small.
+    let img = ImageF64::new(16, 12, |x, y| {
+        let v = |t: f64| (t * 255.0).round() / 255.0;
+        [v(x as f64 / 16.0), v(y as f64 / 12.0), v((x + y) as f64 / 28.0), 1.0]
+    });
+    let tex = [TexIn {
+        image: img.clone(),
+        format: wgpu::TextureFormat::Rgba8Unorm,
+    }];
+    let out_size = (37, 29);
+    let out = run(
+        &op_wgsl(&["sample"]),
+        "result = npr_sample(t0, samp, uv);",
+        &[],
+        out_size,
+        &tex,
+    );
+    compare("sample", &out, &pixels_ref(out_size, |uv| r::sample(&img, uv)), 4, 4e-3);
+}
