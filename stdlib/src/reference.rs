@@ -185,7 +185,12 @@ pub fn sample(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
     let (x0, y0) = (x0 as i64, y0 as i64);
-    let (a, b, c, d) = (tex.load(x0, y0), tex.load(x0 + 1, y0), tex.load(x0, y0 + 1), tex.load(x0 + 1, y0 + 1));
+    let (a, b, c, d) = (
+        tex.load(x0, y0),
+        tex.load(x0 + 1, y0),
+        tex.load(x0, y0 + 1),
+        tex.load(x0 + 1, y0 + 1),
+    );
     std::array::from_fn(|i| {
         let top = a[i] * (1.0 - fx) + b[i] * fx;
         let bottom = c[i] * (1.0 - fx) + d[i] * fx;
