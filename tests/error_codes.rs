@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 /// A scratch directory for cases that need files on disk.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("npr-error-codes-{}-{name}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("error-codes").join(name);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
 }

@@ -97,7 +97,7 @@ fn a_broken_image_fails_the_comparison() {
     for p in altered.pixels_mut().take((SIZE * SIZE / 10) as usize) {
         p.0 = [255, 0, 255, 255];
     }
-    let dir = std::env::temp_dir().join(format!("npr-golden-self-test-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("golden-self-test");
     std::fs::create_dir_all(&dir).expect("dir");
     let golden = dir.join("reference.png");
     runner::output::write_png8(&actual, &golden).expect("write");

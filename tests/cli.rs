@@ -1,0 +1,191 @@
+//! End to end through the `npr` binary: exit codes, JSON diagnostics,
+//! compile output, rendering to PNG/EXR, `--dump-passes`, and `--frames`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn npr(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run npr")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli").join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    dir
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn check_accepts_every_example() {
+    for e in ["toon", "outline", "rounded_shadows"] {
+        let o = npr(&["check", &format!("examples/{e}.npr")]);
+        assert_eq!(o.status.code(), Some(0), "{e}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn user_errors_exit_1_with_a_rendered_diagnostic() {
+    let dir = scratch("bad");
+    let file = dir.join("bad.npr");
+    std::fs::write(&file, "style \"Bad\"\nparam w: px = 2m\n").expect("write");
+    let o = npr(&["check", file.to_str().expect("utf-8 path")]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(err.contains("error[E0202]") && err.contains("bad.npr:2:15"), "{err}");
+}
+
+#[test]
+fn json_diagnostics_are_machine_readable() {
+    let dir = scratch("json");
+    let file = dir.join("bad.npr");
+    std::fs::write(
+        &file,
+        "style \"Bad\"\npass p: render(scene) {\n  out c: r8unorm = lambrt(normal, light.dir)\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let o = npr(&["check", file.to_str().expect("utf-8 path"), "--message-format", "json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let first: serde_json::Value = serde_json::from_str(stdout.lines().next().expect("a line")).expect("json");
+    assert_eq!(first["code"], "E0102");
+    assert_eq!(first["labels"][0]["line"], 3);
+    assert_eq!(first["labels"][0]["column"], 20);
+    assert!(first["help"].as_str().unwrap_or("").contains("lambert"));
+}
+
+#[test]
+fn compile_writes_wgsl_manifest_and_report() {
+    let dir = scratch("compile");
+    let o = npr(&[
+        "compile",
+        "examples/outline.npr",
+        "-o",
+        dir.to_str().expect("path"),
+        "--report",
+        "--time-passes",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("removed  pass `sobel_debug`"), "{stdout}");
+    assert!(stdout.contains("validate"), "stage timings printed: {stdout}");
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).expect("manifest")).expect("json");
+    let passes: Vec<&str> = manifest["passes"]
+        .as_array()
+        .expect("passes")
+        .iter()
+        .map(|p| p["name"].as_str().unwrap_or(""))
+        .collect();
+    assert_eq!(passes, ["gbuffer", "ink_lines"]);
+    for p in passes {
+        let wgsl = std::fs::read_to_string(dir.join(format!("{p}.wgsl"))).expect("wgsl");
+        assert!(wgsl.contains("outline.npr:"), "WGSL maps back to .npr lines");
+    }
+    // No temp files left behind by the atomic writes.
+    assert!(std::fs::read_dir(&dir).expect("dir").all(|e| !e
+        .expect("entry")
+        .file_name()
+        .to_string_lossy()
+        .contains(".tmp-")));
+}
+
+#[test]
+fn render_writes_png_and_exr_and_dumps_passes() {
+    let dir = scratch("render");
+    let png = dir.join("toon.png");
+    let o = npr(&[
+        "render",
+        "examples/rounded_shadows.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "-o",
+        png.to_str().expect("path"),
+        "--size",
+        "96x64",
+        "--dump-passes",
+        dir.join("passes").to_str().expect("path"),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let img = image::open(&png).expect("png");
+    assert_eq!((img.width(), img.height()), (96, 64));
+    let index = std::fs::read_to_string(dir.join("passes/contact_sheet.txt")).expect("index");
+    assert_eq!(index.lines().count(), 6, "every target is dumped: {index}");
+    assert!(index.contains("blur_x.r 48x32 r16float"), "{index}");
+    assert!(dir.join("passes/contact_sheet.png").exists());
+    // The half-resolution float blur dumps as a 16-bit PNG.
+    let blur = image::open(dir.join("passes/04_blur_y.r.png")).expect("dump");
+    assert!(
+        matches!(blur, image::DynamicImage::ImageRgba16(_)),
+        "{:?}",
+        blur.color()
+    );
+
+    let exr = dir.join("toon.exr");
+    let o = npr(&[
+        "render",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "-o",
+        exr.to_str().expect("path"),
+        "--size",
+        "32x32",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let e = image::open(&exr).expect("exr");
+    assert_eq!((e.width(), e.height()), (32, 32));
+}
+
+#[test]
+fn frames_render_an_animation() {
+    let dir = scratch("frames");
+    let out = dir.join("f_{frame}.png");
+    let o = npr(&[
+        "render",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "-o",
+        out.to_str().expect("path"),
+        "--size",
+        "32x32",
+        "--frames",
+        "0..3",
+        "--fps",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let frames: Vec<image::RgbaImage> = (0..3)
+        .map(|f| {
+            image::open(dir.join(format!("f_{f:04}.png")))
+                .expect("frame")
+                .to_rgba8()
+        })
+        .collect();
+    // The rim light is animated from 0.1 (0 s) to 0.5 (4 s): frames differ.
+    assert_ne!(frames[0], frames[2]);
+}
+
+#[test]
+fn too_large_an_image_is_a_user_error() {
+    let o = npr(&[
+        "render",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "-o",
+        "/dev/null",
+        "--size",
+        "20000x16",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("E0404"), "{}", stderr(&o));
+}
