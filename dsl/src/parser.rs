@@ -51,7 +51,7 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
     let mut diags = Vec::new();
     let starts = item_starts(source);
     if starts.is_empty() {
-        diags.push(b.syntax_error(first, 0, source));
+        diags.push(b.syntax_error(first, source, "end of file"));
         return (ast, diags);
     }
     let mut reported = false;
@@ -70,12 +70,17 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
             }
             Err(e) => {
                 reported = true;
-                diags.push(b.syntax_error(e, 0, &padded));
+                let eof = if end == source.len() {
+                    "end of file"
+                } else {
+                    "the next declaration"
+                };
+                diags.push(b.syntax_error(e, &padded, eof));
             }
         }
     }
     if !reported {
-        diags.push(b.syntax_error(first, 0, source));
+        diags.push(b.syntax_error(first, source, "end of file"));
     }
     if ast.style.is_none()
         && !diags.iter().any(|d| d.code == codes::STYLE_HEADER)
@@ -185,7 +190,7 @@ impl Builder {
         Span::new(self.file, s.start(), s.end())
     }
 
-    fn syntax_error(&self, e: pest::error::Error<Rule>, _base: usize, source: &str) -> Diagnostic {
+    fn syntax_error(&self, e: pest::error::Error<Rule>, source: &str, eof: &str) -> Diagnostic {
         let (start, end) = match e.location {
             InputLocation::Pos(p) => (p, p),
             InputLocation::Span((a, b)) => (a, b),
@@ -198,13 +203,19 @@ impl Builder {
             .take(12)
             .collect();
         let found_text = if found.is_empty() {
-            "end of file".to_string()
+            eof.to_string()
         } else {
             format!("`{found}`")
         };
         let (message, label) = match &e.variant {
             ErrorVariant::ParsingError { positives, negatives } => {
-                let mut names: Vec<String> = positives.iter().map(rule_name).collect();
+                // `item*` failing before EOI only records EOI: say what could come instead.
+                let only_eoi = positives.iter().all(|r| *r == Rule::EOI);
+                let mut names: Vec<String> = if only_eoi && !positives.is_empty() {
+                    vec![rule_name(&Rule::item)]
+                } else {
+                    positives.iter().map(rule_name).collect()
+                };
                 names.sort();
                 names.dedup();
                 let expected = match names.len() {
@@ -230,7 +241,11 @@ impl Builder {
         let mut d =
             Diagnostic::error(codes::SYNTAX, message).with_primary(Span::new(self.file, start, end.max(start)), label);
         let before = &source[..start];
-        if before.matches('"').count() % 2 == 1 || found.starts_with('"') && !found[1..].contains('"') {
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let line = source[line_start..].lines().next().unwrap_or("").trim_start();
+        if (line.starts_with("param") || line.starts_with("object param")) && !line.contains('=') {
+            d = d.with_help("a parameter needs a default: `param name: type = value`");
+        } else if before.matches('"').count() % 2 == 1 || found.starts_with('"') && !found[1..].contains('"') {
             d = d.with_help("a string is missing its closing `\"`");
         } else if found.starts_with('%') {
             d = d.with_help("write `a % b` with spaces for modulo; `50%` (no space) is a percentage");
