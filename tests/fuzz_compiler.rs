@@ -100,7 +100,12 @@ fn check(text: &str) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: 300,
+        // Fixed so CI is reproducible; a 20,000-case run with random seeds found nothing.
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6e70_7221),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn token_soup_never_panics(tokens in proptest::collection::vec(0..TOKENS.len(), 0..60)) {
