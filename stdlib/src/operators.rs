@@ -260,4 +260,111 @@ pub static ALL: &[Operator] = &[
         wgsl: include_str!("../wgsl/sample.wgsl"),
         depends: &[],
     },
+    Operator {
+        name: "metatexture_grad",
+        doc: "MetaTexture: a tileable example texture blended at quantized scales so it keeps its screen-space size on any surface; UV gradients given explicitly.",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3, eqs. 1–8 (eqs. 4–5 swapped, see erratum), skew eqs. 14–23, contrast eqs. 24–25",
+        params: METATEXTURE_GRAD_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture_grad.wgsl"),
+        depends: &[],
+    },
+    Operator {
+        name: "metatexture",
+        doc: "MetaTexture with UV gradients from fragment derivatives (eq. 1 with ∇u = (∂u/∂x, ∂u/∂y)).",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8",
+        params: METATEXTURE_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture.wgsl"),
+        depends: &["metatexture_grad"],
+    },
 ];
+
+/// The MetaTexture settings shared by both variants, after the texture/uv/gradients.
+macro_rules! metatexture_settings {
+    () => {
+        [
+            Param {
+                name: "width",
+                ty: Ty::Float,
+                unit: Unit::Px,
+                default: Default::Number(256.0),
+                range: Some((1.0, 4096.0)),
+                doc: "target screen-space width of the example texture (w of eq. 1)",
+            },
+            Param {
+                name: "beta",
+                ty: Ty::Enum(&["linear", "cubic", "quintic"]),
+                unit: Unit::None,
+                default: Default::Variant("cubic"),
+                range: None,
+                doc: "blend function β of eq. 7",
+            },
+            Param {
+                name: "base",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(2.0),
+                range: Some((1.01, 16.0)),
+                doc: "quantization base: 2 as in the paper; 3, √2 or φ also work",
+            },
+            Param {
+                name: "skew",
+                ty: Ty::Int,
+                unit: Unit::None,
+                default: Default::Number(0.0),
+                range: Some((0.0, 8.0)),
+                doc: "skew levels n (eq. 16); 0 = 4 taps, ≥ 1 = 8 taps",
+            },
+            Param {
+                name: "contrast",
+                ty: Ty::Enum(&["none", "printed", "variance"]),
+                unit: Unit::None,
+                default: Default::Variant("none"),
+                range: None,
+                doc: "contrast compensation: none, × c as printed (eq. 24), or ÷ √c (variance-preserving)",
+            },
+            Param {
+                name: "mean",
+                ty: Ty::Color,
+                unit: Unit::None,
+                default: Default::Number(0.5),
+                range: None,
+                doc: "mean of the example texture, the pivot of contrast compensation",
+            },
+        ]
+    };
+}
+
+const METATEXTURE_SAMPLED: Param = p("tex", Ty::SampledTexture, "the tileable example texture (wrap: repeat)");
+const METATEXTURE_UV: Param = Param {
+    name: "uv",
+    ty: Ty::Vec2,
+    unit: Unit::None,
+    default: Default::Builtin("uv"),
+    range: None,
+    doc: "surface texture coordinates",
+};
+
+const METATEXTURE_GRAD_PARAMS: &[Param] = &{
+    let s = metatexture_settings!();
+    [
+        METATEXTURE_SAMPLED,
+        METATEXTURE_UV,
+        p("grad_u", Ty::Vec2, "screen-space gradient of u, in UV per px"),
+        p("grad_v", Ty::Vec2, "screen-space gradient of v, in UV per px"),
+        s[0],
+        s[1],
+        s[2],
+        s[3],
+        s[4],
+        s[5],
+    ]
+};
+
+const METATEXTURE_PARAMS: &[Param] = &{
+    let s = metatexture_settings!();
+    [METATEXTURE_SAMPLED, METATEXTURE_UV, s[0], s[1], s[2], s[3], s[4], s[5]]
+};

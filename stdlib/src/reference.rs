@@ -12,7 +12,7 @@ pub struct ImageF64 {
 }
 
 impl ImageF64 {
-    pub fn new(width: u32, height: u32, f: impl Fn(u32, u32) -> [f64; 4]) -> ImageF64 {
+    pub fn new(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> [f64; 4]) -> ImageF64 {
         let mut pixels = Vec::with_capacity((width * height) as usize);
         for y in 0..height {
             for x in 0..width {
@@ -213,8 +213,138 @@ pub const REFERENCED: &[&str] = &[
     "saturation",
     "overlay",
     "sample",
+    "metatexture_grad",
+    "metatexture",
 ];
 
 pub fn has_reference(name: &str) -> bool {
     REFERENCED.contains(&name)
+}
+
+/// Bilinear filtering with repeat addressing at level 0 (a tileable texture).
+pub fn sample_repeat(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
+    let (w, h) = (tex.width as i64, tex.height as i64);
+    let x = uv[0] * w as f64 - 0.5;
+    let y = uv[1] * h as f64 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let at = |i: i64, j: i64| tex.load(i.rem_euclid(w), j.rem_euclid(h));
+    let (a, b, c, d) = (at(x0, y0), at(x0 + 1, y0), at(x0, y0 + 1), at(x0 + 1, y0 + 1));
+    std::array::from_fn(|i| {
+        let top = a[i] * (1.0 - fx) + b[i] * fx;
+        let bottom = c[i] * (1.0 - fx) + d[i] * fx;
+        top * (1.0 - fy) + bottom * fy
+    })
+}
+
+/// MetaTexture settings (see `metatexture_grad.wgsl`).
+#[derive(Debug, Clone, Copy)]
+pub struct MetaSettings {
+    pub width: f64,
+    /// 0 linear, 1 cubic, 2 quintic.
+    pub beta: i64,
+    pub base: f64,
+    pub skew: i64,
+    /// 0 none, 1 printed (× c), 2 variance-preserving (÷ √c).
+    pub contrast: i64,
+    pub mean: [f64; 4],
+}
+
+impl Default for MetaSettings {
+    fn default() -> Self {
+        MetaSettings {
+            width: 256.0,
+            beta: 1,
+            base: 2.0,
+            skew: 0,
+            contrast: 0,
+            mean: [0.5; 4],
+        }
+    }
+}
+
+/// The largest texture scale MetaTexture uses (keeps k·uv precise in f32).
+pub const META_MAX_SCALE: f64 = 4096.0;
+
+/// β of eq. 7.
+pub fn meta_beta(x: f64, kind: i64) -> f64 {
+    let t = x.clamp(0.0, 1.0);
+    match kind {
+        0 => t,
+        1 => t * t * (3.0 - 2.0 * t),
+        _ => t * t * t * (t * (t * 6.0 - 15.0) + 10.0),
+    }
+}
+
+/// k(t) of eq. 25.
+pub fn meta_k(t: f64) -> f64 {
+    2.0 * t * t - 2.0 * t + 1.0
+}
+
+/// Eqs. 1, 2 and 7: (E, per-axis scale base^⌊E⌋, blend weights B).
+pub fn meta_level(du: [f64; 2], dv: [f64; 2], s: &MetaSettings) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let lb = s.base.max(1.0001).log2();
+    let max_e = META_MAX_SCALE.log2() / lb;
+    let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().clamp(1e-30, 1e30);
+    let e = [
+        (-(s.width.max(1e-6) * len(du)).log2() / lb).clamp(-max_e, max_e),
+        (-(s.width.max(1e-6) * len(dv)).log2() / lb).clamp(-max_e, max_e),
+    ];
+    let fe = [e[0].floor(), e[1].floor()];
+    let scale = [(fe[0] * lb).exp2(), (fe[1] * lb).exp2()];
+    let blend = [meta_beta(e[0] - fe[0], s.beta), meta_beta(e[1] - fe[1], s.beta)];
+    (e, scale, blend)
+}
+
+fn meta_four(tex: &ImageF64, uv: [f64; 2], scale: [f64; 2], blend: [f64; 2], base: f64) -> [f64; 4] {
+    let tap = |kx: f64, ky: f64| sample_repeat(tex, [(kx * uv[0]).rem_euclid(1.0), (ky * uv[1]).rem_euclid(1.0)]);
+    // Eq. 8 with U1 = ⟨u0, b·v0⟩ and U2 = ⟨b·u0, v0⟩ (eqs. 4–5 corrected).
+    let t0 = tap(scale[0], scale[1]);
+    let t1 = tap(scale[0], base * scale[1]);
+    let t2 = tap(base * scale[0], scale[1]);
+    let t3 = tap(base * scale[0], base * scale[1]);
+    let (bu, bv) = (blend[0], blend[1]);
+    std::array::from_fn(|i| (1.0 - bv) * ((1.0 - bu) * t0[i] + bu * t2[i]) + bv * ((1.0 - bu) * t1[i] + bu * t3[i]))
+}
+
+/// MetaTexture M (eq. 8, or eq. 23 with skew) with contrast compensation.
+pub fn metatexture_grad(tex: &ImageF64, uv: [f64; 2], du: [f64; 2], dv: [f64; 2], s: &MetaSettings) -> [f64; 4] {
+    let (m, c) = if s.skew <= 0 {
+        let (_, scale, blend) = meta_level(du, dv, s);
+        (
+            meta_four(tex, uv, scale, blend, s.base),
+            meta_k(blend[0]) * meta_k(blend[1]),
+        )
+    } else {
+        let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().max(1e-30);
+        let (lu, lv) = (len(du), len(dv));
+        let eps = lu.min(lv) / lu.max(lv);
+        let sigma = eps.atan() * ((du[0] * dv[0] + du[1] * dv[1]) / (lu * lv));
+        let n = s.skew as f64;
+        let fl = (n * sigma).floor();
+        let psi0 = (fl / n / 2.0).atan();
+        let psi1 = ((fl + 1.0) / n / 2.0).atan();
+        let bw = meta_beta(n * sigma - fl, s.beta);
+        let set = |psi: f64| {
+            let (c, sn) = (psi.cos(), psi.sin());
+            // Eqs. 20–21: a symmetric shear.
+            let uvp = [uv[0] * c + uv[1] * sn, uv[1] * c + uv[0] * sn];
+            let dup = [c * du[0] + sn * dv[0], c * du[1] + sn * dv[1]];
+            let dvp = [c * dv[0] + sn * du[0], c * dv[1] + sn * du[1]];
+            let (_, scale, blend) = meta_level(dup, dvp, s);
+            (meta_four(tex, uvp, scale, blend, s.base), blend)
+        };
+        let (m0, b0) = set(psi0);
+        let (m1, b1) = set(psi1);
+        let m: [f64; 4] = std::array::from_fn(|i| (1.0 - bw) * m0[i] + bw * m1[i]);
+        let bu = b0[0] + (b1[0] - b0[0]) * bw;
+        let bv = b0[1] + (b1[1] - b0[1]) * bw;
+        (m, meta_k(bu) * meta_k(bv) * meta_k(bw))
+    };
+    match s.contrast {
+        1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),
+        2 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) / c.max(1e-6).sqrt()),
+        _ => m,
+    }
 }
