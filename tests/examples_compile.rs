@@ -75,3 +75,38 @@ fn compile_snapshots() {
         insta::assert_snapshot!(format!("{name}__report"), c.report.render());
     }
 }
+
+#[test]
+fn skew_zero_emits_no_8_tap_code() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/metatexture.npr");
+    let folded = compile(&path, false);
+    let wgsl = folded.shader("shade.wgsl").expect("shade pass");
+    assert!(wgsl.contains("npr_metatexture4("), "4-tap path used");
+    assert!(
+        !wgsl.contains("fn npr_metatexture_grad("),
+        "no 8-tap code when skew_levels = 0:\n{wgsl}"
+    );
+    assert!(folded.report.render().contains("calls `metatexture4` instead"));
+    // With skew_levels kept as a uniform (or set ≥ 1) the 8-tap path is emitted.
+    let kept = compile(&path, true);
+    assert!(kept
+        .shader("shade.wgsl")
+        .expect("shade")
+        .contains("fn npr_metatexture_grad("));
+    let text = std::fs::read_to_string(&path)
+        .expect("read")
+        .replace("skew_levels: int = 0", "skew_levels: int = 2");
+    let mut sources = SourceMap::new();
+    let skewed = compiler::compile_source(
+        "skew.npr",
+        &text,
+        path.parent().expect("dir"),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(skewed
+        .shader("shade.wgsl")
+        .expect("shade")
+        .contains("fn npr_metatexture_grad("));
+}

@@ -114,3 +114,12 @@ fn a_broken_image_fails_the_comparison() {
     let written = c.written.expect("actual and diff written on failure");
     assert!(written.0.exists() && written.1.exists());
 }
+
+#[test]
+fn metatexture_on_spot() {
+    golden(
+        "metatexture_spot",
+        "examples/metatexture.npr",
+        "examples/scenes/spot.toml",
+    );
+}

@@ -129,6 +129,30 @@ pub struct Operator {
     pub wgsl: &'static str,
     /// Other operators whose WGSL functions this one calls.
     pub depends: &'static [&'static str],
+    /// Shared WGSL helper files (from [`snippets`]) this one calls.
+    pub snippets: &'static [&'static str],
+    /// Cheaper operators to call instead when an argument is a known constant.
+    pub specializations: &'static [Specialization],
+}
+
+/// "When `param` is the constant `value`, call `use_operator` instead": the
+/// replacement takes the same parameters minus `param`. This is how a style
+/// without skew compensation emits no 8-tap MetaTexture code.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Specialization {
+    pub param: &'static str,
+    pub value: f64,
+    pub use_operator: &'static str,
+}
+
+/// Shared WGSL helpers, by name: (name, source). Their functions are prefixed
+/// `npr_<name>__` and are emitted once per module that needs them.
+pub mod snippets {
+    pub const ALL: &[(&str, &str)] = &[("meta", include_str!("../wgsl/metatexture_common.wgsl"))];
+
+    pub fn find(name: &str) -> Option<&'static str> {
+        ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+    }
 }
 
 impl Operator {

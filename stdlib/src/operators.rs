@@ -1,6 +1,6 @@
 //! The operator table: metadata for every stdlib operator, and its WGSL.
 
-use crate::{Default, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Operator, Param, Specialization, Stage, Ty, Unit};
 
 const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
     Param {
@@ -35,6 +35,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/lambert.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "half_lambert",
@@ -48,6 +50,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/half_lambert.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "toon",
@@ -68,6 +72,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/toon.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "threshold",
@@ -96,6 +102,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/threshold.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "gaussian",
@@ -125,6 +133,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/gaussian.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "downsample",
@@ -135,6 +145,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/downsample.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "sobel",
@@ -148,6 +160,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/sobel.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "normal_depth_edges",
@@ -178,6 +192,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/normal_depth_edges.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "over",
@@ -188,6 +204,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/over.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "luminance",
@@ -198,6 +216,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/luminance.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "saturation",
@@ -218,6 +238,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/saturation.wgsl"),
         depends: &["luminance"],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "overlay",
@@ -239,6 +261,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/overlay.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "sample",
@@ -259,6 +283,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/sample.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
     },
     Operator {
         name: "metatexture_grad",
@@ -269,6 +295,8 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/metatexture_grad.wgsl"),
         depends: &[],
+        snippets: &["meta"],
+        specializations: &[Specialization { param: "skew", value: 0.0, use_operator: "metatexture4_grad" }],
     },
     Operator {
         name: "metatexture",
@@ -279,6 +307,32 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/metatexture.wgsl"),
         depends: &["metatexture_grad"],
+        snippets: &["meta"],
+        specializations: &[Specialization { param: "skew", value: 0.0, use_operator: "metatexture4" }],
+    },
+    Operator {
+        name: "metatexture4_grad",
+        doc: "4-tap MetaTexture (no skew compensation) with explicit UV gradients; what `metatexture_grad` compiles to when `skew` is 0.",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8 (eqs. 4–5 swapped, see erratum), contrast eqs. 24–25",
+        params: METATEXTURE4_GRAD_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture4_grad.wgsl"),
+        depends: &[],
+        snippets: &["meta"],
+        specializations: &[],
+    },
+    Operator {
+        name: "metatexture4",
+        doc: "4-tap MetaTexture with UV gradients from fragment derivatives; what `metatexture` compiles to when `skew` is 0.",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8",
+        params: METATEXTURE4_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture4.wgsl"),
+        depends: &["metatexture4_grad"],
+        snippets: &["meta"],
+        specializations: &[],
     },
 ];
 
@@ -367,4 +421,24 @@ const METATEXTURE_GRAD_PARAMS: &[Param] = &{
 const METATEXTURE_PARAMS: &[Param] = &{
     let s = metatexture_settings!();
     [METATEXTURE_SAMPLED, METATEXTURE_UV, s[0], s[1], s[2], s[3], s[4], s[5]]
+};
+
+const METATEXTURE4_GRAD_PARAMS: &[Param] = &{
+    let s = metatexture_settings!();
+    [
+        METATEXTURE_SAMPLED,
+        METATEXTURE_UV,
+        p("grad_u", Ty::Vec2, "screen-space gradient of u, in UV per px"),
+        p("grad_v", Ty::Vec2, "screen-space gradient of v, in UV per px"),
+        s[0],
+        s[1],
+        s[2],
+        s[4],
+        s[5],
+    ]
+};
+
+const METATEXTURE4_PARAMS: &[Param] = &{
+    let s = metatexture_settings!();
+    [METATEXTURE_SAMPLED, METATEXTURE_UV, s[0], s[1], s[2], s[4], s[5]]
 };

@@ -215,6 +215,8 @@ pub const REFERENCED: &[&str] = &[
     "sample",
     "metatexture_grad",
     "metatexture",
+    "metatexture4_grad",
+    "metatexture4",
 ];
 
 pub fn has_reference(name: &str) -> bool {

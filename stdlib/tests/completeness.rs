@@ -6,6 +6,10 @@ use stdlib::{Default, Ty};
 
 fn wgsl_with_deps(op: &stdlib::Operator) -> String {
     let mut src = String::new();
+    for s in op.snippets {
+        src.push_str(stdlib::snippets::find(s).unwrap_or_else(|| panic!("{}: unknown snippet {s}", op.name)));
+        src.push('\n');
+    }
     for d in op.depends {
         src.push_str(
             stdlib::find(d)
@@ -137,4 +141,18 @@ fn operator_names_are_unique() {
     let n = names.len();
     names.dedup();
     assert_eq!(n, names.len());
+}
+
+#[test]
+fn specializations_drop_exactly_one_parameter() {
+    for op in stdlib::all() {
+        for s in op.specializations {
+            let alt = stdlib::find(s.use_operator).unwrap_or_else(|| panic!("{}: unknown {}", op.name, s.use_operator));
+            let kept: Vec<&str> = op.params.iter().filter(|p| p.name != s.param).map(|p| p.name).collect();
+            let alt_params: Vec<&str> = alt.params.iter().map(|p| p.name).collect();
+            assert_eq!(kept, alt_params, "{} → {}", op.name, alt.name);
+            let p = op.param(s.param).expect("specialized parameter exists");
+            assert!(p.range.is_none_or(|(lo, hi)| lo <= s.value && s.value <= hi));
+        }
+    }
 }

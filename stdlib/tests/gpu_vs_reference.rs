@@ -199,11 +199,20 @@ fn run(prelude: &str, body: &str, inputs: &[[f32; 4]], out_size: (u32, u32), tex
 }
 
 fn op_wgsl(names: &[&str]) -> String {
-    names
+    let mut snippets: Vec<&str> = Vec::new();
+    for n in names {
+        for s in stdlib::find(n).expect("operator").snippets {
+            if !snippets.contains(s) {
+                snippets.push(s);
+            }
+        }
+    }
+    let mut src: Vec<&str> = snippets
         .iter()
-        .map(|n| stdlib::find(n).expect("operator").wgsl)
-        .collect::<Vec<_>>()
-        .join("\n")
+        .map(|s| stdlib::snippets::find(s).expect("snippet"))
+        .collect();
+    src.extend(names.iter().map(|n| stdlib::find(n).expect("operator").wgsl));
+    src.join("\n")
 }
 
 /// Compare GPU and reference, assert finiteness and the bound; returns the max error.
@@ -680,6 +689,19 @@ fn metatexture_matches_reference_including_hard_cases() {
     // ≤ 0.06, and f32 coordinates at scale ≤ 4096: ≤ 0.06/32 + 1/255 < 6e-3;
     // variance-preserving contrast divides by √c ≥ 1/2, doubling it: 1.2e-2.
     compare("metatexture_grad", &out, &reference, 3, 1.2e-2);
+    // The 4-tap specialization equals the general operator at skew 0.
+    let four: Vec<usize> = (0..cases.len()).filter(|i| cases[*i][2][1] == 0.0).collect();
+    let inputs4: Vec<[f32; 4]> = four.iter().flat_map(|i| cases[*i].map(f32v)).collect();
+    let body4 = "result = npr_metatexture4_grad(t0, samp_repeat, a.xy, a.zw, b.xy, b.w, i32(c.x), b.z, i32(c.z), vec4<f32>(0.5));";
+    let out4 = run(
+        &op_wgsl(&["metatexture4_grad"]),
+        body4,
+        &inputs4,
+        (four.len() as u32, 1),
+        &tex,
+    );
+    let reference4: Vec<[f64; 4]> = four.iter().map(|i| reference[*i]).collect();
+    compare("metatexture4_grad", &out4, &reference4, 3, 1.2e-2);
     for (i, o) in out.iter().enumerate() {
         // Bounded output on every hard case: within the texture's range widened by the contrast gain.
         assert!(

@@ -288,8 +288,24 @@ impl Emitter<'_> {
             w.push_str(LOAD_HELPER);
             w.push('\n');
         }
-        // Operators, dependencies first.
-        for op in self.operator_closure(&operators) {
+        // Operators, dependencies first, after the shared helper snippets they use.
+        let closure = self.operator_closure(&operators);
+        let mut snippets: Vec<&str> = Vec::new();
+        for op in &closure {
+            for s in stdlib::all()[*op].snippets {
+                if !snippets.contains(s) {
+                    snippets.push(s);
+                }
+            }
+        }
+        for s in snippets {
+            if let Some(src) = stdlib::snippets::find(s) {
+                let _ = writeln!(w, "// ---- stdlib helpers `{s}`");
+                w.push_str(src.trim_end());
+                w.push_str("\n\n");
+            }
+        }
+        for op in closure {
             let o = &stdlib::all()[op];
             let _ = writeln!(w, "// ---- stdlib operator `{}` ({})", o.name, o.reference);
             w.push_str(o.wgsl.trim_end());
