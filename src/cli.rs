@@ -98,6 +98,15 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 50)]
         iterations: u32,
     },
+    /// Operator cost against a plain texture-sample pass, per variant, in one run.
+    Ops {
+        #[arg(long, default_value = "examples/scenes/spheres.toml")]
+        scene: PathBuf,
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+    },
     /// Runner overhead per frame: `Renderer::render` (uniform updates,
     /// recording, submit, wait) against the bare passes — the same pipelines
     /// and bind groups recorded and submitted with no per-frame work of ours.
@@ -304,6 +313,7 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             }
             EXIT_OK
         }
+        BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
         BenchCommand::Frame {
             style,
             scene,
@@ -342,6 +352,93 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             }
         }
     }
+}
+
+/// One style per operator variant: the same render pass over the scene with
+/// only the texture read changed, so the ratio isolates the operator.
+const OPS_STYLE: &str = "style \"bench\"\ntexture grain = noise(size: 128, octaves: 4, seed: 3, kind: gradient) { wrap: repeat, mips: on }\npass p: render(scene) {\n  out c: rgba8unorm = READ\n}\noutput p.c\n";
+
+const OPS_VARIANTS: &[(&str, &str)] = &[
+    ("plain texture sample (baseline)", "sample(grain, uv * 8.0)"),
+    (
+        "metatexture 4-tap (skew 0)",
+        "metatexture(grain, uv * 8.0, width: 48px, skew: 0)",
+    ),
+    (
+        "metatexture 4-tap + contrast",
+        "metatexture(grain, uv * 8.0, width: 48px, skew: 0, contrast: variance)",
+    ),
+    (
+        "metatexture 8-tap, skew n = 1",
+        "metatexture(grain, uv * 8.0, width: 48px, skew: 1)",
+    ),
+    (
+        "metatexture 8-tap, skew n = 2",
+        "metatexture(grain, uv * 8.0, width: 48px, skew: 2)",
+    ),
+    (
+        "metatexture 8-tap, skew n = 4",
+        "metatexture(grain, uv * 8.0, width: 48px, skew: 4)",
+    ),
+];
+
+fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+    let mut sources = SourceMap::new();
+    let scene = match runner::scene::load_scene(scene_path, &mut sources) {
+        Ok(s) => s,
+        Err(d) => {
+            printer.diagnostics(&d, &sources);
+            return EXIT_USER;
+        }
+    };
+    let gpu = match Gpu::headless() {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USER;
+        }
+    };
+    let mut programs = Vec::new();
+    for (name, read) in OPS_VARIANTS {
+        let text = OPS_STYLE.replace("READ", read);
+        match compiler::compile_source(name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
+            Ok(c) => programs.push((*name, StyleProgram::from_compiled(&c))),
+            Err(CompileError::User(d)) => {
+                printer.diagnostics(&d, &sources);
+                return EXIT_INTERNAL;
+            }
+            Err(CompileError::Internal(e)) => {
+                eprintln!("{e}");
+                return EXIT_INTERNAL;
+            }
+        }
+    }
+    // Interleave rounds so load changes hit every variant alike; keep each variant's best median.
+    let mut best = vec![f64::INFINITY; programs.len()];
+    for _ in 0..3 {
+        for (i, (_, p)) in programs.iter().enumerate() {
+            match runner::bench::frame_time(&gpu, p, &scene, size, frames) {
+                Ok(t) => best[i] = best[i].min(t),
+                Err(e) => {
+                    printer.diagnostics(&e.diagnostics(), &sources);
+                    return EXIT_INTERNAL;
+                }
+            }
+        }
+    }
+    println!(
+        "device: {}, {}x{}, scene {}",
+        gpu.describe(),
+        size.0,
+        size.1,
+        scene_path.display()
+    );
+    println!("| variant | ms/frame | cost vs plain sample |");
+    println!("|---|---:|---:|");
+    for (i, (name, _)) in programs.iter().enumerate() {
+        println!("| {name} | {:.3} | {:.2}x |", best[i] * 1e3, best[i] / best[0]);
+    }
+    EXIT_OK
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer: &Printer) -> Result<Compiled, i32> {

@@ -80,3 +80,36 @@ pub fn frame_overhead(
         bare_s: median(bare),
     })
 }
+
+/// Median seconds per frame of `program` (render + GPU wait), after one warm-up frame.
+pub fn frame_time(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    scene: &crate::scene::Scene,
+    (width, height): (u32, u32),
+    frames: u32,
+) -> Result<f64, RunError> {
+    let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let wait = || {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+    };
+    let spec = FrameSpec {
+        width,
+        height,
+        time_s: 0.0,
+        frame: 0,
+        eye: 0,
+    };
+    r.render(scene, &spec)?;
+    wait()?;
+    let mut times = Vec::new();
+    for _ in 0..frames.max(1) {
+        let t = Instant::now();
+        r.render(scene, &spec)?;
+        wait()?;
+        times.push(t.elapsed().as_secs_f64());
+    }
+    Ok(median(times))
+}
