@@ -17,6 +17,7 @@
 //! - quantities with a [`Unit`] arrive in the canonical unit: px, metres,
 //!   seconds, hertz, radians.
 
+pub mod metrics;
 pub mod operators;
 pub mod reference;
 
