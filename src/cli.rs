@@ -53,6 +53,10 @@ pub enum Command {
         /// Print the time taken by each compiler stage.
         #[arg(long)]
         time_passes: bool,
+        /// Compile for this scene (TOML): `scene_has(tag)` folds, and what
+        /// only absent objects need is removed (see --report).
+        #[arg(long)]
+        scene: Option<PathBuf>,
     },
     /// Render a style on a scene to an image.
     Render {
@@ -87,6 +91,29 @@ pub enum Command {
     /// Benchmarks; see docs/PERFORMANCE.md.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Generate a tileable texture with npr's own generator (the same one
+    /// `noise(...)` textures use) and write it as a 16-bit PNG.
+    Texgen {
+        /// Output PNG.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Width and height in texels.
+        #[arg(long, default_value_t = 256)]
+        size: u32,
+        #[arg(long, default_value_t = 4)]
+        octaves: u32,
+        #[arg(long, default_value_t = 1)]
+        seed: u32,
+        /// Channels with independent noise (1: grey, 2: a warp-vector field in r, g).
+        #[arg(long, default_value_t = 1)]
+        channels: u32,
+        /// Lattice cells across the texture at the first octave.
+        #[arg(long, default_value_t = 4)]
+        frequency: u32,
+        /// `value` or `gradient` noise.
+        #[arg(long, default_value = "gradient")]
+        kind: String,
+    },
 }
 
 #[derive(Subcommand, Debug)]
@@ -187,8 +214,20 @@ pub fn run(cli: Cli) -> i32 {
             keep_params,
             dump_ir,
             time_passes,
+            scene,
         } => {
-            let opts = CompileOptions { keep_params, dump_ir };
+            let scene = match scene.map(|s| load_scene_summary(&s, &mut sources)).transpose() {
+                Ok(s) => s,
+                Err(diags) => {
+                    printer.diagnostics(&diags, &sources);
+                    return EXIT_USER;
+                }
+            };
+            let opts = CompileOptions {
+                keep_params,
+                dump_ir,
+                scene,
+            };
             let c = match compile(&style, &mut sources, &opts, &printer) {
                 Ok(c) => c,
                 Err(code) => return code,
@@ -212,6 +251,50 @@ pub fn run(cli: Cli) -> i32 {
             EXIT_OK
         }
         Command::Bench(cmd) => bench(cmd, &printer),
+        Command::Texgen {
+            out,
+            size,
+            octaves,
+            seed,
+            channels,
+            frequency,
+            kind,
+        } => {
+            let gradient = match kind.as_str() {
+                "gradient" => true,
+                "value" => false,
+                other => {
+                    eprintln!("error: unknown noise kind `{other}`; use `value` or `gradient`");
+                    return EXIT_USER;
+                }
+            };
+            if !(1..=4096).contains(&size)
+                || !(1..=4).contains(&channels)
+                || !(1..=12).contains(&octaves)
+                || frequency == 0
+            {
+                eprintln!("error: need 1 ≤ size ≤ 4096, 1 ≤ channels ≤ 4, 1 ≤ octaves ≤ 12 and frequency ≥ 1");
+                return EXIT_USER;
+            }
+            let spec = runner::texgen::NoiseSpec {
+                size,
+                octaves,
+                seed,
+                gradient,
+                channels,
+                frequency,
+            };
+            match runner::texgen::write_png16(&runner::texgen::generate(&spec), &out) {
+                Ok(()) => {
+                    eprintln!("wrote {} ({size}x{size}, {channels} channel(s))", out.display());
+                    EXIT_OK
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", out.display());
+                    EXIT_USER
+                }
+            }
+        }
         Command::Render {
             style,
             scene,
@@ -224,15 +307,7 @@ pub fn run(cli: Cli) -> i32 {
             dump_passes,
             keep_params,
         } => {
-            let opts = CompileOptions {
-                keep_params,
-                dump_ir: false,
-            };
-            let c = match compile(&style, &mut sources, &opts, &printer) {
-                Ok(c) => c,
-                Err(code) => return code,
-            };
-            printer.diagnostics(&c.warnings, &sources);
+            let scene_name = scene.display().to_string();
             let scene = match runner::scene::load_scene(&scene, &mut sources) {
                 Ok(s) => s,
                 Err(d) => {
@@ -240,6 +315,17 @@ pub fn run(cli: Cli) -> i32 {
                     return EXIT_USER;
                 }
             };
+            // Compile for this scene, so nothing the scene cannot use is run.
+            let opts = CompileOptions {
+                keep_params,
+                dump_ir: false,
+                scene: Some(scene.summary(&scene_name)),
+            };
+            let c = match compile(&style, &mut sources, &opts, &printer) {
+                Ok(c) => c,
+                Err(code) => return code,
+            };
+            printer.diagnostics(&c.warnings, &sources);
             let gpu = match Gpu::headless() {
                 Ok(g) => g,
                 Err(e) => {
@@ -458,6 +544,11 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer
     }
 }
 
+/// Load a scene only for what the compiler may know of it (its tags).
+fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<compiler::SceneSummary, Vec<Diagnostic>> {
+    runner::scene::load_scene(path, sources).map(|s| s.summary(&path.display().to_string()))
+}
+
 fn write_compiled(c: &Compiled, out: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(out)?;
     for (file, wgsl) in &c.shaders {
@@ -590,13 +681,21 @@ pub fn dump_all_targets(
         eye,
     };
     r.render(scene, &spec)?;
-    let mut images = Vec::new();
-    for t in 0..r.manifest.targets.len() {
-        if r.target_survives_frame(t) {
-            images.push(r.read_target(t)?);
+    let count = r.manifest.targets.len();
+    // Read every survivor of the full frame first: a partial re-render
+    // overwrites the textures that aliased targets share with them.
+    let mut images: Vec<Option<runner::TargetImage>> = Vec::with_capacity(count);
+    for t in 0..count {
+        images.push(if r.target_survives_frame(t) {
+            Some(r.read_target(t)?)
         } else {
-            images.push(r.render_until_target(scene, &spec, t)?);
+            None
+        });
+    }
+    for (t, image) in images.iter_mut().enumerate() {
+        if image.is_none() {
+            *image = Some(r.render_until_target(scene, &spec, t)?);
         }
     }
-    Ok(images)
+    Ok(images.into_iter().flatten().collect())
 }

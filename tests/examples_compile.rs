@@ -25,6 +25,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
         &CompileOptions {
             keep_params,
             dump_ir: false,
+            scene: None,
         },
     ) {
         Ok(c) => c,

@@ -22,10 +22,16 @@ fn gpu() -> &'static Gpu {
 fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut sources = dsl::SourceMap::new();
-    let compiled = compiler::compile_file(&root.join(style), &mut sources, &Default::default())
-        .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
+    let scene_name = scene;
     let scene = runner::scene::load_scene(&root.join(scene), &mut sources)
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    // Compiled for its scene, as `npr render` does.
+    let opts = compiler::CompileOptions {
+        scene: Some(scene.summary(scene_name)),
+        ..Default::default()
+    };
+    let compiled = compiler::compile_file(&root.join(style), &mut sources, &opts)
+        .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
     let program = StyleProgram::from_compiled(&compiled);
     let img = runner::render_frame(
         gpu(),
@@ -121,5 +127,14 @@ fn metatexture_on_spot() {
         "metatexture_spot",
         "examples/metatexture.npr",
         "examples/scenes/spot.toml",
+    );
+}
+
+#[test]
+fn age_of_sail_on_spot() {
+    golden(
+        "age_of_sail_spot",
+        "examples/age_of_sail.npr",
+        "examples/scenes/age_of_sail.toml",
     );
 }

@@ -15,7 +15,7 @@ pub struct PassGraph {
 /// Expressions a pass evaluates: its output values and vertex modifiers.
 pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
     let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
-    roots.extend(pass.inflate);
+    roots.extend(Ir::vertex_roots(pass));
     roots
 }
 

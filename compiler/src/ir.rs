@@ -132,6 +132,8 @@ pub enum Builtin {
     NormalView,
     PositionWorld,
     PositionView,
+    /// Light-space NDC of the surface point: x, y in [−1, 1] (unwarped), z in [0, 1].
+    PositionLight,
     Tangent,
     ViewDir,
     Depth,
@@ -159,6 +161,7 @@ impl Builtin {
         ("position", Builtin::PositionWorld),
         ("position.world", Builtin::PositionWorld),
         ("position.view", Builtin::PositionView),
+        ("position.light", Builtin::PositionLight),
         ("tangent", Builtin::Tangent),
         ("view_dir", Builtin::ViewDir),
         ("depth", Builtin::Depth),
@@ -189,7 +192,7 @@ impl Builtin {
         use Builtin::*;
         match self {
             Uv | ScreenUv => (Ty::Vec2, Unit::None),
-            NormalWorld | NormalView | Tangent | ViewDir | LightDir => (Ty::Vec3, Unit::None),
+            NormalWorld | NormalView | Tangent | ViewDir | LightDir | PositionLight => (Ty::Vec3, Unit::None),
             PositionWorld | PositionView | CameraPosition => (Ty::Vec3, Unit::Meters),
             Depth | CameraNear | CameraFar => (Ty::Float, Unit::Meters),
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
@@ -205,7 +208,7 @@ impl Builtin {
         use Builtin::*;
         matches!(
             self,
-            Uv | NormalWorld | NormalView | PositionWorld | PositionView | Tangent | ViewDir | Depth
+            Uv | NormalWorld | NormalView | PositionWorld | PositionView | PositionLight | Tangent | ViewDir | Depth
         )
     }
 }
@@ -439,6 +442,17 @@ pub enum PassKind {
     Image { inputs: Vec<PassId> },
 }
 
+/// The camera a render pass projects with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum PassView {
+    /// The scene camera (the eye being rendered, in stereo).
+    #[default]
+    Camera,
+    /// An orthographic camera looking along the light, fitted to the scene
+    /// bounds (`Frame::light_view_proj`): for shadow-caster depth maps.
+    Light,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassOutput {
     pub name: String,
@@ -463,6 +477,11 @@ pub struct Pass {
     pub clear: [f64; 4],
     /// `vertex { inflate: ... }` in px (render passes only).
     pub inflate: Option<ExprId>,
+    /// Whose eye a render pass sees the scene through: `view(light)`.
+    pub view: PassView,
+    /// `vertex { shadow_warp: k }`: the sigmoid warp of light-space x, y
+    /// (Age of Sail §5, depth pass); only in `view(light)` passes.
+    pub shadow_warp: Option<ExprId>,
     pub lets: Vec<Let>,
     pub outputs: Vec<PassOutput>,
     pub span: Span,
@@ -478,6 +497,8 @@ pub struct Ir {
     pub exprs: Vec<Expr>,
     pub output: Option<TargetRef>,
     pub output_span: Span,
+    /// `scene_has(tag)` calls folded against a known scene: (tag, answer).
+    pub scene_queries: Vec<(String, bool)>,
 }
 
 impl Ir {
@@ -502,6 +523,11 @@ impl Ir {
 
     pub fn expr_mut(&mut self, id: ExprId) -> &mut Expr {
         &mut self.exprs[id.0 as usize]
+    }
+
+    /// The expressions a pass's vertex shader evaluates (`vertex { ... }`).
+    pub fn vertex_roots(pass: &Pass) -> Vec<ExprId> {
+        pass.inflate.into_iter().chain(pass.shadow_warp).collect()
     }
 
     pub fn pass(&self, id: PassId) -> &Pass {

@@ -30,6 +30,19 @@ pub struct CompileOptions {
     pub keep_params: bool,
     /// Record a dump of the IR after each stage.
     pub dump_ir: bool,
+    /// The scene the style will run on, when known: `scene_has(tag)` folds to
+    /// a constant, so passes only an absent tag needs are pruned. `None` keeps
+    /// everything (`scene_has` is conservatively `true`).
+    pub scene: Option<SceneSummary>,
+}
+
+/// What the compiler may know about the scene: the tags its objects carry.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SceneSummary {
+    /// Every tag of every object.
+    pub tags: std::collections::BTreeSet<String>,
+    /// A name for messages and the report (e.g. the scene file).
+    pub name: String,
 }
 
 #[derive(Debug, Clone)]

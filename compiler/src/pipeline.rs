@@ -56,7 +56,7 @@ pub fn run(
                 .with_help("start the file with `style \"Name\"`"),
         );
     }
-    let mut ir = crate::resolve::resolve(&loaded, &mut diags);
+    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags);
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
@@ -68,6 +68,18 @@ pub fn run(
     let live = crate::prune::prune(&ir, &graph, &mut scratch);
     st.done("prune", &ir);
     let mut report = Report::default();
+    for (tag, present) in &ir.scene_queries {
+        let scene = opts.scene.as_ref().map_or("", |s| s.name.as_str());
+        report.push(
+            "folded",
+            format!("scene_has({tag})"),
+            if *present {
+                format!("true: scene {scene} has objects tagged `{tag}`")
+            } else {
+                format!("false: no object in scene {scene} is tagged `{tag}`")
+            },
+        );
+    }
     let bindings = crate::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
     st.done("specialize", &ir);
     // Folding may have made passes, targets and params dead: prune again.

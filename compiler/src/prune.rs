@@ -52,7 +52,7 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
         }
         live.passes.push(*pid);
         let mut roots: Vec<ExprId> = live_outputs.iter().map(|o| o.value).collect();
-        roots.extend(pass.inflate);
+        roots.extend(Ir::vertex_roots(pass));
         for id in ir.reachable(&roots) {
             match ir.expr(id).kind {
                 ExprKind::Target(t) => {

@@ -23,10 +23,11 @@ pub const MAX_PASSES: usize = 64;
 pub const MAX_OUTPUTS_PER_PASS: usize = 8;
 pub const MAX_NOISE_SIZE: u32 = 4096;
 
-pub fn resolve(loaded: &Loaded, diags: &mut Vec<Diagnostic>) -> Ir {
+pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut Vec<Diagnostic>) -> Ir {
     let mut r = Resolver {
         ir: Ir::default(),
         diags,
+        scene,
         names: HashMap::new(),
         pass_outputs: Vec::new(),
         scopes: Vec::new(),
@@ -51,6 +52,8 @@ enum Symbol {
 struct Resolver<'d> {
     ir: Ir,
     diags: &'d mut Vec<Diagnostic>,
+    /// The scene, when the caller knows it (for `scene_has`).
+    scene: Option<&'d crate::SceneSummary>,
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,
@@ -115,6 +118,8 @@ impl Resolver<'_> {
                         scale: 1.0,
                         clear: [0.0, 0.0, 0.0, 0.0],
                         inflate: None,
+                        view: PassView::Camera,
+                        shadow_warp: None,
                         lets: Vec::new(),
                         outputs: Vec::new(),
                         span: p.span,
@@ -581,6 +586,42 @@ impl Resolver<'_> {
         tex
     }
 
+    /// `scene_has(tag)`: whether any object in the scene carries `tag`. With a
+    /// known scene this is a constant, so `if scene_has(casters) { ... }` lets
+    /// the compiler drop a shadow-caster depth pass the scene cannot use; with
+    /// no scene it is `true`, which is always safe (an empty `render(tag)` pass
+    /// leaves its targets at their clear value).
+    fn scene_has(&mut self, call: &ast::Call) -> ExprId {
+        let span = call.span;
+        let tag = match call.args.as_slice() {
+            [a] if a.name.is_none() => match &a.value.kind {
+                AK::Name(n) => Some(n.name.clone()),
+                _ => None,
+            },
+            _ => None,
+        };
+        let Some(tag) = tag else {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "`scene_has` takes one object tag")
+                    .with_primary(span, "expected `scene_has(tag)`")
+                    .with_help("write the tag as a bare name, as in `render(tag)`: `scene_has(casters)`"),
+            );
+            return self.ir.add(ExprKind::Error, span);
+        };
+        let present = match self.scene {
+            Some(scene) => {
+                let present = scene.tags.contains(&tag);
+                if !self.ir.scene_queries.iter().any(|(t, _)| *t == tag) {
+                    self.ir.scene_queries.push((tag, present));
+                }
+                present
+            }
+            None => true,
+        };
+        self.ir
+            .add_typed(ExprKind::Const(Const::Bool(present)), Ty::Bool, Unit::None, span)
+    }
+
     // ---------------------------------------------------------------- passes
 
     fn pass_body(&mut self, id: PassId, p: &ast::PassDecl) {
@@ -653,25 +694,49 @@ impl Resolver<'_> {
                 }
             }
         };
+        let mut view = PassView::Camera;
         for m in &p.modifiers {
-            self.error(
-                Diagnostic::error(
-                    codes::BAD_ARGUMENT,
-                    format!("unsupported pass modifier `{}`", m.key.name),
-                )
-                .with_primary(m.span, "not supported yet")
-                .with_help("stereo pass modifiers are reserved for a later version"),
-            );
+            let is_render = matches!(kind, PassKind::Render { .. });
+            match (m.key.name.as_str(), &m.value.kind) {
+                ("view", ast::ExprKind::Name(n)) if is_render && (n.name == "light" || n.name == "camera") => {
+                    view = if n.name == "light" {
+                        PassView::Light
+                    } else {
+                        PassView::Camera
+                    };
+                }
+                ("view", _) => self.error(
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        "`view(...)` takes `camera` or `light` on a render pass",
+                    )
+                    .with_primary(m.span, "not a view of a render pass")
+                    .with_help("write `pass depth: render(casters) view(light) { ... }`"),
+                ),
+                _ => self.error(
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        format!("unsupported pass modifier `{}`", m.key.name),
+                    )
+                    .with_primary(m.span, "not supported yet")
+                    .with_help(
+                        "render passes take `view(light)`; stereo pass modifiers are reserved for a later version",
+                    ),
+                ),
+            }
         }
         let mut inflate = None;
+        let mut shadow_warp = None;
         for s in &p.body.vertex {
             if s.key.name == "inflate" && matches!(kind, PassKind::Render { .. }) {
                 inflate = Some(self.expr(&s.value));
+            } else if s.key.name == "shadow_warp" && view == PassView::Light {
+                shadow_warp = Some(self.expr(&s.value));
             } else {
                 self.error(
                     Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
                         .with_primary(s.key.span, "not a vertex modifier")
-                        .with_help("render passes support `vertex { inflate: 2px }`"),
+                        .with_help("render passes support `vertex { inflate: 2px }`; `view(light)` passes also `shadow_warp: k`"),
                 );
             }
         }
@@ -768,6 +833,8 @@ impl Resolver<'_> {
         pass.scale = scale;
         pass.clear = clear;
         pass.inflate = inflate;
+        pass.view = view;
+        pass.shadow_warp = shadow_warp;
         pass.lets = lets;
         pass.outputs = outputs;
         self.current_pass = None;
@@ -996,6 +1063,9 @@ impl Resolver<'_> {
     fn call(&mut self, call: &ast::Call) -> ExprId {
         let name = call.callee.name.as_str();
         let span = call.span;
+        if name == "scene_has" {
+            return self.scene_has(call);
+        }
         if let Some(intr) = Intrinsic::lookup(name) {
             let mut args = Vec::new();
             for a in &call.args {

@@ -736,6 +736,16 @@ impl Checker<'_> {
                     }
                 }
             }
+            if let Some(k) = pass.shadow_warp {
+                if !self.is_error(k) {
+                    if self.vt(k) != Ty::Float && self.vt(k) != Ty::Int {
+                        self.type_error(k, "a plain number (the sigmoid strength)", None);
+                    } else {
+                        let f = self.promote_int(k);
+                        self.ir.passes[pi].shadow_warp = Some(f);
+                    }
+                }
+            }
             let roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
             for id in self.ir.reachable(&roots) {
                 let e = self.ir.expr(id).clone();

@@ -56,6 +56,8 @@ pub struct Renderer<'d> {
     object_params: Vec<Vec<u8>>,
     object_models: Vec<Mat4>,
     object_tags: Vec<Vec<String>>,
+    /// World-space bounds of the scene, for the light camera.
+    scene_bounds: (glam::Vec3, glam::Vec3),
     sized: Option<SizedResources>,
 }
 
@@ -221,6 +223,7 @@ impl<'d> Renderer<'d> {
             object_params,
             object_models: scene.objects.iter().map(|o| o.model).collect(),
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            scene_bounds: scene.bounds(),
             manifest,
             sized: None,
         })
@@ -347,7 +350,7 @@ impl<'d> Renderer<'d> {
         let proj = pose.projection(aspect);
         let view_proj = proj * view;
         let cam = pose.position(spec.eye);
-        let mut frame: Vec<f32> = Vec::with_capacity(68);
+        let mut frame: Vec<f32> = Vec::with_capacity(FRAME_UNIFORM_SIZE as usize / 4);
         frame.extend_from_slice(&view.to_cols_array());
         frame.extend_from_slice(&proj.to_cols_array());
         frame.extend_from_slice(&view_proj.to_cols_array());
@@ -363,6 +366,8 @@ impl<'d> Renderer<'d> {
             spec.frame as f32,
         ]);
         frame.extend_from_slice(&[spec.eye as f32, pose.near, pose.far, 0.0]);
+        let light_view_proj = crate::scene::light_view_proj(scene.light.direction, self.scene_bounds);
+        frame.extend_from_slice(&light_view_proj.to_cols_array());
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));

@@ -20,6 +20,7 @@
 pub mod metrics;
 pub mod operators;
 pub mod reference;
+pub mod reference_pipeline;
 
 use serde::Serialize;
 

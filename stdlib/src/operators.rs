@@ -334,6 +334,52 @@ pub static ALL: &[Operator] = &[
         snippets: &["meta"],
         specializations: &[],
     },
+    Operator {
+        name: "shadow",
+        doc: "Cast-shadow visibility (lit fraction in [0, 1]) of a surface point, from a light-view depth map written by a `view(light)` pass; outside the map is lit.",
+        reference: "Williams 1978 shadow maps with percentage-closer filtering; Harvill et al., Age of Sail (journal 2019) §5, depth pass with sigmoid-warped coordinates",
+        params: &[
+            p("depth_map", Ty::Texture, "light-space depth (channel r) from a `view(light)` pass, cleared to 1"),
+            Param {
+                name: "p_light",
+                ty: Ty::Vec3,
+                unit: Unit::None,
+                default: Default::Builtin("position.light"),
+                range: None,
+                doc: "the point in light NDC (default: this fragment's `position.light`)",
+            },
+            Param {
+                name: "bias",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.005),
+                range: Some((0.0, 0.5)),
+                doc: "depth bias against self-shadowing, in light-NDC depth (1 = the light frustum's depth)",
+            },
+            Param {
+                name: "warp",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.0),
+                range: Some((0.0, 16.0)),
+                doc: "sigmoid strength k of the depth pass's `shadow_warp` (must match it)",
+            },
+            Param {
+                name: "radius",
+                ty: Ty::Int,
+                unit: Unit::None,
+                default: Default::Number(1.0),
+                range: Some((0.0, 3.0)),
+                doc: "percentage-closer filter radius in texels ((2r+1)² taps)",
+            },
+        ],
+        returns: Ty::Float,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/shadow.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
 ];
 
 /// The MetaTexture settings shared by both variants, after the texture/uv/gradients.

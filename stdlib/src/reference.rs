@@ -217,6 +217,7 @@ pub const REFERENCED: &[&str] = &[
     "metatexture",
     "metatexture4_grad",
     "metatexture4",
+    "shadow",
 ];
 
 pub fn has_reference(name: &str) -> bool {

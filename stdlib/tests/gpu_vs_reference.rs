@@ -710,3 +710,68 @@ fn metatexture_matches_reference_including_hard_cases() {
         );
     }
 }
+
+#[test]
+fn shadow_matches_reference_including_hard_cases() {
+    // A 24×16 depth map: depths on a 1/8 grid, and light-space depths of the
+    // query points on odd multiples of 1/32, so no comparison is a tie.
+    let map = ImageF64::new(24, 16, |x, y| [((x * 3 + y * 5) % 9) as f64 / 8.0, 0.0, 0.0, 1.0]);
+    let tex = [TexIn {
+        image: map.clone(),
+        format: wgpu::TextureFormat::Rgba32Float,
+    }];
+    let mut g = Lcg(4242);
+    let mut points: Vec<[f64; 4]> = (0..400)
+        .map(|_| {
+            q([
+                g.next() * 2.4 - 1.2,
+                g.next() * 2.4 - 1.2,
+                (2.0 * (g.next() * 18.0).floor() + 1.0) / 32.0,
+                0.0,
+            ])
+        })
+        .collect();
+    // Hard cases: the frustum's edges and corners, beyond the far plane, NaN.
+    points.extend([
+        [1.0, 1.0, 0.5 / 32.0, 0.0],
+        [-1.0, -1.0, 31.0 / 32.0, 0.0],
+        [0.0, 0.0, 1.5, 0.0],
+        [f64::NAN, 0.0, 0.5, 0.0],
+        [0.0, 0.0, f64::NAN, 0.0],
+    ]);
+    let inputs: Vec<[f32; 4]> = points.iter().flat_map(|p| [f32v(*p), [0.0; 4], [0.0; 4]]).collect();
+    for (warp, radius) in [(0.0, 0), (0.0, 1), (2.5, 1), (16.0, 3)] {
+        let body = format!("result = vec4<f32>(npr_shadow(t0, a.xyz, 0.0, {warp:?}, {radius}), 0.0, 0.0, 0.0);");
+        let out = run(&op_wgsl(&["shadow"]), &body, &inputs, (points.len() as u32, 1), &tex);
+        // Exact, except for points within 1e-4 (in NDC) of a texel boundary, where
+        // f32 and f64 may pick neighbouring texels.
+        let mut keep = Vec::new();
+        let mut reference = Vec::new();
+        for (i, p) in points.iter().enumerate() {
+            let at = |dx: f64, dy: f64| {
+                stdlib::reference_pipeline::shadow(&map, [p[0] + dx, p[1] + dy, p[2]], 0.0, warp, radius)
+            };
+            let v = at(0.0, 0.0);
+            if [(-1e-4, 0.0), (1e-4, 0.0), (0.0, -1e-4), (0.0, 1e-4)]
+                .iter()
+                .all(|(dx, dy)| at(*dx, *dy) == v)
+            {
+                keep.push(i);
+                reference.push([v, 0.0, 0.0, 0.0]);
+            }
+        }
+        assert!(
+            keep.len() * 10 >= points.len() * 8,
+            "too many boundary cases: {}",
+            keep.len()
+        );
+        let gpu: Vec<[f32; 4]> = keep.iter().map(|i| out[*i]).collect();
+        compare(
+            &format!("shadow warp {warp} radius {radius}"),
+            &gpu,
+            &reference,
+            1,
+            1e-6,
+        );
+    }
+}

@@ -34,6 +34,9 @@ const FRAME_STRUCT: &str = "struct Frame {
     near: f32,
     far: f32,
     _pad: f32,
+    // Orthographic light camera fitted to the scene bounds, for `view(light)`
+    // passes and `position.light` (z in [0, 1], w = 1).
+    light_view_proj: mat4x4<f32>,
 }
 ";
 
@@ -102,7 +105,7 @@ impl Emitter<'_> {
             .collect();
         let frag_roots: Vec<ExprId> = live_outputs.iter().map(|(_, o)| o.value).collect();
         let frag_nodes = self.ir.reachable(&frag_roots);
-        let vert_nodes = self.ir.reachable(&pass.inflate.into_iter().collect::<Vec<_>>());
+        let vert_nodes = self.ir.reachable(&Ir::vertex_roots(pass));
         let all_nodes: Vec<ExprId> = frag_nodes.iter().chain(vert_nodes.iter()).copied().collect();
 
         // What the pass uses.
@@ -479,7 +482,14 @@ impl Emitter<'_> {
         }
         let _ = builtins;
         w.push_str("}\n\n// Unit vector, or zero for a zero input (never NaN).\nfn npr_unit(v: vec3<f32>) -> vec3<f32> {\n    return v * inverseSqrt(max(dot(v, v), 1e-30));\n}\n\n@vertex\nfn vs_main(v: VertexIn) -> Varyings {\n    var out: Varyings;\n");
-        w.push_str("    let world = object.model * vec4<f32>(v.position, 1.0);\n    out.position_world = world.xyz;\n    var clip = frame.view_proj * world;\n");
+        let view_proj = match pass.view {
+            PassView::Camera => "frame.view_proj",
+            PassView::Light => "frame.light_view_proj",
+        };
+        let _ = writeln!(
+            w,
+            "    let world = object.model * vec4<f32>(v.position, 1.0);\n    out.position_world = world.xyz;\n    var clip = {view_proj} * world;"
+        );
         if has(Attribute::Normal) {
             w.push_str("    out.normal_world = (object.normal_matrix * vec4<f32>(v.normal, 0.0)).xyz;\n");
         }
@@ -495,8 +505,19 @@ impl Emitter<'_> {
             );
             let _ = writeln!(
                 w,
-                "    // Age of Sail §4.1: push the vertex along its screen-space projected normal by a width in px.\n    let pass_size = frame.resolution * {scale};\n    let n_clip = (frame.view_proj * vec4<f32>(out.normal_world, 0.0)).xy;\n    let n_px = n_clip * pass_size;\n    let n_len = length(n_px);\n    if (n_len > 1e-8) {{\n        clip = vec4<f32>(clip.xy + (n_px / n_len) * ({width}) * 2.0 / pass_size * clip.w, clip.zw);\n    }}",
+                "    // Age of Sail §4.1: push the vertex along its screen-space projected normal by a width in px.\n    let pass_size = frame.resolution * {scale};\n    let n_clip = ({view_proj} * vec4<f32>(out.normal_world, 0.0)).xy;\n    let n_px = n_clip * pass_size;\n    let n_len = length(n_px);\n    if (n_len > 1e-8) {{\n        clip = vec4<f32>(clip.xy + (n_px / n_len) * ({width}) * 2.0 / pass_size * clip.w, clip.zw);\n    }}",
                 scale = fmt_f32(pass.scale)
+            );
+        }
+        if let Some(k) = pass.shadow_warp {
+            if pass.inflate.is_none() {
+                ctx.named.clear();
+                self.emit_lets(w, pass, vert_nodes, ctx);
+            }
+            let k = self.expr(k, ctx);
+            let _ = writeln!(
+                w,
+                "    // Age of Sail §5, depth pass: warp light-space x, y with a sigmoid, so texels\n    // concentrate near the centre; `shadow()` applies the same warp when it looks up.\n    let warp_k = max({k}, 0.0);\n    if (warp_k > 1e-4) {{\n        let ndc = clip.xy / clip.w;\n        clip = vec4<f32>(tanh(warp_k * ndc) / tanh(warp_k) * clip.w, clip.zw);\n    }}"
             );
         }
         if has(Attribute::Uv) {
@@ -662,6 +683,8 @@ fn builtin_wgsl(b: Builtin, is_render: bool) -> String {
         Builtin::NormalView => "npr_unit((frame.view * vec4<f32>(in.normal_world, 0.0)).xyz)".into(),
         Builtin::PositionWorld => "in.position_world".into(),
         Builtin::PositionView => "(frame.view * vec4<f32>(in.position_world, 1.0)).xyz".into(),
+        // The light camera is orthographic (w = 1), so this is already NDC.
+        Builtin::PositionLight => "(frame.light_view_proj * vec4<f32>(in.position_world, 1.0)).xyz".into(),
         Builtin::Tangent => "npr_unit(in.tangent.xyz)".into(),
         Builtin::ViewDir => "npr_unit(frame.camera_pos.xyz - in.position_world)".into(),
         Builtin::Depth => "(-(frame.view * vec4<f32>(in.position_world, 1.0)).z)".into(),

@@ -30,3 +30,69 @@ impl Default for Light {
         }
     }
 }
+
+/// The light's camera for `view(light)` passes (shadow-caster depth maps):
+/// an orthographic projection along the light's rays that encloses the
+/// bounding sphere of `bounds` (world-space min, max corners).
+///
+/// Clip space follows wgpu: x, y in [−1, 1] (y up), z in [0, 1] increasing
+/// away from the light, w = 1. Fitting the sphere rather than the box makes
+/// the map independent of the light's azimuth around the scene, so a
+/// rotating light gives a stable texel size.
+pub fn light_view_proj(direction: Vec3, bounds: (Vec3, Vec3)) -> glam::Mat4 {
+    let (lo, hi) = bounds;
+    let (centre, radius) = if lo.is_finite() && hi.is_finite() && lo.cmple(hi).all() {
+        ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3))
+    } else {
+        (Vec3::ZERO, 1.0)
+    };
+    let dir = direction.try_normalize().unwrap_or(Light::default_direction());
+    // Any up vector not parallel to the rays.
+    let up = if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+    let eye = centre + dir * (2.0 * radius);
+    let view = glam::Mat4::look_at_rh(eye, centre, up);
+    // The sphere spans distances [r, 3r] from the eye.
+    let proj = glam::Mat4::orthographic_rh(-radius, radius, -radius, radius, radius * 0.999, radius * 3.001);
+    proj * view
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec4;
+
+    #[test]
+    fn light_camera_encloses_the_bounds_and_orders_depth_along_the_rays() {
+        let bounds = (Vec3::new(-2.0, 0.0, -1.0), Vec3::new(3.0, 2.0, 4.0));
+        for dir in [Vec3::new(0.6, 0.9, -0.7), Vec3::Y, -Vec3::Y, Vec3::X] {
+            let m = light_view_proj(dir, bounds);
+            for i in 0..8 {
+                let c = Vec3::new(
+                    if i & 1 == 0 { bounds.0.x } else { bounds.1.x },
+                    if i & 2 == 0 { bounds.0.y } else { bounds.1.y },
+                    if i & 4 == 0 { bounds.0.z } else { bounds.1.z },
+                );
+                let p = m * Vec4::new(c.x, c.y, c.z, 1.0);
+                assert!((p.w - 1.0).abs() < 1e-6, "orthographic: w = 1");
+                assert!(
+                    p.x.abs() <= 1.0 + 1e-5 && p.y.abs() <= 1.0 + 1e-5,
+                    "{dir} corner {c} -> {p}"
+                );
+                assert!((0.0..=1.0).contains(&p.z), "{dir} corner {c} -> z {}", p.z);
+            }
+            // A point nearer the light has a smaller depth.
+            let centre = (bounds.0 + bounds.1) * 0.5;
+            let near = m * (centre + dir.normalize() * 0.5).extend(1.0);
+            let far = m * (centre - dir.normalize() * 0.5).extend(1.0);
+            assert!(near.z < far.z, "{dir}: {} !< {}", near.z, far.z);
+        }
+    }
+
+    #[test]
+    fn degenerate_bounds_and_direction_give_a_finite_camera() {
+        let m = light_view_proj(Vec3::ZERO, (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)));
+        assert!(m.is_finite());
+        let m = light_view_proj(Vec3::Y, (Vec3::ONE, Vec3::ONE));
+        assert!(m.is_finite());
+    }
+}

@@ -96,7 +96,7 @@ pub mod primitives;
 mod toml_fields;
 
 pub use camera::{Camera, CameraKey, CameraPose};
-pub use light::Light;
+pub use light::{light_view_proj, Light};
 pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
 pub use mesh_file::{load_mesh_file, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
@@ -143,6 +143,32 @@ impl Object {
 }
 
 impl Scene {
+    /// What the compiler may know of this scene (its objects' tags);
+    /// `name` names it in the compile report.
+    pub fn summary(&self, name: &str) -> compiler::SceneSummary {
+        compiler::SceneSummary {
+            tags: self.objects.iter().flat_map(|o| o.tags.iter().cloned()).collect(),
+            name: name.to_string(),
+        }
+    }
+
+    /// World-space bounding box (min, max) of every object's vertices;
+    /// (+∞, −∞) for an empty scene.
+    pub fn bounds(&self) -> (glam::Vec3, glam::Vec3) {
+        let mut lo = glam::Vec3::splat(f32::INFINITY);
+        let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
+        for o in &self.objects {
+            for p in &o.mesh.positions {
+                let w = o.model.transform_point3(glam::Vec3::from(*p));
+                if w.is_finite() {
+                    lo = lo.min(w);
+                    hi = hi.max(w);
+                }
+            }
+        }
+        (lo, hi)
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.objects.iter().map(|o| o.mesh.triangle_count()).sum()
     }
