@@ -134,6 +134,16 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 20)]
         frames: u32,
     },
+    /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
+    Passes {
+        style: PathBuf,
+        #[arg(long)]
+        scene: PathBuf,
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
+    },
     /// Runner overhead per frame: `Renderer::render` (uniform updates,
     /// recording, submit, wait) against the bare passes — the same pipelines
     /// and bind groups recorded and submitted with no per-frame work of ours.
@@ -400,6 +410,12 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             EXIT_OK
         }
         BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
+        BenchCommand::Passes {
+            style,
+            scene,
+            size,
+            frames,
+        } => bench_passes(&style, &scene, size, frames, printer),
         BenchCommand::Frame {
             style,
             scene,
@@ -524,6 +540,63 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
     for (i, (name, _)) in programs.iter().enumerate() {
         println!("| {name} | {:.3} | {:.2}x |", best[i] * 1e3, best[i] / best[0]);
     }
+    EXIT_OK
+}
+
+/// `npr bench passes`: each pass's GPU time and its share of the frame.
+fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+    let mut sources = SourceMap::new();
+    let scene = match runner::scene::load_scene(scene_path, &mut sources) {
+        Ok(s) => s,
+        Err(d) => {
+            printer.diagnostics(&d, &sources);
+            return EXIT_USER;
+        }
+    };
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let compiled = match compile(style, &mut sources, &opts, printer) {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
+    let gpu = match Gpu::headless() {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USER;
+        }
+    };
+    let program = StyleProgram::from_compiled(&compiled);
+    let times = match runner::bench::pass_times(&gpu, &program, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return if e.is_user_error() { EXIT_USER } else { EXIT_INTERNAL };
+        }
+    };
+    let total: f64 = times.iter().map(|t| t.ms).sum();
+    println!(
+        "device: {}, {}x{}, style {}, scene {}, median of {frames} frames",
+        gpu.describe(),
+        size.0,
+        size.1,
+        style.display(),
+        scene_path.display()
+    );
+    println!("| pass | scale | GPU ms | share of frame |");
+    println!("|---|---:|---:|---:|");
+    for (t, p) in times.iter().zip(&compiled.manifest.passes) {
+        println!(
+            "| {} | {} | {:.3} | {:.1}% |",
+            t.name,
+            p.scale,
+            t.ms,
+            100.0 * t.ms / total.max(1e-12)
+        );
+    }
+    println!("| **all passes** | | {total:.3} | 100% |");
     EXIT_OK
 }
 

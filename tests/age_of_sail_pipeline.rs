@@ -258,3 +258,28 @@ fn dump_passes_reproduces_every_pass_even_where_textures_are_shared() {
     let shadow = image::open(dir.join("02_shadow.rgb.png")).expect("dump").to_rgba8();
     assert_eq!(&shadow.get_pixel(1, 1).0[..3], &[0, 0, 0], "shadow pass background");
 }
+
+fn error_text(text: &str) -> String {
+    let mut sources = SourceMap::new();
+    match compiler::compile_source("bad.npr", text, root(), &mut sources, &CompileOptions::default()) {
+        Err(compiler::CompileError::User(d)) => dsl::diagnostic::render(&d, &sources, false),
+        Ok(_) => panic!("expected an error for:\n{text}"),
+        Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
+    }
+}
+
+#[test]
+fn misused_pipeline_constructs_point_at_the_source() {
+    let bad_view = error_text(
+        "style \"x\"\npass depth: render(caster) view(sun) {\n  out d: r32float = position.light.z\n}\noutput depth.d\n",
+    );
+    insta::assert_snapshot!("bad_view", bad_view);
+    let warp_outside_light_view = error_text(
+        "style \"x\"\npass p: render(scene) {\n  vertex { shadow_warp: 2.0 }\n  out d: r32float = 1.0\n}\noutput p.d\n",
+    );
+    insta::assert_snapshot!("shadow_warp_outside_light_view", warp_outside_light_view);
+    let bad_scene_has = error_text(
+        "style \"x\"\npass p: render(scene) {\n  out d: r32float = if scene_has(\"caster\") { 1.0 } else { 0.0 }\n}\noutput p.d\n",
+    );
+    insta::assert_snapshot!("bad_scene_has", bad_scene_has);
+}

@@ -404,7 +404,14 @@ impl<'d> Renderer<'d> {
 
     /// Record every pass of the style into `encoder` (after [`Renderer::prepare`]).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.encode_passes(encoder, self.manifest.passes.len());
+        self.encode_passes(encoder, self.manifest.passes.len(), None);
+    }
+
+    /// Like [`Renderer::encode`], writing GPU timestamps at the beginning and
+    /// end of pass `i` into `queries` slots `2i` and `2i + 1` (for benchmarks;
+    /// the query set needs `2 × passes` slots and the device `TIMESTAMP_QUERY`).
+    pub fn encode_timed(&self, encoder: &mut wgpu::CommandEncoder, queries: &wgpu::QuerySet) {
+        self.encode_passes(encoder, self.manifest.passes.len(), Some(queries));
     }
 
     /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
@@ -439,12 +446,12 @@ impl<'d> Renderer<'d> {
         let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("npr partial frame"),
         });
-        self.encode_passes(&mut encoder, writer + 1);
+        self.encode_passes(&mut encoder, writer + 1, None);
         self.queue.submit([encoder.finish()]);
         self.read_target(target)
     }
 
-    fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize) {
+    fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
         let Some(sized) = self.sized.as_ref() else { return };
         for (pi, pass) in self.manifest.passes.iter().enumerate().take(count) {
             let res = &sized.passes[pi];
@@ -480,7 +487,11 @@ impl<'d> Renderer<'d> {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: None,
+                timestamp_writes: queries.map(|query_set| wgpu::RenderPassTimestampWrites {
+                    query_set,
+                    beginning_of_pass_write_index: Some(2 * pi as u32),
+                    end_of_pass_write_index: Some(2 * pi as u32 + 1),
+                }),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
