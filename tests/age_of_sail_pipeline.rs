@@ -283,3 +283,49 @@ fn misused_pipeline_constructs_point_at_the_source() {
     );
     insta::assert_snapshot!("bad_scene_has", bad_scene_has);
 }
+
+#[test]
+fn compiling_for_a_scene_without_casters_renders_the_same_image() {
+    // No object is tagged `caster`: the depth pass is dropped when the
+    // compiler knows the scene, and renders nothing when it does not.
+    let scene = scene_from(
+        r#"
+[camera]
+position = [2.0, 1.5, -2.5]
+target = [0.0, 0.3, 0.0]
+[[object]]
+primitive = { kind = "sphere", radius = 0.5 }
+translate = [0.0, 0.5, 0.0]
+[[object]]
+primitive = { kind = "plane", size = 4.0 }
+"#,
+        "no-casters",
+    );
+    let render = |c: &compiler::Compiled| {
+        runner::render_frame(
+            gpu(),
+            &StyleProgram::from_compiled(c),
+            &scene,
+            &FrameSpec {
+                width: 64,
+                height: 64,
+                time_s: 0.0,
+                frame: 0,
+                eye: 0,
+            },
+        )
+        .expect("render")
+        .to_rgba8()
+    };
+    let blind = compile_example(None);
+    let informed = compile_example(Some(scene.summary("no casters")));
+    assert_eq!(informed.manifest.passes.len() + 1, blind.manifest.passes.len());
+    let (a, b) = (render(&blind), render(&informed));
+    let max_diff = a
+        .pixels()
+        .zip(b.pixels())
+        .flat_map(|(p, q)| (0..4).map(move |c| (p.0[c] as i32 - q.0[c] as i32).abs()))
+        .max()
+        .unwrap_or(0);
+    assert!(max_diff <= 1, "images differ by up to {max_diff}/255");
+}
