@@ -38,7 +38,7 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
         let pass = ir.pass(*pid);
         let roots: Vec<ExprId> = crate::dag::pass_roots(pass);
         for id in ir.reachable(&roots) {
-            if let ExprKind::Target(t) = ir.expr(id).kind {
+            if let Some(t) = ir.expr(id).kind.target_read() {
                 let e = last_use.entry(t).or_insert(pos);
                 *e = (*e).max(pos);
             }

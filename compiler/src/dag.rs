@@ -25,7 +25,7 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     for (pi, pass) in ir.passes.iter().enumerate() {
         for id in ir.reachable(&pass_roots(pass)) {
             let e = ir.expr(id);
-            if let ExprKind::Target(t) = e.kind {
+            if let Some(t) = e.kind.target_read() {
                 if !reads[pi].iter().any(|(p, _)| *p == t.pass) {
                     reads[pi].push((t.pass, e.span));
                 }

@@ -230,6 +230,10 @@ pub enum Intrinsic {
     Distance,
     Normalize,
     Cross,
+    /// `project(p)`: world point → (screen u, screen v, NDC depth) in this eye.
+    Project,
+    /// `project_other_eye(p)`: the same in the other eye of a stereo frame.
+    ProjectOtherEye,
 }
 
 impl Intrinsic {
@@ -247,6 +251,8 @@ impl Intrinsic {
             "distance" => Intrinsic::Distance,
             "normalize" => Intrinsic::Normalize,
             "cross" => Intrinsic::Cross,
+            "project" => Intrinsic::Project,
+            "project_other_eye" => Intrinsic::ProjectOtherEye,
             _ => return None,
         })
     }
@@ -286,6 +292,8 @@ impl Intrinsic {
         "distance",
         "normalize",
         "cross",
+        "project",
+        "project_other_eye",
     ];
 
     fn static_name(name: &str) -> &'static str {
@@ -303,6 +311,8 @@ impl Intrinsic {
             Intrinsic::Distance => "distance",
             Intrinsic::Normalize => "normalize",
             Intrinsic::Cross => "cross",
+            Intrinsic::Project => "project",
+            Intrinsic::ProjectOtherEye => "project_other_eye",
         }
     }
 }
@@ -335,6 +345,9 @@ pub enum ExprKind {
     Builtin(Builtin),
     /// A pass target: a handle (when passed to an operator) or a value read at `screen_uv`.
     Target(TargetRef),
+    /// `other_eye(pass.target)`: the same target as rendered for the other eye
+    /// of a stereo frame (the runner renders both eyes pass by pass).
+    OtherEyeTarget(TargetRef),
     /// A texture: a handle, or a value sampled at `uv` (render) / `screen_uv` (image).
     Texture(TextureId),
     /// `.xyz`, `.rg`: component indices.
@@ -367,6 +380,18 @@ pub enum ExprKind {
     },
     /// Placeholder for an expression that failed to resolve (diagnostic already reported).
     Error,
+}
+
+impl ExprKind {
+    /// The target this node reads, for either eye: dependencies and lifetimes
+    /// are the same for both, since every pass runs for both eyes before the
+    /// next pass starts.
+    pub fn target_read(&self) -> Option<TargetRef> {
+        match self {
+            ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => Some(*t),
+            _ => None,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

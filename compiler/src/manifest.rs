@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 pub const MANIFEST_VERSION: u32 = 1;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
-pub const FRAME_UNIFORM_SIZE: u64 = 336;
+pub const FRAME_UNIFORM_SIZE: u64 = 400;
 /// Byte offset of the first parameter slot in the per-object block (after model and normal matrices).
 pub const OBJECT_PARAMS_OFFSET: u64 = 128;
 /// Alignment of per-object dynamic offsets.
@@ -45,6 +45,17 @@ pub struct Manifest {
     pub scene_attributes: Vec<Attribute>,
     /// The target that is the final image.
     pub output: usize,
+}
+
+impl Manifest {
+    /// Whether a pass reads a target of the other eye (`other_eye(...)`): the
+    /// runner then renders both eyes of a stereo frame, pass by pass.
+    pub fn is_stereo(&self) -> bool {
+        self.passes
+            .iter()
+            .flat_map(|p| &p.bindings)
+            .any(|b| matches!(b.resource, Resource::Target { other_eye: true, .. }))
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
@@ -113,7 +124,13 @@ pub enum Resource {
     StyleUniforms,
     /// A logical target read as `texture_2d<f32>` (unfilterable-safe: read with `textureLoad`
     /// or with the clamp sampler when the format is filterable).
-    Target { target: usize, filterable: bool },
+    Target {
+        target: usize,
+        filterable: bool,
+        /// Bind the other eye's copy (`other_eye(...)`): the style is stereo.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        other_eye: bool,
+    },
     /// A declared texture.
     Texture { texture: usize },
     /// The sampler of a declared texture (its wrap and filter settings).

@@ -55,7 +55,7 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
         roots.extend(Ir::vertex_roots(pass));
         for id in ir.reachable(&roots) {
             match ir.expr(id).kind {
-                ExprKind::Target(t) => {
+                ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => {
                     live.targets.insert(t);
                 }
                 ExprKind::Param(p) => {

@@ -622,6 +622,31 @@ impl Resolver<'_> {
             .add_typed(ExprKind::Const(Const::Bool(present)), Ty::Bool, Unit::None, span)
     }
 
+    /// `other_eye(pass.target)`: read a target as the other eye of a stereo
+    /// frame rendered it (LSA contours' reprojection and consistency passes).
+    fn other_eye(&mut self, call: &ast::Call) -> ExprId {
+        let span = call.span;
+        if let [a] = call.args.as_slice() {
+            if a.name.is_none() {
+                let v = self.expr(&a.value);
+                if let ExprKind::Target(t) = self.ir.expr(v).kind {
+                    return self
+                        .ir
+                        .add_typed(ExprKind::OtherEyeTarget(t), Ty::Target(t), Unit::None, span);
+                }
+                if matches!(self.ir.expr(v).kind, ExprKind::Error) {
+                    return v;
+                }
+            }
+        }
+        self.error(
+            Diagnostic::error(codes::BAD_ARGUMENT, "`other_eye` takes one pass target")
+                .with_primary(span, "expected `other_eye(pass.target)`")
+                .with_help("name a target of an earlier pass, e.g. `other_eye(lines.e)`"),
+        );
+        self.ir.add(ExprKind::Error, span)
+    }
+
     // ---------------------------------------------------------------- passes
 
     fn pass_body(&mut self, id: PassId, p: &ast::PassDecl) {
@@ -1065,6 +1090,9 @@ impl Resolver<'_> {
         let span = call.span;
         if name == "scene_has" {
             return self.scene_has(call);
+        }
+        if name == "other_eye" {
+            return self.other_eye(call);
         }
         if let Some(intr) = Intrinsic::lookup(name) {
             let mut args = Vec::new();

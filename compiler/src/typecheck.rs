@@ -369,7 +369,11 @@ impl Checker<'_> {
         let name = intr.name();
         let want_args = match intr {
             Intrinsic::Construct(_) => None,
-            Intrinsic::Map(_) | Intrinsic::Length | Intrinsic::Normalize => Some(1),
+            Intrinsic::Map(_)
+            | Intrinsic::Length
+            | Intrinsic::Normalize
+            | Intrinsic::Project
+            | Intrinsic::ProjectOtherEye => Some(1),
             Intrinsic::Map2(_) | Intrinsic::Dot | Intrinsic::Distance | Intrinsic::Cross => Some(2),
             Intrinsic::Map3(_) => Some(3),
         };
@@ -497,6 +501,12 @@ impl Checker<'_> {
                 } else {
                     (vec![a], t, Unit::None)
                 }
+            }
+            Intrinsic::Project | Intrinsic::ProjectOtherEye => {
+                if self.vt(args[0]) != Ty::Vec3 {
+                    return self.type_error(args[0], "a world-space point (vec3)", None);
+                }
+                (vec![args[0]], Ty::Vec3, Unit::None)
             }
             Intrinsic::Dot | Intrinsic::Distance | Intrinsic::Cross => {
                 let Some((a, b, t)) = self.unify(args[0], args[1]) else {
@@ -763,7 +773,7 @@ impl Checker<'_> {
                             )),
                         );
                     }
-                    ExprKind::Target(t) => {
+                    ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => {
                         if let PassKind::Image { inputs } = &pass.kind {
                             if t.pass.0 as usize != pi && !inputs.contains(&t.pass) {
                                 let other = self.ir.pass(t.pass).name.clone();

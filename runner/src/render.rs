@@ -49,7 +49,8 @@ pub struct Renderer<'d> {
     textures: Vec<GpuTexture>,
     linear_clamp: wgpu::Sampler,
     meshes: Vec<GpuMesh>,
-    frame_buffer: wgpu::Buffer,
+    /// One per eye rendered in a frame (two for stereo styles).
+    frame_buffers: Vec<wgpu::Buffer>,
     style_buffer: wgpu::Buffer,
     object_buffer: wgpu::Buffer,
     object_stride: u64,
@@ -67,8 +68,13 @@ pub struct Renderer<'d> {
 struct SizedResources {
     width: u32,
     height: u32,
-    physical: Vec<wgpu::Texture>,
-    passes: Vec<SizedPass>,
+    /// Per eye: the physical textures.
+    physical: Vec<Vec<wgpu::Texture>>,
+    /// Per eye: per pass, its views and bind group.
+    passes: Vec<Vec<SizedPass>>,
+    /// Which eye's textures hold the requested image (`FrameSpec::eye` for
+    /// stereo styles, else 0).
+    output_slot: usize,
 }
 
 struct SizedPass {
@@ -184,12 +190,17 @@ impl<'d> Renderer<'d> {
         if !diags.is_empty() {
             return Err(RunError::User(diags));
         }
-        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("npr frame"),
-            size: FRAME_UNIFORM_SIZE,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let eyes = if manifest.is_stereo() { 2 } else { 1 };
+        let frame_buffers = (0..eyes)
+            .map(|e| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("npr frame, eye slot {e}")),
+                    size: FRAME_UNIFORM_SIZE,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
         let style_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("npr style params"),
             size: manifest.style_uniform_size.max(16),
@@ -216,7 +227,7 @@ impl<'d> Renderer<'d> {
             textures,
             linear_clamp,
             meshes,
-            frame_buffer,
+            frame_buffers,
             style_buffer,
             object_buffer,
             object_stride,
@@ -237,8 +248,104 @@ impl<'d> Renderer<'d> {
         {
             return;
         }
-        let physical: Vec<wgpu::Texture> = self
-            .manifest
+        let slots = self.frame_buffers.len();
+        let physical: Vec<Vec<wgpu::Texture>> = (0..slots).map(|_| self.create_physical(width, height)).collect();
+        let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
+        let mut passes: Vec<Vec<SizedPass>> = Vec::new();
+        for slot in 0..slots {
+            let mut slot_passes = Vec::new();
+            for (pi, pass) in self.manifest.passes.iter().enumerate() {
+                let (w, h) = scaled_size(width, height, pass.scale);
+                let view_of_target =
+                    |t: usize| physical[slot][self.manifest.targets[t].physical].create_view(&Default::default());
+                let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
+                let depth_view = matches!(pass.kind, PassKindManifest::Render { .. }).then(|| {
+                    depth
+                        .entry((w, h))
+                        .or_insert_with(|| {
+                            self.device.create_texture(&wgpu::TextureDescriptor {
+                                label: Some("npr depth"),
+                                size: wgpu::Extent3d {
+                                    width: w,
+                                    height: h,
+                                    depth_or_array_layers: 1,
+                                },
+                                mip_level_count: 1,
+                                sample_count: 1,
+                                dimension: wgpu::TextureDimension::D2,
+                                format: wgpu::TextureFormat::Depth32Float,
+                                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                                view_formats: &[],
+                            })
+                        })
+                        .create_view(&Default::default())
+                });
+                let views: Vec<(u32, wgpu::TextureView)> = pass
+                    .bindings
+                    .iter()
+                    .filter_map(|b| match &b.resource {
+                        Resource::Target { target, other_eye, .. } => {
+                            // The other eye's copy lives in the other slot (stereo styles only).
+                            let from = if *other_eye { (slot + 1) % slots } else { slot };
+                            Some((
+                                b.binding,
+                                physical[from][self.manifest.targets[*target].physical]
+                                    .create_view(&Default::default()),
+                            ))
+                        }
+                        Resource::Texture { texture } => Some((
+                            b.binding,
+                            self.textures[*texture].texture.create_view(&Default::default()),
+                        )),
+                        _ => None,
+                    })
+                    .collect();
+                let entries: Vec<wgpu::BindGroupEntry> = pass
+                    .bindings
+                    .iter()
+                    .filter_map(|b| {
+                        let resource = match &b.resource {
+                            Resource::FrameUniforms => self.frame_buffers[slot].as_entire_binding(),
+                            Resource::StyleUniforms => self.style_buffer.as_entire_binding(),
+                            Resource::Target { .. } | Resource::Texture { .. } => wgpu::BindingResource::TextureView(
+                                views.iter().find(|(n, _)| *n == b.binding).map(|(_, v)| v)?,
+                            ),
+                            Resource::TextureSampler { texture } => {
+                                wgpu::BindingResource::Sampler(&self.textures[*texture].sampler)
+                            }
+                            Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
+                        };
+                        Some(wgpu::BindGroupEntry {
+                            binding: b.binding,
+                            resource,
+                        })
+                    })
+                    .collect();
+                let group0 = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&pass.name),
+                    layout: &self.pipelines[pi].layout0,
+                    entries: &entries,
+                });
+                slot_passes.push(SizedPass {
+                    color_views,
+                    depth_view,
+                    group0,
+                });
+            }
+            passes.push(slot_passes);
+        }
+        self.sized = Some(SizedResources {
+            width,
+            height,
+            physical,
+            passes,
+            output_slot: 0,
+        });
+    }
+
+    /// One physical texture per `manifest.physical` entry, at `width`×`height` × its scale.
+    fn create_physical(&self, width: u32, height: u32) -> Vec<wgpu::Texture> {
+        self.manifest
             .physical
             .iter()
             .enumerate()
@@ -261,95 +368,17 @@ impl<'d> Renderer<'d> {
                     view_formats: &[],
                 })
             })
-            .collect();
-        let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
-        let mut passes = Vec::new();
-        for (pi, pass) in self.manifest.passes.iter().enumerate() {
-            let (w, h) = scaled_size(width, height, pass.scale);
-            let view_of_target =
-                |t: usize| physical[self.manifest.targets[t].physical].create_view(&Default::default());
-            let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
-            let depth_view = matches!(pass.kind, PassKindManifest::Render { .. }).then(|| {
-                depth
-                    .entry((w, h))
-                    .or_insert_with(|| {
-                        self.device.create_texture(&wgpu::TextureDescriptor {
-                            label: Some("npr depth"),
-                            size: wgpu::Extent3d {
-                                width: w,
-                                height: h,
-                                depth_or_array_layers: 1,
-                            },
-                            mip_level_count: 1,
-                            sample_count: 1,
-                            dimension: wgpu::TextureDimension::D2,
-                            format: wgpu::TextureFormat::Depth32Float,
-                            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                            view_formats: &[],
-                        })
-                    })
-                    .create_view(&Default::default())
-            });
-            let views: Vec<(u32, wgpu::TextureView)> = pass
-                .bindings
-                .iter()
-                .filter_map(|b| match &b.resource {
-                    Resource::Target { target, .. } => Some((b.binding, view_of_target(*target))),
-                    Resource::Texture { texture } => Some((
-                        b.binding,
-                        self.textures[*texture].texture.create_view(&Default::default()),
-                    )),
-                    _ => None,
-                })
-                .collect();
-            let entries: Vec<wgpu::BindGroupEntry> = pass
-                .bindings
-                .iter()
-                .filter_map(|b| {
-                    let resource = match &b.resource {
-                        Resource::FrameUniforms => self.frame_buffer.as_entire_binding(),
-                        Resource::StyleUniforms => self.style_buffer.as_entire_binding(),
-                        Resource::Target { .. } | Resource::Texture { .. } => wgpu::BindingResource::TextureView(
-                            views.iter().find(|(n, _)| *n == b.binding).map(|(_, v)| v)?,
-                        ),
-                        Resource::TextureSampler { texture } => {
-                            wgpu::BindingResource::Sampler(&self.textures[*texture].sampler)
-                        }
-                        Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
-                    };
-                    Some(wgpu::BindGroupEntry {
-                        binding: b.binding,
-                        resource,
-                    })
-                })
-                .collect();
-            let group0 = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&pass.name),
-                layout: &self.pipelines[pi].layout0,
-                entries: &entries,
-            });
-            passes.push(SizedPass {
-                color_views,
-                depth_view,
-                group0,
-            });
-        }
-        self.sized = Some(SizedResources {
-            width,
-            height,
-            physical,
-            passes,
-        });
+            .collect()
     }
 
-    /// Write the per-frame, style and object uniforms for `spec`.
-    fn write_uniforms(&self, scene: &Scene, spec: &FrameSpec) {
+    /// The `Frame` uniform block of `eye` (see `compiler::emit::wgsl`'s `struct Frame`).
+    fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> Vec<f32> {
         let pose = scene.camera.pose(spec.time_s);
         let aspect = spec.width as f32 / spec.height as f32;
-        let view = pose.view(spec.eye);
+        let view = pose.view(eye);
         let proj = pose.projection(aspect);
         let view_proj = proj * view;
-        let cam = pose.position(spec.eye);
+        let cam = pose.position(eye);
         let mut frame: Vec<f32> = Vec::with_capacity(FRAME_UNIFORM_SIZE as usize / 4);
         frame.extend_from_slice(&view.to_cols_array());
         frame.extend_from_slice(&proj.to_cols_array());
@@ -365,12 +394,25 @@ impl<'d> Renderer<'d> {
             spec.time_s as f32,
             spec.frame as f32,
         ]);
-        frame.extend_from_slice(&[spec.eye as f32, pose.near, pose.far, 0.0]);
+        frame.extend_from_slice(&[eye as f32, pose.near, pose.far, 0.0]);
         let light_view_proj = crate::scene::light_view_proj(scene.light.direction, self.scene_bounds);
         frame.extend_from_slice(&light_view_proj.to_cols_array());
+        let other_view_proj = proj * pose.view(1 - eye.min(1));
+        frame.extend_from_slice(&other_view_proj.to_cols_array());
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
-        self.queue
-            .write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));
+        frame
+    }
+
+    /// Write the per-frame, style and object uniforms for `spec`.
+    fn write_uniforms(&self, scene: &Scene, spec: &FrameSpec) {
+        let slots = self.frame_buffers.len() as u32;
+        for slot in 0..slots {
+            // A stereo style renders both eyes; otherwise the requested one.
+            let eye = if slots == 2 { slot } else { spec.eye };
+            let frame = self.frame_block(scene, spec, eye);
+            self.queue
+                .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::cast_slice(&frame));
+        }
         let style = animation::style_param_bytes(&self.manifest, spec.time_s, spec.height);
         if !style.is_empty() {
             self.queue.write_buffer(&self.style_buffer, 0, &style);
@@ -423,7 +465,20 @@ impl<'d> Renderer<'d> {
                 spec.width, spec.height
             )));
         }
+        if self.frame_buffers.len() == 2 && spec.eye > 1 {
+            return Err(RunError::Limit(format!(
+                "eye {} does not exist: a stereo frame has eyes 0 and 1",
+                spec.eye
+            )));
+        }
         self.ensure_size(spec.width, spec.height);
+        if let Some(sized) = self.sized.as_mut() {
+            sized.output_slot = if sized.physical.len() == 2 {
+                spec.eye as usize
+            } else {
+                0
+            };
+        }
         self.write_uniforms(scene, spec);
         Ok(())
     }
@@ -453,67 +508,72 @@ impl<'d> Renderer<'d> {
 
     fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
         let Some(sized) = self.sized.as_ref() else { return };
+        // Stereo styles run each pass for both eyes before the next pass, so
+        // a pass that reads `other_eye(...)` finds the other eye's target done.
+        let slots = sized.passes.len();
         for (pi, pass) in self.manifest.passes.iter().enumerate().take(count) {
-            let res = &sized.passes[pi];
-            let clear = wgpu::Color {
-                r: pass.clear[0],
-                g: pass.clear[1],
-                b: pass.clear[2],
-                a: pass.clear[3],
-            };
-            let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = res
-                .color_views
-                .iter()
-                .map(|v| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view: v,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(clear),
-                            store: wgpu::StoreOp::Store,
-                        },
+            for slot in 0..slots {
+                let res = &sized.passes[slot][pi];
+                let clear = wgpu::Color {
+                    r: pass.clear[0],
+                    g: pass.clear[1],
+                    b: pass.clear[2],
+                    a: pass.clear[3],
+                };
+                let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = res
+                    .color_views
+                    .iter()
+                    .map(|v| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: v,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(clear),
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })
                     })
-                })
-                .collect();
-            let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(&pass.name),
-                color_attachments: &attachments,
-                depth_stencil_attachment: res.depth_view.as_ref().map(|v| wgpu::RenderPassDepthStencilAttachment {
-                    view: v,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
+                    .collect();
+                let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&pass.name),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: res.depth_view.as_ref().map(|v| wgpu::RenderPassDepthStencilAttachment {
+                        view: v,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Discard,
+                        }),
+                        stencil_ops: None,
                     }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: queries.map(|query_set| wgpu::RenderPassTimestampWrites {
-                    query_set,
-                    beginning_of_pass_write_index: Some(2 * pi as u32),
-                    end_of_pass_write_index: Some(2 * pi as u32 + 1),
-                }),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            rp.set_pipeline(&self.pipelines[pi].pipeline);
-            rp.set_bind_group(0, &res.group0, &[]);
-            match &pass.kind {
-                PassKindManifest::Image => rp.draw(0..3, 0..1),
-                PassKindManifest::Render { tag, attributes } => {
-                    for (oi, mesh) in self.meshes.iter().enumerate() {
-                        if let Some(tag) = tag {
-                            if !self.object_tags[oi].iter().any(|t| t == tag) {
-                                continue;
+                    timestamp_writes: queries.map(|query_set| wgpu::RenderPassTimestampWrites {
+                        query_set,
+                        beginning_of_pass_write_index: (slot == 0).then_some(2 * pi as u32),
+                        end_of_pass_write_index: (slot + 1 == slots).then_some(2 * pi as u32 + 1),
+                    }),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                rp.set_pipeline(&self.pipelines[pi].pipeline);
+                rp.set_bind_group(0, &res.group0, &[]);
+                match &pass.kind {
+                    PassKindManifest::Image => rp.draw(0..3, 0..1),
+                    PassKindManifest::Render { tag, attributes } => {
+                        for (oi, mesh) in self.meshes.iter().enumerate() {
+                            if let Some(tag) = tag {
+                                if !self.object_tags[oi].iter().any(|t| t == tag) {
+                                    continue;
+                                }
                             }
-                        }
-                        rp.set_bind_group(1, &self.object_group, &[(oi as u64 * self.object_stride) as u32]);
-                        for (slot, a) in attributes.iter().enumerate() {
-                            if let Some(buf) = mesh.buffers.get(a) {
-                                rp.set_vertex_buffer(slot as u32, buf.slice(..));
+                            rp.set_bind_group(1, &self.object_group, &[(oi as u64 * self.object_stride) as u32]);
+                            for (slot, a) in attributes.iter().enumerate() {
+                                if let Some(buf) = mesh.buffers.get(a) {
+                                    rp.set_vertex_buffer(slot as u32, buf.slice(..));
+                                }
                             }
+                            rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
+                            rp.draw_indexed(0..mesh.index_count, 0, 0..1);
                         }
-                        rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
-                        rp.draw_indexed(0..mesh.index_count, 0, 0..1);
                     }
                 }
             }
@@ -535,7 +595,7 @@ impl<'d> Renderer<'d> {
         readback::read_texture(
             self.device,
             self.queue,
-            &sized.physical[t.physical],
+            &sized.physical[sized.output_slot][t.physical],
             w,
             h,
             t.format,

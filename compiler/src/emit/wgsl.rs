@@ -37,6 +37,20 @@ const FRAME_STRUCT: &str = "struct Frame {
     // Orthographic light camera fitted to the scene bounds, for `view(light)`
     // passes and `position.light` (z in [0, 1], w = 1).
     light_view_proj: mat4x4<f32>,
+    // The other eye's view-projection in a stereo frame (= view_proj in mono).
+    other_view_proj: mat4x4<f32>,
+}
+";
+
+const PROJECT_HELPER: &str = "// World point -> (screen u, screen v, NDC depth) under `view_proj`; w <= 0
+// (behind the eye) maps far outside the screen.
+fn npr_project(view_proj: mat4x4<f32>, p: vec3<f32>) -> vec3<f32> {
+    let c = view_proj * vec4<f32>(p, 1.0);
+    if (c.w <= 1e-8) {
+        return vec3<f32>(-1e9, -1e9, 1.0);
+    }
+    let ndc = c.xyz / c.w;
+    return vec3<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5, ndc.z);
 }
 ";
 
@@ -60,6 +74,8 @@ struct PassCtx {
     /// Names given to shared or user-named nodes, in emission order.
     named: BTreeMap<ExprId, String>,
     target_names: BTreeMap<TargetRef, String>,
+    /// Bindings of targets read with `other_eye(...)`.
+    other_target_names: BTreeMap<TargetRef, String>,
     uses_linear_sampler: bool,
 }
 
@@ -111,6 +127,8 @@ impl Emitter<'_> {
         // What the pass uses.
         let mut builtins = BTreeSet::new();
         let mut targets_read = BTreeSet::new();
+        let mut other_targets_read = BTreeSet::new();
+        let mut uses_project = false;
         let mut textures_read = BTreeSet::new();
         let mut uses_style = false;
         let mut uses_object = false;
@@ -126,9 +144,16 @@ impl Emitter<'_> {
                 ExprKind::Target(t) => {
                     targets_read.insert(*t);
                 }
+                ExprKind::OtherEyeTarget(t) => {
+                    other_targets_read.insert(*t);
+                }
                 ExprKind::Texture(t) => {
                     textures_read.insert(*t);
                 }
+                ExprKind::Call {
+                    callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye),
+                    ..
+                } => uses_project = true,
                 ExprKind::Param(p) => match self.bindings[p.0 as usize] {
                     ParamBinding::Uniform => uses_style = true,
                     ParamBinding::PerObject => uses_object = true,
@@ -142,7 +167,7 @@ impl Emitter<'_> {
                     operators.insert(*i as usize);
                     let op = &stdlib::all()[*i as usize];
                     for (p, a) in op.params.iter().zip(args) {
-                        if p.ty == stdlib::Ty::SampledTexture && matches!(self.ir.expr(*a).kind, ExprKind::Target(_)) {
+                        if p.ty == stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.target_read().is_some() {
                             uses_linear_sampler = true;
                         }
                     }
@@ -167,7 +192,7 @@ impl Emitter<'_> {
                     | Builtin::ScreenUv
             )
         });
-        let uses_frame = is_render || frame_builtin || uses_percent;
+        let uses_frame = is_render || frame_builtin || uses_percent || uses_project;
 
         let mut attributes = Vec::new();
         if is_render {
@@ -244,9 +269,33 @@ impl Emitter<'_> {
                 resource: Resource::Target {
                     target: index,
                     filterable: fmt.is_filterable(),
+                    other_eye: false,
                 },
             });
             target_names.insert(*t, name);
+            next += 1;
+        }
+        let mut other_target_names = BTreeMap::new();
+        for t in &other_targets_read {
+            let Some(index) = self.alloc.target_index(*t) else {
+                continue;
+            };
+            let name = format!("t_other_{}", self.ir.target_name(*t).replace('.', "_"));
+            let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
+            let _ = writeln!(
+                decls,
+                "@group(0) @binding({next}) var {name}: texture_2d<f32>; // {}, the other eye's",
+                fmt.name()
+            );
+            binds.push(Binding {
+                binding: next,
+                resource: Resource::Target {
+                    target: index,
+                    filterable: fmt.is_filterable(),
+                    other_eye: true,
+                },
+            });
+            other_target_names.insert(*t, name);
             next += 1;
         }
         for t in &textures_read {
@@ -287,8 +336,12 @@ impl Emitter<'_> {
         let _ = uses_object;
         w.push_str(&decls);
         w.push('\n');
-        if !targets_read.is_empty() {
+        if !targets_read.is_empty() || !other_targets_read.is_empty() {
             w.push_str(LOAD_HELPER);
+            w.push('\n');
+        }
+        if uses_project {
+            w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
         // Operators, dependencies first, after the shared helper snippets they use.
@@ -319,6 +372,7 @@ impl Emitter<'_> {
             is_render,
             named: BTreeMap::new(),
             target_names,
+            other_target_names,
             uses_linear_sampler,
         };
         if is_render {
@@ -420,6 +474,7 @@ impl Emitter<'_> {
                     | ExprKind::Param(_)
                     | ExprKind::Builtin(_)
                     | ExprKind::Target(_)
+                    | ExprKind::OtherEyeTarget(_)
                     | ExprKind::Texture(_)
                     | ExprKind::PercentOfHeight(_)
             );
@@ -558,8 +613,13 @@ impl Emitter<'_> {
                 }
             }
             ExprKind::Builtin(b) => builtin_wgsl(*b, ctx.is_render),
-            ExprKind::Target(t) => {
-                let name = ctx.target_names.get(t).cloned().unwrap_or_else(|| "t_missing".into());
+            ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => {
+                let names = if matches!(e.kind, ExprKind::Target(_)) {
+                    &ctx.target_names
+                } else {
+                    &ctx.other_target_names
+                };
+                let name = names.get(t).cloned().unwrap_or_else(|| "t_missing".into());
                 let n = crate::typecheck::value_ty(self.ir, id).components().unwrap_or(4);
                 let sw = match n {
                     1 => ".x",
@@ -613,6 +673,8 @@ impl Emitter<'_> {
                         Intrinsic::Construct(n) => format!("vec{n}<f32>({})", a.join(", ")),
                         // A zero vector normalizes to zero instead of NaN.
                         Intrinsic::Normalize => format!("({0} * inverseSqrt(max(dot({0}, {0}), 1e-30)))", a[0]),
+                        Intrinsic::Project => format!("npr_project(frame.view_proj, {})", a[0]),
+                        Intrinsic::ProjectOtherEye => format!("npr_project(frame.other_view_proj, {})", a[0]),
                         other => format!("{}({})", other.name(), a.join(", ")),
                     }
                 }
@@ -639,6 +701,7 @@ impl Emitter<'_> {
     fn handle(&self, id: ExprId, ctx: &PassCtx) -> String {
         match self.ir.expr(id).kind {
             ExprKind::Target(t) => ctx.target_names.get(&t).cloned().unwrap_or_default(),
+            ExprKind::OtherEyeTarget(t) => ctx.other_target_names.get(&t).cloned().unwrap_or_default(),
             ExprKind::Texture(t) => format!("tex_{}", self.ir.textures[t.0 as usize].name),
             _ => String::from("/* not a handle */"),
         }
