@@ -347,7 +347,7 @@ impl<'d> Renderer<'d> {
         let proj = pose.projection(aspect);
         let view_proj = proj * view;
         let cam = pose.position(spec.eye);
-        let mut frame: Vec<f32> = Vec::with_capacity(68);
+        let mut frame: Vec<f32> = Vec::with_capacity(88);
         frame.extend_from_slice(&view.to_cols_array());
         frame.extend_from_slice(&proj.to_cols_array());
         frame.extend_from_slice(&view_proj.to_cols_array());
@@ -363,6 +363,9 @@ impl<'d> Renderer<'d> {
             spec.frame as f32,
         ]);
         frame.extend_from_slice(&[spec.eye as f32, pose.near, pose.far, 0.0]);
+        // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
+        frame.extend_from_slice(&(proj * pose.center_view()).to_cols_array());
+        frame.extend_from_slice(&[proj.x_axis.x, proj.y_axis.y, 0.0, 0.0]);
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
         self.queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::cast_slice(&frame));
