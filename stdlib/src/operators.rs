@@ -514,7 +514,7 @@ pub static ALL: &[Operator] = &[
     },
     Operator {
         name: "distance_attenuate",
-        doc: "Distance compensation of the warp intensity: ρ' = ρ / (1 + (d/scale)²).",
+        doc: "Distance compensation of the warp intensity: ρ' = ρ / (1 + (d/falloff)²).",
         reference: "Harvill et al., Age of Sail (journal 2019) §4.4, eq. 26",
         params: &[
             p("rho", Ty::Float, "warp intensity ρ"),
@@ -527,12 +527,12 @@ pub static ALL: &[Operator] = &[
                 doc: "distance from the camera, e.g. `distance(position.world, camera.position)`",
             },
             Param {
-                name: "scale",
+                name: "falloff",
                 ty: Ty::Float,
                 unit: Unit::Meters,
                 default: Default::Number(1.0),
                 range: Some((0.001, 1e5)),
-                doc: "distance unit of eq. 26 (1 m as printed)",
+                doc: "distance unit of eq. 26 (1 m as printed): ρ halves at d = falloff",
             },
         ],
         returns: Ty::Float,

@@ -98,9 +98,9 @@ pub fn roll_compensate(offset: [f64; 2], grad_u: [f64; 2]) -> [f64; 2] {
     [offset[0] * e[0] - offset[1] * e[1], offset[0] * e[1] + offset[1] * e[0]]
 }
 
-/// Eq. 26: ρ' = ρ / (1 + (d/scale)²).
-pub fn distance_attenuate(rho: f64, d: f64, scale: f64) -> f64 {
-    let x = d.abs() / scale.max(1e-6);
+/// Eq. 26: ρ' = ρ / (1 + (d/falloff)²).
+pub fn distance_attenuate(rho: f64, d: f64, falloff: f64) -> f64 {
+    let x = d.abs() / falloff.max(1e-6);
     rho / (1.0 + x * x)
 }
 
