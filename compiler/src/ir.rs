@@ -149,6 +149,20 @@ pub enum Builtin {
     CameraPosition,
     CameraNear,
     CameraFar,
+    /// (P₀₀, P₁₁) of the projection matrix: the focal lengths in NDC units
+    /// that Age of Sail eq. 12 divides the screen position by.
+    CameraFocal,
+    /// Screen-space projection T_s of the unit world tangent (direction of
+    /// increasing u), in px per metre, computed in the vertex shader from the
+    /// analytic Jacobian of the projection and interpolated (Age of Sail §3.2).
+    TangentScreen,
+    /// B_s: the same for the unit bitangent (direction of increasing v).
+    BitangentScreen,
+    /// T_s projected with the stereo camera's centre (the same for both eyes;
+    /// equal to `tangent.screen` in mono), against stereo "shimmer" (§3.2).
+    TangentScreenCenter,
+    /// B_s projected with the stereo camera's centre.
+    BitangentScreenCenter,
 }
 
 impl Builtin {
@@ -177,6 +191,11 @@ impl Builtin {
         ("camera.position", Builtin::CameraPosition),
         ("camera.near", Builtin::CameraNear),
         ("camera.far", Builtin::CameraFar),
+        ("camera.focal", Builtin::CameraFocal),
+        ("tangent.screen", Builtin::TangentScreen),
+        ("bitangent.screen", Builtin::BitangentScreen),
+        ("tangent.screen_center", Builtin::TangentScreenCenter),
+        ("bitangent.screen_center", Builtin::BitangentScreenCenter),
     ];
 
     pub fn name(self) -> &'static str {
@@ -200,6 +219,10 @@ impl Builtin {
             Frame | Eye => (Ty::Int, Unit::None),
             LightColor => (Ty::Vec3, Unit::None),
             LightIntensity => (Ty::Float, Unit::None),
+            // px per metre has no unit of its own; NDC focal lengths are ratios.
+            CameraFocal | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter => {
+                (Ty::Vec2, Unit::None)
+            }
         }
     }
 
@@ -208,7 +231,18 @@ impl Builtin {
         use Builtin::*;
         matches!(
             self,
-            Uv | NormalWorld | NormalView | PositionWorld | PositionView | PositionLight | Tangent | ViewDir | Depth
+            Uv | NormalWorld
+                | NormalView
+                | PositionWorld
+                | PositionView
+                | Tangent
+                | ViewDir
+                | PositionLight
+                | Depth
+                | TangentScreen
+                | BitangentScreen
+                | TangentScreenCenter
+                | BitangentScreenCenter
         )
     }
 }

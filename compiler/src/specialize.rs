@@ -102,41 +102,63 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
 
 /// Swap calls for cheaper operators where a constant argument allows it
 /// (`stdlib::Specialization`), e.g. 4-tap MetaTexture when `skew` is 0.
+/// The replacement's arguments are matched by parameter name, and a
+/// replacement may itself specialize further (contour orientation off, then
+/// skew 0: `metatexture_contour_grad` → `metatexture_grad` → `metatexture4_grad`).
 fn specialize_operators(ir: &mut Ir, report: &mut Report) {
     for i in 0..ir.exprs.len() {
-        let ExprKind::Call {
-            callee: Callee::Operator(index),
-            args,
-        } = &ir.exprs[i].kind
-        else {
-            continue;
-        };
-        let op = &stdlib::all()[*index as usize];
-        for s in op.specializations {
-            let Some(pos) = op.params.iter().position(|p| p.name == s.param) else {
-                continue;
+        // Bounded: each step moves to a different operator of the finite table.
+        for _ in 0..stdlib::all().len() {
+            let ExprKind::Call {
+                callee: Callee::Operator(index),
+                args,
+            } = &ir.exprs[i].kind
+            else {
+                break;
             };
-            let Some(value) = args.get(pos).and_then(|a| const_eval(ir, *a)).and_then(|c| c.scalar()) else {
-                continue;
-            };
-            let Some(alt) = stdlib::all().iter().position(|o| o.name == s.use_operator) else {
-                continue;
-            };
-            if value != s.value {
-                continue;
+            let op = &stdlib::all()[*index as usize];
+            let mut swapped = None;
+            for s in op.specializations {
+                let Some(pos) = op.params.iter().position(|p| p.name == s.param) else {
+                    continue;
+                };
+                let Some(value) = args.get(pos).and_then(|a| const_eval(ir, *a)).and_then(|c| c.scalar()) else {
+                    continue;
+                };
+                let Some(alt) = stdlib::all().iter().position(|o| o.name == s.use_operator) else {
+                    continue;
+                };
+                if value != s.value {
+                    continue;
+                }
+                let by_name: Option<Vec<ExprId>> = stdlib::all()[alt]
+                    .params
+                    .iter()
+                    .map(|p| {
+                        op.params
+                            .iter()
+                            .position(|q| q.name == p.name)
+                            .and_then(|j| args.get(j).copied())
+                    })
+                    .collect();
+                let Some(new_args) = by_name else {
+                    continue;
+                };
+                report.push(
+                    "special",
+                    format!("call `{}`", op.name),
+                    format!("`{}` is {} here: calls `{}` instead", s.param, s.value, s.use_operator),
+                );
+                swapped = Some(ExprKind::Call {
+                    callee: Callee::Operator(alt as u32),
+                    args: new_args,
+                });
+                break;
             }
-            let mut new_args = args.clone();
-            new_args.remove(pos);
-            report.push(
-                "special",
-                format!("call `{}`", op.name),
-                format!("`{}` is {} here: calls `{}` instead", s.param, s.value, s.use_operator),
-            );
-            ir.exprs[i].kind = ExprKind::Call {
-                callee: Callee::Operator(alt as u32),
-                args: new_args,
-            };
-            break;
+            match swapped {
+                Some(kind) => ir.exprs[i].kind = kind,
+                None => break,
+            }
         }
     }
 }

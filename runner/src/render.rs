@@ -399,6 +399,9 @@ impl<'d> Renderer<'d> {
         frame.extend_from_slice(&light_view_proj.to_cols_array());
         let other_view_proj = proj * pose.view(1 - eye.min(1));
         frame.extend_from_slice(&other_view_proj.to_cols_array());
+        // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
+        frame.extend_from_slice(&(proj * pose.center_view()).to_cols_array());
+        frame.extend_from_slice(&[proj.x_axis.x, proj.y_axis.y, 0.0, 0.0]);
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
         frame
     }

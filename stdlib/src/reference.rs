@@ -1,6 +1,12 @@
 //! CPU reference implementations in f64, one per operator, for the accuracy
 //! tests. They follow the WGSL line by line in meaning, not in precision:
 //! the GPU runs in f32 and the tests state the tolerance they allow.
+//!
+//! The MetaTexture extensions and the Edge Breakup operators (Age of Sail
+//! §3.2–3.5, §4, eqs. 9–13, 26–30) are in [`breakup`], re-exported here.
+
+mod breakup;
+pub use breakup::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).
@@ -218,6 +224,14 @@ pub const REFERENCED: &[&str] = &[
     "metatexture4_grad",
     "metatexture4",
     "shadow",
+    "radial_alpha",
+    "uv_gradients",
+    "metatexture_contour_grad",
+    "live_texture",
+    "line_boil",
+    "roll_compensate",
+    "distance_attenuate",
+    "warp",
 ];
 
 pub fn has_reference(name: &str) -> bool {
@@ -269,6 +283,27 @@ impl Default for MetaSettings {
 
 /// The largest texture scale MetaTexture uses (keeps k·uv precise in f32).
 pub const META_MAX_SCALE: f64 = 4096.0;
+/// log₂ of the smallest texture scale (far away and at grazing angles k·uv
+/// only shrinks, so this bound is only there to keep 2^E a normal f32).
+pub const META_MIN_LOG2_SCALE: f64 = -40.0;
+
+/// The sign applied to eq. 14's skew σ. The shear of eqs. 20–21 gives
+/// ∇u'·∇v' = ∇u·∇v + ½ sin 2ψ (|∇u|² + |∇v|²), so ψ = atan(σ/2) straightens the
+/// screen-space axes only when σ has the opposite sign of ∇u·∇v; as printed
+/// (sign +1) it skews them further. Measured in `metrics` (test
+/// `skew_sign_that_reduces_anisotropy`): on a plane seen at 10° elevation
+/// from 35° round (pixels with |cos∠(∇u, ∇v)| > 0.2), the mean
+/// |axis angle − 90°| is 41.1° without skew compensation, 51.5° with the
+/// printed sign and 26.2° with this one (n = 4).
+pub const SKEW_SIGN: f64 = -1.0;
+
+/// Eqs. 14–15 (with [`SKEW_SIGN`] as `sign`): the skew factor σ.
+pub fn meta_skew_sigma(du: [f64; 2], dv: [f64; 2], sign: f64) -> f64 {
+    let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().max(1e-30);
+    let (lu, lv) = (len(du), len(dv));
+    let eps = lu.min(lv) / lu.max(lv);
+    sign * eps.atan() * ((du[0] * dv[0] + du[1] * dv[1]) / (lu * lv))
+}
 
 /// β of eq. 7.
 pub fn meta_beta(x: f64, kind: i64) -> f64 {
@@ -289,10 +324,11 @@ pub fn meta_k(t: f64) -> f64 {
 pub fn meta_level(du: [f64; 2], dv: [f64; 2], s: &MetaSettings) -> ([f64; 2], [f64; 2], [f64; 2]) {
     let lb = s.base.max(1.0001).log2();
     let max_e = META_MAX_SCALE.log2() / lb;
+    let min_e = META_MIN_LOG2_SCALE / lb;
     let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().clamp(1e-30, 1e30);
     let e = [
-        (-(s.width.max(1e-6) * len(du)).log2() / lb).clamp(-max_e, max_e),
-        (-(s.width.max(1e-6) * len(dv)).log2() / lb).clamp(-max_e, max_e),
+        (-(s.width.max(1e-6) * len(du)).log2() / lb).clamp(min_e, max_e),
+        (-(s.width.max(1e-6) * len(dv)).log2() / lb).clamp(min_e, max_e),
     ];
     let fe = [e[0].floor(), e[1].floor()];
     let scale = [(fe[0] * lb).exp2(), (fe[1] * lb).exp2()];
@@ -320,10 +356,7 @@ pub fn metatexture_grad(tex: &ImageF64, uv: [f64; 2], du: [f64; 2], dv: [f64; 2]
             meta_k(blend[0]) * meta_k(blend[1]),
         )
     } else {
-        let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().max(1e-30);
-        let (lu, lv) = (len(du), len(dv));
-        let eps = lu.min(lv) / lu.max(lv);
-        let sigma = eps.atan() * ((du[0] * dv[0] + du[1] * dv[1]) / (lu * lv));
+        let sigma = meta_skew_sigma(du, dv, SKEW_SIGN);
         let n = s.skew as f64;
         let fl = (n * sigma).floor();
         let psi0 = (fl / n / 2.0).atan();

@@ -775,3 +775,340 @@ fn shadow_matches_reference_including_hard_cases() {
         );
     }
 }
+
+/// Compare with a tolerance relative to the reference's magnitude, |g − r| ≤ tol·max(1, |r|).
+fn compare_rel(name: &str, gpu: &[[f32; 4]], reference: &[[f64; 4]], channels: usize, tol: f64) {
+    let mut max = 0.0f64;
+    for (i, (g, r)) in gpu.iter().zip(reference).enumerate() {
+        for c in 0..channels {
+            assert!(g[c].is_finite(), "{name}: case {i} channel {c} is {}", g[c]);
+            let e = (g[c] as f64 - r[c]).abs() / r[c].abs().max(1.0);
+            max = max.max(e);
+            assert!(
+                e <= tol,
+                "{name}: case {i} channel {c}: gpu {} vs reference {} (relative error {e:e} > {tol:e})",
+                g[c],
+                r[c]
+            );
+        }
+    }
+    println!(
+        "{name}: {} cases, max relative error {max:.3e} (tolerance {tol:.0e})",
+        gpu.len()
+    );
+}
+
+fn one(name: &str, body: &str, cases: &[[[f64; 4]; 3]], textures: &[TexIn]) -> Vec<[f32; 4]> {
+    let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
+    run(&op_wgsl(&[name]), body, &inputs, (cases.len() as u32, 1), textures)
+}
+
+#[test]
+fn metatexture_extension_operators_match_reference() {
+    let mut g = Lcg(31);
+    // radial_alpha (eqs. 12–13): random pixels and corners; focal lengths incl. 0 and huge.
+    let mut cases = Vec::new();
+    for focal in [
+        [1.0, 1.0],
+        [2.747, 2.747],
+        [0.8, 1.4],
+        [0.0, 0.0],
+        [1e-8, 3.0],
+        [1e8, 1e8],
+    ] {
+        for uv in [[0.0, 0.0], [1.0, 1.0], [0.5, 0.5], [0.0, 1.0]] {
+            cases.push([q([uv[0], uv[1], 0.0, 0.0]), q([focal[0], focal[1], 0.0, 0.0]), [0.0; 4]]);
+        }
+        for _ in 0..8 {
+            cases.push([
+                q([g.next(), g.next(), 0.0, 0.0]),
+                q([focal[0], focal[1], 0.0, 0.0]),
+                [0.0; 4],
+            ]);
+        }
+    }
+    let out = one(
+        "radial_alpha",
+        "result = vec4<f32>(npr_radial_alpha(a.xy, b.xy), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| [r::radial_alpha([c[0][0], c[0][1]], [c[1][0], c[1][1]]), 0.0, 0.0, 0.0])
+        .collect();
+    compare_rel("radial_alpha", &out, &reference, 1, 1e-5);
+    // At the centre α = 1 exactly, and with a 90° field of view (P₀₀ = 1) α = 3 in a corner.
+    assert_eq!(r::radial_alpha([0.5, 0.5], [1.0, 1.0]), 1.0);
+    assert!((r::radial_alpha([1.0, 0.0], [1.0, 1.0]) - 3.0).abs() < 1e-12);
+
+    // uv_gradients (eqs. 9–10): ordinary, zero, tiny and huge tangent projections, densities at the range ends.
+    let mut cases = Vec::new();
+    for (t, b) in [
+        ([120.0, 3.0], [-5.0, 80.0]),
+        ([0.0, 0.0], [0.0, 0.0]),
+        ([1e-12, 0.0], [0.0, 1e-12]),
+        ([1e12, -1e12], [3e11, 1e12]),
+        ([40.0, 40.0], [40.0, 40.0]),
+    ] {
+        for density in [[1.0, 1.0], [0.0, 0.0], [1e6, 1e6], [0.25, 4.0]] {
+            cases.push([
+                q([t[0], t[1], b[0], b[1]]),
+                q([density[0], density[1], 0.0, 0.0]),
+                [0.0; 4],
+            ]);
+        }
+    }
+    for _ in 0..30 {
+        let v = [
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+        ];
+        cases.push([q(v), q([g.range(0.0, 10.0), g.range(0.0, 10.0), 0.0, 0.0]), [0.0; 4]]);
+    }
+    let out = one(
+        "uv_gradients",
+        "result = npr_uv_gradients(a.xy, a.zw, b.xy);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| r::uv_gradients([c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]]))
+        .collect();
+    compare_rel("uv_gradients", &out, &reference, 4, 1e-5);
+
+    // live_texture (eqs. 27–30): random colours, frequencies at the range ends, times incl. negative.
+    let mut cases = Vec::new();
+    for freq in [0.0, 0.5, 1.0, 30.0] {
+        for _ in 0..12 {
+            let t = q([g.next(), g.next(), g.next(), 1.0]);
+            cases.push([t, q([freq, g.range(-100.0, 100.0), 0.0, 0.0]), [0.0; 4]]);
+        }
+    }
+    let out = one(
+        "live_texture",
+        "result = vec4<f32>(npr_live_texture(a, b.x, b.y), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| [r::live_texture(c[0], c[1][0], c[1][1]), 0.0, 0.0, 0.0])
+        .collect();
+    // f32 phase: f·t ≤ 3000 keeps fract(f·t) within 2.5e-4 of f64.
+    compare("live_texture", &out, &reference, 1, 3e-3);
+}
+
+#[test]
+fn metatexture_contour_matches_reference() {
+    let size = 32u32;
+    let tau = std::f64::consts::TAU;
+    let img = ImageF64::new(size, size, |x, y| {
+        let (u, v) = (x as f64 / size as f64, y as f64 / size as f64);
+        let q = |t: f64| (t * 255.0).round() / 255.0;
+        [
+            q(0.5 + 0.3 * (tau * u).sin()),
+            q(0.5 + 0.3 * (tau * v).cos()),
+            q(0.5 + 0.2 * (tau * (u + v)).sin()),
+            1.0,
+        ]
+    });
+    let tex = [TexIn {
+        image: img.clone(),
+        format: wgpu::TextureFormat::Rgba8Unorm,
+    }];
+    let mut g = Lcg(41);
+    let w = 32.0;
+    let grads: Vec<([f64; 2], [f64; 2])> = vec![
+        ([0.2 / w, 0.01 / w], [-0.02 / w, 0.3 / w]),
+        ([0.3 / w, 0.0], [0.0, 0.3 / w]),
+        ([1.0 / w, 0.0], [0.0, 0.1 / w]),
+        ([0.1 / w, 0.1 / w], [0.2 / w, 0.2 / w]),
+        ([0.0, 0.0], [0.0, 0.0]),
+        ([1e6, 0.0], [0.0, 1e-12]),
+    ];
+    let mut cases: Vec<[[f64; 4]; 3]> = Vec::new();
+    for (du, dv) in &grads {
+        for (orient, band) in [(0, 1.0), (1, 0.01), (1, 1.0), (1, 8.0)] {
+            for (skew, contrast) in [(0, 0), (2, 2), (0, 1)] {
+                for _ in 0..3 {
+                    cases.push([
+                        q([g.next(), g.next(), du[0], du[1]]),
+                        q([dv[0], dv[1], band, w]),
+                        [orient as f64, skew as f64, contrast as f64, 0.0],
+                    ]);
+                }
+            }
+        }
+    }
+    let body = "result = npr_metatexture_contour_grad(t0, samp_repeat, a.xy, a.zw, b.xy, b.w, 1, 2.0, i32(c.y), i32(c.z), vec4<f32>(0.5), i32(c.x), b.z);";
+    let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
+    let out = run(
+        &op_wgsl(&["metatexture_grad", "metatexture_contour_grad"]),
+        body,
+        &inputs,
+        (cases.len() as u32, 1),
+        &tex,
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| {
+            let s = r::MetaSettings {
+                width: c[1][3],
+                beta: 1,
+                base: 2.0,
+                skew: c[2][1] as i64,
+                contrast: c[2][2] as i64,
+                mean: [0.5; 4],
+            };
+            r::metatexture_contour_grad(
+                &img,
+                [c[0][0], c[0][1]],
+                [c[0][2], c[0][3]],
+                [c[1][0], c[1][1]],
+                &s,
+                c[2][0] as i64,
+                c[1][2],
+            )
+        })
+        .collect();
+    // As for metatexture_grad (1.2e-2), times the orientation blend's 1/√k(w) ≤ √2.
+    compare("metatexture_contour_grad", &out, &reference, 3, 1.7e-2);
+    // Isotropic gradients blend the orientations half and half; 10× anisotropy picks one.
+    assert_eq!(r::contour_weight([1.0, 0.0], [0.0, 1.0], 1.0, 1), 0.5);
+    assert_eq!(r::contour_weight([1.0, 0.0], [0.0, 0.1], 1.0, 1), 1.0);
+    assert_eq!(r::contour_weight([0.1, 0.0], [0.0, 1.0], 1.0, 1), 0.0);
+}
+
+#[test]
+fn edge_breakup_operators_match_reference() {
+    let mut g = Lcg(51);
+    // line_boil (§4.2): times at step centres (the offset is a step function of time).
+    let mut cases = Vec::new();
+    for (amount, rate, cycle) in [
+        (1.0, 12.0, 4),
+        (0.0, 12.0, 4),
+        (0.3, 0.0, 4),
+        (1.0, 120.0, 1024),
+        (0.5, 6.0, 1),
+    ] {
+        for _ in 0..10 {
+            let k = (g.range(-50.0, 500.0)).floor();
+            let time = if rate > 0.0 { (k + 0.5) / rate } else { k };
+            cases.push([
+                q([g.next(), g.next(), amount, rate]),
+                q([cycle as f64, time, 0.0, 0.0]),
+                [0.0; 4],
+            ]);
+        }
+    }
+    let out = one(
+        "line_boil",
+        "result = vec4<f32>(npr_line_boil(a.xy, a.z, a.w, i32(b.x), b.y), 0.0, 0.0);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| {
+            let p = r::line_boil([c[0][0], c[0][1]], c[0][2], c[0][3], c[1][0] as i64, c[1][1]);
+            [p[0], p[1], 0.0, 0.0]
+        })
+        .collect();
+    // k·(1/φ₂) for k < 1024 in f32: ≤ 6e-5 before fract.
+    compare("line_boil", &out, &reference, 2, 2e-4);
+
+    // roll_compensate (§4.3): ordinary, zero, tiny, huge ∇u.
+    let mut cases = Vec::new();
+    for grad in [
+        [0.01, 0.0],
+        [0.0, -3.0],
+        [1e-35, 0.0],
+        [0.0, 0.0],
+        [1e35, 1e35],
+        [-0.2, 0.7],
+    ] {
+        for _ in 0..6 {
+            cases.push([
+                q([g.range(-1.0, 1.0), g.range(-1.0, 1.0), grad[0], grad[1]]),
+                [0.0; 4],
+                [0.0; 4],
+            ]);
+        }
+    }
+    let out = one(
+        "roll_compensate",
+        "result = vec4<f32>(npr_roll_compensate(a.xy, a.zw), 0.0, 0.0);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| {
+            let p = r::roll_compensate([c[0][0], c[0][1]], [c[0][2], c[0][3]]);
+            [p[0], p[1], 0.0, 0.0]
+        })
+        .collect();
+    compare("roll_compensate", &out, &reference, 2, 1e-6);
+
+    // distance_attenuate (eq. 26): d → 0, d → 1e5 and beyond, falloff at both ends of its range.
+    let mut cases = Vec::new();
+    for d in [0.0, 1e-3, 1.0, 7.5, 1e5, 1e20, -3.0] {
+        for falloff in [0.001, 1.0, 1e5] {
+            for rho in [0.0, 1.0, 2.0] {
+                cases.push([q([rho, d, falloff, 0.0]), [0.0; 4], [0.0; 4]]);
+            }
+        }
+    }
+    let out = one(
+        "distance_attenuate",
+        "result = vec4<f32>(npr_distance_attenuate(a.x, a.y, a.z), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| [r::distance_attenuate(c[0][0], c[0][1], c[0][2]), 0.0, 0.0, 0.0])
+        .collect();
+    compare_rel("distance_attenuate", &out, &reference, 1, 1e-6);
+    for c in &reference {
+        assert!((0.0..=2.0).contains(&c[0]), "ρ' out of [0, ρ]: {c:?}");
+    }
+
+    // warp (§4): displacements that land a quarter texel inside a texel (nearest reads are exact there), incl. far off the image.
+    let img = pattern(2, 24, 16, 61);
+    let tex = [TexIn {
+        image: img.clone(),
+        format: wgpu::TextureFormat::Rgba32Float,
+    }];
+    let mut cases = Vec::new();
+    for strength in [4.0, 0.0, 256.0] {
+        for _ in 0..20 {
+            let (x, y) = ((g.next() * 24.0).floor(), (g.next() * 16.0).floor());
+            let uv = [(x + 0.5) / 24.0, (y + 0.5) / 16.0];
+            let n = [
+                (g.range(-40.0, 40.0)).floor() + 0.25,
+                (g.range(-40.0, 40.0)).floor() - 0.25,
+            ];
+            let offset = if strength > 0.0 {
+                [n[0] / strength, n[1] / strength]
+            } else {
+                n
+            };
+            cases.push([
+                q([offset[0], offset[1], strength, 0.0]),
+                q([uv[0], uv[1], 0.0, 0.0]),
+                [0.0; 4],
+            ]);
+        }
+    }
+    let out = one("warp", "result = npr_warp(t0, a.xy, a.z, b.xy);", &cases, &tex);
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|c| r::warp(&img, [c[0][0], c[0][1]], c[0][2], [c[1][0], c[1][1]]))
+        .collect();
+    compare("warp", &out, &reference, 4, 0.0);
+}

@@ -7,8 +7,10 @@
 // `base` generalizes the powers of two (the paper's future-work suggestion).
 // Exponents are clamped so that base^E ≤ 4096: then
 // k·uv keeps at least 12 fractional bits in f32 (tileable T: only fract matters).
+// Downwards (far away, grazing) scales go to 2^-40: k·uv only shrinks there.
 
 const npr_meta__MAX_SCALE: f32 = 4096.0;
+const npr_meta__MIN_LOG2_SCALE: f32 = -40.0;
 
 // β of eq. 7: 0 = linear, 1 = cubic −2x³+3x², 2 = quintic 6x⁵−15x⁴+10x³.
 fn npr_meta__beta(x: f32, kind: i32) -> f32 {
@@ -39,7 +41,8 @@ fn npr_meta__level(du: vec2<f32>, dv: vec2<f32>, width: f32, base: f32, beta: i3
     // Eq. 1 (S = 1 / (w |∇u|)) and eq. 2 (E = log_base S), guarded against |∇u| → 0 and ∞.
     let len_u = clamp(length(du), 1e-30, 1e30);
     let len_v = clamp(length(dv), 1e-30, 1e30);
-    let e = clamp(vec2<f32>(-log2(max(width, 1e-6) * len_u), -log2(max(width, 1e-6) * len_v)) / lb, vec2<f32>(-max_e), vec2<f32>(max_e));
+    let min_e = npr_meta__MIN_LOG2_SCALE / lb;
+    let e = clamp(vec2<f32>(-log2(max(width, 1e-6) * len_u), -log2(max(width, 1e-6) * len_v)) / lb, vec2<f32>(min_e), vec2<f32>(max_e));
     let fe = floor(e);
     var out: npr_meta__Level;
     out.scale = exp2(fe * lb);

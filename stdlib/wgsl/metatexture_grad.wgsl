@@ -12,11 +12,14 @@ fn npr_metatexture_grad(tex: texture_2d<f32>, samp: sampler, uv: vec2<f32>, grad
         m = npr_meta__four(tex, samp, uv, grad_u, grad_v, lv, base);
         c = npr_meta__k(lv.blend.x) * npr_meta__k(lv.blend.y);
     } else {
-        // Eqs. 14–15: skew σ = atan(ε) · cos(angle between ∇u and ∇v).
+        // Eqs. 14–15: skew σ = atan(ε) · cos(angle between ∇u and ∇v), with the
+        // sign flipped: ∇u'·∇v' = ∇u·∇v + ½ sin 2ψ (|∇u|² + |∇v|²) for the shear of
+        // eqs. 20–21, so ψ must have the opposite sign of ∇u·∇v to straighten the
+        // axes. The printed sign increases anisotropy (stdlib::metrics measures it).
         let lu = max(length(grad_u), 1e-30);
         let lv_ = max(length(grad_v), 1e-30);
         let eps = min(lu, lv_) / max(lu, lv_);
-        let sigma = atan(eps) * dot(grad_u / lu, grad_v / lv_);
+        let sigma = -atan(eps) * dot(grad_u / lu, grad_v / lv_);
         // Eqs. 16–19, 22.
         let n = f32(skew);
         let fl = floor(n * sigma);

@@ -6,7 +6,9 @@
 // filter softens the edge; points outside the map, or behind the light's far
 // plane, are lit. Returns the lit fraction in [0, 1].
 fn npr_shadow(depth_map: texture_2d<f32>, p_light: vec3<f32>, bias: f32, warp: f32, radius: i32) -> f32 {
-    if (any(abs(p_light.xy) > vec2<f32>(1.0)) || p_light.z > 1.0 || any(p_light != p_light)) {
+    // NaN test on the bits: shader compilers may fold `x != x` to false.
+    let nan = (bitcast<vec3<u32>>(p_light) & vec3<u32>(0x7fffffffu)) > vec3<u32>(0x7f800000u);
+    if (any(abs(p_light.xy) > vec2<f32>(1.0)) || p_light.z > 1.0 || any(nan)) {
         return 1.0;
     }
     let k = clamp(warp, 0.0, 16.0);

@@ -39,6 +39,8 @@ const FRAME_STRUCT: &str = "struct Frame {
     light_view_proj: mat4x4<f32>,
     // The other eye's view-projection in a stereo frame (= view_proj in mono).
     other_view_proj: mat4x4<f32>,
+    center_view_proj: mat4x4<f32>, // stereo: the centre camera's view_proj (= view_proj in mono)
+    focal: vec4<f32>,         // xy: proj[0][0], proj[1][1] (camera.focal); zw: 0
 }
 ";
 
@@ -194,20 +196,28 @@ impl Emitter<'_> {
         });
         let uses_frame = is_render || frame_builtin || uses_percent || uses_project;
 
+        // Screen-space tangent frames (Age of Sail §3.2) need the tangent attribute.
+        let uses_screen_frame = builtins.iter().any(|b| is_screen_frame(*b));
         let mut attributes = Vec::new();
         if is_render {
             attributes.push(Attribute::Position);
             let needs_normal = pass.inflate.is_some()
-                || builtins
-                    .iter()
-                    .any(|b| matches!(b, Builtin::NormalWorld | Builtin::NormalView));
+                || builtins.iter().any(|b| {
+                    matches!(
+                        b,
+                        Builtin::NormalWorld
+                            | Builtin::NormalView
+                            | Builtin::BitangentScreen
+                            | Builtin::BitangentScreenCenter
+                    )
+                });
             if needs_normal {
                 attributes.push(Attribute::Normal);
             }
             if builtins.contains(&Builtin::Uv) || texture_as_value {
                 attributes.push(Attribute::Uv);
             }
-            if builtins.contains(&Builtin::Tangent) {
+            if builtins.contains(&Builtin::Tangent) || uses_screen_frame {
                 attributes.push(Attribute::Tangent);
             }
         }
@@ -535,8 +545,20 @@ impl Emitter<'_> {
         if has(Attribute::Tangent) {
             w.push_str("    @location(4) tangent: vec4<f32>,\n");
         }
-        let _ = builtins;
-        w.push_str("}\n\n// Unit vector, or zero for a zero input (never NaN).\nfn npr_unit(v: vec3<f32>) -> vec3<f32> {\n    return v * inverseSqrt(max(dot(v, v), 1e-30));\n}\n\n@vertex\nfn vs_main(v: VertexIn) -> Varyings {\n    var out: Varyings;\n");
+        for (b, loc, field) in SCREEN_FRAME_VARYINGS {
+            if builtins.contains(b) {
+                let _ = writeln!(w, "    @location({loc}) {field}: vec2<f32>,");
+            }
+        }
+        w.push_str("}\n\n// Unit vector, or zero for a zero input (never NaN).\nfn npr_unit(v: vec3<f32>) -> vec3<f32> {\n    return v * inverseSqrt(max(dot(v, v), 1e-30));\n}\n\n");
+        let screen_frame: Vec<&(Builtin, u32, &str)> = SCREEN_FRAME_VARYINGS
+            .iter()
+            .filter(|(b, _, _)| builtins.contains(b))
+            .collect();
+        if !screen_frame.is_empty() {
+            w.push_str(PROJECT_DIR_HELPER);
+        }
+        w.push_str("@vertex\nfn vs_main(v: VertexIn) -> Varyings {\n    var out: Varyings;\n");
         let view_proj = match pass.view {
             PassView::Camera => "frame.view_proj",
             PassView::Light => "frame.light_view_proj",
@@ -582,6 +604,33 @@ impl Emitter<'_> {
             w.push_str(
                 "    out.tangent = vec4<f32>((object.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);\n",
             );
+        }
+        if !screen_frame.is_empty() {
+            // Age of Sail §3.2: T_s, B_s from the un-inflated position, in px of this pass per metre.
+            let _ = writeln!(
+                w,
+                "    // Age of Sail §3.2 (eqs. 9-10): screen-space projections of the unit tangent and bitangent.\n    let frame_size = frame.resolution * {};\n    let t_world = npr_unit((object.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz);",
+                fmt_f32(pass.scale)
+            );
+            if screen_frame
+                .iter()
+                .any(|(b, _, _)| matches!(b, Builtin::BitangentScreen | Builtin::BitangentScreenCenter))
+            {
+                // Mesh convention: w · cross(n, t) points along -v, so +v is -w · cross(n, t).
+                w.push_str("    let b_world = npr_unit(-v.tangent.w * cross(npr_unit(out.normal_world), t_world));\n");
+            }
+            for (b, _, field) in &screen_frame {
+                let (dir, matrix) = match b {
+                    Builtin::TangentScreen => ("t_world", "frame.view_proj"),
+                    Builtin::BitangentScreen => ("b_world", "frame.view_proj"),
+                    Builtin::TangentScreenCenter => ("t_world", "frame.center_view_proj"),
+                    _ => ("b_world", "frame.center_view_proj"),
+                };
+                let _ = writeln!(
+                    w,
+                    "    out.{field} = npr_project_dir({matrix}, world, {dir}, frame_size);"
+                );
+            }
         }
         w.push_str("    out.clip = clip;\n    // Screen position, interpolated linearly in screen space (exact for any triangle).\n    out.screen_uv = clip.xy / clip.w * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5);\n    return out;\n}\n\n");
     }
@@ -763,8 +812,40 @@ fn builtin_wgsl(b: Builtin, is_render: bool) -> String {
         Builtin::CameraPosition => "frame.camera_pos.xyz".into(),
         Builtin::CameraNear => "frame.near".into(),
         Builtin::CameraFar => "frame.far".into(),
+        Builtin::CameraFocal => "frame.focal.xy".into(),
+        Builtin::TangentScreen => "in.tangent_screen".into(),
+        Builtin::BitangentScreen => "in.bitangent_screen".into(),
+        Builtin::TangentScreenCenter => "in.tangent_screen_center".into(),
+        Builtin::BitangentScreenCenter => "in.bitangent_screen_center".into(),
     }
 }
+
+/// The screen-space tangent-frame builtins: (builtin, varying location, varying name).
+const SCREEN_FRAME_VARYINGS: &[(Builtin, u32, &str)] = &[
+    (Builtin::TangentScreen, 8, "tangent_screen"),
+    (Builtin::BitangentScreen, 9, "bitangent_screen"),
+    (Builtin::TangentScreenCenter, 10, "tangent_screen_center"),
+    (Builtin::BitangentScreenCenter, 11, "bitangent_screen_center"),
+];
+
+fn is_screen_frame(b: Builtin) -> bool {
+    SCREEN_FRAME_VARYINGS.iter().any(|(s, _, _)| *s == b)
+}
+
+/// The analytic Jacobian of projection + viewport applied to a world direction.
+const PROJECT_DIR_HELPER: &str = "// Pixels moved per metre along world direction `dir` at `world`: the derivative of
+// pixel = (ndc.x, -ndc.y) * size / 2 + size / 2 with ndc = clip.xy / clip.w (quotient rule).
+// Screen y points down, like frag_coord and dpdy.
+fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2<f32>) -> vec2<f32> {
+    let c = vp * world;
+    let d = vp * vec4<f32>(dir, 0.0);
+    // Behind or on the eye plane the triangle is clipped; stay finite.
+    let w = max(c.w, 1e-6);
+    let dndc = (d.xy * w - c.xy * d.w) / (w * w);
+    return vec2<f32>(dndc.x, -dndc.y) * 0.5 * size;
+}
+
+";
 
 /// An f32 literal WGSL accepts, e.g. `0.5f`, `1e-5f`.
 pub fn fmt_f32(v: f64) -> String {

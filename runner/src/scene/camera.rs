@@ -159,6 +159,12 @@ impl CameraPose {
         Mat4::look_at_rh(self.eye + offset, self.target + offset, self.true_up())
     }
 
+    /// World-to-view matrix of the centre camera, between the stereo eyes
+    /// (the mono view): what both eyes share for view-independent choices.
+    pub fn center_view(&self) -> Mat4 {
+        Mat4::look_at_rh(self.eye, self.target, self.true_up())
+    }
+
     /// Right-handed perspective with wgpu's 0..1 depth range.
     pub fn projection(&self, aspect: f32) -> Mat4 {
         Mat4::perspective_rh(self.fov_y_rad, aspect, self.near, self.far)

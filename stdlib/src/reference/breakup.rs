@@ -1,0 +1,116 @@
+//! f64 references for the MetaTexture extensions (Age of Sail §3.2 smooth
+//! gradients, §3.3 radial angle, §3.5 contour orientation, §6.1 live
+//! texture) and the Edge Breakup operators (§4.2 line boil, §4.3 camera
+//! roll, §4.4 distance, the warp itself). Each follows its WGSL file.
+
+use super::{meta_beta, meta_k, metatexture_grad, ImageF64, MetaSettings};
+
+fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// Eqs. 12–13: α = |Q|² + 1 with Q = (s_x/P₀₀, s_y/P₁₁), s the NDC position of `screen_uv`.
+pub fn radial_alpha(screen_uv: [f64; 2], focal: [f64; 2]) -> f64 {
+    let s = [screen_uv[0] * 2.0 - 1.0, 1.0 - screen_uv[1] * 2.0];
+    let q = [s[0] / focal[0].abs().max(1e-6), s[1] / focal[1].abs().max(1e-6)];
+    (dot2(q, q) + 1.0).min(1e12)
+}
+
+/// Eqs. 9–10: (∇u, ∇v) = (|∇_w u| T_s/|T_s|², |∇_w v| B_s/|B_s|²), packed (∇u.x, ∇u.y, ∇v.x, ∇v.y).
+pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2]) -> [f64; 4] {
+    let g = |t: [f64; 2], d: f64| {
+        let s = d.abs() / dot2(t, t).max(1e-20);
+        [t[0] * s, t[1] * s]
+    };
+    let (u, v) = (g(tangent, density[0]), g(bitangent, density[1]));
+    [u[0], u[1], v[0], v[1]].map(|x| x.clamp(-1e30, 1e30))
+}
+
+/// §3.5: the blend weight towards the 90°-rotated orientation, β(½ + log₂(|∇u|/|∇v|)/band).
+pub fn contour_weight(du: [f64; 2], dv: [f64; 2], band: f64, beta: i64) -> f64 {
+    let len = |g: [f64; 2]| dot2(g, g).sqrt().clamp(1e-30, 1e30);
+    let r = len(du).log2() - len(dv).log2();
+    meta_beta(0.5 + r / band.max(1e-3), beta)
+}
+
+/// §3.5: MetaTexture re-oriented to indicate contour (`orient` 0 = off).
+pub fn metatexture_contour_grad(
+    tex: &ImageF64,
+    uv: [f64; 2],
+    du: [f64; 2],
+    dv: [f64; 2],
+    s: &MetaSettings,
+    orient: i64,
+    band: f64,
+) -> [f64; 4] {
+    if orient == 0 {
+        return metatexture_grad(tex, uv, du, dv, s);
+    }
+    let w = contour_weight(du, dv, band, s.beta);
+    let m0 = if w < 1.0 {
+        metatexture_grad(tex, uv, du, dv, s)
+    } else {
+        [0.0; 4]
+    };
+    let m1 = if w > 0.0 {
+        metatexture_grad(tex, [uv[1], -uv[0]], dv, [-du[0], -du[1]], s)
+    } else {
+        [0.0; 4]
+    };
+    let m: [f64; 4] = std::array::from_fn(|i| m0[i] + (m1[i] - m0[i]) * w);
+    let c = meta_k(w);
+    match s.contrast {
+        1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),
+        2 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) / c.max(1e-6).sqrt()),
+        _ => m,
+    }
+}
+
+/// Eq. 29 as printed.
+pub const LIVE_L1: [f64; 3] = [0.707, 0.0, -0.707];
+/// Eq. 30 as printed.
+pub const LIVE_L2: [f64; 3] = [-0.408, 0.816, -0.408];
+
+/// Eqs. 27–30 with ft = 2π·f·t (f in cycles per second); the three equal components of T'.
+pub fn live_texture(t: [f64; 4], freq: f64, time: f64) -> f64 {
+    let d = |l: [f64; 3]| t[0] * l[0] + t[1] * l[1] + t[2] * l[2];
+    let phase = std::f64::consts::TAU * (freq * time).rem_euclid(1.0);
+    0.5 + d(LIVE_L1) * phase.cos() + d(LIVE_L2) * phase.sin()
+}
+
+/// §4.2: the drawing index k = ⌊t·rate⌋ mod cycle (1e-3 of a step of slack for frame-time rounding).
+pub fn line_boil_step(rate: f64, cycle: i64, time: f64) -> f64 {
+    let n = cycle.max(1) as f64;
+    let s = (time * rate.max(0.0) + 1e-3).floor();
+    s - n * (s / n).floor()
+}
+
+/// §4.2: uv + amount · R₂(k).
+pub fn line_boil(uv: [f64; 2], amount: f64, rate: f64, cycle: i64, time: f64) -> [f64; 2] {
+    let k = line_boil_step(rate, cycle, time);
+    let r = [(k * 0.7548776662466927).fract(), (k * 0.5698402909980532).fract()];
+    [uv[0] + amount * r[0], uv[1] + amount * r[1]]
+}
+
+/// §4.3: `offset` expressed in the frame (ê, ê⊥) of the screen-space ∇u.
+pub fn roll_compensate(offset: [f64; 2], grad_u: [f64; 2]) -> [f64; 2] {
+    let l = dot2(grad_u, grad_u).sqrt();
+    if !(l > 1e-30) || l > 1e30 {
+        return offset;
+    }
+    let e = [grad_u[0] / l, grad_u[1] / l];
+    [offset[0] * e[0] - offset[1] * e[1], offset[0] * e[1] + offset[1] * e[0]]
+}
+
+/// Eq. 26: ρ' = ρ / (1 + (d/falloff)²).
+pub fn distance_attenuate(rho: f64, d: f64, falloff: f64) -> f64 {
+    let x = d.abs() / falloff.max(1e-6);
+    rho / (1.0 + x * x)
+}
+
+/// §4: `src` at uv + offset·strength/size (nearest texel, clamped).
+pub fn warp(src: &ImageF64, offset: [f64; 2], strength: f64, uv: [f64; 2]) -> [f64; 4] {
+    let d = [offset[0] * strength, offset[1] * strength].map(|x| if x.is_nan() { 0.0 } else { x.clamp(-1e6, 1e6) });
+    let p = [uv[0] * src.width as f64 + d[0], uv[1] * src.height as f64 + d[1]];
+    src.load(p[0].floor() as i64, p[1].floor() as i64)
+}
