@@ -84,6 +84,10 @@ pub enum PassKindManifest {
     Render {
         /// Draw only objects with this tag; `None` draws every object.
         tag: Option<String>,
+        /// `view(light)`: projected with `Frame::light_view_proj`, whose
+        /// x, y extent the runner fits to the objects such passes draw.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        light_view: bool,
         /// Vertex attributes in location order (location = index).
         attributes: Vec<Attribute>,
     },

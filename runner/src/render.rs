@@ -57,8 +57,11 @@ pub struct Renderer<'d> {
     object_params: Vec<Vec<u8>>,
     object_models: Vec<Mat4>,
     object_tags: Vec<Vec<String>>,
-    /// World-space bounds of the scene, for the light camera.
+    /// World-space bounds of the scene, for the light camera's depth range.
     scene_bounds: (glam::Vec3, glam::Vec3),
+    /// Bounds of what `view(light)` passes draw (the shadow casters): the
+    /// light camera's x, y extent.
+    caster_bounds: (glam::Vec3, glam::Vec3),
     sized: Option<SizedResources>,
 }
 
@@ -235,6 +238,25 @@ impl<'d> Renderer<'d> {
             object_models: scene.objects.iter().map(|o| o.model).collect(),
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
             scene_bounds: scene.bounds(),
+            caster_bounds: {
+                // Objects any light-view pass draws; all of them when such a pass has no tag.
+                let tags: Vec<Option<&String>> = manifest
+                    .passes
+                    .iter()
+                    .filter_map(|p| match &p.kind {
+                        PassKindManifest::Render {
+                            tag, light_view: true, ..
+                        } => Some(tag.as_ref()),
+                        _ => None,
+                    })
+                    .collect();
+                let drawn = scene.bounds_of(|o| tags.iter().any(|t| t.is_none_or(|t| o.tags.contains(t))));
+                if drawn.0.is_finite() {
+                    drawn
+                } else {
+                    scene.bounds()
+                }
+            },
             manifest,
             sized: None,
         })
@@ -395,7 +417,8 @@ impl<'d> Renderer<'d> {
             spec.frame as f32,
         ]);
         frame.extend_from_slice(&[eye as f32, pose.near, pose.far, 0.0]);
-        let light_view_proj = crate::scene::light_view_proj(scene.light.direction, self.scene_bounds);
+        let light_view_proj =
+            crate::scene::light_view_proj(scene.light.direction, self.caster_bounds, self.scene_bounds);
         frame.extend_from_slice(&light_view_proj.to_cols_array());
         let other_view_proj = proj * pose.view(1 - eye.min(1));
         frame.extend_from_slice(&other_view_proj.to_cols_array());
@@ -561,7 +584,7 @@ impl<'d> Renderer<'d> {
                 rp.set_bind_group(0, &res.group0, &[]);
                 match &pass.kind {
                     PassKindManifest::Image => rp.draw(0..3, 0..1),
-                    PassKindManifest::Render { tag, attributes } => {
+                    PassKindManifest::Render { tag, attributes, .. } => {
                         for (oi, mesh) in self.meshes.iter().enumerate() {
                             if let Some(tag) = tag {
                                 if !self.object_tags[oi].iter().any(|t| t == tag) {

@@ -53,6 +53,7 @@ pub fn build(
                 kind: match &pass.kind {
                     PassKind::Render { tag } => PassKindManifest::Render {
                         tag: tag.clone(),
+                        light_view: pass.view == crate::ir::PassView::Light,
                         attributes: e.attributes.clone(),
                     },
                     PassKind::Image { .. } => PassKindManifest::Image,

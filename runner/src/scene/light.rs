@@ -31,28 +31,42 @@ impl Default for Light {
     }
 }
 
-/// The light's camera for `view(light)` passes (shadow-caster depth maps):
-/// an orthographic projection along the light's rays that encloses the
-/// bounding sphere of `bounds` (world-space min, max corners).
-///
-/// Clip space follows wgpu: x, y in [−1, 1] (y up), z in [0, 1] increasing
-/// away from the light, w = 1. Fitting the sphere rather than the box makes
-/// the map independent of the light's azimuth around the scene, so a
-/// rotating light gives a stable texel size.
-pub fn light_view_proj(direction: Vec3, bounds: (Vec3, Vec3)) -> glam::Mat4 {
-    let (lo, hi) = bounds;
-    let (centre, radius) = if lo.is_finite() && hi.is_finite() && lo.cmple(hi).all() {
+/// Centre and radius of the bounding sphere of a box (min, max corners);
+/// a unit sphere at the origin for an empty or non-finite box.
+fn bounding_sphere((lo, hi): (Vec3, Vec3)) -> (Vec3, f32) {
+    if lo.is_finite() && hi.is_finite() && lo.cmple(hi).all() {
         ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3))
     } else {
         (Vec3::ZERO, 1.0)
-    };
+    }
+}
+
+/// The light's camera for `view(light)` passes (shadow-caster depth maps):
+/// an orthographic projection along the light's rays whose x, y extent
+/// encloses the bounding sphere of `casters` (what the depth pass draws) and
+/// whose depth range encloses the bounding sphere of the whole `scene`, so
+/// every receiver has a depth in [0, 1]. Points outside the casters' extent
+/// cannot be shadowed, so `shadow()` reads them as lit: the map's texels all
+/// go to the casters. Boxes are world-space (min, max) corners.
+///
+/// Clip space follows wgpu: x, y in [−1, 1] (y up), z in [0, 1] increasing
+/// away from the light, w = 1. Fitting spheres rather than boxes makes the
+/// map independent of the light's azimuth, so a rotating light gives a
+/// stable texel size.
+pub fn light_view_proj(direction: Vec3, casters: (Vec3, Vec3), scene: (Vec3, Vec3)) -> glam::Mat4 {
+    let (centre, radius) = bounding_sphere(casters);
+    let (scene_centre, scene_radius) = bounding_sphere(scene);
     let dir = direction.try_normalize().unwrap_or(Light::default_direction());
     // Any up vector not parallel to the rays.
     let up = if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-    let eye = centre + dir * (2.0 * radius);
+    // Along the rays, the scene spans [s − R, s + R] around its centre's
+    // coordinate s; put the eye one R before the nearest point.
+    let s = (scene_centre - centre).dot(-dir);
+    let back = scene_radius.max(radius);
+    let eye = centre + dir * (back - s + back);
     let view = glam::Mat4::look_at_rh(eye, centre, up);
-    // The sphere spans distances [r, 3r] from the eye.
-    let proj = glam::Mat4::orthographic_rh(-radius, radius, -radius, radius, radius * 0.999, radius * 3.001);
+    let (near, far) = (back * 0.999, 3.0 * back * 1.0005);
+    let proj = glam::Mat4::orthographic_rh(-radius, radius, -radius, radius, near, far);
     proj * view
 }
 
@@ -65,7 +79,7 @@ mod tests {
     fn light_camera_encloses_the_bounds_and_orders_depth_along_the_rays() {
         let bounds = (Vec3::new(-2.0, 0.0, -1.0), Vec3::new(3.0, 2.0, 4.0));
         for dir in [Vec3::new(0.6, 0.9, -0.7), Vec3::Y, -Vec3::Y, Vec3::X] {
-            let m = light_view_proj(dir, bounds);
+            let m = light_view_proj(dir, bounds, bounds);
             for i in 0..8 {
                 let c = Vec3::new(
                     if i & 1 == 0 { bounds.0.x } else { bounds.1.x },
@@ -89,10 +103,40 @@ mod tests {
     }
 
     #[test]
+    fn casters_fill_the_map_while_every_receiver_keeps_a_depth_in_range() {
+        // A small caster over a wide ground.
+        let caster = (Vec3::new(-0.5, 1.0, -0.5), Vec3::new(0.5, 2.0, 0.5));
+        let scene = (Vec3::new(-10.0, 0.0, -10.0), Vec3::new(10.0, 2.0, 10.0));
+        for dir in [Vec3::new(0.6, 0.9, -0.7), Vec3::Y, Vec3::new(-1.0, 0.3, 0.2)] {
+            let m = light_view_proj(dir, caster, scene);
+            // The caster's bounding sphere spans the map: its centre is at the
+            // middle and a point one radius off-centre (across the rays) at the edge.
+            let centre = m * Vec3::new(0.0, 1.5, 0.0).extend(1.0);
+            assert!(centre.x.abs() < 1e-5 && centre.y.abs() < 1e-5, "{dir}: {centre}");
+            let r = (Vec3::new(1.0, 1.0, 1.0)).length() * 0.5;
+            let side = dir.normalize().any_orthonormal_vector();
+            let edge = m * (Vec3::new(0.0, 1.5, 0.0) + side * r).extend(1.0);
+            assert!(
+                (edge.truncate().truncate().length() - 1.0).abs() < 1e-4,
+                "{dir}: {edge}"
+            );
+            // Every corner of the scene, caster or receiver, has depth in [0, 1].
+            for i in 0..8 {
+                let c = Vec3::new(
+                    if i & 1 == 0 { scene.0.x } else { scene.1.x },
+                    if i & 2 == 0 { scene.0.y } else { scene.1.y },
+                    if i & 4 == 0 { scene.0.z } else { scene.1.z },
+                );
+                let z = (m * c.extend(1.0)).z;
+                assert!((0.0..=1.0).contains(&z), "{dir}: corner {c} has depth {z}");
+            }
+        }
+    }
+
+    #[test]
     fn degenerate_bounds_and_direction_give_a_finite_camera() {
-        let m = light_view_proj(Vec3::ZERO, (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)));
-        assert!(m.is_finite());
-        let m = light_view_proj(Vec3::Y, (Vec3::ONE, Vec3::ONE));
-        assert!(m.is_finite());
+        let empty = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        assert!(light_view_proj(Vec3::ZERO, empty, empty).is_finite());
+        assert!(light_view_proj(Vec3::Y, (Vec3::ONE, Vec3::ONE), (Vec3::ONE, Vec3::ONE)).is_finite());
     }
 }

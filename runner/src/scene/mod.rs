@@ -155,9 +155,14 @@ impl Scene {
     /// World-space bounding box (min, max) of every object's vertices;
     /// (+∞, −∞) for an empty scene.
     pub fn bounds(&self) -> (glam::Vec3, glam::Vec3) {
+        self.bounds_of(|_| true)
+    }
+
+    /// World-space bounding box of the objects `keep` accepts.
+    pub fn bounds_of(&self, keep: impl Fn(&Object) -> bool) -> (glam::Vec3, glam::Vec3) {
         let mut lo = glam::Vec3::splat(f32::INFINITY);
         let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
-        for o in &self.objects {
+        for o in self.objects.iter().filter(|o| keep(o)) {
             for p in &o.mesh.positions {
                 let w = o.model.transform_point3(glam::Vec3::from(*p));
                 if w.is_finite() {
