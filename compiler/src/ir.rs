@@ -152,6 +152,11 @@ pub enum Builtin {
     /// (P₀₀, P₁₁) of the projection matrix: the focal lengths in NDC units
     /// that Age of Sail eq. 12 divides the screen position by.
     CameraFocal,
+    /// The left and right eye positions of a stereo camera (both the camera
+    /// position in mono), and the unit view direction.
+    CameraLeftEye,
+    CameraRightEye,
+    CameraForward,
     /// Screen-space projection T_s of the unit world tangent (direction of
     /// increasing u), in px per metre, computed in the vertex shader from the
     /// analytic Jacobian of the projection and interpolated (Age of Sail §3.2).
@@ -192,6 +197,9 @@ impl Builtin {
         ("camera.near", Builtin::CameraNear),
         ("camera.far", Builtin::CameraFar),
         ("camera.focal", Builtin::CameraFocal),
+        ("camera.left_eye", Builtin::CameraLeftEye),
+        ("camera.right_eye", Builtin::CameraRightEye),
+        ("camera.forward", Builtin::CameraForward),
         ("tangent.screen", Builtin::TangentScreen),
         ("bitangent.screen", Builtin::BitangentScreen),
         ("tangent.screen_center", Builtin::TangentScreenCenter),
@@ -214,6 +222,8 @@ impl Builtin {
             NormalWorld | NormalView | Tangent | ViewDir | LightDir | PositionLight => (Ty::Vec3, Unit::None),
             PositionWorld | PositionView | CameraPosition => (Ty::Vec3, Unit::Meters),
             Depth | CameraNear | CameraFar => (Ty::Float, Unit::Meters),
+            CameraLeftEye | CameraRightEye => (Ty::Vec3, Unit::Meters),
+            CameraForward => (Ty::Vec3, Unit::None),
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
             Time => (Ty::Float, Unit::Seconds),
             Frame | Eye => (Ty::Int, Unit::None),

@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 pub const MANIFEST_VERSION: u32 = 2;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
-pub const FRAME_UNIFORM_SIZE: u64 = 480;
+pub const FRAME_UNIFORM_SIZE: u64 = 528;
 /// Byte offset of the first parameter slot in the per-object block (after model and normal matrices).
 pub const OBJECT_PARAMS_OFFSET: u64 = 128;
 /// Alignment of per-object dynamic offsets.

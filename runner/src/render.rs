@@ -425,6 +425,10 @@ impl<'d> Renderer<'d> {
         // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
         frame.extend_from_slice(&(proj * pose.center_view()).to_cols_array());
         frame.extend_from_slice(&[proj.x_axis.x, proj.y_axis.y, 0.0, 0.0]);
+        let (left, right, forward) = (pose.position(0), pose.position(1), pose.forward());
+        frame.extend_from_slice(&[left.x, left.y, left.z, 1.0]);
+        frame.extend_from_slice(&[right.x, right.y, right.z, 1.0]);
+        frame.extend_from_slice(&[forward.x, forward.y, forward.z, 0.0]);
         debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
         frame
     }

@@ -21,6 +21,7 @@ pub mod metrics;
 pub mod operators;
 pub mod reference;
 pub mod reference_pipeline;
+pub mod reference_stereo;
 
 use serde::Serialize;
 

@@ -1112,3 +1112,140 @@ fn edge_breakup_operators_match_reference() {
         .collect();
     compare("warp", &out, &reference, 4, 0.0);
 }
+
+#[test]
+fn stereo_operators_match_reference() {
+    use stdlib::reference_stereo as rs;
+    // Contour fade: points around a sphere at 2 m, eyes 6.4 cm apart, and degenerate normals.
+    let (left, right, forward) = ([-0.032, 0.01, 0.0], [0.032, 0.01, 0.0], [0.0, 0.0, -1.0]);
+    let mut g = Lcg(99);
+    let mut cases: Vec<([f64; 4], [f64; 4])> = (0..300)
+        .map(|_| {
+            let theta = g.next() * std::f64::consts::PI;
+            let azimuth = g.next() * std::f64::consts::TAU;
+            let n = [theta.sin() * azimuth.cos(), theta.sin() * azimuth.sin(), theta.cos()];
+            let p = [0.5 * n[0], 0.5 * n[1], -2.0 + 0.5 * n[2]];
+            (q([p[0], p[1], p[2], 0.0]), q([n[0], n[1], n[2], 0.0]))
+        })
+        .collect();
+    cases.push(([0.0, 0.0, -2.0, 0.0], [0.0; 4]));
+    cases.push(([-0.032, 0.01, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]));
+    let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|(p, n)| [f32v(*p), f32v(*n), [0.0; 4]]).collect();
+    let body = format!(
+        "result = vec4<f32>(npr_contour_fade(a.xyz, b.xyz, vec3<f32>({:?}, {:?}, {:?}), vec3<f32>({:?}, {:?}, {:?}), vec3<f32>({:?}, {:?}, {:?}), 1.75, 0.4375), 0.0, 0.0, 0.0);",
+        left[0], left[1], left[2], right[0], right[1], right[2], forward[0], forward[1], forward[2]
+    );
+    let out = run(
+        &op_wgsl(&["contour_fade"]),
+        &body,
+        &inputs,
+        (cases.len() as u32, 1),
+        &[],
+    );
+    let reference: Vec<[f64; 4]> = cases
+        .iter()
+        .map(|(p, n)| {
+            let v = rs::contour_fade(
+                [p[0], p[1], p[2]],
+                [n[0], n[1], n[2]],
+                left,
+                right,
+                forward,
+                1.75,
+                0.4375,
+            );
+            [v, 0.0, 0.0, 0.0]
+        })
+        .collect();
+    // acos near ±1 and the ramp's small width (≈ 1.3·ᾱ ≈ 0.04 rad) amplify f32
+    // rounding: 2e-3 of the fade's range.
+    compare("contour_fade", &out, &reference, 1, 2e-3);
+
+    // Reprojection mask and consistency on synthetic reprojections: a smooth
+    // fronto-parallel shift of 3.3 px, a depth jump of 9 px in the right
+    // third, background in a corner, and the other eye's inverse map.
+    let (w, h) = (30u32, 12u32);
+    let reproj = ImageF64::new(w, h, |x, y| {
+        if x < 3 && y < 3 {
+            return [0.0; 4];
+        }
+        let shift = if x >= 20 { 12.3 } else { 3.3 } + 0.05 * y as f64;
+        q([x as f64 + 0.5 + shift, y as f64 + 0.5, 0.0, 1.0])
+    });
+    let reproj_other = ImageF64::new(w, h, |x, y| {
+        let back = if x % 7 == 3 { 2.9 } else { 3.3 };
+        q([
+            x as f64 + 0.5 - back - 0.05 * y as f64,
+            y as f64 + 0.5,
+            0.0,
+            if y == 9 { 0.0 } else { 1.0 },
+        ])
+    });
+    let tex = [
+        TexIn {
+            image: reproj.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        },
+        TexIn {
+            image: reproj_other.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        },
+    ];
+    let out = run(
+        &op_wgsl(&["reprojection_mask"]),
+        "result = vec4<f32>(npr_reprojection_mask(t0, t1, uv, 2.0, 4.0, 3.0, 6.0), 0.0, 0.0, 0.0);",
+        &[],
+        (w, h),
+        &tex,
+    );
+    let reference = pixels_ref((w, h), |uv| {
+        let p = reproj.pixel_of(uv);
+        [
+            rs::reprojection_mask(&reproj, &reproj_other, p, (2.0, 4.0), (3.0, 6.0)),
+            0.0,
+            0.0,
+            0.0,
+        ]
+    });
+    compare("reprojection_mask", &out, &reference, 1, 1e-5);
+    let masked = reference.iter().filter(|v| v[0] == 1.0).count();
+    let clear = reference.iter().filter(|v| v[0] == 0.0).count();
+    assert!(
+        masked > 20 && clear > 100,
+        "cases cover both outcomes: {masked} masked, {clear} clear"
+    );
+
+    let e = ImageF64::new(w, h, |x, y| {
+        [if (x + y) % 5 == 0 { 1.0 } else { 0.1 * (x % 3) as f64 }, 0.0, 0.0, 1.0]
+    });
+    let e_other = ImageF64::new(w, h, |x, y| {
+        [if (x + 2 * y) % 9 == 0 { 0.8 } else { 0.0 }, 0.0, 0.0, 1.0]
+    });
+    let tex = [
+        TexIn {
+            image: e.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        },
+        TexIn {
+            image: e_other.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        },
+        TexIn {
+            image: reproj.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        },
+    ];
+    for mask in [0.0, 0.3, 1.0] {
+        let body = format!("result = vec4<f32>(npr_stereo_consistency(t0, t1, t2, {mask:?}, uv), 0.0, 0.0, 0.0);");
+        let out = run(&op_wgsl(&["stereo_consistency"]), &body, &[], (w, h), &tex);
+        let reference = pixels_ref((w, h), |uv| {
+            [
+                rs::stereo_consistency(&e, &e_other, &reproj, mask, e.pixel_of(uv)),
+                0.0,
+                0.0,
+                0.0,
+            ]
+        });
+        compare(&format!("stereo_consistency mask {mask}"), &out, &reference, 1, 1e-6);
+    }
+}

@@ -41,6 +41,9 @@ const FRAME_STRUCT: &str = "struct Frame {
     other_view_proj: mat4x4<f32>,
     center_view_proj: mat4x4<f32>, // stereo: the centre camera's view_proj (= view_proj in mono)
     focal: vec4<f32>,         // xy: proj[0][0], proj[1][1] (camera.focal); zw: 0
+    eye_left: vec4<f32>,      // xyz: the left eye's position (= camera in mono)
+    eye_right: vec4<f32>,     // xyz: the right eye's position (= camera in mono)
+    camera_forward: vec4<f32>, // xyz: unit view direction
 }
 ";
 
@@ -813,6 +816,9 @@ fn builtin_wgsl(b: Builtin, is_render: bool) -> String {
         Builtin::CameraNear => "frame.near".into(),
         Builtin::CameraFar => "frame.far".into(),
         Builtin::CameraFocal => "frame.focal.xy".into(),
+        Builtin::CameraLeftEye => "frame.eye_left.xyz".into(),
+        Builtin::CameraRightEye => "frame.eye_right.xyz".into(),
+        Builtin::CameraForward => "frame.camera_forward.xyz".into(),
         Builtin::TangentScreen => "in.tangent_screen".into(),
         Builtin::BitangentScreen => "in.bitangent_screen".into(),
         Builtin::TangentScreenCenter => "in.tangent_screen_center".into(),
