@@ -19,6 +19,7 @@
 
 pub mod operators;
 pub mod reference;
+pub mod reference_lsa;
 
 use serde::Serialize;
 
@@ -148,7 +149,11 @@ pub struct Specialization {
 /// Shared WGSL helpers, by name: (name, source). Their functions are prefixed
 /// `npr_<name>__` and are emitted once per module that needs them.
 pub mod snippets {
-    pub const ALL: &[(&str, &str)] = &[("meta", include_str!("../wgsl/metatexture_common.wgsl"))];
+    pub const ALL: &[(&str, &str)] = &[
+        ("meta", include_str!("../wgsl/metatexture_common.wgsl")),
+        ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
+        ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
+    ];
 
     pub fn find(name: &str) -> Option<&'static str> {
         ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
