@@ -102,43 +102,57 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
 
 /// Swap calls for cheaper operators where a constant argument allows it
 /// (`stdlib::Specialization`), e.g. 4-tap MetaTexture when `skew` is 0.
+/// Specializations chain: `lsa` with `plane` and `aa` both false becomes
+/// `lsa_curv_aa`, then `lsa_curv`. Each swap drops one argument, so a call
+/// is revisited at most once per parameter.
 fn specialize_operators(ir: &mut Ir, report: &mut Report) {
     for i in 0..ir.exprs.len() {
-        let ExprKind::Call {
-            callee: Callee::Operator(index),
-            args,
-        } = &ir.exprs[i].kind
-        else {
-            continue;
-        };
-        let op = &stdlib::all()[*index as usize];
-        for s in op.specializations {
-            let Some(pos) = op.params.iter().position(|p| p.name == s.param) else {
-                continue;
-            };
-            let Some(value) = args.get(pos).and_then(|a| const_eval(ir, *a)).and_then(|c| c.scalar()) else {
-                continue;
-            };
-            let Some(alt) = stdlib::all().iter().position(|o| o.name == s.use_operator) else {
-                continue;
-            };
-            if value != s.value {
-                continue;
+        // Bounded all the same, should a table ever form a cycle.
+        for _ in 0..16 {
+            if !specialize_call(ir, i, report) {
+                break;
             }
-            let mut new_args = args.clone();
-            new_args.remove(pos);
-            report.push(
-                "special",
-                format!("call `{}`", op.name),
-                format!("`{}` is {} here: calls `{}` instead", s.param, s.value, s.use_operator),
-            );
-            ir.exprs[i].kind = ExprKind::Call {
-                callee: Callee::Operator(alt as u32),
-                args: new_args,
-            };
-            break;
         }
     }
+}
+
+/// One specialization of call `i`, if any applies; true when it swapped.
+fn specialize_call(ir: &mut Ir, i: usize, report: &mut Report) -> bool {
+    let ExprKind::Call {
+        callee: Callee::Operator(index),
+        args,
+    } = &ir.exprs[i].kind
+    else {
+        return false;
+    };
+    let op = &stdlib::all()[*index as usize];
+    for s in op.specializations {
+        let Some(pos) = op.params.iter().position(|p| p.name == s.param) else {
+            continue;
+        };
+        let Some(value) = args.get(pos).and_then(|a| const_eval(ir, *a)).and_then(|c| c.scalar()) else {
+            continue;
+        };
+        let Some(alt) = stdlib::all().iter().position(|o| o.name == s.use_operator) else {
+            continue;
+        };
+        if value != s.value {
+            continue;
+        }
+        let mut new_args = args.clone();
+        new_args.remove(pos);
+        report.push(
+            "special",
+            format!("call `{}`", op.name),
+            format!("`{}` is {} here: calls `{}` instead", s.param, s.value, s.use_operator),
+        );
+        ir.exprs[i].kind = ExprKind::Call {
+            callee: Callee::Operator(alt as u32),
+            args: new_args,
+        };
+        return true;
+    }
+    false
 }
 
 /// Make a constant match the node's type (e.g. integer division folds to a float).

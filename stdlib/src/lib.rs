@@ -153,6 +153,7 @@ pub mod snippets {
         ("meta", include_str!("../wgsl/metatexture_common.wgsl")),
         ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
         ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
+        ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
     ];
 
     pub fn find(name: &str) -> Option<&'static str> {

@@ -345,7 +345,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa.wgsl"),
         depends: &[],
-        snippets: &["lsa_core", "lsa_plane"],
+        snippets: &["lsa_core", "lsa_plane", "lsa_aa"],
         specializations: &[
             Specialization { param: "plane", value: 0.0, use_operator: "lsa_curv_aa" },
             Specialization { param: "aa", value: 0.0, use_operator: "lsa_sum" },
@@ -372,7 +372,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa_curv_aa.wgsl"),
         depends: &[],
-        snippets: &["lsa_core"],
+        snippets: &["lsa_core", "lsa_aa"],
         specializations: &[Specialization { param: "aa", value: 0.0, use_operator: "lsa_curv" }],
     },
     Operator {

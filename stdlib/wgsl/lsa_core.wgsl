@@ -86,12 +86,3 @@ fn npr_lsa_core__remap(e: f32, lo: f32, hi: f32) -> f32 {
     }
     return clamp((e - lo) / (hi - lo), 0.0, 1.0);
 }
-
-// e_aa (eq. 8) from the remapped terms a, b, c; a < 0 or b < 0 marks a term
-// whose far texel lies outside the image (it then takes no part).
-fn npr_lsa_core__aa(a: f32, b: f32, c: f32) -> f32 {
-    let aa = select(a, c, a < 0.0);
-    let bb = select(b, c, b < 0.0);
-    let m = min(aa, bb);
-    return select(c, 0.5 * (m + c), m < c);
-}

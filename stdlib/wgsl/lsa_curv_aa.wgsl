@@ -17,8 +17,8 @@ fn npr_lsa_curv_aa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>
             // control of S(p, q̂) is a; offsets over two steps are halved.
             let a = npr_lsa_core__fetch(pos, normals, px - 2 * m);
             let f = npr_lsa_core__fetch(pos, normals, px + 2 * m);
-            vd = npr_lsa_core__aa(npr_lsa_curv_aa__e(b, p, f, 1.0, 0.5, eta_min, eta_max), npr_lsa_curv_aa__e(a, p, d, 0.5, 1.0, eta_min, eta_max), vd);
-            vb = npr_lsa_core__aa(npr_lsa_curv_aa__e(d, p, a, 1.0, 0.5, eta_min, eta_max), npr_lsa_curv_aa__e(f, p, b, 0.5, 1.0, eta_min, eta_max), vb);
+            vd = npr_lsa_aa__mix(npr_lsa_curv_aa__e(b, p, f, 1.0, 0.5, eta_min, eta_max), npr_lsa_curv_aa__e(a, p, d, 0.5, 1.0, eta_min, eta_max), vd);
+            vb = npr_lsa_aa__mix(npr_lsa_curv_aa__e(d, p, a, 1.0, 0.5, eta_min, eta_max), npr_lsa_curv_aa__e(f, p, b, 0.5, 1.0, eta_min, eta_max), vb);
         }
         out[i] = max(vd, vb);
     }
