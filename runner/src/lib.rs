@@ -14,6 +14,7 @@
 
 pub mod animation;
 pub mod bench;
+pub mod bench_contours;
 pub mod contours;
 pub mod device;
 pub mod harness;
