@@ -135,7 +135,11 @@ fn lsa_contours_on_analytic_spheres() {
 
 #[test]
 fn lsa_base_on_analytic_spheres() {
-    golden("lsa_base_spheres", "examples/lsa_base.npr", "examples/scenes/spheres.toml");
+    golden(
+        "lsa_base_spheres",
+        "examples/lsa_base.npr",
+        "examples/scenes/spheres.toml",
+    );
 }
 
 #[test]
@@ -149,5 +153,9 @@ fn sobel_outline_on_analytic_spheres() {
 
 #[test]
 fn lsa_contours_on_spot() {
-    golden("lsa_contours_spot", "examples/lsa_contours.npr", "examples/scenes/spot.toml");
+    golden(
+        "lsa_contours_spot",
+        "examples/lsa_contours.npr",
+        "examples/scenes/spot.toml",
+    );
 }
