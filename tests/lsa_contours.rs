@@ -378,6 +378,21 @@ fn hard_cases_give_no_nan_or_inf() {
             "{what}: the sphere's outline is drawn"
         );
     }
+
+    // Positions past the f16 range (×1e5: up to ~1.6e5 > 65504) are stored
+    // as ±Inf or saturated, depending on the driver; non-finite texels count
+    // as background, and nothing turns into NaN.
+    let overflow = style(
+        "lsa_contours.npr",
+        &[(
+            "out pos: rgba32float = vec4(position.world, 1.0)",
+            "out pos: rgba16float = vec4(position.world * 100000.0, 1.0)",
+        )],
+    );
+    let t = targets(&overflow, &sphere_on_plane, (32, 32), &["gbuffer.pos"]);
+    let extreme = t[0].to_rgba_f32().iter().fold(0.0f32, |m, v| m.max(v[0].abs()));
+    assert!(extreme >= 65504.0, "the G-buffer overflows f16 (largest |x| {extreme})");
+    checked_lines(&overflow, &sphere_on_plane, (32, 32), "f16 overflow to Inf");
 }
 
 /// The analytic scenes are also files, for `npr render`; they must match the
