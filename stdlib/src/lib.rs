@@ -3,7 +3,8 @@
 //! Each operator is a WGSL function (in `stdlib/wgsl/<name>.wgsl`) plus
 //! metadata: its signature, parameter types, units, defaults, ranges, docs,
 //! and the paper and equation numbers it implements. Each also has a CPU f64
-//! reference implementation in [`reference`], used by the accuracy tests.
+//! reference implementation in [`reference`] (the LSA contour operators in
+//! [`reference_lsa`]), used by the accuracy tests.
 //!
 //! WGSL conventions (the compiler relies on them):
 //! - operator `foo` is the WGSL function `npr_foo`; private helpers in the same
