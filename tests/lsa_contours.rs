@@ -467,3 +467,55 @@ fn gbuffer_matches_the_analytic_ray_cast() {
         assert!(worst_n < 2e-2, "{}: normal error {worst_n}", s.name);
     }
 }
+
+/// 60 frames of a camera orbiting the tilted torus by 0.25° per frame (under
+/// a pixel of motion per frame at 96²): accuracy holds in every frame, and
+/// lines do not flicker. Flicker: a pixel that is a line, not a line, and a
+/// line again in three consecutive frames (or the reverse) — slow motion
+/// moves an edge monotonically and cannot do that.
+#[test]
+fn temporal_stability_over_60_frames() {
+    let base = builtin_scenes().into_iter().find(|s| s.name == "torus").expect("torus");
+    let size = 96u32;
+    let frames: Vec<AnalyticScene> = (0..60)
+        .map(|f| {
+            let a = (f as f64 * 0.25).to_radians();
+            AnalyticScene {
+                eye: [4.0 * a.sin(), 0.3, 4.0 * a.cos()],
+                ..base.clone()
+            }
+        })
+        .collect();
+    let mut report = String::new();
+    // Measured: min precision 0.967, min recall 1.000, no flicker at all in
+    // ~40k line pixels (the base method behaves the same on this scene).
+    for (name, program, min_p, min_r, max_flicker) in [("LSA full", style("lsa_contours.npr", &[]), 0.95, 0.99, 0.001)]
+    {
+        let mut masks = Vec::new();
+        let (mut lo_p, mut lo_r) = (1.0f64, 1.0f64);
+        for s in &frames {
+            let mask = ink_mask(&output(&program, &scene_of(s), size), 0.5);
+            let a = accuracy(&mask, &s.truth(size, size), 1);
+            lo_p = lo_p.min(a.precision);
+            lo_r = lo_r.min(a.recall);
+            masks.push(mask);
+        }
+        let mut flicker = 0usize;
+        let mut line_pixels = 0usize;
+        for w in masks.windows(3) {
+            for i in 0..w[1].bits.len() {
+                line_pixels += usize::from(w[1].bits[i]);
+                flicker += usize::from(w[0].bits[i] == w[2].bits[i] && w[0].bits[i] != w[1].bits[i]);
+            }
+        }
+        let rate = flicker as f64 / line_pixels.max(1) as f64;
+        report.push_str(&format!(
+            "{name}: min precision {lo_p:.3}, min recall {lo_r:.3}, flicker {flicker} per {line_pixels} line pixels ({rate:.4})\n"
+        ));
+        assert!(
+            lo_p >= min_p && lo_r >= min_r && rate <= max_flicker,
+            "{name}: {report}"
+        );
+    }
+    println!("{report}");
+}
