@@ -527,7 +527,7 @@ const LSA_POS: Param = p(
 const LSA_NORMALS: Param = p(
     "normals",
     Ty::Texture,
-    "G-buffer unit normals in rgb (same space as `pos`)",
+    "G-buffer unit normals in rgb (same space and size as `pos`)",
 );
 const LSA_PLANE: Param = Param {
     name: "plane",
