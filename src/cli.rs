@@ -134,6 +134,17 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 20)]
         frames: u32,
     },
+    /// Contour methods (LSA base/full and each extension, Sobel,
+    /// normal+depth): image-stage cost against a passthrough pass over the
+    /// same G-buffer, pixel throughput, and precision/recall against
+    /// analytic ground truth, per resolution.
+    Contours {
+        /// Square image sizes, comma-separated.
+        #[arg(long, default_value = "128,256,512", value_delimiter = ',')]
+        sizes: Vec<u32>,
+        #[arg(long, default_value_t = 10)]
+        frames: u32,
+    },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
         style: PathBuf,
@@ -410,6 +421,7 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             EXIT_OK
         }
         BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
+        BenchCommand::Contours { sizes, frames } => bench_contours(&sizes, frames, printer),
         BenchCommand::Passes {
             style,
             scene,
@@ -541,6 +553,46 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
         println!("| {name} | {:.3} | {:.2}x |", best[i] * 1e3, best[i] / best[0]);
     }
     EXIT_OK
+}
+
+fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::render::MAX_OUTPUT_SIZE) {
+        eprintln!("error: size {bad} is outside 1..={}", runner::render::MAX_OUTPUT_SIZE);
+        return EXIT_USER;
+    }
+    let mut sources = SourceMap::new();
+    let mut programs = Vec::new();
+    for (name, text, measure) in runner::bench_contours::variants() {
+        match compiler::compile_source(name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
+            Ok(c) => programs.push((name, StyleProgram::from_compiled(&c), measure)),
+            Err(CompileError::User(d)) => {
+                printer.diagnostics(&d, &sources);
+                return EXIT_INTERNAL;
+            }
+            Err(CompileError::Internal(e)) => {
+                eprintln!("{e}");
+                return EXIT_INTERNAL;
+            }
+        }
+    }
+    let gpu = match Gpu::headless() {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USER;
+        }
+    };
+    match runner::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
+        Ok(rows) => {
+            println!("device: {}, {frames} frames per median", gpu.describe());
+            println!("{}", runner::bench_contours::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
 }
 
 /// `npr bench passes`: each pass's GPU time and its share of the frame.

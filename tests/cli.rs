@@ -189,3 +189,47 @@ fn too_large_an_image_is_a_user_error() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("E0404"), "{}", stderr(&o));
 }
+
+#[test]
+fn lsa_styles_render_an_analytic_scene_from_the_cli() {
+    let dir = scratch("lsa");
+    for style in ["lsa_contours", "lsa_base", "sobel_outline"] {
+        let out = dir.join(format!("{style}.png"));
+        let o = npr(&[
+            "render",
+            &format!("examples/{style}.npr"),
+            "--scene",
+            "tests/data/contours/cube.toml",
+            "-o",
+            out.to_str().expect("utf-8 path"),
+            "--size",
+            "48x32",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{style}: {}", stderr(&o));
+        let img = image::open(&out).expect("png").to_rgba8();
+        assert_eq!(img.dimensions(), (48, 32));
+        // Ink on paper: some pixels are lines, most are paper.
+        let dark = img.pixels().filter(|p| p.0[0] < 128).count();
+        assert!(dark > 10 && dark < 48 * 32 / 2, "{style}: {dark} line pixels");
+    }
+}
+
+#[test]
+fn bench_contours_reports_every_variant_with_accuracy() {
+    // A smoke run at a tiny size: the table's shape, not its timings.
+    let o = npr(&["bench", "contours", "--sizes", "24", "--frames", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("| 24²")).collect();
+    assert_eq!(rows.len(), runner::bench_contours::variants().len(), "{stdout}");
+    let full = rows
+        .iter()
+        .find(|r| r.contains("LSA full (plane + aa"))
+        .expect("LSA full row");
+    // Columns: ..., min precision, min recall, recall on parallel planes.
+    let cells: Vec<&str> = full.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+    let recall_planes: f64 = cells[cells.len() - 1].parse().expect("a number");
+    assert!(recall_planes > 0.5, "{full}");
+    let o = npr(&["bench", "contours", "--sizes", "0"]);
+    assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
+}

@@ -111,3 +111,59 @@ fn skew_zero_emits_no_8_tap_code() {
         .expect("shade")
         .contains("fn npr_metatexture_grad("));
 }
+
+/// `examples/lsa_contours.npr` with some of its parameter defaults replaced.
+fn compile_lsa_variant(replacements: &[(&str, &str)]) -> compiler::Compiled {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/lsa_contours.npr");
+    let mut text = std::fs::read_to_string(&path).expect("read");
+    for (from, to) in replacements {
+        assert!(text.contains(from), "{from} not in lsa_contours.npr");
+        text = text.replace(from, to);
+    }
+    let mut sources = SourceMap::new();
+    compiler::compile_source(
+        "lsa_variant.npr",
+        &text,
+        path.parent().expect("dir"),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"))
+}
+
+#[test]
+fn disabled_lsa_extensions_compile_away() {
+    const PLANE_OFF: (&str, &str) = ("param plane: bool = true", "param plane: bool = false");
+    const AA_OFF: (&str, &str) = ("param aa: bool = true", "param aa: bool = false");
+    // Markers of each extension's code in the emitted WGSL.
+    let plane_code = "fn npr_lsa_plane__err(";
+    let aa_code = "fn npr_lsa_aa__mix(";
+    let has = |c: &compiler::Compiled, s: &str| c.shader("error.wgsl").expect("error pass").contains(s);
+
+    let full = compile_lsa_variant(&[]);
+    assert!(has(&full, "fn npr_lsa(") && has(&full, plane_code) && has(&full, aa_code));
+
+    let no_plane = compile_lsa_variant(&[PLANE_OFF]);
+    assert!(has(&no_plane, "fn npr_lsa_curv_aa(") && !has(&no_plane, plane_code) && has(&no_plane, aa_code));
+
+    let no_aa = compile_lsa_variant(&[AA_OFF]);
+    assert!(has(&no_aa, "fn npr_lsa_sum(") && has(&no_aa, plane_code));
+    assert!(!has(&no_aa, "px + 2 * m"), "no two-step loads without eq. 8");
+
+    // Both off: the specializations chain down to the base operator.
+    let base = compile_lsa_variant(&[PLANE_OFF, AA_OFF]);
+    assert!(has(&base, "fn npr_lsa_curv(") && !has(&base, plane_code) && !has(&base, aa_code));
+    assert!(!has(&base, "fn npr_lsa("), "the general operator is not emitted");
+    assert!(base.report.render().contains("calls `lsa_curv` instead"));
+    insta::assert_snapshot!(
+        "lsa_contours_both_extensions_off__error",
+        base.shader("error.wgsl").expect("error pass")
+    );
+
+    // Kept as uniforms (e.g. for a live editor), both extensions stay switchable at run time.
+    let kept = compile(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/lsa_contours.npr"),
+        true,
+    );
+    assert!(has(&kept, "fn npr_lsa(") && has(&kept, plane_code) && has(&kept, aa_code));
+}

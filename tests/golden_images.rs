@@ -138,3 +138,39 @@ fn age_of_sail_on_spot() {
         "examples/scenes/age_of_sail.toml",
     );
 }
+
+#[test]
+fn lsa_contours_on_analytic_spheres() {
+    golden(
+        "lsa_contours_spheres",
+        "examples/lsa_contours.npr",
+        "examples/scenes/spheres.toml",
+    );
+}
+
+#[test]
+fn lsa_base_on_analytic_spheres() {
+    golden(
+        "lsa_base_spheres",
+        "examples/lsa_base.npr",
+        "examples/scenes/spheres.toml",
+    );
+}
+
+#[test]
+fn sobel_outline_on_analytic_spheres() {
+    golden(
+        "sobel_outline_spheres",
+        "examples/sobel_outline.npr",
+        "examples/scenes/spheres.toml",
+    );
+}
+
+#[test]
+fn lsa_contours_on_spot() {
+    golden(
+        "lsa_contours_spot",
+        "examples/lsa_contours.npr",
+        "examples/scenes/spot.toml",
+    );
+}

@@ -5,6 +5,7 @@
 //! - [`render`]: the [`Renderer`], which runs the passes of a manifest.
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
 //! - [`harness`]: golden-image comparison for tests.
+//! - [`contours`]: analytic contour ground truth (f64 ray casting) and precision/recall.
 //!
 //! Embedding in your own wgpu application: build a [`StyleProgram`] from
 //! `compiler::compile_file`, load a [`scene::Scene`], then
@@ -13,6 +14,8 @@
 
 pub mod animation;
 pub mod bench;
+pub mod bench_contours;
+pub mod contours;
 pub mod device;
 pub mod harness;
 pub mod output;

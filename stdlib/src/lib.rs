@@ -3,7 +3,8 @@
 //! Each operator is a WGSL function (in `stdlib/wgsl/<name>.wgsl`) plus
 //! metadata: its signature, parameter types, units, defaults, ranges, docs,
 //! and the paper and equation numbers it implements. Each also has a CPU f64
-//! reference implementation in [`reference`], used by the accuracy tests.
+//! reference implementation in [`reference`] (the LSA contour operators in
+//! [`reference_lsa`]), used by the accuracy tests.
 //!
 //! WGSL conventions (the compiler relies on them):
 //! - operator `foo` is the WGSL function `npr_foo`; private helpers in the same
@@ -20,6 +21,7 @@
 pub mod metrics;
 pub mod operators;
 pub mod reference;
+pub mod reference_lsa;
 pub mod reference_pipeline;
 pub mod reference_stereo;
 
@@ -151,7 +153,12 @@ pub struct Specialization {
 /// Shared WGSL helpers, by name: (name, source). Their functions are prefixed
 /// `npr_<name>__` and are emitted once per module that needs them.
 pub mod snippets {
-    pub const ALL: &[(&str, &str)] = &[("meta", include_str!("../wgsl/metatexture_common.wgsl"))];
+    pub const ALL: &[(&str, &str)] = &[
+        ("meta", include_str!("../wgsl/metatexture_common.wgsl")),
+        ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
+        ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
+        ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
+    ];
 
     pub fn find(name: &str) -> Option<&'static str> {
         ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)

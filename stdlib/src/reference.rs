@@ -238,7 +238,7 @@ pub const REFERENCED: &[&str] = &[
 ];
 
 pub fn has_reference(name: &str) -> bool {
-    REFERENCED.contains(&name)
+    REFERENCED.contains(&name) || crate::reference_lsa::REFERENCED.contains(&name)
 }
 
 /// Bilinear filtering with repeat addressing at level 0 (a tileable texture).

@@ -1,0 +1,238 @@
+//! `npr bench contours`: cost and accuracy of the contour methods — LSA
+//! base, LSA with each extension on and off, LSA full, Sobel on depth and
+//! Roberts normal+depth — per resolution (a benchmark, never a test).
+//!
+//! Cost: every variant shares one G-buffer pass (world positions and
+//! normals in rgba32float, linear depth, encoded view normals; the final
+//! pass reads all four so none is pruned). A passthrough image pass (one
+//! texel of each target) costs t_pass = T(two passthrough passes) −
+//! T(one); the G-buffer alone T_gb = T(one) − t_pass. A method's image
+//! stage is T − T_gb, stated in ms, relative to t_pass, and as pixel
+//! throughput. Medians of `frames` frames, best of three interleaved rounds,
+//! so machine load affects every variant alike.
+//!
+//! Accuracy: precision and recall within 1 px against the analytic ground
+//! truth of [`crate::contours::builtin_scenes`], at each resolution; the
+//! table gives the minimum over the scenes.
+
+use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
+use crate::{FrameSpec, Gpu, RunError, StyleProgram};
+
+const GBUFFER: &str = "style \"bench contours\"\npass gbuffer: render(scene) {\n  out pos: rgba32float = vec4(position.world, 1.0)\n  out nrm: rgba32float = vec4(normal.world, 1.0)\n  out depth: r32float = depth\n  out enc: rgba16float = vec4(normal.view * 0.5 + 0.5, 1.0)\n}\n";
+
+/// Reads every G-buffer target at zero weight, so all variants keep the same G-buffer.
+const KEEP: &str = "0.0 * (gbuffer.pos.x + gbuffer.nrm.x + gbuffer.depth + gbuffer.enc.x)";
+
+/// LSA passes: error (the operator call), line density, ink.
+fn lsa_passes(call: &str, density: Option<f64>) -> String {
+    let (thin, src) = match density {
+        Some(s) => (
+            format!("pass thin: image(error) {{\n  out e: rgba16float = lsa_density(error.e, strength: {s:?})\n}}\n"),
+            "thin",
+        ),
+        None => (String::new(), "error"),
+    };
+    format!(
+        "pass error: image(gbuffer) {{\n  out e: rgba16float = {call}\n}}\n{thin}pass ink: image({src}, gbuffer) {{\n  let e = {src}.e\n  let line = max(max(e.x, e.y), max(e.z, e.w))\n  out c: rgba8unorm = mix(vec4(1.0), vec4(0.0, 0.0, 0.0, 1.0), line) + {KEEP}\n}}\noutput ink.c\n"
+    )
+}
+
+fn single_pass(line: &str) -> String {
+    format!(
+        "pass ink: image(gbuffer) {{\n  let line = {line}\n  out c: rgba8unorm = mix(vec4(1.0), vec4(0.0, 0.0, 0.0, 1.0), line) + {KEEP}\n}}\noutput ink.c\n"
+    )
+}
+
+/// (name, style text, measured for accuracy).
+pub fn variants() -> Vec<(&'static str, String, bool)> {
+    let g = |rest: String| format!("{GBUFFER}{rest}");
+    let lsa = |plane: bool, aa: bool| format!("lsa(gbuffer.pos, gbuffer.nrm, plane: {plane}, aa: {aa})");
+    vec![
+        ("passthrough", g(single_pass(&format!("gbuffer.pos.w * 0.0 + {KEEP}"))), false),
+        (
+            "passthrough x2",
+            g(format!(
+                "pass copy: image(gbuffer) {{\n  out c: rgba8unorm = vec4(gbuffer.pos.w * 0.0) + {KEEP}\n}}\npass ink: image(copy, gbuffer) {{\n  out c: rgba8unorm = copy.c + {KEEP}\n}}\noutput ink.c\n"
+            )),
+            false,
+        ),
+        ("LSA base (e_curv, density 0.5)", g(lsa_passes(&lsa(false, false), Some(0.5))), true),
+        ("LSA + plane (eqs. 6-7)", g(lsa_passes(&lsa(true, false), Some(1.0))), true),
+        ("LSA + aa (eq. 8)", g(lsa_passes(&lsa(false, true), Some(1.0))), true),
+        ("LSA full, no density filter", g(lsa_passes(&lsa(true, true), None)), true),
+        ("LSA full (plane + aa, density 1)", g(lsa_passes(&lsa(true, true), Some(1.0))), true),
+        (
+            "Sobel on depth (0.05 m/px)",
+            g(single_pass("threshold(sobel(gbuffer.depth), lo: 0.05, hi: 0.05)")),
+            true,
+        ),
+        (
+            "normal+depth (Roberts)",
+            g(single_pass("normal_depth_edges(gbuffer.enc, gbuffer.depth, depth_threshold: 50mm, normal_threshold: 0.4)")),
+            true,
+        ),
+    ]
+}
+
+/// One row of the report.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub name: &'static str,
+    pub size: u32,
+    pub frame_s: f64,
+    /// Frame time minus the G-buffer's.
+    pub image_stage_s: f64,
+    /// Image-stage cost over one passthrough pass's.
+    pub vs_passthrough: f64,
+    /// Over the analytic scenes except `parallel_planes`: the minimum
+    /// precision and the minimum recall; then the recall on
+    /// `parallel_planes` (the step e_curv and Sobel cannot see).
+    pub accuracy: Option<(f64, f64, f64)>,
+}
+
+/// The fastest of `frames` frames per variant, frames interleaved across
+/// variants (render + GPU wait; one warm-up frame each).
+fn min_frame_times(
+    gpu: &Gpu,
+    programs: &[(&'static str, StyleProgram, bool)],
+    scene: &crate::scene::Scene,
+    size: u32,
+    frames: u32,
+) -> Result<Vec<f64>, RunError> {
+    let spec = FrameSpec {
+        width: size,
+        height: size,
+        time_s: 0.0,
+        frame: 0,
+        eye: 0,
+    };
+    let wait = || {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+    };
+    let mut renderers = Vec::new();
+    for (_, p, _) in programs {
+        let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+        r.render(scene, &spec)?;
+        wait()?;
+        renderers.push(r);
+    }
+    let mut best = vec![f64::INFINITY; programs.len()];
+    for _ in 0..frames.max(1) {
+        for (i, r) in renderers.iter_mut().enumerate() {
+            let t = std::time::Instant::now();
+            r.render(scene, &spec)?;
+            wait()?;
+            best[i] = best[i].min(t.elapsed().as_secs_f64());
+        }
+    }
+    Ok(best)
+}
+
+/// Measures every variant at every size (square images).
+pub fn run(
+    gpu: &Gpu,
+    programs: &[(&'static str, StyleProgram, bool)],
+    sizes: &[u32],
+    frames: u32,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<Row>, RunError> {
+    let scenes = builtin_scenes();
+    let mut sources = dsl::SourceMap::new();
+    let loaded: Vec<_> = scenes
+        .iter()
+        .map(|s| s.scene(&mut sources).map_err(RunError::User))
+        .collect::<Result<_, _>>()?;
+    // Timing scene: a coarse sphere before a plane that covers every pixel.
+    // Screen-space cost depends on how many pixels, not on what they show;
+    // coarse meshes keep the (CPU-rasterized) G-buffer cheap next to it.
+    let timing_text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
+    let file = sources.add("timing.toml", timing_text);
+    let timing_scene =
+        crate::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    let mut rows = Vec::new();
+    for &size in sizes {
+        progress(&format!("timing {size}x{size}"));
+        let best = min_frame_times(gpu, programs, &timing_scene, size, frames)?;
+        let t_pass = (best[1] - best[0]).max(1e-9);
+        let gbuffer = best[0] - t_pass;
+        for (i, (name, p, measure)) in programs.iter().enumerate() {
+            let accuracy = if *measure {
+                progress(&format!("accuracy of {name} at {size}x{size}"));
+                let (mut min_p, mut min_r, mut planes_r) = (1.0f64, 1.0f64, 1.0f64);
+                for (s, scene) in scenes.iter().zip(&loaded) {
+                    let img = crate::render_frame(
+                        gpu,
+                        p,
+                        scene,
+                        &FrameSpec {
+                            width: size,
+                            height: size,
+                            time_s: 0.0,
+                            frame: 0,
+                            eye: 0,
+                        },
+                    )?;
+                    let a: Accuracy = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
+                    if s.name == "parallel_planes" {
+                        planes_r = a.recall;
+                    } else {
+                        min_p = min_p.min(a.precision);
+                        min_r = min_r.min(a.recall);
+                    }
+                }
+                Some((min_p, min_r, planes_r))
+            } else {
+                None
+            };
+            let image_stage_s = best[i] - gbuffer;
+            rows.push(Row {
+                name,
+                size,
+                frame_s: best[i],
+                image_stage_s,
+                vs_passthrough: image_stage_s / t_pass,
+                accuracy,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// The report as a Markdown table.
+pub fn table(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| size | method | ms/frame | image stage (ms) | × passthrough | Mpx/s | min precision | min recall | recall, parallel planes |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        let px = f64::from(r.size) * f64::from(r.size);
+        let (p, rc, planes) = match r.accuracy {
+            Some((p, rc, planes)) => (format!("{p:.3}"), format!("{rc:.3}"), format!("{planes:.3}")),
+            None => ("–".into(), "–".into(), "–".into()),
+        };
+        let stage = if r.image_stage_s > 0.0 {
+            format!("{:.3}", r.image_stage_s * 1e3)
+        } else {
+            "–".into()
+        };
+        let throughput = if r.image_stage_s > 0.0 {
+            format!("{:.1}", px / r.image_stage_s / 1e6)
+        } else {
+            "–".into()
+        };
+        s.push_str(&format!(
+            "| {0}² | {1} | {2:.3} | {3} | {4:.2}x | {5} | {6} | {7} | {8} |\n",
+            r.size,
+            r.name,
+            r.frame_s * 1e3,
+            stage,
+            r.vs_passthrough,
+            throughput,
+            p,
+            rc,
+            planes
+        ));
+    }
+    s
+}

@@ -1,0 +1,88 @@
+// Shared helpers of the LSA contour operators (Zaidi et al., "Local Surface
+// Approximation Contours for Virtual Reality Stylisation"; equation numbers
+// are the paper's). The G-buffer holds world positions (alpha 1 on geometry,
+// 0 on the cleared background) and world normals.
+//
+// The 8-neighbourhood W(p) of eq. 1 is walked as 4 directions m (E, SE, S,
+// SW in image coordinates); the pair p − m, p + m serves both neighbours: the
+// sphere S(p, q) is fitted to the opposite pixel q̌ (§3.1), so each pair
+// gives e(p + m, S from p − m) and e(p − m, S from p + m). Grouping the two
+// halves per direction is the e_max acceleration of §4.1, and the four
+// per-direction values feed the line-density filter of §4.1 separately.
+
+// One G-buffer texel. `inside`: within the image; `geo`: holds geometry
+// (inside, finite, position alpha > 0.5). Outside texels are never clamped
+// onto the border, so the border draws no lines.
+struct npr_lsa_core__Texel {
+    p: vec3<f32>,
+    n: vec3<f32>,
+    geo: bool,
+    inside: bool,
+}
+
+// Direction i of the half neighbourhood: (1,0), (1,1), (0,1), (−1,1).
+fn npr_lsa_core__dir(i: i32) -> vec2<i32> {
+    return select(select(select(vec2<i32>(-1, 1), vec2<i32>(0, 1), i == 2), vec2<i32>(1, 1), i == 1), vec2<i32>(1, 0), i == 0);
+}
+
+// The texel of `tex` under `uv` (as `npr_load` picks it).
+fn npr_lsa_core__pixel(tex: texture_2d<f32>, uv: vec2<f32>) -> vec2<i32> {
+    let dims = vec2<i32>(textureDimensions(tex));
+    return clamp(vec2<i32>(floor(uv * vec2<f32>(dims))), vec2<i32>(0), dims - vec2<i32>(1));
+}
+
+fn npr_lsa_core__fetch(pos: texture_2d<f32>, normals: texture_2d<f32>, q: vec2<i32>) -> npr_lsa_core__Texel {
+    let dims = vec2<i32>(textureDimensions(pos));
+    let ndims = vec2<i32>(textureDimensions(normals));
+    var t: npr_lsa_core__Texel;
+    t.inside = all(q >= vec2<i32>(0)) && all(q < dims);
+    let pw = textureLoad(pos, clamp(q, vec2<i32>(0), dims - vec2<i32>(1)), 0);
+    let n = textureLoad(normals, clamp(q, vec2<i32>(0), ndims - vec2<i32>(1)), 0).xyz;
+    // A non-finite texel (an f16 overflow, say) counts as background: the
+    // comparisons are false for NaN and ±Inf, so no NaN spreads.
+    let big = vec3<f32>(1.0e37);
+    let finite = all(abs(pw.xyz) < big) && all(abs(n) < big) && abs(pw.w) < 1.0e37;
+    t.geo = t.inside && finite && pw.w > 0.5;
+    t.p = select(vec3<f32>(0.0), pw.xyz, t.geo);
+    let nn = select(vec3<f32>(0.0), n, t.geo);
+    t.n = nn * inverseSqrt(max(dot(nn, nn), 1e-30));
+    return t;
+}
+
+// What a triple (control c, centre p, check q) gives before any fitting:
+// −2 when c or q lies outside the image (the pair is skipped, so no line at
+// the border); 1e6 (a sure line) where geometry meets background; 0 inside
+// the background; −1 when all three hold geometry and the LSA is evaluated.
+fn npr_lsa_core__guard(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel) -> f32 {
+    if (!(c.inside && q.inside)) {
+        return -2.0;
+    }
+    if (c.geo && p.geo && q.geo) {
+        return -1.0;
+    }
+    return select(0.0, 1.0e6, c.geo || p.geo || q.geo);
+}
+
+// Signed curvature κ = 1/r of the sphere through P_p and P_c tangent to both
+// normals (eqs. 2–3): |r| = |P_c − P_p| / |N_c − N_p|, sign
+// sgn((N_c − N_p)·(P_c − P_p)). Equal normals give exactly κ = 0 (a plane),
+// and coincident positions are floored at 1e-5 m, so κ is always finite.
+fn npr_lsa_core__kappa(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel) -> f32 {
+    let dn = c.n - p.n;
+    let dp = c.p - p.p;
+    return sign(dot(dn, dp)) * length(dn) / max(1e-5, length(dp));
+}
+
+// e_curv (eq. 5): |κ(P_q − P_p) − (N_q − N_p)|, with κ from the control texel.
+fn npr_lsa_core__curv(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel) -> f32 {
+    let k = npr_lsa_core__kappa(c, p);
+    return length(k * (q.p - p.p) - (q.n - p.n));
+}
+
+// The remap of §3.2: [η_min, η_max] → [0, 1], clamped (a step when η_max ≤ η_min).
+fn npr_lsa_core__remap(e: f32, lo: f32, hi: f32) -> f32 {
+    if (hi <= lo) {
+        return select(0.0, 1.0, e >= lo);
+    }
+    return clamp((e - lo) / (hi - lo), 0.0, 1.0);
+}
