@@ -35,7 +35,7 @@ fn the_default_spectrum_has_waves_with_the_requested_height() {
     assert!(spectrum.waves.len() > 100, "{} waves", spectrum.waves.len());
     // 4 σ_h = wave_height, with σ_h² = Σ a²/2.
     let sigma: f64 = spectrum.waves.iter().map(|w| w.amplitude.powi(2) / 2.0).sum::<f64>().sqrt();
-    assert!((4.0 * sigma - 1.2).abs() < 1e-9, "4σ = {}", 4.0 * sigma);
+    assert!((4.0 * sigma - 1.2).abs() < 1e-6, "4σ = {}", 4.0 * sigma);
     for w in &spectrum.waves {
         // ω is a whole multiple of 2π/T and at most the deep-water ω = √(g|k|).
         let multiple = w.omega / (std::f64::consts::TAU / 20.0);
@@ -147,7 +147,9 @@ fn tile_seams_are_as_smooth_as_the_interior() {
 
 #[test]
 fn the_loop_closes_through_the_treadmill() {
-    let ocean = small();
+    // No horizon drop here: past it a vertex sinks as the treadmill carries
+    // it outwards, which is motion too, but not what this test bounds.
+    let ocean = Ocean { horizon: 1e5, ..small() };
     let start = ocean_mesh(&ocean, 0.0);
     // Bit-identical at t = T (time is reduced modulo T) ...
     assert_eq!(start, ocean_mesh(&ocean, 20.0));
