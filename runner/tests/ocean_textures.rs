@@ -9,7 +9,9 @@ use runner::texgen::{bathic_map, sky_map, Rgba8Image};
 use std::path::{Path, PathBuf};
 
 fn texture_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/textures").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/textures")
+        .join(name)
 }
 
 fn bathic() -> Rgba8Image {
@@ -63,7 +65,10 @@ fn the_bathic_map_brightens_with_tone_and_light_in_flat_bands() {
         assert_eq!(distinct.len(), 8, "row {y}");
     }
     for x in 0..map.width {
-        assert!(luma(at(x, 0)) > luma(at(x, map.height - 1)) + 10.0, "lit above shadow at column {x}");
+        assert!(
+            luma(at(x, 0)) > luma(at(x, map.height - 1)) + 10.0,
+            "lit above shadow at column {x}"
+        );
     }
 }
 
@@ -82,9 +87,9 @@ fn the_sky_map_wraps_around_the_azimuth_and_brightens_to_the_horizon() {
     let mean_row = |y: u32| (0..map.width).map(|x| luma(at(x, y))).sum::<f64>() / f64::from(map.width);
     assert!(mean_row(map.height - 1) > mean_row(0) + 60.0);
     // Not a bare ramp: clouds vary along the azimuth.
-    let spread = (0..map.width).map(|x| luma(at(x, map.height - 4))).fold((f64::MAX, f64::MIN), |(lo, hi), l| {
-        (lo.min(l), hi.max(l))
-    });
+    let spread = (0..map.width)
+        .map(|x| luma(at(x, map.height - 4)))
+        .fold((f64::MAX, f64::MIN), |(lo, hi), l| (lo.min(l), hi.max(l)));
     assert!(spread.1 - spread.0 > 10.0, "{spread:?}");
 }
 

@@ -34,7 +34,12 @@ fn the_default_spectrum_has_waves_with_the_requested_height() {
     let spectrum = Spectrum::new(&Ocean::default());
     assert!(spectrum.waves.len() > 100, "{} waves", spectrum.waves.len());
     // 4 σ_h = wave_height, with σ_h² = Σ a²/2.
-    let sigma: f64 = spectrum.waves.iter().map(|w| w.amplitude.powi(2) / 2.0).sum::<f64>().sqrt();
+    let sigma: f64 = spectrum
+        .waves
+        .iter()
+        .map(|w| w.amplitude.powi(2) / 2.0)
+        .sum::<f64>()
+        .sqrt();
     assert!((4.0 * sigma - 1.2).abs() < 1e-6, "4σ = {}", 4.0 * sigma);
     for w in &spectrum.waves {
         // ω is a whole multiple of 2π/T and at most the deep-water ω = √(g|k|).
@@ -47,9 +52,19 @@ fn the_default_spectrum_has_waves_with_the_requested_height() {
     }
     // Deterministic for a seed, different for another.
     assert_eq!(spectrum, Spectrum::new(&Ocean::default()));
-    assert_ne!(spectrum, Spectrum::new(&Ocean { seed: 2, ..Ocean::default() }));
+    assert_ne!(
+        spectrum,
+        Spectrum::new(&Ocean {
+            seed: 2,
+            ..Ocean::default()
+        })
+    );
     // Waves run mostly along the wind (+z by default): energy-weighted mean direction.
-    let along: f64 = spectrum.waves.iter().map(|w| w.amplitude.powi(2) * w.k.normalize().y).sum();
+    let along: f64 = spectrum
+        .waves
+        .iter()
+        .map(|w| w.amplitude.powi(2) * w.k.normalize().y)
+        .sum();
     let total: f64 = spectrum.waves.iter().map(|w| w.amplitude.powi(2)).sum();
     assert!(along / total > 0.5, "mean k̂·ŵ = {}", along / total);
 }
@@ -60,7 +75,12 @@ fn the_model_is_periodic_in_space_and_time() {
     let spectrum = Spectrum::new(&ocean);
     let (size, period) = (60.0, 20.0);
     let mut worst: f64 = 0.0;
-    for &(x, z, t) in &[(0.3, -7.1, 0.0), (12.25, 40.5, 3.3), (-29.0, 5.0, 17.9), (55.5, -55.5, 9.99)] {
+    for &(x, z, t) in &[
+        (0.3, -7.1, 0.0),
+        (12.25, 40.5, 3.3),
+        (-29.0, 5.0, 17.9),
+        (55.5, -55.5, 9.99),
+    ] {
         let here = spectrum.sample(x, z, t);
         for other in [
             spectrum.sample(x + size, z, t),
@@ -135,7 +155,10 @@ fn tile_seams_are_as_smooth_as_the_interior() {
             }
         }
     }
-    assert!(seam > 0.0 && seam <= interior, "seam step {seam} vs interior {interior}");
+    assert!(
+        seam > 0.0 && seam <= interior,
+        "seam step {seam} vs interior {interior}"
+    );
     // The rows one tile apart carry the same heights (the field repeats).
     let cells = ocean.cells as usize;
     for row in 0..=side - cells {
@@ -149,7 +172,10 @@ fn tile_seams_are_as_smooth_as_the_interior() {
 fn the_loop_closes_through_the_treadmill() {
     // No horizon drop here: past it a vertex sinks as the treadmill carries
     // it outwards, which is motion too, but not what this test bounds.
-    let ocean = Ocean { horizon: 1e5, ..small() };
+    let ocean = Ocean {
+        horizon: 1e5,
+        ..small()
+    };
     let start = ocean_mesh(&ocean, 0.0);
     // Bit-identical at t = T (time is reduced modulo T) ...
     assert_eq!(start, ocean_mesh(&ocean, 20.0));
@@ -164,11 +190,17 @@ fn the_loop_closes_through_the_treadmill() {
         .zip(&before.positions)
         .map(|(a, b)| (Vec3::from_array(*a) - Vec3::from_array(*b)).abs().max_element())
         .fold(0.0f32, f32::max);
-    assert!(worst > 0.0 && worst < 0.02, "largest step across the loop point: {worst} m");
+    assert!(
+        worst > 0.0 && worst < 0.02,
+        "largest step across the loop point: {worst} m"
+    );
     // The treadmill offset wraps within ±L/2 and has moved 1·L and −2·L in one period.
     for i in 0..200 {
         let offset = ocean.treadmill_offset(f64::from(i) * 0.1);
-        assert!(offset.x.abs() <= 30.0 + 1e-9 && offset.y.abs() <= 30.0 + 1e-9, "{offset}");
+        assert!(
+            offset.x.abs() <= 30.0 + 1e-9 && offset.y.abs() <= 30.0 + 1e-9,
+            "{offset}"
+        );
     }
     assert_eq!(ocean.drift_velocity(), DVec2::new(3.0, -6.0));
 }
@@ -195,7 +227,10 @@ fn vertices_beyond_the_false_horizon_are_pushed_down() {
             let y = f64::from(mesh.positions[row * (side + 1) + column][1]);
             if r <= 40.0 {
                 inside += 1;
-                assert!((y - unpushed.y).abs() < 1e-5, "inside the horizon the height is the wave's");
+                assert!(
+                    (y - unpushed.y).abs() < 1e-5,
+                    "inside the horizon the height is the wave's"
+                );
             } else {
                 outside += 1;
                 let drop = 0.1 * (r - 40.0).powi(2);
@@ -260,7 +295,10 @@ fn triangles_wind_counter_clockwise_seen_from_above() {
     for triangle in mesh.indices.chunks_exact(3).step_by(7) {
         let [a, b, c] = [0, 1, 2].map(|k| Vec3::from_array(mesh.positions[triangle[k] as usize]));
         let face = (b - a).cross(c - a);
-        let normal: Vec3 = triangle.iter().map(|&i| Vec3::from_array(mesh.normals[i as usize])).sum();
+        let normal: Vec3 = triangle
+            .iter()
+            .map(|&i| Vec3::from_array(mesh.normals[i as usize]))
+            .sum();
         assert!(face.dot(normal) > 0.0, "{triangle:?}");
     }
 }
@@ -317,7 +355,10 @@ fn extreme_parameters_give_finite_geometry() {
             let finite = |v: &[f32]| v.iter().all(|c| c.is_finite());
             assert!(mesh.positions.iter().all(|p| finite(p)), "{ocean:?} at {t}");
             assert!(mesh.normals.iter().all(|p| finite(p)), "{ocean:?} at {t}");
-            assert!(mesh.tangents.as_ref().expect("t").iter().all(|p| finite(p)), "{ocean:?}");
+            assert!(
+                mesh.tangents.as_ref().expect("t").iter().all(|p| finite(p)),
+                "{ocean:?}"
+            );
             assert!(mesh.uvs.as_ref().expect("uv").iter().all(|p| finite(p)), "{ocean:?}");
             assert_eq!(
                 mesh.triangle_count() as u64,
@@ -384,11 +425,13 @@ fn an_ocean_scene_object_is_time_varying_with_its_fields() {
     assert_eq!(*object.mesh, ocean_mesh(&ocean, 0.0));
     assert_eq!(object.mesh.triangle_count(), 2 * 48 * 48);
     // Defaults are the paper's grid.
-    let scene = scene_with("{ kind = \"ocean\" }").unwrap_or_else(|(d, s)| panic!("{}", dsl::diagnostic::render(&d, &s, false)));
+    let scene = scene_with("{ kind = \"ocean\" }")
+        .unwrap_or_else(|(d, s)| panic!("{}", dsl::diagnostic::render(&d, &s, false)));
     assert_eq!(scene.objects[0].time_varying, Some(Primitive::Ocean(Ocean::default())));
     assert_eq!(scene.objects[0].mesh.positions.len(), 401 * 401);
     // Static primitives are not.
-    let sphere = scene_with("{ kind = \"sphere\" }").unwrap_or_else(|(d, s)| panic!("{}", dsl::diagnostic::render(&d, &s, false)));
+    let sphere = scene_with("{ kind = \"sphere\" }")
+        .unwrap_or_else(|(d, s)| panic!("{}", dsl::diagnostic::render(&d, &s, false)));
     assert_eq!(sphere.objects[0].time_varying, None);
 }
 
@@ -399,7 +442,12 @@ fn ocean_error(primitive: &str, code: &str, spanned: &str) -> String {
         Ok(_) => panic!("expected an error for {primitive}"),
         Err(e) => e,
     };
-    assert_eq!(diagnostics.len(), 1, "{}", dsl::diagnostic::render(&diagnostics, &sources, false));
+    assert_eq!(
+        diagnostics.len(),
+        1,
+        "{}",
+        dsl::diagnostic::render(&diagnostics, &sources, false)
+    );
     let d = &diagnostics[0];
     assert_eq!(d.code, code, "{d:#?}");
     assert_eq!(sources.snippet(d.primary_span().expect("span")), spanned, "{d:#?}");
@@ -440,6 +488,8 @@ fn bad_ocean_fields_point_at_the_value() {
     );
     assert!(m.contains("`cells` or `tiles`"), "{m}");
     // Several bad fields are all reported.
-    let (diagnostics, _) = scene_with("{ kind = \"ocean\", size = 0, tiles = 2, horizon = -1 }").err().expect("errors");
+    let (diagnostics, _) = scene_with("{ kind = \"ocean\", size = 0, tiles = 2, horizon = -1 }")
+        .err()
+        .expect("errors");
     assert_eq!(diagnostics.len(), 3, "{diagnostics:#?}");
 }

@@ -165,7 +165,15 @@ fn parse_ocean(fields: &mut Fields, report: &mut Report) -> Ocean {
             );
         }
     }
-    let wave_height = bounded(fields, "wave_height", d.wave_height, (0.0, true), 100.0, "metres", report);
+    let wave_height = bounded(
+        fields,
+        "wave_height",
+        d.wave_height,
+        (0.0, true),
+        100.0,
+        "metres",
+        report,
+    );
     let wind_speed = bounded(fields, "wind_speed", d.wind_speed, (0.0, false), 100.0, "m/s", report);
     let wind_direction = match pair(fields, "wind_direction", report) {
         Some(At { value: [x, z], span }) if x == 0.0 && z == 0.0 => {
@@ -238,7 +246,11 @@ fn bounded(
         return value.value as f32;
     }
     let open = if inclusive { "[" } else { "(" };
-    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    let unit = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    };
     report.bad_scene(
         value.span,
         format!("`{key}` must be in {open}{lo}, {hi}]{unit}, not {}", value.value),
