@@ -52,9 +52,7 @@ pub fn plane_gradients(distance: f64, elevation_deg: f64, fov_deg: f64, size: u3
     for py in (0..size).step_by(stride.max(1) as usize) {
         for px in (0..size).step_by(stride.max(1) as usize) {
             let (x, y) = (px as f64 + 0.5, py as f64 + 0.5);
-            let (Some(c), Some(ax), Some(ay)) = (hit(x, y), hit(x + h, y), hit(x, y + h)) else {
-                continue;
-            };
+            let (Some(c), Some(ax), Some(ay)) = (hit(x, y), hit(x + h, y), hit(x, y + h)) else { continue };
             let du = [(ax[0] - c[0]) / h, (ay[0] - c[0]) / h];
             let dv = [(ax[1] - c[1]) / h, (ay[1] - c[1]) / h];
             out.push((du, dv));
@@ -90,10 +88,7 @@ fn axis_angle_deg(da: [f64; 2], db: [f64; 2]) -> f64 {
     if la < 1e-300 || lb < 1e-300 {
         return 90.0;
     }
-    ((a[0] * b[0] + a[1] * b[1]) / (la * lb))
-        .clamp(-1.0, 1.0)
-        .acos()
-        .to_degrees()
+    ((a[0] * b[0] + a[1] * b[1]) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 /// Scale level of one coordinate: (scale k = base^⌊E⌋, blend weight).
@@ -108,11 +103,7 @@ fn level(g: [f64; 2], width: f64, base: f64) -> (f64, f64) {
 /// Errors of a variant: `skew` levels (0 = 4 taps), `base`, target `width`;
 /// `plain` measures ordinary texture mapping (one tap at scale 1) instead.
 pub fn variant_error(grads: &[Gradients], width: f64, base: f64, skew: i64, plain: bool) -> VariantError {
-    let mut e = VariantError {
-        period_min: f64::INFINITY,
-        period_max: 0.0,
-        ..Default::default()
-    };
+    let mut e = VariantError { period_min: f64::INFINITY, period_max: 0.0, ..Default::default() };
     let n = grads.len().max(1) as f64;
     for (du, dv) in grads {
         // Each set: (weight, gradients of its coordinates).
@@ -130,11 +121,7 @@ pub fn variant_error(grads: &[Gradients], width: f64, base: f64, skew: i64, plai
                 .map(|(w, level)| {
                     let psi = (level / k / 2.0).atan();
                     let (c, s) = (psi.cos(), psi.sin());
-                    (
-                        *w,
-                        [c * du[0] + s * dv[0], c * du[1] + s * dv[1]],
-                        [c * dv[0] + s * du[0], c * dv[1] + s * du[1]],
-                    )
+                    (*w, [c * du[0] + s * dv[0], c * du[1] + s * dv[1]], [c * dv[0] + s * du[0], c * dv[1] + s * du[1]])
                 })
                 .collect()
         };
@@ -201,27 +188,16 @@ mod tests {
     #[test]
     fn skew_compensation_reduces_anisotropy_at_grazing_angles() {
         // A plane seen at 10° from off to the side: strongly sheared gradients.
-        let grads: Vec<Gradients> = plane_gradients(5.0, 10.0, 90.0, 64, 2)
-            .into_iter()
-            .filter(|(du, dv)| {
-                let c = (du[0] * dv[0] + du[1] * dv[1]) / (len(*du) * len(*dv));
-                c.abs() > 0.2
-            })
-            .collect();
+        let grads: Vec<Gradients> = plane_gradients(5.0, 10.0, 90.0, 64, 2).into_iter().filter(|(du, dv)| {
+            let c = (du[0] * dv[0] + du[1] * dv[1]) / (len(*du) * len(*dv));
+            c.abs() > 0.2
+        }).collect();
         assert!(!grads.is_empty());
         let none = variant_error(&grads, 32.0, 2.0, 0, false);
         let four = variant_error(&grads, 32.0, 2.0, 4, false);
         SKEW_SIGN.with(|c| c.set(-1.0));
         let flipped = variant_error(&grads, 32.0, 2.0, 4, false);
-        eprintln!(
-            "none {} printed-sign {} flipped {}",
-            none.anisotropy_deg, four.anisotropy_deg, flipped.anisotropy_deg
-        );
-        assert!(
-            four.anisotropy_deg < none.anisotropy_deg,
-            "{} vs {}",
-            four.anisotropy_deg,
-            none.anisotropy_deg
-        );
+        eprintln!("none {} printed-sign {} flipped {}", none.anisotropy_deg, four.anisotropy_deg, flipped.anisotropy_deg);
+        assert!(four.anisotropy_deg < none.anisotropy_deg, "{} vs {}", four.anisotropy_deg, none.anisotropy_deg);
     }
 }
