@@ -488,8 +488,7 @@ fn bad_ocean_fields_point_at_the_value() {
     );
     assert!(m.contains("`cells` or `tiles`"), "{m}");
     // Several bad fields are all reported.
-    let (diagnostics, _) = scene_with("{ kind = \"ocean\", size = 0, tiles = 2, horizon = -1 }")
-        .err()
-        .expect("errors");
+    let (diagnostics, _) =
+        scene_with("{ kind = \"ocean\", size = 0, tiles = 2, horizon = -1 }").expect_err("three errors");
     assert_eq!(diagnostics.len(), 3, "{diagnostics:#?}");
 }

@@ -183,7 +183,7 @@ impl Ocean {
         let wind = self.wind_direction;
         let wind_ok = wind.iter().all(|c| c.is_finite()) && (wind[0] != 0.0 || wind[1] != 0.0);
         let mut tiles = self.tiles.clamp(1, MAX_TILES);
-        if tiles % 2 == 0 {
+        if tiles.is_multiple_of(2) {
             tiles -= 1;
         }
         let cells = self.cells.clamp(1, MAX_CELLS);

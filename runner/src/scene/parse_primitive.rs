@@ -139,7 +139,7 @@ fn parse_ocean(fields: &mut Fields, report: &mut Report) -> Ocean {
     let size = bounded(fields, "size", d.size, (0.0, false), 1e4, "metres", report);
     let cells = whole(fields, "cells", d.cells, 1, MAX_CELLS, report);
     let tiles = whole(fields, "tiles", d.tiles, 1, MAX_TILES, report);
-    if tiles % 2 == 0 {
+    if tiles.is_multiple_of(2) {
         if let Some(span) = fields.span_of("tiles", report) {
             report.bad_scene(
                 span,
