@@ -25,7 +25,7 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn check_accepts_every_example() {
-    for e in ["toon", "outline", "rounded_shadows"] {
+    for e in ["toon", "outline", "rounded_shadows", "ocean"] {
         let o = npr(&["check", &format!("examples/{e}.npr")]);
         assert_eq!(o.status.code(), Some(0), "{e}: {}", stderr(&o));
     }
@@ -232,4 +232,58 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     assert!(recall_planes > 0.5, "{full}");
     let o = npr(&["bench", "contours", "--sizes", "0"]);
     assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
+}
+
+/// Decoded RGBA bytes of a PNG.
+fn rgba(path: &Path) -> Vec<u8> {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
+        .into_raw()
+}
+
+#[test]
+fn the_ocean_loops_seamlessly_over_its_period() {
+    // Age of Sail §6.1: "a clip lasting 20 seconds, whose first and last
+    // frames match seamlessly". At 0.1 fps frames 0, 1, 2 are t = 0, 10 and
+    // 20 s, rendered by one renderer that rewrites the ocean's vertices per
+    // frame. The geometry, the live texture (0.5 Hz: 10 cycles) and the
+    // keyframed overlay/saturation all have period 20 s.
+    let dir = scratch("ocean_loop");
+    let out = dir.join("ocean_{frame}.png");
+    let o = npr(&[
+        "render",
+        "examples/ocean.npr",
+        "--scene",
+        "examples/scenes/ocean.toml",
+        "-o",
+        out.to_str().expect("utf-8 path"),
+        "--size",
+        "96x96",
+        "--frames",
+        "0..3",
+        "--fps",
+        "0.1",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let [first, middle, last] = [0, 1, 2].map(|f| rgba(&dir.join(format!("ocean_{f:04}.png"))));
+    let differing = |a: &[u8], b: &[u8]| {
+        let max = a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0);
+        let pixels = a.chunks(4).zip(b.chunks(4)).filter(|(p, q)| p != q).count();
+        (max, pixels)
+    };
+    // t = 20 s against t = 0: the time in the shader is an f32 and the
+    // live texture's phase reaches 2π·10, so a pixel may round differently;
+    // nothing else may change.
+    let (max, pixels) = differing(&first, &last);
+    assert!(
+        max <= 1 && pixels * 1000 <= first.len() / 4,
+        "t = 20 s vs 0 s: max {max}/255, {pixels} pixels differ"
+    );
+    // Half a period in, the sea has moved: the comparison can fail.
+    let (max, pixels) = differing(&first, &middle);
+    assert!(
+        max > 40 && pixels * 2 > first.len() / 4,
+        "t = 10 s vs 0 s: max {max}, {pixels} pixels differ"
+    );
 }

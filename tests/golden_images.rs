@@ -174,3 +174,10 @@ fn lsa_contours_on_spot() {
         "examples/scenes/spot.toml",
     );
 }
+
+#[test]
+fn ocean_on_the_ocean_scene() {
+    // Age of Sail §6.1: the animated ocean primitive (at t = 0) with the
+    // MetaTexture dither, bathic and sky maps, foam and live texture.
+    golden("ocean", "examples/ocean.npr", "examples/scenes/ocean.toml");
+}

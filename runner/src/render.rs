@@ -33,6 +33,9 @@ struct GpuMesh {
     buffers: BTreeMap<Attribute, wgpu::Buffer>,
     index: wgpu::Buffer,
     index_count: u32,
+    vertex_count: usize,
+    /// For a time-varying primitive: the time its vertices were built for.
+    built_for_s: Option<f64>,
 }
 
 struct PassPipeline {
@@ -176,7 +179,16 @@ impl<'d> Renderer<'d> {
                 .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
             pipelines.push(build_pipeline(device, &manifest, pass, wgsl, &object_layout)?);
         }
-        let meshes = scene.objects.iter().map(|o| upload_mesh(device, &o.mesh)).collect();
+        let meshes = scene
+            .objects
+            .iter()
+            .map(|o| {
+                let mut gpu = upload_mesh(device, &o.mesh);
+                // `Object::mesh` is a time-varying primitive's geometry at t = 0.
+                gpu.built_for_s = o.time_varying.map(|_| 0.0);
+                gpu
+            })
+            .collect();
         let object_stride = manifest.object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN).max(1) * OBJECT_STRIDE_ALIGN;
         let object_count = scene.objects.len().max(1) as u64;
         let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -509,7 +521,54 @@ impl<'d> Renderer<'d> {
                 0
             };
         }
+        self.update_time_varying_meshes(scene, spec.time_s)?;
         self.write_uniforms(scene, spec);
+        Ok(())
+    }
+
+    /// Rebuilds the vertices of time-varying primitives (the ocean of Age of
+    /// Sail §6.1) for `time_s` and writes them over the uploaded buffers; the
+    /// vertex count and indices never change, so nothing is reallocated. A
+    /// mesh already built for this time (another eye, a partial frame) is
+    /// left alone.
+    fn update_time_varying_meshes(&mut self, scene: &Scene, time_s: f64) -> Result<(), RunError> {
+        for (index, object) in scene.objects.iter().enumerate() {
+            let Some(primitive) = &object.time_varying else {
+                continue;
+            };
+            let gpu = self.meshes.get_mut(index).ok_or_else(|| {
+                RunError::Internal(format!(
+                    "object `{}` is not in the scene this renderer was built for",
+                    object.name
+                ))
+            })?;
+            if gpu.built_for_s == Some(time_s) {
+                continue;
+            }
+            let mesh = primitive.build_at(time_s);
+            if mesh.vertex_count() != gpu.vertex_count || mesh.indices.len() as u32 != gpu.index_count {
+                return Err(RunError::Internal(format!(
+                    "object `{}` changed its vertex count over time ({} → {})",
+                    object.name,
+                    gpu.vertex_count,
+                    mesh.vertex_count()
+                )));
+            }
+            let write = |attribute: Attribute, bytes: &[u8]| {
+                if let Some(buffer) = gpu.buffers.get(&attribute) {
+                    self.queue.write_buffer(buffer, 0, bytes);
+                }
+            };
+            write(Attribute::Position, bytemuck::cast_slice(&mesh.positions));
+            write(Attribute::Normal, bytemuck::cast_slice(&mesh.normals));
+            if let Some(uvs) = &mesh.uvs {
+                write(Attribute::Uv, bytemuck::cast_slice(uvs));
+            }
+            if let Some(tangents) = &mesh.tangents {
+                write(Attribute::Tangent, bytemuck::cast_slice(tangents));
+            }
+            gpu.built_for_s = Some(time_s);
+        }
         Ok(())
     }
 
@@ -792,7 +851,8 @@ fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: if data.is_empty() { &[0u8; 16] } else { data },
-            usage: wgpu::BufferUsages::VERTEX,
+            // COPY_DST: time-varying primitives are rewritten per frame.
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
         })
     };
     buffers.insert(
@@ -819,5 +879,7 @@ fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
         buffers,
         index,
         index_count: mesh.indices.len() as u32,
+        vertex_count: mesh.positions.len(),
+        built_for_s: None,
     }
 }

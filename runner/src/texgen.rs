@@ -1,4 +1,6 @@
-//! The texture generator: tileable value and gradient noise with octaves.
+//! The texture generator: tileable value and gradient noise with octaves;
+//! and the colour maps of the painterly ocean (Age of Sail §6.1), which the
+//! ocean example reads as image files (see [`bathic_map`], [`sky_map`]).
 //!
 //! Tileable because every lattice is periodic: octave `o` has
 //! `frequency · 2^o` cells across the texture and its lattice coordinates are
@@ -120,6 +122,120 @@ pub fn gradient_noise(x: f64, y: f64, period: u32, seed: u32) -> f64 {
     let top = n00 + (n10 - n00) * sx;
     let bottom = n01 + (n11 - n01) * sx;
     top + (bottom - top) * sy
+}
+
+/// An 8-bit RGBA image, row-major, top row first.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rgba8Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[u8; 4]>,
+}
+
+/// `#rrggbb` as [0, 1] components (display-referred, as `.npr` colours).
+const fn hex(rgb: u32) -> [f64; 3] {
+    [
+        ((rgb >> 16) & 0xff) as f64 / 255.0,
+        ((rgb >> 8) & 0xff) as f64 / 255.0,
+        (rgb & 0xff) as f64 / 255.0,
+    ]
+}
+
+fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+/// Piecewise-linear ramp through `keys` (evenly spaced) at `t` in [0, 1].
+fn ramp(keys: &[[f64; 3]], t: f64) -> [f64; 3] {
+    let scaled = t.clamp(0.0, 1.0) * (keys.len() - 1) as f64;
+    let i = (scaled.floor() as usize).min(keys.len() - 2);
+    lerp3(keys[i], keys[i + 1], scaled - i as f64)
+}
+
+fn to_byte(c: f64) -> u8 {
+    (c.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// The water, deepest/darkest to lightest, in full light.
+const BATHIC_LIT: [[f64; 3]; 6] = [
+    hex(0x0e2a40),
+    hex(0x174560),
+    hex(0x216073),
+    hex(0x357f83),
+    hex(0x5a9f92),
+    hex(0x9fcab4),
+];
+/// The same tones in shadow: darker and bluer.
+const BATHIC_SHADOW: [[f64; 3]; 6] = [
+    hex(0x07121f),
+    hex(0x0b2136),
+    hex(0x123248),
+    hex(0x1c4658),
+    hex(0x2d5d66),
+    hex(0x4f7f80),
+];
+
+/// The bathic map of Age of Sail §6.1 ("the full palette of colors of the
+/// water at different depths and levels of illumination", Fig. 19b): u is
+/// the tone index (the MetaTexture dither, dark/deep at 0 to light/foamy at
+/// 1), v the illumination (lit at the top row, shadow at the bottom).
+/// Tones are quantized into `bands` flat colours, a limited palette like the
+/// brushstrokes of the film's reference paintings, so the dither reads as
+/// painted strokes rather than a smooth gradient. Values are display-referred
+/// (load it `linear` in a style so the bytes reach the output unchanged).
+pub fn bathic_map(width: u32, height: u32, bands: u32) -> Rgba8Image {
+    let (width, height, bands) = (width.clamp(1, 4096), height.clamp(1, 4096), bands.clamp(1, 256));
+    let mut pixels = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        let light = 1.0 - (f64::from(y) + 0.5) / f64::from(height);
+        for x in 0..width {
+            let tone = (f64::from(x) + 0.5) / f64::from(width);
+            // The centre of the tone's band, so every band is one flat colour.
+            let band = ((tone * f64::from(bands)).floor() + 0.5) / f64::from(bands);
+            let c = lerp3(ramp(&BATHIC_SHADOW, band), ramp(&BATHIC_LIT, band), light);
+            pixels.push([to_byte(c[0]), to_byte(c[1]), to_byte(c[2]), 255]);
+        }
+    }
+    Rgba8Image { width, height, pixels }
+}
+
+/// Zenith to horizon.
+const SKY: [[f64; 3]; 4] = [hex(0x3f6690), hex(0x6f93b3), hex(0xaabfcc), hex(0xe6dcc2)];
+const CLOUD: [f64; 3] = hex(0xf5efe2);
+
+/// The sky reflection map of Age of Sail §6.1 (Fig. 19d): u is the azimuth
+/// of the reflected ray (one turn across, seamless from the right edge to
+/// the left), v its elevation from the zenith (v = 0) to the horizon
+/// (v = 1). A zenith-to-horizon ramp with soft clouds from tileable value
+/// noise (`seed`), thicker towards the horizon. Display-referred, like
+/// [`bathic_map`].
+pub fn sky_map(width: u32, height: u32, seed: u32) -> Rgba8Image {
+    let (width, height) = (width.clamp(1, 4096), height.clamp(1, 4096));
+    let clouds = NoiseSpec {
+        size: width,
+        octaves: 4,
+        seed,
+        gradient: false,
+        channels: 1,
+        frequency: 4,
+    };
+    let mut pixels = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        let elevation = (f64::from(y) + 0.5) / f64::from(height);
+        for x in 0..width {
+            let u = (f64::from(x) + 0.5) / f64::from(width);
+            // Periodic in u with period 1 (the noise lattice wraps).
+            let n = fbm(u, elevation * 0.5, &clouds, seed);
+            let cover = ((n - 0.45) / 0.25).clamp(0.0, 1.0) * (0.35 + 0.65 * elevation);
+            let c = lerp3(ramp(&SKY, elevation), CLOUD, cover * 0.8);
+            pixels.push([to_byte(c[0]), to_byte(c[1]), to_byte(c[2]), 255]);
+        }
+    }
+    Rgba8Image { width, height, pixels }
 }
 
 #[cfg(test)]

@@ -52,8 +52,29 @@
 //! | `torus`    | `major` (1), `minor` (0.25), `segments` (64), `sides` (32)     |
 //! | `plane`    | `size` (1), `subdivisions` (1)                                 |
 //! | `cylinder` | `radius` (0.5), `height` (1), `segments` (64)                  |
+//! | `ocean`    | see below                                                      |
 //!
 //! See [`primitives`] for their geometry.
+//!
+//! The `ocean` primitive (Age of Sail §6.1; the model is in [`ocean`]) is
+//! animated: the renderer rebuilds its vertices at every frame's time. Its
+//! fields, with defaults and valid ranges:
+//!
+//! | field            | default    | meaning                                                         |
+//! |------------------|------------|-----------------------------------------------------------------|
+//! | `size`           | 60         | tile width L in metres, the spatial period; (0, 10000]          |
+//! | `cells`          | 80         | quads along a tile's side; 1..=256                              |
+//! | `tiles`          | 5          | tiles along a side of the grid, odd; 1..=15                     |
+//! | `period`         | 20         | loop length T in seconds, the temporal period; (0, 3600]        |
+//! | `modes`          | 12         | wave vectors 2π(m, n)/L with \|m\|, \|n\| ≤ modes; 1..=32, ≤ cells/2 |
+//! | `wave_height`    | 1.2        | significant wave height in metres; [0, 100]                     |
+//! | `wind_speed`     | 5          | m/s, sets the Phillips spectrum's peak; (0, 100]                |
+//! | `wind_direction` | [0, 1]     | [x, z] the wind blows towards; not zero                         |
+//! | `choppiness`     | 0.7        | λ of the horizontal displacement; [0, 4]                        |
+//! | `seed`           | 1          | the random sea state; 0..=4294967295                            |
+//! | `drift`          | [0, 0]     | whole tiles the water moves per period along x and z; \|·\| ≤ 100 |
+//! | `horizon`        | 120        | false-horizon radius in metres; (0, 100000]                     |
+//! | `horizon_drop`   | 0.05       | drop past the horizon, metres per square metre; [0, 10]         |
 //!
 //! The model matrix is `translate · rotate · scale`, with the rotation
 //! `Rz · Rx · Ry` (a vertex turns about Y first).
@@ -88,6 +109,7 @@ mod light;
 mod mesh;
 mod mesh_file;
 mod obj_file;
+pub mod ocean;
 mod parse;
 mod parse_camera;
 mod parse_object;
@@ -133,6 +155,10 @@ pub struct Object {
     pub param_spans: BTreeMap<String, Span>,
     /// Where the mesh or primitive was declared (for E0403).
     pub mesh_span: Span,
+    /// A primitive whose geometry depends on time (the ocean): `mesh` is its
+    /// geometry at t = 0, and a renderer rebuilds the vertices from this at
+    /// each frame's time ([`Primitive::build_at`]).
+    pub time_varying: Option<Primitive>,
     pub casts_shadows: bool,
 }
 

@@ -4,6 +4,7 @@
 use super::mesh::Mesh;
 use super::mesh_file::{load_mesh_file, MeshLoadError};
 use super::parse_primitive::parse_primitive;
+use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::Object;
 use dsl::{Diagnostic, Span};
@@ -58,7 +59,7 @@ pub fn parse_object(
     if report.diagnostics.len() > errors_before {
         return None;
     }
-    let (mesh, mesh_span, derived_name) = mesh?;
+    let (mesh, mesh_span, derived_name, time_varying) = mesh?;
     let name_span = explicit_name.as_ref().map(|name| name.span);
     Some(ObjectDecl {
         object: Object {
@@ -70,19 +71,22 @@ pub fn parse_object(
             param_spans,
             mesh_span,
             casts_shadows,
+            time_varying,
         },
         name_span,
     })
 }
 
 /// The object's mesh (from `mesh` or `primitive`), where it was declared,
-/// and a name for objects without one (the file stem or primitive kind).
+/// a name for objects without one (the file stem or primitive kind), and the
+/// primitive again when its geometry depends on time.
+#[allow(clippy::type_complexity)]
 fn read_mesh(
     fields: &mut Fields,
     base_dir: &Path,
     cache: &mut MeshCache,
     report: &mut Report,
-) -> Option<(Arc<Mesh>, Span, String)> {
+) -> Option<(Arc<Mesh>, Span, String, Option<Primitive>)> {
     let file = fields.string("mesh", report);
     let primitive_span = fields.span_of("primitive", report);
     let primitive = fields.table("primitive", "the primitive", report);
@@ -110,7 +114,7 @@ fn read_mesh(
                     let stem = Path::new(&file.value)
                         .file_stem()
                         .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
-                    Some((Arc::clone(mesh), file.span, stem))
+                    Some((Arc::clone(mesh), file.span, stem, None))
                 }
                 Err(err) => {
                     report.push(
@@ -130,7 +134,8 @@ fn read_mesh(
                 .primitives
                 .entry(description)
                 .or_insert_with(|| Arc::new(primitive.build()));
-            Some((Arc::clone(mesh), span, kind))
+            let time_varying = primitive.is_time_varying().then_some(primitive);
+            Some((Arc::clone(mesh), span, kind, time_varying))
         }
         (None, None) => {
             // A `mesh` of the wrong type was already reported.

@@ -1,4 +1,6 @@
-//! Analytic meshes: sphere, cube, torus, plane, cylinder.
+//! Analytic meshes: sphere, cube, torus, plane, cylinder; and the animated
+//! ocean grid of [`super::ocean`] (the one primitive whose geometry depends
+//! on time: see [`Primitive::is_time_varying`]).
 //!
 //! All are centred on the origin with exact (analytic) normals, UVs in
 //! [0, 1] with v = 0 at the image top, and analytic tangents with the
@@ -13,6 +15,7 @@
 
 use super::geometry::orthonormal_tangent;
 use super::mesh::Mesh;
+use super::ocean::{self, Ocean};
 use glam::{DVec3, Vec3};
 use std::f64::consts::{PI, TAU};
 
@@ -20,7 +23,7 @@ use std::f64::consts::{PI, TAU};
 pub const MAX_SEGMENTS: u32 = 4096;
 
 /// The primitive kinds, as written in a scene's `primitive = { kind = ... }`.
-pub const KINDS: &[&str] = &["sphere", "cube", "torus", "plane", "cylinder"];
+pub const KINDS: &[&str] = &["sphere", "cube", "torus", "plane", "cylinder", "ocean"];
 
 /// A primitive with its parameters, as declared in a scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,6 +51,8 @@ pub enum Primitive {
         height: f32,
         segments: u32,
     },
+    /// Age of Sail §6.1's periodic ocean tiles; see [`super::ocean`].
+    Ocean(Ocean),
 }
 
 impl Primitive {
@@ -64,9 +69,26 @@ impl Primitive {
             }
             Primitive::Plane { subdivisions, .. } => 2 * u64::from(subdivision_count(subdivisions)).pow(2),
             Primitive::Cylinder { segments, .. } => 4 * u64::from(segment_count(segments)),
+            Primitive::Ocean(o) => 2 * o.sanitized().grid_cells().pow(2),
         }
     }
 
+    /// Whether the geometry changes with time, so a renderer must rebuild it
+    /// per frame with [`Primitive::build_at`] (only the ocean).
+    pub fn is_time_varying(&self) -> bool {
+        matches!(self, Primitive::Ocean(_))
+    }
+
+    /// The geometry at `time_s` seconds. Same vertex count and indices at
+    /// every time; equal to [`Primitive::build`] for static primitives.
+    pub fn build_at(&self, time_s: f64) -> Mesh {
+        match self {
+            Primitive::Ocean(o) => ocean::ocean_mesh(o, time_s),
+            _ => self.build(),
+        }
+    }
+
+    /// The geometry (at time 0 for a time-varying primitive).
     pub fn build(&self) -> Mesh {
         match *self {
             Primitive::Sphere {
@@ -87,6 +109,7 @@ impl Primitive {
                 height,
                 segments,
             } => cylinder(radius, height, segments),
+            Primitive::Ocean(o) => ocean::ocean_mesh(&o, 0.0),
         }
     }
 
@@ -119,6 +142,7 @@ impl Primitive {
             } => {
                 format!("cylinder(radius={radius}, height={height}, segments={segments})")
             }
+            Primitive::Ocean(o) => ocean::description(&o),
         }
     }
 }

@@ -1,0 +1,104 @@
+//! The ocean example's colour maps (`examples/textures/ocean_*.png`) are
+//! exactly what the generators in `runner::texgen` make, and have the
+//! properties the style relies on.
+//!
+//! Regenerate after changing a generator with
+//! `NPR_UPDATE_TEXTURES=1 cargo test -p runner --test ocean_textures`.
+
+use runner::texgen::{bathic_map, sky_map, Rgba8Image};
+use std::path::{Path, PathBuf};
+
+fn texture_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/textures")
+        .join(name)
+}
+
+fn bathic() -> Rgba8Image {
+    bathic_map(64, 16, 8)
+}
+
+fn sky() -> Rgba8Image {
+    sky_map(128, 32, 7)
+}
+
+/// The checked-in PNG equals the generator's output byte for byte (or is
+/// rewritten when `NPR_UPDATE_TEXTURES` is set).
+fn check_file(name: &str, generated: &Rgba8Image) {
+    let path = texture_path(name);
+    let image = image::RgbaImage::from_fn(generated.width, generated.height, |x, y| {
+        image::Rgba(generated.pixels[(y * generated.width + x) as usize])
+    });
+    if std::env::var_os("NPR_UPDATE_TEXTURES").is_some() {
+        runner::output::write_png8(&image, &path).expect("write texture");
+    }
+    let on_disk = image::open(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (regenerate with NPR_UPDATE_TEXTURES=1)", path.display()))
+        .to_rgba8();
+    assert_eq!(on_disk.dimensions(), image.dimensions(), "{name}");
+    assert!(
+        on_disk == image,
+        "{name} differs from its generator; regenerate with NPR_UPDATE_TEXTURES=1"
+    );
+}
+
+#[test]
+fn the_checked_in_maps_are_the_generated_ones() {
+    check_file("ocean_bathic.png", &bathic());
+    check_file("ocean_sky.png", &sky());
+}
+
+fn luma(p: [u8; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+#[test]
+fn the_bathic_map_brightens_with_tone_and_light_in_flat_bands() {
+    let map = bathic();
+    let at = |x: u32, y: u32| map.pixels[(y * map.width + x) as usize];
+    for y in 0..map.height {
+        let row: Vec<f64> = (0..map.width).map(|x| luma(at(x, y))).collect();
+        assert!(row.windows(2).all(|w| w[1] >= w[0]), "row {y} not monotonic: {row:?}");
+        // 8 bands: exactly 8 distinct colours per row.
+        let mut distinct: Vec<[u8; 4]> = (0..map.width).map(|x| at(x, y)).collect();
+        distinct.dedup();
+        assert_eq!(distinct.len(), 8, "row {y}");
+    }
+    for x in 0..map.width {
+        assert!(
+            luma(at(x, 0)) > luma(at(x, map.height - 1)) + 10.0,
+            "lit above shadow at column {x}"
+        );
+    }
+}
+
+#[test]
+fn the_sky_map_wraps_around_the_azimuth_and_brightens_to_the_horizon() {
+    let map = sky();
+    let at = |x: u32, y: u32| map.pixels[(y * map.width + x) as usize];
+    let (mut seam, mut interior) = (0.0f64, 0.0f64);
+    for y in 0..map.height {
+        for x in 0..map.width - 1 {
+            interior = interior.max((luma(at(x + 1, y)) - luma(at(x, y))).abs());
+        }
+        seam = seam.max((luma(at(0, y)) - luma(at(map.width - 1, y))).abs());
+    }
+    assert!(seam <= interior, "seam step {seam} vs interior {interior}");
+    let mean_row = |y: u32| (0..map.width).map(|x| luma(at(x, y))).sum::<f64>() / f64::from(map.width);
+    assert!(mean_row(map.height - 1) > mean_row(0) + 60.0);
+    // Not a bare ramp: clouds vary along the azimuth.
+    let spread = (0..map.width)
+        .map(|x| luma(at(x, map.height - 4)))
+        .fold((f64::MAX, f64::MIN), |(lo, hi), l| (lo.min(l), hi.max(l)));
+    assert!(spread.1 - spread.0 > 10.0, "{spread:?}");
+}
+
+#[test]
+fn generators_are_total() {
+    for (w, h) in [(0, 0), (1, 1), (5000, 1)] {
+        let b = bathic_map(w, h, 0);
+        assert_eq!(b.pixels.len(), (b.width * b.height) as usize);
+        let s = sky_map(w, h, u32::MAX);
+        assert_eq!(s.pixels.len(), (s.width * s.height) as usize);
+    }
+}
