@@ -45,7 +45,7 @@ pub fn contour_fade(p: V3, n: V3, left: V3, right: V3, forward: V3, start: f64, 
     };
     let to_view = sub(vc, p);
     let tl = len(to_view);
-    if !(tl > 1e-20) {
+    if tl.is_nan() || tl <= 1e-20 {
         return 0.0;
     }
     let phi = (dot(to_view, nn) / tl).clamp(-1.0, 1.0).acos();
@@ -58,7 +58,7 @@ pub fn contour_fade(p: V3, n: V3, left: V3, right: V3, forward: V3, start: f64, 
     };
     let lo = FRAC_PI_2 - start.max(0.0) * alpha;
     let hi = FRAC_PI_2 - end.max(0.0) * alpha;
-    if !(hi - lo > 1e-7) {
+    if (hi - lo).is_nan() || hi - lo <= 1e-7 {
         return if phi >= FRAC_PI_2 { 1.0 } else { 0.0 };
     }
     ((phi - lo) / (hi - lo)).clamp(0.0, 1.0)
