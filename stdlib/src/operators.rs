@@ -366,7 +366,7 @@ pub static ALL: &[Operator] = &[
     },
     Operator {
         name: "uv_gradients",
-        doc: "Smooth screen-space UV gradients from the per-vertex screen-space tangent frame: (∇u, ∇v) packed as vec4 (xy = ∇u, zw = ∇v, UV per px) for `metatexture_grad`; continuous across triangles, unlike derivatives.",
+        doc: "Smooth screen-space UV gradients from the per-vertex screen-space tangent frame: (∇u, ∇v) packed as vec4 (xy = ∇u, zw = ∇v, UV per px) for `metatexture_grad`; continuous across triangles, unlike derivatives. Default: the exact inverse of the tangent frame; `mode: paper` is eqs. 9–10 as printed.",
         reference: "Harvill et al., Age of Sail (journal 2019) §3.2, eqs. 9–10",
         params: &[
             Param {
@@ -392,6 +392,14 @@ pub static ALL: &[Operator] = &[
                 default: Default::Number(1.0),
                 range: Some((0.0, 1e6)),
                 doc: "world-space UV density (|∇_w u|, |∇_w v|) in UV per metre, constant per mesh (e.g. an `object param`)",
+            },
+            Param {
+                name: "mode",
+                ty: Ty::Enum(&["inverse", "paper"]),
+                unit: Unit::None,
+                default: Default::Variant("inverse"),
+                range: None,
+                doc: "inverse: rows of [T_s B_s]⁻¹ (true gradients, right for skew compensation); paper: eqs. 9–10 as printed (∇u ∥ T_s)",
             },
         ],
         returns: Ty::Vec4,

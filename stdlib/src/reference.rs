@@ -293,7 +293,11 @@ pub const META_MIN_LOG2_SCALE: f64 = -40.0;
 /// `skew_sign_that_reduces_anisotropy`): on a plane seen at 10° elevation
 /// from 35° round (pixels with |cos∠(∇u, ∇v)| > 0.2), the mean
 /// |axis angle − 90°| is 41.1° without skew compensation, 51.5° with the
-/// printed sign and 26.2° with this one (n = 4).
+/// printed sign and 26.2° with this one (n = 4). The printed sign is right
+/// for the gradients of eqs. 9–10 as printed (∇u ∥ T_s, ∇v ∥ B_s), whose dot
+/// product has the opposite sign of the true gradients' (26.2° there too):
+/// the operators take true gradients (derivatives, or `uv_gradients`'
+/// default inverse mode), hence −1.
 pub const SKEW_SIGN: f64 = -1.0;
 
 /// Eqs. 14–15 (with [`SKEW_SIGN`] as `sign`): the skew factor σ.

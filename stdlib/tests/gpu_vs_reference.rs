@@ -763,18 +763,21 @@ fn metatexture_extension_operators_match_reference() {
         ([40.0, 40.0], [40.0, 40.0]),
     ] {
         for density in [[1.0, 1.0], [0.0, 0.0], [1e6, 1e6], [0.25, 4.0]] {
-            cases.push([q([t[0], t[1], b[0], b[1]]), q([density[0], density[1], 0.0, 0.0]), [0.0; 4]]);
+            for mode in [0.0, 1.0] {
+                cases.push([q([t[0], t[1], b[0], b[1]]), q([density[0], density[1], mode, 0.0]), [0.0; 4]]);
+            }
         }
     }
     for _ in 0..30 {
         let v = [g.range(-200.0, 200.0), g.range(-200.0, 200.0), g.range(-200.0, 200.0), g.range(-200.0, 200.0)];
-        cases.push([q(v), q([g.range(0.0, 10.0), g.range(0.0, 10.0), 0.0, 0.0]), [0.0; 4]]);
+        cases.push([q(v), q([g.range(0.0, 10.0), g.range(0.0, 10.0), (g.next() * 2.0).floor(), 0.0]), [0.0; 4]]);
     }
-    let out = one("uv_gradients", "result = npr_uv_gradients(a.xy, a.zw, b.xy);", &cases, &[]);
+    let out = one("uv_gradients", "result = npr_uv_gradients(a.xy, a.zw, b.xy, i32(b.z));", &cases, &[]);
     let reference: Vec<[f64; 4]> = cases
         .iter()
-        .map(|c| r::uv_gradients([c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]]))
+        .map(|c| r::uv_gradients([c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]], c[1][2] as i64))
         .collect();
+    // Relative to each case's largest component (the inverse mode divides by a determinant).
     compare_rel("uv_gradients", &out, &reference, 4, 1e-5);
 
     // live_texture (eqs. 27–30): random colours, frequencies at the range ends, times incl. negative.

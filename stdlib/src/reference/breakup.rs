@@ -16,14 +16,28 @@ pub fn radial_alpha(screen_uv: [f64; 2], focal: [f64; 2]) -> f64 {
     (dot2(q, q) + 1.0).min(1e12)
 }
 
-/// Eqs. 9–10: (∇u, ∇v) = (|∇_w u| T_s/|T_s|², |∇_w v| B_s/|B_s|²), packed (∇u.x, ∇u.y, ∇v.x, ∇v.y).
-pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2]) -> [f64; 4] {
-    let g = |t: [f64; 2], d: f64| {
-        let s = d.abs() / dot2(t, t).max(1e-20);
-        [t[0] * s, t[1] * s]
+/// §3.2: (∇u, ∇v) packed (∇u.x, ∇u.y, ∇v.x, ∇v.y) from T_s, B_s and the
+/// densities; `mode` 0 = rows of [T_s B_s]⁻¹, 1 = eqs. 9–10 as printed.
+pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2], mode: i64) -> [f64; 4] {
+    let rho = [density[0].abs(), density[1].abs()];
+    let out = if mode == 1 {
+        let g = |t: [f64; 2], d: f64| {
+            let s = d / dot2(t, t).max(1e-20);
+            [t[0] * s, t[1] * s]
+        };
+        let (u, v) = (g(tangent, rho[0]), g(bitangent, rho[1]));
+        [u[0], u[1], v[0], v[1]]
+    } else {
+        let det = tangent[0] * bitangent[1] - tangent[1] * bitangent[0];
+        let d = if det >= 0.0 { 1.0 } else { -1.0 } * det.abs().max(1e-20);
+        [
+            rho[0] * bitangent[1] / d,
+            -rho[0] * bitangent[0] / d,
+            -rho[1] * tangent[1] / d,
+            rho[1] * tangent[0] / d,
+        ]
     };
-    let (u, v) = (g(tangent, density[0]), g(bitangent, density[1]));
-    [u[0], u[1], v[0], v[1]].map(|x| x.clamp(-1e30, 1e30))
+    out.map(|x| x.clamp(-1e30, 1e30))
 }
 
 /// §3.5: the blend weight towards the 90°-rotated orientation, β(½ + log₂(|∇u|/|∇v|)/band).
