@@ -422,6 +422,18 @@ pub static ALL: &[Operator] = &[
         specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture_grad" }],
     },
     Operator {
+        name: "metatexture_contour",
+        doc: "Contour-oriented MetaTexture (see `metatexture_contour_grad`) with UV gradients from fragment derivatives; `orient: off` compiles to `metatexture`.",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3.5 (Fig. 8), on eqs. 1–8, 14–25",
+        params: METATEXTURE_CONTOUR_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture_contour.wgsl"),
+        depends: &["metatexture_contour_grad"],
+        snippets: &["meta"],
+        specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture" }],
+    },
+    Operator {
         name: "live_texture",
         doc: "Live texture: cycles smoothly through a mix of T's red, green and blue channels, T' = ½ + (T·L₁) cos 2πft + (T·L₂) sin 2πft (the three equal components of eq. 27, returned as one float); offset `time` by world position for a travelling effect.",
         reference: "Harvill et al., Age of Sail (journal 2019) §6.1, eqs. 27–30 (ft read as 2π·f·t, f in cycles per second)",
@@ -708,6 +720,11 @@ const METATEXTURE_CONTOUR_GRAD_PARAMS: &[Param] = &{
             doc: "width in octaves of |∇u|/|∇v| over which the two orientations blend",
         },
     ]
+};
+
+const METATEXTURE_CONTOUR_PARAMS: &[Param] = &{
+    let g = METATEXTURE_CONTOUR_GRAD_PARAMS;
+    [g[0], g[1], g[4], g[5], g[6], g[7], g[8], g[9], g[10], g[11]]
 };
 
 const METATEXTURE4_PARAMS: &[Param] = &{

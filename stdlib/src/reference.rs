@@ -226,6 +226,7 @@ pub const REFERENCED: &[&str] = &[
     "radial_alpha",
     "uv_gradients",
     "metatexture_contour_grad",
+    "metatexture_contour",
     "live_texture",
     "line_boil",
     "roll_compensate",
