@@ -3,8 +3,9 @@
 //! `stdlib::metrics` (a benchmark, never a test).
 //!
 //! Cost: one style per variant, the same render pass over the scene with
-//! only the texture read changed, timed in interleaved rounds (best median
-//! of three), so the ratio isolates the operator.
+//! only the texture read changed, so the ratio isolates the operator. Frames
+//! are timed round robin over all variants (render + GPU wait each), so a
+//! change of machine load hits every variant alike; the median is reported.
 //!
 //! Error, on the analytic ground plane of `stdlib::metrics` (1–1000 m,
 //! elevations 90°–2°, azimuths 0°/35°, w = 32 px): scale = mean
@@ -34,7 +35,10 @@ fn v(skew: i64) -> Variant {
 }
 
 pub fn variants() -> Vec<OpsVariant> {
-    let smooth = |skew| Variant { smooth: true, ..v(skew) };
+    let smooth = |skew| Variant {
+        smooth: true,
+        ..v(skew)
+    };
     vec![
         OpsVariant {
             name: "plain texture sample (baseline)",
@@ -119,7 +123,11 @@ pub fn variants() -> Vec<OpsVariant> {
             name: "8-tap n = 4 + contrast ÷√c + radial α",
             lets: "",
             read: "metatexture(grain, uv * 8.0, width: 48px * radial_alpha(), skew: 4, contrast: variance)",
-            model: Some(Variant { contrast: 2, radial: true, ..v(4) }),
+            model: Some(Variant {
+                contrast: 2,
+                radial: true,
+                ..v(4)
+            }),
         },
         OpsVariant {
             name: "4-tap + contour orientation (§3.5), smooth gradients",

@@ -386,19 +386,15 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
             }
         }
     }
-    // Interleave rounds so load changes hit every variant alike; keep each variant's best median.
-    let mut best = vec![f64::INFINITY; programs.len()];
-    for _ in 0..3 {
-        for (i, (_, p)) in programs.iter().enumerate() {
-            match runner::bench::frame_time(&gpu, p, &scene, size, frames) {
-                Ok(t) => best[i] = best[i].min(t),
-                Err(e) => {
-                    printer.diagnostics(&e.diagnostics(), &sources);
-                    return EXIT_INTERNAL;
-                }
-            }
+    // Frame-level round robin over all variants, so load changes hit every variant alike.
+    let progs: Vec<&StyleProgram> = programs.iter().map(|(_, p)| p).collect();
+    let best = match runner::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return EXIT_INTERNAL;
         }
-    }
+    };
     println!(
         "device: {}, {}x{}, scene {}",
         gpu.describe(),
@@ -416,7 +412,11 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
             }
             None => "— | — | —".to_string(),
         };
-        println!("| {name} | {:.3} | {:.2}x | {errors} |", best[i] * 1e3, best[i] / best[0]);
+        println!(
+            "| {name} | {:.3} | {:.2}x | {errors} |",
+            best[i] * 1e3,
+            best[i] / best[0]
+        );
     }
     EXIT_OK
 }

@@ -126,10 +126,18 @@ fn metatexture_on_spot() {
 
 #[test]
 fn edge_breakup_on_spot() {
-    golden("edge_breakup_spot", "examples/edge_breakup.npr", "examples/scenes/spot.toml");
+    golden(
+        "edge_breakup_spot",
+        "examples/edge_breakup.npr",
+        "examples/scenes/spot.toml",
+    );
 }
 
 #[test]
 fn live_contour_on_spheres() {
-    golden("live_contour_spheres", "examples/live_contour.npr", "examples/scenes/spheres.toml");
+    golden(
+        "live_contour_spheres",
+        "examples/live_contour.npr",
+        "examples/scenes/spheres.toml",
+    );
 }

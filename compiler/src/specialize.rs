@@ -134,7 +134,12 @@ fn specialize_operators(ir: &mut Ir, report: &mut Report) {
                 let by_name: Option<Vec<ExprId>> = stdlib::all()[alt]
                     .params
                     .iter()
-                    .map(|p| op.params.iter().position(|q| q.name == p.name).and_then(|j| args.get(j).copied()))
+                    .map(|p| {
+                        op.params
+                            .iter()
+                            .position(|q| q.name == p.name)
+                            .and_then(|j| args.get(j).copied())
+                    })
                     .collect();
                 let Some(new_args) = by_name else {
                     continue;

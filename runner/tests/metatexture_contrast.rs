@@ -38,7 +38,9 @@ fn blended_std(tex: &ImageF64, b: f64, contrast: i64, mean: f64) -> f64 {
     };
     let mut state = 17u64;
     let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let v: Vec<f64> = (0..40000)
@@ -53,7 +55,10 @@ fn variance_preserving_compensation_restores_the_grain_contrast() {
     let red: Vec<f64> = tex.pixels.iter().map(|p| p[0]).collect();
     let mean = red.iter().sum::<f64>() / red.len() as f64;
     let reference = blended_std(&tex, 0.0, 0, mean);
-    println!("gradient-noise grain: texel std {:.4}, as sampled (B = 0) {reference:.4}", std_dev(&red));
+    println!(
+        "gradient-noise grain: texel std {:.4}, as sampled (B = 0) {reference:.4}",
+        std_dev(&red)
+    );
     println!("| B | none | printed (× c) | variance (÷ √c) |");
     let mut rows = Vec::new();
     for b in [0.0, 0.25, 0.5] {
@@ -70,10 +75,16 @@ fn variance_preserving_compensation_restores_the_grain_contrast() {
     // printed × c loses 86% of the contrast instead.
     for (b, none, printed, variance) in rows {
         let bound = if b <= 0.25 { 0.10 } else { 0.15 };
-        assert!((variance - 1.0).abs() <= bound, "B = {b}: variance-preserving ratio {variance}");
+        assert!(
+            (variance - 1.0).abs() <= bound,
+            "B = {b}: variance-preserving ratio {variance}"
+        );
         assert!((variance - 1.0).abs() <= (printed - 1.0).abs() && (variance - 1.0).abs() <= (none - 1.0).abs());
         if b > 0.0 {
-            assert!(printed < none && (printed - 1.0).abs() > 0.10, "B = {b}: printed {printed}, none {none}");
+            assert!(
+                printed < none && (printed - 1.0).abs() > 0.10,
+                "B = {b}: printed {printed}, none {none}"
+            );
         }
     }
 }

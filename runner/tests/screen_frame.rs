@@ -31,12 +31,15 @@ fn scene(name: &str, ipd: Option<f64>) -> runner::scene::Scene {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+    runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
 }
 
 /// Render `value` (a vec4 expression) into an rgba32float target for `eye`.
 fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> {
-    let text = format!("style \"t\"\npass p: render(scene) {{\n  out o: rgba32float = {value}\n  clear: #000000\n}}\noutput p.o\n");
+    let text = format!(
+        "style \"t\"\npass p: render(scene) {{\n  out o: rgba32float = {value}\n  clear: #000000\n}}\noutput p.o\n"
+    );
     let mut sources = SourceMap::new();
     let c = match compiler::compile_source("t.npr", &text, Path::new("."), &mut sources, &CompileOptions::default()) {
         Ok(c) => c,
@@ -50,7 +53,8 @@ fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> 
         frame: 0,
         eye,
     };
-    let img = runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img =
+        runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 
@@ -58,7 +62,10 @@ fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> 
 fn jacobian(vp: DMat4, p: DVec3, dir: DVec3) -> [f64; 2] {
     let px = |q: DVec3| {
         let c = vp * DVec4::new(q.x, q.y, q.z, 1.0);
-        [(c.x / c.w * 0.5 + 0.5) * SIZE as f64, (0.5 - 0.5 * c.y / c.w) * SIZE as f64]
+        [
+            (c.x / c.w * 0.5 + 0.5) * SIZE as f64,
+            (0.5 - 0.5 * c.y / c.w) * SIZE as f64,
+        ]
     };
     let h = 1e-5;
     let (a, b) = (px(p - dir * h), px(p + dir * h));
@@ -103,27 +110,50 @@ fn screen_tangent_frame_is_the_projection_jacobian_and_shared_in_stereo() {
             let positions = render("vec4(position.world, 2.0)", &s, eye);
             let t = render("vec4(tangent, 0.0)", &s, eye);
             // The mesh's own tangent and bitangent directions (+u, +v).
-            let t_dir = DVec3::new(t[(SIZE * SIZE / 2 + SIZE / 2) as usize][0] as f64, t[(SIZE * SIZE / 2 + SIZE / 2) as usize][1] as f64, t[(SIZE * SIZE / 2 + SIZE / 2) as usize][2] as f64);
-            assert!((t_dir - tangent).length() < 1e-4 || (t_dir + tangent).length() < 1e-4 || t_dir.y.abs() < 1e-4, "tangent {t_dir}");
+            let t_dir = DVec3::new(
+                t[(SIZE * SIZE / 2 + SIZE / 2) as usize][0] as f64,
+                t[(SIZE * SIZE / 2 + SIZE / 2) as usize][1] as f64,
+                t[(SIZE * SIZE / 2 + SIZE / 2) as usize][2] as f64,
+            );
+            assert!(
+                (t_dir - tangent).length() < 1e-4 || (t_dir + tangent).length() < 1e-4 || t_dir.y.abs() < 1e-4,
+                "tangent {t_dir}"
+            );
             let frame = render("vec4(tangent.screen, bitangent.screen)", &s, eye);
             // B = ±(n × t): the sign is the mesh's (+v); take it from the centre pixel.
             let b_dir = DVec3::Y.cross(t_dir).normalize();
             let g = frame[(SIZE * SIZE / 2 + SIZE / 2) as usize];
             let c = positions[(SIZE * SIZE / 2 + SIZE / 2) as usize];
             let jb = jacobian(vp, DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64), b_dir);
-            let b_sign = if jb[0] * g[2] as f64 + jb[1] * g[3] as f64 >= 0.0 { 1.0 } else { -1.0 };
+            let b_sign = if jb[0] * g[2] as f64 + jb[1] * g[3] as f64 >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
             // Per-vertex values interpolated across 6 cm cells: ≤ 1% from the per-pixel Jacobian.
             let label = format!("ipd {ipd:?} eye {eye}: tangent.screen, bitangent.screen");
-            check(&label, &frame, &positions, |p| {
-                let (a, b) = (jacobian(vp, p, t_dir), jacobian(vp, p, b_dir * b_sign));
-                [a[0], a[1], b[0], b[1]]
-            }, 0.01);
+            check(
+                &label,
+                &frame,
+                &positions,
+                |p| {
+                    let (a, b) = (jacobian(vp, p, t_dir), jacobian(vp, p, b_dir * b_sign));
+                    [a[0], a[1], b[0], b[1]]
+                },
+                0.01,
+            );
             let centre = render("vec4(tangent.screen_center, bitangent.screen_center)", &s, eye);
             let centre_expected = |p: DVec3| {
                 let (a, b) = (jacobian(center, p, t_dir), jacobian(center, p, b_dir * b_sign));
                 [a[0], a[1], b[0], b[1]]
             };
-            let err = check(&format!("ipd {ipd:?} eye {eye}: *.screen_center"), &centre, &positions, centre_expected, 0.01);
+            let err = check(
+                &format!("ipd {ipd:?} eye {eye}: *.screen_center"),
+                &centre,
+                &positions,
+                centre_expected,
+                0.01,
+            );
             if ipd.is_none() {
                 assert_eq!(frame, centre, "mono: the centre camera is the camera");
             } else {
@@ -144,10 +174,17 @@ fn screen_tangent_frame_is_the_projection_jacobian_and_shared_in_stereo() {
 #[test]
 fn camera_focal_is_the_projection_diagonal() {
     let s = scene("focal", None);
-    let v = render("vec4(camera.focal, radial_alpha(screen_uv: vec2(1.0, 0.0)), 1.0)", &s, 0);
+    let v = render(
+        "vec4(camera.focal, radial_alpha(screen_uv: vec2(1.0, 0.0)), 1.0)",
+        &s,
+        0,
+    );
     let f = 1.0 / (30f64.to_radians()).tan();
     let px = v[(SIZE * SIZE / 2) as usize];
-    assert!((px[0] as f64 - f).abs() < 1e-5 && (px[1] as f64 - f).abs() < 1e-5, "{px:?}");
+    assert!(
+        (px[0] as f64 - f).abs() < 1e-5 && (px[1] as f64 - f).abs() < 1e-5,
+        "{px:?}"
+    );
     // α in a corner of a square 60° view: 1 + 2·tan²30° (eqs. 12–13).
     assert!((px[2] as f64 - (1.0 + 2.0 / (f * f))).abs() < 1e-5, "{px:?}");
 }
@@ -167,12 +204,19 @@ fn roll_scene(name: &str, up: [f64; 3]) -> runner::scene::Scene {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+    runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
 }
 
 fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
     let mut sources = SourceMap::new();
-    let c = match compiler::compile_source("roll.npr", text, Path::new("."), &mut sources, &CompileOptions::default()) {
+    let c = match compiler::compile_source(
+        "roll.npr",
+        text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    ) {
         Ok(c) => c,
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
@@ -184,7 +228,8 @@ fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
         frame: 0,
         eye: 0,
     };
-    let img = runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img =
+        runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 

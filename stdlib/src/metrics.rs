@@ -20,8 +20,8 @@
 //!   on a white-noise example texture (see [`contrast_ratio`]).
 
 use crate::reference::{
-    meta_beta, meta_k, meta_skew_sigma, metatexture_grad, ImageF64, MetaSettings, META_MAX_SCALE,
-    META_MIN_LOG2_SCALE, SKEW_SIGN,
+    meta_beta, meta_k, meta_skew_sigma, metatexture_grad, ImageF64, MetaSettings, META_MAX_SCALE, META_MIN_LOG2_SCALE,
+    SKEW_SIGN,
 };
 
 /// One pixel's screen-space gradients (∇u, ∇v) in UV per px.
@@ -183,7 +183,10 @@ fn axis_angle_deg(da: [f64; 2], db: [f64; 2]) -> f64 {
     if la < 1e-300 || lb < 1e-300 {
         return 90.0;
     }
-    ((da[0] * db[0] + da[1] * db[1]) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
+    ((da[0] * db[0] + da[1] * db[1]) / (la * lb))
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
 }
 
 /// Exponent of one coordinate (eqs. 1–2 with the operators' clamps) and its
@@ -229,7 +232,11 @@ pub fn variant_error(samples: &[PlaneSample], v: &Variant) -> VariantError {
         let sel = if v.smooth { s.smooth } else { s.exact };
         let width = if v.radial { v.width * s.alpha } else { v.width };
         let (mut scale, mut aniso) = (0.0, 0.0);
-        let sets = if v.plain { vec![(1.0, 0.0)] } else { skew_sets(sel, v.skew, v.skew_sign) };
+        let sets = if v.plain {
+            vec![(1.0, 0.0)]
+        } else {
+            skew_sets(sel, v.skew, v.skew_sign)
+        };
         let mut base_in = true;
         for (w, psi) in sets {
             // The shear is chosen from `sel`, the result measured with the exact gradients.
@@ -264,7 +271,9 @@ pub fn variant_error(samples: &[PlaneSample], v: &Variant) -> VariantError {
 pub fn noise_texture(size: u32, seed: u64) -> ImageF64 {
     let mut state = seed;
     let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (((state >> 11) as f64 / (1u64 << 53) as f64) * 255.0).round() / 255.0
     };
     ImageF64::new(size, size, |_, _| [next(), next(), next(), 1.0])
@@ -290,7 +299,9 @@ pub fn contrast_ratio(tex: &ImageF64, samples: &[PlaneSample], v: &Variant) -> f
     };
     let mut state = 0x5eed_u64;
     let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut m = Vec::with_capacity(samples.len());
@@ -331,7 +342,13 @@ mod tests {
         // Eqs. 1–3: the base tap's period lies in [1, 2) × w everywhere.
         assert!(meta.period_min >= 1.0 - 1e-9 && meta.period_max < 2.0, "{meta:?}");
         assert_eq!(meta.in_octave, 1.0);
-        let plain = variant_error(&samples, &Variant { plain: true, ..Variant::new(32.0, 0) });
+        let plain = variant_error(
+            &samples,
+            &Variant {
+                plain: true,
+                ..Variant::new(32.0, 0)
+            },
+        );
         assert!(plain.period_max / plain.period_min > 1e4, "{plain:?}");
         assert!(meta.scale < plain.scale / 10.0, "{meta:?} vs {plain:?}");
     }
@@ -370,7 +387,10 @@ mod tests {
         .anisotropy_deg;
         println!("anisotropy: none {none:.1}°, printed sign {printed:.1}°, negated {chosen:.1}°; eqs. 9–10 gradients with the printed sign {paper_printed:.1}°");
         assert!(chosen < 0.8 * none, "{chosen} vs {none}");
-        assert!(printed > none, "the printed sign should skew further: {printed} vs {none}");
+        assert!(
+            printed > none,
+            "the printed sign should skew further: {printed} vs {none}"
+        );
         assert!(paper_printed < 0.8 * none, "{paper_printed} vs {none}");
     }
 

@@ -16,7 +16,11 @@ fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 fn unit(a: V3) -> V3 {
     let l = dot(a, a).sqrt();
@@ -93,7 +97,13 @@ fn plane_at(cam: &Cam, px: f64, py: f64) -> Option<([f64; 2], [f64; 2], [f64; 2]
         Some([cam.eye[0] + t * d[0], cam.eye[2] + t * d[2]])
     };
     let h = 1e-4;
-    let (c, a, b, e, f) = (hit(px, py)?, hit(px - h, py)?, hit(px + h, py)?, hit(px, py - h)?, hit(px, py + h)?);
+    let (c, a, b, e, f) = (
+        hit(px, py)?,
+        hit(px - h, py)?,
+        hit(px + h, py)?,
+        hit(px, py - h)?,
+        hit(px, py + h)?,
+    );
     Some((
         c,
         [(b[0] - a[0]) / (2.0 * h), (f[0] - e[0]) / (2.0 * h)],
@@ -149,10 +159,15 @@ fn roll_compensated_warp_field_rolls_with_the_camera() {
             count += 1;
         }
     }
-    println!("camera roll 90°: {count} px, max |W_rolled − R·W| = {worst:.2e} px compensated, {worst_plain:.2} px without");
+    println!(
+        "camera roll 90°: {count} px, max |W_rolled − R·W| = {worst:.2e} px compensated, {worst_plain:.2} px without"
+    );
     assert!(count > 500, "{count}");
     assert!(worst < 1e-3, "compensated warp differs by {worst} px");
-    assert!(worst_plain > 1.0, "without compensation the field should not follow the roll ({worst_plain} px)");
+    assert!(
+        worst_plain > 1.0,
+        "without compensation the field should not follow the roll ({worst_plain} px)"
+    );
 }
 
 #[test]
@@ -170,7 +185,12 @@ fn single_camera_gradients_select_the_same_level_in_both_eyes() {
     let (tangent, bitangent) = ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]);
     let width = 64.0;
     let level = |cam: &Cam, p: V3| -> (i64, i64) {
-        let g = r::uv_gradients(cam.project_dir(p, tangent), cam.project_dir(p, bitangent), [1.0, 1.0], 0);
+        let g = r::uv_gradients(
+            cam.project_dir(p, tangent),
+            cam.project_dir(p, bitangent),
+            [1.0, 1.0],
+            0,
+        );
         let s = MetaSettings {
             width,
             ..MetaSettings::default()
@@ -201,7 +221,10 @@ fn single_camera_gradients_select_the_same_level_in_both_eyes() {
     println!("stereo: {total} wall points; left and right eye pick different levels at {per_eye_differs} with per-eye projection, 0 with the centre camera (which differs from the left eye's at {centre_vs_left})");
     assert!(total > 300);
     assert!(per_eye_differs > 0, "the oblique wall should show the per-eye shimmer");
-    assert!(centre_vs_left < per_eye_differs * 2, "the centre camera sits between the eyes");
+    assert!(
+        centre_vs_left < per_eye_differs * 2,
+        "the centre camera sits between the eyes"
+    );
 }
 
 #[test]
@@ -209,8 +232,20 @@ fn screen_space_period_stays_within_an_octave_from_1_m_to_1000_m() {
     let samples = metrics::standard_plane_set(64, 2);
     let w = 32.0;
     let meta = metrics::variant_error(&samples, &Variant::new(w, 0));
-    let smooth = metrics::variant_error(&samples, &Variant { smooth: true, ..Variant::new(w, 0) });
-    let plain = metrics::variant_error(&samples, &Variant { plain: true, ..Variant::new(w, 0) });
+    let smooth = metrics::variant_error(
+        &samples,
+        &Variant {
+            smooth: true,
+            ..Variant::new(w, 0)
+        },
+    );
+    let plain = metrics::variant_error(
+        &samples,
+        &Variant {
+            plain: true,
+            ..Variant::new(w, 0)
+        },
+    );
     // Distribution of the base tap's period (in units of w) over all samples.
     let mut hist = [0usize; 8];
     for s in &samples {
@@ -222,10 +257,23 @@ fn screen_space_period_stays_within_an_octave_from_1_m_to_1000_m() {
             hist[(((p - 1.0) * 8.0).floor() as usize).min(7)] += 1;
         }
     }
-    println!("{} plane samples (1–1000 m, elevation 90°–2°, azimuth 0°/35°)", samples.len());
-    println!("base period / w: MetaTexture [{:.4}, {:.4}], in [1, 2): {:.1}%; plain mapping [{:.3e}, {:.3e}]", meta.period_min, meta.period_max, meta.in_octave * 100.0, plain.period_min, plain.period_max);
+    println!(
+        "{} plane samples (1–1000 m, elevation 90°–2°, azimuth 0°/35°)",
+        samples.len()
+    );
+    println!(
+        "base period / w: MetaTexture [{:.4}, {:.4}], in [1, 2): {:.1}%; plain mapping [{:.3e}, {:.3e}]",
+        meta.period_min,
+        meta.period_max,
+        meta.in_octave * 100.0,
+        plain.period_min,
+        plain.period_max
+    );
     println!("histogram of base period / w in eighths of [1, 2): {hist:?}");
-    println!("scale error |log2(period/w)|: MetaTexture {:.3} (smooth eqs. 9–10 gradients {:.3}), plain {:.3}", meta.scale, smooth.scale, plain.scale);
+    println!(
+        "scale error |log2(period/w)|: MetaTexture {:.3} (smooth eqs. 9–10 gradients {:.3}), plain {:.3}",
+        meta.scale, smooth.scale, plain.scale
+    );
     assert!(meta.period_min >= 1.0 - 1e-9 && meta.period_max < 2.0, "{meta:?}");
     assert_eq!(meta.in_octave, 1.0);
     assert!(plain.period_max / plain.period_min > 1e4, "{plain:?}");
@@ -266,14 +314,19 @@ fn contour_orientation_blends_without_a_seam() {
     let m_oriented = r::metatexture_contour_grad(&tex, uv, [0.1 / 64.0, 0.0], [0.0, 1.0 / 64.0], &s, 1, 1.0);
     assert_eq!(m_default, m_oriented);
     let m_rot = r::metatexture_grad(&tex, [uv[1], -uv[0]], [0.0, 1.0 / 64.0], [-10.0 / 64.0, 0.0], &s);
-    assert_eq!(m_rot, r::metatexture_contour_grad(&tex, uv, [10.0 / 64.0, 0.0], [0.0, 1.0 / 64.0], &s, 1, 1.0));
+    assert_eq!(
+        m_rot,
+        r::metatexture_contour_grad(&tex, uv, [10.0 / 64.0, 0.0], [0.0, 1.0 / 64.0], &s, 1, 1.0)
+    );
 }
 
 #[test]
 fn live_texture_cycles_at_f_hertz_with_constant_contrast() {
     let mut state = 3u64;
     let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let texels: Vec<[f64; 4]> = (0..20000).map(|_| [next(), next(), next(), 1.0]).collect();
@@ -290,14 +343,20 @@ fn live_texture_cycles_at_f_hertz_with_constant_contrast() {
     let stats = |t: f64| {
         let v: Vec<f64> = texels.iter().map(|c| r::live_texture(*c, f, t)).collect();
         let m = v.iter().sum::<f64>() / v.len() as f64;
-        (m, (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / v.len() as f64).sqrt())
+        (
+            m,
+            (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / v.len() as f64).sqrt(),
+        )
     };
     let (m0, s0) = stats(0.0);
     println!("live texture, uniform independent rgb: t = 0: mean {m0:.4} std {s0:.4}");
     for t in [0.1, 0.25, 0.4, 0.9] {
         let (m, s) = stats(t);
         println!("  t = {t}: mean {m:.4} std {s:.4}");
-        assert!((m - 0.5).abs() < 0.01 && (s / s0 - 1.0).abs() < 0.02, "t = {t}: {m} {s}");
+        assert!(
+            (m - 0.5).abs() < 0.01 && (s / s0 - 1.0).abs() < 0.02,
+            "t = {t}: {m} {s}"
+        );
     }
 }
 
@@ -352,13 +411,24 @@ fn hard_cases_stay_finite_and_bounded() {
                 for orient in [0, 1] {
                     let st = MetaSettings { skew, contrast, ..s };
                     let m = r::metatexture_contour_grad(&tex, uv, du, dv, &st, orient, 1.0);
-                    assert!(m.iter().all(|x| x.is_finite() && (-1.5..=2.5).contains(x)), "{uv:?} {du:?} {dv:?}: {m:?}");
+                    assert!(
+                        m.iter().all(|x| x.is_finite() && (-1.5..=2.5).contains(x)),
+                        "{uv:?} {du:?} {dv:?}: {m:?}"
+                    );
                 }
             }
         }
     }
     // Every operator parameter at both ends of its declared range (others at their defaults).
-    for op in ["radial_alpha", "uv_gradients", "live_texture", "line_boil", "distance_attenuate", "warp", "metatexture_contour_grad"] {
+    for op in [
+        "radial_alpha",
+        "uv_gradients",
+        "live_texture",
+        "line_boil",
+        "distance_attenuate",
+        "warp",
+        "metatexture_contour_grad",
+    ] {
         let o = stdlib::find(op).expect("operator");
         for p in o.params.iter().filter(|p| p.range.is_some()) {
             let (lo, hi) = p.range.expect("range");
@@ -370,7 +440,14 @@ fn hard_cases_stay_finite_and_bounded() {
                         .flat_map(|m| r::uv_gradients([3.0, 0.0], [0.0, 0.0], [arg("density", 1.0); 2], *m))
                         .collect(),
                     "live_texture" => vec![r::live_texture([1.0, 0.0, 1.0, 1.0], arg("freq", 0.75), 1e6)],
-                    "line_boil" => r::line_boil([0.3, 0.3], arg("amount", 1.0), arg("rate", 12.0), arg("cycle", 4.0) as i64, 1e7).to_vec(),
+                    "line_boil" => r::line_boil(
+                        [0.3, 0.3],
+                        arg("amount", 1.0),
+                        arg("rate", 12.0),
+                        arg("cycle", 4.0) as i64,
+                        1e7,
+                    )
+                    .to_vec(),
                     "distance_attenuate" => vec![r::distance_attenuate(1.0, 1e5, arg("falloff", 1.0))],
                     "warp" => r::warp(&tex, [1e30, -1e30], arg("strength", 4.0), [0.5, 0.5]).to_vec(),
                     "metatexture_contour_grad" => {
@@ -380,7 +457,16 @@ fn hard_cases_stay_finite_and_bounded() {
                             skew: arg("skew", 0.0) as i64,
                             ..s
                         };
-                        r::metatexture_contour_grad(&tex, [0.3, 0.9], [1e-3, 2e-4], [3e-4, 2e-3], &st, 1, arg("band", 1.0)).to_vec()
+                        r::metatexture_contour_grad(
+                            &tex,
+                            [0.3, 0.9],
+                            [1e-3, 2e-4],
+                            [3e-4, 2e-3],
+                            &st,
+                            1,
+                            arg("band", 1.0),
+                        )
+                        .to_vec()
                     }
                     _ => vec![r::radial_alpha([0.0, 1.0], [1.0, 1.0])],
                 };
@@ -390,10 +476,16 @@ fn hard_cases_stay_finite_and_bounded() {
     }
     // Degenerate triangles give zero tangents: zero T_s, B_s → zero gradients, still finite.
     assert_eq!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0], 1), [0.0; 4]);
-    assert!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0], 0).iter().all(|x| x.is_finite()));
+    assert!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0], 0)
+        .iter()
+        .all(|x| x.is_finite()));
     // T_s ∥ B_s (edge-on): finite.
-    assert!(r::uv_gradients([3.0, 1.0], [6.0, 2.0], [1.0, 1.0], 0).iter().all(|x| x.is_finite()));
-    assert!(r::roll_compensate([0.5, -0.5], [f64::NAN, 0.0]).iter().all(|x| x.is_finite()));
+    assert!(r::uv_gradients([3.0, 1.0], [6.0, 2.0], [1.0, 1.0], 0)
+        .iter()
+        .all(|x| x.is_finite()));
+    assert!(r::roll_compensate([0.5, -0.5], [f64::NAN, 0.0])
+        .iter()
+        .all(|x| x.is_finite()));
     assert_eq!(r::roll_compensate([0.5, -0.5], [0.0, 0.0]), [0.5, -0.5]);
     assert!(r::radial_alpha([1.0, 1.0], [0.0, 0.0]).is_finite());
 }
@@ -404,8 +496,17 @@ fn smooth_gradient_variant_errors_are_reported() {
     // flip the sign of ∇u·∇v): report the anisotropy each leaves with skew on.
     let samples: Vec<PlaneSample> = metrics::plane_samples(5.0, 10.0, 35.0, 90.0, 64, 2);
     let exact = metrics::variant_error(&samples, &Variant::new(32.0, 4));
-    let smooth = metrics::variant_error(&samples, &Variant { smooth: true, ..Variant::new(32.0, 4) });
-    println!("skew n = 4: anisotropy with exact gradients {:.1}°, with eqs. 9–10 as printed {:.1}°", exact.anisotropy_deg, smooth.anisotropy_deg);
+    let smooth = metrics::variant_error(
+        &samples,
+        &Variant {
+            smooth: true,
+            ..Variant::new(32.0, 4)
+        },
+    );
+    println!(
+        "skew n = 4: anisotropy with exact gradients {:.1}°, with eqs. 9–10 as printed {:.1}°",
+        exact.anisotropy_deg, smooth.anisotropy_deg
+    );
     assert!(exact.anisotropy_deg.is_finite() && smooth.anisotropy_deg.is_finite());
     assert!(exact.anisotropy_deg < metrics::variant_error(&samples, &Variant::new(32.0, 0)).anisotropy_deg);
 }

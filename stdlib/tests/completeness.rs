@@ -151,7 +151,13 @@ fn specializations_keep_the_remaining_parameters_in_order() {
     for op in stdlib::all() {
         for s in op.specializations {
             let alt = stdlib::find(s.use_operator).unwrap_or_else(|| panic!("{}: unknown {}", op.name, s.use_operator));
-            assert!(alt.param(s.param).is_none(), "{} → {} keeps {}", op.name, alt.name, s.param);
+            assert!(
+                alt.param(s.param).is_none(),
+                "{} → {} keeps {}",
+                op.name,
+                alt.name,
+                s.param
+            );
             let mut rest = op.params.iter().filter(|p| p.name != s.param);
             for a in alt.params {
                 assert!(

@@ -719,10 +719,18 @@ fn compare_rel(name: &str, gpu: &[[f32; 4]], reference: &[[f64; 4]], channels: u
             assert!(g[c].is_finite(), "{name}: case {i} channel {c} is {}", g[c]);
             let e = (g[c] as f64 - r[c]).abs() / r[c].abs().max(1.0);
             max = max.max(e);
-            assert!(e <= tol, "{name}: case {i} channel {c}: gpu {} vs reference {} (relative error {e:e} > {tol:e})", g[c], r[c]);
+            assert!(
+                e <= tol,
+                "{name}: case {i} channel {c}: gpu {} vs reference {} (relative error {e:e} > {tol:e})",
+                g[c],
+                r[c]
+            );
         }
     }
-    println!("{name}: {} cases, max relative error {max:.3e} (tolerance {tol:.0e})", gpu.len());
+    println!(
+        "{name}: {} cases, max relative error {max:.3e} (tolerance {tol:.0e})",
+        gpu.len()
+    );
 }
 
 fn one(name: &str, body: &str, cases: &[[[f64; 4]; 3]], textures: &[TexIn]) -> Vec<[f32; 4]> {
@@ -735,15 +743,31 @@ fn metatexture_extension_operators_match_reference() {
     let mut g = Lcg(31);
     // radial_alpha (eqs. 12–13): random pixels and corners; focal lengths incl. 0 and huge.
     let mut cases = Vec::new();
-    for focal in [[1.0, 1.0], [2.747, 2.747], [0.8, 1.4], [0.0, 0.0], [1e-8, 3.0], [1e8, 1e8]] {
+    for focal in [
+        [1.0, 1.0],
+        [2.747, 2.747],
+        [0.8, 1.4],
+        [0.0, 0.0],
+        [1e-8, 3.0],
+        [1e8, 1e8],
+    ] {
         for uv in [[0.0, 0.0], [1.0, 1.0], [0.5, 0.5], [0.0, 1.0]] {
             cases.push([q([uv[0], uv[1], 0.0, 0.0]), q([focal[0], focal[1], 0.0, 0.0]), [0.0; 4]]);
         }
         for _ in 0..8 {
-            cases.push([q([g.next(), g.next(), 0.0, 0.0]), q([focal[0], focal[1], 0.0, 0.0]), [0.0; 4]]);
+            cases.push([
+                q([g.next(), g.next(), 0.0, 0.0]),
+                q([focal[0], focal[1], 0.0, 0.0]),
+                [0.0; 4],
+            ]);
         }
     }
-    let out = one("radial_alpha", "result = vec4<f32>(npr_radial_alpha(a.xy, b.xy), 0.0, 0.0, 0.0);", &cases, &[]);
+    let out = one(
+        "radial_alpha",
+        "result = vec4<f32>(npr_radial_alpha(a.xy, b.xy), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| [r::radial_alpha([c[0][0], c[0][1]], [c[1][0], c[1][1]]), 0.0, 0.0, 0.0])
@@ -764,18 +788,43 @@ fn metatexture_extension_operators_match_reference() {
     ] {
         for density in [[1.0, 1.0], [0.0, 0.0], [1e6, 1e6], [0.25, 4.0]] {
             for mode in [0.0, 1.0] {
-                cases.push([q([t[0], t[1], b[0], b[1]]), q([density[0], density[1], mode, 0.0]), [0.0; 4]]);
+                cases.push([
+                    q([t[0], t[1], b[0], b[1]]),
+                    q([density[0], density[1], mode, 0.0]),
+                    [0.0; 4],
+                ]);
             }
         }
     }
     for _ in 0..30 {
-        let v = [g.range(-200.0, 200.0), g.range(-200.0, 200.0), g.range(-200.0, 200.0), g.range(-200.0, 200.0)];
-        cases.push([q(v), q([g.range(0.0, 10.0), g.range(0.0, 10.0), (g.next() * 2.0).floor(), 0.0]), [0.0; 4]]);
+        let v = [
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+            g.range(-200.0, 200.0),
+        ];
+        cases.push([
+            q(v),
+            q([g.range(0.0, 10.0), g.range(0.0, 10.0), (g.next() * 2.0).floor(), 0.0]),
+            [0.0; 4],
+        ]);
     }
-    let out = one("uv_gradients", "result = npr_uv_gradients(a.xy, a.zw, b.xy, i32(b.z));", &cases, &[]);
+    let out = one(
+        "uv_gradients",
+        "result = npr_uv_gradients(a.xy, a.zw, b.xy, i32(b.z));",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
-        .map(|c| r::uv_gradients([c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]], c[1][2] as i64))
+        .map(|c| {
+            r::uv_gradients(
+                [c[0][0], c[0][1]],
+                [c[0][2], c[0][3]],
+                [c[1][0], c[1][1]],
+                c[1][2] as i64,
+            )
+        })
         .collect();
     // Relative to each case's largest component (the inverse mode divides by a determinant).
     compare_rel("uv_gradients", &out, &reference, 4, 1e-5);
@@ -788,7 +837,12 @@ fn metatexture_extension_operators_match_reference() {
             cases.push([t, q([freq, g.range(-100.0, 100.0), 0.0, 0.0]), [0.0; 4]]);
         }
     }
-    let out = one("live_texture", "result = vec4<f32>(npr_live_texture(a, b.x, b.y), 0.0, 0.0, 0.0);", &cases, &[]);
+    let out = one(
+        "live_texture",
+        "result = vec4<f32>(npr_live_texture(a, b.x, b.y), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| [r::live_texture(c[0], c[1][0], c[1][1]), 0.0, 0.0, 0.0])
@@ -804,7 +858,12 @@ fn metatexture_contour_matches_reference() {
     let img = ImageF64::new(size, size, |x, y| {
         let (u, v) = (x as f64 / size as f64, y as f64 / size as f64);
         let q = |t: f64| (t * 255.0).round() / 255.0;
-        [q(0.5 + 0.3 * (tau * u).sin()), q(0.5 + 0.3 * (tau * v).cos()), q(0.5 + 0.2 * (tau * (u + v)).sin()), 1.0]
+        [
+            q(0.5 + 0.3 * (tau * u).sin()),
+            q(0.5 + 0.3 * (tau * v).cos()),
+            q(0.5 + 0.2 * (tau * (u + v)).sin()),
+            1.0,
+        ]
     });
     let tex = [TexIn {
         image: img.clone(),
@@ -836,7 +895,13 @@ fn metatexture_contour_matches_reference() {
     }
     let body = "result = npr_metatexture_contour_grad(t0, samp_repeat, a.xy, a.zw, b.xy, b.w, 1, 2.0, i32(c.y), i32(c.z), vec4<f32>(0.5), i32(c.x), b.z);";
     let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
-    let out = run(&op_wgsl(&["metatexture_grad", "metatexture_contour_grad"]), body, &inputs, (cases.len() as u32, 1), &tex);
+    let out = run(
+        &op_wgsl(&["metatexture_grad", "metatexture_contour_grad"]),
+        body,
+        &inputs,
+        (cases.len() as u32, 1),
+        &tex,
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| {
@@ -848,7 +913,15 @@ fn metatexture_contour_matches_reference() {
                 contrast: c[2][2] as i64,
                 mean: [0.5; 4],
             };
-            r::metatexture_contour_grad(&img, [c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]], &s, c[2][0] as i64, c[1][2])
+            r::metatexture_contour_grad(
+                &img,
+                [c[0][0], c[0][1]],
+                [c[0][2], c[0][3]],
+                [c[1][0], c[1][1]],
+                &s,
+                c[2][0] as i64,
+                c[1][2],
+            )
         })
         .collect();
     // As for metatexture_grad (1.2e-2), times the orientation blend's 1/√k(w) ≤ √2.
@@ -864,14 +937,29 @@ fn edge_breakup_operators_match_reference() {
     let mut g = Lcg(51);
     // line_boil (§4.2): times at step centres (the offset is a step function of time).
     let mut cases = Vec::new();
-    for (amount, rate, cycle) in [(1.0, 12.0, 4), (0.0, 12.0, 4), (0.3, 0.0, 4), (1.0, 120.0, 1024), (0.5, 6.0, 1)] {
+    for (amount, rate, cycle) in [
+        (1.0, 12.0, 4),
+        (0.0, 12.0, 4),
+        (0.3, 0.0, 4),
+        (1.0, 120.0, 1024),
+        (0.5, 6.0, 1),
+    ] {
         for _ in 0..10 {
             let k = (g.range(-50.0, 500.0)).floor();
             let time = if rate > 0.0 { (k + 0.5) / rate } else { k };
-            cases.push([q([g.next(), g.next(), amount, rate]), q([cycle as f64, time, 0.0, 0.0]), [0.0; 4]]);
+            cases.push([
+                q([g.next(), g.next(), amount, rate]),
+                q([cycle as f64, time, 0.0, 0.0]),
+                [0.0; 4],
+            ]);
         }
     }
-    let out = one("line_boil", "result = vec4<f32>(npr_line_boil(a.xy, a.z, a.w, i32(b.x), b.y), 0.0, 0.0);", &cases, &[]);
+    let out = one(
+        "line_boil",
+        "result = vec4<f32>(npr_line_boil(a.xy, a.z, a.w, i32(b.x), b.y), 0.0, 0.0);",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| {
@@ -884,12 +972,28 @@ fn edge_breakup_operators_match_reference() {
 
     // roll_compensate (§4.3): ordinary, zero, tiny, huge ∇u.
     let mut cases = Vec::new();
-    for grad in [[0.01, 0.0], [0.0, -3.0], [1e-35, 0.0], [0.0, 0.0], [1e35, 1e35], [-0.2, 0.7]] {
+    for grad in [
+        [0.01, 0.0],
+        [0.0, -3.0],
+        [1e-35, 0.0],
+        [0.0, 0.0],
+        [1e35, 1e35],
+        [-0.2, 0.7],
+    ] {
         for _ in 0..6 {
-            cases.push([q([g.range(-1.0, 1.0), g.range(-1.0, 1.0), grad[0], grad[1]]), [0.0; 4], [0.0; 4]]);
+            cases.push([
+                q([g.range(-1.0, 1.0), g.range(-1.0, 1.0), grad[0], grad[1]]),
+                [0.0; 4],
+                [0.0; 4],
+            ]);
         }
     }
-    let out = one("roll_compensate", "result = vec4<f32>(npr_roll_compensate(a.xy, a.zw), 0.0, 0.0);", &cases, &[]);
+    let out = one(
+        "roll_compensate",
+        "result = vec4<f32>(npr_roll_compensate(a.xy, a.zw), 0.0, 0.0);",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| {
@@ -908,7 +1012,12 @@ fn edge_breakup_operators_match_reference() {
             }
         }
     }
-    let out = one("distance_attenuate", "result = vec4<f32>(npr_distance_attenuate(a.x, a.y, a.z), 0.0, 0.0, 0.0);", &cases, &[]);
+    let out = one(
+        "distance_attenuate",
+        "result = vec4<f32>(npr_distance_attenuate(a.x, a.y, a.z), 0.0, 0.0, 0.0);",
+        &cases,
+        &[],
+    );
     let reference: Vec<[f64; 4]> = cases
         .iter()
         .map(|c| [r::distance_attenuate(c[0][0], c[0][1], c[0][2]), 0.0, 0.0, 0.0])
@@ -929,9 +1038,20 @@ fn edge_breakup_operators_match_reference() {
         for _ in 0..20 {
             let (x, y) = ((g.next() * 24.0).floor(), (g.next() * 16.0).floor());
             let uv = [(x + 0.5) / 24.0, (y + 0.5) / 16.0];
-            let n = [(g.range(-40.0, 40.0)).floor() + 0.25, (g.range(-40.0, 40.0)).floor() - 0.25];
-            let offset = if strength > 0.0 { [n[0] / strength, n[1] / strength] } else { n };
-            cases.push([q([offset[0], offset[1], strength, 0.0]), q([uv[0], uv[1], 0.0, 0.0]), [0.0; 4]]);
+            let n = [
+                (g.range(-40.0, 40.0)).floor() + 0.25,
+                (g.range(-40.0, 40.0)).floor() - 0.25,
+            ];
+            let offset = if strength > 0.0 {
+                [n[0] / strength, n[1] / strength]
+            } else {
+                n
+            };
+            cases.push([
+                q([offset[0], offset[1], strength, 0.0]),
+                q([uv[0], uv[1], 0.0, 0.0]),
+                [0.0; 4],
+            ]);
         }
     }
     let out = one("warp", "result = npr_warp(t0, a.xy, a.z, b.xy);", &cases, &tex);

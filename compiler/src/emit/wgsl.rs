@@ -493,8 +493,10 @@ impl Emitter<'_> {
             }
         }
         w.push_str("}\n\n// Unit vector, or zero for a zero input (never NaN).\nfn npr_unit(v: vec3<f32>) -> vec3<f32> {\n    return v * inverseSqrt(max(dot(v, v), 1e-30));\n}\n\n");
-        let screen_frame: Vec<&(Builtin, u32, &str)> =
-            SCREEN_FRAME_VARYINGS.iter().filter(|(b, _, _)| builtins.contains(b)).collect();
+        let screen_frame: Vec<&(Builtin, u32, &str)> = SCREEN_FRAME_VARYINGS
+            .iter()
+            .filter(|(b, _, _)| builtins.contains(b))
+            .collect();
         if !screen_frame.is_empty() {
             w.push_str(PROJECT_DIR_HELPER);
         }
@@ -534,7 +536,10 @@ impl Emitter<'_> {
                 "    // Age of Sail §3.2 (eqs. 9-10): screen-space projections of the unit tangent and bitangent.\n    let frame_size = frame.resolution * {};\n    let t_world = npr_unit((object.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz);",
                 fmt_f32(pass.scale)
             );
-            if screen_frame.iter().any(|(b, _, _)| matches!(b, Builtin::BitangentScreen | Builtin::BitangentScreenCenter)) {
+            if screen_frame
+                .iter()
+                .any(|(b, _, _)| matches!(b, Builtin::BitangentScreen | Builtin::BitangentScreenCenter))
+            {
                 // Mesh convention: w · cross(n, t) points along -v, so +v is -w · cross(n, t).
                 w.push_str("    let b_world = npr_unit(-v.tangent.w * cross(npr_unit(out.normal_world), t_world));\n");
             }
@@ -545,7 +550,10 @@ impl Emitter<'_> {
                     Builtin::TangentScreenCenter => ("t_world", "frame.center_view_proj"),
                     _ => ("b_world", "frame.center_view_proj"),
                 };
-                let _ = writeln!(w, "    out.{field} = npr_project_dir({matrix}, world, {dir}, frame_size);");
+                let _ = writeln!(
+                    w,
+                    "    out.{field} = npr_project_dir({matrix}, world, {dir}, frame_size);"
+                );
             }
         }
         w.push_str("    out.clip = clip;\n    // Screen position, interpolated linearly in screen space (exact for any triangle).\n    out.screen_uv = clip.xy / clip.w * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5);\n    return out;\n}\n\n");

@@ -61,7 +61,11 @@ pub fn metatexture_contour_grad(
         return metatexture_grad(tex, uv, du, dv, s);
     }
     let w = contour_weight(du, dv, band, s.beta);
-    let m0 = if w < 1.0 { metatexture_grad(tex, uv, du, dv, s) } else { [0.0; 4] };
+    let m0 = if w < 1.0 {
+        metatexture_grad(tex, uv, du, dv, s)
+    } else {
+        [0.0; 4]
+    };
     let m1 = if w > 0.0 {
         metatexture_grad(tex, [uv[1], -uv[0]], dv, [-du[0], -du[1]], s)
     } else {
@@ -105,7 +109,8 @@ pub fn line_boil(uv: [f64; 2], amount: f64, rate: f64, cycle: i64, time: f64) ->
 /// §4.3: `offset` expressed in the frame (ê, ê⊥) of the screen-space ∇u.
 pub fn roll_compensate(offset: [f64; 2], grad_u: [f64; 2]) -> [f64; 2] {
     let l = dot2(grad_u, grad_u).sqrt();
-    if !(l > 1e-30) || l > 1e30 {
+    // NaN fails this range check too (no frame to rotate into).
+    if !(1e-30..=1e30).contains(&l) || l == 1e-30 {
         return offset;
     }
     let e = [grad_u[0] / l, grad_u[1] / l];
