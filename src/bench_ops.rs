@@ -5,7 +5,8 @@
 //! Cost: one style per variant, the same render pass over the scene with
 //! only the texture read changed, so the ratio isolates the operator. Frames
 //! are timed round robin over all variants (render + GPU wait each), so a
-//! change of machine load hits every variant alike; the median is reported.
+//! change of machine load hits every variant alike; the fastest frame is
+//! reported (the least disturbed by other work on a shared CPU).
 //!
 //! Error, on the analytic ground plane of `stdlib::metrics` (1–1000 m,
 //! elevations 90°–2°, azimuths 0°/35°, w = 32 px): scale = mean
