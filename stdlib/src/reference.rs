@@ -378,9 +378,9 @@ pub fn metatexture_grad(tex: &ImageF64, uv: [f64; 2], du: [f64; 2], dv: [f64; 2]
         let (m0, b0) = set(psi0);
         let (m1, b1) = set(psi1);
         let m: [f64; 4] = std::array::from_fn(|i| (1.0 - bw) * m0[i] + bw * m1[i]);
-        let bu = b0[0] + (b1[0] - b0[0]) * bw;
-        let bv = b0[1] + (b1[1] - b0[1]) * bw;
-        (m, meta_k(bu) * meta_k(bv) * meta_k(bw))
+        // Eq. 24 as the sum of the eight squared weights (each set its own B_u, B_v).
+        let c = (1.0 - bw).powi(2) * meta_k(b0[0]) * meta_k(b0[1]) + bw * bw * meta_k(b1[0]) * meta_k(b1[1]);
+        (m, c)
     };
     match s.contrast {
         1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),
