@@ -510,3 +510,26 @@ fn smooth_gradient_variant_errors_are_reported() {
     assert!(exact.anisotropy_deg.is_finite() && smooth.anisotropy_deg.is_finite());
     assert!(exact.anisotropy_deg < metrics::variant_error(&samples, &Variant::new(32.0, 0)).anisotropy_deg);
 }
+
+#[test]
+fn variance_compensation_restores_contrast_over_the_plane_set() {
+    // White noise (uncorrelated taps), every blend weight the plane set produces.
+    let samples = metrics::standard_plane_set(64, 4);
+    let tex = metrics::noise_texture(64, 5);
+    for skew in [0, 4] {
+        let ratio = |contrast| {
+            metrics::contrast_ratio(
+                &tex,
+                &samples,
+                &Variant {
+                    contrast,
+                    ..Variant::new(32.0, skew)
+                },
+            )
+        };
+        let (none, printed, variance) = (ratio(0), ratio(1), ratio(2));
+        println!("skew {skew}: σ_M/σ_T none {none:.3}, printed × c {printed:.3}, ÷ √c {variance:.3}");
+        assert!((variance - 1.0).abs() < 0.03, "skew {skew}: {variance}");
+        assert!(printed < none && none < 0.9, "skew {skew}: {printed} {none}");
+    }
+}
