@@ -488,6 +488,7 @@ fn hard_cases_stay_finite_and_bounded() {
         .all(|x| x.is_finite()));
     assert_eq!(r::roll_compensate([0.5, -0.5], [0.0, 0.0]), [0.5, -0.5]);
     assert!(r::radial_alpha([1.0, 1.0], [0.0, 0.0]).is_finite());
+    assert_eq!(r::radial_alpha([f64::NAN, 0.5], [1.0, 1.0]), 1.0);
 }
 
 #[test]

@@ -13,7 +13,13 @@ fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
 pub fn radial_alpha(screen_uv: [f64; 2], focal: [f64; 2]) -> f64 {
     let s = [screen_uv[0] * 2.0 - 1.0, 1.0 - screen_uv[1] * 2.0];
     let q = [s[0] / focal[0].abs().max(1e-6), s[1] / focal[1].abs().max(1e-6)];
-    (dot2(q, q) + 1.0).min(1e12)
+    let a = dot2(q, q) + 1.0;
+    // NaN (a screen position from a triangle clipped at the eye plane) gives 1.
+    if a >= 1.0 {
+        a.min(1e12)
+    } else {
+        1.0
+    }
 }
 
 /// §3.2: (∇u, ∇v) packed (∇u.x, ∇u.y, ∇v.x, ∇v.y) from T_s, B_s and the
