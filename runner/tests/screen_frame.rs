@@ -258,7 +258,7 @@ fn warp_field_rolls_with_a_rolled_camera_on_the_gpu() {
                 // The outermost ring is reported, not asserted: in one corner the plane's
                 // triangles cross the eye plane (vertices behind the camera), and the
                 // emitter's `screen_uv` varying (clip.xy / clip.w per vertex, interpolated
-                // linearly) is NaN there after clipping, so radial_alpha is too. A known
+                // linearly) is NaN there after clipping, so radial_alpha falls back to 1. A known
                 // emitter issue (screen_uv should come from @builtin(position) in render
                 // passes), not a property of the warp field.
                 border = border.max(e);
