@@ -468,34 +468,6 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
     }
 }
 
-/// One style per operator variant: the same render pass over the scene with
-/// only the texture read changed, so the ratio isolates the operator.
-const OPS_STYLE: &str = "style \"bench\"\ntexture grain = noise(size: 128, octaves: 4, seed: 3, kind: gradient) { wrap: repeat, mips: on }\npass p: render(scene) {\n  out c: rgba8unorm = READ\n}\noutput p.c\n";
-
-const OPS_VARIANTS: &[(&str, &str)] = &[
-    ("plain texture sample (baseline)", "sample(grain, uv * 8.0)"),
-    (
-        "metatexture 4-tap (skew 0)",
-        "metatexture(grain, uv * 8.0, width: 48px, skew: 0)",
-    ),
-    (
-        "metatexture 4-tap + contrast",
-        "metatexture(grain, uv * 8.0, width: 48px, skew: 0, contrast: variance)",
-    ),
-    (
-        "metatexture 8-tap, skew n = 1",
-        "metatexture(grain, uv * 8.0, width: 48px, skew: 1)",
-    ),
-    (
-        "metatexture 8-tap, skew n = 2",
-        "metatexture(grain, uv * 8.0, width: 48px, skew: 2)",
-    ),
-    (
-        "metatexture 8-tap, skew n = 4",
-        "metatexture(grain, uv * 8.0, width: 48px, skew: 4)",
-    ),
-];
-
 fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
     let scene = match runner::scene::load_scene(scene_path, &mut sources) {
@@ -512,11 +484,12 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
             return EXIT_USER;
         }
     };
+    let variants = crate::bench_ops::variants();
     let mut programs = Vec::new();
-    for (name, read) in OPS_VARIANTS {
-        let text = OPS_STYLE.replace("READ", read);
-        match compiler::compile_source(name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push((*name, StyleProgram::from_compiled(&c))),
+    for v in &variants {
+        let text = crate::bench_ops::style(v);
+        match compiler::compile_source(v.name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
+            Ok(c) => programs.push((v.name, StyleProgram::from_compiled(&c))),
             Err(CompileError::User(d)) => {
                 printer.diagnostics(&d, &sources);
                 return EXIT_INTERNAL;
@@ -527,19 +500,15 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
             }
         }
     }
-    // Interleave rounds so load changes hit every variant alike; keep each variant's best median.
-    let mut best = vec![f64::INFINITY; programs.len()];
-    for _ in 0..3 {
-        for (i, (_, p)) in programs.iter().enumerate() {
-            match runner::bench::frame_time(&gpu, p, &scene, size, frames) {
-                Ok(t) => best[i] = best[i].min(t),
-                Err(e) => {
-                    printer.diagnostics(&e.diagnostics(), &sources);
-                    return EXIT_INTERNAL;
-                }
-            }
+    // Frame-level round robin over all variants, so load changes hit every variant alike.
+    let progs: Vec<&StyleProgram> = programs.iter().map(|(_, p)| p).collect();
+    let best = match runner::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return EXIT_INTERNAL;
         }
-    }
+    };
     println!(
         "device: {}, {}x{}, scene {}",
         gpu.describe(),
@@ -547,10 +516,21 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
         size.1,
         scene_path.display()
     );
-    println!("| variant | ms/frame | cost vs plain sample |");
-    println!("|---|---:|---:|");
+    println!("| variant | ms/frame | cost vs plain sample | scale error | anisotropy | contrast error |");
+    println!("|---|---:|---:|---:|---:|---:|");
     for (i, (name, _)) in programs.iter().enumerate() {
-        println!("| {name} | {:.3} | {:.2}x |", best[i] * 1e3, best[i] / best[0]);
+        let errors = match &variants[i].model {
+            Some(m) => {
+                let (scale, aniso, contrast) = crate::bench_ops::errors(m);
+                format!("{scale:.3} | {aniso:.1}° | {contrast:.3}")
+            }
+            None => "— | — | —".to_string(),
+        };
+        println!(
+            "| {name} | {:.3} | {:.2}x | {errors} |",
+            best[i] * 1e3,
+            best[i] / best[0]
+        );
     }
     EXIT_OK
 }

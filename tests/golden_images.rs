@@ -181,3 +181,21 @@ fn ocean_on_the_ocean_scene() {
     // MetaTexture dither, bathic and sky maps, foam and live texture.
     golden("ocean", "examples/ocean.npr", "examples/scenes/ocean.toml");
 }
+
+#[test]
+fn edge_breakup_on_spot() {
+    golden(
+        "edge_breakup_spot",
+        "examples/edge_breakup.npr",
+        "examples/scenes/spot.toml",
+    );
+}
+
+#[test]
+fn live_contour_on_spheres() {
+    golden(
+        "live_contour_spheres",
+        "examples/live_contour.npr",
+        "examples/scenes/spheres.toml",
+    );
+}

@@ -114,6 +114,50 @@ pub fn frame_time(
     Ok(median(times))
 }
 
+/// Seconds per frame (render + GPU wait) of each program: frames interleaved
+/// round robin after one warm-up frame each; the fastest frame is reported,
+/// the figure least disturbed by other work on a shared CPU (lavapipe).
+pub fn time_interleaved(
+    gpu: &Gpu,
+    programs: &[&StyleProgram],
+    scene: &crate::scene::Scene,
+    (width, height): (u32, u32),
+    frames: u32,
+) -> Result<Vec<f64>, RunError> {
+    let spec = FrameSpec {
+        width,
+        height,
+        time_s: 0.0,
+        frame: 0,
+        eye: 0,
+    };
+    let wait = || {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+    };
+    let mut renderers = Vec::new();
+    for p in programs {
+        let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+        r.render(scene, &spec)?;
+        wait()?;
+        renderers.push(r);
+    }
+    let mut times = vec![Vec::new(); renderers.len()];
+    for _ in 0..frames.max(1) {
+        for (i, r) in renderers.iter_mut().enumerate() {
+            let t = Instant::now();
+            r.render(scene, &spec)?;
+            wait()?;
+            times[i].push(t.elapsed().as_secs_f64());
+        }
+    }
+    Ok(times
+        .into_iter()
+        .map(|v| v.into_iter().fold(f64::INFINITY, f64::min))
+        .collect())
+}
+
 /// GPU time of each pass of a style, from timestamp queries.
 #[derive(Debug, Clone)]
 pub struct PassTime {

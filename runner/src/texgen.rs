@@ -238,6 +238,23 @@ pub fn sky_map(width: u32, height: u32, seed: u32) -> Rgba8Image {
     Rgba8Image { width, height, pixels }
 }
 
+/// Write a generated texture as a 16-bit RGBA PNG (atomically): 16 bits keep
+/// warp vectors smooth where 8 bits would quantize them visibly.
+pub fn write_png16(img: &NoiseImage, path: &std::path::Path) -> std::io::Result<()> {
+    let data: Vec<u16> = img
+        .pixels
+        .iter()
+        .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 65535.0).round() as u16))
+        .collect();
+    let buffer = image::ImageBuffer::<image::Rgba<u16>, Vec<u16>>::from_raw(img.size, img.size, data)
+        .ok_or_else(|| std::io::Error::other("texture size does not match its pixels"))?;
+    let mut bytes = Vec::new();
+    buffer
+        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .map_err(std::io::Error::other)?;
+    crate::output::write_atomic(path, &bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,21 +313,4 @@ mod tests {
         let same = img.pixels.iter().filter(|p| (p[0] - p[1]).abs() < 1e-6).count();
         assert!(same < img.pixels.len() / 10);
     }
-}
-
-/// Write a generated texture as a 16-bit RGBA PNG (atomically): 16 bits keep
-/// warp vectors smooth where 8 bits would quantize them visibly.
-pub fn write_png16(img: &NoiseImage, path: &std::path::Path) -> std::io::Result<()> {
-    let data: Vec<u16> = img
-        .pixels
-        .iter()
-        .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 65535.0).round() as u16))
-        .collect();
-    let buffer = image::ImageBuffer::<image::Rgba<u16>, Vec<u16>>::from_raw(img.size, img.size, data)
-        .ok_or_else(|| std::io::Error::other("texture size does not match its pixels"))?;
-    let mut bytes = Vec::new();
-    buffer
-        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
-        .map_err(std::io::Error::other)?;
-    crate::output::write_atomic(path, &bytes)
 }

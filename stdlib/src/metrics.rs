@@ -4,8 +4,10 @@
 //! distances of 1 m to 1000 m and elevations down to grazing angles. For
 //! every pixel that sees the plane, the exact screen-space UV gradients come
 //! from the ray–plane intersection, and the smooth per-vertex approximation
-//! of eqs. 9–10 from the exact tangent-frame projections T_s, B_s (on a plane
-//! they are exact; the approximation ∇u ∥ T_s is not). A variant picks its
+//! of eqs. 9–10 as printed from the exact tangent-frame projections T_s, B_s
+//! (on a plane T_s, B_s are exact; the approximation ∇u ∥ T_s is not; the
+//! `uv_gradients` default, the inverse of [T_s B_s], equals the exact gradients
+//! here). A variant picks its
 //! texture scales (eqs. 1–7, with eq. 11's α when radial compensation is on)
 //! and skew shear (eqs. 14–21) from its gradients; the errors are measured
 //! with the exact ones:
@@ -137,7 +139,8 @@ pub struct Variant {
     pub skew_sign: f64,
     /// Ordinary texture mapping at scale 1 (period w at |∇u| = 1/w).
     pub plain: bool,
-    /// Choose levels from the smooth gradients of eqs. 9–10 instead of the exact ones.
+    /// Choose levels and skew from the gradients of eqs. 9–10 as printed
+    /// (`uv_gradients(mode: paper)`) instead of the exact ones.
     pub smooth: bool,
     /// Radial-angle compensation (eq. 11): target width α·w.
     pub radial: bool,
@@ -282,7 +285,7 @@ fn std_dev(values: &[f64]) -> f64 {
 }
 
 /// σ_M / σ_T of variant `v` (red channel), measured with the f64 reference
-/// MetaTexture on `tex` at pseudo-random uvs, one per gradient sample; σ_T is
+/// MetaTexture on `tex` at pseudo-random uvs in [0, 10⁶)², one per gradient sample; σ_T is
 /// the example as MetaTexture reads it (bilinear, one level, no blend).
 pub fn contrast_ratio(tex: &ImageF64, samples: &[PlaneSample], v: &Variant) -> f64 {
     let mean = tex.pixels.iter().map(|p| p[0]).sum::<f64>() / tex.pixels.len().max(1) as f64;
@@ -304,7 +307,8 @@ pub fn contrast_ratio(tex: &ImageF64, samples: &[PlaneSample], v: &Variant) -> f
     let mut m = Vec::with_capacity(samples.len());
     let mut t = Vec::with_capacity(samples.len());
     for s in samples {
-        let uv = [next(), next()];
+        // Spread over many periods even at the smallest scales (k ≥ 2^-15 on the plane set).
+        let uv = [next() * 1e6, next() * 1e6];
         let (du, dv) = if v.smooth { s.smooth } else { s.exact };
         let width = if v.radial { v.width * s.alpha } else { v.width };
         m.push(metatexture_grad(tex, uv, du, dv, &MetaSettings { width, ..settings })[0]);
@@ -370,12 +374,24 @@ mod tests {
             },
         )
         .anisotropy_deg;
-        println!("anisotropy: none {none:.1}°, printed sign {printed:.1}°, negated {chosen:.1}°");
+        // With eqs. 9–10 as printed (∇u ∥ T_s, ∇v ∥ B_s), ∇u·∇v has the opposite
+        // sign of the true one, so there the printed σ is the right one.
+        let paper_printed = variant_error(
+            &samples,
+            &Variant {
+                skew_sign: 1.0,
+                smooth: true,
+                ..Variant::new(32.0, 4)
+            },
+        )
+        .anisotropy_deg;
+        println!("anisotropy: none {none:.1}°, printed sign {printed:.1}°, negated {chosen:.1}°; eqs. 9–10 gradients with the printed sign {paper_printed:.1}°");
         assert!(chosen < 0.8 * none, "{chosen} vs {none}");
         assert!(
             printed > none,
             "the printed sign should skew further: {printed} vs {none}"
         );
+        assert!(paper_printed < 0.8 * none, "{paper_printed} vs {none}");
     }
 
     #[test]

@@ -470,7 +470,7 @@ pub static ALL: &[Operator] = &[
     },
     Operator {
         name: "uv_gradients",
-        doc: "Smooth screen-space UV gradients from the per-vertex screen-space tangent frame: (∇u, ∇v) packed as vec4 (xy = ∇u, zw = ∇v, UV per px) for `metatexture_grad`; continuous across triangles, unlike derivatives.",
+        doc: "Smooth screen-space UV gradients from the per-vertex screen-space tangent frame: (∇u, ∇v) packed as vec4 (xy = ∇u, zw = ∇v, UV per px) for `metatexture_grad`; continuous across triangles, unlike derivatives. Default: the exact inverse of the tangent frame; `mode: paper` is eqs. 9–10 as printed.",
         reference: "Harvill et al., Age of Sail (journal 2019) §3.2, eqs. 9–10",
         params: &[
             Param {
@@ -497,6 +497,14 @@ pub static ALL: &[Operator] = &[
                 range: Some((0.0, 1e6)),
                 doc: "world-space UV density (|∇_w u|, |∇_w v|) in UV per metre, constant per mesh (e.g. an `object param`)",
             },
+            Param {
+                name: "mode",
+                ty: Ty::Enum(&["inverse", "paper"]),
+                unit: Unit::None,
+                default: Default::Variant("inverse"),
+                range: None,
+                doc: "inverse: rows of [T_s B_s]⁻¹ (true gradients, right for skew compensation); paper: eqs. 9–10 as printed (∇u ∥ T_s)",
+            },
         ],
         returns: Ty::Vec4,
         stage: Stage::Any,
@@ -516,6 +524,18 @@ pub static ALL: &[Operator] = &[
         depends: &["metatexture_grad"],
         snippets: &["meta"],
         specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture_grad" }],
+    },
+    Operator {
+        name: "metatexture_contour",
+        doc: "Contour-oriented MetaTexture (see `metatexture_contour_grad`) with UV gradients from fragment derivatives; `orient: off` compiles to `metatexture`.",
+        reference: "Harvill et al., Age of Sail (journal 2019) §3.5 (Fig. 8), on eqs. 1–8, 14–25",
+        params: METATEXTURE_CONTOUR_PARAMS,
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/metatexture_contour.wgsl"),
+        depends: &["metatexture_contour_grad"],
+        snippets: &["meta"],
+        specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture" }],
     },
     Operator {
         name: "live_texture",
@@ -880,6 +900,11 @@ const METATEXTURE_CONTOUR_GRAD_PARAMS: &[Param] = &{
             doc: "width in octaves of |∇u|/|∇v| over which the two orientations blend",
         },
     ]
+};
+
+const METATEXTURE_CONTOUR_PARAMS: &[Param] = &{
+    let g = METATEXTURE_CONTOUR_GRAD_PARAMS;
+    [g[0], g[1], g[4], g[5], g[6], g[7], g[8], g[9], g[10], g[11]]
 };
 
 const METATEXTURE4_PARAMS: &[Param] = &{

@@ -230,6 +230,7 @@ pub const REFERENCED: &[&str] = &[
     "radial_alpha",
     "uv_gradients",
     "metatexture_contour_grad",
+    "metatexture_contour",
     "live_texture",
     "line_boil",
     "roll_compensate",
@@ -297,7 +298,11 @@ pub const META_MIN_LOG2_SCALE: f64 = -40.0;
 /// `skew_sign_that_reduces_anisotropy`): on a plane seen at 10° elevation
 /// from 35° round (pixels with |cos∠(∇u, ∇v)| > 0.2), the mean
 /// |axis angle − 90°| is 41.1° without skew compensation, 51.5° with the
-/// printed sign and 26.2° with this one (n = 4).
+/// printed sign and 26.2° with this one (n = 4). The printed sign is right
+/// for the gradients of eqs. 9–10 as printed (∇u ∥ T_s, ∇v ∥ B_s), whose dot
+/// product has the opposite sign of the true gradients' (26.2° there too):
+/// the operators take true gradients (derivatives, or `uv_gradients`'
+/// default inverse mode), hence −1.
 pub const SKEW_SIGN: f64 = -1.0;
 
 /// Eqs. 14–15 (with [`SKEW_SIGN`] as `sign`): the skew factor σ.
@@ -377,9 +382,9 @@ pub fn metatexture_grad(tex: &ImageF64, uv: [f64; 2], du: [f64; 2], dv: [f64; 2]
         let (m0, b0) = set(psi0);
         let (m1, b1) = set(psi1);
         let m: [f64; 4] = std::array::from_fn(|i| (1.0 - bw) * m0[i] + bw * m1[i]);
-        let bu = b0[0] + (b1[0] - b0[0]) * bw;
-        let bv = b0[1] + (b1[1] - b0[1]) * bw;
-        (m, meta_k(bu) * meta_k(bv) * meta_k(bw))
+        // Eq. 24 as the sum of the eight squared weights (each set its own B_u, B_v).
+        let c = (1.0 - bw).powi(2) * meta_k(b0[0]) * meta_k(b0[1]) + bw * bw * meta_k(b1[0]) * meta_k(b1[1]);
+        (m, c)
     };
     match s.contrast {
         1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),

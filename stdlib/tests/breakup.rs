@@ -185,7 +185,12 @@ fn single_camera_gradients_select_the_same_level_in_both_eyes() {
     let (tangent, bitangent) = ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]);
     let width = 64.0;
     let level = |cam: &Cam, p: V3| -> (i64, i64) {
-        let g = r::uv_gradients(cam.project_dir(p, tangent), cam.project_dir(p, bitangent), [1.0, 1.0]);
+        let g = r::uv_gradients(
+            cam.project_dir(p, tangent),
+            cam.project_dir(p, bitangent),
+            [1.0, 1.0],
+            0,
+        );
         let s = MetaSettings {
             width,
             ..MetaSettings::default()
@@ -430,7 +435,10 @@ fn hard_cases_stay_finite_and_bounded() {
             for x in [lo, hi] {
                 let arg = |name: &str, default: f64| if name == p.name { x } else { default };
                 let v: Vec<f64> = match op {
-                    "uv_gradients" => r::uv_gradients([3.0, 0.0], [0.0, 0.0], [arg("density", 1.0); 2]).to_vec(),
+                    "uv_gradients" => [0, 1]
+                        .iter()
+                        .flat_map(|m| r::uv_gradients([3.0, 0.0], [0.0, 0.0], [arg("density", 1.0); 2], *m))
+                        .collect(),
                     "live_texture" => vec![r::live_texture([1.0, 0.0, 1.0, 1.0], arg("freq", 0.75), 1e6)],
                     "line_boil" => r::line_boil(
                         [0.3, 0.3],
@@ -467,18 +475,26 @@ fn hard_cases_stay_finite_and_bounded() {
         }
     }
     // Degenerate triangles give zero tangents: zero T_s, B_s → zero gradients, still finite.
-    assert_eq!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0]), [0.0; 4]);
+    assert_eq!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0], 1), [0.0; 4]);
+    assert!(r::uv_gradients([0.0, 0.0], [0.0, 0.0], [1.0, 1.0], 0)
+        .iter()
+        .all(|x| x.is_finite()));
+    // T_s ∥ B_s (edge-on): finite.
+    assert!(r::uv_gradients([3.0, 1.0], [6.0, 2.0], [1.0, 1.0], 0)
+        .iter()
+        .all(|x| x.is_finite()));
     assert!(r::roll_compensate([0.5, -0.5], [f64::NAN, 0.0])
         .iter()
         .all(|x| x.is_finite()));
     assert_eq!(r::roll_compensate([0.5, -0.5], [0.0, 0.0]), [0.5, -0.5]);
     assert!(r::radial_alpha([1.0, 1.0], [0.0, 0.0]).is_finite());
+    assert_eq!(r::radial_alpha([f64::NAN, 0.5], [1.0, 1.0]), 1.0);
 }
 
 #[test]
 fn smooth_gradient_variant_errors_are_reported() {
-    // On a skewed view eqs. 9–10 differ from exact gradients: report the
-    // anisotropy each choice leaves, with skew compensation on.
+    // On a skewed view eqs. 9–10 as printed differ from exact gradients (and
+    // flip the sign of ∇u·∇v): report the anisotropy each leaves with skew on.
     let samples: Vec<PlaneSample> = metrics::plane_samples(5.0, 10.0, 35.0, 90.0, 64, 2);
     let exact = metrics::variant_error(&samples, &Variant::new(32.0, 4));
     let smooth = metrics::variant_error(
@@ -489,9 +505,32 @@ fn smooth_gradient_variant_errors_are_reported() {
         },
     );
     println!(
-        "skew n = 4: anisotropy with exact gradients {:.1}°, with eqs. 9–10 {:.1}°",
+        "skew n = 4: anisotropy with exact gradients {:.1}°, with eqs. 9–10 as printed {:.1}°",
         exact.anisotropy_deg, smooth.anisotropy_deg
     );
     assert!(exact.anisotropy_deg.is_finite() && smooth.anisotropy_deg.is_finite());
     assert!(exact.anisotropy_deg < metrics::variant_error(&samples, &Variant::new(32.0, 0)).anisotropy_deg);
+}
+
+#[test]
+fn variance_compensation_restores_contrast_over_the_plane_set() {
+    // White noise (uncorrelated taps), every blend weight the plane set produces.
+    let samples = metrics::standard_plane_set(64, 4);
+    let tex = metrics::noise_texture(64, 5);
+    for skew in [0, 4] {
+        let ratio = |contrast| {
+            metrics::contrast_ratio(
+                &tex,
+                &samples,
+                &Variant {
+                    contrast,
+                    ..Variant::new(32.0, skew)
+                },
+            )
+        };
+        let (none, printed, variance) = (ratio(0), ratio(1), ratio(2));
+        println!("skew {skew}: σ_M/σ_T none {none:.3}, printed × c {printed:.3}, ÷ √c {variance:.3}");
+        assert!((variance - 1.0).abs() < 0.03, "skew {skew}: {variance}");
+        assert!(printed < none && none < 0.9, "skew {skew}: {printed} {none}");
+    }
 }

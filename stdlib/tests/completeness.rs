@@ -10,12 +10,22 @@ fn wgsl_with_deps(op: &stdlib::Operator) -> String {
         src.push_str(stdlib::snippets::find(s).unwrap_or_else(|| panic!("{}: unknown snippet {s}", op.name)));
         src.push('\n');
     }
-    for d in op.depends {
-        src.push_str(
-            stdlib::find(d)
-                .unwrap_or_else(|| panic!("{}: unknown dependency {d}", op.name))
-                .wgsl,
-        );
+    // Dependencies are transitive, as the emitter resolves them.
+    let mut deps: Vec<&str> = Vec::new();
+    let mut todo: Vec<&str> = op.depends.to_vec();
+    while let Some(d) = todo.pop() {
+        if deps.contains(&d) || d == op.name {
+            continue;
+        }
+        deps.push(d);
+        let dep = stdlib::find(d).unwrap_or_else(|| panic!("{}: unknown dependency {d}", op.name));
+        todo.extend(dep.depends);
+        for s in dep.snippets {
+            assert!(op.snippets.contains(s), "{}: needs snippet {s} of {d}", op.name);
+        }
+    }
+    for d in deps {
+        src.push_str(stdlib::find(d).expect("checked above").wgsl);
         src.push('\n');
     }
     src.push_str(op.wgsl);

@@ -711,71 +711,6 @@ fn metatexture_matches_reference_including_hard_cases() {
     }
 }
 
-#[test]
-fn shadow_matches_reference_including_hard_cases() {
-    // A 24×16 depth map: depths on a 1/8 grid, and light-space depths of the
-    // query points on odd multiples of 1/32, so no comparison is a tie.
-    let map = ImageF64::new(24, 16, |x, y| [((x * 3 + y * 5) % 9) as f64 / 8.0, 0.0, 0.0, 1.0]);
-    let tex = [TexIn {
-        image: map.clone(),
-        format: wgpu::TextureFormat::Rgba32Float,
-    }];
-    let mut g = Lcg(4242);
-    let mut points: Vec<[f64; 4]> = (0..400)
-        .map(|_| {
-            q([
-                g.next() * 2.4 - 1.2,
-                g.next() * 2.4 - 1.2,
-                (2.0 * (g.next() * 18.0).floor() + 1.0) / 32.0,
-                0.0,
-            ])
-        })
-        .collect();
-    // Hard cases: the frustum's edges and corners, beyond the far plane, NaN.
-    points.extend([
-        [1.0, 1.0, 0.5 / 32.0, 0.0],
-        [-1.0, -1.0, 31.0 / 32.0, 0.0],
-        [0.0, 0.0, 1.5, 0.0],
-        [f64::NAN, 0.0, 0.5, 0.0],
-        [0.0, 0.0, f64::NAN, 0.0],
-    ]);
-    let inputs: Vec<[f32; 4]> = points.iter().flat_map(|p| [f32v(*p), [0.0; 4], [0.0; 4]]).collect();
-    for (warp, radius) in [(0.0, 0), (0.0, 1), (2.5, 1), (16.0, 3)] {
-        let body = format!("result = vec4<f32>(npr_shadow(t0, a.xyz, 0.0, {warp:?}, {radius}), 0.0, 0.0, 0.0);");
-        let out = run(&op_wgsl(&["shadow"]), &body, &inputs, (points.len() as u32, 1), &tex);
-        // Exact, except for points within 1e-4 (in NDC) of a texel boundary, where
-        // f32 and f64 may pick neighbouring texels.
-        let mut keep = Vec::new();
-        let mut reference = Vec::new();
-        for (i, p) in points.iter().enumerate() {
-            let at = |dx: f64, dy: f64| {
-                stdlib::reference_pipeline::shadow(&map, [p[0] + dx, p[1] + dy, p[2]], 0.0, warp, radius)
-            };
-            let v = at(0.0, 0.0);
-            if [(-1e-4, 0.0), (1e-4, 0.0), (0.0, -1e-4), (0.0, 1e-4)]
-                .iter()
-                .all(|(dx, dy)| at(*dx, *dy) == v)
-            {
-                keep.push(i);
-                reference.push([v, 0.0, 0.0, 0.0]);
-            }
-        }
-        assert!(
-            keep.len() * 10 >= points.len() * 8,
-            "too many boundary cases: {}",
-            keep.len()
-        );
-        let gpu: Vec<[f32; 4]> = keep.iter().map(|i| out[*i]).collect();
-        compare(
-            &format!("shadow warp {warp} radius {radius}"),
-            &gpu,
-            &reference,
-            1,
-            1e-6,
-        );
-    }
-}
-
 /// Compare with a tolerance relative to the reference's magnitude, |g − r| ≤ tol·max(1, |r|).
 fn compare_rel(name: &str, gpu: &[[f32; 4]], reference: &[[f64; 4]], channels: usize, tol: f64) {
     let mut max = 0.0f64;
@@ -852,11 +787,13 @@ fn metatexture_extension_operators_match_reference() {
         ([40.0, 40.0], [40.0, 40.0]),
     ] {
         for density in [[1.0, 1.0], [0.0, 0.0], [1e6, 1e6], [0.25, 4.0]] {
-            cases.push([
-                q([t[0], t[1], b[0], b[1]]),
-                q([density[0], density[1], 0.0, 0.0]),
-                [0.0; 4],
-            ]);
+            for mode in [0.0, 1.0] {
+                cases.push([
+                    q([t[0], t[1], b[0], b[1]]),
+                    q([density[0], density[1], mode, 0.0]),
+                    [0.0; 4],
+                ]);
+            }
         }
     }
     for _ in 0..30 {
@@ -866,18 +803,30 @@ fn metatexture_extension_operators_match_reference() {
             g.range(-200.0, 200.0),
             g.range(-200.0, 200.0),
         ];
-        cases.push([q(v), q([g.range(0.0, 10.0), g.range(0.0, 10.0), 0.0, 0.0]), [0.0; 4]]);
+        cases.push([
+            q(v),
+            q([g.range(0.0, 10.0), g.range(0.0, 10.0), (g.next() * 2.0).floor(), 0.0]),
+            [0.0; 4],
+        ]);
     }
     let out = one(
         "uv_gradients",
-        "result = npr_uv_gradients(a.xy, a.zw, b.xy);",
+        "result = npr_uv_gradients(a.xy, a.zw, b.xy, i32(b.z));",
         &cases,
         &[],
     );
     let reference: Vec<[f64; 4]> = cases
         .iter()
-        .map(|c| r::uv_gradients([c[0][0], c[0][1]], [c[0][2], c[0][3]], [c[1][0], c[1][1]]))
+        .map(|c| {
+            r::uv_gradients(
+                [c[0][0], c[0][1]],
+                [c[0][2], c[0][3]],
+                [c[1][0], c[1][1]],
+                c[1][2] as i64,
+            )
+        })
         .collect();
+    // Relative to each case's largest component (the inverse mode divides by a determinant).
     compare_rel("uv_gradients", &out, &reference, 4, 1e-5);
 
     // live_texture (eqs. 27–30): random colours, frequencies at the range ends, times incl. negative.
@@ -1111,6 +1060,127 @@ fn edge_breakup_operators_match_reference() {
         .map(|c| r::warp(&img, [c[0][0], c[0][1]], c[0][2], [c[1][0], c[1][1]]))
         .collect();
     compare("warp", &out, &reference, 4, 0.0);
+}
+
+#[test]
+fn metatexture_hard_cases_stay_finite_and_bounded_on_the_gpu() {
+    // Extreme close-up far from the uv origin (2^E·u beyond f32 precision),
+    // |∇u| → 0 and → ∞, ∇u ∥ ∇v, zero gradients; every MetaTexture parameter
+    // at both ends of its range. No reference (f32 cannot resolve k·uv here):
+    // finite, and within the texture's range widened by the largest contrast gain.
+    let img = ImageF64::new(16, 16, |x, y| {
+        q([(x as f64 / 15.0), (y as f64 / 15.0), ((x + y) % 2) as f64, 1.0])
+    });
+    let tex = [TexIn {
+        image: img,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+    }];
+    let mut cases: Vec<[[f64; 4]; 3]> = Vec::new();
+    let grads = [
+        ([1e-30, 0.0], [0.0, 1e-30]),
+        ([1e-7, 0.0], [0.0, 3e-7]),
+        ([1e30, 0.0], [0.0, 1e30]),
+        ([0.01, 0.01], [0.02, 0.02]),
+        ([0.0, 0.0], [0.0, 0.0]),
+    ];
+    for uv in [[12345.678, -9876.5], [0.5, 0.5], [-3.0e6, 7.0e6]] {
+        for (du, dv) in grads {
+            for (width, base) in [(1.0, 1.01), (4096.0, 16.0), (256.0, 2.0)] {
+                for (skew, band) in [(0.0, 0.01), (8.0, 8.0), (1.0, 1.0)] {
+                    for contrast in [0.0, 1.0, 2.0] {
+                        cases.push([
+                            q([uv[0], uv[1], du[0], du[1]]),
+                            q([dv[0], dv[1], base, width]),
+                            [skew, band, contrast, 0.0],
+                        ]);
+                    }
+                }
+            }
+        }
+    }
+    let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
+    let body = "result = npr_metatexture_contour_grad(t0, samp_repeat, a.xy, a.zw, b.xy, b.w, 1, b.z, i32(c.x), i32(c.z), vec4<f32>(0.5), 1, c.y);";
+    let out = run(
+        &op_wgsl(&["metatexture_grad", "metatexture_contour_grad"]),
+        body,
+        &inputs,
+        (cases.len() as u32, 1),
+        &tex,
+    );
+    for (i, o) in out.iter().enumerate() {
+        // Deviation from 0.5 is ≤ 0.5, times ≤ 1/√(k(½)³·k(½)) = 4 for variance-preserving contrast.
+        assert!(
+            o.iter().all(|v| v.is_finite() && (-1.5..=2.5).contains(v)),
+            "case {i} {:?}: {o:?}",
+            cases[i]
+        );
+    }
+    println!("metatexture hard cases: {} cases finite and bounded", out.len());
+}
+
+#[test]
+fn shadow_matches_reference_including_hard_cases() {
+    // A 24×16 depth map: depths on a 1/8 grid, and light-space depths of the
+    // query points on odd multiples of 1/32, so no comparison is a tie.
+    let map = ImageF64::new(24, 16, |x, y| [((x * 3 + y * 5) % 9) as f64 / 8.0, 0.0, 0.0, 1.0]);
+    let tex = [TexIn {
+        image: map.clone(),
+        format: wgpu::TextureFormat::Rgba32Float,
+    }];
+    let mut g = Lcg(4242);
+    let mut points: Vec<[f64; 4]> = (0..400)
+        .map(|_| {
+            q([
+                g.next() * 2.4 - 1.2,
+                g.next() * 2.4 - 1.2,
+                (2.0 * (g.next() * 18.0).floor() + 1.0) / 32.0,
+                0.0,
+            ])
+        })
+        .collect();
+    // Hard cases: the frustum's edges and corners, beyond the far plane, NaN.
+    points.extend([
+        [1.0, 1.0, 0.5 / 32.0, 0.0],
+        [-1.0, -1.0, 31.0 / 32.0, 0.0],
+        [0.0, 0.0, 1.5, 0.0],
+        [f64::NAN, 0.0, 0.5, 0.0],
+        [0.0, 0.0, f64::NAN, 0.0],
+    ]);
+    let inputs: Vec<[f32; 4]> = points.iter().flat_map(|p| [f32v(*p), [0.0; 4], [0.0; 4]]).collect();
+    for (warp, radius) in [(0.0, 0), (0.0, 1), (2.5, 1), (16.0, 3)] {
+        let body = format!("result = vec4<f32>(npr_shadow(t0, a.xyz, 0.0, {warp:?}, {radius}), 0.0, 0.0, 0.0);");
+        let out = run(&op_wgsl(&["shadow"]), &body, &inputs, (points.len() as u32, 1), &tex);
+        // Exact, except for points within 1e-4 (in NDC) of a texel boundary, where
+        // f32 and f64 may pick neighbouring texels.
+        let mut keep = Vec::new();
+        let mut reference = Vec::new();
+        for (i, p) in points.iter().enumerate() {
+            let at = |dx: f64, dy: f64| {
+                stdlib::reference_pipeline::shadow(&map, [p[0] + dx, p[1] + dy, p[2]], 0.0, warp, radius)
+            };
+            let v = at(0.0, 0.0);
+            if [(-1e-4, 0.0), (1e-4, 0.0), (0.0, -1e-4), (0.0, 1e-4)]
+                .iter()
+                .all(|(dx, dy)| at(*dx, *dy) == v)
+            {
+                keep.push(i);
+                reference.push([v, 0.0, 0.0, 0.0]);
+            }
+        }
+        assert!(
+            keep.len() * 10 >= points.len() * 8,
+            "too many boundary cases: {}",
+            keep.len()
+        );
+        let gpu: Vec<[f32; 4]> = keep.iter().map(|i| out[*i]).collect();
+        compare(
+            &format!("shadow warp {warp} radius {radius}"),
+            &gpu,
+            &reference,
+            1,
+            1e-6,
+        );
+    }
 }
 
 #[test]

@@ -44,10 +44,11 @@ fn npr_metatexture_grad(tex: texture_2d<f32>, samp: sampler, uv: vec2<f32>, grad
         let m1 = npr_meta__four(tex, samp, uv1, du1, dv1, l1, base);
         // Eq. 23.
         m = (1.0 - bw) * m0 + bw * m1;
-        // Eq. 24, with k(B_u), k(B_v) taken from the blend of the two skew sets.
-        let bu = mix(l0.blend.x, l1.blend.x, bw);
-        let bv = mix(l0.blend.y, l1.blend.y, bw);
-        c = npr_meta__k(bu) * npr_meta__k(bv) * npr_meta__k(bw);
+        // Eq. 24 for eight taps: the sum of the squared weights, each skew set
+        // with its own B_u, B_v: (1 − B_w)² k(B_u')k(B_v') + B_w² k(B_u'')k(B_v'')
+        // (= k(B_u)k(B_v)k(B_w) when both sets share their blend weights).
+        c = (1.0 - bw) * (1.0 - bw) * npr_meta__k(l0.blend.x) * npr_meta__k(l0.blend.y)
+            + bw * bw * npr_meta__k(l1.blend.x) * npr_meta__k(l1.blend.y);
     }
     return npr_meta__contrast(m, c, contrast, mean);
 }

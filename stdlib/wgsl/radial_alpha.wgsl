@@ -7,5 +7,7 @@ fn npr_radial_alpha(screen_uv: vec2<f32>, focal: vec2<f32>) -> f32 {
     // A degenerate projection (P₀₀ or P₁₁ → 0) must not divide by zero.
     let f = max(abs(focal), vec2<f32>(1e-6));
     let q = s / f;
-    return min(dot(q, q) + 1.0, 1e12);
+    let a = dot(q, q) + 1.0;
+    // A NaN screen position (e.g. a varying of a triangle clipped at the eye plane) gives α = 1.
+    return select(min(a, 1e12), 1.0, !(a >= 1.0));
 }

@@ -13,17 +13,37 @@ fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
 pub fn radial_alpha(screen_uv: [f64; 2], focal: [f64; 2]) -> f64 {
     let s = [screen_uv[0] * 2.0 - 1.0, 1.0 - screen_uv[1] * 2.0];
     let q = [s[0] / focal[0].abs().max(1e-6), s[1] / focal[1].abs().max(1e-6)];
-    (dot2(q, q) + 1.0).min(1e12)
+    let a = dot2(q, q) + 1.0;
+    // NaN (a screen position from a triangle clipped at the eye plane) gives 1.
+    if a >= 1.0 {
+        a.min(1e12)
+    } else {
+        1.0
+    }
 }
 
-/// Eqs. 9–10: (∇u, ∇v) = (|∇_w u| T_s/|T_s|², |∇_w v| B_s/|B_s|²), packed (∇u.x, ∇u.y, ∇v.x, ∇v.y).
-pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2]) -> [f64; 4] {
-    let g = |t: [f64; 2], d: f64| {
-        let s = d.abs() / dot2(t, t).max(1e-20);
-        [t[0] * s, t[1] * s]
+/// §3.2: (∇u, ∇v) packed (∇u.x, ∇u.y, ∇v.x, ∇v.y) from T_s, B_s and the
+/// densities; `mode` 0 = rows of [T_s B_s]⁻¹, 1 = eqs. 9–10 as printed.
+pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2], mode: i64) -> [f64; 4] {
+    let rho = [density[0].abs(), density[1].abs()];
+    let out = if mode == 1 {
+        let g = |t: [f64; 2], d: f64| {
+            let s = d / dot2(t, t).max(1e-20);
+            [t[0] * s, t[1] * s]
+        };
+        let (u, v) = (g(tangent, rho[0]), g(bitangent, rho[1]));
+        [u[0], u[1], v[0], v[1]]
+    } else {
+        let det = tangent[0] * bitangent[1] - tangent[1] * bitangent[0];
+        let d = if det >= 0.0 { 1.0 } else { -1.0 } * det.abs().max(1e-20);
+        [
+            rho[0] * bitangent[1] / d,
+            -rho[0] * bitangent[0] / d,
+            -rho[1] * tangent[1] / d,
+            rho[1] * tangent[0] / d,
+        ]
     };
-    let (u, v) = (g(tangent, density[0]), g(bitangent, density[1]));
-    [u[0], u[1], v[0], v[1]].map(|x| x.clamp(-1e30, 1e30))
+    out.map(|x| x.clamp(-1e30, 1e30))
 }
 
 /// §3.5: the blend weight towards the 90°-rotated orientation, β(½ + log₂(|∇u|/|∇v|)/band).
@@ -95,7 +115,8 @@ pub fn line_boil(uv: [f64; 2], amount: f64, rate: f64, cycle: i64, time: f64) ->
 /// §4.3: `offset` expressed in the frame (ê, ê⊥) of the screen-space ∇u.
 pub fn roll_compensate(offset: [f64; 2], grad_u: [f64; 2]) -> [f64; 2] {
     let l = dot2(grad_u, grad_u).sqrt();
-    if !(l > 1e-30) || l > 1e30 {
+    // NaN fails this range check too (no frame to rotate into).
+    if !(1e-30..=1e30).contains(&l) || l == 1e-30 {
         return offset;
     }
     let e = [grad_u[0] / l, grad_u[1] / l];
