@@ -399,7 +399,18 @@ impl Emitter<'_> {
             let ty = crate::ir::Ty::float_vec(o.format.channels()).wgsl();
             let _ = writeln!(w, "    @location({loc}) o_{}: {ty}, // {}", o.name, o.format.name());
         }
-        w.push_str("}\n\n@fragment\nfn fs_main(in: Varyings) -> FragOut {\n");
+        if is_render {
+            // The screen position from the fragment's pixel centre rather than the
+            // interpolated clip.xy / clip.w: exact, and defined on triangles the
+            // rasterizer clipped at the eye plane, where the varying is not.
+            let _ = writeln!(
+                w,
+                "}}\n\n@fragment\nfn fs_main(in_raw: Varyings) -> FragOut {{\n    var in = in_raw;\n    in.screen_uv = in_raw.clip.xy / {};",
+                pass_size_wgsl(pass.scale)
+            );
+        } else {
+            w.push_str("}\n\n@fragment\nfn fs_main(in: Varyings) -> FragOut {\n");
+        }
         ctx.named.clear();
         self.emit_lets(&mut w, pass, &frag_nodes, &mut ctx);
         w.push_str("    var out: FragOut;\n");
@@ -852,6 +863,19 @@ fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2
 }
 
 ";
+
+/// The size in px of a pass at `scale` of the output, as the runner allocates
+/// it (`runner::render::scaled_size`: rounded half up, at least 1).
+fn pass_size_wgsl(scale: f64) -> String {
+    if scale == 1.0 {
+        "frame.resolution".into()
+    } else {
+        format!(
+            "max(floor(frame.resolution * {} + vec2<f32>(0.5)), vec2<f32>(1.0))",
+            fmt_f32(scale)
+        )
+    }
+}
 
 /// An f32 literal WGSL accepts, e.g. `0.5f`, `1e-5f`.
 pub fn fmt_f32(v: f64) -> String {
