@@ -25,10 +25,18 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn check_accepts_every_example() {
-    for e in ["toon", "outline", "rounded_shadows", "ocean"] {
-        let o = npr(&["check", &format!("examples/{e}.npr")]);
-        assert_eq!(o.status.code(), Some(0), "{e}: {}", stderr(&o));
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).expect("examples") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "npr") {
+            let name = format!("examples/{}", path.file_name().expect("name").to_string_lossy());
+            let o = npr(&["check", &name]);
+            assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+            checked += 1;
+        }
     }
+    assert!(checked >= 10, "only {checked} examples found");
 }
 
 #[test]

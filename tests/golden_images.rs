@@ -199,3 +199,13 @@ fn live_contour_on_spheres() {
         "examples/scenes/spheres.toml",
     );
 }
+
+#[test]
+fn lsa_stereo_on_a_stereo_sphere_on_plane() {
+    // Eye 0 (left) of a stereo frame: both eyes are rendered pass by pass.
+    golden(
+        "lsa_stereo_sphere_on_plane",
+        "examples/lsa_stereo.npr",
+        "examples/scenes/stereo_sphere_on_plane.toml",
+    );
+}
