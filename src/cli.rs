@@ -329,12 +329,9 @@ pub fn run(cli: Cli) -> i32 {
             keep_params,
         } => {
             let scene_name = scene.display().to_string();
-            let scene = match runner::scene::load_scene(&scene, &mut sources) {
+            let scene = match load_scene(&scene, &mut sources, &printer) {
                 Ok(s) => s,
-                Err(d) => {
-                    printer.diagnostics(&d, &sources);
-                    return EXIT_USER;
-                }
+                Err(code) => return code,
             };
             // Compile for this scene, so nothing the scene cannot use is run.
             let opts = CompileOptions {
@@ -347,12 +344,9 @@ pub fn run(cli: Cli) -> i32 {
                 Err(code) => return code,
             };
             printer.diagnostics(&c.warnings, &sources);
-            let gpu = match Gpu::headless() {
+            let gpu = match headless_gpu() {
                 Ok(g) => g,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return EXIT_USER;
-                }
+                Err(code) => return code,
             };
             let program = StyleProgram::from_compiled(&c);
             match render(
@@ -439,19 +433,13 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                 Ok(c) => c,
                 Err(code) => return code,
             };
-            let scene = match runner::scene::load_scene(&scene, &mut sources) {
+            let scene = match load_scene(&scene, &mut sources, printer) {
                 Ok(s) => s,
-                Err(d) => {
-                    printer.diagnostics(&d, &sources);
-                    return EXIT_USER;
-                }
+                Err(code) => return code,
             };
-            let gpu = match Gpu::headless() {
+            let gpu = match headless_gpu() {
                 Ok(g) => g,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return EXIT_USER;
-                }
+                Err(code) => return code,
             };
             match runner::bench::frame_overhead(&gpu, &StyleProgram::from_compiled(&c), &scene, size, frames) {
                 Ok(r) => {
@@ -470,19 +458,13 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
 
 fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
-    let scene = match runner::scene::load_scene(scene_path, &mut sources) {
+    let scene = match load_scene(scene_path, &mut sources, printer) {
         Ok(s) => s,
-        Err(d) => {
-            printer.diagnostics(&d, &sources);
-            return EXIT_USER;
-        }
+        Err(code) => return code,
     };
-    let gpu = match Gpu::headless() {
+    let gpu = match headless_gpu() {
         Ok(g) => g,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USER;
-        }
+        Err(code) => return code,
     };
     let variants = crate::bench_ops::variants();
     let mut programs = Vec::new();
@@ -555,12 +537,9 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
             }
         }
     }
-    let gpu = match Gpu::headless() {
+    let gpu = match headless_gpu() {
         Ok(g) => g,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USER;
-        }
+        Err(code) => return code,
     };
     match runner::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
         Ok(rows) => {
@@ -578,12 +557,9 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
 /// `npr bench passes`: each pass's GPU time and its share of the frame.
 fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
-    let scene = match runner::scene::load_scene(scene_path, &mut sources) {
+    let scene = match load_scene(scene_path, &mut sources, printer) {
         Ok(s) => s,
-        Err(d) => {
-            printer.diagnostics(&d, &sources);
-            return EXIT_USER;
-        }
+        Err(code) => return code,
     };
     let opts = CompileOptions {
         scene: Some(scene.summary(&scene_path.display().to_string())),
@@ -593,12 +569,9 @@ fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, 
         Ok(c) => c,
         Err(code) => return code,
     };
-    let gpu = match Gpu::headless() {
+    let gpu = match headless_gpu() {
         Ok(g) => g,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USER;
-        }
+        Err(code) => return code,
     };
     let program = StyleProgram::from_compiled(&compiled);
     let times = match runner::bench::pass_times(&gpu, &program, &scene, size, frames) {
@@ -647,6 +620,22 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer
             Err(EXIT_INTERNAL)
         }
     }
+}
+
+/// A headless GPU, or the exit code after saying why there is none.
+fn headless_gpu() -> Result<Gpu, i32> {
+    Gpu::headless().map_err(|e| {
+        eprintln!("error: {e}");
+        EXIT_USER
+    })
+}
+
+/// Load a scene, or print its diagnostics and give the user-error exit code.
+fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer) -> Result<runner::scene::Scene, i32> {
+    runner::scene::load_scene(path, sources).map_err(|d| {
+        printer.diagnostics(&d, sources);
+        EXIT_USER
+    })
 }
 
 /// Load a scene only for what the compiler may know of it (its tags).

@@ -30,6 +30,25 @@ impl FrameOverhead {
     }
 }
 
+/// Block until the GPU has finished everything submitted.
+pub fn wait_idle(gpu: &Gpu) -> Result<(), RunError> {
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+}
+
+/// Frame 0 at t = 0 of the left (or only) eye: what benchmarks render.
+pub fn still_frame(width: u32, height: u32) -> FrameSpec {
+    FrameSpec {
+        width,
+        height,
+        time_s: 0.0,
+        frame: 0,
+        eye: 0,
+    }
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(0.0)
@@ -43,11 +62,7 @@ pub fn frame_overhead(
     frames: u32,
 ) -> Result<FrameOverhead, RunError> {
     let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let wait = || {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
-    };
+    let wait = || wait_idle(gpu);
     let spec = |frame: u32| FrameSpec {
         width,
         height,
@@ -90,18 +105,8 @@ pub fn frame_time(
     frames: u32,
 ) -> Result<f64, RunError> {
     let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let wait = || {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
-    };
-    let spec = FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let wait = || wait_idle(gpu);
+    let spec = still_frame(width, height);
     r.render(scene, &spec)?;
     wait()?;
     let mut times = Vec::new();
@@ -124,18 +129,8 @@ pub fn time_interleaved(
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
-    let spec = FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
-    let wait = || {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
-    };
+    let spec = still_frame(width, height);
+    let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for p in programs {
         let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
@@ -202,18 +197,8 @@ pub fn pass_times(
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let wait = || {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
-    };
-    let spec = FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let wait = || wait_idle(gpu);
+    let spec = still_frame(width, height);
     let period_ns = gpu.queue.get_timestamp_period() as f64;
     let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); passes as usize];
     for frame in 0..=frames.max(1) {

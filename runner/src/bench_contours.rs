@@ -15,6 +15,7 @@
 //! truth of [`crate::contours::builtin_scenes`], at each resolution; the
 //! table gives the minimum over the scenes.
 
+use crate::bench::wait_idle;
 use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
 use crate::{FrameSpec, Gpu, RunError, StyleProgram};
 
@@ -106,11 +107,7 @@ fn min_frame_times(
         frame: 0,
         eye: 0,
     };
-    let wait = || {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
-    };
+    let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for (_, p, _) in programs {
         let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;

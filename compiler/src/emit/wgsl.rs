@@ -265,39 +265,24 @@ impl Emitter<'_> {
             });
             next += 1;
         }
+        // This eye's targets, then (stereo styles) the other eye's copies.
         let mut target_names = BTreeMap::new();
-        for t in &targets_read {
-            let Some(index) = self.alloc.target_index(*t) else {
-                continue;
-            };
-            let name = format!("t_{}", self.ir.target_name(*t).replace('.', "_"));
-            let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
-            let _ = writeln!(
-                decls,
-                "@group(0) @binding({next}) var {name}: texture_2d<f32>; // {}",
-                fmt.name()
-            );
-            binds.push(Binding {
-                binding: next,
-                resource: Resource::Target {
-                    target: index,
-                    filterable: fmt.is_filterable(),
-                    other_eye: false,
-                },
-            });
-            target_names.insert(*t, name);
-            next += 1;
-        }
         let mut other_target_names = BTreeMap::new();
-        for t in &other_targets_read {
+        let reads = targets_read.iter().map(|t| (t, false));
+        for (t, other_eye) in reads.chain(other_targets_read.iter().map(|t| (t, true))) {
             let Some(index) = self.alloc.target_index(*t) else {
                 continue;
             };
-            let name = format!("t_other_{}", self.ir.target_name(*t).replace('.', "_"));
+            let (prefix, note) = if other_eye {
+                ("t_other_", ", the other eye's")
+            } else {
+                ("t_", "")
+            };
+            let name = format!("{prefix}{}", self.ir.target_name(*t).replace('.', "_"));
             let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
             let _ = writeln!(
                 decls,
-                "@group(0) @binding({next}) var {name}: texture_2d<f32>; // {}, the other eye's",
+                "@group(0) @binding({next}) var {name}: texture_2d<f32>; // {}{note}",
                 fmt.name()
             );
             binds.push(Binding {
@@ -305,10 +290,15 @@ impl Emitter<'_> {
                 resource: Resource::Target {
                     target: index,
                     filterable: fmt.is_filterable(),
-                    other_eye: true,
+                    other_eye,
                 },
             });
-            other_target_names.insert(*t, name);
+            if other_eye {
+                &mut other_target_names
+            } else {
+                &mut target_names
+            }
+            .insert(*t, name);
             next += 1;
         }
         for t in &textures_read {
