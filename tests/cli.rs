@@ -295,3 +295,57 @@ fn the_ocean_loops_seamlessly_over_its_period() {
         "t = 10 s vs 0 s: max {max}, {pixels} pixels differ"
     );
 }
+
+#[test]
+fn shipped_noise_textures_are_what_texgen_writes() {
+    // The commands documented in examples/textures/SOURCES.md.
+    let dir = scratch("texgen");
+    for (file, args) in [
+        (
+            "warp_noise.png",
+            &["--size", "256", "--octaves", "4", "--channels", "2", "--seed", "11"][..],
+        ),
+        (
+            "breakup.png",
+            &[
+                "--size",
+                "128",
+                "--octaves",
+                "3",
+                "--channels",
+                "1",
+                "--seed",
+                "5",
+                "--frequency",
+                "8",
+                "--kind",
+                "value",
+            ][..],
+        ),
+    ] {
+        let out = dir.join(file);
+        let mut cmd = vec!["texgen", "-o", out.to_str().expect("utf-8 path")];
+        cmd.extend_from_slice(args);
+        let o = npr(&cmd);
+        assert_eq!(o.status.code(), Some(0), "{file}: {}", stderr(&o));
+        let fresh = image::open(&out).expect("written").to_rgba16();
+        let shipped = image::open(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("examples/textures")
+                .join(file),
+        )
+        .expect("shipped")
+        .to_rgba16();
+        assert_eq!(fresh.dimensions(), shipped.dimensions(), "{file}");
+        assert!(
+            fresh.as_raw() == shipped.as_raw(),
+            "{file}: texgen no longer reproduces the shipped texture"
+        );
+    }
+    // Bad arguments are user errors, with nothing written.
+    let bad = dir.join("bad.png");
+    let o = npr(&["texgen", "-o", bad.to_str().expect("utf-8 path"), "--channels", "7"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("channels"), "{}", stderr(&o));
+    assert!(!bad.exists());
+}
