@@ -209,3 +209,49 @@ fn lsa_stereo_on_a_stereo_sphere_on_plane() {
         "examples/scenes/stereo_sphere_on_plane.toml",
     );
 }
+
+#[test]
+fn lsa_base_on_spot() {
+    golden("lsa_base_spot", "examples/lsa_base.npr", "examples/scenes/spot.toml");
+}
+
+#[test]
+fn sobel_outline_on_spot() {
+    golden(
+        "sobel_outline_spot",
+        "examples/sobel_outline.npr",
+        "examples/scenes/spot.toml",
+    );
+}
+
+// fandisk: a CAD part with sharp creases and planar faces, loaded with
+// `crease_angle = 30` (split normals at the creases). LSA draws the creases
+// as single lines; depth-only Sobel draws only the silhouette and the
+// occlusion edges, since depth is continuous across a crease.
+
+#[test]
+fn lsa_contours_on_fandisk() {
+    golden(
+        "lsa_contours_fandisk",
+        "examples/lsa_contours.npr",
+        "examples/scenes/fandisk.toml",
+    );
+}
+
+#[test]
+fn lsa_base_on_fandisk() {
+    golden(
+        "lsa_base_fandisk",
+        "examples/lsa_base.npr",
+        "examples/scenes/fandisk.toml",
+    );
+}
+
+#[test]
+fn sobel_outline_on_fandisk() {
+    golden(
+        "sobel_outline_fandisk",
+        "examples/sobel_outline.npr",
+        "examples/scenes/fandisk.toml",
+    );
+}

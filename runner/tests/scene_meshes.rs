@@ -501,3 +501,80 @@ fn malformed_gltf_is_an_error_not_a_panic() {
     mesh_error(&dir, "not-gltf.gltf", b"{\"hello\": 1}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The largest angle (degrees) between a triangle corner's vertex normal and
+/// the triangle's face normal, over the mesh.
+fn worst_corner_deviation(mesh: &Mesh) -> f32 {
+    let mut worst = 0.0f32;
+    for t in mesh.indices.chunks_exact(3) {
+        let p = [t[0], t[1], t[2]].map(|i| Vec3::from_array(mesh.positions[i as usize]));
+        let Some(face) = (p[1] - p[0]).cross(p[2] - p[0]).try_normalize() else {
+            continue;
+        };
+        for &i in t {
+            let n = Vec3::from_array(mesh.normals[i as usize]);
+            worst = worst.max(n.dot(face).clamp(-1.0, 1.0).acos().to_degrees());
+        }
+    }
+    worst
+}
+
+#[test]
+fn fandisk_creases_get_split_normals() {
+    // examples/scenes/fandisk.toml: `crease_angle = 30` on a mesh without normals.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/fandisk.toml");
+    let text = std::fs::read_to_string(&path).expect("fandisk scene");
+    let mut sources = dsl::SourceMap::new();
+    let creased =
+        load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let smooth_text = text.replace("crease_angle = 30.0", "");
+    assert_ne!(smooth_text, text);
+    let file = sources.add("fandisk_smooth.toml", smooth_text.clone());
+    let smooth = parse_scene(&smooth_text, file, path.parent().expect("dir"))
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let (c, s) = (&creased.objects[0].mesh, &smooth.objects[0].mesh);
+    assert_sound_attributes(c);
+    // Same triangles; vertices on creases duplicated.
+    assert_eq!(c.triangle_count(), s.triangle_count());
+    assert_eq!(s.vertex_count(), 6475);
+    assert!(
+        c.vertex_count() > s.vertex_count() + 500,
+        "{} vertices",
+        c.vertex_count()
+    );
+    // Every corner normal averages only faces within 30° of its own, so it
+    // stays within 30° of its face; smooth normals bend across the creases.
+    let (dc, ds) = (worst_corner_deviation(c), worst_corner_deviation(s));
+    println!(
+        "fandisk: {} vertices creased ({dc:.1}° worst corner), {} smooth ({ds:.1}°)",
+        c.vertex_count(),
+        s.vertex_count()
+    );
+    assert!(dc <= 30.0 + 1e-3, "creased: {dc}°");
+    assert!(ds > 40.0, "smooth: {ds}°");
+}
+
+#[test]
+fn crease_angle_is_checked() {
+    for (value, message) in [
+        ("0.0", "must be in (0, 180]"),
+        ("200.0", "must be in (0, 180]"),
+        ("\"sharp\"", "crease_angle"),
+    ] {
+        let text = format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"cube\" }}\ncrease_angle = {value}\n");
+        let mut sources = dsl::SourceMap::new();
+        let file = sources.add("crease.toml", text.clone());
+        let Err(diagnostics) = parse_scene(&text, file, Path::new(".")) else {
+            panic!("crease_angle = {value} was accepted");
+        };
+        let rendered = dsl::diagnostic::render(&diagnostics, &sources, false);
+        assert!(rendered.contains(message), "{value}: {rendered}");
+    }
+    // On a cube (90° edges) any angle below 90° gives each face its own
+    // normal: 24 vertices, as the primitive already has.
+    let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"cube\" }\ncrease_angle = 45.0\n";
+    let mut sources = dsl::SourceMap::new();
+    let file = sources.add("crease.toml", text.to_string());
+    let scene = parse_scene(text, file, Path::new(".")).expect("valid");
+    assert!(worst_corner_deviation(&scene.objects[0].mesh) < 0.01);
+}

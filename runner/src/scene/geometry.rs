@@ -33,6 +33,71 @@ pub fn smooth_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> 
         .collect()
 }
 
+/// Normals split at creases, for CAD meshes with sharp edges (fandisk):
+/// each triangle corner gets the area-weighted sum of the face normals of
+/// the triangles around its vertex (welded by position, as in
+/// [`smooth_normals`]) that lie within `crease_deg` of its own face normal,
+/// so faces meeting at a sharper angle keep separate normals, while a
+/// smooth surface tessellated finer than `crease_deg` stays smooth.
+///
+/// Returns new arrays: a vertex is duplicated once per distinct normal its
+/// corners get (`source[i]` is the input vertex the new vertex `i` copies,
+/// for its other attributes), and the new indices. Corners of zero-area
+/// triangles keep the vertex's smooth normal.
+pub fn crease_normals(positions: &[[f32; 3]], indices: &[u32], crease_deg: f32) -> CreaseSplit {
+    let (group_of_vertex, group_count) = weld_by_position(positions);
+    let smooth = smooth_normals(positions, indices);
+    // Each triangle's area-weighted normal, and the triangles around each group.
+    let mut faces: Vec<([usize; 3], Vec3)> = Vec::with_capacity(indices.len() / 3);
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); group_count];
+    for_each_triangle(positions, indices, |corners, p| {
+        let face = (p[1] - p[0]).cross(p[2] - p[0]);
+        let face = if face.is_finite() { face } else { Vec3::ZERO };
+        for &vertex in &corners {
+            around[group_of_vertex[vertex]].push(faces.len());
+        }
+        faces.push((corners, face));
+    });
+    let cos_limit = crease_deg.to_radians().cos();
+    let mut vertex_of: HashMap<(usize, [u32; 3]), u32> = HashMap::new();
+    let mut split = CreaseSplit::default();
+    for &(corners, face) in &faces {
+        let unit = face.try_normalize();
+        for vertex in corners {
+            let normal = match unit {
+                Some(own) => around[group_of_vertex[vertex]]
+                    .iter()
+                    .map(|&t| faces[t].1)
+                    .filter(|other| other.try_normalize().is_some_and(|o| o.dot(own) >= cos_limit))
+                    .sum::<Vec3>()
+                    .try_normalize()
+                    .unwrap_or(own),
+                None => Vec3::from_array(smooth[vertex]),
+            };
+            let key = (vertex, normal.to_array().map(f32::to_bits));
+            let next = split.source.len() as u32;
+            let index = *vertex_of.entry(key).or_insert_with(|| {
+                split.positions.push(positions[vertex]);
+                split.normals.push(normal.to_array());
+                split.source.push(vertex);
+                next
+            });
+            split.indices.push(index);
+        }
+    }
+    split
+}
+
+/// The result of [`crease_normals`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CreaseSplit {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+    /// For each new vertex, the input vertex it was copied from.
+    pub source: Vec<usize>,
+    pub indices: Vec<u32>,
+}
+
 /// Normals read from a file, made unit length. Zero or non-finite ones (and
 /// the whole array if its length is wrong) are replaced by smooth normals.
 pub fn repair_normals(positions: &[[f32; 3]], indices: &[u32], given: Vec<[f32; 3]>) -> Vec<[f32; 3]> {
@@ -178,6 +243,29 @@ mod tests {
     fn assert_unit(v: [f32; 3]) {
         let len = Vec3::from_array(v).length();
         assert!((len - 1.0).abs() < 1e-5, "length {len} of {v:?}");
+    }
+
+    #[test]
+    fn crease_normals_split_a_cube_corner_and_keep_a_shallow_fold_smooth() {
+        // Two triangles folded 90° along the x axis (sharing vertices 0, 1).
+        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let indices = [0, 1, 2, 1, 0, 3];
+        let sharp = crease_normals(&positions, &indices, 30.0);
+        // The shared edge's vertices are duplicated: 6 vertices, each with its face's normal.
+        assert_eq!(sharp.positions.len(), 6);
+        assert_eq!(&sharp.normals[..3], &[[0.0, 0.0, 1.0]; 3]);
+        assert_eq!(&sharp.normals[3..], &[[0.0, 1.0, 0.0]; 3]);
+        assert_eq!(sharp.source, vec![0, 1, 2, 1, 0, 3]);
+        // Above the fold angle it is the smooth mesh again: 4 vertices and
+        // the shared ones averaged.
+        let smooth = crease_normals(&positions, &indices, 100.0);
+        assert_eq!(smooth.positions.len(), 4);
+        let diagonal = Vec3::new(0.0, 1.0, 1.0).normalize().to_array();
+        assert_eq!(smooth.normals[0], diagonal);
+        assert_eq!(smooth.normals, {
+            let n = smooth_normals(&positions, &indices);
+            smooth.source.iter().map(|&v| n[v]).collect::<Vec<_>>()
+        });
     }
 
     #[test]

@@ -111,6 +111,29 @@ impl Mesh {
         }
     }
 
+    /// The mesh with its normals split where faces meet at more than
+    /// `crease_deg` degrees ([`geometry::crease_normals`]): vertices on a
+    /// crease are duplicated, UVs copied, tangents recomputed for the new
+    /// normals. For CAD parts whose file has no normals.
+    pub fn with_crease_normals(&self, crease_deg: f32) -> Mesh {
+        let split = geometry::crease_normals(&self.positions, &self.indices, crease_deg);
+        let uvs = self
+            .uvs
+            .as_ref()
+            .map(|uvs| split.source.iter().map(|&v| uvs[v]).collect::<Vec<_>>());
+        let tangents = uvs
+            .as_ref()
+            .map(|uvs| geometry::uv_tangents(&split.positions, &split.normals, uvs, &split.indices));
+        Mesh {
+            positions: split.positions,
+            normals: split.normals,
+            uvs,
+            tangents,
+            indices: split.indices,
+            source: format!("{} (creases > {crease_deg}°)", self.source),
+        }
+    }
+
     /// Checks the invariants the renderer relies on, for data read from a
     /// file: a whole number of triangles, indices in range, finite numbers,
     /// attribute arrays as long as the position array. The message says what

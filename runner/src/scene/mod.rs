@@ -35,6 +35,8 @@
 //! scale = 1.0                     # optional: > 0, a number or [x, y, z]
 //! tags = ["caster"]               # optional: for `render(scene, tag: ...)` passes
 //! casts_shadows = true            # optional, default true
+//! crease_angle = 30.0             # optional, degrees in (0, 180]: split normals where faces meet at
+//!                                 # a sharper angle (CAD parts); default: smooth normals throughout
 //! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
 //!
 //! [[object]]

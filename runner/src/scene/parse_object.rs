@@ -51,6 +51,7 @@ pub fn parse_object(
         fields.set_context(format!("object `{}`", name.value));
     }
     let mesh = read_mesh(&mut fields, base_dir, cache, report);
+    let crease = read_crease_angle(&mut fields, report);
     let model = read_transform(&mut fields, report);
     let tags = read_tags(&mut fields, report);
     let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
@@ -59,7 +60,19 @@ pub fn parse_object(
     if report.diagnostics.len() > errors_before {
         return None;
     }
-    let (mesh, mesh_span, derived_name, time_varying) = mesh?;
+    let (mut mesh, mesh_span, derived_name, time_varying) = mesh?;
+    if let Some(deg) = crease {
+        if time_varying.is_some() {
+            report.bad_scene(
+                mesh_span,
+                "`crease_angle` cannot be used with an animated primitive",
+                "rebuilt every frame",
+                "remove `crease_angle` from this object",
+            );
+            return None;
+        }
+        mesh = Arc::new(mesh.with_crease_normals(deg));
+    }
     let name_span = explicit_name.as_ref().map(|name| name.span);
     Some(ObjectDecl {
         object: Object {
@@ -150,6 +163,22 @@ fn read_mesh(
             None
         }
     }
+}
+
+/// `crease_angle`: degrees in (0, 180]; `None` when absent or invalid
+/// (the latter reported).
+fn read_crease_angle(fields: &mut Fields, report: &mut Report) -> Option<f32> {
+    let angle = fields.number("crease_angle", report)?;
+    if !(angle.value > 0.0 && angle.value <= 180.0) {
+        report.bad_scene(
+            angle.span,
+            "`crease_angle` must be in (0, 180] degrees",
+            "out of range",
+            "write e.g. `crease_angle = 30.0`: faces meeting at a sharper angle get separate normals",
+        );
+        return None;
+    }
+    Some(angle.value as f32)
 }
 
 /// `translate`, `rotate` (degrees; Y, then X, then Z) and `scale`, composed
