@@ -354,6 +354,7 @@ impl Builder {
         let mut default = None;
         let mut range = None;
         let mut animate = None;
+        let mut options = Vec::new();
         for i in p.into_inner() {
             match i.as_rule() {
                 Rule::doc_comment => doc = self.doc(i),
@@ -363,6 +364,7 @@ impl Builder {
                 Rule::param_default => default = Some(self.param_default(i)?),
                 Rule::range_clause => range = Some(self.range(i)?),
                 Rule::animate_clause => animate = Some(self.animate(i)?),
+                Rule::settings_block => options = self.settings(i),
                 _ => {}
             }
         }
@@ -374,6 +376,7 @@ impl Builder {
             default: default?,
             range,
             animate,
+            options,
             span,
         })
     }

@@ -153,6 +153,8 @@ pub struct Object {
     pub params: BTreeMap<String, Vec<f64>>,
     /// Where each binding's value was written.
     pub param_spans: BTreeMap<String, Span>,
+    /// Per-object image bindings of `object param t: texture` params.
+    pub textures: BTreeMap<String, TextureBinding>,
     /// Where the mesh or primitive was declared (for E0403).
     pub mesh_span: Span,
     /// A primitive whose geometry depends on time (the ocean): `mesh` is its
@@ -160,6 +162,20 @@ pub struct Object {
     /// each frame's time ([`Primitive::build_at`]).
     pub time_varying: Option<Primitive>,
     pub casts_shadows: bool,
+}
+
+/// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:
+/// an object's own image for a per-object texture param. The sampler
+/// options (wrap, filter, mips) are the style's, from the param's declaration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureBinding {
+    /// As written in the scene.
+    pub path: String,
+    /// Joined to the scene file's directory.
+    pub resolved: std::path::PathBuf,
+    pub srgb: bool,
+    /// The binding's value in the scene TOML.
+    pub span: Span,
 }
 
 impl Object {
