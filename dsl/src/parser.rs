@@ -159,7 +159,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::color => "a colour like #ff8800",
         Rule::item | Rule::single_item => "a declaration (param, texture, pass, output, use)",
         Rule::EOI => "end of file",
-        Rule::type_expr | Rule::enum_type => "a type",
+        Rule::type_expr | Rule::enum_type | Rule::texture_type => "a type",
         Rule::param_default | Rule::range_value => "a default value",
         Rule::range_clause => "`in lo..hi`",
         Rule::animate_clause => "`animate { ... }`",

@@ -82,7 +82,10 @@ pub fn load_object_textures(
                     out.images.push(g);
                 }
                 // Point at the binding in the scene, not at the style.
-                Err(d) => diags.push(d.with_primary(b.span, format!("object `{}` binds this image", o.name))),
+                Err(d) => diags.push(
+                    d.with_primary(b.span, format!("object `{}` binds this image", o.name))
+                        .with_help("use a PNG or EXR file; image paths in a scene are relative to the scene file"),
+                ),
             }
         }
         out.bound.push(bound);

@@ -280,7 +280,7 @@ fn texture_value(
                 format!("texture file `{path}` for `{}` not found", name.value),
             )
             .with_primary(span, format!("looked for {}", resolved.display()))
-            .with_help("image paths in a scene are relative to the scene file"),
+            .with_help("image paths in a scene are relative to the scene file; a colour is written `\"#rrggbb\"`"),
         );
         return Some(None);
     }
