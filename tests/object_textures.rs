@@ -59,10 +59,11 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     });
     let dir = scratch("object-textures");
     let scene_path = dir.join("three.toml");
-    // Left: linear (bytes pass through); right: a plain path, hence sRGB (decoded by the sampler).
+    // Left: a plain path, hence the declared colour space (linear: the bytes
+    // pass through); right: sRGB, decoded by the sampler.
     std::fs::write(
         &scene_path,
-        scene_text("{ image = \"red.png\", srgb = false }", "\"blue.png\""),
+        scene_text("\"red.png\"", "{ image = \"blue.png\", srgb = true }"),
     )
     .expect("write scene");
     let mut sources = SourceMap::new();

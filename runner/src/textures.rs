@@ -64,7 +64,12 @@ pub fn load_object_textures(
             let Some(index) = m.textures.iter().position(|t| t.per_object && t.name == *name) else {
                 continue;
             };
-            let key = (index, b.resolved.clone(), b.srgb);
+            let declared_srgb = match &m.textures[index].source {
+                TextureSourceManifest::Image { srgb, .. } => *srgb,
+                TextureSourceManifest::Noise { .. } => false,
+            };
+            let srgb = b.srgb.unwrap_or(declared_srgb);
+            let key = (index, b.resolved.clone(), srgb);
             if let Some(i) = cache.get(&key) {
                 bound.insert(index, *i);
                 continue;
@@ -73,7 +78,7 @@ pub fn load_object_textures(
             decl.source = TextureSourceManifest::Image {
                 path: b.path.clone(),
                 resolved: b.resolved.display().to_string(),
-                srgb: b.srgb,
+                srgb,
             };
             match load_one(device, queue, &decl) {
                 Ok(g) => {

@@ -173,7 +173,9 @@ pub struct TextureBinding {
     pub path: String,
     /// Joined to the scene file's directory.
     pub resolved: std::path::PathBuf,
-    pub srgb: bool,
+    /// `srgb = true/false` in a table binding; `None` (a plain path): the
+    /// colour space of the param's declared default image.
+    pub srgb: Option<bool>,
     /// The binding's value in the scene TOML.
     pub span: Span,
 }

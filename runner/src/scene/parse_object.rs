@@ -197,8 +197,9 @@ fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
 
 /// The `params` table: each binding is a number, a boolean (1 or 0), an
 /// array of 1 to 4 numbers, a colour string `"#rrggbb"` (4 components), or
-/// an image for an `object param t: texture`: a path string (sRGB) or a
-/// table `{ image = "path.png", srgb = false }`. Paths are relative to the
+/// an image for an `object param t: texture`: a path string (in the colour
+/// space the style declares for the param's default) or a table
+/// `{ image = "path.png", srgb = false }` that says which. Paths are relative to the
 /// scene file; whether the name is a texture param is checked against the
 /// style when the renderer is built (`render::object_textures`).
 #[allow(clippy::type_complexity)]
@@ -253,11 +254,11 @@ fn texture_value(
 ) -> Option<Option<TextureBinding>> {
     let span = report.span(value.span());
     let (path, srgb) = match value.get_ref() {
-        DeValue::String(text) if !text.starts_with('#') => (text.to_string(), true),
+        DeValue::String(text) if !text.starts_with('#') => (text.to_string(), None),
         DeValue::Table(table) => {
             let mut fields = Fields::new(table, span, format!("texture binding `{}`", name.value));
             let image = fields.string("image", report);
-            let srgb = fields.boolean("srgb", report).is_none_or(|flag| flag.value);
+            let srgb = fields.boolean("srgb", report).map(|flag| flag.value);
             fields.finish(report);
             let Some(image) = image else {
                 report.bad_scene(
