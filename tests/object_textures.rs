@@ -75,8 +75,7 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     assert_eq!(pass.object_bindings.len(), 2, "texture + sampler in group 1: {pass:?}");
     assert!(compiled.manifest.textures[0].per_object);
     let program = StyleProgram::from_compiled(&compiled);
-    let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene)
-        .unwrap_or_else(|e| panic!("renderer: {e:?}"));
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).unwrap_or_else(|e| panic!("renderer: {e:?}"));
     let (w, h) = (96u32, 32u32);
     let spec = FrameSpec {
         width: w,
@@ -126,7 +125,9 @@ fn renderer_errors(left: &str, right: &str, name: &str) -> String {
     let program = StyleProgram::from_compiled(&compiled);
     match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("expected the renderer to refuse {left} / {right}"),
-        Err(runner::RunError::User(d)) => dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"),
+        Err(runner::RunError::User(d)) => {
+            dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+        }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     }
 }
@@ -163,7 +164,9 @@ output p.c
     let program = StyleProgram::from_compiled(&compiled);
     let text = match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("an image bound to a colour param must be refused"),
-        Err(runner::RunError::User(d)) => dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"),
+        Err(runner::RunError::User(d)) => {
+            dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+        }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
     insta::assert_snapshot!(text);
@@ -173,7 +176,11 @@ output p.c
 fn an_unreadable_bound_image_is_refused_at_its_toml_value() {
     let dir = scratch("object-textures-unreadable");
     std::fs::write(dir.join("broken.png"), b"not a png").expect("write");
-    insta::assert_snapshot!(renderer_errors("\"broken.png\"", "\"blue.png\"", "object-textures-unreadable"));
+    insta::assert_snapshot!(renderer_errors(
+        "\"broken.png\"",
+        "\"blue.png\"",
+        "object-textures-unreadable"
+    ));
 }
 
 #[test]

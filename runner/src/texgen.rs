@@ -257,11 +257,7 @@ pub fn paint_map(size: u32, base: [f64; 3], seed: u32) -> Rgba8Image {
         channels: 1,
         frequency: 4,
     };
-    let keys = [
-        base.map(|c| c * 0.8),
-        base,
-        base.map(|c| c + (1.0 - c) * 0.35),
-    ];
+    let keys = [base.map(|c| c * 0.8), base, base.map(|c| c + (1.0 - c) * 0.35)];
     let mut pixels = Vec::with_capacity((size * size) as usize);
     for y in 0..size {
         let v = (f64::from(y) + 0.5) / f64::from(size);

@@ -90,7 +90,10 @@ fn paint_maps_stay_around_their_base_colour_and_vary() {
         let (lo, hi) = lumas
             .iter()
             .fold((f64::MAX, f64::MIN), |(lo, hi), l| (lo.min(*l), hi.max(*l)));
-        assert!(hi - lo > 10.0, "{file}: luma spans only {lo}..{hi}; the paint should vary");
+        assert!(
+            hi - lo > 10.0,
+            "{file}: luma spans only {lo}..{hi}; the paint should vary"
+        );
     }
 }
 

@@ -36,6 +36,8 @@
 //! tags = ["caster"]               # optional: for `render(scene, tag: ...)` passes
 //! casts_shadows = true            # optional, default true
 //! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
+//! # an `object param albedo: texture` takes an image, relative to this file:
+//! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
 //! [[object]]
 //! primitive = { kind = "sphere", radius = 1.0, segments = 64, rings = 32 }
