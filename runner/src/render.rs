@@ -231,7 +231,7 @@ impl<'d> Renderer<'d> {
             // the shared dynamic-offset uniform at binding 0, then its textures.
             let own_layout = (!pass.object_bindings.is_empty()).then(|| {
                 let mut entries = vec![object_uniform_entry(manifest.object_uniform_size)];
-                entries.extend(pass.object_bindings.iter().map(|b| layout_entry(b)));
+                entries.extend(pass.object_bindings.iter().map(layout_entry));
                 device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                     label: Some(&pass.name),
                     entries: &entries,
@@ -316,13 +316,12 @@ impl<'d> Renderer<'d> {
                     Some(i) => &object_textures.images[*i],
                     None => &textures[texture],
                 };
-                let views: Vec<wgpu::TextureView> = pass
+                let views: Vec<Option<wgpu::TextureView>> = pass
                     .object_bindings
                     .iter()
                     .map(|b| match b.resource {
-                        Resource::Texture { texture } => gpu(texture).texture.create_view(&Default::default()),
-                        // Samplers need no view; keep indices aligned with a cheap one.
-                        _ => textures[0].texture.create_view(&Default::default()),
+                        Resource::Texture { texture } => Some(gpu(texture).texture.create_view(&Default::default())),
+                        _ => None,
                     })
                     .collect();
                 let mut entries = vec![wgpu::BindGroupEntry {
@@ -334,9 +333,17 @@ impl<'d> Renderer<'d> {
                     }),
                 }];
                 for (b, view) in pass.object_bindings.iter().zip(&views) {
-                    let resource = match b.resource {
-                        Resource::TextureSampler { texture } => wgpu::BindingResource::Sampler(&gpu(texture).sampler),
-                        _ => wgpu::BindingResource::TextureView(view),
+                    let resource = match (&b.resource, view) {
+                        (Resource::TextureSampler { texture }, _) => {
+                            wgpu::BindingResource::Sampler(&gpu(*texture).sampler)
+                        }
+                        (Resource::Texture { .. }, Some(view)) => wgpu::BindingResource::TextureView(view),
+                        _ => {
+                            return Err(RunError::Internal(format!(
+                                "pass `{}`: group 1 binding {} is not a per-object texture or sampler",
+                                pass.name, b.binding
+                            )))
+                        }
                     };
                     entries.push(wgpu::BindGroupEntry {
                         binding: b.binding,
