@@ -244,8 +244,8 @@ fn read_params(
     (params, spans, textures)
 }
 
-/// An image binding, if `value` is one: a string that is not a colour, or a
-/// table. `Some(None)` when it is one but is malformed (reported).
+/// An image binding, if `value` is one: a string naming a file with an
+/// extension (not `#...`), or a table. `Some(None)` when it is one but is malformed (reported).
 fn texture_value(
     name: &At<String>,
     value: &toml::Spanned<DeValue>,
@@ -254,7 +254,10 @@ fn texture_value(
 ) -> Option<Option<TextureBinding>> {
     let span = report.span(value.span());
     let (path, srgb) = match value.get_ref() {
-        DeValue::String(text) if !text.starts_with('#') => (text.to_string(), None),
+        // A file name has an extension; `"red"` stays a (bad) colour.
+        DeValue::String(text) if !text.starts_with('#') && Path::new(&**text).extension().is_some() => {
+            (text.to_string(), None)
+        }
         DeValue::Table(table) => {
             let mut fields = Fields::new(table, span, format!("texture binding `{}`", name.value));
             let image = fields.string("image", report);
@@ -295,7 +298,7 @@ fn texture_value(
 
 fn param_value(name: &At<String>, value: &toml::Spanned<DeValue>, report: &mut Report) -> Option<At<Vec<f64>>> {
     let span = report.span(value.span());
-    let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, or a colour `\"#rrggbb\"`";
+    let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, a colour `\"#rrggbb\"`, or an image file `\"file.png\"` for a texture param";
     let components = match value.get_ref() {
         DeValue::Integer(_) | DeValue::Float(_) => {
             super::toml_fields::expect_number(value, &name.value, report).map(|n| vec![n.value])?
