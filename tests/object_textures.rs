@@ -236,3 +236,43 @@ output p.c
     };
     insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false));
 }
+
+#[test]
+fn a_per_object_texture_is_an_operator_handle_too() {
+    // As a `SampledTexture` argument (MetaTexture) it binds the same group-1
+    // texture and sampler; naga validates the module during compilation.
+    let dir = scratch("object-textures-operator");
+    let style = "style \"grain\"
+object param grain: texture = image(\"green.png\", linear) { wrap: repeat, mips: on }
+pass p: render(scene) {
+  out c: rgba8unorm = vec4(metatexture(grain, width: 32px).rgb, 1.0)
+}
+output p.c
+";
+    let mut sources = SourceMap::new();
+    let compiled = compiler::compile_source("grain.npr", style, &dir, &mut sources, &CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let pass = &compiled.manifest.passes[0];
+    let wgsl = &compiled
+        .shaders
+        .iter()
+        .find(|(name, _)| *name == pass.shader)
+        .expect("the pass's shader")
+        .1;
+    assert!(
+        wgsl.contains("@group(1) @binding(1) var tex_grain: texture_2d<f32>;"),
+        "{wgsl}"
+    );
+    assert!(
+        wgsl.contains("@group(1) @binding(2) var samp_grain: sampler;"),
+        "{wgsl}"
+    );
+    assert!(wgsl.contains("tex_grain, samp_grain"), "{wgsl}");
+    assert!(
+        pass.bindings
+            .iter()
+            .all(|b| !matches!(b.resource, compiler::manifest::Resource::Texture { .. })),
+        "the per-object texture must not also be bound in group 0: {:?}",
+        pass.bindings
+    );
+}
