@@ -197,6 +197,19 @@ fn a_missing_bound_image_is_refused_while_loading_the_scene() {
 }
 
 #[test]
+fn a_table_binding_without_an_image_is_refused_with_did_you_mean() {
+    let dir = scratch("object-textures-table");
+    let scene_path = dir.join("three.toml");
+    std::fs::write(&scene_path, scene_text("{ imag = \"red.png\" }", "{ image = 3 }")).expect("write scene");
+    let mut sources = SourceMap::new();
+    let d = match runner::scene::load_scene(&scene_path, &mut sources) {
+        Ok(_) => panic!("a binding without an image must be refused"),
+        Err(d) => d,
+    };
+    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
+}
+
+#[test]
 fn a_per_object_texture_read_in_an_image_pass_is_an_error() {
     let dir = scratch("object-textures-image-pass");
     let style = "style \"bad\"

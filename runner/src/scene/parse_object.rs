@@ -264,6 +264,10 @@ fn texture_value(
             let srgb = fields.boolean("srgb", report).map(|flag| flag.value);
             fields.finish(report);
             let Some(image) = image else {
+                if table.get("image").is_some() {
+                    // Present but not a string: already reported.
+                    return Some(None);
+                }
                 report.bad_scene(
                     span,
                     format!("texture binding `{}` has no `image`", name.value),
