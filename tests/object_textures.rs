@@ -232,6 +232,26 @@ output q.c
 }
 
 #[test]
+fn a_per_object_texture_read_in_a_vertex_modifier_is_an_error() {
+    let dir = scratch("object-textures-vertex");
+    let style = "style \"bad\"
+object param albedo: texture = image(\"green.png\", linear)
+pass p: render(scene) {
+  vertex { inflate: albedo.r * 1px }
+  out c: rgba8unorm = albedo
+}
+output p.c
+";
+    let mut sources = SourceMap::new();
+    let d = match compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
+        Ok(_) => panic!("a texture read per vertex must be refused"),
+        Err(compiler::CompileError::User(d)) => d,
+        Err(e) => panic!("expected user diagnostics, got {e:?}"),
+    };
+    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false));
+}
+
+#[test]
 fn a_style_wide_texture_param_is_an_error() {
     let dir = scratch("object-textures-style-param");
     let style = "style \"bad\"

@@ -33,6 +33,7 @@ pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut
         scopes: Vec::new(),
         current_pass: None,
         in_render_pass: false,
+        in_vertex: false,
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -64,6 +65,9 @@ struct Resolver<'d> {
     /// Whether the pass being resolved draws objects (`render(...)`): only
     /// those may read per-object textures.
     in_render_pass: bool,
+    /// Resolving a `vertex { ... }` modifier: no texture may be sampled
+    /// there (`textureSample` is fragment-only in WGSL).
+    in_vertex: bool,
 }
 
 impl Resolver<'_> {
@@ -820,9 +824,13 @@ impl Resolver<'_> {
         let mut shadow_warp = None;
         for s in &p.body.vertex {
             if s.key.name == "inflate" && matches!(kind, PassKind::Render { .. }) {
+                self.in_vertex = true;
                 inflate = Some(self.expr(&s.value));
+                self.in_vertex = false;
             } else if s.key.name == "shadow_warp" && view == PassView::Light {
+                self.in_vertex = true;
                 shadow_warp = Some(self.expr(&s.value));
+                self.in_vertex = false;
             } else {
                 self.error(
                     Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
@@ -1046,6 +1054,16 @@ impl Resolver<'_> {
                 return self.ir.add_typed(ExprKind::Param(p), ty, unit, span);
             }
             Some((Symbol::Texture(t), _)) => {
+                if self.in_vertex {
+                    let d = Diagnostic::error(
+                        codes::BAD_PASS_INPUT,
+                        format!("texture `{}` read in a `vertex {{ }}` modifier", id.name),
+                    )
+                    .with_primary(span, "textures are sampled per fragment, not per vertex")
+                    .with_help("use a parameter or a per-object param for the vertex modifier");
+                    self.error(d);
+                    return self.ir.add(ExprKind::Error, span);
+                }
                 if self.ir.textures[t.0 as usize].per_object && !self.in_render_pass {
                     let d = Diagnostic::error(
                         codes::BAD_PASS_INPUT,
