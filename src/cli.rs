@@ -110,9 +110,13 @@ pub enum Command {
         /// Lattice cells across the texture at the first octave.
         #[arg(long, default_value_t = 4)]
         frequency: u32,
-        /// `value` or `gradient` noise.
+        /// `value` or `gradient` noise, or `paint`: an 8-bit painterly colour
+        /// map around `--color` (Age of Sail §5.2 lit/shadow textures).
         #[arg(long, default_value = "gradient")]
         kind: String,
+        /// Base colour `#rrggbb` of a `paint` map.
+        #[arg(long)]
+        color: Option<String>,
     },
 }
 
@@ -280,12 +284,14 @@ pub fn run(cli: Cli) -> i32 {
             channels,
             frequency,
             kind,
+            color,
         } => {
             let gradient = match kind.as_str() {
                 "gradient" => true,
                 "value" => false,
+                "paint" => return texgen_paint(&out, size, seed, color.as_deref()),
                 other => {
-                    eprintln!("error: unknown noise kind `{other}`; use `value` or `gradient`");
+                    eprintln!("error: unknown noise kind `{other}`; use `value`, `gradient` or `paint`");
                     return EXIT_USER;
                 }
             };
@@ -792,4 +798,30 @@ pub fn dump_all_targets(
         }
     }
     Ok(images.into_iter().flatten().collect())
+}
+
+/// `npr texgen --kind paint --color "#rrggbb"`: [`runner::texgen::paint_map`] as an 8-bit PNG.
+fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, color: Option<&str>) -> i32 {
+    let Some(base) = color.and_then(runner::texgen::parse_hex) else {
+        eprintln!("error: `--kind paint` needs `--color \"#rrggbb\"`");
+        return EXIT_USER;
+    };
+    if !(1..=4096).contains(&size) {
+        eprintln!("error: need 1 ≤ size ≤ 4096");
+        return EXIT_USER;
+    }
+    let map = runner::texgen::paint_map(size, base, seed);
+    let image = image::RgbaImage::from_fn(map.width, map.height, |x, y| {
+        image::Rgba(map.pixels[(y * map.width + x) as usize])
+    });
+    match runner::output::write_png8(&image, out) {
+        Ok(()) => {
+            eprintln!("wrote {} ({size}x{size} paint map)", out.display());
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", out.display());
+            EXIT_USER
+        }
+    }
 }

@@ -349,3 +349,34 @@ fn shipped_noise_textures_are_what_texgen_writes() {
     assert!(stderr(&o).contains("channels"), "{}", stderr(&o));
     assert!(!bad.exists());
 }
+
+#[test]
+fn texgen_paint_writes_the_checked_in_age_of_sail_paint_map() {
+    let out = scratch("texgen-paint").join("spot_lit.png");
+    let o = npr(&[
+        "texgen",
+        "-o",
+        out.to_str().expect("utf-8 path"),
+        "--kind",
+        "paint",
+        "--color",
+        "#e9c48a",
+        "--size",
+        "64",
+        "--seed",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = image::open(&out).expect("written png").to_rgba8();
+    let checked_in = image::open(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/textures/paint_spot_lit.png"))
+        .expect("checked-in png")
+        .to_rgba8();
+    assert!(
+        written == checked_in,
+        "npr texgen --kind paint differs from examples/textures/paint_spot_lit.png"
+    );
+    // A paint map needs its base colour.
+    let o = npr(&["texgen", "-o", out.to_str().expect("utf-8 path"), "--kind", "paint"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--color"), "{}", stderr(&o));
+}

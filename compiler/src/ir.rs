@@ -500,6 +500,9 @@ pub struct Texture {
     pub wrap_repeat: bool,
     pub filter_linear: bool,
     pub mips: bool,
+    /// Declared `object param name: texture = ...`: bound in group 1, and the
+    /// scene may give each object its own image (the default otherwise).
+    pub per_object: bool,
     pub span: Span,
 }
 

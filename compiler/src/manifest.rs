@@ -109,6 +109,11 @@ pub struct PassManifest {
     pub clear: [f64; 4],
     /// Group 0 bindings, by binding number.
     pub bindings: Vec<Binding>,
+    /// Group 1 bindings after the `Object` uniform block (binding 0), by
+    /// binding number: the per-object textures (`object param t: texture`)
+    /// this render pass reads. The runner builds one group 1 per object.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub object_bindings: Vec<Binding>,
     /// `.npr` line of the pass declaration (for messages).
     pub line: usize,
 }
@@ -179,6 +184,10 @@ pub enum TextureSourceManifest {
 pub struct TextureManifest {
     pub name: String,
     pub source: TextureSourceManifest,
+    /// `object param name: texture`: `source` is the default; the scene may
+    /// bind another image per object (`params = { name = "file.png" }`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub per_object: bool,
     pub wrap_repeat: bool,
     pub filter_linear: bool,
     pub mips: bool,

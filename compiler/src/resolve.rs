@@ -32,6 +32,8 @@ pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut
         pass_outputs: Vec::new(),
         scopes: Vec::new(),
         current_pass: None,
+        in_render_pass: false,
+        in_vertex: false,
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -60,6 +62,12 @@ struct Resolver<'d> {
     /// Let scopes: innermost last. Each maps a name to its value node.
     scopes: Vec<Vec<(String, ExprId)>>,
     current_pass: Option<PassId>,
+    /// Whether the pass being resolved draws objects (`render(...)`): only
+    /// those may read per-object textures.
+    in_render_pass: bool,
+    /// Resolving a `vertex { ... }` modifier: no texture may be sampled
+    /// there (`textureSample` is fragment-only in WGSL).
+    in_vertex: bool,
 }
 
 impl Resolver<'_> {
@@ -86,6 +94,16 @@ impl Resolver<'_> {
     fn declare_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
         for (item, dir) in items {
             match item {
+                Item::Param(p) if is_texture_type(&p.ty) => {
+                    // `object param t: texture = image(...)` is a texture, not a
+                    // uniform slot: it lives with the declared textures, flagged
+                    // per object, and the scene may rebind its image per object.
+                    if let Some(tex) = self.object_texture(p, dir) {
+                        let id = TextureId(self.ir.textures.len() as u32);
+                        self.declare(&p.name, Symbol::Texture(id));
+                        self.ir.textures.push(tex);
+                    }
+                }
                 Item::Param(p) => {
                     let id = ParamId(self.ir.params.len() as u32);
                     self.declare(&p.name, Symbol::Param(id));
@@ -137,6 +155,7 @@ impl Resolver<'_> {
         let mut output_seen: Option<Span> = None;
         for (item, _) in items {
             match item {
+                Item::Param(p) if is_texture_type(&p.ty) => {}
                 Item::Param(p) => {
                     self.param_body(ParamId(param_index), p);
                     param_index += 1;
@@ -412,6 +431,55 @@ impl Resolver<'_> {
 
     // -------------------------------------------------------------- textures
 
+    /// `object param name: texture = image("file.png", srgb) { options }`:
+    /// the default image and sampler options of a texture the scene may bind
+    /// per object (`params = { name = "file.png" }`). A default is required,
+    /// as for every parameter, so an object without a binding still draws.
+    fn object_texture(&mut self, p: &ast::ParamDecl, dir: &Path) -> Option<Texture> {
+        if !p.per_object {
+            self.error(
+                Diagnostic::error(codes::UNKNOWN_TYPE, "only object params may be textures")
+                    .with_primary(p.ty.span(), "a style-wide texture parameter")
+                    .with_help(format!(
+                        "declare a style texture as `texture {0} = image(\"file.png\")`, or one the scene binds per object as `object param {0}: texture = image(\"file.png\")`",
+                        p.name.name
+                    )),
+            );
+            return None;
+        }
+        if let Some(extra) = p.range.as_ref().map(|r| r.span).or(p.animate.as_ref().map(|a| a.span)) {
+            self.error(
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT,
+                    format!("texture param `{}` has no range or keyframes", p.name.name),
+                )
+                .with_primary(extra, "not for a texture")
+                .with_help("remove it; a texture param only has a default image and `{ wrap, filter, mips }` options"),
+            );
+        }
+        let AK::Call(call) = &p.default.kind else {
+            self.error(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("the default of texture param `{}` is not an image", p.name.name),
+                )
+                .with_primary(p.default.span, "expected `image(\"file.png\", srgb)`")
+                .with_help("write `object param lit: texture = image(\"textures/paper.png\", srgb)`"),
+            );
+            return None;
+        };
+        let decl = ast::TextureDecl {
+            doc: p.doc.clone(),
+            name: p.name.clone(),
+            source: call.clone(),
+            options: p.options.clone(),
+            span: p.span,
+        };
+        let mut tex = self.texture(&decl, dir);
+        tex.per_object = true;
+        Some(tex)
+    }
+
     fn texture(&mut self, t: &ast::TextureDecl, dir: &Path) -> Texture {
         let mut tex = Texture {
             name: t.name.name.clone(),
@@ -427,6 +495,7 @@ impl Resolver<'_> {
             wrap_repeat: true,
             filter_linear: true,
             mips: false,
+            per_object: false,
             span: t.span,
         };
         let callee = t.source.callee.name.as_str();
@@ -701,6 +770,7 @@ impl Resolver<'_> {
                 PassKind::Image { inputs: Vec::new() }
             }
         };
+        self.in_render_pass = matches!(kind, PassKind::Render { .. });
         let scale = match &p.scale {
             None => 1.0,
             Some(e) => {
@@ -754,9 +824,13 @@ impl Resolver<'_> {
         let mut shadow_warp = None;
         for s in &p.body.vertex {
             if s.key.name == "inflate" && matches!(kind, PassKind::Render { .. }) {
+                self.in_vertex = true;
                 inflate = Some(self.expr(&s.value));
+                self.in_vertex = false;
             } else if s.key.name == "shadow_warp" && view == PassView::Light {
+                self.in_vertex = true;
                 shadow_warp = Some(self.expr(&s.value));
+                self.in_vertex = false;
             } else {
                 self.error(
                     Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
@@ -863,6 +937,7 @@ impl Resolver<'_> {
         pass.lets = lets;
         pass.outputs = outputs;
         self.current_pass = None;
+        self.in_render_pass = false;
     }
 
     // ----------------------------------------------------------- expressions
@@ -979,6 +1054,29 @@ impl Resolver<'_> {
                 return self.ir.add_typed(ExprKind::Param(p), ty, unit, span);
             }
             Some((Symbol::Texture(t), _)) => {
+                if self.in_vertex {
+                    let d = Diagnostic::error(
+                        codes::BAD_PASS_INPUT,
+                        format!("texture `{}` read in a `vertex {{ }}` modifier", id.name),
+                    )
+                    .with_primary(span, "textures are sampled per fragment, not per vertex")
+                    .with_help("use a parameter or a per-object param for the vertex modifier");
+                    self.error(d);
+                    return self.ir.add(ExprKind::Error, span);
+                }
+                if self.ir.textures[t.0 as usize].per_object && !self.in_render_pass {
+                    let d = Diagnostic::error(
+                        codes::BAD_PASS_INPUT,
+                        format!("`{}` is a per-object texture, read outside a render pass", id.name),
+                    )
+                    .with_primary(span, "no object is being drawn here")
+                    .with_help(format!(
+                        "read `{}` in a `render(...)` pass, write what you need to a target, and read that target here",
+                        id.name
+                    ));
+                    self.error(d);
+                    return self.ir.add(ExprKind::Error, span);
+                }
                 return self
                     .ir
                     .add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span);
@@ -1286,4 +1384,9 @@ pub fn signature(op: &stdlib::Operator) -> String {
         })
         .collect();
     format!("({})", params.join(", "))
+}
+
+/// `texture` as a parameter type (`object param lit: texture = image(...)`).
+fn is_texture_type(ty: &ast::TypeExpr) -> bool {
+    matches!(ty, ast::TypeExpr::Named(id) if id.name == "texture")
 }

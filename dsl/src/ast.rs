@@ -66,6 +66,10 @@ pub struct ParamDecl {
     pub default: Expr,
     pub range: Option<RangeExpr>,
     pub animate: Option<Animation>,
+    /// `{ wrap: repeat, ... }` after the default: sampler options of an
+    /// `object param t: texture = image(...)` (empty for every other type).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub options: Vec<Setting>,
     pub span: Span,
 }
 

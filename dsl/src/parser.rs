@@ -159,7 +159,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::color => "a colour like #ff8800",
         Rule::item | Rule::single_item => "a declaration (param, texture, pass, output, use)",
         Rule::EOI => "end of file",
-        Rule::type_expr | Rule::enum_type => "a type",
+        Rule::type_expr | Rule::enum_type | Rule::texture_type => "a type",
         Rule::param_default | Rule::range_value => "a default value",
         Rule::range_clause => "`in lo..hi`",
         Rule::animate_clause => "`animate { ... }`",
@@ -354,6 +354,7 @@ impl Builder {
         let mut default = None;
         let mut range = None;
         let mut animate = None;
+        let mut options = Vec::new();
         for i in p.into_inner() {
             match i.as_rule() {
                 Rule::doc_comment => doc = self.doc(i),
@@ -363,6 +364,7 @@ impl Builder {
                 Rule::param_default => default = Some(self.param_default(i)?),
                 Rule::range_clause => range = Some(self.range(i)?),
                 Rule::animate_clause => animate = Some(self.animate(i)?),
+                Rule::settings_block => options = self.settings(i),
                 _ => {}
             }
         }
@@ -374,6 +376,7 @@ impl Builder {
             default: default?,
             range,
             animate,
+            options,
             span,
         })
     }

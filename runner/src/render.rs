@@ -49,6 +49,10 @@ pub struct Renderer<'d> {
     pub manifest: Manifest,
     pipelines: Vec<PassPipeline>,
     object_group: wgpu::BindGroup,
+    /// Per pass, per object: group 1 with the object's uniforms and its
+    /// per-object textures; empty for passes that read no such texture
+    /// (they share `object_group`).
+    pass_object_groups: Vec<Vec<wgpu::BindGroup>>,
     textures: Vec<GpuTexture>,
     linear_clamp: wgpu::Sampler,
     meshes: Vec<GpuMesh>,
@@ -131,10 +135,63 @@ pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<dsl::Diagnostic> {
             Attribute::Tangent => crate::scene::Attribute::Tangent,
         })
         .collect();
-    scene.check_attributes(
+    let mut diags = scene.check_attributes(
         &required,
         &format!("style \"{}\" needs per-vertex data", manifest.style),
-    )
+    );
+    diags.extend(check_texture_bindings(manifest, scene));
+    diags
+}
+
+/// E0405 where a scene binds an image to something that is not a per-object
+/// texture param of the style, or a number or colour to one that is. Names
+/// the style does not declare at all are left alone, as for numeric params
+/// (one scene may serve several styles).
+pub fn check_texture_bindings(manifest: &Manifest, scene: &Scene) -> Vec<dsl::Diagnostic> {
+    use dsl::{codes, Diagnostic};
+    let mut diags = Vec::new();
+    let is_object_texture = |name: &str| manifest.textures.iter().any(|t| t.per_object && t.name == name);
+    for o in &scene.objects {
+        for (name, b) in &o.textures {
+            if is_object_texture(name) {
+                continue;
+            }
+            let what = if let Some(p) = manifest.params.iter().find(|p| p.name == *name) {
+                format!("a {} param", p.ty)
+            } else if manifest.textures.iter().any(|t| t.name == *name) {
+                "a style-wide texture".to_string()
+            } else {
+                continue;
+            };
+            diags.push(
+                Diagnostic::error(
+                    codes::BAD_SCENE,
+                    format!("object `{}` binds an image to `{name}`, which is {what}", o.name),
+                )
+                .with_primary(b.span, "an image binding")
+                .with_help(format!(
+                    "only `object param {name}: texture` params take images; give `{name}` a value of its type"
+                )),
+            );
+        }
+        for name in o.params.keys() {
+            if !is_object_texture(name) {
+                continue;
+            }
+            let mut d = Diagnostic::error(
+                codes::BAD_SCENE,
+                format!("object `{}` binds a value to texture param `{name}`", o.name),
+            )
+            .with_help(format!(
+                "bind an image: `{name} = \"textures/file.png\"` or `{name} = {{ image = \"file.png\", srgb = false }}`"
+            ));
+            if let Some(s) = o.param_spans.get(name) {
+                d = d.with_primary(*s, "not an image path");
+            }
+            diags.push(d);
+        }
+    }
+    diags
 }
 
 impl<'d> Renderer<'d> {
@@ -160,24 +217,34 @@ impl<'d> Renderer<'d> {
         });
         let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("npr object"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: true,
-                    min_binding_size: wgpu::BufferSize::new(manifest.object_uniform_size.max(16)),
-                },
-                count: None,
-            }],
+            entries: &[object_uniform_entry(manifest.object_uniform_size)],
         });
+        let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
         let mut pipelines = Vec::new();
+        let mut pass_object_layouts = Vec::new();
         for pass in &manifest.passes {
             let wgsl = program
                 .shaders
                 .get(&pass.shader)
                 .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
-            pipelines.push(build_pipeline(device, &manifest, pass, wgsl, &object_layout)?);
+            // A pass reading per-object textures gets its own group 1 layout:
+            // the shared dynamic-offset uniform at binding 0, then its textures.
+            let own_layout = (!pass.object_bindings.is_empty()).then(|| {
+                let mut entries = vec![object_uniform_entry(manifest.object_uniform_size)];
+                entries.extend(pass.object_bindings.iter().map(layout_entry));
+                device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some(&pass.name),
+                    entries: &entries,
+                })
+            });
+            pipelines.push(build_pipeline(
+                device,
+                &manifest,
+                pass,
+                wgsl,
+                own_layout.as_ref().unwrap_or(&object_layout),
+            )?);
+            pass_object_layouts.push(own_layout);
         }
         let meshes = scene
             .objects
@@ -234,11 +301,69 @@ impl<'d> Renderer<'d> {
                 }),
             }],
         });
+        // One group 1 per (pass reading object textures, object): the object's
+        // bound image where it binds one, the declared default otherwise.
+        let object_size = wgpu::BufferSize::new(manifest.object_uniform_size.max(16));
+        let mut pass_object_groups = Vec::new();
+        for (pass, layout) in manifest.passes.iter().zip(&pass_object_layouts) {
+            let Some(layout) = layout else {
+                pass_object_groups.push(Vec::new());
+                continue;
+            };
+            let mut groups = Vec::new();
+            for (oi, o) in scene.objects.iter().enumerate() {
+                let gpu = |texture: usize| match object_textures.bound[oi].get(&texture) {
+                    Some(i) => &object_textures.images[*i],
+                    None => &textures[texture],
+                };
+                let views: Vec<Option<wgpu::TextureView>> = pass
+                    .object_bindings
+                    .iter()
+                    .map(|b| match b.resource {
+                        Resource::Texture { texture } => Some(gpu(texture).texture.create_view(&Default::default())),
+                        _ => None,
+                    })
+                    .collect();
+                let mut entries = vec![wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &object_buffer,
+                        offset: 0,
+                        size: object_size,
+                    }),
+                }];
+                for (b, view) in pass.object_bindings.iter().zip(&views) {
+                    let resource = match (&b.resource, view) {
+                        (Resource::TextureSampler { texture }, _) => {
+                            wgpu::BindingResource::Sampler(&gpu(*texture).sampler)
+                        }
+                        (Resource::Texture { .. }, Some(view)) => wgpu::BindingResource::TextureView(view),
+                        _ => {
+                            return Err(RunError::Internal(format!(
+                                "pass `{}`: group 1 binding {} is not a per-object texture or sampler",
+                                pass.name, b.binding
+                            )))
+                        }
+                    };
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: b.binding,
+                        resource,
+                    });
+                }
+                groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&format!("{} / {}", pass.name, o.name)),
+                    layout,
+                    entries: &entries,
+                }));
+            }
+            pass_object_groups.push(groups);
+        }
         Ok(Renderer {
             device,
             queue,
             pipelines,
             object_group,
+            pass_object_groups,
             textures,
             linear_clamp,
             meshes,
@@ -654,7 +779,8 @@ impl<'d> Renderer<'d> {
                                     continue;
                                 }
                             }
-                            rp.set_bind_group(1, &self.object_group, &[(oi as u64 * self.object_stride) as u32]);
+                            let group = self.pass_object_groups[pi].get(oi).unwrap_or(&self.object_group);
+                            rp.set_bind_group(1, group, &[(oi as u64 * self.object_stride) as u32]);
                             for (slot, a) in attributes.iter().enumerate() {
                                 if let Some(buf) = mesh.buffers.get(a) {
                                     rp.set_vertex_buffer(slot as u32, buf.slice(..));
@@ -711,6 +837,51 @@ impl<'d> Renderer<'d> {
     }
 }
 
+/// Group 1, binding 0: the object's uniform block at a dynamic offset.
+fn object_uniform_entry(object_uniform_size: u64) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 0,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: true,
+            min_binding_size: wgpu::BufferSize::new(object_uniform_size.max(16)),
+        },
+        count: None,
+    }
+}
+
+/// The layout entry of one manifest binding (group 0, or group 1 after the object block).
+fn layout_entry(b: &Binding) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: b.binding,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        ty: match &b.resource {
+            Resource::FrameUniforms | Resource::StyleUniforms => wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            Resource::Target { filterable, .. } => wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float {
+                    filterable: *filterable,
+                },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            Resource::Texture { .. } => wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            Resource::TextureSampler { .. } | Resource::LinearClampSampler => {
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
+            }
+        },
+        count: None,
+    }
+}
+
 fn build_pipeline(
     device: &wgpu::Device,
     manifest: &Manifest,
@@ -718,37 +889,7 @@ fn build_pipeline(
     wgsl: &str,
     object_layout: &wgpu::BindGroupLayout,
 ) -> Result<PassPipeline, RunError> {
-    let entries: Vec<wgpu::BindGroupLayoutEntry> = pass
-        .bindings
-        .iter()
-        .map(|b| wgpu::BindGroupLayoutEntry {
-            binding: b.binding,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: match &b.resource {
-                Resource::FrameUniforms | Resource::StyleUniforms => wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                Resource::Target { filterable, .. } => wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float {
-                        filterable: *filterable,
-                    },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                Resource::Texture { .. } => wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                Resource::TextureSampler { .. } | Resource::LinearClampSampler => {
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
-                }
-            },
-            count: None,
-        })
-        .collect();
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = pass.bindings.iter().map(layout_entry).collect();
     let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(&pass.name),
         entries: &entries,

@@ -238,6 +238,55 @@ pub fn sky_map(width: u32, height: u32, seed: u32) -> Rgba8Image {
     Rgba8Image { width, height, pixels }
 }
 
+/// A painterly colour map for Age of Sail §5.2's per-object lit and shadow
+/// textures ("two full sets of texture maps, one for shadowed areas, one
+/// for illuminated areas"): tileable value-noise fBm (`seed`, 5 octaves,
+/// 4 cells at the first) mapped through a ramp around `base` — a darker
+/// tone (`base`·0.8) below, `base` in the middle, a lighter one (a 35% mix
+/// towards white) above — so flat object colours read as uneven paint.
+/// The ramp input is quantized into 6 levels, a limited palette as in the
+/// film's painted textures, softened by ½ step of the noise so the band
+/// edges wander. Tiles seamlessly (the fBm lattice wraps). Display-referred, like [`bathic_map`]: load it `linear`.
+pub fn paint_map(size: u32, base: [f64; 3], seed: u32) -> Rgba8Image {
+    let size = size.clamp(1, 4096);
+    let spec = NoiseSpec {
+        size,
+        octaves: 5,
+        seed,
+        gradient: false,
+        channels: 1,
+        frequency: 4,
+    };
+    let keys = [base.map(|c| c * 0.8), base, base.map(|c| c + (1.0 - c) * 0.35)];
+    let mut pixels = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        let v = (f64::from(y) + 0.5) / f64::from(size);
+        for x in 0..size {
+            let u = (f64::from(x) + 0.5) / f64::from(size);
+            let n = fbm(u, v, &spec, seed);
+            // Widen the fBm's concentrated middle (≈0.3..0.7) to the ramp's 0..1.
+            let t = ((n - 0.5) * 2.2 + 0.5).clamp(0.0, 1.0);
+            let t = ((t * 6.0).floor() + 0.5) / 6.0 * 0.7 + t * 0.3;
+            let c = ramp(&keys, t);
+            pixels.push([to_byte(c[0]), to_byte(c[1]), to_byte(c[2]), 255]);
+        }
+    }
+    Rgba8Image {
+        width: size,
+        height: size,
+        pixels,
+    }
+}
+
+/// `#rrggbb` (or `rrggbb`) as [0, 1] components; `None` if malformed.
+pub fn parse_hex(text: &str) -> Option<[f64; 3]> {
+    let digits = text.strip_prefix('#').unwrap_or(text);
+    if digits.len() != 6 || !digits.chars().all(|c| c.is_ascii_hexdigit()) {
+        return None;
+    }
+    u32::from_str_radix(digits, 16).ok().map(hex)
+}
+
 /// Write a generated texture as a 16-bit RGBA PNG (atomically): 16 bits keep
 /// warp vectors smooth where 8 bits would quantize them visibly.
 pub fn write_png16(img: &NoiseImage, path: &std::path::Path) -> std::io::Result<()> {

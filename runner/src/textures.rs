@@ -1,10 +1,12 @@
 //! Declared textures on the GPU: decoded image files (sRGB or linear, with an
 //! optional mip chain) and generated noise, each with its sampler.
 
+use crate::scene::Scene;
 use crate::texgen::{self, NoiseSpec};
 use crate::RunError;
 use compiler::manifest::{Manifest, TextureManifest, TextureSourceManifest};
 use dsl::{codes, Diagnostic};
+use std::collections::{BTreeMap, HashMap};
 
 pub struct GpuTexture {
     pub texture: wgpu::Texture,
@@ -26,6 +28,72 @@ pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Res
                 out.push(placeholder(device));
             }
         }
+    }
+    if !diags.is_empty() {
+        return Err(RunError::User(diags));
+    }
+    Ok(out)
+}
+
+/// The images objects bind to per-object texture params, loaded once per
+/// (param, file, colour space) and shared between objects naming the same file.
+pub struct ObjectTextures {
+    pub images: Vec<GpuTexture>,
+    /// Per object: manifest texture index → index into `images`. A param the
+    /// object does not bind is absent: it draws with the declared default.
+    pub bound: Vec<BTreeMap<usize, usize>>,
+}
+
+/// Loads every object's image bindings (checked against the style by
+/// `render::check_scene`). The sampler options are the param's declaration's.
+pub fn load_object_textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    scene: &Scene,
+) -> Result<ObjectTextures, RunError> {
+    let mut out = ObjectTextures {
+        images: Vec::new(),
+        bound: Vec::new(),
+    };
+    let mut cache: HashMap<(usize, std::path::PathBuf, bool), usize> = HashMap::new();
+    let mut diags = Vec::new();
+    for o in &scene.objects {
+        let mut bound = BTreeMap::new();
+        for (name, b) in &o.textures {
+            let Some(index) = m.textures.iter().position(|t| t.per_object && t.name == *name) else {
+                continue;
+            };
+            let declared_srgb = match &m.textures[index].source {
+                TextureSourceManifest::Image { srgb, .. } => *srgb,
+                TextureSourceManifest::Noise { .. } => false,
+            };
+            let srgb = b.srgb.unwrap_or(declared_srgb);
+            let key = (index, b.resolved.clone(), srgb);
+            if let Some(i) = cache.get(&key) {
+                bound.insert(index, *i);
+                continue;
+            }
+            let mut decl = m.textures[index].clone();
+            decl.source = TextureSourceManifest::Image {
+                path: b.path.clone(),
+                resolved: b.resolved.display().to_string(),
+                srgb,
+            };
+            match load_one(device, queue, &decl) {
+                Ok(g) => {
+                    cache.insert(key, out.images.len());
+                    bound.insert(index, out.images.len());
+                    out.images.push(g);
+                }
+                // Point at the binding in the scene, not at the style.
+                Err(d) => diags.push(
+                    d.with_primary(b.span, format!("object `{}` binds this image", o.name))
+                        .with_help("use a PNG or EXR file; image paths in a scene are relative to the scene file"),
+                ),
+            }
+        }
+        out.bound.push(bound);
     }
     if !diags.is_empty() {
         return Err(RunError::User(diags));

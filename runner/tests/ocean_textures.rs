@@ -1,11 +1,11 @@
-//! The ocean example's colour maps (`examples/textures/ocean_*.png`) are
-//! exactly what the generators in `runner::texgen` make, and have the
-//! properties the style relies on.
+//! The example colour maps (`examples/textures/ocean_*.png`, and the Age of
+//! Sail per-object paint maps `paint_*.png`) are exactly what the generators
+//! in `runner::texgen` make, and have the properties the styles rely on.
 //!
 //! Regenerate after changing a generator with
 //! `NPR_UPDATE_TEXTURES=1 cargo test -p runner --test ocean_textures`.
 
-use runner::texgen::{bathic_map, sky_map, Rgba8Image};
+use runner::texgen::{bathic_map, paint_map, parse_hex, sky_map, Rgba8Image};
 use std::path::{Path, PathBuf};
 
 fn texture_path(name: &str) -> PathBuf {
@@ -42,10 +42,73 @@ fn check_file(name: &str, generated: &Rgba8Image) {
     );
 }
 
+/// Age of Sail §5.2 lit and shadow maps: (file, base colour, seed). The
+/// bases are the flat colours the example used before it had textures.
+pub const PAINT_MAPS: [(&str, &str, u32); 8] = [
+    ("paint_lit.png", "#e0c090", 1),
+    ("paint_shadow.png", "#504070", 2),
+    ("paint_spot_lit.png", "#e9c48a", 3),
+    ("paint_spot_shadow.png", "#5a4a78", 4),
+    ("paint_lamp_lit.png", "#fff2c0", 5),
+    ("paint_lamp_shadow.png", "#d8b070", 6),
+    ("paint_ground_lit.png", "#b9c98f", 7),
+    ("paint_ground_shadow.png", "#4f5f7a", 8),
+];
+
+fn paint(base: &str, seed: u32) -> Rgba8Image {
+    paint_map(64, parse_hex(base).expect("colour"), seed)
+}
+
 #[test]
 fn the_checked_in_maps_are_the_generated_ones() {
     check_file("ocean_bathic.png", &bathic());
     check_file("ocean_sky.png", &sky());
+    for (file, base, seed) in PAINT_MAPS {
+        check_file(file, &paint(base, seed));
+    }
+}
+
+#[test]
+fn paint_maps_stay_around_their_base_colour_and_vary() {
+    for (file, base, seed) in PAINT_MAPS {
+        let map = paint(base, seed);
+        let want = parse_hex(base).expect("colour").map(|c| c * 255.0);
+        let n = map.pixels.len() as f64;
+        let mean: Vec<f64> = (0..3)
+            .map(|c| map.pixels.iter().map(|p| f64::from(p[c])).sum::<f64>() / n)
+            .collect();
+        for c in 0..3 {
+            // Ramp from 0.8·base to base + 35% of the way to white: the mean stays near base.
+            assert!(
+                (mean[c] - want[c]).abs() < 0.15 * 255.0,
+                "{file}: channel {c} mean {} far from base {}",
+                mean[c],
+                want[c]
+            );
+        }
+        let lumas: Vec<f64> = map.pixels.iter().map(|p| luma(*p)).collect();
+        let (lo, hi) = lumas
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(lo, hi), l| (lo.min(*l), hi.max(*l)));
+        assert!(
+            hi - lo > 10.0,
+            "{file}: luma spans only {lo}..{hi}; the paint should vary"
+        );
+    }
+}
+
+#[test]
+fn paint_maps_tile_seamlessly() {
+    let map = paint("#808080", 3);
+    let (w, h) = (map.width as usize, map.height as usize);
+    let at = |x: usize, y: usize| luma(map.pixels[y * w + x]);
+    // The step across the wrap is no larger than the largest step inside.
+    let inner = (0..h)
+        .flat_map(|y| (0..w - 1).map(move |x| (x, y)))
+        .map(|(x, y)| (at(x + 1, y) - at(x, y)).abs())
+        .fold(0.0, f64::max);
+    let wrap = (0..h).map(|y| (at(0, y) - at(w - 1, y)).abs()).fold(0.0, f64::max);
+    assert!(wrap <= inner + 1e-9, "wrap step {wrap} > inner step {inner}");
 }
 
 fn luma(p: [u8; 4]) -> f64 {

@@ -65,6 +65,7 @@ pub fn build(
                 outputs,
                 clear: pass.clear,
                 bindings: e.bindings.clone(),
+                object_bindings: e.object_bindings.clone(),
                 line: sources.line_col(pass.name_span.file, pass.name_span.start).0,
             }
         })
@@ -97,6 +98,7 @@ pub fn build(
                     frequency: *frequency,
                 },
             },
+            per_object: t.per_object,
             wrap_repeat: t.wrap_repeat,
             filter_linear: t.filter_linear,
             mips: t.mips,

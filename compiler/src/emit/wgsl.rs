@@ -17,6 +17,8 @@ use std::fmt::Write;
 pub struct EmittedPass {
     pub wgsl: String,
     pub bindings: Vec<Binding>,
+    /// Group 1 bindings after the `Object` block (binding 0): per-object textures.
+    pub object_bindings: Vec<Binding>,
     pub attributes: Vec<Attribute>,
 }
 
@@ -239,6 +241,7 @@ impl Emitter<'_> {
         );
         // Bindings.
         let mut binds = Vec::new();
+        let mut object_binds = Vec::new();
         let mut decls = String::new();
         let mut next = 0u32;
         if uses_frame {
@@ -301,7 +304,10 @@ impl Emitter<'_> {
             .insert(*t, name);
             next += 1;
         }
-        for t in &textures_read {
+        for t in textures_read
+            .iter()
+            .filter(|t| !self.ir.textures[t.0 as usize].per_object)
+        {
             let tex = &self.ir.textures[t.0 as usize];
             let _ = writeln!(
                 decls,
@@ -335,6 +341,35 @@ impl Emitter<'_> {
                 }
             }
             decls.push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");
+            // Per-object textures follow the Object block in group 1, so one
+            // bind group per object carries its uniforms and its images.
+            let mut next1 = 1u32;
+            for t in textures_read
+                .iter()
+                .filter(|t| self.ir.textures[t.0 as usize].per_object)
+            {
+                let tex = &self.ir.textures[t.0 as usize];
+                let _ = writeln!(
+                    decls,
+                    "@group(1) @binding({next1}) var tex_{}: texture_2d<f32>; // per object",
+                    tex.name
+                );
+                object_binds.push(Binding {
+                    binding: next1,
+                    resource: Resource::Texture { texture: t.0 as usize },
+                });
+                let _ = writeln!(
+                    decls,
+                    "@group(1) @binding({}) var samp_{}: sampler;",
+                    next1 + 1,
+                    tex.name
+                );
+                object_binds.push(Binding {
+                    binding: next1 + 1,
+                    resource: Resource::TextureSampler { texture: t.0 as usize },
+                });
+                next1 += 2;
+            }
         }
         let _ = uses_object;
         w.push_str(&decls);
@@ -420,6 +455,7 @@ impl Emitter<'_> {
         EmittedPass {
             wgsl: w,
             bindings: binds,
+            object_bindings: object_binds,
             attributes,
         }
     }

@@ -38,6 +38,8 @@
 //! crease_angle = 30.0             # optional, degrees in (0, 180]: split normals where faces meet at
 //!                                 # a sharper angle (CAD parts); default: smooth normals throughout
 //! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
+//! # an `object param albedo: texture` takes an image, relative to this file:
+//! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
 //! [[object]]
 //! primitive = { kind = "sphere", radius = 1.0, segments = 64, rings = 32 }
@@ -155,6 +157,8 @@ pub struct Object {
     pub params: BTreeMap<String, Vec<f64>>,
     /// Where each binding's value was written.
     pub param_spans: BTreeMap<String, Span>,
+    /// Per-object image bindings of `object param t: texture` params.
+    pub textures: BTreeMap<String, TextureBinding>,
     /// Where the mesh or primitive was declared (for E0403).
     pub mesh_span: Span,
     /// A primitive whose geometry depends on time (the ocean): `mesh` is its
@@ -162,6 +166,22 @@ pub struct Object {
     /// each frame's time ([`Primitive::build_at`]).
     pub time_varying: Option<Primitive>,
     pub casts_shadows: bool,
+}
+
+/// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:
+/// an object's own image for a per-object texture param. The sampler
+/// options (wrap, filter, mips) are the style's, from the param's declaration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureBinding {
+    /// As written in the scene.
+    pub path: String,
+    /// Joined to the scene file's directory.
+    pub resolved: std::path::PathBuf,
+    /// `srgb = true/false` in a table binding; `None` (a plain path): the
+    /// colour space of the param's declared default image.
+    pub srgb: Option<bool>,
+    /// The binding's value in the scene TOML.
+    pub span: Span,
 }
 
 impl Object {

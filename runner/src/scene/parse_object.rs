@@ -6,7 +6,7 @@ use super::mesh_file::{load_mesh_file, MeshLoadError};
 use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
-use super::Object;
+use super::{Object, TextureBinding};
 use dsl::{Diagnostic, Span};
 use glam::{Mat4, Quat, Vec3};
 use std::collections::{BTreeMap, HashMap};
@@ -55,7 +55,7 @@ pub fn parse_object(
     let model = read_transform(&mut fields, report);
     let tags = read_tags(&mut fields, report);
     let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
-    let (params, param_spans) = read_params(&mut fields, report);
+    let (params, param_spans, textures) = read_params(&mut fields, base_dir, report);
     fields.finish(report);
     if report.diagnostics.len() > errors_before {
         return None;
@@ -82,6 +82,7 @@ pub fn parse_object(
             tags,
             params,
             param_spans,
+            textures,
             mesh_span,
             casts_shadows,
             time_varying,
@@ -224,13 +225,27 @@ fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
 }
 
 /// The `params` table: each binding is a number, a boolean (1 or 0), an
-/// array of 1 to 4 numbers, or a colour string (4 components).
+/// array of 1 to 4 numbers, a colour string `"#rrggbb"` (4 components), or
+/// an image for an `object param t: texture`: a path string (in the colour
+/// space the style declares for the param's default) or a table
+/// `{ image = "path.png", srgb = false }` that says which. Paths are relative to the
+/// scene file; whether the name is a texture param is checked against the
+/// style when the renderer is built (`render::object_textures`).
 #[allow(clippy::type_complexity)]
-fn read_params(fields: &mut Fields, report: &mut Report) -> (BTreeMap<String, Vec<f64>>, BTreeMap<String, Span>) {
+fn read_params(
+    fields: &mut Fields,
+    base_dir: &Path,
+    report: &mut Report,
+) -> (
+    BTreeMap<String, Vec<f64>>,
+    BTreeMap<String, Span>,
+    BTreeMap<String, TextureBinding>,
+) {
     let mut params = BTreeMap::new();
     let mut spans = BTreeMap::new();
+    let mut textures = BTreeMap::new();
     let Some(mut table) = fields.table("params", "`params`", report) else {
-        return (params, spans);
+        return (params, spans, textures);
     };
     for (name, value) in table.entries(report) {
         if !is_identifier(&name.value) {
@@ -242,18 +257,81 @@ fn read_params(fields: &mut Fields, report: &mut Report) -> (BTreeMap<String, Ve
             );
             continue;
         }
+        if let Some(binding) = texture_value(&name, value, base_dir, report) {
+            if let Some(binding) = binding {
+                spans.insert(name.value.clone(), binding.span);
+                textures.insert(name.value, binding);
+            }
+            continue;
+        }
         if let Some(components) = param_value(&name, value, report) {
             spans.insert(name.value.clone(), components.span);
             params.insert(name.value, components.value);
         }
     }
     table.finish(report);
-    (params, spans)
+    (params, spans, textures)
+}
+
+/// An image binding, if `value` is one: a string naming a file with an
+/// extension (not `#...`), or a table. `Some(None)` when it is one but is malformed (reported).
+fn texture_value(
+    name: &At<String>,
+    value: &toml::Spanned<DeValue>,
+    base_dir: &Path,
+    report: &mut Report,
+) -> Option<Option<TextureBinding>> {
+    let span = report.span(value.span());
+    let (path, srgb) = match value.get_ref() {
+        // A file name has an extension; `"red"` stays a (bad) colour.
+        DeValue::String(text) if !text.starts_with('#') && Path::new(&**text).extension().is_some() => {
+            (text.to_string(), None)
+        }
+        DeValue::Table(table) => {
+            let mut fields = Fields::new(table, span, format!("texture binding `{}`", name.value));
+            let image = fields.string("image", report);
+            let srgb = fields.boolean("srgb", report).map(|flag| flag.value);
+            fields.finish(report);
+            let Some(image) = image else {
+                if table.get("image").is_some() {
+                    // Present but not a string: already reported.
+                    return Some(None);
+                }
+                report.bad_scene(
+                    span,
+                    format!("texture binding `{}` has no `image`", name.value),
+                    "expected `{ image = \"file.png\" }`",
+                    "write `{ image = \"textures/lit.png\", srgb = true }`, or just the path as a string",
+                );
+                return Some(None);
+            };
+            (image.value, srgb)
+        }
+        _ => return None,
+    };
+    let resolved = base_dir.join(&path);
+    if !resolved.is_file() {
+        report.diagnostics.push(
+            Diagnostic::error(
+                dsl::codes::MISSING_TEXTURE,
+                format!("texture file `{path}` for `{}` not found", name.value),
+            )
+            .with_primary(span, format!("looked for {}", resolved.display()))
+            .with_help("image paths in a scene are relative to the scene file; a colour is written `\"#rrggbb\"`"),
+        );
+        return Some(None);
+    }
+    Some(Some(TextureBinding {
+        path,
+        resolved,
+        srgb,
+        span,
+    }))
 }
 
 fn param_value(name: &At<String>, value: &toml::Spanned<DeValue>, report: &mut Report) -> Option<At<Vec<f64>>> {
     let span = report.span(value.span());
-    let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, or a colour `\"#rrggbb\"`";
+    let help = "a parameter binding is a number, a boolean, `[x, y]` to `[x, y, z, w]`, a colour `\"#rrggbb\"`, or an image file `\"file.png\"` for a texture param";
     let components = match value.get_ref() {
         DeValue::Integer(_) | DeValue::Float(_) => {
             super::toml_fields::expect_number(value, &name.value, report).map(|n| vec![n.value])?
