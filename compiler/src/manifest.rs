@@ -15,7 +15,7 @@ use crate::formats::Format;
 use serde::{Deserialize, Serialize};
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 2;
+pub const MANIFEST_VERSION: u32 = 3;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
 pub const FRAME_UNIFORM_SIZE: u64 = 528;
