@@ -12,8 +12,9 @@ fn data_dir() -> PathBuf {
 }
 
 fn models_dir() -> PathBuf {
-    // /work/shared sits beside the repository: <repo>/../shared.
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/assets/models")
+    // Copies of the shared test assets inside the repository, so a clean
+    // clone (CI) has them.
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models")
 }
 
 fn load_spot_cow() -> (Scene, dsl::SourceMap) {
@@ -131,7 +132,7 @@ fn check_attributes_flags_only_the_cow() {
     let diagnostic = &diagnostics[0];
     assert_eq!(diagnostic.code, dsl::codes::MISSING_ATTRIBUTE);
     let span = diagnostic.primary_span().expect("points at the mesh");
-    assert_eq!(sources.snippet(span), "\"../../../../shared/assets/models/cow.obj\"");
+    assert_eq!(sources.snippet(span), "\"../../../examples/models/cow.obj\"");
     assert!(diagnostic.message.contains("the style `hatching` reads `uv`") && diagnostic.message.contains("`cow`"));
     let help = diagnostic.help.as_deref().unwrap_or_default();
     assert!(help.contains("spot.obj has UVs; cow.obj does not"), "{help}");
