@@ -279,6 +279,10 @@ fn misused_pipeline_constructs_point_at_the_source() {
         "style \"x\"\npass p: render(scene) {\n  vertex { shadow_warp: 2.0 }\n  out d: r32float = 1.0\n}\noutput p.d\n",
     );
     insta::assert_snapshot!("shadow_warp_outside_light_view", warp_outside_light_view);
+    let uv_in_vertex = error_text(
+        "style \"x\"\npass p: render(scene) {\n  vertex { inflate: uv.x * 2px }\n  out d: r32float = 1.0\n}\noutput p.d\n",
+    );
+    insta::assert_snapshot!("per_fragment_builtin_in_vertex", uv_in_vertex);
     let bad_scene_has = error_text(
         "style \"x\"\npass p: render(scene) {\n  out d: r32float = if scene_has(\"caster\") { 1.0 } else { 0.0 }\n}\noutput p.d\n",
     );

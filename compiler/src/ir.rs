@@ -236,6 +236,17 @@ impl Builtin {
         }
     }
 
+    /// Interpolated per fragment (the fragment shader's varyings or its pixel
+    /// position), so a `vertex { ... }` modifier cannot read it.
+    pub fn is_per_fragment(self) -> bool {
+        use Builtin::*;
+        self.needs_geometry()
+            || matches!(
+                self,
+                FragCoord | ScreenUv | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter
+            )
+    }
+
     /// Only meaningful on scene geometry (needs vertex data).
     pub fn needs_geometry(self) -> bool {
         use Builtin::*;

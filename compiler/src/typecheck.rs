@@ -756,6 +756,24 @@ impl Checker<'_> {
                     }
                 }
             }
+            // Vertex modifiers run per vertex: no fragment varyings there.
+            for id in self.ir.reachable(&Ir::vertex_roots(&pass)) {
+                let e = self.ir.expr(id).clone();
+                if let ExprKind::Builtin(b) = e.kind {
+                    if b.is_per_fragment() {
+                        self.err(
+                            Diagnostic::error(
+                                codes::BAD_PASS_INPUT,
+                                format!("`{}` read in a `vertex {{ }}` modifier", b.name()),
+                            )
+                            .with_primary(e.span, "this value exists per fragment, not per vertex")
+                            .with_help(
+                                "vertex modifiers may read parameters, per-object params and frame values such as `time`, `resolution`, `camera.*` and `light.*`",
+                            ),
+                        );
+                    }
+                }
+            }
             let roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
             for id in self.ir.reachable(&roots) {
                 let e = self.ir.expr(id).clone();

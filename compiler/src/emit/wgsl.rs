@@ -931,3 +931,18 @@ fn const_wgsl(c: &Const, ty: Ty) -> String {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn per_fragment_builtins_are_exactly_those_read_from_the_fragment_inputs() {
+        // The typechecker rejects `Builtin::is_per_fragment` values in vertex
+        // modifiers; the vertex shader has no `in`, so the two must agree.
+        for (spelling, b) in Builtin::SPELLINGS {
+            let wgsl = builtin_wgsl(*b, true);
+            assert_eq!(wgsl.contains("in."), b.is_per_fragment(), "`{spelling}` emits `{wgsl}`");
+        }
+    }
+}
