@@ -13,32 +13,17 @@ fn npr_lsa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, plane:
         let d = npr_lsa_core__fetch(pos, normals, px + m);
         // Both halves of the pair (e_max, §4.1): d tested against S(p, ·)
         // fitted to b, and b against the sphere fitted to d.
-        var vd = max(npr_lsa__e(b, p, d, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
-        var vb = max(npr_lsa__e(d, p, b, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
+        var vd = max(npr_lsa_plane__error(b, p, d, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
+        var vb = max(npr_lsa_plane__error(d, p, b, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
         if (aa) {
             // Eq. 8 with the pixels two steps away: for q = d, q̂ = f and the
             // control of S(p, q̂) is a; offsets over two steps are halved.
             let a = npr_lsa_core__fetch(pos, normals, px - 2 * m);
             let f = npr_lsa_core__fetch(pos, normals, px + 2 * m);
-            vd = npr_lsa_aa__mix(npr_lsa__e(b, p, f, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa__e(a, p, d, 0.5, 1.0, plane, eta_min, eta_max), vd);
-            vb = npr_lsa_aa__mix(npr_lsa__e(d, p, a, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa__e(f, p, b, 0.5, 1.0, plane, eta_min, eta_max), vb);
+            vd = npr_lsa_aa__mix(npr_lsa_plane__error(b, p, f, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa_plane__error(a, p, d, 0.5, 1.0, plane, eta_min, eta_max), vd);
+            vb = npr_lsa_aa__mix(npr_lsa_plane__error(d, p, a, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa_plane__error(f, p, b, 0.5, 1.0, plane, eta_min, eta_max), vb);
         }
         out[i] = max(vd, vb);
     }
     return out;
-}
-
-// The remapped error of check q against the LSA fitted to p and control c;
-// −1 when c or q lies outside the image.
-fn npr_lsa__e(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32, plane: bool, lo: f32, hi: f32) -> f32 {
-    let g = npr_lsa_core__guard(c, p, q);
-    if (g < -1.5) {
-        return -1.0;
-    }
-    if (g >= 0.0) {
-        return npr_lsa_core__remap(g, lo, hi);
-    }
-    // e_sum (eq. 7): e_curv + e_plane.
-    let e = npr_lsa_core__curv(c, p, q) + select(0.0, npr_lsa_plane__err(c, p, q, sc, sq), plane);
-    return npr_lsa_core__remap(e, lo, hi);
 }

@@ -86,3 +86,17 @@ fn npr_lsa_core__remap(e: f32, lo: f32, hi: f32) -> f32 {
     }
     return clamp((e - lo) / (hi - lo), 0.0, 1.0);
 }
+
+// The remapped error of check q against the LSA fitted to p and control c:
+// e_curv (eq. 5) plus `extra` (e_plane for e_sum, eq. 7, or 0). −1 when c or
+// q lies outside the image; the background/geometry value when they mix.
+fn npr_lsa_core__error(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, extra: f32, lo: f32, hi: f32) -> f32 {
+    let g = npr_lsa_core__guard(c, p, q);
+    if (g < -1.5) {
+        return -1.0;
+    }
+    if (g >= 0.0) {
+        return npr_lsa_core__remap(g, lo, hi);
+    }
+    return npr_lsa_core__remap(npr_lsa_core__curv(c, p, q) + extra, lo, hi);
+}

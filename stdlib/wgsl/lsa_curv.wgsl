@@ -2,7 +2,7 @@
 // half neighbourhood, the larger remapped e_curv of the two neighbours, each
 // tested against the sphere fitted to p and the opposite neighbour. The four
 // channels are the directions (1,0), (1,1), (0,1), (−1,1); their maximum is
-// E(p) of eq. 1. sc/sq are unused here (they scale e_plane offsets).
+// E(p) of eq. 1.
 fn npr_lsa_curv(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, eta_min: f32, eta_max: f32) -> vec4<f32> {
     let px = npr_lsa_core__pixel(pos, uv);
     let p = npr_lsa_core__fetch(pos, normals, px);
@@ -13,23 +13,9 @@ fn npr_lsa_curv(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, e
         let d = npr_lsa_core__fetch(pos, normals, px + m);
         // Both halves of the pair (e_max, §4.1): d tested against S(p, ·)
         // fitted to b, and b against the sphere fitted to d.
-        var vd = max(npr_lsa_curv__e(b, p, d, 1.0, 1.0, eta_min, eta_max), 0.0);
-        var vb = max(npr_lsa_curv__e(d, p, b, 1.0, 1.0, eta_min, eta_max), 0.0);
+        var vd = max(npr_lsa_core__error(b, p, d, 0.0, eta_min, eta_max), 0.0);
+        var vb = max(npr_lsa_core__error(d, p, b, 0.0, eta_min, eta_max), 0.0);
         out[i] = max(vd, vb);
     }
     return out;
-}
-
-// The remapped error of check q against the LSA fitted to p and control c;
-// −1 when c or q lies outside the image.
-fn npr_lsa_curv__e(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32, lo: f32, hi: f32) -> f32 {
-    let g = npr_lsa_core__guard(c, p, q);
-    if (g < -1.5) {
-        return -1.0;
-    }
-    if (g >= 0.0) {
-        return npr_lsa_core__remap(g, lo, hi);
-    }
-    let e = npr_lsa_core__curv(c, p, q);
-    return npr_lsa_core__remap(e, lo, hi);
 }

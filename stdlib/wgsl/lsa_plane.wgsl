@@ -45,3 +45,8 @@ fn npr_lsa_plane__err(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa
     let den = npr_lsa_plane__arc_max((c.p - p.p) * sc, p.n, c.n);
     return clamp((num / (den + 1e-5) - 50.0) / 100.0, 0.0, 1.0);
 }
+
+// e_sum (eq. 7): the core error with e_plane added when `plane`.
+fn npr_lsa_plane__error(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32, plane: bool, lo: f32, hi: f32) -> f32 {
+    return npr_lsa_core__error(c, p, q, select(0.0, npr_lsa_plane__err(c, p, q, sc, sq), plane), lo, hi);
+}

@@ -10,24 +10,9 @@ fn npr_lsa_sum(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, pl
         let d = npr_lsa_core__fetch(pos, normals, px + m);
         // Both halves of the pair (e_max, §4.1): d tested against S(p, ·)
         // fitted to b, and b against the sphere fitted to d.
-        var vd = max(npr_lsa_sum__e(b, p, d, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
-        var vb = max(npr_lsa_sum__e(d, p, b, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
+        var vd = max(npr_lsa_plane__error(b, p, d, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
+        var vb = max(npr_lsa_plane__error(d, p, b, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
         out[i] = max(vd, vb);
     }
     return out;
-}
-
-// The remapped error of check q against the LSA fitted to p and control c;
-// −1 when c or q lies outside the image.
-fn npr_lsa_sum__e(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32, plane: bool, lo: f32, hi: f32) -> f32 {
-    let g = npr_lsa_core__guard(c, p, q);
-    if (g < -1.5) {
-        return -1.0;
-    }
-    if (g >= 0.0) {
-        return npr_lsa_core__remap(g, lo, hi);
-    }
-    // e_sum (eq. 7): e_curv + e_plane.
-    let e = npr_lsa_core__curv(c, p, q) + select(0.0, npr_lsa_plane__err(c, p, q, sc, sq), plane);
-    return npr_lsa_core__remap(e, lo, hi);
 }
