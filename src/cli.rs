@@ -311,16 +311,8 @@ pub fn run(cli: Cli) -> i32 {
                 channels,
                 frequency,
             };
-            match runner::texgen::write_png16(&runner::texgen::generate(&spec), &out) {
-                Ok(()) => {
-                    eprintln!("wrote {} ({size}x{size}, {channels} channel(s))", out.display());
-                    EXIT_OK
-                }
-                Err(e) => {
-                    eprintln!("error: cannot write {}: {e}", out.display());
-                    EXIT_USER
-                }
-            }
+            let written = runner::texgen::write_png16(&runner::texgen::generate(&spec), &out);
+            report_written(written, &out, &format!("{size}x{size}, {channels} channel(s)"))
         }
         Command::Render {
             style,
@@ -800,6 +792,20 @@ pub fn dump_all_targets(
     Ok(images.into_iter().flatten().collect())
 }
 
+/// Say what `npr texgen` wrote, or why it could not: the exit code.
+fn report_written(result: std::io::Result<()>, out: &Path, what: &str) -> i32 {
+    match result {
+        Ok(()) => {
+            eprintln!("wrote {} ({what})", out.display());
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", out.display());
+            EXIT_USER
+        }
+    }
+}
+
 /// `npr texgen --kind paint --color "#rrggbb"`: [`runner::texgen::paint_map`] as an 8-bit PNG.
 fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, color: Option<&str>) -> i32 {
     let Some(base) = color.and_then(runner::texgen::parse_hex) else {
@@ -814,14 +820,9 @@ fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, color: Option<&str>
     let image = image::RgbaImage::from_fn(map.width, map.height, |x, y| {
         image::Rgba(map.pixels[(y * map.width + x) as usize])
     });
-    match runner::output::write_png8(&image, out) {
-        Ok(()) => {
-            eprintln!("wrote {} ({size}x{size} paint map)", out.display());
-            EXIT_OK
-        }
-        Err(e) => {
-            eprintln!("error: cannot write {}: {e}", out.display());
-            EXIT_USER
-        }
-    }
+    report_written(
+        runner::output::write_png8(&image, out),
+        out,
+        &format!("{size}x{size} paint map"),
+    )
 }

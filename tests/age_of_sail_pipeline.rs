@@ -115,13 +115,7 @@ fn cast_shadow_matches_the_analytic_disc_with_and_without_the_sigmoid_warp() {
         let text = SHADOW_STYLE.replace("param warp: float = 0", &format!("param warp: float = {warp}"));
         let program = StyleProgram::from_compiled(&compile(&text, None));
         let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-        let spec = FrameSpec {
-            width: size,
-            height: size,
-            time_s: 0.0,
-            frame: 0,
-            eye: 0,
-        };
+        let spec = FrameSpec::still(size, size, 0);
         r.render(&scene, &spec).expect("render");
         let lit = r.read_output().expect("read");
         let (mut checked, mut wrong, mut dark) = (0, 0, 0);
@@ -311,13 +305,7 @@ primitive = { kind = "plane", size = 4.0 }
             gpu(),
             &StyleProgram::from_compiled(c),
             &scene,
-            &FrameSpec {
-                width: 64,
-                height: 64,
-                time_s: 0.0,
-                frame: 0,
-                eye: 0,
-            },
+            &FrameSpec::still(64, 64, 0),
         )
         .expect("render")
         .to_rgba8()

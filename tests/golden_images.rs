@@ -33,19 +33,8 @@ fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let compiled = compiler::compile_file(&root.join(style), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
     let program = StyleProgram::from_compiled(&compiled);
-    let img = runner::render_frame(
-        gpu(),
-        &program,
-        &scene,
-        &FrameSpec {
-            width: SIZE,
-            height: SIZE,
-            time_s: 0.0,
-            frame: 0,
-            eye: 0,
-        },
-    )
-    .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
+    let img = runner::render_frame(gpu(), &program, &scene, &FrameSpec::still(SIZE, SIZE, 0))
+        .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
     img.to_rgba8()
 }
 

@@ -54,13 +54,7 @@ fn scene_text(text: &str) -> runner::scene::Scene {
 }
 
 fn spec(width: u32, height: u32) -> FrameSpec {
-    FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    }
+    FrameSpec::still(width, height, 0)
 }
 
 /// Targets `names` (e.g. "gbuffer.pos") after rendering up to each one's pass.

@@ -75,13 +75,7 @@ fn gbuffer_precision_and_space_against_distance_from_the_origin() {
     .into_iter()
     .map(|(name, format, space)| (name, variant(format, space)))
     .collect();
-    let spec = FrameSpec {
-        width: SIZE,
-        height: SIZE,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let spec = FrameSpec::still(SIZE, SIZE, 0);
     // (variant, distance) → the worst precision and recall over the scenes,
     // and which scene was worst.
     let mut worst: Vec<Vec<(Accuracy, &str, &str)>> = vec![Vec::new(); variants.len()];

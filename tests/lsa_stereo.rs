@@ -48,13 +48,7 @@ fn stereo_scene(name: &str, ipd: f64) -> runner::scene::Scene {
 
 fn render(p: &StyleProgram, scene: &runner::scene::Scene, size: u32, eye: u32) -> runner::TargetImage {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, p, scene).expect("renderer");
-    let spec = FrameSpec {
-        width: size,
-        height: size,
-        time_s: 0.0,
-        frame: 0,
-        eye,
-    };
+    let spec = FrameSpec::still(size, size, eye);
     r.render(scene, &spec).expect("render");
     r.read_output().expect("read")
 }

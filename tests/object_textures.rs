@@ -77,13 +77,7 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     let program = StyleProgram::from_compiled(&compiled);
     let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).unwrap_or_else(|e| panic!("renderer: {e:?}"));
     let (w, h) = (96u32, 32u32);
-    let spec = FrameSpec {
-        width: w,
-        height: h,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let spec = FrameSpec::still(w, h, 0);
     r.render(&scene, &spec).expect("render");
     let img = r.read_output().expect("read").to_rgba8();
     let blue_linear = BLUE.map(|c| (srgb_to_linear(c as f64 / 255.0) * 255.0).round() as i32);

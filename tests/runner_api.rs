@@ -38,13 +38,7 @@ fn scene(path: &str) -> runner::scene::Scene {
 }
 
 fn spec(width: u32, height: u32) -> FrameSpec {
-    FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    }
+    FrameSpec::still(width, height, 0)
 }
 
 #[test]

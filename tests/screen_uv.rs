@@ -33,13 +33,7 @@ fn screen_uv_is_the_pixel_centre_even_on_clipped_triangles() {
             .unwrap_or_else(|e| panic!("{e:?}"));
         let program = StyleProgram::from_compiled(&compiled);
         let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).expect("renderer");
-        let spec = FrameSpec {
-            width: w,
-            height: h,
-            time_s: 0.0,
-            frame: 0,
-            eye: 0,
-        };
+        let spec = FrameSpec::still(w, h, 0);
         r.render(&scene, &spec).expect("render");
         let img = r.read_output().expect("read");
         let (pw, ph) = (img.width, img.height);

@@ -60,13 +60,7 @@ primitive = {{ kind = "plane", size = 6.0, subdivisions = 4 }}
 
 fn render(program: &StyleProgram, scene: &runner::scene::Scene, eye: u32, size: u32) -> Vec<[f32; 4]> {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
-    let spec = FrameSpec {
-        width: size,
-        height: size,
-        time_s: 0.0,
-        frame: 0,
-        eye,
-    };
+    let spec = FrameSpec::still(size, size, eye);
     r.render(scene, &spec).expect("render");
     r.read_output().expect("read").to_rgba_f32()
 }

@@ -38,17 +38,6 @@ pub fn wait_idle(gpu: &Gpu) -> Result<(), RunError> {
         .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
 }
 
-/// Frame 0 at t = 0 of the left (or only) eye: what benchmarks render.
-pub fn still_frame(width: u32, height: u32) -> FrameSpec {
-    FrameSpec {
-        width,
-        height,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    }
-}
-
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(0.0)
@@ -106,7 +95,7 @@ pub fn frame_time(
 ) -> Result<f64, RunError> {
     let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
-    let spec = still_frame(width, height);
+    let spec = FrameSpec::still(width, height, 0);
     r.render(scene, &spec)?;
     wait()?;
     let mut times = Vec::new();
@@ -129,7 +118,7 @@ pub fn time_interleaved(
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
-    let spec = still_frame(width, height);
+    let spec = FrameSpec::still(width, height, 0);
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for p in programs {
@@ -198,7 +187,7 @@ pub fn pass_times(
         mapped_at_creation: false,
     });
     let wait = || wait_idle(gpu);
-    let spec = still_frame(width, height);
+    let spec = FrameSpec::still(width, height, 0);
     let period_ns = gpu.queue.get_timestamp_period() as f64;
     let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); passes as usize];
     for frame in 0..=frames.max(1) {

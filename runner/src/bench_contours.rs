@@ -100,13 +100,7 @@ fn min_frame_times(
     size: u32,
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
-    let spec = FrameSpec {
-        width: size,
-        height: size,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let spec = FrameSpec::still(size, size, 0);
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for (_, p, _) in programs {
@@ -159,18 +153,7 @@ pub fn run(
                 progress(&format!("accuracy of {name} at {size}x{size}"));
                 let (mut min_p, mut min_r, mut planes_r) = (1.0f64, 1.0f64, 1.0f64);
                 for (s, scene) in scenes.iter().zip(&loaded) {
-                    let img = crate::render_frame(
-                        gpu,
-                        p,
-                        scene,
-                        &FrameSpec {
-                            width: size,
-                            height: size,
-                            time_s: 0.0,
-                            frame: 0,
-                            eye: 0,
-                        },
-                    )?;
+                    let img = crate::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
                     let a: Accuracy = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
                     if s.name == "parallel_planes" {
                         planes_r = a.recall;

@@ -29,6 +29,19 @@ pub struct FrameSpec {
     pub eye: u32,
 }
 
+impl FrameSpec {
+    /// Frame 0 at t = 0 of `eye`, `width`×`height`: a still image.
+    pub fn still(width: u32, height: u32, eye: u32) -> FrameSpec {
+        FrameSpec {
+            width,
+            height,
+            time_s: 0.0,
+            frame: 0,
+            eye,
+        }
+    }
+}
+
 struct GpuMesh {
     buffers: BTreeMap<Attribute, wgpu::Buffer>,
     index: wgpu::Buffer,
@@ -97,6 +110,30 @@ struct SizedPass {
 pub fn scaled_size(width: u32, height: u32, scale: f64) -> (u32, u32) {
     let s = |v: u32| ((v as f64 * scale).round() as u32).max(1);
     (s(width), s(height))
+}
+
+/// A single-sample, single-mip 2D texture.
+fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
 }
 
 pub fn wgpu_format(f: Format) -> wgpu::TextureFormat {
@@ -422,20 +459,13 @@ impl<'d> Renderer<'d> {
                     depth
                         .entry((w, h))
                         .or_insert_with(|| {
-                            self.device.create_texture(&wgpu::TextureDescriptor {
-                                label: Some("npr depth"),
-                                size: wgpu::Extent3d {
-                                    width: w,
-                                    height: h,
-                                    depth_or_array_layers: 1,
-                                },
-                                mip_level_count: 1,
-                                sample_count: 1,
-                                dimension: wgpu::TextureDimension::D2,
-                                format: wgpu::TextureFormat::Depth32Float,
-                                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                                view_formats: &[],
-                            })
+                            texture_2d(
+                                self.device,
+                                "npr depth",
+                                (w, h),
+                                wgpu::TextureFormat::Depth32Float,
+                                wgpu::TextureUsages::RENDER_ATTACHMENT,
+                            )
                         })
                         .create_view(&Default::default())
                 });
@@ -510,22 +540,15 @@ impl<'d> Renderer<'d> {
             .enumerate()
             .map(|(i, p)| {
                 let (w, h) = scaled_size(width, height, p.scale);
-                self.device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(&format!("npr physical #{i}")),
-                    size: wgpu::Extent3d {
-                        width: w,
-                        height: h,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu_format(p.format),
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                texture_2d(
+                    self.device,
+                    &format!("npr physical #{i}"),
+                    (w, h),
+                    wgpu_format(p.format),
+                    wgpu::TextureUsages::RENDER_ATTACHMENT
                         | wgpu::TextureUsages::TEXTURE_BINDING
                         | wgpu::TextureUsages::COPY_SRC,
-                    view_formats: &[],
-                })
+                )
             })
             .collect()
     }

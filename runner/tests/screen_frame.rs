@@ -46,13 +46,7 @@ fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> 
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
-    let spec = FrameSpec {
-        width: SIZE,
-        height: SIZE,
-        time_s: 0.0,
-        frame: 0,
-        eye,
-    };
+    let spec = FrameSpec::still(SIZE, SIZE, eye);
     let img =
         runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
@@ -221,13 +215,7 @@ fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
-    let spec = FrameSpec {
-        width: SIZE,
-        height: SIZE,
-        time_s: 0.0,
-        frame: 0,
-        eye: 0,
-    };
+    let spec = FrameSpec::still(SIZE, SIZE, 0);
     let img =
         runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
