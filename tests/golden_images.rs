@@ -8,16 +8,13 @@
 //! Regenerate after an intended change with `NPR_UPDATE_GOLDENS=1 cargo test --test golden_images`.
 
 use runner::harness::{compare_with_golden, compare_with_golden_file, Tolerance};
-use runner::{FrameSpec, Gpu, StyleProgram};
+use runner::{FrameSpec, StyleProgram};
 use std::path::Path;
-use std::sync::OnceLock;
+
+mod common;
+use common::gpu;
 
 const SIZE: u32 = 192;
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::headless().unwrap_or_else(|e| panic!("golden tests need a GPU adapter: {e}")))
-}
 
 fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

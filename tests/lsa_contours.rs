@@ -9,20 +9,13 @@
 //! on lavapipe.
 
 use runner::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram, TargetImage};
+use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 use std::path::Path;
-use std::sync::OnceLock;
 use stdlib::reference::ImageF64;
 use stdlib::reference_lsa::{self as lsa, LsaSettings};
 
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::headless().unwrap_or_else(|e| panic!("LSA tests need a GPU adapter: {e}")))
-}
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+use common::{gpu, root};
 
 /// An example style with some of its text replaced (parameter defaults, formats).
 fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {

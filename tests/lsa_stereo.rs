@@ -7,22 +7,11 @@ use compiler::CompileOptions;
 use dsl::SourceMap;
 use glam::Vec4;
 use runner::contours::{ink_mask, Mask};
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
-use std::sync::OnceLock;
 
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("stereo tests need a GPU adapter: {e} (install one with ./setup.sh: mesa-vulkan-drivers)")
-        })
-    })
-}
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+use common::{gpu, root};
 
 fn program(text: &str) -> StyleProgram {
     let mut sources = SourceMap::new();

@@ -3,18 +3,11 @@
 
 use compiler::CompileOptions;
 use dsl::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::headless().unwrap_or_else(|e| panic!("runner tests need a GPU adapter: {e}")))
-}
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+use common::{gpu, root};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("runner-api").join(name);

@@ -5,18 +5,11 @@
 
 use compiler::CompileOptions;
 use dsl::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
-use std::sync::OnceLock;
 
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("stereo tests need a GPU adapter: {e} (install one with ./setup.sh: mesa-vulkan-drivers)")
-        })
-    })
-}
+mod common;
+use common::gpu;
 
 fn compile(text: &str) -> compiler::Compiled {
     let mut sources = SourceMap::new();
