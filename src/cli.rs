@@ -124,10 +124,19 @@ pub enum Command {
 pub enum BenchCommand {
     /// Compile time of our front end and code generation against naga's own
     /// parse + validate of the WGSL we emit, measured in the same run.
+    ///
+    /// `--cold` instead times whole `npr compile` processes (wall clock, as a
+    /// user runs them) and naga's share of each.
     Compile {
         styles: Vec<PathBuf>,
         #[arg(long, default_value_t = 50)]
         iterations: u32,
+        /// Spawn a fresh `npr compile` process per run and time its wall clock.
+        #[arg(long)]
+        cold: bool,
+        /// Processes per style with `--cold`.
+        #[arg(long, default_value_t = 10)]
+        runs: u32,
     },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
@@ -375,42 +384,27 @@ pub fn run(cli: Cli) -> i32 {
 
 fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
     match cmd {
-        BenchCommand::Compile { styles, iterations } => {
-            println!("| style | npr front end + codegen (ms) | naga parse+validate of output (ms) | ratio |");
-            println!("|---|---:|---:|---:|");
-            for style in styles {
-                let mut ours = Vec::new();
-                let mut naga_time = Vec::new();
-                for _ in 0..iterations.max(1) {
-                    let mut sources = SourceMap::new();
-                    let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
-                        Ok(c) => c,
-                        Err(code) => return code,
-                    };
-                    let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
-                    let validate: f64 = c
-                        .timings
-                        .iter()
-                        .filter(|(s, _)| *s == "validate")
-                        .map(|(_, d)| d.as_secs_f64())
-                        .sum();
-                    ours.push(total - validate);
-                    naga_time.push(validate);
+        BenchCommand::Compile {
+            styles,
+            iterations,
+            cold,
+            runs,
+        } => {
+            let table = if cold {
+                crate::bench_compile::cold(&styles, runs)
+            } else {
+                crate::bench_compile::in_process(&styles, iterations)
+            };
+            match table {
+                Ok(t) => {
+                    print!("{t}");
+                    EXIT_OK
                 }
-                let median = |v: &mut Vec<f64>| {
-                    v.sort_by(f64::total_cmp);
-                    v[v.len() / 2]
-                };
-                let (o, n) = (median(&mut ours), median(&mut naga_time));
-                println!(
-                    "| {} | {:.3} | {:.3} | {:.2}x |",
-                    style.display(),
-                    o * 1e3,
-                    n * 1e3,
-                    o / n.max(1e-12)
-                );
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_USER
+                }
             }
-            EXIT_OK
         }
         BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
         BenchCommand::Contours { sizes, frames } => bench_contours(&sizes, frames, printer),

@@ -1,83 +1,174 @@
 //! Property test: random and mutated `.npr` text never panics the parser or
 //! the compiler, and every diagnostic span lies inside the source.
 
+use compiler::formats::Format;
+use compiler::ir::{Builtin, Intrinsic};
 use compiler::{CompileError, CompileOptions};
 use dsl::SourceMap;
 use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
-const SEEDS: &[&str] = &[
-    include_str!("../examples/toon.npr"),
-    include_str!("../examples/outline.npr"),
-    include_str!("../examples/rounded_shadows.npr"),
-];
+/// Every example style, read at run time so a new example is a new seed.
+fn seeds() -> &'static [(String, String)] {
+    static SEEDS: OnceLock<Vec<(String, String)>> = OnceLock::new();
+    SEEDS.get_or_init(|| {
+        let mut files: Vec<_> = std::fs::read_dir(examples_dir())
+            .expect("examples/ exists")
+            .map(|e| e.expect("readable examples/").path())
+            .filter(|p| p.extension().is_some_and(|x| x == "npr"))
+            .collect();
+        files.sort();
+        assert!(files.len() >= 10, "expected every example as a seed, found {files:?}");
+        files
+            .into_iter()
+            .map(|p| {
+                let text = std::fs::read_to_string(&p).expect("readable example");
+                (p.file_name().unwrap().to_string_lossy().into_owned(), text)
+            })
+            .collect()
+    })
+}
 
-const TOKENS: &[&str] = &[
-    "style",
+fn examples_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples")
+}
+
+/// The words of the grammar's `keyword` rule, read from the grammar itself so
+/// a new keyword is fuzzed without editing this file.
+fn grammar_keywords() -> Vec<String> {
+    let grammar = include_str!("../dsl/src/grammar.pest");
+    let rule = grammar
+        .lines()
+        .find(|l| l.starts_with("keyword"))
+        .expect("grammar has a keyword rule");
+    rule.split('"')
+        .skip(1)
+        .step_by(2)
+        .filter(|w| w.chars().all(|c| c.is_ascii_alphabetic()))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Punctuation, literals with every unit, pass kinds (known and reserved),
+/// modifiers and the special calls resolve treats by name.
+const FIXED_TOKENS: &[&str] = &[
     "\"S\"",
-    "param",
-    "object",
-    "pass",
-    "texture",
-    "output",
-    "let",
-    "out",
-    "render",
-    "image",
-    "scene",
+    "\"x.npr\"",
     "(",
     ")",
     "{",
     "}",
     ":",
+    "::",
     "=",
     ",",
     ".",
     "..",
+    ";",
     "+",
     "-",
     "*",
     "/",
-    "%",
+    " % ",
     "<",
+    "<=",
+    "==",
+    "!=",
+    ">",
     "&&",
-    "if",
-    "else",
+    "||",
+    "!",
     "x",
     "p",
     "p.c",
     "float",
     "int",
+    "bool",
+    "vec2",
+    "vec3",
+    "vec4",
     "color",
+    "blend",
+    "range",
+    "enum(a, b)",
     "px",
     "2px",
     "50%",
     "1m",
+    "3mm",
+    "8s",
+    "2Hz",
+    "90deg",
     "3",
     "0.5",
+    "1e-3",
     "#ff0000",
-    "rgba8unorm",
-    "r8unorm",
-    "toon",
-    "lambert",
-    "gaussian",
-    "normal",
-    "uv",
-    "light.dir",
-    "in",
-    "animate",
-    "0s",
-    "\n",
-    "vec4",
-    "mix",
-    "scale",
+    "#00000080",
     "1/2",
+    "render",
+    "image",
+    "compute",
+    "reduce",
+    "lines",
+    "scene",
+    "view",
+    "light",
+    "stereo",
+    "vertex",
+    "inflate",
+    "shadow_warp",
+    "scene_has",
+    "other_eye",
+    "previous",
     "noise",
     "size",
+    "octaves",
+    "wrap",
+    "repeat",
+    "mips",
+    "on",
+    "srgb",
+    "linear",
+    "std::x",
+    "\n",
 ];
+
+/// Every token the fuzzer splices: the fixed list, the grammar's keywords,
+/// every builtin spelling, intrinsic, stdlib operator and target format.
+fn tokens() -> &'static [String] {
+    static TOKENS: OnceLock<Vec<String>> = OnceLock::new();
+    TOKENS.get_or_init(|| {
+        let mut t: Vec<String> = FIXED_TOKENS.iter().map(|s| s.to_string()).collect();
+        t.extend(grammar_keywords());
+        t.extend(Builtin::SPELLINGS.iter().map(|(s, _)| s.to_string()));
+        t.extend(Intrinsic::NAMES.iter().map(|s| s.to_string()));
+        t.extend(stdlib::all().iter().map(|o| o.name.to_string()));
+        t.extend(Format::ALL.iter().map(|(s, _)| s.to_string()));
+        t.sort();
+        t.dedup();
+        t
+    })
+}
+
+#[test]
+fn token_list_covers_every_keyword_builtin_and_pass_kind() {
+    let t = tokens();
+    let keywords = grammar_keywords();
+    assert!(keywords.len() >= 17, "keyword rule not parsed: {keywords:?}");
+    for needed in keywords
+        .iter()
+        .map(String::as_str)
+        .chain(Builtin::SPELLINGS.iter().map(|(s, _)| *s))
+        .chain(["render", "image", "compute", "lines", "reduce", "previous", "other_eye"])
+    {
+        assert!(t.iter().any(|x| x == needed), "fuzz token list lacks `{needed}`");
+    }
+}
 
 fn check(text: &str) {
     let mut sources = SourceMap::new();
-    let dir = std::env::temp_dir();
+    let dir = examples_dir();
     match compiler::compile_source("fuzz.npr", text, &dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => {}
         Err(CompileError::User(diags)) => {
@@ -108,21 +199,21 @@ proptest! {
     })]
 
     #[test]
-    fn token_soup_never_panics(tokens in proptest::collection::vec(0..TOKENS.len(), 0..60)) {
-        let text: Vec<&str> = tokens.iter().map(|i| TOKENS[*i]).collect();
+    fn token_soup_never_panics(picks in proptest::collection::vec(any::<proptest::sample::Index>(), 0..60)) {
+        let text: Vec<&str> = picks.iter().map(|i| i.get(tokens()).as_str()).collect();
         check(&text.join(" "));
     }
 
     #[test]
-    fn mutated_examples_never_panic(seed in 0..SEEDS.len(), edits in proptest::collection::vec((any::<u16>(), 0u8..3, 0..TOKENS.len()), 1..6)) {
-        let mut text = SEEDS[seed].to_string();
+    fn mutated_examples_never_panic(seed in any::<proptest::sample::Index>(), edits in proptest::collection::vec((any::<u32>(), 0u8..3, any::<proptest::sample::Index>()), 1..6)) {
+        let mut text = seed.get(seeds()).1.clone();
         for (pos, kind, tok) in edits {
             let mut at = pos as usize % (text.len() + 1);
             while !text.is_char_boundary(at) { at -= 1; }
             match kind {
                 0 => { let end = (at + 7).min(text.len()); let mut e = end; while !text.is_char_boundary(e) { e -= 1; } text.replace_range(at..e, ""); }
-                1 => text.insert_str(at, TOKENS[tok]),
-                _ => { text.insert(at, ' '); text.insert_str(at, TOKENS[tok]); }
+                1 => text.insert_str(at, tok.get(tokens()).as_str()),
+                _ => { text.insert(at, ' '); text.insert_str(at, tok.get(tokens()).as_str()); }
             }
         }
         check(&text);
