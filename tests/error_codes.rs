@@ -284,5 +284,8 @@ fn e9001_without_wgsl_names_an_impossible_state() {
     };
     let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("E9001"), "{rendered}");
-    assert!(rendered.contains("the compiler reached an impossible state here"), "{rendered}");
+    assert!(
+        rendered.contains("the compiler reached an impossible state here"),
+        "{rendered}"
+    );
 }

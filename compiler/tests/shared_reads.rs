@@ -24,8 +24,14 @@ output ink.c
 #[test]
 fn each_target_is_loaded_once_per_pass() {
     let mut sources = SourceMap::new();
-    let c = compiler::compile_source("shared.npr", STYLE, Path::new("."), &mut sources, &CompileOptions::default())
-        .unwrap_or_else(|e| panic!("{e:?}"));
+    let c = compiler::compile_source(
+        "shared.npr",
+        STYLE,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
     let wgsl = c.shader("ink.wgsl").expect("ink pass");
     for t in ["t_g_e", "t_g_d", "t_g_f"] {
         assert_eq!(

@@ -20,7 +20,11 @@ fn front(text: &str) -> (Ir, PassGraph) {
     let mut ir = compiler::resolve::resolve(&loaded, None, &mut diags).expect("no internal error");
     compiler::typecheck::typecheck(&mut ir, &mut diags);
     let graph = compiler::dag::build(&ir, &mut diags);
-    let errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.message.clone()).collect();
+    let errors: Vec<String> = diags
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.message.clone())
+        .collect();
     assert!(errors.is_empty(), "{errors:?}");
     (ir, graph)
 }
@@ -132,7 +136,11 @@ fn a_folded_parameter_removes_the_branch_and_the_pass_only_it_read() {
     let (ir, bindings, live, report) = specialized(BRANCH, false);
     assert_eq!(bindings, vec![ParamBinding::Folded]);
     let out = ir.pass(pass_id(&ir, "final")).outputs[0].value;
-    assert_eq!(ir.expr(out).kind, ExprKind::Target(target(&ir, "base", 0)), "the else branch is left");
+    assert_eq!(
+        ir.expr(out).kind,
+        ExprKind::Target(target(&ir, "base", 0)),
+        "the else branch is left"
+    );
     assert!(!live.passes.contains(&pass_id(&ir, "extra")));
     assert!(entries(&report, "removed").contains(&("pass `extra`".into(), "the output does not depend on it".into())));
     assert!(entries(&report, "folded").iter().any(|(w, _)| w == "param `fancy`"));
@@ -233,15 +241,17 @@ output c.c
 "#;
     let (ir, alloc, report) = allocated(text);
     assert_eq!(alloc.physical.len(), 3);
-    let ids: std::collections::BTreeSet<usize> =
-        ["a", "b", "c"].iter().map(|p| physical(&ir, &alloc, p)).collect();
+    let ids: std::collections::BTreeSet<usize> = ["a", "b", "c"].iter().map(|p| physical(&ir, &alloc, p)).collect();
     assert_eq!(ids.len(), 3);
     assert!(entries(&report, "aliased").is_empty());
 }
 
 #[test]
 fn aliasing_needs_the_same_format_and_scale() {
-    let (_, formats, _) = allocated(&chain(["rgba8unorm", "rgba8unorm", "rgba16float", "rgba8unorm"], [""; 4]));
+    let (_, formats, _) = allocated(&chain(
+        ["rgba8unorm", "rgba8unorm", "rgba16float", "rgba8unorm"],
+        [""; 4],
+    ));
     // `c` cannot take `a`'s rgba8unorm texture; `d` takes `b`'s.
     assert_eq!(formats.physical.len(), 3, "{:?}", formats.physical);
     let (_, scales, _) = allocated(&chain(["rgba8unorm"; 4], ["", "", "scale 1/2", ""]));

@@ -81,7 +81,11 @@ impl Emitter<'_> {
             .insert(*t, name);
             next += 1;
         }
-        for t in uses.textures.iter().filter(|t| !self.ir.textures[t.0 as usize].per_object) {
+        for t in uses
+            .textures
+            .iter()
+            .filter(|t| !self.ir.textures[t.0 as usize].per_object)
+        {
             let tex = &self.ir.textures[t.0 as usize];
             let _ = writeln!(
                 d.text,
@@ -110,9 +114,14 @@ impl Emitter<'_> {
         d.text
             .push_str("struct Object {\n    model: mat4x4<f32>,\n    normal_matrix: mat4x4<f32>,\n");
         self.param_fields(&mut d.text, ParamBinding::PerObject);
-        d.text.push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");
+        d.text
+            .push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");
         let mut next1 = 1u32;
-        for t in uses.textures.iter().filter(|t| self.ir.textures[t.0 as usize].per_object) {
+        for t in uses
+            .textures
+            .iter()
+            .filter(|t| self.ir.textures[t.0 as usize].per_object)
+        {
             let tex = &self.ir.textures[t.0 as usize];
             let _ = writeln!(
                 d.text,

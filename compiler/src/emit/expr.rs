@@ -236,7 +236,6 @@ fn const_wgsl(c: &Const, ty: Ty) -> String {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

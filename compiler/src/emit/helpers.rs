@@ -55,7 +55,8 @@ fn npr_load(t: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {
 ";
 
 /// The analytic Jacobian of projection + viewport applied to a world direction.
-pub(super) const PROJECT_DIR_HELPER: &str = "// Pixels moved per metre along world direction `dir` at `world`: the derivative of
+pub(super) const PROJECT_DIR_HELPER: &str =
+    "// Pixels moved per metre along world direction `dir` at `world`: the derivative of
 // pixel = (ndc.x, -ndc.y) * size / 2 + size / 2 with ndc = clip.xy / clip.w (quotient rule).
 // Screen y points down, like frag_coord and dpdy.
 fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2<f32>) -> vec2<f32> {

@@ -148,15 +148,18 @@ pub fn build(
         .collect();
     // Resolve refuses a style without `output`, and prune keeps the output
     // live, so the allocator gave it a target: anything else is a bug.
-    let output = ir.output.and_then(|o| alloc.target_index(o)).ok_or_else(|| InternalError {
-        message: "the output target has no allocated target".into(),
-        detail: match ir.output {
-            Some(o) => format!("`{}` is not among the allocated targets", ir.target_name(o)),
-            None => "the IR has no output".into(),
-        },
-        span: Some(ir.output_span),
-        wgsl: None,
-    })?;
+    let output = ir
+        .output
+        .and_then(|o| alloc.target_index(o))
+        .ok_or_else(|| InternalError {
+            message: "the output target has no allocated target".into(),
+            detail: match ir.output {
+                Some(o) => format!("`{}` is not among the allocated targets", ir.target_name(o)),
+                None => "the IR has no output".into(),
+            },
+            span: Some(ir.output_span),
+            wgsl: None,
+        })?;
     let _ = live;
     Ok(Manifest {
         version: MANIFEST_VERSION,

@@ -138,15 +138,9 @@ impl Emitter<'_> {
             uses_linear_sampler: uses.linear_sampler,
         };
         match &pass.kind {
-            PassKind::Render { view, vertex, .. } => self.render_vertex(
-                &mut w,
-                pass,
-                (*view, vertex),
-                &attributes,
-                &uses.builtins,
-                &vert_nodes,
-                &mut ctx,
-            ),
+            PassKind::Render { view, vertex, .. } => {
+                self.render_vertex(&mut w, pass, (*view, vertex), &attributes, &uses.builtins, &mut ctx)
+            }
             PassKind::Image { .. } => w.push_str(image::IMAGE_VERTEX),
         }
         // Fragment shader.

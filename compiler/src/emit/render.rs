@@ -58,9 +58,10 @@ impl Emitter<'_> {
         (view, vertex): (PassView, &VertexModifiers),
         attributes: &[Attribute],
         builtins: &BTreeSet<Builtin>,
-        vert_nodes: &[ExprId],
         ctx: &mut PassCtx,
     ) {
+        let roots = vertex.roots();
+        let vert_nodes = &self.ir.reachable(&roots);
         w.push_str("struct VertexIn {\n");
         for (loc, a) in attributes.iter().enumerate() {
             let ty = match a {
@@ -107,7 +108,6 @@ impl Emitter<'_> {
         if has(Attribute::Normal) {
             w.push_str("    out.normal_world = (object.normal_matrix * vec4<f32>(v.normal, 0.0)).xyz;\n");
         }
-        let roots = vertex.roots();
         if let Some(inflate) = vertex.inflate {
             ctx.named.clear();
             self.emit_lets(w, pass, vert_nodes, &roots, ctx);
@@ -172,7 +172,6 @@ impl Emitter<'_> {
         }
         w.push_str("    out.clip = clip;\n    // Screen position, interpolated linearly in screen space (exact for any triangle).\n    out.screen_uv = clip.xy / clip.w * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5);\n    return out;\n}\n\n");
     }
-
 }
 
 /// The screen-space tangent-frame builtins: (builtin, varying location, varying name).

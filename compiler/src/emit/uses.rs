@@ -78,10 +78,8 @@ impl Emitter<'_> {
                     callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye),
                     ..
                 } => u.project = true,
-                ExprKind::Param(p) => {
-                    if self.bindings[p.0 as usize] == ParamBinding::Uniform {
-                        u.style_params = true;
-                    }
+                ExprKind::Param(p) if self.bindings[p.0 as usize] == ParamBinding::Uniform => {
+                    u.style_params = true;
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
                 ExprKind::Call {
