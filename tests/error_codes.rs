@@ -236,7 +236,7 @@ fn e9001_internal_error_names_the_npr_span() {
         message: "emitted WGSL for pass `p` failed naga validation".into(),
         detail: "error: example naga message".into(),
         span: Some(dsl::Span::new(file, 0, 6)),
-        wgsl: None,
+        wgsl: Some("// the rejected module".into()),
     };
     let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("case.npr:1:1"), "{rendered}");
@@ -267,5 +267,25 @@ fn several_errors_are_reported_in_one_run() {
     assert!(
         codes.contains(&"E0203") && codes.contains(&"E0202") && codes.contains(&"E0102"),
         "{codes:?}"
+    );
+}
+
+#[test]
+fn e9001_without_wgsl_names_an_impossible_state() {
+    // Internal errors outside validation (allocate, manifest, resolve's
+    // stdlib defaults) carry no module: the label says what happened.
+    let mut sources = SourceMap::new();
+    let file = sources.add("case.npr", SIMPLE_PASS);
+    let err = compiler::InternalError {
+        message: "the output target has no allocated target".into(),
+        detail: "`p.color` is not among the allocated targets".into(),
+        span: Some(dsl::Span::new(file, 0, 6)),
+        wgsl: None,
+    };
+    let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    assert!(rendered.contains("E9001"), "{rendered}");
+    assert!(
+        rendered.contains("the compiler reached an impossible state here"),
+        "{rendered}"
     );
 }

@@ -10,6 +10,7 @@ use crate::ir::*;
 use crate::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use crate::prune::Live;
 use crate::report::Report;
+use crate::InternalError;
 use std::collections::BTreeMap;
 
 #[derive(Debug, Clone, Default)]
@@ -29,9 +30,13 @@ impl Allocation {
     }
 }
 
-pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Report) -> Allocation {
+pub fn allocate(
+    ir: &Ir,
+    live: &Live,
+    bindings: &[ParamBinding],
+    report: &mut Report,
+) -> Result<Allocation, InternalError> {
     let mut alloc = Allocation::default();
-    let position = |p: PassId| live.passes.iter().position(|x| *x == p).unwrap_or(0);
     // Last use of each target, by execution position.
     let mut last_use: BTreeMap<TargetRef, usize> = BTreeMap::new();
     for (pos, pid) in live.passes.iter().enumerate() {
@@ -49,9 +54,8 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
     }
     // Each physical texture: (format, scale, last position it is busy).
     let mut busy_until: Vec<usize> = Vec::new();
-    for pid in &live.passes {
+    for (pos, pid) in live.passes.iter().enumerate() {
         let pass = ir.pass(*pid);
-        let pos = position(*pid);
         for (i, o) in pass.outputs.iter().enumerate() {
             let t = TargetRef {
                 pass: *pid,
@@ -60,7 +64,15 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
             if !live.targets.contains(&t) {
                 continue;
             }
-            let end = last_use.get(&t).copied().unwrap_or(pos);
+            // Prune keeps a target only for a live reader or as the output.
+            let Some(end) = last_use.get(&t).copied() else {
+                return Err(InternalError {
+                    message: format!("live target `{}` has no reader", ir.target_name(t)),
+                    detail: "prune kept a target that no live pass reads and that is not the output".into(),
+                    span: Some(o.span),
+                    wgsl: None,
+                });
+            };
             let reuse = alloc
                 .physical
                 .iter()
@@ -105,14 +117,11 @@ pub fn allocate(ir: &Ir, live: &Live, bindings: &[ParamBinding], report: &mut Re
         }
     }
     alloc.style_uniform_size = style_slots * 16;
-    let has_render = live
-        .passes
-        .iter()
-        .any(|p| matches!(ir.pass(*p).kind, PassKind::Render { .. }));
-    alloc.object_uniform_size = if has_render {
+    let draws_objects = live.passes.iter().any(|p| ir.pass(*p).kind.draws_objects());
+    alloc.object_uniform_size = if draws_objects {
         OBJECT_PARAMS_OFFSET + object_slots * 16
     } else {
         0
     };
-    alloc
+    Ok(alloc)
 }

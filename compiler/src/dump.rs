@@ -23,7 +23,19 @@ pub fn dump(ir: &Ir) -> String {
         let _ = writeln!(s, "texture #{i} {} : {:?}", t.name, t.source);
     }
     for (i, p) in ir.passes.iter().enumerate() {
-        let _ = writeln!(s, "pass #{i} {} : {:?} scale={}", p.name, p.kind, p.scale);
+        let kind = match &p.kind {
+            PassKind::Render { tag, view, vertex } => format!(
+                "render({}) view={view:?} inflate={} shadow_warp={}",
+                tag.as_deref().unwrap_or("scene"),
+                expr_ref(vertex.inflate),
+                expr_ref(vertex.shadow_warp)
+            ),
+            PassKind::Image { inputs } => {
+                let names: Vec<&str> = inputs.iter().map(|i| ir.pass(*i).name.as_str()).collect();
+                format!("image({})", names.join(", "))
+            }
+        };
+        let _ = writeln!(s, "pass #{i} {} : {kind} scale={}", p.name, p.scale);
         for l in &p.lets {
             let _ = writeln!(s, "  let {} = e{}", l.name, l.value.0);
         }
@@ -35,4 +47,8 @@ pub fn dump(ir: &Ir) -> String {
         let _ = writeln!(s, "e{i} : {:?} {:?} = {:?}", e.ty, e.unit, e.kind);
     }
     s
+}
+
+fn expr_ref(e: Option<ExprId>) -> String {
+    e.map_or_else(|| "-".into(), |e| format!("e{}", e.0))
 }

@@ -292,67 +292,55 @@ pub enum Intrinsic {
 }
 
 impl Intrinsic {
-    pub fn lookup(name: &str) -> Option<Intrinsic> {
-        Some(match name {
-            "vec2" => Intrinsic::Construct(2),
-            "vec3" => Intrinsic::Construct(3),
-            "vec4" => Intrinsic::Construct(4),
-            "abs" | "floor" | "ceil" | "fract" | "round" | "sqrt" | "exp" | "exp2" | "log" | "log2" | "sin" | "cos"
-            | "tan" | "asin" | "acos" | "atan" | "sign" | "saturate" => Intrinsic::Map(Self::static_name(name)),
-            "min" | "max" | "pow" | "step" | "atan2" => Intrinsic::Map2(Self::static_name(name)),
-            "clamp" | "smoothstep" | "mix" => Intrinsic::Map3(Self::static_name(name)),
-            "length" => Intrinsic::Length,
-            "dot" => Intrinsic::Dot,
-            "distance" => Intrinsic::Distance,
-            "normalize" => Intrinsic::Normalize,
-            "cross" => Intrinsic::Cross,
-            "project" => Intrinsic::Project,
-            "project_other_eye" => Intrinsic::ProjectOtherEye,
-            _ => return None,
-        })
-    }
-
-    pub const NAMES: &'static [&'static str] = &[
-        "vec2",
-        "vec3",
-        "vec4",
-        "abs",
-        "floor",
-        "ceil",
-        "fract",
-        "round",
-        "sqrt",
-        "exp",
-        "exp2",
-        "log",
-        "log2",
-        "sin",
-        "cos",
-        "tan",
-        "asin",
-        "acos",
-        "atan",
-        "sign",
-        "saturate",
-        "min",
-        "max",
-        "pow",
-        "step",
-        "atan2",
-        "clamp",
-        "smoothstep",
-        "mix",
-        "length",
-        "dot",
-        "distance",
-        "normalize",
-        "cross",
-        "project",
-        "project_other_eye",
+    /// Every intrinsic a style can call, by spelling: the single source of
+    /// both [`Intrinsic::lookup`] and [`Intrinsic::name`]'s spellings (a unit
+    /// test checks that each entry's `name()` is its spelling).
+    pub const TABLE: &'static [(&'static str, Intrinsic)] = &[
+        ("vec2", Intrinsic::Construct(2)),
+        ("vec3", Intrinsic::Construct(3)),
+        ("vec4", Intrinsic::Construct(4)),
+        ("abs", Intrinsic::Map("abs")),
+        ("floor", Intrinsic::Map("floor")),
+        ("ceil", Intrinsic::Map("ceil")),
+        ("fract", Intrinsic::Map("fract")),
+        ("round", Intrinsic::Map("round")),
+        ("sqrt", Intrinsic::Map("sqrt")),
+        ("exp", Intrinsic::Map("exp")),
+        ("exp2", Intrinsic::Map("exp2")),
+        ("log", Intrinsic::Map("log")),
+        ("log2", Intrinsic::Map("log2")),
+        ("sin", Intrinsic::Map("sin")),
+        ("cos", Intrinsic::Map("cos")),
+        ("tan", Intrinsic::Map("tan")),
+        ("asin", Intrinsic::Map("asin")),
+        ("acos", Intrinsic::Map("acos")),
+        ("atan", Intrinsic::Map("atan")),
+        ("sign", Intrinsic::Map("sign")),
+        ("saturate", Intrinsic::Map("saturate")),
+        ("min", Intrinsic::Map2("min")),
+        ("max", Intrinsic::Map2("max")),
+        ("pow", Intrinsic::Map2("pow")),
+        ("step", Intrinsic::Map2("step")),
+        ("atan2", Intrinsic::Map2("atan2")),
+        ("clamp", Intrinsic::Map3("clamp")),
+        ("smoothstep", Intrinsic::Map3("smoothstep")),
+        ("mix", Intrinsic::Map3("mix")),
+        ("length", Intrinsic::Length),
+        ("dot", Intrinsic::Dot),
+        ("distance", Intrinsic::Distance),
+        ("normalize", Intrinsic::Normalize),
+        ("cross", Intrinsic::Cross),
+        ("project", Intrinsic::Project),
+        ("project_other_eye", Intrinsic::ProjectOtherEye),
     ];
 
-    fn static_name(name: &str) -> &'static str {
-        Self::NAMES.iter().find(|n| **n == name).copied().unwrap_or("abs")
+    pub fn lookup(name: &str) -> Option<Intrinsic> {
+        Self::TABLE.iter().find(|(n, _)| *n == name).map(|(_, i)| *i)
+    }
+
+    /// Every spelling, in table order (for "did you mean").
+    pub fn names() -> impl Iterator<Item = &'static str> {
+        Self::TABLE.iter().map(|(n, _)| *n)
     }
 
     pub fn name(self) -> &'static str {
@@ -517,12 +505,59 @@ pub struct Texture {
     pub span: Span,
 }
 
+/// What a pass is, with the data only that kind has. Everything every kind
+/// has (name, scale, clear, lets, outputs, spans) is on [`Pass`]; a stage
+/// that behaves differently per kind matches on this, one arm per kind.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub enum PassKind {
-    /// Draws scene objects; `tag: None` draws all of them.
-    Render { tag: Option<String> },
+    /// Draws scene objects.
+    Render {
+        /// `render(tag)`: the objects drawn; `None` (`render(scene)`) draws all.
+        tag: Option<String>,
+        /// Whose eye the pass sees the scene through: `view(light)`.
+        view: PassView,
+        /// `vertex { ... }`: expressions the vertex shader evaluates.
+        vertex: VertexModifiers,
+    },
     /// A fullscreen pass over its inputs.
     Image { inputs: Vec<PassId> },
+}
+
+impl PassKind {
+    /// The kind's name as a style writes it (`render`, `image`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            PassKind::Render { .. } => "render",
+            PassKind::Image { .. } => "image",
+        }
+    }
+
+    /// Whether the pass draws scene objects, so that it has geometry
+    /// (`needs_geometry` builtins) and per-object data (the group-1 block,
+    /// per-object params and textures).
+    pub fn draws_objects(&self) -> bool {
+        match self {
+            PassKind::Render { .. } => true,
+            PassKind::Image { .. } => false,
+        }
+    }
+}
+
+/// `vertex { ... }` of a render pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct VertexModifiers {
+    /// `inflate: width`, in px: push each vertex along its screen-space normal.
+    pub inflate: Option<ExprId>,
+    /// `shadow_warp: k`: the sigmoid warp of light-space x, y (Age of Sail §5,
+    /// depth pass); only in `view(light)` passes.
+    pub shadow_warp: Option<ExprId>,
+}
+
+impl VertexModifiers {
+    /// The expressions, in the order the vertex shader evaluates them.
+    pub fn roots(&self) -> Vec<ExprId> {
+        self.inflate.into_iter().chain(self.shadow_warp).collect()
+    }
 }
 
 /// The camera a render pass projects with.
@@ -558,13 +593,6 @@ pub struct Pass {
     pub kind: PassKind,
     pub scale: f64,
     pub clear: [f64; 4],
-    /// `vertex { inflate: ... }` in px (render passes only).
-    pub inflate: Option<ExprId>,
-    /// Whose eye a render pass sees the scene through: `view(light)`.
-    pub view: PassView,
-    /// `vertex { shadow_warp: k }`: the sigmoid warp of light-space x, y
-    /// (Age of Sail §5, depth pass); only in `view(light)` passes.
-    pub shadow_warp: Option<ExprId>,
     pub lets: Vec<Let>,
     pub outputs: Vec<PassOutput>,
     pub span: Span,
@@ -610,7 +638,10 @@ impl Ir {
 
     /// The expressions a pass's vertex shader evaluates (`vertex { ... }`).
     pub fn vertex_roots(pass: &Pass) -> Vec<ExprId> {
-        pass.inflate.into_iter().chain(pass.shadow_warp).collect()
+        match &pass.kind {
+            PassKind::Render { vertex, .. } => vertex.roots(),
+            PassKind::Image { .. } => Vec::new(),
+        }
     }
 
     pub fn pass(&self, id: PassId) -> &Pass {
@@ -662,5 +693,19 @@ impl Ir {
             }
         }
         order
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_intrinsic_spelling_round_trips() {
+        for (spelling, i) in Intrinsic::TABLE {
+            assert_eq!(Intrinsic::lookup(spelling), Some(*i));
+            assert_eq!(i.name(), *spelling, "{i:?} is spelled `{spelling}` in the table");
+        }
+        assert_eq!(Intrinsic::lookup("no_such_function"), None);
     }
 }

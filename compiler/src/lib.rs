@@ -82,7 +82,12 @@ impl InternalError {
         .with_note(self.detail.clone())
         .with_help("this is a bug in npr, not in your style; please report it with this .npr file");
         if let Some(s) = self.span {
-            d = d.with_primary(s, "the code generated for this failed validation");
+            let label = if self.wgsl.is_some() {
+                "the code generated for this failed validation"
+            } else {
+                "the compiler reached an impossible state here"
+            };
+            d = d.with_primary(s, label);
         }
         d
     }

@@ -3,7 +3,7 @@
 //! allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
-use crate::emit::wgsl::Emitter;
+use crate::emit::Emitter;
 use crate::ir::Ir;
 use crate::load::Loaded;
 use crate::manifest::ParamBinding;
@@ -56,7 +56,7 @@ pub fn run(
                 .with_help("start the file with `style \"Name\"`"),
         );
     }
-    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags);
+    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags).map_err(CompileError::Internal)?;
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
@@ -110,7 +110,7 @@ pub fn run(
         })
         .collect();
     st.done("prune-after-specialize", &ir);
-    let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report);
+    let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
     let emitter = Emitter {
         ir: &ir,
@@ -119,7 +119,8 @@ pub fn run(
         sources,
     };
     let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
-    let manifest = crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name);
+    let manifest = crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name)
+        .map_err(CompileError::Internal)?;
     for a in &manifest.scene_attributes {
         report.push(
             "requires",

@@ -11,6 +11,7 @@ use crate::consteval::const_eval;
 use crate::formats::Format;
 use crate::ir::*;
 use crate::load::Loaded;
+use crate::InternalError;
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
@@ -23,7 +24,11 @@ pub const MAX_PASSES: usize = 64;
 pub const MAX_OUTPUTS_PER_PASS: usize = 8;
 pub const MAX_NOISE_SIZE: u32 = 4096;
 
-pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut Vec<Diagnostic>) -> Ir {
+pub fn resolve(
+    loaded: &Loaded,
+    scene: Option<&crate::SceneSummary>,
+    diags: &mut Vec<Diagnostic>,
+) -> Result<Ir, InternalError> {
     let mut r = Resolver {
         ir: Ir::default(),
         diags,
@@ -32,8 +37,9 @@ pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut
         pass_outputs: Vec::new(),
         scopes: Vec::new(),
         current_pass: None,
-        in_render_pass: false,
+        draws_objects: false,
         in_vertex: false,
+        internal: None,
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -41,7 +47,10 @@ pub fn resolve(loaded: &Loaded, scene: Option<&crate::SceneSummary>, diags: &mut
     };
     r.declare_all(&loaded.items);
     r.resolve_all(&loaded.items);
-    r.ir
+    match r.internal {
+        Some(e) => Err(e),
+        None => Ok(r.ir),
+    }
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -64,10 +73,12 @@ struct Resolver<'d> {
     current_pass: Option<PassId>,
     /// Whether the pass being resolved draws objects (`render(...)`): only
     /// those may read per-object textures.
-    in_render_pass: bool,
+    draws_objects: bool,
     /// Resolving a `vertex { ... }` modifier: no texture may be sampled
     /// there (`textureSample` is fragment-only in WGSL).
     in_vertex: bool,
+    /// The first impossible state met (a bug in npr, not in the style).
+    internal: Option<InternalError>,
 }
 
 impl Resolver<'_> {
@@ -135,9 +146,6 @@ impl Resolver<'_> {
                         kind: PassKind::Image { inputs: Vec::new() },
                         scale: 1.0,
                         clear: [0.0, 0.0, 0.0, 0.0],
-                        inflate: None,
-                        view: PassView::Camera,
-                        shadow_warp: None,
                         lets: Vec::new(),
                         outputs: Vec::new(),
                         span: p.span,
@@ -735,7 +743,11 @@ impl Resolver<'_> {
                         None
                     }
                 };
-                PassKind::Render { tag }
+                PassKind::Render {
+                    tag,
+                    view: PassView::Camera,
+                    vertex: VertexModifiers::default(),
+                }
             }
             "image" => {
                 let mut inputs = Vec::new();
@@ -770,7 +782,7 @@ impl Resolver<'_> {
                 PassKind::Image { inputs: Vec::new() }
             }
         };
-        self.in_render_pass = matches!(kind, PassKind::Render { .. });
+        self.draws_objects = kind.draws_objects();
         let scale = match &p.scale {
             None => 1.0,
             Some(e) => {
@@ -789,56 +801,9 @@ impl Resolver<'_> {
                 }
             }
         };
-        let mut view = PassView::Camera;
-        for m in &p.modifiers {
-            let is_render = matches!(kind, PassKind::Render { .. });
-            match (m.key.name.as_str(), &m.value.kind) {
-                ("view", ast::ExprKind::Name(n)) if is_render && (n.name == "light" || n.name == "camera") => {
-                    view = if n.name == "light" {
-                        PassView::Light
-                    } else {
-                        PassView::Camera
-                    };
-                }
-                ("view", _) => self.error(
-                    Diagnostic::error(
-                        codes::BAD_ARGUMENT,
-                        "`view(...)` takes `camera` or `light` on a render pass",
-                    )
-                    .with_primary(m.span, "not a view of a render pass")
-                    .with_help("write `pass depth: render(casters) view(light) { ... }`"),
-                ),
-                _ => self.error(
-                    Diagnostic::error(
-                        codes::BAD_ARGUMENT,
-                        format!("unsupported pass modifier `{}`", m.key.name),
-                    )
-                    .with_primary(m.span, "not supported yet")
-                    .with_help(
-                        "render passes take `view(light)`; stereo pass modifiers are reserved for a later version",
-                    ),
-                ),
-            }
-        }
-        let mut inflate = None;
-        let mut shadow_warp = None;
-        for s in &p.body.vertex {
-            if s.key.name == "inflate" && matches!(kind, PassKind::Render { .. }) {
-                self.in_vertex = true;
-                inflate = Some(self.expr(&s.value));
-                self.in_vertex = false;
-            } else if s.key.name == "shadow_warp" && view == PassView::Light {
-                self.in_vertex = true;
-                shadow_warp = Some(self.expr(&s.value));
-                self.in_vertex = false;
-            } else {
-                self.error(
-                    Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
-                        .with_primary(s.key.span, "not a vertex modifier")
-                        .with_help("render passes support `vertex { inflate: 2px }`; `view(light)` passes also `shadow_warp: k`"),
-                );
-            }
-        }
+        let mut kind = kind;
+        self.pass_modifiers(&mut kind, p);
+        self.vertex_modifiers(&mut kind, p);
         let mut clear = [0.0, 0.0, 0.0, 0.0];
         for s in &p.body.settings {
             match s.key.name.as_str() {
@@ -931,13 +896,75 @@ impl Resolver<'_> {
         pass.kind = kind;
         pass.scale = scale;
         pass.clear = clear;
-        pass.inflate = inflate;
-        pass.view = view;
-        pass.shadow_warp = shadow_warp;
         pass.lets = lets;
         pass.outputs = outputs;
         self.current_pass = None;
-        self.in_render_pass = false;
+        self.draws_objects = false;
+    }
+
+    /// `view(...)` and other modifiers after the pass kind.
+    fn pass_modifiers(&mut self, kind: &mut PassKind, p: &ast::PassDecl) {
+        for m in &p.modifiers {
+            match (m.key.name.as_str(), &m.value.kind, &mut *kind) {
+                ("view", ast::ExprKind::Name(n), PassKind::Render { view, .. })
+                    if n.name == "light" || n.name == "camera" =>
+                {
+                    *view = if n.name == "light" {
+                        PassView::Light
+                    } else {
+                        PassView::Camera
+                    };
+                }
+                ("view", _, _) => self.error(
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        "`view(...)` takes `camera` or `light` on a render pass",
+                    )
+                    .with_primary(m.span, "not a view of a render pass")
+                    .with_help("write `pass depth: render(casters) view(light) { ... }`"),
+                ),
+                _ => self.error(
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        format!("unsupported pass modifier `{}`", m.key.name),
+                    )
+                    .with_primary(m.span, "not supported yet")
+                    .with_help(
+                        "render passes take `view(light)`; stereo pass modifiers are reserved for a later version",
+                    ),
+                ),
+            }
+        }
+    }
+
+    /// `vertex { ... }`: only render passes have a vertex shader of their own.
+    fn vertex_modifiers(&mut self, kind: &mut PassKind, p: &ast::PassDecl) {
+        for s in &p.body.vertex {
+            let slot = match (s.key.name.as_str(), &mut *kind) {
+                ("inflate", PassKind::Render { vertex, .. }) => Some(&mut vertex.inflate),
+                (
+                    "shadow_warp",
+                    PassKind::Render {
+                        view: PassView::Light,
+                        vertex,
+                        ..
+                    },
+                ) => Some(&mut vertex.shadow_warp),
+                _ => None,
+            };
+            match slot {
+                Some(slot) => {
+                    self.in_vertex = true;
+                    *slot = Some(self.expr(&s.value));
+                    self.in_vertex = false;
+                }
+                None => self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown vertex modifier `{}`", s.key.name))
+                        .with_primary(s.key.span, "not a vertex modifier")
+                        .with_help("render passes support `vertex { inflate: 2px }`; `view(light)` passes also `shadow_warp: k`"),
+                ),
+            }
+        }
     }
 
     // ----------------------------------------------------------- expressions
@@ -1064,7 +1091,7 @@ impl Resolver<'_> {
                     self.error(d);
                     return self.ir.add(ExprKind::Error, span);
                 }
-                if self.ir.textures[t.0 as usize].per_object && !self.in_render_pass {
+                if self.ir.textures[t.0 as usize].per_object && !self.draws_objects {
                     let d = Diagnostic::error(
                         codes::BAD_PASS_INPUT,
                         format!("`{}` is a per-object texture, read outside a render pass", id.name),
@@ -1214,7 +1241,7 @@ impl Resolver<'_> {
         }
         let Some(index) = stdlib::all().iter().position(|o| o.name == name) else {
             let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
-            names.extend(Intrinsic::NAMES.iter().copied());
+            names.extend(Intrinsic::names());
             let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown operator `{name}`"))
                 .with_primary(call.callee.span, "no such operator or function");
             d = match did_you_mean(name, names) {
@@ -1322,28 +1349,18 @@ impl Resolver<'_> {
                     ok = false;
                     self.ir.add(ExprKind::Error, span)
                 }
-                stdlib::Default::Number(x) => {
-                    let (ty, c) = match p.ty {
-                        stdlib::Ty::Int => (Ty::Int, Const::Int(x as i64)),
-                        stdlib::Ty::Bool => (Ty::Bool, Const::Bool(x != 0.0)),
-                        _ => (Ty::Float, Const::Float(x)),
-                    };
-                    self.ir.add_typed(ExprKind::Const(c), ty, p.unit, span)
-                }
-                stdlib::Default::Variant(v) => {
-                    let i = match p.ty {
-                        stdlib::Ty::Enum(vs) => vs.iter().position(|x| *x == v).unwrap_or(0),
-                        _ => 0,
-                    };
-                    self.ir
-                        .add_typed(ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None, span)
-                }
-                stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
-                    Some((_, bi)) => {
-                        let (ty, unit) = bi.ty_unit();
-                        self.ir.add_typed(ExprKind::Builtin(*bi), ty, unit, span)
+                _ => match operator_default(p) {
+                    Ok((kind, ty, unit)) => self.ir.add_typed(kind, ty, unit, span),
+                    Err(detail) => {
+                        self.internal.get_or_insert(InternalError {
+                            message: format!("the stdlib default of `{}` in `{name}` is invalid", p.name),
+                            detail,
+                            span: Some(span),
+                            wgsl: None,
+                        });
+                        ok = false;
+                        self.ir.add(ExprKind::Error, span)
                     }
-                    None => self.ir.add(ExprKind::Error, span),
                 },
             };
             args.push(v);
@@ -1386,7 +1403,87 @@ pub fn signature(op: &stdlib::Operator) -> String {
     format!("({})", params.join(", "))
 }
 
+/// The node an operator parameter's stdlib default stands for (any default
+/// but `Required`). The defaults are stdlib data, not style text: one that
+/// names no variant of its enum or no builtin is a bug in npr (E9001), so
+/// it is an error here, never a silent fallback (and a test checks that
+/// every operator's defaults resolve).
+fn operator_default(p: &stdlib::Param) -> Result<(ExprKind, Ty, Unit), String> {
+    match p.default {
+        stdlib::Default::Required => Err(format!("`{}` has no default", p.name)),
+        stdlib::Default::Number(x) => {
+            let (ty, c) = match p.ty {
+                stdlib::Ty::Int => (Ty::Int, Const::Int(x as i64)),
+                stdlib::Ty::Bool => (Ty::Bool, Const::Bool(x != 0.0)),
+                _ => (Ty::Float, Const::Float(x)),
+            };
+            Ok((ExprKind::Const(c), ty, p.unit))
+        }
+        stdlib::Default::Variant(v) => match p.ty {
+            stdlib::Ty::Enum(vs) => match vs.iter().position(|x| *x == v) {
+                Some(i) => Ok((ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None)),
+                None => Err(format!("`{v}` is not one of its variants {}", vs.join("|"))),
+            },
+            other => Err(format!("the variant default `{v}` is on a parameter of type {other:?}")),
+        },
+        stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
+            Some((_, bi)) => {
+                let (ty, unit) = bi.ty_unit();
+                Ok((ExprKind::Builtin(*bi), ty, unit))
+            }
+            None => Err(format!("`{b}` is not a builtin")),
+        },
+    }
+}
+
 /// `texture` as a parameter type (`object param lit: texture = image(...)`).
 fn is_texture_type(ty: &ast::TypeExpr) -> bool {
     matches!(ty, ast::TypeExpr::Named(id) if id.name == "texture")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn param(ty: stdlib::Ty, default: stdlib::Default) -> stdlib::Param {
+        stdlib::Param {
+            name: "p",
+            ty,
+            unit: Unit::None,
+            default,
+            range: None,
+            doc: "",
+        }
+    }
+
+    #[test]
+    fn every_stdlib_default_resolves() {
+        for op in stdlib::all() {
+            for p in op.params {
+                if p.default != stdlib::Default::Required {
+                    let r = operator_default(p);
+                    assert!(r.is_ok(), "`{}({})`: {:?}", op.name, p.name, r.err());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_bad_stdlib_default_is_an_error_not_a_fallback() {
+        let e = stdlib::Ty::Enum(&["x", "y"]);
+        assert_eq!(
+            operator_default(&param(e, stdlib::Default::Variant("y"))).map(|(k, ..)| k),
+            Ok(ExprKind::Const(Const::Int(1)))
+        );
+        let err = operator_default(&param(e, stdlib::Default::Variant("z"))).unwrap_err();
+        assert!(err.contains("`z` is not one of its variants x|y"), "{err}");
+        let err = operator_default(&param(stdlib::Ty::Float, stdlib::Default::Variant("x"))).unwrap_err();
+        assert!(err.contains("on a parameter of type Float"), "{err}");
+        let err = operator_default(&param(stdlib::Ty::Vec2, stdlib::Default::Builtin("screen_xy"))).unwrap_err();
+        assert!(err.contains("`screen_xy` is not a builtin"), "{err}");
+        assert_eq!(
+            operator_default(&param(stdlib::Ty::Vec2, stdlib::Default::Builtin("screen_uv"))).map(|(k, ..)| k),
+            Ok(ExprKind::Builtin(Builtin::ScreenUv))
+        );
+    }
 }

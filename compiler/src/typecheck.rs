@@ -722,38 +722,47 @@ impl Checker<'_> {
 
     // ---------------------------------------------------------------- passes
 
+    /// `vertex { inflate, shadow_warp }`: a width in px and a plain number,
+    /// promoted to float; an ill-typed one is reported and left as it was.
+    fn vertex_modifiers(&mut self, mut vertex: VertexModifiers) -> VertexModifiers {
+        if let Some(inflate) = vertex.inflate {
+            if !self.is_error(inflate) {
+                let u = self.unit(inflate);
+                if self.vt(inflate) != Ty::Float && self.vt(inflate) != Ty::Int {
+                    self.type_error(inflate, "a width in px", None);
+                } else if u != Unit::Px && u != Unit::None {
+                    self.err(
+                        Diagnostic::error(
+                            codes::UNIT_MISMATCH,
+                            format!("`inflate` is a width in px, found {}", u.name()),
+                        )
+                        .with_primary(self.span(inflate), format!("this is in {}", u.name()))
+                        .with_help("write it in px, or in % of the image height"),
+                    );
+                } else {
+                    vertex.inflate = Some(self.promote_int(inflate));
+                }
+            }
+        }
+        if let Some(k) = vertex.shadow_warp {
+            if !self.is_error(k) {
+                if self.vt(k) != Ty::Float && self.vt(k) != Ty::Int {
+                    self.type_error(k, "a plain number (the sigmoid strength)", None);
+                } else {
+                    vertex.shadow_warp = Some(self.promote_int(k));
+                }
+            }
+        }
+        vertex
+    }
+
     fn passes(&mut self) {
         for pi in 0..self.ir.passes.len() {
             let pass = self.ir.passes[pi].clone();
-            let is_render = matches!(pass.kind, PassKind::Render { .. });
-            if let Some(inflate) = pass.inflate {
-                if !self.is_error(inflate) {
-                    let u = self.unit(inflate);
-                    if self.vt(inflate) != Ty::Float && self.vt(inflate) != Ty::Int {
-                        self.type_error(inflate, "a width in px", None);
-                    } else if u != Unit::Px && u != Unit::None {
-                        self.err(
-                            Diagnostic::error(
-                                codes::UNIT_MISMATCH,
-                                format!("`inflate` is a width in px, found {}", u.name()),
-                            )
-                            .with_primary(self.span(inflate), format!("this is in {}", u.name()))
-                            .with_help("write it in px, or in % of the image height"),
-                        );
-                    } else {
-                        let f = self.promote_int(inflate);
-                        self.ir.passes[pi].inflate = Some(f);
-                    }
-                }
-            }
-            if let Some(k) = pass.shadow_warp {
-                if !self.is_error(k) {
-                    if self.vt(k) != Ty::Float && self.vt(k) != Ty::Int {
-                        self.type_error(k, "a plain number (the sigmoid strength)", None);
-                    } else {
-                        let f = self.promote_int(k);
-                        self.ir.passes[pi].shadow_warp = Some(f);
-                    }
+            if let PassKind::Render { vertex, .. } = &pass.kind {
+                let checked = self.vertex_modifiers(*vertex);
+                if let PassKind::Render { vertex, .. } = &mut self.ir.passes[pi].kind {
+                    *vertex = checked;
                 }
             }
             // Vertex modifiers run per vertex: no fragment varyings there.
@@ -778,7 +787,7 @@ impl Checker<'_> {
             for id in self.ir.reachable(&roots) {
                 let e = self.ir.expr(id).clone();
                 match e.kind {
-                    ExprKind::Builtin(b) if b.needs_geometry() && !is_render => {
+                    ExprKind::Builtin(b) if b.needs_geometry() && !pass.kind.draws_objects() => {
                         self.err(
                             Diagnostic::error(
                                 codes::BAD_PASS_INPUT,

@@ -2,10 +2,11 @@
 
 use crate::allocate::Allocation;
 use crate::consteval::const_eval;
-use crate::emit::wgsl::EmittedPass;
+use crate::emit::EmittedPass;
 use crate::ir::*;
 use crate::manifest::*;
 use crate::prune::Live;
+use crate::InternalError;
 use dsl::SourceMap;
 
 pub fn build(
@@ -16,7 +17,7 @@ pub fn build(
     emitted: &[(PassId, EmittedPass)],
     sources: &SourceMap,
     source_name: &str,
-) -> Manifest {
+) -> Result<Manifest, InternalError> {
     let targets = alloc
         .targets
         .iter()
@@ -51,9 +52,9 @@ pub fn build(
             PassManifest {
                 name: pass.name.clone(),
                 kind: match &pass.kind {
-                    PassKind::Render { tag } => PassKindManifest::Render {
+                    PassKind::Render { tag, view, .. } => PassKindManifest::Render {
                         tag: tag.clone(),
-                        light_view: pass.view == crate::ir::PassView::Light,
+                        light_view: *view == PassView::Light,
                         attributes: e.attributes.clone(),
                     },
                     PassKind::Image { .. } => PassKindManifest::Image,
@@ -145,9 +146,22 @@ pub fn build(
             }
         })
         .collect();
-    let output = ir.output.and_then(|o| alloc.target_index(o)).unwrap_or(0);
+    // Resolve refuses a style without `output`, and prune keeps the output
+    // live, so the allocator gave it a target: anything else is a bug.
+    let output = ir
+        .output
+        .and_then(|o| alloc.target_index(o))
+        .ok_or_else(|| InternalError {
+            message: "the output target has no allocated target".into(),
+            detail: match ir.output {
+                Some(o) => format!("`{}` is not among the allocated targets", ir.target_name(o)),
+                None => "the IR has no output".into(),
+            },
+            span: Some(ir.output_span),
+            wgsl: None,
+        })?;
     let _ = live;
-    Manifest {
+    Ok(Manifest {
         version: MANIFEST_VERSION,
         style: ir.style_name.clone(),
         source: source_name.to_string(),
@@ -160,5 +174,5 @@ pub fn build(
         object_uniform_size: alloc.object_uniform_size,
         scene_attributes: attributes,
         output,
-    }
+    })
 }

@@ -1,0 +1,163 @@
+//! Binding declarations of one pass and the manifest's `Binding` lists that
+//! describe them to the runner. Group 0 (every kind): the frame block, the
+//! style-parameter block, targets (this eye's, then the other eye's),
+//! style textures and their samplers, the linear clamp sampler. Group 1
+//! (kinds that draw objects): the `Object` block, then per-object textures.
+
+use super::helpers::FRAME_STRUCT;
+use super::uses::Uses;
+use super::Emitter;
+use crate::ir::*;
+use crate::manifest::{Binding, ParamBinding, Resource};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// The declarations of a pass and what they bind.
+pub(super) struct Declared {
+    pub text: String,
+    pub bindings: Vec<Binding>,
+    /// Group 1 after the `Object` block (binding 0): per-object textures.
+    pub object_bindings: Vec<Binding>,
+    /// WGSL names of the targets read, this eye's and the other eye's.
+    pub target_names: BTreeMap<TargetRef, String>,
+    pub other_target_names: BTreeMap<TargetRef, String>,
+}
+
+impl Emitter<'_> {
+    pub(super) fn declare(&self, kind: &PassKind, uses: &Uses, uses_frame: bool) -> Declared {
+        let mut d = Declared {
+            text: String::new(),
+            bindings: Vec::new(),
+            object_bindings: Vec::new(),
+            target_names: BTreeMap::new(),
+            other_target_names: BTreeMap::new(),
+        };
+        let mut next = 0u32;
+        if uses_frame {
+            d.text.push_str(FRAME_STRUCT);
+            let _ = writeln!(d.text, "@group(0) @binding({next}) var<uniform> frame: Frame;");
+            d.bind(next, Resource::FrameUniforms);
+            next += 1;
+        }
+        if uses.style_params {
+            d.text.push_str("struct Params {\n");
+            self.param_fields(&mut d.text, ParamBinding::Uniform);
+            d.text.push_str("}\n");
+            let _ = writeln!(d.text, "@group(0) @binding({next}) var<uniform> params: Params;");
+            d.bind(next, Resource::StyleUniforms);
+            next += 1;
+        }
+        // This eye's targets, then (stereo styles) the other eye's copies.
+        let reads = uses.targets.iter().map(|t| (t, false));
+        for (t, other_eye) in reads.chain(uses.other_targets.iter().map(|t| (t, true))) {
+            let Some(index) = self.alloc.target_index(*t) else {
+                continue;
+            };
+            let (prefix, note) = if other_eye {
+                ("t_other_", ", the other eye's")
+            } else {
+                ("t_", "")
+            };
+            let name = format!("{prefix}{}", self.ir.target_name(*t).replace('.', "_"));
+            let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
+            let _ = writeln!(
+                d.text,
+                "@group(0) @binding({next}) var {name}: texture_2d<f32>; // {}{note}",
+                fmt.name()
+            );
+            d.bind(
+                next,
+                Resource::Target {
+                    target: index,
+                    filterable: fmt.is_filterable(),
+                    other_eye,
+                },
+            );
+            if other_eye {
+                &mut d.other_target_names
+            } else {
+                &mut d.target_names
+            }
+            .insert(*t, name);
+            next += 1;
+        }
+        for t in uses
+            .textures
+            .iter()
+            .filter(|t| !self.ir.textures[t.0 as usize].per_object)
+        {
+            let tex = &self.ir.textures[t.0 as usize];
+            let _ = writeln!(
+                d.text,
+                "@group(0) @binding({next}) var tex_{}: texture_2d<f32>;",
+                tex.name
+            );
+            d.bind(next, Resource::Texture { texture: t.0 as usize });
+            next += 1;
+            let _ = writeln!(d.text, "@group(0) @binding({next}) var samp_{}: sampler;", tex.name);
+            d.bind(next, Resource::TextureSampler { texture: t.0 as usize });
+            next += 1;
+        }
+        if uses.linear_sampler {
+            let _ = writeln!(d.text, "@group(0) @binding({next}) var samp_linear_clamp: sampler;");
+            d.bind(next, Resource::LinearClampSampler);
+        }
+        if kind.draws_objects() {
+            self.object_group(&mut d, uses);
+        }
+        d
+    }
+
+    /// Group 1: the `Object` block (per-object params), then the per-object
+    /// textures, so one bind group per object carries its uniforms and images.
+    fn object_group(&self, d: &mut Declared, uses: &Uses) {
+        d.text
+            .push_str("struct Object {\n    model: mat4x4<f32>,\n    normal_matrix: mat4x4<f32>,\n");
+        self.param_fields(&mut d.text, ParamBinding::PerObject);
+        d.text
+            .push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");
+        let mut next1 = 1u32;
+        for t in uses
+            .textures
+            .iter()
+            .filter(|t| self.ir.textures[t.0 as usize].per_object)
+        {
+            let tex = &self.ir.textures[t.0 as usize];
+            let _ = writeln!(
+                d.text,
+                "@group(1) @binding({next1}) var tex_{}: texture_2d<f32>; // per object",
+                tex.name
+            );
+            d.object_bindings.push(Binding {
+                binding: next1,
+                resource: Resource::Texture { texture: t.0 as usize },
+            });
+            let _ = writeln!(
+                d.text,
+                "@group(1) @binding({}) var samp_{}: sampler;",
+                next1 + 1,
+                tex.name
+            );
+            d.object_bindings.push(Binding {
+                binding: next1 + 1,
+                resource: Resource::TextureSampler { texture: t.0 as usize },
+            });
+            next1 += 2;
+        }
+    }
+
+    /// One `p_<name>: vec4<f32>` field per parameter bound as `which`.
+    fn param_fields(&self, text: &mut String, which: ParamBinding) {
+        for (i, b) in self.bindings.iter().enumerate() {
+            if *b == which {
+                let _ = writeln!(text, "    p_{}: vec4<f32>,", self.ir.params[i].name);
+            }
+        }
+    }
+}
+
+impl Declared {
+    fn bind(&mut self, binding: u32, resource: Resource) {
+        self.bindings.push(Binding { binding, resource });
+    }
+}

@@ -1,0 +1,163 @@
+//! What one pass reads: builtins, targets (this eye's and the other eye's),
+//! textures, parameter blocks, operators, and whether a texture or a target
+//! is read as a value. Kind-independent: the per-kind files decide what the
+//! uses mean (attributes, the frame block, group 1).
+
+use super::Emitter;
+use crate::ir::*;
+use crate::manifest::ParamBinding;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Everything a pass's shaders read, collected from its live expressions.
+#[derive(Debug, Default)]
+pub(super) struct Uses {
+    pub builtins: BTreeSet<Builtin>,
+    pub targets: BTreeSet<TargetRef>,
+    /// Targets read with `other_eye(...)`.
+    pub other_targets: BTreeSet<TargetRef>,
+    pub textures: BTreeSet<TextureId>,
+    /// `project()` / `project_other_eye()`.
+    pub project: bool,
+    /// A style-uniform parameter (the `Params` block).
+    pub style_params: bool,
+    /// `50%`: needs `frame.resolution`.
+    pub percent: bool,
+    /// Stdlib operators called directly (their dependencies come later).
+    pub operators: BTreeSet<usize>,
+    /// A target passed as a `SampledTexture`: needs the linear clamp sampler.
+    pub linear_sampler: bool,
+    /// A texture read as a value (sampled at the kind's texture coordinate).
+    pub texture_as_value: bool,
+}
+
+impl Uses {
+    /// Whether an expression reads the `Frame` block: any builtin other
+    /// than the varyings and the pixel position, `%`, or a projection.
+    pub fn expressions_read_frame(&self) -> bool {
+        let frame_builtin = self.builtins.iter().any(|b| {
+            !matches!(
+                b,
+                Builtin::Uv
+                    | Builtin::NormalWorld
+                    | Builtin::PositionWorld
+                    | Builtin::Tangent
+                    | Builtin::FragCoord
+                    | Builtin::ScreenUv
+            )
+        });
+        frame_builtin || self.percent || self.project
+    }
+
+    /// Whether any target is read as a value or a handle (`npr_load` is needed
+    /// only for values, but the helper has always come with any target read).
+    pub fn reads_targets(&self) -> bool {
+        !self.targets.is_empty() || !self.other_targets.is_empty()
+    }
+}
+
+impl Emitter<'_> {
+    /// The uses of a pass whose fragment shader evaluates `frag_nodes` and
+    /// whose vertex shader evaluates `vert_nodes`.
+    pub(super) fn uses(&self, frag_nodes: &[ExprId], vert_nodes: &[ExprId]) -> Uses {
+        let mut u = Uses::default();
+        for id in frag_nodes.iter().chain(vert_nodes) {
+            match &self.ir.expr(*id).kind {
+                ExprKind::Builtin(b) => {
+                    u.builtins.insert(*b);
+                }
+                ExprKind::Target(t) => {
+                    u.targets.insert(*t);
+                }
+                ExprKind::OtherEyeTarget(t) => {
+                    u.other_targets.insert(*t);
+                }
+                ExprKind::Texture(t) => {
+                    u.textures.insert(*t);
+                }
+                ExprKind::Call {
+                    callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye),
+                    ..
+                } => u.project = true,
+                ExprKind::Param(p) if self.bindings[p.0 as usize] == ParamBinding::Uniform => {
+                    u.style_params = true;
+                }
+                ExprKind::PercentOfHeight(_) => u.percent = true,
+                ExprKind::Call {
+                    callee: Callee::Operator(i),
+                    args,
+                } => {
+                    u.operators.insert(*i as usize);
+                    let op = &stdlib::all()[*i as usize];
+                    for (p, a) in op.params.iter().zip(args) {
+                        if p.ty == stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.target_read().is_some() {
+                            u.linear_sampler = true;
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        u.texture_as_value = frag_nodes
+            .iter()
+            .any(|id| matches!(self.ir.expr(*id).kind, ExprKind::Texture(_)) && self.used_as_value(*id, frag_nodes));
+        u
+    }
+
+    /// A handle is "used as a value" unless every use is a texture parameter
+    /// of an operator; an output written straight from it also reads it.
+    fn used_as_value(&self, id: ExprId, nodes: &[ExprId]) -> bool {
+        let mut used = false;
+        for n in nodes {
+            match &self.ir.expr(*n).kind {
+                ExprKind::Call {
+                    callee: Callee::Operator(i),
+                    args,
+                } => {
+                    let op = &stdlib::all()[*i as usize];
+                    for (p, a) in op.params.iter().zip(args) {
+                        if *a == id && !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
+                            used = true;
+                        }
+                    }
+                }
+                _ => {
+                    if self.ir.operands(*n).contains(&id) {
+                        used = true;
+                    }
+                }
+            }
+        }
+        used || !nodes.iter().any(|n| self.ir.operands(*n).contains(&id))
+    }
+
+    /// How many times each node is read as a value by `nodes` and `roots`
+    /// (a node passed as an operator's texture parameter is a handle there,
+    /// not a value read).
+    pub(super) fn value_uses(&self, nodes: &[ExprId], roots: &[ExprId]) -> BTreeMap<ExprId, usize> {
+        let mut uses: BTreeMap<ExprId, usize> = BTreeMap::new();
+        for n in nodes {
+            match &self.ir.expr(*n).kind {
+                ExprKind::Call {
+                    callee: Callee::Operator(i),
+                    args,
+                } => {
+                    let op = &stdlib::all()[*i as usize];
+                    for (p, a) in op.params.iter().zip(args) {
+                        if !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
+                            *uses.entry(*a).or_default() += 1;
+                        }
+                    }
+                }
+                _ => {
+                    for o in self.ir.operands(*n) {
+                        *uses.entry(o).or_default() += 1;
+                    }
+                }
+            }
+        }
+        for r in roots {
+            *uses.entry(*r).or_default() += 1;
+        }
+        uses
+    }
+}
