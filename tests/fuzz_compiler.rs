@@ -142,7 +142,7 @@ fn tokens() -> &'static [String] {
         let mut t: Vec<String> = FIXED_TOKENS.iter().map(|s| s.to_string()).collect();
         t.extend(grammar_keywords());
         t.extend(Builtin::SPELLINGS.iter().map(|(s, _)| s.to_string()));
-        t.extend(Intrinsic::NAMES.iter().map(|s| s.to_string()));
+        t.extend(Intrinsic::names().map(str::to_string));
         t.extend(stdlib::all().iter().map(|o| o.name.to_string()));
         t.extend(Format::ALL.iter().map(|(s, _)| s.to_string()));
         t.sort();
