@@ -41,10 +41,15 @@ fn scene_errors(toml: &str, dir: &Path) -> (Vec<Diagnostic>, String) {
 
 /// Assert the first diagnostic has `code`, a primary label, and snapshot the rendering.
 fn check(code: &str, (diags, rendered): (Vec<Diagnostic>, String)) {
+    check_case(code, code, (diags, rendered));
+}
+
+/// [`check`] for a further case of a code, snapshot under `name`.
+fn check_case(code: &str, name: &str, (diags, rendered): (Vec<Diagnostic>, String)) {
     let first = diags.first().expect("at least one diagnostic");
     assert_eq!(first.code, code, "wrong code; rendered:\n{rendered}");
     assert!(rendered.contains(&format!("error[{code}]")), "{rendered}");
-    insta::assert_snapshot!(code, rendered);
+    insta::assert_snapshot!(name, rendered);
 }
 
 const HEADER: &str = "style \"Case\"\n";
@@ -150,6 +155,38 @@ fn e0301_pass_cycle() {
         "pass a: image(b) {\n  out x: r8unorm = b.y\n}\npass b: image(a) {\n  out y: r8unorm = a.x\n}\noutput b.y\n",
     );
     check("E0301", compile_errors(&text, &scratch("e0301")));
+}
+
+#[test]
+fn e0301_a_pass_reading_its_own_target_is_told_about_previous() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = acc.c * 0.9\n}\noutput acc.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0301-self"));
+    assert!(rendered.contains("previous(acc.<target>)"), "{rendered}");
+    check_case("E0301", "E0301_self_read", (diags, rendered));
+}
+
+#[test]
+fn previous_takes_one_pass_target() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(0.5)\n}\noutput acc.c\n");
+    check_case(
+        "E0103",
+        "E0103_previous_not_a_target",
+        compile_errors(&text, &scratch("prev-arg")),
+    );
+}
+
+#[test]
+fn previous_of_a_target_that_does_not_exist() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(acc.d)\n}\noutput acc.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("prev-missing"));
+    let code = diags.first().expect("a diagnostic").code;
+    check_case(code, "previous_unknown_target", (diags, rendered));
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(nosuch.c)\n}\noutput acc.c\n");
+    check_case(
+        "E0101",
+        "previous_unknown_pass",
+        compile_errors(&text, &scratch("prev-missing-pass")),
+    );
 }
 
 #[test]

@@ -5,6 +5,10 @@
 //! reads it (the output lives to the end). Two targets share a physical
 //! texture only when format and scale match and the first is dead before the
 //! second is written, so no pass ever reads and writes the same texture.
+//!
+//! A history target (read with `previous(...)`) is never aliased: its
+//! physical texture is its own, marked `history`, and the runner keeps a
+//! second copy of it for the previous frame's value.
 
 use crate::ir::*;
 use crate::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
@@ -52,6 +56,11 @@ pub fn allocate(
     if let Some(out) = ir.output {
         last_use.insert(out, usize::MAX);
     }
+    // The next frame reads a history target, so it is busy to the end, and
+    // nothing written earlier in the frame may be reused for it either.
+    for t in &live.history {
+        last_use.insert(*t, usize::MAX);
+    }
     // Each physical texture: (format, scale, last position it is busy).
     let mut busy_until: Vec<usize> = Vec::new();
     for (pos, pid) in live.passes.iter().enumerate() {
@@ -73,11 +82,10 @@ pub fn allocate(
                     wgsl: None,
                 });
             };
-            let reuse = alloc
-                .physical
-                .iter()
-                .enumerate()
-                .position(|(pi, ph)| ph.format == o.format && ph.scale == pass.scale && busy_until[pi] < pos);
+            let history = live.history.contains(&t);
+            let reuse = alloc.physical.iter().enumerate().position(|(pi, ph)| {
+                !history && !ph.history && ph.format == o.format && ph.scale == pass.scale && busy_until[pi] < pos
+            });
             let phys = match reuse {
                 Some(pi) => {
                     report.push(
@@ -89,9 +97,17 @@ pub fn allocate(
                     pi
                 }
                 None => {
+                    if history {
+                        report.push(
+                            "history",
+                            format!("target `{}.{}`", pass.name, o.name),
+                            "read with `previous(...)`: a texture of its own, kept across frames (two copies)".into(),
+                        );
+                    }
                     alloc.physical.push(PhysicalTexture {
                         format: o.format,
                         scale: pass.scale,
+                        history,
                     });
                     busy_until.push(end);
                     alloc.physical.len() - 1

@@ -78,7 +78,12 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
                                 );
                             }
                         }
-                        diags.push(diag.with_help("a pass can only read passes that run before it; compute one of these values in a separate pass"));
+                        let (reader, read) = (&ir.passes[node].name, &ir.passes[d].name);
+                        diags.push(diag.with_help(format!(
+                            "a pass can only read this frame's targets of passes that run before it; \
+                             compute one of these values in a separate pass, or read the previous \
+                             frame's value with `previous({read}.<target>)` in `{reader}`"
+                        )));
                         cycle_found = true;
                         break;
                     }

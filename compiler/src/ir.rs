@@ -386,11 +386,13 @@ pub enum ExprKind {
     PercentOfHeight(f64),
     Param(ParamId),
     Builtin(Builtin),
-    /// A pass target: a handle (when passed to an operator) or a value read at `screen_uv`.
-    Target(TargetRef),
-    /// `other_eye(pass.target)`: the same target as rendered for the other eye
-    /// of a stereo frame (the runner renders both eyes pass by pass).
-    OtherEyeTarget(TargetRef),
+    /// A pass target: a handle (when passed to an operator) or a value read
+    /// at `screen_uv`, from this frame and eye, the other eye, or the
+    /// previous frame.
+    Target {
+        target: TargetRef,
+        copy: TargetCopy,
+    },
     /// A texture: a handle, or a value sampled at `uv` (render) / `screen_uv` (image).
     Texture(TextureId),
     /// `.xyz`, `.rg`: component indices.
@@ -425,13 +427,47 @@ pub enum ExprKind {
     Error,
 }
 
+/// Which copy of a target a read sees: the manifest's definition, shared.
+pub use crate::manifest::TargetCopy;
+
+impl TargetCopy {
+    /// The copy a call selects: `other_eye(t)`, `previous(t)`.
+    pub fn from_call(name: &str) -> Option<TargetCopy> {
+        match name {
+            "other_eye" => Some(TargetCopy::OtherEye),
+            "previous" => Some(TargetCopy::Previous),
+            _ => None,
+        }
+    }
+}
+
 impl ExprKind {
-    /// The target this node reads, for either eye: dependencies and lifetimes
-    /// are the same for both, since every pass runs for both eyes before the
-    /// next pass starts.
+    /// The target this node reads within this frame, for either eye:
+    /// dependencies and lifetimes are the same for both, since every pass
+    /// runs for both eyes before the next pass starts. A `previous(...)`
+    /// read is not one (see [`ExprKind::history_read`]).
     pub fn target_read(&self) -> Option<TargetRef> {
         match self {
-            ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => Some(*t),
+            ExprKind::Target { target, copy } if *copy != TargetCopy::Previous => Some(*target),
+            _ => None,
+        }
+    }
+
+    /// The target this node reads as the previous frame left it.
+    pub fn history_read(&self) -> Option<TargetRef> {
+        match self {
+            ExprKind::Target {
+                target,
+                copy: TargetCopy::Previous,
+            } => Some(*target),
+            _ => None,
+        }
+    }
+
+    /// Any read of a target, whichever copy.
+    pub fn any_target_read(&self) -> Option<(TargetRef, TargetCopy)> {
+        match self {
+            ExprKind::Target { target, copy } => Some((*target, *copy)),
             _ => None,
         }
     }

@@ -48,13 +48,24 @@ pub struct Manifest {
 }
 
 impl Manifest {
+    /// Whether a frame depends on earlier frames (a `previous(...)` read):
+    /// rendering frame `n` alone must then replay frames 0..n.
+    pub fn is_path_dependent(&self) -> bool {
+        self.physical.iter().any(|p| p.history)
+    }
+
     /// Whether a pass reads a target of the other eye (`other_eye(...)`): the
     /// runner then renders both eyes of a stereo frame, pass by pass.
     pub fn is_stereo(&self) -> bool {
-        self.passes
-            .iter()
-            .flat_map(|p| &p.bindings)
-            .any(|b| matches!(b.resource, Resource::Target { other_eye: true, .. }))
+        self.passes.iter().flat_map(|p| &p.bindings).any(|b| {
+            matches!(
+                b.resource,
+                Resource::Target {
+                    copy: TargetCopy::OtherEye,
+                    ..
+                }
+            )
+        })
     }
 }
 
@@ -136,9 +147,11 @@ pub enum Resource {
     Target {
         target: usize,
         filterable: bool,
-        /// Bind the other eye's copy (`other_eye(...)`): the style is stereo.
-        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-        other_eye: bool,
+        /// Which copy to bind: this frame's (the default), the other eye's
+        /// (`other_eye(...)`: the style is stereo) or the previous frame's
+        /// (`previous(...)`: the target's physical texture is `history`).
+        #[serde(default, skip_serializing_if = "TargetCopy::is_this")]
+        copy: TargetCopy,
     },
     /// A declared texture.
     Texture { texture: usize },
@@ -146,6 +159,28 @@ pub enum Resource {
     TextureSampler { texture: usize },
     /// A bilinear clamp-to-edge sampler (for `sample()` on targets).
     LinearClampSampler,
+}
+
+/// Which copy of a target a read sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetCopy {
+    /// As this frame's pass wrote it, for this eye.
+    #[default]
+    This,
+    /// `other_eye(pass.target)`: as the other eye of a stereo frame rendered
+    /// it (the runner renders both eyes pass by pass).
+    OtherEye,
+    /// `previous(pass.target)`: as the previous frame left it (the pass's
+    /// clear value on the first frame and after a reset). Not a dependency
+    /// within the frame, so a pass may read its own previous output.
+    Previous,
+}
+
+impl TargetCopy {
+    pub fn is_this(&self) -> bool {
+        *self == TargetCopy::This
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -162,6 +197,12 @@ pub struct TargetManifest {
 pub struct PhysicalTexture {
     pub format: Format,
     pub scale: f64,
+    /// Read with `previous(...)`: never shared with another target; the
+    /// runner keeps two copies, writes one and binds the other to
+    /// previous-frame reads, swaps them after each frame, and clears both
+    /// to the writing pass's clear value when it (re)creates them.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub history: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -4,7 +4,7 @@
 //! parameters, builtins, textures and operators their expressions use.
 //! Everything else is dropped and listed in the report with the reason.
 
-use crate::dag::{pass_roots, PassGraph};
+use crate::dag::PassGraph;
 use crate::ir::*;
 use crate::report::Report;
 use std::collections::BTreeSet;
@@ -15,30 +15,95 @@ pub struct Live {
     pub targets: BTreeSet<TargetRef>,
     pub params: BTreeSet<ParamId>,
     pub textures: BTreeSet<TextureId>,
+    /// Targets read with `previous(...)`: they outlive the frame.
+    pub history: BTreeSet<TargetRef>,
 }
 
 pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
-    let mut live = Live::default();
     let Some(output) = ir.output else {
-        return live;
+        return Live::default();
     };
-    live.targets.insert(output);
-    // Reverse execution order: every reader is visited before what it reads.
+    // A `previous(...)` read keeps its target alive although it is no
+    // dependency within the frame (its pass may run later, or be the reader
+    // itself), so walk again from the output plus every history target found
+    // until no new one appears. Each round only grows the seed set, which is
+    // bounded by the number of targets.
+    let mut seeds = BTreeSet::from([output]);
+    let live = loop {
+        let live = walk(ir, graph, &seeds);
+        let grown: BTreeSet<TargetRef> = seeds.union(&live.history).copied().collect();
+        if grown == seeds {
+            break live;
+        }
+        seeds = grown;
+    };
+    report_removed(ir, graph, &live, report);
+    live
+}
+
+/// One walk back from `seeds` in reverse execution order: every reader is
+/// visited before what it reads within the frame.
+fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
+    let mut live = Live {
+        targets: seeds.clone(),
+        ..Live::default()
+    };
+    for pid in graph.order.iter().rev() {
+        let roots = live_roots(ir, *pid, &live);
+        if roots.is_empty() {
+            continue;
+        }
+        live.passes.push(*pid);
+        for id in ir.reachable(&roots) {
+            match ir.expr(id).kind {
+                ExprKind::Target { target, copy } => {
+                    live.targets.insert(target);
+                    if copy == TargetCopy::Previous {
+                        live.history.insert(target);
+                    }
+                }
+                ExprKind::Param(p) => {
+                    live.params.insert(p);
+                }
+                ExprKind::Texture(t) => {
+                    live.textures.insert(t);
+                }
+                _ => {}
+            }
+        }
+    }
+    live.passes.reverse();
+    live
+}
+
+/// The expressions a pass must evaluate for its live outputs: their values
+/// and the vertex modifiers. Empty when no output of the pass is live.
+fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
+    let pass = ir.pass(pid);
+    let mut roots: Vec<ExprId> = pass
+        .outputs
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| {
+            live.targets.contains(&TargetRef {
+                pass: pid,
+                output: *i as u32,
+            })
+        })
+        .map(|(_, o)| o.value)
+        .collect();
+    if !roots.is_empty() {
+        roots.extend(Ir::vertex_roots(pass));
+    }
+    roots
+}
+
+/// Everything the walk dropped, with the reason, in execution order.
+fn report_removed(ir: &Ir, graph: &PassGraph, live: &Live, report: &mut Report) {
     for pid in graph.order.iter().rev() {
         let pass = ir.pass(*pid);
-        let live_outputs: Vec<&PassOutput> = pass
-            .outputs
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| {
-                live.targets.contains(&TargetRef {
-                    pass: *pid,
-                    output: *i as u32,
-                })
-            })
-            .map(|(_, o)| o)
-            .collect();
-        if live_outputs.is_empty() {
+        let roots = live_roots(ir, *pid, live);
+        if roots.is_empty() {
             report.removed(format!("pass `{}`", pass.name), "the output does not depend on it");
             continue;
         }
@@ -50,25 +115,9 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
                 report.removed(format!("target `{}.{}`", pass.name, o.name), "nothing reads it");
             }
         }
-        live.passes.push(*pid);
-        let mut roots: Vec<ExprId> = live_outputs.iter().map(|o| o.value).collect();
-        roots.extend(Ir::vertex_roots(pass));
-        for id in ir.reachable(&roots) {
-            match ir.expr(id).kind {
-                ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => {
-                    live.targets.insert(t);
-                }
-                ExprKind::Param(p) => {
-                    live.params.insert(p);
-                }
-                ExprKind::Texture(t) => {
-                    live.textures.insert(t);
-                }
-                _ => {}
-            }
-        }
+        let reachable = ir.reachable(&roots);
         for l in &pass.lets {
-            if !ir.reachable(&roots).contains(&l.value) {
+            if !reachable.contains(&l.value) {
                 report.removed(
                     format!("let `{}` in pass `{}`", l.name, pass.name),
                     "no live output uses it",
@@ -76,7 +125,6 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
             }
         }
     }
-    live.passes.reverse();
     for (i, p) in ir.params.iter().enumerate() {
         if !live.params.contains(&ParamId(i as u32)) {
             report.removed(format!("param `{}`", p.name), "no live expression reads it");
@@ -87,6 +135,4 @@ pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
             report.removed(format!("texture `{}`", t.name), "no live expression reads it");
         }
     }
-    let _ = pass_roots;
-    live
 }

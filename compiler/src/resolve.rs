@@ -699,17 +699,28 @@ impl Resolver<'_> {
             .add_typed(ExprKind::Const(Const::Bool(present)), Ty::Bool, Unit::None, span)
     }
 
-    /// `other_eye(pass.target)`: read a target as the other eye of a stereo
-    /// frame rendered it (LSA contours' reprojection and consistency passes).
-    fn other_eye(&mut self, call: &ast::Call) -> ExprId {
+    /// `other_eye(pass.target)` (the other eye of a stereo frame: LSA
+    /// contours' reprojection and consistency passes) and
+    /// `previous(pass.target)` (the previous frame: temporal filters,
+    /// feedback): another copy of a target.
+    fn target_copy(&mut self, call: &ast::Call, name: &str, copy: TargetCopy) -> ExprId {
         let span = call.span;
+        let example = if copy == TargetCopy::Previous {
+            "name a target of any pass, this one included, e.g. `previous(final.color)`"
+        } else {
+            "name a target of an earlier pass, e.g. `other_eye(lines.e)`"
+        };
         if let [a] = call.args.as_slice() {
             if a.name.is_none() {
                 let v = self.expr(&a.value);
-                if let ExprKind::Target(t) = self.ir.expr(v).kind {
+                if let ExprKind::Target {
+                    target,
+                    copy: TargetCopy::This,
+                } = self.ir.expr(v).kind
+                {
                     return self
                         .ir
-                        .add_typed(ExprKind::OtherEyeTarget(t), Ty::Target(t), Unit::None, span);
+                        .add_typed(ExprKind::Target { target, copy }, Ty::Target(target), Unit::None, span);
                 }
                 if matches!(self.ir.expr(v).kind, ExprKind::Error) {
                     return v;
@@ -717,9 +728,9 @@ impl Resolver<'_> {
             }
         }
         self.error(
-            Diagnostic::error(codes::BAD_ARGUMENT, "`other_eye` takes one pass target")
-                .with_primary(span, "expected `other_eye(pass.target)`")
-                .with_help("name a target of an earlier pass, e.g. `other_eye(lines.e)`"),
+            Diagnostic::error(codes::BAD_ARGUMENT, format!("`{name}` takes one pass target"))
+                .with_primary(span, format!("expected `{name}(pass.target)`"))
+                .with_help(example),
         );
         self.ir.add(ExprKind::Error, span)
     }
@@ -1157,7 +1168,15 @@ impl Resolver<'_> {
             if !shadowed {
                 if let Some((Symbol::Pass(p), _)) = self.names.get(&b.name).copied() {
                     return match self.target_of(p, field) {
-                        Some(t) => self.ir.add_typed(ExprKind::Target(t), Ty::Target(t), Unit::None, span),
+                        Some(t) => self.ir.add_typed(
+                            ExprKind::Target {
+                                target: t,
+                                copy: TargetCopy::This,
+                            },
+                            Ty::Target(t),
+                            Unit::None,
+                            span,
+                        ),
                         None => self.ir.add(ExprKind::Error, span),
                     };
                 }
@@ -1216,8 +1235,8 @@ impl Resolver<'_> {
         if name == "scene_has" {
             return self.scene_has(call);
         }
-        if name == "other_eye" {
-            return self.other_eye(call);
+        if let Some(copy) = TargetCopy::from_call(name) {
+            return self.target_copy(call, name, copy);
         }
         if let Some(intr) = Intrinsic::lookup(name) {
             let mut args = Vec::new();

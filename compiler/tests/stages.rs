@@ -138,7 +138,10 @@ fn a_folded_parameter_removes_the_branch_and_the_pass_only_it_read() {
     let out = ir.pass(pass_id(&ir, "final")).outputs[0].value;
     assert_eq!(
         ir.expr(out).kind,
-        ExprKind::Target(target(&ir, "base", 0)),
+        ExprKind::Target {
+            target: target(&ir, "base", 0),
+            copy: TargetCopy::This
+        },
         "the else branch is left"
     );
     assert!(!live.passes.contains(&pass_id(&ir, "extra")));
@@ -244,6 +247,50 @@ output c.c
     let ids: std::collections::BTreeSet<usize> = ["a", "b", "c"].iter().map(|p| physical(&ir, &alloc, p)).collect();
     assert_eq!(ids.len(), 3);
     assert!(entries(&report, "aliased").is_empty());
+}
+
+/// The chain of [`chain`] where `a` also reads the previous frame of `c`,
+/// which in this frame would alias `a`'s texture.
+fn chain_with_history() -> String {
+    chain(["rgba8unorm"; 4], [""; 4]).replacen(
+        "out c: rgba8unorm = vec4(normal.world, 1.0)",
+        "out c: rgba8unorm = vec4(normal.world, 1.0) + previous(c.c)",
+        1,
+    )
+}
+
+#[test]
+fn a_history_target_is_never_aliased() {
+    let (ir, alloc, _) = allocated(&chain_with_history());
+    let c = physical(&ir, &alloc, "c");
+    assert!(alloc.physical[c].history, "{:?}", alloc.physical);
+    for other in ["a", "b", "d"] {
+        assert_ne!(physical(&ir, &alloc, other), c, "`{other}` shares the history texture");
+        assert!(!alloc.physical[physical(&ir, &alloc, other)].history);
+    }
+    assert_eq!(alloc.physical.iter().filter(|p| p.history).count(), 1);
+}
+
+#[test]
+fn a_target_read_only_by_an_earlier_pass_through_previous_stays_live() {
+    // `e` runs after `a`, and only `a` reads it, through `previous(...)`.
+    let text = r#"style "echo"
+pass a: image() {
+  out c: rgba8unorm = previous(e.c) * 0.5
+}
+pass e: image(a) {
+  out c: rgba8unorm = a.c + vec4(0.1)
+}
+output a.c
+"#;
+    let (ir, graph) = front(text);
+    let mut report = Report::default();
+    let live = prune(&ir, &graph, &mut report);
+    assert!(live.passes.contains(&pass_id(&ir, "e")), "{:?}", report.entries);
+    assert!(live.history.contains(&target(&ir, "e", 0)));
+    assert!(entries(&report, "removed").is_empty(), "{:?}", report.entries);
+    // Within the frame `a` still runs first: a previous read is no dependency.
+    assert_eq!(graph.order, vec![pass_id(&ir, "a"), pass_id(&ir, "e")]);
 }
 
 #[test]

@@ -241,6 +241,11 @@ impl<'d> Renderer<'d> {
         scene: &Scene,
     ) -> Result<Renderer<'d>, RunError> {
         let manifest = program.manifest.clone();
+        if manifest.is_path_dependent() {
+            return Err(RunError::Internal(
+                "this runner does not execute history targets (`previous(...)`) yet".into(),
+            ));
+        }
         let diags = check_scene(&manifest, scene);
         if !diags.is_empty() {
             return Err(RunError::User(diags));
@@ -473,9 +478,13 @@ impl<'d> Renderer<'d> {
                     .bindings
                     .iter()
                     .filter_map(|b| match &b.resource {
-                        Resource::Target { target, other_eye, .. } => {
+                        Resource::Target { target, copy, .. } => {
                             // The other eye's copy lives in the other slot (stereo styles only).
-                            let from = if *other_eye { (slot + 1) % slots } else { slot };
+                            let from = if *copy == TargetCopy::OtherEye {
+                                (slot + 1) % slots
+                            } else {
+                                slot
+                            };
                             Some((
                                 b.binding,
                                 physical[from][self.manifest.targets[*target].physical]

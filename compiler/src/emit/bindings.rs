@@ -19,8 +19,8 @@ pub(super) struct Declared {
     /// Group 1 after the `Object` block (binding 0): per-object textures.
     pub object_bindings: Vec<Binding>,
     /// WGSL names of the targets read, this eye's and the other eye's.
-    pub target_names: BTreeMap<TargetRef, String>,
-    pub other_target_names: BTreeMap<TargetRef, String>,
+    /// The binding name of each target read, per copy.
+    pub target_names: BTreeMap<(TargetCopy, TargetRef), String>,
 }
 
 impl Emitter<'_> {
@@ -30,7 +30,6 @@ impl Emitter<'_> {
             bindings: Vec::new(),
             object_bindings: Vec::new(),
             target_names: BTreeMap::new(),
-            other_target_names: BTreeMap::new(),
         };
         let mut next = 0u32;
         if uses_frame {
@@ -47,16 +46,16 @@ impl Emitter<'_> {
             d.bind(next, Resource::StyleUniforms);
             next += 1;
         }
-        // This eye's targets, then (stereo styles) the other eye's copies.
-        let reads = uses.targets.iter().map(|t| (t, false));
-        for (t, other_eye) in reads.chain(uses.other_targets.iter().map(|t| (t, true))) {
+        // This frame's targets, then (stereo styles) the other eye's copies,
+        // then the previous frame's (history targets).
+        for (copy, t) in &uses.targets {
             let Some(index) = self.alloc.target_index(*t) else {
                 continue;
             };
-            let (prefix, note) = if other_eye {
-                ("t_other_", ", the other eye's")
-            } else {
-                ("t_", "")
+            let (prefix, note) = match copy {
+                TargetCopy::This => ("t_", ""),
+                TargetCopy::OtherEye => ("t_other_", ", the other eye's"),
+                TargetCopy::Previous => ("t_prev_", ", the previous frame's"),
             };
             let name = format!("{prefix}{}", self.ir.target_name(*t).replace('.', "_"));
             let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
@@ -70,15 +69,10 @@ impl Emitter<'_> {
                 Resource::Target {
                     target: index,
                     filterable: fmt.is_filterable(),
-                    other_eye,
+                    copy: *copy,
                 },
             );
-            if other_eye {
-                &mut d.other_target_names
-            } else {
-                &mut d.target_names
-            }
-            .insert(*t, name);
+            d.target_names.insert((*copy, *t), name);
             next += 1;
         }
         for t in uses

@@ -62,13 +62,12 @@ impl Emitter<'_> {
                 }
             }
             ExprKind::Builtin(b) => builtin_wgsl(*b),
-            ExprKind::Target(t) | ExprKind::OtherEyeTarget(t) => {
-                let names = if matches!(e.kind, ExprKind::Target(_)) {
-                    &ctx.target_names
-                } else {
-                    &ctx.other_target_names
-                };
-                let name = names.get(t).cloned().unwrap_or_else(|| "t_missing".into());
+            ExprKind::Target { target, copy } => {
+                let name = ctx
+                    .target_names
+                    .get(&(*copy, *target))
+                    .cloned()
+                    .unwrap_or_else(|| "t_missing".into());
                 let n = crate::typecheck::value_ty(self.ir, id).components().unwrap_or(4);
                 let sw = match n {
                     1 => ".x",
@@ -148,8 +147,7 @@ impl Emitter<'_> {
 
     fn handle(&self, id: ExprId, ctx: &PassCtx) -> String {
         match self.ir.expr(id).kind {
-            ExprKind::Target(t) => ctx.target_names.get(&t).cloned().unwrap_or_default(),
-            ExprKind::OtherEyeTarget(t) => ctx.other_target_names.get(&t).cloned().unwrap_or_default(),
+            ExprKind::Target { target, copy } => ctx.target_names.get(&(copy, target)).cloned().unwrap_or_default(),
             ExprKind::Texture(t) => format!("tex_{}", self.ir.textures[t.0 as usize].name),
             _ => String::from("/* not a handle */"),
         }

@@ -49,9 +49,8 @@ struct PassCtx {
     kind: KindCtx,
     /// Names given to shared or user-named nodes, in emission order.
     named: BTreeMap<ExprId, String>,
-    target_names: BTreeMap<TargetRef, String>,
-    /// Bindings of targets read with `other_eye(...)`.
-    other_target_names: BTreeMap<TargetRef, String>,
+    /// The binding name of each target read, per copy.
+    target_names: BTreeMap<(TargetCopy, TargetRef), String>,
     uses_linear_sampler: bool,
 }
 
@@ -134,7 +133,6 @@ impl Emitter<'_> {
             kind: KindCtx::of(&pass.kind),
             named: BTreeMap::new(),
             target_names: declared.target_names,
-            other_target_names: declared.other_target_names,
             uses_linear_sampler: uses.linear_sampler,
         };
         match &pass.kind {
@@ -208,7 +206,7 @@ impl Emitter<'_> {
     /// Name user `let`s, shared subexpressions and targets read as values
     /// more than once, so each is computed (each target loaded) once.
     ///
-    /// A target read is keyed by (target, eye), not by node: `thin.e.x` and
+    /// A target read is keyed by (copy, target), not by node: `thin.e.x` and
     /// `thin.e.y` are two `Target` nodes reading the same texel, so they
     /// share one `npr_load`, named at the first of them (operands come
     /// before users in `nodes`, so every user follows it).
@@ -220,14 +218,13 @@ impl Emitter<'_> {
             }
         }
         let user_lets: BTreeMap<ExprId, &Let> = pass.lets.iter().map(|l| (l.value, l)).collect();
-        // Value reads per (target, other eye), over every node reading it.
+        // Value reads per (copy, target), over every node reading it.
         let value_uses = self.value_uses(nodes, roots);
         let read_key = |id: ExprId| match self.ir.expr(id).kind {
-            ExprKind::Target(t) => Some((t, false)),
-            ExprKind::OtherEyeTarget(t) => Some((t, true)),
+            ExprKind::Target { target, copy } => Some((copy, target)),
             _ => None,
         };
-        let mut reads: BTreeMap<(TargetRef, bool), Vec<ExprId>> = BTreeMap::new();
+        let mut reads: BTreeMap<(TargetCopy, TargetRef), Vec<ExprId>> = BTreeMap::new();
         for n in nodes {
             if let Some(key) = read_key(*n) {
                 reads.entry(key).or_default().push(*n);

@@ -1,4 +1,5 @@
-//! What one pass reads: builtins, targets (this eye's and the other eye's),
+//! What one pass reads: builtins, targets (this frame's, the other eye's, the
+//! previous frame's),
 //! textures, parameter blocks, operators, and whether a texture or a target
 //! is read as a value. Kind-independent: the per-kind files decide what the
 //! uses mean (attributes, the frame block, group 1).
@@ -12,9 +13,8 @@ use std::collections::{BTreeMap, BTreeSet};
 #[derive(Debug, Default)]
 pub(super) struct Uses {
     pub builtins: BTreeSet<Builtin>,
-    pub targets: BTreeSet<TargetRef>,
-    /// Targets read with `other_eye(...)`.
-    pub other_targets: BTreeSet<TargetRef>,
+    /// Targets read, by copy: this frame's, the other eye's, the previous frame's.
+    pub targets: BTreeSet<(TargetCopy, TargetRef)>,
     pub textures: BTreeSet<TextureId>,
     /// `project()` / `project_other_eye()`.
     pub project: bool,
@@ -51,7 +51,7 @@ impl Uses {
     /// Whether any target is read as a value or a handle (`npr_load` is needed
     /// only for values, but the helper has always come with any target read).
     pub fn reads_targets(&self) -> bool {
-        !self.targets.is_empty() || !self.other_targets.is_empty()
+        !self.targets.is_empty()
     }
 }
 
@@ -65,11 +65,8 @@ impl Emitter<'_> {
                 ExprKind::Builtin(b) => {
                     u.builtins.insert(*b);
                 }
-                ExprKind::Target(t) => {
-                    u.targets.insert(*t);
-                }
-                ExprKind::OtherEyeTarget(t) => {
-                    u.other_targets.insert(*t);
+                ExprKind::Target { target, copy } => {
+                    u.targets.insert((*copy, *target));
                 }
                 ExprKind::Texture(t) => {
                     u.textures.insert(*t);
@@ -89,7 +86,7 @@ impl Emitter<'_> {
                     u.operators.insert(*i as usize);
                     let op = &stdlib::all()[*i as usize];
                     for (p, a) in op.params.iter().zip(args) {
-                        if p.ty == stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.target_read().is_some() {
+                        if p.ty == stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.any_target_read().is_some() {
                             u.linear_sampler = true;
                         }
                     }
