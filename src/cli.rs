@@ -516,8 +516,8 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
 }
 
 fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
-    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::render::MAX_OUTPUT_SIZE) {
-        eprintln!("error: size {bad} is outside 1..={}", runner::render::MAX_OUTPUT_SIZE);
+    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::MAX_OUTPUT_SIZE) {
+        eprintln!("error: size {bad} is outside 1..={}", runner::MAX_OUTPUT_SIZE);
         return EXIT_USER;
     }
     let mut sources = SourceMap::new();

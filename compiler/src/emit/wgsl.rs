@@ -891,7 +891,7 @@ fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2
 ";
 
 /// The size in px of a pass at `scale` of the output, as the runner allocates
-/// it (`runner::render::scaled_size`: rounded half up, at least 1).
+/// it (`runner::scaled_size`: rounded half up, at least 1).
 fn pass_size_wgsl(scale: f64) -> String {
     if scale == 1.0 {
         "frame.resolution".into()
