@@ -76,7 +76,13 @@ fn program() -> StyleProgram {
     }
 }
 
+/// Loaded once: tests running in parallel would race on the scene file.
 fn scene() -> Scene {
+    static SCENE_ONCE: OnceLock<Scene> = OnceLock::new();
+    SCENE_ONCE.get_or_init(load).clone()
+}
+
+fn load() -> Scene {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("object-motion");
     std::fs::create_dir_all(&dir).expect("scratch");
     let path = dir.join("scene.toml");
