@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use compiler::{CompileError, CompileOptions, Compiled};
 use dsl::{Diagnostic, SourceMap};
+use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -71,10 +72,14 @@ pub enum Command {
         /// Output size, WIDTHxHEIGHT.
         #[arg(long, default_value = "512x512", value_parser = parse_size)]
         size: (u32, u32),
-        /// Time in seconds (for animated parameters and cameras).
+        /// Time in seconds (for animated parameters and cameras). A style that
+        /// reads `previous(...)` depends on earlier frames: it is rendered by
+        /// replaying frames 0..=round(time × fps) at --fps (so the frame equals
+        /// the same frame of a --frames sequence), and the last one is written.
         #[arg(long, default_value_t = 0.0)]
         time: f64,
-        /// Render frames A..B (exclusive) at --fps.
+        /// Render frames A..B (exclusive) at --fps. A style that reads
+        /// `previous(...)` first replays frames 0..A without writing them.
         #[arg(long, value_parser = parse_frames)]
         frames: Option<(u32, u32)>,
         #[arg(long, default_value_t = 24.0)]
@@ -510,8 +515,8 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
 }
 
 fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
-    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::render::MAX_OUTPUT_SIZE) {
-        eprintln!("error: size {bad} is outside 1..={}", runner::render::MAX_OUTPUT_SIZE);
+    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::MAX_OUTPUT_SIZE) {
+        eprintln!("error: size {bad} is outside 1..={}", runner::MAX_OUTPUT_SIZE);
         return EXIT_USER;
     }
     let mut sources = SourceMap::new();
@@ -688,12 +693,20 @@ fn render(
         )
         .with_help("check that the directory exists and is writable")])
     };
-    let frame_list: Vec<u32> = match frames {
-        Some((a, b)) => (a..b).collect(),
-        None => vec![(time * fps).round().max(0.0) as u32],
+    let request = match frames {
+        Some((start, end)) => FrameRequest::Range { start, end },
+        None => FrameRequest::At { time_s: time },
     };
-    let bar = if frames.is_some() {
-        let b = indicatif::ProgressBar::new(frame_list.len() as u64);
+    let path_dependent = program.manifest.is_path_dependent();
+    let schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let replayed = schedule.iter().filter(|f| !f.write).count();
+    if replayed > 0 {
+        eprintln!(
+            "note: the style reads `previous(...)`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame 0 at {fps} fps"
+        );
+    }
+    let bar = if schedule.len() > 1 {
+        let b = indicatif::ProgressBar::new(schedule.len() as u64);
         b.set_style(
             indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} frames {elapsed_precise} eta {eta}")
                 .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -702,18 +715,24 @@ fn render(
     } else {
         None
     };
-    for &frame in &frame_list {
-        let t = if frames.is_some() { frame as f64 / fps } else { time };
+    for scheduled in &schedule {
+        let frame = scheduled.frame;
         r.render(
             scene,
             &FrameSpec {
                 width,
                 height,
-                time_s: t,
+                time_s: scheduled.time_s,
                 frame,
                 eye,
             },
         )?;
+        if !scheduled.write {
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            continue;
+        }
         if let Some(out) = out {
             let path = if frames.is_some() {
                 frame_path(out, frame)
@@ -740,7 +759,21 @@ fn render(
         b.finish();
     }
     if let Some(dir) = dump {
-        let images = dump_all_targets(&mut r, scene, width, height, time, eye)?;
+        // A path-dependent style's dump is of the last frame rendered (its
+        // history intact); others render the requested time afresh.
+        let images = match schedule.last().filter(|_| path_dependent) {
+            Some(last) => {
+                let spec = FrameSpec {
+                    width,
+                    height,
+                    time_s: last.time_s,
+                    frame: last.frame,
+                    eye,
+                };
+                read_all_targets(&mut r, scene, &spec)?
+            }
+            None => dump_all_targets(&mut r, scene, width, height, time, eye)?,
+        };
         let written = runner::output::dump_targets(&images, dir).map_err(|e| io(e, dir))?;
         eprintln!("wrote {} files into {}", written.len(), dir.display());
     }
@@ -767,6 +800,17 @@ pub fn dump_all_targets(
         eye,
     };
     r.render(scene, &spec)?;
+    read_all_targets(r, scene, &spec)
+}
+
+/// Read every target of the frame `spec` that `r` has just rendered;
+/// aliased targets are captured by partial re-renders of that same frame
+/// (which neither begin a new frame nor change any history texture).
+pub fn read_all_targets(
+    r: &mut Renderer,
+    scene: &runner::scene::Scene,
+    spec: &FrameSpec,
+) -> Result<Vec<runner::TargetImage>, RunError> {
     let count = r.manifest.targets.len();
     // Read every survivor of the full frame first: a partial re-render
     // overwrites the textures that aliased targets share with them.
@@ -780,7 +824,7 @@ pub fn dump_all_targets(
     }
     for (t, image) in images.iter_mut().enumerate() {
         if image.is_none() {
-            *image = Some(r.render_until_target(scene, &spec, t)?);
+            *image = Some(r.render_until_target(scene, spec, t)?);
         }
     }
     Ok(images.into_iter().flatten().collect())

@@ -116,6 +116,14 @@ pub fn allocate(
             alloc.targets.push((t, phys));
         }
     }
+    if !live.history.is_empty() {
+        report.push(
+            "history",
+            "frames depend on earlier frames".into(),
+            "`npr render --time t` replays frames 0..=round(t × fps) at --fps; `--frames a..b` replays 0..a first"
+                .into(),
+        );
+    }
     let mut style_slots = 0u64;
     let mut object_slots = 0u64;
     for (i, b) in bindings.iter().enumerate() {

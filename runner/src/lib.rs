@@ -2,7 +2,8 @@
 //!
 //! - [`device`]: a headless device (Vulkan, then GL), or bring your own.
 //! - [`scene`]: TOML scenes with primitives, OBJ and glTF meshes, cameras, a light.
-//! - [`render`]: the [`Renderer`], which runs the passes of a manifest.
+//! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
+//!   executor per pass kind).
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
 //! - [`harness`]: golden-image comparison for tests.
 //! - [`contours`]: analytic contour ground truth (f64 ray casting) and precision/recall.
@@ -17,19 +18,20 @@ pub mod bench;
 pub mod bench_contours;
 pub mod contours;
 pub mod device;
+pub mod exec;
 pub mod harness;
 pub mod output;
 pub mod program;
 pub mod readback;
-pub mod render;
 pub mod scene;
+pub mod schedule;
 pub mod texgen;
 pub mod textures;
 
 pub use device::{DeviceError, Gpu};
+pub use exec::{check_scene, check_texture_bindings, scaled_size, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE};
 pub use program::StyleProgram;
 pub use readback::TargetImage;
-pub use render::{FrameSpec, Renderer};
 
 use dsl::Diagnostic;
 
@@ -54,7 +56,7 @@ impl RunError {
         match self {
             RunError::User(d) => d.clone(),
             RunError::Limit(m) => vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, m.clone())
-                .with_help(format!("the largest image is {0}x{0}", render::MAX_OUTPUT_SIZE))],
+                .with_help(format!("the largest image is {0}x{0}", MAX_OUTPUT_SIZE))],
             RunError::Device(e) => vec![Diagnostic::error(dsl::codes::INTERNAL, e.to_string())],
             RunError::Internal(m) => {
                 vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())

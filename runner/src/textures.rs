@@ -45,7 +45,7 @@ pub struct ObjectTextures {
 }
 
 /// Loads every object's image bindings (checked against the style by
-/// `render::check_scene`). The sampler options are the param's declaration's.
+/// `exec::check_scene`). The sampler options are the param's declaration's.
 pub fn load_object_textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,

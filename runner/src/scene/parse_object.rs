@@ -230,7 +230,7 @@ fn read_tags(fields: &mut Fields, report: &mut Report) -> Vec<String> {
 /// space the style declares for the param's default) or a table
 /// `{ image = "path.png", srgb = false }` that says which. Paths are relative to the
 /// scene file; whether the name is a texture param is checked against the
-/// style when the renderer is built (`render::object_textures`).
+/// style when the renderer is built (`textures::load_object_textures`).
 #[allow(clippy::type_complexity)]
 fn read_params(
     fields: &mut Fields,

@@ -1,0 +1,122 @@
+//! The scene's meshes on the GPU: one vertex buffer per attribute and an
+//! index buffer per object, uploaded once in `Renderer::new`; time-varying
+//! primitives (the ocean) have their vertices rewritten in place per frame.
+
+use crate::scene::{Mesh, Scene};
+use crate::RunError;
+use compiler::manifest::Attribute;
+use std::collections::BTreeMap;
+use wgpu::util::DeviceExt;
+
+pub(super) struct GpuMesh {
+    pub buffers: BTreeMap<Attribute, wgpu::Buffer>,
+    pub index: wgpu::Buffer,
+    pub index_count: u32,
+    pub vertex_count: usize,
+    /// For a time-varying primitive: the time its vertices were built for.
+    pub built_for_s: Option<f64>,
+}
+
+/// Every object's mesh; a time-varying primitive's is its geometry at t = 0.
+pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene) -> Vec<GpuMesh> {
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            let mut gpu = upload_mesh(device, &o.mesh);
+            // `Object::mesh` is a time-varying primitive's geometry at t = 0.
+            gpu.built_for_s = o.time_varying.map(|_| 0.0);
+            gpu
+        })
+        .collect()
+}
+
+pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
+    let mut buffers = BTreeMap::new();
+    let mk = |label: &str, data: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: if data.is_empty() { &[0u8; 16] } else { data },
+            // COPY_DST: time-varying primitives are rewritten per frame.
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+        })
+    };
+    buffers.insert(
+        Attribute::Position,
+        mk("positions", bytemuck::cast_slice(&mesh.positions)),
+    );
+    buffers.insert(Attribute::Normal, mk("normals", bytemuck::cast_slice(&mesh.normals)));
+    if let Some(uv) = &mesh.uvs {
+        buffers.insert(Attribute::Uv, mk("uvs", bytemuck::cast_slice(uv)));
+    }
+    if let Some(t) = &mesh.tangents {
+        buffers.insert(Attribute::Tangent, mk("tangents", bytemuck::cast_slice(t)));
+    }
+    let index = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("indices"),
+        contents: if mesh.indices.is_empty() {
+            &[0u8; 16]
+        } else {
+            bytemuck::cast_slice(&mesh.indices)
+        },
+        usage: wgpu::BufferUsages::INDEX,
+    });
+    GpuMesh {
+        buffers,
+        index,
+        index_count: mesh.indices.len() as u32,
+        vertex_count: mesh.positions.len(),
+        built_for_s: None,
+    }
+}
+
+/// Rebuilds the vertices of time-varying primitives (the ocean of Age of
+/// Sail §6.1) for `time_s` and writes them over the uploaded buffers; the
+/// vertex count and indices never change, so nothing is reallocated. A
+/// mesh already built for this time (another eye, a partial frame) is
+/// left alone.
+pub(super) fn update_time_varying(
+    queue: &wgpu::Queue,
+    meshes: &mut [GpuMesh],
+    scene: &Scene,
+    time_s: f64,
+) -> Result<(), RunError> {
+    for (index, object) in scene.objects.iter().enumerate() {
+        let Some(primitive) = &object.time_varying else {
+            continue;
+        };
+        let gpu = meshes.get_mut(index).ok_or_else(|| {
+            RunError::Internal(format!(
+                "object `{}` is not in the scene this renderer was built for",
+                object.name
+            ))
+        })?;
+        if gpu.built_for_s == Some(time_s) {
+            continue;
+        }
+        let mesh = primitive.build_at(time_s);
+        if mesh.vertex_count() != gpu.vertex_count || mesh.indices.len() as u32 != gpu.index_count {
+            return Err(RunError::Internal(format!(
+                "object `{}` changed its vertex count over time ({} → {})",
+                object.name,
+                gpu.vertex_count,
+                mesh.vertex_count()
+            )));
+        }
+        let write = |attribute: Attribute, bytes: &[u8]| {
+            if let Some(buffer) = gpu.buffers.get(&attribute) {
+                queue.write_buffer(buffer, 0, bytes);
+            }
+        };
+        write(Attribute::Position, bytemuck::cast_slice(&mesh.positions));
+        write(Attribute::Normal, bytemuck::cast_slice(&mesh.normals));
+        if let Some(uvs) = &mesh.uvs {
+            write(Attribute::Uv, bytemuck::cast_slice(uvs));
+        }
+        if let Some(tangents) = &mesh.tangents {
+            write(Attribute::Tangent, bytemuck::cast_slice(tangents));
+        }
+        gpu.built_for_s = Some(time_s);
+    }
+    Ok(())
+}

@@ -1,0 +1,348 @@
+//! Execute a compiled style on wgpu: the [`Renderer`], which orchestrates
+//! the pieces in this folder.
+//!
+//! A [`Renderer`] borrows a device and queue, so it works in someone else's
+//! wgpu application as well as headless. It builds one executor per pass
+//! ([`pass::PassExec`], pipelines built once and cached for the renderer's
+//! life), uploads the scene's meshes once, allocates the physical textures
+//! of the manifest (aliased targets share one) and re-allocates only when
+//! the output size changes. Each frame writes only uniforms (camera, style
+//! params, object transforms and params, all read from the `Scene` given)
+//! and records the passes.
+//!
+//! - `frame.rs`: [`FrameSpec`] and the per-frame uniform writing;
+//! - `objects.rs`: object uniform blocks and the light camera's bounds;
+//! - `resources.rs`: size-dependent textures and views;
+//! - `bind.rs`: bind group layouts and bind groups;
+//! - `meshes.rs`: GPU meshes and time-varying vertex updates;
+//! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
+//! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, with
+//!   `render_pass.rs` and `image_pass.rs` the executors.
+
+mod bind;
+mod frame;
+mod image_pass;
+mod meshes;
+mod objects;
+mod pass;
+mod render_pass;
+mod resources;
+mod scene_check;
+
+pub use frame::FrameSpec;
+pub use resources::{scaled_size, wgpu_format};
+pub use scene_check::{check_scene, check_texture_bindings};
+
+use crate::scene::Scene;
+use crate::textures::{self, GpuTexture};
+use crate::{readback, RunError};
+use compiler::manifest::*;
+use glam::Mat4;
+use pass::{EncodeContext, PassExec, Timestamps};
+
+pub const MAX_OUTPUT_SIZE: u32 = 16384;
+
+pub struct Renderer<'d> {
+    device: &'d wgpu::Device,
+    queue: &'d wgpu::Queue,
+    pub manifest: Manifest,
+    /// One executor per manifest pass, in manifest order.
+    passes: Vec<PassExec>,
+    /// Group 1 of passes that read no per-object texture.
+    object_group: wgpu::BindGroup,
+    textures: Vec<GpuTexture>,
+    linear_clamp: wgpu::Sampler,
+    meshes: Vec<meshes::GpuMesh>,
+    /// One per eye rendered in a frame (two for stereo styles).
+    frame_buffers: Vec<wgpu::Buffer>,
+    style_buffer: wgpu::Buffer,
+    /// Every object's block, `object_stride` apart; written every frame.
+    object_buffer: wgpu::Buffer,
+    object_stride: u64,
+    object_tags: Vec<Vec<String>>,
+    /// The object transforms `scene_bounds` and `caster_bounds` are for.
+    bounds_models: Vec<Mat4>,
+    /// World-space bounds of the scene, for the light camera's depth range.
+    scene_bounds: (glam::Vec3, glam::Vec3),
+    /// Bounds of what `view(light)` passes draw (the shadow casters): the
+    /// light camera's x, y extent.
+    caster_bounds: (glam::Vec3, glam::Vec3),
+    sized: Option<resources::SizedResources>,
+    /// Frames begun (by [`Renderer::prepare`]) since the textures were
+    /// made: the current frame's parity is `(frames_begun - 1) % 2` for
+    /// styles with history textures.
+    frames_begun: u64,
+}
+
+impl<'d> Renderer<'d> {
+    /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
+    /// come back as `RunError::User`.
+    pub fn new(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &crate::StyleProgram,
+        scene: &Scene,
+    ) -> Result<Renderer<'d>, RunError> {
+        let manifest = program.manifest.clone();
+        let diags = check_scene(&manifest, scene);
+        if !diags.is_empty() {
+            return Err(RunError::User(diags));
+        }
+        let textures = textures::load_all(device, queue, &manifest)?;
+        let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("npr linear clamp"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
+        let object_stride = manifest.object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN).max(1) * OBJECT_STRIDE_ALIGN;
+        // Bad per-object params are reported here too, not only at the first frame.
+        objects::object_blocks(&manifest, scene, object_stride)?;
+        let object_count = scene.objects.len().max(1) as u64;
+        let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr objects"),
+            size: object_stride * object_count,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (object_layout, object_group) =
+            bind::shared_object_group(device, &object_buffer, manifest.object_uniform_size);
+        let object_resources = bind::ObjectResources {
+            scene,
+            buffer: &object_buffer,
+            uniform_size: manifest.object_uniform_size,
+            shared_layout: &object_layout,
+            textures: &textures,
+            object_textures: &object_textures,
+        };
+        let mut passes = Vec::new();
+        for pass in &manifest.passes {
+            let wgsl = program
+                .shaders
+                .get(&pass.shader)
+                .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
+            passes.push(PassExec::build(device, &manifest, pass, wgsl, &object_resources)?);
+        }
+        let eyes = if manifest.is_stereo() { 2 } else { 1 };
+        let frame_buffers = (0..eyes)
+            .map(|e| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("npr frame, eye slot {e}")),
+                    size: FRAME_UNIFORM_SIZE,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
+        let style_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr style params"),
+            size: manifest.style_uniform_size.max(16),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (scene_bounds, caster_bounds) = objects::light_bounds(&manifest, scene);
+        Ok(Renderer {
+            device,
+            queue,
+            passes,
+            object_group,
+            textures,
+            linear_clamp,
+            meshes: meshes::upload_scene(device, scene),
+            frame_buffers,
+            style_buffer,
+            object_buffer,
+            object_stride,
+            object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            bounds_models: scene.objects.iter().map(|o| o.model).collect(),
+            scene_bounds,
+            caster_bounds,
+            manifest,
+            sized: None,
+            frames_begun: 0,
+        })
+    }
+
+    /// Render one frame; every target stays on the GPU for [`Renderer::read_target`].
+    pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
+        self.prepare(scene, spec)?;
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("npr frame"),
+        });
+        self.encode(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+
+    /// Record every pass of the style into `encoder` (after [`Renderer::prepare`]).
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.encode_passes(encoder, self.manifest.passes.len(), None);
+    }
+
+    /// Like [`Renderer::encode`], writing GPU timestamps at the beginning and
+    /// end of pass `i` into `queries` slots `2i` and `2i + 1` (for benchmarks;
+    /// the query set needs `2 × passes` slots and the device `TIMESTAMP_QUERY`).
+    pub fn encode_timed(&self, encoder: &mut wgpu::CommandEncoder, queries: &wgpu::QuerySet) {
+        self.encode_passes(encoder, self.manifest.passes.len(), Some(queries));
+    }
+
+    /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
+    /// records the passes into your own command encoder.
+    ///
+    /// `scene` must have the objects the renderer was built for (same meshes,
+    /// tags and bound images, in the same order); their transforms and
+    /// per-object params are read again here, so objects may move and
+    /// change params between frames.
+    pub fn prepare(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
+        self.prepare_frame(scene, spec, true)
+    }
+
+    /// [`Renderer::prepare`]; `begin` starts a new frame, which for a style
+    /// with history textures swaps their copies. A partial re-render of the
+    /// same frame (`render_until_target`) does not begin one, so it reads
+    /// the same previous frame and writes the same copies.
+    fn prepare_frame(&mut self, scene: &Scene, spec: &FrameSpec, begin: bool) -> Result<(), RunError> {
+        if spec.width == 0 || spec.height == 0 || spec.width > MAX_OUTPUT_SIZE || spec.height > MAX_OUTPUT_SIZE {
+            return Err(RunError::Limit(format!(
+                "image size {}x{} is outside 1..={MAX_OUTPUT_SIZE} (the 2D texture limit)",
+                spec.width, spec.height
+            )));
+        }
+        if self.frame_buffers.len() == 2 && spec.eye > 1 {
+            return Err(RunError::Limit(format!(
+                "eye {} does not exist: a stereo frame has eyes 0 and 1",
+                spec.eye
+            )));
+        }
+        if scene.objects.len() != self.meshes.len() {
+            return Err(RunError::User(vec![dsl::Diagnostic::error(
+                dsl::codes::BAD_SCENE,
+                format!(
+                    "the scene has {} object(s), the renderer was built for {}",
+                    scene.objects.len(),
+                    self.meshes.len()
+                ),
+            )
+            .with_help(
+                "only objects' transforms and params may change between frames; build a new Renderer for other objects",
+            )]));
+        }
+        self.ensure_size(spec.width, spec.height);
+        if begin || self.frames_begun == 0 {
+            self.frames_begun += 1;
+        }
+        if let Some(sized) = self.sized.as_mut() {
+            sized.output_slot = if sized.physical.slots.len() == 2 {
+                spec.eye as usize
+            } else {
+                0
+            };
+        }
+        meshes::update_time_varying(self.queue, &mut self.meshes, scene, spec.time_s)?;
+        self.write_uniforms(scene, spec)
+    }
+
+    /// Run the frame only up to (and including) the pass that writes `target`,
+    /// and read it back: for targets whose texture a later pass reuses.
+    pub fn render_until_target(
+        &mut self,
+        scene: &Scene,
+        spec: &FrameSpec,
+        target: usize,
+    ) -> Result<readback::TargetImage, RunError> {
+        let writer = self
+            .manifest
+            .passes
+            .iter()
+            .position(|p| p.outputs.contains(&target))
+            .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
+        self.prepare_frame(scene, spec, false)?;
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("npr partial frame"),
+        });
+        self.encode_passes(&mut encoder, writer + 1, None);
+        self.queue.submit([encoder.finish()]);
+        self.read_target(target)
+    }
+
+    /// Record the first `count` passes, each by its kind's executor.
+    fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
+        let Some(sized) = self.sized.as_ref() else { return };
+        let ctx = EncodeContext {
+            meshes: &self.meshes,
+            object_tags: &self.object_tags,
+            object_group: &self.object_group,
+            object_stride: self.object_stride,
+        };
+        // Stereo styles run each pass for both eyes before the next pass, so
+        // a pass that reads `other_eye(...)` finds the other eye's target done.
+        let parity_passes = &sized.passes[self.parity() % sized.passes.len()];
+        let slots = parity_passes.len();
+        for (pi, pass) in self.passes.iter().enumerate().take(count) {
+            for slot in 0..slots {
+                let timestamps = queries.map(|query_set| Timestamps {
+                    query_set,
+                    beginning: (slot == 0).then_some(2 * pi as u32),
+                    end: (slot + 1 == slots).then_some(2 * pi as u32 + 1),
+                });
+                pass.encode(encoder, &parity_passes[slot][pi], &ctx, timestamps.as_ref());
+            }
+        }
+    }
+
+    /// Read a logical target back to the CPU.
+    pub fn read_target(&self, target: usize) -> Result<readback::TargetImage, RunError> {
+        let sized = self
+            .sized
+            .as_ref()
+            .ok_or_else(|| RunError::Internal("read before render".into()))?;
+        let t = self
+            .manifest
+            .targets
+            .get(target)
+            .ok_or_else(|| RunError::Internal(format!("no target #{target}")))?;
+        let (w, h) = scaled_size(sized.width, sized.height, t.scale);
+        readback::read_texture(
+            self.device,
+            self.queue,
+            sized
+                .physical
+                .texture(sized.output_slot, self.parity(), t.physical, false),
+            w,
+            h,
+            t.format,
+            &t.name,
+        )
+    }
+
+    /// The parity of the current frame: which copy of each history texture
+    /// it writes (0 before any frame).
+    fn parity(&self) -> usize {
+        (self.frames_begun.saturating_sub(1) % 2) as usize
+    }
+
+    /// Frames begun since the renderer was built or its textures were
+    /// resized (the history they hold is that long).
+    pub fn frames_begun(&self) -> u64 {
+        self.frames_begun
+    }
+
+    /// Read the style's final image.
+    pub fn read_output(&self) -> Result<readback::TargetImage, RunError> {
+        self.read_target(self.manifest.output)
+    }
+
+    /// Whether a target still holds its own contents at the end of the frame
+    /// (false when a later target was aliased onto the same physical texture).
+    pub fn target_survives_frame(&self, target: usize) -> bool {
+        let phys = self.manifest.targets[target].physical;
+        let last_writer = self
+            .manifest
+            .passes
+            .iter()
+            .flat_map(|p| p.outputs.iter())
+            .rfind(|t| self.manifest.targets[**t].physical == phys);
+        last_writer == Some(&target)
+    }
+}

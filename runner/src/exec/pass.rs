@@ -1,0 +1,219 @@
+//! One executor per manifest pass, by pass kind: [`PassExec`] is built once
+//! from the pass's `PassKindManifest` (its pipeline and layouts live as long
+//! as the renderer) and records the pass for one eye slot with `encode`. A
+//! new pass kind is a variant here and one file with its executor; the
+//! helpers below are what the render-pipeline kinds share.
+
+use super::bind::ObjectResources;
+use super::image_pass::ImagePassExec;
+use super::meshes::GpuMesh;
+use super::render_pass::RenderPassExec;
+use super::resources::{wgpu_format, SizedPass};
+use crate::RunError;
+use compiler::manifest::*;
+
+pub(super) enum PassExec {
+    /// `render(tag)`: draws the scene's objects (group 1: the object block).
+    Render(RenderPassExec),
+    /// `image`: one fullscreen triangle.
+    Image(ImagePassExec),
+}
+
+/// What a pass may read when it is recorded, besides its own state and its
+/// [`SizedPass`]: the scene's meshes and the group 1 shared by passes
+/// without per-object textures.
+pub(super) struct EncodeContext<'a> {
+    pub meshes: &'a [GpuMesh],
+    pub object_tags: &'a [Vec<String>],
+    pub object_group: &'a wgpu::BindGroup,
+    /// Bytes between two objects' blocks (the dynamic offset step).
+    pub object_stride: u64,
+}
+
+/// GPU timestamps of one pass (benchmarks): the first eye slot writes the
+/// beginning, the last the end.
+pub(super) struct Timestamps<'a> {
+    pub query_set: &'a wgpu::QuerySet,
+    pub beginning: Option<u32>,
+    pub end: Option<u32>,
+}
+
+impl Timestamps<'_> {
+    pub fn render_pass(&self) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: self.beginning,
+            end_of_pass_write_index: self.end,
+        }
+    }
+}
+
+impl PassExec {
+    pub fn build(
+        device: &wgpu::Device,
+        manifest: &Manifest,
+        pass: &PassManifest,
+        wgsl: &str,
+        objects: &ObjectResources,
+    ) -> Result<PassExec, RunError> {
+        Ok(match &pass.kind {
+            PassKindManifest::Render { tag, attributes, .. } => PassExec::Render(RenderPassExec::build(
+                device,
+                manifest,
+                pass,
+                wgsl,
+                tag.as_ref(),
+                attributes,
+                objects,
+            )?),
+            PassKindManifest::Image => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
+        })
+    }
+
+    /// The layout of the pass's group 0 (built per size in `bind.rs`).
+    pub fn layout0(&self) -> &wgpu::BindGroupLayout {
+        match self {
+            PassExec::Render(p) => &p.layout0,
+            PassExec::Image(p) => &p.layout0,
+        }
+    }
+
+    /// Whether the pass's [`SizedPass`] gets a depth buffer.
+    pub fn needs_depth(&self) -> bool {
+        matches!(self, PassExec::Render(_))
+    }
+
+    /// Record the pass for one eye slot.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        sized: &SizedPass,
+        ctx: &EncodeContext,
+        timestamps: Option<&Timestamps>,
+    ) {
+        match self {
+            PassExec::Render(p) => p.encode(encoder, sized, ctx, timestamps),
+            PassExec::Image(p) => p.encode(encoder, sized, timestamps),
+        }
+    }
+}
+
+pub(super) fn clear_color(pass: &PassManifest) -> wgpu::Color {
+    wgpu::Color {
+        r: pass.clear[0],
+        g: pass.clear[1],
+        b: pass.clear[2],
+        a: pass.clear[3],
+    }
+}
+
+/// Begin a render pass over `sized`'s colour views (cleared to `clear`) and
+/// depth view (cleared to 1, not stored), if any.
+pub(super) fn begin_render_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    clear: wgpu::Color,
+    sized: &SizedPass,
+    timestamps: Option<&Timestamps>,
+) -> wgpu::RenderPass<'e> {
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = sized
+        .color_views
+        .iter()
+        .map(|v| {
+            Some(wgpu::RenderPassColorAttachment {
+                view: v,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &attachments,
+        depth_stencil_attachment: sized
+            .depth_view
+            .as_ref()
+            .map(|v| wgpu::RenderPassDepthStencilAttachment {
+                view: v,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+        timestamp_writes: timestamps.map(Timestamps::render_pass),
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+/// The render pipeline of `pass` (its WGSL, its outputs' formats, no
+/// blending, no culling) with the kind's bind group layouts, vertex buffers
+/// and depth state; a pipeline wgpu rejects is an internal error.
+pub(super) fn render_pipeline(
+    device: &wgpu::Device,
+    manifest: &Manifest,
+    pass: &PassManifest,
+    wgsl: &str,
+    group_layouts: &[&wgpu::BindGroupLayout],
+    buffers: &[Option<wgpu::VertexBufferLayout>],
+    depth_stencil: Option<wgpu::DepthStencilState>,
+) -> Result<wgpu::RenderPipeline, RunError> {
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = group_layouts.iter().map(|l| Some(*l)).collect();
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&pass.name),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    });
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(&pass.shader),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    let targets: Vec<Option<wgpu::ColorTargetState>> = pass
+        .outputs
+        .iter()
+        .map(|t| {
+            Some(wgpu::ColorTargetState {
+                format: wgpu_format(manifest.targets[*t].format),
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        })
+        .collect();
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(&pass.name),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some(&pass.vertex_entry),
+            compilation_options: Default::default(),
+            buffers,
+        },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(&pass.fragment_entry),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    if let Some(err) = pollster::block_on(scope.pop()) {
+        return Err(RunError::Internal(format!(
+            "pipeline for pass `{}` rejected by wgpu: {err}",
+            pass.name
+        )));
+    }
+    Ok(pipeline)
+}

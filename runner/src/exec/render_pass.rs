@@ -1,0 +1,124 @@
+//! The executor of `render(tag)` passes: draws every object (with the tag)
+//! of the scene with its own vertex buffers, one object block per draw at a
+//! dynamic offset into group 1, into the pass's targets and a depth buffer
+//! cleared per pass.
+
+use super::bind::{self, ObjectResources};
+use super::pass::{self, EncodeContext, Timestamps};
+use super::resources::SizedPass;
+use crate::RunError;
+use compiler::manifest::*;
+
+pub(super) struct RenderPassExec {
+    name: String,
+    clear: wgpu::Color,
+    /// Draw only objects with this tag; `None` draws every object.
+    tag: Option<String>,
+    /// Vertex attributes in location order (one buffer each).
+    attributes: Vec<Attribute>,
+    pipeline: wgpu::RenderPipeline,
+    pub(super) layout0: wgpu::BindGroupLayout,
+    /// Per object: group 1 with the object's uniforms and its per-object
+    /// textures; empty when the pass reads no such texture (it uses the
+    /// shared group, `EncodeContext::object_group`).
+    object_groups: Vec<wgpu::BindGroup>,
+}
+
+fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
+    match a {
+        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
+        Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
+        Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
+    }
+}
+
+impl RenderPassExec {
+    pub fn build(
+        device: &wgpu::Device,
+        manifest: &Manifest,
+        pass: &PassManifest,
+        wgsl: &str,
+        tag: Option<&String>,
+        attributes: &[Attribute],
+        objects: &ObjectResources,
+    ) -> Result<RenderPassExec, RunError> {
+        let layout0 = bind::group0_layout(device, pass);
+        let own = bind::pass_object_groups(device, pass, objects)?;
+        let object_layout = own.as_ref().map_or(objects.shared_layout, |(layout, _)| layout);
+        let vertex_attrs: Vec<[wgpu::VertexAttribute; 1]> = attributes
+            .iter()
+            .enumerate()
+            .map(|(loc, a)| {
+                [wgpu::VertexAttribute {
+                    format: attribute_format(*a).0,
+                    offset: 0,
+                    shader_location: loc as u32,
+                }]
+            })
+            .collect();
+        let buffers: Vec<Option<wgpu::VertexBufferLayout>> = attributes
+            .iter()
+            .zip(&vertex_attrs)
+            .map(|(a, attrs)| {
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: attribute_format(*a).1,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: attrs,
+                })
+            })
+            .collect();
+        let depth = wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        };
+        let pipeline = pass::render_pipeline(
+            device,
+            manifest,
+            pass,
+            wgsl,
+            &[&layout0, object_layout],
+            &buffers,
+            Some(depth),
+        )?;
+        Ok(RenderPassExec {
+            name: pass.name.clone(),
+            clear: pass::clear_color(pass),
+            tag: tag.cloned(),
+            attributes: attributes.to_vec(),
+            pipeline,
+            layout0,
+            object_groups: own.map(|(_, groups)| groups).unwrap_or_default(),
+        })
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        sized: &SizedPass,
+        ctx: &EncodeContext,
+        timestamps: Option<&Timestamps>,
+    ) {
+        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, timestamps);
+        rp.set_pipeline(&self.pipeline);
+        rp.set_bind_group(0, &sized.group0, &[]);
+        for (oi, mesh) in ctx.meshes.iter().enumerate() {
+            if let Some(tag) = &self.tag {
+                if !ctx.object_tags[oi].iter().any(|t| t == tag) {
+                    continue;
+                }
+            }
+            let group = self.object_groups.get(oi).unwrap_or(ctx.object_group);
+            rp.set_bind_group(1, group, &[(oi as u64 * ctx.object_stride) as u32]);
+            for (slot, a) in self.attributes.iter().enumerate() {
+                if let Some(buf) = mesh.buffers.get(a) {
+                    rp.set_vertex_buffer(slot as u32, buf.slice(..));
+                }
+            }
+            rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
+            rp.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+    }
+}

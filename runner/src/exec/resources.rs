@@ -1,0 +1,201 @@
+//! Everything that depends on the output size, built once per size and
+//! rebuilt only when it changes: the physical textures (one set per eye
+//! slot; aliased targets share one; a history texture has a second copy), a
+//! depth texture per pass size for the passes that need one, and per frame
+//! parity, eye slot and pass its attachment views and group 0.
+//!
+//! History textures (`previous(...)` reads): frames alternate parity 0 and
+//! 1. A frame of parity 0 writes the first copy and binds the second to
+//! previous-frame reads; parity 1 the other way round. Both copies start as
+//! zero (wgpu zero-initialises textures), which is what `previous(...)`
+//! reads on the first frame after the renderer is built or resized.
+
+use super::Renderer;
+use compiler::formats::Format;
+use std::collections::BTreeMap;
+
+/// Size of a target at `scale` of the output: at least 1 px, rounded to nearest.
+pub fn scaled_size(width: u32, height: u32, scale: f64) -> (u32, u32) {
+    let s = |v: u32| ((v as f64 * scale).round() as u32).max(1);
+    (s(width), s(height))
+}
+
+/// A single-sample, single-mip 2D texture.
+pub(super) fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+pub fn wgpu_format(f: Format) -> wgpu::TextureFormat {
+    use wgpu::TextureFormat as T;
+    match f {
+        Format::R8unorm => T::R8Unorm,
+        Format::Rg8unorm => T::Rg8Unorm,
+        Format::Rgba8unorm => T::Rgba8Unorm,
+        Format::Rgba8unormSrgb => T::Rgba8UnormSrgb,
+        Format::R16float => T::R16Float,
+        Format::Rg16float => T::Rg16Float,
+        Format::Rgba16float => T::Rgba16Float,
+        Format::R32float => T::R32Float,
+        Format::Rg32float => T::Rg32Float,
+        Format::Rgba32float => T::Rgba32Float,
+    }
+}
+
+/// Every physical texture of every eye slot, and the second copy of each
+/// history texture.
+pub(super) struct Physical {
+    /// Per eye slot: one texture per `manifest.physical` entry.
+    pub slots: Vec<Vec<wgpu::Texture>>,
+    /// Per eye slot: the second copy of each history texture, by physical index.
+    pub second: Vec<BTreeMap<usize, wgpu::Texture>>,
+}
+
+impl Physical {
+    /// The texture of physical `index` in eye `slot` that a frame of
+    /// `parity` writes (`previous: false`), or binds to its previous-frame
+    /// reads (`previous: true`). Textures without history have one copy.
+    pub fn texture(&self, slot: usize, parity: usize, index: usize, previous: bool) -> &wgpu::Texture {
+        match self.second[slot].get(&index) {
+            Some(second) if (parity == 1) != previous => second,
+            _ => &self.slots[slot][index],
+        }
+    }
+}
+
+/// Everything that depends on the output size, built once per size: the
+/// physical textures, and per pass its attachment views, depth view and
+/// bind group (so a frame only writes uniforms and records draws).
+pub(super) struct SizedResources {
+    pub width: u32,
+    pub height: u32,
+    pub physical: Physical,
+    /// Per frame parity (two when the style has history textures, else
+    /// one), per eye slot, per pass: its views and bind group.
+    pub passes: Vec<Vec<Vec<SizedPass>>>,
+    /// Which eye's textures hold the requested image (`FrameSpec::eye` for
+    /// stereo styles, else 0).
+    pub output_slot: usize,
+}
+
+/// One pass in one eye slot at the current size.
+pub(super) struct SizedPass {
+    /// The pass's outputs, in `@location` order.
+    pub color_views: Vec<wgpu::TextureView>,
+    /// Where the pass kind needs a depth buffer (`PassExec::needs_depth`).
+    pub depth_view: Option<wgpu::TextureView>,
+    pub group0: wgpu::BindGroup,
+}
+
+impl Renderer<'_> {
+    pub(super) fn ensure_size(&mut self, width: u32, height: u32) {
+        if self
+            .sized
+            .as_ref()
+            .is_some_and(|s| s.width == width && s.height == height)
+        {
+            return;
+        }
+        let slots = self.frame_buffers.len();
+        let physical = Physical {
+            slots: (0..slots).map(|_| self.create_physical(width, height)).collect(),
+            second: (0..slots).map(|_| self.create_history_copies(width, height)).collect(),
+        };
+        let parities = if self.manifest.is_path_dependent() { 2 } else { 1 };
+        let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
+        let mut passes: Vec<Vec<Vec<SizedPass>>> = Vec::new();
+        for parity in 0..parities {
+            let mut parity_passes = Vec::new();
+            for slot in 0..slots {
+                let mut slot_passes = Vec::new();
+                for (pi, pass) in self.manifest.passes.iter().enumerate() {
+                    let (w, h) = scaled_size(width, height, pass.scale);
+                    let view_of_target = |t: usize| {
+                        physical
+                            .texture(slot, parity, self.manifest.targets[t].physical, false)
+                            .create_view(&Default::default())
+                    };
+                    let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
+                    let depth_view = self.passes[pi].needs_depth().then(|| {
+                        depth
+                            .entry((w, h))
+                            .or_insert_with(|| {
+                                texture_2d(
+                                    self.device,
+                                    "npr depth",
+                                    (w, h),
+                                    wgpu::TextureFormat::Depth32Float,
+                                    wgpu::TextureUsages::RENDER_ATTACHMENT,
+                                )
+                            })
+                            .create_view(&Default::default())
+                    });
+                    slot_passes.push(SizedPass {
+                        color_views,
+                        depth_view,
+                        group0: self.group0(pi, slot, parity, &physical),
+                    });
+                }
+                parity_passes.push(slot_passes);
+            }
+            passes.push(parity_passes);
+        }
+        // New textures hold no history: the next frame is frame 0 again.
+        self.frames_begun = 0;
+        self.sized = Some(SizedResources {
+            width,
+            height,
+            physical,
+            passes,
+            output_slot: 0,
+        });
+    }
+
+    /// The second copy of every history texture, by physical index.
+    fn create_history_copies(&self, width: u32, height: u32) -> BTreeMap<usize, wgpu::Texture> {
+        let all = self.create_physical(width, height);
+        all.into_iter()
+            .enumerate()
+            .filter(|(i, _)| self.manifest.physical[*i].history)
+            .collect()
+    }
+
+    /// One physical texture per `manifest.physical` entry, at `width`×`height` × its scale.
+    fn create_physical(&self, width: u32, height: u32) -> Vec<wgpu::Texture> {
+        self.manifest
+            .physical
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let (w, h) = scaled_size(width, height, p.scale);
+                texture_2d(
+                    self.device,
+                    &format!("npr physical #{i}"),
+                    (w, h),
+                    wgpu_format(p.format),
+                    wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::TEXTURE_BINDING
+                        | wgpu::TextureUsages::COPY_SRC,
+                )
+            })
+            .collect()
+    }
+}
