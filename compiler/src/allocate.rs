@@ -7,7 +7,7 @@
 //! second is written, so no pass ever reads and writes the same texture.
 
 use crate::ir::*;
-use crate::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
+use abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use crate::prune::Live;
 use crate::report::Report;
 use std::collections::BTreeMap;

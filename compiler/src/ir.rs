@@ -493,14 +493,7 @@ pub enum TextureSource {
         resolved: String,
         srgb: bool,
     },
-    Noise {
-        size: u32,
-        octaves: u32,
-        seed: u32,
-        gradient: bool,
-        channels: u32,
-        frequency: u32,
-    },
+    Noise(abi::NoiseSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -539,7 +532,7 @@ pub enum PassView {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassOutput {
     pub name: String,
-    pub format: crate::formats::Format,
+    pub format: abi::Format,
     pub value: ExprId,
     pub span: Span,
 }

@@ -6,7 +6,7 @@
 use crate::emit::wgsl::Emitter;
 use crate::ir::Ir;
 use crate::load::Loaded;
-use crate::manifest::ParamBinding;
+use abi::manifest::ParamBinding;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
 use dsl::{Diagnostic, SourceMap};

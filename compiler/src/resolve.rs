@@ -8,7 +8,7 @@
 //! left for the typechecker, except for literals and leaves.
 
 use crate::consteval::const_eval;
-use crate::formats::Format;
+use abi::{Format, NoiseSpec};
 use crate::ir::*;
 use crate::load::Loaded;
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
@@ -484,14 +484,14 @@ impl Resolver<'_> {
         let mut tex = Texture {
             name: t.name.name.clone(),
             doc: t.doc.clone(),
-            source: TextureSource::Noise {
+            source: TextureSource::Noise(NoiseSpec {
                 size: 1,
                 octaves: 1,
                 seed: 0,
                 gradient: false,
                 channels: 1,
                 frequency: 4,
-            },
+            }),
             wrap_repeat: true,
             filter_linear: true,
             mips: false,
@@ -603,14 +603,14 @@ impl Resolver<'_> {
                         ),
                     }
                 }
-                tex.source = TextureSource::Noise {
+                tex.source = TextureSource::Noise(NoiseSpec {
                     size,
                     octaves,
                     seed,
                     gradient,
                     channels,
                     frequency,
-                };
+                });
                 tex.wrap_repeat = true;
             }
             other => {

@@ -7,7 +7,7 @@
 
 use crate::consteval::const_eval;
 use crate::ir::*;
-use crate::manifest::ParamBinding;
+use abi::manifest::ParamBinding;
 use crate::prune::Live;
 use crate::report::Report;
 

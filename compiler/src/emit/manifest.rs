@@ -4,7 +4,7 @@ use crate::allocate::Allocation;
 use crate::consteval::const_eval;
 use crate::emit::wgsl::EmittedPass;
 use crate::ir::*;
-use crate::manifest::*;
+use abi::manifest::*;
 use crate::prune::Live;
 use dsl::SourceMap;
 
@@ -82,21 +82,7 @@ pub fn build(
                     resolved: resolved.clone(),
                     srgb: *srgb,
                 },
-                TextureSource::Noise {
-                    size,
-                    octaves,
-                    seed,
-                    gradient,
-                    channels,
-                    frequency,
-                } => TextureSourceManifest::Noise {
-                    size: *size,
-                    octaves: *octaves,
-                    seed: *seed,
-                    gradient: *gradient,
-                    channels: *channels,
-                    frequency: *frequency,
-                },
+                TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
             },
             per_object: t.per_object,
             wrap_repeat: t.wrap_repeat,

@@ -8,7 +8,7 @@
 
 use crate::allocate::Allocation;
 use crate::ir::*;
-use crate::manifest::{Attribute, Binding, ParamBinding, Resource};
+use abi::manifest::{Attribute, Binding, ParamBinding, Resource};
 use dsl::SourceMap;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -22,32 +22,8 @@ pub struct EmittedPass {
     pub attributes: Vec<Attribute>,
 }
 
-const FRAME_STRUCT: &str = "struct Frame {
-    view: mat4x4<f32>,
-    proj: mat4x4<f32>,
-    view_proj: mat4x4<f32>,
-    camera_pos: vec4<f32>,
-    light_dir: vec4<f32>,     // xyz: towards the light, w: intensity
-    light_color: vec4<f32>,
-    resolution: vec2<f32>,    // output size in px
-    time: f32,                // seconds
-    frame_index: f32,
-    eye: f32,                 // 0 = left (or mono), 1 = right
-    near: f32,
-    far: f32,
-    _pad: f32,
-    // Orthographic light camera fitted to the scene bounds, for `view(light)`
-    // passes and `position.light` (z in [0, 1], w = 1).
-    light_view_proj: mat4x4<f32>,
-    // The other eye's view-projection in a stereo frame (= view_proj in mono).
-    other_view_proj: mat4x4<f32>,
-    center_view_proj: mat4x4<f32>, // stereo: the centre camera's view_proj (= view_proj in mono)
-    focal: vec4<f32>,         // xy: proj[0][0], proj[1][1] (camera.focal); zw: 0
-    eye_left: vec4<f32>,      // xyz: the left eye's position (= camera in mono)
-    eye_right: vec4<f32>,     // xyz: the right eye's position (= camera in mono)
-    camera_forward: vec4<f32>, // xyz: unit view direction
-}
-";
+/// `struct Frame`, generated from `abi::FrameBlock` (one definition of the block).
+const FRAME_STRUCT: &str = abi::FRAME_WGSL;
 
 const PROJECT_HELPER: &str = "// World point -> (screen u, screen v, NDC depth) under `view_proj`; w <= 0
 // (behind the eye) maps far outside the screen.
