@@ -291,14 +291,9 @@ primitive = { kind = "plane", size = 4.0 }
         "no-casters",
     );
     let render = |c: &compiler::Compiled| {
-        runner::render_frame(
-            gpu(),
-            &c.program(),
-            &scene,
-            &FrameSpec::still(64, 64, 0),
-        )
-        .expect("render")
-        .to_rgba8()
+        runner::render_frame(gpu(), &c.program(), &scene, &FrameSpec::still(64, 64, 0))
+            .expect("render")
+            .to_rgba8()
     };
     let blind = compile_example(None);
     let informed = compile_example(Some(scene.summary("no casters")));

@@ -418,7 +418,13 @@ fn render_compiled_runs_a_compiled_dir_and_rejects_a_bad_one() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("`output`"), "{}", stderr(&o));
     // Not a compiled directory at all.
-    let o = npr(&["render", "--compiled", dir.join("nothing").to_str().expect("utf-8"), "--scene", "examples/scenes/spot.toml"]);
+    let o = npr(&[
+        "render",
+        "--compiled",
+        dir.join("nothing").to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+    ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("manifest.json"), "{}", stderr(&o));
 }

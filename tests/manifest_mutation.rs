@@ -55,7 +55,11 @@ fn write_dir(dir: &Path, manifest: &Value, shaders: &[(String, String)]) {
     for (file, wgsl) in shaders {
         std::fs::write(dir.join(file), wgsl).expect("write shader");
     }
-    std::fs::write(dir.join("manifest.json"), serde_json::to_string_pretty(manifest).expect("json")).expect("write");
+    std::fs::write(
+        dir.join("manifest.json"),
+        serde_json::to_string_pretty(manifest).expect("json"),
+    )
+    .expect("write");
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -103,7 +107,22 @@ fn at<'a>(v: &'a mut Value, path: &[Step]) -> Option<&'a mut Value> {
 
 /// Numbers a mutation may write: out of range, negative, fractional, huge, or plausible.
 const NUMBERS: &[f64] = &[
-    -1.0, 0.0, 1.0, 2.0, 3.0, 7.0, 17.0, 255.0, 4096.0, 65536.0, 4294967296.0, 1e300, -0.5, 0.5, 1.5, 100.0,
+    -1.0,
+    0.0,
+    1.0,
+    2.0,
+    3.0,
+    7.0,
+    17.0,
+    255.0,
+    4096.0,
+    65536.0,
+    4294967296.0,
+    1e300,
+    -0.5,
+    0.5,
+    1.5,
+    100.0,
 ];
 
 #[derive(Debug, Clone)]
@@ -138,7 +157,9 @@ fn apply(root: &mut Value, path: &[Step], m: &Mutation) {
             }
         }
         Mutation::Delete => {
-            let Some((last, parent)) = path.split_last() else { return };
+            let Some((last, parent)) = path.split_last() else {
+                return;
+            };
             match (at(root, parent), last) {
                 (Some(Value::Object(o)), Step::Key(k)) => {
                     o.remove(k);
@@ -167,7 +188,9 @@ fn apply(root: &mut Value, path: &[Step], m: &Mutation) {
             }
         }
         Mutation::Duplicate => {
-            let Some((last, parent)) = path.split_last() else { return };
+            let Some((last, parent)) = path.split_last() else {
+                return;
+            };
             if let (Some(Value::Array(a)), Step::Index(i)) = (at(root, parent), last) {
                 let copy = a[*i].clone();
                 a.insert(*i, copy);
@@ -181,7 +204,8 @@ fn load_and_render(dir: &Path) -> Result<(), String> {
     let program = StyleProgram::load_dir(dir).map_err(|e| e.to_string())?;
     let scene = scene();
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, scene).map_err(|e| e.to_string())?;
-    r.render(scene, &FrameSpec::still(64, 64, 0)).map_err(|e| e.to_string())?;
+    r.render(scene, &FrameSpec::still(64, 64, 0))
+        .map_err(|e| e.to_string())?;
     r.read_output().map(|_| ()).map_err(|e| e.to_string())
 }
 
@@ -202,11 +226,23 @@ fn bad_indices_are_rejected_naming_the_field() {
         (&["output"], Value::from(99), "`output`"),
         (&["version"], Value::from(1), "`version`"),
         (&["targets", "0", "physical"], Value::from(99), "`targets[0].physical`"),
-        (&["passes", "0", "outputs", "0"], Value::from(99), "`passes[0].outputs[0]`"),
-        (&["passes", "0", "shader"], Value::from("../x.wgsl"), "`passes[0].shader`"),
+        (
+            &["passes", "0", "outputs", "0"],
+            Value::from(99),
+            "`passes[0].outputs[0]`",
+        ),
+        (
+            &["passes", "0", "shader"],
+            Value::from("../x.wgsl"),
+            "`passes[0].shader`",
+        ),
         (&["style_uniform_size"], Value::from(4), "`style_uniform_size`"),
         (&["params", "0", "offset"], Value::from(100000), "`params[0].offset`"),
-        (&["textures", "0", "source", "size"], Value::from(0), "`textures[0].source.size`"),
+        (
+            &["textures", "0", "source", "size"],
+            Value::from(0),
+            "`textures[0].source.size`",
+        ),
     ];
     let dir = scratch("named");
     for (path, value, field) in cases {

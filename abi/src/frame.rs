@@ -149,7 +149,11 @@ const fn render<const N: usize>() -> Text<N> {
         t.push(",");
         if !f.trailing.is_empty() {
             let width = 4 + f.name.len() + 2 + f.wgsl.len() + 1;
-            t.spaces(if width + 1 < COMMENT_COLUMN { COMMENT_COLUMN - width } else { 1 });
+            t.spaces(if width + 1 < COMMENT_COLUMN {
+                COMMENT_COLUMN - width
+            } else {
+                1
+            });
             t.push("// ");
             t.push(f.trailing);
         }

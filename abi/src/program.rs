@@ -54,9 +54,7 @@ impl StyleProgram {
             })
         };
         let text = read(dir.join("manifest.json"))?;
-        let manifest: Manifest = serde_json::from_str(&text).map_err(|e| LoadError::Json {
-            message: e.to_string(),
-        })?;
+        let manifest: Manifest = serde_json::from_str(&text).map_err(|e| LoadError::Json { message: e.to_string() })?;
         // Before the shader names are used as paths.
         manifest.validate()?;
         let mut shaders = BTreeMap::new();

@@ -81,7 +81,12 @@ impl Manifest {
         for (i, t) in self.targets.iter().enumerate() {
             let field = format!("targets[{i}]");
             check_scale(format!("{field}.scale"), t.scale)?;
-            check_index(format!("{field}.physical"), t.physical, self.physical.len(), "physical texture")?;
+            check_index(
+                format!("{field}.physical"),
+                t.physical,
+                self.physical.len(),
+                "physical texture",
+            )?;
             let p = &self.physical[t.physical];
             if p.format != t.format {
                 return bad(
@@ -167,12 +172,18 @@ impl Manifest {
             );
         }
         if self.style_uniform_size > MAX_UNIFORM_SIZE || self.object_uniform_size > MAX_UNIFORM_SIZE {
-            return bad("style_uniform_size", format!("a uniform block is over {MAX_UNIFORM_SIZE} bytes"));
+            return bad(
+                "style_uniform_size",
+                format!("a uniform block is over {MAX_UNIFORM_SIZE} bytes"),
+            );
         }
         for (i, p) in self.params.iter().enumerate() {
             let field = format!("params[{i}]");
             if p.components == 0 || p.components > 4 {
-                return bad(format!("{field}.components"), format!("{} is outside 1..=4", p.components));
+                return bad(
+                    format!("{field}.components"),
+                    format!("{} is outside 1..=4", p.components),
+                );
             }
             let (start, size) = match p.binding {
                 ParamBinding::Uniform => (0, self.style_uniform_size),
@@ -180,7 +191,10 @@ impl Manifest {
                 ParamBinding::Folded | ParamBinding::Removed => continue,
             };
             let Some(offset) = p.offset else {
-                return bad(format!("{field}.offset"), format!("param `{}` is bound but has no offset", p.name));
+                return bad(
+                    format!("{field}.offset"),
+                    format!("param `{}` is bound but has no offset", p.name),
+                );
             };
             if offset < start || offset % 16 != 0 || offset.saturating_add(16) > size {
                 return bad(
@@ -207,10 +221,8 @@ impl Manifest {
 
     fn validate_pass(&self, i: usize, p: &PassManifest) -> Result<(), Invalid> {
         let field = format!("passes[{i}]");
-        let file_name_ok = !p.shader.is_empty()
-            && p.shader != "."
-            && p.shader != ".."
-            && !p.shader.contains(['/', '\\', ':', '\0']);
+        let file_name_ok =
+            !p.shader.is_empty() && p.shader != "." && p.shader != ".." && !p.shader.contains(['/', '\\', ':', '\0']);
         if !file_name_ok {
             return bad(
                 format!("{field}.shader"),
@@ -221,7 +233,11 @@ impl Manifest {
         if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
             return bad(
                 format!("{field}.outputs"),
-                format!("pass `{}` writes {} targets; 1..={MAX_PASS_OUTPUTS} are allowed", p.name, p.outputs.len()),
+                format!(
+                    "pass `{}` writes {} targets; 1..={MAX_PASS_OUTPUTS} are allowed",
+                    p.name,
+                    p.outputs.len()
+                ),
             );
         }
         if !p.clear.iter().all(|c| c.is_finite()) {
@@ -279,7 +295,12 @@ impl Manifest {
                     }
                 }
                 Resource::Texture { texture } | Resource::TextureSampler { texture } => {
-                    check_index(format!("{f}.resource.texture"), *texture, self.textures.len(), "texture")?;
+                    check_index(
+                        format!("{f}.resource.texture"),
+                        *texture,
+                        self.textures.len(),
+                        "texture",
+                    )?;
                 }
                 Resource::FrameUniforms | Resource::StyleUniforms | Resource::LinearClampSampler => {}
             }
@@ -302,9 +323,19 @@ impl Manifest {
             }
             match &b.resource {
                 Resource::Texture { texture } | Resource::TextureSampler { texture } => {
-                    check_index(format!("{f}.resource.texture"), *texture, self.textures.len(), "texture")?;
+                    check_index(
+                        format!("{f}.resource.texture"),
+                        *texture,
+                        self.textures.len(),
+                        "texture",
+                    )?;
                 }
-                _ => return bad(format!("{f}.resource"), "group 1 holds only per-object textures and samplers"),
+                _ => {
+                    return bad(
+                        format!("{f}.resource"),
+                        "group 1 holds only per-object textures and samplers",
+                    )
+                }
             }
         }
         Ok(())

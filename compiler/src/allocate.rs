@@ -7,9 +7,9 @@
 //! second is written, so no pass ever reads and writes the same texture.
 
 use crate::ir::*;
-use abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use crate::prune::Live;
 use crate::report::Report;
+use abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use std::collections::BTreeMap;
 
 #[derive(Debug, Clone, Default)]

@@ -488,11 +488,7 @@ pub struct Param {
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
-    Image {
-        path: String,
-        resolved: String,
-        srgb: bool,
-    },
+    Image { path: String, resolved: String, srgb: bool },
     Noise(abi::NoiseSpec),
 }
 

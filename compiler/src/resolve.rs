@@ -8,9 +8,9 @@
 //! left for the typechecker, except for literals and leaves.
 
 use crate::consteval::const_eval;
-use abi::{Format, NoiseSpec};
 use crate::ir::*;
 use crate::load::Loaded;
+use abi::{Format, NoiseSpec};
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};

@@ -25,8 +25,8 @@ pub mod scene;
 pub mod texgen;
 pub mod textures;
 
-pub use device::{DeviceError, Gpu};
 pub use abi::StyleProgram;
+pub use device::{DeviceError, Gpu};
 pub use readback::TargetImage;
 pub use render::{FrameSpec, Renderer};
 

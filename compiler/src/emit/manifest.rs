@@ -4,8 +4,8 @@ use crate::allocate::Allocation;
 use crate::consteval::const_eval;
 use crate::emit::wgsl::EmittedPass;
 use crate::ir::*;
-use abi::manifest::*;
 use crate::prune::Live;
+use abi::manifest::*;
 use dsl::SourceMap;
 
 pub fn build(
