@@ -16,6 +16,7 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use runner::{FrameSpec, Renderer};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::OnceLock;
 
 /// Styles with render and image passes, a noise texture, aliased targets,
@@ -199,9 +200,13 @@ fn apply(root: &mut Value, path: &[Step], m: &Mutation) {
     }
 }
 
+/// Mutated manifests that passed validation (so reached the renderer).
+static VALID: AtomicUsize = AtomicUsize::new(0);
+
 /// Load, and when valid, build a renderer and render 64×64: Ok or Err, never a panic.
 fn load_and_render(dir: &Path) -> Result<(), String> {
     let program = StyleProgram::load_dir(dir).map_err(|e| e.to_string())?;
+    VALID.fetch_add(1, Ordering::Relaxed);
     let scene = scene();
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, scene).map_err(|e| e.to_string())?;
     r.render(scene, &FrameSpec::still(64, 64, 0))
@@ -266,7 +271,7 @@ fn bad_indices_are_rejected_naming_the_field() {
 #[test]
 fn mutated_manifests_never_panic() {
     let config = Config {
-        cases: 96,
+        cases: 256,
         failure_persistence: None,
         ..Config::default()
     };
@@ -291,4 +296,8 @@ fn mutated_manifests_never_panic() {
     });
     let _ = std::fs::remove_dir_all(&dir);
     result.unwrap_or_else(|e| panic!("{e}"));
+    // Some mutations must get past validation, or the renderer is not exercised.
+    let valid = VALID.load(Ordering::Relaxed);
+    eprintln!("{valid} of 256 mutated manifests passed validation and were rendered");
+    assert!(valid >= 30, "only {valid} mutated manifests reached the renderer");
 }
