@@ -23,8 +23,11 @@ use std::sync::OnceLock;
 /// style and per-object uniforms (parameters kept).
 const STYLES: &[&str] = &["examples/edge_breakup.npr", "examples/rounded_shadows.npr"];
 
-fn compiled() -> &'static Vec<(Value, Vec<(String, String)>)> {
-    static C: OnceLock<Vec<(Value, Vec<(String, String)>)>> = OnceLock::new();
+/// A compiled style: its manifest as JSON and its (file, WGSL) shaders.
+type Compiled = (Value, Vec<(String, String)>);
+
+fn compiled() -> &'static Vec<Compiled> {
+    static C: OnceLock<Vec<Compiled>> = OnceLock::new();
     C.get_or_init(|| {
         STYLES
             .iter()
