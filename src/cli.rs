@@ -61,7 +61,13 @@ pub enum Command {
     },
     /// Render a style on a scene to an image.
     Render {
-        style: PathBuf,
+        /// The style (.npr); compiled for the scene.
+        #[arg(required_unless_present = "compiled")]
+        style: Option<PathBuf>,
+        /// Run a directory written by `npr compile -o DIR` instead of a style
+        /// (its manifest is validated first).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["style", "keep_params"])]
+        compiled: Option<PathBuf>,
         /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
@@ -317,7 +323,7 @@ pub fn run(cli: Cli) -> i32 {
                 eprintln!("error: need 1 ≤ size ≤ 4096, 1 ≤ channels ≤ 4, 1 ≤ octaves ≤ 12 and frequency ≥ 1");
                 return EXIT_USER;
             }
-            let spec = runner::texgen::NoiseSpec {
+            let spec = abi::NoiseSpec {
                 size,
                 octaves,
                 seed,
@@ -330,6 +336,7 @@ pub fn run(cli: Cli) -> i32 {
         }
         Command::Render {
             style,
+            compiled,
             scene,
             out,
             size,
@@ -345,22 +352,37 @@ pub fn run(cli: Cli) -> i32 {
                 Ok(s) => s,
                 Err(code) => return code,
             };
-            // Compile for this scene, so nothing the scene cannot use is run.
-            let opts = CompileOptions {
-                keep_params,
-                dump_ir: false,
-                scene: Some(scene.summary(&scene_name)),
+            let program = match (compiled, style) {
+                (Some(dir), _) => match StyleProgram::load_dir(&dir) {
+                    Ok(p) => p,
+                    Err(e) => {
+                        eprintln!("error: {}: {e}", dir.display());
+                        return EXIT_USER;
+                    }
+                },
+                (None, Some(style)) => {
+                    // Compile for this scene, so nothing the scene cannot use is run.
+                    let opts = CompileOptions {
+                        keep_params,
+                        dump_ir: false,
+                        scene: Some(scene.summary(&scene_name)),
+                    };
+                    let c = match compile(&style, &mut sources, &opts, &printer) {
+                        Ok(c) => c,
+                        Err(code) => return code,
+                    };
+                    printer.diagnostics(&c.warnings, &sources);
+                    c.program()
+                }
+                (None, None) => {
+                    eprintln!("error: give a style or --compiled DIR");
+                    return EXIT_USER;
+                }
             };
-            let c = match compile(&style, &mut sources, &opts, &printer) {
-                Ok(c) => c,
-                Err(code) => return code,
-            };
-            printer.diagnostics(&c.warnings, &sources);
             let gpu = match headless_gpu() {
                 Ok(g) => g,
                 Err(code) => return code,
             };
-            let program = StyleProgram::from_compiled(&c);
             match render(
                 &gpu,
                 &program,
@@ -438,7 +460,7 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                 Ok(g) => g,
                 Err(code) => return code,
             };
-            match runner::bench::frame_overhead(&gpu, &StyleProgram::from_compiled(&c), &scene, size, frames) {
+            match lab::bench::frame_overhead(&gpu, &c.program(), &scene, size, frames) {
                 Ok(r) => {
                     println!("device: {}", gpu.describe());
                     println!("{}", r.table());
@@ -463,12 +485,12 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
         Ok(g) => g,
         Err(code) => return code,
     };
-    let variants = crate::bench_ops::variants();
+    let variants = lab::bench_ops::variants();
     let mut programs = Vec::new();
     for v in &variants {
-        let text = crate::bench_ops::style(v);
+        let text = lab::bench_ops::style(v);
         match compiler::compile_source(v.name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push((v.name, StyleProgram::from_compiled(&c))),
+            Ok(c) => programs.push((v.name, c.program())),
             Err(CompileError::User(d)) => {
                 printer.diagnostics(&d, &sources);
                 return EXIT_INTERNAL;
@@ -481,7 +503,7 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
     }
     // Frame-level round robin over all variants, so load changes hit every variant alike.
     let progs: Vec<&StyleProgram> = programs.iter().map(|(_, p)| p).collect();
-    let best = match runner::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
+    let best = match lab::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
         Ok(t) => t,
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);
@@ -500,7 +522,7 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
     for (i, (name, _)) in programs.iter().enumerate() {
         let errors = match &variants[i].model {
             Some(m) => {
-                let (scale, aniso, contrast) = crate::bench_ops::errors(m);
+                let (scale, aniso, contrast) = lab::bench_ops::errors(m);
                 format!("{scale:.3} | {aniso:.1}° | {contrast:.3}")
             }
             None => "— | — | —".to_string(),
@@ -521,9 +543,9 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
     }
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
-    for (name, text, measure) in runner::bench_contours::variants() {
+    for (name, text, measure) in lab::bench_contours::variants() {
         match compiler::compile_source(name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push((name, StyleProgram::from_compiled(&c), measure)),
+            Ok(c) => programs.push((name, c.program(), measure)),
             Err(CompileError::User(d)) => {
                 printer.diagnostics(&d, &sources);
                 return EXIT_INTERNAL;
@@ -538,10 +560,10 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
         Ok(g) => g,
         Err(code) => return code,
     };
-    match runner::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
+    match lab::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!("device: {}, {frames} frames per median", gpu.describe());
-            println!("{}", runner::bench_contours::table(&rows));
+            println!("{}", lab::bench_contours::table(&rows));
             EXIT_OK
         }
         Err(e) => {
@@ -570,8 +592,8 @@ fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, 
         Ok(g) => g,
         Err(code) => return code,
     };
-    let program = StyleProgram::from_compiled(&compiled);
-    let times = match runner::bench::pass_times(&gpu, &program, &scene, size, frames) {
+    let program = compiled.program();
+    let times = match lab::bench::pass_times(&gpu, &program, &scene, size, frames) {
         Ok(t) => t,
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);
@@ -636,7 +658,7 @@ fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer) -> Result
 }
 
 /// Load a scene only for what the compiler may know of it (its tags).
-fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<compiler::SceneSummary, Vec<Diagnostic>> {
+fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
     runner::scene::load_scene(path, sources).map(|s| s.summary(&path.display().to_string()))
 }
 

@@ -3,7 +3,6 @@
 //! Exit codes: 0 ok, 1 user error (diagnostics printed), 2 internal error.
 
 mod bench_compile;
-mod bench_ops;
 mod cli;
 
 use clap::Parser;

@@ -3,10 +3,11 @@
 //! dropping the depth pass for a scene without casters, and `--dump-passes`
 //! reproducing every pass of Fig. 16.
 
-use compiler::{CompileOptions, SceneSummary};
+use abi::SceneSummary;
+use compiler::CompileOptions;
 use dsl::SourceMap;
 use glam::{Vec3, Vec4};
-use runner::{FrameSpec, Renderer, StyleProgram};
+use runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
 
 mod common;
@@ -102,7 +103,7 @@ fn cast_shadow_matches_the_analytic_disc_with_and_without_the_sigmoid_warp() {
     let size = 96;
     for warp in [0.0, 2.0] {
         let text = SHADOW_STYLE.replace("param warp: float = 0", &format!("param warp: float = {warp}"));
-        let program = StyleProgram::from_compiled(&compile(&text, None));
+        let program = compile(&text, None).program();
         let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
         let spec = FrameSpec::still(size, size, 0);
         r.render(&scene, &spec).expect("render");
@@ -290,14 +291,9 @@ primitive = { kind = "plane", size = 4.0 }
         "no-casters",
     );
     let render = |c: &compiler::Compiled| {
-        runner::render_frame(
-            gpu(),
-            &StyleProgram::from_compiled(c),
-            &scene,
-            &FrameSpec::still(64, 64, 0),
-        )
-        .expect("render")
-        .to_rgba8()
+        runner::render_frame(gpu(), &c.program(), &scene, &FrameSpec::still(64, 64, 0))
+            .expect("render")
+            .to_rgba8()
     };
     let blind = compile_example(None);
     let informed = compile_example(Some(scene.summary("no casters")));

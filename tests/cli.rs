@@ -229,7 +229,7 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("| 24²")).collect();
-    assert_eq!(rows.len(), runner::bench_contours::variants().len(), "{stdout}");
+    assert_eq!(rows.len(), lab::bench_contours::variants().len(), "{stdout}");
     let full = rows
         .iter()
         .find(|r| r.contains("LSA full (plane + aa"))
@@ -379,4 +379,52 @@ fn texgen_paint_writes_the_checked_in_age_of_sail_paint_map() {
     let o = npr(&["texgen", "-o", out.to_str().expect("utf-8 path"), "--kind", "paint"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("--color"), "{}", stderr(&o));
+}
+
+#[test]
+fn render_compiled_runs_a_compiled_dir_and_rejects_a_bad_one() {
+    let dir = scratch("compiled");
+    let build = dir.join("toon");
+    let o = npr(&["compile", "examples/toon.npr", "-o", build.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let png = dir.join("toon.png");
+    let o = npr(&[
+        "render",
+        "--compiled",
+        build.to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "32x32",
+        "-o",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(png.exists());
+    // An out-of-range index: exit 1 with the field named, no panic.
+    let manifest = std::fs::read_to_string(build.join("manifest.json")).expect("manifest");
+    let mut json: serde_json::Value = serde_json::from_str(&manifest).expect("json");
+    json["output"] = serde_json::Value::from(42);
+    std::fs::write(build.join("manifest.json"), json.to_string()).expect("write");
+    let o = npr(&[
+        "render",
+        "--compiled",
+        build.to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+        "-o",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("`output`"), "{}", stderr(&o));
+    // Not a compiled directory at all.
+    let o = npr(&[
+        "render",
+        "--compiled",
+        dir.join("nothing").to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("manifest.json"), "{}", stderr(&o));
 }

@@ -241,7 +241,7 @@ fn e0403_scene_lacks_uvs() {
     assert!(compiled
         .manifest
         .scene_attributes
-        .contains(&compiler::manifest::Attribute::Uv));
+        .contains(&abi::manifest::Attribute::Uv));
     let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
     let diags = runner::check_scene(&compiled.manifest, &scene);
     let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");

@@ -65,7 +65,7 @@ fn compile_snapshots() {
         // Absolute paths differ between machines.
         manifest.source = format!("examples/{name}.npr");
         for t in &mut manifest.textures {
-            if let compiler::manifest::TextureSourceManifest::Image { resolved, path, .. } = &mut t.source {
+            if let abi::manifest::TextureSourceManifest::Image { resolved, path, .. } = &mut t.source {
                 *resolved = path.clone();
             }
         }

@@ -1,7 +1,7 @@
 //! Property test: random and mutated `.npr` text never panics the parser or
 //! the compiler, and every diagnostic span lies inside the source.
 
-use compiler::formats::Format;
+use abi::Format;
 use compiler::ir::{Builtin, Intrinsic};
 use compiler::{CompileError, CompileOptions};
 use dsl::SourceMap;

@@ -7,8 +7,8 @@
 //! diff images are written to `target/npr-test-output/`.
 //! Regenerate after an intended change with `NPR_UPDATE_GOLDENS=1 cargo test --test golden_images`.
 
-use runner::harness::{compare_with_golden, compare_with_golden_file, Tolerance};
-use runner::{FrameSpec, StyleProgram};
+use lab::harness::{compare_with_golden, compare_with_golden_file, Tolerance};
+use runner::FrameSpec;
 use std::path::Path;
 
 mod common;
@@ -29,7 +29,7 @@ fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     };
     let compiled = compiler::compile_file(&root.join(style), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
-    let program = StyleProgram::from_compiled(&compiled);
+    let program = compiled.program();
     let img = runner::render_frame(gpu(), &program, &scene, &FrameSpec::still(SIZE, SIZE, 0))
         .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
     img.to_rgba8()

@@ -6,7 +6,7 @@
 //! The afterimage golden (`examples/golden/afterimage_orbit.png`) is frame 8;
 //! regenerate it with `NPR_UPDATE_GOLDENS=1 cargo test --test history`.
 
-use runner::harness::{compare_with_golden, Tolerance};
+use lab::harness::{compare_with_golden, Tolerance};
 use runner::{FrameSpec, Renderer, StyleProgram};
 use std::process::Command;
 
@@ -17,7 +17,7 @@ fn program(text: &str) -> StyleProgram {
     let mut sources = dsl::SourceMap::new();
     let c = compiler::compile_source("h.npr", text, root(), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
-    StyleProgram::from_compiled(&c)
+    c.program()
 }
 
 fn scene(path: &str) -> runner::scene::Scene {
@@ -93,7 +93,7 @@ fn afterimage_matches_its_recurrence_and_golden() {
         &Default::default(),
     )
     .unwrap_or_else(|e| panic!("{e:?}"));
-    let program = StyleProgram::from_compiled(&c);
+    let program = c.program();
     let persistence = 0.8;
     let scene = scene("examples/scenes/orbit.toml");
     let shade = program

@@ -1,6 +1,6 @@
 //! LSA contours end to end: the example styles rendered through the runner
 //! on analytic scenes and measured against exact ground truth
-//! (`runner::contours`, f64 ray casting), the GPU operators against their
+//! (`lab::contours`, f64 ray casting), the GPU operators against their
 //! f64 references on the very G-buffers the GPU rendered, and the hard
 //! cases (no NaN or Inf anywhere).
 //!
@@ -8,7 +8,7 @@
 //! `npr bench contours` (docs/PERFORMANCE.md), which keeps this test fast
 //! on lavapipe.
 
-use runner::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
+use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
 use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 use std::path::Path;
 use stdlib::reference::ImageF64;
@@ -27,7 +27,7 @@ fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
     }
     let mut sources = dsl::SourceMap::new();
     match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &Default::default()) {
-        Ok(c) => StyleProgram::from_compiled(&c),
+        Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
@@ -255,9 +255,9 @@ fn checked_lines(program: &StyleProgram, scene: &runner::scene::Scene, size: (u3
     lines
 }
 
-fn facing_plane(size: f64, translate: [f64; 3]) -> runner::contours::AnalyticObject {
-    runner::contours::AnalyticObject {
-        shape: runner::contours::Shape::Plane { size },
+fn facing_plane(size: f64, translate: [f64; 3]) -> lab::contours::AnalyticObject {
+    lab::contours::AnalyticObject {
+        shape: lab::contours::Shape::Plane { size },
         translate,
         rotate_deg: [90.0, 0.0, 0.0],
     }
@@ -265,7 +265,7 @@ fn facing_plane(size: f64, translate: [f64; 3]) -> runner::contours::AnalyticObj
 
 #[test]
 fn hard_cases_give_no_nan_or_inf() {
-    use runner::contours::{AnalyticObject, Shape};
+    use lab::contours::{AnalyticObject, Shape};
     let full = style("lsa_contours.npr", &[]);
     let base = style("lsa_base.npr", &[]);
     let scenes = builtin_scenes();

@@ -4,7 +4,7 @@
 //! `examples/lsa_contours.npr` (the full method) is rendered with its
 //! G-buffer in four variants — positions and normals in rgba32float or
 //! rgba16float, in world or view space — on the five analytic scenes of
-//! `runner::contours`, each moved (objects, eye and target together) 0 m,
+//! `lab::contours`, each moved (objects, eye and target together) 0 m,
 //! 10 m, 100 m, 1 km and 10 km from the world origin. The images are the
 //! same in exact arithmetic; precision/recall within 1 px against the f64
 //! ground truth shows what each variant loses.
@@ -22,7 +22,7 @@
 //! Print the table (docs/PERFORMANCE.md, "G-buffer precision and space"):
 //! `cargo test --test lsa_gbuffer_precision -- --nocapture`
 
-use runner::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
+use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
 use runner::{FrameSpec, Gpu, StyleProgram};
 use std::path::Path;
 
@@ -57,7 +57,7 @@ fn variant(format: &str, space: &str) -> StyleProgram {
         &mut sources,
         &Default::default(),
     ) {
-        Ok(c) => StyleProgram::from_compiled(&c),
+        Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }

@@ -6,7 +6,7 @@
 use compiler::CompileOptions;
 use dsl::SourceMap;
 use glam::Vec4;
-use runner::contours::{ink_mask, Mask};
+use lab::contours::{ink_mask, Mask};
 use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
 
@@ -16,7 +16,7 @@ use common::{gpu, root};
 fn program(text: &str) -> StyleProgram {
     let mut sources = SourceMap::new();
     match compiler::compile_source("style.npr", text, root(), &mut sources, &CompileOptions::default()) {
-        Ok(c) => StyleProgram::from_compiled(&c),
+        Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }

@@ -5,7 +5,7 @@
 
 use compiler::CompileOptions;
 use dsl::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use runner::{FrameSpec, Gpu, Renderer};
 use std::path::{Path, PathBuf};
 
 const RED: [u8; 3] = [200, 30, 40];
@@ -74,7 +74,7 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     let pass = &compiled.manifest.passes[0];
     assert_eq!(pass.object_bindings.len(), 2, "texture + sampler in group 1: {pass:?}");
     assert!(compiled.manifest.textures[0].per_object);
-    let program = StyleProgram::from_compiled(&compiled);
+    let program = compiled.program();
     let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).unwrap_or_else(|e| panic!("renderer: {e:?}"));
     let (w, h) = (96u32, 32u32);
     let spec = FrameSpec::still(w, h, 0);
@@ -116,7 +116,7 @@ fn renderer_errors(left: &str, right: &str, name: &str) -> String {
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
     let compiled = compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
-    let program = StyleProgram::from_compiled(&compiled);
+    let program = compiled.program();
     match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("expected the renderer to refuse {left} / {right}"),
         Err(runner::RunError::User(d)) => {
@@ -155,7 +155,7 @@ output p.c
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
     let compiled = compiler::compile_source("tint.npr", style, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
-    let program = StyleProgram::from_compiled(&compiled);
+    let program = compiled.program();
     let text = match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("an image bound to a colour param must be refused"),
         Err(runner::RunError::User(d)) => {
@@ -298,7 +298,7 @@ output p.c
     assert!(
         pass.bindings
             .iter()
-            .all(|b| !matches!(b.resource, compiler::manifest::Resource::Texture { .. })),
+            .all(|b| !matches!(b.resource, abi::manifest::Resource::Texture { .. })),
         "the per-object texture must not also be bound in group 0: {:?}",
         pass.bindings
     );

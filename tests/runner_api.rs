@@ -18,7 +18,7 @@ fn scratch(name: &str) -> PathBuf {
 fn compile_text(text: &str, dir: &Path) -> StyleProgram {
     let mut sources = SourceMap::new();
     match compiler::compile_source("test.npr", text, dir, &mut sources, &CompileOptions::default()) {
-        Ok(c) => StyleProgram::from_compiled(&c),
+        Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
@@ -52,7 +52,7 @@ fn bring_your_own_device_and_encoder() {
         &CompileOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e:?}"));
-    let program = StyleProgram::from_compiled(&compiled);
+    let program = compiled.program();
     let scene = scene("examples/scenes/spot.toml");
     let mut r = Renderer::new(&device, &queue, &program, &scene).unwrap_or_else(|e| panic!("{e}"));
     r.prepare(&scene, &spec(64, 48)).expect("prepare");
@@ -171,14 +171,13 @@ fn stereo_eyes_differ_and_mono_eyes_agree() {
     let stereo_scene = runner::scene::load_scene(&dir.join("stereo.toml"), &mut sources).expect("scene");
     let mono_scene = scene("examples/scenes/spot.toml");
     let mut compile_sources = SourceMap::new();
-    let program = StyleProgram::from_compiled(
-        &compiler::compile_file(
-            &root().join("examples/toon.npr"),
-            &mut compile_sources,
-            &CompileOptions::default(),
-        )
-        .expect("compile"),
-    );
+    let program = compiler::compile_file(
+        &root().join("examples/toon.npr"),
+        &mut compile_sources,
+        &CompileOptions::default(),
+    )
+    .expect("compile")
+    .program();
     let eye = |s: &runner::scene::Scene, e: u32| {
         runner::render_frame(gpu(), &program, s, &FrameSpec { eye: e, ..spec(48, 48) })
             .expect("render")

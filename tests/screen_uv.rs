@@ -4,7 +4,7 @@
 
 use compiler::CompileOptions;
 use dsl::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use runner::{FrameSpec, Gpu, Renderer};
 use std::path::Path;
 
 #[test]
@@ -31,7 +31,7 @@ fn screen_uv_is_the_pixel_centre_even_on_clipped_triangles() {
         );
         let compiled = compiler::compile_source("uv.npr", &text, &dir, &mut sources, &CompileOptions::default())
             .unwrap_or_else(|e| panic!("{e:?}"));
-        let program = StyleProgram::from_compiled(&compiled);
+        let program = compiled.program();
         let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).expect("renderer");
         let spec = FrameSpec::still(w, h, 0);
         r.render(&scene, &spec).expect("render");

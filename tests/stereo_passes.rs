@@ -74,7 +74,7 @@ output both.c
 fn each_eye_reads_its_own_target_and_the_other_eyes() {
     let c = compile(&EYE_STYLE.replace("float(eye)", "eye"));
     assert!(c.manifest.is_stereo());
-    let program = StyleProgram::from_compiled(&c);
+    let program = c.program();
     let scene = scene(Some(0.064));
     for eye in [0u32, 1] {
         let px = render(&program, &scene, eye, 16);
@@ -109,7 +109,7 @@ output check.err
 
 #[test]
 fn reprojection_into_the_other_eye_finds_the_same_surface_point() {
-    let program = StyleProgram::from_compiled(&compile(REPROJECT_STYLE));
+    let program = compile(REPROJECT_STYLE).program();
     let scene = scene(Some(0.064));
     let size = 64;
     for eye in [0u32, 1] {

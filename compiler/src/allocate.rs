@@ -11,10 +11,10 @@
 //! second copy of it for the previous frame's value.
 
 use crate::ir::*;
-use crate::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use crate::prune::Live;
 use crate::report::Report;
 use crate::InternalError;
+use abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use std::collections::BTreeMap;
 
 #[derive(Debug, Clone, Default)]

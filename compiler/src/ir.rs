@@ -428,18 +428,7 @@ pub enum ExprKind {
 }
 
 /// Which copy of a target a read sees: the manifest's definition, shared.
-pub use crate::manifest::TargetCopy;
-
-impl TargetCopy {
-    /// The copy a call selects: `other_eye(t)`, `previous(t)`.
-    pub fn from_call(name: &str) -> Option<TargetCopy> {
-        match name {
-            "other_eye" => Some(TargetCopy::OtherEye),
-            "previous" => Some(TargetCopy::Previous),
-            _ => None,
-        }
-    }
-}
+pub use abi::manifest::TargetCopy;
 
 impl ExprKind {
     /// The target this node reads within this frame, for either eye:
@@ -512,19 +501,8 @@ pub struct Param {
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
-    Image {
-        path: String,
-        resolved: String,
-        srgb: bool,
-    },
-    Noise {
-        size: u32,
-        octaves: u32,
-        seed: u32,
-        gradient: bool,
-        channels: u32,
-        frequency: u32,
-    },
+    Image { path: String, resolved: String, srgb: bool },
+    Noise(abi::NoiseSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -610,7 +588,7 @@ pub enum PassView {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassOutput {
     pub name: String,
-    pub format: crate::formats::Format,
+    pub format: abi::Format,
     pub value: ExprId,
     pub span: Span,
 }

@@ -3,16 +3,18 @@
 //! See [`pipeline`] for the order of the stages. User errors come back as
 //! [`dsl::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
 //! as emitted WGSL that naga rejects, is a separate [`InternalError`].
+//!
+//! What it produces is defined in the `abi` crate (the manifest types, the
+//! frame block, [`abi::StyleProgram`] via [`Compiled::program`]); the compiler
+//! does not depend on the runner, nor the runner on it.
 
 pub mod allocate;
 pub mod consteval;
 pub mod dag;
 pub mod dump;
 pub mod emit;
-pub mod formats;
 pub mod ir;
 pub mod load;
-pub mod manifest;
 pub mod pipeline;
 pub mod prune;
 pub mod report;
@@ -21,6 +23,7 @@ pub mod specialize;
 pub mod typecheck;
 pub mod validate;
 
+use abi::SceneSummary;
 use dsl::{Diagnostic, SourceMap, Span};
 use std::path::Path;
 
@@ -36,18 +39,9 @@ pub struct CompileOptions {
     pub scene: Option<SceneSummary>,
 }
 
-/// What the compiler may know about the scene: the tags its objects carry.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct SceneSummary {
-    /// Every tag of every object.
-    pub tags: std::collections::BTreeSet<String>,
-    /// A name for messages and the report (e.g. the scene file).
-    pub name: String,
-}
-
 #[derive(Debug, Clone)]
 pub struct Compiled {
-    pub manifest: manifest::Manifest,
+    pub manifest: abi::Manifest,
     /// (file name, WGSL) per live pass, in execution order.
     pub shaders: Vec<(String, String)>,
     pub report: report::Report,
@@ -59,6 +53,14 @@ pub struct Compiled {
 impl Compiled {
     pub fn shader(&self, file: &str) -> Option<&str> {
         self.shaders.iter().find(|(f, _)| f == file).map(|(_, s)| s.as_str())
+    }
+
+    /// The manifest and shaders as the runner takes them.
+    pub fn program(&self) -> abi::StyleProgram {
+        abi::StyleProgram {
+            manifest: self.manifest.clone(),
+            shaders: self.shaders.iter().cloned().collect(),
+        }
     }
 }
 

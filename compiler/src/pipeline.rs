@@ -6,9 +6,9 @@
 use crate::emit::Emitter;
 use crate::ir::Ir;
 use crate::load::Loaded;
-use crate::manifest::ParamBinding;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
+use abi::manifest::ParamBinding;
 use dsl::{Diagnostic, SourceMap};
 use std::time::Instant;
 

@@ -8,10 +8,10 @@
 //! left for the typechecker, except for literals and leaves.
 
 use crate::consteval::const_eval;
-use crate::formats::Format;
 use crate::ir::*;
 use crate::load::Loaded;
 use crate::InternalError;
+use abi::{Format, NoiseSpec};
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
@@ -492,14 +492,14 @@ impl Resolver<'_> {
         let mut tex = Texture {
             name: t.name.name.clone(),
             doc: t.doc.clone(),
-            source: TextureSource::Noise {
+            source: TextureSource::Noise(NoiseSpec {
                 size: 1,
                 octaves: 1,
                 seed: 0,
                 gradient: false,
                 channels: 1,
                 frequency: 4,
-            },
+            }),
             wrap_repeat: true,
             filter_linear: true,
             mips: false,
@@ -611,14 +611,14 @@ impl Resolver<'_> {
                         ),
                     }
                 }
-                tex.source = TextureSource::Noise {
+                tex.source = TextureSource::Noise(NoiseSpec {
                     size,
                     octaves,
                     seed,
                     gradient,
                     channels,
                     frequency,
-                };
+                });
                 tex.wrap_repeat = true;
             }
             other => {
@@ -1235,7 +1235,7 @@ impl Resolver<'_> {
         if name == "scene_has" {
             return self.scene_has(call);
         }
-        if let Some(copy) = TargetCopy::from_call(name) {
+        if let Some(copy) = target_copy_call(name) {
             return self.target_copy(call, name, copy);
         }
         if let Some(intr) = Intrinsic::lookup(name) {
@@ -1402,6 +1402,15 @@ impl Resolver<'_> {
 }
 
 /// `(x: float, steps: int = 3)` — an operator's signature for help lines.
+/// The copy of a target a call selects: `other_eye(t)`, `previous(t)`.
+fn target_copy_call(name: &str) -> Option<TargetCopy> {
+    match name {
+        "other_eye" => Some(TargetCopy::OtherEye),
+        "previous" => Some(TargetCopy::Previous),
+        _ => None,
+    }
+}
+
 pub fn signature(op: &stdlib::Operator) -> String {
     let params: Vec<String> = op
         .params

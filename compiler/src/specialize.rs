@@ -7,9 +7,9 @@
 
 use crate::consteval::const_eval;
 use crate::ir::*;
-use crate::manifest::ParamBinding;
 use crate::prune::Live;
 use crate::report::Report;
+use abi::manifest::ParamBinding;
 
 pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Report) -> Vec<ParamBinding> {
     let mut bindings = vec![ParamBinding::Removed; ir.params.len()];

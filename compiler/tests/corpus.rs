@@ -5,7 +5,8 @@
 //! A file whose first comment lines contain `scene tags = a, b` is compiled
 //! for a scene whose objects carry exactly those tags (`scene_has`).
 
-use compiler::{CompileOptions, SceneSummary};
+use abi::SceneSummary;
+use compiler::CompileOptions;
 use dsl::SourceMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};

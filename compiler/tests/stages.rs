@@ -6,7 +6,7 @@
 use compiler::allocate::{allocate, Allocation};
 use compiler::dag::PassGraph;
 use compiler::ir::*;
-use compiler::manifest::ParamBinding;
+use abi::manifest::ParamBinding;
 use compiler::prune::{prune, Live};
 use compiler::report::Report;
 use dsl::SourceMap;

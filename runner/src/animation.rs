@@ -3,7 +3,7 @@
 //! blocks (one `vec4<f32>` slot per parameter, see the manifest).
 
 use crate::scene::Object;
-use compiler::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
+use abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
 use dsl::{codes, Diagnostic};
 
 /// Value of a parameter at `time_s` (keyframes, or the default).

@@ -5,32 +5,31 @@
 //! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
 //!   executor per pass kind).
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
-//! - [`harness`]: golden-image comparison for tests.
-//! - [`contours`]: analytic contour ground truth (f64 ray casting) and precision/recall.
 //!
-//! Embedding in your own wgpu application: build a [`StyleProgram`] from
-//! `compiler::compile_file`, load a [`scene::Scene`], then
+//! The runner depends on neither the compiler nor the stdlib: what it runs is
+//! defined in the `abi` crate ([`StyleProgram`], the manifest, the frame
+//! block). Golden comparison, contour ground truth and benchmarks live in the
+//! `lab` crate.
+//!
+//! Embedding in your own wgpu application: get a [`StyleProgram`] from
+//! `compiler::compile_file(..)?.program()` or [`StyleProgram::load_dir`]
+//! (a directory written by `npr compile -o DIR`), load a [`scene::Scene`], then
 //! `Renderer::new(&device, &queue, &program, &scene)` and call
 //! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
 
 pub mod animation;
-pub mod bench;
-pub mod bench_contours;
-pub mod contours;
 pub mod device;
 pub mod exec;
-pub mod harness;
 pub mod output;
-pub mod program;
 pub mod readback;
 pub mod scene;
 pub mod schedule;
 pub mod texgen;
 pub mod textures;
 
+pub use abi::StyleProgram;
 pub use device::{DeviceError, Gpu};
 pub use exec::{check_scene, check_texture_bindings, scaled_size, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE};
-pub use program::StyleProgram;
 pub use readback::TargetImage;
 
 use dsl::Diagnostic;

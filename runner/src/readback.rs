@@ -1,7 +1,7 @@
 //! Copy a GPU texture back to memory, and convert texels to floats.
 
 use crate::RunError;
-use compiler::formats::Format;
+use abi::Format;
 
 /// A target read back from the GPU, rows tightly packed.
 #[derive(Debug, Clone)]

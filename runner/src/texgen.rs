@@ -14,16 +14,8 @@ pub struct NoiseImage {
     pub pixels: Vec<[f32; 4]>,
 }
 
-#[derive(Debug, Clone, Copy)]
-pub struct NoiseSpec {
-    pub size: u32,
-    pub octaves: u32,
-    pub seed: u32,
-    pub gradient: bool,
-    pub channels: u32,
-    /// Lattice cells across the texture at the first octave.
-    pub frequency: u32,
-}
+/// The noise parameters are the ABI's (a manifest's `noise` texture source).
+pub use abi::NoiseSpec;
 
 pub fn generate(spec: &NoiseSpec) -> NoiseImage {
     let size = spec.size.max(1);

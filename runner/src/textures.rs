@@ -2,9 +2,9 @@
 //! optional mip chain) and generated noise, each with its sampler.
 
 use crate::scene::Scene;
-use crate::texgen::{self, NoiseSpec};
+use crate::texgen;
 use crate::RunError;
-use compiler::manifest::{Manifest, TextureManifest, TextureSourceManifest};
+use abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
 use dsl::{codes, Diagnostic};
 use std::collections::{BTreeMap, HashMap};
 
@@ -198,22 +198,8 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
             }
             (px, w, h, *srgb, false)
         }
-        TextureSourceManifest::Noise {
-            size,
-            octaves,
-            seed,
-            gradient,
-            channels,
-            frequency,
-        } => {
-            let img = texgen::generate(&NoiseSpec {
-                size: *size,
-                octaves: *octaves,
-                seed: *seed,
-                gradient: *gradient,
-                channels: *channels,
-                frequency: *frequency,
-            });
+        TextureSourceManifest::Noise(spec) => {
+            let img = texgen::generate(spec);
             (img.pixels, img.size, img.size, false, true)
         }
     };

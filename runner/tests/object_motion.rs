@@ -70,7 +70,7 @@ fn program() -> StyleProgram {
         &mut sources,
         &CompileOptions::default(),
     ) {
-        Ok(c) => StyleProgram::from_compiled(&c),
+        Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }

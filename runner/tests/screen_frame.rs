@@ -8,7 +8,7 @@
 use compiler::CompileOptions;
 use dsl::SourceMap;
 use glam::{DMat4, DVec3, DVec4};
-use runner::{FrameSpec, Gpu, StyleProgram};
+use runner::{FrameSpec, Gpu};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -47,8 +47,7 @@ fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> 
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, eye);
-    let img =
-        runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img = runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 
@@ -216,8 +215,7 @@ fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, 0);
-    let img =
-        runner::render_frame(gpu(), &StyleProgram::from_compiled(&c), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img = runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 

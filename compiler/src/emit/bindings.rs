@@ -8,7 +8,7 @@ use super::helpers::FRAME_STRUCT;
 use super::uses::Uses;
 use super::Emitter;
 use crate::ir::*;
-use crate::manifest::{Binding, ParamBinding, Resource};
+use abi::manifest::{Binding, ParamBinding, Resource};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 

@@ -5,7 +5,7 @@
 
 use super::{Emitter, PassCtx};
 use crate::ir::*;
-use crate::manifest::ParamBinding;
+use abi::manifest::ParamBinding;
 
 /// What the expression emitter needs to know about the kind of the pass it
 /// emits for. Decided in one place, [`KindCtx::of`].

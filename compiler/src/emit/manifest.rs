@@ -4,9 +4,9 @@ use crate::allocate::Allocation;
 use crate::consteval::const_eval;
 use crate::emit::EmittedPass;
 use crate::ir::*;
-use crate::manifest::*;
 use crate::prune::Live;
 use crate::InternalError;
+use abi::manifest::*;
 use dsl::SourceMap;
 
 pub fn build(
@@ -83,21 +83,7 @@ pub fn build(
                     resolved: resolved.clone(),
                     srgb: *srgb,
                 },
-                TextureSource::Noise {
-                    size,
-                    octaves,
-                    seed,
-                    gradient,
-                    channels,
-                    frequency,
-                } => TextureSourceManifest::Noise {
-                    size: *size,
-                    octaves: *octaves,
-                    seed: *seed,
-                    gradient: *gradient,
-                    channels: *channels,
-                    frequency: *frequency,
-                },
+                TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
             },
             per_object: t.per_object,
             wrap_repeat: t.wrap_repeat,

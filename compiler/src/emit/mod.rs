@@ -21,7 +21,7 @@ pub use expr::fmt_f32;
 
 use crate::allocate::Allocation;
 use crate::ir::*;
-use crate::manifest::{Attribute, Binding, ParamBinding};
+use abi::manifest::{Attribute, Binding, ParamBinding};
 use dsl::SourceMap;
 use expr::KindCtx;
 use helpers::{LOAD_HELPER, PROJECT_HELPER};

@@ -8,7 +8,7 @@ use super::helpers::{PROJECT_DIR_HELPER, UNIT_HELPER};
 use super::uses::Uses;
 use super::{Emitter, PassCtx};
 use crate::ir::*;
-use crate::manifest::Attribute;
+use abi::manifest::Attribute;
 use std::collections::BTreeSet;
 use std::fmt::Write;
 

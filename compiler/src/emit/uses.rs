@@ -6,7 +6,7 @@
 
 use super::Emitter;
 use crate::ir::*;
-use crate::manifest::ParamBinding;
+use abi::manifest::ParamBinding;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Everything a pass's shaders read, collected from its live expressions.

@@ -9,7 +9,7 @@ use super::Renderer;
 use crate::scene::Scene;
 use crate::textures::{GpuTexture, ObjectTextures};
 use crate::RunError;
-use compiler::manifest::*;
+use abi::manifest::*;
 
 /// Group 1, binding 0: the object's uniform block at a dynamic offset.
 pub(super) fn object_uniform_entry(object_uniform_size: u64) -> wgpu::BindGroupLayoutEntry {

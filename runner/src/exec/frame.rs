@@ -6,7 +6,7 @@
 use super::{objects, Renderer};
 use crate::scene::Scene;
 use crate::{animation, RunError};
-use compiler::manifest::*;
+use abi::FrameBlock;
 
 /// Where and when to render.
 #[derive(Debug, Clone, Copy)]
@@ -33,44 +33,43 @@ impl FrameSpec {
 }
 
 impl Renderer<'_> {
-    /// The `Frame` uniform block of `eye` (see `compiler::emit::wgsl`'s `struct Frame`).
-    fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> Vec<f32> {
+    /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame` in WGSL).
+    pub(super) fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> FrameBlock {
         let pose = scene.camera.pose(spec.time_s);
         let aspect = spec.width as f32 / spec.height as f32;
         let view = pose.view(eye);
         let proj = pose.projection(aspect);
         let view_proj = proj * view;
         let cam = pose.position(eye);
-        let mut frame: Vec<f32> = Vec::with_capacity(FRAME_UNIFORM_SIZE as usize / 4);
-        frame.extend_from_slice(&view.to_cols_array());
-        frame.extend_from_slice(&proj.to_cols_array());
-        frame.extend_from_slice(&view_proj.to_cols_array());
-        frame.extend_from_slice(&[cam.x, cam.y, cam.z, 1.0]);
         let l = scene.light.direction.normalize_or_zero();
-        frame.extend_from_slice(&[l.x, l.y, l.z, scene.light.intensity]);
         let c = scene.light.color;
-        frame.extend_from_slice(&[c[0], c[1], c[2], 1.0]);
-        frame.extend_from_slice(&[
-            spec.width as f32,
-            spec.height as f32,
-            spec.time_s as f32,
-            spec.frame as f32,
-        ]);
-        frame.extend_from_slice(&[eye as f32, pose.near, pose.far, 0.0]);
         let light_view_proj =
             crate::scene::light_view_proj(scene.light.direction, self.caster_bounds, self.scene_bounds);
-        frame.extend_from_slice(&light_view_proj.to_cols_array());
         let other_view_proj = proj * pose.view(1 - eye.min(1));
-        frame.extend_from_slice(&other_view_proj.to_cols_array());
-        // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
-        frame.extend_from_slice(&(proj * pose.center_view()).to_cols_array());
-        frame.extend_from_slice(&[proj.x_axis.x, proj.y_axis.y, 0.0, 0.0]);
         let (left, right, forward) = (pose.position(0), pose.position(1), pose.forward());
-        frame.extend_from_slice(&[left.x, left.y, left.z, 1.0]);
-        frame.extend_from_slice(&[right.x, right.y, right.z, 1.0]);
-        frame.extend_from_slice(&[forward.x, forward.y, forward.z, 0.0]);
-        debug_assert_eq!(frame.len() * 4, FRAME_UNIFORM_SIZE as usize);
-        frame
+        FrameBlock {
+            view: view.to_cols_array_2d(),
+            proj: proj.to_cols_array_2d(),
+            view_proj: view_proj.to_cols_array_2d(),
+            camera_pos: [cam.x, cam.y, cam.z, 1.0],
+            light_dir: [l.x, l.y, l.z, scene.light.intensity],
+            light_color: [c[0], c[1], c[2], 1.0],
+            resolution: [spec.width as f32, spec.height as f32],
+            time: spec.time_s as f32,
+            frame_index: spec.frame as f32,
+            eye: eye as f32,
+            near: pose.near,
+            far: pose.far,
+            _pad: 0.0,
+            light_view_proj: light_view_proj.to_cols_array_2d(),
+            other_view_proj: other_view_proj.to_cols_array_2d(),
+            // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
+            center_view_proj: (proj * pose.center_view()).to_cols_array_2d(),
+            focal: [proj.x_axis.x, proj.y_axis.y, 0.0, 0.0],
+            eye_left: [left.x, left.y, left.z, 1.0],
+            eye_right: [right.x, right.y, right.z, 1.0],
+            camera_forward: [forward.x, forward.y, forward.z, 0.0],
+        }
     }
 
     /// Write the per-frame, style and object uniforms for `spec`. Everything
@@ -90,7 +89,7 @@ impl Renderer<'_> {
             let eye = if slots == 2 { slot } else { spec.eye };
             let frame = self.frame_block(scene, spec, eye);
             self.queue
-                .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::cast_slice(&frame));
+                .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::bytes_of(&frame));
         }
         let style = animation::style_param_bytes(&self.manifest, spec.time_s, spec.height);
         if !style.is_empty() {

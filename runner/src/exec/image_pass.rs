@@ -5,7 +5,7 @@ use super::bind;
 use super::pass::{self, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
-use compiler::manifest::*;
+use abi::manifest::*;
 
 pub(super) struct ImagePassExec {
     name: String,

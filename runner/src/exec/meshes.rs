@@ -4,7 +4,7 @@
 
 use crate::scene::{Mesh, Scene};
 use crate::RunError;
-use compiler::manifest::Attribute;
+use abi::manifest::Attribute;
 use std::collections::BTreeMap;
 use wgpu::util::DeviceExt;
 

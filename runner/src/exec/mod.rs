@@ -36,7 +36,7 @@ pub use scene_check::{check_scene, check_texture_bindings};
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture};
 use crate::{readback, RunError};
-use compiler::manifest::*;
+use abi::manifest::*;
 use glam::Mat4;
 use pass::{EncodeContext, PassExec, Timestamps};
 

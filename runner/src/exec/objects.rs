@@ -6,7 +6,7 @@
 
 use crate::scene::Scene;
 use crate::{animation, RunError};
-use compiler::manifest::*;
+use abi::manifest::*;
 use glam::{Mat4, Vec3};
 
 /// Every object's uniform block at its dynamic offset (`stride` apart, zero

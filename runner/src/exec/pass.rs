@@ -10,7 +10,7 @@ use super::meshes::GpuMesh;
 use super::render_pass::RenderPassExec;
 use super::resources::{wgpu_format, SizedPass};
 use crate::RunError;
-use compiler::manifest::*;
+use abi::manifest::*;
 
 pub(super) enum PassExec {
     /// `render(tag)`: draws the scene's objects (group 1: the object block).

@@ -7,7 +7,7 @@ use super::bind::{self, ObjectResources};
 use super::pass::{self, EncodeContext, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
-use compiler::manifest::*;
+use abi::manifest::*;
 
 pub(super) struct RenderPassExec {
     name: String,

@@ -11,7 +11,7 @@
 //! reads on the first frame after the renderer is built or resized.
 
 use super::Renderer;
-use compiler::formats::Format;
+use abi::Format;
 use std::collections::BTreeMap;
 
 /// Size of a target at `scale` of the output: at least 1 px, rounded to nearest.

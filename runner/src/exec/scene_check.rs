@@ -3,7 +3,7 @@
 //! texture params (E0405).
 
 use crate::scene::Scene;
-use compiler::manifest::*;
+use abi::manifest::*;
 
 /// E0403 for every object that lacks a vertex attribute the style reads.
 pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<dsl::Diagnostic> {

@@ -29,26 +29,9 @@ pub struct Mesh {
     pub source: String,
 }
 
-/// A vertex attribute a style may require of every mesh in the scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Attribute {
-    Position,
-    Normal,
-    Uv,
-    Tangent,
-}
-
-impl Attribute {
-    /// How the attribute is named in messages ("UVs", "tangents").
-    pub fn plural_name(self) -> &'static str {
-        match self {
-            Attribute::Position => "positions",
-            Attribute::Normal => "normals",
-            Attribute::Uv => "UVs",
-            Attribute::Tangent => "tangents",
-        }
-    }
-}
+/// A vertex attribute a style may require of every mesh in the scene: the
+/// manifest's (one definition, in the ABI).
+pub use abi::Attribute;
 
 impl Mesh {
     pub fn vertex_count(&self) -> usize {

@@ -193,8 +193,8 @@ impl Object {
 impl Scene {
     /// What the compiler may know of this scene (its objects' tags);
     /// `name` names it in the compile report.
-    pub fn summary(&self, name: &str) -> compiler::SceneSummary {
-        compiler::SceneSummary {
+    pub fn summary(&self, name: &str) -> abi::SceneSummary {
+        abi::SceneSummary {
             tags: self.objects.iter().flat_map(|o| o.tags.iter().cloned()).collect(),
             name: name.to_string(),
         }

@@ -3,7 +3,7 @@
 //! Ratios are taken in one run with interleaved samples, so machine load
 //! affects both sides alike.
 
-use crate::{FrameSpec, Gpu, RunError, StyleProgram};
+use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 pub struct FrameOverhead {
@@ -46,11 +46,11 @@ fn median(mut v: Vec<f64>) -> f64 {
 pub fn frame_overhead(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &crate::scene::Scene,
+    scene: &runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<FrameOverhead, RunError> {
-    let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
     let spec = |frame: u32| FrameSpec {
         width,
@@ -89,11 +89,11 @@ pub fn frame_overhead(
 pub fn frame_time(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &crate::scene::Scene,
+    scene: &runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<f64, RunError> {
-    let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
     let spec = FrameSpec::still(width, height, 0);
     r.render(scene, &spec)?;
@@ -114,7 +114,7 @@ pub fn frame_time(
 pub fn time_interleaved(
     gpu: &Gpu,
     programs: &[&StyleProgram],
-    scene: &crate::scene::Scene,
+    scene: &runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
@@ -122,7 +122,7 @@ pub fn time_interleaved(
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for p in programs {
-        let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
         r.render(scene, &spec)?;
         wait()?;
         renderers.push(r);
@@ -155,7 +155,7 @@ pub struct PassTime {
 pub fn pass_times(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &crate::scene::Scene,
+    scene: &runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<PassTime>, RunError> {
@@ -165,7 +165,7 @@ pub fn pass_times(
             gpu.describe()
         )));
     }
-    let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let passes = r.manifest.passes.len() as u32;
     let slots = (2 * passes).max(2);
     let queries = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {

@@ -38,7 +38,7 @@ pub fn compare_with_golden_file(actual: &image::RgbaImage, golden: &Path, tol: T
     let expected = match image::open(golden) {
         Ok(img) if !update => img.to_rgba8(),
         _ if update => {
-            let ok = crate::output::write_png8(actual, golden).is_ok();
+            let ok = runner::output::write_png8(actual, golden).is_ok();
             return Comparison {
                 passed: ok,
                 max_abs: 0,
@@ -170,7 +170,7 @@ fn write_failure(
         .unwrap_or_else(|| "image".into());
     let actual_path = dir.join(format!("{stem}.actual.png"));
     let diff_path = dir.join(format!("{stem}.diff.png"));
-    crate::output::write_png8(actual, &actual_path).ok()?;
+    runner::output::write_png8(actual, &actual_path).ok()?;
     let diff = match expected {
         Some(e) => image::RgbaImage::from_fn(actual.width(), actual.height(), |x, y| {
             let (a, b) = (actual.get_pixel(x, y).0, e.get_pixel(x, y).0);
@@ -181,6 +181,6 @@ fn write_failure(
         }),
         None => actual.clone(),
     };
-    crate::output::write_png8(&diff, &diff_path).ok()?;
+    runner::output::write_png8(&diff, &diff_path).ok()?;
     Some((actual_path, diff_path))
 }

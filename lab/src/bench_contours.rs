@@ -17,7 +17,7 @@
 
 use crate::bench::wait_idle;
 use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
-use crate::{FrameSpec, Gpu, RunError, StyleProgram};
+use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 
 const GBUFFER: &str = "style \"bench contours\"\npass gbuffer: render(scene) {\n  out pos: rgba32float = vec4(position.world, 1.0)\n  out nrm: rgba32float = vec4(normal.world, 1.0)\n  out depth: r32float = depth\n  out enc: rgba16float = vec4(normal.view * 0.5 + 0.5, 1.0)\n}\n";
 
@@ -96,7 +96,7 @@ pub struct Row {
 fn min_frame_times(
     gpu: &Gpu,
     programs: &[(&'static str, StyleProgram, bool)],
-    scene: &crate::scene::Scene,
+    scene: &runner::scene::Scene,
     size: u32,
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
@@ -104,7 +104,7 @@ fn min_frame_times(
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for (_, p, _) in programs {
-        let mut r = crate::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
         r.render(scene, &spec)?;
         wait()?;
         renderers.push(r);
@@ -141,7 +141,7 @@ pub fn run(
     let timing_text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
     let file = sources.add("timing.toml", timing_text);
     let timing_scene =
-        crate::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
+        runner::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
     let mut rows = Vec::new();
     for &size in sizes {
         progress(&format!("timing {size}x{size}"));
@@ -153,7 +153,7 @@ pub fn run(
                 progress(&format!("accuracy of {name} at {size}x{size}"));
                 let (mut min_p, mut min_r, mut planes_r) = (1.0f64, 1.0f64, 1.0f64);
                 for (s, scene) in scenes.iter().zip(&loaded) {
-                    let img = crate::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
+                    let img = runner::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
                     let a: Accuracy = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
                     if s.name == "parallel_planes" {
                         planes_r = a.recall;

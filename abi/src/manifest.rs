@@ -12,13 +12,15 @@
 //! runner.
 
 use crate::formats::Format;
+use crate::frame::FrameBlock;
+use crate::noise::NoiseSpec;
 use serde::{Deserialize, Serialize};
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 3;
+pub const MANIFEST_VERSION: u32 = 4;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
-pub const FRAME_UNIFORM_SIZE: u64 = 528;
+pub const FRAME_UNIFORM_SIZE: u64 = core::mem::size_of::<FrameBlock>() as u64;
 /// Byte offset of the first parameter slot in the per-object block (after model and normal matrices).
 pub const OBJECT_PARAMS_OFFSET: u64 = 128;
 /// Alignment of per-object dynamic offsets.
@@ -85,6 +87,16 @@ impl Attribute {
             Attribute::Normal => "normal",
             Attribute::Uv => "uv",
             Attribute::Tangent => "tangent",
+        }
+    }
+
+    /// How the attribute is named in messages ("UVs", "tangents").
+    pub fn plural_name(self) -> &'static str {
+        match self {
+            Attribute::Position => "positions",
+            Attribute::Normal => "normals",
+            Attribute::Uv => "UVs",
+            Attribute::Tangent => "tangents",
         }
     }
 }
@@ -210,15 +222,8 @@ pub struct PhysicalTexture {
 pub enum TextureSourceManifest {
     /// A file, `path` as written and `resolved` against the style's directory.
     Image { path: String, resolved: String, srgb: bool },
-    /// Generated tileable noise.
-    Noise {
-        size: u32,
-        octaves: u32,
-        seed: u32,
-        gradient: bool,
-        channels: u32,
-        frequency: u32,
-    },
+    /// Generated tileable noise (its fields inline, beside `kind`).
+    Noise(NoiseSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -1,0 +1,32 @@
+//! npr ABI: the one definition of the contract between the compiler, which
+//! writes a compiled style, and the runner, which executes it.
+//!
+//! - [`manifest`]: the serde types of `manifest.json` (passes, targets,
+//!   physical textures, bindings, parameters, uniform layouts).
+//! - [`formats`]: the target texture formats.
+//! - [`frame`]: the per-frame uniform block, one `#[repr(C)]` struct
+//!   ([`FrameBlock`]) from which the WGSL `struct Frame` ([`FRAME_WGSL`]) is
+//!   generated, so the two cannot drift apart.
+//! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
+//! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
+//! - [`program`]: a compiled style as the runner takes it ([`StyleProgram`]),
+//!   with [`StyleProgram::load_dir`], which validates every index of a
+//!   manifest read from disk.
+//!
+//! Neither the compiler nor the runner depends on the other; both depend on
+//! this crate, which depends on neither.
+
+pub mod formats;
+pub mod frame;
+pub mod manifest;
+pub mod noise;
+pub mod program;
+pub mod scene;
+pub mod validate;
+
+pub use formats::Format;
+pub use frame::{FrameBlock, FRAME_WGSL};
+pub use manifest::{Attribute, Manifest, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
+pub use noise::NoiseSpec;
+pub use program::{LoadError, StyleProgram};
+pub use scene::SceneSummary;

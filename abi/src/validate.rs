@@ -1,0 +1,355 @@
+//! Checks of a manifest read from disk, before the runner indexes anything:
+//! every index in range, every size and offset inside its block, every
+//! pairing the runner relies on (a target and its physical texture agree on
+//! format and scale, a pass never reads what it writes). The compiler's own
+//! manifests pass by construction; these checks are for files that were
+//! edited, truncated, or written by another version.
+
+use crate::manifest::*;
+use crate::noise::NoiseSpec;
+use std::collections::BTreeSet;
+
+/// Most colour attachments a pass may write (wgpu's default limit).
+pub const MAX_PASS_OUTPUTS: usize = 8;
+/// Largest pass or target scale, relative to the output size (the compiler's range).
+pub const MAX_SCALE: f64 = 4.0;
+/// Largest uniform block (wgpu's default `max_uniform_buffer_binding_size`).
+pub const MAX_UNIFORM_SIZE: u64 = 65536;
+
+/// A manifest that is well-formed JSON but not something the runner can run:
+/// `field` names the bad value as a path (`passes[2].outputs[0]`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Invalid {
+    pub field: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for Invalid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "`{}`: {}", self.field, self.message)
+    }
+}
+
+fn bad(field: impl Into<String>, message: impl Into<String>) -> Result<(), Invalid> {
+    Err(Invalid {
+        field: field.into(),
+        message: message.into(),
+    })
+}
+
+fn check_index(field: impl Into<String>, index: usize, len: usize, what: &str) -> Result<(), Invalid> {
+    if index < len {
+        Ok(())
+    } else {
+        bad(field, format!("{what} #{index} does not exist (there are {len})"))
+    }
+}
+
+fn check_scale(field: impl Into<String>, scale: f64) -> Result<(), Invalid> {
+    if scale.is_finite() && scale > 0.0 && scale <= MAX_SCALE {
+        Ok(())
+    } else {
+        bad(field, format!("scale {scale} is outside (0, {MAX_SCALE}]"))
+    }
+}
+
+impl Manifest {
+    /// Every check of this module; the first failure comes back.
+    pub fn validate(&self) -> Result<(), Invalid> {
+        if self.version != MANIFEST_VERSION {
+            return bad(
+                "version",
+                format!(
+                    "manifest version {} is not supported (expected {MANIFEST_VERSION}); recompile the style",
+                    self.version
+                ),
+            );
+        }
+        self.validate_textures()?;
+        self.validate_targets()?;
+        self.validate_params()?;
+        for (i, p) in self.passes.iter().enumerate() {
+            self.validate_pass(i, p)?;
+        }
+        check_index("output", self.output, self.targets.len(), "target")
+    }
+
+    fn validate_targets(&self) -> Result<(), Invalid> {
+        for (i, p) in self.physical.iter().enumerate() {
+            check_scale(format!("physical[{i}].scale"), p.scale)?;
+        }
+        for (i, t) in self.targets.iter().enumerate() {
+            let field = format!("targets[{i}]");
+            check_scale(format!("{field}.scale"), t.scale)?;
+            check_index(
+                format!("{field}.physical"),
+                t.physical,
+                self.physical.len(),
+                "physical texture",
+            )?;
+            let p = &self.physical[t.physical];
+            if p.format != t.format {
+                return bad(
+                    format!("{field}.format"),
+                    format!(
+                        "target `{}` is {} but its physical texture #{} is {}",
+                        t.name,
+                        t.format.name(),
+                        t.physical,
+                        p.format.name()
+                    ),
+                );
+            }
+            if p.scale != t.scale {
+                return bad(
+                    format!("{field}.scale"),
+                    format!(
+                        "target `{}` has scale {} but its physical texture #{} has {}",
+                        t.name, t.scale, t.physical, p.scale
+                    ),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_textures(&self) -> Result<(), Invalid> {
+        for (i, t) in self.textures.iter().enumerate() {
+            let field = format!("textures[{i}].source");
+            match &t.source {
+                TextureSourceManifest::Image { resolved, .. } => {
+                    if resolved.is_empty() {
+                        return bad(format!("{field}.resolved"), "empty image path");
+                    }
+                }
+                TextureSourceManifest::Noise(n) => {
+                    let ranges = [
+                        ("size", n.size, NoiseSpec::MAX_SIZE),
+                        ("octaves", n.octaves, NoiseSpec::MAX_OCTAVES),
+                        ("channels", n.channels, 4),
+                        ("frequency", n.frequency, NoiseSpec::MAX_FREQUENCY),
+                    ];
+                    for (name, value, max) in ranges {
+                        if !(1..=max).contains(&value) {
+                            return bad(format!("{field}.{name}"), format!("{value} is outside 1..={max}"));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_params(&self) -> Result<(), Invalid> {
+        let has_render = self
+            .passes
+            .iter()
+            .any(|p| matches!(p.kind, PassKindManifest::Render { .. }));
+        let count = |b: ParamBinding| self.params.iter().filter(|p| p.binding == b).count() as u64;
+        let style_size = 16 * count(ParamBinding::Uniform);
+        if self.style_uniform_size != style_size {
+            return bad(
+                "style_uniform_size",
+                format!(
+                    "{} bytes, but the style block holds one 16-byte slot per uniform param ({style_size} bytes)",
+                    self.style_uniform_size
+                ),
+            );
+        }
+        let object_size = if has_render {
+            OBJECT_PARAMS_OFFSET + 16 * count(ParamBinding::PerObject)
+        } else {
+            0
+        };
+        if self.object_uniform_size != object_size {
+            return bad(
+                "object_uniform_size",
+                format!(
+                    "{} bytes, but the object block is {OBJECT_PARAMS_OFFSET} bytes of matrices plus one 16-byte \
+                     slot per per-object param ({object_size} bytes)",
+                    self.object_uniform_size
+                ),
+            );
+        }
+        if self.style_uniform_size > MAX_UNIFORM_SIZE || self.object_uniform_size > MAX_UNIFORM_SIZE {
+            return bad(
+                "style_uniform_size",
+                format!("a uniform block is over {MAX_UNIFORM_SIZE} bytes"),
+            );
+        }
+        for (i, p) in self.params.iter().enumerate() {
+            let field = format!("params[{i}]");
+            if p.components == 0 || p.components > 4 {
+                return bad(
+                    format!("{field}.components"),
+                    format!("{} is outside 1..=4", p.components),
+                );
+            }
+            let (start, size) = match p.binding {
+                ParamBinding::Uniform => (0, self.style_uniform_size),
+                ParamBinding::PerObject => (OBJECT_PARAMS_OFFSET, self.object_uniform_size),
+                ParamBinding::Folded | ParamBinding::Removed => continue,
+            };
+            let Some(offset) = p.offset else {
+                return bad(
+                    format!("{field}.offset"),
+                    format!("param `{}` is bound but has no offset", p.name),
+                );
+            };
+            if offset < start || offset % 16 != 0 || offset.saturating_add(16) > size {
+                return bad(
+                    format!("{field}.offset"),
+                    format!(
+                        "param `{}`: offset {offset} is not a 16-byte slot in {start}..{size} of its block",
+                        p.name
+                    ),
+                );
+            }
+            let mut last = f64::NEG_INFINITY;
+            for (k, (t, _)) in p.keyframes.iter().enumerate() {
+                if !t.is_finite() || *t < last {
+                    return bad(
+                        format!("{field}.keyframes[{k}]"),
+                        format!("keyframe time {t} is not finite and in increasing order"),
+                    );
+                }
+                last = *t;
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_pass(&self, i: usize, p: &PassManifest) -> Result<(), Invalid> {
+        let field = format!("passes[{i}]");
+        let file_name_ok =
+            !p.shader.is_empty() && p.shader != "." && p.shader != ".." && !p.shader.contains(['/', '\\', ':', '\0']);
+        if !file_name_ok {
+            return bad(
+                format!("{field}.shader"),
+                format!("`{}` is not a file name beside the manifest", p.shader),
+            );
+        }
+        check_scale(format!("{field}.scale"), p.scale)?;
+        if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
+            return bad(
+                format!("{field}.outputs"),
+                format!(
+                    "pass `{}` writes {} targets; 1..={MAX_PASS_OUTPUTS} are allowed",
+                    p.name,
+                    p.outputs.len()
+                ),
+            );
+        }
+        if !p.clear.iter().all(|c| c.is_finite()) {
+            return bad(format!("{field}.clear"), "clear colour is not finite");
+        }
+        let mut written = BTreeSet::new();
+        for (k, &t) in p.outputs.iter().enumerate() {
+            let f = format!("{field}.outputs[{k}]");
+            check_index(&f, t, self.targets.len(), "target")?;
+            let target = &self.targets[t];
+            if !written.insert(target.physical) {
+                return bad(
+                    f,
+                    format!("pass `{}` writes physical texture #{} twice", p.name, target.physical),
+                );
+            }
+            if target.scale != p.scale {
+                return bad(
+                    f,
+                    format!(
+                        "target `{}` has scale {} but pass `{}` renders at {}",
+                        target.name, target.scale, p.name, p.scale
+                    ),
+                );
+            }
+        }
+        let mut numbers = BTreeSet::new();
+        for (k, b) in p.bindings.iter().enumerate() {
+            let f = format!("{field}.bindings[{k}]");
+            if !numbers.insert(b.binding) {
+                return bad(format!("{f}.binding"), format!("binding {} appears twice", b.binding));
+            }
+            match &b.resource {
+                Resource::Target {
+                    target,
+                    filterable,
+                    copy,
+                } => {
+                    check_index(format!("{f}.resource.target"), *target, self.targets.len(), "target")?;
+                    let t = &self.targets[*target];
+                    if *filterable && !t.format.is_filterable() {
+                        return bad(
+                            format!("{f}.resource.filterable"),
+                            format!("target `{}` is {}, which is not filterable", t.name, t.format.name()),
+                        );
+                    }
+                    // A previous-frame read binds the history texture's other
+                    // copy, so it needs one; the other eye's copy is another
+                    // slot's texture.
+                    if *copy == TargetCopy::Previous && !self.physical[t.physical].history {
+                        return bad(
+                            format!("{f}.resource.copy"),
+                            format!(
+                                "pass `{}` reads the previous frame of `{}`, whose physical texture #{} is not `history`",
+                                p.name, t.name, t.physical
+                            ),
+                        );
+                    }
+                    if *copy == TargetCopy::This && written.contains(&t.physical) {
+                        return bad(
+                            format!("{f}.resource.target"),
+                            format!(
+                                "pass `{}` reads target `{}`, whose texture it also writes",
+                                p.name, t.name
+                            ),
+                        );
+                    }
+                }
+                Resource::Texture { texture } | Resource::TextureSampler { texture } => {
+                    check_index(
+                        format!("{f}.resource.texture"),
+                        *texture,
+                        self.textures.len(),
+                        "texture",
+                    )?;
+                }
+                Resource::FrameUniforms | Resource::StyleUniforms | Resource::LinearClampSampler => {}
+            }
+        }
+        let is_render = matches!(p.kind, PassKindManifest::Render { .. });
+        if !p.object_bindings.is_empty() && !is_render {
+            return bad(
+                format!("{field}.object_bindings"),
+                format!("image pass `{}` has per-object bindings", p.name),
+            );
+        }
+        let mut numbers = BTreeSet::from([0]);
+        for (k, b) in p.object_bindings.iter().enumerate() {
+            let f = format!("{field}.object_bindings[{k}]");
+            if !numbers.insert(b.binding) {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} appears twice (0 is the object block)", b.binding),
+                );
+            }
+            match &b.resource {
+                Resource::Texture { texture } | Resource::TextureSampler { texture } => {
+                    check_index(
+                        format!("{f}.resource.texture"),
+                        *texture,
+                        self.textures.len(),
+                        "texture",
+                    )?;
+                }
+                _ => {
+                    return bad(
+                        format!("{f}.resource"),
+                        "group 1 holds only per-object textures and samplers",
+                    )
+                }
+            }
+        }
+        Ok(())
+    }
+}

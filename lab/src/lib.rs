@@ -1,0 +1,16 @@
+//! npr lab: what an application embedding the runner does not need, but the
+//! tests, the benchmarks and the CLI's `npr bench` do.
+//!
+//! - [`harness`]: golden-image comparison (per-pixel bound or FLIP), with the
+//!   actual and diff images written on failure.
+//! - [`contours`]: analytic contour ground truth (f64 ray casting) and
+//!   precision/recall of a rendered line mask.
+//! - [`bench`]: frame overhead, frame time and per-pass GPU time.
+//! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
+//! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
+
+pub mod bench;
+pub mod bench_contours;
+pub mod bench_ops;
+pub mod contours;
+pub mod harness;
