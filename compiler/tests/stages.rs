@@ -3,10 +3,10 @@
 //! chain), allocate (aliasing by lifetime, format and scale) and the
 //! internal errors of impossible states.
 
+use abi::manifest::ParamBinding;
 use compiler::allocate::{allocate, Allocation};
 use compiler::dag::PassGraph;
 use compiler::ir::*;
-use abi::manifest::ParamBinding;
 use compiler::prune::{prune, Live};
 use compiler::report::Report;
 use dsl::SourceMap;
