@@ -280,13 +280,13 @@ impl<'d> Renderer<'d> {
         let parity_passes = &sized.passes[self.parity() % sized.passes.len()];
         let slots = parity_passes.len();
         for (pi, pass) in self.passes.iter().enumerate().take(count) {
-            for slot in 0..slots {
+            for (slot, slot_passes) in parity_passes.iter().enumerate() {
                 let timestamps = queries.map(|query_set| Timestamps {
                     query_set,
                     beginning: (slot == 0).then_some(2 * pi as u32),
                     end: (slot + 1 == slots).then_some(2 * pi as u32 + 1),
                 });
-                pass.encode(encoder, &parity_passes[slot][pi], &ctx, timestamps.as_ref());
+                pass.encode(encoder, &slot_passes[pi], &ctx, timestamps.as_ref());
             }
         }
     }

@@ -4,11 +4,12 @@
 //! depth texture per pass size for the passes that need one, and per frame
 //! parity, eye slot and pass its attachment views and group 0.
 //!
-//! History textures (`previous(...)` reads): frames alternate parity 0 and
-//! 1. A frame of parity 0 writes the first copy and binds the second to
-//! previous-frame reads; parity 1 the other way round. Both copies start as
-//! zero (wgpu zero-initialises textures), which is what `previous(...)`
-//! reads on the first frame after the renderer is built or resized.
+//! History textures (`previous(...)` reads): frames alternate between parity
+//! 0 and parity 1. A frame of parity 0 writes the first copy and binds the
+//! second to previous-frame reads; parity 1 the other way round. Both copies
+//! start as zero (wgpu zero-initialises textures), which is what
+//! `previous(...)` reads on the first frame after the renderer is built or
+//! resized.
 
 use super::Renderer;
 use abi::Format;
