@@ -83,6 +83,11 @@ impl<'d> Renderer<'d> {
         program: &crate::StyleProgram,
         scene: &Scene,
     ) -> Result<Renderer<'d>, RunError> {
+        // Every index the executors use is checked once here, whether the
+        // program came from `load_dir` or was built in memory by an embedder.
+        program
+            .validate()
+            .map_err(|e| RunError::Internal(format!("the compiled style is inconsistent: {e}")))?;
         let manifest = program.manifest.clone();
         let diags = check_scene(&manifest, scene);
         if !diags.is_empty() {
