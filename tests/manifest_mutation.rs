@@ -244,6 +244,11 @@ fn bad_indices_are_rejected_naming_the_field() {
             Value::from("../x.wgsl"),
             "`passes[0].shader`",
         ),
+        (
+            &["passes", "0", "kind", "fragment_entry"],
+            Value::from("fs main"),
+            "`passes[0].kind.fragment_entry`",
+        ),
         (&["style_uniform_size"], Value::from(4), "`style_uniform_size`"),
         (&["params", "0", "offset"], Value::from(100000), "`params[0].offset`"),
         (

@@ -113,8 +113,33 @@ pub enum PassKindManifest {
         light_view: bool,
         /// Vertex attributes in location order (location = index).
         attributes: Vec<Attribute>,
+        /// The entry points of the pass's shader.
+        vertex_entry: String,
+        fragment_entry: String,
     },
-    Image,
+    /// A fullscreen triangle; its vertex entry makes `screen_uv`.
+    Image {
+        vertex_entry: String,
+        fragment_entry: String,
+    },
+}
+
+impl PassKindManifest {
+    /// The (vertex, fragment) entry points of a kind drawn by a render
+    /// pipeline; `None` for kinds with other entry points.
+    pub fn raster_entries(&self) -> Option<(&str, &str)> {
+        match self {
+            PassKindManifest::Render {
+                vertex_entry,
+                fragment_entry,
+                ..
+            }
+            | PassKindManifest::Image {
+                vertex_entry,
+                fragment_entry,
+            } => Some((vertex_entry, fragment_entry)),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -125,8 +150,6 @@ pub struct PassManifest {
     pub scale: f64,
     /// The WGSL file (relative to the manifest) holding this pass's shader.
     pub shader: String,
-    pub vertex_entry: String,
-    pub fragment_entry: String,
     /// Targets written, in `@location` order.
     pub outputs: Vec<usize>,
     pub clear: [f64; 4],

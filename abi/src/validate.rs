@@ -229,6 +229,21 @@ impl Manifest {
                 format!("`{}` is not a file name beside the manifest", p.shader),
             );
         }
+        if let Some((vertex, fragment)) = p.kind.raster_entries() {
+            for (name, entry) in [("vertex_entry", vertex), ("fragment_entry", fragment)] {
+                let identifier = entry
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                    && entry.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+                if !identifier {
+                    return bad(
+                        format!("{field}.kind.{name}"),
+                        format!("`{entry}` is not a WGSL entry-point name"),
+                    );
+                }
+            }
+        }
         check_scale(format!("{field}.scale"), p.scale)?;
         if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
             return bad(

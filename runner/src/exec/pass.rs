@@ -66,7 +66,7 @@ impl PassExec {
                 attributes,
                 objects,
             )?),
-            PassKindManifest::Image => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
+            PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
         })
     }
 
@@ -163,6 +163,10 @@ pub(super) fn render_pipeline(
     buffers: &[Option<wgpu::VertexBufferLayout>],
     depth_stencil: Option<wgpu::DepthStencilState>,
 ) -> Result<wgpu::RenderPipeline, RunError> {
+    let (vertex_entry, fragment_entry) = pass
+        .kind
+        .raster_entries()
+        .ok_or_else(|| RunError::Internal(format!("pass `{}` has no vertex and fragment entry points", pass.name)))?;
     let layouts: Vec<Option<&wgpu::BindGroupLayout>> = group_layouts.iter().map(|l| Some(*l)).collect();
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&pass.name),
@@ -190,7 +194,7 @@ pub(super) fn render_pipeline(
         layout: Some(&layout),
         vertex: wgpu::VertexState {
             module: &module,
-            entry_point: Some(&pass.vertex_entry),
+            entry_point: Some(vertex_entry),
             compilation_options: Default::default(),
             buffers,
         },
@@ -202,7 +206,7 @@ pub(super) fn render_pipeline(
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,
-            entry_point: Some(&pass.fragment_entry),
+            entry_point: Some(fragment_entry),
             compilation_options: Default::default(),
             targets: &targets,
         }),
