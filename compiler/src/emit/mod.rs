@@ -96,7 +96,7 @@ impl Emitter<'_> {
         let frag_roots: Vec<ExprId> = live_outputs.iter().map(|(_, o)| o.value).collect();
         let frag_nodes = self.ir.reachable(&frag_roots);
         let vert_nodes = self.ir.reachable(&Ir::vertex_roots(pass));
-        let uses = self.uses(&frag_nodes, &vert_nodes);
+        let uses = self.uses(&frag_nodes, &frag_roots, &vert_nodes);
         // Per kind: whether the frame block is bound, and the vertex attributes.
         let (uses_frame, attributes) = match &pass.kind {
             // The vertex shader projects with the frame's matrices.
@@ -153,7 +153,7 @@ impl Emitter<'_> {
             PassKind::Image { .. } => w.push_str(image::FRAGMENT_PROLOGUE),
         }
         ctx.named.clear();
-        self.emit_lets(&mut w, pass, &frag_nodes, &frag_roots, &mut ctx);
+        self.emit_lets(&mut w, pass, &frag_nodes, &uses.value_uses, &mut ctx);
         w.push_str("    var out: FragOut;\n");
         for (_, o) in &live_outputs {
             let _ = writeln!(
@@ -210,7 +210,14 @@ impl Emitter<'_> {
     /// `thin.e.y` are two `Target` nodes reading the same texel, so they
     /// share one `npr_load`, named at the first of them (operands come
     /// before users in `nodes`, so every user follows it).
-    fn emit_lets(&self, w: &mut String, pass: &Pass, nodes: &[ExprId], roots: &[ExprId], ctx: &mut PassCtx) {
+    fn emit_lets(
+        &self,
+        w: &mut String,
+        pass: &Pass,
+        nodes: &[ExprId],
+        value_uses: &BTreeMap<ExprId, usize>,
+        ctx: &mut PassCtx,
+    ) {
         let mut uses: BTreeMap<ExprId, usize> = BTreeMap::new();
         for n in nodes {
             for o in self.ir.operands(*n) {
@@ -218,8 +225,6 @@ impl Emitter<'_> {
             }
         }
         let user_lets: BTreeMap<ExprId, &Let> = pass.lets.iter().map(|l| (l.value, l)).collect();
-        // Value reads per (copy, target), over every node reading it.
-        let value_uses = self.value_uses(nodes, roots);
         let read_key = |id: ExprId| match self.ir.expr(id).kind {
             ExprKind::Target { target, copy } => Some((copy, target)),
             _ => None,
@@ -233,7 +238,7 @@ impl Emitter<'_> {
         for n in nodes {
             let e = self.ir.expr(*n);
             if let Some(key) = read_key(*n) {
-                self.name_target_read(w, &reads[&key], &value_uses, &user_lets, ctx);
+                self.name_target_read(w, &reads[&key], value_uses, &user_lets, ctx);
                 continue;
             }
             let trivial = matches!(

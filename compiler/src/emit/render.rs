@@ -110,7 +110,7 @@ impl Emitter<'_> {
         }
         if let Some(inflate) = vertex.inflate {
             ctx.named.clear();
-            self.emit_lets(w, pass, vert_nodes, &roots, ctx);
+            self.emit_lets(w, pass, vert_nodes, &self.value_uses(vert_nodes, &roots), ctx);
             let width = self.expr(inflate, ctx);
             let _ = writeln!(
                 w,
@@ -127,7 +127,7 @@ impl Emitter<'_> {
         if let Some(k) = vertex.shadow_warp {
             if vertex.inflate.is_none() {
                 ctx.named.clear();
-                self.emit_lets(w, pass, vert_nodes, &roots, ctx);
+                self.emit_lets(w, pass, vert_nodes, &self.value_uses(vert_nodes, &roots), ctx);
             }
             let k = self.expr(k, ctx);
             let _ = writeln!(

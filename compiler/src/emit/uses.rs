@@ -28,6 +28,9 @@ pub(super) struct Uses {
     pub linear_sampler: bool,
     /// A texture read as a value (sampled at the kind's texture coordinate).
     pub texture_as_value: bool,
+    /// How many times each fragment node is read as a value (see
+    /// `Emitter::value_uses`); `emit_lets` shares target loads by it.
+    pub value_uses: BTreeMap<ExprId, usize>,
 }
 
 impl Uses {
@@ -56,9 +59,9 @@ impl Uses {
 }
 
 impl Emitter<'_> {
-    /// The uses of a pass whose fragment shader evaluates `frag_nodes` and
-    /// whose vertex shader evaluates `vert_nodes`.
-    pub(super) fn uses(&self, frag_nodes: &[ExprId], vert_nodes: &[ExprId]) -> Uses {
+    /// The uses of a pass whose fragment shader evaluates `frag_nodes` (for
+    /// the outputs `frag_roots`) and whose vertex shader evaluates `vert_nodes`.
+    pub(super) fn uses(&self, frag_nodes: &[ExprId], frag_roots: &[ExprId], vert_nodes: &[ExprId]) -> Uses {
         let mut u = Uses::default();
         for id in frag_nodes.iter().chain(vert_nodes) {
             match &self.ir.expr(*id).kind {
@@ -94,37 +97,13 @@ impl Emitter<'_> {
                 _ => {}
             }
         }
+        // A texture is a value unless every use is a texture parameter of an
+        // operator; an output written straight from it reads it too.
+        u.value_uses = self.value_uses(frag_nodes, frag_roots);
         u.texture_as_value = frag_nodes
             .iter()
-            .any(|id| matches!(self.ir.expr(*id).kind, ExprKind::Texture(_)) && self.used_as_value(*id, frag_nodes));
+            .any(|id| matches!(self.ir.expr(*id).kind, ExprKind::Texture(_)) && u.value_uses.contains_key(id));
         u
-    }
-
-    /// A handle is "used as a value" unless every use is a texture parameter
-    /// of an operator; an output written straight from it also reads it.
-    fn used_as_value(&self, id: ExprId, nodes: &[ExprId]) -> bool {
-        let mut used = false;
-        for n in nodes {
-            match &self.ir.expr(*n).kind {
-                ExprKind::Call {
-                    callee: Callee::Operator(i),
-                    args,
-                } => {
-                    let op = &stdlib::all()[*i as usize];
-                    for (p, a) in op.params.iter().zip(args) {
-                        if *a == id && !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
-                            used = true;
-                        }
-                    }
-                }
-                _ => {
-                    if self.ir.operands(*n).contains(&id) {
-                        used = true;
-                    }
-                }
-            }
-        }
-        used || !nodes.iter().any(|n| self.ir.operands(*n).contains(&id))
     }
 
     /// How many times each node is read as a value by `nodes` and `roots`
