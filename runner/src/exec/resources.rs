@@ -172,31 +172,30 @@ impl Renderer<'_> {
 
     /// The second copy of every history texture, by physical index.
     fn create_history_copies(&self, width: u32, height: u32) -> BTreeMap<usize, wgpu::Texture> {
-        let all = self.create_physical(width, height);
-        all.into_iter()
-            .enumerate()
-            .filter(|(i, _)| self.manifest.physical[*i].history)
+        (0..self.manifest.physical.len())
+            .filter(|i| self.manifest.physical[*i].history)
+            .map(|i| (i, self.physical_texture(i, width, height)))
             .collect()
     }
 
     /// One physical texture per `manifest.physical` entry, at `width`×`height` × its scale.
     fn create_physical(&self, width: u32, height: u32) -> Vec<wgpu::Texture> {
-        self.manifest
-            .physical
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let (w, h) = scaled_size(width, height, p.scale);
-                texture_2d(
-                    self.device,
-                    &format!("npr physical #{i}"),
-                    (w, h),
-                    wgpu_format(p.format),
-                    wgpu::TextureUsages::RENDER_ATTACHMENT
-                        | wgpu::TextureUsages::TEXTURE_BINDING
-                        | wgpu::TextureUsages::COPY_SRC,
-                )
-            })
+        (0..self.manifest.physical.len())
+            .map(|i| self.physical_texture(i, width, height))
             .collect()
+    }
+
+    /// Physical texture `index` of the manifest at `width`×`height` × its scale.
+    fn physical_texture(&self, index: usize, width: u32, height: u32) -> wgpu::Texture {
+        let p = &self.manifest.physical[index];
+        texture_2d(
+            self.device,
+            &format!("npr physical #{index}"),
+            scaled_size(width, height, p.scale),
+            wgpu_format(p.format),
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+        )
     }
 }
