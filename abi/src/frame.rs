@@ -1,7 +1,7 @@
 //! The per-frame uniform block: one `#[repr(C)]` Rust struct, [`FrameBlock`],
 //! which the runner fills and uploads with `bytemuck::bytes_of`, and the WGSL
 //! `struct Frame` every shader that reads it declares, [`FRAME_WGSL`]. Both
-//! come from the one field list in the `frame_block!` invocation below, so a
+//! come from the one field list in the `uniform_block!` invocation below, so a
 //! field cannot be added to one and not the other.
 //!
 //! Every field is 4-byte aligned in Rust and placed where WGSL's uniform
@@ -11,65 +11,14 @@
 //!
 //! The block grows only at its end (see ARCHITECTURE.md).
 
-use bytemuck::{Pod, Zeroable};
+use crate::block::{render, uniform_block};
+pub use crate::block::{BlockField, Mat4x4, Vec2, Vec4};
 
-/// A WGSL `mat4x4<f32>`, column-major (`glam::Mat4::to_cols_array_2d`).
-pub type Mat4x4 = [[f32; 4]; 4];
-/// A WGSL `vec4<f32>`.
-pub type Vec4 = [f32; 4];
-/// A WGSL `vec2<f32>`.
-pub type Vec2 = [f32; 2];
-
-/// One member of the frame block, as the WGSL text and the layout test see it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct FrameField {
-    pub name: &'static str,
-    /// The WGSL type (`mat4x4<f32>`, `vec4<f32>`, `vec2<f32>`, `f32`).
-    pub wgsl: &'static str,
-    /// Comment lines above the member (the Rust field's doc lines).
-    pub above: &'static [&'static str],
-    /// The comment after the member; empty for none.
-    pub trailing: &'static str,
-    /// Byte offset in [`FrameBlock`].
-    pub offset: usize,
-    /// Byte size in [`FrameBlock`].
-    pub size: usize,
-}
-
-/// Declares [`FrameBlock`] and [`FRAME_FIELDS`] from one list of
-/// `name: RustType = "wgsl type" [, "trailing comment"];`, where `///` doc
-/// lines above a field become comment lines above the WGSL member.
-macro_rules! frame_block {
-    ($( $(#[doc = $above:literal])* $name:ident : $rust:ty = $wgsl:literal $(, $trail:literal)? ; )*) => {
-        /// The `Frame` uniform block (`struct Frame` in WGSL, [`FRAME_WGSL`]),
-        /// byte for byte. Fill it and upload `bytemuck::bytes_of(&block)`.
-        #[repr(C)]
-        #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-        pub struct FrameBlock {
-            $(
-                $(#[doc = $above])*
-                $(#[doc = $trail])?
-                pub $name: $rust,
-            )*
-        }
-
-        /// The members of [`FrameBlock`] in order, with their WGSL types.
-        pub const FRAME_FIELDS: &[FrameField] = &[
-            $(
-                FrameField {
-                    name: stringify!($name),
-                    wgsl: $wgsl,
-                    above: &[$($above),*],
-                    trailing: concat!("" $(, $trail)?),
-                    offset: core::mem::offset_of!(FrameBlock, $name),
-                    size: core::mem::size_of::<$rust>(),
-                },
-            )*
-        ];
-    };
-}
-
-frame_block! {
+uniform_block! {
+    /// The `Frame` uniform block (`struct Frame` in WGSL, [`FRAME_WGSL`]),
+    /// byte for byte. Fill it and upload `bytemuck::bytes_of(&block)`.
+    struct FrameBlock;
+    fields FRAME_FIELDS;
     view: Mat4x4 = "mat4x4<f32>";
     proj: Mat4x4 = "mat4x4<f32>";
     view_proj: Mat4x4 = "mat4x4<f32>";
@@ -93,96 +42,27 @@ frame_block! {
     eye_left: Vec4 = "vec4<f32>", "xyz: the left eye's position (= camera in mono)";
     eye_right: Vec4 = "vec4<f32>", "xyz: the right eye's position (= camera in mono)";
     camera_forward: Vec4 = "vec4<f32>", "xyz: unit view direction";
+    /// The view-projection of the previous frame this renderer began (=
+    /// view_proj on the first frame and after a reset): `project_previous`.
+    previous_view_proj: Mat4x4 = "mat4x4<f32>";
 }
 
-/// Trailing comments start in this column (or one space after a longer member).
-const COMMENT_COLUMN: usize = 30;
-
-/// A byte buffer written in a const context; counts past `N` without writing,
-/// so a first run with a large `N` measures the text.
-struct Text<const N: usize> {
-    bytes: [u8; N],
-    len: usize,
-}
-
-impl<const N: usize> Text<N> {
-    const fn push(&mut self, s: &str) {
-        let b = s.as_bytes();
-        let mut i = 0;
-        while i < b.len() {
-            if self.len < N {
-                self.bytes[self.len] = b[i];
-            }
-            self.len += 1;
-            i += 1;
-        }
-    }
-
-    const fn spaces(&mut self, n: usize) {
-        let mut i = 0;
-        while i < n {
-            self.push(" ");
-            i += 1;
-        }
-    }
-}
-
-/// `struct Frame { ... }` from [`FRAME_FIELDS`]: 4-space indent, doc lines
-/// as `//` lines above, trailing comments from column 30.
-const fn render<const N: usize>() -> Text<N> {
-    let mut t = Text { bytes: [0; N], len: 0 };
-    t.push("struct Frame {\n");
-    let mut i = 0;
-    while i < FRAME_FIELDS.len() {
-        let f = &FRAME_FIELDS[i];
-        let mut j = 0;
-        while j < f.above.len() {
-            t.push("    //");
-            t.push(f.above[j]);
-            t.push("\n");
-            j += 1;
-        }
-        t.push("    ");
-        t.push(f.name);
-        t.push(": ");
-        t.push(f.wgsl);
-        t.push(",");
-        if !f.trailing.is_empty() {
-            let width = 4 + f.name.len() + 2 + f.wgsl.len() + 1;
-            t.spaces(if width + 1 < COMMENT_COLUMN {
-                COMMENT_COLUMN - width
-            } else {
-                1
-            });
-            t.push("// ");
-            t.push(f.trailing);
-        }
-        t.push("\n");
-        i += 1;
-    }
-    t.push("}\n");
-    t
-}
-
-const FRAME_WGSL_LEN: usize = render::<8192>().len;
-const FRAME_WGSL_BYTES: [u8; FRAME_WGSL_LEN] = render::<FRAME_WGSL_LEN>().bytes;
+const FRAME_WGSL_LEN: usize = render::<8192>("struct Frame {\n", FRAME_FIELDS, "}\n").len;
+const FRAME_WGSL_BYTES: [u8; FRAME_WGSL_LEN] = render::<FRAME_WGSL_LEN>("struct Frame {\n", FRAME_FIELDS, "}\n").bytes;
 
 /// The WGSL declaration of `struct Frame`, generated from [`FrameBlock`]'s fields.
-pub const FRAME_WGSL: &str = match core::str::from_utf8(&FRAME_WGSL_BYTES) {
-    Ok(s) => s,
-    Err(_) => panic!("FRAME_WGSL is not UTF-8"),
-};
+pub const FRAME_WGSL: &str = crate::block::as_str(&FRAME_WGSL_BYTES);
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn frame_block_is_528_bytes_without_padding() {
-        assert_eq!(core::mem::size_of::<FrameBlock>(), 528);
+    fn frame_block_is_592_bytes_without_padding() {
+        assert_eq!(core::mem::size_of::<FrameBlock>(), 592);
         let sum: usize = FRAME_FIELDS.iter().map(|f| f.size).sum();
         assert_eq!(sum, core::mem::size_of::<FrameBlock>());
-        assert_eq!(crate::FRAME_UNIFORM_SIZE, 528);
+        assert_eq!(crate::FRAME_UNIFORM_SIZE, 592);
     }
 
     #[test]

@@ -7,6 +7,8 @@
 //! - [`frame`]: the per-frame uniform block, one `#[repr(C)]` struct
 //!   ([`FrameBlock`]) from which the WGSL `struct Frame` ([`FRAME_WGSL`]) is
 //!   generated, so the two cannot drift apart.
+//! - [`object`]: the fixed head of the per-object uniform block
+//!   ([`ObjectHead`]) and its WGSL members ([`OBJECT_HEAD_WGSL`]), the same way.
 //! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
 //! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
 //! - [`program`]: a compiled style as the runner takes it ([`StyleProgram`]),
@@ -16,10 +18,12 @@
 //! Neither the compiler nor the runner depends on the other; both depend on
 //! this crate, which depends on neither.
 
+mod block;
 pub mod formats;
 pub mod frame;
 pub mod manifest;
 pub mod noise;
+pub mod object;
 pub mod program;
 pub mod scene;
 pub mod validate;
@@ -28,5 +32,6 @@ pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
 pub use manifest::{Attribute, Manifest, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
 pub use noise::NoiseSpec;
+pub use object::{ObjectHead, OBJECT_HEAD_WGSL};
 pub use program::{LoadError, StyleProgram};
 pub use scene::SceneSummary;

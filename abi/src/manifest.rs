@@ -17,12 +17,12 @@ use crate::noise::NoiseSpec;
 use serde::{Deserialize, Serialize};
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 4;
+pub const MANIFEST_VERSION: u32 = 5;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
 pub const FRAME_UNIFORM_SIZE: u64 = core::mem::size_of::<FrameBlock>() as u64;
-/// Byte offset of the first parameter slot in the per-object block (after model and normal matrices).
-pub const OBJECT_PARAMS_OFFSET: u64 = 128;
+/// Byte offset of the first parameter slot in the per-object block (after [`crate::ObjectHead`]).
+pub const OBJECT_PARAMS_OFFSET: u64 = core::mem::size_of::<crate::object::ObjectHead>() as u64;
 /// Alignment of per-object dynamic offsets.
 pub const OBJECT_STRIDE_ALIGN: u64 = 256;
 
@@ -50,10 +50,15 @@ pub struct Manifest {
 }
 
 impl Manifest {
-    /// Whether a frame depends on earlier frames (a `previous(...)` read):
+    /// Whether a frame depends on earlier frames (a `previous(...)` read, or
+    /// a compute pass with `state`):
     /// rendering frame `n` alone must then replay frames 0..n.
     pub fn is_path_dependent(&self) -> bool {
         self.physical.iter().any(|p| p.history)
+            || self
+                .passes
+                .iter()
+                .any(|p| matches!(p.kind, PassKindManifest::Compute { history: true, .. }))
     }
 
     /// Whether a pass reads a target of the other eye (`other_eye(...)`): the
@@ -122,9 +127,136 @@ pub enum PassKindManifest {
         vertex_entry: String,
         fragment_entry: String,
     },
+    /// Per-object values computed on the GPU. Group 0 as every kind; group
+    /// 1: the `Object` block (binding 0, dynamic offset), then one read-only
+    /// `array<f32>` storage buffer per attribute (bindings 1..); group 2: the
+    /// pass's own buffers (`bind.rs`, `compute_pass.rs`).
+    Compute {
+        domain: ComputeDomain,
+        /// Run only over objects with this tag; `None` runs over all. Other
+        /// objects' slots stay zero.
+        tag: Option<String>,
+        /// Vertex attributes read by the element stage, in binding order.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        attributes: Vec<Attribute>,
+        /// The per-object value slots, in slot order.
+        values: Vec<ValueSlot>,
+        /// The pass keeps state: its value buffer has two copies, written
+        /// by frame parity, and one more slot per object (after `values`)
+        /// whose `x` is 1 once the object's state has been written.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        history: bool,
+        /// The element stage (`vertices` only).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        elements_entry: Option<String>,
+        /// The object stage.
+        objects_entry: String,
+    },
+}
+
+/// Invocations per workgroup of a compute pass's element stage: each
+/// workgroup reduces [`ELEMENTS_PER_WORKGROUP`] elements of one object to one
+/// partial per value, with a tree reduction in workgroup memory.
+pub const ELEMENT_WORKGROUP: u32 = 256;
+/// Elements each invocation of the element stage accumulates before the tree.
+pub const ELEMENTS_PER_INVOCATION: u32 = 4;
+/// Elements one element-stage workgroup covers.
+pub const ELEMENTS_PER_WORKGROUP: u32 = ELEMENT_WORKGROUP * ELEMENTS_PER_INVOCATION;
+/// Invocations of the object stage's workgroup, which reduces one object's
+/// partials (one workgroup per object).
+pub const OBJECT_WORKGROUP: u32 = 64;
+
+/// What a compute pass runs over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ComputeDomain {
+    /// One invocation per object (`objects_entry`).
+    Objects,
+    /// Every vertex of every object: the element stage (`elements_entry`,
+    /// one dispatch per object of ⌈vertices / ELEMENTS_PER_WORKGROUP⌉
+    /// workgroups, writing partials), then the object stage
+    /// (`objects_entry`, one workgroup per object, reducing its partials).
+    Vertices,
+}
+
+impl ComputeDomain {
+    /// As a style writes it: `compute(objects)`, `compute(vertices)`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ComputeDomain::Objects => "objects",
+            ComputeDomain::Vertices => "vertices",
+        }
+    }
+}
+
+/// How a reduced value combines its elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReduceOp {
+    Sum,
+    Min,
+    Max,
+}
+
+impl ReduceOp {
+    pub const ALL: [(&'static str, ReduceOp); 3] = [("sum", ReduceOp::Sum), ("min", ReduceOp::Min), ("max", ReduceOp::Max)];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ReduceOp::Sum => "sum",
+            ReduceOp::Min => "min",
+            ReduceOp::Max => "max",
+        }
+    }
+}
+
+/// How a per-object value slot of a compute pass is made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ValueKind {
+    /// `reduce`: over the elements of each object.
+    Reduce(ReduceOp),
+    /// `out`: once per object.
+    Out,
+    /// `state`: once per object, from its own previous value.
+    State,
+}
+
+/// One per-object value of a compute pass: slot `i` of object `o` is the
+/// `vec4<f32>` at index `o * slots + i` of the pass's value buffer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ValueSlot {
+    pub name: String,
+    /// `float`, `vec2`, `vec3` or `vec4` (the slot's leading components).
+    pub ty: String,
+    pub kind: ValueKind,
 }
 
 impl PassKindManifest {
+    /// Every entry point of the pass's shader, with its field name.
+    pub fn entries(&self) -> Vec<(&'static str, &str)> {
+        match self {
+            PassKindManifest::Render {
+                vertex_entry,
+                fragment_entry,
+                ..
+            }
+            | PassKindManifest::Image {
+                vertex_entry,
+                fragment_entry,
+            } => vec![("vertex_entry", vertex_entry), ("fragment_entry", fragment_entry)],
+            PassKindManifest::Compute {
+                elements_entry,
+                objects_entry,
+                ..
+            } => elements_entry
+                .iter()
+                .map(|e| ("elements_entry", e.as_str()))
+                .chain([("objects_entry", objects_entry.as_str())])
+                .collect(),
+        }
+    }
+
     /// The (vertex, fragment) entry points of a kind drawn by a render
     /// pipeline; `None` for kinds with other entry points.
     pub fn raster_entries(&self) -> Option<(&str, &str)> {
@@ -138,6 +270,7 @@ impl PassKindManifest {
                 vertex_entry,
                 fragment_entry,
             } => Some((vertex_entry, fragment_entry)),
+            PassKindManifest::Compute { .. } => None,
         }
     }
 }
@@ -194,6 +327,10 @@ pub enum Resource {
     TextureSampler { texture: usize },
     /// A bilinear clamp-to-edge sampler (for `sample()` on targets).
     LinearClampSampler,
+    /// The per-object values of the compute pass at index `pass` of
+    /// [`Manifest::passes`] (an earlier pass), read-only `array<vec4<f32>>`:
+    /// this frame's copy.
+    ObjectValues { pass: usize },
 }
 
 /// Which copy of a target a read sees.

@@ -13,6 +13,8 @@ use std::collections::BTreeSet;
 pub const MAX_PASS_OUTPUTS: usize = 8;
 /// Largest pass or target scale, relative to the output size (the compiler's range).
 pub const MAX_SCALE: f64 = 4.0;
+/// Most per-object value slots of one compute pass (the compiler's limit).
+pub const MAX_VALUE_SLOTS: usize = 64;
 /// Largest uniform block (wgpu's default `max_uniform_buffer_binding_size`).
 pub const MAX_UNIFORM_SIZE: u64 = 65536;
 
@@ -229,8 +231,8 @@ impl Manifest {
                 format!("`{}` is not a file name beside the manifest", p.shader),
             );
         }
-        if let Some((vertex, fragment)) = p.kind.raster_entries() {
-            for (name, entry) in [("vertex_entry", vertex), ("fragment_entry", fragment)] {
+        {
+            for (name, entry) in p.kind.entries() {
                 let identifier = entry
                     .chars()
                     .next()
@@ -245,7 +247,9 @@ impl Manifest {
             }
         }
         check_scale(format!("{field}.scale"), p.scale)?;
-        if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
+        if let PassKindManifest::Compute { .. } = &p.kind {
+            self.validate_compute(&field, p)?;
+        } else if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
             return bad(
                 format!("{field}.outputs"),
                 format!(
@@ -329,6 +333,16 @@ impl Manifest {
                         "texture",
                     )?;
                 }
+                Resource::ObjectValues { pass } => {
+                    let f = format!("{f}.resource.pass");
+                    check_index(&f, *pass, i, "earlier pass")?;
+                    if !matches!(self.passes[*pass].kind, PassKindManifest::Compute { .. }) {
+                        return bad(f, format!("pass `{}` is not a compute pass", self.passes[*pass].name));
+                    }
+                    if matches!(p.kind, PassKindManifest::Image { .. }) {
+                        return bad(f, format!("image pass `{}` has no object to read per-object values for", p.name));
+                    }
+                }
                 Resource::FrameUniforms | Resource::StyleUniforms | Resource::LinearClampSampler => {}
             }
         }
@@ -364,6 +378,53 @@ impl Manifest {
                     )
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// A compute pass writes no target; its value types are slot types;
+    /// only the vertex domain has an element stage and attributes.
+    fn validate_compute(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
+        let PassKindManifest::Compute {
+            domain,
+            attributes,
+            values,
+            elements_entry,
+            ..
+        } = &p.kind
+        else {
+            return Ok(());
+        };
+        if !p.outputs.is_empty() {
+            return bad(format!("{field}.outputs"), format!("compute pass `{}` writes targets", p.name));
+        }
+        if values.is_empty() || values.len() > MAX_VALUE_SLOTS {
+            return bad(
+                format!("{field}.kind.values"),
+                format!("compute pass `{}` has {} values; 1..={MAX_VALUE_SLOTS} are allowed", p.name, values.len()),
+            );
+        }
+        for (k, v) in values.iter().enumerate() {
+            if !["float", "vec2", "vec3", "vec4"].contains(&v.ty.as_str()) {
+                return bad(format!("{field}.kind.values[{k}].ty"), format!("`{}` is not a value type", v.ty));
+            }
+            let reduces = matches!(v.kind, ValueKind::Reduce(_));
+            if reduces != (*domain == ComputeDomain::Vertices) {
+                return bad(
+                    format!("{field}.kind.values[{k}].kind"),
+                    format!("value `{}` does not belong to a pass over {domain:?}", v.name),
+                );
+            }
+        }
+        let over_vertices = *domain == ComputeDomain::Vertices;
+        if elements_entry.is_some() != over_vertices {
+            return bad(
+                format!("{field}.kind.elements_entry"),
+                "exactly the passes over vertices have an element stage",
+            );
+        }
+        if !over_vertices && !attributes.is_empty() {
+            return bad(format!("{field}.kind.attributes"), "a pass over objects reads no vertex attributes");
         }
         Ok(())
     }

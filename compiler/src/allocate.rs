@@ -26,9 +26,32 @@ pub struct Allocation {
     pub param_offsets: BTreeMap<ParamId, u64>,
     pub style_uniform_size: u64,
     pub object_uniform_size: u64,
+    /// Live passes in execution order (a pass's index in the manifest).
+    pub passes: Vec<PassId>,
+    /// Each live per-object value of a compute pass: its slot in the pass's
+    /// value buffer (live values are packed in declaration order).
+    pub value_slots: BTreeMap<(PassId, u32), u32>,
+    /// Slots per object of each live compute pass: its live values, plus
+    /// one for the "state written" flag when it keeps state.
+    pub slots_per_object: BTreeMap<PassId, u32>,
 }
 
 impl Allocation {
+    /// The manifest index of a live pass.
+    pub fn pass_index(&self, p: PassId) -> Option<usize> {
+        self.passes.iter().position(|x| *x == p)
+    }
+
+    /// Whether a live compute pass keeps state (two copies of its values).
+    pub fn keeps_state(&self, ir: &Ir, p: PassId) -> bool {
+        ir.pass(p)
+            .kind
+            .values()
+            .iter()
+            .enumerate()
+            .any(|(i, v)| v.rule == ValueRule::State && self.value_slots.contains_key(&(p, i as u32)))
+    }
+
     pub fn target_index(&self, t: TargetRef) -> Option<usize> {
         self.targets.iter().position(|(x, _)| *x == t)
     }
@@ -40,7 +63,11 @@ pub fn allocate(
     bindings: &[ParamBinding],
     report: &mut Report,
 ) -> Result<Allocation, InternalError> {
-    let mut alloc = Allocation::default();
+    let mut alloc = Allocation {
+        passes: live.passes.clone(),
+        ..Allocation::default()
+    };
+    value_buffers(ir, live, &mut alloc, report);
     // Last use of each target, by execution position.
     let mut last_use: BTreeMap<TargetRef, usize> = BTreeMap::new();
     for (pos, pid) in live.passes.iter().enumerate() {
@@ -141,11 +168,49 @@ pub fn allocate(
         }
     }
     alloc.style_uniform_size = style_slots * 16;
-    let draws_objects = live.passes.iter().any(|p| ir.pass(*p).kind.draws_objects());
+    let draws_objects = live.passes.iter().any(|p| ir.pass(*p).kind.has_object());
     alloc.object_uniform_size = if draws_objects {
         OBJECT_PARAMS_OFFSET + object_slots * 16
     } else {
         0
     };
     Ok(alloc)
+}
+
+/// Pack the live values of each compute pass into slots, and report the
+/// buffers: one `vec4<f32>` per value per object, two copies when the pass
+/// keeps state.
+fn value_buffers(ir: &Ir, live: &Live, alloc: &mut Allocation, report: &mut Report) {
+    for pid in &live.passes {
+        let pass = ir.pass(*pid);
+        let PassKind::Compute { domain, .. } = &pass.kind else {
+            continue;
+        };
+        let slots = live.value_slots(*pid);
+        for (packed, slot) in slots.iter().enumerate() {
+            alloc.value_slots.insert((*pid, *slot), packed as u32);
+        }
+        let state = alloc.keeps_state(ir, *pid);
+        let per_object = slots.len() as u32 + u32::from(state);
+        alloc.slots_per_object.insert(*pid, per_object);
+        let names: Vec<&str> = slots
+            .iter()
+            .map(|s| pass.kind.values()[*s as usize].name.as_str())
+            .collect();
+        report.push(
+            "buffer",
+            format!("compute pass `{}`", pass.name),
+            format!(
+                "over {}: {} per object ({}){}",
+                domain.name(),
+                names.join(", "),
+                if per_object == 1 { "1 vec4".to_string() } else { format!("{per_object} vec4s") },
+                if state {
+                    "; keeps state: two copies, reset with the scene, the size or the style"
+                } else {
+                    ""
+                }
+            ),
+        );
+    }
 }

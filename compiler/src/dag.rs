@@ -16,6 +16,7 @@ pub struct PassGraph {
 pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
     let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
     roots.extend(Ir::vertex_roots(pass));
+    roots.extend(pass.kind.values().iter().flat_map(ObjectValue::roots));
     roots
 }
 
@@ -25,9 +26,10 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     for (pi, pass) in ir.passes.iter().enumerate() {
         for id in ir.reachable(&pass_roots(pass)) {
             let e = ir.expr(id);
-            if let Some(t) = e.kind.target_read() {
-                if !reads[pi].iter().any(|(p, _)| *p == t.pass) {
-                    reads[pi].push((t.pass, e.span));
+            let read = e.kind.target_read().map(|t| t.pass).or(e.kind.value_read().map(|(p, _)| p));
+            if let Some(p) = read {
+                if !reads[pi].iter().any(|(q, _)| *q == p) {
+                    reads[pi].push((p, e.span));
                 }
             }
         }

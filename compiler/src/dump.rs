@@ -34,6 +34,10 @@ pub fn dump(ir: &Ir) -> String {
                 let names: Vec<&str> = inputs.iter().map(|i| ir.pass(*i).name.as_str()).collect();
                 format!("image({})", names.join(", "))
             }
+            PassKind::Compute { domain, tag, .. } => match tag {
+                Some(t) => format!("compute({}, {t})", domain.name()),
+                None => format!("compute({})", domain.name()),
+            },
         };
         let _ = writeln!(s, "pass #{i} {} : {kind} scale={}", p.name, p.scale);
         for l in &p.lets {
@@ -41,6 +45,17 @@ pub fn dump(ir: &Ir) -> String {
         }
         for o in &p.outputs {
             let _ = writeln!(s, "  out {} : {} = e{}", o.name, o.format.name(), o.value.0);
+        }
+        for (slot, v) in p.kind.values().iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "  value #{slot} {} : {} {:?} = e{} first={}",
+                v.name,
+                v.ty.describe(),
+                v.rule,
+                v.value.0,
+                expr_ref(v.first)
+            );
         }
     }
     for (i, e) in ir.exprs.iter().enumerate() {

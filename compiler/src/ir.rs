@@ -168,6 +168,14 @@ pub enum Builtin {
     TangentScreenCenter,
     /// B_s projected with the stereo camera's centre.
     BitangentScreenCenter,
+    /// The object's position in the scene's object list (0, 1, ...).
+    ObjectIndex,
+    /// The object's id for ID images: its index + 1, so that 0 (a cleared
+    /// target) means "no object".
+    ObjectId,
+    /// The world position of this surface point in the previous frame (the
+    /// object's previous transform; equal to `position` on the first frame).
+    PositionPrevious,
 }
 
 impl Builtin {
@@ -204,6 +212,9 @@ impl Builtin {
         ("bitangent.screen", Builtin::BitangentScreen),
         ("tangent.screen_center", Builtin::TangentScreenCenter),
         ("bitangent.screen_center", Builtin::BitangentScreenCenter),
+        ("object.index", Builtin::ObjectIndex),
+        ("object.id", Builtin::ObjectId),
+        ("position.previous", Builtin::PositionPrevious),
     ];
 
     pub fn name(self) -> &'static str {
@@ -220,7 +231,8 @@ impl Builtin {
         match self {
             Uv | ScreenUv => (Ty::Vec2, Unit::None),
             NormalWorld | NormalView | Tangent | ViewDir | LightDir | PositionLight => (Ty::Vec3, Unit::None),
-            PositionWorld | PositionView | CameraPosition => (Ty::Vec3, Unit::Meters),
+            PositionWorld | PositionView | CameraPosition | PositionPrevious => (Ty::Vec3, Unit::Meters),
+            ObjectIndex | ObjectId => (Ty::Int, Unit::None),
             Depth | CameraNear | CameraFar => (Ty::Float, Unit::Meters),
             CameraLeftEye | CameraRightEye => (Ty::Vec3, Unit::Meters),
             CameraForward => (Ty::Vec3, Unit::None),
@@ -264,7 +276,22 @@ impl Builtin {
                 | BitangentScreen
                 | TangentScreenCenter
                 | BitangentScreenCenter
+                | PositionPrevious
         )
+    }
+
+    /// Needs an object (the `Object` block): render and compute passes.
+    pub fn needs_object(self) -> bool {
+        matches!(self, Builtin::ObjectIndex | Builtin::ObjectId)
+    }
+
+    /// Whether a compute pass over the vertices of objects has it: the
+    /// vertex's own attributes and what follows from them, not what exists
+    /// only per fragment (the pixel, interpolated screen-space frames) or
+    /// what needs the light camera.
+    pub fn in_vertex_elements(self) -> bool {
+        use Builtin::*;
+        !self.needs_geometry() || matches!(self, Uv | NormalWorld | NormalView | PositionWorld | PositionView | ViewDir | Depth | PositionPrevious)
     }
 }
 
@@ -289,6 +316,8 @@ pub enum Intrinsic {
     Project,
     /// `project_other_eye(p)`: the same in the other eye of a stereo frame.
     ProjectOtherEye,
+    /// `project_previous(p)`: the same with the previous frame's camera.
+    ProjectPrevious,
 }
 
 impl Intrinsic {
@@ -332,6 +361,7 @@ impl Intrinsic {
         ("cross", Intrinsic::Cross),
         ("project", Intrinsic::Project),
         ("project_other_eye", Intrinsic::ProjectOtherEye),
+        ("project_previous", Intrinsic::ProjectPrevious),
     ];
 
     pub fn lookup(name: &str) -> Option<Intrinsic> {
@@ -356,6 +386,7 @@ impl Intrinsic {
             Intrinsic::Cross => "cross",
             Intrinsic::Project => "project",
             Intrinsic::ProjectOtherEye => "project_other_eye",
+            Intrinsic::ProjectPrevious => "project_previous",
         }
     }
 }
@@ -395,6 +426,12 @@ pub enum ExprKind {
     },
     /// A texture: a handle, or a value sampled at `uv` (render) / `screen_uv` (image).
     Texture(TextureId),
+    /// A per-object value of a compute pass (`sums.area`) for the object
+    /// being drawn or computed, as this frame's run of that pass left it.
+    ObjectValue { pass: PassId, slot: u32 },
+    /// Inside the compute pass that owns `state` slot `slot`: its value from
+    /// the previous frame, or its first value on the first frame.
+    StateOld { slot: u32 },
     /// `.xyz`, `.rg`: component indices.
     Swizzle {
         base: ExprId,
@@ -449,6 +486,14 @@ impl ExprKind {
                 target,
                 copy: TargetCopy::Previous,
             } => Some(*target),
+            _ => None,
+        }
+    }
+
+    /// The compute pass whose per-object value this node reads.
+    pub fn value_read(&self) -> Option<(PassId, u32)> {
+        match self {
+            ExprKind::ObjectValue { pass, slot } => Some((*pass, *slot)),
             _ => None,
         }
     }
@@ -535,6 +580,50 @@ pub enum PassKind {
     },
     /// A fullscreen pass over its inputs.
     Image { inputs: Vec<PassId> },
+    /// A compute pass over a domain, producing per-object values.
+    Compute {
+        domain: ComputeDomain,
+        /// `compute(vertices, tag)`: only objects with the tag; `None` runs over all.
+        tag: Option<String>,
+        /// Its per-object values, one slot each, in slot order.
+        values: Vec<ObjectValue>,
+    },
+}
+
+/// What a compute pass runs over: the manifest's definition, shared.
+pub use abi::manifest::ComputeDomain;
+
+/// How a per-object value of a compute pass is made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum ValueRule {
+    /// `reduce n: t = sum(v)` (and `min`, `max`) over the elements of each object.
+    Reduce(abi::manifest::ReduceOp),
+    /// `out n: t = v`: computed once per object.
+    Out,
+    /// `state n: t = first` with its update `n = v`: kept across frames.
+    State,
+}
+
+/// One per-object value of a compute pass.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ObjectValue {
+    pub name: String,
+    /// Float, Vec2, Vec3 or Vec4 (stored as a `vec4<f32>` slot).
+    pub ty: Ty,
+    pub rule: ValueRule,
+    /// The reduced element value, the `out` value, or the state's update.
+    pub value: ExprId,
+    /// A state's first value.
+    pub first: Option<ExprId>,
+    pub span: Span,
+    pub name_span: Span,
+}
+
+impl ObjectValue {
+    /// The expressions this value evaluates.
+    pub fn roots(&self) -> Vec<ExprId> {
+        std::iter::once(self.value).chain(self.first).collect()
+    }
 }
 
 impl PassKind {
@@ -543,6 +632,24 @@ impl PassKind {
         match self {
             PassKind::Render { .. } => "render",
             PassKind::Image { .. } => "image",
+            PassKind::Compute { .. } => "compute",
+        }
+    }
+
+    /// Whether the pass runs per object, so that it has the `Object` block
+    /// (per-object params, `object.id`, compute passes' per-object values).
+    pub fn has_object(&self) -> bool {
+        match self {
+            PassKind::Render { .. } | PassKind::Compute { .. } => true,
+            PassKind::Image { .. } => false,
+        }
+    }
+
+    /// The per-object values of a compute pass (none for other kinds).
+    pub fn values(&self) -> &[ObjectValue] {
+        match self {
+            PassKind::Compute { values, .. } => values,
+            PassKind::Render { .. } | PassKind::Image { .. } => &[],
         }
     }
 
@@ -552,7 +659,7 @@ impl PassKind {
     pub fn draws_objects(&self) -> bool {
         match self {
             PassKind::Render { .. } => true,
-            PassKind::Image { .. } => false,
+            PassKind::Image { .. } | PassKind::Compute { .. } => false,
         }
     }
 }
@@ -654,7 +761,7 @@ impl Ir {
     pub fn vertex_roots(pass: &Pass) -> Vec<ExprId> {
         match &pass.kind {
             PassKind::Render { vertex, .. } => vertex.roots(),
-            PassKind::Image { .. } => Vec::new(),
+            PassKind::Image { .. } | PassKind::Compute { .. } => Vec::new(),
         }
     }
 

@@ -66,6 +66,7 @@ pub fn run(
     fail_if_errors(&diags)?;
     let mut scratch = Report::default();
     let live = crate::prune::prune(&ir, &graph, &mut scratch);
+    diags.extend(crate::prune::unread_compute_passes(&ir, &live));
     st.done("prune", &ir);
     let mut report = Report::default();
     for (tag, present) in &ir.scene_queries {

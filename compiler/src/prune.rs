@@ -17,6 +17,15 @@ pub struct Live {
     pub textures: BTreeSet<TextureId>,
     /// Targets read with `previous(...)`: they outlive the frame.
     pub history: BTreeSet<TargetRef>,
+    /// Per-object values of compute passes that a live pass reads: (pass, slot).
+    pub values: BTreeSet<(PassId, u32)>,
+}
+
+impl Live {
+    /// The live slots of a compute pass, in slot order.
+    pub fn value_slots(&self, pass: PassId) -> Vec<u32> {
+        self.values.iter().filter(|(p, _)| *p == pass).map(|(_, s)| *s).collect()
+    }
 }
 
 pub fn prune(ir: &Ir, graph: &PassGraph, report: &mut Report) -> Live {
@@ -49,27 +58,42 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
         ..Live::default()
     };
     for pid in graph.order.iter().rev() {
-        let roots = live_roots(ir, *pid, &live);
+        let mut roots = live_roots(ir, *pid, &live);
         if roots.is_empty() {
             continue;
         }
         live.passes.push(*pid);
-        for id in ir.reachable(&roots) {
-            match ir.expr(id).kind {
-                ExprKind::Target { target, copy } => {
-                    live.targets.insert(target);
-                    if copy == TargetCopy::Previous {
-                        live.history.insert(target);
+        // A state read inside its own pass (`StateOld`) makes that value
+        // live too, which adds roots of this same pass: repeat until none.
+        loop {
+            let before = live.values.len();
+            for id in ir.reachable(&roots) {
+                match ir.expr(id).kind {
+                    ExprKind::Target { target, copy } => {
+                        live.targets.insert(target);
+                        if copy == TargetCopy::Previous {
+                            live.history.insert(target);
+                        }
                     }
+                    ExprKind::Param(p) => {
+                        live.params.insert(p);
+                    }
+                    ExprKind::Texture(t) => {
+                        live.textures.insert(t);
+                    }
+                    ExprKind::ObjectValue { pass, slot } => {
+                        live.values.insert((pass, slot));
+                    }
+                    ExprKind::StateOld { slot } => {
+                        live.values.insert((*pid, slot));
+                    }
+                    _ => {}
                 }
-                ExprKind::Param(p) => {
-                    live.params.insert(p);
-                }
-                ExprKind::Texture(t) => {
-                    live.textures.insert(t);
-                }
-                _ => {}
             }
+            if live.values.len() == before {
+                break;
+            }
+            roots = live_roots(ir, *pid, &live);
         }
     }
     live.passes.reverse();
@@ -95,7 +119,36 @@ fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
     if !roots.is_empty() {
         roots.extend(Ir::vertex_roots(pass));
     }
+    for (slot, v) in pass.kind.values().iter().enumerate() {
+        if live.values.contains(&(pid, slot as u32)) {
+            roots.extend(v.roots());
+        }
+    }
     roots
+}
+
+/// A warning for each compute pass that no live pass reads: it is removed,
+/// which is rarely what its author meant.
+pub fn unread_compute_passes(ir: &Ir, live: &Live) -> Vec<dsl::Diagnostic> {
+    ir.passes
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| matches!(p.kind, PassKind::Compute { .. }) && !live.passes.contains(&PassId(*i as u32)))
+        .map(|(_, p)| {
+            dsl::Diagnostic::warning(
+                dsl::codes::UNREAD_COMPUTE,
+                format!("compute pass `{}` is never read, so it is removed", p.name),
+            )
+            .with_primary(p.name_span, "no live pass reads its values")
+            .with_help(match p.kind.values().first() {
+                Some(v) => format!(
+                    "read its values per object in a render or compute pass, e.g. `{}.{}`",
+                    p.name, v.name
+                ),
+                None => "give it a value with `reduce`, `out` or `state`, and read it".to_string(),
+            })
+        })
+        .collect()
 }
 
 /// Everything the walk dropped, with the reason, in execution order.
@@ -106,6 +159,11 @@ fn report_removed(ir: &Ir, graph: &PassGraph, live: &Live, report: &mut Report) 
         if roots.is_empty() {
             report.removed(format!("pass `{}`", pass.name), "the output does not depend on it");
             continue;
+        }
+        for (slot, v) in pass.kind.values().iter().enumerate() {
+            if !live.values.contains(&(*pid, slot as u32)) {
+                report.removed(format!("value `{}.{}`", pass.name, v.name), "nothing reads it");
+            }
         }
         for (i, o) in pass.outputs.iter().enumerate() {
             if !live.targets.contains(&TargetRef {

@@ -19,6 +19,8 @@ use std::collections::HashMap;
 use std::path::Path;
 use stdlib::Unit;
 
+mod compute;
+
 /// Resolution limits, stated in the error messages.
 pub const MAX_PASSES: usize = 64;
 pub const MAX_OUTPUTS_PER_PASS: usize = 8;
@@ -35,6 +37,10 @@ pub fn resolve(
         scene,
         names: HashMap::new(),
         pass_outputs: Vec::new(),
+        pass_values: Vec::new(),
+        compute_passes: Vec::new(),
+        states: Vec::new(),
+        has_object: false,
         scopes: Vec::new(),
         current_pass: None,
         draws_objects: false,
@@ -68,6 +74,15 @@ struct Resolver<'d> {
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,
+    /// Per-object values of each pass (compute passes only), declared before bodies.
+    pass_values: Vec<Vec<compute::DeclaredValue>>,
+    /// The compute passes.
+    compute_passes: Vec<PassId>,
+    /// The states of the `compute(objects)` pass being resolved.
+    states: Vec<compute::StateInScope>,
+    /// Whether the pass being resolved runs per object (render, compute):
+    /// only those may read per-object values of compute passes.
+    has_object: bool,
     /// Let scopes: innermost last. Each maps a name to its value node.
     scopes: Vec<Vec<(String, ExprId)>>,
     current_pass: Option<PassId>,
@@ -138,8 +153,16 @@ impl Resolver<'_> {
                     }
                     let id = PassId(self.ir.passes.len() as u32);
                     self.declare(&p.name, Symbol::Pass(id));
-                    self.pass_outputs
-                        .push(p.body.outputs.iter().map(|o| o.name.name.clone()).collect());
+                    let values = compute::declared_values(p);
+                    if p.kind.kind.name == "compute" {
+                        // A compute pass's `out`s are per-object values, not targets.
+                        self.compute_passes.push(id);
+                        self.pass_outputs.push(Vec::new());
+                    } else {
+                        self.pass_outputs
+                            .push(p.body.outputs.iter().map(|o| o.name.name.clone()).collect());
+                    }
+                    self.pass_values.push(values);
                     self.ir.passes.push(Pass {
                         name: p.name.name.clone(),
                         doc: p.doc.clone(),
@@ -778,22 +801,24 @@ impl Resolver<'_> {
                 }
                 PassKind::Image { inputs }
             }
+            "compute" => self.compute_kind(p),
             other => {
-                let kinds = ["render", "image"];
+                let kinds = ["render", "image", "compute"];
                 let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown pass kind `{other}`"))
                     .with_primary(p.kind.kind.span, "not a pass kind");
                 d = match did_you_mean(other, kinds) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                    None if ["compute", "reduce", "lines"].contains(&other) => d.with_help(format!(
-                        "`{other}` passes are reserved for a later version; use `render` or `image`"
-                    )),
-                    None => d.with_help("passes are `render(scene)` or `image(inputs...)`"),
+                    None if other == "lines" => d.with_help(
+                        "`lines` passes are reserved for a later version; use `render`, `image` or `compute`",
+                    ),
+                    None => d.with_help("passes are `render(scene)`, `image(inputs...)` or `compute(domain)`"),
                 };
                 self.error(d);
                 PassKind::Image { inputs: Vec::new() }
             }
         };
         self.draws_objects = kind.draws_objects();
+        self.has_object = kind.has_object();
         let scale = match &p.scale {
             None => 1.0,
             Some(e) => {
@@ -839,6 +864,14 @@ impl Resolver<'_> {
                 ),
             }
         }
+        let compute_domain = match &kind {
+            PassKind::Compute { domain, .. } => Some(*domain),
+            PassKind::Render { .. } | PassKind::Image { .. } => None,
+        };
+        match compute_domain {
+            Some(_) => self.states_in_scope(id, p),
+            None => self.refuse_compute_statements(p),
+        }
         self.scopes.push(Vec::new());
         let mut lets = Vec::new();
         for l in &p.body.lets {
@@ -863,7 +896,12 @@ impl Resolver<'_> {
         }
         let mut outputs = Vec::new();
         let mut seen: Vec<&str> = Vec::new();
-        for o in p.body.outputs.iter().take(MAX_OUTPUTS_PER_PASS) {
+        if let (Some(domain), PassKind::Compute { values, .. }) = (compute_domain, &mut kind) {
+            *values = self.compute_values(domain, p);
+            self.check_value_names(values);
+        }
+        let targets = if compute_domain.is_some() { &[][..] } else { &p.body.outputs[..] };
+        for o in targets.iter().take(MAX_OUTPUTS_PER_PASS) {
             if seen.contains(&o.name.name.as_str()) {
                 self.error(
                     Diagnostic::error(
@@ -911,6 +949,8 @@ impl Resolver<'_> {
         pass.outputs = outputs;
         self.current_pass = None;
         self.draws_objects = false;
+        self.has_object = false;
+        self.states.clear();
     }
 
     /// `view(...)` and other modifiers after the pass kind.
@@ -1085,6 +1125,9 @@ impl Resolver<'_> {
                 return *v;
             }
         }
+        if let Some(v) = self.state_read(id) {
+            return v;
+        }
         match self.names.get(&id.name).copied() {
             Some((Symbol::Param(p), _)) => {
                 let param = &self.ir.params[p.0 as usize];
@@ -1166,6 +1209,9 @@ impl Resolver<'_> {
         if let AK::Name(b) = &base.kind {
             let shadowed = self.scopes.iter().any(|s| s.iter().any(|(n, _)| *n == b.name));
             if !shadowed {
+                if let Some(p) = self.is_compute_pass(&b.name) {
+                    return self.value_of(p, field, span);
+                }
                 if let Some((Symbol::Pass(p), _)) = self.names.get(&b.name).copied() {
                     return match self.target_of(p, field) {
                         Some(t) => self.ir.add_typed(

@@ -12,6 +12,8 @@ use dsl::ast::{BinOp, UnOp};
 use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
+mod compute;
+
 pub fn typecheck(ir: &mut Ir, diags: &mut Vec<Diagnostic>) {
     let mut tc = Checker { ir, diags };
     let n = tc.ir.exprs.len();
@@ -373,7 +375,8 @@ impl Checker<'_> {
             | Intrinsic::Length
             | Intrinsic::Normalize
             | Intrinsic::Project
-            | Intrinsic::ProjectOtherEye => Some(1),
+            | Intrinsic::ProjectOtherEye
+            | Intrinsic::ProjectPrevious => Some(1),
             Intrinsic::Map2(_) | Intrinsic::Dot | Intrinsic::Distance | Intrinsic::Cross => Some(2),
             Intrinsic::Map3(_) => Some(3),
         };
@@ -502,7 +505,7 @@ impl Checker<'_> {
                     (vec![a], t, Unit::None)
                 }
             }
-            Intrinsic::Project | Intrinsic::ProjectOtherEye => {
+            Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious => {
                 if self.vt(args[0]) != Ty::Vec3 {
                     return self.type_error(args[0], "a world-space point (vec3)", None);
                 }
@@ -783,23 +786,12 @@ impl Checker<'_> {
                     }
                 }
             }
-            let roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
+            let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
+            roots.extend(pass.kind.values().iter().flat_map(ObjectValue::roots));
             for id in self.ir.reachable(&roots) {
                 let e = self.ir.expr(id).clone();
                 match e.kind {
-                    ExprKind::Builtin(b) if b.needs_geometry() && !pass.kind.draws_objects() => {
-                        self.err(
-                            Diagnostic::error(
-                                codes::BAD_PASS_INPUT,
-                                format!("`{}` is only available in render passes", b.name()),
-                            )
-                            .with_primary(e.span, "no geometry in an image pass")
-                            .with_help(format!(
-                                "write `{}` to a target in a render pass and read that target here",
-                                b.name()
-                            )),
-                        );
-                    }
+                    ExprKind::Builtin(b) => self.builtin_in_kind(b, &pass.kind, e.span),
                     // A previous-frame read is no dependency within the frame,
                     // so it needs no input listing.
                     ExprKind::Target { target: t, copy } if copy != TargetCopy::Previous => {
@@ -859,6 +851,7 @@ impl Checker<'_> {
                 }
                 self.ir.passes[pi].outputs[oi].value = v;
             }
+            self.compute_values(pi);
         }
     }
 }

@@ -171,6 +171,41 @@ pub struct PassBody {
     pub outputs: Vec<OutputTarget>,
     /// Any other `key: value` settings (e.g. `clear: #000000`, `depth_test: off`).
     pub settings: Vec<Setting>,
+    /// `state name: type = first` (compute passes over objects).
+    pub states: Vec<StateDecl>,
+    /// `reduce name: type = sum(value)` (compute passes over elements).
+    pub reductions: Vec<Reduction>,
+    /// `name = value`: a state's new value.
+    pub updates: Vec<StateUpdate>,
+}
+
+/// `state name: type = first`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StateDecl {
+    pub name: Ident,
+    pub ty: Ident,
+    /// The value on the first frame (and after a reset).
+    pub first: Expr,
+    pub span: Span,
+}
+
+/// `reduce name: type = op(value)`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reduction {
+    pub name: Ident,
+    pub ty: Ident,
+    /// `sum`, `min` or `max`.
+    pub op: Ident,
+    pub value: Expr,
+    pub span: Span,
+}
+
+/// `name = value`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StateUpdate {
+    pub name: Ident,
+    pub value: Expr,
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

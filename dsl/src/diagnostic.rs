@@ -241,12 +241,20 @@ pub mod codes {
     pub const NOT_CONSTANT: &str = "E0204";
     /// A dependency cycle between passes.
     pub const PASS_CYCLE: &str = "E0301";
+    /// A per-object value (`reduce`, `out` or `state` of a compute pass) of a type it cannot have.
+    pub const BAD_VALUE_TYPE: &str = "E0205";
     /// A value written into a target of an incompatible format.
     pub const FORMAT_MISMATCH: &str = "E0302";
     /// No `output`, or an output that names no target.
     pub const NO_OUTPUT: &str = "E0303";
     /// A pass reads a target that is not listed in its inputs, or a render-only builtin in an image pass.
     pub const BAD_PASS_INPUT: &str = "E0304";
+    /// A state read before it is declared, never updated, updated twice, or an assignment to a non-state.
+    pub const STATE_ORDER: &str = "E0305";
+    /// A statement the pass kind does not have (`reduce` in a render pass, `out` in `compute(vertices)`).
+    pub const BAD_STATEMENT: &str = "E0306";
+    /// Warning: a compute pass whose values no live pass reads (it is removed).
+    pub const UNREAD_COMPUTE: &str = "W0301";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -278,6 +286,10 @@ pub mod codes {
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),
         (BAD_PASS_INPUT, "bad pass input"),
+        (BAD_VALUE_TYPE, "per-object value of a type it cannot have"),
+        (STATE_ORDER, "state read before declared, or not updated once"),
+        (BAD_STATEMENT, "statement the pass kind does not have"),
+        (UNREAD_COMPUTE, "compute pass whose values nothing reads (warning)"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

@@ -164,8 +164,11 @@ fn rule_name(r: &Rule) -> String {
         Rule::range_clause => "`in lo..hi`",
         Rule::animate_clause => "`animate { ... }`",
         Rule::pass_kind => "a pass kind such as render(scene) or image(a)",
-        Rule::pass_body | Rule::pass_stmt => "`out`, `let`, `vertex` or a setting",
+        Rule::pass_body | Rule::pass_stmt => "`out`, `let`, `state`, `reduce`, `vertex` or a setting",
         Rule::out_stmt => "`out name: format = value`",
+        Rule::state_stmt => "`state name: type = value`",
+        Rule::reduce_stmt => "`reduce name: type = sum(value)`",
+        Rule::update_stmt => "`name = value`",
         Rule::let_stmt => "`let name = value`",
         Rule::setting => "`key: value`",
         Rule::settings_block => "`{ key: value }`",
@@ -178,7 +181,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::doc_comment | Rule::doc_text => "a doc comment",
         Rule::scale_clause => "`scale`",
         Rule::pass_modifier => "a pass modifier",
-        Rule::object_kw => "`object`",
+        Rule::object_kw | Rule::object_name => "`object`",
         other => return format!("{other:?}"),
     }
     .to_string()
@@ -569,6 +572,36 @@ impl Builder {
                     });
                 }
                 Rule::setting => body.settings.push(self.setting(s)?),
+                Rule::state_stmt => {
+                    let span = self.span(&s);
+                    let mut it = s.into_inner();
+                    let name = self.ident(it.next()?);
+                    let ty = self.ident(it.next()?);
+                    let first = self.expr(it.next()?)?;
+                    body.states.push(StateDecl { name, ty, first, span });
+                }
+                Rule::reduce_stmt => {
+                    let span = self.span(&s);
+                    let mut it = s.into_inner();
+                    let name = self.ident(it.next()?);
+                    let ty = self.ident(it.next()?);
+                    let op = self.ident(it.next()?);
+                    let value = self.expr(it.next()?)?;
+                    body.reductions.push(Reduction {
+                        name,
+                        ty,
+                        op,
+                        value,
+                        span,
+                    });
+                }
+                Rule::update_stmt => {
+                    let span = self.span(&s);
+                    let mut it = s.into_inner();
+                    let name = self.ident(it.next()?);
+                    let value = self.expr(it.next()?)?;
+                    body.updates.push(StateUpdate { name, value, span });
+                }
                 _ => {}
             }
         }
@@ -729,7 +762,7 @@ impl Builder {
                 ExprKind::Color([byte(0), byte(2), byte(4), a])
             }
             Rule::string => ExprKind::Str(self.string(p)),
-            Rule::ident => ExprKind::Name(self.ident(p)),
+            Rule::ident | Rule::object_name => ExprKind::Name(self.ident(p)),
             Rule::call => ExprKind::Call(self.call(p)?),
             Rule::if_expr => {
                 let mut it = p.into_inner();

@@ -113,20 +113,7 @@ pub fn read_texture(
         },
     );
     queue.submit([encoder.finish()]);
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))?;
-    rx.recv()
-        .map_err(|e| RunError::Internal(format!("readback channel closed: {e}")))?
-        .map_err(|e| RunError::Internal(format!("readback map failed: {e}")))?;
-    let mapped = slice
-        .get_mapped_range()
-        .map_err(|e| RunError::Internal(format!("readback range failed: {e:?}")))?;
+    let mapped = map_read(device, &buffer)?;
     let mut bytes = Vec::with_capacity((unpadded * height) as usize);
     for row in 0..height as usize {
         let start = row * padded as usize;
@@ -141,4 +128,40 @@ pub fn read_texture(
         format,
         bytes,
     })
+}
+
+/// Wait for the GPU and map `buffer` (MAP_READ) for reading.
+fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<wgpu::BufferView, RunError> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))?;
+    rx.recv()
+        .map_err(|e| RunError::Internal(format!("readback channel closed: {e}")))?
+        .map_err(|e| RunError::Internal(format!("readback map failed: {e}")))?;
+    slice
+        .get_mapped_range()
+        .map_err(|e| RunError::Internal(format!("readback range failed: {e:?}")))
+}
+
+/// Copy a whole storage buffer (COPY_SRC) back to the CPU.
+pub fn read_buffer(device: &wgpu::Device, queue: &wgpu::Queue, source: &wgpu::Buffer) -> Result<Vec<u8>, RunError> {
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("npr buffer readback"),
+        size: source.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("npr buffer readback"),
+    });
+    encoder.copy_buffer_to_buffer(source, 0, &buffer, 0, source.size());
+    queue.submit([encoder.finish()]);
+    let bytes = map_read(device, &buffer)?.to_vec();
+    buffer.unmap();
+    Ok(bytes)
 }

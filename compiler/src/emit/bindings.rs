@@ -1,10 +1,10 @@
 //! Binding declarations of one pass and the manifest's `Binding` lists that
 //! describe them to the runner. Group 0 (every kind): the frame block, the
 //! style-parameter block, targets (this eye's, then the other eye's),
-//! style textures and their samplers, the linear clamp sampler. Group 1
-//! (kinds that draw objects): the `Object` block, then per-object textures.
+//! style textures and their samplers, the linear clamp sampler, the
+//! per-object values of compute passes. Group 1 (kinds that run per
+//! object): the `Object` block, then per-object textures.
 
-use super::helpers::FRAME_STRUCT;
 use super::uses::Uses;
 use super::Emitter;
 use crate::ir::*;
@@ -33,7 +33,7 @@ impl Emitter<'_> {
         };
         let mut next = 0u32;
         if uses_frame {
-            d.text.push_str(FRAME_STRUCT);
+            d.text.push_str(abi::FRAME_WGSL);
             let _ = writeln!(d.text, "@group(0) @binding({next}) var<uniform> frame: Frame;");
             d.bind(next, Resource::FrameUniforms);
             next += 1;
@@ -95,8 +95,22 @@ impl Emitter<'_> {
         if uses.linear_sampler {
             let _ = writeln!(d.text, "@group(0) @binding({next}) var samp_linear_clamp: sampler;");
             d.bind(next, Resource::LinearClampSampler);
+            next += 1;
         }
-        if kind.draws_objects() {
+        // Per-object values of earlier compute passes, this frame's.
+        for p in &uses.object_values {
+            let Some(index) = self.alloc.pass_index(*p) else {
+                continue;
+            };
+            let name = &self.ir.pass(*p).name;
+            let _ = writeln!(
+                d.text,
+                "@group(0) @binding({next}) var<storage, read> v_{name}: array<vec4<f32>>; // per-object values of `{name}`"
+            );
+            d.bind(next, Resource::ObjectValues { pass: index });
+            next += 1;
+        }
+        if kind.has_object() {
             self.object_group(&mut d, uses);
         }
         d
@@ -105,8 +119,8 @@ impl Emitter<'_> {
     /// Group 1: the `Object` block (per-object params), then the per-object
     /// textures, so one bind group per object carries its uniforms and images.
     fn object_group(&self, d: &mut Declared, uses: &Uses) {
-        d.text
-            .push_str("struct Object {\n    model: mat4x4<f32>,\n    normal_matrix: mat4x4<f32>,\n");
+        d.text.push_str("struct Object {\n");
+        d.text.push_str(abi::OBJECT_HEAD_WGSL);
         self.param_fields(&mut d.text, ParamBinding::PerObject);
         d.text
             .push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");

@@ -15,6 +15,9 @@ pub(super) enum KindCtx {
     Render,
     /// Fullscreen fragments: textures are sampled at `screen_uv`.
     Image,
+    /// Compute invocations: no texture is read as a value (the typechecker
+    /// refuses it), only passed to operators.
+    Compute,
 }
 
 impl KindCtx {
@@ -22,6 +25,7 @@ impl KindCtx {
         match kind {
             PassKind::Render { .. } => KindCtx::Render,
             PassKind::Image { .. } => KindCtx::Image,
+            PassKind::Compute { .. } => KindCtx::Compute,
         }
     }
 
@@ -30,6 +34,7 @@ impl KindCtx {
         match self {
             KindCtx::Render => "in.uv",
             KindCtx::Image => "in.screen_uv",
+            KindCtx::Compute => "vec2<f32>(0.0) /* refused by the typechecker */",
         }
     }
 }
@@ -81,6 +86,13 @@ impl Emitter<'_> {
                 let name = &self.ir.textures[t.0 as usize].name;
                 format!("textureSample(tex_{name}, samp_{name}, {})", ctx.kind.texture_uv())
             }
+            ExprKind::ObjectValue { pass, slot } => {
+                let name = &self.ir.pass(*pass).name;
+                let slot = self.alloc.value_slots.get(&(*pass, *slot)).copied().unwrap_or(u32::MAX);
+                let per_object = self.alloc.slots_per_object.get(pass).copied().unwrap_or(0);
+                format!("v_{name}[object.ids.x * {per_object}u + {slot}u]{}", slot_swizzle(e.ty))
+            }
+            ExprKind::StateOld { slot } => format!("npr_old_{slot}"),
             ExprKind::Swizzle { base, components } => {
                 let letters: String = components
                     .iter()
@@ -122,6 +134,7 @@ impl Emitter<'_> {
                         Intrinsic::Normalize => format!("({0} * inverseSqrt(max(dot({0}, {0}), 1e-30)))", a[0]),
                         Intrinsic::Project => format!("npr_project(frame.view_proj, {})", a[0]),
                         Intrinsic::ProjectOtherEye => format!("npr_project(frame.other_view_proj, {})", a[0]),
+                        Intrinsic::ProjectPrevious => format!("npr_project(frame.previous_view_proj, {})", a[0]),
                         other => format!("{}({})", other.name(), a.join(", ")),
                     }
                 }
@@ -202,6 +215,29 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::BitangentScreen => "in.bitangent_screen".into(),
         Builtin::TangentScreenCenter => "in.tangent_screen_center".into(),
         Builtin::BitangentScreenCenter => "in.bitangent_screen_center".into(),
+        Builtin::ObjectIndex => "i32(object.ids.x)".into(),
+        Builtin::ObjectId => "i32(object.ids.y)".into(),
+        Builtin::PositionPrevious => "in.position_previous".into(),
+    }
+}
+
+/// The components of a `vec4<f32>` value slot that hold a value of type `ty`.
+pub(super) fn slot_swizzle(ty: Ty) -> &'static str {
+    match ty {
+        Ty::Float => ".x",
+        Ty::Vec2 => ".xy",
+        Ty::Vec3 => ".xyz",
+        _ => "",
+    }
+}
+
+/// A value of type `ty` widened to a `vec4<f32>` slot (zeros after it).
+pub(super) fn to_slot(value: &str, ty: Ty) -> String {
+    match ty {
+        Ty::Float => format!("vec4<f32>({value}, 0.0, 0.0, 0.0)"),
+        Ty::Vec2 => format!("vec4<f32>({value}, 0.0, 0.0)"),
+        Ty::Vec3 => format!("vec4<f32>({value}, 0.0)"),
+        _ => value.to_string(),
     }
 }
 

@@ -1,36 +1,6 @@
-//! WGSL text every pass kind may include: the `Frame` uniform block and the
-//! helper functions the emitter calls (`npr_load`, `npr_project`,
-//! `npr_project_dir`, `npr_unit`). Constants only; which module includes
+//! WGSL text every pass kind may include: the helper functions the emitter calls (`npr_load`, `npr_project`,
+//! `npr_project_dir`, `npr_unit`; the `Frame` block is `abi::FRAME_WGSL`). Constants only; which module includes
 //! which is decided in `mod.rs` and the per-kind files.
-
-/// The per-frame uniform block (group 0, binding 0), laid out as
-/// `runner::render::frame_block` writes it (`FRAME_UNIFORM_SIZE` bytes).
-pub(super) const FRAME_STRUCT: &str = "struct Frame {
-    view: mat4x4<f32>,
-    proj: mat4x4<f32>,
-    view_proj: mat4x4<f32>,
-    camera_pos: vec4<f32>,
-    light_dir: vec4<f32>,     // xyz: towards the light, w: intensity
-    light_color: vec4<f32>,
-    resolution: vec2<f32>,    // output size in px
-    time: f32,                // seconds
-    frame_index: f32,
-    eye: f32,                 // 0 = left (or mono), 1 = right
-    near: f32,
-    far: f32,
-    _pad: f32,
-    // Orthographic light camera fitted to the scene bounds, for `view(light)`
-    // passes and `position.light` (z in [0, 1], w = 1).
-    light_view_proj: mat4x4<f32>,
-    // The other eye's view-projection in a stereo frame (= view_proj in mono).
-    other_view_proj: mat4x4<f32>,
-    center_view_proj: mat4x4<f32>, // stereo: the centre camera's view_proj (= view_proj in mono)
-    focal: vec4<f32>,         // xy: proj[0][0], proj[1][1] (camera.focal); zw: 0
-    eye_left: vec4<f32>,      // xyz: the left eye's position (= camera in mono)
-    eye_right: vec4<f32>,     // xyz: the right eye's position (= camera in mono)
-    camera_forward: vec4<f32>, // xyz: unit view direction
-}
-";
 
 /// `project(p)` and `project_other_eye(p)`.
 pub(super) const PROJECT_HELPER: &str = "// World point -> (screen u, screen v, NDC depth) under `view_proj`; w <= 0

@@ -63,6 +63,7 @@ pub fn build(
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),
                     },
+                    PassKind::Compute { domain, tag, values } => compute_kind(ir, alloc, *pid, *domain, tag, values, e),
                 },
                 scale: pass.scale,
                 shader: format!("{}.wgsl", pass.name),
@@ -164,4 +165,47 @@ pub fn build(
         scene_attributes: attributes,
         output,
     })
+}
+
+/// The manifest kind of a live compute pass: its live values in slot order.
+fn compute_kind(
+    ir: &Ir,
+    alloc: &Allocation,
+    pid: PassId,
+    domain: ComputeDomain,
+    tag: &Option<String>,
+    values: &[ObjectValue],
+    e: &EmittedPass,
+) -> PassKindManifest {
+    use crate::emit::compute::{ELEMENTS_ENTRY, REDUCE_OBJECTS_ENTRY, UPDATE_OBJECTS_ENTRY};
+    let mut slots: Vec<(u32, ValueSlot)> = values
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| {
+            let packed = alloc.value_slots.get(&(pid, i as u32))?;
+            Some((
+                *packed,
+                ValueSlot {
+                    name: v.name.clone(),
+                    ty: v.ty.describe().to_string(),
+                    kind: match v.rule {
+                        ValueRule::Reduce(op) => ValueKind::Reduce(op),
+                        ValueRule::Out => ValueKind::Out,
+                        ValueRule::State => ValueKind::State,
+                    },
+                },
+            ))
+        })
+        .collect();
+    slots.sort_by_key(|(p, _)| *p);
+    let over_vertices = domain == ComputeDomain::Vertices;
+    PassKindManifest::Compute {
+        domain,
+        tag: tag.clone(),
+        attributes: e.attributes.clone(),
+        values: slots.into_iter().map(|(_, s)| s).collect(),
+        history: alloc.keeps_state(ir, pid),
+        elements_entry: over_vertices.then(|| ELEMENTS_ENTRY.to_string()),
+        objects_entry: if over_vertices { REDUCE_OBJECTS_ENTRY } else { UPDATE_OBJECTS_ENTRY }.to_string(),
+    }
 }

@@ -10,6 +10,7 @@
 //! matches on the pass kind.
 
 mod bindings;
+pub mod compute;
 mod expr;
 mod helpers;
 mod image;
@@ -80,6 +81,10 @@ impl Emitter<'_> {
 
     pub fn emit_pass(&self, pid: PassId) -> EmittedPass {
         let pass = self.ir.pass(pid);
+        // A compute pass has no fragments: its own layout (`compute.rs`).
+        if let PassKind::Compute { domain, .. } = &pass.kind {
+            return self.emit_compute(pid, *domain);
+        }
         let live_outputs: Vec<(usize, &PassOutput)> = pass
             .outputs
             .iter()
@@ -101,7 +106,7 @@ impl Emitter<'_> {
         let (uses_frame, attributes) = match &pass.kind {
             // The vertex shader projects with the frame's matrices.
             PassKind::Render { vertex, .. } => (true, render::attributes(vertex, &uses)),
-            PassKind::Image { .. } => (uses.expressions_read_frame(), Vec::new()),
+            PassKind::Image { .. } | PassKind::Compute { .. } => (uses.expressions_read_frame(), Vec::new()),
         };
 
         let mut w = String::new();
@@ -139,7 +144,7 @@ impl Emitter<'_> {
             PassKind::Render { view, vertex, .. } => {
                 self.render_vertex(&mut w, pass, (*view, vertex), &attributes, &uses.builtins, &mut ctx)
             }
-            PassKind::Image { .. } => w.push_str(image::IMAGE_VERTEX),
+            PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::IMAGE_VERTEX),
         }
         // Fragment shader.
         w.push_str("struct FragOut {\n");
@@ -150,7 +155,7 @@ impl Emitter<'_> {
         w.push_str("}\n\n");
         match &pass.kind {
             PassKind::Render { .. } => render::fragment_prologue(&mut w, pass.scale),
-            PassKind::Image { .. } => w.push_str(image::FRAGMENT_PROLOGUE),
+            PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::FRAGMENT_PROLOGUE),
         }
         ctx.named.clear();
         self.emit_lets(&mut w, pass, &frag_nodes, &uses.value_uses, &mut ctx);

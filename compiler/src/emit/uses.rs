@@ -28,6 +28,8 @@ pub(super) struct Uses {
     pub linear_sampler: bool,
     /// A texture read as a value (sampled at the kind's texture coordinate).
     pub texture_as_value: bool,
+    /// Compute passes whose per-object values are read.
+    pub object_values: BTreeSet<PassId>,
     /// How many times each fragment node is read as a value (see
     /// `Emitter::value_uses`); `emit_lets` shares target loads by it.
     pub value_uses: BTreeMap<ExprId, usize>,
@@ -43,9 +45,12 @@ impl Uses {
                 Builtin::Uv
                     | Builtin::NormalWorld
                     | Builtin::PositionWorld
+                    | Builtin::PositionPrevious
                     | Builtin::Tangent
                     | Builtin::FragCoord
                     | Builtin::ScreenUv
+                    | Builtin::ObjectIndex
+                    | Builtin::ObjectId
             )
         });
         frame_builtin || self.percent || self.project
@@ -75,9 +80,12 @@ impl Emitter<'_> {
                     u.textures.insert(*t);
                 }
                 ExprKind::Call {
-                    callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye),
+                    callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious),
                     ..
                 } => u.project = true,
+                ExprKind::ObjectValue { pass, .. } => {
+                    u.object_values.insert(*pass);
+                }
                 ExprKind::Param(p) if self.bindings[p.0 as usize] == ParamBinding::Uniform => {
                     u.style_params = true;
                 }

@@ -11,11 +11,15 @@ use crate::textures::{GpuTexture, ObjectTextures};
 use crate::RunError;
 use abi::manifest::*;
 
+/// Every binding is visible to every stage a pass kind has (render and image
+/// passes: vertex and fragment; compute passes: compute).
+const ALL_STAGES: wgpu::ShaderStages = wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
+
 /// Group 1, binding 0: the object's uniform block at a dynamic offset.
 pub(super) fn object_uniform_entry(object_uniform_size: u64) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding: 0,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        visibility: ALL_STAGES,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: true,
@@ -29,7 +33,7 @@ pub(super) fn object_uniform_entry(object_uniform_size: u64) -> wgpu::BindGroupL
 pub(super) fn layout_entry(b: &Binding) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding: b.binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        visibility: ALL_STAGES,
         ty: match &b.resource {
             Resource::FrameUniforms | Resource::StyleUniforms => wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Uniform,
@@ -51,6 +55,11 @@ pub(super) fn layout_entry(b: &Binding) -> wgpu::BindGroupLayoutEntry {
             Resource::TextureSampler { .. } | Resource::LinearClampSampler => {
                 wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
             }
+            Resource::ObjectValues { .. } => wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
         },
         count: None,
     }
@@ -221,6 +230,8 @@ impl Renderer<'_> {
                         wgpu::BindingResource::Sampler(&self.textures[*texture].sampler)
                     }
                     Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
+                    // This frame's values of an earlier compute pass (validated: a compute pass).
+                    Resource::ObjectValues { pass } => self.values[*pass].as_ref()?.copy(parity, false).as_entire_binding(),
                 };
                 Some(wgpu::BindGroupEntry {
                     binding: b.binding,

@@ -7,6 +7,7 @@ use super::{objects, Renderer};
 use crate::scene::Scene;
 use crate::{animation, RunError};
 use abi::FrameBlock;
+use glam::Mat4;
 
 /// Where and when to render.
 #[derive(Debug, Clone, Copy)]
@@ -32,9 +33,38 @@ impl FrameSpec {
     }
 }
 
+/// What "the previous frame" means for `position.previous` and
+/// `project_previous`: the object transforms and view-projections (per eye
+/// slot) of the frame begun before the current one. On the first frame
+/// after the renderer is built or resized there is none, and the current
+/// frame's are used, so motion starts at zero.
+#[derive(Debug, Default)]
+pub(super) struct Motion {
+    /// The current frame's, once its uniforms were written.
+    this: Option<(Vec<Mat4>, Vec<Mat4>)>,
+    /// The previous frame's.
+    previous: Option<(Vec<Mat4>, Vec<Mat4>)>,
+}
+
+impl Motion {
+    /// A new frame begins: the current frame's becomes the previous one's.
+    pub fn begin(&mut self) {
+        if let Some(this) = self.this.take() {
+            self.previous = Some(this);
+        }
+    }
+
+    /// Record the current frame's, and give the previous frame's (the
+    /// current ones on the first frame).
+    fn record(&mut self, models: Vec<Mat4>, view_projs: Vec<Mat4>) -> (Vec<Mat4>, Vec<Mat4>) {
+        self.this = Some((models.clone(), view_projs.clone()));
+        self.previous.clone().unwrap_or((models, view_projs))
+    }
+}
+
 impl Renderer<'_> {
     /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame` in WGSL).
-    pub(super) fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> FrameBlock {
+    pub(super) fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32, previous_view_proj: Mat4) -> FrameBlock {
         let pose = scene.camera.pose(spec.time_s);
         let aspect = spec.width as f32 / spec.height as f32;
         let view = pose.view(eye);
@@ -69,7 +99,14 @@ impl Renderer<'_> {
             eye_left: [left.x, left.y, left.z, 1.0],
             eye_right: [right.x, right.y, right.z, 1.0],
             camera_forward: [forward.x, forward.y, forward.z, 0.0],
+            previous_view_proj: previous_view_proj.to_cols_array_2d(),
         }
+    }
+
+    /// The view-projection of `eye` for `spec` (as `frame_block` computes it).
+    fn view_proj(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> Mat4 {
+        let pose = scene.camera.pose(spec.time_s);
+        pose.projection(spec.width as f32 / spec.height as f32) * pose.view(eye)
     }
 
     /// Write the per-frame, style and object uniforms for `spec`. Everything
@@ -78,16 +115,20 @@ impl Renderer<'_> {
     /// `RunError::User`, and nothing is written then). Only the uniform
     /// buffers are written; meshes and bind groups stay as built.
     pub(super) fn write_uniforms(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
-        let objects = objects::object_blocks(&self.manifest, scene, self.object_stride)?;
+        let slots = self.frame_buffers.len() as u32;
+        // A stereo style renders both eyes; otherwise the requested one.
+        let eye_of = |slot: u32| if slots == 2 { slot } else { spec.eye };
+        let view_projs: Vec<Mat4> = (0..slots).map(|s| self.view_proj(scene, spec, eye_of(s))).collect();
+        let models: Vec<Mat4> = scene.objects.iter().map(|o| o.model).collect();
+        let (previous_models, previous_view_projs) = self.motion.record(models, view_projs);
+        let vertex_counts: Vec<usize> = self.meshes.iter().map(|m| m.vertex_count).collect();
+        let objects = objects::object_blocks(&self.manifest, scene, self.object_stride, &previous_models, &vertex_counts)?;
         if objects::moved(&self.bounds_models, scene) {
             (self.scene_bounds, self.caster_bounds) = objects::light_bounds(&self.manifest, scene);
             self.bounds_models = scene.objects.iter().map(|o| o.model).collect();
         }
-        let slots = self.frame_buffers.len() as u32;
         for slot in 0..slots {
-            // A stereo style renders both eyes; otherwise the requested one.
-            let eye = if slots == 2 { slot } else { spec.eye };
-            let frame = self.frame_block(scene, spec, eye);
+            let frame = self.frame_block(scene, spec, eye_of(slot), previous_view_projs[slot as usize]);
             self.queue
                 .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::bytes_of(&frame));
         }

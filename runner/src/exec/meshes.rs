@@ -37,8 +37,9 @@ pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: if data.is_empty() { &[0u8; 16] } else { data },
-            // COPY_DST: time-varying primitives are rewritten per frame.
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            // COPY_DST: time-varying primitives are rewritten per frame;
+            // STORAGE: compute passes over vertices read them.
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::STORAGE,
         })
     };
     buffers.insert(

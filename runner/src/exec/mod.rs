@@ -16,10 +16,12 @@
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
+//! - `values.rs`: compute passes' buffers (per-object values, partials);
 //! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, with
-//!   `render_pass.rs` and `image_pass.rs` the executors.
+//!   `render_pass.rs`, `image_pass.rs` and `compute_pass.rs` the executors.
 
 mod bind;
+mod compute_pass;
 mod frame;
 mod image_pass;
 mod meshes;
@@ -28,6 +30,7 @@ mod pass;
 mod render_pass;
 mod resources;
 mod scene_check;
+mod values;
 
 pub use frame::FrameSpec;
 pub use resources::{scaled_size, wgpu_format};
@@ -72,6 +75,12 @@ pub struct Renderer<'d> {
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
     /// styles with history textures.
     frames_begun: u64,
+    /// Per manifest pass: a compute pass's buffers.
+    values: Vec<Option<values::PassBuffers>>,
+    /// Object transforms and view-projections per eye slot of the frame
+    /// begun last and of the one before it: `previous_model` and
+    /// `previous_view_proj` (the current ones on the first frame).
+    motion: frame::Motion,
 }
 
 impl<'d> Renderer<'d> {
@@ -103,7 +112,7 @@ impl<'d> Renderer<'d> {
         let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
         let object_stride = manifest.object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN).max(1) * OBJECT_STRIDE_ALIGN;
         // Bad per-object params are reported here too, not only at the first frame.
-        objects::object_blocks(&manifest, scene, object_stride)?;
+        objects::object_blocks(&manifest, scene, object_stride, &[], &[])?;
         let object_count = scene.objects.len().max(1) as u64;
         let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
@@ -121,13 +130,25 @@ impl<'d> Renderer<'d> {
             textures: &textures,
             object_textures: &object_textures,
         };
+        let meshes = meshes::upload_scene(device, scene);
+        let values = values::create(device, &manifest, &meshes);
+        values::reset(queue, &values);
         let mut passes = Vec::new();
         for pass in &manifest.passes {
             let wgsl = program
                 .shaders
                 .get(&pass.shader)
                 .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
-            passes.push(PassExec::build(device, &manifest, pass, wgsl, &object_resources)?);
+            let pi = passes.len();
+            passes.push(PassExec::build(
+                device,
+                &manifest,
+                pass,
+                wgsl,
+                &object_resources,
+                &meshes,
+                values[pi].as_ref(),
+            )?);
         }
         let eyes = if manifest.is_stereo() { 2 } else { 1 };
         let frame_buffers = (0..eyes)
@@ -154,7 +175,7 @@ impl<'d> Renderer<'d> {
             object_group,
             textures,
             linear_clamp,
-            meshes: meshes::upload_scene(device, scene),
+            meshes,
             frame_buffers,
             style_buffer,
             object_buffer,
@@ -166,6 +187,8 @@ impl<'d> Renderer<'d> {
             manifest,
             sized: None,
             frames_begun: 0,
+            values,
+            motion: frame::Motion::default(),
         })
     }
 
@@ -236,6 +259,7 @@ impl<'d> Renderer<'d> {
         self.ensure_size(spec.width, spec.height);
         if begin || self.frames_begun == 0 {
             self.frames_begun += 1;
+            self.motion.begin();
         }
         if let Some(sized) = self.sized.as_mut() {
             sized.output_slot = if sized.physical.slots.len() == 2 {
@@ -279,17 +303,20 @@ impl<'d> Renderer<'d> {
             object_tags: &self.object_tags,
             object_group: &self.object_group,
             object_stride: self.object_stride,
+            parity: self.parity(),
         };
         // Stereo styles run each pass for both eyes before the next pass, so
         // a pass that reads `other_eye(...)` finds the other eye's target done.
         let parity_passes = &sized.passes[self.parity() % sized.passes.len()];
         let slots = parity_passes.len();
         for (pi, pass) in self.passes.iter().enumerate().take(count) {
-            for (slot, slot_passes) in parity_passes.iter().enumerate() {
+            // A compute pass runs once per frame, with eye slot 0's frame block.
+            let eye_slots = if pass.per_eye() { slots } else { 1 };
+            for (slot, slot_passes) in parity_passes.iter().enumerate().take(eye_slots) {
                 let timestamps = queries.map(|query_set| Timestamps {
                     query_set,
                     beginning: (slot == 0).then_some(2 * pi as u32),
-                    end: (slot + 1 == slots).then_some(2 * pi as u32 + 1),
+                    end: (slot + 1 == eye_slots).then_some(2 * pi as u32 + 1),
                 });
                 pass.encode(encoder, &slot_passes[pi], &ctx, timestamps.as_ref());
             }
@@ -319,6 +346,28 @@ impl<'d> Renderer<'d> {
             t.format,
             &t.name,
         )
+    }
+
+    /// The per-object values of compute pass `pass` (its name), as this
+    /// frame left them: per object, its value slots in manifest order
+    /// (`PassKindManifest::Compute::values`; a `vec2` in `.xy`).
+    pub fn read_object_values(&self, pass: &str) -> Result<Vec<Vec<[f32; 4]>>, RunError> {
+        let pi = self
+            .manifest
+            .passes
+            .iter()
+            .position(|p| p.name == pass)
+            .ok_or_else(|| RunError::Internal(format!("no pass `{pass}`")))?;
+        let buffers = self.values[pi]
+            .as_ref()
+            .ok_or_else(|| RunError::Internal(format!("pass `{pass}` is not a compute pass")))?;
+        let bytes = readback::read_buffer(self.device, self.queue, buffers.copy(self.parity(), false))?;
+        let vec4s: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+        Ok(vec4s
+            .chunks(buffers.slots as usize)
+            .take(self.meshes.len())
+            .map(|c| c.to_vec())
+            .collect())
     }
 
     /// The parity of the current frame: which copy of each history texture

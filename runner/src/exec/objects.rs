@@ -7,18 +7,27 @@
 use crate::scene::Scene;
 use crate::{animation, RunError};
 use abi::manifest::*;
+use abi::ObjectHead;
 use glam::{Mat4, Vec3};
 
 /// Every object's uniform block at its dynamic offset (`stride` apart, zero
-/// padded): `model`, the normal matrix (inverse transpose of `model`, or the
-/// identity where `model` is singular), then the per-object param slots.
+/// padded): the [`ObjectHead`] (`model`, the normal matrix — inverse
+/// transpose of `model`, or the identity where `model` is singular — the
+/// previous frame's `model`, and the ids: index, index + 1, vertex count),
+/// then the per-object param slots.
 /// Bindings with the wrong number of components or out of range (E0405,
 /// E0401) come back as `RunError::User`.
-pub(super) fn object_blocks(manifest: &Manifest, scene: &Scene, stride: u64) -> Result<Vec<u8>, RunError> {
+pub(super) fn object_blocks(
+    manifest: &Manifest,
+    scene: &Scene,
+    stride: u64,
+    previous_models: &[Mat4],
+    vertex_counts: &[usize],
+) -> Result<Vec<u8>, RunError> {
     let stride = stride as usize;
     let mut bytes = vec![0u8; stride * scene.objects.len()];
     let mut diags = Vec::new();
-    for (block, o) in bytes.chunks_exact_mut(stride).zip(&scene.objects) {
+    for (index, (block, o)) in bytes.chunks_exact_mut(stride).zip(&scene.objects).enumerate() {
         let params = animation::object_param_bytes(manifest, o, &mut diags);
         let normal_matrix = o.model.inverse().transpose();
         let normal_matrix = if normal_matrix.is_finite() {
@@ -26,9 +35,19 @@ pub(super) fn object_blocks(manifest: &Manifest, scene: &Scene, stride: u64) -> 
         } else {
             Mat4::IDENTITY
         };
+        let head = ObjectHead {
+            model: o.model.to_cols_array_2d(),
+            normal_matrix: normal_matrix.to_cols_array_2d(),
+            previous_model: previous_models.get(index).unwrap_or(&o.model).to_cols_array_2d(),
+            ids: [
+                index as u32,
+                index as u32 + 1,
+                vertex_counts.get(index).map_or(0, |n| *n as u32),
+                0,
+            ],
+        };
         let params_at = OBJECT_PARAMS_OFFSET as usize;
-        block[..64].copy_from_slice(bytemuck::cast_slice(&o.model.to_cols_array()));
-        block[64..params_at].copy_from_slice(bytemuck::cast_slice(&normal_matrix.to_cols_array()));
+        block[..params_at].copy_from_slice(bytemuck::bytes_of(&head));
         block[params_at..params_at + params.len()].copy_from_slice(&params);
     }
     if !diags.is_empty() {

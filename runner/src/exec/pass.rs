@@ -5,6 +5,7 @@
 //! helpers below are what the render-pipeline kinds share.
 
 use super::bind::ObjectResources;
+use super::compute_pass::ComputePassExec;
 use super::image_pass::ImagePassExec;
 use super::meshes::GpuMesh;
 use super::render_pass::RenderPassExec;
@@ -17,6 +18,8 @@ pub(super) enum PassExec {
     Render(RenderPassExec),
     /// `image`: one fullscreen triangle.
     Image(ImagePassExec),
+    /// `compute(domain)`: dispatches per object (groups 1 and 2 of its own).
+    Compute(ComputePassExec),
 }
 
 /// What a pass may read when it is recorded, besides its own state and its
@@ -28,6 +31,8 @@ pub(super) struct EncodeContext<'a> {
     pub object_group: &'a wgpu::BindGroup,
     /// Bytes between two objects' blocks (the dynamic offset step).
     pub object_stride: u64,
+    /// The frame's parity (which copy of history textures and state buffers it writes).
+    pub parity: usize,
 }
 
 /// GPU timestamps of one pass (benchmarks): the first eye slot writes the
@@ -55,6 +60,8 @@ impl PassExec {
         pass: &PassManifest,
         wgsl: &str,
         objects: &ObjectResources,
+        meshes: &[GpuMesh],
+        buffers: Option<&super::values::PassBuffers>,
     ) -> Result<PassExec, RunError> {
         Ok(match &pass.kind {
             PassKindManifest::Render { tag, attributes, .. } => PassExec::Render(RenderPassExec::build(
@@ -67,6 +74,11 @@ impl PassExec {
                 objects,
             )?),
             PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
+            PassKindManifest::Compute { .. } => {
+                let buffers = buffers
+                    .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
+                PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects, meshes, buffers)?)
+            }
         })
     }
 
@@ -75,6 +87,7 @@ impl PassExec {
         match self {
             PassExec::Render(p) => &p.layout0,
             PassExec::Image(p) => &p.layout0,
+            PassExec::Compute(p) => &p.layout0,
         }
     }
 
@@ -94,7 +107,14 @@ impl PassExec {
         match self {
             PassExec::Render(p) => p.encode(encoder, sized, ctx, timestamps),
             PassExec::Image(p) => p.encode(encoder, sized, timestamps),
+            PassExec::Compute(p) => p.encode(encoder, sized, ctx, timestamps),
         }
+    }
+
+    /// Whether the pass runs once per eye slot (render and image passes) or
+    /// once per frame (compute passes: per-object values have no eye).
+    pub fn per_eye(&self) -> bool {
+        !matches!(self, PassExec::Compute(_))
     }
 }
 

@@ -159,8 +159,11 @@ impl Renderer<'_> {
             }
             passes.push(parity_passes);
         }
-        // New textures hold no history: the next frame is frame 0 again.
+        // New textures hold no history: the next frame is frame 0 again,
+        // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
+        super::values::reset(self.queue, &self.values);
+        self.motion = super::frame::Motion::default();
         self.sized = Some(SizedResources {
             width,
             height,

@@ -1,0 +1,168 @@
+//! Typecheck what depends on the pass kind: which builtins a kind has, and
+//! the per-object values of compute passes (their types, what they may read).
+
+use super::Checker;
+use crate::ir::*;
+use dsl::{codes, Diagnostic, Span};
+use std::collections::BTreeSet;
+
+impl Checker<'_> {
+    /// A builtin read in a pass of `kind`: refused where the kind does not have it.
+    pub(super) fn builtin_in_kind(&mut self, b: Builtin, kind: &PassKind, span: Span) {
+        let refusal = match kind {
+            PassKind::Render { .. } if b == Builtin::PositionPrevious => Some((
+                "only in `compute(vertices)` passes",
+                "the previous position is an element value of compute passes; pass what a render pass needs through a per-object value",
+            )),
+            PassKind::Render { .. } => None,
+            PassKind::Image { .. } if b.needs_geometry() => Some((
+                "no geometry in an image pass",
+                "write it to a target in a render pass and read that target here",
+            )),
+            PassKind::Image { .. } if b.needs_object() => Some((
+                "no object in an image pass",
+                "write `object.id` to a target in a render pass (an ID image) and read that target here",
+            )),
+            PassKind::Image { .. } => None,
+            PassKind::Compute {
+                domain: ComputeDomain::Vertices,
+                ..
+            } if !b.in_vertex_elements() => Some((
+                "not a value of a vertex",
+                "a pass over vertices has each vertex's `position`, `position.previous`, `normal`, `uv` and the frame values",
+            )),
+            PassKind::Compute {
+                domain: ComputeDomain::Objects,
+                ..
+            } if b.needs_geometry() => Some((
+                "no geometry in a pass over objects",
+                "reduce what you need over `compute(vertices)` and read its per-object values here",
+            )),
+            PassKind::Compute { .. } => None,
+        };
+        if let Some((label, help)) = refusal {
+            self.err(
+                Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!("`{}` is not available in a `{}` pass", b.name(), kind.name()),
+                )
+                .with_primary(span, label)
+                .with_help(help),
+            );
+        }
+    }
+
+    /// The values of compute pass `pi`: each evaluates to its declared type
+    /// (an int converts to float; reductions sum float vectors only), and
+    /// reads targets and textures only as operator arguments (a compute
+    /// invocation has no pixel to read a value at).
+    pub(super) fn compute_values(&mut self, pi: usize) {
+        let PassKind::Compute { values, .. } = &self.ir.passes[pi].kind else {
+            return;
+        };
+        let values = values.clone();
+        let mut checked = values.clone();
+        for (v, out) in values.iter().zip(checked.iter_mut()) {
+            if v.ty == Ty::Unknown {
+                continue;
+            }
+            out.value = self.value_of_type(v.value, v, "its value");
+            if let Some(first) = v.first {
+                out.first = Some(self.value_of_type(first, v, "its first value"));
+                self.first_reads_no_state(first, v);
+            }
+        }
+        self.no_pixel_reads(&checked);
+        if let PassKind::Compute { values, .. } = &mut self.ir.passes[pi].kind {
+            *values = checked;
+        }
+    }
+
+    /// `id` brought to `v.ty`, or reported.
+    fn value_of_type(&mut self, id: ExprId, v: &ObjectValue, what: &str) -> ExprId {
+        if self.is_error(id) {
+            return id;
+        }
+        if let Some(c) = self.coerce(id, v.ty) {
+            return c;
+        }
+        let found = self.vt(id);
+        let (code, message) = match v.rule {
+            ValueRule::Reduce(op) if !found.is_numeric() => (
+                codes::BAD_VALUE_TYPE,
+                format!("cannot take the {} of {} over elements", op.name(), found.describe()),
+            ),
+            _ => (
+                codes::TYPE_MISMATCH,
+                format!("{what} is {}, but `{}` is {}", found.describe(), v.name, v.ty.describe()),
+            ),
+        };
+        self.err(
+            Diagnostic::error(code, message)
+                .with_primary(self.ir.expr(id).span, format!("this is {}", found.describe()))
+                .with_secondary(v.name_span, format!("`{}` is declared {}", v.name, v.ty.describe()))
+                .with_help(match found {
+                    Ty::Bool => "count a condition with `if c { 1.0 } else { 0.0 }`".to_string(),
+                    _ => format!("give `{}` the type of its value, or convert the value", v.name),
+                }),
+        );
+        id
+    }
+
+    /// A state's first value is what it holds before any frame wrote it,
+    /// so it cannot depend on a state (through a `let`, say).
+    fn first_reads_no_state(&mut self, first: ExprId, v: &ObjectValue) {
+        let read = self
+            .ir
+            .reachable(&[first])
+            .into_iter()
+            .find(|n| matches!(self.ir.expr(*n).kind, ExprKind::StateOld { .. }));
+        if let Some(n) = read {
+            self.err(
+                Diagnostic::error(
+                    codes::STATE_ORDER,
+                    format!("the first value of state `{}` reads a state", v.name),
+                )
+                .with_primary(self.ir.expr(n).span, "a state, which has no value before the first frame")
+                .with_secondary(v.name_span, "this state's first value")
+                .with_help("compute the first value from per-object values, params and frame values only"),
+            );
+        }
+    }
+
+    fn no_pixel_reads(&mut self, values: &[ObjectValue]) {
+        let roots: Vec<ExprId> = values.iter().flat_map(ObjectValue::roots).collect();
+        let nodes = self.ir.reachable(&roots);
+        let mut handles: BTreeSet<ExprId> = BTreeSet::new();
+        for n in &nodes {
+            if let ExprKind::Call {
+                callee: Callee::Operator(i),
+                args,
+            } = &self.ir.expr(*n).kind
+            {
+                for (p, a) in stdlib::all()[*i as usize].params.iter().zip(args) {
+                    if matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
+                        handles.insert(*a);
+                    }
+                }
+            }
+        }
+        for n in nodes {
+            let e = self.ir.expr(n);
+            let what = match e.kind {
+                ExprKind::Target { .. } => "a target",
+                ExprKind::Texture(_) => "a texture",
+                _ => continue,
+            };
+            if handles.contains(&n) {
+                continue;
+            }
+            let span = e.span;
+            self.err(
+                Diagnostic::error(codes::BAD_PASS_INPUT, format!("{what} read as a value in a compute pass"))
+                    .with_primary(span, "a compute invocation has no pixel or uv to read it at")
+                    .with_help("pass it to an operator that reads it at a position you give"),
+            );
+        }
+    }
+}
