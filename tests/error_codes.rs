@@ -48,7 +48,8 @@ fn check(code: &str, (diags, rendered): (Vec<Diagnostic>, String)) {
 fn check_case(code: &str, name: &str, (diags, rendered): (Vec<Diagnostic>, String)) {
     let first = diags.first().expect("at least one diagnostic");
     assert_eq!(first.code, code, "wrong code; rendered:\n{rendered}");
-    assert!(rendered.contains(&format!("error[{code}]")), "{rendered}");
+    let severity = if first.is_error() { "error" } else { "warning" };
+    assert!(rendered.contains(&format!("{severity}[{code}]")), "{rendered}");
     insta::assert_snapshot!(name, rendered);
 }
 
@@ -206,6 +207,77 @@ fn e0303_no_output() {
 fn e0304_bad_pass_input() {
     let text = style("pass g: render(scene) {\n  out n: rgba16float = vec4(normal, 1.0)\n}\npass p: image() {\n  out color: rgba8unorm = g.n\n}\noutput p.color\n");
     check("E0304", compile_errors(&text, &scratch("e0304")));
+}
+
+/// Compile `text`, which must succeed, and return its rendered warnings.
+fn compile_warnings(text: &str) -> (Vec<Diagnostic>, String) {
+    let mut sources = SourceMap::new();
+    match compiler::compile_source(
+        "case.npr",
+        text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    ) {
+        Ok(c) => {
+            let r = dsl::diagnostic::render(&c.warnings, &sources, false);
+            (c.warnings, r)
+        }
+        Err(CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(CompileError::Internal(e)) => panic!("internal error: {e}"),
+    }
+}
+
+/// A vertex pass summing a bool, a state read before its declaration, a
+/// reduction in a render pass, and a compute pass nobody reads.
+const SUMS: &str = "pass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\n";
+
+#[test]
+fn e0205_a_reduction_over_a_type_it_cannot_sum() {
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce lit: float = sum(normal.y > 0.0)\n}\npass shade: render(scene) {\n  out c: r32float = sums.lit\n}\noutput shade.c\n",
+    );
+    check("E0205", compile_errors(&text, &scratch("e0205")));
+}
+
+#[test]
+fn e0205_a_per_object_value_of_a_type_it_cannot_have() {
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce n: int = sum(1)\n}\npass shade: render(scene) {\n  out c: r32float = sums.n\n}\noutput shade.c\n",
+    );
+    check_case("E0205", "E0205_type", compile_errors(&text, &scratch("e0205t")));
+}
+
+#[test]
+fn e0305_state_read_before_it_is_declared() {
+    let text = style(&format!(
+        "{SUMS}pass follow: compute(objects) {{\n  let twice = 2.0 * origin\n  state origin: float = sums.n\n  origin = twice\n}}\npass shade: render(scene) {{\n  out c: r32float = follow.origin\n}}\noutput shade.c\n"
+    ));
+    check("E0305", compile_errors(&text, &scratch("e0305")));
+}
+
+#[test]
+fn e0305_a_state_that_is_never_updated() {
+    let text = style(
+        "pass follow: compute(objects) {\n  state origin: vec2 = vec2(0.0)\n}\npass shade: render(scene) {\n  out c: rg32float = follow.origin\n}\noutput shade.c\n",
+    );
+    check_case("E0305", "E0305_not_updated", compile_errors(&text, &scratch("e0305u")));
+}
+
+#[test]
+fn e0306_a_statement_the_pass_kind_does_not_have() {
+    let text = style(
+        "pass shade: render(scene) {\n  reduce n: float = sum(1.0)\n  out c: r32float = 1.0\n}\noutput shade.c\n",
+    );
+    check("E0306", compile_errors(&text, &scratch("e0306")));
+}
+
+#[test]
+fn w0301_a_compute_pass_nobody_reads() {
+    let text = style(&format!(
+        "{SUMS}pass shade: render(scene) {{\n  out c: r32float = 1.0\n}}\noutput shade.c\n"
+    ));
+    check("W0301", compile_warnings(&text));
 }
 
 #[test]

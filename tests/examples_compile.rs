@@ -49,8 +49,25 @@ fn every_example_compiles_and_validates_with_naga() {
                 )
                 .validate(&module)
                 .unwrap_or_else(|e| panic!("{}: {file}: {}", path.display(), e.emit_to_string(wgsl)));
-                assert!(module.entry_points.iter().any(|e| e.name == "fs_main"));
-                assert!(module.entry_points.iter().any(|e| e.name == "vs_main"));
+                // Every entry point the manifest names exists, in its stage.
+                let pass = c
+                    .manifest
+                    .passes
+                    .iter()
+                    .find(|p| p.shader == *file)
+                    .expect("a pass per shader");
+                for (field, entry) in pass.kind.entries() {
+                    let stage = match field {
+                        "vertex_entry" => naga::ShaderStage::Vertex,
+                        "fragment_entry" => naga::ShaderStage::Fragment,
+                        _ => naga::ShaderStage::Compute,
+                    };
+                    assert!(
+                        module.entry_points.iter().any(|e| e.name == entry && e.stage == stage),
+                        "{}: {file}: no {stage:?} entry `{entry}`",
+                        path.display()
+                    );
+                }
             }
         }
     }

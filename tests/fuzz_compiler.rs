@@ -111,6 +111,11 @@ const FIXED_TOKENS: &[&str] = &[
     "compute",
     "reduce",
     "lines",
+    "objects",
+    "vertices",
+    "sum",
+    "min",
+    "max",
     "scene",
     "view",
     "light",
@@ -160,7 +165,18 @@ fn token_list_covers_every_keyword_builtin_and_pass_kind() {
         .iter()
         .map(String::as_str)
         .chain(Builtin::SPELLINGS.iter().map(|(s, _)| *s))
-        .chain(["render", "image", "compute", "lines", "reduce", "previous", "other_eye"])
+        .chain([
+            "render",
+            "image",
+            "compute",
+            "lines",
+            "reduce",
+            "state",
+            "objects",
+            "vertices",
+            "previous",
+            "other_eye",
+        ])
     {
         assert!(t.iter().any(|x| x == needed), "fuzz token list lacks `{needed}`");
     }

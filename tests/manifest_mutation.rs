@@ -20,8 +20,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::OnceLock;
 
 /// Styles with render and image passes, a noise texture, aliased targets,
-/// style and per-object uniforms (parameters kept).
-const STYLES: &[&str] = &["examples/edge_breakup.npr", "examples/rounded_shadows.npr"];
+/// style and per-object uniforms (parameters kept), compute passes over
+/// vertices and objects with per-object values read by a render pass.
+const STYLES: &[&str] = &[
+    "examples/edge_breakup.npr",
+    "examples/rounded_shadows.npr",
+    "examples/object_centroids.npr",
+];
 
 /// A compiled style: its manifest as JSON and its (file, WGSL) shaders.
 type Compiled = (Value, Vec<(String, String)>);

@@ -199,7 +199,8 @@ pub enum ReduceOp {
 }
 
 impl ReduceOp {
-    pub const ALL: [(&'static str, ReduceOp); 3] = [("sum", ReduceOp::Sum), ("min", ReduceOp::Min), ("max", ReduceOp::Max)];
+    pub const ALL: [(&'static str, ReduceOp); 3] =
+        [("sum", ReduceOp::Sum), ("min", ReduceOp::Min), ("max", ReduceOp::Max)];
 
     pub fn name(self) -> &'static str {
         match self {

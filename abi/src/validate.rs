@@ -13,6 +13,8 @@ use std::collections::BTreeSet;
 pub const MAX_PASS_OUTPUTS: usize = 8;
 /// Largest pass or target scale, relative to the output size (the compiler's range).
 pub const MAX_SCALE: f64 = 4.0;
+/// Largest binding number (wgpu's `max_bindings_per_bind_group` is 1000).
+pub const MAX_BINDING: u32 = 999;
 /// Most per-object value slots of one compute pass (the compiler's limit).
 pub const MAX_VALUE_SLOTS: usize = 64;
 /// Largest uniform block (wgpu's default `max_uniform_buffer_binding_size`).
@@ -286,6 +288,12 @@ impl Manifest {
         let mut numbers = BTreeSet::new();
         for (k, b) in p.bindings.iter().enumerate() {
             let f = format!("{field}.bindings[{k}]");
+            if b.binding > MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is past {MAX_BINDING}", b.binding),
+                );
+            }
             if !numbers.insert(b.binding) {
                 return bad(format!("{f}.binding"), format!("binding {} appears twice", b.binding));
             }
@@ -340,7 +348,10 @@ impl Manifest {
                         return bad(f, format!("pass `{}` is not a compute pass", self.passes[*pass].name));
                     }
                     if matches!(p.kind, PassKindManifest::Image { .. }) {
-                        return bad(f, format!("image pass `{}` has no object to read per-object values for", p.name));
+                        return bad(
+                            f,
+                            format!("image pass `{}` has no object to read per-object values for", p.name),
+                        );
                     }
                 }
                 Resource::FrameUniforms | Resource::StyleUniforms | Resource::LinearClampSampler => {}
@@ -356,6 +367,12 @@ impl Manifest {
         let mut numbers = BTreeSet::from([0]);
         for (k, b) in p.object_bindings.iter().enumerate() {
             let f = format!("{field}.object_bindings[{k}]");
+            if b.binding > MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is past {MAX_BINDING}", b.binding),
+                );
+            }
             if !numbers.insert(b.binding) {
                 return bad(
                     format!("{f}.binding"),
@@ -396,17 +413,27 @@ impl Manifest {
             return Ok(());
         };
         if !p.outputs.is_empty() {
-            return bad(format!("{field}.outputs"), format!("compute pass `{}` writes targets", p.name));
+            return bad(
+                format!("{field}.outputs"),
+                format!("compute pass `{}` writes targets", p.name),
+            );
         }
         if values.is_empty() || values.len() > MAX_VALUE_SLOTS {
             return bad(
                 format!("{field}.kind.values"),
-                format!("compute pass `{}` has {} values; 1..={MAX_VALUE_SLOTS} are allowed", p.name, values.len()),
+                format!(
+                    "compute pass `{}` has {} values; 1..={MAX_VALUE_SLOTS} are allowed",
+                    p.name,
+                    values.len()
+                ),
             );
         }
         for (k, v) in values.iter().enumerate() {
             if !["float", "vec2", "vec3", "vec4"].contains(&v.ty.as_str()) {
-                return bad(format!("{field}.kind.values[{k}].ty"), format!("`{}` is not a value type", v.ty));
+                return bad(
+                    format!("{field}.kind.values[{k}].ty"),
+                    format!("`{}` is not a value type", v.ty),
+                );
             }
             let reduces = matches!(v.kind, ValueKind::Reduce(_));
             if reduces != (*domain == ComputeDomain::Vertices) {
@@ -424,7 +451,10 @@ impl Manifest {
             );
         }
         if !over_vertices && !attributes.is_empty() {
-            return bad(format!("{field}.kind.attributes"), "a pass over objects reads no vertex attributes");
+            return bad(
+                format!("{field}.kind.attributes"),
+                "a pass over objects reads no vertex attributes",
+            );
         }
         Ok(())
     }

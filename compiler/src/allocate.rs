@@ -204,7 +204,11 @@ fn value_buffers(ir: &Ir, live: &Live, alloc: &mut Allocation, report: &mut Repo
                 "over {}: {} per object ({}){}",
                 domain.name(),
                 names.join(", "),
-                if per_object == 1 { "1 vec4".to_string() } else { format!("{per_object} vec4s") },
+                if per_object == 1 {
+                    "1 vec4".to_string()
+                } else {
+                    format!("{per_object} vec4s")
+                },
                 if state {
                     "; keeps state: two copies, reset with the scene, the size or the style"
                 } else {

@@ -26,7 +26,11 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     for (pi, pass) in ir.passes.iter().enumerate() {
         for id in ir.reachable(&pass_roots(pass)) {
             let e = ir.expr(id);
-            let read = e.kind.target_read().map(|t| t.pass).or(e.kind.value_read().map(|(p, _)| p));
+            let read = e
+                .kind
+                .target_read()
+                .map(|t| t.pass)
+                .or(e.kind.value_read().map(|(p, _)| p));
             if let Some(p) = read {
                 if !reads[pi].iter().any(|(q, _)| *q == p) {
                     reads[pi].push((p, e.span));

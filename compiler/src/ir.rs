@@ -291,7 +291,11 @@ impl Builtin {
     /// what needs the light camera.
     pub fn in_vertex_elements(self) -> bool {
         use Builtin::*;
-        !self.needs_geometry() || matches!(self, Uv | NormalWorld | NormalView | PositionWorld | PositionView | ViewDir | Depth | PositionPrevious)
+        !self.needs_geometry()
+            || matches!(
+                self,
+                Uv | NormalWorld | NormalView | PositionWorld | PositionView | ViewDir | Depth | PositionPrevious
+            )
     }
 }
 
@@ -428,10 +432,15 @@ pub enum ExprKind {
     Texture(TextureId),
     /// A per-object value of a compute pass (`sums.area`) for the object
     /// being drawn or computed, as this frame's run of that pass left it.
-    ObjectValue { pass: PassId, slot: u32 },
+    ObjectValue {
+        pass: PassId,
+        slot: u32,
+    },
     /// Inside the compute pass that owns `state` slot `slot`: its value from
     /// the previous frame, or its first value on the first frame.
-    StateOld { slot: u32 },
+    StateOld {
+        slot: u32,
+    },
     /// `.xyz`, `.rg`: component indices.
     Swizzle {
         base: ExprId,

@@ -126,7 +126,7 @@ pub fn run(
         report.push(
             "requires",
             format!("attribute `{}`", a.name()),
-            "read by a live render pass".into(),
+            "read by a live render or compute pass".into(),
         );
     }
     st.done("emit", &ir);

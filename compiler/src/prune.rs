@@ -24,7 +24,11 @@ pub struct Live {
 impl Live {
     /// The live slots of a compute pass, in slot order.
     pub fn value_slots(&self, pass: PassId) -> Vec<u32> {
-        self.values.iter().filter(|(p, _)| *p == pass).map(|(_, s)| *s).collect()
+        self.values
+            .iter()
+            .filter(|(p, _)| *p == pass)
+            .map(|(_, s)| *s)
+            .collect()
     }
 }
 

@@ -900,7 +900,11 @@ impl Resolver<'_> {
             *values = self.compute_values(domain, p);
             self.check_value_names(values);
         }
-        let targets = if compute_domain.is_some() { &[][..] } else { &p.body.outputs[..] };
+        let targets = if compute_domain.is_some() {
+            &[][..]
+        } else {
+            &p.body.outputs[..]
+        };
         for o in targets.iter().take(MAX_OUTPUTS_PER_PASS) {
             if seen.contains(&o.name.name.as_str()) {
                 self.error(

@@ -336,3 +336,73 @@ fn an_output_without_a_target_is_an_internal_error() {
     assert!(err.detail.contains("`d.c`"), "{}", err.detail);
     assert_eq!(err.to_diagnostic().code, dsl::codes::INTERNAL);
 }
+
+// ---------------------------------------------------------------- compute
+
+const COMPUTE: &str = r#"style "compute"
+pass sums: compute(vertices) {
+  reduce n: float = sum(1.0)
+  reduce unread: vec3 = sum(position)
+  reduce c: vec2 = sum(project(position).xy)
+}
+pass follow: compute(objects) {
+  state o: vec2 = vec2(0.0)
+  state idle: float = 0.0
+  o = o + sums.c / max(sums.n, 1.0)
+  idle = idle + 1.0
+  out k: float = o.x
+}
+pass spare: compute(objects) {
+  out z: float = sums.n
+}
+pass shade: render(scene) {
+  out c: r32float = follow.k
+}
+output shade.c
+"#;
+
+#[test]
+fn prune_keeps_the_values_a_live_pass_reads_and_the_states_they_read() {
+    let (ir, graph) = front(COMPUTE);
+    let mut report = Report::default();
+    let live = prune(&ir, &graph, &mut report);
+    let (sums, follow) = (pass_id(&ir, "sums"), pass_id(&ir, "follow"));
+    // `follow.k` reads state `o` (slot 2 after k), which reads sums.c and sums.n;
+    // `idle` and `sums.unread` are read by nothing; `spare` by no live pass.
+    assert_eq!(live.value_slots(follow), vec![0, 1]);
+    assert_eq!(live.value_slots(sums), vec![0, 2]);
+    assert!(!live.passes.contains(&pass_id(&ir, "spare")));
+    let removed = entries(&report, "removed");
+    for what in ["value `sums.unread`", "value `follow.idle`", "pass `spare`"] {
+        assert!(
+            removed.iter().any(|(w, _)| w == what),
+            "{what} not reported: {removed:?}"
+        );
+    }
+    let warnings = compiler::prune::unread_compute_passes(&ir, &live);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].message.contains("`spare`"));
+}
+
+#[test]
+fn allocate_packs_live_values_and_gives_state_a_written_flag() {
+    let (ir, alloc, report) = allocated(COMPUTE);
+    let (sums, follow) = (pass_id(&ir, "sums"), pass_id(&ir, "follow"));
+    // sums: n and c packed into slots 0 and 1 (unread dropped); no state.
+    assert_eq!(alloc.value_slots.get(&(sums, 0)), Some(&0));
+    assert_eq!(alloc.value_slots.get(&(sums, 2)), Some(&1));
+    assert_eq!(alloc.value_slots.get(&(sums, 1)), None);
+    assert_eq!(alloc.slots_per_object[&sums], 2);
+    assert!(!alloc.keeps_state(&ir, sums));
+    // follow: k, o, and the flag.
+    assert_eq!(alloc.slots_per_object[&follow], 3);
+    assert!(alloc.keeps_state(&ir, follow));
+    assert_eq!(alloc.pass_index(follow), Some(1));
+    let buffers = entries(&report, "buffer");
+    assert!(
+        buffers
+            .iter()
+            .any(|(w, why)| w == "compute pass `follow`" && why.contains("keeps state")),
+        "{buffers:?}"
+    );
+}

@@ -36,7 +36,10 @@ pub(super) fn attributes(domain: ComputeDomain, builtins: &std::collections::BTr
         return Vec::new();
     }
     let mut a = vec![Attribute::Position];
-    if builtins.iter().any(|b| matches!(b, Builtin::NormalWorld | Builtin::NormalView)) {
+    if builtins
+        .iter()
+        .any(|b| matches!(b, Builtin::NormalWorld | Builtin::NormalView))
+    {
         a.push(Attribute::Normal);
     }
     if builtins.contains(&Builtin::Uv) {
@@ -109,7 +112,9 @@ impl Emitter<'_> {
                 a.name()
             );
         }
-        w.push_str("@group(2) @binding(0) var<storage, read_write> npr_values: array<vec4<f32>>; // this frame's values\n");
+        w.push_str(
+            "@group(2) @binding(0) var<storage, read_write> npr_values: array<vec4<f32>>; // this frame's values\n",
+        );
         match domain {
             ComputeDomain::Vertices => w.push_str(
                 "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per workgroup\n\
@@ -133,7 +138,10 @@ impl Emitter<'_> {
             w.push_str(UNIT_HELPER);
         }
         self.emit_operators(&mut w, &uses.operators);
-        let _ = writeln!(w, "// vec4 slots per object in `npr_values`.\nconst NPR_SLOTS: u32 = {per_object}u;\n");
+        let _ = writeln!(
+            w,
+            "// vec4 slots per object in `npr_values`.\nconst NPR_SLOTS: u32 = {per_object}u;\n"
+        );
         let mut ctx = PassCtx {
             kind: super::expr::KindCtx::of(&pass.kind),
             named: Default::default(),
@@ -144,9 +152,16 @@ impl Emitter<'_> {
             ComputeDomain::Vertices => {
                 self.vertex_stages(&mut w, pass, &live, &attributes, &nodes, &uses.value_uses, &mut ctx)
             }
-            ComputeDomain::Objects => {
-                self.object_update(&mut w, pass, &live, state, per_object, &nodes, &uses.value_uses, &mut ctx)
-            }
+            ComputeDomain::Objects => self.object_update(
+                &mut w,
+                pass,
+                &live,
+                state,
+                per_object,
+                &nodes,
+                &uses.value_uses,
+                &mut ctx,
+            ),
         }
         EmittedPass {
             wgsl: w,
@@ -252,7 +267,11 @@ fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
             );
             slots.push(to_slot(&self.expr(v.value, ctx), v.ty));
         }
-        let _ = writeln!(w, "    return array<vec4<f32>, {n}>(\n        {},\n    );\n}}\n", slots.join(",\n        "));
+        let _ = writeln!(
+            w,
+            "    return array<vec4<f32>, {n}>(\n        {},\n    );\n}}\n",
+            slots.join(",\n        ")
+        );
         let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
         // Element stage.
         let _ = writeln!(
@@ -270,7 +289,11 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
             identities.join(", ")
         );
         for (k, op) in ops.iter().enumerate() {
-            let _ = writeln!(w, "            acc[{k}] = {};", combine(*op, &format!("acc[{k}]"), &format!("e[{k}]")));
+            let _ = writeln!(
+                w,
+                "            acc[{k}] = {};",
+                combine(*op, &format!("acc[{k}]"), &format!("e[{k}]"))
+            );
         }
         w.push_str("        }\n    }\n    let base = (object.ids.x * npr_dispatch.x + wg.x) * NPR_REDUCED;\n");
         for (k, op) in ops.iter().enumerate() {

@@ -206,6 +206,11 @@ fn compute_kind(
         values: slots.into_iter().map(|(_, s)| s).collect(),
         history: alloc.keeps_state(ir, pid),
         elements_entry: over_vertices.then(|| ELEMENTS_ENTRY.to_string()),
-        objects_entry: if over_vertices { REDUCE_OBJECTS_ENTRY } else { UPDATE_OBJECTS_ENTRY }.to_string(),
+        objects_entry: if over_vertices {
+            REDUCE_OBJECTS_ENTRY
+        } else {
+            UPDATE_OBJECTS_ENTRY
+        }
+        .to_string(),
     }
 }

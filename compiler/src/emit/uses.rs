@@ -80,7 +80,8 @@ impl Emitter<'_> {
                     u.textures.insert(*t);
                 }
                 ExprKind::Call {
-                    callee: Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious),
+                    callee:
+                        Callee::Intrinsic(Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious),
                     ..
                 } => u.project = true,
                 ExprKind::ObjectValue { pass, .. } => {

@@ -17,8 +17,12 @@ use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
 /// The value types a per-object slot (one `vec4<f32>`) can hold.
-pub(super) const VALUE_TYPES: [(&str, Ty); 4] =
-    [("float", Ty::Float), ("vec2", Ty::Vec2), ("vec3", Ty::Vec3), ("vec4", Ty::Vec4)];
+pub(super) const VALUE_TYPES: [(&str, Ty); 4] = [
+    ("float", Ty::Float),
+    ("vec2", Ty::Vec2),
+    ("vec3", Ty::Vec3),
+    ("vec4", Ty::Vec4),
+];
 
 /// A per-object value as declared, before its pass body is resolved.
 #[derive(Debug, Clone)]
@@ -66,7 +70,10 @@ impl Resolver<'_> {
     /// `compute(objects)`, `compute(vertices)`, optionally with a tag:
     /// `compute(vertices, boats)`.
     pub(super) fn compute_kind(&mut self, p: &ast::PassDecl) -> PassKind {
-        let domains = [("objects", ComputeDomain::Objects), ("vertices", ComputeDomain::Vertices)];
+        let domains = [
+            ("objects", ComputeDomain::Objects),
+            ("vertices", ComputeDomain::Vertices),
+        ];
         let (domain, tag) = match p.kind.args.as_slice() {
             [d, rest @ ..] if domains.iter().any(|(n, _)| *n == d.name) => {
                 let domain = domains.iter().find(|(n, _)| *n == d.name).map(|(_, x)| *x);
@@ -89,8 +96,8 @@ impl Resolver<'_> {
                     Some(d) => (d.span, format!("`{}` is not a compute domain", d.name)),
                     None => (p.kind.span, "no domain".to_string()),
                 };
-                let mut d = Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain")
-                    .with_primary(span, found);
+                let mut d =
+                    Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain").with_primary(span, found);
                 d = match other.first().and_then(|a| did_you_mean(&a.name, domains.iter().map(|(n, _)| *n))) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
                     None => d.with_help(
@@ -122,7 +129,7 @@ impl Resolver<'_> {
                 name: s.name.name.clone(),
                 slot: (first_state + i) as u32,
                 ty: declared.get(first_state + i).map_or(Ty::Unknown, |v| v.ty),
-                declared_at: s.span,
+                declared_at: s.name.span,
             })
             .collect();
     }
@@ -133,10 +140,13 @@ impl Resolver<'_> {
         let s = self.states.iter().find(|s| s.name == id.name)?.clone();
         if id.span.file == s.declared_at.file && id.span.start < s.declared_at.start {
             self.error(
-                Diagnostic::error(codes::STATE_ORDER, format!("state `{}` is read before it is declared", id.name))
-                    .with_primary(id.span, "read here")
-                    .with_secondary(s.declared_at, "declared here")
-                    .with_help(format!("move `state {}: ...` above its first use", id.name)),
+                Diagnostic::error(
+                    codes::STATE_ORDER,
+                    format!("state `{}` is read before it is declared", id.name),
+                )
+                .with_primary(id.span, "read here")
+                .with_secondary(s.declared_at, "declared here")
+                .with_help(format!("move `state {}: ...` above its first use", id.name)),
             );
             return Some(self.ir.add(ExprKind::Error, id.span));
         }
@@ -153,7 +163,11 @@ impl Resolver<'_> {
             let names: Vec<String> = declared.iter().map(|v| v.name.clone()).collect();
             let mut d = Diagnostic::error(
                 codes::UNKNOWN_NAME,
-                format!("compute pass `{}` has no value `{}`", self.ir.pass(pass).name, field.name),
+                format!(
+                    "compute pass `{}` has no value `{}`",
+                    self.ir.pass(pass).name,
+                    field.name
+                ),
             )
             .with_primary(field.span, "unknown value");
             d = match did_you_mean(&field.name, names.iter().map(String::as_str)) {
@@ -172,9 +186,9 @@ impl Resolver<'_> {
                     format!("`{pass_name}.{}` is a per-object value, read outside a pass that has an object", field.name),
                 )
                 .with_primary(span, "no object is being drawn or computed here")
-                .with_help(format!(
-                    "read it in a `render(...)` or `compute(...)` pass, write what you need to a target, and read that target here"
-                )),
+                .with_help(
+                    "read it in a `render(...)` or `compute(...)` pass, write what you need to a target, and read that target here",
+                ),
             );
             return self.ir.add(ExprKind::Error, span);
         }
@@ -209,7 +223,12 @@ impl Resolver<'_> {
                 }
             };
             if domain == ComputeDomain::Objects {
-                self.wrong_statement(r.span, "`reduce`", "a `compute(objects)` pass", "reductions run over elements: write `compute(vertices)`, or compute the value with `out` here");
+                self.wrong_statement(
+                    r.span,
+                    "`reduce`",
+                    "a `compute(objects)` pass",
+                    "reductions run over elements: write `compute(vertices)`, or compute the value with `out` here",
+                );
             }
             let value = self.expr(&r.value);
             values.push(self.object_value(&r.name, &r.ty, ValueRule::Reduce(op), value, None, r.span));
@@ -223,7 +242,12 @@ impl Resolver<'_> {
         }
         for s in &b.states {
             if domain == ComputeDomain::Vertices {
-                self.wrong_statement(s.span, "`state`", "a `compute(vertices)` pass", "state is kept per object: declare it in a `compute(objects)` pass");
+                self.wrong_statement(
+                    s.span,
+                    "`state`",
+                    "a `compute(vertices)` pass",
+                    "state is kept per object: declare it in a `compute(objects)` pass",
+                );
             }
             // The first value may not read the state itself.
             let saved = std::mem::take(&mut self.states);
@@ -259,14 +283,19 @@ impl Resolver<'_> {
             self.error(
                 Diagnostic::error(codes::LIMIT_EXCEEDED, "too many per-object values in one compute pass")
                     .with_primary(values[MAX_VALUE_SLOTS].name_span, "one too many")
-                    .with_help(format!("a compute pass may make at most {MAX_VALUE_SLOTS} values; split it into two passes")),
+                    .with_help(format!(
+                        "a compute pass may make at most {MAX_VALUE_SLOTS} values; split it into two passes"
+                    )),
             );
         }
         for u in &b.updates {
             if !b.states.iter().any(|s| s.name.name == u.name.name) {
                 let names: Vec<&str> = b.states.iter().map(|s| s.name.name.as_str()).collect();
-                let mut d = Diagnostic::error(codes::STATE_ORDER, format!("`{}` is not a state of this pass", u.name.name))
-                    .with_primary(u.name.span, "assigned here");
+                let mut d = Diagnostic::error(
+                    codes::STATE_ORDER,
+                    format!("`{}` is not a state of this pass", u.name.name),
+                )
+                .with_primary(u.name.span, "assigned here");
                 d = match did_you_mean(&u.name.name, names.iter().copied()) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
                     None => d.with_help(format!("declare it first: `state {}: vec2 = ...`", u.name.name)),
@@ -332,7 +361,12 @@ impl Resolver<'_> {
             self.wrong_statement(s.span, "`state`", &kind, "state lives in `compute(objects)` passes");
         }
         for r in &p.body.reductions {
-            self.wrong_statement(r.span, "`reduce`", &kind, "reductions live in `compute(vertices)` passes");
+            self.wrong_statement(
+                r.span,
+                "`reduce`",
+                &kind,
+                "reductions live in `compute(vertices)` passes",
+            );
         }
         for u in &p.body.updates {
             self.wrong_statement(

@@ -94,7 +94,12 @@ impl Checker<'_> {
             ),
             _ => (
                 codes::TYPE_MISMATCH,
-                format!("{what} is {}, but `{}` is {}", found.describe(), v.name, v.ty.describe()),
+                format!(
+                    "{what} is {}, but `{}` is {}",
+                    found.describe(),
+                    v.name,
+                    v.ty.describe()
+                ),
             ),
         };
         self.err(
@@ -123,7 +128,10 @@ impl Checker<'_> {
                     codes::STATE_ORDER,
                     format!("the first value of state `{}` reads a state", v.name),
                 )
-                .with_primary(self.ir.expr(n).span, "a state, which has no value before the first frame")
+                .with_primary(
+                    self.ir.expr(n).span,
+                    "a state, which has no value before the first frame",
+                )
                 .with_secondary(v.name_span, "this state's first value")
                 .with_help("compute the first value from per-object values, params and frame values only"),
             );
@@ -159,9 +167,12 @@ impl Checker<'_> {
             }
             let span = e.span;
             self.err(
-                Diagnostic::error(codes::BAD_PASS_INPUT, format!("{what} read as a value in a compute pass"))
-                    .with_primary(span, "a compute invocation has no pixel or uv to read it at")
-                    .with_help("pass it to an operator that reads it at a position you give"),
+                Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!("{what} read as a value in a compute pass"),
+                )
+                .with_primary(span, "a compute invocation has no pixel or uv to read it at")
+                .with_help("pass it to an operator that reads it at a position you give"),
             );
         }
     }

@@ -64,7 +64,10 @@ impl ComputePassExec {
             ..
         } = &pass.kind
         else {
-            return Err(RunError::Internal(format!("pass `{}` is not a compute pass", pass.name)));
+            return Err(RunError::Internal(format!(
+                "pass `{}` is not a compute pass",
+                pass.name
+            )));
         };
         let layout0 = bind::group0_layout(device, pass);
         // Group 1: the object block, then the attributes.
@@ -90,7 +93,11 @@ impl ComputePassExec {
             }];
             for (i, a) in attributes.iter().enumerate() {
                 let buffer = mesh.buffers.get(a).ok_or_else(|| {
-                    RunError::Internal(format!("object #{o} has no `{}` buffer for pass `{}`", a.name(), pass.name))
+                    RunError::Internal(format!(
+                        "object #{o} has no `{}` buffer for pass `{}`",
+                        a.name(),
+                        pass.name
+                    ))
                 })?;
                 entries.push(wgpu::BindGroupEntry {
                     binding: i as u32 + 1,
@@ -145,7 +152,10 @@ impl ComputePassExec {
                     });
                 }
                 _ if over_vertices => {
-                    return Err(RunError::Internal(format!("pass `{}` has no partials buffer", pass.name)))
+                    return Err(RunError::Internal(format!(
+                        "pass `{}` has no partials buffer",
+                        pass.name
+                    )))
                 }
                 _ if *history => entries.push(wgpu::BindGroupEntry {
                     binding: 1,

@@ -64,7 +64,13 @@ impl Motion {
 
 impl Renderer<'_> {
     /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame` in WGSL).
-    pub(super) fn frame_block(&self, scene: &Scene, spec: &FrameSpec, eye: u32, previous_view_proj: Mat4) -> FrameBlock {
+    pub(super) fn frame_block(
+        &self,
+        scene: &Scene,
+        spec: &FrameSpec,
+        eye: u32,
+        previous_view_proj: Mat4,
+    ) -> FrameBlock {
         let pose = scene.camera.pose(spec.time_s);
         let aspect = spec.width as f32 / spec.height as f32;
         let view = pose.view(eye);
@@ -122,7 +128,13 @@ impl Renderer<'_> {
         let models: Vec<Mat4> = scene.objects.iter().map(|o| o.model).collect();
         let (previous_models, previous_view_projs) = self.motion.record(models, view_projs);
         let vertex_counts: Vec<usize> = self.meshes.iter().map(|m| m.vertex_count).collect();
-        let objects = objects::object_blocks(&self.manifest, scene, self.object_stride, &previous_models, &vertex_counts)?;
+        let objects = objects::object_blocks(
+            &self.manifest,
+            scene,
+            self.object_stride,
+            &previous_models,
+            &vertex_counts,
+        )?;
         if objects::moved(&self.bounds_models, scene) {
             (self.scene_bounds, self.caster_bounds) = objects::light_bounds(&self.manifest, scene);
             self.bounds_models = scene.objects.iter().map(|o| o.model).collect();

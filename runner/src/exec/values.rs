@@ -33,7 +33,9 @@ impl PassBuffers {
 
 /// Element workgroups for `vertices` elements.
 pub(super) fn element_workgroups(vertices: usize) -> u32 {
-    (vertices as u64).div_ceil(ELEMENTS_PER_WORKGROUP as u64).min(u32::MAX as u64) as u32
+    (vertices as u64)
+        .div_ceil(ELEMENTS_PER_WORKGROUP as u64)
+        .min(u32::MAX as u64) as u32
 }
 
 /// The buffers of every manifest pass (`None` for passes that are not compute).
