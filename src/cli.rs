@@ -169,6 +169,19 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
+    /// A compute pass's per-object reduction (Σ px and a count over each
+    /// object's vertices): GPU time against elements and objects, against a
+    /// copy kernel over the same positions, and its error against f64.
+    Reduce {
+        /// Total elements (vertices), comma-separated.
+        #[arg(long, default_value = "1000,10000,100000,1000000", value_delimiter = ',')]
+        elements: Vec<usize>,
+        /// Object counts the elements are split over, comma-separated.
+        #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
+        objects: Vec<usize>,
+        #[arg(long, default_value_t = 10)]
+        frames: u32,
+    },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
         style: PathBuf,
@@ -435,6 +448,11 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
         }
         BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
         BenchCommand::Contours { sizes, frames } => bench_contours(&sizes, frames, printer),
+        BenchCommand::Reduce {
+            elements,
+            objects,
+            frames,
+        } => bench_reduce(&elements, &objects, frames, printer),
         BenchCommand::Passes {
             style,
             scene,
@@ -564,6 +582,44 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
         Ok(rows) => {
             println!("device: {}, {frames} frames per median", gpu.describe());
             println!("{}", lab::bench_contours::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench reduce`: see `lab::bench_reduce`.
+fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = elements.iter().chain(objects).find(|n| **n == 0 || **n > 10_000_000) {
+        eprintln!("error[E0404]: count {bad} is outside 1..=10000000");
+        return EXIT_USER;
+    }
+    let mut sources = SourceMap::new();
+    let mut programs = Vec::new();
+    for (name, text) in [("reduce.npr", lab::bench_reduce::STYLE), ("null.npr", lab::bench_reduce::NULL_STYLE)] {
+        match compiler::compile_source(name, text, Path::new("."), &mut sources, &CompileOptions::default()) {
+            Ok(c) => programs.push(c.program()),
+            Err(CompileError::User(d)) => {
+                printer.diagnostics(&d, &sources);
+                return EXIT_INTERNAL;
+            }
+            Err(CompileError::Internal(e)) => {
+                eprintln!("{e}");
+                return EXIT_INTERNAL;
+            }
+        }
+    }
+    let gpu = match headless_gpu() {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match lab::bench_reduce::run(&gpu, (&programs[0], &programs[1]), elements, objects, frames, |m| eprintln!("{m}")) {
+        Ok(rows) => {
+            println!("device: {}, median of {frames} interleaved frames (wall clock)", gpu.describe());
+            println!("{}", lab::bench_reduce::table(&rows));
             EXIT_OK
         }
         Err(e) => {

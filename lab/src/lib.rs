@@ -12,5 +12,6 @@
 pub mod bench;
 pub mod bench_contours;
 pub mod bench_ops;
+pub mod bench_reduce;
 pub mod contours;
 pub mod harness;
