@@ -599,7 +599,10 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
     }
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
-    for (name, text) in [("reduce.npr", lab::bench_reduce::STYLE), ("null.npr", lab::bench_reduce::NULL_STYLE)] {
+    for (name, text) in [
+        ("reduce.npr", lab::bench_reduce::STYLE),
+        ("null.npr", lab::bench_reduce::NULL_STYLE),
+    ] {
         match compiler::compile_source(name, text, Path::new("."), &mut sources, &CompileOptions::default()) {
             Ok(c) => programs.push(c.program()),
             Err(CompileError::User(d)) => {
@@ -616,9 +619,14 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
         Ok(g) => g,
         Err(code) => return code,
     };
-    match lab::bench_reduce::run(&gpu, (&programs[0], &programs[1]), elements, objects, frames, |m| eprintln!("{m}")) {
+    match lab::bench_reduce::run(&gpu, (&programs[0], &programs[1]), elements, objects, frames, |m| {
+        eprintln!("{m}")
+    }) {
         Ok(rows) => {
-            println!("device: {}, median of {frames} interleaved frames (wall clock)", gpu.describe());
+            println!(
+                "device: {}, median of {frames} interleaved frames (wall clock)",
+                gpu.describe()
+            );
             println!("{}", lab::bench_reduce::table(&rows));
             EXIT_OK
         }

@@ -26,6 +26,15 @@ pub const OBJECT_PARAMS_OFFSET: u64 = core::mem::size_of::<crate::object::Object
 /// Alignment of per-object dynamic offsets.
 pub const OBJECT_STRIDE_ALIGN: u64 = 256;
 
+/// Bytes between two objects' blocks in the object buffer: the block size
+/// rounded up to [`OBJECT_STRIDE_ALIGN`] (render passes bind one block at a
+/// dynamic offset; compute passes read the buffer as an array of slots of
+/// this size).
+pub const fn object_stride(object_uniform_size: u64) -> u64 {
+    let blocks = object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN);
+    (if blocks == 0 { 1 } else { blocks }) * OBJECT_STRIDE_ALIGN
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Manifest {
     pub version: u32,
@@ -128,9 +137,13 @@ pub enum PassKindManifest {
         fragment_entry: String,
     },
     /// Per-object values computed on the GPU. Group 0 as every kind; group
-    /// 1: the `Object` block (binding 0, dynamic offset), then one read-only
-    /// `array<f32>` storage buffer per attribute (bindings 1..); group 2: the
-    /// pass's own buffers (`bind.rs`, `compute_pass.rs`).
+    /// 1: every object's block as a read-only storage array of
+    /// [`object_stride`]-byte slots (binding 0), the pass's member table
+    /// (binding 1: per object it runs over, `vec4<u32>`(object index, first
+    /// vertex, vertex count, first element workgroup)), then one read-only
+    /// `array<f32>` per attribute with every member's vertices one after the
+    /// other (bindings 2..); group 2: the pass's own buffers (`values.rs`,
+    /// `compute_pass.rs`). Each stage is one dispatch over all members.
     Compute {
         domain: ComputeDomain,
         /// Run only over objects with this tag; `None` runs over all. Other
@@ -170,12 +183,13 @@ pub const OBJECT_WORKGROUP: u32 = 64;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ComputeDomain {
-    /// One invocation per object (`objects_entry`).
+    /// One invocation per object (`objects_entry`, workgroups of
+    /// [`OBJECT_WORKGROUP`]).
     Objects,
     /// Every vertex of every object: the element stage (`elements_entry`,
-    /// one dispatch per object of ⌈vertices / ELEMENTS_PER_WORKGROUP⌉
-    /// workgroups, writing partials), then the object stage
-    /// (`objects_entry`, one workgroup per object, reducing its partials).
+    /// ⌈vertices / ELEMENTS_PER_WORKGROUP⌉ workgroups per object, all in one
+    /// dispatch, writing partials), then the object stage (`objects_entry`,
+    /// one workgroup per object, reducing its partials).
     Vertices,
 }
 

@@ -89,9 +89,11 @@ fn point(i: u64) -> [f32; 3] {
 pub fn scene(elements: usize, objects: usize) -> Result<Scene, RunError> {
     let mut sources = dsl::SourceMap::new();
     let file = sources.add("reduce-bench.toml", SCENE.to_string());
-    let mut scene = runner::scene::parse_scene(SCENE, file, std::path::Path::new("."))
-        .map_err(RunError::User)?;
-    let template = scene.objects.pop().ok_or_else(|| RunError::Internal("no template object".into()))?;
+    let mut scene = runner::scene::parse_scene(SCENE, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    let template = scene
+        .objects
+        .pop()
+        .ok_or_else(|| RunError::Internal("no template object".into()))?;
     let per = elements / objects.max(1);
     for o in 0..objects {
         let positions: Vec<[f32; 3]> = (0..per).map(|i| point((o * per + i) as u64)).collect();
@@ -127,9 +129,15 @@ fn cpu_sums(scene: &Scene) -> Vec<([f64; 2], [f32; 2], f64)> {
             for p in &o.mesh.positions {
                 let w = model.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
                 let c = view_proj * DVec4::new(w.x, w.y, w.z, 1.0);
-                let px = [(c.x / c.w * 0.5 + 0.5) * SIZE as f64, (0.5 - c.y / c.w * 0.5) * SIZE as f64];
+                let px = [
+                    (c.x / c.w * 0.5 + 0.5) * SIZE as f64,
+                    (0.5 - c.y / c.w * 0.5) * SIZE as f64,
+                ];
                 let c32 = view_proj32 * (o.model * glam::Vec4::new(p[0], p[1], p[2], 1.0));
-                let px32 = [(c32.x / c32.w * 0.5 + 0.5) * SIZE as f32, (0.5 - c32.y / c32.w * 0.5) * SIZE as f32];
+                let px32 = [
+                    (c32.x / c32.w * 0.5 + 0.5) * SIZE as f32,
+                    (0.5 - c32.y / c32.w * 0.5) * SIZE as f32,
+                ];
                 for k in 0..2 {
                     exact[k] += px[k];
                     naive[k] += px32[k];

@@ -51,6 +51,9 @@ impl Gpu {
                 .min(adapter.limits().max_color_attachments);
             limits.max_color_attachment_bytes_per_sample = adapter.limits().max_color_attachment_bytes_per_sample;
             limits.max_texture_dimension_2d = adapter.limits().max_texture_dimension_2d;
+            // Compute passes bind their objects, members, vertex attributes,
+            // values and partials as storage buffers (downlevel allows 4).
+            limits.max_storage_buffers_per_shader_stage = adapter.limits().max_storage_buffers_per_shader_stage;
             let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
             let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
                 label: Some("npr"),

@@ -111,19 +111,37 @@ impl Emitter<'_> {
             next += 1;
         }
         if kind.has_object() {
-            self.object_group(&mut d, uses);
+            self.object_group(&mut d, kind, uses);
         }
         d
     }
 
     /// Group 1: the `Object` block (per-object params), then the per-object
     /// textures, so one bind group per object carries its uniforms and images.
-    fn object_group(&self, d: &mut Declared, uses: &Uses) {
+    fn object_group(&self, d: &mut Declared, kind: &PassKind, uses: &Uses) {
         d.text.push_str("struct Object {\n");
         d.text.push_str(abi::OBJECT_HEAD_WGSL);
         self.param_fields(&mut d.text, ParamBinding::PerObject);
-        d.text
-            .push_str("}\n@group(1) @binding(0) var<uniform> object: Object;\n");
+        d.text.push_str("}\n");
+        if let PassKind::Compute { .. } = kind {
+            // Every object's block at once, one stride-sized slot each; each
+            // invocation copies its object's into `object`, so expressions
+            // read `object` as in render passes.
+            let stride = abi::manifest::object_stride(self.alloc.object_uniform_size);
+            let pad = (stride - self.alloc.object_uniform_size) / 16;
+            d.text.push_str("struct NprObjectSlot {\n    o: Object,\n");
+            if pad > 0 {
+                let _ = writeln!(d.text, "    pad: array<vec4<f32>, {pad}>,");
+            }
+            let _ = writeln!(
+                d.text,
+                "}}\n@group(1) @binding(0) var<storage, read> npr_objects: array<NprObjectSlot>; // {stride} bytes apart\n\
+                 @group(1) @binding(1) var<storage, read> npr_members: array<vec4<u32>>; // object, first vertex, vertices, first workgroup\n\
+                 var<private> object: Object;"
+            );
+            return;
+        }
+        d.text.push_str("@group(1) @binding(0) var<uniform> object: Object;\n");
         let mut next1 = 1u32;
         for t in uses
             .textures

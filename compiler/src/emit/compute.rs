@@ -3,15 +3,17 @@
 //! storage buffers (group 1 after the `Object` block), and its entry points.
 //!
 //! `compute(vertices)` reduces in two stages, correct on any adapter (no
-//! float atomics, no subgroups): the element stage (`reduce_elements`, one
-//! dispatch per object of ⌈vertices / 1024⌉ workgroups of 256) accumulates 4
-//! elements per invocation and tree-reduces them in workgroup memory to one
-//! partial per value; the object stage (`reduce_objects`, one workgroup of
-//! 64 per object) tree-reduces the object's partials into its value slots.
+//! float atomics, no subgroups), each one dispatch over every object the
+//! pass runs over (its members): the element stage (`reduce_elements`,
+//! ⌈vertices / 1024⌉ workgroups of 256 per member) accumulates 4 elements
+//! per invocation and tree-reduces them in workgroup memory to one partial
+//! per value; the object stage (`reduce_objects`, one workgroup of 64 per
+//! member) tree-reduces the member's partials into its value slots.
 //! Every sum is therefore a fixed-shape pairwise tree: deterministic, and
 //! with an error that grows like log₂(n) ulps rather than n.
 //!
-//! `compute(objects)` (`update_objects`) runs once per object: its states
+//! `compute(objects)` (`update_objects`, workgroups of 64) runs once per
+//! member: its states
 //! read the previous frame's copy of the value buffer (or their first
 //! value, until the object's "written" flag is set), and it writes every
 //! value and the flag into this frame's copy.
@@ -107,8 +109,8 @@ impl Emitter<'_> {
         for (i, a) in attributes.iter().enumerate() {
             let _ = writeln!(
                 w,
-                "@group(1) @binding({}) var<storage, read> a_{}: array<f32>; // this object's vertices",
-                i + 1,
+                "@group(1) @binding({}) var<storage, read> a_{}: array<f32>; // every member's vertices",
+                i + 2,
                 a.name()
             );
         }
@@ -117,8 +119,8 @@ impl Emitter<'_> {
         );
         match domain {
             ComputeDomain::Vertices => w.push_str(
-                "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per workgroup\n\
-                 @group(2) @binding(2) var<uniform> npr_dispatch: vec4<u32>; // x: partials per object\n",
+                "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per element workgroup\n\
+                 @group(2) @binding(2) var<uniform> npr_dispatch: vec4<u32>; // x: element workgroups of all members\n",
             ),
             ComputeDomain::Objects if state => w.push_str(
                 "@group(2) @binding(1) var<storage, read> npr_values_previous: array<vec4<f32>>; // the previous frame's\n",
@@ -236,7 +238,7 @@ fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
             w.push_str("    uv: vec2<f32>,\n");
         }
         w.push_str(
-            "}\n\n// Vertex `i` of this object, in world space, now and in the previous frame.\n\
+            "}\n\n// Vertex `i` of the members' vertices (of `object`), in world space, now and in the previous frame.\n\
              fn npr_vertex(i: u32) -> NprVertex {\n\
              \x20   let p = vec4<f32>(a_position[3u * i], a_position[3u * i + 1u], a_position[3u * i + 2u], 1.0);\n\
              \x20   var v: NprVertex;\n\
@@ -253,7 +255,7 @@ fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
         // The element's values.
         let _ = writeln!(
             w,
-            "// The reduced values of vertex `i`, one slot each.\nfn npr_element(i: u32) -> array<vec4<f32>, {n}> {{\n    let in = npr_vertex(i);"
+            "// The reduced values of vertex `i` (of the members' vertices), one slot each.\nfn npr_element(i: u32) -> array<vec4<f32>, {n}> {{\n    let in = npr_vertex(i);"
         );
         self.emit_lets(w, pass, nodes, value_uses, ctx);
         let mut slots = Vec::new();
@@ -276,15 +278,37 @@ fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
         // Element stage.
         let _ = writeln!(
             w,
-            "// Stage 1: workgroup `wg.x` of this object reduces its NPR_ELEMENT_WG × NPR_PER_INVOCATION
-// vertices to one partial per value.
+            "// The member whose element workgroups include `w` (members are in order of
+// their first workgroup; one with no vertices owns none).
+fn npr_member_of(w: u32) -> u32 {{
+    var lo = 0u;
+    var hi = arrayLength(&npr_members);
+    while (hi - lo > 1u) {{
+        let mid = (lo + hi) / 2u;
+        if (npr_members[mid].w <= w) {{
+            lo = mid;
+        }} else {{
+            hi = mid;
+        }}
+    }}
+    return lo;
+}}
+
+// Stage 1: element workgroup `w` (over all members) reduces NPR_ELEMENT_WG × NPR_PER_INVOCATION
+// vertices of its member to one partial per value. No invocation returns early, so the
+// trees' barriers stay in uniform control flow.
 @compute @workgroup_size({ELEMENT_WORKGROUP})
 fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid: u32) {{
+    let w = wg.x + wg.y * 65535u;
+    let in_range = w < npr_dispatch.x;
+    let member = npr_members[npr_member_of(min(w, npr_dispatch.x - 1u))];
+    object = npr_objects[member.x].o;
+    let chunk = w - member.w;
     var acc = array<vec4<f32>, {n}>({});
     for (var k = 0u; k < NPR_PER_INVOCATION; k = k + 1u) {{
-        let i = (wg.x * NPR_PER_INVOCATION + k) * NPR_ELEMENT_WG + lid;
-        if (i < object.ids.z) {{
-            let e = npr_element(i);",
+        let i = (chunk * NPR_PER_INVOCATION + k) * NPR_ELEMENT_WG + lid;
+        if (in_range && i < member.z) {{
+            let e = npr_element(member.y + i);",
             ELEMENTS_ENTRY,
             identities.join(", ")
         );
@@ -295,11 +319,11 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
                 combine(*op, &format!("acc[{k}]"), &format!("e[{k}]"))
             );
         }
-        w.push_str("        }\n    }\n    let base = (object.ids.x * npr_dispatch.x + wg.x) * NPR_REDUCED;\n");
+        w.push_str("        }\n    }\n");
         for (k, op) in ops.iter().enumerate() {
             let _ = writeln!(
                 w,
-                "    let r{k} = npr_tree_{}(lid, NPR_ELEMENT_WG, acc[{k}]);\n    if (lid == 0u) {{\n        npr_partials[base + {k}u] = r{k};\n    }}",
+                "    let r{k} = npr_tree_{}(lid, NPR_ELEMENT_WG, acc[{k}]);\n    if (lid == 0u && in_range) {{\n        npr_partials[w * NPR_REDUCED + {k}u] = r{k};\n    }}",
                 op.name()
             );
         }
@@ -307,15 +331,16 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
         // Object stage.
         let _ = writeln!(
             w,
-            "// Stage 2: one workgroup per object reduces the object's partials into its slots.
+            "// Stage 2: workgroup `m` reduces member m's partials into its object's slots.
 @compute @workgroup_size({OBJECT_WORKGROUP})
-fn {}(@builtin(local_invocation_index) lid: u32) {{
+fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid: u32) {{
+    let member = npr_members[wg.x];
+    object = npr_objects[member.x].o;
     let per_workgroup = NPR_ELEMENT_WG * NPR_PER_INVOCATION;
-    let chunks = (object.ids.z + per_workgroup - 1u) / per_workgroup;
-    let base = object.ids.x * npr_dispatch.x;
+    let chunks = (member.z + per_workgroup - 1u) / per_workgroup;
     var acc = array<vec4<f32>, {n}>({});
     for (var c = lid; c < chunks; c = c + NPR_OBJECT_WG) {{
-        let p = (base + c) * NPR_REDUCED;",
+        let p = (member.w + c) * NPR_REDUCED;",
             REDUCE_OBJECTS_ENTRY,
             identities.join(", ")
         );
@@ -330,7 +355,7 @@ fn {}(@builtin(local_invocation_index) lid: u32) {{
         for (k, ((_, packed, _), op)) in live.iter().zip(&ops).enumerate() {
             let _ = writeln!(
                 w,
-                "    let r{k} = npr_tree_{}(lid, NPR_OBJECT_WG, acc[{k}]);\n    if (lid == 0u) {{\n        npr_values[object.ids.x * NPR_SLOTS + {packed}u] = r{k};\n    }}",
+                "    let r{k} = npr_tree_{}(lid, NPR_OBJECT_WG, acc[{k}]);\n    if (lid == 0u) {{\n        npr_values[member.x * NPR_SLOTS + {packed}u] = r{k};\n    }}",
                 op.name()
             );
         }
@@ -352,7 +377,7 @@ fn {}(@builtin(local_invocation_index) lid: u32) {{
     ) {
         let _ = writeln!(
             w,
-            "// Once per object (one dispatch of one invocation per object).\n@compute @workgroup_size(1)\nfn {UPDATE_OBJECTS_ENTRY}() {{\n    let npr_base = object.ids.x * NPR_SLOTS;"
+            "// Once per member object.\n@compute @workgroup_size({OBJECT_WORKGROUP})\nfn {UPDATE_OBJECTS_ENTRY}(@builtin(global_invocation_id) id: vec3<u32>) {{\n    if (id.x >= arrayLength(&npr_members)) {{\n        return;\n    }}\n    object = npr_objects[npr_members[id.x].x].o;\n    let npr_base = object.ids.x * NPR_SLOTS;"
         );
         let flag = per_object.saturating_sub(1);
         if state {

@@ -1,21 +1,21 @@
 //! The executor of `compute` passes. Group 0 is the pass's manifest
-//! bindings (as every kind); group 1 is the object block at a dynamic
-//! offset plus, for a pass over vertices, the object's vertex attributes as
-//! read-only storage buffers (one group per object); group 2 is the pass's
-//! own buffers (`values.rs`) for the frame's parity.
+//! bindings (as every kind); group 1 is every object's block (the object
+//! buffer read as a storage array), the pass's member table and, for a
+//! pass over vertices, its members' vertex attributes (`values.rs`); group
+//! 2 is the pass's own buffers for the frame's parity.
 //!
-//! A pass over vertices records, per object with the pass's tag, one
-//! dispatch of the element stage (⌈vertices / 1024⌉ workgroups), then one
-//! workgroup of the object stage per object; a pass over objects, one
-//! single-invocation dispatch per object. WebGPU makes each dispatch's
-//! storage writes visible to the next, so the object stage reads complete
-//! partials.
+//! Each stage is one dispatch over all members: a pass over vertices
+//! records the element stage (every member's ⌈vertices / 1024⌉ workgroups,
+//! laid out in x and y past 65535) and then the object stage (one
+//! workgroup per member); a pass over objects, ⌈members / 64⌉ workgroups.
+//! WebGPU makes a dispatch's storage writes visible to the next, so the
+//! object stage reads complete partials.
 
-use super::bind::{self, ObjectResources};
+use super::bind;
 use super::meshes::GpuMesh;
 use super::pass::{EncodeContext, Timestamps};
 use super::resources::SizedPass;
-use super::values::{element_workgroups, PassBuffers};
+use super::values::PassBuffers;
 use crate::RunError;
 use abi::manifest::*;
 
@@ -25,12 +25,13 @@ pub(super) struct ComputePassExec {
     elements: Option<wgpu::ComputePipeline>,
     objects: wgpu::ComputePipeline,
     pub(super) layout0: wgpu::BindGroupLayout,
-    /// Per object: its group 1, or `None` when the pass's tag excludes it.
-    object_groups: Vec<Option<wgpu::BindGroup>>,
-    /// Per object: element-stage workgroups.
-    workgroups: Vec<u32>,
+    group1: wgpu::BindGroup,
     /// Group 2 per frame parity (one when the pass keeps no state).
     own_groups: Vec<wgpu::BindGroup>,
+    member_count: u32,
+    element_workgroups: u32,
+    /// Copies of time-varying members' vertices: (object, attribute buffer, offset, bytes per vertex).
+    time_varying: Vec<(usize, Attribute, wgpu::Buffer, u64, u64)>,
 }
 
 fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -46,17 +47,36 @@ fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+fn group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
 impl ComputePassExec {
     pub fn build(
         device: &wgpu::Device,
         pass: &PassManifest,
         wgsl: &str,
-        objects: &ObjectResources,
-        meshes: &[GpuMesh],
+        object_buffer: &wgpu::Buffer,
         buffers: &PassBuffers,
     ) -> Result<ComputePassExec, RunError> {
         let PassKindManifest::Compute {
-            tag,
             attributes,
             history,
             elements_entry,
@@ -69,50 +89,55 @@ impl ComputePassExec {
                 pass.name
             )));
         };
+        let storage = 2
+            + attributes.len()
+            + if elements_entry.is_some() || *history { 2 } else { 1 }
+            + pass
+                .bindings
+                .iter()
+                .filter(|b| matches!(b.resource, Resource::ObjectValues { .. }))
+                .count();
+        let limit = device.limits().max_storage_buffers_per_shader_stage as usize;
+        if storage > limit {
+            return Err(RunError::Limit(format!(
+                "compute pass `{}` binds {storage} storage buffers; this device allows {limit} per stage \
+                 (read fewer other passes' values, or fewer vertex attributes, in it)",
+                pass.name
+            )));
+        }
+        let mut group1_buffers = vec![object_buffer, &buffers.members];
+        for a in attributes {
+            group1_buffers.push(buffers.attributes.get(a).ok_or_else(|| {
+                RunError::Internal(format!(
+                    "pass `{}` has no `{}` buffer of its members",
+                    pass.name,
+                    a.name()
+                ))
+            })?);
+        }
+        let over_vertices = elements_entry.is_some();
+        if over_vertices && (buffers.partials.is_none() || buffers.dispatch.is_none()) {
+            return Err(RunError::Internal(format!(
+                "pass `{}` has no partials buffer",
+                pass.name
+            )));
+        }
+        // Everything wgpu creates below is checked in this validation scope
+        // (a manifest from disk may disagree with its WGSL); nothing returns
+        // before it is popped.
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layout0 = bind::group0_layout(device, pass);
-        // Group 1: the object block, then the attributes.
-        let mut entries1 = vec![bind::object_uniform_entry(objects.uniform_size)];
-        entries1.extend((0..attributes.len()).map(|i| storage_entry(i as u32 + 1, true)));
+        // Group 1: the objects, the members, the members' attributes.
+        let entries1: Vec<wgpu::BindGroupLayoutEntry> = (0..2 + attributes.len())
+            .map(|i| storage_entry(i as u32, true))
+            .collect();
         let layout1 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} objects", pass.name)),
             entries: &entries1,
         });
-        let mut object_groups = Vec::new();
-        for (o, (object, mesh)) in objects.scene.objects.iter().zip(meshes).enumerate() {
-            if tag.as_ref().is_some_and(|t| !object.tags.contains(t)) {
-                object_groups.push(None);
-                continue;
-            }
-            let mut entries = vec![wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: objects.buffer,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(objects.uniform_size.max(16)),
-                }),
-            }];
-            for (i, a) in attributes.iter().enumerate() {
-                let buffer = mesh.buffers.get(a).ok_or_else(|| {
-                    RunError::Internal(format!(
-                        "object #{o} has no `{}` buffer for pass `{}`",
-                        a.name(),
-                        pass.name
-                    ))
-                })?;
-                entries.push(wgpu::BindGroupEntry {
-                    binding: i as u32 + 1,
-                    resource: buffer.as_entire_binding(),
-                });
-            }
-            object_groups.push(Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&format!("{} object #{o}", pass.name)),
-                layout: &layout1,
-                entries: &entries,
-            })));
-        }
+        let group1 = group(device, &format!("{} objects", pass.name), &layout1, &group1_buffers);
         // Group 2: this frame's values, then the partials and the dispatch
         // uniform (over vertices) or the previous frame's values (state).
-        let over_vertices = elements_entry.is_some();
         let mut entries2 = vec![storage_entry(0, false)];
         if over_vertices {
             entries2.push(storage_entry(1, false));
@@ -136,45 +161,24 @@ impl ComputePassExec {
         let parities = if *history { 2 } else { 1 };
         let mut own_groups = Vec::new();
         for parity in 0..parities {
-            let mut entries = vec![wgpu::BindGroupEntry {
-                binding: 0,
-                resource: buffers.copy(parity, false).as_entire_binding(),
-            }];
-            match (&buffers.partials, &buffers.dispatch) {
-                (Some(partials), Some(dispatch)) if over_vertices => {
-                    entries.push(wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: partials.as_entire_binding(),
-                    });
-                    entries.push(wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: dispatch.as_entire_binding(),
-                    });
-                }
-                _ if over_vertices => {
-                    return Err(RunError::Internal(format!(
-                        "pass `{}` has no partials buffer",
-                        pass.name
-                    )))
-                }
-                _ if *history => entries.push(wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: buffers.copy(parity, true).as_entire_binding(),
-                }),
-                _ => {}
-            }
-            own_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&format!("{} buffers, parity {parity}", pass.name)),
-                layout: &layout2,
-                entries: &entries,
-            }));
+            let this = buffers.copy(parity, false);
+            let own: Vec<&wgpu::Buffer> = match (&buffers.partials, &buffers.dispatch) {
+                (Some(partials), Some(dispatch)) if over_vertices => vec![this, partials, dispatch],
+                _ if *history => vec![this, buffers.copy(parity, true)],
+                _ => vec![this],
+            };
+            own_groups.push(group(
+                device,
+                &format!("{} buffers, parity {parity}", pass.name),
+                &layout2,
+                &own,
+            ));
         }
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&pass.name),
             bind_group_layouts: &[Some(&layout0), Some(&layout1), Some(&layout2)],
             immediate_size: 0,
         });
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&pass.shader),
             source: wgpu::ShaderSource::Wgsl(wgsl.into()),
@@ -197,14 +201,27 @@ impl ComputePassExec {
                 pass.name
             )));
         }
+        let mut time_varying = Vec::new();
+        for (o, first) in &buffers.time_varying {
+            for (a, pooled) in &buffers.attributes {
+                let bytes = match a {
+                    Attribute::Position | Attribute::Normal => 12,
+                    Attribute::Uv => 8,
+                    Attribute::Tangent => 16,
+                };
+                time_varying.push((*o, *a, pooled.clone(), first * bytes, bytes));
+            }
+        }
         Ok(ComputePassExec {
             name: pass.name.clone(),
             elements,
             objects: objects_pipeline,
             layout0,
-            object_groups,
-            workgroups: meshes.iter().map(|m| element_workgroups(m.vertex_count)).collect(),
+            group1,
             own_groups,
+            member_count: buffers.member_count,
+            element_workgroups: buffers.element_workgroups,
+            time_varying,
         })
     }
 
@@ -215,6 +232,7 @@ impl ComputePassExec {
         ctx: &EncodeContext,
         timestamps: Option<&Timestamps>,
     ) {
+        self.copy_time_varying(encoder, ctx.meshes);
         let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(&self.name),
             timestamp_writes: timestamps.map(|t| wgpu::ComputePassTimestampWrites {
@@ -224,24 +242,35 @@ impl ComputePassExec {
             }),
         });
         cp.set_bind_group(0, &sized.group0, &[]);
+        cp.set_bind_group(1, &self.group1, &[]);
         cp.set_bind_group(2, &self.own_groups[ctx.parity % self.own_groups.len()], &[]);
-        let offset = |o: usize| (o as u64 * ctx.object_stride) as u32;
-        if let Some(elements) = &self.elements {
-            cp.set_pipeline(elements);
-            for (o, group) in self.object_groups.iter().enumerate() {
-                if let (Some(group), n) = (group, self.workgroups[o]) {
-                    if n > 0 {
-                        cp.set_bind_group(1, group, &[offset(o)]);
-                        cp.dispatch_workgroups(n, 1, 1);
-                    }
+        if self.member_count == 0 {
+            return;
+        }
+        match &self.elements {
+            Some(elements) => {
+                let n = self.element_workgroups;
+                if n > 0 {
+                    cp.set_pipeline(elements);
+                    // The shader numbers workgroups `x + y × 65535`.
+                    cp.dispatch_workgroups(n.min(65535), n.div_ceil(65535), 1);
                 }
+                cp.set_pipeline(&self.objects);
+                cp.dispatch_workgroups(self.member_count, 1, 1);
+            }
+            None => {
+                cp.set_pipeline(&self.objects);
+                cp.dispatch_workgroups(self.member_count.div_ceil(OBJECT_WORKGROUP), 1, 1);
             }
         }
-        cp.set_pipeline(&self.objects);
-        for (o, group) in self.object_groups.iter().enumerate() {
-            if let Some(group) = group {
-                cp.set_bind_group(1, group, &[offset(o)]);
-                cp.dispatch_workgroups(1, 1, 1);
+    }
+
+    /// Time-varying members' vertices were rewritten in their vertex
+    /// buffers this frame: copy them into the pass's attribute buffers.
+    fn copy_time_varying(&self, encoder: &mut wgpu::CommandEncoder, meshes: &[GpuMesh]) {
+        for (o, a, pooled, offset, bytes) in &self.time_varying {
+            if let Some(source) = meshes[*o].buffers.get(a) {
+                encoder.copy_buffer_to_buffer(source, 0, pooled, *offset, meshes[*o].vertex_count as u64 * bytes);
             }
         }
     }

@@ -38,8 +38,11 @@ pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
             label: Some(label),
             contents: if data.is_empty() { &[0u8; 16] } else { data },
             // COPY_DST: time-varying primitives are rewritten per frame;
-            // STORAGE: compute passes over vertices read them.
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::STORAGE,
+            // STORAGE, COPY_SRC: compute passes over vertices read them (time-varying ones copied each frame).
+            usage: wgpu::BufferUsages::VERTEX
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC,
         })
     };
     buffers.insert(

@@ -110,14 +110,15 @@ impl<'d> Renderer<'d> {
             ..Default::default()
         });
         let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
-        let object_stride = manifest.object_uniform_size.div_ceil(OBJECT_STRIDE_ALIGN).max(1) * OBJECT_STRIDE_ALIGN;
+        let object_stride = object_stride(manifest.object_uniform_size);
         // Bad per-object params are reported here too, not only at the first frame.
         objects::object_blocks(&manifest, scene, object_stride, &[], &[])?;
         let object_count = scene.objects.len().max(1) as u64;
         let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
             size: object_stride * object_count,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            // STORAGE: compute passes read every object's block at once.
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let (object_layout, object_group) =
@@ -131,7 +132,7 @@ impl<'d> Renderer<'d> {
             object_textures: &object_textures,
         };
         let meshes = meshes::upload_scene(device, scene);
-        let values = values::create(device, &manifest, &meshes);
+        let values = values::create(device, &manifest, scene, &meshes)?;
         values::reset(queue, &values);
         let mut passes = Vec::new();
         for pass in &manifest.passes {
@@ -146,7 +147,6 @@ impl<'d> Renderer<'d> {
                 pass,
                 wgsl,
                 &object_resources,
-                &meshes,
                 values[pi].as_ref(),
             )?);
         }

@@ -60,7 +60,6 @@ impl PassExec {
         pass: &PassManifest,
         wgsl: &str,
         objects: &ObjectResources,
-        meshes: &[GpuMesh],
         buffers: Option<&super::values::PassBuffers>,
     ) -> Result<PassExec, RunError> {
         Ok(match &pass.kind {
@@ -77,7 +76,7 @@ impl PassExec {
             PassKindManifest::Compute { .. } => {
                 let buffers = buffers
                     .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
-                PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects, meshes, buffers)?)
+                PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects.buffer, buffers)?)
             }
         })
     }

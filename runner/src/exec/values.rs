@@ -1,26 +1,45 @@
-//! The buffers of compute passes: per pass, its per-object value buffer
+//! The buffers of compute passes. Per pass: its per-object value buffer
 //! (`vec4<f32>` slots, `objects × slots`; two copies, written by frame
-//! parity, when the pass keeps state), and for a pass over vertices its
-//! partials buffer (one `vec4` per value per element workgroup) and its
-//! dispatch uniform. Built once with the renderer (the object count and
-//! vertex counts are fixed); the value buffers are zeroed again whenever
-//! the history resets (a new size), so state restarts from its first value.
+//! parity, when the pass keeps state); its member table (the objects it
+//! runs over: `vec4<u32>`(object index, first vertex, vertex count, first
+//! element workgroup)); and for a pass over vertices, its members' vertex
+//! attributes one after the other (so each stage is one dispatch over all
+//! members), its partials buffer (one `vec4` per value per element
+//! workgroup) and its dispatch uniform. Built once with the renderer (the
+//! objects are fixed); the value buffers are zeroed again whenever the
+//! history resets (a new size), so state restarts from its first value.
 
 use super::meshes::GpuMesh;
+use crate::scene::Scene;
+use crate::RunError;
 use abi::manifest::*;
+use std::collections::BTreeMap;
+use wgpu::util::DeviceExt;
+
+/// Most objects one compute pass runs over (one object-stage workgroup each,
+/// in one dispatch dimension).
+pub const MAX_MEMBERS: usize = 65535;
 
 /// The buffers of one compute pass.
 pub(super) struct PassBuffers {
     /// This frame's values at `copies[parity % copies.len()]`; the previous
     /// frame's at the other copy (passes with state).
     pub copies: Vec<wgpu::Buffer>,
-    /// Per object, `partials_per_object` × values partials (passes over vertices).
-    pub partials: Option<wgpu::Buffer>,
-    /// `vec4<u32>`, x: partials per object (passes over vertices).
-    pub dispatch: Option<wgpu::Buffer>,
     pub slots: u32,
-    /// Element workgroups of the object with the most vertices.
-    pub partials_per_object: u32,
+    /// `vec4<u32>` per member.
+    pub members: wgpu::Buffer,
+    pub member_count: u32,
+    /// Element workgroups of all members (passes over vertices).
+    pub element_workgroups: u32,
+    /// The members' vertices per attribute (passes over vertices).
+    pub attributes: BTreeMap<Attribute, wgpu::Buffer>,
+    /// Members whose vertices change every frame: (object, first vertex),
+    /// copied from the object's vertex buffers before the pass runs.
+    pub time_varying: Vec<(usize, u64)>,
+    /// Per element workgroup, one partial per value (passes over vertices).
+    pub partials: Option<wgpu::Buffer>,
+    /// `vec4<u32>`(element workgroups, members, 0, 0) (passes over vertices).
+    pub dispatch: Option<wgpu::Buffer>,
 }
 
 impl PassBuffers {
@@ -38,76 +57,160 @@ pub(super) fn element_workgroups(vertices: usize) -> u32 {
         .min(u32::MAX as u64) as u32
 }
 
-/// The buffers of every manifest pass (`None` for passes that are not compute).
-pub(super) fn create(device: &wgpu::Device, manifest: &Manifest, meshes: &[GpuMesh]) -> Vec<Option<PassBuffers>> {
-    let objects = meshes.len().max(1) as u64;
-    manifest
-        .passes
-        .iter()
-        .map(|p| {
-            let PassKindManifest::Compute {
-                domain,
-                values,
-                history,
-                ..
-            } = &p.kind
-            else {
-                return None;
-            };
-            let slots = values.len() as u32 + u32::from(*history);
-            let value_buffer = |copy: usize| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(&format!("npr values of `{}` #{copy}", p.name)),
-                    size: objects * slots as u64 * 16,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                })
-            };
-            let copies = (0..if *history { 2 } else { 1 }).map(value_buffer).collect();
-            let (partials, dispatch, per_object) = match domain {
-                ComputeDomain::Objects => (None, None, 0),
-                ComputeDomain::Vertices => {
-                    let per_object = meshes
-                        .iter()
-                        .map(|m| element_workgroups(m.vertex_count))
-                        .max()
-                        .unwrap_or(0)
-                        .max(1);
-                    let partials = device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(&format!("npr partials of `{}`", p.name)),
-                        size: objects * per_object as u64 * values.len().max(1) as u64 * 16,
-                        usage: wgpu::BufferUsages::STORAGE,
-                        mapped_at_creation: false,
-                    });
-                    let dispatch = device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(&format!("npr dispatch of `{}`", p.name)),
-                        size: 16,
-                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    });
-                    (Some(partials), Some(dispatch), per_object)
-                }
-            };
-            Some(PassBuffers {
-                copies,
-                partials,
-                dispatch,
-                slots,
-                partials_per_object: per_object,
-            })
-        })
-        .collect()
+/// Bytes of one vertex of `a` in its vertex buffer.
+fn attribute_bytes(a: Attribute) -> u64 {
+    match a {
+        Attribute::Position | Attribute::Normal => 12,
+        Attribute::Uv => 8,
+        Attribute::Tangent => 16,
+    }
 }
 
-/// Zero every value buffer (state restarts from its first value) and write
-/// the dispatch uniforms.
+/// The CPU data of attribute `a` of `mesh`, as bytes.
+fn attribute_data(mesh: &crate::scene::Mesh, a: Attribute) -> Option<&[u8]> {
+    Some(match a {
+        Attribute::Position => bytemuck::cast_slice(&mesh.positions),
+        Attribute::Normal => bytemuck::cast_slice(&mesh.normals),
+        Attribute::Uv => bytemuck::cast_slice(mesh.uvs.as_ref()?),
+        Attribute::Tangent => bytemuck::cast_slice(mesh.tangents.as_ref()?),
+    })
+}
+
+/// The buffers of every manifest pass (`None` for passes that are not compute).
+pub(super) fn create(
+    device: &wgpu::Device,
+    manifest: &Manifest,
+    scene: &Scene,
+    meshes: &[GpuMesh],
+) -> Result<Vec<Option<PassBuffers>>, RunError> {
+    let objects = scene.objects.len().max(1) as u64;
+    let mut all = Vec::new();
+    for p in &manifest.passes {
+        let PassKindManifest::Compute {
+            domain,
+            tag,
+            attributes,
+            values,
+            history,
+            ..
+        } = &p.kind
+        else {
+            all.push(None);
+            continue;
+        };
+        let slots = values.len() as u32 + u32::from(*history);
+        let value_buffer = |copy: usize| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("npr values of `{}` #{copy}", p.name)),
+                size: objects * slots as u64 * 16,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let copies = (0..if *history { 2 } else { 1 }).map(value_buffer).collect();
+        let members: Vec<usize> = (0..scene.objects.len())
+            .filter(|o| tag.as_ref().is_none_or(|t| scene.objects[*o].has_tag(t)))
+            .collect();
+        if members.len() > MAX_MEMBERS {
+            return Err(RunError::Limit(format!(
+                "compute pass `{}` runs over {} objects; at most {MAX_MEMBERS} are supported",
+                p.name,
+                members.len()
+            )));
+        }
+        let over_vertices = *domain == ComputeDomain::Vertices;
+        // The member table, and where each member's vertices start.
+        let (mut table, mut first_vertex, mut first_workgroup) = (Vec::new(), 0u64, 0u64);
+        for &o in &members {
+            let n = if over_vertices {
+                meshes[o].vertex_count as u64
+            } else {
+                0
+            };
+            table.push([o as u32, first_vertex as u32, n as u32, first_workgroup as u32]);
+            first_vertex += n;
+            first_workgroup += element_workgroups(n as usize) as u64;
+        }
+        if first_vertex > u32::MAX as u64 / 4 || first_workgroup > 65535 * 65535 {
+            return Err(RunError::Limit(format!(
+                "compute pass `{}` runs over {first_vertex} vertices, past what one dispatch addresses",
+                p.name
+            )));
+        }
+        let member_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&format!("npr members of `{}`", p.name)),
+            contents: if table.is_empty() {
+                &[0u8; 16]
+            } else {
+                bytemuck::cast_slice(&table)
+            },
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let mut pooled = BTreeMap::new();
+        let mut time_varying = Vec::new();
+        if over_vertices {
+            for a in attributes {
+                let mut bytes = Vec::with_capacity((first_vertex * attribute_bytes(*a)) as usize);
+                for &o in &members {
+                    let data = attribute_data(&scene.objects[o].mesh, *a).ok_or_else(|| {
+                        RunError::Internal(format!("object #{o} has no `{}` for pass `{}`", a.name(), p.name))
+                    })?;
+                    bytes.extend_from_slice(data);
+                }
+                if bytes.is_empty() {
+                    bytes.resize(16, 0);
+                }
+                pooled.insert(
+                    *a,
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&format!("npr `{}` of `{}`'s members", a.name(), p.name)),
+                        contents: &bytes,
+                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    }),
+                );
+            }
+            time_varying = table
+                .iter()
+                .filter(|m| meshes[m[0] as usize].built_for_s.is_some())
+                .map(|m| (m[0] as usize, m[1] as u64))
+                .collect();
+        }
+        let (partials, dispatch) = if over_vertices {
+            let partials = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("npr partials of `{}`", p.name)),
+                size: first_workgroup.max(1) * values.len().max(1) as u64 * 16,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            let dispatch = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("npr dispatch of `{}`", p.name)),
+                contents: bytemuck::cast_slice(&[first_workgroup as u32, members.len() as u32, 0, 0]),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            (Some(partials), Some(dispatch))
+        } else {
+            (None, None)
+        };
+        all.push(Some(PassBuffers {
+            copies,
+            slots,
+            members: member_buffer,
+            member_count: members.len() as u32,
+            element_workgroups: first_workgroup as u32,
+            attributes: pooled,
+            time_varying,
+            partials,
+            dispatch,
+        }));
+    }
+    Ok(all)
+}
+
+/// Zero every value buffer: state restarts from its first value.
 pub(super) fn reset(queue: &wgpu::Queue, buffers: &[Option<PassBuffers>]) {
     for b in buffers.iter().flatten() {
         for c in &b.copies {
             queue.write_buffer(c, 0, &vec![0u8; c.size() as usize]);
-        }
-        if let Some(d) = &b.dispatch {
-            queue.write_buffer(d, 0, bytemuck::cast_slice(&[b.partials_per_object, 0, 0, 0]));
         }
     }
 }
