@@ -1,5 +1,6 @@
 //! Build the pass DAG: which pass reads which, a topological execution
-//! order, and a clear error for any dependency cycle.
+//! order, and a clear error for any dependency cycle. A pass reads another
+//! through a target, or through its depth (`depth: test(other)`).
 
 use crate::ir::*;
 use dsl::{codes, Diagnostic, Span};
@@ -23,6 +24,10 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     let n = ir.passes.len();
     let mut reads: Vec<Vec<(PassId, Span)>> = vec![Vec::new(); n];
     for (pi, pass) in ir.passes.iter().enumerate() {
+        // A depth test reads the tested pass's depth buffer: it runs after it.
+        if let Some((tested, span)) = pass.depth_test() {
+            reads[pi].push((tested, span));
+        }
         for id in ir.reachable(&pass_roots(pass)) {
             let e = ir.expr(id);
             if let Some(t) = e.kind.target_read() {

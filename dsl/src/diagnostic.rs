@@ -247,6 +247,10 @@ pub mod codes {
     pub const NO_OUTPUT: &str = "E0303";
     /// A pass reads a target that is not listed in its inputs, or a render-only builtin in an image pass.
     pub const BAD_PASS_INPUT: &str = "E0304";
+    /// A blend mode on an output whose format cannot be blended (32-bit float; integer formats, should they come).
+    pub const NOT_BLENDABLE: &str = "E0307";
+    /// A depth test against a pass that keeps no depth buffer.
+    pub const DEPTH_NOT_KEPT: &str = "E0308";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -278,6 +282,8 @@ pub mod codes {
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),
         (BAD_PASS_INPUT, "bad pass input"),
+        (NOT_BLENDABLE, "blend on a format that cannot be blended"),
+        (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
