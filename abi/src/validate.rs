@@ -15,6 +15,8 @@ pub const MAX_PASS_OUTPUTS: usize = 8;
 pub const MAX_SCALE: f64 = 4.0;
 /// Largest uniform block (wgpu's default `max_uniform_buffer_binding_size`).
 pub const MAX_UNIFORM_SIZE: u64 = 65536;
+/// Binding numbers must be below this (wgpu's default `max_bindings_per_bind_group`).
+pub const MAX_BINDING: u32 = 1000;
 /// Largest `depth: test(..., bias: N px)` (the compiler's range).
 pub const MAX_DEPTH_BIAS_PX: f64 = 64.0;
 
@@ -385,6 +387,12 @@ impl Manifest {
             if !numbers.insert(b.binding) {
                 return bad(format!("{f}.binding"), format!("binding {} appears twice", b.binding));
             }
+            if b.binding >= MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is not below {MAX_BINDING}", b.binding),
+                );
+            }
             match &b.resource {
                 Resource::Target {
                     target,
@@ -446,6 +454,12 @@ impl Manifest {
                 return bad(
                     format!("{f}.binding"),
                     format!("binding {} appears twice (0 is the object block)", b.binding),
+                );
+            }
+            if b.binding >= MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is not below {MAX_BINDING}", b.binding),
                 );
             }
             match &b.resource {
