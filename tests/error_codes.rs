@@ -248,6 +248,14 @@ fn depth_test_against_an_unknown_pass_suggests_one() {
 }
 
 #[test]
+fn a_cycle_through_a_depth_test_suggests_previous_on_the_target_read() {
+    let text = style("pass a: render(scene) {\n  out c: rgba8unorm = b.ink\n  depth: keep\n}\npass b: render(scene) {\n  out ink: rgba8unorm = #000000\n  depth: test(a)\n}\noutput b.ink\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("depth-cycle"));
+    assert!(rendered.contains("`previous(b.<target>)` in `a`"), "{rendered}");
+    check_case("E0301", "E0301_depth_cycle", (diags, rendered));
+}
+
+#[test]
 fn depth_test_across_pass_sizes() {
     let text = depth_passes("  depth: keep\n", "test(gbuffer)")
         .replace("pass lines: render(scene) {", "pass lines: render(scene) scale 1/2 {");
