@@ -289,7 +289,9 @@ fn bad_depth_tests_and_blends_are_rejected_naming_the_field() {
         "overlay_lines: `lines` tests `shade`"
     );
     let dir = scratch("depth-blend");
-    let mutations: &[(&str, fn(&mut Value), &str)] = &[
+    // (what, the edit, the field the error must name).
+    type Edit = fn(&mut Value);
+    let mutations: &[(&str, Edit, &str)] = &[
         (
             "a test of a pass that runs later",
             |m| m["passes"][1]["kind"]["depth"]["pass"] = Value::from(2),

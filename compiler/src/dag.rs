@@ -90,8 +90,8 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
                         // `previous(...)` breaks a target read, not a depth
                         // test: name a read edge of the cycle (one exists, as
                         // a tested pass keeps its depth, so tests no other).
-                        let edges = path.windows(2).map(|w| (w[0], w[1])).chain([(node, d)]);
-                        let (r, t) = edges.filter(|(r, t)| !is_depth(*r, *t)).last().unwrap_or((node, d));
+                        let mut edges = path.windows(2).map(|w| (w[0], w[1])).chain([(node, d)]);
+                        let (r, t) = edges.rfind(|(r, t)| !is_depth(*r, *t)).unwrap_or((node, d));
                         let (reader, read) = (&ir.passes[r].name, &ir.passes[t].name);
                         diags.push(diag.with_help(format!(
                             "a pass can only read this frame's targets of passes that run before it; \
