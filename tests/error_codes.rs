@@ -281,6 +281,64 @@ fn w0301_a_compute_pass_nobody_reads() {
 }
 
 #[test]
+fn e0307_blend_on_a_format_that_cannot_be_blended() {
+    let text = style("pass p: image() {\n  out sum: rgba32float = vec4(0.25) { blend: add }\n}\noutput p.sum\n");
+    check("E0307", compile_errors(&text, &scratch("e0307")));
+}
+
+#[test]
+fn unknown_blend_mode_suggests_one() {
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = #ff000080 { blend: ovr }\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("blend-unknown"));
+    assert!(rendered.contains("did you mean `over`?"), "{rendered}");
+    check_case("E0103", "E0103_unknown_blend_mode", (diags, rendered));
+}
+
+/// A scene pass and a line pass over it, `depth` setting of each given.
+fn depth_passes(gbuffer_depth: &str, lines_depth: &str) -> String {
+    style(&format!(
+        "pass gbuffer: render(scene) {{\n  out c: rgba8unorm = #808080\n{gbuffer_depth}}}\n\
+         pass lines: render(scene) {{\n  out ink: rgba8unorm = #000000 {{ blend: over }}\n  depth: {lines_depth}\n}}\n\
+         pass final: image(gbuffer, lines) {{\n  out color: rgba8unorm = gbuffer.c * lines.ink\n}}\noutput final.color\n"
+    ))
+}
+
+#[test]
+fn e0308_depth_test_against_a_pass_that_keeps_no_depth() {
+    let text = depth_passes("", "test(gbuffer, bias: 1px)");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0308"));
+    assert!(rendered.contains("add `depth: keep` to pass `gbuffer`"), "{rendered}");
+    check("E0308", (diags, rendered));
+}
+
+#[test]
+fn depth_test_against_an_unknown_pass_suggests_one() {
+    let text = depth_passes("  depth: keep\n", "test(gbufer)");
+    let (diags, rendered) = compile_errors(&text, &scratch("depth-unknown"));
+    assert!(rendered.contains("did you mean `gbuffer`?"), "{rendered}");
+    check_case("E0101", "E0101_depth_test_unknown_pass", (diags, rendered));
+}
+
+#[test]
+fn a_cycle_through_a_depth_test_suggests_previous_on_the_target_read() {
+    let text = style("pass a: render(scene) {\n  out c: rgba8unorm = b.ink\n  depth: keep\n}\npass b: render(scene) {\n  out ink: rgba8unorm = #000000\n  depth: test(a)\n}\noutput b.ink\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("depth-cycle"));
+    assert!(rendered.contains("`previous(b.<target>)` in `a`"), "{rendered}");
+    check_case("E0301", "E0301_depth_cycle", (diags, rendered));
+}
+
+#[test]
+fn depth_test_across_pass_sizes() {
+    let text = depth_passes("  depth: keep\n", "test(gbuffer)")
+        .replace("pass lines: render(scene) {", "pass lines: render(scene) scale 1/2 {");
+    check_case(
+        "E0304",
+        "E0304_depth_test_other_scale",
+        compile_errors(&text, &scratch("depth-scale")),
+    );
+}
+
+#[test]
 fn e0401_missing_texture_file() {
     let text = style("texture paper = image(\"textures/paper.png\", srgb)\npass p: render(scene) {\n  out color: rgba8unorm = paper\n}\noutput p.color\n");
     let (d, r) = compile_errors(&text, &scratch("e0401"));

@@ -135,12 +135,18 @@ const FIXED_TOKENS: &[&str] = &[
     "on",
     "srgb",
     "linear",
+    "clear",
+    "depth",
+    "keep",
+    "test",
+    "bias",
     "std::x",
     "\n",
 ];
 
 /// Every token the fuzzer splices: the fixed list, the grammar's keywords,
-/// every builtin spelling, intrinsic, stdlib operator and target format.
+/// every builtin spelling, intrinsic, stdlib operator, target format and
+/// blend mode.
 fn tokens() -> &'static [String] {
     static TOKENS: OnceLock<Vec<String>> = OnceLock::new();
     TOKENS.get_or_init(|| {
@@ -150,6 +156,7 @@ fn tokens() -> &'static [String] {
         t.extend(Intrinsic::names().map(str::to_string));
         t.extend(stdlib::all().iter().map(|o| o.name.to_string()));
         t.extend(Format::ALL.iter().map(|(s, _)| s.to_string()));
+        t.extend(abi::manifest::Blend::ALL.iter().map(|(s, _)| s.to_string()));
         t.sort();
         t.dedup();
         t
@@ -177,6 +184,7 @@ fn token_list_covers_every_keyword_builtin_and_pass_kind() {
             "previous",
             "other_eye",
         ])
+        .chain(["depth", "keep", "test", "bias", "over", "multiply"])
     {
         assert!(t.iter().any(|x| x == needed), "fuzz token list lacks `{needed}`");
     }

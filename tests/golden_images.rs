@@ -82,6 +82,16 @@ fn toon_on_analytic_spheres() {
 }
 
 #[test]
+fn overlay_lines_on_analytic_spheres() {
+    // A kept depth tested by a second render pass, and `over` blending.
+    golden(
+        "overlay_lines_spheres",
+        "examples/overlay_lines.npr",
+        "examples/scenes/spheres.toml",
+    );
+}
+
+#[test]
 fn a_broken_image_fails_the_comparison() {
     // The harness must be able to fail: a golden compared with an altered copy.
     let actual = render_example("examples/toon.npr", "examples/scenes/spot.toml");

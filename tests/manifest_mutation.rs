@@ -21,11 +21,13 @@ use std::sync::OnceLock;
 
 /// Styles with render and image passes, a noise texture, aliased targets,
 /// style and per-object uniforms (parameters kept), compute passes over
-/// vertices and objects with per-object values read by a render pass.
+/// vertices and objects with per-object values read by a render pass, a kept
+/// depth tested by another pass and a blend mode.
 const STYLES: &[&str] = &[
     "examples/edge_breakup.npr",
     "examples/rounded_shadows.npr",
     "examples/object_centroids.npr",
+    "examples/overlay_lines.npr",
 ];
 
 /// A compiled style: its manifest as JSON and its (file, WGSL) shaders.
@@ -278,6 +280,59 @@ fn bad_indices_are_rejected_naming_the_field() {
     write_dir(&dir, manifest, &shaders[1..]);
     let err = StyleProgram::load_dir(&dir).expect_err("missing shader").to_string();
     assert!(err.contains(&shaders[0].0), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_depth_tests_and_blends_are_rejected_naming_the_field() {
+    let overlay = STYLES
+        .iter()
+        .position(|s| s.ends_with("overlay_lines.npr"))
+        .expect("overlay style");
+    let (manifest, shaders) = &compiled()[overlay];
+    assert_eq!(
+        manifest["passes"][1]["name"], "lines",
+        "overlay_lines: `lines` tests `shade`"
+    );
+    let dir = scratch("depth-blend");
+    // (what, the edit, the field the error must name).
+    type Edit = fn(&mut Value);
+    let mutations: &[(&str, Edit, &str)] = &[
+        (
+            "a test of a pass that runs later",
+            |m| m["passes"][1]["kind"]["depth"]["pass"] = Value::from(2),
+            "`passes[1].kind.depth.pass`",
+        ),
+        (
+            "a test of a pass that keeps no depth",
+            |m| {
+                m["passes"][0]["kind"].as_object_mut().expect("kind").remove("depth");
+            },
+            "`passes[1].kind.depth.pass`",
+        ),
+        (
+            "a negative bias",
+            |m| m["passes"][1]["kind"]["depth"]["bias_px"] = Value::from(-1.0),
+            "`passes[1].kind.depth.bias_px`",
+        ),
+        (
+            "more blend modes than outputs",
+            |m| {
+                m["passes"][1]["blend"]
+                    .as_array_mut()
+                    .expect("blend")
+                    .push(Value::from("add"))
+            },
+            "`passes[1].blend`",
+        ),
+    ];
+    for (what, mutate, field) in mutations {
+        let mut m = manifest.clone();
+        mutate(&mut m);
+        write_dir(&dir, &m, shaders);
+        let err = StyleProgram::load_dir(&dir).expect_err(what).to_string();
+        assert!(err.contains(field), "{what}: {err}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -66,6 +66,13 @@ impl Format {
         !matches!(self, Format::R32float | Format::Rg32float | Format::Rgba32float)
     }
 
+    /// Whether a pass may blend into a target of this format: wgpu blends
+    /// 32-bit float formats only with `Features::FLOAT32_BLENDABLE`, which
+    /// the runner does not request (lavapipe and many GPUs lack it).
+    pub fn is_blendable(self) -> bool {
+        !matches!(self, Format::R32float | Format::Rg32float | Format::Rgba32float)
+    }
+
     pub fn bytes_per_pixel(self) -> u32 {
         use Format::*;
         match self {

@@ -127,6 +127,10 @@ pub enum PassKindManifest {
         light_view: bool,
         /// Vertex attributes in location order (location = index).
         attributes: Vec<Attribute>,
+        /// What the pass does with its depth buffer: `depth: keep` or
+        /// `depth: test(...)`; absent for the default (its own, discarded).
+        #[serde(default, skip_serializing_if = "DepthMode::is_own")]
+        depth: DepthMode,
         /// The entry points of the pass's shader.
         vertex_entry: String,
         fragment_entry: String,
@@ -300,6 +304,11 @@ pub struct PassManifest {
     pub shader: String,
     /// Targets written, in `@location` order.
     pub outputs: Vec<usize>,
+    /// How each output combines with its target, in `@location` order;
+    /// empty when every output replaces (the default, and every manifest
+    /// written before blending existed).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub blend: Vec<Blend>,
     pub clear: [f64; 4],
     /// Group 0 bindings, by binding number.
     pub bindings: Vec<Binding>,
@@ -310,6 +319,90 @@ pub struct PassManifest {
     pub object_bindings: Vec<Binding>,
     /// `.npr` line of the pass declaration (for messages).
     pub line: usize,
+}
+
+/// How a pass output combines with what its target holds already: the
+/// pass's clear colour, then the fragments this pass drew there before. `s`
+/// is the fragment's value (straight alpha, as every colour of a style), `d`
+/// the target's. Each is one fixed-function `wgpu::BlendState` (the runner's
+/// `blend_state`), exact up to the target format's rounding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Blend {
+    /// `s`: the fragment overwrites the target.
+    #[default]
+    Replace,
+    /// Porter-Duff over, straight alpha: rgb = s.rgb·s.a + d.rgb·(1 − s.a),
+    /// a = s.a + d.a·(1 − s.a) (`wgpu::BlendState::ALPHA_BLENDING`). This is
+    /// the stdlib's `over(s, d)` wherever `d` is opaque (an opaque clear, or
+    /// an opaque fragment drawn before); over a transparent `d` the stored
+    /// rgb is premultiplied by the coverage drawn (rgb·a), because straight
+    /// over divides by the result's alpha, which blending cannot.
+    Over,
+    /// s + d, every channel, alpha included (clamped by unorm formats).
+    Add,
+    /// s × d, every channel, alpha included.
+    Multiply,
+}
+
+impl Blend {
+    /// Every mode as a style writes it.
+    pub const ALL: &'static [(&'static str, Blend)] = &[
+        ("replace", Blend::Replace),
+        ("over", Blend::Over),
+        ("add", Blend::Add),
+        ("multiply", Blend::Multiply),
+    ];
+
+    pub fn parse(name: &str) -> Option<Blend> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, b)| *b)
+    }
+
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(_, b)| *b == self)
+            .map(|(n, _)| *n)
+            .unwrap_or("?")
+    }
+}
+
+/// What a render pass does with its depth buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(tag = "mode", rename_all = "snake_case")]
+pub enum DepthMode {
+    /// Cleared to 1, tested (`Less`) and written, discarded after the pass;
+    /// passes of one size share one such buffer.
+    #[default]
+    Own,
+    /// `depth: keep`: as `Own`, but in a depth texture of its own per eye
+    /// slot, stored, so that later passes can test against it.
+    Keep,
+    /// `depth: test(pass)`: loads the depth `pass` kept and tests against it
+    /// (`LessEqual`) without writing it. A bias in depth units is applied by
+    /// the pass's vertex shader (clip.z −= bias·clip.w), so it is in the WGSL,
+    /// not here.
+    Test {
+        /// Index into [`Manifest::passes`] of an earlier render pass with
+        /// `depth: keep`, the same scale and the same view.
+        pass: usize,
+        /// `bias: N px`: a slope-scaled bias (`wgpu::DepthBiasState` with
+        /// `slope_scale = −N`): the fragment's depth is lowered by N·m, m =
+        /// max(|∂z/∂x|, |∂z/∂y|) of its triangle in depth per px, i.e. by
+        /// the depth its own surface spans over N px.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        bias_px: f64,
+    },
+}
+
+impl DepthMode {
+    pub fn is_own(&self) -> bool {
+        *self == DepthMode::Own
+    }
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

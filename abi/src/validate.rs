@@ -13,12 +13,14 @@ use std::collections::BTreeSet;
 pub const MAX_PASS_OUTPUTS: usize = 8;
 /// Largest pass or target scale, relative to the output size (the compiler's range).
 pub const MAX_SCALE: f64 = 4.0;
-/// Largest binding number (wgpu's `max_bindings_per_bind_group` is 1000).
-pub const MAX_BINDING: u32 = 999;
 /// Most per-object value slots of one compute pass (the compiler's limit).
 pub const MAX_VALUE_SLOTS: usize = 64;
 /// Largest uniform block (wgpu's default `max_uniform_buffer_binding_size`).
 pub const MAX_UNIFORM_SIZE: u64 = 65536;
+/// Binding numbers must be below this (wgpu's default `max_bindings_per_bind_group`).
+pub const MAX_BINDING: u32 = 1000;
+/// Largest `depth: test(..., bias: N px)` (the compiler's range).
+pub const MAX_DEPTH_BIAS_PX: f64 = 64.0;
 
 /// A manifest that is well-formed JSON but not something the runner can run:
 /// `field` names the bad value as a path (`passes[2].outputs[0]`).
@@ -223,6 +225,93 @@ impl Manifest {
         Ok(())
     }
 
+    /// One blend mode per output (or none: all replace), and only on
+    /// formats the runner can blend.
+    fn validate_blend(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
+        if !p.blend.is_empty() && p.blend.len() != p.outputs.len() {
+            return bad(
+                format!("{field}.blend"),
+                format!(
+                    "pass `{}` has {} blend modes for {} outputs (one per output, or none)",
+                    p.name,
+                    p.blend.len(),
+                    p.outputs.len()
+                ),
+            );
+        }
+        for (k, (b, t)) in p.blend.iter().zip(&p.outputs).enumerate() {
+            let Some(target) = self.targets.get(*t) else {
+                continue; // reported as a bad output index
+            };
+            if *b != Blend::Replace && !target.format.is_blendable() {
+                return bad(
+                    format!("{field}.blend[{k}]"),
+                    format!(
+                        "`{}` blending into `{}`, which is {}: that format cannot be blended",
+                        b.name(),
+                        target.name,
+                        target.format.name()
+                    ),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// A depth test reads the kept depth of an earlier render pass of the
+    /// same size and view; the runner binds that pass's depth texture.
+    fn validate_depth(&self, i: usize, field: &str, p: &PassManifest) -> Result<(), Invalid> {
+        let PassKindManifest::Render {
+            depth: DepthMode::Test { pass, bias_px },
+            light_view,
+            ..
+        } = &p.kind
+        else {
+            return Ok(());
+        };
+        let f = format!("{field}.kind.depth");
+        if *pass >= i {
+            return bad(
+                format!("{f}.pass"),
+                format!(
+                    "pass `{}` tests the depth of pass #{pass}, which does not run before it",
+                    p.name
+                ),
+            );
+        }
+        let tested = &self.passes[*pass];
+        let PassKindManifest::Render {
+            depth: DepthMode::Keep,
+            light_view: tested_light,
+            ..
+        } = &tested.kind
+        else {
+            return bad(
+                format!("{f}.pass"),
+                format!(
+                    "pass `{}` tests the depth of `{}`, which keeps none",
+                    p.name, tested.name
+                ),
+            );
+        };
+        if tested.scale != p.scale || tested_light != light_view {
+            return bad(
+                format!("{f}.pass"),
+                format!(
+                    "pass `{}` tests the depth of `{}`, which has another scale or view",
+                    p.name, tested.name
+                ),
+            );
+        }
+        if !(0.0..=MAX_DEPTH_BIAS_PX).contains(bias_px) {
+            return bad(
+                format!("{f}.bias_px"),
+                format!("{bias_px} is outside 0..={MAX_DEPTH_BIAS_PX}"),
+            );
+        }
+        Ok(())
+    }
+
     fn validate_pass(&self, i: usize, p: &PassManifest) -> Result<(), Invalid> {
         let field = format!("passes[{i}]");
         let file_name_ok =
@@ -249,9 +338,18 @@ impl Manifest {
             }
         }
         check_scale(format!("{field}.scale"), p.scale)?;
+        // A pass kept only for its depth (a later pass tests against it) may
+        // write no colour target.
+        let depth_only = matches!(
+            p.kind,
+            PassKindManifest::Render {
+                depth: DepthMode::Keep,
+                ..
+            }
+        );
         if let PassKindManifest::Compute { .. } = &p.kind {
             self.validate_compute(&field, p)?;
-        } else if p.outputs.is_empty() || p.outputs.len() > MAX_PASS_OUTPUTS {
+        } else if (p.outputs.is_empty() && !depth_only) || p.outputs.len() > MAX_PASS_OUTPUTS {
             return bad(
                 format!("{field}.outputs"),
                 format!(
@@ -261,6 +359,8 @@ impl Manifest {
                 ),
             );
         }
+        self.validate_blend(&field, p)?;
+        self.validate_depth(i, &field, p)?;
         if !p.clear.iter().all(|c| c.is_finite()) {
             return bad(format!("{field}.clear"), "clear colour is not finite");
         }
@@ -288,14 +388,14 @@ impl Manifest {
         let mut numbers = BTreeSet::new();
         for (k, b) in p.bindings.iter().enumerate() {
             let f = format!("{field}.bindings[{k}]");
-            if b.binding > MAX_BINDING {
-                return bad(
-                    format!("{f}.binding"),
-                    format!("binding {} is past {MAX_BINDING}", b.binding),
-                );
-            }
             if !numbers.insert(b.binding) {
                 return bad(format!("{f}.binding"), format!("binding {} appears twice", b.binding));
+            }
+            if b.binding >= MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is not below {MAX_BINDING}", b.binding),
+                );
             }
             match &b.resource {
                 Resource::Target {
@@ -367,16 +467,16 @@ impl Manifest {
         let mut numbers = BTreeSet::from([0]);
         for (k, b) in p.object_bindings.iter().enumerate() {
             let f = format!("{field}.object_bindings[{k}]");
-            if b.binding > MAX_BINDING {
-                return bad(
-                    format!("{f}.binding"),
-                    format!("binding {} is past {MAX_BINDING}", b.binding),
-                );
-            }
             if !numbers.insert(b.binding) {
                 return bad(
                     format!("{f}.binding"),
                     format!("binding {} appears twice (0 is the object block)", b.binding),
+                );
+            }
+            if b.binding >= MAX_BINDING {
+                return bad(
+                    format!("{f}.binding"),
+                    format!("binding {} is not below {MAX_BINDING}", b.binding),
                 );
             }
             match &b.resource {

@@ -143,6 +143,26 @@ pub fn allocate(
             alloc.targets.push((t, phys));
         }
     }
+    // Kept depths are the runner's (one texture per keeping pass and eye
+    // slot, never aliased), but the report says which pass keeps one for whom.
+    for pid in &live.passes {
+        let pass = ir.pass(*pid);
+        if !pass.keeps_depth() {
+            continue;
+        }
+        let testers: Vec<String> = live
+            .passes
+            .iter()
+            .filter(|t| ir.pass(**t).depth_test().is_some_and(|(p, _)| p == *pid))
+            .map(|t| format!("`{}`", ir.pass(*t).name))
+            .collect();
+        let why = if testers.is_empty() {
+            "not kept: no live pass tests against it".to_string()
+        } else {
+            format!("kept for {}: a depth texture of its own (per eye)", testers.join(", "))
+        };
+        report.push("depth", format!("pass `{}`", pass.name), why);
+    }
     if !live.history.is_empty() {
         report.push(
             "history",

@@ -1,5 +1,6 @@
 //! Build the pass DAG: which pass reads which, a topological execution
-//! order, and a clear error for any dependency cycle.
+//! order, and a clear error for any dependency cycle. A pass reads another
+//! through a target, or through its depth (`depth: test(other)`).
 
 use crate::ir::*;
 use dsl::{codes, Diagnostic, Span};
@@ -24,6 +25,10 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     let n = ir.passes.len();
     let mut reads: Vec<Vec<(PassId, Span)>> = vec![Vec::new(); n];
     for (pi, pass) in ir.passes.iter().enumerate() {
+        // A depth test reads the tested pass's depth buffer: it runs after it.
+        if let Some((tested, span)) = pass.depth_test() {
+            reads[pi].push((tested, span));
+        }
         for id in ir.reachable(&pass_roots(pass)) {
             let e = ir.expr(id);
             let read = e
@@ -64,6 +69,16 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
                             path.drain(..pos);
                         }
                         let names: Vec<&str> = path.iter().map(|p| ir.passes[*p].name.as_str()).collect();
+                        let is_depth =
+                            |r: usize, t: usize| ir.passes[r].depth_test().is_some_and(|(p, _)| p.0 as usize == t);
+                        let reads_what = |r: usize, t: usize| {
+                            let (r_name, t_name) = (&ir.passes[r].name, &ir.passes[t].name);
+                            if is_depth(r, t) {
+                                format!("`{r_name}` tests against `{t_name}`'s depth")
+                            } else {
+                                format!("`{r_name}` reads `{t_name}`")
+                            }
+                        };
                         let mut diag = Diagnostic::error(
                             codes::PASS_CYCLE,
                             format!(
@@ -72,19 +87,18 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
                                 ir.passes[d].name
                             ),
                         )
-                        .with_primary(
-                            span,
-                            format!("`{}` reads `{}` here", ir.passes[node].name, ir.passes[d].name),
-                        );
+                        .with_primary(span, format!("{} here", reads_what(node, d)));
                         for w in path.windows(2) {
                             if let Some((_, s)) = reads[w[0]].iter().find(|(p, _)| p.0 as usize == w[1]) {
-                                diag = diag.with_secondary(
-                                    *s,
-                                    format!("`{}` reads `{}`", ir.passes[w[0]].name, ir.passes[w[1]].name),
-                                );
+                                diag = diag.with_secondary(*s, reads_what(w[0], w[1]));
                             }
                         }
-                        let (reader, read) = (&ir.passes[node].name, &ir.passes[d].name);
+                        // `previous(...)` breaks a target read, not a depth
+                        // test: name a read edge of the cycle (one exists, as
+                        // a tested pass keeps its depth, so tests no other).
+                        let mut edges = path.windows(2).map(|w| (w[0], w[1])).chain([(node, d)]);
+                        let (r, t) = edges.rfind(|(r, t)| !is_depth(*r, *t)).unwrap_or((node, d));
+                        let (reader, read) = (&ir.passes[r].name, &ir.passes[t].name);
                         diags.push(diag.with_help(format!(
                             "a pass can only read this frame's targets of passes that run before it; \
                              compute one of these values in a separate pass, or read the previous \

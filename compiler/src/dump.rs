@@ -24,8 +24,13 @@ pub fn dump(ir: &Ir) -> String {
     }
     for (i, p) in ir.passes.iter().enumerate() {
         let kind = match &p.kind {
-            PassKind::Render { tag, view, vertex } => format!(
-                "render({}) view={view:?} inflate={} shadow_warp={}",
+            PassKind::Render {
+                tag,
+                view,
+                vertex,
+                depth,
+            } => format!(
+                "render({}) view={view:?} inflate={} shadow_warp={} depth={depth:?}",
                 tag.as_deref().unwrap_or("scene"),
                 expr_ref(vertex.inflate),
                 expr_ref(vertex.shadow_warp)
@@ -44,7 +49,11 @@ pub fn dump(ir: &Ir) -> String {
             let _ = writeln!(s, "  let {} = e{}", l.name, l.value.0);
         }
         for o in &p.outputs {
-            let _ = writeln!(s, "  out {} : {} = e{}", o.name, o.format.name(), o.value.0);
+            let blend = match o.blend {
+                abi::manifest::Blend::Replace => String::new(),
+                b => format!(" blend={}", b.name()),
+            };
+            let _ = writeln!(s, "  out {} : {} = e{}{blend}", o.name, o.format.name(), o.value.0);
         }
         for (slot, v) in p.kind.values().iter().enumerate() {
             let _ = writeln!(

@@ -576,7 +576,7 @@ pub struct Texture {
 /// What a pass is, with the data only that kind has. Everything every kind
 /// has (name, scale, clear, lets, outputs, spans) is on [`Pass`]; a stage
 /// that behaves differently per kind matches on this, one arm per kind.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum PassKind {
     /// Draws scene objects.
     Render {
@@ -586,6 +586,8 @@ pub enum PassKind {
         view: PassView,
         /// `vertex { ... }`: expressions the vertex shader evaluates.
         vertex: VertexModifiers,
+        /// `depth: keep` / `depth: test(pass, bias: ...)`.
+        depth: PassDepth,
     },
     /// A fullscreen pass over its inputs.
     Image { inputs: Vec<PassId> },
@@ -690,6 +692,52 @@ impl VertexModifiers {
     }
 }
 
+/// What a render pass does with its depth buffer (`depth: ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub enum PassDepth {
+    /// Its own, cleared, discarded after the pass (the default).
+    #[default]
+    Own,
+    /// `depth: keep`: stored for later passes' depth tests.
+    Keep,
+    /// `depth: test(pass, bias: b)`: test against the depth `pass` kept,
+    /// without writing it. One of the biases is non-zero at most.
+    Test {
+        pass: PassId,
+        /// `bias: N px`: slope-scaled, by the runner (`DepthBiasState`).
+        bias_px: f64,
+        /// `bias: b`: in window depth (0 near, 1 far), by the vertex shader.
+        bias_depth: f64,
+        /// The `depth: test(...)` setting.
+        span: Span,
+    },
+}
+
+impl Pass {
+    /// The pass whose kept depth this pass tests against, if any, with the
+    /// span of the setting.
+    pub fn depth_test(&self) -> Option<(PassId, Span)> {
+        match self.kind {
+            PassKind::Render {
+                depth: PassDepth::Test { pass, span, .. },
+                ..
+            } => Some((pass, span)),
+            _ => None,
+        }
+    }
+
+    /// Whether the pass keeps its depth buffer (`depth: keep`).
+    pub fn keeps_depth(&self) -> bool {
+        matches!(
+            self.kind,
+            PassKind::Render {
+                depth: PassDepth::Keep,
+                ..
+            }
+        )
+    }
+}
+
 /// The camera a render pass projects with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub enum PassView {
@@ -706,6 +754,8 @@ pub struct PassOutput {
     pub name: String,
     pub format: abi::Format,
     pub value: ExprId,
+    /// `{ blend: ... }`: how the value combines with the target.
+    pub blend: abi::manifest::Blend,
     pub span: Span,
 }
 

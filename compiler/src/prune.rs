@@ -1,7 +1,9 @@
 //! Prune: keep only what the output depends on.
 //!
 //! Walks back from the output target: live passes, live targets, and the
-//! parameters, builtins, textures and operators their expressions use.
+//! parameters, builtins, textures and operators their expressions use. A
+//! live pass's `depth: test(other)` keeps `other` live, even when none of
+//! its targets is read (it then runs for its depth alone).
 //! Everything else is dropped and listed in the report with the reason.
 
 use crate::dag::PassGraph;
@@ -19,6 +21,8 @@ pub struct Live {
     pub history: BTreeSet<TargetRef>,
     /// Per-object values of compute passes that a live pass reads: (pass, slot).
     pub values: BTreeSet<(PassId, u32)>,
+    /// Passes whose kept depth a live pass tests against.
+    pub depth: BTreeSet<PassId>,
 }
 
 impl Live {
@@ -63,10 +67,13 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
     };
     for pid in graph.order.iter().rev() {
         let mut roots = live_roots(ir, *pid, &live);
-        if roots.is_empty() {
+        if roots.is_empty() && !live.depth.contains(pid) {
             continue;
         }
         live.passes.push(*pid);
+        if let Some((tested, _)) = ir.pass(*pid).depth_test() {
+            live.depth.insert(tested);
+        }
         // A state read inside its own pass (`StateOld`) makes that value
         // live too, which adds roots of this same pass: repeat until none.
         loop {
@@ -105,7 +112,8 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
 }
 
 /// The expressions a pass must evaluate for its live outputs: their values
-/// and the vertex modifiers. Empty when no output of the pass is live.
+/// and the vertex modifiers (also when it runs for its depth alone). Empty
+/// when the pass is dead.
 fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
     let pass = ir.pass(pid);
     let mut roots: Vec<ExprId> = pass
@@ -120,7 +128,7 @@ fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
         })
         .map(|(_, o)| o.value)
         .collect();
-    if !roots.is_empty() {
+    if !roots.is_empty() || live.depth.contains(&pid) {
         roots.extend(Ir::vertex_roots(pass));
     }
     for (slot, v) in pass.kind.values().iter().enumerate() {
@@ -159,8 +167,7 @@ pub fn unread_compute_passes(ir: &Ir, live: &Live) -> Vec<dsl::Diagnostic> {
 fn report_removed(ir: &Ir, graph: &PassGraph, live: &Live, report: &mut Report) {
     for pid in graph.order.iter().rev() {
         let pass = ir.pass(*pid);
-        let roots = live_roots(ir, *pid, live);
-        if roots.is_empty() {
+        if !live.passes.contains(pid) {
             report.removed(format!("pass `{}`", pass.name), "the output does not depend on it");
             continue;
         }
@@ -169,6 +176,7 @@ fn report_removed(ir: &Ir, graph: &PassGraph, live: &Live, report: &mut Report) 
                 report.removed(format!("value `{}.{}`", pass.name, v.name), "nothing reads it");
             }
         }
+        let roots = live_roots(ir, *pid, live);
         for (i, o) in pass.outputs.iter().enumerate() {
             if !live.targets.contains(&TargetRef {
                 pass: *pid,

@@ -20,6 +20,7 @@ use std::path::Path;
 use stdlib::Unit;
 
 mod compute;
+mod settings;
 
 /// Resolution limits, stated in the error messages.
 pub const MAX_PASSES: usize = 64;
@@ -781,6 +782,7 @@ impl Resolver<'_> {
                     tag,
                     view: PassView::Camera,
                     vertex: VertexModifiers::default(),
+                    depth: PassDepth::Own,
                 }
             }
             "image" => {
@@ -841,8 +843,10 @@ impl Resolver<'_> {
         self.pass_modifiers(&mut kind, p);
         self.vertex_modifiers(&mut kind, p);
         let mut clear = [0.0, 0.0, 0.0, 0.0];
+        let mut depth_seen = None;
         for s in &p.body.settings {
             match s.key.name.as_str() {
+                "depth" => self.depth_setting(&mut kind, s, &mut depth_seen),
                 "clear" => {
                     let cid = self.expr(&s.value);
                     if let Some(v) = self.const_values(cid) {
@@ -857,11 +861,15 @@ impl Resolver<'_> {
                         }
                     }
                 }
-                other => self.error(
-                    Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
-                        .with_primary(s.key.span, "not a pass setting")
-                        .with_help("pass settings are: `clear: #rrggbb`"),
-                ),
+                other => {
+                    let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
+                        .with_primary(s.key.span, "not a pass setting");
+                    d = match did_you_mean(other, ["clear", "depth"]) {
+                        Some(k) => d.with_help(format!("did you mean `{k}`?")),
+                        None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`"),
+                    };
+                    self.error(d)
+                }
             }
         }
         let compute_domain = match &kind {
@@ -937,10 +945,12 @@ impl Resolver<'_> {
                 }
             };
             let value = self.expr(&o.value);
+            let blend = self.output_blend(o, format);
             outputs.push(PassOutput {
                 name: o.name.name.clone(),
                 format,
                 value,
+                blend,
                 span: o.span,
             });
         }

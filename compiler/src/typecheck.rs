@@ -759,8 +759,77 @@ impl Checker<'_> {
         vertex
     }
 
+    /// `depth: test(other)`: `other` is a render pass that keeps its depth
+    /// (E0308 otherwise), is not this pass, and has this pass's scale and
+    /// view, so that its depth texture fits this pass's attachment and holds
+    /// depths of the same projection.
+    fn depth_test(&mut self, pi: usize) {
+        let pass = &self.ir.passes[pi];
+        let Some((tested, span)) = pass.depth_test() else {
+            return;
+        };
+        let other = self.ir.pass(tested);
+        let (name, other_name) = (pass.name.clone(), other.name.clone());
+        if tested.0 as usize == pi {
+            self.err(
+                Diagnostic::error(codes::BAD_PASS_INPUT, format!("pass `{name}` tests against its own depth"))
+                    .with_primary(span, "this pass")
+                    .with_help("a pass always tests against its own depth; `depth: test(...)` names an earlier pass with `depth: keep`"),
+            );
+            return;
+        }
+        if !other.keeps_depth() {
+            let (label, help) = if other.kind.draws_objects() {
+                (
+                    format!("`{other_name}` discards its depth after it runs"),
+                    format!("add `depth: keep` to pass `{other_name}`, so its depth buffer outlives the pass"),
+                )
+            } else {
+                (format!("`{other_name}` has no depth buffer"),
+                format!("`{other_name}` is not a render pass, so it has no depth buffer; test against a render pass with `depth: keep`"))
+            };
+            self.err(
+                Diagnostic::error(
+                    codes::DEPTH_NOT_KEPT,
+                    format!("pass `{name}` tests against the depth of `{other_name}`, which keeps none"),
+                )
+                .with_primary(span, "depth test here")
+                .with_secondary(other.name_span, label)
+                .with_help(help),
+            );
+            return;
+        }
+        let view = |p: &Pass| match p.kind {
+            PassKind::Render { view, .. } => Some(view),
+            _ => None,
+        };
+        if other.scale != pass.scale {
+            let (a, b) = (other.scale, pass.scale);
+            self.err(
+                Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!("pass `{name}` tests against the depth of `{other_name}`, which has another size"),
+                )
+                .with_primary(span, format!("`{name}` renders at scale {b}"))
+                .with_secondary(other.name_span, format!("`{other_name}` renders at scale {a}"))
+                .with_help("a depth test needs both passes at the same scale"),
+            );
+        } else if view(other) != view(pass) {
+            self.err(
+                Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!("pass `{name}` tests against the depth of `{other_name}`, seen from another view"),
+                )
+                .with_primary(span, "depth test here")
+                .with_secondary(other.name_span, "projected with another camera")
+                .with_help("give both passes the same `view(...)`"),
+            );
+        }
+    }
+
     fn passes(&mut self) {
         for pi in 0..self.ir.passes.len() {
+            self.depth_test(pi);
             let pass = self.ir.passes[pi].clone();
             if let PassKind::Render { vertex, .. } = &pass.kind {
                 let checked = self.vertex_modifiers(*vertex);

@@ -51,6 +51,50 @@ fn target(ir: &Ir, pass: &str, output: u32) -> TargetRef {
 
 // ------------------------------------------------------------------ prune
 
+/// `lines` is declared before the pass whose depth it tests, and nothing
+/// reads `scene_depth`'s target; `unused_tester` tests it too but is dead.
+const DEPTH: &str = r#"style "depth"
+pass lines: render(scene) {
+  out ink: rgba8unorm = #000000 { blend: over }
+  depth: test(scene_depth, bias: 1px)
+}
+pass scene_depth: render(scene) {
+  out c: r8unorm = 1.0
+  depth: keep
+}
+pass unused_tester: render(scene) {
+  out x: r8unorm = 1.0
+  depth: test(scene_depth)
+}
+output lines.ink
+"#;
+
+#[test]
+fn a_depth_test_runs_after_the_tested_pass_and_keeps_it_live_for_its_depth() {
+    let (ir, graph) = front(DEPTH);
+    let (lines, kept) = (pass_id(&ir, "lines"), pass_id(&ir, "scene_depth"));
+    let at = |p: PassId| graph.order.iter().position(|x| *x == p).expect("ordered");
+    assert!(at(kept) < at(lines), "{:?}", graph.order);
+    let mut report = Report::default();
+    let live = prune(&ir, &graph, &mut report);
+    assert_eq!(
+        live.passes,
+        vec![kept, lines],
+        "the dead tester goes, the tested pass stays"
+    );
+    assert!(live.depth.contains(&kept));
+    assert!(!live.targets.contains(&target(&ir, "scene_depth", 0)));
+    let removed = entries(&report, "removed");
+    assert!(
+        removed.contains(&("target `scene_depth.c`".into(), "nothing reads it".into())),
+        "{removed:?}"
+    );
+    assert!(
+        removed.contains(&("pass `unused_tester`".into(), "the output does not depend on it".into())),
+        "{removed:?}"
+    );
+}
+
 const PRUNE: &str = r#"style "prune"
 param used: float = 0.5
 param unused: float = 0.25

@@ -169,7 +169,7 @@ pub struct PassBody {
     pub lets: Vec<LetBinding>,
     /// `out name: format = expr`.
     pub outputs: Vec<OutputTarget>,
-    /// Any other `key: value` settings (e.g. `clear: #000000`, `depth_test: off`).
+    /// Any other `key: value` settings (`clear: #000000`, `depth: keep`).
     pub settings: Vec<Setting>,
     /// `state name: type = first` (compute passes over objects).
     pub states: Vec<StateDecl>,
@@ -221,6 +221,9 @@ pub struct OutputTarget {
     /// A texture format name such as `rgba8unorm`, `rg16float`, `r32float`.
     pub format: Ident,
     pub value: Expr,
+    /// `{ blend: over }` after the value: how it combines with the target.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub settings: Vec<Setting>,
     pub span: Span,
 }
 

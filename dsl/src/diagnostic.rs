@@ -255,6 +255,10 @@ pub mod codes {
     pub const BAD_STATEMENT: &str = "E0306";
     /// Warning: a compute pass whose values no live pass reads (it is removed).
     pub const UNREAD_COMPUTE: &str = "W0301";
+    /// A blend mode on an output whose format cannot be blended (32-bit float; integer formats, should they come).
+    pub const NOT_BLENDABLE: &str = "E0307";
+    /// A depth test against a pass that keeps no depth buffer.
+    pub const DEPTH_NOT_KEPT: &str = "E0308";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -290,6 +294,8 @@ pub mod codes {
         (STATE_ORDER, "state read before declared, or not updated once"),
         (BAD_STATEMENT, "statement the pass kind does not have"),
         (UNREAD_COMPUTE, "compute pass whose values nothing reads (warning)"),
+        (NOT_BLENDABLE, "blend on a format that cannot be blended"),
+        (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

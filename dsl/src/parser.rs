@@ -165,7 +165,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::animate_clause => "`animate { ... }`",
         Rule::pass_kind => "a pass kind such as render(scene) or image(a)",
         Rule::pass_body | Rule::pass_stmt => "`out`, `let`, `state`, `reduce`, `vertex` or a setting",
-        Rule::out_stmt => "`out name: format = value`",
+        Rule::out_stmt => "`out name: format = value [{ blend: over }]`",
         Rule::state_stmt => "`state name: type = value`",
         Rule::reduce_stmt => "`reduce name: type = sum(value)`",
         Rule::update_stmt => "`name = value`",
@@ -564,10 +564,12 @@ impl Builder {
                     let name = self.ident(it.next()?);
                     let format = self.ident(it.next()?);
                     let value = self.expr(it.next()?)?;
+                    let settings = it.next().map(|b| self.settings(b)).unwrap_or_default();
                     body.outputs.push(OutputTarget {
                         name,
                         format,
                         value,
+                        settings,
                         span,
                     });
                 }

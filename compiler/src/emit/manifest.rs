@@ -49,13 +49,14 @@ pub fn build(
                     })
                 })
                 .collect();
-            PassManifest {
+            Ok(PassManifest {
                 name: pass.name.clone(),
                 kind: match &pass.kind {
-                    PassKind::Render { tag, view, .. } => PassKindManifest::Render {
+                    PassKind::Render { tag, view, depth, .. } => PassKindManifest::Render {
                         tag: tag.clone(),
                         light_view: *view == PassView::Light,
                         attributes: e.attributes.clone(),
+                        depth: depth_mode(*pid, *depth, live, emitted)?,
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),
                     },
@@ -67,14 +68,15 @@ pub fn build(
                 },
                 scale: pass.scale,
                 shader: format!("{}.wgsl", pass.name),
+                blend: blend_modes(pass, *pid, alloc),
                 outputs,
                 clear: pass.clear,
                 bindings: e.bindings.clone(),
                 object_bindings: e.object_bindings.clone(),
                 line: sources.line_col(pass.name_span.file, pass.name_span.start).0,
-            }
+            })
         })
-        .collect();
+        .collect::<Result<Vec<_>, InternalError>>()?;
     attributes.sort();
     let textures = ir
         .textures
@@ -150,7 +152,6 @@ pub fn build(
             span: Some(ir.output_span),
             wgsl: None,
         })?;
-    let _ = live;
     Ok(Manifest {
         version: MANIFEST_VERSION,
         style: ir.style_name.clone(),
@@ -213,4 +214,55 @@ fn compute_kind(
         }
         .to_string(),
     }
+}
+/// The blend mode of each live output, in `@location` order; empty when all
+/// replace, so that manifests of styles without blending are unchanged.
+fn blend_modes(pass: &Pass, pid: PassId, alloc: &Allocation) -> Vec<Blend> {
+    let modes: Vec<Blend> = (0..pass.outputs.len())
+        .filter(|i| {
+            alloc
+                .target_index(TargetRef {
+                    pass: pid,
+                    output: *i as u32,
+                })
+                .is_some()
+        })
+        .map(|i| pass.outputs[i].blend)
+        .collect();
+    if modes.iter().all(|b| *b == Blend::Replace) {
+        Vec::new()
+    } else {
+        modes
+    }
+}
+
+/// The manifest's depth mode of a render pass: a kept depth that no live
+/// pass tests against is not kept (nothing would read it), and a test names
+/// the tested pass by its index among the emitted passes.
+fn depth_mode(
+    pid: PassId,
+    depth: PassDepth,
+    live: &Live,
+    emitted: &[(PassId, EmittedPass)],
+) -> Result<DepthMode, InternalError> {
+    Ok(match depth {
+        PassDepth::Own => DepthMode::Own,
+        PassDepth::Keep if live.depth.contains(&pid) => DepthMode::Keep,
+        PassDepth::Keep => DepthMode::Own,
+        PassDepth::Test {
+            pass, bias_px, span, ..
+        } => {
+            // Prune keeps every pass a live pass tests against.
+            let index = emitted
+                .iter()
+                .position(|(p, _)| *p == pass)
+                .ok_or_else(|| InternalError {
+                    message: "a depth test names a pass that was not emitted".into(),
+                    detail: format!("pass #{} is tested against but not live", pass.0),
+                    span: Some(span),
+                    wgsl: None,
+                })?;
+            DepthMode::Test { pass: index, bias_px }
+        }
+    })
 }

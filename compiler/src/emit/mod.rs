@@ -146,6 +146,20 @@ impl Emitter<'_> {
             }
             PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::IMAGE_VERTEX),
         }
+        if live_outputs.is_empty() {
+            // Kept for its depth alone (a later pass tests against it): the
+            // fragment stage writes no colour.
+            let _ = writeln!(
+                w,
+                "// No target of this pass is read; it runs for the depth a later pass tests against.\n@fragment\nfn fs_main(in: Varyings) {{\n}}"
+            );
+            return EmittedPass {
+                wgsl: w,
+                bindings: declared.bindings,
+                object_bindings: declared.object_bindings,
+                attributes,
+            };
+        }
         // Fragment shader.
         w.push_str("struct FragOut {\n");
         for (loc, (_, o)) in live_outputs.iter().enumerate() {

@@ -170,6 +170,23 @@ impl Emitter<'_> {
                 );
             }
         }
+        if let PassKind::Render {
+            depth: PassDepth::Test { bias_depth, span, .. },
+            ..
+        } = &pass.kind
+        {
+            if *bias_depth > 0.0 {
+                // z/w is affine in screen space, so subtracting b·w from every
+                // vertex's z lowers the window depth of every fragment by b.
+                let _ = writeln!(
+                    w,
+                    "    // {}: {}: window depth lowered by the bias.\n    clip.z = clip.z - {} * clip.w;",
+                    self.line_of(*span),
+                    self.snippet(*span),
+                    fmt_f32(*bias_depth)
+                );
+            }
+        }
         w.push_str("    out.clip = clip;\n    // Screen position, interpolated linearly in screen space (exact for any triangle).\n    out.screen_uv = clip.xy / clip.w * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5);\n    return out;\n}\n\n");
     }
 }

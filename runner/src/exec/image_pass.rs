@@ -32,7 +32,7 @@ impl ImagePassExec {
     }
 
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, sized: &SizedPass, timestamps: Option<&Timestamps>) {
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, timestamps);
+        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
         rp.draw(0..3, 0..1);

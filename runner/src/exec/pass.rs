@@ -63,13 +63,15 @@ impl PassExec {
         buffers: Option<&super::values::PassBuffers>,
     ) -> Result<PassExec, RunError> {
         Ok(match &pass.kind {
-            PassKindManifest::Render { tag, attributes, .. } => PassExec::Render(RenderPassExec::build(
+            PassKindManifest::Render {
+                tag, attributes, depth, ..
+            } => PassExec::Render(RenderPassExec::build(
                 device,
                 manifest,
                 pass,
                 wgsl,
-                tag.as_ref(),
-                attributes,
+                (tag.as_ref(), attributes),
+                depth,
                 objects,
             )?),
             PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
@@ -127,12 +129,13 @@ pub(super) fn clear_color(pass: &PassManifest) -> wgpu::Color {
 }
 
 /// Begin a render pass over `sized`'s colour views (cleared to `clear`) and
-/// depth view (cleared to 1, not stored), if any.
+/// the depth attachment `depth` with its load and store operations, if any.
 pub(super) fn begin_render_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
     clear: wgpu::Color,
     sized: &SizedPass,
+    depth: Option<(&wgpu::TextureView, wgpu::Operations<f32>)>,
     timestamps: Option<&Timestamps>,
 ) -> wgpu::RenderPass<'e> {
     let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = sized
@@ -153,25 +156,41 @@ pub(super) fn begin_render_pass<'e>(
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &attachments,
-        depth_stencil_attachment: sized
-            .depth_view
-            .as_ref()
-            .map(|v| wgpu::RenderPassDepthStencilAttachment {
-                view: v,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
+        depth_stencil_attachment: depth.map(|(view, ops)| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(ops),
+            stencil_ops: None,
+        }),
         timestamp_writes: timestamps.map(Timestamps::render_pass),
         occlusion_query_set: None,
         multiview_mask: None,
     })
 }
 
-/// The render pipeline of `pass` (its WGSL, its outputs' formats, no
-/// blending, no culling) with the kind's bind group layouts, vertex buffers
+/// The fixed-function blend of a [`Blend`] mode (`s` the fragment, `d` the
+/// target): `over` is straight-alpha over, `add` s + d and `multiply` s × d
+/// on every channel, alpha included; `replace` is no blending.
+pub(super) fn blend_state(blend: Blend) -> Option<wgpu::BlendState> {
+    use wgpu::{BlendComponent, BlendFactor, BlendOperation};
+    let both = |c: BlendComponent| wgpu::BlendState { color: c, alpha: c };
+    match blend {
+        Blend::Replace => None,
+        Blend::Over => Some(wgpu::BlendState::ALPHA_BLENDING),
+        Blend::Add => Some(both(BlendComponent {
+            src_factor: BlendFactor::One,
+            dst_factor: BlendFactor::One,
+            operation: BlendOperation::Add,
+        })),
+        Blend::Multiply => Some(both(BlendComponent {
+            src_factor: BlendFactor::Dst,
+            dst_factor: BlendFactor::Zero,
+            operation: BlendOperation::Add,
+        })),
+    }
+}
+
+/// The render pipeline of `pass` (its WGSL, its outputs' formats and blend
+/// modes, no culling) with the kind's bind group layouts, vertex buffers
 /// and depth state; a pipeline wgpu rejects is an internal error.
 pub(super) fn render_pipeline(
     device: &wgpu::Device,
@@ -197,13 +216,15 @@ pub(super) fn render_pipeline(
         label: Some(&pass.shader),
         source: wgpu::ShaderSource::Wgsl(wgsl.into()),
     });
+    // `blend` is empty (all replace) or one per output (`Manifest::validate`).
     let targets: Vec<Option<wgpu::ColorTargetState>> = pass
         .outputs
         .iter()
-        .map(|t| {
+        .enumerate()
+        .map(|(k, t)| {
             Some(wgpu::ColorTargetState {
                 format: wgpu_format(manifest.targets[*t].format),
-                blend: None,
+                blend: blend_state(pass.blend.get(k).copied().unwrap_or_default()),
                 write_mask: wgpu::ColorWrites::ALL,
             })
         })

@@ -1,7 +1,8 @@
 //! The executor of `render(tag)` passes: draws every object (with the tag)
 //! of the scene with its own vertex buffers, one object block per draw at a
-//! dynamic offset into group 1, into the pass's targets and a depth buffer
-//! cleared per pass.
+//! dynamic offset into group 1, into the pass's targets and a depth buffer:
+//! its own, cleared per pass (stored with `depth: keep`), or with `depth:
+//! test(other)` the one `other` kept, loaded and tested, never written.
 
 use super::bind::{self, ObjectResources};
 use super::pass::{self, EncodeContext, Timestamps};
@@ -17,6 +18,8 @@ pub(super) struct RenderPassExec {
     /// Vertex attributes in location order (one buffer each).
     attributes: Vec<Attribute>,
     pipeline: wgpu::RenderPipeline,
+    /// What happens to the depth attachment at the beginning and end of the pass.
+    depth_ops: wgpu::Operations<f32>,
     pub(super) layout0: wgpu::BindGroupLayout,
     /// Per object: group 1 with the object's uniforms and its per-object
     /// textures; empty when the pass reads no such texture (it uses the
@@ -32,14 +35,62 @@ fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
     }
 }
 
+/// The pipeline's depth state and the attachment's operations of a depth
+/// mode. Own and kept depths are cleared to 1 and written where a fragment
+/// is nearer (`Less`); only a kept one is stored. A test loads the kept
+/// depth and passes fragments at or in front of it (`LessEqual`, so the
+/// same surface drawn again passes), writes nothing (the kept depth stays
+/// the scene's for every pass that tests it, and what a test pass draws
+/// never hides itself), and stores it unchanged; `bias: N px` is the
+/// slope-scaled bias (towards the camera, so negative in wgpu's terms).
+fn depth_state(mode: &DepthMode) -> (wgpu::DepthStencilState, wgpu::Operations<f32>) {
+    let (write, compare, bias, load, store) = match mode {
+        DepthMode::Own => (
+            true,
+            wgpu::CompareFunction::Less,
+            wgpu::DepthBiasState::default(),
+            wgpu::LoadOp::Clear(1.0),
+            wgpu::StoreOp::Discard,
+        ),
+        DepthMode::Keep => (
+            true,
+            wgpu::CompareFunction::Less,
+            wgpu::DepthBiasState::default(),
+            wgpu::LoadOp::Clear(1.0),
+            wgpu::StoreOp::Store,
+        ),
+        DepthMode::Test { bias_px, .. } => (
+            false,
+            wgpu::CompareFunction::LessEqual,
+            wgpu::DepthBiasState {
+                constant: 0,
+                slope_scale: -(*bias_px as f32),
+                clamp: 0.0,
+            },
+            wgpu::LoadOp::Load,
+            wgpu::StoreOp::Store,
+        ),
+    };
+    (
+        wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(write),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias,
+        },
+        wgpu::Operations { load, store },
+    )
+}
+
 impl RenderPassExec {
     pub fn build(
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
         wgsl: &str,
-        tag: Option<&String>,
-        attributes: &[Attribute],
+        (tag, attributes): (Option<&String>, &[Attribute]),
+        depth_mode: &DepthMode,
         objects: &ObjectResources,
     ) -> Result<RenderPassExec, RunError> {
         let layout0 = bind::group0_layout(device, pass);
@@ -67,13 +118,7 @@ impl RenderPassExec {
                 })
             })
             .collect();
-        let depth = wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth32Float,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        };
+        let (depth, depth_ops) = depth_state(depth_mode);
         let pipeline = pass::render_pipeline(
             device,
             manifest,
@@ -89,6 +134,7 @@ impl RenderPassExec {
             tag: tag.cloned(),
             attributes: attributes.to_vec(),
             pipeline,
+            depth_ops,
             layout0,
             object_groups: own.map(|(_, groups)| groups).unwrap_or_default(),
         })
@@ -101,7 +147,8 @@ impl RenderPassExec {
         ctx: &EncodeContext,
         timestamps: Option<&Timestamps>,
     ) {
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, timestamps);
+        let depth = sized.depth_view.as_ref().map(|v| (v, self.depth_ops));
+        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
         for (oi, mesh) in ctx.meshes.iter().enumerate() {

@@ -1,8 +1,10 @@
 //! Everything that depends on the output size, built once per size and
 //! rebuilt only when it changes: the physical textures (one set per eye
 //! slot; aliased targets share one; a history texture has a second copy), a
-//! depth texture per pass size for the passes that need one, and per frame
-//! parity, eye slot and pass its attachment views and group 0.
+//! depth texture per pass size for the passes that need one, a depth
+//! texture of its own per eye slot for each pass with `depth: keep` (never
+//! shared, so it lives through the frame: to its last tester and beyond),
+//! and per frame parity, eye slot and pass its attachment views and group 0.
 //!
 //! History textures (`previous(...)` reads): frames alternate between parity
 //! 0 and parity 1. A frame of parity 0 writes the first copy and binds the
@@ -12,6 +14,7 @@
 //! resized.
 
 use super::Renderer;
+use abi::manifest::{DepthMode, PassKindManifest};
 use abi::Format;
 use std::collections::BTreeMap;
 
@@ -122,6 +125,9 @@ impl Renderer<'_> {
         };
         let parities = if self.manifest.is_path_dependent() { 2 } else { 1 };
         let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
+        // Kept depths by (eye slot, keeping pass); every parity shares them,
+        // as each frame clears and rewrites them before any test reads them.
+        let mut kept: BTreeMap<(usize, usize), wgpu::Texture> = BTreeMap::new();
         let mut passes: Vec<Vec<Vec<SizedPass>>> = Vec::new();
         for parity in 0..parities {
             let mut parity_passes = Vec::new();
@@ -135,19 +141,35 @@ impl Renderer<'_> {
                             .create_view(&Default::default())
                     };
                     let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
+                    let depth_texture = |label: &str| {
+                        texture_2d(
+                            self.device,
+                            label,
+                            (w, h),
+                            wgpu::TextureFormat::Depth32Float,
+                            wgpu::TextureUsages::RENDER_ATTACHMENT,
+                        )
+                    };
+                    // `Manifest::validate`: a test names an earlier kept pass
+                    // of the same size, whose texture is made first.
+                    let kept_by = match &pass.kind {
+                        PassKindManifest::Render {
+                            depth: DepthMode::Keep, ..
+                        } => Some(pi),
+                        PassKindManifest::Render {
+                            depth: DepthMode::Test { pass, .. },
+                            ..
+                        } => Some(*pass),
+                        _ => None,
+                    };
                     let depth_view = self.passes[pi].needs_depth().then(|| {
-                        depth
-                            .entry((w, h))
-                            .or_insert_with(|| {
-                                texture_2d(
-                                    self.device,
-                                    "npr depth",
-                                    (w, h),
-                                    wgpu::TextureFormat::Depth32Float,
-                                    wgpu::TextureUsages::RENDER_ATTACHMENT,
-                                )
-                            })
-                            .create_view(&Default::default())
+                        match kept_by {
+                            Some(k) => kept.entry((slot, k)).or_insert_with(|| {
+                                depth_texture(&format!("npr kept depth of `{}`", self.manifest.passes[k].name))
+                            }),
+                            None => depth.entry((w, h)).or_insert_with(|| depth_texture("npr depth")),
+                        }
+                        .create_view(&Default::default())
                     });
                     slot_passes.push(SizedPass {
                         color_views,
