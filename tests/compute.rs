@@ -9,7 +9,6 @@ use glam::{DMat4, DVec3, DVec4};
 use lab::harness::{compare_with_golden, Tolerance};
 use runner::scene::Scene;
 use runner::{FrameSpec, Renderer, StyleProgram};
-use std::process::Command;
 
 mod common;
 use common::{gpu, root};
@@ -364,34 +363,8 @@ output shade.c
 "#,
     )
     .expect("style");
-    let npr = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_npr"))
-            .current_dir(root())
-            .args([
-                "render",
-                style.to_str().unwrap(),
-                "--scene",
-                "examples/scenes/orbit.toml",
-                "--size",
-                "48x48",
-            ])
-            .args(args)
-            .output()
-            .expect("npr runs");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        String::from_utf8_lossy(&out.stderr).into_owned()
-    };
-    let seq = dir.join("seq_{frame}.png");
-    npr(&["--frames", "0..7", "-o", seq.to_str().unwrap()]);
-    let alone = dir.join("alone.png");
-    let log = npr(&["--time", "0.25", "-o", alone.to_str().unwrap()]);
-    assert!(log.contains("replaying 6 frame(s)"), "{log}");
-    let a = image::open(&alone).expect("alone").to_rgba8();
-    let b = image::open(dir.join("seq_0006.png")).expect("frame 6").to_rgba8();
-    assert_eq!(
-        a.as_raw(),
-        b.as_raw(),
-        "frame 6 alone differs from frame 6 of the sequence"
-    );
+    let (in_sequence, alone, _) =
+        common::sequence_and_alone(style.to_str().unwrap(), "examples/scenes/orbit.toml", &dir.join("out"));
+    assert_eq!(alone, in_sequence, "frame 6 alone differs from frame 6 of the sequence");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -8,7 +8,6 @@
 
 use lab::harness::{compare_with_golden, Tolerance};
 use runner::{FrameSpec, Renderer, StyleProgram};
-use std::process::Command;
 
 mod common;
 use common::{gpu, root};
@@ -142,38 +141,9 @@ fn afterimage_matches_its_recurrence_and_golden() {
 #[test]
 fn a_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
     let dir = std::env::temp_dir().join(format!("npr-history-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let npr = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_npr"))
-            .current_dir(root())
-            .args([
-                "render",
-                "examples/afterimage.npr",
-                "--scene",
-                "examples/scenes/orbit.toml",
-                "--size",
-                "64x64",
-            ])
-            .args(args)
-            .output()
-            .expect("npr runs");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        String::from_utf8_lossy(&out.stderr).into_owned()
-    };
-    let seq = dir.join("seq_{frame}.png");
-    npr(&["--frames", "0..7", "-o", seq.to_str().unwrap()]);
-    let alone = dir.join("alone.png");
-    let log = npr(&["--time", "0.25", "-o", alone.to_str().unwrap()]);
-    assert!(log.contains("replaying 6 frame(s)"), "{log}");
-    let a = image::open(&alone).expect("alone").to_rgba8();
-    let b = image::open(dir.join("seq_0006.png")).expect("frame 6").to_rgba8();
-    assert_eq!(
-        a.as_raw(),
-        b.as_raw(),
-        "frame 6 alone differs from frame 6 of the sequence"
-    );
+    let (in_sequence, alone, first) =
+        common::sequence_and_alone("examples/afterimage.npr", "examples/scenes/orbit.toml", &dir);
+    assert_eq!(alone, in_sequence, "frame 6 alone differs from frame 6 of the sequence");
     // And history matters: frame 6 is not what frame 6 would be without its past.
-    let first = image::open(dir.join("seq_0000.png")).expect("frame 0").to_rgba8();
-    assert_ne!(first.as_raw(), b.as_raw());
-    let _ = std::fs::remove_dir_all(&dir);
+    assert_ne!(first, in_sequence);
 }

@@ -23,3 +23,36 @@ pub fn gpu() -> &'static Gpu {
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
+
+/// Render `style` on `scene` at 48×48 (style and scene relative to the
+/// repository root, or absolute) with `npr render` twice: frames 0..7 as a
+/// sequence, and frame 6 alone (`--time 0.25` at 24 fps, which a
+/// path-dependent style replays). Returns (frame 6 of the sequence, frame 6
+/// alone, frame 0 of the sequence) as RGBA bytes, after checking that the
+/// lone render said it replayed.
+pub fn sequence_and_alone(style: &str, scene: &str, scratch: &Path) -> (Vec<u8>, Vec<u8>, Vec<u8>) {
+    std::fs::create_dir_all(scratch).expect("scratch dir");
+    let npr = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+            .current_dir(root())
+            .args(["render", style, "--scene", scene, "--size", "48x48"])
+            .args(args)
+            .output()
+            .expect("npr runs");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let seq = scratch.join("seq_{frame}.png");
+    npr(&["--frames", "0..7", "-o", seq.to_str().expect("utf-8 path")]);
+    let alone = scratch.join("alone.png");
+    let log = npr(&["--time", "0.25", "-o", alone.to_str().expect("utf-8 path")]);
+    assert!(log.contains("replaying 6 frame(s)"), "{log}");
+    let read = |p: std::path::PathBuf| image::open(&p).expect("a rendered frame").to_rgba8().into_raw();
+    let frames = (
+        read(scratch.join("seq_0006.png")),
+        read(alone),
+        read(scratch.join("seq_0000.png")),
+    );
+    let _ = std::fs::remove_dir_all(scratch);
+    frames
+}

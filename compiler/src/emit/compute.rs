@@ -19,7 +19,7 @@
 //! value and the flag into this frame's copy.
 
 use super::expr::{slot_swizzle, to_slot};
-use super::helpers::{LOAD_HELPER, PROJECT_HELPER, UNIT_HELPER};
+use super::helpers::UNIT_HELPER;
 use super::{EmittedPass, Emitter, PassCtx};
 use crate::ir::*;
 use abi::manifest::{Attribute, ReduceOp, ELEMENTS_PER_INVOCATION, ELEMENT_WORKGROUP, OBJECT_WORKGROUP};
@@ -128,18 +128,10 @@ impl Emitter<'_> {
             ComputeDomain::Objects => {}
         }
         w.push('\n');
-        if uses.reads_targets() {
-            w.push_str(LOAD_HELPER);
-            w.push('\n');
-        }
-        if uses.project {
-            w.push_str(PROJECT_HELPER);
-            w.push('\n');
-        }
         if domain == ComputeDomain::Vertices {
             w.push_str(UNIT_HELPER);
         }
-        self.emit_operators(&mut w, &uses.operators);
+        self.emit_helpers(&mut w, &uses);
         let _ = writeln!(
             w,
             "// vec4 slots per object in `npr_values`.\nconst NPR_SLOTS: u32 = {per_object}u;\n"

@@ -88,9 +88,18 @@ impl Emitter<'_> {
             }
             ExprKind::ObjectValue { pass, slot } => {
                 let name = &self.ir.pass(*pass).name;
-                let slot = self.alloc.value_slots.get(&(*pass, *slot)).copied().unwrap_or(u32::MAX);
-                let per_object = self.alloc.slots_per_object.get(pass).copied().unwrap_or(0);
-                format!("v_{name}[object.ids.x * {per_object}u + {slot}u]{}", slot_swizzle(e.ty))
+                // Prune makes every value a live pass reads live, so both are
+                // allocated; if not, the undeclared name fails naga validation
+                // (E9001 naming the pass) instead of reading another slot.
+                match (
+                    self.alloc.value_slots.get(&(*pass, *slot)),
+                    self.alloc.slots_per_object.get(pass),
+                ) {
+                    (Some(slot), Some(per_object)) => {
+                        format!("v_{name}[object.ids.x * {per_object}u + {slot}u]{}", slot_swizzle(e.ty))
+                    }
+                    _ => format!("npr_unallocated_value_of_{name}"),
+                }
             }
             ExprKind::StateOld { slot } => format!("npr_old_{slot}"),
             ExprKind::Swizzle { base, components } => {

@@ -124,15 +124,7 @@ impl Emitter<'_> {
         let declared = self.declare(&pass.kind, &uses, uses_frame);
         w.push_str(&declared.text);
         w.push('\n');
-        if uses.reads_targets() {
-            w.push_str(LOAD_HELPER);
-            w.push('\n');
-        }
-        if uses.project {
-            w.push_str(PROJECT_HELPER);
-            w.push('\n');
-        }
-        self.emit_operators(&mut w, &uses.operators);
+        self.emit_helpers(&mut w, &uses);
 
         let mut ctx = PassCtx {
             kind: KindCtx::of(&pass.kind),
@@ -193,6 +185,20 @@ impl Emitter<'_> {
             object_bindings: declared.object_bindings,
             attributes,
         }
+    }
+
+    /// The helpers the expressions call (`npr_load`, `npr_project`), then
+    /// the stdlib operators.
+    fn emit_helpers(&self, w: &mut String, uses: &uses::Uses) {
+        if uses.reads_targets() {
+            w.push_str(LOAD_HELPER);
+            w.push('\n');
+        }
+        if uses.project {
+            w.push_str(PROJECT_HELPER);
+            w.push('\n');
+        }
+        self.emit_operators(w, &uses.operators);
     }
 
     /// The stdlib operators called (dependencies first), after the shared

@@ -235,11 +235,7 @@ impl ComputePassExec {
         self.copy_time_varying(encoder, ctx.meshes);
         let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(&self.name),
-            timestamp_writes: timestamps.map(|t| wgpu::ComputePassTimestampWrites {
-                query_set: t.query_set,
-                beginning_of_pass_write_index: t.beginning,
-                end_of_pass_write_index: t.end,
-            }),
+            timestamp_writes: timestamps.map(Timestamps::compute_pass),
         });
         cp.set_bind_group(0, &sized.group0, &[]);
         cp.set_bind_group(1, &self.group1, &[]);

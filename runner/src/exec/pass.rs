@@ -44,6 +44,14 @@ pub(super) struct Timestamps<'a> {
 }
 
 impl Timestamps<'_> {
+    pub fn compute_pass(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: self.beginning,
+            end_of_pass_write_index: self.end,
+        }
+    }
+
     pub fn render_pass(&self) -> wgpu::RenderPassTimestampWrites<'_> {
         wgpu::RenderPassTimestampWrites {
             query_set: self.query_set,
