@@ -728,18 +728,21 @@ fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<abi::Scene
 
 fn write_compiled(c: &Compiled, out: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(out)?;
-    for (file, wgsl) in &c.shaders {
-        runner::output::write_atomic(&out.join(file), wgsl.as_bytes())?;
-    }
     let manifest = serde_json::to_string_pretty(&c.manifest).map_err(std::io::Error::other)?;
-    runner::output::write_atomic(&out.join("manifest.json"), manifest.as_bytes())?;
-    runner::output::write_atomic(&out.join("report.txt"), c.report.render().as_bytes())?;
-    if !c.dumps.is_empty() {
-        for (i, (stage, text)) in c.dumps.iter().enumerate() {
-            runner::output::write_atomic(&out.join("ir").join(format!("{i:02}_{stage}.txt")), text.as_bytes())?;
-        }
+    let report = c.report.render();
+    let mut files: Vec<(PathBuf, &[u8])> = c
+        .shaders
+        .iter()
+        .map(|(file, wgsl)| (out.join(file), wgsl.as_bytes()))
+        .collect();
+    files.push((out.join("manifest.json"), manifest.as_bytes()));
+    files.push((out.join("report.txt"), report.as_bytes()));
+    for (i, (stage, text)) in c.dumps.iter().enumerate() {
+        files.push((out.join("ir").join(format!("{i:02}_{stage}.txt")), text.as_bytes()));
     }
-    Ok(())
+    // Synced together: one journal commit rather than one per file (a cold
+    // `npr compile` spent 8 of its 18 ms in 14 sequential fsyncs).
+    runner::output::write_all_atomic(&files)
 }
 
 fn frame_path(out: &Path, frame: u32) -> PathBuf {

@@ -31,6 +31,56 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Write several files atomically, each as [`write_atomic`] does, but with
+/// their flushes to disk issued together: every file goes to a temporary
+/// name, all are synced in parallel (the filesystem commits them in one
+/// journal transaction instead of one per file), then each is renamed into
+/// place. On an error no temporary file is left; files renamed before it
+/// stay (each is whole).
+pub fn write_all_atomic(files: &[(PathBuf, &[u8])]) -> std::io::Result<()> {
+    let mut temps: Vec<(PathBuf, &Path)> = Vec::new();
+    let result = (|| {
+        for (path, bytes) in files {
+            let dir = path
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."));
+            std::fs::create_dir_all(dir)?;
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "out".into());
+            let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+            let mut f = std::fs::File::create(&tmp)?;
+            temps.push((tmp, path));
+            f.write_all(bytes)?;
+        }
+        std::thread::scope(|scope| {
+            let syncs: Vec<_> = temps
+                .iter()
+                .map(|(tmp, _)| scope.spawn(move || std::fs::File::options().write(true).open(tmp)?.sync_all()))
+                .collect();
+            syncs
+                .into_iter()
+                .map(|s| {
+                    s.join()
+                        .unwrap_or_else(|_| Err(std::io::Error::other("a sync thread panicked")))
+                })
+                .collect::<std::io::Result<()>>()
+        })?;
+        for (tmp, path) in &temps {
+            std::fs::rename(tmp, path)?;
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        for (tmp, _) in &temps {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+    result
+}
+
 fn encode(img: image::DynamicImage, format: image::ImageFormat) -> std::io::Result<Vec<u8>> {
     let mut buf = std::io::Cursor::new(Vec::new());
     img.write_to(&mut buf, format).map_err(std::io::Error::other)?;
