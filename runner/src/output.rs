@@ -60,13 +60,10 @@ pub fn write_all_atomic(files: &[(PathBuf, &[u8])]) -> std::io::Result<()> {
                 .iter()
                 .map(|(tmp, _)| scope.spawn(move || std::fs::File::options().write(true).open(tmp)?.sync_all()))
                 .collect();
-            syncs
-                .into_iter()
-                .map(|s| {
-                    s.join()
-                        .unwrap_or_else(|_| Err(std::io::Error::other("a sync thread panicked")))
-                })
-                .collect::<std::io::Result<()>>()
+            syncs.into_iter().try_for_each(|s| {
+                s.join()
+                    .unwrap_or_else(|_| Err(std::io::Error::other("a sync thread panicked")))
+            })
         })?;
         for (tmp, path) in &temps {
             std::fs::rename(tmp, path)?;
