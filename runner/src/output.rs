@@ -188,3 +188,59 @@ pub fn dump_targets(images: &[TargetImage], dir: &Path) -> std::io::Result<Vec<P
     written.push(idx);
     Ok(written)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("npr-output-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("scratch");
+        dir
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .expect("dir")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn several_files_are_written_whole_and_no_temporary_is_left() {
+        let dir = scratch("all");
+        std::fs::write(dir.join("a.wgsl"), b"old").expect("old file");
+        let files = [
+            (dir.join("a.wgsl"), &b"new a"[..]),
+            (dir.join("sub/b.json"), &b"{}"[..]),
+        ];
+        write_all_atomic(&files).expect("written");
+        assert_eq!(std::fs::read(dir.join("a.wgsl")).expect("a"), b"new a");
+        assert_eq!(std::fs::read(dir.join("sub/b.json")).expect("b"), b"{}");
+        assert_eq!(names(&dir), ["a.wgsl", "sub"]);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_failing_write_removes_its_temporaries_and_keeps_the_old_files() {
+        let dir = scratch("fail");
+        std::fs::write(dir.join("a.wgsl"), b"old").expect("old file");
+        // `blocker` is a file, so `blocker/c.txt` cannot be created.
+        std::fs::write(dir.join("blocker"), b"").expect("blocker");
+        let files = [
+            (dir.join("a.wgsl"), &b"new"[..]),
+            (dir.join("blocker/c.txt"), &b"c"[..]),
+        ];
+        assert!(write_all_atomic(&files).is_err());
+        assert_eq!(
+            std::fs::read(dir.join("a.wgsl")).expect("a"),
+            b"old",
+            "nothing renamed before the error"
+        );
+        assert_eq!(names(&dir), ["a.wgsl", "blocker"], "no temporary file left");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
