@@ -192,9 +192,11 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 30)]
         frames: u32,
     },
-    /// Runner overhead per frame: `Renderer::render` (uniform updates,
-    /// recording, submit, wait) against the bare passes — the same pipelines
-    /// and bind groups recorded and submitted with no per-frame work of ours.
+    /// The runner's per-frame work against itself: `Renderer::render`
+    /// (uniform updates, recording, submit, wait) against `Renderer::encode`
+    /// of the same renderer — its own pipelines and bind groups recorded and
+    /// submitted with no uniform writes. Not an independent comparison; that
+    /// is `npr bench overhead`.
     Frame {
         style: PathBuf,
         #[arg(long)]
@@ -203,6 +205,24 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 60)]
         frames: u32,
+    },
+    /// Runner overhead per frame against an independent hand-written wgpu
+    /// program drawing the same WGSL passes with its own pipelines, bind
+    /// groups, buffers and textures. Both images are compared first (equal
+    /// within 1/255, or it stops); then frames of the two alternate in one run.
+    Overhead {
+        #[arg(long, default_value = "examples/rounded_shadows.npr")]
+        style: PathBuf,
+        #[arg(long, default_value = "examples/scenes/spot.toml")]
+        scene: PathBuf,
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Timed rounds (one frame of each per round).
+        #[arg(long, default_value_t = 60)]
+        frames: u32,
+        /// Untimed frames of each before the rounds.
+        #[arg(long, default_value_t = 5)]
+        warmup: u32,
     },
 }
 
@@ -459,6 +479,13 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             size,
             frames,
         } => bench_passes(&style, &scene, size, frames, printer),
+        BenchCommand::Overhead {
+            style,
+            scene,
+            size,
+            frames,
+            warmup,
+        } => bench_overhead(&style, &scene, size, (frames, warmup), printer),
         BenchCommand::Frame {
             style,
             scene,
@@ -489,6 +516,68 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                     EXIT_INTERNAL
                 }
             }
+        }
+    }
+}
+
+/// `npr bench overhead`: the runner against the independent baseline.
+fn bench_overhead(
+    style: &Path,
+    scene_path: &Path,
+    size: (u32, u32),
+    (frames, warmup): (u32, u32),
+    printer: &Printer,
+) -> i32 {
+    let mut sources = SourceMap::new();
+    let scene = match load_scene(scene_path, &mut sources, printer) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let compiled = match compile(style, &mut sources, &opts, printer) {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
+    let gpu = match headless_gpu() {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
+        Ok(r) => {
+            println!(
+                "device: {}, {}x{}, style {} ({} passes), scene {}",
+                gpu.describe(),
+                size.0,
+                size.1,
+                style.display(),
+                r.passes,
+                scene_path.display()
+            );
+            println!(
+                "{} rounds of one frame each (order alternating) after {} warm-up frames; images before timing: {}",
+                r.frames, r.warmup, r.diff
+            );
+            print!("{}", r.table());
+            EXIT_OK
+        }
+        Err(lab::bench_overhead::OverheadError::Run(e)) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            if e.is_user_error() {
+                EXIT_USER
+            } else {
+                EXIT_INTERNAL
+            }
+        }
+        Err(e @ lab::bench_overhead::OverheadError::Unsupported(_)) => {
+            eprintln!("error: {e}");
+            EXIT_USER
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_INTERNAL
         }
     }
 }

@@ -5,13 +5,17 @@
 //!   actual and diff images written on failure.
 //! - [`contours`]: analytic contour ground truth (f64 ray casting) and
 //!   precision/recall of a rendered line mask.
-//! - [`bench`]: frame overhead, frame time and per-pass GPU time.
+//! - [`bench`]: frame overhead against the runner's own passes, frame time
+//!   and per-pass GPU time.
+//! - [`bench_overhead`]: `npr bench overhead`, the runner against an
+//!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
 
 pub mod bench;
 pub mod bench_contours;
 pub mod bench_ops;
+pub mod bench_overhead;
 pub mod bench_reduce;
 pub mod contours;
 pub mod harness;
