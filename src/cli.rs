@@ -548,7 +548,7 @@ fn bench_overhead(
     match lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
         Ok(r) => {
             println!(
-                "device: {}, {}x{}, style {} ({} passes), scene {}",
+                "device: {}, {}x{}, style {} ({} pass(es)), scene {}",
                 gpu.describe(),
                 size.0,
                 size.1,
