@@ -80,6 +80,11 @@ fn styles_the_baseline_does_not_implement_are_refused() {
             "examples/scenes/spheres.toml",
             "compute passes",
         ),
+        (
+            "examples/overlay_lines.npr",
+            "examples/scenes/spheres.toml",
+            "depth: keep",
+        ),
     ] {
         let (program, scene_data) = load(style, scene);
         match same_image(gpu(), &program, &scene_data, (32, 32), &[0]) {

@@ -137,7 +137,7 @@ impl<'d> Baseline<'d> {
             queue.write_buffer(b, 0, &style_bytes);
         }
         let object_size = m.object_uniform_size.max(16);
-        let object_stride = object_size.div_ceil(OBJECT_STRIDE_ALIGN) * OBJECT_STRIDE_ALIGN;
+        let object_stride = object_stride(m.object_uniform_size);
         let object_buffer = buffer("objects", object_stride * scene.objects.len() as u64);
         let (object_layout, object_group) = setup::object_group(device, &object_buffer, object_size);
         let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {

@@ -3,11 +3,12 @@
 //! refused with a sentence naming what, never drawn differently.
 //!
 //! Supported: render passes (every object, or every tagged one) with vertex
-//! attributes and the object block, image passes, and in group 0 the frame
+//! attributes, the object block and their own depth buffer, image passes,
+//! outputs that replace their target, and in group 0 the frame
 //! block, the style block (keyframed parameters too), targets of this frame and
 //! the linear clamp sampler. Everything else the runner does — compute
-//! passes, history, stereo, `view(light)`, declared and per-object textures,
-//! time-varying meshes — is refused.
+//! passes, history, stereo, `view(light)`, kept and tested depth, blending,
+//! declared and per-object textures, time-varying meshes — is refused.
 
 use abi::manifest::*;
 use runner::scene::Scene;
@@ -19,7 +20,13 @@ pub fn check(manifest: &Manifest, scene: &Scene) -> Result<(), String> {
         match &pass.kind {
             PassKindManifest::Compute { .. } => return what("compute passes"),
             PassKindManifest::Render { light_view: true, .. } => return what("`view(light)` passes"),
+            PassKindManifest::Render { depth, .. } if *depth != DepthMode::Own => {
+                return what("`depth: keep` and `depth: test(...)`")
+            }
             PassKindManifest::Render { .. } | PassKindManifest::Image { .. } => {}
+        }
+        if pass.blend.iter().any(|b| *b != Blend::Replace) {
+            return what("blending (`over`, `add`, `multiply`)");
         }
         if !pass.object_bindings.is_empty() {
             return what("per-object textures");
