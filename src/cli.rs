@@ -596,16 +596,9 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
     let mut programs = Vec::new();
     for v in &variants {
         let text = lab::bench_ops::style(v);
-        match compiler::compile_source(v.name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push((v.name, c.program())),
-            Err(CompileError::User(d)) => {
-                printer.diagnostics(&d, &sources);
-                return EXIT_INTERNAL;
-            }
-            Err(CompileError::Internal(e)) => {
-                eprintln!("{e}");
-                return EXIT_INTERNAL;
-            }
+        match compile_builtin(v.name, &text, &mut sources, printer) {
+            Ok(p) => programs.push((v.name, p)),
+            Err(code) => return code,
         }
     }
     // Frame-level round robin over all variants, so load changes hit every variant alike.
@@ -651,16 +644,9 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
     for (name, text, measure) in lab::bench_contours::variants() {
-        match compiler::compile_source(name, &text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push((name, c.program(), measure)),
-            Err(CompileError::User(d)) => {
-                printer.diagnostics(&d, &sources);
-                return EXIT_INTERNAL;
-            }
-            Err(CompileError::Internal(e)) => {
-                eprintln!("{e}");
-                return EXIT_INTERNAL;
-            }
+        match compile_builtin(name, &text, &mut sources, printer) {
+            Ok(p) => programs.push((name, p, measure)),
+            Err(code) => return code,
         }
     }
     let gpu = match headless_gpu() {
@@ -680,6 +666,22 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
     }
 }
 
+/// Compile a style the benchmarks carry in their source: any error in it is
+/// npr's (the internal exit code), printed with its diagnostics.
+fn compile_builtin(name: &str, text: &str, sources: &mut SourceMap, printer: &Printer) -> Result<StyleProgram, i32> {
+    match compiler::compile_source(name, text, Path::new("."), sources, &CompileOptions::default()) {
+        Ok(c) => Ok(c.program()),
+        Err(CompileError::User(d)) => {
+            printer.diagnostics(&d, sources);
+            Err(EXIT_INTERNAL)
+        }
+        Err(CompileError::Internal(e)) => {
+            eprintln!("{e}");
+            Err(EXIT_INTERNAL)
+        }
+    }
+}
+
 /// `npr bench reduce`: see `lab::bench_reduce`.
 fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
     if let Some(bad) = elements.iter().chain(objects).find(|n| **n == 0 || **n > 10_000_000) {
@@ -692,16 +694,9 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
         ("reduce.npr", lab::bench_reduce::STYLE),
         ("null.npr", lab::bench_reduce::NULL_STYLE),
     ] {
-        match compiler::compile_source(name, text, Path::new("."), &mut sources, &CompileOptions::default()) {
-            Ok(c) => programs.push(c.program()),
-            Err(CompileError::User(d)) => {
-                printer.diagnostics(&d, &sources);
-                return EXIT_INTERNAL;
-            }
-            Err(CompileError::Internal(e)) => {
-                eprintln!("{e}");
-                return EXIT_INTERNAL;
-            }
+        match compile_builtin(name, text, &mut sources, printer) {
+            Ok(p) => programs.push(p),
+            Err(code) => return code,
         }
     }
     let gpu = match headless_gpu() {
