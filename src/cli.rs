@@ -79,13 +79,15 @@ pub enum Command {
         #[arg(long, default_value = "512x512", value_parser = parse_size)]
         size: (u32, u32),
         /// Time in seconds (for animated parameters and cameras). A style that
-        /// reads `previous(...)` depends on earlier frames: it is rendered by
+        /// reads `previous(...)` or keeps `state` in a compute pass depends on
+        /// earlier frames: it is rendered by
         /// replaying frames 0..=round(time × fps) at --fps (so the frame equals
         /// the same frame of a --frames sequence), and the last one is written.
         #[arg(long, default_value_t = 0.0)]
         time: f64,
         /// Render frames A..B (exclusive) at --fps. A style that reads
-        /// `previous(...)` first replays frames 0..A without writing them.
+        /// `previous(...)` or keeps `state` first replays frames 0..A without
+        /// writing them.
         #[arg(long, value_parser = parse_frames)]
         frames: Option<(u32, u32)>,
         #[arg(long, default_value_t = 24.0)]
@@ -875,7 +877,7 @@ fn render(
     let replayed = schedule.iter().filter(|f| !f.write).count();
     if replayed > 0 {
         eprintln!(
-            "note: the style reads `previous(...)`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame 0 at {fps} fps"
+            "note: the style reads `previous(...)` or keeps `state`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame 0 at {fps} fps"
         );
     }
     let bar = if schedule.len() > 1 {

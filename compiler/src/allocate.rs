@@ -163,7 +163,8 @@ pub fn allocate(
         };
         report.push("depth", format!("pass `{}`", pass.name), why);
     }
-    if !live.history.is_empty() {
+    let keeps_state = live.passes.iter().any(|p| alloc.keeps_state(ir, *p));
+    if !live.history.is_empty() || keeps_state {
         report.push(
             "history",
             "frames depend on earlier frames".into(),
