@@ -531,20 +531,8 @@ fn bench_overhead(
     printer: &Printer,
 ) -> i32 {
     let mut sources = SourceMap::new();
-    let scene = match load_scene(scene_path, &mut sources, printer) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
-    let opts = CompileOptions {
-        scene: Some(scene.summary(&scene_path.display().to_string())),
-        ..Default::default()
-    };
-    let compiled = match compile(style, &mut sources, &opts, printer) {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
-    let gpu = match headless_gpu() {
-        Ok(g) => g,
+    let (scene, compiled, gpu) = match scene_style_gpu(style, scene_path, &mut sources, printer) {
+        Ok(t) => t,
         Err(code) => return code,
     };
     match lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
@@ -726,20 +714,8 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
 /// `npr bench passes`: each pass's GPU time and its share of the frame.
 fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
-    let scene = match load_scene(scene_path, &mut sources, printer) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
-    let opts = CompileOptions {
-        scene: Some(scene.summary(&scene_path.display().to_string())),
-        ..Default::default()
-    };
-    let compiled = match compile(style, &mut sources, &opts, printer) {
-        Ok(c) => c,
-        Err(code) => return code,
-    };
-    let gpu = match headless_gpu() {
-        Ok(g) => g,
+    let (scene, compiled, gpu) = match scene_style_gpu(style, scene_path, &mut sources, printer) {
+        Ok(t) => t,
         Err(code) => return code,
     };
     let program = compiled.program();
@@ -772,6 +748,24 @@ fn bench_passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, 
     }
     println!("| **all passes** | | {total:.3} | 100% |");
     EXIT_OK
+}
+
+/// What the benchmarks of one style on one scene need: the scene, the style
+/// compiled for it, and the headless GPU; or the exit code, with the
+/// diagnostics printed.
+fn scene_style_gpu(
+    style: &Path,
+    scene_path: &Path,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<(runner::scene::Scene, Compiled, Gpu), i32> {
+    let scene = load_scene(scene_path, sources, printer)?;
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let compiled = compile(style, sources, &opts, printer)?;
+    Ok((scene, compiled, headless_gpu()?))
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer: &Printer) -> Result<Compiled, i32> {
