@@ -12,7 +12,7 @@
 //! object stage reads complete partials.
 
 use super::bind;
-use super::meshes::GpuMesh;
+use super::meshes::{attribute_format, GpuMesh};
 use super::pass::{EncodeContext, Timestamps};
 use super::resources::SizedPass;
 use super::values::PassBuffers;
@@ -204,11 +204,7 @@ impl ComputePassExec {
         let mut time_varying = Vec::new();
         for (o, first) in &buffers.time_varying {
             for (a, pooled) in &buffers.attributes {
-                let bytes = match a {
-                    Attribute::Position | Attribute::Normal => 12,
-                    Attribute::Uv => 8,
-                    Attribute::Tangent => 16,
-                };
+                let bytes = attribute_format(*a).1;
                 time_varying.push((*o, *a, pooled.clone(), first * bytes, bytes));
             }
         }

@@ -8,6 +8,16 @@ use abi::manifest::Attribute;
 use std::collections::BTreeMap;
 use wgpu::util::DeviceExt;
 
+/// The vertex format and byte stride of attribute `a` in its vertex buffer
+/// (one buffer per attribute, tightly packed f32s).
+pub(super) fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
+    match a {
+        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
+        Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
+        Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
+    }
+}
+
 pub(super) struct GpuMesh {
     pub buffers: BTreeMap<Attribute, wgpu::Buffer>,
     pub index: wgpu::Buffer,

@@ -5,6 +5,7 @@
 //! test(other)` the one `other` kept, loaded and tested, never written.
 
 use super::bind::{self, ObjectResources};
+use super::meshes::attribute_format;
 use super::pass::{self, EncodeContext, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
@@ -25,14 +26,6 @@ pub(super) struct RenderPassExec {
     /// textures; empty when the pass reads no such texture (it uses the
     /// shared group, `EncodeContext::object_group`).
     object_groups: Vec<wgpu::BindGroup>,
-}
-
-fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
-    match a {
-        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
-        Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
-        Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
-    }
 }
 
 /// The pipeline's depth state and the attachment's operations of a depth

@@ -9,7 +9,7 @@
 //! objects are fixed); the value buffers are zeroed again whenever the
 //! history resets (a new size), so state restarts from its first value.
 
-use super::meshes::GpuMesh;
+use super::meshes::{attribute_format, GpuMesh};
 use crate::scene::Scene;
 use crate::RunError;
 use abi::manifest::*;
@@ -55,15 +55,6 @@ pub(super) fn element_workgroups(vertices: usize) -> u32 {
     (vertices as u64)
         .div_ceil(ELEMENTS_PER_WORKGROUP as u64)
         .min(u32::MAX as u64) as u32
-}
-
-/// Bytes of one vertex of `a` in its vertex buffer.
-fn attribute_bytes(a: Attribute) -> u64 {
-    match a {
-        Attribute::Position | Attribute::Normal => 12,
-        Attribute::Uv => 8,
-        Attribute::Tangent => 16,
-    }
 }
 
 /// The CPU data of attribute `a` of `mesh`, as bytes.
@@ -150,7 +141,7 @@ pub(super) fn create(
         let mut time_varying = Vec::new();
         if over_vertices {
             for a in attributes {
-                let mut bytes = Vec::with_capacity((first_vertex * attribute_bytes(*a)) as usize);
+                let mut bytes = Vec::with_capacity((first_vertex * attribute_format(*a).1) as usize);
                 for &o in &members {
                     let data = attribute_data(&scene.objects[o].mesh, *a).ok_or_else(|| {
                         RunError::Internal(format!("object #{o} has no `{}` for pass `{}`", a.name(), p.name))
