@@ -45,7 +45,9 @@ primitive = {{ kind = "plane", size = 6.0, subdivisions = 4 }}
 "#
     );
     let path = dir.join(format!("scene_{}.toml", ipd.is_some()));
-    std::fs::write(&path, text).expect("write scene");
+    // Tests run in parallel and write the same file: atomically, so a
+    // reader never sees another test's half-written copy.
+    runner::output::write_atomic(&path, text.as_bytes()).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))

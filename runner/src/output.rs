@@ -9,16 +9,7 @@ use std::path::{Path, PathBuf};
 
 /// Write `bytes` to `path` atomically (temp file + rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let tmp = temp_path(path)?;
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
@@ -31,6 +22,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// The temporary name `path` is written under before its rename: a hidden
+/// file beside it (same directory, so the rename is atomic), which is
+/// created if missing. The name is unique per call (process id and a
+/// counter), so two threads writing the same path never share a temporary.
+fn temp_path(path: &Path) -> std::io::Result<PathBuf> {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    Ok(dir.join(format!(".{name}.tmp-{}-{n}", std::process::id())))
+}
+
 /// Write several files atomically, each as [`write_atomic`] does, but with
 /// their flushes to disk issued together: every file goes to a temporary
 /// name, all are synced in parallel (the filesystem commits them in one
@@ -40,26 +50,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 pub fn write_all_atomic(files: &[(PathBuf, &[u8])]) -> std::io::Result<()> {
     let mut temps: Vec<(PathBuf, &Path)> = Vec::new();
     let result = (|| {
+        let mut written = Vec::new();
         for (path, bytes) in files {
-            let dir = path
-                .parent()
-                .filter(|p| !p.as_os_str().is_empty())
-                .unwrap_or(Path::new("."));
-            std::fs::create_dir_all(dir)?;
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "out".into());
-            let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+            let tmp = temp_path(path)?;
             let mut f = std::fs::File::create(&tmp)?;
             temps.push((tmp, path));
             f.write_all(bytes)?;
+            written.push(f);
         }
         std::thread::scope(|scope| {
-            let syncs: Vec<_> = temps
-                .iter()
-                .map(|(tmp, _)| scope.spawn(move || std::fs::File::options().write(true).open(tmp)?.sync_all()))
-                .collect();
+            let syncs: Vec<_> = written.iter().map(|f| scope.spawn(move || f.sync_all())).collect();
             syncs.into_iter().try_for_each(|s| {
                 s.join()
                     .unwrap_or_else(|_| Err(std::io::Error::other("a sync thread panicked")))
