@@ -184,6 +184,19 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
+    /// A compute pass over the pixels of an ID image (`compute(pixels, ids.id)`):
+    /// cost against the image size and the objects on screen, a copy kernel
+    /// over as many floats in the same run, and the error against f64.
+    Pixels {
+        /// Square image sizes, comma-separated.
+        #[arg(long, default_value = "128,256,512,1024", value_delimiter = ',')]
+        sizes: Vec<u32>,
+        /// Object counts (spheres in a grid over the screen), comma-separated.
+        #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
+        objects: Vec<usize>,
+        #[arg(long, default_value_t = 10)]
+        frames: u32,
+    },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
         style: PathBuf,
@@ -475,6 +488,7 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             objects,
             frames,
         } => bench_reduce(&elements, &objects, frames, printer),
+        BenchCommand::Pixels { sizes, objects, frames } => bench_pixels(&sizes, &objects, frames, printer),
         BenchCommand::Passes {
             style,
             scene,
@@ -702,6 +716,49 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
                 gpu.describe()
             );
             println!("{}", lab::bench_reduce::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench pixels`: see `lab::bench_reduce_pixels`.
+fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > 8192) {
+        eprintln!("error[E0404]: size {bad} is outside 1..=8192");
+        return EXIT_USER;
+    }
+    if let Some(bad) = objects.iter().find(|n| **n == 0 || **n > 10_000) {
+        eprintln!("error[E0404]: object count {bad} is outside 1..=10000");
+        return EXIT_USER;
+    }
+    let mut sources = SourceMap::new();
+    let mut programs = Vec::new();
+    for (name, text) in [
+        ("pixels.npr", lab::bench_reduce_pixels::STYLE),
+        ("null.npr", lab::bench_reduce_pixels::NULL_STYLE),
+    ] {
+        match compile_builtin(name, text, &mut sources, printer) {
+            Ok(p) => programs.push(p),
+            Err(code) => return code,
+        }
+    }
+    let gpu = match headless_gpu() {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match lab::bench_reduce_pixels::run(&gpu, (&programs[0], &programs[1]), sizes, objects, frames, |m| {
+        eprintln!("{m}")
+    }) {
+        Ok(rows) => {
+            println!(
+                "device: {}, median of {frames} interleaved frames (wall clock)",
+                gpu.describe()
+            );
+            println!("{}", lab::bench_reduce_pixels::table(&rows));
             EXIT_OK
         }
         Err(e) => {

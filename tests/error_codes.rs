@@ -456,3 +456,67 @@ fn e9001_without_wgsl_names_an_impossible_state() {
         "{rendered}"
     );
 }
+
+/// An ID pass, a pass over its pixels with `kind_args`, and a render pass reading it.
+fn pixel_passes(id_format: &str, kind_args: &str) -> String {
+    style(&format!(
+        "pass ids: render(scene) {{\n  out id: {id_format} = object.id\n}}\n\
+         pass cover: compute({kind_args}) {{\n  reduce area: float = sum(1.0)\n}}\n\
+         pass shade: render(scene) {{\n  out c: rgba8unorm = vec4(vec3(cover.area / 1000.0), 1.0)\n}}\noutput shade.c\n"
+    ))
+}
+
+#[test]
+fn e0309_pixels_of_a_target_that_is_not_an_id_target() {
+    let text = pixel_passes("r16float", "pixels, ids.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0309"));
+    assert!(rendered.contains("out id: r32float = object.id"), "{rendered}");
+    check("E0309", (diags, rendered));
+}
+
+#[test]
+fn a_pass_over_pixels_without_its_id_target() {
+    let text = pixel_passes("r32float", "pixels");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-no-target"));
+    assert!(rendered.contains("compute(pixels, ids.id)"), "{rendered}");
+    check_case("E0304", "E0304_pixels_without_id_target", (diags, rendered));
+}
+
+#[test]
+fn a_target_where_a_pass_kind_takes_a_name() {
+    let text = pixel_passes("r32float", "vertices, ids.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("kind-arg-field"));
+    assert!(
+        rendered.contains("expected a tag, found the target `ids.id`"),
+        "{rendered}"
+    );
+    check_case("E0304", "E0304_target_as_kind_argument", (diags, rendered));
+}
+
+#[test]
+fn a_pass_over_pixels_of_an_unknown_pass_suggests_one() {
+    let text = pixel_passes("r32float", "pixels, idz.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-unknown"));
+    assert!(rendered.contains("did you mean `ids`?"), "{rendered}");
+    check_case("E0101", "E0101_pixels_of_unknown_pass", (diags, rendered));
+}
+
+#[test]
+fn a_fragment_builtin_in_a_pass_over_vertices() {
+    // `screen_uv` is a fragment's; a vertex has none (this once reached naga as E9001).
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce s: vec2 = sum(screen_uv)\n}\n\
+         pass shade: render(scene) {\n  out c: rgba8unorm = vec4(sums.s, 0.0, 1.0)\n}\noutput shade.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("vertices-screen-uv"));
+    assert!(rendered.contains("`screen_uv` is not available"), "{rendered}");
+    check_case("E0304", "E0304_screen_uv_over_vertices", (diags, rendered));
+}
+
+#[test]
+fn geometry_in_a_pass_over_pixels() {
+    let text = pixel_passes("r32float", "pixels, ids.id").replace("sum(1.0)", "sum(normal.x)");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-normal"));
+    assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
+    check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
+}

@@ -113,6 +113,8 @@ const FIXED_TOKENS: &[&str] = &[
     "lines",
     "objects",
     "vertices",
+    "pixels",
+    "ids.id",
     "sum",
     "min",
     "max",
@@ -181,6 +183,7 @@ fn token_list_covers_every_keyword_builtin_and_pass_kind() {
             "state",
             "objects",
             "vertices",
+            "pixels",
             "previous",
             "other_eye",
         ])

@@ -163,9 +163,14 @@ pub enum PassKindManifest {
         /// whose `x` is 1 once the object's state has been written.
         #[serde(default, skip_serializing_if = "std::ops::Not::not")]
         history: bool,
-        /// The element stage (`vertices` only).
+        /// The element stage (`vertices` and `pixels`).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         elements_entry: Option<String>,
+        /// The ID target whose pixels a `pixels` pass runs over (an index
+        /// into [`Manifest::targets`]); its value at each pixel is the
+        /// `object.id` (object index + 1) the pixel belongs to, 0 for none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pixels_of: Option<usize>,
         /// The object stage.
         objects_entry: String,
     },
@@ -182,6 +187,31 @@ pub const ELEMENTS_PER_WORKGROUP: u32 = ELEMENT_WORKGROUP * ELEMENTS_PER_INVOCAT
 /// Invocations of the object stage's workgroup, which reduces one object's
 /// partials (one workgroup per object).
 pub const OBJECT_WORKGROUP: u32 = 64;
+/// A `pixels` pass's element workgroup covers a tile of
+/// `PIXEL_TILE × PIXEL_TILE` pixels at a time: its [`ELEMENT_WORKGROUP`]
+/// invocations are a 16 × 16 grid, each with 2 × 2 pixels 16 apart (so
+/// every round of the reduction spends its barriers on 4 pixels per
+/// invocation, not 1).
+pub const PIXEL_TILE: u32 = 32;
+/// Most element workgroups of a `pixels` pass; each loops over every
+/// `workgroups`-th tile, so the partials (one per workgroup per object per
+/// value) do not grow with the image.
+pub const MAX_PIXEL_WORKGROUPS: u32 = 256;
+/// The partials of a `pixels` pass stay under this many bytes: with many
+/// objects it runs fewer element workgroups.
+pub const PIXEL_PARTIALS_BUDGET: u64 = 64 << 20;
+
+/// The element workgroups of a `pixels` pass over an ID target of `size` (in tiles of [`PIXEL_TILE`]²)
+/// with `objects` objects in the scene and `values` reduced values: one per
+/// tile, at most [`MAX_PIXEL_WORKGROUPS`], and fewer when the partials
+/// (`workgroups × objects × values` slots of 16 bytes) would pass
+/// [`PIXEL_PARTIALS_BUDGET`]. At least 1.
+pub fn pixel_workgroups(size: (u32, u32), objects: u64, values: u64) -> u32 {
+    let tiles = u64::from(size.0.div_ceil(PIXEL_TILE)) * u64::from(size.1.div_ceil(PIXEL_TILE));
+    let per_workgroup = objects.max(1) * values.max(1) * 16;
+    let budget = (PIXEL_PARTIALS_BUDGET / per_workgroup).max(1);
+    tiles.min(u64::from(MAX_PIXEL_WORKGROUPS)).min(budget).max(1) as u32
+}
 
 /// What a compute pass runs over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -195,6 +225,12 @@ pub enum ComputeDomain {
     /// dispatch, writing partials), then the object stage (`objects_entry`,
     /// one workgroup per object, reducing its partials).
     Vertices,
+    /// Every pixel of an ID target (`pixels_of`), reduced per object by the
+    /// ID at the pixel: the element stage (`elements_entry`, at most
+    /// [`MAX_PIXEL_WORKGROUPS`] workgroups, each looping over tiles and, per
+    /// tile, over the distinct IDs in it), then the object stage as for
+    /// `Vertices`.
+    Pixels,
 }
 
 impl ComputeDomain {
@@ -203,6 +239,16 @@ impl ComputeDomain {
         match self {
             ComputeDomain::Objects => "objects",
             ComputeDomain::Vertices => "vertices",
+            ComputeDomain::Pixels => "pixels",
+        }
+    }
+
+    /// Whether the pass reduces elements (an element stage, then the object
+    /// stage), rather than running once per object.
+    pub fn has_elements(self) -> bool {
+        match self {
+            ComputeDomain::Objects => false,
+            ComputeDomain::Vertices | ComputeDomain::Pixels => true,
         }
     }
 }

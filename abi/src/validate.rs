@@ -5,6 +5,7 @@
 //! manifests pass by construction; these checks are for files that were
 //! edited, truncated, or written by another version.
 
+use crate::formats::Format;
 use crate::manifest::*;
 use crate::noise::NoiseSpec;
 use std::collections::BTreeSet;
@@ -507,6 +508,7 @@ impl Manifest {
             attributes,
             values,
             elements_entry,
+            pixels_of,
             ..
         } = &p.kind
         else {
@@ -536,25 +538,54 @@ impl Manifest {
                 );
             }
             let reduces = matches!(v.kind, ValueKind::Reduce(_));
-            if reduces != (*domain == ComputeDomain::Vertices) {
+            if reduces != domain.has_elements() {
                 return bad(
                     format!("{field}.kind.values[{k}].kind"),
-                    format!("value `{}` does not belong to a pass over {domain:?}", v.name),
+                    format!("value `{}` does not belong to a pass over {}", v.name, domain.name()),
                 );
             }
         }
-        let over_vertices = *domain == ComputeDomain::Vertices;
-        if elements_entry.is_some() != over_vertices {
+        if elements_entry.is_some() != domain.has_elements() {
             return bad(
                 format!("{field}.kind.elements_entry"),
-                "exactly the passes over vertices have an element stage",
+                "exactly the passes over vertices or pixels have an element stage",
             );
         }
-        if !over_vertices && !attributes.is_empty() {
+        if *domain != ComputeDomain::Vertices && !attributes.is_empty() {
             return bad(
                 format!("{field}.kind.attributes"),
-                "a pass over objects reads no vertex attributes",
+                format!("a pass over {} reads no vertex attributes", domain.name()),
             );
+        }
+        match (domain, pixels_of) {
+            (ComputeDomain::Pixels, Some(t)) => match self.targets.get(*t) {
+                Some(target) if target.format == Format::R32float => {}
+                Some(target) => {
+                    return bad(
+                        format!("{field}.kind.pixels_of"),
+                        format!("ID target `{}` is {}, not r32float", target.name, target.format.name()),
+                    )
+                }
+                None => {
+                    return bad(
+                        format!("{field}.kind.pixels_of"),
+                        format!("target {t} does not exist ({} targets)", self.targets.len()),
+                    )
+                }
+            },
+            (ComputeDomain::Pixels, None) => {
+                return bad(
+                    format!("{field}.kind.pixels_of"),
+                    "a pass over pixels names its ID target",
+                )
+            }
+            (_, Some(_)) => {
+                return bad(
+                    format!("{field}.kind.pixels_of"),
+                    "only a pass over pixels has an ID target",
+                )
+            }
+            (_, None) => {}
         }
         Ok(())
     }

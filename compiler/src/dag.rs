@@ -18,6 +18,7 @@ pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
     let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
     roots.extend(Ir::vertex_roots(pass));
     roots.extend(pass.kind.values().iter().flat_map(ObjectValue::roots));
+    roots.extend(pass.kind.domain_roots());
     roots
 }
 

@@ -285,13 +285,20 @@ impl Builtin {
         matches!(self, Builtin::ObjectIndex | Builtin::ObjectId)
     }
 
+    /// Whether a compute pass over the pixels of an ID target has it: the
+    /// pixel's position (not the interpolated screen-space frames, which
+    /// exist only for fragments of geometry).
+    pub fn in_pixel_elements(self) -> bool {
+        matches!(self, Builtin::FragCoord | Builtin::ScreenUv)
+    }
+
     /// Whether a compute pass over the vertices of objects has it: the
     /// vertex's own attributes and what follows from them, not what exists
     /// only per fragment (the pixel, interpolated screen-space frames) or
     /// what needs the light camera.
     pub fn in_vertex_elements(self) -> bool {
         use Builtin::*;
-        !self.needs_geometry()
+        !self.is_per_fragment()
             || matches!(
                 self,
                 Uv | NormalWorld | NormalView | PositionWorld | PositionView | ViewDir | Depth | PositionPrevious
@@ -596,6 +603,10 @@ pub enum PassKind {
         domain: ComputeDomain,
         /// `compute(vertices, tag)`: only objects with the tag; `None` runs over all.
         tag: Option<String>,
+        /// `compute(pixels, ids.id)`: the read of the ID target whose pixels
+        /// the pass runs over. `Some` exactly for `Pixels` (after a
+        /// resolve error, `None` there too; such an IR is never emitted).
+        key: Option<ExprId>,
         /// Its per-object values, one slot each, in slot order.
         values: Vec<ObjectValue>,
     },
@@ -653,6 +664,15 @@ impl PassKind {
         match self {
             PassKind::Render { .. } | PassKind::Compute { .. } => true,
             PassKind::Image { .. } => false,
+        }
+    }
+
+    /// The expressions the domain itself evaluates: the ID target read of a
+    /// pass over pixels (none for other kinds and domains).
+    pub fn domain_roots(&self) -> Vec<ExprId> {
+        match self {
+            PassKind::Compute { key, .. } => key.iter().copied().collect(),
+            PassKind::Render { .. } | PassKind::Image { .. } => Vec::new(),
         }
     }
 

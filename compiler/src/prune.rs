@@ -131,10 +131,16 @@ fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
     if !roots.is_empty() || live.depth.contains(&pid) {
         roots.extend(Ir::vertex_roots(pass));
     }
+    let mut any_value = false;
     for (slot, v) in pass.kind.values().iter().enumerate() {
         if live.values.contains(&(pid, slot as u32)) {
             roots.extend(v.roots());
+            any_value = true;
         }
+    }
+    if any_value {
+        // A pass over pixels reads its ID target for every live value.
+        roots.extend(pass.kind.domain_roots());
     }
     roots
 }

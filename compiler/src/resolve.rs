@@ -20,6 +20,7 @@ use std::path::Path;
 use stdlib::Unit;
 
 mod compute;
+mod kind_args;
 mod settings;
 
 /// Resolution limits, stated in the error messages.
@@ -765,7 +766,8 @@ impl Resolver<'_> {
         self.current_pass = Some(id);
         let kind = match p.kind.kind.name.as_str() {
             "render" => {
-                let tag = match p.kind.args.as_slice() {
+                let args = self.plain_kind_args(p, "a tag");
+                let tag = match args.as_slice() {
                     [] => None,
                     [a] if a.name == "scene" => None,
                     [a] => Some(a.name.clone()),
@@ -787,7 +789,7 @@ impl Resolver<'_> {
             }
             "image" => {
                 let mut inputs = Vec::new();
-                for a in &p.kind.args {
+                for a in self.plain_kind_args(p, "a pass") {
                     match self.names.get(&a.name).copied() {
                         Some((Symbol::Pass(pid), _)) => inputs.push(pid),
                         _ => {

@@ -156,8 +156,19 @@ pub struct PassDecl {
 pub struct PassKind {
     /// `render`, `image`, and reserved for later issues: `compute`, `reduce`, `lines`.
     pub kind: Ident,
-    /// For `render`: `scene` or a tag name. For `image`: the passes it reads.
-    pub args: Vec<Ident>,
+    /// For `render`: `scene` or a tag name. For `image`: the passes it
+    /// reads. For `compute`: the domain, then a tag, or the ID target of
+    /// `compute(pixels, ids.id)`.
+    pub args: Vec<KindArg>,
+    pub span: Span,
+}
+
+/// An argument of a pass kind: a name, or a pass's target (`ids.id`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KindArg {
+    pub name: Ident,
+    /// `.id` of `ids.id`.
+    pub field: Option<Ident>,
     pub span: Span,
 }
 

@@ -259,6 +259,8 @@ pub mod codes {
     pub const NOT_BLENDABLE: &str = "E0307";
     /// A depth test against a pass that keeps no depth buffer.
     pub const DEPTH_NOT_KEPT: &str = "E0308";
+    /// The target a `compute(pixels, ...)` pass runs over is not an ID target (`r32float`).
+    pub const BAD_ID_TARGET: &str = "E0309";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.

@@ -164,6 +164,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::range_clause => "`in lo..hi`",
         Rule::animate_clause => "`animate { ... }`",
         Rule::pass_kind => "a pass kind such as render(scene) or image(a)",
+        Rule::kind_arg => "a name or a pass's target (`ids.id`)",
         Rule::pass_body | Rule::pass_stmt => "`out`, `let`, `state`, `reduce`, `vertex` or a setting",
         Rule::out_stmt => "`out name: format = value [{ blend: over }]`",
         Rule::state_stmt => "`state name: type = value`",
@@ -516,7 +517,15 @@ impl Builder {
                     let k = self.ident(it.next()?);
                     kind = Some(PassKind {
                         kind: k,
-                        args: it.map(|a| self.ident(a)).collect(),
+                        args: it
+                            .map(|a| {
+                                let span = self.span(&a);
+                                let mut parts = a.into_inner();
+                                let name = parts.next().map(|n| self.ident(n));
+                                let field = parts.next().map(|f| self.ident(f));
+                                name.map(|name| KindArg { name, field, span })
+                            })
+                            .collect::<Option<Vec<_>>>()?,
                         span: kspan,
                     });
                 }

@@ -11,11 +11,15 @@
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
+//! - [`bench_reduce`], [`bench_reduce_pixels`]: `npr bench reduce` and
+//!   `npr bench pixels`, compute passes' reductions over vertices and over
+//!   the pixels of an ID image.
 
 pub mod bench;
 pub mod bench_contours;
 pub mod bench_ops;
 pub mod bench_overhead;
 pub mod bench_reduce;
+pub mod bench_reduce_pixels;
 pub mod contours;
 pub mod harness;

@@ -1,6 +1,9 @@
-//! Compute passes: the module of a `compute(objects)` or `compute(vertices)`
-//! pass — its own buffers (group 2), the vertex attributes it reads as
-//! storage buffers (group 1 after the `Object` block), and its entry points.
+//! Compute passes: the module of a `compute(objects)`, `compute(vertices)`
+//! or `compute(pixels, ...)` pass — its own buffers (group 2), the vertex
+//! attributes it reads as storage buffers (group 1 after the `Object`
+//! block), and its entry points; the parts the two element domains share
+//! (the reduction trees, the element's values, the object stage). The
+//! element stage over pixels is in `compute_pixels.rs`.
 //!
 //! `compute(vertices)` reduces in two stages, correct on any adapter (no
 //! float atomics, no subgroups), each one dispatch over every object the
@@ -34,7 +37,7 @@ pub const UPDATE_OBJECTS_ENTRY: &str = "update_objects";
 /// binding order (group 1, bindings 1..): the position always (it gives
 /// the world position and every value made from it), the others when read.
 pub(super) fn attributes(domain: ComputeDomain, builtins: &std::collections::BTreeSet<Builtin>) -> Vec<Attribute> {
-    if domain == ComputeDomain::Objects {
+    if domain != ComputeDomain::Vertices {
         return Vec::new();
     }
     let mut a = vec![Attribute::Position];
@@ -52,7 +55,7 @@ pub(super) fn attributes(domain: ComputeDomain, builtins: &std::collections::BTr
 
 /// The identity of a reduction, as a `vec4<f32>` (min and max start at
 /// ±f32::MAX, so an object with no element reads ±3.4e38).
-fn identity(op: ReduceOp) -> &'static str {
+pub(super) fn identity(op: ReduceOp) -> &'static str {
     match op {
         ReduceOp::Sum => "vec4<f32>(0.0)",
         ReduceOp::Min => "vec4<f32>(3.4028235e38)",
@@ -60,7 +63,7 @@ fn identity(op: ReduceOp) -> &'static str {
     }
 }
 
-fn combine(op: ReduceOp, a: &str, b: &str) -> String {
+pub(super) fn combine(op: ReduceOp, a: &str, b: &str) -> String {
     match op {
         ReduceOp::Sum => format!("{a} + {b}"),
         ReduceOp::Min => format!("min({a}, {b})"),
@@ -69,7 +72,102 @@ fn combine(op: ReduceOp, a: &str, b: &str) -> String {
 }
 
 /// A live value of the pass being emitted: (IR slot, packed slot, value).
-type LiveValue<'a> = (u32, u32, &'a ObjectValue);
+pub(super) type LiveValue<'a> = (u32, u32, &'a ObjectValue);
+
+/// The reduction of each live value of a pass over elements.
+pub(super) fn reduce_ops(live: &[LiveValue]) -> Vec<ReduceOp> {
+    live.iter()
+        .map(|(_, _, v)| match v.rule {
+            ValueRule::Reduce(op) => op,
+            // Resolve gives a pass over elements only reductions.
+            ValueRule::Out | ValueRule::State => ReduceOp::Sum,
+        })
+        .collect()
+}
+
+/// The constants of the two stages and `npr_tree_<op>`, the workgroup tree
+/// of each reduction the pass uses.
+pub(super) fn reduction_trees(w: &mut String, ops: &[ReduceOp]) {
+    let _ = writeln!(
+        w,
+        "const NPR_REDUCED: u32 = {}u; // partials per workgroup\n\
+         const NPR_ELEMENT_WG: u32 = {ELEMENT_WORKGROUP}u;\n\
+         const NPR_OBJECT_WG: u32 = {OBJECT_WORKGROUP}u;\n\n\
+         var<workgroup> npr_tree: array<vec4<f32>, {ELEMENT_WORKGROUP}>;\n",
+        ops.len()
+    );
+    let mut used_ops: Vec<ReduceOp> = ops.to_vec();
+    used_ops.sort_by_key(|o| o.name());
+    used_ops.dedup();
+    for op in used_ops {
+        let name = op.name();
+        let step = combine(op, "npr_tree[lid]", "npr_tree[lid + s]");
+        let _ = writeln!(
+            w,
+            "// Pairwise {name} of `v` over the first `n` invocations (a power of two), in
+// workgroup memory; every invocation gets the result. Called in uniform control flow.
+fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
+    npr_tree[lid] = v;
+    workgroupBarrier();
+    for (var s = n / 2u; s > 0u; s = s / 2u) {{
+        if (lid < s) {{
+            npr_tree[lid] = {step};
+        }}
+        workgroupBarrier();
+    }}
+    let r = npr_tree[0];
+    workgroupBarrier();
+    return r;
+}}
+"
+        );
+    }
+}
+
+/// Stage 2 (`reduce_objects`): workgroup `m` tree-reduces member m's
+/// `count` partials (after `setup`), the `c`-th at `partial(c)`, into its
+/// object's value slots.
+pub(super) fn object_stage(
+    w: &mut String,
+    live: &[LiveValue],
+    ops: &[ReduceOp],
+    doc: &str,
+    setup: &str,
+    count: &str,
+    partial: &str,
+) {
+    let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
+    let _ = writeln!(
+        w,
+        "{doc}
+@compute @workgroup_size({OBJECT_WORKGROUP})
+fn {REDUCE_OBJECTS_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid: u32) {{
+    let member = npr_members[wg.x];
+    object = npr_objects[member.x].o;
+{setup}
+    var acc = array<vec4<f32>, {}>({});
+    for (var c = lid; c < {count}; c = c + NPR_OBJECT_WG) {{
+        let p = {partial};",
+        ops.len(),
+        identities.join(", ")
+    );
+    for (k, op) in ops.iter().enumerate() {
+        let _ = writeln!(
+            w,
+            "        acc[{k}] = {};",
+            combine(*op, &format!("acc[{k}]"), &format!("npr_partials[p + {k}u]"))
+        );
+    }
+    w.push_str("    }\n");
+    for (k, ((_, packed, _), op)) in live.iter().zip(ops).enumerate() {
+        let _ = writeln!(
+            w,
+            "    let r{k} = npr_tree_{}(lid, NPR_OBJECT_WG, acc[{k}]);\n    if (lid == 0u) {{\n        npr_values[member.x * NPR_SLOTS + {packed}u] = r{k};\n    }}",
+            op.name()
+        );
+    }
+    w.push_str("}\n");
+}
 
 impl Emitter<'_> {
     /// The WGSL and bindings of compute pass `pid`.
@@ -87,9 +185,12 @@ impl Emitter<'_> {
                     .map(|packed| (i as u32, *packed, v))
             })
             .collect();
-        let roots: Vec<ExprId> = live.iter().flat_map(|(_, _, v)| v.roots()).collect();
-        let nodes = self.ir.reachable(&roots);
-        let uses = self.uses(&nodes, &roots, &[]);
+        let value_roots: Vec<ExprId> = live.iter().flat_map(|(_, _, v)| v.roots()).collect();
+        let nodes = self.ir.reachable(&value_roots);
+        // The ID target of a pass over pixels is bound too.
+        let mut roots = value_roots.clone();
+        roots.extend(pass.kind.domain_roots());
+        let uses = self.uses(&self.ir.reachable(&roots), &roots, &[]);
         let attributes = attributes(domain, &uses.builtins);
         let per_object = self.alloc.slots_per_object.get(&pid).copied().unwrap_or(0);
         let state = self.alloc.keeps_state(self.ir, pid);
@@ -122,6 +223,10 @@ impl Emitter<'_> {
                 "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per element workgroup\n\
                  @group(2) @binding(2) var<uniform> npr_dispatch: vec4<u32>; // x: element workgroups of all members\n",
             ),
+            ComputeDomain::Pixels => w.push_str(
+                "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per element workgroup per object\n\
+                 @group(2) @binding(2) var<uniform> npr_dispatch: vec4<u32>; // x: the scene's objects, y: element workgroups\n",
+            ),
             ComputeDomain::Objects if state => w.push_str(
                 "@group(2) @binding(1) var<storage, read> npr_values_previous: array<vec4<f32>>; // the previous frame's\n",
             ),
@@ -146,6 +251,7 @@ impl Emitter<'_> {
             ComputeDomain::Vertices => {
                 self.vertex_stages(&mut w, pass, &live, &attributes, &nodes, &uses.value_uses, &mut ctx)
             }
+            ComputeDomain::Pixels => self.pixel_stages(&mut w, pass, &live, &nodes, &uses.value_uses, &mut ctx),
             ComputeDomain::Objects => self.object_update(
                 &mut w,
                 pass,
@@ -177,49 +283,9 @@ impl Emitter<'_> {
         value_uses: &std::collections::BTreeMap<ExprId, usize>,
         ctx: &mut PassCtx,
     ) {
-        let n = live.len();
-        let ops: Vec<ReduceOp> = live
-            .iter()
-            .map(|(_, _, v)| match v.rule {
-                ValueRule::Reduce(op) => op,
-                // Resolve gives a pass over vertices only reductions.
-                ValueRule::Out | ValueRule::State => ReduceOp::Sum,
-            })
-            .collect();
-        let _ = writeln!(
-            w,
-            "const NPR_REDUCED: u32 = {n}u; // partials per workgroup\n\
-             const NPR_ELEMENT_WG: u32 = {ELEMENT_WORKGROUP}u;\n\
-             const NPR_PER_INVOCATION: u32 = {ELEMENTS_PER_INVOCATION}u;\n\
-             const NPR_OBJECT_WG: u32 = {OBJECT_WORKGROUP}u;\n\n\
-             var<workgroup> npr_tree: array<vec4<f32>, {ELEMENT_WORKGROUP}>;\n"
-        );
-        let mut used_ops: Vec<ReduceOp> = ops.clone();
-        used_ops.sort_by_key(|o| o.name());
-        used_ops.dedup();
-        for op in used_ops {
-            let name = op.name();
-            let step = combine(op, "npr_tree[lid]", "npr_tree[lid + s]");
-            let _ = writeln!(
-                w,
-                "// Pairwise {name} of `v` over the first `n` invocations (a power of two), in
-// workgroup memory; every invocation gets the result. Called in uniform control flow.
-fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
-    npr_tree[lid] = v;
-    workgroupBarrier();
-    for (var s = n / 2u; s > 0u; s = s / 2u) {{
-        if (lid < s) {{
-            npr_tree[lid] = {step};
-        }}
-        workgroupBarrier();
-    }}
-    let r = npr_tree[0];
-    workgroupBarrier();
-    return r;
-}}
-"
-            );
-        }
+        let ops = reduce_ops(live);
+        let _ = writeln!(w, "const NPR_PER_INVOCATION: u32 = {ELEMENTS_PER_INVOCATION}u;");
+        reduction_trees(w, &ops);
         // The element's inputs.
         let has = |a: Attribute| attributes.contains(&a);
         w.push_str("struct NprVertex {\n    position_world: vec3<f32>,\n    position_previous: vec3<f32>,\n");
@@ -244,27 +310,15 @@ fn npr_tree_{name}(lid: u32, n: u32, v: vec4<f32>) -> vec4<f32> {{
             w.push_str("    v.uv = vec2<f32>(a_uv[2u * i], a_uv[2u * i + 1u]);\n");
         }
         w.push_str("    return v;\n}\n\n");
-        // The element's values.
-        let _ = writeln!(
+        self.element_values(
             w,
-            "// The reduced values of vertex `i` (of the members' vertices), one slot each.\nfn npr_element(i: u32) -> array<vec4<f32>, {n}> {{\n    let in = npr_vertex(i);"
-        );
-        self.emit_lets(w, pass, nodes, value_uses, ctx);
-        let mut slots = Vec::new();
-        for (_, _, v) in live {
-            let _ = writeln!(
-                w,
-                "    // {}: reduce {}: {}",
-                self.line_of(v.span),
-                v.name,
-                self.snippet(v.span).split_once('=').map_or("", |(_, r)| r.trim())
-            );
-            slots.push(to_slot(&self.expr(v.value, ctx), v.ty));
-        }
-        let _ = writeln!(
-            w,
-            "    return array<vec4<f32>, {n}>(\n        {},\n    );\n}}\n",
-            slots.join(",\n        ")
+            pass,
+            live,
+            nodes,
+            value_uses,
+            ctx,
+            "// The reduced values of vertex `i` (of the members' vertices), one slot each.\nfn npr_element(i: u32)",
+            "    let in = npr_vertex(i);",
         );
         let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
         // Element stage.
@@ -296,12 +350,13 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
     let member = npr_members[npr_member_of(min(w, npr_dispatch.x - 1u))];
     object = npr_objects[member.x].o;
     let chunk = w - member.w;
-    var acc = array<vec4<f32>, {n}>({});
+    var acc = array<vec4<f32>, {}>({});
     for (var k = 0u; k < NPR_PER_INVOCATION; k = k + 1u) {{
         let i = (chunk * NPR_PER_INVOCATION + k) * NPR_ELEMENT_WG + lid;
         if (in_range && i < member.z) {{
             let e = npr_element(member.y + i);",
             ELEMENTS_ENTRY,
+            ops.len(),
             identities.join(", ")
         );
         for (k, op) in ops.iter().enumerate() {
@@ -320,38 +375,54 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
             );
         }
         w.push_str("}\n\n");
-        // Object stage.
+        object_stage(
+            w,
+            live,
+            &ops,
+            "// Stage 2: workgroup `m` reduces member m's partials (its element workgroups) into its object's slots.",
+            "    let per_workgroup = NPR_ELEMENT_WG * NPR_PER_INVOCATION;\n    let chunks = (member.z + per_workgroup - 1u) / per_workgroup;",
+            "chunks",
+            "(member.w + c) * NPR_REDUCED",
+        );
+    }
+
+    /// `npr_element`: the reduced values of one element, one slot each,
+    /// after the pass's lets. `signature` declares it up to its return type;
+    /// `prologue` makes `in`, the element's inputs.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn element_values(
+        &self,
+        w: &mut String,
+        pass: &Pass,
+        live: &[LiveValue],
+        nodes: &[ExprId],
+        value_uses: &std::collections::BTreeMap<ExprId, usize>,
+        ctx: &mut PassCtx,
+        signature: &str,
+        prologue: &str,
+    ) {
+        let n = live.len();
+        let _ = writeln!(w, "{signature} -> array<vec4<f32>, {n}> {{");
+        if !prologue.is_empty() {
+            let _ = writeln!(w, "{prologue}");
+        }
+        self.emit_lets(w, pass, nodes, value_uses, ctx);
+        let mut slots = Vec::new();
+        for (_, _, v) in live {
+            let _ = writeln!(
+                w,
+                "    // {}: reduce {}: {}",
+                self.line_of(v.span),
+                v.name,
+                self.snippet(v.span).split_once('=').map_or("", |(_, r)| r.trim())
+            );
+            slots.push(to_slot(&self.expr(v.value, ctx), v.ty));
+        }
         let _ = writeln!(
             w,
-            "// Stage 2: workgroup `m` reduces member m's partials into its object's slots.
-@compute @workgroup_size({OBJECT_WORKGROUP})
-fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid: u32) {{
-    let member = npr_members[wg.x];
-    object = npr_objects[member.x].o;
-    let per_workgroup = NPR_ELEMENT_WG * NPR_PER_INVOCATION;
-    let chunks = (member.z + per_workgroup - 1u) / per_workgroup;
-    var acc = array<vec4<f32>, {n}>({});
-    for (var c = lid; c < chunks; c = c + NPR_OBJECT_WG) {{
-        let p = (member.w + c) * NPR_REDUCED;",
-            REDUCE_OBJECTS_ENTRY,
-            identities.join(", ")
+            "    return array<vec4<f32>, {n}>(\n        {},\n    );\n}}\n",
+            slots.join(",\n        ")
         );
-        for (k, op) in ops.iter().enumerate() {
-            let _ = writeln!(
-                w,
-                "        acc[{k}] = {};",
-                combine(*op, &format!("acc[{k}]"), &format!("npr_partials[p + {k}u]"))
-            );
-        }
-        w.push_str("    }\n");
-        for (k, ((_, packed, _), op)) in live.iter().zip(&ops).enumerate() {
-            let _ = writeln!(
-                w,
-                "    let r{k} = npr_tree_{}(lid, NPR_OBJECT_WG, acc[{k}]);\n    if (lid == 0u) {{\n        npr_values[member.x * NPR_SLOTS + {packed}u] = r{k};\n    }}",
-                op.name()
-            );
-        }
-        w.push_str("}\n");
     }
 
     /// `update_objects`: states from the previous copy, then every value.

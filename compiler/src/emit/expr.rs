@@ -167,7 +167,7 @@ impl Emitter<'_> {
         }
     }
 
-    fn handle(&self, id: ExprId, ctx: &PassCtx) -> String {
+    pub(super) fn handle(&self, id: ExprId, ctx: &PassCtx) -> String {
         match self.ir.expr(id).kind {
             ExprKind::Target { target, copy } => ctx.target_names.get(&(copy, target)).cloned().unwrap_or_default(),
             ExprKind::Texture(t) => format!("tex_{}", self.ir.textures[t.0 as usize].name),

@@ -64,7 +64,12 @@ pub fn build(
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),
                     },
-                    PassKind::Compute { domain, tag, values } => compute_kind(ir, alloc, *pid, *domain, tag, values, e),
+                    PassKind::Compute {
+                        domain,
+                        tag,
+                        key,
+                        values,
+                    } => compute_kind(ir, alloc, *pid, (*domain, *key), tag, values, e)?,
                 },
                 scale: pass.scale,
                 shader: format!("{}.wgsl", pass.name),
@@ -173,11 +178,11 @@ fn compute_kind(
     ir: &Ir,
     alloc: &Allocation,
     pid: PassId,
-    domain: ComputeDomain,
+    (domain, key): (ComputeDomain, Option<ExprId>),
     tag: &Option<String>,
     values: &[ObjectValue],
     e: &EmittedPass,
-) -> PassKindManifest {
+) -> Result<PassKindManifest, InternalError> {
     use crate::emit::compute::{ELEMENTS_ENTRY, REDUCE_OBJECTS_ENTRY, UPDATE_OBJECTS_ENTRY};
     let mut slots: Vec<(u32, ValueSlot)> = values
         .iter()
@@ -199,21 +204,43 @@ fn compute_kind(
         })
         .collect();
     slots.sort_by_key(|(p, _)| *p);
-    let over_vertices = domain == ComputeDomain::Vertices;
-    PassKindManifest::Compute {
+    // The ID target a pass over pixels runs over: the logical target its
+    // key reads (live, since the pass's values read it).
+    let pixels_of = match (domain, key.map(|k| &ir.expr(k).kind)) {
+        (ComputeDomain::Pixels, Some(ExprKind::Target { target, .. })) => {
+            Some(alloc.target_index(*target).ok_or_else(|| InternalError {
+                message: format!("the ID target of pass `{}` was not allocated", ir.pass(pid).name),
+                detail: format!("`{}` is not among the allocated targets", ir.target_name(*target)),
+                span: Some(ir.pass(pid).name_span),
+                wgsl: None,
+            })?)
+        }
+        (ComputeDomain::Pixels, _) => {
+            return Err(InternalError {
+                message: format!("pass `{}` over pixels has no ID target read", ir.pass(pid).name),
+                detail: "resolve gives every pass over pixels the read of its ID target".into(),
+                span: Some(ir.pass(pid).name_span),
+                wgsl: None,
+            })
+        }
+        _ => None,
+    };
+    let has_elements = domain.has_elements();
+    Ok(PassKindManifest::Compute {
         domain,
         tag: tag.clone(),
         attributes: e.attributes.clone(),
         values: slots.into_iter().map(|(_, s)| s).collect(),
         history: alloc.keeps_state(ir, pid),
-        elements_entry: over_vertices.then(|| ELEMENTS_ENTRY.to_string()),
-        objects_entry: if over_vertices {
+        elements_entry: has_elements.then(|| ELEMENTS_ENTRY.to_string()),
+        pixels_of,
+        objects_entry: if has_elements {
             REDUCE_OBJECTS_ENTRY
         } else {
             UPDATE_OBJECTS_ENTRY
         }
         .to_string(),
-    }
+    })
 }
 /// The blend mode of each live output, in `@location` order; empty when all
 /// replace, so that manifests of styles without blending are unchanged.

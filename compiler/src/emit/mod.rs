@@ -11,6 +11,7 @@
 
 mod bindings;
 pub mod compute;
+mod compute_pixels;
 mod expr;
 mod helpers;
 mod image;

@@ -16,6 +16,8 @@ use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
+const DOMAIN_HELP: &str = "write `compute(objects)` (once per object), `compute(vertices)` (every vertex of every object, reduced per object) or `compute(pixels, ids.id)` (every pixel of an ID target, reduced per object)";
+
 /// The value types a per-object slot (one `vec4<f32>`) can hold.
 pub(super) const VALUE_TYPES: [(&str, Ty); 4] = [
     ("float", Ty::Float),
@@ -67,52 +69,105 @@ pub(super) struct StateInScope {
 }
 
 impl Resolver<'_> {
-    /// `compute(objects)`, `compute(vertices)`, optionally with a tag:
-    /// `compute(vertices, boats)`.
+    /// `compute(objects)`, `compute(vertices)`, optionally with a tag
+    /// (`compute(vertices, boats)`), and `compute(pixels, ids.id)` over the
+    /// pixels of an ID target, optionally with a tag after it.
     pub(super) fn compute_kind(&mut self, p: &ast::PassDecl) -> PassKind {
         let domains = [
             ("objects", ComputeDomain::Objects),
             ("vertices", ComputeDomain::Vertices),
+            ("pixels", ComputeDomain::Pixels),
         ];
-        let (domain, tag) = match p.kind.args.as_slice() {
-            [d, rest @ ..] if domains.iter().any(|(n, _)| *n == d.name) => {
-                let domain = domains.iter().find(|(n, _)| *n == d.name).map(|(_, x)| *x);
-                let tag = match rest {
-                    [] => None,
-                    [t] => Some(t.name.clone()),
-                    [_, extra, ..] => {
-                        self.error(
-                            Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass runs over one domain and one tag")
-                                .with_primary(extra.span, "unexpected")
-                                .with_help("write `compute(vertices)` or `compute(vertices, tag)`"),
-                        );
-                        None
-                    }
-                };
-                (domain.unwrap_or(ComputeDomain::Objects), tag)
+        let Some((first, rest)) = p.kind.args.split_first() else {
+            self.error(
+                Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain")
+                    .with_primary(p.kind.span, "no domain")
+                    .with_help(DOMAIN_HELP),
+            );
+            return PassKind::Compute {
+                domain: ComputeDomain::Objects,
+                tag: None,
+                key: None,
+                values: Vec::new(),
+            };
+        };
+        let Some(domain) = domains.iter().find(|(n, _)| *n == first.name.name).map(|(_, d)| *d) else {
+            let mut d = Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain")
+                .with_primary(first.span, format!("`{}` is not a compute domain", first.name.name));
+            d = match did_you_mean(&first.name.name, domains.iter().map(|(n, _)| *n)) {
+                Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                None => d.with_help(DOMAIN_HELP),
+            };
+            self.error(d);
+            return PassKind::Compute {
+                domain: ComputeDomain::Objects,
+                tag: None,
+                key: None,
+                values: Vec::new(),
+            };
+        };
+        self.no_field(first, "a domain");
+        let (key, rest) = match (domain, rest) {
+            (ComputeDomain::Pixels, [target, more @ ..]) if target.field.is_some() => {
+                (Some(self.id_target(target)), more)
             }
-            other => {
-                let (span, found) = match other.first() {
-                    Some(d) => (d.span, format!("`{}` is not a compute domain", d.name)),
-                    None => (p.kind.span, "no domain".to_string()),
-                };
-                let mut d =
-                    Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain").with_primary(span, found);
-                d = match other.first().and_then(|a| did_you_mean(&a.name, domains.iter().map(|(n, _)| *n))) {
-                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                    None => d.with_help(
-                        "write `compute(objects)` (once per object) or `compute(vertices)` (every vertex of every object, reduced per object)",
+            (ComputeDomain::Pixels, _) => {
+                let span = rest.first().map_or(p.kind.span, |a| a.span);
+                self.error(
+                    Diagnostic::error(
+                        codes::BAD_PASS_INPUT,
+                        "a pass over pixels needs the ID target it runs over",
+                    )
+                    .with_primary(span, "expected a pass's target, such as `ids.id`")
+                    .with_help(
+                        "write `compute(pixels, ids.id)`, where pass `ids` renders `out id: r32float = object.id`",
                     ),
-                };
-                self.error(d);
-                (ComputeDomain::Objects, None)
+                );
+                (None, rest)
+            }
+            (_, rest) => (None, rest),
+        };
+        let tag = match rest {
+            [] => None,
+            [t] => {
+                self.no_field(t, "a tag");
+                Some(t.name.name.clone())
+            }
+            [_, extra, ..] => {
+                self.error(
+                    Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass runs over one domain and one tag")
+                        .with_primary(extra.span, "unexpected")
+                        .with_help(
+                            "write `compute(vertices)`, `compute(vertices, tag)` or `compute(pixels, ids.id, tag)`",
+                        ),
+                );
+                None
             }
         };
         PassKind::Compute {
             domain,
             tag,
+            key: key.flatten(),
             values: Vec::new(),
         }
+    }
+
+    /// The ID target of `compute(pixels, ids.id)`, resolved as the read
+    /// `ids.id` would be in the pass body (so unknown passes and targets get
+    /// the usual diagnostics; the typechecker checks its format).
+    fn id_target(&mut self, arg: &ast::KindArg) -> Option<ExprId> {
+        let field = arg.field.clone()?;
+        let read = ast::Expr {
+            kind: ast::ExprKind::Field {
+                base: Box::new(ast::Expr {
+                    kind: ast::ExprKind::Name(arg.name.clone()),
+                    span: arg.name.span,
+                }),
+                field,
+            },
+            span: arg.span,
+        };
+        Some(self.expr(&read))
     }
 
     /// Before the lets of a `compute(objects)` pass: its states, so that
@@ -227,25 +282,25 @@ impl Resolver<'_> {
                     r.span,
                     "`reduce`",
                     "a `compute(objects)` pass",
-                    "reductions run over elements: write `compute(vertices)`, or compute the value with `out` here",
+                    "reductions run over elements: write `compute(vertices)` or `compute(pixels, ids.id)`, or compute the value with `out` here",
                 );
             }
             let value = self.expr(&r.value);
             values.push(self.object_value(&r.name, &r.ty, ValueRule::Reduce(op), value, None, r.span));
         }
         for o in &b.outputs {
-            if domain == ComputeDomain::Vertices {
-                self.wrong_statement(o.span, "`out`", "a `compute(vertices)` pass", "a pass over elements makes per-object values with `reduce name: type = sum(value)`; compute per-object values from them in a `compute(objects)` pass");
+            if domain.has_elements() {
+                self.wrong_statement(o.span, "`out`", &format!("a `compute({})` pass", domain.name()), "a pass over elements makes per-object values with `reduce name: type = sum(value)`; compute per-object values from them in a `compute(objects)` pass");
             }
             let value = self.expr(&o.value);
             values.push(self.object_value(&o.name, &o.format, ValueRule::Out, value, None, o.span));
         }
         for s in &b.states {
-            if domain == ComputeDomain::Vertices {
+            if domain.has_elements() {
                 self.wrong_statement(
                     s.span,
                     "`state`",
-                    "a `compute(vertices)` pass",
+                    &format!("a `compute({})` pass", domain.name()),
                     "state is kept per object: declare it in a `compute(objects)` pass",
                 );
             }

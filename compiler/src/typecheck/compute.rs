@@ -25,6 +25,13 @@ impl Checker<'_> {
             )),
             PassKind::Image { .. } => None,
             PassKind::Compute {
+                domain: ComputeDomain::Pixels,
+                ..
+            } if b.is_per_fragment() && !b.in_pixel_elements() => Some((
+                "no geometry in a pass over pixels",
+                "write it to a target in a render pass and read that target here: a pass over pixels has `frag_coord`, `screen_uv`, the pixel's `object` and the frame values",
+            )),
+            PassKind::Compute {
                 domain: ComputeDomain::Vertices,
                 ..
             } if !b.in_vertex_elements() => Some((
@@ -34,7 +41,7 @@ impl Checker<'_> {
             PassKind::Compute {
                 domain: ComputeDomain::Objects,
                 ..
-            } if b.needs_geometry() => Some((
+            } if b.is_per_fragment() => Some((
                 "no geometry in a pass over objects",
                 "reduce what you need over `compute(vertices)` and read its per-object values here",
             )),
@@ -57,10 +64,16 @@ impl Checker<'_> {
     /// reads targets and textures only as operator arguments (a compute
     /// invocation has no pixel to read a value at).
     pub(super) fn compute_values(&mut self, pi: usize) {
-        let PassKind::Compute { values, .. } = &self.ir.passes[pi].kind else {
+        let PassKind::Compute {
+            values, domain, key, ..
+        } = &self.ir.passes[pi].kind
+        else {
             return;
         };
-        let values = values.clone();
+        let (values, domain, key) = (values.clone(), *domain, *key);
+        if let Some(key) = key {
+            self.id_target(key);
+        }
         let mut checked = values.clone();
         for (v, out) in values.iter().zip(checked.iter_mut()) {
             if v.ty == Ty::Unknown {
@@ -72,7 +85,11 @@ impl Checker<'_> {
                 self.first_reads_no_state(first, v);
             }
         }
-        self.no_pixel_reads(&checked);
+        if domain != ComputeDomain::Pixels {
+            self.no_pixel_reads(&checked);
+        } else {
+            self.no_texture_values(&checked);
+        }
         if let PassKind::Compute { values, .. } = &mut self.ir.passes[pi].kind {
             *values = checked;
         }
@@ -138,15 +155,61 @@ impl Checker<'_> {
         }
     }
 
-    fn no_pixel_reads(&mut self, values: &[ObjectValue]) {
+    /// The ID target of a pass over pixels holds `object.id` exactly: one
+    /// `r32float` channel (integers up to 2²⁴ are exact in f32; a unorm
+    /// or half-float target would round them).
+    fn id_target(&mut self, key: ExprId) {
+        let e = self.ir.expr(key);
+        let ExprKind::Target { target, .. } = e.kind else {
+            // Resolve reported what `ids.id` named if it is not a target.
+            return;
+        };
+        let format = self.ir.pass(target.pass).outputs[target.output as usize].format;
+        if format != abi::Format::R32float {
+            let name = self.ir.target_name(target);
+            let written = self.ir.pass(target.pass).outputs[target.output as usize].value;
+            let written = self.ir.expr(written).span;
+            self.err(
+                Diagnostic::error(
+                    codes::BAD_ID_TARGET,
+                    format!(
+                        "a pass over pixels needs an ID target, but `{name}` is {}",
+                        format.name()
+                    ),
+                )
+                .with_primary(e.span, "not an r32float target")
+                .with_secondary(written, format!("written as {} here", format.name()))
+                .with_help("declare it `out id: r32float = object.id`: only r32float holds every object ID exactly"),
+            );
+        }
+    }
+
+    /// In a pass over pixels a target is read at the pixel, as in an image
+    /// pass; a texture read as a value still needs a uv the pass does not have.
+    fn no_texture_values(&mut self, values: &[ObjectValue]) {
         let roots: Vec<ExprId> = values.iter().flat_map(ObjectValue::roots).collect();
-        let nodes = self.ir.reachable(&roots);
+        let handles = self.operator_handles(&roots);
+        for n in self.ir.reachable(&roots) {
+            let e = self.ir.expr(n);
+            if matches!(e.kind, ExprKind::Texture(_)) && !handles.contains(&n) {
+                let span = e.span;
+                self.err(
+                    Diagnostic::error(codes::BAD_PASS_INPUT, "a texture read as a value in a compute pass")
+                        .with_primary(span, "a pass over pixels has no uv to sample it at")
+                        .with_help("pass it to an operator that reads it at a position you give"),
+                );
+            }
+        }
+    }
+
+    /// The nodes passed to operators as texture handles.
+    fn operator_handles(&self, roots: &[ExprId]) -> BTreeSet<ExprId> {
         let mut handles: BTreeSet<ExprId> = BTreeSet::new();
-        for n in &nodes {
+        for n in self.ir.reachable(roots) {
             if let ExprKind::Call {
                 callee: Callee::Operator(i),
                 args,
-            } = &self.ir.expr(*n).kind
+            } = &self.ir.expr(n).kind
             {
                 for (p, a) in stdlib::all()[*i as usize].params.iter().zip(args) {
                     if matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
@@ -155,6 +218,13 @@ impl Checker<'_> {
                 }
             }
         }
+        handles
+    }
+
+    fn no_pixel_reads(&mut self, values: &[ObjectValue]) {
+        let roots: Vec<ExprId> = values.iter().flat_map(ObjectValue::roots).collect();
+        let nodes = self.ir.reachable(&roots);
+        let handles = self.operator_handles(&roots);
         for n in nodes {
             let e = self.ir.expr(n);
             let what = match e.kind {
@@ -172,7 +242,9 @@ impl Checker<'_> {
                     format!("{what} read as a value in a compute pass"),
                 )
                 .with_primary(span, "a compute invocation has no pixel or uv to read it at")
-                .with_help("pass it to an operator that reads it at a position you give"),
+                .with_help(
+                    "pass it to an operator that reads it at a position you give; a `compute(pixels, ids.id)` pass reads targets at its pixels",
+                ),
             );
         }
     }

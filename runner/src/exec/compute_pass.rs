@@ -30,6 +30,8 @@ pub(super) struct ComputePassExec {
     own_groups: Vec<wgpu::BindGroup>,
     member_count: u32,
     element_workgroups: u32,
+    /// A pass over pixels (its element workgroups depend on the size).
+    over_pixels: bool,
     /// Copies of time-varying members' vertices: (object, attribute buffer, offset, bytes per vertex).
     time_varying: Vec<(usize, Attribute, wgpu::Buffer, u64, u64)>,
 }
@@ -115,6 +117,8 @@ impl ComputePassExec {
                 ))
             })?);
         }
+        // Passes over vertices and over pixels: an element stage, with
+        // partials and a dispatch uniform.
         let over_vertices = elements_entry.is_some();
         if over_vertices && (buffers.partials.is_none() || buffers.dispatch.is_none()) {
             return Err(RunError::Internal(format!(
@@ -217,6 +221,7 @@ impl ComputePassExec {
             own_groups,
             member_count: buffers.member_count,
             element_workgroups: buffers.element_workgroups,
+            over_pixels: buffers.pixels_of.is_some(),
             time_varying,
         })
     }
@@ -240,6 +245,14 @@ impl ComputePassExec {
             return;
         }
         match &self.elements {
+            Some(elements) if self.over_pixels => {
+                // `sized.pixel_workgroups` is what the dispatch uniform says
+                // (both from `PassBuffers::pixel_workgroups` at this size).
+                cp.set_pipeline(elements);
+                cp.dispatch_workgroups(sized.pixel_workgroups, 1, 1);
+                cp.set_pipeline(&self.objects);
+                cp.dispatch_workgroups(self.member_count, 1, 1);
+            }
             Some(elements) => {
                 let n = self.element_workgroups;
                 if n > 0 {

@@ -107,6 +107,8 @@ pub(super) struct SizedPass {
     /// Where the pass kind needs a depth buffer (`PassExec::needs_depth`).
     pub depth_view: Option<wgpu::TextureView>,
     pub group0: wgpu::BindGroup,
+    /// A compute pass over pixels: its element workgroups at this size (0 otherwise).
+    pub pixel_workgroups: u32,
 }
 
 impl Renderer<'_> {
@@ -175,6 +177,9 @@ impl Renderer<'_> {
                         color_views,
                         depth_view,
                         group0: self.group0(pi, slot, parity, &physical),
+                        pixel_workgroups: self.values[pi]
+                            .as_ref()
+                            .map_or(0, |b| b.pixel_workgroups(&self.manifest, width, height)),
                     });
                 }
                 parity_passes.push(slot_passes);
@@ -185,6 +190,7 @@ impl Renderer<'_> {
         // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
         super::values::reset(self.queue, &self.values);
+        super::values::write_pixel_dispatch(self.queue, &self.manifest, &self.values, width, height);
         self.motion = super::frame::Motion::default();
         self.sized = Some(SizedResources {
             width,

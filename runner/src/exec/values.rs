@@ -5,7 +5,10 @@
 //! element workgroup)); and for a pass over vertices, its members' vertex
 //! attributes one after the other (so each stage is one dispatch over all
 //! members), its partials buffer (one `vec4` per value per element
-//! workgroup) and its dispatch uniform. Built once with the renderer (the
+//! workgroup) and its dispatch uniform; for a pass over pixels, partials
+//! per element workgroup per object (`abi::manifest::pixel_workgroups` of
+//! them, which depends on the ID target's size: the dispatch uniform is
+//! rewritten on every new size). Built once with the renderer (the
 //! objects are fixed); the value buffers are zeroed again whenever the
 //! history resets (a new size), so state restarts from its first value.
 
@@ -38,11 +41,32 @@ pub(super) struct PassBuffers {
     pub time_varying: Vec<(usize, u64)>,
     /// Per element workgroup, one partial per value (passes over vertices).
     pub partials: Option<wgpu::Buffer>,
-    /// `vec4<u32>`(element workgroups, members, 0, 0) (passes over vertices).
+    /// Passes over vertices: `vec4<u32>`(element workgroups, members, 0, 0).
+    /// Passes over pixels: `vec4<u32>`(the scene's objects, element
+    /// workgroups, 0, 0), written by [`write_pixel_dispatch`].
     pub dispatch: Option<wgpu::Buffer>,
+    /// A pass over pixels: its ID target (an index into the manifest's targets).
+    pub pixels_of: Option<usize>,
+    /// The scene's objects (at least 1: the size of the value buffers).
+    pub objects: u64,
+    /// Reduced values per element workgroup.
+    pub reduced: u64,
 }
 
 impl PassBuffers {
+    /// The element workgroups of a pass over pixels at output size
+    /// `width × height` (0 for other passes).
+    pub fn pixel_workgroups(&self, manifest: &Manifest, width: u32, height: u32) -> u32 {
+        match self.pixels_of.and_then(|t| manifest.targets.get(t)) {
+            Some(target) => pixel_workgroups(
+                super::resources::scaled_size(width, height, target.scale),
+                self.objects,
+                self.reduced,
+            ),
+            None => 0,
+        }
+    }
+
     /// This frame's copy (`previous: false`) or the previous frame's.
     pub fn copy(&self, parity: usize, previous: bool) -> &wgpu::Buffer {
         let n = self.copies.len();
@@ -110,6 +134,10 @@ pub(super) fn create(
             )));
         }
         let over_vertices = *domain == ComputeDomain::Vertices;
+        let pixels_of = match &p.kind {
+            PassKindManifest::Compute { pixels_of, .. } => *pixels_of,
+            _ => None,
+        };
         // The member table, and where each member's vertices start.
         let (mut table, mut first_vertex, mut first_workgroup) = (Vec::new(), 0u64, 0u64);
         for &o in &members {
@@ -166,7 +194,24 @@ pub(super) fn create(
                 .map(|m| (m[0] as usize, m[1] as u64))
                 .collect();
         }
-        let (partials, dispatch) = if over_vertices {
+        let reduced = values.len().max(1) as u64;
+        let (partials, dispatch) = if pixels_of.is_some() {
+            // The most workgroups any size gets (the budget bounds them).
+            let most = pixel_workgroups((u32::MAX, u32::MAX), objects, reduced) as u64;
+            let partials = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("npr partials of `{}`", p.name)),
+                size: most * objects * reduced * 16,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            let dispatch = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("npr dispatch of `{}`", p.name)),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            (Some(partials), Some(dispatch))
+        } else if over_vertices {
             let partials = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr partials of `{}`", p.name)),
                 size: first_workgroup.max(1) * values.len().max(1) as u64 * 16,
@@ -192,9 +237,29 @@ pub(super) fn create(
             time_varying,
             partials,
             dispatch,
+            pixels_of,
+            objects,
+            reduced,
         }));
     }
     Ok(all)
+}
+
+/// The dispatch uniform of every pass over pixels for output size
+/// `width × height`: the scene's objects and the element workgroups.
+pub(super) fn write_pixel_dispatch(
+    queue: &wgpu::Queue,
+    manifest: &Manifest,
+    buffers: &[Option<PassBuffers>],
+    width: u32,
+    height: u32,
+) {
+    for b in buffers.iter().flatten() {
+        if let (Some(_), Some(dispatch)) = (b.pixels_of, &b.dispatch) {
+            let workgroups = b.pixel_workgroups(manifest, width, height);
+            queue.write_buffer(dispatch, 0, bytemuck::cast_slice(&[b.objects as u32, workgroups, 0, 0]));
+        }
+    }
 }
 
 /// Zero every value buffer: state restarts from its first value.
