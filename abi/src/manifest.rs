@@ -171,6 +171,9 @@ pub enum PassKindManifest {
         /// `object.id` (object index + 1) the pixel belongs to, 0 for none.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pixels_of: Option<usize>,
+        /// How a `samples` pass samples each object's surface.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        samples: Option<SampleSpec>,
         /// The object stage.
         objects_entry: String,
     },
@@ -213,6 +216,23 @@ pub fn pixel_workgroups(size: (u32, u32), objects: u64, values: u64) -> u32 {
     tiles.min(u64::from(MAX_PIXEL_WORKGROUPS)).min(budget).max(1) as u32
 }
 
+/// The stratified surface samples of a `samples` pass (Breslav et al.
+/// 2007 §3.1): about `count` per object, drawn from `seed` (the object's
+/// index is mixed in, so objects sharing a mesh get different samples).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SampleSpec {
+    pub count: u32,
+    pub seed: u32,
+}
+
+/// Most samples per object a `samples` pass may ask for.
+pub const MAX_SAMPLES_PER_OBJECT: u32 = 1 << 20;
+
+/// Words (`u32`) per sample in a `samples` pass's sample buffer: the three
+/// vertex indices of its triangle (into the pass's pooled vertices), its
+/// barycentric b1 and b2 and the object's sample spacing (f32 bits).
+pub const SAMPLE_WORDS: u32 = 6;
+
 /// What a compute pass runs over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -231,15 +251,26 @@ pub enum ComputeDomain {
     /// tile, over the distinct IDs in it), then the object stage as for
     /// `Vertices`.
     Pixels,
+    /// Stratified sample points on every object's surface (`samples`),
+    /// each stored as a triangle and barycentric coordinates: the element
+    /// and object stages as for `Vertices`.
+    Samples,
 }
 
 impl ComputeDomain {
+    /// Whether its elements are points on the objects' meshes (vertices or
+    /// surface samples), read from the members' pooled vertex attributes.
+    pub fn on_meshes(self) -> bool {
+        matches!(self, ComputeDomain::Vertices | ComputeDomain::Samples)
+    }
+
     /// As a style writes it: `compute(objects)`, `compute(vertices)`.
     pub fn name(self) -> &'static str {
         match self {
             ComputeDomain::Objects => "objects",
             ComputeDomain::Vertices => "vertices",
             ComputeDomain::Pixels => "pixels",
+            ComputeDomain::Samples => "samples",
         }
     }
 
@@ -248,7 +279,7 @@ impl ComputeDomain {
     pub fn has_elements(self) -> bool {
         match self {
             ComputeDomain::Objects => false,
-            ComputeDomain::Vertices | ComputeDomain::Pixels => true,
+            ComputeDomain::Vertices | ComputeDomain::Pixels | ComputeDomain::Samples => true,
         }
     }
 }

@@ -509,6 +509,7 @@ impl Manifest {
             values,
             elements_entry,
             pixels_of,
+            samples,
             ..
         } = &p.kind
         else {
@@ -551,7 +552,7 @@ impl Manifest {
                 "exactly the passes over vertices or pixels have an element stage",
             );
         }
-        if *domain != ComputeDomain::Vertices && !attributes.is_empty() {
+        if !domain.on_meshes() && !attributes.is_empty() {
             return bad(
                 format!("{field}.kind.attributes"),
                 format!("a pass over {} reads no vertex attributes", domain.name()),
@@ -585,6 +586,23 @@ impl Manifest {
                     "only a pass over pixels has an ID target",
                 )
             }
+            (_, None) => {}
+        }
+        match (domain, samples) {
+            (ComputeDomain::Samples, Some(spec)) if (1..=MAX_SAMPLES_PER_OBJECT).contains(&spec.count) => {}
+            (ComputeDomain::Samples, Some(spec)) => {
+                return bad(
+                    format!("{field}.kind.samples.count"),
+                    format!(
+                        "{} samples per object; 1..={MAX_SAMPLES_PER_OBJECT} are allowed",
+                        spec.count
+                    ),
+                )
+            }
+            (ComputeDomain::Samples, None) => {
+                return bad(format!("{field}.kind.samples"), "a pass over samples says how many")
+            }
+            (_, Some(_)) => return bad(format!("{field}.kind.samples"), "only a pass over samples has samples"),
             (_, None) => {}
         }
         Ok(())

@@ -127,6 +127,10 @@ impl Const {
 /// Values the runtime provides.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub enum Builtin {
+    /// In a pass over samples: the distance between neighbouring samples
+    /// on the surface, in world units (the diameter of the tangent disc
+    /// each sample stands for, Breslav et al. 2007 §3.1).
+    SampleSpacing,
     Uv,
     NormalWorld,
     NormalView,
@@ -215,6 +219,7 @@ impl Builtin {
         ("object.index", Builtin::ObjectIndex),
         ("object.id", Builtin::ObjectId),
         ("position.previous", Builtin::PositionPrevious),
+        ("sample.spacing", Builtin::SampleSpacing),
     ];
 
     pub fn name(self) -> &'static str {
@@ -233,7 +238,7 @@ impl Builtin {
             NormalWorld | NormalView | Tangent | ViewDir | LightDir | PositionLight => (Ty::Vec3, Unit::None),
             PositionWorld | PositionView | CameraPosition | PositionPrevious => (Ty::Vec3, Unit::Meters),
             ObjectIndex | ObjectId => (Ty::Int, Unit::None),
-            Depth | CameraNear | CameraFar => (Ty::Float, Unit::Meters),
+            Depth | CameraNear | CameraFar | SampleSpacing => (Ty::Float, Unit::Meters),
             CameraLeftEye | CameraRightEye => (Ty::Vec3, Unit::Meters),
             CameraForward => (Ty::Vec3, Unit::None),
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
@@ -607,6 +612,9 @@ pub enum PassKind {
         /// the pass runs over. `Some` exactly for `Pixels` (after a
         /// resolve error, `None` there too; such an IR is never emitted).
         key: Option<ExprId>,
+        /// `compute(samples)`: the samples per object and their seed (the
+        /// pass's `count:` and `seed:` settings). `Some` exactly for `Samples`.
+        samples: Option<abi::manifest::SampleSpec>,
         /// Its per-object values, one slot each, in slot order.
         values: Vec<ObjectValue>,
     },

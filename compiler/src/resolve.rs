@@ -849,6 +849,7 @@ impl Resolver<'_> {
         for s in &p.body.settings {
             match s.key.name.as_str() {
                 "depth" => self.depth_setting(&mut kind, s, &mut depth_seen),
+                "count" | "seed" => self.sample_setting(&mut kind, s),
                 "clear" => {
                     let cid = self.expr(&s.value);
                     if let Some(v) = self.const_values(cid) {
@@ -866,9 +867,9 @@ impl Resolver<'_> {
                 other => {
                     let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
                         .with_primary(s.key.span, "not a pass setting");
-                    d = match did_you_mean(other, ["clear", "depth"]) {
+                    d = match did_you_mean(other, ["clear", "depth", "count", "seed"]) {
                         Some(k) => d.with_help(format!("did you mean `{k}`?")),
-                        None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`"),
+                        None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`, and in `compute(samples)` passes `count: n` and `seed: n`"),
                     };
                     self.error(d)
                 }

@@ -25,7 +25,7 @@ use super::expr::{slot_swizzle, to_slot};
 use super::helpers::UNIT_HELPER;
 use super::{EmittedPass, Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::{Attribute, ReduceOp, ELEMENTS_PER_INVOCATION, ELEMENT_WORKGROUP, OBJECT_WORKGROUP};
+use abi::manifest::{Attribute, ReduceOp, ELEMENTS_PER_INVOCATION, ELEMENT_WORKGROUP, OBJECT_WORKGROUP, SAMPLE_WORDS};
 use std::fmt::Write;
 
 /// Entry points of compute passes (the manifest names them).
@@ -37,7 +37,7 @@ pub const UPDATE_OBJECTS_ENTRY: &str = "update_objects";
 /// binding order (group 1, bindings 1..): the position always (it gives
 /// the world position and every value made from it), the others when read.
 pub(super) fn attributes(domain: ComputeDomain, builtins: &std::collections::BTreeSet<Builtin>) -> Vec<Attribute> {
-    if domain != ComputeDomain::Vertices {
+    if !domain.on_meshes() {
         return Vec::new();
     }
     let mut a = vec![Attribute::Position];
@@ -73,6 +73,69 @@ pub(super) fn combine(op: ReduceOp, a: &str, b: &str) -> String {
 
 /// A live value of the pass being emitted: (IR slot, packed slot, value).
 pub(super) type LiveValue<'a> = (u32, u32, &'a ObjectValue);
+
+/// `npr_vertex(i)`: vertex `i` of the members' pooled vertices, in world
+/// space, now and in the previous frame.
+fn vertex_input(w: &mut String, normal: bool, uv: bool) {
+    w.push_str(
+        "// Vertex `i` of the members' vertices (of `object`), in world space, now and in the previous frame.\n\
+         fn npr_vertex(i: u32) -> NprVertex {\n\
+         \x20   let p = vec4<f32>(a_position[3u * i], a_position[3u * i + 1u], a_position[3u * i + 2u], 1.0);\n\
+         \x20   var v: NprVertex;\n\
+         \x20   v.position_world = (object.model * p).xyz;\n\
+         \x20   v.position_previous = (object.previous_model * p).xyz;\n",
+    );
+    if normal {
+        w.push_str("    let n = vec3<f32>(a_normal[3u * i], a_normal[3u * i + 1u], a_normal[3u * i + 2u]);\n    v.normal_world = (object.normal_matrix * vec4<f32>(n, 0.0)).xyz;\n");
+    }
+    if uv {
+        w.push_str("    v.uv = vec2<f32>(a_uv[2u * i], a_uv[2u * i + 1u]);\n");
+    }
+    w.push_str("    return v;\n}\n\n");
+}
+
+/// `npr_vertex(i)` of a pass over samples: sample `i`, the point of its
+/// triangle at its barycentric coordinates (Breslav et al. 2007 §3.1), so
+/// it follows the surface when the object moves or its vertices do.
+fn sample_input(w: &mut String, normal: bool, uv: bool) {
+    let _ = writeln!(
+        w,
+        "fn npr_mesh_position(i: u32) -> vec3<f32> {{
+    return vec3<f32>(a_position[3u * i], a_position[3u * i + 1u], a_position[3u * i + 2u]);
+}}
+
+// Sample `i` of the members' samples (of `object`), in world space, now and in the previous frame.
+fn npr_vertex(i: u32) -> NprVertex {{
+    let s = {SAMPLE_WORDS}u * i;
+    let t = vec3<u32>(npr_samples[s], npr_samples[s + 1u], npr_samples[s + 2u]);
+    let b = vec3<f32>(1.0, bitcast<f32>(npr_samples[s + 3u]), bitcast<f32>(npr_samples[s + 4u]));
+    let w = vec3<f32>(1.0 - b.y - b.z, b.y, b.z);
+    let p = vec4<f32>(w.x * npr_mesh_position(t.x) + w.y * npr_mesh_position(t.y) + w.z * npr_mesh_position(t.z), 1.0);
+    var v: NprVertex;
+    v.position_world = (object.model * p).xyz;
+    v.position_previous = (object.previous_model * p).xyz;
+    // The object-space spacing scaled by the model's mean linear scale.
+    let m = mat3x3<f32>(object.model[0].xyz, object.model[1].xyz, object.model[2].xyz);
+    v.spacing = bitcast<f32>(npr_samples[s + 5u]) * pow(abs(determinant(m)), 1.0 / 3.0);"
+    );
+    if normal {
+        w.push_str(
+            "    let n = w.x * npr_mesh_normal(t.x) + w.y * npr_mesh_normal(t.y) + w.z * npr_mesh_normal(t.z);\n    v.normal_world = (object.normal_matrix * vec4<f32>(n, 0.0)).xyz;\n",
+        );
+    }
+    if uv {
+        w.push_str("    v.uv = w.x * npr_mesh_uv(t.x) + w.y * npr_mesh_uv(t.y) + w.z * npr_mesh_uv(t.z);\n");
+    }
+    w.push_str("    return v;\n}\n\n");
+    if normal {
+        w.push_str("fn npr_mesh_normal(i: u32) -> vec3<f32> {\n    return vec3<f32>(a_normal[3u * i], a_normal[3u * i + 1u], a_normal[3u * i + 2u]);\n}\n\n");
+    }
+    if uv {
+        w.push_str(
+            "fn npr_mesh_uv(i: u32) -> vec2<f32> {\n    return vec2<f32>(a_uv[2u * i], a_uv[2u * i + 1u]);\n}\n\n",
+        );
+    }
+}
 
 /// The reduction of each live value of a pass over elements.
 pub(super) fn reduce_ops(live: &[LiveValue]) -> Vec<ReduceOp> {
@@ -218,8 +281,15 @@ impl Emitter<'_> {
         w.push_str(
             "@group(2) @binding(0) var<storage, read_write> npr_values: array<vec4<f32>>; // this frame's values\n",
         );
+        if domain == ComputeDomain::Samples {
+            let _ = writeln!(
+                w,
+                "@group(1) @binding({}) var<storage, read> npr_samples: array<u32>; // {SAMPLE_WORDS} words per sample: triangle, b1, b2, spacing",
+                attributes.len() + 2
+            );
+        }
         match domain {
-            ComputeDomain::Vertices => w.push_str(
+            ComputeDomain::Vertices | ComputeDomain::Samples => w.push_str(
                 "@group(2) @binding(1) var<storage, read_write> npr_partials: array<vec4<f32>>; // per element workgroup\n\
                  @group(2) @binding(2) var<uniform> npr_dispatch: vec4<u32>; // x: element workgroups of all members\n",
             ),
@@ -233,7 +303,7 @@ impl Emitter<'_> {
             ComputeDomain::Objects => {}
         }
         w.push('\n');
-        if domain == ComputeDomain::Vertices {
+        if domain.on_meshes() {
             w.push_str(UNIT_HELPER);
         }
         self.emit_helpers(&mut w, &uses);
@@ -248,9 +318,14 @@ impl Emitter<'_> {
             uses_linear_sampler: uses.linear_sampler,
         };
         match domain {
-            ComputeDomain::Vertices => {
-                self.vertex_stages(&mut w, pass, &live, &attributes, &nodes, &uses.value_uses, &mut ctx)
-            }
+            ComputeDomain::Vertices | ComputeDomain::Samples => self.vertex_stages(
+                &mut w,
+                pass,
+                (&live, &attributes, domain == ComputeDomain::Samples),
+                &nodes,
+                &uses.value_uses,
+                &mut ctx,
+            ),
             ComputeDomain::Pixels => self.pixel_stages(&mut w, pass, &live, &nodes, &uses.value_uses, &mut ctx),
             ComputeDomain::Objects => self.object_update(
                 &mut w,
@@ -271,14 +346,14 @@ impl Emitter<'_> {
         }
     }
 
-    /// `npr_vertex`, `npr_element` and the two reduction stages.
-    #[allow(clippy::too_many_arguments)]
+    /// `npr_vertex`, `npr_element` and the two reduction stages of a pass
+    /// over vertices or (`over_samples`) over surface samples, whose element
+    /// `i` is a point of a triangle of the members' pooled vertices.
     fn vertex_stages(
         &self,
         w: &mut String,
         pass: &Pass,
-        live: &[LiveValue],
-        attributes: &[Attribute],
+        (live, attributes, over_samples): (&[LiveValue], &[Attribute], bool),
         nodes: &[ExprId],
         value_uses: &std::collections::BTreeMap<ExprId, usize>,
         ctx: &mut PassCtx,
@@ -295,21 +370,15 @@ impl Emitter<'_> {
         if has(Attribute::Uv) {
             w.push_str("    uv: vec2<f32>,\n");
         }
-        w.push_str(
-            "}\n\n// Vertex `i` of the members' vertices (of `object`), in world space, now and in the previous frame.\n\
-             fn npr_vertex(i: u32) -> NprVertex {\n\
-             \x20   let p = vec4<f32>(a_position[3u * i], a_position[3u * i + 1u], a_position[3u * i + 2u], 1.0);\n\
-             \x20   var v: NprVertex;\n\
-             \x20   v.position_world = (object.model * p).xyz;\n\
-             \x20   v.position_previous = (object.previous_model * p).xyz;\n",
-        );
-        if has(Attribute::Normal) {
-            w.push_str("    let n = vec3<f32>(a_normal[3u * i], a_normal[3u * i + 1u], a_normal[3u * i + 2u]);\n    v.normal_world = (object.normal_matrix * vec4<f32>(n, 0.0)).xyz;\n");
+        if over_samples {
+            w.push_str("    spacing: f32,\n");
         }
-        if has(Attribute::Uv) {
-            w.push_str("    v.uv = vec2<f32>(a_uv[2u * i], a_uv[2u * i + 1u]);\n");
+        w.push_str("}\n\n");
+        if over_samples {
+            sample_input(w, has(Attribute::Normal), has(Attribute::Uv));
+        } else {
+            vertex_input(w, has(Attribute::Normal), has(Attribute::Uv));
         }
-        w.push_str("    return v;\n}\n\n");
         self.element_values(
             w,
             pass,

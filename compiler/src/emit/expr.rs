@@ -227,6 +227,7 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::ObjectIndex => "i32(object.ids.x)".into(),
         Builtin::ObjectId => "i32(object.ids.y)".into(),
         Builtin::PositionPrevious => "in.position_previous".into(),
+        Builtin::SampleSpacing => "in.spacing".into(),
     }
 }
 

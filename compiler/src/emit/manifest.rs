@@ -68,8 +68,9 @@ pub fn build(
                         domain,
                         tag,
                         key,
+                        samples,
                         values,
-                    } => compute_kind(ir, alloc, *pid, (*domain, *key), tag, values, e)?,
+                    } => compute_kind(ir, alloc, *pid, (*domain, *key, *samples), tag, values, e)?,
                 },
                 scale: pass.scale,
                 shader: format!("{}.wgsl", pass.name),
@@ -178,7 +179,7 @@ fn compute_kind(
     ir: &Ir,
     alloc: &Allocation,
     pid: PassId,
-    (domain, key): (ComputeDomain, Option<ExprId>),
+    (domain, key, samples): (ComputeDomain, Option<ExprId>, Option<SampleSpec>),
     tag: &Option<String>,
     values: &[ObjectValue],
     e: &EmittedPass,
@@ -234,6 +235,7 @@ fn compute_kind(
         history: alloc.keeps_state(ir, pid),
         elements_entry: has_elements.then(|| ELEMENTS_ENTRY.to_string()),
         pixels_of,
+        samples,
         objects_entry: if has_elements {
             REDUCE_OBJECTS_ENTRY
         } else {

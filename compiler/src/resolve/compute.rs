@@ -16,7 +16,11 @@ use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
-const DOMAIN_HELP: &str = "write `compute(objects)` (once per object), `compute(vertices)` (every vertex of every object, reduced per object) or `compute(pixels, ids.id)` (every pixel of an ID target, reduced per object)";
+/// Samples per object when a `compute(samples)` pass says no `count:`
+/// ("typically several hundred", Breslav et al. 2007 §3.1).
+pub const DEFAULT_SAMPLES: u32 = 400;
+
+const DOMAIN_HELP: &str = "write `compute(objects)` (once per object), `compute(vertices)` (every vertex of every object, reduced per object), `compute(pixels, ids.id)` (every pixel of an ID target, reduced per object) or `compute(samples)` (stratified points on every object's surface, reduced per object)";
 
 /// The value types a per-object slot (one `vec4<f32>`) can hold.
 pub(super) const VALUE_TYPES: [(&str, Ty); 4] = [
@@ -77,6 +81,7 @@ impl Resolver<'_> {
             ("objects", ComputeDomain::Objects),
             ("vertices", ComputeDomain::Vertices),
             ("pixels", ComputeDomain::Pixels),
+            ("samples", ComputeDomain::Samples),
         ];
         let Some((first, rest)) = p.kind.args.split_first() else {
             self.error(
@@ -88,6 +93,7 @@ impl Resolver<'_> {
                 domain: ComputeDomain::Objects,
                 tag: None,
                 key: None,
+                samples: None,
                 values: Vec::new(),
             };
         };
@@ -103,6 +109,7 @@ impl Resolver<'_> {
                 domain: ComputeDomain::Objects,
                 tag: None,
                 key: None,
+                samples: None,
                 values: Vec::new(),
             };
         };
@@ -148,7 +155,54 @@ impl Resolver<'_> {
             domain,
             tag,
             key: key.flatten(),
+            // `count:` and `seed:` settings replace these (`sample_setting`).
+            samples: (domain == ComputeDomain::Samples).then_some(abi::manifest::SampleSpec {
+                count: DEFAULT_SAMPLES,
+                seed: 1,
+            }),
             values: Vec::new(),
+        }
+    }
+
+    /// `count: n` (samples per object) or `seed: n` in a `compute(samples)`
+    /// pass: constant integers, since the runner draws the samples once.
+    pub(super) fn sample_setting(&mut self, kind: &mut PassKind, s: &ast::Setting) {
+        let PassKind::Compute {
+            samples: Some(spec), ..
+        } = kind
+        else {
+            self.error(
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT,
+                    format!("`{}` is a setting of passes over samples", s.key.name),
+                )
+                .with_primary(s.key.span, "not a setting of this pass")
+                .with_help("write it in a `compute(samples)` pass: `count: 400` samples per object, `seed: 1`"),
+            );
+            return;
+        };
+        let id = self.expr(&s.value);
+        let Some(v) = self.const_scalar(id, &format!("`{}`", s.key.name)) else {
+            return;
+        };
+        let (lo, hi) = match s.key.name.as_str() {
+            "count" => (1.0, abi::manifest::MAX_SAMPLES_PER_OBJECT as f64),
+            _ => (0.0, u32::MAX as f64),
+        };
+        if v.fract() != 0.0 || !(lo..=hi).contains(&v) {
+            self.error(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    format!("`{}` must be a whole number in {lo}..={hi}", s.key.name),
+                )
+                .with_primary(s.value.span, format!("this is {v}"))
+                .with_help("the runner draws this many stratified samples per object once, when it loads the scene"),
+            );
+            return;
+        }
+        match s.key.name.as_str() {
+            "count" => spec.count = v as u32,
+            _ => spec.seed = v as u32,
         }
     }
 

@@ -9,7 +9,18 @@ use std::collections::BTreeSet;
 impl Checker<'_> {
     /// A builtin read in a pass of `kind`: refused where the kind does not have it.
     pub(super) fn builtin_in_kind(&mut self, b: Builtin, kind: &PassKind, span: Span) {
+        let over_samples = matches!(
+            kind,
+            PassKind::Compute {
+                domain: ComputeDomain::Samples,
+                ..
+            }
+        );
         let refusal = match kind {
+            _ if b == Builtin::SampleSpacing && !over_samples => Some((
+                "only in `compute(samples)` passes",
+                "the sample spacing is an element value of passes over samples; pass what others need through a per-object value",
+            )),
             PassKind::Render { .. } if b == Builtin::PositionPrevious => Some((
                 "only in `compute(vertices)` passes",
                 "the previous position is an element value of compute passes; pass what a render pass needs through a per-object value",
@@ -32,9 +43,9 @@ impl Checker<'_> {
                 "write it to a target in a render pass and read that target here: a pass over pixels has `frag_coord`, `screen_uv`, the pixel's `object` and the frame values",
             )),
             PassKind::Compute {
-                domain: ComputeDomain::Vertices,
+                domain: ComputeDomain::Vertices | ComputeDomain::Samples,
                 ..
-            } if !b.in_vertex_elements() => Some((
+            } if !b.in_vertex_elements() && b != Builtin::SampleSpacing => Some((
                 "not a value of a vertex",
                 "a pass over vertices has each vertex's `position`, `position.previous`, `normal`, `uv` and the frame values",
             )),

@@ -1,8 +1,9 @@
 //! The executor of `compute` passes. Group 0 is the pass's manifest
 //! bindings (as every kind); group 1 is every object's block (the object
 //! buffer read as a storage array), the pass's member table and, for a
-//! pass over vertices, its members' vertex attributes (`values.rs`); group
-//! 2 is the pass's own buffers for the frame's parity.
+//! pass over vertices or samples, its members' vertex attributes (and, over
+//! samples, the samples: triangle and barycentrics) (`values.rs`); group 2
+//! is the pass's own buffers for the frame's parity.
 //!
 //! Each stage is one dispatch over all members: a pass over vertices
 //! records the element stage (every member's ⌈vertices / 1024⌉ workgroups,
@@ -93,6 +94,7 @@ impl ComputePassExec {
         };
         let storage = 2
             + attributes.len()
+            + usize::from(buffers.samples.is_some())
             + if elements_entry.is_some() || *history { 2 } else { 1 }
             + pass
                 .bindings
@@ -119,6 +121,9 @@ impl ComputePassExec {
         }
         // Passes over vertices and over pixels: an element stage, with
         // partials and a dispatch uniform.
+        if let Some(samples) = &buffers.samples {
+            group1_buffers.push(samples);
+        }
         let over_vertices = elements_entry.is_some();
         if over_vertices && (buffers.partials.is_none() || buffers.dispatch.is_none()) {
             return Err(RunError::Internal(format!(
@@ -131,8 +136,8 @@ impl ComputePassExec {
         // before it is popped.
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layout0 = bind::group0_layout(device, pass);
-        // Group 1: the objects, the members, the members' attributes.
-        let entries1: Vec<wgpu::BindGroupLayoutEntry> = (0..2 + attributes.len())
+        // Group 1: the objects, the members, the members' attributes, the samples.
+        let entries1: Vec<wgpu::BindGroupLayoutEntry> = (0..group1_buffers.len())
             .map(|i| storage_entry(i as u32, true))
             .collect();
         let layout1 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

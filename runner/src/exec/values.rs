@@ -51,6 +51,8 @@ pub(super) struct PassBuffers {
     pub objects: u64,
     /// Reduced values per element workgroup.
     pub reduced: u64,
+    /// A pass over samples: every member's samples, [`SAMPLE_WORDS`] words each.
+    pub samples: Option<wgpu::Buffer>,
 }
 
 impl PassBuffers {
@@ -133,29 +135,57 @@ pub(super) fn create(
                 members.len()
             )));
         }
-        let over_vertices = *domain == ComputeDomain::Vertices;
-        let pixels_of = match &p.kind {
-            PassKindManifest::Compute { pixels_of, .. } => *pixels_of,
-            _ => None,
+        let (pixels_of, sample_spec) = match &p.kind {
+            PassKindManifest::Compute { pixels_of, samples, .. } => (*pixels_of, *samples),
+            _ => (None, None),
         };
-        // The member table, and where each member's vertices start.
-        let (mut table, mut first_vertex, mut first_workgroup) = (Vec::new(), 0u64, 0u64);
+        // The member table: where each member's elements start, how many it
+        // has and its first element workgroup; and where its vertices start
+        // in the pooled attributes (the same as its elements over vertices).
+        let (mut table, mut first_element, mut first_workgroup) = (Vec::new(), 0u64, 0u64);
+        let (mut vertex_starts, mut first_vertex) = (Vec::new(), 0u64);
+        let mut sample_words: Vec<u32> = Vec::new();
         for &o in &members {
-            let n = if over_vertices {
-                meshes[o].vertex_count as u64
-            } else {
-                0
+            let n = match (*domain, sample_spec) {
+                (ComputeDomain::Vertices, _) => meshes[o].vertex_count as u64,
+                (ComputeDomain::Samples, Some(spec)) => {
+                    // Breslav et al. 2007 §3.1: stratified, stored as a
+                    // triangle (pooled vertex indices) and barycentrics.
+                    let seed = crate::scene::samples::object_seed(spec.seed, o);
+                    let drawn = crate::scene::samples::stratified(&scene.objects[o].mesh, spec.count as usize, seed);
+                    for x in &drawn.samples {
+                        sample_words.extend(x.triangle.map(|i| i + first_vertex as u32));
+                        sample_words.extend([x.b1.to_bits(), x.b2.to_bits(), drawn.spacing.to_bits()]);
+                    }
+                    drawn.samples.len() as u64
+                }
+                _ => 0,
             };
-            table.push([o as u32, first_vertex as u32, n as u32, first_workgroup as u32]);
-            first_vertex += n;
+            table.push([o as u32, first_element as u32, n as u32, first_workgroup as u32]);
+            vertex_starts.push(first_vertex);
+            first_element += n;
+            if domain.on_meshes() {
+                first_vertex += meshes[o].vertex_count as u64;
+            }
             first_workgroup += element_workgroups(n as usize) as u64;
         }
-        if first_vertex > u32::MAX as u64 / 4 || first_workgroup > 65535 * 65535 {
+        if first_element > u32::MAX as u64 / 8 || first_vertex > u32::MAX as u64 / 4 || first_workgroup > 65535 * 65535
+        {
             return Err(RunError::Limit(format!(
-                "compute pass `{}` runs over {first_vertex} vertices, past what one dispatch addresses",
+                "compute pass `{}` runs over {first_element} elements of {first_vertex} vertices, past what one dispatch addresses",
                 p.name
             )));
         }
+        let samples = (*domain == ComputeDomain::Samples).then(|| {
+            if sample_words.is_empty() {
+                sample_words.resize(SAMPLE_WORDS as usize, 0);
+            }
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("npr samples of `{}`'s members", p.name)),
+                contents: bytemuck::cast_slice(&sample_words),
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        });
         let member_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("npr members of `{}`", p.name)),
             contents: if table.is_empty() {
@@ -167,7 +197,7 @@ pub(super) fn create(
         });
         let mut pooled = BTreeMap::new();
         let mut time_varying = Vec::new();
-        if over_vertices {
+        if domain.on_meshes() {
             for a in attributes {
                 let mut bytes = Vec::with_capacity((first_vertex * attribute_format(*a).1) as usize);
                 for &o in &members {
@@ -190,8 +220,9 @@ pub(super) fn create(
             }
             time_varying = table
                 .iter()
-                .filter(|m| meshes[m[0] as usize].built_for_s.is_some())
-                .map(|m| (m[0] as usize, m[1] as u64))
+                .zip(&vertex_starts)
+                .filter(|(m, _)| meshes[m[0] as usize].built_for_s.is_some())
+                .map(|(m, first)| (m[0] as usize, *first))
                 .collect();
         }
         let reduced = values.len().max(1) as u64;
@@ -211,7 +242,7 @@ pub(super) fn create(
                 mapped_at_creation: false,
             });
             (Some(partials), Some(dispatch))
-        } else if over_vertices {
+        } else if domain.on_meshes() {
             let partials = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr partials of `{}`", p.name)),
                 size: first_workgroup.max(1) * values.len().max(1) as u64 * 16,
@@ -240,6 +271,7 @@ pub(super) fn create(
             pixels_of,
             objects,
             reduced,
+            samples,
         }));
     }
     Ok(all)

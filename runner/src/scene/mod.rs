@@ -119,6 +119,7 @@ mod parse_camera;
 mod parse_object;
 mod parse_primitive;
 pub mod primitives;
+pub mod samples;
 mod toml_fields;
 
 pub use camera::{Camera, CameraKey, CameraPose};
