@@ -98,6 +98,38 @@ fn e0004_bad_use() {
 }
 
 #[test]
+fn e0005_nested_too_deeply() {
+    let deep = format!("{}1.0{}", "(".repeat(70), ")".repeat(70));
+    check(
+        "E0005",
+        compile_errors(&style(&format!("param x: float = {deep}\n")), &scratch("e0005")),
+    );
+}
+
+#[test]
+fn e0006_expression_too_deep() {
+    let long = vec!["x"; 300].join(" + ");
+    check(
+        "E0006",
+        compile_errors(
+            &style(&format!("param x: float = 1.0\nparam y: float = {long}\n")),
+            &scratch("e0006"),
+        ),
+    );
+}
+
+#[test]
+fn e0404_a_style_file_over_the_size_limit() {
+    // Short lines, so the snapshot shows one of them.
+    let big = style(&"// padding\n".repeat(dsl::limits::MAX_SOURCE_BYTES / 10));
+    check_case(
+        "E0404",
+        "E0404_source_size",
+        compile_errors(&big, &scratch("e0404-size")),
+    );
+}
+
+#[test]
 fn e0101_unknown_name_with_suggestion() {
     let text = style("param bands: int = 3 in 1..8\npass p: render(scene) {\n  out color: r8unorm = toon(half_lambert(normal, light.dir), steps: bnads)\n}\noutput p.color\n");
     let (d, r) = compile_errors(&text, &scratch("e0101"));

@@ -223,6 +223,10 @@ pub mod codes {
     pub const DUPLICATE_NAME: &str = "E0003";
     /// `use` of a file that cannot be read, or a `use` cycle.
     pub const BAD_USE: &str = "E0004";
+    /// Brackets, blocks, calls or `if`s nested past `limits::MAX_NESTING`.
+    pub const NESTED_TOO_DEEP: &str = "E0005";
+    /// An expression deeper than `limits::MAX_EXPR_DEPTH` (a long operator chain counts).
+    pub const EXPRESSION_TOO_DEEP: &str = "E0006";
     /// Unknown name (parameter, builtin, let, pass, texture).
     pub const UNKNOWN_NAME: &str = "E0101";
     /// Unknown operator or function.
@@ -278,6 +282,8 @@ pub mod codes {
         (STYLE_HEADER, "missing or repeated style header"),
         (DUPLICATE_NAME, "name declared twice"),
         (BAD_USE, "bad use of another file"),
+        (NESTED_TOO_DEEP, "nested too deeply"),
+        (EXPRESSION_TOO_DEEP, "expression too deep"),
         (UNKNOWN_NAME, "unknown name"),
         (UNKNOWN_OPERATOR, "unknown operator"),
         (BAD_ARGUMENT, "bad argument"),
