@@ -273,6 +273,18 @@ pub mod codes {
     pub const LIMIT_EXCEEDED: &str = "E0404";
     /// A scene file is malformed.
     pub const BAD_SCENE: &str = "E0405";
+    /// The command line does not parse (clap's message, exit 1).
+    pub const USAGE: &str = "E0501";
+    /// A command-line value outside what it may be (`--fps 0`, `--time nan`, `--eye` of a mono scene).
+    pub const BAD_ARGUMENT_VALUE: &str = "E0502";
+    /// An output file or directory cannot be written.
+    pub const CANNOT_WRITE: &str = "E0503";
+    /// A directory given to `--compiled` is not a valid compiled style.
+    pub const BAD_COMPILED_DIR: &str = "E0504";
+    /// No GPU adapter (or software driver) is available.
+    pub const NO_DEVICE: &str = "E0505";
+    /// A benchmark cannot run on what it was given.
+    pub const BENCH_UNSUPPORTED: &str = "E0506";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -307,5 +319,11 @@ pub mod codes {
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
+        (USAGE, "command line does not parse"),
+        (BAD_ARGUMENT_VALUE, "bad command-line value"),
+        (CANNOT_WRITE, "cannot write an output"),
+        (BAD_COMPILED_DIR, "bad compiled style directory"),
+        (NO_DEVICE, "no GPU device"),
+        (BENCH_UNSUPPORTED, "benchmark cannot run on this input"),
     ];
 }
