@@ -1,8 +1,9 @@
 //! Command definitions (clap) and their implementations.
 
+use crate::args::{parse_frames, parse_size};
 use clap::{Parser, Subcommand, ValueEnum};
 use compiler::{CompileError, CompileOptions, Compiled};
-use dsl::{Diagnostic, SourceMap};
+use dsl::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
 use std::io::IsTerminal;
@@ -241,26 +242,6 @@ pub enum BenchCommand {
     },
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 512x512")?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
-    if w == 0 || h == 0 {
-        return Err("width and height must be at least 1".into());
-    }
-    Ok((w, h))
-}
-
-fn parse_frames(s: &str) -> Result<(u32, u32), String> {
-    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 0..48")?;
-    let a: u32 = a.trim().parse().map_err(|_| format!("bad frame `{a}`"))?;
-    let b: u32 = b.trim().parse().map_err(|_| format!("bad frame `{b}`"))?;
-    if b <= a {
-        return Err(format!("empty frame range {a}..{b}"));
-    }
-    Ok((a, b))
-}
-
 struct Printer {
     format: MessageFormat,
     color: bool,
@@ -276,6 +257,24 @@ impl Printer {
             MessageFormat::Human => eprint!("{}", dsl::diagnostic::render(diags, sources, self.color)),
         }
     }
+
+    /// Print one diagnostic that points into no file (a command-line value,
+    /// an output path, the device) and give the user-error exit code.
+    fn fail(&self, d: Diagnostic) -> i32 {
+        self.diagnostics(&[d], &SourceMap::new());
+        EXIT_USER
+    }
+
+    /// [`Printer::fail`] for a check of the arguments.
+    fn check(&self, checked: Result<(), Diagnostic>) -> Result<(), i32> {
+        checked.map_err(|d| self.fail(d))
+    }
+}
+
+/// An output that cannot be written: E0503.
+fn cannot_write(path: &Path, e: impl std::fmt::Display) -> Diagnostic {
+    Diagnostic::error(codes::CANNOT_WRITE, format!("cannot write {}: {e}", path.display()))
+        .with_help("check that the directory exists and is writable")
 }
 
 pub fn run(cli: Cli) -> i32 {
@@ -309,6 +308,15 @@ pub fn run(cli: Cli) -> i32 {
             time_passes,
             scene,
         } => {
+            if out.exists() && !out.is_dir() {
+                return printer.fail(
+                    Diagnostic::error(
+                        codes::CANNOT_WRITE,
+                        format!("-o {}: a file of that name exists", out.display()),
+                    )
+                    .with_help("`npr compile -o` names a directory, for the WGSL files and manifest.json"),
+                );
+            }
             let scene = match scene.map(|s| load_scene_summary(&s, &mut sources)).transpose() {
                 Ok(s) => s,
                 Err(diags) => {
@@ -327,8 +335,7 @@ pub fn run(cli: Cli) -> i32 {
             };
             printer.diagnostics(&c.warnings, &sources);
             if let Err(e) = write_compiled(&c, &out) {
-                eprintln!("error: cannot write {}: {e}", out.display());
-                return EXIT_USER;
+                return printer.fail(cannot_write(&out, e));
             }
             if report {
                 print!("{}", c.report.render());
@@ -354,23 +361,23 @@ pub fn run(cli: Cli) -> i32 {
             kind,
             color,
         } => {
-            let gradient = match kind.as_str() {
-                "gradient" => true,
-                "value" => false,
-                "paint" => return texgen_paint(&out, size, seed, color.as_deref()),
-                other => {
-                    eprintln!("error: unknown noise kind `{other}`; use `value`, `gradient` or `paint`");
-                    return EXIT_USER;
+            let kind = match crate::args::texgen_kind(&kind) {
+                Ok(k) => k,
+                Err(d) => return printer.fail(d),
+            };
+            let paint = kind == crate::args::TexgenKind::Paint;
+            if let Err(code) = printer.check(crate::args::check_texgen(size, channels, octaves, frequency, paint)) {
+                return code;
+            }
+            let gradient = match kind {
+                crate::args::TexgenKind::Noise { gradient } => gradient,
+                crate::args::TexgenKind::Paint => {
+                    return match crate::args::paint_color(color.as_deref()) {
+                        Ok(base) => texgen_paint(&out, size, seed, base, &printer),
+                        Err(d) => printer.fail(d),
+                    }
                 }
             };
-            if !(1..=4096).contains(&size)
-                || !(1..=4).contains(&channels)
-                || !(1..=12).contains(&octaves)
-                || frequency == 0
-            {
-                eprintln!("error: need 1 ≤ size ≤ 4096, 1 ≤ channels ≤ 4, 1 ≤ octaves ≤ 12 and frequency ≥ 1");
-                return EXIT_USER;
-            }
             let spec = abi::NoiseSpec {
                 size,
                 octaves,
@@ -380,7 +387,12 @@ pub fn run(cli: Cli) -> i32 {
                 frequency,
             };
             let written = runner::texgen::write_png16(&runner::texgen::generate(&spec), &out);
-            report_written(written, &out, &format!("{size}x{size}, {channels} channel(s)"))
+            report_written(
+                written,
+                &out,
+                &format!("{size}x{size}, {channels} channel(s)"),
+                &printer,
+            )
         }
         Command::Render {
             style,
@@ -395,17 +407,28 @@ pub fn run(cli: Cli) -> i32 {
             dump_passes,
             keep_params,
         } => {
+            if let Err(code) = printer
+                .check(crate::args::check_size(size))
+                .and_then(|()| printer.check(crate::args::check_time(time, fps)))
+            {
+                return code;
+            }
             let scene_name = scene.display().to_string();
             let scene = match load_scene(&scene, &mut sources, &printer) {
                 Ok(s) => s,
                 Err(code) => return code,
             };
+            if let Err(code) = printer.check(crate::args::check_eye(eye, scene.camera.is_stereo())) {
+                return code;
+            }
             let program = match (compiled, style) {
                 (Some(dir), _) => match StyleProgram::load_dir(&dir) {
                     Ok(p) => p,
                     Err(e) => {
-                        eprintln!("error: {}: {e}", dir.display());
-                        return EXIT_USER;
+                        return printer.fail(
+                            Diagnostic::error(codes::BAD_COMPILED_DIR, format!("{}: {e}", dir.display()))
+                                .with_help("give a directory written by `npr compile -o DIR`"),
+                        )
                     }
                 },
                 (None, Some(style)) => {
@@ -423,11 +446,18 @@ pub fn run(cli: Cli) -> i32 {
                     c.program()
                 }
                 (None, None) => {
-                    eprintln!("error: give a style or --compiled DIR");
-                    return EXIT_USER;
+                    return printer.fail(Diagnostic::error(codes::USAGE, "give a style or --compiled DIR"));
                 }
             };
-            let gpu = match headless_gpu() {
+            let request = match frames {
+                Some((start, end)) => FrameRequest::Range { start, end },
+                None => FrameRequest::At { time_s: time },
+            };
+            let count = runner::schedule::frame_count(request, fps, program.manifest.is_path_dependent());
+            if let Err(code) = printer.check(crate::args::check_frame_count(count as usize)) {
+                return code;
+            }
+            let gpu = match headless_gpu(&printer) {
                 Ok(g) => g,
                 Err(code) => return code,
             };
@@ -475,10 +505,8 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                     print!("{t}");
                     EXIT_OK
                 }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_USER
-                }
+                Err(e) => printer
+                    .fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, "the benchmark could not run").with_note(e)),
             }
         }
         BenchCommand::Ops { scene, size, frames } => bench_ops(&scene, size, frames, printer),
@@ -517,7 +545,7 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
                 Ok(s) => s,
                 Err(code) => return code,
             };
-            let gpu = match headless_gpu() {
+            let gpu = match headless_gpu(printer) {
                 Ok(g) => g,
                 Err(code) => return code,
             };
@@ -576,11 +604,11 @@ fn bench_overhead(
             }
         }
         Err(e @ lab::bench_overhead::OverheadError::Unsupported(_)) => {
-            eprintln!("error: {e}");
-            EXIT_USER
+            printer.fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, e.to_string()))
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            // The baseline disagreeing with the runner is a bug in one of them.
+            printer.diagnostics(&[Diagnostic::error(codes::INTERNAL, e.to_string())], &SourceMap::new());
             EXIT_INTERNAL
         }
     }
@@ -592,7 +620,7 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
         Ok(s) => s,
         Err(code) => return code,
     };
-    let gpu = match headless_gpu() {
+    let gpu = match headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -641,9 +669,16 @@ fn bench_ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer
 }
 
 fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
-    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > runner::MAX_OUTPUT_SIZE) {
-        eprintln!("error: size {bad} is outside 1..={}", runner::MAX_OUTPUT_SIZE);
-        return EXIT_USER;
+    if sizes.contains(&0) {
+        return printer.fail(Diagnostic::error(
+            codes::BAD_ARGUMENT_VALUE,
+            "--sizes 0: an image is at least 1 pixel wide",
+        ));
+    }
+    for s in sizes {
+        if let Err(code) = printer.check(crate::args::check_size((*s, *s))) {
+            return code;
+        }
     }
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
@@ -653,7 +688,7 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
             Err(code) => return code,
         }
     }
-    let gpu = match headless_gpu() {
+    let gpu = match headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -689,8 +724,10 @@ fn compile_builtin(name: &str, text: &str, sources: &mut SourceMap, printer: &Pr
 /// `npr bench reduce`: see `lab::bench_reduce`.
 fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
     if let Some(bad) = elements.iter().chain(objects).find(|n| **n == 0 || **n > 10_000_000) {
-        eprintln!("error[E0404]: count {bad} is outside 1..=10000000");
-        return EXIT_USER;
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("count {bad} is outside 1..=10000000"),
+        ));
     }
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
@@ -703,7 +740,7 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
             Err(code) => return code,
         }
     }
-    let gpu = match headless_gpu() {
+    let gpu = match headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -728,12 +765,16 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
 /// `npr bench pixels`: see `lab::bench_reduce_pixels`.
 fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
     if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > 8192) {
-        eprintln!("error[E0404]: size {bad} is outside 1..=8192");
-        return EXIT_USER;
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("size {bad} is outside 1..=8192"),
+        ));
     }
     if let Some(bad) = objects.iter().find(|n| **n == 0 || **n > 10_000) {
-        eprintln!("error[E0404]: object count {bad} is outside 1..=10000");
-        return EXIT_USER;
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("object count {bad} is outside 1..=10000"),
+        ));
     }
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
@@ -746,7 +787,7 @@ fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer
             Err(code) => return code,
         }
     }
-    let gpu = match headless_gpu() {
+    let gpu = match headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -822,7 +863,7 @@ fn scene_style_gpu(
         ..Default::default()
     };
     let compiled = compile(style, sources, &opts, printer)?;
-    Ok((scene, compiled, headless_gpu()?))
+    Ok((scene, compiled, headless_gpu(printer)?))
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer: &Printer) -> Result<Compiled, i32> {
@@ -843,11 +884,8 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer
 }
 
 /// A headless GPU, or the exit code after saying why there is none.
-fn headless_gpu() -> Result<Gpu, i32> {
-    Gpu::headless().map_err(|e| {
-        eprintln!("error: {e}");
-        EXIT_USER
-    })
+fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
+    Gpu::headless().map_err(|e| printer.fail(e.to_diagnostic()))
 }
 
 /// Load a scene, or print its diagnostics and give the user-error exit code.
@@ -912,13 +950,7 @@ fn render(
     dump: Option<&Path>,
 ) -> Result<(), RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let io = |e: std::io::Error, p: &Path| {
-        RunError::User(vec![Diagnostic::error(
-            dsl::codes::LIMIT_EXCEEDED,
-            format!("cannot write {}: {e}", p.display()),
-        )
-        .with_help("check that the directory exists and is writable")])
-    };
+    let io = |e: std::io::Error, p: &Path| RunError::User(vec![cannot_write(p, e)]);
     let request = match frames {
         Some((start, end)) => FrameRequest::Range { start, end },
         None => FrameRequest::At { time_s: time },
@@ -1057,29 +1089,18 @@ pub fn read_all_targets(
 }
 
 /// Say what `npr texgen` wrote, or why it could not: the exit code.
-fn report_written(result: std::io::Result<()>, out: &Path, what: &str) -> i32 {
+fn report_written(result: std::io::Result<()>, out: &Path, what: &str, printer: &Printer) -> i32 {
     match result {
         Ok(()) => {
             eprintln!("wrote {} ({what})", out.display());
             EXIT_OK
         }
-        Err(e) => {
-            eprintln!("error: cannot write {}: {e}", out.display());
-            EXIT_USER
-        }
+        Err(e) => printer.fail(cannot_write(out, e)),
     }
 }
 
 /// `npr texgen --kind paint --color "#rrggbb"`: [`runner::texgen::paint_map`] as an 8-bit PNG.
-fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, color: Option<&str>) -> i32 {
-    let Some(base) = color.and_then(runner::texgen::parse_hex) else {
-        eprintln!("error: `--kind paint` needs `--color \"#rrggbb\"`");
-        return EXIT_USER;
-    };
-    if !(1..=4096).contains(&size) {
-        eprintln!("error: need 1 ≤ size ≤ 4096");
-        return EXIT_USER;
-    }
+fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, base: [f64; 3], printer: &Printer) -> i32 {
     let map = runner::texgen::paint_map(size, base, seed);
     let image = image::RgbaImage::from_fn(map.width, map.height, |x, y| {
         image::Rgba(map.pixels[(y * map.width + x) as usize])
@@ -1088,5 +1109,6 @@ fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, color: Option<&str>
         runner::output::write_png8(&image, out),
         out,
         &format!("{size}x{size} paint map"),
+        printer,
     )
 }

@@ -2,13 +2,15 @@
 //!
 //! Exit codes: 0 ok, 1 user error (diagnostics printed), 2 internal error.
 
+mod args;
 mod bench_compile;
 mod cli;
-
-use clap::Parser;
+mod usage;
 
 fn main() {
-    let args = cli::Cli::parse();
-    let code = cli::run(args);
+    let code = match usage::parse() {
+        Ok(args) => cli::run(args),
+        Err(code) => code,
+    };
     std::process::exit(code);
 }

@@ -98,6 +98,38 @@ fn e0004_bad_use() {
 }
 
 #[test]
+fn e0005_nested_too_deeply() {
+    let deep = format!("{}1.0{}", "(".repeat(70), ")".repeat(70));
+    check(
+        "E0005",
+        compile_errors(&style(&format!("param x: float = {deep}\n")), &scratch("e0005")),
+    );
+}
+
+#[test]
+fn e0006_expression_too_deep() {
+    let long = vec!["x"; 300].join(" + ");
+    check(
+        "E0006",
+        compile_errors(
+            &style(&format!("param x: float = 1.0\nparam y: float = {long}\n")),
+            &scratch("e0006"),
+        ),
+    );
+}
+
+#[test]
+fn e0404_a_style_file_over_the_size_limit() {
+    // Short lines, so the snapshot shows one of them.
+    let big = style(&"// padding\n".repeat(dsl::limits::MAX_SOURCE_BYTES / 10));
+    check_case(
+        "E0404",
+        "E0404_source_size",
+        compile_errors(&big, &scratch("e0404-size")),
+    );
+}
+
+#[test]
 fn e0101_unknown_name_with_suggestion() {
     let text = style("param bands: int = 3 in 1..8\npass p: render(scene) {\n  out color: r8unorm = toon(half_lambert(normal, light.dir), steps: bnads)\n}\noutput p.color\n");
     let (d, r) = compile_errors(&text, &scratch("e0101"));
@@ -391,6 +423,152 @@ fn e0405_bad_scene() {
         "E0405",
         scene_errors("[camera\nposition = [0.0, 0.0, 3.0]\n", &scratch("e0405")),
     );
+}
+
+/// Run the `npr` binary from the repository root and return the diagnostic
+/// code of its first error line (looked up in `dsl::codes::ALL`) with its
+/// whole stderr, scratch paths replaced by `<dir>`.
+fn cli_errors(args: &[&str], dir: &Path) -> (Vec<Diagnostic>, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run npr");
+    let stderr = String::from_utf8_lossy(&o.stderr).replace(&dir.display().to_string(), "<dir>");
+    assert_eq!(o.status.code(), Some(1), "npr {args:?}: {stderr}");
+    let code = stderr
+        .split("error[")
+        .nth(1)
+        .and_then(|rest| rest.split(']').next())
+        .and_then(|c| dsl::codes::ALL.iter().find(|(k, _)| *k == c))
+        .map_or("none", |(k, _)| k);
+    (vec![Diagnostic::error(code, "")], stderr)
+}
+
+#[test]
+fn e0501_usage_error_keeps_clap_message() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--size",
+            "big",
+        ],
+        &scratch("e0501"),
+    );
+    assert!(r.contains("invalid value 'big' for '--size <SIZE>'"), "{r}");
+    check("E0501", (d, r));
+}
+
+#[test]
+fn e0502_bad_argument_value() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--fps",
+            "0",
+        ],
+        &scratch("e0502"),
+    );
+    check("E0502", (d, r));
+}
+
+#[test]
+fn e0502_an_eye_the_scene_does_not_have() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--eye",
+            "1",
+        ],
+        &scratch("e0502-eye"),
+    );
+    check_case("E0502", "E0502_eye", (d, r));
+}
+
+#[test]
+fn e0503_compile_onto_an_existing_file() {
+    let dir = scratch("e0503");
+    let file = dir.join("taken");
+    std::fs::write(&file, "not a directory").expect("write");
+    let (d, r) = cli_errors(
+        &["compile", "examples/toon.npr", "-o", file.to_str().expect("utf-8 path")],
+        &dir,
+    );
+    check("E0503", (d, r));
+}
+
+#[test]
+fn e0504_bad_compiled_directory() {
+    let dir = scratch("e0504");
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "--compiled",
+            dir.to_str().expect("utf-8 path"),
+            "--scene",
+            "examples/scenes/spot.toml",
+        ],
+        &dir,
+    );
+    check("E0504", (d, r));
+}
+
+#[test]
+fn e0505_no_gpu_device() {
+    // No machine here lacks an adapter (lavapipe, then GL): render the
+    // diagnostic the CLI prints for one.
+    let rendered = dsl::diagnostic::render(
+        &[runner::DeviceError::NoAdapter.to_diagnostic()],
+        &SourceMap::new(),
+        false,
+    );
+    check(
+        "E0505",
+        (vec![runner::DeviceError::NoAdapter.to_diagnostic()], rendered),
+    );
+}
+
+#[test]
+fn e0506_a_benchmark_that_cannot_run() {
+    let dir = scratch("e0506");
+    let missing = dir.join("missing.npr");
+    let (d, r) = cli_errors(
+        &[
+            "bench",
+            "compile",
+            missing.to_str().expect("utf-8 path"),
+            "--iterations",
+            "1",
+        ],
+        &dir,
+    );
+    check("E0506", (d, r));
+}
+
+#[test]
+fn e0404_frames_past_the_frame_limit() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--frames",
+            "0..1000000",
+        ],
+        &scratch("e0404-frames"),
+    );
+    check_case("E0404", "E0404_frames", (d, r));
 }
 
 #[test]

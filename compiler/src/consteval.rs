@@ -1,72 +1,151 @@
 //! Constant evaluation of IR expressions (defaults, ranges, scales, folded params).
+//!
+//! Evaluation is iterative (an explicit stack) and memoized per node: a
+//! chain of `let`s makes the IR as deep as the file is long, which the
+//! recursive version overflowed the stack on, and a `let` used twice in the
+//! next one made it exponential.
 
 use crate::ir::*;
 use dsl::ast::{BinOp, UnOp};
+use std::collections::HashMap;
 
 /// Evaluate `id` if it is built only from constants; `None` otherwise.
 ///
 /// Parameters, builtins and targets are not constants here: the specialize
 /// pass substitutes folded parameters first, then calls this.
 pub fn const_eval(ir: &Ir, id: ExprId) -> Option<Const> {
-    match &ir.expr(id).kind {
-        ExprKind::Const(c) => Some(c.clone()),
-        ExprKind::Unary { op, operand } => {
-            let v = const_eval(ir, *operand)?;
-            match (op, v) {
+    ConstCache::default().eval(ir, id)
+}
+
+/// The constant value (or not) of every node evaluated so far. Valid while
+/// no node's value changes: folding a node into the constant it evaluates to
+/// keeps it valid, so `specialize` keeps one across its whole fold.
+#[derive(Debug, Default)]
+pub struct ConstCache {
+    known: HashMap<ExprId, Option<Const>>,
+}
+
+/// What a node needs before it can be folded.
+enum Need {
+    /// This operand's value, not yet known.
+    Operand(ExprId),
+    /// Nothing more: every operand it reads is known (or one is not constant).
+    Ready,
+}
+
+impl ConstCache {
+    /// [`const_eval`], reusing and extending what is known.
+    pub fn eval(&mut self, ir: &Ir, root: ExprId) -> Option<Const> {
+        let mut stack = vec![root];
+        while let Some(&id) = stack.last() {
+            if self.known.contains_key(&id) {
+                stack.pop();
+                continue;
+            }
+            match self.need(ir, id) {
+                // The IR is acyclic, so the stack never holds more than
+                // every node; past that something is wrong: not a constant.
+                Need::Operand(_) if stack.len() > ir.exprs.len() => return None,
+                Need::Operand(o) => stack.push(o),
+                Need::Ready => {
+                    let value = self.fold(ir, id);
+                    self.known.insert(id, value);
+                    stack.pop();
+                }
+            }
+        }
+        self.known.get(&root).cloned().flatten()
+    }
+
+    fn value(&self, id: ExprId) -> Option<&Const> {
+        self.known.get(&id).and_then(Option::as_ref)
+    }
+
+    /// The next operand to evaluate, in order, stopping at the first that is
+    /// not a constant; for a `Select`, its condition and then only the
+    /// branch it chooses.
+    fn need(&self, ir: &Ir, id: ExprId) -> Need {
+        let operands: Vec<ExprId> = match &ir.expr(id).kind {
+            ExprKind::Unary { operand, .. } | ExprKind::Convert { operand, .. } => vec![*operand],
+            ExprKind::Swizzle { base, .. } => vec![*base],
+            ExprKind::Binary { lhs, rhs, .. } => vec![*lhs, *rhs],
+            ExprKind::Call {
+                callee: Callee::Intrinsic(Intrinsic::Construct(_)),
+                args,
+            } => args.clone(),
+            ExprKind::Select { cond, then, otherwise } => match self.known.get(cond) {
+                None => vec![*cond],
+                Some(Some(Const::Bool(true))) => vec![*then],
+                Some(Some(Const::Bool(false))) => vec![*otherwise],
+                Some(_) => Vec::new(),
+            },
+            _ => Vec::new(),
+        };
+        for o in operands {
+            match self.known.get(&o) {
+                None => return Need::Operand(o),
+                Some(None) => return Need::Ready,
+                Some(Some(_)) => {}
+            }
+        }
+        Need::Ready
+    }
+
+    /// The node's value from its operands' (all known, by [`Self::need`]).
+    fn fold(&self, ir: &Ir, id: ExprId) -> Option<Const> {
+        match &ir.expr(id).kind {
+            ExprKind::Const(c) => Some(c.clone()),
+            ExprKind::Unary { op, operand } => match (op, self.value(*operand)?.clone()) {
                 (UnOp::Neg, Const::Float(x)) => Some(Const::Float(-x)),
                 (UnOp::Neg, Const::Int(x)) => Some(Const::Int(x.checked_neg()?)),
                 (UnOp::Neg, Const::Vec(v)) => Some(Const::Vec(v.iter().map(|x| -x).collect())),
                 (UnOp::Not, Const::Bool(b)) => Some(Const::Bool(!b)),
                 _ => None,
-            }
-        }
-        ExprKind::Binary { op, lhs, rhs } => {
-            let a = const_eval(ir, *lhs)?;
-            let b = const_eval(ir, *rhs)?;
-            binary(*op, &a, &b)
-        }
-        ExprKind::Call {
-            callee: Callee::Intrinsic(Intrinsic::Construct(n)),
-            args,
-        } => {
-            let mut comps = Vec::new();
-            for a in args {
-                comps.extend(const_eval(ir, *a)?.as_f64s());
-            }
-            if comps.len() == 1 {
-                comps = vec![comps[0]; *n as usize];
-            }
-            (comps.len() == *n as usize).then_some(Const::Vec(comps))
-        }
-        ExprKind::Convert { conversion, operand } => {
-            let v = const_eval(ir, *operand)?;
-            match conversion {
-                Conversion::IntToFloat => Some(Const::Float(v.scalar()?)),
-                Conversion::Splat(n) => Some(Const::Vec(vec![v.scalar()?; *n as usize])),
-                Conversion::Rgb1 => {
-                    let mut c = v.as_f64s();
-                    c.push(1.0);
-                    Some(Const::Vec(c))
+            },
+            ExprKind::Binary { op, lhs, rhs } => binary(*op, self.value(*lhs)?, self.value(*rhs)?),
+            ExprKind::Call {
+                callee: Callee::Intrinsic(Intrinsic::Construct(n)),
+                args,
+            } => {
+                let mut comps = Vec::new();
+                for a in args {
+                    comps.extend(self.value(*a)?.as_f64s());
                 }
-                Conversion::Rgb => Some(Const::Vec(v.as_f64s().into_iter().take(3).collect())),
+                if comps.len() == 1 {
+                    comps = vec![comps[0]; *n as usize];
+                }
+                (comps.len() == *n as usize).then_some(Const::Vec(comps))
             }
-        }
-        ExprKind::Swizzle { base, components } => {
-            let v = const_eval(ir, *base)?.as_f64s();
-            let picked: Option<Vec<f64>> = components.iter().map(|c| v.get(*c as usize).copied()).collect();
-            let picked = picked?;
-            Some(if picked.len() == 1 {
-                Const::Float(picked[0])
-            } else {
-                Const::Vec(picked)
-            })
-        }
-        ExprKind::Select { cond, then, otherwise } => match const_eval(ir, *cond)? {
-            Const::Bool(true) => const_eval(ir, *then),
-            Const::Bool(false) => const_eval(ir, *otherwise),
+            ExprKind::Convert { conversion, operand } => {
+                let v = self.value(*operand)?;
+                match conversion {
+                    Conversion::IntToFloat => Some(Const::Float(v.scalar()?)),
+                    Conversion::Splat(n) => Some(Const::Vec(vec![v.scalar()?; *n as usize])),
+                    Conversion::Rgb1 => {
+                        let mut c = v.as_f64s();
+                        c.push(1.0);
+                        Some(Const::Vec(c))
+                    }
+                    Conversion::Rgb => Some(Const::Vec(v.as_f64s().into_iter().take(3).collect())),
+                }
+            }
+            ExprKind::Swizzle { base, components } => {
+                let v = self.value(*base)?.as_f64s();
+                let picked: Option<Vec<f64>> = components.iter().map(|c| v.get(*c as usize).copied()).collect();
+                let picked = picked?;
+                Some(if picked.len() == 1 {
+                    Const::Float(picked[0])
+                } else {
+                    Const::Vec(picked)
+                })
+            }
+            ExprKind::Select { cond, then, otherwise } => match self.value(*cond)? {
+                Const::Bool(true) => self.value(*then).cloned(),
+                Const::Bool(false) => self.value(*otherwise).cloned(),
+                _ => None,
+            },
             _ => None,
-        },
-        _ => None,
+        }
     }
 }
 

@@ -282,6 +282,7 @@ impl Builtin {
                 | TangentScreenCenter
                 | BitangentScreenCenter
                 | PositionPrevious
+                | SampleSpacing
         )
     }
 

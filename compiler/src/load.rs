@@ -5,6 +5,7 @@
 //! unreadable files are reported at the `use` that caused them.
 
 use dsl::ast::{Ast, Item, UseTarget};
+use dsl::limits::MAX_SOURCE_BYTES;
 use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::path::{Path, PathBuf};
 
@@ -19,7 +20,7 @@ pub struct Loaded {
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
 /// (the diagnostic is in `diags`).
 pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
-    let text = match std::fs::read_to_string(path) {
+    let text = match read_bounded(path) {
         Ok(t) => t,
         Err(e) => {
             diags.push(
@@ -106,7 +107,7 @@ fn expand_uses(
                     );
                     continue;
                 }
-                let text = match std::fs::read_to_string(&path) {
+                let text = match read_bounded(&path) {
                     Ok(t) => t,
                     Err(e) => {
                         diags.push(use_error(u.span, rel, &e.to_string()));
@@ -123,6 +124,19 @@ fn expand_uses(
             }
         }
     }
+}
+
+/// Read a style file, but never more than one byte past
+/// [`MAX_SOURCE_BYTES`]: the parser refuses a longer text with its limit
+/// error, and a file like `/dev/zero` must not be read for ever.
+fn read_bounded(path: &Path) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_SOURCE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)?;
+    String::from_utf8(bytes)
+        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
 }
 
 fn use_error(span: Span, rel: &str, err: &str) -> Diagnostic {

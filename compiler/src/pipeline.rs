@@ -37,6 +37,13 @@ fn fail_if_errors(diags: &[Diagnostic]) -> Result<(), CompileError> {
     Ok(())
 }
 
+/// The parser's limit errors: a file too large, nested too deeply, or an
+/// expression too deep.
+fn is_parse_limit(d: &Diagnostic) -> bool {
+    use dsl::codes::{EXPRESSION_TOO_DEEP, LIMIT_EXCEEDED, NESTED_TOO_DEEP};
+    d.is_error() && [LIMIT_EXCEEDED, NESTED_TOO_DEEP, EXPRESSION_TOO_DEEP].contains(&d.code)
+}
+
 pub fn run(
     loaded: Loaded,
     sources: &SourceMap,
@@ -50,6 +57,12 @@ pub fn run(
         dumps: Vec::new(),
         last: Instant::now(),
     };
+    // A file refused for its size or nesting was not parsed at all (or lost
+    // the item that went past the limit): what resolve would say about the
+    // rest follows from that, so only the limit error is reported.
+    if diags.iter().any(is_parse_limit) {
+        return Err(CompileError::User(diags));
+    }
     if loaded.root.style.is_none() && !diags.iter().any(Diagnostic::is_error) {
         diags.push(
             Diagnostic::error(dsl::codes::STYLE_HEADER, "missing `style` header")

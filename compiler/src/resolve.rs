@@ -23,9 +23,9 @@ mod compute;
 mod kind_args;
 mod settings;
 
-/// Resolution limits, stated in the error messages.
-pub const MAX_PASSES: usize = 64;
-pub const MAX_OUTPUTS_PER_PASS: usize = 8;
+/// Resolution limits, stated in the error messages (the table of every
+/// limit is `dsl::limits`).
+pub use dsl::limits::{MAX_PARAMS, MAX_PASSES, MAX_TARGETS_PER_PASS as MAX_OUTPUTS_PER_PASS};
 pub const MAX_NOISE_SIZE: u32 = 4096;
 
 pub fn resolve(
@@ -133,6 +133,14 @@ impl Resolver<'_> {
                     }
                 }
                 Item::Param(p) => {
+                    if self.ir.params.len() == MAX_PARAMS {
+                        self.error(
+                            Diagnostic::error(codes::LIMIT_EXCEEDED, "too many parameters")
+                                .with_primary(p.name.span, format!("parameter number {}", MAX_PARAMS + 1))
+                                .with_help(format!("a style may have at most {MAX_PARAMS} parameters")),
+                        );
+                        continue;
+                    }
                     let id = ParamId(self.ir.params.len() as u32);
                     self.declare(&p.name, Symbol::Param(id));
                     let param = self.param_shell(p);
@@ -190,7 +198,10 @@ impl Resolver<'_> {
             match item {
                 Item::Param(p) if is_texture_type(&p.ty) => {}
                 Item::Param(p) => {
-                    self.param_body(ParamId(param_index), p);
+                    // Params past MAX_PARAMS were refused and have no id.
+                    if (param_index as usize) < self.ir.params.len() {
+                        self.param_body(ParamId(param_index), p);
+                    }
                     param_index += 1;
                 }
                 Item::Pass(p) => {

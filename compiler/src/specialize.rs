@@ -5,7 +5,7 @@
 //! A parameter stays a uniform when it is animated, when `--keep-params` asks
 //! for live tweaking; per-object parameters go to the object block.
 
-use crate::consteval::const_eval;
+use crate::consteval::{const_eval, ConstCache};
 use crate::ir::*;
 use crate::prune::Live;
 use crate::report::Report;
@@ -62,7 +62,10 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
         }
     }
     // Fold constants bottom-up (operands precede users, except conversions
-    // added by the typechecker, so iterate until nothing changes).
+    // added by the typechecker, so iterate until nothing changes). One cache
+    // for the whole fold: a node folds into the value it evaluated to, so
+    // what is known stays true, and each node is evaluated once.
+    let mut consts = ConstCache::default();
     loop {
         let mut changed = false;
         for i in 0..ir.exprs.len() {
@@ -79,13 +82,13 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
                     }
             );
             if foldable {
-                if let Some(c) = const_eval(ir, id) {
+                if let Some(c) = consts.eval(ir, id) {
                     ir.exprs[i].kind = ExprKind::Const(retype(c, ir.exprs[i].ty));
                     changed = true;
                 }
             }
             if let ExprKind::Select { cond, then, otherwise } = ir.exprs[i].kind {
-                if let Some(Const::Bool(b)) = const_eval(ir, cond) {
+                if let Some(Const::Bool(b)) = consts.eval(ir, cond) {
                     let chosen = if b { then } else { otherwise };
                     ir.exprs[i].kind = ir.expr(chosen).kind.clone();
                     changed = true;

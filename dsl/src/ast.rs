@@ -373,6 +373,35 @@ pub enum ExprKind {
     },
 }
 
+impl Expr {
+    /// The sub-expressions directly below this one.
+    pub fn children(&self) -> Vec<&Expr> {
+        match &self.kind {
+            ExprKind::Number { .. } | ExprKind::Bool(_) | ExprKind::Color(_) | ExprKind::Str(_) | ExprKind::Name(_) => {
+                Vec::new()
+            }
+            ExprKind::Field { base, .. } => vec![base],
+            ExprKind::Call(c) => c.args.iter().map(|a| &a.value).collect(),
+            ExprKind::Unary { operand, .. } => vec![operand],
+            ExprKind::Binary { lhs, rhs, .. } | ExprKind::Range { lo: lhs, hi: rhs } => vec![lhs, rhs],
+            ExprKind::If { cond, then, otherwise } => vec![cond, then, otherwise],
+            ExprKind::Block { lets, value } => lets.iter().map(|l| &l.value).chain([&**value]).collect(),
+        }
+    }
+
+    /// The height of the tree (a leaf is 1), computed with an explicit stack
+    /// so that it works on any tree, however deep.
+    pub fn depth(&self) -> usize {
+        let mut deepest = 0;
+        let mut stack = vec![(self, 1usize)];
+        while let Some((e, d)) = stack.pop() {
+            deepest = deepest.max(d);
+            stack.extend(e.children().into_iter().map(|c| (c, d + 1)));
+        }
+        deepest
+    }
+}
+
 /// A call with positional and named arguments, in source order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Call {

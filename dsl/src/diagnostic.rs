@@ -223,6 +223,10 @@ pub mod codes {
     pub const DUPLICATE_NAME: &str = "E0003";
     /// `use` of a file that cannot be read, or a `use` cycle.
     pub const BAD_USE: &str = "E0004";
+    /// Brackets, blocks, calls or `if`s nested past `limits::MAX_NESTING`.
+    pub const NESTED_TOO_DEEP: &str = "E0005";
+    /// An expression deeper than `limits::MAX_EXPR_DEPTH` (a long operator chain counts).
+    pub const EXPRESSION_TOO_DEEP: &str = "E0006";
     /// Unknown name (parameter, builtin, let, pass, texture).
     pub const UNKNOWN_NAME: &str = "E0101";
     /// Unknown operator or function.
@@ -271,6 +275,18 @@ pub mod codes {
     pub const LIMIT_EXCEEDED: &str = "E0404";
     /// A scene file is malformed.
     pub const BAD_SCENE: &str = "E0405";
+    /// The command line does not parse (clap's message, exit 1).
+    pub const USAGE: &str = "E0501";
+    /// A command-line value outside what it may be (`--fps 0`, `--time nan`, `--eye` of a mono scene).
+    pub const BAD_ARGUMENT_VALUE: &str = "E0502";
+    /// An output file or directory cannot be written.
+    pub const CANNOT_WRITE: &str = "E0503";
+    /// A directory given to `--compiled` is not a valid compiled style.
+    pub const BAD_COMPILED_DIR: &str = "E0504";
+    /// No GPU adapter (or software driver) is available.
+    pub const NO_DEVICE: &str = "E0505";
+    /// A benchmark cannot run on what it was given.
+    pub const BENCH_UNSUPPORTED: &str = "E0506";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -280,6 +296,8 @@ pub mod codes {
         (STYLE_HEADER, "missing or repeated style header"),
         (DUPLICATE_NAME, "name declared twice"),
         (BAD_USE, "bad use of another file"),
+        (NESTED_TOO_DEEP, "nested too deeply"),
+        (EXPRESSION_TOO_DEEP, "expression too deep"),
         (UNKNOWN_NAME, "unknown name"),
         (UNKNOWN_OPERATOR, "unknown operator"),
         (BAD_ARGUMENT, "bad argument"),
@@ -298,10 +316,17 @@ pub mod codes {
         (UNREAD_COMPUTE, "compute pass whose values nothing reads (warning)"),
         (NOT_BLENDABLE, "blend on a format that cannot be blended"),
         (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
+        (BAD_ID_TARGET, "a pass over pixels of a target that is not an ID target"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
+        (USAGE, "command line does not parse"),
+        (BAD_ARGUMENT_VALUE, "bad command-line value"),
+        (CANNOT_WRITE, "cannot write an output"),
+        (BAD_COMPILED_DIR, "bad compiled style directory"),
+        (NO_DEVICE, "no GPU device"),
+        (BENCH_UNSUPPORTED, "benchmark cannot run on this input"),
     ];
 }

@@ -6,6 +6,8 @@
 
 pub mod ast;
 pub mod diagnostic;
+pub mod limits;
+mod nesting;
 mod parser;
 pub mod span;
 

@@ -3,10 +3,12 @@
 //! reports every broken declaration.
 
 use crate::ast::*;
+use crate::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
 use crate::{codes, Diagnostic, FileId, Span};
 use pest::error::{ErrorVariant, InputLocation};
 use pest::iterators::Pair;
 use pest::Parser;
+use std::cell::RefCell;
 
 #[derive(pest_derive::Parser)]
 #[grammar = "grammar.pest"]
@@ -16,11 +18,50 @@ type P<'a> = Pair<'a, Rule>;
 
 struct Builder {
     file: FileId,
+    /// Limit errors found while building (an expression past
+    /// [`MAX_EXPR_DEPTH`]); the item that holds one is dropped.
+    limit_errors: RefCell<Vec<Diagnostic>>,
 }
 
 /// Parse a whole file. On a syntax error, re-parse item by item.
+///
+/// A file over [`MAX_SOURCE_BYTES`] or nested past `MAX_NESTING` is refused
+/// before pest sees it (pest recurses once per nesting level).
 pub fn parse(file: FileId, source: &str) -> (Ast, Vec<Diagnostic>) {
-    let b = Builder { file };
+    if let Some(d) = too_large(file, source).or_else(|| crate::nesting::check(file, source)) {
+        return (Ast::default(), vec![d]);
+    }
+    let b = Builder {
+        file,
+        limit_errors: RefCell::new(Vec::new()),
+    };
+    let (ast, mut diags) = parse_checked(&b, source);
+    diags.append(&mut b.limit_errors.borrow_mut());
+    (ast, diags)
+}
+
+fn too_large(file: FileId, source: &str) -> Option<Diagnostic> {
+    if source.len() <= MAX_SOURCE_BYTES {
+        return None;
+    }
+    let mut at = MAX_SOURCE_BYTES;
+    while !source.is_char_boundary(at) {
+        at -= 1;
+    }
+    Some(
+        Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!(
+                "the file is {} bytes, over the {MAX_SOURCE_BYTES}-byte limit",
+                source.len()
+            ),
+        )
+        .with_primary(Span::new(file, at, at), "the limit is reached here")
+        .with_help("split the style into files joined with `use \"other.npr\"`"),
+    )
+}
+
+fn parse_checked(b: &Builder, source: &str) -> (Ast, Vec<Diagnostic>) {
     match NprParser::parse(Rule::file, source) {
         Ok(mut pairs) => {
             let mut ast = Ast::default();
@@ -31,11 +72,11 @@ pub fn parse(file: FileId, source: &str) -> (Ast, Vec<Diagnostic>) {
                 }
             }
             if ast.style.is_none() {
-                diags.push(missing_header(file));
+                diags.push(missing_header(b.file));
             }
             (ast, diags)
         }
-        Err(e) => recover(&b, source, e),
+        Err(e) => recover(b, source, e),
     }
 }
 
@@ -183,6 +224,7 @@ fn rule_name(r: &Rule) -> String {
         Rule::scale_clause => "`scale`",
         Rule::pass_modifier => "a pass modifier",
         Rule::object_kw | Rule::object_name => "`object`",
+        Rule::if_expr | Rule::else_if => "`if`",
         other => return format!("{other:?}"),
     }
     .to_string()
@@ -648,12 +690,33 @@ impl Builder {
         }
     }
 
-    /// Left-associative chains: `a op b op c`.
+    /// An expression tree deeper than [`MAX_EXPR_DEPTH`]: recorded, and
+    /// `None`, so the tree is not built further (its derived `Clone` and
+    /// `Drop` recurse, and so does every compiler stage).
+    fn too_deep(&self, at: Span) -> Option<Expr> {
+        self.limit_errors.borrow_mut().push(
+            Diagnostic::error(
+                codes::EXPRESSION_TOO_DEEP,
+                format!("expression more than {MAX_EXPR_DEPTH} levels deep"),
+            )
+            .with_primary(at, format!("level {} is here", MAX_EXPR_DEPTH + 1))
+            .with_help("each operator of a chain like `a + b + c` is a level; give parts of it names with `let`"),
+        );
+        None
+    }
+
+    /// Left-associative chains: `a op b op c`. Built in a loop, with the
+    /// tree's depth kept as it grows.
     fn binary_chain(&self, p: P) -> Option<Expr> {
         let mut it = p.into_inner();
         let mut lhs = self.expr(it.next()?)?;
+        let mut depth = lhs.depth();
         while let Some(op) = it.next() {
             let rhs = self.expr(it.next()?)?;
+            depth = 1 + depth.max(rhs.depth());
+            if depth > MAX_EXPR_DEPTH {
+                return self.too_deep(self.span(&op));
+            }
             let op = match op.as_str() {
                 "+" => BinOp::Add,
                 "-" => BinOp::Sub,
@@ -692,7 +755,12 @@ impl Builder {
             }
         }
         let mut e = operand?;
+        let mut depth = e.depth();
         for (op, span) in ops.into_iter().rev() {
+            depth += 1;
+            if depth > MAX_EXPR_DEPTH {
+                return self.too_deep(span);
+            }
             let span = span.to(e.span);
             // Fold `-literal` so that `-1` is a literal (ranges, defaults).
             if let (UnOp::Neg, ExprKind::Number { value, is_int, unit }) = (op, &e.kind) {
@@ -720,8 +788,13 @@ impl Builder {
     fn postfix(&self, p: P) -> Option<Expr> {
         let mut it = p.into_inner();
         let mut e = self.expr(it.next()?)?;
+        let mut depth = e.depth();
         for f in it {
             let field = self.ident(f);
+            depth += 1;
+            if depth > MAX_EXPR_DEPTH {
+                return self.too_deep(field.span);
+            }
             let span = e.span.to(field.span);
             e = Expr {
                 kind: ExprKind::Field {
@@ -775,26 +848,53 @@ impl Builder {
             Rule::string => ExprKind::Str(self.string(p)),
             Rule::ident | Rule::object_name => ExprKind::Name(self.ident(p)),
             Rule::call => ExprKind::Call(self.call(p)?),
-            Rule::if_expr => {
-                let mut it = p.into_inner();
-                let cond = self.expr(it.next()?)?;
-                let then = self.block(it.next()?)?;
-                let other = it.next()?;
-                let otherwise = if other.as_rule() == Rule::if_expr {
-                    self.primary_inner(other)?
-                } else {
-                    self.block(other)?
-                };
-                ExprKind::If {
-                    cond: Box::new(cond),
-                    then: Box::new(then),
-                    otherwise: Box::new(otherwise),
-                }
-            }
+            Rule::if_expr => return self.if_expr(p),
             Rule::block_expr => return self.block(p),
             _ => self.expr(p)?.kind,
         };
         Some(Expr { kind, span })
+    }
+
+    /// `if c { a } else if d { b } ... else { z }`: the `else if`s are a
+    /// flat list in the grammar, folded here from the last into nested `If`s
+    /// (each spanning from its `if` to the end), in a loop.
+    fn if_expr(&self, p: P) -> Option<Expr> {
+        let end = p.as_span().end();
+        let start = p.as_span().start();
+        let mut parts = p.into_inner();
+        let cond = self.expr(parts.next()?)?;
+        let then = self.block(parts.next()?)?;
+        let mut branches = vec![(start, cond, then)];
+        let mut otherwise = None;
+        for part in parts {
+            if part.as_rule() == Rule::else_if {
+                let at = part.as_span().start();
+                let mut it = part.into_inner();
+                let cond = self.expr(it.next()?)?;
+                let then = self.block(it.next()?)?;
+                branches.push((at, cond, then));
+            } else {
+                otherwise = Some(self.block(part)?);
+            }
+        }
+        let mut e = otherwise?;
+        let mut depth = e.depth();
+        for (at, cond, then) in branches.into_iter().rev() {
+            depth = 1 + depth.max(cond.depth()).max(then.depth());
+            let span = Span::new(self.file, at, end);
+            if depth > MAX_EXPR_DEPTH {
+                return self.too_deep(Span::new(self.file, at, at + 2));
+            }
+            e = Expr {
+                kind: ExprKind::If {
+                    cond: Box::new(cond),
+                    then: Box::new(then),
+                    otherwise: Box::new(e),
+                },
+                span,
+            };
+        }
+        Some(e)
     }
 
     fn block(&self, p: P) -> Option<Expr> {

@@ -47,6 +47,10 @@ pub struct SourceMap {
 pub struct SourceFile {
     pub name: String,
     pub text: String,
+    /// The byte offset of every line's start, so that [`SourceMap::line_col`]
+    /// is a binary search: the emitter asks for the line of every `let`, and
+    /// scanning from the file's start each time was quadratic.
+    line_starts: Vec<usize>,
 }
 
 impl SourceMap {
@@ -55,9 +59,14 @@ impl SourceMap {
     }
 
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
+        let text = text.into();
+        let line_starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
         self.files.push(SourceFile {
             name: name.into(),
-            text: text.into(),
+            text,
+            line_starts,
         });
         FileId(self.files.len() as u32 - 1)
     }
@@ -75,10 +84,11 @@ impl SourceMap {
         let Some(file) = self.get(id) else {
             return (0, 0);
         };
-        let offset = (offset as usize).min(file.text.len());
-        let before = &file.text[..floor_char_boundary(&file.text, offset)];
-        let line = before.matches('\n').count() + 1;
-        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        let offset = floor_char_boundary(&file.text, (offset as usize).min(file.text.len()));
+        // The last line start at or before the offset (the first is 0).
+        let line = file.line_starts.partition_point(|&start| start <= offset);
+        let start = file.line_starts[line.saturating_sub(1)];
+        let col = file.text[start..offset].chars().count() + 1;
         (line, col)
     }
 
@@ -93,4 +103,28 @@ fn floor_char_boundary(s: &str, mut i: usize) -> usize {
         i -= 1;
     }
     i
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_col_counts_lines_and_chars() {
+        let mut m = SourceMap::new();
+        let text = "ab\nçd\n\nx";
+        let f = m.add("t", text);
+        let naive = |o: usize| {
+            let before = &text[..o];
+            let line = before.matches('\n').count() + 1;
+            let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            (line, col)
+        };
+        for o in (0..=text.len()).filter(|o| text.is_char_boundary(*o)) {
+            assert_eq!(m.line_col(f, o as u32), naive(o), "offset {o}");
+        }
+        // Inside a multi-byte char, and past the end.
+        assert_eq!(m.line_col(f, 4), (2, 1));
+        assert_eq!(m.line_col(f, 1000), naive(text.len()));
+    }
 }

@@ -20,6 +20,21 @@ pub enum DeviceError {
     },
 }
 
+impl DeviceError {
+    /// As a diagnostic with its code (E0505), the install hint as its help.
+    pub fn to_diagnostic(&self) -> dsl::Diagnostic {
+        match self {
+            DeviceError::NoAdapter => {
+                dsl::Diagnostic::error(dsl::codes::NO_DEVICE, "no GPU adapter found (tried Vulkan, then GL)").with_help(
+                    "on Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install -y \
+                 mesa-vulkan-drivers` (or run ./setup.sh), then check with `vulkaninfo --summary`",
+                )
+            }
+            DeviceError::RequestDevice { .. } => dsl::Diagnostic::error(dsl::codes::NO_DEVICE, self.to_string()),
+        }
+    }
+}
+
 /// A device and queue owned by npr (the headless case). Library users who
 /// bring their own device pass `&wgpu::Device` and `&wgpu::Queue` directly.
 pub struct Gpu {

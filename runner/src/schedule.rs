@@ -25,6 +25,27 @@ pub struct ScheduledFrame {
     pub write: bool,
 }
 
+/// How many frames [`schedule`] renders for `request`, without making the
+/// list: a caller checks it against `dsl::limits::MAX_FRAMES` first, since
+/// `--time 1e9` of a path-dependent style would otherwise allocate and
+/// replay billions of frames.
+pub fn frame_count(request: FrameRequest, fps: f64, path_dependent: bool) -> u64 {
+    match request {
+        FrameRequest::At { time_s } => {
+            let n = (time_s * fps).round().max(0.0).min(u32::MAX as f64) as u64;
+            if path_dependent {
+                n + 1
+            } else {
+                1
+            }
+        }
+        FrameRequest::Range { start, end } => {
+            let first = if path_dependent { 0 } else { start };
+            u64::from(end.saturating_sub(first))
+        }
+    }
+}
+
 /// The frames to render for `request` at `fps`, in order.
 pub fn schedule(request: FrameRequest, fps: f64, path_dependent: bool) -> Vec<ScheduledFrame> {
     let at = |frame: u32, write: bool| ScheduledFrame {
@@ -67,6 +88,22 @@ mod tests {
                 write: true
             }]
         );
+    }
+
+    #[test]
+    fn frame_count_is_the_schedule_length() {
+        for path_dependent in [false, true] {
+            for request in [
+                FrameRequest::At { time_s: 2.5 },
+                FrameRequest::At { time_s: -3.0 },
+                FrameRequest::Range { start: 5, end: 9 },
+            ] {
+                let n = schedule(request, 24.0, path_dependent).len() as u64;
+                assert_eq!(frame_count(request, 24.0, path_dependent), n, "{request:?}");
+            }
+        }
+        let huge = FrameRequest::At { time_s: 1e12 };
+        assert_eq!(frame_count(huge, 24.0, true), u32::MAX as u64 + 1);
     }
 
     #[test]

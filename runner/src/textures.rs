@@ -13,8 +13,9 @@ pub struct GpuTexture {
     pub sampler: wgpu::Sampler,
 }
 
-/// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most GPUs).
-pub const MAX_TEXTURE_SIZE: u32 = 16384;
+/// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most
+/// GPUs), from `dsl::limits`, where every limit is listed.
+pub use dsl::limits::MAX_TEXTURE_SIZE;
 
 pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Result<Vec<GpuTexture>, RunError> {
     let mut out = Vec::new();

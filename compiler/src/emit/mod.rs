@@ -46,6 +46,31 @@ pub struct Emitter<'a> {
     pub sources: &'a SourceMap,
 }
 
+/// An expression nested deeper than this (in naga's count: parentheses and
+/// call arguments) gets a `let` of its own, so that no emitted expression
+/// comes near naga's parser recursion limit (200, statements included),
+/// however deep the `.npr` expression is, and the emitter's own recursion
+/// stays this shallow.
+const SPLIT_DEPTH: usize = 32;
+/// An expression whose inline WGSL would be longer than this many bytes gets
+/// a `let` too: `normalize(a)` repeats `a`, so nested `normalize`s grew the
+/// text threefold per level.
+const SPLIT_LEN: usize = 16 * 1024;
+
+/// What [`Emitter::shape`] estimates of a node's inline WGSL.
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    depth: usize,
+    len: usize,
+}
+
+impl Shape {
+    /// A node emitted as the name of its `let`.
+    const NAME: Shape = Shape { depth: 1, len: 12 };
+    /// A node without operands (a builtin may be three calls deep itself).
+    const LEAF: Shape = Shape { depth: 3, len: 80 };
+}
+
 /// The state of the expression emitter within one pass.
 struct PassCtx {
     kind: KindCtx,
@@ -261,12 +286,15 @@ impl Emitter<'_> {
                 reads.entry(key).or_default().push(*n);
             }
         }
+        let mut shapes: BTreeMap<ExprId, Shape> = BTreeMap::new();
         for n in nodes {
             let e = self.ir.expr(*n);
             if let Some(key) = read_key(*n) {
                 self.name_target_read(w, &reads[&key], value_uses, &user_lets, ctx);
                 continue;
             }
+            let shape = self.shape(*n, &shapes, ctx);
+            shapes.insert(*n, shape);
             let trivial = matches!(
                 e.kind,
                 ExprKind::Const(_)
@@ -293,7 +321,41 @@ impl Emitter<'_> {
                 let name = format!("e{}", n.0);
                 let _ = writeln!(w, "    let {name} = {v}; // shared: {}", self.snippet(e.span));
                 ctx.named.insert(*n, name);
+            } else if !trivial && (shape.depth > SPLIT_DEPTH || shape.len > SPLIT_LEN) {
+                let v = self.expr(*n, ctx);
+                let name = format!("e{}", n.0);
+                let _ = writeln!(w, "    let {name} = {v}; // split: {}", self.snippet(e.span));
+                ctx.named.insert(*n, name);
             }
+            if ctx.named.contains_key(n) {
+                shapes.insert(*n, Shape::NAME);
+            }
+        }
+    }
+
+    /// How deeply naga will nest (parentheses and call arguments) and how
+    /// long the WGSL of node `id` will be if it is emitted inline, from its
+    /// operands' shapes (operands come first in emission order).
+    fn shape(&self, id: ExprId, shapes: &BTreeMap<ExprId, Shape>, ctx: &PassCtx) -> Shape {
+        if ctx.named.contains_key(&id) {
+            return Shape::NAME;
+        }
+        let operands = self.ir.operands(id);
+        if operands.is_empty() {
+            return Shape::LEAF;
+        }
+        // `normalize(a)` writes `a` three times, three calls deep.
+        let (levels, copies) = match self.ir.expr(id).kind {
+            ExprKind::Call {
+                callee: Callee::Intrinsic(Intrinsic::Normalize),
+                ..
+            } => (4, 3),
+            _ => (1, 1),
+        };
+        let of = |o: &ExprId| shapes.get(o).copied().unwrap_or(Shape::LEAF);
+        Shape {
+            depth: levels + operands.iter().map(|o| of(o).depth).max().unwrap_or(0),
+            len: 24 + copies * operands.iter().map(|o| of(o).len).sum::<usize>(),
         }
     }
 

@@ -43,7 +43,8 @@ use abi::manifest::*;
 use glam::Mat4;
 use pass::{EncodeContext, PassExec, Timestamps};
 
-pub const MAX_OUTPUT_SIZE: u32 = 16384;
+/// The largest image (`--size`): `dsl::limits`, where every limit is listed.
+pub use dsl::limits::MAX_OUTPUT_SIZE;
 
 pub struct Renderer<'d> {
     device: &'d wgpu::Device,

@@ -3,9 +3,9 @@
 
 use super::geometry;
 
-/// The most triangles one mesh (file or primitive) may have. Past this a scene
-/// would take minutes on the software rasterizer and gigabytes of memory.
-pub const MAX_TRIANGLES: usize = 2_000_000;
+/// The most triangles one mesh (file or primitive) may have: `dsl::limits`,
+/// where every limit is listed.
+pub use dsl::limits::MAX_TRIANGLES;
 
 /// An indexed triangle mesh. All vertex arrays have one entry per vertex.
 ///

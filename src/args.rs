@@ -1,0 +1,197 @@
+//! Checks of command-line values that clap's types cannot express: an fps
+//! above 0, a finite time, an eye the scene has, frame counts and sizes under
+//! `dsl::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
+//! code (E0502 for a value outside its domain, E0404 for a limit), which the
+//! CLI prints and exits 1 with, before any work starts.
+//!
+//! The syntax of `--size WxH` and `--frames A..B` is checked by clap's value
+//! parsers here too; what they refuse is a usage error (E0501, `usage.rs`).
+
+use dsl::codes;
+use dsl::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
+use dsl::Diagnostic;
+
+/// `--size WIDTHxHEIGHT`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 512x512")?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
+    if w == 0 || h == 0 {
+        return Err("width and height must be at least 1".into());
+    }
+    Ok((w, h))
+}
+
+/// `--frames A..B` (B exclusive, after A).
+pub fn parse_frames(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 0..48")?;
+    let a: u32 = a.trim().parse().map_err(|_| format!("bad frame `{a}`"))?;
+    let b: u32 = b.trim().parse().map_err(|_| format!("bad frame `{b}`"))?;
+    if b <= a {
+        return Err(format!(
+            "empty frame range {a}..{b}: the end is exclusive, so it must be after the start"
+        ));
+    }
+    Ok((a, b))
+}
+
+fn bad_value(message: String, help: &str) -> Diagnostic {
+    Diagnostic::error(codes::BAD_ARGUMENT_VALUE, message).with_help(help)
+}
+
+/// An image size (`--size`, or one of `bench contours --sizes`) under the limit.
+pub fn check_size((w, h): (u32, u32)) -> Result<(), Diagnostic> {
+    if w > MAX_OUTPUT_SIZE || h > MAX_OUTPUT_SIZE {
+        return Err(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("--size {w}x{h} is larger than {MAX_OUTPUT_SIZE}x{MAX_OUTPUT_SIZE}"),
+        )
+        .with_help(format!(
+            "an image is at most {MAX_OUTPUT_SIZE} pixels wide and tall (the 2D texture limit)"
+        )));
+    }
+    Ok(())
+}
+
+/// `--fps` and `--time` of `npr render`.
+pub fn check_time(time: f64, fps: f64) -> Result<(), Diagnostic> {
+    if !(fps.is_finite() && fps > 0.0) {
+        return Err(bad_value(
+            format!("--fps {fps}: the frame rate must be a number above 0"),
+            "frame n is at time n / fps; 24 is the default",
+        ));
+    }
+    if !time.is_finite() {
+        return Err(bad_value(
+            format!("--time {time}: the time must be a finite number of seconds"),
+            "times before 0 are allowed and clamp to frame 0",
+        ));
+    }
+    Ok(())
+}
+
+/// How many frames a render will run: `--frames A..B`, or for a
+/// path-dependent style at `--time t`, the replay of frames 0..=t·fps.
+pub fn check_frame_count(frames: usize) -> Result<(), Diagnostic> {
+    if frames > MAX_FRAMES as usize {
+        return Err(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("this render would run {frames} frames, more than the limit of {MAX_FRAMES}"),
+        )
+        .with_help(
+            "render a shorter --frames range; a style that reads `previous(...)` or keeps `state` replays from frame 0",
+        ));
+    }
+    Ok(())
+}
+
+/// `--eye` against the scene's camera: 0 always, 1 only when it is stereo.
+pub fn check_eye(eye: u32, stereo_camera: bool) -> Result<(), Diagnostic> {
+    match (eye, stereo_camera) {
+        (0, _) | (1, true) => Ok(()),
+        (1, false) => Err(bad_value(
+            "--eye 1: the scene's camera is mono, so it has only eye 0".into(),
+            "give the scene's [camera] an `ipd` (e.g. `ipd = 0.064`) to make it stereo",
+        )),
+        (e, _) => Err(bad_value(
+            format!("--eye {e}: eyes are 0 (left) and 1 (right, stereo cameras only)"),
+            "use --eye 0 or --eye 1",
+        )),
+    }
+}
+
+/// `npr texgen`'s numeric arguments (`paint` maps use only the size).
+pub fn check_texgen(size: u32, channels: u32, octaves: u32, frequency: u32, paint: bool) -> Result<(), Diagnostic> {
+    let max = abi::NoiseSpec::MAX_SIZE;
+    if !(1..=max).contains(&size) {
+        return Err(bad_value(
+            format!("--size {size}: a generated texture is 1 to {max} texels wide"),
+            "textures tile, so a small one repeated is usually enough",
+        ));
+    }
+    if paint {
+        return Ok(());
+    }
+    let max_octaves = abi::NoiseSpec::MAX_OCTAVES;
+    if !(1..=4).contains(&channels) {
+        return Err(bad_value(
+            format!("--channels {channels}: noise has 1 to 4 channels"),
+            "1 is grey, 2 a warp-vector field in r, g",
+        ));
+    }
+    if !(1..=max_octaves).contains(&octaves) {
+        return Err(bad_value(
+            format!("--octaves {octaves}: noise has 1 to {max_octaves} octaves"),
+            "each octave halves the feature size",
+        ));
+    }
+    if frequency == 0 {
+        return Err(bad_value(
+            "--frequency 0: the first octave needs at least 1 lattice cell".into(),
+            "the default is 4",
+        ));
+    }
+    Ok(())
+}
+
+/// `npr texgen --kind`.
+pub fn texgen_kind(kind: &str) -> Result<TexgenKind, Diagnostic> {
+    match kind {
+        "gradient" => Ok(TexgenKind::Noise { gradient: true }),
+        "value" => Ok(TexgenKind::Noise { gradient: false }),
+        "paint" => Ok(TexgenKind::Paint),
+        other => Err(bad_value(
+            format!("unknown texture kind `{other}`"),
+            "use --kind gradient, value or paint",
+        )),
+    }
+}
+
+/// What `npr texgen --kind` generates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TexgenKind {
+    Noise { gradient: bool },
+    Paint,
+}
+
+/// `npr texgen --kind paint --color "#rrggbb"`.
+pub fn paint_color(color: Option<&str>) -> Result<[f64; 3], Diagnostic> {
+    let parsed = color.and_then(runner::texgen::parse_hex);
+    parsed.ok_or_else(|| match color {
+        None => bad_value(
+            "`--kind paint` needs `--color \"#rrggbb\"`".into(),
+            "the paint map varies around that base colour",
+        ),
+        Some(c) => bad_value(
+            format!("--color {c}: expected a colour `#rrggbb`"),
+            "six hex digits after `#`, e.g. \"#e9c48a\"",
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_outside_their_domain_are_refused_with_a_code() {
+        assert_eq!(check_time(0.0, 0.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(check_time(0.0, -24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(check_time(f64::NAN, 24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(
+            check_time(f64::INFINITY, 24.0).unwrap_err().code,
+            codes::BAD_ARGUMENT_VALUE
+        );
+        assert!(check_time(-1.0, 24.0).is_ok());
+        assert!(check_eye(0, false).is_ok() && check_eye(1, true).is_ok());
+        assert!(check_eye(1, false).is_err() && check_eye(2, true).is_err());
+        assert_eq!(check_size((16385, 1)).unwrap_err().code, codes::LIMIT_EXCEEDED);
+        assert!(check_size((16384, 16384)).is_ok());
+        assert!(check_frame_count(MAX_FRAMES as usize).is_ok());
+        assert_eq!(
+            check_frame_count(MAX_FRAMES as usize + 1).unwrap_err().code,
+            codes::LIMIT_EXCEEDED
+        );
+        assert!(parse_frames("5..2").is_err() && parse_frames("3..3").is_err() && parse_frames("0..1").is_ok());
+    }
+}
