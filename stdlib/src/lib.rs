@@ -20,6 +20,7 @@
 
 pub mod metrics;
 pub mod operators;
+pub mod operators_patterns;
 pub mod reference;
 pub mod reference_lsa;
 pub mod reference_pipeline;
@@ -175,12 +176,16 @@ impl Operator {
     }
 }
 
-/// Every operator in the standard library.
+/// Every operator in the standard library, in a fixed order (the IR names
+/// operators by their index here): the operator table, then the dynamic
+/// 2D patterns' operators.
 pub fn all() -> &'static [Operator] {
-    operators::ALL
+    static ALL: std::sync::LazyLock<Vec<Operator>> =
+        std::sync::LazyLock::new(|| operators::ALL.iter().chain(operators_patterns::ALL).copied().collect());
+    &ALL
 }
 
 /// Look an operator up by its `.npr` name.
 pub fn find(name: &str) -> Option<&'static Operator> {
-    operators::ALL.iter().find(|o| o.name == name)
+    all().iter().find(|o| o.name == name)
 }

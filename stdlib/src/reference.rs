@@ -7,6 +7,8 @@
 
 mod breakup;
 pub use breakup::*;
+mod patterns;
+pub use patterns::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).
@@ -236,6 +238,9 @@ pub const REFERENCED: &[&str] = &[
     "roll_compensate",
     "distance_attenuate",
     "warp",
+    "id_share",
+    "complex_mul",
+    "pattern_uv",
 ];
 
 pub fn has_reference(name: &str) -> bool {

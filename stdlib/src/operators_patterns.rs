@@ -1,0 +1,80 @@
+//! Operators of dynamic 2D patterns (Breslav et al. 2007): the fuzzy
+//! visibility of a sample in an ID image (§3.1), complex multiplication for
+//! the similarity update (§3.2–3.3) and the pattern coordinates of a pixel
+//! (§3.3).
+
+use crate::{Default, Operator, Param, Stage, Ty, Unit};
+
+const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
+    Param {
+        name,
+        ty,
+        unit: Unit::None,
+        default: Default::Required,
+        range: None,
+        doc,
+    }
+}
+
+pub static ALL: &[Operator] = &[
+    Operator {
+        name: "id_share",
+        doc: "The share of the (2r+1)² ID-image texels around `uv` that hold `id` (0 off the image): a sample's fuzzy visibility.",
+        reference: "Breslav et al. 2007 §3.1 (fuzzy visibility after Luft and Deussen 2006, on an ID image as in Kalnins et al. 2002)",
+        params: &[
+            p("ids", Ty::Texture, "an ID image (`out id: r32float = object.id`)"),
+            p("uv", Ty::Vec2, "where, in [0, 1]² of the image"),
+            p("id", Ty::Float, "the object's ID (`object.id`)"),
+            Param {
+                name: "radius",
+                ty: Ty::Float,
+                unit: Unit::Px,
+                default: Default::Number(2.0),
+                range: Some((0.0, 8.0)),
+                doc: "half the window's side, in texels (rounded)",
+            },
+        ],
+        returns: Ty::Float,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/id_share.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+    Operator {
+        name: "complex_mul",
+        doc: "The complex product a·b of two 2D vectors: b rotated by a's angle and scaled by |a|.",
+        reference: "Breslav et al. 2007 §3.2 (the similarity z as a complex number)",
+        params: &[p("a", Ty::Vec2, "a complex number"), p("b", Ty::Vec2, "a complex number")],
+        returns: Ty::Vec2,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/complex_mul.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+    Operator {
+        name: "pattern_uv",
+        doc: "Pattern coordinates ((q−o)·u/|u|², (q−o)·v/|v|²) of the image point q in the pattern frame (o, u, v).",
+        reference: "Breslav et al. 2007 §3.3",
+        params: &[
+            p("o", Ty::Vec2, "the pattern's origin in the image, px"),
+            p("u", Ty::Vec2, "the image vector of the pattern's (1, 0), px"),
+            p("v", Ty::Vec2, "the image vector of the pattern's (0, 1), px"),
+            Param {
+                name: "q",
+                ty: Ty::Vec2,
+                unit: Unit::Px,
+                default: Default::Builtin("frag_coord"),
+                range: None,
+                doc: "the image point, in px (default: this pixel)",
+            },
+        ],
+        returns: Ty::Vec2,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/pattern_uv.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+];
