@@ -224,3 +224,82 @@ fn the_symmetric_scale_does_not_drift_over_a_thousand_zoom_cycles() {
         "the plain form drifts more: {plain} against {symmetric}"
     );
 }
+
+/// Renders `models` (object 0's model per frame, after two still frames)
+/// at `size`, and returns object 0's frame after each.
+fn track(edit: impl Fn(String) -> String, scene: &mut Scene, size: (u32, u32), models: &[Mat4]) -> Vec<[f64; 7]> {
+    let program = program(&style(edit));
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, scene).expect("renderer");
+    let mut out = Vec::new();
+    for (k, m) in models.iter().enumerate() {
+        scene.objects[0].model = *m;
+        let spec = FrameSpec {
+            frame: k as u32,
+            time_s: k as f64 / 24.0,
+            ..FrameSpec::still(size.0, size.1, 0)
+        };
+        r.render(scene, &spec).expect("frame");
+        let (o, u, v, zoom) = frame(&r);
+        let f = [o.x, o.y, u.x, u.y, v.x, v.y, zoom];
+        assert!(f.iter().all(|x| x.is_finite()), "frame {k} at {size:?}: {f:?}");
+        out.push(f);
+    }
+    out
+}
+
+fn held(a: &[f64; 7], b: &[f64; 7]) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-6 * x.abs().max(1.0))
+}
+
+#[test]
+fn degenerate_frames_hold_the_pattern_frame_and_stay_finite() {
+    let at = |x: f32| placed(x, 0.0, 5.0, 0.0);
+    // Leaving the view and coming back: held while off screen.
+    let mut s = scene(QUAD);
+    let f = track(
+        |t| t,
+        &mut s,
+        (64, 64),
+        &[at(0.0), at(0.0), at(0.1), at(30.0), at(30.0), at(0.1), at(0.15)],
+    );
+    assert!(held(&f[3], &f[2]) && held(&f[4], &f[3]), "held off screen: {f:?}");
+    assert!(
+        held(&f[5], &f[4]),
+        "the first frame back has no previous sight of it: held"
+    );
+    assert!(!held(&f[6], &f[5]), "tracking resumes");
+    // Fully hidden behind a larger quad in front.
+    let mut s = scene(QUAD);
+    let mut wall = s.objects[0].clone();
+    wall.model = placed(0.0, 0.0, 2.0, 0.0) * Mat4::from_scale(Vec3::splat(3.0));
+    s.objects.push(wall);
+    let f = track(|t| t, &mut s, (64, 64), &[at(0.0), at(0.0), at(0.1), at(0.2)]);
+    assert!(f.windows(2).all(|w| held(&w[0], &w[1])), "hidden: always held: {f:?}");
+    // One sample: no spread to solve for.
+    let mut s = scene(QUAD);
+    let f = track(
+        |t| t.replace("count: 400", "count: 1"),
+        &mut s,
+        (64, 64),
+        &[at(0.0), at(0.0), at(0.1)],
+    );
+    assert!(f.windows(2).all(|w| held(&w[0], &w[1])), "one sample: held: {f:?}");
+    // Zero area: the object scaled to nothing.
+    let mut s = scene(QUAD);
+    let flat = Mat4::from_scale(Vec3::ZERO);
+    let f = track(|t| t, &mut s, (64, 64), &[at(0.0), at(0.0), flat, flat, at(0.0)]);
+    assert!(held(&f[3], &f[2]), "zero area: held: {f:?}");
+    // A cut: the object teleports; finite whatever the solve gives.
+    let mut s = scene(QUAD);
+    track(
+        |t| t,
+        &mut s,
+        (64, 64),
+        &[at(0.0), at(0.0), placed(-1.0, 0.8, 9.0, 2.0), at(0.0)],
+    );
+    // Tiny images.
+    for size in [(1, 1), (3, 7)] {
+        let mut s = scene(QUAD);
+        track(|t| t, &mut s, size, &[at(0.0), at(0.0), at(0.05), at(0.1)]);
+    }
+}

@@ -1319,3 +1319,78 @@ fn stereo_operators_match_reference() {
         compare(&format!("stereo_consistency mask {mask}"), &out, &reference, 1, 1e-6);
     }
 }
+
+#[test]
+fn dynamic_pattern_operators_match_reference() {
+    // complex_mul and pattern_uv on random vectors (pattern frames with
+    // scales from 1e-3 to 1e3), including a zero u.
+    let mut g = Lcg(41);
+    let mut cases = Vec::new();
+    for k in 0..200 {
+        let s = 10f64.powf(g.next() * 6.0 - 3.0);
+        let v = |g: &mut Lcg, scale: f64| [(g.next() * 2.0 - 1.0) * scale, (g.next() * 2.0 - 1.0) * scale];
+        let (o, q) = (v(&mut g, 500.0), v(&mut g, 500.0));
+        let u = if k == 7 { [0.0, 0.0] } else { v(&mut g, s) };
+        let w = v(&mut g, s);
+        cases.push((o, u, w, q));
+    }
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|(o, u, v, q)| [f32v([o[0], o[1], u[0], u[1]]), f32v([v[0], v[1], q[0], q[1]]), [0.0; 4]])
+        .collect();
+    let n = cases.len() as u32;
+    let out = run(
+        &op_wgsl(&["complex_mul", "pattern_uv"]),
+        "result = vec4<f32>(npr_complex_mul(a.zw, b.xy), npr_pattern_uv(a.xy, a.zw, b.xy, b.zw));",
+        &inputs,
+        (n, 1),
+        &[],
+    );
+    // Reference from the f32-rounded inputs the GPU saw.
+    let reference: Vec<[f64; 4]> = inputs
+        .chunks(3)
+        .map(|x| {
+            let (a, b) = (x[0].map(|c| c as f64), x[1].map(|c| c as f64));
+            let m = r::complex_mul([a[2], a[3]], [b[0], b[1]]);
+            let uv = r::pattern_uv([a[0], a[1]], [a[2], a[3]], [b[0], b[1]], [b[2], b[3]]);
+            [m[0], m[1], uv[0], uv[1]]
+        })
+        .collect();
+    compare_rel("complex_mul, pattern_uv", &out, &reference, 4, 1e-4);
+    assert_eq!(out[7][2], 0.0, "a zero u gives 0, not NaN");
+
+    // id_share on an ID image with three objects, at sizes down to 1×1 and
+    // at points off the image, for every radius.
+    for (w, h) in [(1, 1), (3, 7), (33, 20)] {
+        let ids = ImageF64::new(w, h, |x, y| [((x / 3 + y / 2) % 3) as f64, 0.0, 0.0, 1.0]);
+        let tex = [TexIn {
+            image: ids.clone(),
+            format: wgpu::TextureFormat::Rgba32Float,
+        }];
+        for radius in [0.0, 1.0, 2.4, 8.0] {
+            for id in [0.0, 1.0, 2.0, 5.0] {
+                // Points on and off the image (uv from -0.5 to 1.5).
+                let out = run(
+                    &op_wgsl(&["id_share"]),
+                    &format!(
+                        "let at = uv * 2.0 - vec2<f32>(0.5);\n    result = vec4<f32>(npr_id_share(t0, at, {id:?}, {radius:?}), 0.0, 0.0, 0.0);"
+                    ),
+                    &[],
+                    (2 * w + 1, 2 * h + 1),
+                    &tex,
+                );
+                let reference = pixels_ref((2 * w + 1, 2 * h + 1), |uv| {
+                    let at = [uv[0] * 2.0 - 0.5, uv[1] * 2.0 - 0.5];
+                    [r::id_share(&ids, at, id, radius), 0.0, 0.0, 0.0]
+                });
+                compare(
+                    &format!("id_share {w}x{h} r {radius} id {id}"),
+                    &out,
+                    &reference,
+                    1,
+                    1e-6,
+                );
+            }
+        }
+    }
+}

@@ -11,7 +11,9 @@
 //! 2. the grid's cell size h starts at √(area / count) and is searched (by
 //!    bisection of its scale) so that the number of occupied cells comes
 //!    closest to the wanted count;
-//! 3. each occupied cell keeps its candidate of lowest random priority.
+//! 3. each occupied cell keeps its candidate of lowest random priority;
+//!    past the wanted count, a random subset of the cells stays (never more
+//!    samples than asked for).
 //!
 //! Every random number comes from a SplitMix64 stream of the seed, so the
 //! samples are the same in every run. A sample is stored as its triangle
@@ -164,6 +166,12 @@ pub fn stratified(mesh: &Mesh, count: usize, seed: u64) -> Samples {
     }
     let h = best.1;
     let mut kept: Vec<usize> = stratify(h).into_values().collect();
+    // Never more than asked for: past the count, the cells whose candidates
+    // have the lowest priorities (a random subset of the cells) stay.
+    if kept.len() > count {
+        kept.sort_unstable_by_key(|i| candidates[*i].priority);
+        kept.truncate(count);
+    }
     // Cells come out of the map in no fixed order: order by candidate.
     kept.sort_unstable();
     Samples {
@@ -230,7 +238,10 @@ mod tests {
         for count in [10, 100, 400, 2000] {
             let s = stratified(&m, count, 7);
             let n = s.samples.len();
-            assert!(n.abs_diff(count) * 10 <= count.max(10), "{n} samples for {count}");
+            assert!(
+                n <= count && n.abs_diff(count) * 10 <= count.max(10),
+                "{n} samples for {count}"
+            );
             for x in &s.samples {
                 assert!(x.b1 >= 0.0 && x.b2 >= 0.0 && x.b1 + x.b2 <= 1.0 + 1e-6, "{x:?}");
             }
@@ -261,6 +272,11 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn one_sample_when_one_is_asked_for() {
+        assert_eq!(stratified(&square(2), 1, 9).samples.len(), 1);
     }
 
     #[test]
