@@ -303,3 +303,53 @@ fn degenerate_frames_hold_the_pattern_frame_and_stay_finite() {
         track(|t| t, &mut s, size, &[at(0.0), at(0.0), at(0.05), at(0.1)]);
     }
 }
+
+#[test]
+fn the_halftone_example_matches_its_goldens() {
+    let mut sources = dsl::SourceMap::new();
+    let program = compiler::compile_file(&root().join("examples/halftone.npr"), &mut sources, &Default::default())
+        .unwrap_or_else(|e| panic!("{e:?}"))
+        .program();
+    let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    // Path-dependent: every frame in order, as `--frames 0..25` renders them.
+    for frame in 0u32..=24 {
+        let spec = FrameSpec {
+            frame,
+            time_s: frame as f64 / 24.0,
+            ..FrameSpec::still(128, 96, 0)
+        };
+        r.render(&scene, &spec).expect("frame");
+        if frame % 12 != 0 {
+            continue;
+        }
+        let img = r.read_output().expect("read").to_rgba8();
+        let golden = root().join(format!("examples/golden/halftone_cows_{frame:02}.png"));
+        let cmp = lab::harness::compare_with_golden(
+            &img,
+            &golden,
+            lab::harness::Tolerance::PerPixel {
+                max_abs: 2,
+                outlier_fraction: 0.005,
+            },
+        );
+        assert!(
+            cmp.passed,
+            "frame {frame}: {} (images in {:?})",
+            cmp.summary, cmp.written
+        );
+    }
+}
+
+#[test]
+fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    let scratch = root().join("target/npr-test-output/halftone-alone");
+    let (in_sequence, alone, first) =
+        common::sequence_and_alone("examples/halftone.npr", "examples/scenes/cows.toml", &scratch);
+    assert_eq!(
+        in_sequence, alone,
+        "frame 6 alone (replayed) equals frame 6 of the sequence"
+    );
+    assert_ne!(in_sequence, first, "the pattern moved between frames 0 and 6");
+}
