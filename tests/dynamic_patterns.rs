@@ -1,8 +1,9 @@
 //! Dynamic 2D patterns (Breslav et al. 2007) on the real runner, with the
 //! tracker of `examples/lib/dynamic_pattern.npr`: exact recovery of a known
 //! image similarity (§3.2), the pattern frame's update (§3.3), the symmetric
-//! scale against the plain one over zoom cycles, and degenerate frames that
-//! hold the frame and never produce NaN.
+//! scale against the plain one over zoom cycles, the GPU's z against an f64
+//! solve of the same samples, degenerate frames that hold the frame and never
+//! produce NaN, and the halftone example's goldens.
 
 use glam::{DVec2, Mat4, Vec3};
 use runner::scene::Scene;
@@ -49,7 +50,7 @@ const QUAD: &str = "{ kind = \"plane\", size = 1.0, subdivisions = 4 }";
 const SPHERE: &str = "{ kind = \"sphere\", radius = 0.5, segments = 32, rings = 16 }";
 
 /// The pattern frame (o, u, v, scale) of object 0.
-fn frame(r: &Renderer) -> (DVec2, DVec2, DVec2, f64) {
+fn pattern_frame(r: &Renderer) -> (DVec2, DVec2, DVec2, f64) {
     let v = &r.read_object_values("pattern").expect("pattern values")[0];
     let p = |k: usize| DVec2::new(v[k][0] as f64, v[k][1] as f64);
     // The pass's live values in slot order: o, u, v, scale (states).
@@ -98,9 +99,9 @@ fn a_known_image_similarity_is_recovered() {
     // Frame 0 has no previous ID image: the frame is held at its first value.
     scene.objects[0].model = placed(0.0, 0.0, 5.0, 0.0);
     r.render(&scene, &spec(0)).expect("frame 0");
-    let first = frame(&r);
+    let first = pattern_frame(&r);
     r.render(&scene, &spec(1)).expect("frame 1");
-    let still = frame(&r);
+    let still = pattern_frame(&r);
     assert!(
         (still.1 - first.1).length() < 1e-4 * first.1.length(),
         "no motion, no change: {first:?} → {still:?}"
@@ -121,7 +122,7 @@ fn a_known_image_similarity_is_recovered() {
         pose = (old.0 + step.0, old.1 + step.1, old.2 + step.2, old.3 + step.3);
         scene.objects[0].model = placed(pose.0, pose.1, pose.2, pose.3);
         r.render(&scene, &spec(2 + k as u32)).expect("frame");
-        let after = frame(&r);
+        let after = pattern_frame(&r);
         // The exact similarity: q' = a + z q from two points of the plane.
         let corner =
             |m: Mat4, x: f64, z: f64| project(&scene, size, m.as_dmat4().transform_point3(glam::DVec3::new(x, 0.0, z)));
@@ -182,7 +183,7 @@ fn zoom_cycles(edit: impl Fn(String) -> String, cycles: u32) -> f64 {
         scene.objects[0].model = Mat4::from_translation(Vec3::new(0.3, 0.1, -4.0));
         render(&scene, &mut r);
     }
-    let (o, u, v, scale) = frame(&r);
+    let (o, u, v, scale) = pattern_frame(&r);
     assert!(
         [o.x, o.y, u.x, u.y, v.x, v.y, scale].iter().all(|x| x.is_finite()),
         "finite frame"
@@ -239,7 +240,7 @@ fn track(edit: impl Fn(String) -> String, scene: &mut Scene, size: (u32, u32), m
             ..FrameSpec::still(size.0, size.1, 0)
         };
         r.render(scene, &spec).expect("frame");
-        let (o, u, v, zoom) = frame(&r);
+        let (o, u, v, zoom) = pattern_frame(&r);
         let f = [o.x, o.y, u.x, u.y, v.x, v.y, zoom];
         assert!(f.iter().all(|x| x.is_finite()), "frame {k} at {size:?}: {f:?}");
         out.push(f);
@@ -352,4 +353,114 @@ fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
         "frame 6 alone (replayed) equals frame 6 of the sequence"
     );
     assert_ne!(in_sequence, first, "the pattern moved between frames 0 and 6");
+}
+
+/// The tracker's z on the GPU against the §3.2 similarity computed in f64
+/// (`stdlib::reference::similarity`) from the same samples, projected in
+/// f64, weighted from the read-back ID images of both frames, over random
+/// motions of a sphere (which is not a similarity in the image: z is the
+/// least-squares fit, so this checks the sums, not just exact cases).
+#[test]
+fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
+    use glam::{DMat4, DVec3};
+    use stdlib::reference::{id_share, similarity, ImageF64};
+    let size = 96u32;
+    let program = program(&style(|t| t));
+    let ids_target = program
+        .manifest
+        .targets
+        .iter()
+        .position(|t| t.name == "ids.id")
+        .expect("ids.id");
+    let mut scene = scene(SPHERE);
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    assert!(r.target_survives_frame(ids_target), "the ID image is a history target");
+    let mesh = scene.objects[0].mesh.clone();
+    let drawn = runner::scene::samples::stratified(&mesh, 400, runner::scene::samples::object_seed(1, 0));
+    let pose = scene.camera.pose(0.0);
+    let vp = (pose.projection(1.0) * pose.view(0)).as_dmat4();
+    let project = |w: DVec3| {
+        let c = vp * w.extend(1.0);
+        DVec2::new(
+            (c.x / c.w * 0.5 + 0.5) * size as f64,
+            (0.5 - c.y / c.w * 0.5) * size as f64,
+        )
+    };
+    let read_ids = |r: &Renderer| {
+        let t = r.read_target(ids_target).expect("ids");
+        ImageF64::new(t.width, t.height, |x, y| [t.texel(x, y)[0] as f64, 0.0, 0.0, 1.0])
+    };
+    let mut rng = 0x1234_5678_9abc_def0u64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut model = DMat4::from_translation(DVec3::new(0.1, -0.05, -4.0));
+    let mut worst = 0.0f64;
+    let mut previous: Option<(DMat4, ImageF64, DVec2)> = None;
+    for frame in 0..8u32 {
+        scene.objects[0].model = model.as_mat4();
+        let spec = FrameSpec {
+            frame,
+            time_s: frame as f64 / 24.0,
+            ..FrameSpec::still(size, size, 0)
+        };
+        r.render(&scene, &spec).expect("frame");
+        let ids = read_ids(&r);
+        let (_, u, _, _) = pattern_frame(&r);
+        if let Some((before, ids_before, u_before)) = previous.take() {
+            let spacing = drawn.spacing as f64 * model.determinant().abs().cbrt();
+            let points: Vec<_> = drawn
+                .samples
+                .iter()
+                .map(|s| {
+                    let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
+                    let at = |a: &[[f32; 3]]| {
+                        s.triangle
+                            .iter()
+                            .zip(w)
+                            .map(|(i, w)| DVec3::from(a[*i as usize].map(|x| x as f64)) * w)
+                            .sum::<DVec3>()
+                    };
+                    let (p_obj, n_obj) = (at(&mesh.positions), at(&mesh.normals));
+                    let n = model.inverse().transpose().transform_vector3(n_obj).normalize();
+                    let (now, then) = (model.transform_point3(p_obj), before.transform_point3(p_obj));
+                    let (c, p) = (project(now), project(then));
+                    let seen = id_share(&ids, (c / size as f64).into(), 1.0, 2.0);
+                    let seen_before = id_share(&ids_before, (p / size as f64).into(), 1.0, 2.0);
+                    let a = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+                    let t1 = n.cross(a).normalize();
+                    let t2 = n.cross(t1);
+                    let rr = spacing * 0.5;
+                    let area = |c: DVec2, e1: DVec2, e2: DVec2| {
+                        let (e1, e2) = (e1 - c, e2 - c);
+                        std::f64::consts::PI * (e1.x * e2.y - e1.y * e2.x).abs()
+                    };
+                    let now_area = area(c, project(now + t1 * rr), project(now + t2 * rr)) * seen;
+                    let then_area = area(p, project(then + t1 * rr), project(then + t2 * rr)) * seen_before;
+                    (p.into(), c.into(), (now_area * then_area).sqrt())
+                })
+                .collect();
+            let (_, _, z) = similarity(&points, true).expect("the sphere is visible in both frames");
+            let z = DVec2::from(z);
+            let tracked = cdiv(u, u_before);
+            let error = (tracked - z).length() / z.length();
+            worst = worst.max(error);
+            // f32 sums of centred moments: 1e-7 measured; 1e-5 leaves room
+            // for a sample whose window straddles a texel edge.
+            assert!(
+                error <= 1e-5,
+                "frame {frame}: GPU z {tracked:?}, f64 z {z:?} (relative error {error:e})"
+            );
+        }
+        previous = Some((model, ids, u));
+        // A random small motion: a shift, a turn about a random axis, a dolly.
+        let axis = DVec3::new(next(), next(), next()).normalize_or(DVec3::Y);
+        model = DMat4::from_translation(DVec3::new(0.08 * next(), 0.08 * next(), 0.3 * next()))
+            * model
+            * DMat4::from_axis_angle(axis, 0.2 * next());
+    }
+    eprintln!("worst relative error of z against f64: {worst:e}");
 }
