@@ -198,6 +198,19 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
+    /// The dynamic 2D pattern tracker (examples/lib/dynamic_pattern.npr):
+    /// cost against samples per object and objects, as a share of the frame,
+    /// and the GPU's solve against f64 (error, and the CPU's time).
+    Patterns {
+        /// Samples per object, comma-separated.
+        #[arg(long, default_value = "100,1000,10000,100000", value_delimiter = ',')]
+        samples: Vec<u32>,
+        /// Object counts (spheres in a grid), comma-separated.
+        #[arg(long, default_value = "1,10", value_delimiter = ',')]
+        objects: Vec<usize>,
+        #[arg(long, default_value_t = 10)]
+        frames: u32,
+    },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
         style: PathBuf,
@@ -242,13 +255,13 @@ pub enum BenchCommand {
     },
 }
 
-struct Printer {
+pub(crate) struct Printer {
     format: MessageFormat,
     color: bool,
 }
 
 impl Printer {
-    fn diagnostics(&self, diags: &[Diagnostic], sources: &SourceMap) {
+    pub(crate) fn diagnostics(&self, diags: &[Diagnostic], sources: &SourceMap) {
         if diags.is_empty() {
             return;
         }
@@ -260,7 +273,7 @@ impl Printer {
 
     /// Print one diagnostic that points into no file (a command-line value,
     /// an output path, the device) and give the user-error exit code.
-    fn fail(&self, d: Diagnostic) -> i32 {
+    pub(crate) fn fail(&self, d: Diagnostic) -> i32 {
         self.diagnostics(&[d], &SourceMap::new());
         EXIT_USER
     }
@@ -517,6 +530,11 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             frames,
         } => bench_reduce(&elements, &objects, frames, printer),
         BenchCommand::Pixels { sizes, objects, frames } => bench_pixels(&sizes, &objects, frames, printer),
+        BenchCommand::Patterns {
+            samples,
+            objects,
+            frames,
+        } => crate::bench_patterns::run(&samples, &objects, frames, printer),
         BenchCommand::Passes {
             style,
             scene,
@@ -707,7 +725,12 @@ fn bench_contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
 
 /// Compile a style the benchmarks carry in their source: any error in it is
 /// npr's (the internal exit code), printed with its diagnostics.
-fn compile_builtin(name: &str, text: &str, sources: &mut SourceMap, printer: &Printer) -> Result<StyleProgram, i32> {
+pub(crate) fn compile_builtin(
+    name: &str,
+    text: &str,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<StyleProgram, i32> {
     match compiler::compile_source(name, text, Path::new("."), sources, &CompileOptions::default()) {
         Ok(c) => Ok(c.program()),
         Err(CompileError::User(d)) => {
@@ -884,7 +907,7 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer
 }
 
 /// A headless GPU, or the exit code after saying why there is none.
-fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
+pub(crate) fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
     Gpu::headless().map_err(|e| printer.fail(e.to_diagnostic()))
 }
 

@@ -4,6 +4,7 @@
 
 mod args;
 mod bench_compile;
+mod bench_patterns;
 mod cli;
 mod usage;
 

@@ -363,7 +363,7 @@ fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
 #[test]
 fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
     use glam::{DMat4, DVec3};
-    use stdlib::reference::{id_share, similarity, ImageF64};
+    use stdlib::reference::ImageF64;
     let size = 96u32;
     let program = program(&style(|t| t));
     let ids_target = program
@@ -378,18 +378,8 @@ fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
     let mesh = scene.objects[0].mesh.clone();
     let drawn = runner::scene::samples::stratified(&mesh, 400, runner::scene::samples::object_seed(1, 0));
     let pose = scene.camera.pose(0.0);
-    let vp = (pose.projection(1.0) * pose.view(0)).as_dmat4();
-    let project = |w: DVec3| {
-        let c = vp * w.extend(1.0);
-        DVec2::new(
-            (c.x / c.w * 0.5 + 0.5) * size as f64,
-            (0.5 - c.y / c.w * 0.5) * size as f64,
-        )
-    };
-    let read_ids = |r: &Renderer| {
-        let t = r.read_target(ids_target).expect("ids");
-        ImageF64::new(t.width, t.height, |x, y| [t.texel(x, y)[0] as f64, 0.0, 0.0, 1.0])
-    };
+    let view_proj = (pose.projection(1.0) * pose.view(0)).as_dmat4();
+    let read_ids = |r: &Renderer| lab::patterns_f64::ids_f64(&r.read_target(ids_target).expect("ids"));
     let mut rng = 0x1234_5678_9abc_def0u64;
     let mut next = || {
         rng ^= rng << 13;
@@ -411,39 +401,20 @@ fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
         let ids = read_ids(&r);
         let (_, u, _, _) = pattern_frame(&r);
         if let Some((before, ids_before, u_before)) = previous.take() {
-            let spacing = drawn.spacing as f64 * model.determinant().abs().cbrt();
-            let points: Vec<_> = drawn
-                .samples
-                .iter()
-                .map(|s| {
-                    let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
-                    let at = |a: &[[f32; 3]]| {
-                        s.triangle
-                            .iter()
-                            .zip(w)
-                            .map(|(i, w)| DVec3::from(a[*i as usize].map(|x| x as f64)) * w)
-                            .sum::<DVec3>()
-                    };
-                    let (p_obj, n_obj) = (at(&mesh.positions), at(&mesh.normals));
-                    let n = model.inverse().transpose().transform_vector3(n_obj).normalize();
-                    let (now, then) = (model.transform_point3(p_obj), before.transform_point3(p_obj));
-                    let (c, p) = (project(now), project(then));
-                    let seen = id_share(&ids, (c / size as f64).into(), 1.0, 2.0);
-                    let seen_before = id_share(&ids_before, (p / size as f64).into(), 1.0, 2.0);
-                    let a = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
-                    let t1 = n.cross(a).normalize();
-                    let t2 = n.cross(t1);
-                    let rr = spacing * 0.5;
-                    let area = |c: DVec2, e1: DVec2, e2: DVec2| {
-                        let (e1, e2) = (e1 - c, e2 - c);
-                        std::f64::consts::PI * (e1.x * e2.y - e1.y * e2.x).abs()
-                    };
-                    let now_area = area(c, project(now + t1 * rr), project(now + t2 * rr)) * seen;
-                    let then_area = area(p, project(then + t1 * rr), project(then + t2 * rr)) * seen_before;
-                    (p.into(), c.into(), (now_area * then_area).sqrt())
-                })
-                .collect();
-            let (_, _, z) = similarity(&points, true).expect("the sphere is visible in both frames");
+            let (then, now) = (
+                lab::patterns_f64::View {
+                    model: before,
+                    view_proj,
+                    ids: &ids_before,
+                },
+                lab::patterns_f64::View {
+                    model,
+                    view_proj,
+                    ids: &ids,
+                },
+            );
+            let (_, _, z) = lab::patterns_f64::solve(&mesh, &drawn, (&then, &now), (size, size), (1.0, 2.0, true))
+                .expect("the sphere is visible in both frames");
             let z = DVec2::from(z);
             let tracked = cdiv(u, u_before);
             let error = (tracked - z).length() / z.length();

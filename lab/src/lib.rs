@@ -11,6 +11,8 @@
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
+//! - [`bench_patterns`]: `npr bench patterns`, the pattern tracker's cost and its error against f64.
+//! - [`patterns_f64`]: the dynamic 2D pattern tracker in f64 (tests, `npr bench patterns`).
 //! - [`bench_reduce`], [`bench_reduce_pixels`]: `npr bench reduce` and
 //!   `npr bench pixels`, compute passes' reductions over vertices and over
 //!   the pixels of an ID image.
@@ -19,7 +21,9 @@ pub mod bench;
 pub mod bench_contours;
 pub mod bench_ops;
 pub mod bench_overhead;
+pub mod bench_patterns;
 pub mod bench_reduce;
 pub mod bench_reduce_pixels;
 pub mod contours;
 pub mod harness;
+pub mod patterns_f64;

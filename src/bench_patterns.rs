@@ -1,0 +1,60 @@
+//! `npr bench patterns`: the command around `lab::bench_patterns` (limits,
+//! compiling the tracker for each sample count, the device, the table).
+
+use crate::cli::{compile_builtin, headless_gpu, Printer, EXIT_INTERNAL, EXIT_OK};
+use dsl::{codes, Diagnostic, SourceMap};
+use runner::RunError;
+
+pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = samples
+        .iter()
+        .find(|n| **n == 0 || **n > abi::manifest::MAX_SAMPLES_PER_OBJECT)
+    {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!(
+                "{bad} samples per object is outside 1..={}",
+                abi::manifest::MAX_SAMPLES_PER_OBJECT
+            ),
+        ));
+    }
+    if let Some(bad) = objects.iter().find(|n| **n == 0 || **n > 1000) {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("object count {bad} is outside 1..=1000"),
+        ));
+    }
+    let sources = std::cell::RefCell::new(SourceMap::new());
+    let null = match compile_builtin(
+        "null.npr",
+        lab::bench_patterns::NULL_SHADE,
+        &mut sources.borrow_mut(),
+        printer,
+    ) {
+        Ok(p) => p,
+        Err(code) => return code,
+    };
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    let compile = |text: &str| {
+        compile_builtin("patterns.npr", text, &mut sources.borrow_mut(), printer)
+            .map_err(|_| RunError::Internal("the benchmark's tracker style does not compile".into()))
+    };
+    match lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
+        Ok(rows) => {
+            println!(
+                "device: {}, {}², median of {frames} interleaved frames (wall clock)",
+                gpu.describe(),
+                lab::bench_patterns::SIZE
+            );
+            println!("{}", lab::bench_patterns::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources.borrow());
+            EXIT_INTERNAL
+        }
+    }
+}
