@@ -9,6 +9,9 @@ pub struct CameraKey {
     pub time_s: f64,
     pub position: Vec3,
     pub target: Vec3,
+    /// Roll about the view direction, radians (positive turns the image
+    /// counter-clockwise on screen): interpolated like the other fields.
+    pub roll_rad: f32,
 }
 
 /// A perspective camera whose eye and target may move over time.
@@ -45,6 +48,7 @@ impl Camera {
                 time_s: 0.0,
                 position,
                 target,
+                roll_rad: 0.0,
             }],
             up: Vec3::Y,
             fov_y_rad: 40f32.to_radians(),
@@ -90,11 +94,19 @@ impl Camera {
     /// The pose at `time_s`: position and target interpolated linearly
     /// between the surrounding keys, held at the first/last key outside them.
     pub fn pose(&self, time_s: f64) -> CameraPose {
-        let (position, target) = self.interpolate(time_s);
+        let (position, target, roll) = self.interpolate(time_s);
+        // Roll turns `up` about the view direction: a positive roll tilts
+        // the camera's up to its right, so the image turns counter-clockwise.
+        let forward = (target - position).try_normalize().unwrap_or(Vec3::NEG_Z);
+        let up = if roll == 0.0 {
+            self.up
+        } else {
+            glam::Quat::from_axis_angle(forward, roll) * self.up
+        };
         CameraPose {
             eye: position,
             target,
-            up: self.up,
+            up,
             fov_y_rad: self.fov_y_rad,
             near: self.near,
             far: self.far,
@@ -102,24 +114,25 @@ impl Camera {
         }
     }
 
-    fn interpolate(&self, time_s: f64) -> (Vec3, Vec3) {
+    fn interpolate(&self, time_s: f64) -> (Vec3, Vec3, f32) {
         let Some(first) = self.keys.first() else {
             // Unreachable through the constructors; a harmless default.
-            return (Vec3::Z, Vec3::ZERO);
+            return (Vec3::Z, Vec3::ZERO, 0.0);
         };
         // NaN time compares false everywhere and lands on the first key.
         let after = self.keys.partition_point(|key| key.time_s <= time_s);
         if after == 0 {
-            return (first.position, first.target);
+            return (first.position, first.target, first.roll_rad);
         }
         let before = &self.keys[after - 1];
         let Some(next) = self.keys.get(after) else {
-            return (before.position, before.target);
+            return (before.position, before.target, before.roll_rad);
         };
         let fraction = ((time_s - before.time_s) / (next.time_s - before.time_s)) as f32;
         (
             before.position.lerp(next.position, fraction),
             before.target.lerp(next.target, fraction),
+            before.roll_rad + (next.roll_rad - before.roll_rad) * fraction,
         )
     }
 }
@@ -185,11 +198,29 @@ impl CameraPose {
 mod tests {
     use super::*;
 
+    #[test]
+    fn a_positive_roll_tilts_up_to_the_right_and_interpolates() {
+        let mut camera = Camera::looking_at(Vec3::ZERO, Vec3::NEG_Z);
+        camera.keys[0].roll_rad = 0.0;
+        camera.keys.push(CameraKey {
+            time_s: 1.0,
+            position: Vec3::ZERO,
+            target: Vec3::NEG_Z,
+            roll_rad: std::f32::consts::FRAC_PI_2,
+        });
+        let up = camera.pose(1.0).true_up();
+        assert!((up - Vec3::X).length() < 1e-5, "rolled 90°: up {up}");
+        let half = camera.pose(0.5).true_up();
+        let want = Vec3::new(1.0, 1.0, 0.0).normalize();
+        assert!((half - want).length() < 1e-5, "rolled 45° halfway: up {half}");
+    }
+
     fn key(time_s: f64, x: f32) -> CameraKey {
         CameraKey {
             time_s,
             position: Vec3::new(x, 0.0, 5.0),
             target: Vec3::new(x, 0.0, 0.0),
+            roll_rad: 0.0,
         }
     }
 

@@ -79,6 +79,7 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
                         time_s: 0.0,
                         position: position.value,
                         target: target.value,
+                        roll_rad: 0.0,
                     },
                     span: position.span,
                 }]
@@ -125,6 +126,8 @@ fn parse_key(
     report: &mut Report,
 ) -> Option<At<CameraKey>> {
     let time = fields.number("time", report);
+    // Degrees, like `fov`.
+    let roll = fields.number("roll", report);
     let position = fields.vec3("position", report).or_else(|| default_position.cloned());
     let target = fields.vec3("target", report).or_else(|| default_target.cloned());
     if time.is_none() && fields.span_of("time", report).is_none() {
@@ -153,6 +156,7 @@ fn parse_key(
             time_s: time.value,
             position: position.value,
             target: target.value,
+            roll_rad: roll.map_or(0.0, |r| (r.value as f32).to_radians()),
         },
         span: time.span,
     })
