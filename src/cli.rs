@@ -211,6 +211,19 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
+    /// Whole styles' frame time against a baseline style on one scene, in one run
+    /// (each style's frames in order, so path-dependent styles are measured as they render).
+    Styles {
+        styles: Vec<PathBuf>,
+        #[arg(long, default_value = "examples/toon.npr")]
+        baseline: PathBuf,
+        #[arg(long)]
+        scene: PathBuf,
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+    },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
         style: PathBuf,
@@ -535,6 +548,13 @@ fn bench(cmd: BenchCommand, printer: &Printer) -> i32 {
             objects,
             frames,
         } => crate::bench_patterns::run(&samples, &objects, frames, printer),
+        BenchCommand::Styles {
+            styles,
+            baseline,
+            scene,
+            size,
+            frames,
+        } => bench_styles(&styles, &baseline, &scene, size, frames, printer),
         BenchCommand::Passes {
             style,
             scene,
@@ -823,6 +843,49 @@ fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer
                 gpu.describe()
             );
             println!("{}", lab::bench_reduce_pixels::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench styles`: see `lab::bench_styles`.
+fn bench_styles(
+    styles: &[PathBuf],
+    baseline: &Path,
+    scene_path: &Path,
+    size: (u32, u32),
+    frames: u32,
+    printer: &Printer,
+) -> i32 {
+    let mut sources = SourceMap::new();
+    let (scene, base, gpu) = match scene_style_gpu(baseline, scene_path, &mut sources, printer) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let mut programs = Vec::new();
+    for s in styles {
+        match compile(s, &mut sources, &opts, printer) {
+            Ok(c) => programs.push((s.display().to_string(), c.program())),
+            Err(code) => return code,
+        }
+    }
+    match lab::bench_styles::run(&gpu, &scene, &base.program(), &programs, size, (frames, 5)) {
+        Ok(rows) => {
+            println!(
+                "device: {}, {}x{}, median of {frames} interleaved frames (wall clock)",
+                gpu.describe(),
+                size.0,
+                size.1
+            );
+            println!("{}", lab::bench_styles::table(&rows, &baseline.display().to_string()));
             EXIT_OK
         }
         Err(e) => {

@@ -12,6 +12,7 @@
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
 //! - [`bench_patterns`]: `npr bench patterns`, the pattern tracker's cost and its error against f64.
+//! - [`bench_styles`]: `npr bench styles`, whole styles' frame cost against a baseline style.
 //! - [`patterns_f64`]: the dynamic 2D pattern tracker in f64 (tests, `npr bench patterns`).
 //! - [`bench_reduce`], [`bench_reduce_pixels`]: `npr bench reduce` and
 //!   `npr bench pixels`, compute passes' reductions over vertices and over
@@ -24,6 +25,7 @@ pub mod bench_overhead;
 pub mod bench_patterns;
 pub mod bench_reduce;
 pub mod bench_reduce_pixels;
+pub mod bench_styles;
 pub mod contours;
 pub mod harness;
 pub mod patterns_f64;
