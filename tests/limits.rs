@@ -274,3 +274,27 @@ fn lets_used_twice_fold_in_linear_time() {
     );
     assert_compiles("doubling lets", &text);
 }
+
+/// A `state`'s first value made deep through a chain of lets is split into
+/// WGSL `let`s like every other value (it once reached naga's nesting
+/// limit inline: E9001).
+#[test]
+fn a_state_first_value_deep_through_lets_compiles() {
+    let mut text = String::from("style \"Deep first\"\npass f: compute(objects) {\n  let a0 = object.index * 1.0\n");
+    for i in 1..200 {
+        text += &format!("  let a{i} = a{} * 1.001 + 0.5\n", i - 1);
+    }
+    text += "  state s: float = a199\n  s = s + 1.0\n}\npass shade: render(scene) {\n  out c: r32float = f.s\n}\noutput shade.c\n";
+    let mut sources = dsl::SourceMap::new();
+    match compiler::compile_source(
+        "deep.npr",
+        &text,
+        std::path::Path::new("."),
+        &mut sources,
+        &Default::default(),
+    ) {
+        Ok(_) => {}
+        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
+    }
+}

@@ -512,6 +512,13 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
             "// Once per member object.\n@compute @workgroup_size({OBJECT_WORKGROUP})\nfn {UPDATE_OBJECTS_ENTRY}(@builtin(global_invocation_id) id: vec3<u32>) {{\n    if (id.x >= arrayLength(&npr_members)) {{\n        return;\n    }}\n    object = npr_objects[npr_members[id.x].x].o;\n    let npr_base = object.ids.x * NPR_SLOTS;"
         );
         let flag = per_object.saturating_sub(1);
+        // The first values read no state (the typechecker makes sure), so
+        // their lets come first, with the same sharing and splitting of deep
+        // expressions as every other let (a first value deep through lets
+        // would otherwise reach naga's nesting limit inline).
+        let first_roots: Vec<ExprId> = live.iter().filter_map(|(_, _, v)| v.first).collect();
+        let first_nodes = self.ir.reachable(&first_roots);
+        self.emit_lets(w, pass, &first_nodes, value_uses, ctx);
         if state {
             let _ = writeln!(
                 w,
@@ -538,7 +545,9 @@ fn {}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lid
                 slot_swizzle(v.ty)
             );
         }
-        self.emit_lets(w, pass, nodes, value_uses, ctx);
+        // The rest, without what the first values' lets named already.
+        let rest: Vec<ExprId> = nodes.iter().copied().filter(|n| !ctx.named.contains_key(n)).collect();
+        self.emit_lets(w, pass, &rest, value_uses, ctx);
         for (_, packed, v) in live {
             let what = match v.rule {
                 ValueRule::State => format!("{} = ", v.name),
