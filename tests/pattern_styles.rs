@@ -79,3 +79,13 @@ fn the_hatching_example_matches_its_goldens() {
 fn a_hatching_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
     a_frame_alone_equals_the_sequence("hatching");
 }
+
+#[test]
+fn the_stipple_example_matches_its_goldens() {
+    matches_its_goldens("stipple");
+}
+
+#[test]
+fn a_stipple_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("stipple");
+}
