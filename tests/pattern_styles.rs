@@ -89,3 +89,52 @@ fn the_stipple_example_matches_its_goldens() {
 fn a_stipple_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
     a_frame_alone_equals_the_sequence("stipple");
 }
+
+#[test]
+fn the_painterly_example_matches_its_goldens() {
+    matches_its_goldens("painterly");
+}
+
+#[test]
+fn a_painterly_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("painterly");
+}
+
+/// `examples/textures/pattern_strokes.png` is what the command in
+/// `examples/textures/SOURCES.md` writes, value for value.
+#[test]
+fn the_painterly_stroke_texture_is_what_texgen_writes() {
+    let scratch = root().join("target/npr-test-output/pattern-strokes");
+    std::fs::create_dir_all(&scratch).expect("scratch dir");
+    let fresh = scratch.join("pattern_strokes.png");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .current_dir(root())
+        .args(["texgen", "-o", fresh.to_str().expect("utf-8 path")])
+        .args([
+            "--size",
+            "64",
+            "--octaves",
+            "2",
+            "--channels",
+            "2",
+            "--frequency",
+            "4",
+            "--kind",
+            "gradient",
+            "--seed",
+            "21",
+        ])
+        .output()
+        .expect("npr runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let fresh = image::open(&fresh).expect("written").to_rgba16();
+    let shipped = image::open(root().join("examples/textures/pattern_strokes.png"))
+        .expect("shipped")
+        .to_rgba16();
+    let _ = std::fs::remove_dir_all(&scratch);
+    assert_eq!(fresh.dimensions(), shipped.dimensions());
+    assert!(
+        fresh == shipped,
+        "examples/textures/pattern_strokes.png differs from what texgen writes"
+    );
+}
