@@ -1,0 +1,140 @@
+//! The pattern styles built on the dynamic 2D pattern tracker of
+//! `examples/lib/dynamic_pattern.npr` (Breslav et al. 2007): hatching,
+//! stipple and painterly strokes, each drawn in every object's tracked
+//! pattern frame with the §3.4 LOD cross-fade. Per style: goldens of frames
+//! 0, 12 and 24 of `examples/scenes/cows.toml` (rendered in order: the
+//! styles are path-dependent), and a frame rendered alone (replayed) that
+//! equals the same frame of a sequence. Also: the painterly stroke texture is
+//! what its documented `npr texgen` command writes.
+
+use runner::{FrameSpec, Renderer};
+
+mod common;
+use common::{gpu, root};
+
+/// Render `examples/<style>.npr` on the cows at 128×96, frames 0..=24 in
+/// order (as `--frames 0..25` does), and compare frames 0, 12 and 24 with
+/// `examples/golden/<style>_cows_{00,12,24}.png` (`NPR_UPDATE_GOLDENS=1`
+/// rewrites them).
+fn matches_its_goldens(style: &str) {
+    let mut sources = dsl::SourceMap::new();
+    let program = compiler::compile_file(
+        &root().join(format!("examples/{style}.npr")),
+        &mut sources,
+        &Default::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"))
+    .program();
+    let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    // Path-dependent: every frame in order, as `--frames 0..25` renders them.
+    for frame in 0u32..=24 {
+        let spec = FrameSpec {
+            frame,
+            time_s: frame as f64 / 24.0,
+            ..FrameSpec::still(128, 96, 0)
+        };
+        r.render(&scene, &spec).expect("frame");
+        if frame % 12 != 0 {
+            continue;
+        }
+        let img = r.read_output().expect("read").to_rgba8();
+        let golden = root().join(format!("examples/golden/{style}_cows_{frame:02}.png"));
+        let cmp = lab::harness::compare_with_golden(
+            &img,
+            &golden,
+            lab::harness::Tolerance::PerPixel {
+                max_abs: 2,
+                outlier_fraction: 0.005,
+            },
+        );
+        assert!(
+            cmp.passed,
+            "{style} frame {frame}: {} (images in {:?})",
+            cmp.summary, cmp.written
+        );
+    }
+}
+
+/// Frame 6 of `examples/<style>.npr` rendered alone (which replays frames
+/// 0..6) equals frame 6 of a sequence, and differs from frame 0.
+fn a_frame_alone_equals_the_sequence(style: &str) {
+    let scratch = root().join(format!("target/npr-test-output/{style}-alone"));
+    let (in_sequence, alone, first) =
+        common::sequence_and_alone(&format!("examples/{style}.npr"), "examples/scenes/cows.toml", &scratch);
+    assert_eq!(
+        in_sequence, alone,
+        "{style}: frame 6 alone (replayed) equals frame 6 of the sequence"
+    );
+    assert_ne!(in_sequence, first, "{style}: the pattern moved between frames 0 and 6");
+}
+
+#[test]
+fn the_hatching_example_matches_its_goldens() {
+    matches_its_goldens("hatching");
+}
+
+#[test]
+fn a_hatching_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("hatching");
+}
+
+#[test]
+fn the_stipple_example_matches_its_goldens() {
+    matches_its_goldens("stipple");
+}
+
+#[test]
+fn a_stipple_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("stipple");
+}
+
+#[test]
+fn the_painterly_example_matches_its_goldens() {
+    matches_its_goldens("painterly");
+}
+
+#[test]
+fn a_painterly_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("painterly");
+}
+
+/// `examples/textures/pattern_strokes.png` is what the command in
+/// `examples/textures/SOURCES.md` writes, value for value.
+#[test]
+fn the_painterly_stroke_texture_is_what_texgen_writes() {
+    let scratch = root().join("target/npr-test-output/pattern-strokes");
+    std::fs::create_dir_all(&scratch).expect("scratch dir");
+    let fresh = scratch.join("pattern_strokes.png");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .current_dir(root())
+        .args(["texgen", "-o", fresh.to_str().expect("utf-8 path")])
+        .args([
+            "--size",
+            "64",
+            "--octaves",
+            "2",
+            "--channels",
+            "2",
+            "--frequency",
+            "4",
+            "--kind",
+            "gradient",
+            "--seed",
+            "21",
+        ])
+        .output()
+        .expect("npr runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let fresh = image::open(&fresh).expect("written").to_rgba16();
+    let shipped = image::open(root().join("examples/textures/pattern_strokes.png"))
+        .expect("shipped")
+        .to_rgba16();
+    let _ = std::fs::remove_dir_all(&scratch);
+    assert_eq!(fresh.dimensions(), shipped.dimensions());
+    assert!(
+        fresh == shipped,
+        "examples/textures/pattern_strokes.png differs from what texgen writes"
+    );
+}
