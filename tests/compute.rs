@@ -14,12 +14,7 @@ mod common;
 use common::{gpu, root};
 
 fn program(text: &str) -> StyleProgram {
-    let mut sources = dsl::SourceMap::new();
-    match compiler::compile_source("c.npr", text, root(), &mut sources, &Default::default()) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
+    common::compile_text(text)
 }
 
 fn example(path: &str) -> StyleProgram {

@@ -2,8 +2,8 @@
 //! tracker of `examples/lib/dynamic_pattern.npr`: exact recovery of a known
 //! image similarity (§3.2), the pattern frame's update (§3.3), the symmetric
 //! scale against the plain one over zoom cycles, the GPU's z against an f64
-//! solve of the same samples, degenerate frames that hold the frame and never
-//! produce NaN, and the halftone example's goldens.
+//! solve of the same samples, and degenerate frames that hold the frame and
+//! never produce NaN. The styles built on it are in `pattern_styles.rs`.
 
 use glam::{DVec2, Mat4, Vec3};
 use runner::scene::Scene;
@@ -29,12 +29,7 @@ output shade.c
 }
 
 fn program(text: &str) -> StyleProgram {
-    let mut sources = dsl::SourceMap::new();
-    match compiler::compile_source("tracker.npr", text, root(), &mut sources, &Default::default()) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
+    common::compile_text(text)
 }
 
 /// A camera at the origin looking down −z at a unit quad (or a sphere) 5 m away.
@@ -303,56 +298,6 @@ fn degenerate_frames_hold_the_pattern_frame_and_stay_finite() {
         let mut s = scene(QUAD);
         track(|t| t, &mut s, size, &[at(0.0), at(0.0), at(0.05), at(0.1)]);
     }
-}
-
-#[test]
-fn the_halftone_example_matches_its_goldens() {
-    let mut sources = dsl::SourceMap::new();
-    let program = compiler::compile_file(&root().join("examples/halftone.npr"), &mut sources, &Default::default())
-        .unwrap_or_else(|e| panic!("{e:?}"))
-        .program();
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
-    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-    // Path-dependent: every frame in order, as `--frames 0..25` renders them.
-    for frame in 0u32..=24 {
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(128, 96, 0)
-        };
-        r.render(&scene, &spec).expect("frame");
-        if frame % 12 != 0 {
-            continue;
-        }
-        let img = r.read_output().expect("read").to_rgba8();
-        let golden = root().join(format!("examples/golden/halftone_cows_{frame:02}.png"));
-        let cmp = lab::harness::compare_with_golden(
-            &img,
-            &golden,
-            lab::harness::Tolerance::PerPixel {
-                max_abs: 2,
-                outlier_fraction: 0.005,
-            },
-        );
-        assert!(
-            cmp.passed,
-            "frame {frame}: {} (images in {:?})",
-            cmp.summary, cmp.written
-        );
-    }
-}
-
-#[test]
-fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
-    let scratch = root().join("target/npr-test-output/halftone-alone");
-    let (in_sequence, alone, first) =
-        common::sequence_and_alone("examples/halftone.npr", "examples/scenes/cows.toml", &scratch);
-    assert_eq!(
-        in_sequence, alone,
-        "frame 6 alone (replayed) equals frame 6 of the sequence"
-    );
-    assert_ne!(in_sequence, first, "the pattern moved between frames 0 and 6");
 }
 
 /// The tracker's z on the GPU against the §3.2 similarity computed in f64

@@ -1,7 +1,7 @@
 //! The pattern styles built on the dynamic 2D pattern tracker of
-//! `examples/lib/dynamic_pattern.npr` (Breslav et al. 2007): hatching,
-//! stipple and painterly strokes, each drawn in every object's tracked
-//! pattern frame with the §3.4 LOD cross-fade. Per style: goldens of frames
+//! `examples/lib/dynamic_pattern.npr` (Breslav et al. 2007): halftone,
+//! hatching, stipple and painterly strokes, each drawn in every object's
+//! tracked pattern frame with the §3.4 LOD transition. Per style: goldens of frames
 //! 0, 12 and 24 of `examples/scenes/cows.toml` (rendered in order: the
 //! styles are path-dependent), and a frame rendered alone (replayed) that
 //! equals the same frame of a sequence. Also: the painterly stroke texture is
@@ -68,6 +68,16 @@ fn a_frame_alone_equals_the_sequence(style: &str) {
         "{style}: frame 6 alone (replayed) equals frame 6 of the sequence"
     );
     assert_ne!(in_sequence, first, "{style}: the pattern moved between frames 0 and 6");
+}
+
+#[test]
+fn the_halftone_example_matches_its_goldens() {
+    matches_its_goldens("halftone");
+}
+
+#[test]
+fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
+    a_frame_alone_equals_the_sequence("halftone");
 }
 
 #[test]

@@ -11,6 +11,7 @@
 //! clock: lavapipe's timestamps do not bracket compute work).
 
 use crate::bench::wait_idle;
+use crate::bench_reduce::median;
 use crate::patterns_f64::{ids_f64, solve, View};
 use glam::{DVec2, Mat4, Vec3};
 use runner::scene::Scene;
@@ -88,11 +89,6 @@ pub struct Row {
     pub z_error: f64,
     /// CPU ms of the same solve in f64 (projection, weights, sums) for all objects.
     pub cpu_ms: f64,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// Object `o`'s model in frame `k`: its grid place, drifting and turning.

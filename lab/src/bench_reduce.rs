@@ -232,13 +232,14 @@ fn copy(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+/// The median (the upper one of an even count); `v` must not be empty.
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
 }
 
 /// Seconds `f` takes.
-fn timed(f: impl FnOnce() -> Result<(), RunError>) -> Result<f64, RunError> {
+pub(crate) fn timed(f: impl FnOnce() -> Result<(), RunError>) -> Result<f64, RunError> {
     let t = Instant::now();
     f()?;
     Ok(t.elapsed().as_secs_f64())

@@ -15,7 +15,7 @@
 //! (wall clock: lavapipe's timestamps do not bracket compute work).
 
 use crate::bench::wait_idle;
-use crate::bench_reduce::CopyKernel;
+use crate::bench_reduce::{median, timed, CopyKernel};
 use runner::scene::Scene;
 use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
@@ -86,17 +86,6 @@ pub struct Row {
     pub rel_error: f64,
     /// Whether every pixel count equals the f64 count exactly.
     pub counts_exact: bool,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-fn timed(f: impl FnOnce() -> Result<(), RunError>) -> Result<f64, RunError> {
-    let t = Instant::now();
-    f()?;
-    Ok(t.elapsed().as_secs_f64())
 }
 
 /// Per object (count, Σx, Σy) from the read-back ID image, in f64; and the

@@ -6,6 +6,7 @@
 //! and wait).
 
 use crate::bench::wait_idle;
+use crate::bench_reduce::median;
 use runner::scene::Scene;
 use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
@@ -16,11 +17,6 @@ pub struct Row {
     pub name: String,
     pub frame_ms: f64,
     pub baseline_ms: f64,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// `styles` (name, program) against `baseline`, `frames` frames each after

@@ -2,7 +2,8 @@
 
 use crate::{Default, Operator, Param, Specialization, Stage, Ty, Unit};
 
-const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
+/// A required parameter with no unit or range (shared with the other operator tables).
+pub(crate) const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
     Param {
         name,
         ty,

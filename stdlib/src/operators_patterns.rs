@@ -3,18 +3,8 @@
 //! the similarity update (§3.2–3.3) and the pattern coordinates of a pixel
 //! (§3.3).
 
+use crate::operators::p;
 use crate::{Default, Operator, Param, Stage, Ty, Unit};
-
-const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
-    Param {
-        name,
-        ty,
-        unit: Unit::None,
-        default: Default::Required,
-        range: None,
-        doc,
-    }
-}
 
 pub static ALL: &[Operator] = &[
     Operator {

@@ -19,6 +19,17 @@ pub fn gpu() -> &'static Gpu {
     })
 }
 
+/// A style given as text, compiled with paths relative to the repository
+/// root; a user or internal error fails the test with its rendered message.
+pub fn compile_text(text: &str) -> runner::StyleProgram {
+    let mut sources = dsl::SourceMap::new();
+    match compiler::compile_source("case.npr", text, root(), &mut sources, &Default::default()) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
 /// The repository root (where `examples/` and `tests/` are).
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
