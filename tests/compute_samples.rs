@@ -55,14 +55,7 @@ fn sample_sums_match_the_same_samples_in_f64() {
         let normal_matrix = model.inverse().transpose();
         let (mut p, mut n) = (DVec3::ZERO, DVec3::ZERO);
         for s in &drawn.samples {
-            let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
-            let at = |a: &[[f32; 3]]| {
-                s.triangle
-                    .iter()
-                    .zip(w)
-                    .map(|(i, w)| DVec3::from(a[*i as usize].map(|x| x as f64)) * w)
-                    .sum::<DVec3>()
-            };
+            let at = |a: &[[f32; 3]]| lab::patterns_f64::at_sample(a, s);
             p += model.transform_point3(at(&mesh.positions));
             n += normal_matrix.transform_vector3(at(&mesh.normals));
         }

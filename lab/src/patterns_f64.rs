@@ -15,6 +15,17 @@ pub fn ids_f64(t: &TargetImage) -> ImageF64 {
     ImageF64::new(t.width, t.height, |x, y| [t.texel(x, y)[0] as f64, 0.0, 0.0, 1.0])
 }
 
+/// A per-vertex attribute (positions, normals) at sample `s`, in f64: the
+/// barycentric mix of its triangle's three values.
+pub fn at_sample(attribute: &[[f32; 3]], s: &runner::scene::samples::Sample) -> DVec3 {
+    let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
+    s.triangle
+        .iter()
+        .zip(w)
+        .map(|(i, w)| DVec3::from(attribute[*i as usize].map(|x| x as f64)) * w)
+        .sum()
+}
+
 /// One frame of one object, as the tracker sees it.
 pub struct View<'a> {
     pub model: DMat4,
@@ -51,15 +62,7 @@ pub fn solve(
         .samples
         .iter()
         .map(|s| {
-            let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
-            let at = |a: &[[f32; 3]]| {
-                s.triangle
-                    .iter()
-                    .zip(w)
-                    .map(|(i, w)| DVec3::from(a[*i as usize].map(|x| x as f64)) * w)
-                    .sum::<DVec3>()
-            };
-            let (p_obj, n_obj) = (at(&mesh.positions), at(&mesh.normals));
+            let (p_obj, n_obj) = (at_sample(&mesh.positions, s), at_sample(&mesh.normals, s));
             let n = normal_matrix.transform_vector3(n_obj).normalize_or_zero();
             let (w_now, w_then) = (now.model.transform_point3(p_obj), before.model.transform_point3(p_obj));
             let (c, p) = (
