@@ -245,6 +245,36 @@ pub(crate) fn timed(f: impl FnOnce() -> Result<(), RunError>) -> Result<f64, Run
     Ok(t.elapsed().as_secs_f64())
 }
 
+/// Median wall ms a frame of `with` takes more than one of `without`, and
+/// a run of `copy` more than an empty submit: after one warm-up each, the
+/// four interleaved round robin for `frames` rounds.
+pub(crate) fn against_copy(
+    gpu: &Gpu,
+    (with, without): (&mut runner::Renderer, &mut runner::Renderer),
+    (scene, spec): (&Scene, &FrameSpec),
+    copy: &CopyKernel,
+    frames: u32,
+) -> Result<(f64, f64), RunError> {
+    with.render(scene, spec)?;
+    without.render(scene, spec)?;
+    copy.run(gpu, false)?;
+    let mut t = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    for _ in 0..frames.max(1) {
+        t[0].push(timed(|| {
+            with.render(scene, spec)?;
+            wait_idle(gpu)
+        })?);
+        t[1].push(timed(|| {
+            without.render(scene, spec)?;
+            wait_idle(gpu)
+        })?);
+        t[2].push(timed(|| copy.run(gpu, false))?);
+        t[3].push(timed(|| copy.run(gpu, true))?);
+    }
+    let [a, b, c, d] = t.map(median);
+    Ok(((a - b) * 1e3, (c - d) * 1e3))
+}
+
 /// Measure every (elements, objects) pair; `progress` gets a line per pair.
 pub fn run(
     gpu: &Gpu,
@@ -266,25 +296,7 @@ pub fn run(
             let mut with = runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
             let mut without = runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
             let copy = CopyKernel::new(gpu, 3 * (e / o) * o);
-            // Warm up, then interleave the four.
-            with.render(&scene, &spec)?;
-            without.render(&scene, &spec)?;
-            copy.run(gpu, false)?;
-            let mut t = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
-            for _ in 0..frames.max(1) {
-                t[0].push(timed(|| {
-                    with.render(&scene, &spec)?;
-                    wait_idle(gpu)
-                })?);
-                t[1].push(timed(|| {
-                    without.render(&scene, &spec)?;
-                    wait_idle(gpu)
-                })?);
-                t[2].push(timed(|| copy.run(gpu, false))?);
-                t[3].push(timed(|| copy.run(gpu, true))?);
-            }
-            let [a, b, c, d] = t.map(median);
-            let (reduce_ms, copy_ms) = ((a - b) * 1e3, (c - d) * 1e3);
+            let (reduce_ms, copy_ms) = against_copy(gpu, (&mut with, &mut without), (&scene, &spec), &copy, frames)?;
             // Accuracy: one frame's sums against f64.
             let values = with.read_object_values("sums")?;
             let cpu = cpu_sums(&scene);

@@ -14,8 +14,7 @@
 //! interleaved; the differences are the reduction's and the copy's own cost
 //! (wall clock: lavapipe's timestamps do not bracket compute work).
 
-use crate::bench::wait_idle;
-use crate::bench_reduce::{median, timed, CopyKernel};
+use crate::bench_reduce::{against_copy, CopyKernel};
 use runner::scene::Scene;
 use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
@@ -133,23 +132,7 @@ pub fn run(
             let mut with = runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
             let mut without = runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
             let copy = CopyKernel::new(gpu, (size * size) as usize);
-            with.render(&scene, &spec)?;
-            without.render(&scene, &spec)?;
-            copy.run(gpu, false)?;
-            let mut t = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
-            for _ in 0..frames.max(1) {
-                t[0].push(timed(|| {
-                    with.render(&scene, &spec)?;
-                    wait_idle(gpu)
-                })?);
-                t[1].push(timed(|| {
-                    without.render(&scene, &spec)?;
-                    wait_idle(gpu)
-                })?);
-                t[2].push(timed(|| copy.run(gpu, false))?);
-                t[3].push(timed(|| copy.run(gpu, true))?);
-            }
-            let [a, b, c, d] = t.map(median);
+            let (reduce_ms, copy_ms) = against_copy(gpu, (&mut with, &mut without), (&scene, &spec), &copy, frames)?;
             let values = with.read_object_values("cover")?;
             let ids = with.render_until_target(&scene, &spec, id_target)?;
             let (cpu, most_per_tile) = cpu_reduction(&ids, scene.objects.len());
@@ -167,8 +150,8 @@ pub fn run(
                 objects: o,
                 covered: cpu.iter().map(|c| c.0 as u64).sum(),
                 most_per_tile,
-                reduce_ms: (a - b) * 1e3,
-                copy_ms: (c - d) * 1e3,
+                reduce_ms,
+                copy_ms,
                 rel_error,
                 counts_exact,
             };
