@@ -16,6 +16,18 @@ use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
+/// The kind of a compute pass whose domain did not resolve (reported): a
+/// pass over objects with no values, so later stages see a well-formed pass.
+fn unresolved_kind() -> PassKind {
+    PassKind::Compute {
+        domain: ComputeDomain::Objects,
+        tag: None,
+        key: None,
+        samples: None,
+        values: Vec::new(),
+    }
+}
+
 /// Samples per object when a `compute(samples)` pass says no `count:`
 /// ("typically several hundred", Breslav et al. 2007 §3.1).
 pub const DEFAULT_SAMPLES: u32 = 400;
@@ -89,13 +101,7 @@ impl Resolver<'_> {
                     .with_primary(p.kind.span, "no domain")
                     .with_help(DOMAIN_HELP),
             );
-            return PassKind::Compute {
-                domain: ComputeDomain::Objects,
-                tag: None,
-                key: None,
-                samples: None,
-                values: Vec::new(),
-            };
+            return unresolved_kind();
         };
         let Some(domain) = domains.iter().find(|(n, _)| *n == first.name.name).map(|(_, d)| *d) else {
             let mut d = Diagnostic::error(codes::BAD_PASS_INPUT, "a compute pass needs a domain")
@@ -105,13 +111,7 @@ impl Resolver<'_> {
                 None => d.with_help(DOMAIN_HELP),
             };
             self.error(d);
-            return PassKind::Compute {
-                domain: ComputeDomain::Objects,
-                tag: None,
-                key: None,
-                samples: None,
-                values: Vec::new(),
-            };
+            return unresolved_kind();
         };
         self.no_field(first, "a domain");
         let (key, rest) = match (domain, rest) {
