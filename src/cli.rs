@@ -772,37 +772,16 @@ fn bench_reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Pr
             format!("count {bad} is outside 1..=10000000"),
         ));
     }
-    let mut sources = SourceMap::new();
-    let mut programs = Vec::new();
-    for (name, text) in [
+    with_and_without(
         ("reduce.npr", lab::bench_reduce::STYLE),
-        ("null.npr", lab::bench_reduce::NULL_STYLE),
-    ] {
-        match compile_builtin(name, text, &mut sources, printer) {
-            Ok(p) => programs.push(p),
-            Err(code) => return code,
-        }
-    }
-    let gpu = match headless_gpu(printer) {
-        Ok(g) => g,
-        Err(code) => return code,
-    };
-    match lab::bench_reduce::run(&gpu, (&programs[0], &programs[1]), elements, objects, frames, |m| {
-        eprintln!("{m}")
-    }) {
-        Ok(rows) => {
-            println!(
-                "device: {}, median of {frames} interleaved frames (wall clock)",
-                gpu.describe()
-            );
-            println!("{}", lab::bench_reduce::table(&rows));
-            EXIT_OK
-        }
-        Err(e) => {
-            printer.diagnostics(&e.diagnostics(), &sources);
-            EXIT_INTERNAL
-        }
-    }
+        lab::bench_reduce::NULL_STYLE,
+        frames,
+        printer,
+        |gpu, programs| {
+            lab::bench_reduce::run(gpu, programs, elements, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| lab::bench_reduce::table(&rows))
+        },
+    )
 }
 
 /// `npr bench pixels`: see `lab::bench_reduce_pixels`.
@@ -819,12 +798,31 @@ fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer
             format!("object count {bad} is outside 1..=10000"),
         ));
     }
+    with_and_without(
+        ("pixels.npr", lab::bench_reduce_pixels::STYLE),
+        lab::bench_reduce_pixels::NULL_STYLE,
+        frames,
+        printer,
+        |gpu, programs| {
+            lab::bench_reduce_pixels::run(gpu, programs, sizes, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| lab::bench_reduce_pixels::table(&rows))
+        },
+    )
+}
+
+/// A benchmark of a built-in style against the same frame without the
+/// measured pass (`null`): both compiled, the device opened, `run` measures
+/// and returns its table, which is printed under the device's name.
+fn with_and_without(
+    (name, style): (&str, &str),
+    null: &str,
+    frames: u32,
+    printer: &Printer,
+    run: impl FnOnce(&Gpu, (&StyleProgram, &StyleProgram)) -> Result<String, RunError>,
+) -> i32 {
     let mut sources = SourceMap::new();
     let mut programs = Vec::new();
-    for (name, text) in [
-        ("pixels.npr", lab::bench_reduce_pixels::STYLE),
-        ("null.npr", lab::bench_reduce_pixels::NULL_STYLE),
-    ] {
+    for (name, text) in [(name, style), ("null.npr", null)] {
         match compile_builtin(name, text, &mut sources, printer) {
             Ok(p) => programs.push(p),
             Err(code) => return code,
@@ -834,15 +832,13 @@ fn bench_pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer
         Ok(g) => g,
         Err(code) => return code,
     };
-    match lab::bench_reduce_pixels::run(&gpu, (&programs[0], &programs[1]), sizes, objects, frames, |m| {
-        eprintln!("{m}")
-    }) {
-        Ok(rows) => {
+    match run(&gpu, (&programs[0], &programs[1])) {
+        Ok(table) => {
             println!(
                 "device: {}, median of {frames} interleaved frames (wall clock)",
                 gpu.describe()
             );
-            println!("{}", lab::bench_reduce_pixels::table(&rows));
+            println!("{table}");
             EXIT_OK
         }
         Err(e) => {
