@@ -45,6 +45,10 @@ uniform_block! {
     /// The view-projection of the previous frame this renderer began (=
     /// view_proj on the first frame and after a reset): `project_previous`.
     previous_view_proj: Mat4x4 = "mat4x4<f32>";
+    /// The scene's `[light2]`, `[light3]` and `[light4]` (`light2.dir` … in a
+    /// style), as `light_dir` and `light_color`; all zero for an absent one.
+    more_light_dir: [Vec4; 3] = "array<vec4<f32>, 3>", "light2..light4: xyz towards the light, w: intensity";
+    more_light_color: [Vec4; 3] = "array<vec4<f32>, 3>";
 }
 
 const FRAME_WGSL_LEN: usize = render::<8192>("struct Frame {\n", FRAME_FIELDS, "}\n").len;
@@ -58,11 +62,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn frame_block_is_592_bytes_without_padding() {
-        assert_eq!(core::mem::size_of::<FrameBlock>(), 592);
+    fn frame_block_is_688_bytes_without_padding() {
+        assert_eq!(core::mem::size_of::<FrameBlock>(), 688);
         let sum: usize = FRAME_FIELDS.iter().map(|f| f.size).sum();
         assert_eq!(sum, core::mem::size_of::<FrameBlock>());
-        assert_eq!(crate::FRAME_UNIFORM_SIZE, 592);
+        assert_eq!(crate::FRAME_UNIFORM_SIZE, 688);
     }
 
     #[test]

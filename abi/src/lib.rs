@@ -21,6 +21,7 @@
 mod block;
 pub mod formats;
 pub mod frame;
+pub mod halftone;
 pub mod manifest;
 pub mod noise;
 pub mod object;
@@ -30,6 +31,7 @@ pub mod validate;
 
 pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
+pub use halftone::HalftoneTableSpec;
 pub use manifest::{Attribute, Manifest, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
 pub use noise::NoiseSpec;
 pub use object::{ObjectHead, OBJECT_HEAD_WGSL};

@@ -569,6 +569,8 @@ pub enum TextureSourceManifest {
     Image { path: String, resolved: String, srgb: bool },
     /// Generated tileable noise (its fields inline, beside `kind`).
     Noise(NoiseSpec),
+    /// A halftone's tone-correction table, built at load (its fields inline).
+    HalftoneTable(crate::HalftoneTableSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -142,6 +142,12 @@ impl Manifest {
                         }
                     }
                 }
+                TextureSourceManifest::HalftoneTable(spec) => {
+                    if !crate::HalftoneTableSpec::edge_ok(spec.edge as f64) {
+                        let (lo, hi) = crate::HalftoneTableSpec::EDGE_RANGE;
+                        return bad(format!("{field}.edge"), format!("{} is outside {lo}..={hi}", spec.edge));
+                    }
+                }
             }
         }
         Ok(())

@@ -150,6 +150,11 @@ pub enum Builtin {
     LightDir,
     LightColor,
     LightIntensity,
+    /// `light2.dir` … `light4.dir`: the scene's extra lights (index 0..3 is
+    /// light2..light4, `Frame::more_light_dir`).
+    MoreLightDir(u8),
+    MoreLightColor(u8),
+    MoreLightIntensity(u8),
     CameraPosition,
     CameraNear,
     CameraFar,
@@ -205,6 +210,15 @@ impl Builtin {
         ("light.dir", Builtin::LightDir),
         ("light.color", Builtin::LightColor),
         ("light.intensity", Builtin::LightIntensity),
+        ("light2.dir", Builtin::MoreLightDir(0)),
+        ("light2.color", Builtin::MoreLightColor(0)),
+        ("light2.intensity", Builtin::MoreLightIntensity(0)),
+        ("light3.dir", Builtin::MoreLightDir(1)),
+        ("light3.color", Builtin::MoreLightColor(1)),
+        ("light3.intensity", Builtin::MoreLightIntensity(1)),
+        ("light4.dir", Builtin::MoreLightDir(2)),
+        ("light4.color", Builtin::MoreLightColor(2)),
+        ("light4.intensity", Builtin::MoreLightIntensity(2)),
         ("camera.position", Builtin::CameraPosition),
         ("camera.near", Builtin::CameraNear),
         ("camera.far", Builtin::CameraFar),
@@ -244,8 +258,8 @@ impl Builtin {
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
             Time => (Ty::Float, Unit::Seconds),
             Frame | Eye => (Ty::Int, Unit::None),
-            LightColor => (Ty::Vec3, Unit::None),
-            LightIntensity => (Ty::Float, Unit::None),
+            LightColor | MoreLightColor(_) | MoreLightDir(_) => (Ty::Vec3, Unit::None),
+            LightIntensity | MoreLightIntensity(_) => (Ty::Float, Unit::None),
             // px per metre has no unit of its own; NDC focal lengths are ratios.
             CameraFocal | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter => {
                 (Ty::Vec2, Unit::None)
@@ -570,6 +584,7 @@ pub struct Param {
 pub enum TextureSource {
     Image { path: String, resolved: String, srgb: bool },
     Noise(abi::NoiseSpec),
+    HalftoneTable(abi::HalftoneTableSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -11,7 +11,7 @@ use crate::consteval::const_eval;
 use crate::ir::*;
 use crate::load::Loaded;
 use crate::InternalError;
-use abi::{Format, NoiseSpec};
+use abi::Format;
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic, Span};
@@ -22,6 +22,7 @@ use stdlib::Unit;
 mod compute;
 mod kind_args;
 mod settings;
+mod texture_source;
 
 /// Resolution limits, stated in the error messages (the table of every
 /// limit is `dsl::limits`).
@@ -522,181 +523,6 @@ impl Resolver<'_> {
         let mut tex = self.texture(&decl, dir);
         tex.per_object = true;
         Some(tex)
-    }
-
-    fn texture(&mut self, t: &ast::TextureDecl, dir: &Path) -> Texture {
-        let mut tex = Texture {
-            name: t.name.name.clone(),
-            doc: t.doc.clone(),
-            source: TextureSource::Noise(NoiseSpec {
-                size: 1,
-                octaves: 1,
-                seed: 0,
-                gradient: false,
-                channels: 1,
-                frequency: 4,
-            }),
-            wrap_repeat: true,
-            filter_linear: true,
-            mips: false,
-            per_object: false,
-            span: t.span,
-        };
-        let callee = t.source.callee.name.as_str();
-        match callee {
-            "image" => {
-                let mut path = None;
-                let mut srgb = true;
-                for a in &t.source.args {
-                    match (&a.name, &a.value.kind) {
-                        (None, AK::Str(s)) => path = Some((s.clone(), a.value.span)),
-                        (None, AK::Name(n)) if n.name == "srgb" => srgb = true,
-                        (None, AK::Name(n)) if n.name == "linear" => srgb = false,
-                        _ => self.error(
-                            Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `image`")
-                                .with_primary(a.span, "not understood")
-                                .with_help("write `image(\"path.png\", srgb)` or `image(\"path.png\", linear)`"),
-                        ),
-                    }
-                }
-                match path {
-                    Some((p, span)) => {
-                        let resolved = dir.join(&p);
-                        if !resolved.is_file() {
-                            self.error(
-                                Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
-                                    .with_primary(span, format!("looked for {}", resolved.display()))
-                                    .with_help("paths are relative to the .npr file; generate a texture with `noise(...)` if you have none"),
-                            );
-                        }
-                        tex.source = TextureSource::Image {
-                            path: p,
-                            resolved: resolved.display().to_string(),
-                            srgb,
-                        };
-                    }
-                    None => self.error(
-                        Diagnostic::error(codes::BAD_ARGUMENT, "`image` needs a file path")
-                            .with_primary(t.source.span, "no path given")
-                            .with_help("write `image(\"textures/paper.png\", srgb)`"),
-                    ),
-                }
-            }
-            "noise" => {
-                let get = |name: &str, default: f64, lo: f64, hi: f64, this: &mut Self| -> f64 {
-                    let Some(a) = t
-                        .source
-                        .args
-                        .iter()
-                        .find(|a| a.name.as_ref().is_some_and(|n| n.name == name))
-                    else {
-                        return default;
-                    };
-                    let id = this.expr(&a.value);
-                    let Some(v) = this.const_scalar(id, "a noise setting") else {
-                        return default;
-                    };
-                    if v < lo || v > hi || v.fract() != 0.0 {
-                        let code = if name == "size" && v > hi {
-                            codes::LIMIT_EXCEEDED
-                        } else {
-                            codes::OUT_OF_RANGE
-                        };
-                        this.error(
-                            Diagnostic::error(code, format!("noise `{name}` must be a whole number in {lo}..{hi}"))
-                                .with_primary(a.value.span, format!("{v} is not allowed")),
-                        );
-                        return default;
-                    }
-                    v
-                };
-                for a in &t.source.args {
-                    let known = ["size", "octaves", "seed", "kind", "channels", "frequency"];
-                    match &a.name {
-                        Some(n) if known.contains(&n.name.as_str()) => {}
-                        _ => {
-                            let mut d = Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `noise`")
-                                .with_primary(a.span, "not a noise setting");
-                            if let Some(s) = a.name.as_ref().and_then(|n| did_you_mean(&n.name, known)) {
-                                d = d.with_help(format!("did you mean `{s}`?"));
-                            } else {
-                                d = d.with_help(format!("noise settings are: {}", known.join(", ")));
-                            }
-                            self.error(d);
-                        }
-                    }
-                }
-                let size = get("size", 256.0, 1.0, MAX_NOISE_SIZE as f64, self) as u32;
-                let octaves = get("octaves", 4.0, 1.0, 12.0, self) as u32;
-                let seed = get("seed", 0.0, 0.0, u32::MAX as f64, self) as u32;
-                let channels = get("channels", 1.0, 1.0, 4.0, self) as u32;
-                let frequency = get("frequency", 4.0, 1.0, 256.0, self) as u32;
-                let mut gradient = false;
-                if let Some(a) = t
-                    .source
-                    .args
-                    .iter()
-                    .find(|a| a.name.as_ref().is_some_and(|n| n.name == "kind"))
-                {
-                    match &a.value.kind {
-                        AK::Name(n) if n.name == "value" => gradient = false,
-                        AK::Name(n) if n.name == "gradient" => gradient = true,
-                        _ => self.error(
-                            Diagnostic::error(codes::BAD_ARGUMENT, "noise `kind` must be `value` or `gradient`")
-                                .with_primary(a.value.span, "unknown kind"),
-                        ),
-                    }
-                }
-                tex.source = TextureSource::Noise(NoiseSpec {
-                    size,
-                    octaves,
-                    seed,
-                    gradient,
-                    channels,
-                    frequency,
-                });
-                tex.wrap_repeat = true;
-            }
-            other => {
-                let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown texture source `{other}`"))
-                    .with_primary(t.source.callee.span, "not a texture source");
-                d = match did_you_mean(other, ["image", "noise"]) {
-                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                    None => d.with_help("textures come from `image(\"file.png\")` or `noise(size: 256, octaves: 4)`"),
-                };
-                self.error(d);
-            }
-        }
-        for s in &t.options {
-            let value = match &s.value.kind {
-                AK::Name(n) => n.name.as_str(),
-                AK::Bool(true) => "on",
-                AK::Bool(false) => "off",
-                _ => "",
-            };
-            match (s.key.name.as_str(), value) {
-                ("wrap", "repeat") => tex.wrap_repeat = true,
-                ("wrap", "clamp") => tex.wrap_repeat = false,
-                ("filter", "linear") => tex.filter_linear = true,
-                ("filter", "nearest") => tex.filter_linear = false,
-                ("mips", "on") => tex.mips = true,
-                ("mips", "off") => tex.mips = false,
-                (key, _) => {
-                    let help = match key {
-                        "wrap" => "`wrap` is `repeat` or `clamp`",
-                        "filter" => "`filter` is `linear` or `nearest`",
-                        "mips" => "`mips` is `on` or `off`",
-                        _ => "texture options are `wrap`, `filter` and `mips`",
-                    };
-                    self.error(
-                        Diagnostic::error(codes::BAD_ARGUMENT, format!("bad texture option `{key}`"))
-                            .with_primary(s.span, "not understood")
-                            .with_help(help),
-                    );
-                }
-            }
-        }
-        tex
     }
 
     /// `scene_has(tag)`: whether any object in the scene carries `tag`. With a

@@ -1,5 +1,6 @@
 //! Declared textures on the GPU: decoded image files (sRGB or linear, with an
-//! optional mip chain) and generated noise, each with its sampler.
+//! optional mip chain), generated noise and halftone tone tables, each with
+//! its sampler.
 
 use crate::scene::Scene;
 use crate::texgen;
@@ -67,7 +68,7 @@ pub fn load_object_textures(
             };
             let declared_srgb = match &m.textures[index].source {
                 TextureSourceManifest::Image { srgb, .. } => *srgb,
-                TextureSourceManifest::Noise { .. } => false,
+                TextureSourceManifest::Noise { .. } | TextureSourceManifest::HalftoneTable(_) => false,
             };
             let srgb = b.srgb.unwrap_or(declared_srgb);
             let key = (index, b.resolved.clone(), srgb);
@@ -164,6 +165,17 @@ pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u3
     (out, nw, nh)
 }
 
+/// The texels of a `halftone_table(...)`, built for the edge as the shader
+/// will read it back from the half-float texture (so that table and shader
+/// use the same edge to the bit), in the red channel.
+fn halftone_table_texels(spec: &abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u32, u32) {
+    use stdlib::halftone_table::{HalftoneTable, ROWS, TONES};
+    let edge = half::f16::from_f32(spec.edge).to_f64();
+    let table = HalftoneTable::build(edge, spec.corrected);
+    let texels = table.texels().into_iter().map(|t| [t, 0.0, 0.0, 1.0]).collect();
+    (texels, TONES as u32, ROWS as u32)
+}
+
 fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> Result<GpuTexture, Diagnostic> {
     // Linear-light RGBA pixels plus the GPU format they are stored in.
     let (pixels, w, h, srgb, half_float) = match &t.source {
@@ -202,6 +214,10 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
         TextureSourceManifest::Noise(spec) => {
             let img = texgen::generate(spec);
             (img.pixels, img.size, img.size, false, true)
+        }
+        TextureSourceManifest::HalftoneTable(spec) => {
+            let (texels, w, h) = halftone_table_texels(spec);
+            (texels, w, h, false, true)
         }
     };
     let mut levels = vec![(pixels, w, h)];

@@ -18,6 +18,7 @@
 //! - quantities with a [`Unit`] arrive in the canonical unit: px, metres,
 //!   seconds, hertz, radians.
 
+pub mod halftone_table;
 pub mod metrics;
 pub mod operators;
 pub mod operators_patterns;

@@ -1,7 +1,8 @@
 //! Operators of dynamic 2D patterns (Breslav et al. 2007): the fuzzy
 //! visibility of a sample in an ID image (§3.1), complex multiplication for
 //! the similarity update (§3.2–3.3) and the pattern coordinates of a pixel
-//! (§3.3).
+//! (§3.3), and the halftone screen that such a frame carries, with its LOD
+//! blend (§3.4) and tone correction (§3.5).
 
 use crate::operators::p;
 use crate::{Default, Operator, Param, Stage, Ty, Unit};
@@ -64,6 +65,59 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Any,
         wgsl: include_str!("../wgsl/pattern_uv.wgsl"),
         depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+    Operator {
+        name: "halftone_screen",
+        doc: "The procedural dot screen's height in [0.1, 0.9] at pattern coordinates `uv`: the mean over both axes of 0.5 + 0.4·cos(2πx), mixed by `blend` with the screen of half the period so that dots morph over an LOD transition.",
+        reference: "Breslav et al. 2007 §3.4 (jot-lib nprdata/glsl/haftone_tx.fp, procedural dots)",
+        params: &[
+            p("uv", Ty::Vec2, "pattern coordinates (`pattern_uv(...)`), one cell per unit"),
+            Param {
+                name: "blend",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.0),
+                range: Some((0.0, 1.0)),
+                doc: "0: this screen; 1: the screen of half the period (§3.4)",
+            },
+        ],
+        returns: Ty::Float,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/halftone_screen.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+    Operator {
+        name: "halftone",
+        doc: "A tone-corrected halftone: the paper's share (1 = paper, 0 = ink) at `uv` for the wanted `tone`, on `halftone_screen(uv, blend)`, with the threshold looked up in a `halftone_table(...)` texture so that the mean over a cell is `tone` at every blend.",
+        reference: "Breslav et al. 2007 §3.5 (tone correction; jot-lib src/gtex/haftone_tx.cpp, Halftone_TX::compute_inverse_R)",
+        params: &[
+            p("table", Ty::Texture, "a `texture t = halftone_table(edge: 0.1)` (its thresholds and its edge)"),
+            p("uv", Ty::Vec2, "pattern coordinates (`pattern_uv(...)`), one cell per unit"),
+            Param {
+                name: "tone",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.5),
+                range: Some((0.0, 1.0)),
+                doc: "the wanted mean tone, 1 = white paper",
+            },
+            Param {
+                name: "blend",
+                ty: Ty::Float,
+                unit: Unit::None,
+                default: Default::Number(0.0),
+                range: Some((0.0, 1.0)),
+                doc: "the LOD blend towards the half-period screen (§3.4)",
+            },
+        ],
+        returns: Ty::Float,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/halftone.wgsl"),
+        depends: &["halftone_screen"],
         snippets: &[],
         specializations: &[],
     },

@@ -9,6 +9,8 @@ mod breakup;
 pub use breakup::*;
 mod patterns;
 pub use patterns::*;
+mod halftone;
+pub use halftone::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).
@@ -241,6 +243,8 @@ pub const REFERENCED: &[&str] = &[
     "id_share",
     "complex_mul",
     "pattern_uv",
+    "halftone_screen",
+    "halftone",
 ];
 
 pub fn has_reference(name: &str) -> bool {

@@ -96,6 +96,7 @@ pub fn build(
                     srgb: *srgb,
                 },
                 TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
+                TextureSource::HalftoneTable(spec) => TextureSourceManifest::HalftoneTable(*spec),
             },
             per_object: t.per_object,
             wrap_repeat: t.wrap_repeat,

@@ -48,6 +48,8 @@ pub fn frame_block(
         eye_right: point(right),
         camera_forward: [forward.x, forward.y, forward.z, 0.0],
         previous_view_proj: previous_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
+        more_light_dir: scene.more_light_frame().0,
+        more_light_color: scene.more_light_frame().1,
     }
 }
 

@@ -106,6 +106,8 @@ impl Renderer<'_> {
             eye_right: [right.x, right.y, right.z, 1.0],
             camera_forward: [forward.x, forward.y, forward.z, 0.0],
             previous_view_proj: previous_view_proj.to_cols_array_2d(),
+            more_light_dir: scene.more_light_frame().0,
+            more_light_color: scene.more_light_frame().1,
         }
     }
 

@@ -1,4 +1,4 @@
-//! The scene's single directional light.
+//! The scene's directional lights: `[light]`, and `[light2]` … `[light4]`.
 
 use glam::Vec3;
 
@@ -14,10 +14,30 @@ pub struct Light {
 }
 
 impl Light {
+    /// The `Frame` block's (direction, intensity) and (colour, 1) of an
+    /// optional light: zeros when the scene does not have it.
+    pub fn frame_vectors(light: Option<&Light>) -> ([f32; 4], [f32; 4]) {
+        match light {
+            Some(l) => {
+                let d = l.direction.normalize_or_zero();
+                ([d.x, d.y, d.z, l.intensity], [l.color[0], l.color[1], l.color[2], 1.0])
+            }
+            None => ([0.0; 4], [0.0; 4]),
+        }
+    }
+
     /// The direction used when a scene has no `[light]` table: from above,
     /// to the right and in front, so that lit and shadowed sides both show.
     pub fn default_direction() -> Vec3 {
         Vec3::new(0.5, 1.0, 0.8).normalize()
+    }
+}
+
+impl super::Scene {
+    /// `Frame::more_light_dir` and `Frame::more_light_color` for this scene.
+    pub fn more_light_frame(&self) -> ([[f32; 4]; 3], [[f32; 4]; 3]) {
+        let vectors = self.more_lights.each_ref().map(|l| Light::frame_vectors(l.as_ref()));
+        (vectors.map(|v| v.0), vectors.map(|v| v.1))
     }
 }
 

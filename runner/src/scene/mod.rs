@@ -22,10 +22,15 @@
 //! time = 4.0
 //! position = [2.0, 0.5, 2.0]
 //!
-//! [light]                         # optional; one directional light
+//! [light]                         # optional; the key directional light (`light.dir` …)
 //! direction = [0.5, 1.0, 0.8]     # towards the light; normalized on load
 //! color = [1.0, 1.0, 1.0]         # or "#rrggbb"; default white
 //! intensity = 1.0                 # >= 0; default 1
+//!
+//! [light2]                        # optional, and [light3], [light4]: more directional
+//! direction = [-1.0, 0.3, 0.2]    # lights (`light2.dir` …), with [light]'s fields and
+//! color = "#ffb070"               # defaults; an absent one has direction 0 and
+//!                                 # intensity 0
 //!
 //! [[object]]
 //! name = "spot"                   # optional: default the file stem or primitive kind (made unique)
@@ -139,6 +144,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     pub camera: Camera,
     pub light: Light,
+    /// `[light2]`, `[light3]`, `[light4]`, where the scene has them.
+    pub more_lights: [Option<Light>; 3],
     /// RGBA, as written (see the module docs on colours).
     pub background: [f32; 4],
 }

@@ -2,6 +2,9 @@
 //! `[light]` and every `[[object]]`, collecting all diagnostics.
 
 use super::light::Light;
+
+/// The optional extra lights, in `Scene::more_lights` order.
+const MORE_LIGHTS: [(&str, &str); 3] = [("light2", "[light2]"), ("light3", "[light3]"), ("light4", "[light4]")];
 use super::parse_camera::{parse_camera, parse_light};
 use super::parse_object::{parse_object, MeshCache, ObjectDecl};
 use super::toml_fields::{Fields, Report};
@@ -40,6 +43,10 @@ pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, V
     let light = root
         .table("light", "[light]", &mut report)
         .map_or_else(Light::default, |fields| parse_light(fields, &mut report));
+    let more_lights = MORE_LIGHTS.map(|(key, context)| {
+        root.table(key, context, &mut report)
+            .map(|fields| parse_light(fields, &mut report))
+    });
 
     let mut cache = MeshCache::default();
     let object_tables = root.tables("object", |index| format!("object #{}", index + 1), &mut report);
@@ -61,6 +68,7 @@ pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, V
             objects,
             camera,
             light,
+            more_lights,
             background,
         }),
         // Unreachable: a missing camera is always reported above.

@@ -1,0 +1,252 @@
+//! Resolve a `texture name = source(...) { options }` declaration (and the
+//! default of an `object param t: texture`): which source it names
+//! (`image`, `noise` or `halftone_table`), that source's arguments, and the
+//! sampler options.
+
+use super::{Resolver, MAX_NOISE_SIZE};
+use crate::ir::*;
+use abi::{HalftoneTableSpec, NoiseSpec};
+use dsl::ast::{self, ExprKind as AK};
+use dsl::diagnostic::did_you_mean;
+use dsl::{codes, Diagnostic};
+use std::path::Path;
+
+/// The texture sources a declaration may name.
+const SOURCES: [&str; 3] = ["image", "noise", "halftone_table"];
+
+impl Resolver<'_> {
+    /// `halftone_table(edge: 0.1, correction: on)`: the tone-correction table
+    /// of `halftone(...)` (Breslav et al. 2007 §3.5), built by the runner.
+    fn halftone_table(&mut self, t: &ast::TextureDecl) -> HalftoneTableSpec {
+        let mut spec = HalftoneTableSpec {
+            edge: 0.1,
+            corrected: true,
+        };
+        let (lo, hi) = HalftoneTableSpec::EDGE_RANGE;
+        for a in &t.source.args {
+            match a.name.as_ref().map(|n| n.name.as_str()) {
+                Some("edge") => {
+                    let id = self.expr(&a.value);
+                    let Some(v) = self.const_scalar(id, "a halftone table's edge") else {
+                        continue;
+                    };
+                    if HalftoneTableSpec::edge_ok(v) {
+                        spec.edge = v as f32;
+                    } else {
+                        self.error(
+                            Diagnostic::error(codes::OUT_OF_RANGE, format!("a halftone table's `edge` must be in {lo}..{hi}"))
+                                .with_primary(a.value.span, format!("{v} is not allowed"))
+                                .with_help("the edge is the half-width of the dots' soft edge in screen heights (jot-lib draws 0.2)"),
+                        );
+                    }
+                }
+                Some("correction") => match &a.value.kind {
+                    AK::Name(n) if n.name == "on" => spec.corrected = true,
+                    AK::Name(n) if n.name == "off" => spec.corrected = false,
+                    AK::Bool(b) => spec.corrected = *b,
+                    _ => self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, "halftone table `correction` must be `on` or `off`")
+                            .with_primary(a.value.span, "not understood"),
+                    ),
+                },
+                name => {
+                    let known = ["edge", "correction"];
+                    let mut d = Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `halftone_table`")
+                        .with_primary(a.span, "not a halftone table setting");
+                    d = match name.and_then(|n| did_you_mean(n, known)) {
+                        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                        None => d.with_help(format!(
+                            "write `halftone_table(edge: 0.1, correction: on)`; its settings are: {}",
+                            known.join(", ")
+                        )),
+                    };
+                    self.error(d);
+                }
+            }
+        }
+        spec
+    }
+
+    pub(super) fn texture(&mut self, t: &ast::TextureDecl, dir: &Path) -> Texture {
+        let mut tex = Texture {
+            name: t.name.name.clone(),
+            doc: t.doc.clone(),
+            source: TextureSource::Noise(NoiseSpec {
+                size: 1,
+                octaves: 1,
+                seed: 0,
+                gradient: false,
+                channels: 1,
+                frequency: 4,
+            }),
+            wrap_repeat: true,
+            filter_linear: true,
+            mips: false,
+            per_object: false,
+            span: t.span,
+        };
+        let callee = t.source.callee.name.as_str();
+        match callee {
+            "image" => {
+                let mut path = None;
+                let mut srgb = true;
+                for a in &t.source.args {
+                    match (&a.name, &a.value.kind) {
+                        (None, AK::Str(s)) => path = Some((s.clone(), a.value.span)),
+                        (None, AK::Name(n)) if n.name == "srgb" => srgb = true,
+                        (None, AK::Name(n)) if n.name == "linear" => srgb = false,
+                        _ => self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `image`")
+                                .with_primary(a.span, "not understood")
+                                .with_help("write `image(\"path.png\", srgb)` or `image(\"path.png\", linear)`"),
+                        ),
+                    }
+                }
+                match path {
+                    Some((p, span)) => {
+                        let resolved = dir.join(&p);
+                        if !resolved.is_file() {
+                            self.error(
+                                Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
+                                    .with_primary(span, format!("looked for {}", resolved.display()))
+                                    .with_help("paths are relative to the .npr file; generate a texture with `noise(...)` if you have none"),
+                            );
+                        }
+                        tex.source = TextureSource::Image {
+                            path: p,
+                            resolved: resolved.display().to_string(),
+                            srgb,
+                        };
+                    }
+                    None => self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, "`image` needs a file path")
+                            .with_primary(t.source.span, "no path given")
+                            .with_help("write `image(\"textures/paper.png\", srgb)`"),
+                    ),
+                }
+            }
+            "noise" => {
+                let get = |name: &str, default: f64, lo: f64, hi: f64, this: &mut Self| -> f64 {
+                    let Some(a) = t
+                        .source
+                        .args
+                        .iter()
+                        .find(|a| a.name.as_ref().is_some_and(|n| n.name == name))
+                    else {
+                        return default;
+                    };
+                    let id = this.expr(&a.value);
+                    let Some(v) = this.const_scalar(id, "a noise setting") else {
+                        return default;
+                    };
+                    if v < lo || v > hi || v.fract() != 0.0 {
+                        let code = if name == "size" && v > hi {
+                            codes::LIMIT_EXCEEDED
+                        } else {
+                            codes::OUT_OF_RANGE
+                        };
+                        this.error(
+                            Diagnostic::error(code, format!("noise `{name}` must be a whole number in {lo}..{hi}"))
+                                .with_primary(a.value.span, format!("{v} is not allowed")),
+                        );
+                        return default;
+                    }
+                    v
+                };
+                for a in &t.source.args {
+                    let known = ["size", "octaves", "seed", "kind", "channels", "frequency"];
+                    match &a.name {
+                        Some(n) if known.contains(&n.name.as_str()) => {}
+                        _ => {
+                            let mut d = Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `noise`")
+                                .with_primary(a.span, "not a noise setting");
+                            if let Some(s) = a.name.as_ref().and_then(|n| did_you_mean(&n.name, known)) {
+                                d = d.with_help(format!("did you mean `{s}`?"));
+                            } else {
+                                d = d.with_help(format!("noise settings are: {}", known.join(", ")));
+                            }
+                            self.error(d);
+                        }
+                    }
+                }
+                let size = get("size", 256.0, 1.0, MAX_NOISE_SIZE as f64, self) as u32;
+                let octaves = get("octaves", 4.0, 1.0, 12.0, self) as u32;
+                let seed = get("seed", 0.0, 0.0, u32::MAX as f64, self) as u32;
+                let channels = get("channels", 1.0, 1.0, 4.0, self) as u32;
+                let frequency = get("frequency", 4.0, 1.0, 256.0, self) as u32;
+                let mut gradient = false;
+                if let Some(a) = t
+                    .source
+                    .args
+                    .iter()
+                    .find(|a| a.name.as_ref().is_some_and(|n| n.name == "kind"))
+                {
+                    match &a.value.kind {
+                        AK::Name(n) if n.name == "value" => gradient = false,
+                        AK::Name(n) if n.name == "gradient" => gradient = true,
+                        _ => self.error(
+                            Diagnostic::error(codes::BAD_ARGUMENT, "noise `kind` must be `value` or `gradient`")
+                                .with_primary(a.value.span, "unknown kind"),
+                        ),
+                    }
+                }
+                tex.source = TextureSource::Noise(NoiseSpec {
+                    size,
+                    octaves,
+                    seed,
+                    gradient,
+                    channels,
+                    frequency,
+                });
+                tex.wrap_repeat = true;
+            }
+            "halftone_table" => {
+                tex.source = TextureSource::HalftoneTable(self.halftone_table(t));
+                // Read texel by texel (`npr_halftone`): no filtering, no wrap.
+                tex.wrap_repeat = false;
+                tex.filter_linear = false;
+            }
+            other => {
+                let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown texture source `{other}`"))
+                    .with_primary(t.source.callee.span, "not a texture source");
+                d = match did_you_mean(other, SOURCES) {
+                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                    None => d.with_help(
+                        "textures come from `image(\"file.png\")`, `noise(size: 256, octaves: 4)` or `halftone_table(edge: 0.1)`",
+                    ),
+                };
+                self.error(d);
+            }
+        }
+        for s in &t.options {
+            let value = match &s.value.kind {
+                AK::Name(n) => n.name.as_str(),
+                AK::Bool(true) => "on",
+                AK::Bool(false) => "off",
+                _ => "",
+            };
+            match (s.key.name.as_str(), value) {
+                ("wrap", "repeat") => tex.wrap_repeat = true,
+                ("wrap", "clamp") => tex.wrap_repeat = false,
+                ("filter", "linear") => tex.filter_linear = true,
+                ("filter", "nearest") => tex.filter_linear = false,
+                ("mips", "on") => tex.mips = true,
+                ("mips", "off") => tex.mips = false,
+                (key, _) => {
+                    let help = match key {
+                        "wrap" => "`wrap` is `repeat` or `clamp`",
+                        "filter" => "`filter` is `linear` or `nearest`",
+                        "mips" => "`mips` is `on` or `off`",
+                        _ => "texture options are `wrap`, `filter` and `mips`",
+                    };
+                    self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, format!("bad texture option `{key}`"))
+                            .with_primary(s.span, "not understood")
+                            .with_help(help),
+                    );
+                }
+            }
+        }
+        tex
+    }
+}
