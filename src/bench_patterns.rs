@@ -1,5 +1,6 @@
 //! `npr bench patterns`: the command around `lab::bench_patterns` (limits,
-//! compiling the tracker for each sample count, the device, the table).
+//! compiling the tracker for each sample count, the device, the table) and
+//! `lab::sliding` (the sliding of each pattern placement and tracker variant).
 
 use crate::cli::{compile_builtin, headless_gpu, Printer, EXIT_INTERNAL, EXIT_OK};
 use dsl::{codes, Diagnostic, SourceMap};
@@ -50,6 +51,25 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -
                 lab::bench_patterns::SIZE
             );
             println!("{}", lab::bench_patterns::table(&rows));
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources.borrow());
+            return EXIT_INTERNAL;
+        }
+    }
+    // Sliding (§4, Fig. 4): px per frame between the pattern's and the
+    // surface's motion, per placement and tracker variant.
+    // Relative to the working directory, as the other benchmarks' default scenes.
+    let scenes_dir = std::path::Path::new("examples/scenes");
+    match lab::sliding::run(&gpu, compile, scenes_dir, |m| eprintln!("{m}")) {
+        Ok(rows) => {
+            println!(
+                "sliding, px/frame over covered pixels ({}×{}, {} frames at 24 fps; % of screen-fixed):",
+                lab::sliding::SIZE.0,
+                lab::sliding::SIZE.1,
+                lab::sliding::FRAMES
+            );
+            println!("{}", lab::sliding::table(&rows));
             EXIT_OK
         }
         Err(e) => {

@@ -29,3 +29,4 @@ pub mod bench_styles;
 pub mod contours;
 pub mod harness;
 pub mod patterns_f64;
+pub mod sliding;

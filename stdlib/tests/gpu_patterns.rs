@@ -268,8 +268,16 @@ fn halftone_table_is_monotone_and_spans_the_screen() {
             let blend = j as f64 / 15.0;
             let (first, last) = (table.at(0, j), table.at(TONES - 1, j));
             let mean = |t: f64| stdlib::halftone_table::mean_paper(edge, blend, t);
-            assert!(mean(first) < 1e-3, "edge {edge}: row {j} starts at {first}, R = {}", mean(first));
-            assert!(mean(last) > 1.0 - 1e-3, "edge {edge}: row {j} ends at {last}, R = {}", mean(last));
+            assert!(
+                mean(first) < 1e-3,
+                "edge {edge}: row {j} starts at {first}, R = {}",
+                mean(first)
+            );
+            assert!(
+                mean(last) > 1.0 - 1e-3,
+                "edge {edge}: row {j} ends at {last}, R = {}",
+                mean(last)
+            );
         }
         // The f64 mean paper share at the stored thresholds is the tone.
         for (i, j) in [(10, 0), (128, 7), (200, 15), (64, 3)] {
