@@ -176,6 +176,35 @@ fn e0203_default_out_of_range() {
 }
 
 #[test]
+fn e0203_a_halftone_table_edge_out_of_range() {
+    // A hard step (edge 0) has no smoothstep to tabulate.
+    let text = style(&format!("texture dots = halftone_table(edge: 0.0)\n{SIMPLE_PASS}"));
+    check_case(
+        "E0203",
+        "e0203_halftone_table_edge",
+        compile_errors(&text, &scratch("e0203_halftone")),
+    );
+}
+
+#[test]
+fn e0103_a_misspelt_halftone_table_setting() {
+    let text = style(&format!("texture dots = halftone_table(egde: 0.1)\n{SIMPLE_PASS}"));
+    check_case(
+        "E0103",
+        "e0103_halftone_table_setting",
+        compile_errors(&text, &scratch("e0103_halftone")),
+    );
+    let text = style(&format!(
+        "texture dots = halftone_table(correction: maybe)\n{SIMPLE_PASS}"
+    ));
+    check_case(
+        "E0103",
+        "e0103_halftone_table_correction",
+        compile_errors(&text, &scratch("e0103_halftone_c")),
+    );
+}
+
+#[test]
 fn e0204_not_constant() {
     // Range bounds must be constants.
     let text = style(&format!("param a: float = 0.5 in 0..time\n{SIMPLE_PASS}"));

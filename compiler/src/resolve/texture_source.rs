@@ -36,7 +36,7 @@ impl Resolver<'_> {
                         self.error(
                             Diagnostic::error(codes::OUT_OF_RANGE, format!("a halftone table's `edge` must be in {lo}..{hi}"))
                                 .with_primary(a.value.span, format!("{v} is not allowed"))
-                                .with_help("the edge is the half-width of the dots' soft edge in screen heights (jot-lib draws 0.2)"),
+                                .with_help("the edge is the half-width of the dots' soft edge, in screen heights: e.g. `edge: 0.1`"),
                         );
                     }
                 }
@@ -46,7 +46,8 @@ impl Resolver<'_> {
                     AK::Bool(b) => spec.corrected = *b,
                     _ => self.error(
                         Diagnostic::error(codes::BAD_ARGUMENT, "halftone table `correction` must be `on` or `off`")
-                            .with_primary(a.value.span, "not understood"),
+                            .with_primary(a.value.span, "not understood")
+                            .with_help("write `correction: on` (the default) or `correction: off`"),
                     ),
                 },
                 name => {
