@@ -45,7 +45,9 @@ fn tone_errors(correction: &str) -> Vec<(f64, f64, f64)> {
     let scene = runner::scene::parse_scene(text, file, std::path::Path::new(".")).expect("scene");
     let (w, h) = (TONES * CELL, BLENDS * CELL);
     let mut renderer = runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-    renderer.render(&scene, &runner::FrameSpec::still(w, h, 0)).expect("render");
+    renderer
+        .render(&scene, &runner::FrameSpec::still(w, h, 0))
+        .expect("render");
     let image = renderer.read_output().expect("read back").to_rgba_f32();
     let mut errors = Vec::new();
     for j in 0..BLENDS {
@@ -78,5 +80,8 @@ fn the_corrected_halftone_keeps_its_tone_over_an_lod_transition() {
     assert!(error.abs() <= 2.0 / 255.0, "tone {tone}, blend {blend}: off by {error}");
     let (tone, blend, error) = worst(&tone_errors("off"));
     println!("without: worst tone error {error:+.5} at tone {tone:.2}, blend {blend:.1}");
-    assert!(error.abs() > 10.0 / 255.0, "the uncorrected halftone is off by only {error}");
+    assert!(
+        error.abs() > 10.0 / 255.0,
+        "the uncorrected halftone is off by only {error}"
+    );
 }

@@ -104,6 +104,7 @@ pub fn scene(elements: usize, objects: usize) -> Result<Scene, RunError> {
             tangents: None,
             indices: Vec::new(),
             source: format!("{per} points"),
+            parts: None,
         };
         let mut object = template.clone();
         object.name = format!("points{o}");

@@ -29,6 +29,8 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         gltf::import_buffers(&document, Some(base_dir), blob).map_err(|err| malformed(format!("buffer: {err}")))?;
 
     let mut merged = MergedPrimitives::new();
+    // Each primitive drawn is a part (§3.6 `patches = "parts"`).
+    let mut parts: Vec<u32> = Vec::new();
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => root_nodes(&document),
@@ -43,6 +45,8 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
                 merged.append(&primitive, &buffers, world, source)?;
+                let part = parts.last().map_or(0, |&p| p + 1);
+                parts.resize(merged.indices.len() / 3, part);
                 if merged.indices.len() / 3 > MAX_TRIANGLES {
                     return Err(MeshLoadError::too_many_triangles(
                         Path::new(source),
@@ -62,7 +66,8 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         merged.tangents,
         merged.indices,
         source.to_string(),
-    ))
+    )
+    .with_parts(parts))
 }
 
 /// Nodes that are nobody's child.

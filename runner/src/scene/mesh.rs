@@ -27,6 +27,10 @@ pub struct Mesh {
     pub indices: Vec<u32>,
     /// The file path, or a description like `sphere(radius=1, segments=64, rings=32)`.
     pub source: String,
+    /// Per triangle, the part of the file it came from (OBJ `o`/`g`, glTF
+    /// primitive), numbered from 0; `None` for a mesh of one part. A scene's
+    /// `patches = "parts"` splits the object along these (§3.6).
+    pub parts: Option<Vec<u32>>,
 }
 
 /// A vertex attribute a style may require of every mesh in the scene: the
@@ -91,7 +95,20 @@ impl Mesh {
             tangents,
             indices,
             source,
+            parts: None,
         }
+    }
+
+    /// The mesh with `parts` (one per triangle), or without them when every
+    /// triangle is in the same part.
+    pub fn with_parts(mut self, parts: Vec<u32>) -> Mesh {
+        debug_assert_eq!(parts.len(), self.indices.len() / 3);
+        self.parts = if parts.iter().any(|&p| p != parts[0]) {
+            Some(parts)
+        } else {
+            None
+        };
+        self
     }
 
     /// The mesh with its normals split where faces meet at more than
@@ -114,6 +131,8 @@ impl Mesh {
             tangents,
             indices: split.indices,
             source: format!("{} (creases > {crease_deg}°)", self.source),
+            // The split keeps every triangle in its place.
+            parts: self.parts.clone(),
         }
     }
 

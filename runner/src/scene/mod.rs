@@ -43,6 +43,9 @@
 //! crease_angle = 30.0             # optional, degrees in (0, 180]: split normals where faces meet at
 //!                                 # a sharper angle (CAD parts); default: smooth normals throughout
 //! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
+//! patches = 4                     # optional (Breslav et al. §3.6): split into 2..=64 patches, each
+//!                                 # an object of its own named `<name>.<k>`; or "parts": the
+//!                                 # file's OBJ `o`/`g` groups or glTF primitives
 //! # an `object param albedo: texture` takes an image, relative to this file:
 //! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
@@ -122,7 +125,9 @@ pub mod ocean;
 mod parse;
 mod parse_camera;
 mod parse_object;
+mod parse_patches;
 mod parse_primitive;
+pub mod patches;
 pub mod primitives;
 pub mod samples;
 mod toml_fields;

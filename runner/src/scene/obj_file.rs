@@ -4,7 +4,8 @@ use super::mesh::Mesh;
 use super::mesh_file::MeshLoadError;
 
 /// Parses OBJ text. Every model (`o`/`g`) in the file is merged into one
-/// mesh; materials are ignored. `vt` are flipped to v = 0 at the image top.
+/// mesh, each triangle remembering its model as its part; materials are
+/// ignored. `vt` are flipped to v = 0 at the image top.
 /// Normals and UVs are kept only if every model has them; missing normals
 /// are computed, missing UVs leave the mesh without UVs (and tangents).
 pub fn parse_obj(bytes: &[u8], source: &str) -> Result<Mesh, MeshLoadError> {
@@ -28,8 +29,10 @@ pub fn parse_obj(bytes: &[u8], source: &str) -> Result<Mesh, MeshLoadError> {
         })?;
 
     let mut merged = MergedArrays::default();
-    for model in &models {
+    let mut parts = Vec::new();
+    for (part, model) in models.iter().enumerate() {
         merged.append(&model.mesh, source)?;
+        parts.resize(merged.indices.len() / 3, part as u32);
     }
     Ok(Mesh::from_parts(
         merged.positions,
@@ -38,7 +41,8 @@ pub fn parse_obj(bytes: &[u8], source: &str) -> Result<Mesh, MeshLoadError> {
         None,
         merged.indices,
         source.to_string(),
-    ))
+    )
+    .with_parts(parts))
 }
 
 /// The concatenation of the file's models. An attribute becomes `None` as

@@ -495,6 +495,7 @@ pub fn ocean_mesh(ocean: &Ocean, time_s: f64) -> Mesh {
         tangents: Some(tangents),
         indices,
         source: description(ocean),
+        parts: None,
     }
 }
 

@@ -55,7 +55,11 @@ pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, V
         .filter_map(|fields| parse_object(fields, base_dir, &mut cache, &mut report))
         .collect();
     root.finish(&mut report);
-    let objects = unique_names(declarations, &mut report);
+    let objects = super::parse_patches::expand(unique_names(declarations, &mut report), &mut report);
+    if !report.has_errors() {
+        // (Duplicate explicit names are reported by `unique_names`.)
+        patch_names_are_unique(&objects, &mut report);
+    }
 
     if report.has_errors() {
         let mut diagnostics = report.diagnostics;
@@ -89,7 +93,26 @@ fn syntax_error(err: &toml::de::Error, file: FileId, text: &str) -> Diagnostic {
 
 /// Explicit names must be unique (styles and renders refer to objects by
 /// name); derived names are made unique with a `-2`, `-3`, ... suffix.
-fn unique_names(declarations: Vec<ObjectDecl>, report: &mut Report) -> Vec<super::Object> {
+/// A patch's name (`cow.2`) must not be another object's.
+fn patch_names_are_unique(objects: &[super::Object], report: &mut Report) {
+    let mut seen: HashMap<&str, Span> = HashMap::new();
+    for o in objects {
+        if let Some(first) = seen.insert(&o.name, o.mesh_span) {
+            report.push(
+                Diagnostic::error(codes::BAD_SCENE, format!("two objects are named `{}`", o.name))
+                    .with_primary(o.mesh_span, "a patch of this object has that name")
+                    .with_secondary(first, "so does this object")
+                    .with_help("rename the object whose name ends in `.<number>`"),
+            );
+        }
+    }
+}
+
+#[allow(clippy::type_complexity)]
+fn unique_names(
+    declarations: Vec<ObjectDecl>,
+    report: &mut Report,
+) -> Vec<(super::Object, Option<super::toml_fields::At<super::patches::PatchSpec>>)> {
     let mut explicit: HashMap<String, Span> = HashMap::new();
     for declaration in &declarations {
         let Some(span) = declaration.name_span else {
@@ -125,7 +148,7 @@ fn unique_names(declarations: Vec<ObjectDecl>, report: &mut Report) -> Vec<super
                 taken.push(candidate.clone());
                 declaration.object.name = candidate;
             }
-            declaration.object
+            (declaration.object, declaration.patches)
         })
         .collect()
 }

@@ -4,6 +4,7 @@
 use super::mesh::Mesh;
 use super::mesh_file::{load_mesh_file, MeshLoadError};
 use super::parse_primitive::parse_primitive;
+use super::patches::PatchSpec;
 use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::{Object, TextureBinding};
@@ -25,6 +26,8 @@ pub struct MeshCache {
 /// An object as read, with what duplicate-name checking needs.
 pub struct ObjectDecl {
     pub object: Object,
+    /// `patches = ...`: expanded into one object per patch after naming.
+    pub patches: Option<At<PatchSpec>>,
     /// Where the name was written; `None` when it was derived.
     pub name_span: Option<Span>,
 }
@@ -56,6 +59,7 @@ pub fn parse_object(
     let tags = read_tags(&mut fields, report);
     let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
     let (params, param_spans, textures) = read_params(&mut fields, base_dir, report);
+    let patches = super::parse_patches::read_patches(&mut fields, report);
     fields.finish(report);
     if report.diagnostics.len() > errors_before {
         return None;
@@ -88,6 +92,7 @@ pub fn parse_object(
             time_varying,
         },
         name_span,
+        patches,
     })
 }
 

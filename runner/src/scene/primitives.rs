@@ -400,6 +400,7 @@ impl Builder {
             tangents: Some(self.tangents),
             indices: self.indices,
             source,
+            parts: None,
         }
     }
 }

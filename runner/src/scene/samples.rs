@@ -216,6 +216,7 @@ mod tests {
             tangents: None,
             indices,
             source: "square".into(),
+            parts: None,
         }
     }
 
