@@ -17,6 +17,12 @@ use common::{gpu, root};
 /// `examples/golden/<style>_cows_{00,12,24}.png` (`NPR_UPDATE_GOLDENS=1`
 /// rewrites them).
 fn matches_its_goldens(style: &str) {
+    matches_its_goldens_on(style, "cows");
+}
+
+/// [`matches_its_goldens`] on `examples/scenes/<scene>.toml`, with goldens
+/// `examples/golden/<style>_<scene>_{00,12,24}.png`.
+fn matches_its_goldens_on(style: &str, scene_name: &str) {
     let mut sources = dsl::SourceMap::new();
     let program = compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
@@ -25,7 +31,7 @@ fn matches_its_goldens(style: &str) {
     )
     .unwrap_or_else(|e| panic!("{e:?}"))
     .program();
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
+    let scene = runner::scene::load_scene(&root().join(format!("examples/scenes/{scene_name}.toml")), &mut sources)
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     // Path-dependent: every frame in order, as `--frames 0..25` renders them.
@@ -40,7 +46,7 @@ fn matches_its_goldens(style: &str) {
             continue;
         }
         let img = r.read_output().expect("read").to_rgba8();
-        let golden = root().join(format!("examples/golden/{style}_cows_{frame:02}.png"));
+        let golden = root().join(format!("examples/golden/{style}_{scene_name}_{frame:02}.png"));
         let cmp = lab::harness::compare_with_golden(
             &img,
             &golden,
@@ -147,4 +153,11 @@ fn the_painterly_stroke_texture_is_what_texgen_writes() {
         fresh == shipped,
         "examples/textures/pattern_strokes.png differs from what texgen writes"
     );
+}
+
+/// §3.6: the cow in 6 patches turning in place, each patch hatched in its
+/// own tracked frame (`examples/scenes/patched_cow.toml`).
+#[test]
+fn hatching_on_the_patched_turning_cow_matches_its_goldens() {
+    matches_its_goldens_on("hatching", "patched_cow");
 }

@@ -270,7 +270,8 @@ impl<'d> Renderer<'d> {
             };
         }
         meshes::update_time_varying(self.queue, &mut self.meshes, scene, spec.time_s)?;
-        self.write_uniforms(scene, spec)
+        // Spinning objects turn with the frame's time (`spin`).
+        self.write_uniforms(&scene.posed(spec.time_s), spec)
     }
 
     /// Run the frame only up to (and including) the pass that writes `target`,

@@ -43,6 +43,7 @@
 //! crease_angle = 30.0             # optional, degrees in (0, 180]: split normals where faces meet at
 //!                                 # a sharper angle (CAD parts); default: smooth normals throughout
 //! params = { tint = "#ff8080", breakup = 0.5 }   # optional per-object parameter bindings
+//! spin = [0.0, 30.0, 0.0]         # optional, degrees per second about the object's own Y, X, Z
 //! patches = 4                     # optional (Breslav et al. §3.6): split into 2..=64 patches, each
 //!                                 # an object of its own named `<name>.<k>`; or "parts": the
 //!                                 # file's OBJ `o`/`g` groups or glTF primitives
@@ -179,6 +180,9 @@ pub struct Object {
     /// each frame's time ([`Primitive::build_at`]).
     pub time_varying: Option<Primitive>,
     pub casts_shadows: bool,
+    /// `spin = [x, y, z]`: turning about the object's own origin, in degrees
+    /// per second about Y, then X, then Z (as `rotate`); zero when still.
+    pub spin: glam::Vec3,
 }
 
 /// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:
@@ -200,6 +204,33 @@ pub struct TextureBinding {
 impl Object {
     pub fn has_tag(&self, tag: &str) -> bool {
         self.tags.iter().any(|t| t == tag)
+    }
+
+    /// Object-to-world at `time_s`: `model` turned by `spin × time`.
+    pub fn model_at(&self, time_s: f64) -> glam::Mat4 {
+        if self.spin == glam::Vec3::ZERO {
+            return self.model;
+        }
+        let a = self.spin * (time_s as f32).to_radians();
+        self.model
+            * glam::Mat4::from_quat(
+                glam::Quat::from_rotation_z(a.z) * glam::Quat::from_rotation_x(a.x) * glam::Quat::from_rotation_y(a.y),
+            )
+    }
+}
+
+impl Scene {
+    /// The scene as it stands at `time_s`: every spinning object's model
+    /// turned to that time (borrowed unchanged when nothing spins).
+    pub fn posed(&self, time_s: f64) -> std::borrow::Cow<'_, Scene> {
+        if self.objects.iter().all(|o| o.spin == glam::Vec3::ZERO) {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut posed = self.clone();
+        for o in &mut posed.objects {
+            o.model = o.model_at(time_s);
+        }
+        std::borrow::Cow::Owned(posed)
     }
 }
 

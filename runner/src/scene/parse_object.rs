@@ -58,6 +58,7 @@ pub fn parse_object(
     let model = read_transform(&mut fields, report);
     let tags = read_tags(&mut fields, report);
     let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
+    let spin = fields.vec3("spin", report).map_or(Vec3::ZERO, |s| s.value);
     let (params, param_spans, textures) = read_params(&mut fields, base_dir, report);
     let patches = super::parse_patches::read_patches(&mut fields, report);
     fields.finish(report);
@@ -90,6 +91,7 @@ pub fn parse_object(
             mesh_span,
             casts_shadows,
             time_varying,
+            spin,
         },
         name_span,
         patches,
