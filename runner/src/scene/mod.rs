@@ -128,6 +128,7 @@ mod parse_camera;
 mod parse_object;
 mod parse_patches;
 mod parse_primitive;
+pub mod patch_weights;
 pub mod patches;
 pub mod primitives;
 pub mod samples;
