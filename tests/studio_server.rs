@@ -8,7 +8,7 @@
 mod common;
 
 use common::http::{self, Events};
-use common::live::{save_by_rename, Live};
+use common::live::{save_by_rename, start_studio as start};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -44,28 +44,6 @@ fn reference(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
         .expect("npr render");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::read(out).expect("reference image")
-}
-
-/// Start a studio on `style` and return it with its address.
-pub fn start(style: &Path) -> (Live, String) {
-    let mut studio = Live::start(&[
-        "studio",
-        style.to_str().expect("utf-8"),
-        "--scene",
-        "examples/scenes/spot.toml",
-        "--size",
-        "64x64",
-        "--port",
-        "0",
-    ]);
-    let line = studio.wait_for("npr studio: http://").pop().expect("address line");
-    let addr = line
-        .split("http://")
-        .nth(1)
-        .expect("url")
-        .trim_end_matches('/')
-        .to_string();
-    (studio, addr)
 }
 
 fn frame_id(s: &Value) -> u64 {

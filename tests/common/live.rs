@@ -95,3 +95,26 @@ pub fn save_by_rename(path: &Path, text: &str) {
     std::fs::write(&tmp, text).expect("write temp file");
     std::fs::rename(&tmp, path).expect("rename over the file");
 }
+
+/// Start `npr studio` on `style` (64×64, spot.toml, any free port); the
+/// child and its address (`127.0.0.1:PORT`).
+pub fn start_studio(style: &Path) -> (Live, String) {
+    let mut studio = Live::start(&[
+        "studio",
+        style.to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "64x64",
+        "--port",
+        "0",
+    ]);
+    let line = studio.wait_for("npr studio: http://").pop().expect("address line");
+    let addr = line
+        .split("http://")
+        .nth(1)
+        .expect("url")
+        .trim_end_matches('/')
+        .to_string();
+    (studio, addr)
+}
