@@ -227,3 +227,44 @@ fn a_style_broken_at_start_still_opens_the_page_with_its_diagnostics() {
     assert!(s["frame"].is_null(), "nothing rendered yet");
     assert_eq!(errors(&s)[0]["labels"][0]["line"], 3);
 }
+
+#[test]
+fn a_texture_is_watched_and_an_unreadable_one_is_reported_while_serving() {
+    let dir = scratch("texture");
+    let grad = dir.join("grad.png");
+    let write_grad = |flip: bool| {
+        let img = image::RgbaImage::from_fn(8, 8, |x, _| {
+            let v = (x * 32) as u8;
+            image::Rgba([if flip { 255 - v } else { v }, 64, 128, 255])
+        });
+        img.save(&grad).expect("write texture");
+    };
+    write_grad(false);
+    let style = dir.join("tex.npr");
+    std::fs::write(
+        &style,
+        "style \"T\"\ntexture grad = image(\"grad.png\", linear)\npass p: image() {\n  out c: rgba8unorm = grad\n}\noutput p.c\n",
+    )
+    .expect("style");
+    let (studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a first frame", |s| frame_id(s) > 0);
+    let first_png = output_png(&addr, &first);
+
+    // A new texture on disk is a new frame.
+    write_grad(true);
+    let changed = events.until("the new texture", |s| frame_id(s) > frame_id(&first));
+    assert_ne!(output_png(&addr, &changed), first_png);
+
+    // An unreadable one is reported with its code; the last frame stays.
+    std::fs::write(&grad, b"not a png").expect("corrupt texture");
+    let broken = events.until("the unreadable texture", |s| !errors(s).is_empty());
+    assert_eq!(errors(&broken)[0]["code"], "E0401", "{}", broken["diagnostics"]);
+    assert_eq!(frame_id(&broken), frame_id(&changed));
+    assert_eq!(http::get(&addr, "/").status, 200, "the server keeps serving");
+
+    write_grad(false);
+    let back = events.until("recovery", |s| errors(s).is_empty() && frame_id(s) > frame_id(&changed));
+    assert_eq!(output_png(&addr, &back), first_png);
+    drop(studio);
+}
