@@ -17,6 +17,17 @@ if ! have_vulkan_icd; then
   $SUDO apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
 fi
 
+# The studio's browser test (tests/studio_browser.rs) drives Debian's
+# Chromium headless over the DevTools protocol; no browser is downloaded.
+if [ ! -x /usr/bin/chromium ]; then
+  echo "setup: installing Chromium for the studio's browser test (apt: chromium)"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq chromium >/dev/null
+fi
+
 if ! command -v cargo >/dev/null 2>&1; then
   echo "setup: cargo not found; install Rust from your distribution or rustup" >&2
   exit 1

@@ -36,7 +36,13 @@ pub enum MessageFormat {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Parse and check a style; print diagnostics only.
-    Check { style: PathBuf },
+    Check {
+        style: PathBuf,
+        /// Set a parameter, typed like a default in the style: `--set bands=5`,
+        /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
+        #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
+        set: Vec<String>,
+    },
     /// Compile a style to WGSL (one file per pass) plus manifest.json.
     Compile {
         style: PathBuf,
@@ -59,6 +65,10 @@ pub enum Command {
         /// only absent objects need is removed (see --report).
         #[arg(long)]
         scene: Option<PathBuf>,
+        /// Set a parameter, typed like a default in the style: `--set bands=5`,
+        /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
+        #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
+        set: Vec<String>,
     },
     /// Render a style on a scene to an image.
     Render {
@@ -101,6 +111,66 @@ pub enum Command {
         dump_passes: Option<PathBuf>,
         #[arg(long)]
         keep_params: bool,
+        /// Set a parameter, typed like a default in the style: `--set bands=5`,
+        /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
+        #[arg(long = "set", value_name = "NAME=VALUE", conflicts_with = "compiled", value_parser = crate::set_params::parse_set_arg)]
+        set: Vec<String>,
+    },
+    /// Render on every change to the style, what it `use`s, the scene, its
+    /// textures and meshes; a bad save prints diagnostics and keeps the last
+    /// good image. Runs until interrupted.
+    Watch {
+        style: PathBuf,
+        /// Scene file (TOML).
+        #[arg(long)]
+        scene: PathBuf,
+        /// Output size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "512x512", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Time in seconds (for animated parameters and cameras).
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        #[arg(long, default_value_t = 24.0)]
+        fps: f64,
+        /// Which eye to render for stereo cameras (0 = left, 1 = right).
+        #[arg(long, default_value_t = 0)]
+        eye: u32,
+        /// Output image (.png or .exr), written atomically.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.
+        #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
+        set: Vec<String>,
+    },
+    /// Live authoring in the browser: a local web server with the rendered
+    /// image, controls for the parameters, every pass, diagnostics in place
+    /// and timings, re-rendered on every save. See docs/STUDIO.md.
+    Studio {
+        style: PathBuf,
+        /// Scene file (TOML).
+        #[arg(long)]
+        scene: PathBuf,
+        /// Output size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "512x512", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Time in seconds (for animated parameters and cameras).
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        #[arg(long, default_value_t = 24.0)]
+        fps: f64,
+        /// Which eye to render for stereo cameras (0 = left, 1 = right).
+        #[arg(long, default_value_t = 0)]
+        eye: u32,
+        /// Address to bind; anything but a loopback address exposes the
+        /// studio (and your files) to the network.
+        #[arg(long, default_value = "127.0.0.1")]
+        host: String,
+        /// Port; 0 picks a free one. The address is printed at start.
+        #[arg(long, default_value_t = 0)]
+        port: u16,
+        /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.
+        #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
+        set: Vec<String>,
     },
     /// Benchmarks; see docs/PERFORMANCE.md.
     #[command(subcommand)]
@@ -310,21 +380,23 @@ pub fn run(cli: Cli) -> i32 {
     };
     let mut sources = SourceMap::new();
     match cli.command {
-        Command::Check { style } => match compile(&style, &mut sources, &CompileOptions::default(), &printer) {
-            Ok(c) => {
-                printer.diagnostics(&c.warnings, &sources);
-                if printer.format == MessageFormat::Human {
-                    eprintln!(
-                        "ok: style \"{}\": {} pass(es), {} target(s)",
-                        c.manifest.style,
-                        c.manifest.passes.len(),
-                        c.manifest.targets.len()
-                    );
+        Command::Check { style, set } => {
+            match crate::set_params::compile(&style, &set, &mut sources, &CompileOptions::default(), &printer) {
+                Ok(c) => {
+                    printer.diagnostics(&c.warnings, &sources);
+                    if printer.format == MessageFormat::Human {
+                        eprintln!(
+                            "ok: style \"{}\": {} pass(es), {} target(s)",
+                            c.manifest.style,
+                            c.manifest.passes.len(),
+                            c.manifest.targets.len()
+                        );
+                    }
+                    EXIT_OK
                 }
-                EXIT_OK
+                Err(code) => code,
             }
-            Err(code) => code,
-        },
+        }
         Command::Compile {
             style,
             out,
@@ -333,6 +405,7 @@ pub fn run(cli: Cli) -> i32 {
             dump_ir,
             time_passes,
             scene,
+            set,
         } => {
             if out.exists() && !out.is_dir() {
                 return printer.fail(
@@ -354,8 +427,9 @@ pub fn run(cli: Cli) -> i32 {
                 keep_params,
                 dump_ir,
                 scene,
+                ..Default::default()
             };
-            let c = match compile(&style, &mut sources, &opts, &printer) {
+            let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, &printer) {
                 Ok(c) => c,
                 Err(code) => return code,
             };
@@ -377,6 +451,58 @@ pub fn run(cli: Cli) -> i32 {
             EXIT_OK
         }
         Command::Bench(cmd) => bench(cmd, &printer),
+        Command::Watch {
+            style,
+            scene,
+            size,
+            time,
+            fps,
+            eye,
+            out,
+            set,
+        } => crate::watch::run(
+            crate::watch::WatchArgs {
+                inputs: crate::live::build::Inputs {
+                    style,
+                    scene,
+                    sets: set,
+                    keep_params: false,
+                },
+                out,
+                size,
+                time,
+                fps,
+                eye,
+            },
+            &printer,
+        ),
+        Command::Studio {
+            style,
+            scene,
+            size,
+            time,
+            fps,
+            eye,
+            host,
+            port,
+            set,
+        } => crate::studio::run(
+            crate::studio::StudioArgs {
+                inputs: crate::live::build::Inputs {
+                    style,
+                    scene,
+                    sets: set,
+                    keep_params: true,
+                },
+                size,
+                time,
+                fps,
+                eye,
+                host,
+                port,
+            },
+            &printer,
+        ),
         Command::Texgen {
             out,
             size,
@@ -432,6 +558,7 @@ pub fn run(cli: Cli) -> i32 {
             eye,
             dump_passes,
             keep_params,
+            set,
         } => {
             if let Err(code) = printer
                 .check(crate::args::check_size(size))
@@ -461,10 +588,10 @@ pub fn run(cli: Cli) -> i32 {
                     // Compile for this scene, so nothing the scene cannot use is run.
                     let opts = CompileOptions {
                         keep_params,
-                        dump_ir: false,
                         scene: Some(scene.summary(&scene_name)),
+                        ..Default::default()
                     };
-                    let c = match compile(&style, &mut sources, &opts, &printer) {
+                    let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, &printer) {
                         Ok(c) => c,
                         Err(code) => return code,
                     };
@@ -948,8 +1075,23 @@ fn scene_style_gpu(
     Ok((scene, compiled, headless_gpu(printer)?))
 }
 
-fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions, printer: &Printer) -> Result<Compiled, i32> {
-    match compiler::compile_file(style, sources, opts) {
+pub(crate) fn compile(
+    style: &Path,
+    sources: &mut SourceMap,
+    opts: &CompileOptions,
+    printer: &Printer,
+) -> Result<Compiled, i32> {
+    report_compile(compiler::compile_file(style, sources, opts), sources, printer)
+}
+
+/// Print a failed compile's diagnostics (and the rejected WGSL of an
+/// internal error); the error is the exit code.
+pub(crate) fn report_compile(
+    result: Result<Compiled, CompileError>,
+    sources: &SourceMap,
+    printer: &Printer,
+) -> Result<Compiled, i32> {
+    match result {
         Ok(c) => Ok(c),
         Err(CompileError::User(diags)) => {
             printer.diagnostics(&diags, sources);
@@ -1019,7 +1161,7 @@ fn frame_path(out: &Path, frame: u32) -> PathBuf {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn render(
+pub(crate) fn render(
     gpu: &Gpu,
     program: &StyleProgram,
     scene: &runner::scene::Scene,

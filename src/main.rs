@@ -6,7 +6,11 @@ mod args;
 mod bench_compile;
 mod bench_patterns;
 mod cli;
+mod live;
+mod set_params;
+mod studio;
 mod usage;
+mod watch;
 
 fn main() {
     let code = match usage::parse() {

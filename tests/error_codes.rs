@@ -585,6 +585,27 @@ fn e0506_a_benchmark_that_cannot_run() {
 }
 
 #[test]
+fn e0507_a_studio_port_in_use() {
+    // Hold a port, then ask the studio for it: it must refuse at once.
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").expect("bind a port");
+    let port = taken.local_addr().expect("address").port().to_string();
+    let (d, r) = cli_errors(
+        &[
+            "studio",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--port",
+            &port,
+        ],
+        &scratch("e0507"),
+    );
+    let r = r.replace(&port, "<port>");
+    assert!(r.contains("--port 0"), "{r}");
+    check("E0507", (d, r));
+}
+
+#[test]
 fn e0404_frames_past_the_frame_limit() {
     let (d, r) = cli_errors(
         &[

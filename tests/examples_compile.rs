@@ -26,6 +26,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             keep_params,
             dump_ir: false,
             scene: None,
+            overrides: Vec::new(),
         },
     ) {
         Ok(c) => c,

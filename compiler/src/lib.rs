@@ -15,6 +15,7 @@ pub mod dump;
 pub mod emit;
 pub mod ir;
 pub mod load;
+pub mod overrides;
 pub mod pipeline;
 pub mod prune;
 pub mod report;
@@ -37,6 +38,9 @@ pub struct CompileOptions {
     /// a constant, so passes only an absent tag needs are pruned. `None` keeps
     /// everything (`scene_has` is conservatively `true`).
     pub scene: Option<SceneSummary>,
+    /// New defaults for parameters (`--set`), already typed by the caller;
+    /// applied after typecheck, so they fold like written defaults.
+    pub overrides: Vec<overrides::ParamOverride>,
 }
 
 #[derive(Debug, Clone)]

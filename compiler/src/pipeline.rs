@@ -74,6 +74,7 @@ pub fn run(
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
     fail_if_errors(&diags)?;
+    crate::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
     let graph = crate::dag::build(&ir, &mut diags);
     st.done("dag", &ir);
     fail_if_errors(&diags)?;

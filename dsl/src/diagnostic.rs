@@ -287,6 +287,9 @@ pub mod codes {
     pub const NO_DEVICE: &str = "E0505";
     /// A benchmark cannot run on what it was given.
     pub const BENCH_UNSUPPORTED: &str = "E0506";
+    /// `npr studio` cannot serve (the port is taken, the host cannot be
+    /// bound), or `npr watch`/`npr studio` cannot watch the files.
+    pub const CANNOT_SERVE: &str = "E0507";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -328,5 +331,6 @@ pub mod codes {
         (BAD_COMPILED_DIR, "bad compiled style directory"),
         (NO_DEVICE, "no GPU device"),
         (BENCH_UNSUPPORTED, "benchmark cannot run on this input"),
+        (CANNOT_SERVE, "cannot serve the studio or watch files"),
     ];
 }

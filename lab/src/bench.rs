@@ -1,4 +1,5 @@
-//! Frame-time measurements for `npr bench frame` (benchmarks, never tests).
+//! Frame-time measurements for `npr bench frame` and `npr bench passes`
+//! (benchmarks, never tests; per-pass timestamps are `pass_timer.rs`).
 //!
 //! Ratios are taken in one run with interleaved samples, so machine load
 //! affects both sides alike.
@@ -159,61 +160,24 @@ pub fn pass_times(
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<PassTime>, RunError> {
-    if !gpu.device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
-        return Err(RunError::Limit(format!(
+    let passes = program.manifest.passes.len();
+    let timer = crate::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
+        RunError::Limit(format!(
             "{} has no timestamp queries: per-pass times cannot be measured",
             gpu.describe()
-        )));
-    }
+        ))
+    })?;
     let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-    let passes = r.manifest.passes.len() as u32;
-    let slots = (2 * passes).max(2);
-    let queries = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
-        label: Some("npr pass timestamps"),
-        ty: wgpu::QueryType::Timestamp,
-        count: slots,
-    });
-    let bytes = slots as u64 * 8;
-    let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("npr timestamps"),
-        size: bytes,
-        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("npr timestamps readback"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let wait = || wait_idle(gpu);
     let spec = FrameSpec::still(width, height, 0);
-    let period_ns = gpu.queue.get_timestamp_period() as f64;
-    let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); passes as usize];
+    let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); passes];
     for frame in 0..=frames.max(1) {
-        r.prepare(scene, &spec)?;
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        r.encode_timed(&mut encoder, &queries);
-        encoder.resolve_query_set(&queries, 0..2 * passes, &resolve, 0);
-        encoder.copy_buffer_to_buffer(&resolve, 0, &readback, 0, bytes);
-        gpu.queue.submit([encoder.finish()]);
-        readback.slice(..).map_async(wgpu::MapMode::Read, |_| {});
-        wait()?;
-        {
-            let view = readback
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| RunError::Internal(format!("cannot map timestamps: {e}")))?;
-            let ticks: &[u64] = bytemuck::cast_slice(&view);
-            // Frame 0 warms up pipelines and caches; it is not counted.
-            if frame > 0 {
-                for (p, times) in per_pass.iter_mut().enumerate() {
-                    let (begin, end) = (ticks[2 * p], ticks[2 * p + 1]);
-                    times.push(end.saturating_sub(begin) as f64 * period_ns * 1e-6);
-                }
+        let ms = timer.frame(gpu, &mut r, scene, &spec)?;
+        // Frame 0 warms up pipelines and caches; it is not counted.
+        if frame > 0 {
+            for (times, t) in per_pass.iter_mut().zip(ms) {
+                times.push(t);
             }
         }
-        readback.unmap();
     }
     Ok(r.manifest
         .passes

@@ -7,6 +7,8 @@
 //!   precision/recall of a rendered line mask.
 //! - [`bench`]: frame overhead against the runner's own passes, frame time
 //!   and per-pass GPU time.
+//! - [`pass_timer`]: per-pass GPU time of one frame from timestamp queries
+//!   (`npr bench passes`, `npr studio`).
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
@@ -28,5 +30,6 @@ pub mod bench_reduce_pixels;
 pub mod bench_styles;
 pub mod contours;
 pub mod harness;
+pub mod pass_timer;
 pub mod patterns_f64;
 pub mod sliding;

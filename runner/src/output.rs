@@ -84,6 +84,30 @@ fn encode(img: image::DynamicImage, format: image::ImageFormat) -> std::io::Resu
     Ok(buf.into_inner())
 }
 
+/// A target as PNG bytes, exactly as [`write_target`] writes a `.png`:
+/// 8-bit for unorm targets, 16-bit (clamped to [0, 1]) for float targets.
+pub fn encode_png(img: &TargetImage) -> std::io::Result<Vec<u8>> {
+    if img.is_float() {
+        let px: Vec<u16> = img
+            .to_rgba_f32()
+            .into_iter()
+            .flat_map(|p| {
+                let p = if img.format.channels() == 1 {
+                    [p[0], p[0], p[0], 1.0]
+                } else {
+                    p
+                };
+                p.map(|c| (if c.is_finite() { c } else { 0.0 }.clamp(0.0, 1.0) * 65535.0).round() as u16)
+            })
+            .collect();
+        let buf = image::ImageBuffer::<image::Rgba<u16>, _>::from_raw(img.width, img.height, px)
+            .ok_or_else(|| std::io::Error::other("bad image size"))?;
+        encode(image::DynamicImage::ImageRgba16(buf), image::ImageFormat::Png)
+    } else {
+        encode(image::DynamicImage::ImageRgba8(img.to_rgba8()), image::ImageFormat::Png)
+    }
+}
+
 /// Write a target: `.png` (8-bit for unorm targets, 16-bit for float targets)
 /// or `.exr` (32-bit float, values unclamped).
 pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
@@ -98,27 +122,7 @@ pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
                 .ok_or_else(|| std::io::Error::other("bad image size"))?;
             encode(image::DynamicImage::ImageRgba32F(buf), image::ImageFormat::OpenExr)?
         }
-        "png" | "" => {
-            if img.is_float() {
-                let px: Vec<u16> = img
-                    .to_rgba_f32()
-                    .into_iter()
-                    .flat_map(|p| {
-                        let p = if img.format.channels() == 1 {
-                            [p[0], p[0], p[0], 1.0]
-                        } else {
-                            p
-                        };
-                        p.map(|c| (if c.is_finite() { c } else { 0.0 }.clamp(0.0, 1.0) * 65535.0).round() as u16)
-                    })
-                    .collect();
-                let buf = image::ImageBuffer::<image::Rgba<u16>, _>::from_raw(img.width, img.height, px)
-                    .ok_or_else(|| std::io::Error::other("bad image size"))?;
-                encode(image::DynamicImage::ImageRgba16(buf), image::ImageFormat::Png)?
-            } else {
-                encode(image::DynamicImage::ImageRgba8(img.to_rgba8()), image::ImageFormat::Png)?
-            }
-        }
+        "png" | "" => encode_png(img)?,
         other => {
             return Err(std::io::Error::other(format!(
                 "unsupported image extension `.{other}`: use .png or .exr"

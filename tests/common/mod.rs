@@ -5,6 +5,9 @@
 // Each test binary uses its own subset of these.
 #![allow(dead_code)]
 
+pub mod http;
+pub mod live;
+
 use runner::Gpu;
 use std::path::Path;
 use std::sync::OnceLock;

@@ -1,0 +1,72 @@
+//! Parameter overrides (`--set name=value`, the studio's "apply"): a value
+//! the caller has already typed against the parameter replaces its default
+//! in the IR, after typecheck and before specialize, so that folding, the
+//! manifest's `default` and everything downstream see the override exactly
+//! as if it had been written in the file.
+//!
+//! The caller (the CLI's `set_params`) checks names, types, units and ranges
+//! against the manifest with diagnostics that point at the `--set` argument;
+//! a name that reaches this stage unchecked is a bug, so it is an internal
+//! error rather than a silent no-op.
+
+use crate::ir::{Const, ExprKind, Ir, Ty};
+use crate::InternalError;
+
+/// One parameter's new default, in canonical units (px, m, s, Hz, radians;
+/// an enum's variant index; a colour's four components).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamOverride {
+    pub name: String,
+    pub value: Vec<f64>,
+    /// The value is a `%` of the image height (`value[0]` in percent),
+    /// resolved by the runner per frame like a `%` default.
+    pub percent_of_height: bool,
+}
+
+/// Replace the defaults of the overridden parameters. An animated parameter
+/// loses its keyframes: a set value is a constant.
+pub fn apply(ir: &mut Ir, overrides: &[ParamOverride]) -> Result<(), InternalError> {
+    for o in overrides {
+        let Some(i) = ir.params.iter().position(|p| p.name == o.name) else {
+            return Err(InternalError {
+                message: format!("an override names no parameter `{}`", o.name),
+                detail: "overrides are checked against the manifest before compiling".into(),
+                span: None,
+                wgsl: None,
+            });
+        };
+        let old = ir.params[i].default;
+        let (ty, unit, span) = {
+            let e = ir.expr(old);
+            (e.ty, e.unit, e.span)
+        };
+        let value_ty = ir.params[i].value_ty;
+        let kind = if o.percent_of_height {
+            ExprKind::PercentOfHeight(o.value.first().copied().unwrap_or(0.0) / 100.0)
+        } else {
+            ExprKind::Const(constant(value_ty, &o.value).ok_or_else(|| InternalError {
+                message: format!("override of `{}` has {} component(s)", o.name, o.value.len()),
+                detail: format!("the parameter is {}", value_ty.describe()),
+                span: Some(span),
+                wgsl: None,
+            })?)
+        };
+        ir.params[i].default = ir.add_typed(kind, ty, unit, span);
+        ir.params[i].keys.clear();
+    }
+    Ok(())
+}
+
+/// The constant of type `ty` with these components, if they fit it.
+fn constant(ty: Ty, v: &[f64]) -> Option<Const> {
+    let want = ty.components()? as usize;
+    if v.len() != want {
+        return None;
+    }
+    Some(match ty {
+        Ty::Float => Const::Float(v[0]),
+        Ty::Int => Const::Int(v[0].round() as i64),
+        Ty::Bool => Const::Bool(v[0] != 0.0),
+        _ => Const::Vec(v.to_vec()),
+    })
+}

@@ -1,0 +1,96 @@
+//! One build of a watched style: load the scene, compile the style for it
+//! (with the `--set`s and the studio's overrides), and list every file the
+//! result depends on, whether the build succeeded or not, so that a fix to
+//! any of them triggers the next build.
+//!
+//! Nothing here prints: `npr watch` prints the diagnostics, `npr studio`
+//! sends them to the page.
+
+use crate::set_params;
+use compiler::overrides::ParamOverride;
+use compiler::{CompileError, CompileOptions, Compiled};
+use dsl::{Diagnostic, SourceMap};
+use runner::scene::Scene;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What a build reads: given once on the command line.
+#[derive(Debug, Clone)]
+pub struct Inputs {
+    pub style: PathBuf,
+    pub scene: PathBuf,
+    pub sets: Vec<String>,
+    /// Compile with `--keep-params` (the studio, so sliders need no recompile).
+    pub keep_params: bool,
+}
+
+pub struct Built {
+    pub compiled: Compiled,
+    pub scene: Scene,
+    pub sources: SourceMap,
+    /// Wall time of scene load + compile (with the `--set` typing).
+    pub compile_ms: f64,
+}
+
+pub struct Failed {
+    pub diagnostics: Vec<Diagnostic>,
+    pub sources: SourceMap,
+}
+
+/// Build once. `overrides` (the studio's slider values) apply after the
+/// `--set`s, so a slider wins over the command line.
+pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Failed> {
+    let start = Instant::now();
+    let mut sources = SourceMap::new();
+    let scene = match runner::scene::load_scene(&inputs.scene, &mut sources) {
+        Ok(s) => s,
+        Err(diagnostics) => return Err(Failed { diagnostics, sources }),
+    };
+    let opts = CompileOptions {
+        keep_params: inputs.keep_params,
+        scene: Some(scene.summary(&inputs.scene.display().to_string())),
+        ..Default::default()
+    };
+    let result = set_params::compile_with_sets(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);
+    match result {
+        Ok(compiled) => Ok(Built {
+            compiled,
+            scene,
+            sources,
+            compile_ms: start.elapsed().as_secs_f64() * 1e3,
+        }),
+        Err(CompileError::User(diagnostics)) => Err(Failed { diagnostics, sources }),
+        Err(CompileError::Internal(e)) => Err(Failed {
+            diagnostics: vec![e.to_diagnostic()],
+            sources,
+        }),
+    }
+}
+
+/// Every file a build read or will read: the style, the scene, what the
+/// style `use`s, and, when it got that far, the textures and meshes named.
+pub fn dependencies(inputs: &Inputs, sources: &SourceMap, built: Option<&Built>) -> Vec<PathBuf> {
+    let mut files = vec![inputs.style.clone(), inputs.scene.clone()];
+    files.extend(
+        sources
+            .files()
+            .iter()
+            .map(|f| PathBuf::from(&f.name))
+            .filter(|p| p.is_file()),
+    );
+    if let Some(b) = built {
+        for t in &b.compiled.manifest.textures {
+            if let abi::manifest::TextureSourceManifest::Image { resolved, .. } = &t.source {
+                files.push(PathBuf::from(resolved));
+            }
+        }
+        for o in &b.scene.objects {
+            files.extend(o.textures.values().map(|t| t.resolved.clone()));
+            let mesh = Path::new(&o.mesh.source);
+            if mesh.is_file() {
+                files.push(mesh.to_path_buf());
+            }
+        }
+    }
+    files
+}

@@ -1,0 +1,26 @@
+//! A panic in a rebuild or a render must not end `npr watch` or the
+//! studio's render thread: [`catch`] runs a step and turns a panic into a
+//! message (E9001: a panic is always a bug in npr), so the loop reports it
+//! and goes on waiting for the next change.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// Run `step`; a panic comes back as `Err(message)`.
+pub fn catch<T>(step: impl FnOnce() -> T) -> Result<T, String> {
+    // The state a panicking step touched is dropped by the caller (the
+    // renderer is rebuilt), so observing it half-updated cannot happen.
+    catch_unwind(AssertUnwindSafe(step)).map_err(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".into());
+        format!("internal error: the render thread panicked: {what}")
+    })
+}
+
+/// The panic as a diagnostic, for the same printers as every other error.
+pub fn panic_diagnostic(message: &str) -> dsl::Diagnostic {
+    dsl::Diagnostic::error(dsl::codes::INTERNAL, message.to_string())
+        .with_help("this is a bug in npr; the previous image is kept, and the next save tries again")
+}

@@ -1,0 +1,81 @@
+//! The studio's shared state between the render thread and the HTTP
+//! threads: the latest state (as JSON, what the page shows), the current
+//! frame's images, and the event-stream subscribers.
+//!
+//! The render thread publishes; every publish pushes one `state` event to
+//! every subscriber. A subscriber gets the current state as soon as it
+//! subscribes, so a page opened after a render (or after a failed compile)
+//! shows it at once.
+
+use serde_json::Value;
+use std::sync::mpsc::{channel, Receiver, Sender};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+/// One rendered frame's targets, served at `/frame/{id}/{index}.png` and `.f32`.
+pub struct FrameImages {
+    pub id: u64,
+    /// Per target: PNG bytes (as `npr render` writes them).
+    pub png: Vec<Vec<u8>>,
+    /// Per target: RGBA f32 texels, row-major, little-endian.
+    pub f32: Vec<Vec<u8>>,
+}
+
+#[derive(Default)]
+struct Inner {
+    /// The state the page renders; `seq` increases with every publish.
+    state: Value,
+    seq: u64,
+    frame: Option<Arc<FrameImages>>,
+    subscribers: Vec<Sender<String>>,
+}
+
+#[derive(Clone, Default)]
+pub struct Hub {
+    inner: Arc<Mutex<Inner>>,
+}
+
+impl Hub {
+    fn lock(&self) -> MutexGuard<'_, Inner> {
+        // A panic while holding the lock left valid data (every write is a
+        // whole assignment); keep serving.
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Replace the state (and the frame, when a new one was rendered) and
+    /// push it to every subscriber.
+    pub fn publish(&self, mut state: Value, frame: Option<FrameImages>) {
+        let mut inner = self.lock();
+        inner.seq += 1;
+        state["seq"] = inner.seq.into();
+        if let Some(f) = frame {
+            inner.frame = Some(Arc::new(f));
+        }
+        let event = sse_event("state", &state.to_string());
+        inner.state = state;
+        inner.subscribers.retain(|s| s.send(event.clone()).is_ok());
+    }
+
+    pub fn state(&self) -> Value {
+        self.lock().state.clone()
+    }
+
+    pub fn frame(&self) -> Option<Arc<FrameImages>> {
+        self.lock().frame.clone()
+    }
+
+    /// A new subscriber: the current state first, then every publish.
+    pub fn subscribe(&self) -> Receiver<String> {
+        let (tx, rx) = channel();
+        let mut inner = self.lock();
+        if !inner.state.is_null() {
+            let _ = tx.send(sse_event("state", &inner.state.to_string()));
+        }
+        inner.subscribers.push(tx);
+        rx
+    }
+}
+
+/// One server-sent event (`data` is one line of JSON, so one `data:` field).
+fn sse_event(name: &str, data: &str) -> String {
+    format!("event: {name}\ndata: {data}\n\n")
+}

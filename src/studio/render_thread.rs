@@ -1,0 +1,445 @@
+//! The studio's render thread: it owns the device, the renderer and the
+//! file watcher, takes [`Job`]s (a file changed, a control moved, the time or
+//! eye changed, "write into the file"), and publishes each result to the
+//! [`Hub`].
+//!
+//! - A file change rebuilds: scene + compile (with `--keep-params`, the
+//!   `--set`s and the controls' values) + a new `Renderer`, through the same
+//!   `runner::Renderer` as `npr render`.
+//! - A control change types the value with `set_params::parse_value` (the
+//!   `--set` rules), writes it into the renderer's manifest (a uniform) and
+//!   renders again without recompiling.
+//! - A failed build keeps the last good frame and publishes the
+//!   diagnostics; a render error likewise. A panic is caught, reported, and
+//!   the device and renderer are made again; the thread never ends while the
+//!   server runs.
+
+use super::hub::{FrameImages, Hub};
+use super::state;
+use crate::live::build::{self, Built, Inputs};
+use crate::live::guard;
+use crate::live::watcher::FileWatcher;
+use crate::set_params;
+use abi::manifest::ParamBinding;
+use compiler::overrides::ParamOverride;
+use dsl::{Diagnostic, SourceMap};
+use runner::schedule::FrameRequest;
+use runner::{FrameSpec, Gpu, Renderer, RunError};
+use serde_json::{json, Value};
+use std::path::PathBuf;
+use std::sync::mpsc::{Receiver, Sender};
+use std::time::Instant;
+
+pub enum Job {
+    /// Watched files changed (or the first build).
+    Rebuild(Vec<PathBuf>),
+    /// A control: the parameter's value as the language writes it.
+    SetParam { name: String, literal: String },
+    /// Forget a control's value: back to the file's default.
+    ResetParam(String),
+    /// The time scrubber and the eye toggle.
+    SetView { time: Option<f64>, eye: Option<u32> },
+    /// Write the control's current value into the `.npr` file as its default.
+    WriteParam(String),
+}
+
+/// What every render uses that is not in the style.
+#[derive(Debug, Clone, Copy)]
+pub struct View {
+    pub size: (u32, u32),
+    pub time: f64,
+    pub fps: f64,
+    pub eye: u32,
+}
+
+/// A build that rendered, with the renderer made for it.
+struct Session<'g> {
+    built: Built,
+    renderer: Renderer<'g>,
+    timer: Option<lab::pass_timer::PassTimer>,
+}
+
+/// The thread's own state across builds and device restarts.
+struct Studio {
+    inputs: Inputs,
+    view: View,
+    hub: Hub,
+    /// The controls' values, applied on every rebuild after the `--set`s.
+    overrides: Vec<ParamOverride>,
+    frame_id: u64,
+    /// The last good frame's description (kept while the style is broken).
+    frame: Value,
+    params: Value,
+    diagnostics: Value,
+    param_error: Value,
+    notice: Value,
+    compile_ms: f64,
+    /// What the last good build depended on, watched while a build fails.
+    last_good_files: Vec<PathBuf>,
+    stereo: bool,
+}
+
+pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender: Sender<Job>) {
+    let mut watcher = match FileWatcher::new(move |files| {
+        let _ = job_sender.send(Job::Rebuild(files));
+    }) {
+        Ok(w) => Some(w),
+        Err(e) => {
+            eprintln!("studio: {e}; files are not watched");
+            None
+        }
+    };
+    let mut st = Studio {
+        inputs,
+        view,
+        hub,
+        overrides: Vec::new(),
+        frame_id: 0,
+        frame: Value::Null,
+        params: json!([]),
+        diagnostics: json!([]),
+        param_error: Value::Null,
+        notice: Value::Null,
+        compile_ms: 0.0,
+        last_good_files: Vec::new(),
+        stereo: false,
+    };
+    // The outer loop makes the device again after a panic; the inner one
+    // serves jobs with it.
+    loop {
+        let gpu = match Gpu::headless() {
+            Ok(g) => g,
+            Err(e) => {
+                st.diagnostics = state::diagnostics_json(&[e.to_diagnostic()], &SourceMap::new(), "device");
+                st.publish(None);
+                // Try again when something changes.
+                if jobs.recv().is_err() {
+                    return;
+                }
+                continue;
+            }
+        };
+        let mut session: Option<Session> = None;
+        let mut pending = Some(Pending::Rebuild);
+        loop {
+            if let Some(work) = pending.take() {
+                let done = guard::catch(|| st.work(work, &gpu, &mut session, watcher.as_mut()));
+                if let Err(panic) = done {
+                    st.diagnostics =
+                        state::diagnostics_json(&[guard::panic_diagnostic(&panic)], &SourceMap::new(), "panic");
+                    st.publish(None);
+                    break;
+                }
+            }
+            let Ok(first) = jobs.recv() else { return };
+            // Coalesce: a burst of slider moves renders once, with the last values.
+            let mut batch = vec![first];
+            while let Ok(more) = jobs.try_recv() {
+                batch.push(more);
+            }
+            pending = batch
+                .into_iter()
+                .fold(None, |acc, job| Pending::merge(acc, st.take_job(job)));
+        }
+        drop(session);
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pending {
+    Render,
+    Rebuild,
+}
+
+impl Pending {
+    fn merge(a: Option<Pending>, b: Option<Pending>) -> Option<Pending> {
+        match (a, b) {
+            (Some(Pending::Rebuild), _) | (_, Some(Pending::Rebuild)) => Some(Pending::Rebuild),
+            (Some(Pending::Render), _) | (_, Some(Pending::Render)) => Some(Pending::Render),
+            _ => None,
+        }
+    }
+}
+
+impl Studio {
+    fn publish(&self, images: Option<FrameImages>) {
+        let state = json!({
+            "style": self.inputs.style.display().to_string(),
+            "scene": self.inputs.scene.display().to_string(),
+            "frame": self.frame,
+            "params": self.params,
+            "diagnostics": self.diagnostics,
+            "param_error": self.param_error,
+            "notice": self.notice,
+            "view": { "time": self.view.time, "eye": self.view.eye, "fps": self.view.fps,
+                      "width": self.view.size.0, "height": self.view.size.1, "stereo": self.stereo },
+        });
+        self.hub.publish(state, images);
+    }
+
+    /// Take a job's effect on the state; what it needs done next.
+    fn take_job(&mut self, job: Job) -> Option<Pending> {
+        self.param_error = Value::Null;
+        self.notice = Value::Null;
+        match job {
+            Job::Rebuild(files) => {
+                if !files.is_empty() {
+                    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+                    eprintln!("studio: changed: {}", names.join(", "));
+                }
+                Some(Pending::Rebuild)
+            }
+            Job::SetView { time, eye } => {
+                if let Some(t) = time.filter(|t| t.is_finite()) {
+                    self.view.time = t;
+                }
+                if let Some(e) = eye {
+                    if e == 0 || (e == 1 && self.stereo) {
+                        self.view.eye = e;
+                    }
+                }
+                Some(Pending::Render)
+            }
+            Job::ResetParam(name) => {
+                self.overrides.retain(|o| o.name != name);
+                Some(Pending::Rebuild)
+            }
+            Job::SetParam { name, literal } => self.set_param(&name, &literal),
+            Job::WriteParam(name) => {
+                self.write_param(&name);
+                // The watcher sees the write and rebuilds; publish the notice now.
+                self.publish(None);
+                None
+            }
+        }
+    }
+
+    fn manifest_param(&self, name: &str) -> Option<abi::manifest::ParamManifest> {
+        serde_json::from_value::<Vec<state::ParamState>>(self.params.clone())
+            .ok()?
+            .into_iter()
+            .find(|p| p.manifest.name == name)
+            .map(|p| p.manifest)
+    }
+
+    fn set_param(&mut self, name: &str, literal: &str) -> Option<Pending> {
+        let Some(param) = self.manifest_param(name) else {
+            self.param_error = json!({ "name": name, "message": format!("the style has no parameter `{name}`") });
+            self.publish(None);
+            return None;
+        };
+        match set_params::parse_value(&param, literal.trim()) {
+            Ok(o) => {
+                self.overrides.retain(|x| x.name != o.name);
+                self.overrides.push(o);
+                // A kept uniform changes without a recompile.
+                Some(
+                    if param.binding == ParamBinding::Uniform && !param.default_percent_of_height {
+                        Pending::Render
+                    } else {
+                        Pending::Rebuild
+                    },
+                )
+            }
+            Err(e) => {
+                self.param_error = json!({ "name": name, "code": e.code,
+                    "message": format!("{}: {}", e.code, e.message), "help": e.help });
+                self.publish(None);
+                None
+            }
+        }
+    }
+
+    fn write_param(&mut self, name: &str) {
+        let Some(o) = self.overrides.iter().find(|o| o.name == name).cloned() else {
+            self.notice = json!(format!("`{name}` already has the file's value"));
+            return;
+        };
+        let Some(param) = self.manifest_param(name) else { return };
+        let literal = if o.percent_of_height {
+            Some(format!("{}%", o.value[0]))
+        } else {
+            set_params::format_literal(&param, &o.value)
+        };
+        let Some(literal) = literal else { return };
+        match super::write_back::rewrite_default(&self.inputs.style, name, &literal) {
+            Ok(()) => {
+                self.overrides.retain(|x| x.name != name);
+                self.notice = json!(format!(
+                    "wrote `{name} = {literal}` into {}",
+                    self.inputs.style.display()
+                ));
+            }
+            Err(e) => self.notice = json!(format!("cannot write `{name}` into the file: {e}")),
+        }
+    }
+
+    fn work<'g>(
+        &mut self,
+        work: Pending,
+        gpu: &'g Gpu,
+        session: &mut Option<Session<'g>>,
+        watcher: Option<&mut FileWatcher>,
+    ) {
+        if work == Pending::Rebuild || session.is_none() {
+            let files = self.rebuild(gpu, session);
+            if let Some(w) = watcher {
+                w.set_files(files);
+            }
+        } else if let Some(s) = session.as_mut() {
+            for o in &self.overrides {
+                if let Some(p) = s.renderer.manifest.params.iter_mut().find(|p| p.name == o.name) {
+                    p.default = o.value.clone();
+                    p.keyframes.clear();
+                }
+            }
+            if let Some(p) = &mut self.params.as_array_mut() {
+                state::set_values(p, &self.overrides);
+            }
+        }
+        if let Some(s) = session.as_mut() {
+            self.render(gpu, s);
+        } else {
+            self.publish(None);
+        }
+    }
+
+    /// Build and make a renderer; the files to watch.
+    fn rebuild<'g>(&mut self, gpu: &'g Gpu, session: &mut Option<Session<'g>>) -> Vec<PathBuf> {
+        let built = match build::build(&self.inputs, &self.overrides) {
+            Ok(b) => b,
+            Err(failed) => {
+                self.diagnostics = state::diagnostics_json(&failed.diagnostics, &failed.sources, "compile");
+                let mut files = build::dependencies(&self.inputs, &failed.sources, None);
+                files.extend(self.last_good_files.iter().cloned());
+                *session = None;
+                return files;
+            }
+        };
+        let files = build::dependencies(&self.inputs, &built.sources, Some(&built));
+        self.last_good_files = files.clone();
+        self.compile_ms = built.compile_ms;
+        self.stereo = built.scene.camera.is_stereo();
+        if !self.stereo {
+            self.view.eye = 0;
+        }
+        // Drop the old renderer (its pipelines and textures) before making the new one.
+        *session = None;
+        let program = built.compiled.program();
+        match Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene) {
+            Ok(renderer) => {
+                self.params = state::params_json(
+                    &set_params::with_declared_types(&built.compiled.manifest.params, &built.sources),
+                    &self.overrides,
+                );
+                self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
+                let timer = lab::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
+                *session = Some(Session { built, renderer, timer });
+            }
+            Err(e) => {
+                self.diagnostics = state::diagnostics_json(&e.diagnostics(), &built.sources, "render");
+            }
+        }
+        files
+    }
+
+    fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session<'g>) {
+        let start = Instant::now();
+        match render_frame(gpu, s, &self.view) {
+            Ok((images, pass_ms)) => {
+                let render_ms = start.elapsed().as_secs_f64() * 1e3;
+                self.frame_id += 1;
+                let frame = encode(self.frame_id, &images);
+                let manifest = &s.renderer.manifest;
+                self.frame = json!({
+                    "id": self.frame_id,
+                    "output": manifest.output,
+                    "targets": images.iter().enumerate().map(|(i, t)| json!({
+                        "index": i, "name": t.name, "format": format!("{:?}", t.format),
+                        "float": t.is_float(), "width": t.width, "height": t.height,
+                    })).collect::<Vec<_>>(),
+                    "compile_ms": self.compile_ms,
+                    "render_ms": render_ms,
+                    "passes": pass_ms.map(|ms| manifest.passes.iter().zip(ms).map(|(p, ms)| json!({"name": p.name, "gpu_ms": ms})).collect::<Vec<_>>()),
+                    "device": gpu.describe(),
+                    "time": self.view.time,
+                    "eye": self.view.eye,
+                });
+                // Keep compile warnings; drop an old render error.
+                if let Some(d) = self.diagnostics.as_array_mut() {
+                    d.retain(|d| d["stage"] == "compile");
+                }
+                match frame {
+                    Ok(f) => self.publish(Some(f)),
+                    Err(e) => {
+                        self.diagnostics = state::diagnostics_json(
+                            &[Diagnostic::error(
+                                dsl::codes::INTERNAL,
+                                format!("cannot encode the frame: {e}"),
+                            )],
+                            &SourceMap::new(),
+                            "render",
+                        );
+                        self.publish(None);
+                    }
+                }
+            }
+            Err(e) => {
+                self.diagnostics = state::diagnostics_json(&e.diagnostics(), &s.built.sources, "render");
+                self.publish(None);
+            }
+        }
+    }
+}
+
+/// Render the view's frame (replaying history for a path-dependent style
+/// with a fresh renderer) and read every target; the per-pass GPU times of
+/// the last frame when the adapter has timestamps.
+fn render_frame<'g>(
+    gpu: &'g Gpu,
+    s: &mut Session<'g>,
+    view: &View,
+) -> Result<(Vec<runner::TargetImage>, Option<Vec<f64>>), RunError> {
+    let path_dependent = s.renderer.manifest.is_path_dependent();
+    if path_dependent && s.renderer.frames_begun() > 0 {
+        // History must start from frame 0 again, as `npr render` starts.
+        let mut program = s.built.compiled.program();
+        program.manifest = s.renderer.manifest.clone();
+        s.renderer = Renderer::new(&gpu.device, &gpu.queue, &program, &s.built.scene)?;
+    }
+    let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
+    let spec = |time_s: f64, frame: u32| FrameSpec {
+        width: view.size.0,
+        height: view.size.1,
+        time_s,
+        frame,
+        eye: view.eye,
+    };
+    let Some((last, replay)) = schedule.split_last() else {
+        return Err(RunError::Internal("an empty frame schedule".into()));
+    };
+    for f in replay {
+        s.renderer.render(&s.built.scene, &spec(f.time_s, f.frame))?;
+    }
+    let spec = spec(last.time_s, last.frame);
+    let times = match &s.timer {
+        Some(t) => Some(t.frame(gpu, &mut s.renderer, &s.built.scene, &spec)?),
+        None => {
+            s.renderer.render(&s.built.scene, &spec)?;
+            None
+        }
+    };
+    let images = crate::cli::read_all_targets(&mut s.renderer, &s.built.scene, &spec)?;
+    Ok((images, times))
+}
+
+/// Every target as PNG (as `npr render` writes it) and as raw f32 texels.
+fn encode(id: u64, images: &[runner::TargetImage]) -> std::io::Result<FrameImages> {
+    let mut png = Vec::new();
+    let mut f32 = Vec::new();
+    for t in images {
+        png.push(runner::output::encode_png(t)?);
+        f32.push(t.to_rgba_f32().iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
+    }
+    Ok(FrameImages { id, png, f32 })
+}

@@ -1,0 +1,113 @@
+//! The JSON the page renders: the controls (one per parameter, from the
+//! manifest) and the diagnostics (code, message, labelled source lines with
+//! line and column, help). One definition for the render thread, which
+//! writes it, and the tests, which read it.
+
+use crate::set_params::{self, Kind};
+use abi::manifest::{ParamBinding, ParamManifest};
+use compiler::overrides::ParamOverride;
+use dsl::{Diagnostic, SourceMap};
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+/// One control: the manifest's parameter plus what the page needs to draw it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ParamState {
+    #[serde(flatten)]
+    pub manifest: ParamManifest,
+    /// `float`, `int`, `bool`, `enum`, `color`, `range`, `unit`, `vector`, or `none` (no control).
+    pub control: String,
+    /// The unit suffix a slider's number is written with (`px`, `deg`, ...), or "".
+    pub suffix: String,
+    /// The range in written units (degrees for angles), for a slider.
+    pub range_written: Option<(f64, f64)>,
+    pub step: f64,
+    /// The current value as the language writes it (what "copy as --set" copies).
+    pub literal: String,
+    /// Whether a control moved it away from the file's default.
+    pub overridden: bool,
+    /// Not read by the output (the compiler removed it): its control is disabled.
+    pub unused: bool,
+}
+
+/// The controls of every parameter that is not per object.
+pub fn params_json(params: &[ParamManifest], overrides: &[ParamOverride]) -> Value {
+    let list: Vec<ParamState> = params
+        .iter()
+        .filter(|p| set_params::settable(p))
+        .map(|p| param_state(p, overrides))
+        .collect();
+    serde_json::to_value(list).unwrap_or(Value::Null)
+}
+
+fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
+    let kind = set_params::kind(p);
+    let (control, suffix, to_written): (&str, &str, fn(f64) -> f64) = match kind {
+        Kind::Float => ("float", "", |v| v),
+        Kind::Int => ("int", "", |v| v),
+        Kind::Bool => ("bool", "", |v| v),
+        Kind::Enum => ("enum", "", |v| v),
+        Kind::Color => ("color", "", |v| v),
+        Kind::Range => ("range", "", |v| v),
+        Kind::Vector => ("vector", "", |v| v),
+        Kind::Unit(set_params::UnitKind::Degrees) => ("unit", "deg", f64::to_degrees),
+        Kind::Unit(u) => ("unit", u.suffix(), |v| v),
+        Kind::Unsupported => ("none", "", |v| v),
+    };
+    let range_written = p.range.map(|(lo, hi)| (to_written(lo), to_written(hi)));
+    let step = match (kind, range_written) {
+        (Kind::Int, _) => 1.0,
+        (_, Some((lo, hi))) if hi > lo => (hi - lo) / 200.0,
+        _ => 0.01,
+    };
+    let set = overrides.iter().find(|o| o.name == p.name);
+    let literal = match set {
+        Some(o) if o.percent_of_height => format!("{}%", o.value[0]),
+        Some(o) => set_params::format_literal(p, &o.value).unwrap_or_default(),
+        None if p.default_percent_of_height => format!("{}%", p.default.first().copied().unwrap_or(0.0)),
+        None => set_params::format_literal(p, &p.default).unwrap_or_default(),
+    };
+    let mut manifest = p.clone();
+    if let Some(o) = set {
+        manifest.default = o.value.clone();
+        manifest.default_percent_of_height = o.percent_of_height;
+    }
+    ParamState {
+        manifest,
+        control: control.into(),
+        suffix: suffix.into(),
+        range_written,
+        step,
+        literal,
+        overridden: set.is_some(),
+        unused: p.binding == ParamBinding::Removed,
+    }
+}
+
+/// Bring the controls' values up to date after a slider moved (no rebuild).
+pub fn set_values(params: &mut [Value], overrides: &[ParamOverride]) {
+    for v in params.iter_mut() {
+        let Ok(mut p) = serde_json::from_value::<ParamState>(v.clone()) else {
+            continue;
+        };
+        if overrides.iter().any(|o| o.name == p.manifest.name) {
+            p = param_state(&p.manifest, overrides);
+            *v = serde_json::to_value(p).unwrap_or(Value::Null);
+        }
+    }
+}
+
+/// Diagnostics as the page shows them: `dsl`'s JSON form (code, message,
+/// help, labels with file, line and column, and the rendered text with the
+/// source lines and the span marked), plus the stage that produced them.
+pub fn diagnostics_json(diags: &[Diagnostic], sources: &SourceMap, stage: &str) -> Value {
+    let list: Vec<Value> = dsl::diagnostic::render_json(diags, sources)
+        .lines()
+        .filter_map(|line| serde_json::from_str::<Value>(line).ok())
+        .map(|mut d| {
+            d["stage"] = stage.into();
+            d
+        })
+        .collect();
+    Value::Array(list)
+}

@@ -1,0 +1,202 @@
+// npr studio page: renders the server's `state` events (no polling, no
+// build step, nothing fetched but this server's own routes).
+"use strict";
+const $ = (id) => document.getElementById(id);
+let state = null;
+let selected = null;      // target index shown large; null = the output
+let shown = { frame: -1, target: -1 };
+let pixels = null;        // { w, h, data: Float32Array (rgba) } of the shown target
+let controlsKey = "";
+let playing = null;
+
+function post(path, body) {
+  return fetch(path, { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+}
+
+function el(tag, attrs, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) {
+    if (k === "class") e.className = v; else if (k.startsWith("on")) e.addEventListener(k.slice(2), v); else e.setAttribute(k, v);
+  }
+  for (const c of children) e.append(c);
+  return e;
+}
+
+const events = new EventSource("/events");
+events.addEventListener("state", (e) => apply(JSON.parse(e.data)));
+events.onerror = () => setStatus("disconnected: reconnecting…", "error");
+
+function setStatus(text, cls) { const s = $("status"); s.textContent = text; s.className = "status " + (cls || ""); }
+
+function apply(s) {
+  state = s;
+  $("files").textContent = s.style + " on " + s.scene;
+  const errors = (s.diagnostics || []).filter((d) => d.severity === "error");
+  if (errors.length) setStatus(errors.length + " error(s): showing the last good image", "error");
+  else if (s.frame) setStatus("frame " + s.frame.id, "ok");
+  else setStatus("rendering…");
+  $("notice").textContent = s.notice || "";
+  renderDiagnostics(s.diagnostics || []);
+  renderControls(s.params || [], s.param_error);
+  renderView(s);
+  renderTimings(s.frame);
+}
+
+function renderDiagnostics(diags) {
+  const box = $("diagnostics");
+  box.replaceChildren(...diags.map((d) => {
+    const l = (d.labels || []).find((x) => x.primary) || (d.labels || [])[0];
+    const where = l ? `${l.file}:${l.line}:${l.column}` : "";
+    return el("div", { class: "diag " + d.severity, "data-code": d.code },
+      el("div", {}, el("strong", {}, `${d.severity}[${d.code}]`), " ", d.message, " ", el("span", { class: "where" }, where)),
+      el("pre", {}, d.rendered || ""));
+  }));
+}
+
+function writtenNumber(p) { return parseFloat(p.literal); }
+
+function renderControls(params, paramError) {
+  const key = JSON.stringify(params.map((p) => [p.name, p.control, p.range_written]));
+  if (key !== controlsKey) {
+    controlsKey = key;
+    $("controls").replaceChildren(...params.map(buildControl));
+  }
+  for (const p of params) {
+    const row = document.querySelector(`.param[data-name="${p.name}"]`);
+    if (!row) continue;
+    const input = row.querySelector(".input");
+    if (input && document.activeElement !== input) setInput(input, p);
+    row.querySelector(".value").textContent = p.literal;
+    const err = paramError && paramError.name === p.name ? paramError.message + (paramError.help ? " (" + paramError.help + ")" : "") : "";
+    row.querySelector(".error").textContent = err;
+  }
+}
+
+function setInput(input, p) {
+  if (p.control === "bool") input.checked = p.literal === "true";
+  else if (p.control === "color") input.value = p.literal.slice(0, 7);
+  else if (p.control === "enum" || p.control === "range" || p.control === "vector") input.value = p.literal;
+  else input.value = writtenNumber(p);
+}
+
+function literalOf(input, p) {
+  if (p.control === "bool") return input.checked ? "true" : "false";
+  if (p.control === "float" || p.control === "int" || p.control === "unit") return input.value + p.suffix;
+  return input.value;
+}
+
+function buildControl(p) {
+  let input;
+  const send = () => post("/param", { name: p.name, literal: literalOf(input, p) });
+  if (p.control === "bool") input = el("input", { type: "checkbox", class: "input", onchange: send });
+  else if (p.control === "enum") input = el("select", { class: "input", onchange: send }, ...p.enum_variants.map((v) => el("option", { value: v }, v)));
+  else if (p.control === "color") input = el("input", { type: "color", class: "input", oninput: send });
+  else if (p.range_written && (p.control === "float" || p.control === "int" || p.control === "unit"))
+    input = el("input", { type: "range", class: "input", min: p.range_written[0], max: p.range_written[1], step: p.step, oninput: send });
+  else if (p.control === "float" || p.control === "int" || p.control === "unit")
+    input = el("input", { type: "number", class: "input", step: p.step, onchange: send });
+  else input = el("input", { type: "text", class: "input", onchange: send });
+  if (p.unused) input.disabled = true;
+  const copy = el("button", { title: "copy as a --set argument", onclick: () => {
+    const text = `--set '${p.name}=${state.params.find((q) => q.name === p.name).literal}'`;
+    (navigator.clipboard ? navigator.clipboard.writeText(text) : Promise.reject()).catch(() => window.prompt("copy:", text));
+  } }, "--set");
+  const write = el("button", { title: "write this value into the .npr file as the default", onclick: () => post("/param/write", { name: p.name }) }, "write");
+  const reset = el("button", { title: "back to the file's value", onclick: () => post("/param/reset", { name: p.name }) }, "reset");
+  const title = (p.doc || p.name) + (p.unused ? " (not used by the output)" : "");
+  return el("div", { class: "param" + (p.unused ? " unused" : ""), "data-name": p.name, title },
+    el("div", { class: "name" }, p.name, " ", el("span", { class: "where" }, p.ty)),
+    el("div", { class: "row" }, input, el("span", { class: "value" }), copy, write, reset),
+    el("div", { class: "error" }));
+}
+
+function renderView(s) {
+  const f = s.frame;
+  if (!f) return;
+  const eyeBox = $("eye-box");
+  eyeBox.hidden = !s.view.stereo;
+  $("eye").value = String(s.view.eye);
+  if (document.activeElement !== $("time")) $("time").value = s.view.time;
+  $("time-value").textContent = s.view.time.toFixed(3) + " s";
+  if (selected !== null && selected >= f.targets.length) selected = null;
+  const target = selected === null ? f.output : selected;
+  if (shown.frame !== f.id) {
+    $("thumbs").replaceChildren(...f.targets.map((t) => el("div", {
+      class: "thumb" + (t.index === target ? " selected" : ""), "data-index": t.index,
+      title: `${t.name} (${t.format})`, onclick: () => { selected = t.index; draw(state.frame, t.index); markThumbs(t.index); },
+    }, el("img", { src: `/frame/${f.id}/${t.index}.png`, alt: t.name }), t.name)));
+  }
+  if (shown.frame !== f.id || shown.target !== target) draw(f, target);
+}
+
+function markThumbs(target) {
+  for (const t of document.querySelectorAll(".thumb")) t.classList.toggle("selected", Number(t.dataset.index) === target);
+}
+
+async function draw(f, target) {
+  const t = f.targets[target];
+  const res = await fetch(`/frame/${f.id}/${target}.f32`);
+  if (!res.ok) return; // a newer frame replaced it; its event is on the way
+  const data = new Float32Array(await res.arrayBuffer());
+  pixels = { w: t.width, h: t.height, data, float: t.float, channels: t.format };
+  shown = { frame: f.id, target };
+  $("target-name").textContent = `${t.name} · ${t.format} · ${t.width}×${t.height}` + (target === f.output ? " · output" : "");
+  paint();
+  const view = $("view");
+  view.dataset.frame = f.id;
+  view.dataset.target = target;
+  document.body.dataset.shownFrame = f.id;
+  document.body.dataset.shownTarget = target;
+}
+
+// Draw the shown target: float targets scaled by 2^exposure; R/G/B toggles,
+// or alpha alone. One-channel targets show as grey, as `npr render` writes them.
+function paint() {
+  if (!pixels) return;
+  const { w, h, data } = pixels;
+  const view = $("view");
+  if (view.width !== w || view.height !== h) { view.width = w; view.height = h; view.style.width = Math.max(w, 512) + "px"; }
+  const ctx = view.getContext("2d");
+  const img = ctx.createImageData(w, h);
+  const gain = pixels.float ? Math.pow(2, parseFloat($("exposure").value)) : 1;
+  const on = [$("ch-r").checked, $("ch-g").checked, $("ch-b").checked];
+  const alphaOnly = $("ch-a").checked;
+  const grey = /^(R8|R16|R32)/i.test(pixels.channels);
+  const q = (v) => Math.round(Math.min(Math.max(Number.isFinite(v) ? v * gain : 0, 0), 1) * 255);
+  for (let i = 0; i < w * h; i++) {
+    const r = data[4 * i], g = grey ? r : data[4 * i + 1], b = grey ? r : data[4 * i + 2], a = grey ? 1 : data[4 * i + 3];
+    if (alphaOnly) { const v = q(a); img.data.set([v, v, v, 255], 4 * i); continue; }
+    img.data.set([on[0] ? q(r) : 0, on[1] ? q(g) : 0, on[2] ? q(b) : 0, Math.round(Math.min(Math.max(a, 0), 1) * 255)], 4 * i);
+  }
+  ctx.putImageData(img, 0, 0);
+}
+
+function renderTimings(f) {
+  if (!f) return;
+  const rows = [["compile (scene + style)", f.compile_ms], ["render + read-back", f.render_ms]];
+  for (const p of f.passes || []) rows.push(["  pass " + p.name + " (GPU)", p.gpu_ms]);
+  $("timings").replaceChildren(el("table", {}, ...rows.map(([k, v]) => el("tr", {}, el("td", {}, k), el("td", {}, v.toFixed(2) + " ms")))),
+    el("div", { class: "where" }, f.device + (f.passes ? "" : " · no timestamp queries: per-pass GPU time unavailable")));
+}
+
+$("view").addEventListener("mousemove", (e) => {
+  if (!pixels) return;
+  const r = e.target.getBoundingClientRect();
+  const x = Math.floor((e.clientX - r.left) * pixels.w / r.width), y = Math.floor((e.clientY - r.top) * pixels.h / r.height);
+  if (x < 0 || y < 0 || x >= pixels.w || y >= pixels.h) return;
+  const i = 4 * (y * pixels.w + x);
+  const v = Array.from(pixels.data.slice(i, i + 4)).map((c) => c.toFixed(4));
+  $("readout").textContent = `(${x}, ${y}) = ${v.join(", ")}`;
+});
+for (const id of ["exposure", "ch-r", "ch-g", "ch-b", "ch-a"]) $(id).addEventListener("input", paint);
+$("time").addEventListener("input", () => post("/view", { time: parseFloat($("time").value) }));
+$("eye").addEventListener("change", () => post("/view", { eye: parseInt($("eye").value, 10) }));
+$("play").addEventListener("click", () => {
+  if (playing) { clearInterval(playing); playing = null; $("play").textContent = "play"; return; }
+  $("play").textContent = "pause";
+  const fps = Math.max(1, parseFloat($("fps").value) || 24);
+  playing = setInterval(() => {
+    const t = ((state ? state.view.time : 0) + 1 / fps) % parseFloat($("time").max);
+    post("/view", { time: t });
+  }, 1000 / fps);
+});
