@@ -313,6 +313,11 @@ pub fn run(cli: Cli) -> i32 {
         Command::Check { style } => match compile(&style, &mut sources, &CompileOptions::default(), &printer) {
             Ok(c) => {
                 printer.diagnostics(&c.warnings, &sources);
+                let texture_errors = crate::texture_check::texture_file_errors(&c);
+                if !texture_errors.is_empty() {
+                    printer.diagnostics(&texture_errors, &sources);
+                    return EXIT_USER;
+                }
                 if printer.format == MessageFormat::Human {
                     eprintln!(
                         "ok: style \"{}\": {} pass(es), {} target(s)",
@@ -469,12 +474,18 @@ pub fn run(cli: Cli) -> i32 {
                         Err(code) => return code,
                     };
                     printer.diagnostics(&c.warnings, &sources);
+                    let texture_errors = crate::texture_check::texture_file_errors(&c);
+                    if !texture_errors.is_empty() {
+                        printer.diagnostics(&texture_errors, &sources);
+                        return EXIT_USER;
+                    }
                     c.program()
                 }
                 (None, None) => {
                     return printer.fail(Diagnostic::error(codes::USAGE, "give a style or --compiled DIR"));
                 }
             };
+            printer.diagnostics(&runner::scene_warnings(&program.manifest, &scene), &sources);
             let request = match frames {
                 Some((start, end)) => FrameRequest::Range { start, end },
                 None => FrameRequest::At { time_s: time },

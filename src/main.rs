@@ -6,6 +6,7 @@ mod args;
 mod bench_compile;
 mod bench_patterns;
 mod cli;
+mod texture_check;
 mod usage;
 
 fn main() {

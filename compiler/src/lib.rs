@@ -19,7 +19,9 @@ pub mod pipeline;
 pub mod prune;
 pub mod report;
 pub mod resolve;
+pub mod scene_tags;
 pub mod specialize;
+pub mod texture_spans;
 pub mod typecheck;
 pub mod validate;
 
@@ -46,6 +48,9 @@ pub struct Compiled {
     pub shaders: Vec<(String, String)>,
     pub report: report::Report,
     pub warnings: Vec<Diagnostic>,
+    /// Per manifest texture: where the style names its file (the path in
+    /// `image("…")`), for errors found when the runner opens it.
+    pub texture_spans: Vec<Span>,
     pub timings: Vec<(&'static str, std::time::Duration)>,
     pub dumps: Vec<(&'static str, String)>,
 }

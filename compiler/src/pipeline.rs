@@ -123,6 +123,7 @@ pub fn run(
             }
         })
         .collect();
+    diags.extend(crate::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
     st.done("prune-after-specialize", &ir);
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
@@ -163,6 +164,7 @@ pub fn run(
         shaders,
         report,
         warnings: diags,
+        texture_spans: crate::texture_spans::texture_spans(&ir, sources),
         timings: st.timings,
         dumps: st.dumps,
     })

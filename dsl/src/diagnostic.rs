@@ -275,6 +275,10 @@ pub mod codes {
     pub const LIMIT_EXCEEDED: &str = "E0404";
     /// A scene file is malformed.
     pub const BAD_SCENE: &str = "E0405";
+    /// Warning: a scene binds a per-object value to a name the style does not read per object.
+    pub const UNUSED_BINDING: &str = "W0401";
+    /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
+    pub const ABSENT_TAG: &str = "W0402";
     /// The command line does not parse (clap's message, exit 1).
     pub const USAGE: &str = "E0501";
     /// A command-line value outside what it may be (`--fps 0`, `--time nan`, `--eye` of a mono scene).
@@ -322,6 +326,8 @@ pub mod codes {
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
+        (UNUSED_BINDING, "scene binding the style does not read (warning)"),
+        (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),
         (BAD_ARGUMENT_VALUE, "bad command-line value"),
         (CANNOT_WRITE, "cannot write an output"),
