@@ -884,3 +884,44 @@ fn a_texture_file_that_cannot_be_read() {
     image::GrayImage::new(3, 2).save(&ok).expect("write png");
     assert_eq!(runner::texture_file::probe(&ok).expect("a png"), (3, 2));
 }
+
+#[test]
+fn e0007_a_style_that_is_not_utf8() {
+    let dir = scratch("e0007");
+    let path = dir.join("latin1.npr");
+    let mut bytes = style("/// Caf").into_bytes();
+    bytes.push(0xe9); // `é` in Latin-1
+    bytes.extend_from_slice(format!(" au lait.\nparam a: float = 1.0\n{SIMPLE_PASS}").as_bytes());
+    std::fs::write(&path, bytes).expect("write");
+    let mut sources = SourceMap::new();
+    let Err(CompileError::User(diags)) = compiler::compile_file(&path, &mut sources, &CompileOptions::default()) else {
+        panic!("expected a user error");
+    };
+    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    assert!(
+        rendered.contains("latin1.npr:2:8"),
+        "line and column of the byte: {rendered}"
+    );
+    assert!(!rendered.contains("E0004"), "not a bad `use`: {rendered}");
+    check("E0007", (diags, rendered));
+}
+
+#[test]
+fn a_used_style_or_a_scene_that_is_not_utf8() {
+    let dir = scratch("e0007-use");
+    std::fs::write(dir.join("common.npr"), [b'p', b'a', 0xff, b'\n']).expect("write");
+    let text = style(&format!("use \"common.npr\"\n{SIMPLE_PASS}"));
+    let (diags, rendered) = compile_errors(&text, &dir);
+    assert_eq!(diags[0].code, "E0007", "{rendered}");
+    assert!(rendered.contains("common.npr:1:3"), "{rendered}");
+    assert!(rendered.contains("used here"), "{rendered}");
+    let mut sources = SourceMap::new();
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, [b'#', b' ', 0xfe, 0xff, b'\n']).expect("write");
+    let diags = runner::scene::load_scene(&scene, &mut sources)
+        .err()
+        .expect("not UTF-8");
+    let rendered = dsl::diagnostic::render(&diags, &sources, false);
+    assert_eq!(diags[0].code, "E0007", "{rendered}");
+    assert!(rendered.contains("scene.toml:1:3"), "{rendered}");
+}

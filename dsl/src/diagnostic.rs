@@ -227,6 +227,8 @@ pub mod codes {
     pub const NESTED_TOO_DEEP: &str = "E0005";
     /// An expression deeper than `limits::MAX_EXPR_DEPTH` (a long operator chain counts).
     pub const EXPRESSION_TOO_DEEP: &str = "E0006";
+    /// A style or scene file that is not valid UTF-8 text.
+    pub const NOT_UTF8: &str = "E0007";
     /// Unknown name (parameter, builtin, let, pass, texture).
     pub const UNKNOWN_NAME: &str = "E0101";
     /// Unknown operator or function.
@@ -302,6 +304,7 @@ pub mod codes {
         (BAD_USE, "bad use of another file"),
         (NESTED_TOO_DEEP, "nested too deeply"),
         (EXPRESSION_TOO_DEEP, "expression too deep"),
+        (NOT_UTF8, "file is not UTF-8 text"),
         (UNKNOWN_NAME, "unknown name"),
         (UNKNOWN_OPERATOR, "unknown operator"),
         (BAD_ARGUMENT, "bad argument"),

@@ -10,6 +10,7 @@ pub mod limits;
 mod nesting;
 mod parser;
 pub mod span;
+pub mod text;
 
 pub use diagnostic::{codes, Diagnostic, Label, Severity};
 pub use span::{FileId, SourceMap, Span};
