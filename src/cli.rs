@@ -769,7 +769,7 @@ pub(crate) fn compile_builtin(
             Err(EXIT_INTERNAL)
         }
         Err(CompileError::Internal(e)) => {
-            eprintln!("{e}");
+            printer.diagnostics(&[e.to_diagnostic()], sources);
             Err(EXIT_INTERNAL)
         }
     }
