@@ -925,3 +925,30 @@ fn a_used_style_or_a_scene_that_is_not_utf8() {
     assert_eq!(diags[0].code, "E0007", "{rendered}");
     assert!(rendered.contains("scene.toml:1:3"), "{rendered}");
 }
+
+#[test]
+fn a_syntax_error_inside_a_pass_does_not_cascade() {
+    // The pass does not parse, so `shade` is unknown wherever it is read;
+    // only the syntax error is reported, with its caret after the `+`.
+    let text = style(
+        "param k: float = 1.0\npass shade: render(scene) {\n  let a = k +\n  out c: rgba8unorm = vec4(a)\n}\n\
+         pass final: image(shade) {\n  out c: rgba8unorm = shade.c\n}\noutput final.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("no-cascade"));
+    assert_eq!(diags.len(), 1, "{rendered}");
+    assert!(rendered.contains("case.npr:4:14"), "{rendered}");
+    // A broken `output` line is not also "no output"; errors of other,
+    // well-formed declarations are still reported.
+    let text = style("param b: px = 3m\npass p: render(scene) {\n  out c: rgba8unorm = #ffffff\n}\noutput p.\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("no-cascade-output"));
+    let codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["E0001", "E0202"], "{rendered}");
+}
+
+#[test]
+fn an_unknown_name_reports_once_not_again_for_its_field() {
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = nosuch.c\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("unknown-base"));
+    assert_eq!(diags.len(), 1, "{rendered}");
+    assert_eq!(diags[0].code, "E0101", "{rendered}");
+}

@@ -13,6 +13,7 @@ pub mod consteval;
 pub mod dag;
 pub mod dump;
 pub mod emit;
+pub mod follow_ups;
 pub mod ir;
 pub mod load;
 pub mod pipeline;

@@ -15,6 +15,8 @@ pub struct Loaded {
     pub root: Ast,
     pub root_file: FileId,
     pub items: Vec<(Item, PathBuf)>,
+    /// Names of declarations that did not parse, in every file read.
+    pub broken: Vec<String>,
 }
 
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
@@ -68,11 +70,13 @@ fn load_added(
         .map(|f| dir.join(f))
         .unwrap_or_else(|| dir.to_path_buf());
     let mut stack = vec![canonical(&own)];
-    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack);
+    let mut broken = ast.broken.clone();
+    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack, &mut broken);
     Loaded {
         root: ast,
         root_file: file,
         items,
+        broken,
     }
 }
 
@@ -90,6 +94,7 @@ fn expand_uses(
     diags: &mut Vec<Diagnostic>,
     items: &mut Vec<(Item, PathBuf)>,
     stack: &mut Vec<PathBuf>,
+    broken: &mut Vec<String>,
 ) {
     for item in &ast.items {
         let Item::Use(u) = item else {
@@ -142,9 +147,10 @@ fn expand_uses(
                 };
                 let (used, mut d) = dsl::parse(file, &text);
                 diags.append(&mut d);
+                broken.extend(used.broken.iter().cloned());
                 let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
                 stack.push(key);
-                expand_uses(&used, &sub_dir, sources, diags, items, stack);
+                expand_uses(&used, &sub_dir, sources, diags, items, stack, broken);
                 stack.pop();
             }
         }

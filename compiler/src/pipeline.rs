@@ -73,6 +73,7 @@ pub fn run(
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
+    crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;
     let graph = crate::dag::build(&ir, &mut diags);
     st.done("dag", &ir);

@@ -1106,6 +1106,10 @@ impl Resolver<'_> {
             }
         }
         let b = self.expr(base);
+        if matches!(self.ir.expr(b).kind, ExprKind::Error) {
+            // The base's error is reported; its field would only repeat it.
+            return b;
+        }
         match swizzle::parse(field) {
             swizzle::Swizzle::Components(c) => self.ir.add(ExprKind::Swizzle { base: b, components: c }, span),
             swizzle::Swizzle::Mixed(d) => {
