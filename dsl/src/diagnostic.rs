@@ -296,6 +296,17 @@ pub mod codes {
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
+    /// [`ALL`] as the Markdown table of `docs/ERRORS.md` (checked by
+    /// `dsl/tests/error_docs.rs`).
+    pub fn markdown_table() -> String {
+        let mut t = String::from("| code | meaning |\n|---|---|\n");
+        for (code, what) in ALL {
+            t.push_str(&format!("| {code} | {what} |\n"));
+        }
+        t.push_str(&format!("| {INTERNAL} | internal error: a bug in npr (exit 2) |\n"));
+        t
+    }
+
     /// Every user-facing code with a one-line description (for `npr explain` and the docs).
     pub const ALL: &[(&str, &str)] = &[
         (SYNTAX, "syntax error"),
