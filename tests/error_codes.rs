@@ -918,9 +918,9 @@ fn a_used_style_or_a_scene_that_is_not_utf8() {
     let mut sources = SourceMap::new();
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, [b'#', b' ', 0xfe, 0xff, b'\n']).expect("write");
-    let diags = runner::scene::load_scene(&scene, &mut sources)
-        .err()
-        .expect("not UTF-8");
+    let Err(diags) = runner::scene::load_scene(&scene, &mut sources) else {
+        panic!("a scene that is not UTF-8 must be refused");
+    };
     let rendered = dsl::diagnostic::render(&diags, &sources, false);
     assert_eq!(diags[0].code, "E0007", "{rendered}");
     assert!(rendered.contains("scene.toml:1:3"), "{rendered}");

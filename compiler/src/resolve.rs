@@ -1116,7 +1116,7 @@ impl Resolver<'_> {
                 self.error(*d);
                 self.ir.add(ExprKind::Error, span)
             }
-            swizzle::Swizzle::NotASwizzle => {
+            swizzle::Swizzle::NotOne => {
                 self.error(
                     Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown field `{}`", field.name))
                         .with_primary(field.span, "not a swizzle or member")

@@ -123,7 +123,7 @@ pub(crate) fn syntax_error(file: FileId, e: &Error<Rule>, source: &str, eof: &st
         format!("expected {expected}, found {found_text}")
     };
     let d = Diagnostic::error(codes::SYNTAX, message).with_primary(span, format!("expected {expected}"));
-    match help(source, found_at, &found) {
+    match help(source, found_at, found) {
         Some(h) => d.with_help(h),
         None => d,
     }
@@ -313,7 +313,7 @@ fn token_at(source: &str, at: usize) -> &str {
         Some(c) if c.is_ascii_digit() => run(0, &|c| c.is_alphanumeric() || c == '.' || c == '%'),
         Some(c) if c.is_alphanumeric() || c == '_' => run(0, &|c| c.is_alphanumeric() || c == '_'),
         Some('#') => run(1, &|c| c.is_alphanumeric()),
-        Some(c) if c == '"' => 1,
+        Some('"') => 1,
         Some(c) => {
             // Operators are at most two characters (`<=`, `&&`, `..`).
             let punct = |c: char| !(c.is_whitespace() || c.is_alphanumeric() || c == '_' || c == '"');

@@ -15,7 +15,7 @@ pub(super) enum Swizzle {
     /// Component indices, 0..4, one to four of them.
     Components(Vec<u8>),
     /// Not a swizzle at all (a letter of neither set, or more than four).
-    NotASwizzle,
+    NotOne,
     /// Letters of both sets: the error to report.
     Mixed(Box<Diagnostic>),
 }
@@ -23,13 +23,13 @@ pub(super) enum Swizzle {
 pub(super) fn parse(field: &Ident) -> Swizzle {
     let name = field.name.as_str();
     if name.is_empty() || name.len() > 4 {
-        return Swizzle::NotASwizzle;
+        return Swizzle::NotOne;
     }
     let mut set: Option<&str> = None;
     let mut components = Vec::with_capacity(name.len());
     for (i, c) in name.char_indices() {
         let Some(letters) = [XYZW, RGBA].into_iter().find(|s| s.contains(c)) else {
-            return Swizzle::NotASwizzle;
+            return Swizzle::NotOne;
         };
         match set {
             None => set = Some(letters),
