@@ -384,6 +384,11 @@ pub fn run(cli: Cli) -> i32 {
             match crate::set_params::compile(&style, &set, &mut sources, &CompileOptions::default(), &printer) {
                 Ok(c) => {
                     printer.diagnostics(&c.warnings, &sources);
+                    let texture_errors = crate::texture_check::texture_file_errors(&c);
+                    if !texture_errors.is_empty() {
+                        printer.diagnostics(&texture_errors, &sources);
+                        return EXIT_USER;
+                    }
                     if printer.format == MessageFormat::Human {
                         eprintln!(
                             "ok: style \"{}\": {} pass(es), {} target(s)",
@@ -596,12 +601,18 @@ pub fn run(cli: Cli) -> i32 {
                         Err(code) => return code,
                     };
                     printer.diagnostics(&c.warnings, &sources);
+                    let texture_errors = crate::texture_check::texture_file_errors(&c);
+                    if !texture_errors.is_empty() {
+                        printer.diagnostics(&texture_errors, &sources);
+                        return EXIT_USER;
+                    }
                     c.program()
                 }
                 (None, None) => {
                     return printer.fail(Diagnostic::error(codes::USAGE, "give a style or --compiled DIR"));
                 }
             };
+            printer.diagnostics(&runner::scene_warnings(&program.manifest, &scene), &sources);
             let request = match frames {
                 Some((start, end)) => FrameRequest::Range { start, end },
                 None => FrameRequest::At { time_s: time },
@@ -885,7 +896,7 @@ pub(crate) fn compile_builtin(
             Err(EXIT_INTERNAL)
         }
         Err(CompileError::Internal(e)) => {
-            eprintln!("{e}");
+            printer.diagnostics(&[e.to_diagnostic()], sources);
             Err(EXIT_INTERNAL)
         }
     }

@@ -9,6 +9,7 @@ mod cli;
 mod live;
 mod set_params;
 mod studio;
+mod texture_check;
 mod usage;
 mod watch;
 

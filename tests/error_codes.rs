@@ -748,3 +748,257 @@ fn geometry_in_a_pass_over_pixels() {
     assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
     check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
 }
+
+#[test]
+fn a_swizzle_mixing_letter_sets() {
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = vec4(normal.xg, 0.0, 1.0)\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("swizzle-mixed"));
+    assert!(rendered.contains("write `.xy`"), "{rendered}");
+    assert_eq!(diags.len(), 1, "one error, no follow-up: {rendered}");
+    check_case("E0104", "E0104_mixed_swizzle", (diags, rendered));
+    // Starting with `rgba` letters, the fix keeps them.
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = vec4(normal.rgz, 1.0)\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("swizzle-mixed-rgba"));
+    assert_eq!(diags[0].code, "E0104", "{rendered}");
+    assert!(rendered.contains("write `.rgb`"), "{rendered}");
+}
+
+#[test]
+fn a_param_default_that_is_not_a_constant() {
+    let text = style(&format!("param lean: float = normal.x * 0.5\n{SIMPLE_PASS}"));
+    let (diags, rendered) = compile_errors(&text, &scratch("default-not-constant"));
+    assert!(
+        rendered.contains("the default of `lean` is not a constant"),
+        "{rendered}"
+    );
+    check_case("E0204", "E0204_default", (diags, rendered));
+    // Another param is not a constant either (folding it would make
+    // `--keep-params` render differently).
+    let text = style(&format!(
+        "param a: float = 0.5\nparam b: float = a * 2.0\n{SIMPLE_PASS}"
+    ));
+    let (diags, rendered) = compile_errors(&text, &scratch("default-of-param"));
+    assert_eq!(diags[0].code, "E0204", "{rendered}");
+    assert!(rendered.contains("`a` is a parameter, not a constant"), "{rendered}");
+    // Constant arithmetic, vectors and a lone percentage stay defaults.
+    let text = style(&format!(
+        "param a: float = 0.5 * 2.0 - 0.25\nparam v: vec2 = vec2(0.1, 0.2) * 2.0\nparam w: px = 5%\n{SIMPLE_PASS}"
+    ));
+    compile_warnings(&text);
+}
+
+/// A camera, a light and one sphere whose object table ends with `extra`.
+fn one_sphere_scene(extra: &str) -> String {
+    format!(
+        "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n[light]\ndirection = [0.0, 1.0, 0.0]\n\
+         [[object]]\nname = \"ball\"\nprimitive = {{ kind = \"sphere\", radius = 0.5, segments = 8, rings = 4 }}\n{extra}\n"
+    )
+}
+
+#[test]
+fn w0401_a_scene_binding_the_style_does_not_read() {
+    let dir = scratch("w0401");
+    let text = style(
+        "object param tint: color = #ffffff\nparam gain: float = 1.0\npass p: render(scene) {\n  out c: rgba8unorm = tint * gain\n}\noutput p.c\n",
+    );
+    let mut sources = SourceMap::new();
+    let compiled =
+        compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default()).expect("compiles");
+    std::fs::write(
+        dir.join("scene.toml"),
+        one_sphere_scene("params = { tnit = \"#ff0000\", gain = 2.0, tint = \"#00ff00\" }"),
+    )
+    .expect("write scene");
+    let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
+    let diags = runner::scene_warnings(&compiled.manifest, &scene);
+    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    // The misspelt name and the style-wide param; not `tint`, which is read.
+    assert_eq!(diags.len(), 2, "{rendered}");
+    assert!(rendered.contains("did you mean `tint`?"), "{rendered}");
+    assert!(
+        rendered.contains("`gain` is a style-wide name, the same for every object"),
+        "{rendered}"
+    );
+    assert!(diags.iter().all(|d| !d.is_error()), "{rendered}");
+    check("W0401", (diags, rendered));
+}
+
+#[test]
+fn w0402_a_render_pass_over_a_tag_no_object_has() {
+    let text = style(
+        "pass ground: render(gorund) {\n  out c: rgba8unorm = #808080\n}\npass final: image(ground) {\n  out color: rgba8unorm = ground.c\n}\noutput final.color\n",
+    );
+    let scene = abi::SceneSummary {
+        tags: ["ground".to_string(), "caster".to_string()].into_iter().collect(),
+        name: "scene.toml".into(),
+    };
+    let opts = CompileOptions {
+        scene: Some(scene),
+        ..CompileOptions::default()
+    };
+    let mut sources = SourceMap::new();
+    let compiled = compiler::compile_source("case.npr", &text, Path::new("."), &mut sources, &opts)
+        .unwrap_or_else(|_| panic!("compiles"));
+    let rendered = dsl::diagnostic::render(&compiled.warnings, &sources, false);
+    assert!(rendered.contains("did you mean `ground`?"), "{rendered}");
+    assert!(rendered.contains("caster, ground"), "{rendered}");
+    check("W0402", (compiled.warnings.clone(), rendered));
+    // Without a scene nothing is known about tags: no warning.
+    let mut sources = SourceMap::new();
+    let compiled = compiler::compile_source(
+        "case.npr",
+        &text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|_| panic!("compiles"));
+    assert!(compiled.warnings.is_empty(), "{:?}", compiled.warnings);
+}
+
+/// A style in `dir` that samples `texture paper = image("<file>", srgb)`.
+fn style_with_texture(dir: &Path, file: &str) -> PathBuf {
+    let path = dir.join("case.npr");
+    std::fs::write(
+        &path,
+        style(&format!(
+            "/// Paper grain (\"paper\" in the docs).\ntexture paper = image(\"{file}\", srgb)\npass p: render(scene) {{\n  out color: rgba8unorm = paper\n}}\noutput p.color\n"
+        )),
+    )
+    .expect("write style");
+    path
+}
+
+#[test]
+fn npr_check_opens_texture_files_that_are_not_images() {
+    let dir = scratch("check-not-an-image");
+    std::fs::write(dir.join("paper.png"), "this is text, not a PNG\n").expect("write");
+    let style = style_with_texture(&dir, "paper.png");
+    let (d, r) = cli_errors(&["check", style.to_str().expect("utf-8 path")], &dir);
+    assert!(r.contains("is not an image npr can read"), "{r}");
+    assert!(
+        r.contains("case.npr:3:23"),
+        "the label is on the path in image(...): {r}"
+    );
+    check_case("E0401", "E0401_not_an_image", (d, r));
+}
+
+#[test]
+fn npr_check_refuses_a_texture_past_the_size_limit_from_its_header() {
+    let dir = scratch("check-too-large");
+    let wide = dsl::limits::MAX_TEXTURE_SIZE + 1;
+    image::GrayImage::new(wide, 1)
+        .save(dir.join("wide.png"))
+        .expect("write png");
+    let style = style_with_texture(&dir, "wide.png");
+    let (d, r) = cli_errors(&["check", style.to_str().expect("utf-8 path")], &dir);
+    assert!(r.contains("16385x1, over the 16384-texel limit"), "{r}");
+    check_case("E0404", "E0404_texture_size", (d, r));
+}
+
+#[test]
+fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
+    let dir = scratch("render-not-an-image");
+    std::fs::write(dir.join("paper.png"), [0u8, 1, 2, 3]).expect("write");
+    let style = style_with_texture(&dir, "paper.png");
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            style.to_str().expect("utf-8 path"),
+            "--scene",
+            "examples/scenes/spot.toml",
+            "-o",
+            dir.join("out.png").to_str().expect("utf-8 path"),
+        ],
+        &dir,
+    );
+    assert_eq!(d[0].code, "E0401", "{r}");
+    assert!(r.contains("case.npr:3:23"), "{r}");
+    assert!(!dir.join("out.png").exists(), "nothing is written");
+}
+
+#[test]
+fn a_texture_file_that_cannot_be_read() {
+    // A directory passes no `open`: the error says it cannot be read.
+    let dir = scratch("texture-unreadable");
+    let err = runner::texture_file::probe(&dir).expect_err("a directory is no image");
+    let d = err.to_diagnostic("paper", "textures/");
+    assert_eq!(d.code, "E0401");
+    assert!(
+        d.message.starts_with("cannot read texture `paper` (textures/)"),
+        "{}",
+        d.message
+    );
+    // A file whose header is fine is accepted by the probe with its size.
+    let ok = dir.join("ok.png");
+    image::GrayImage::new(3, 2).save(&ok).expect("write png");
+    assert_eq!(runner::texture_file::probe(&ok).expect("a png"), (3, 2));
+}
+
+#[test]
+fn e0007_a_style_that_is_not_utf8() {
+    let dir = scratch("e0007");
+    let path = dir.join("latin1.npr");
+    let mut bytes = style("/// Caf").into_bytes();
+    bytes.push(0xe9); // `é` in Latin-1
+    bytes.extend_from_slice(format!(" au lait.\nparam a: float = 1.0\n{SIMPLE_PASS}").as_bytes());
+    std::fs::write(&path, bytes).expect("write");
+    let mut sources = SourceMap::new();
+    let Err(CompileError::User(diags)) = compiler::compile_file(&path, &mut sources, &CompileOptions::default()) else {
+        panic!("expected a user error");
+    };
+    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    assert!(
+        rendered.contains("latin1.npr:2:8"),
+        "line and column of the byte: {rendered}"
+    );
+    assert!(!rendered.contains("E0004"), "not a bad `use`: {rendered}");
+    check("E0007", (diags, rendered));
+}
+
+#[test]
+fn a_used_style_or_a_scene_that_is_not_utf8() {
+    let dir = scratch("e0007-use");
+    std::fs::write(dir.join("common.npr"), [b'p', b'a', 0xff, b'\n']).expect("write");
+    let text = style(&format!("use \"common.npr\"\n{SIMPLE_PASS}"));
+    let (diags, rendered) = compile_errors(&text, &dir);
+    assert_eq!(diags[0].code, "E0007", "{rendered}");
+    assert!(rendered.contains("common.npr:1:3"), "{rendered}");
+    assert!(rendered.contains("used here"), "{rendered}");
+    let mut sources = SourceMap::new();
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, [b'#', b' ', 0xfe, 0xff, b'\n']).expect("write");
+    let Err(diags) = runner::scene::load_scene(&scene, &mut sources) else {
+        panic!("a scene that is not UTF-8 must be refused");
+    };
+    let rendered = dsl::diagnostic::render(&diags, &sources, false);
+    assert_eq!(diags[0].code, "E0007", "{rendered}");
+    assert!(rendered.contains("scene.toml:1:3"), "{rendered}");
+}
+
+#[test]
+fn a_syntax_error_inside_a_pass_does_not_cascade() {
+    // The pass does not parse, so `shade` is unknown wherever it is read;
+    // only the syntax error is reported, with its caret after the `+`.
+    let text = style(
+        "param k: float = 1.0\npass shade: render(scene) {\n  let a = k +\n  out c: rgba8unorm = vec4(a)\n}\n\
+         pass final: image(shade) {\n  out c: rgba8unorm = shade.c\n}\noutput final.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("no-cascade"));
+    assert_eq!(diags.len(), 1, "{rendered}");
+    assert!(rendered.contains("case.npr:4:14"), "{rendered}");
+    // A broken `output` line is not also "no output"; errors of other,
+    // well-formed declarations are still reported.
+    let text = style("param b: px = 3m\npass p: render(scene) {\n  out c: rgba8unorm = #ffffff\n}\noutput p.\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("no-cascade-output"));
+    let codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["E0001", "E0202"], "{rendered}");
+}
+
+#[test]
+fn an_unknown_name_reports_once_not_again_for_its_field() {
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = nosuch.c\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("unknown-base"));
+    assert_eq!(diags.len(), 1, "{rendered}");
+    assert_eq!(diags[0].code, "E0101", "{rendered}");
+}

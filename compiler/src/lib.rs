@@ -13,6 +13,7 @@ pub mod consteval;
 pub mod dag;
 pub mod dump;
 pub mod emit;
+pub mod follow_ups;
 pub mod ir;
 pub mod load;
 pub mod overrides;
@@ -20,7 +21,9 @@ pub mod pipeline;
 pub mod prune;
 pub mod report;
 pub mod resolve;
+pub mod scene_tags;
 pub mod specialize;
+pub mod texture_spans;
 pub mod typecheck;
 pub mod validate;
 
@@ -50,6 +53,9 @@ pub struct Compiled {
     pub shaders: Vec<(String, String)>,
     pub report: report::Report,
     pub warnings: Vec<Diagnostic>,
+    /// Per manifest texture: where the style names its file (the path in
+    /// `image("…")`), for errors found when the runner opens it.
+    pub texture_spans: Vec<Span>,
     pub timings: Vec<(&'static str, std::time::Duration)>,
     pub dumps: Vec<(&'static str, String)>,
 }

@@ -15,13 +15,15 @@ pub struct Loaded {
     pub root: Ast,
     pub root_file: FileId,
     pub items: Vec<(Item, PathBuf)>,
+    /// Names of declarations that did not parse, in every file read.
+    pub broken: Vec<String>,
 }
 
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
 /// (the diagnostic is in `diags`).
 pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
-    let text = match read_bounded(path) {
-        Ok(t) => t,
+    let bytes = match read_bounded(path) {
+        Ok(b) => b,
         Err(e) => {
             diags.push(
                 Diagnostic::error(
@@ -34,13 +36,32 @@ pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnosti
         }
     };
     let name = path.display().to_string();
+    let (file, text) = match dsl::text::add_utf8(sources, &name, bytes) {
+        Ok(added) => added,
+        Err(d) => {
+            diags.push(d);
+            return None;
+        }
+    };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    Some(load_source(&name, &text, &dir, sources, diags))
+    Some(load_added(file, &name, &text, &dir, sources, diags))
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
 pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Loaded {
     let file = sources.add(name, text);
+    load_added(file, name, text, dir, sources, diags)
+}
+
+/// [`load_source`] of a file already in `sources`.
+fn load_added(
+    file: FileId,
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+) -> Loaded {
     let (ast, mut parse_diags) = dsl::parse(file, text);
     diags.append(&mut parse_diags);
     let mut items = Vec::new();
@@ -49,11 +70,13 @@ pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, 
         .map(|f| dir.join(f))
         .unwrap_or_else(|| dir.to_path_buf());
     let mut stack = vec![canonical(&own)];
-    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack);
+    let mut broken = ast.broken.clone();
+    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack, &mut broken);
     Loaded {
         root: ast,
         root_file: file,
         items,
+        broken,
     }
 }
 
@@ -71,6 +94,7 @@ fn expand_uses(
     diags: &mut Vec<Diagnostic>,
     items: &mut Vec<(Item, PathBuf)>,
     stack: &mut Vec<PathBuf>,
+    broken: &mut Vec<String>,
 ) {
     for item in &ast.items {
         let Item::Use(u) = item else {
@@ -107,36 +131,43 @@ fn expand_uses(
                     );
                     continue;
                 }
-                let text = match read_bounded(&path) {
-                    Ok(t) => t,
+                let bytes = match read_bounded(&path) {
+                    Ok(b) => b,
                     Err(e) => {
                         diags.push(use_error(u.span, rel, &e.to_string()));
                         continue;
                     }
                 };
-                let file = sources.add(path.display().to_string(), text.clone());
+                let (file, text) = match dsl::text::add_utf8(sources, &path.display().to_string(), bytes) {
+                    Ok(added) => added,
+                    Err(d) => {
+                        diags.push(d.with_secondary(u.span, "used here"));
+                        continue;
+                    }
+                };
                 let (used, mut d) = dsl::parse(file, &text);
                 diags.append(&mut d);
+                broken.extend(used.broken.iter().cloned());
                 let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
                 stack.push(key);
-                expand_uses(&used, &sub_dir, sources, diags, items, stack);
+                expand_uses(&used, &sub_dir, sources, diags, items, stack, broken);
                 stack.pop();
             }
         }
     }
 }
 
-/// Read a style file, but never more than one byte past
+/// Read a style file's bytes, but never more than one byte past
 /// [`MAX_SOURCE_BYTES`]: the parser refuses a longer text with its limit
-/// error, and a file like `/dev/zero` must not be read for ever.
-fn read_bounded(path: &Path) -> std::io::Result<String> {
+/// error, and a file like `/dev/zero` must not be read for ever. Whether
+/// they are text is `dsl::text::add_utf8`'s to say, with a span.
+fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();
     std::fs::File::open(path)?
         .take(MAX_SOURCE_BYTES as u64 + 1)
         .read_to_end(&mut bytes)?;
-    String::from_utf8(bytes)
-        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
+    Ok(bytes)
 }
 
 fn use_error(span: Span, rel: &str, err: &str) -> Diagnostic {

@@ -73,6 +73,7 @@ pub fn run(
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
+    crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;
     crate::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
     let graph = crate::dag::build(&ir, &mut diags);
@@ -124,6 +125,7 @@ pub fn run(
             }
         })
         .collect();
+    diags.extend(crate::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
     st.done("prune-after-specialize", &ir);
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
@@ -164,6 +166,7 @@ pub fn run(
         shaders,
         report,
         warnings: diags,
+        texture_spans: crate::texture_spans::texture_spans(&ir, sources),
         timings: st.timings,
         dumps: st.dumps,
     })

@@ -22,6 +22,7 @@ use stdlib::Unit;
 mod compute;
 mod kind_args;
 mod settings;
+mod swizzle;
 mod texture_source;
 
 /// Resolution limits, stated in the error messages (the table of every
@@ -1105,20 +1106,17 @@ impl Resolver<'_> {
             }
         }
         let b = self.expr(base);
-        let comps: Option<Vec<u8>> = field
-            .name
-            .chars()
-            .map(|c| match c {
-                'x' | 'r' => Some(0),
-                'y' | 'g' => Some(1),
-                'z' | 'b' => Some(2),
-                'w' | 'a' => Some(3),
-                _ => None,
-            })
-            .collect();
-        match comps {
-            Some(c) if !c.is_empty() && c.len() <= 4 => self.ir.add(ExprKind::Swizzle { base: b, components: c }, span),
-            _ => {
+        if matches!(self.ir.expr(b).kind, ExprKind::Error) {
+            // The base's error is reported; its field would only repeat it.
+            return b;
+        }
+        match swizzle::parse(field) {
+            swizzle::Swizzle::Components(c) => self.ir.add(ExprKind::Swizzle { base: b, components: c }, span),
+            swizzle::Swizzle::Mixed(d) => {
+                self.error(*d);
+                self.ir.add(ExprKind::Error, span)
+            }
+            swizzle::Swizzle::NotOne => {
                 self.error(
                     Diagnostic::error(codes::UNKNOWN_TYPE, format!("unknown field `{}`", field.name))
                         .with_primary(field.span, "not a swizzle or member")

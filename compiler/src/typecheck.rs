@@ -13,6 +13,7 @@ use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
 mod compute;
+mod defaults;
 
 pub fn typecheck(ir: &mut Ir, diags: &mut Vec<Diagnostic>) {
     let mut tc = Checker { ir, diags };
@@ -697,6 +698,9 @@ impl Checker<'_> {
                     .with_help(format!("write the default in {}", p.unit.name())),
                 );
                 continue;
+            }
+            if let Some(d) = defaults::not_constant(self.ir, &p) {
+                self.err(d);
             }
             if let (Some((lo, hi)), Some(c)) = (p.range, const_eval(self.ir, d)) {
                 if let Some(bad) = c.as_f64s().into_iter().find(|v| *v < lo || *v > hi) {

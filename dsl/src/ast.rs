@@ -21,6 +21,11 @@ pub struct Ast {
     /// `style "Name"`; `None` only when the header is missing (a diagnostic is reported).
     pub style: Option<StyleHeader>,
     pub items: Vec<Item>,
+    /// Names of declarations that did not parse (a syntax error was
+    /// reported in each): errors saying such a name is unknown follow from
+    /// that one and are not reported.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub broken: Vec<String>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -227,6 +227,8 @@ pub mod codes {
     pub const NESTED_TOO_DEEP: &str = "E0005";
     /// An expression deeper than `limits::MAX_EXPR_DEPTH` (a long operator chain counts).
     pub const EXPRESSION_TOO_DEEP: &str = "E0006";
+    /// A style or scene file that is not valid UTF-8 text.
+    pub const NOT_UTF8: &str = "E0007";
     /// Unknown name (parameter, builtin, let, pass, texture).
     pub const UNKNOWN_NAME: &str = "E0101";
     /// Unknown operator or function.
@@ -275,6 +277,10 @@ pub mod codes {
     pub const LIMIT_EXCEEDED: &str = "E0404";
     /// A scene file is malformed.
     pub const BAD_SCENE: &str = "E0405";
+    /// Warning: a scene binds a per-object value to a name the style does not read per object.
+    pub const UNUSED_BINDING: &str = "W0401";
+    /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
+    pub const ABSENT_TAG: &str = "W0402";
     /// The command line does not parse (clap's message, exit 1).
     pub const USAGE: &str = "E0501";
     /// A command-line value outside what it may be (`--fps 0`, `--time nan`, `--eye` of a mono scene).
@@ -293,6 +299,17 @@ pub mod codes {
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
+    /// [`ALL`] as the Markdown table of `docs/ERRORS.md` (checked by
+    /// `dsl/tests/error_docs.rs`).
+    pub fn markdown_table() -> String {
+        let mut t = String::from("| code | meaning |\n|---|---|\n");
+        for (code, what) in ALL {
+            t.push_str(&format!("| {code} | {what} |\n"));
+        }
+        t.push_str(&format!("| {INTERNAL} | internal error: a bug in npr (exit 2) |\n"));
+        t
+    }
+
     /// Every user-facing code with a one-line description (for `npr explain` and the docs).
     pub const ALL: &[(&str, &str)] = &[
         (SYNTAX, "syntax error"),
@@ -301,6 +318,7 @@ pub mod codes {
         (BAD_USE, "bad use of another file"),
         (NESTED_TOO_DEEP, "nested too deeply"),
         (EXPRESSION_TOO_DEEP, "expression too deep"),
+        (NOT_UTF8, "file is not UTF-8 text"),
         (UNKNOWN_NAME, "unknown name"),
         (UNKNOWN_OPERATOR, "unknown operator"),
         (BAD_ARGUMENT, "bad argument"),
@@ -325,6 +343,8 @@ pub mod codes {
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
+        (UNUSED_BINDING, "scene binding the style does not read (warning)"),
+        (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),
         (BAD_ARGUMENT_VALUE, "bad command-line value"),
         (CANNOT_WRITE, "cannot write an output"),

@@ -10,6 +10,8 @@ pub mod limits;
 mod nesting;
 mod parser;
 pub mod span;
+mod syntax_error;
+pub mod text;
 
 pub use diagnostic::{codes, Diagnostic, Label, Severity};
 pub use span::{FileId, SourceMap, Span};

@@ -5,10 +5,9 @@
 use crate::ast::*;
 use crate::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
 use crate::{codes, Diagnostic, FileId, Span};
-use pest::error::{ErrorVariant, InputLocation};
 use pest::iterators::Pair;
 use pest::Parser;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 
 #[derive(pest_derive::Parser)]
 #[grammar = "grammar.pest"]
@@ -21,6 +20,9 @@ struct Builder {
     /// Limit errors found while building (an expression past
     /// [`MAX_EXPR_DEPTH`]); the item that holds one is dropped.
     limit_errors: RefCell<Vec<Diagnostic>>,
+    /// Where the text being built starts in the file: 0, or a declaration's
+    /// start when recovering item by item.
+    offset: Cell<usize>,
 }
 
 /// Parse a whole file. On a syntax error, re-parse item by item.
@@ -28,12 +30,19 @@ struct Builder {
 /// A file over [`MAX_SOURCE_BYTES`] or nested past `MAX_NESTING` is refused
 /// before pest sees it (pest recurses once per nesting level).
 pub fn parse(file: FileId, source: &str) -> (Ast, Vec<Diagnostic>) {
-    if let Some(d) = too_large(file, source).or_else(|| crate::nesting::check(file, source)) {
+    // The tokens tried at the furthest position make the syntax messages
+    // (`syntax_error`).
+    pest::set_error_detail(true);
+    if let Some(d) = too_large(file, source)
+        .or_else(|| crate::nesting::check(file, source))
+        .or_else(|| crate::syntax_error::unclosed_comment_check(file, source))
+    {
         return (Ast::default(), vec![d]);
     }
     let b = Builder {
         file,
         limit_errors: RefCell::new(Vec::new()),
+        offset: Cell::new(0),
     };
     let (ast, mut diags) = parse_checked(&b, source);
     diags.append(&mut b.limit_errors.borrow_mut());
@@ -99,9 +108,10 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
     for (i, &start) in starts.iter().enumerate() {
         let end = starts.get(i + 1).copied().unwrap_or(source.len());
         let chunk = &source[start..end];
-        // Pad with spaces so pest positions are file offsets.
-        let padded = format!("{}{}", " ".repeat(start), chunk);
-        match NprParser::parse(Rule::single_item, &padded) {
+        // Each chunk is parsed alone; spans are shifted to file offsets (the
+        // chunk is not padded: that made recovery quadratic in the file).
+        b.offset.set(start);
+        match NprParser::parse(Rule::single_item, chunk) {
             Ok(mut pairs) => {
                 if let Some(p) = pairs.next() {
                     for inner in p.into_inner() {
@@ -116,10 +126,14 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
                 } else {
                     "the next declaration"
                 };
-                diags.push(b.syntax_error(e, &padded, eof));
+                diags.push(shifted(b.syntax_error(e, chunk, eof), start));
+                if let Some(name) = declared_name(chunk) {
+                    ast.broken.push(name.to_string());
+                }
             }
         }
     }
+    b.offset.set(0);
     if !reported {
         diags.push(b.syntax_error(first, source, "end of file"));
     }
@@ -130,6 +144,36 @@ fn recover(b: &Builder, source: &str, first: pest::error::Error<Rule>) -> (Ast, 
         diags.push(missing_header(b.file));
     }
     (ast, diags)
+}
+
+/// `d` with its labels moved `by` bytes later (from a chunk into its file).
+fn shifted(mut d: Diagnostic, by: usize) -> Diagnostic {
+    for l in &mut d.labels {
+        l.span.start += by as u32;
+        l.span.end += by as u32;
+    }
+    d
+}
+
+/// The name a declaration chunk declares (`pass shade: ...` → `shade`),
+/// read from its first words, so that a declaration that does not parse
+/// still suppresses errors about its name being unknown.
+fn declared_name(chunk: &str) -> Option<&str> {
+    let code = chunk
+        .lines()
+        .map(str::trim_start)
+        .find(|l| !l.is_empty() && !l.starts_with("//"))?;
+    let mut words = code
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty());
+    let mut first = words.next()?;
+    if first == "object" {
+        first = words.next()?;
+    }
+    match first {
+        "param" | "pass" | "texture" => words.next(),
+        _ => None,
+    }
 }
 
 const ITEM_KEYWORDS: &[&str] = &["style", "use", "param", "object", "texture", "pass", "output", "///"];
@@ -182,127 +226,55 @@ fn item_starts(source: &str) -> Vec<usize> {
     starts
 }
 
-/// English names for rules in "expected ..." messages.
-fn rule_name(r: &Rule) -> String {
-    match r {
-        Rule::expr
-        | Rule::or_expr
-        | Rule::and_expr
-        | Rule::comparison
-        | Rule::sum
-        | Rule::product
-        | Rule::unary
-        | Rule::postfix
-        | Rule::primary => "an expression",
-        Rule::ident => "a name",
-        Rule::number | Rule::number_value => "a number",
-        Rule::string | Rule::string_inner => "a string",
-        Rule::color => "a colour like #ff8800",
-        Rule::item | Rule::single_item => "a declaration (param, texture, pass, output, use)",
-        Rule::EOI => "end of file",
-        Rule::type_expr | Rule::enum_type | Rule::texture_type => "a type",
-        Rule::param_default | Rule::range_value => "a default value",
-        Rule::range_clause => "`in lo..hi`",
-        Rule::animate_clause => "`animate { ... }`",
-        Rule::pass_kind => "a pass kind such as render(scene) or image(a)",
-        Rule::kind_arg => "a name or a pass's target (`ids.id`)",
-        Rule::pass_body | Rule::pass_stmt => "`out`, `let`, `state`, `reduce`, `vertex` or a setting",
-        Rule::out_stmt => "`out name: format = value [{ blend: over }]`",
-        Rule::state_stmt => "`state name: type = value`",
-        Rule::reduce_stmt => "`reduce name: type = sum(value)`",
-        Rule::update_stmt => "`name = value`",
-        Rule::let_stmt => "`let name = value`",
-        Rule::setting => "`key: value`",
-        Rule::settings_block => "`{ key: value }`",
-        Rule::call => "a call",
-        Rule::arg => "an argument",
-        Rule::unit => "a unit (px, %, m, mm, s, Hz, deg)",
-        Rule::add_op | Rule::mul_op | Rule::cmp_op | Rule::or_op | Rule::and_op => "an operator",
-        Rule::field => "a field name",
-        Rule::style_header => "`style \"Name\"`",
-        Rule::doc_comment | Rule::doc_text => "a doc comment",
-        Rule::scale_clause => "`scale`",
-        Rule::pass_modifier => "a pass modifier",
-        Rule::object_kw | Rule::object_name => "`object`",
-        Rule::if_expr | Rule::else_if => "`if`",
-        other => return format!("{other:?}"),
+/// The length of `text` up to the end of its last token (whitespace and
+/// comments after it left out).
+fn content_len(text: &str) -> usize {
+    let ends_in_code = text.chars().next_back().is_some_and(|c| !c.is_whitespace() && c != '/');
+    if ends_in_code {
+        return text.len();
     }
-    .to_string()
+    let bytes = text.as_bytes();
+    let (mut i, mut end) = (0, 0);
+    while i < bytes.len() {
+        match bytes[i] {
+            b'/' if bytes.get(i + 1) == Some(&b'/') && bytes.get(i + 2) != Some(&b'/') => {
+                i = text[i..].find('\n').map_or(bytes.len(), |n| i + n);
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'*') => {
+                i = text[i + 2..].find("*/").map_or(bytes.len(), |n| i + 2 + n + 2);
+            }
+            b'"' => {
+                // Strings inside a pair are whole: skip to the closing quote.
+                let mut j = i + 1;
+                while j < bytes.len() && bytes[j] != b'"' {
+                    j += if bytes[j] == b'\\' { 2 } else { 1 };
+                }
+                i = (j + 1).min(bytes.len());
+                end = i;
+            }
+            c if c.is_ascii_whitespace() => i += 1,
+            _ => {
+                i += 1;
+                end = i;
+            }
+        }
+    }
+    end
 }
 
 impl Builder {
+    /// The pair's span, ending at its last token: a rule whose last part is
+    /// optional (`range_clause?`) also holds the whitespace and comments
+    /// pest skipped looking for it, which would run the span onto the lines
+    /// after the construct.
     fn span(&self, p: &P) -> Span {
         let s = p.as_span();
-        Span::new(self.file, s.start(), s.end())
+        let start = self.offset.get() + s.start();
+        Span::new(self.file, start, start + content_len(s.as_str()))
     }
 
     fn syntax_error(&self, e: pest::error::Error<Rule>, source: &str, eof: &str) -> Diagnostic {
-        let (start, end) = match e.location {
-            InputLocation::Pos(p) => (p, p),
-            InputLocation::Span((a, b)) => (a, b),
-        };
-        let start = start.min(source.len());
-        let end = end.clamp(start, source.len());
-        let found: String = source[start..]
-            .chars()
-            .take_while(|c| !c.is_whitespace())
-            .take(12)
-            .collect();
-        let found_text = if found.is_empty() {
-            eof.to_string()
-        } else {
-            format!("`{found}`")
-        };
-        let (message, label) = match &e.variant {
-            ErrorVariant::ParsingError { positives, negatives } => {
-                // `item*` failing before EOI only records EOI: say what could come instead.
-                let only_eoi = positives.iter().all(|r| *r == Rule::EOI);
-                let mut names: Vec<String> = if only_eoi && !positives.is_empty() {
-                    vec![rule_name(&Rule::item)]
-                } else {
-                    positives.iter().map(rule_name).collect()
-                };
-                names.sort();
-                names.dedup();
-                let expected = match names.len() {
-                    0 => negatives
-                        .iter()
-                        .map(rule_name)
-                        .next()
-                        .map(|n| format!("not {n}"))
-                        .unwrap_or_else(|| "something else".into()),
-                    1 => names[0].clone(),
-                    _ => {
-                        let last = names.pop().unwrap_or_default();
-                        format!("{} or {last}", names.join(", "))
-                    }
-                };
-                (
-                    format!("expected {expected}, found {found_text}"),
-                    format!("expected {expected}"),
-                )
-            }
-            ErrorVariant::CustomError { message } => (message.clone(), message.clone()),
-        };
-        let mut d =
-            Diagnostic::error(codes::SYNTAX, message).with_primary(Span::new(self.file, start, end.max(start)), label);
-        let before = &source[..start];
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let line = source[line_start..].lines().next().unwrap_or("").trim_start();
-        if (line.starts_with("param") || line.starts_with("object param")) && !line.contains('=') {
-            d = d.with_help("a parameter needs a default: `param name: type = value`");
-        } else if before.matches('"').count() % 2 == 1 || found.starts_with('"') && !found[1..].contains('"') {
-            d = d.with_help("a string is missing its closing `\"`");
-        } else if found.starts_with('%') {
-            d = d.with_help("write `a % b` with spaces for modulo; `50%` (no space) is a percentage");
-        } else if found.starts_with('#') {
-            d = d.with_help("colours are written `#rrggbb` or `#rrggbbaa` with hex digits");
-        } else if before.matches('(').count() > before.matches(')').count() {
-            d = d.with_help("a `(` is not closed");
-        } else if source[start..].trim_start().is_empty() && before.matches('{').count() > before.matches('}').count() {
-            d = d.with_help("a `{` is not closed");
-        }
-        d
+        crate::syntax_error::syntax_error(self.file, &e, source, eof)
     }
 
     fn top_level(&self, p: P, ast: &mut Ast, diags: &mut Vec<Diagnostic>) {
@@ -859,8 +831,8 @@ impl Builder {
     /// flat list in the grammar, folded here from the last into nested `If`s
     /// (each spanning from its `if` to the end), in a loop.
     fn if_expr(&self, p: P) -> Option<Expr> {
-        let end = p.as_span().end();
-        let start = p.as_span().start();
+        let end = self.offset.get() + p.as_span().end();
+        let start = self.offset.get() + p.as_span().start();
         let mut parts = p.into_inner();
         let cond = self.expr(parts.next()?)?;
         let then = self.block(parts.next()?)?;
@@ -868,7 +840,7 @@ impl Builder {
         let mut otherwise = None;
         for part in parts {
             if part.as_rule() == Rule::else_if {
-                let at = part.as_span().start();
+                let at = self.offset.get() + part.as_span().start();
                 let mut it = part.into_inner();
                 let cond = self.expr(it.next()?)?;
                 let then = self.block(it.next()?)?;

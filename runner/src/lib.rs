@@ -25,11 +25,14 @@ pub mod readback;
 pub mod scene;
 pub mod schedule;
 pub mod texgen;
+pub mod texture_file;
 pub mod textures;
 
 pub use abi::StyleProgram;
 pub use device::{DeviceError, Gpu};
-pub use exec::{check_scene, check_texture_bindings, scaled_size, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE};
+pub use exec::{
+    check_scene, check_texture_bindings, scaled_size, scene_warnings, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE,
+};
 pub use readback::TargetImage;
 
 use dsl::Diagnostic;

@@ -6,7 +6,7 @@ use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
 use abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
-use dsl::{codes, Diagnostic};
+use dsl::Diagnostic;
 use std::collections::{BTreeMap, HashMap};
 
 pub struct GpuTexture {
@@ -15,7 +15,8 @@ pub struct GpuTexture {
 }
 
 /// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most
-/// GPUs), from `dsl::limits`, where every limit is listed.
+/// GPUs), from `dsl::limits`, where every limit is listed; checked by
+/// `texture_file` from the file's header.
 pub use dsl::limits::MAX_TEXTURE_SIZE;
 
 pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Result<Vec<GpuTexture>, RunError> {
@@ -180,25 +181,8 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
     // Linear-light RGBA pixels plus the GPU format they are stored in.
     let (pixels, w, h, srgb, half_float) = match &t.source {
         TextureSourceManifest::Image { path, resolved, srgb } => {
-            let img = image::open(resolved).map_err(|e| {
-                Diagnostic::error(
-                    codes::MISSING_TEXTURE,
-                    format!("cannot read texture `{}` ({path}): {e}", t.name),
-                )
-                .with_help("use a PNG or EXR file; paths are relative to the .npr file")
-            })?;
-            if img.width() > MAX_TEXTURE_SIZE || img.height() > MAX_TEXTURE_SIZE {
-                return Err(Diagnostic::error(
-                    codes::LIMIT_EXCEEDED,
-                    format!(
-                        "texture `{}` is {}x{}, over the {MAX_TEXTURE_SIZE} px limit",
-                        t.name,
-                        img.width(),
-                        img.height()
-                    ),
-                )
-                .with_help("downscale the image file"));
-            }
+            let img = crate::texture_file::read(std::path::Path::new(resolved))
+                .map_err(|e| e.to_diagnostic(&t.name, path))?;
             let rgba = img.to_rgba32f();
             let (w, h) = rgba.dimensions();
             let mut px: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();

@@ -30,11 +30,13 @@ mod pass;
 mod render_pass;
 mod resources;
 mod scene_check;
+mod scene_warnings;
 mod values;
 
 pub use frame::FrameSpec;
 pub use resources::{scaled_size, wgpu_format};
 pub use scene_check::{check_scene, check_texture_bindings};
+pub use scene_warnings::scene_warnings;
 
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture};

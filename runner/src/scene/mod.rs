@@ -276,14 +276,14 @@ impl Scene {
 /// against it) and parses it with [`parse_scene`]. Mesh paths are relative
 /// to the file's folder.
 pub fn load_scene(path: &Path, sources: &mut SourceMap) -> Result<Scene, Vec<Diagnostic>> {
-    let text = std::fs::read_to_string(path).map_err(|err| {
+    let bytes = std::fs::read(path).map_err(|err| {
         vec![Diagnostic::error(
             codes::BAD_SCENE,
             format!("cannot read scene file `{}`: {err}", path.display()),
         )
         .with_help("check the path to the scene file (a UTF-8 TOML file)")]
     })?;
-    let file = sources.add(path.display().to_string(), text.clone());
+    let (file, text) = dsl::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
     parse_scene(&text, file, base_dir)
 }

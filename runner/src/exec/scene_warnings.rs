@@ -1,0 +1,96 @@
+//! Warnings about a scene's per-object bindings that the style does not
+//! read: a misspelt param name, or a style-wide param bound per object.
+//!
+//! They are warnings, not errors, because one scene may serve several
+//! styles; but a binding that is silently dropped is how a misspelling
+//! goes unnoticed, so each one is named with "did you mean" where a
+//! per-object param of the style is close. A param the style declares but
+//! does not use (`ParamBinding::Removed`) is not reported: the binding is
+//! right, the style just does not need it here.
+
+use crate::scene::Scene;
+use abi::manifest::{Manifest, ParamBinding};
+use dsl::diagnostic::did_you_mean;
+use dsl::{codes, Diagnostic, Span};
+
+/// W0401 for every binding of every object whose name is no per-object
+/// param or per-object texture of `manifest`.
+pub fn scene_warnings(manifest: &Manifest, scene: &Scene) -> Vec<Diagnostic> {
+    let per_object: Vec<&str> = manifest
+        .params
+        .iter()
+        .filter(|p| p.binding == ParamBinding::PerObject)
+        .map(|p| p.name.as_str())
+        .chain(
+            manifest
+                .textures
+                .iter()
+                .filter(|t| t.per_object)
+                .map(|t| t.name.as_str()),
+        )
+        .collect();
+    let mut diags = Vec::new();
+    for o in &scene.objects {
+        let bound = o
+            .params
+            .keys()
+            .map(|n| (n, o.param_spans.get(n).copied()))
+            .chain(o.textures.iter().map(|(n, b)| (n, Some(b.span))));
+        for (name, span) in bound {
+            if per_object.contains(&name.as_str()) {
+                continue;
+            }
+            let declared = manifest.params.iter().find(|p| p.name == *name);
+            if declared.is_some_and(|p| p.binding == ParamBinding::Removed) {
+                continue;
+            }
+            // A style-wide texture or style param bound to an image is E0405
+            // (`check_texture_bindings`), not this warning.
+            let is_style_texture = manifest.textures.iter().any(|t| t.name == *name);
+            if o.textures.contains_key(name) && (declared.is_some() || is_style_texture) {
+                continue;
+            }
+            diags.push(unread(
+                manifest,
+                &o.name,
+                name,
+                span,
+                declared.is_some() || is_style_texture,
+                &per_object,
+            ));
+        }
+    }
+    diags
+}
+
+fn unread(
+    manifest: &Manifest,
+    object: &str,
+    name: &str,
+    span: Option<Span>,
+    style_wide: bool,
+    per_object: &[&str],
+) -> Diagnostic {
+    let mut d = Diagnostic::warning(
+        codes::UNUSED_BINDING,
+        format!(
+            "object `{object}` binds `{name}`, which style \"{}\" does not read per object",
+            manifest.style
+        ),
+    );
+    if let Some(s) = span {
+        d = d.with_primary(s, "this binding is ignored");
+    }
+    let help = if style_wide {
+        format!(
+            "`{name}` is a style-wide name, the same for every object; declare `object param {name}` in the style to bind it per object"
+        )
+    } else if let Some(s) = did_you_mean(name, per_object.iter().copied()) {
+        format!("did you mean `{s}`?")
+    } else if per_object.is_empty() {
+        format!("style \"{}\" reads no per-object params", manifest.style)
+    } else {
+        format!("its per-object params are: {}", per_object.join(", "))
+    };
+    d.with_help(help)
+}

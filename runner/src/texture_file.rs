@@ -1,0 +1,107 @@
+//! Image files named by a style's textures: opened header first, so that
+//! `npr check` reports what `npr render` would (not an image, too large,
+//! unreadable) without decoding, and so that render refuses an image past
+//! `MAX_TEXTURE_SIZE` before allocating its pixels.
+//!
+//! Both go through [`header`], the one definition of what a readable
+//! texture file is; [`TextureFileError::to_diagnostic`] is the one wording.
+
+use abi::manifest::{Manifest, TextureSourceManifest};
+use dsl::limits::MAX_TEXTURE_SIZE;
+use dsl::{codes, Diagnostic};
+use image::ImageReader;
+use std::io::BufReader;
+use std::path::Path;
+
+/// Why a texture file cannot be used.
+#[derive(Debug)]
+pub enum TextureFileError {
+    /// It cannot be opened or read (missing, a directory, no permission).
+    Unreadable(std::io::Error),
+    /// It is not an image of a format npr reads (PNG, EXR), or it is corrupt.
+    NotAnImage(image::ImageError),
+    /// Wider or taller than [`MAX_TEXTURE_SIZE`].
+    TooLarge { width: u32, height: u32 },
+}
+
+type Reader = ImageReader<BufReader<std::fs::File>>;
+
+/// The file's reader, its format guessed from its content (then its
+/// extension), and its size, checked against the limit.
+fn header(path: &Path) -> Result<(Reader, (u32, u32)), TextureFileError> {
+    let open = || -> std::io::Result<Reader> { ImageReader::open(path)?.with_guessed_format() };
+    let reader = open().map_err(TextureFileError::Unreadable)?;
+    // `into_dimensions` consumes a reader: read the header with a second one.
+    let (width, height) = open()
+        .map_err(TextureFileError::Unreadable)?
+        .into_dimensions()
+        .map_err(|e| match e {
+            image::ImageError::IoError(io) => TextureFileError::Unreadable(io),
+            other => TextureFileError::NotAnImage(other),
+        })?;
+    if width > MAX_TEXTURE_SIZE || height > MAX_TEXTURE_SIZE {
+        return Err(TextureFileError::TooLarge { width, height });
+    }
+    Ok((reader, (width, height)))
+}
+
+/// The file's size, from its header alone.
+pub fn probe(path: &Path) -> Result<(u32, u32), TextureFileError> {
+    header(path).map(|(_, size)| size)
+}
+
+/// The decoded image, after [`probe`]'s checks.
+pub fn read(path: &Path) -> Result<image::DynamicImage, TextureFileError> {
+    let (reader, _) = header(path)?;
+    reader.decode().map_err(|e| match e {
+        image::ImageError::IoError(io) => TextureFileError::Unreadable(io),
+        other => TextureFileError::NotAnImage(other),
+    })
+}
+
+impl TextureFileError {
+    /// The diagnostic for texture `name`, whose file the style wrote as
+    /// `path`: E0401, or E0404 past the size limit. No label: the caller
+    /// knows where the file was named (the `image("…")` in the style, or a
+    /// binding in the scene).
+    pub fn to_diagnostic(&self, name: &str, path: &str) -> Diagnostic {
+        match self {
+            TextureFileError::Unreadable(e) => Diagnostic::error(
+                codes::MISSING_TEXTURE,
+                format!("cannot read texture `{name}` ({path}): {e}"),
+            )
+            .with_help("check that the file exists and is readable; paths are relative to the file that names them"),
+            TextureFileError::NotAnImage(e) => Diagnostic::error(
+                codes::MISSING_TEXTURE,
+                format!("texture `{name}` ({path}) is not an image npr can read: {e}"),
+            )
+            .with_help("use a PNG or EXR file"),
+            TextureFileError::TooLarge { width, height } => Diagnostic::error(
+                codes::LIMIT_EXCEEDED,
+                format!("texture `{name}` ({path}) is {width}x{height}, over the {MAX_TEXTURE_SIZE}-texel limit"),
+            )
+            .with_help(format!(
+                "downscale the image to at most {MAX_TEXTURE_SIZE}x{MAX_TEXTURE_SIZE} (docs/LIMITS.md)"
+            )),
+        }
+    }
+}
+
+/// Every image file `manifest`'s textures name, opened as [`probe`] does:
+/// (texture index, diagnostic) for each one that render would refuse.
+pub fn check_files(manifest: &Manifest) -> Vec<(usize, Diagnostic)> {
+    manifest
+        .textures
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| {
+            // Only image sources read a file; the others are generated.
+            let TextureSourceManifest::Image { path, resolved, .. } = &t.source else {
+                return None;
+            };
+            probe(Path::new(resolved))
+                .err()
+                .map(|e| (i, e.to_diagnostic(&t.name, path)))
+        })
+        .collect()
+}

@@ -1,0 +1,18 @@
+//! `npr check` and `npr render` open every texture file of a compiled style
+//! the way the runner will (`runner::texture_file`), and report what it
+//! would refuse at the `image("…")` in the style that names the file.
+
+use compiler::Compiled;
+use dsl::Diagnostic;
+
+/// E0401/E0404 for every texture file that cannot be used, each pointing at
+/// the path in the style.
+pub(crate) fn texture_file_errors(c: &Compiled) -> Vec<Diagnostic> {
+    runner::texture_file::check_files(&c.manifest)
+        .into_iter()
+        .map(|(i, d)| match c.texture_spans.get(i) {
+            Some(span) => d.with_primary(*span, "this file"),
+            None => d,
+        })
+        .collect()
+}
