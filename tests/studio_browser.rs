@@ -25,13 +25,6 @@ use tungstenite::{stream::MaybeTlsStream, Message, WebSocket};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("studio-browser").join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
 /// A headless Chromium with one page, driven over the DevTools protocol.
 struct Browser {
     child: Child,
@@ -202,31 +195,13 @@ fn base64_decode(s: &str) -> Vec<u8> {
     out
 }
 
-/// `npr render --keep-params` of `style` (with `sets`) as RGBA bytes.
+/// [`common::live::reference_render`] decoded to RGBA bytes.
 fn reference(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
-    let mut args = vec![
-        "render".to_string(),
-        style.display().to_string(),
-        "--scene".into(),
-        "examples/scenes/spot.toml".into(),
-        "--size".into(),
-        "64x64".into(),
-        "--keep-params".into(),
-        "-o".into(),
-        out.display().to_string(),
-    ];
-    for s in sets {
-        args.push("--set".into());
-        args.push(s.to_string());
-    }
-    let o = Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(&args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("npr render");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    image::open(out).expect("decode reference").to_rgba8().into_raw()
+    let png = common::live::reference_render(style, sets, out);
+    image::load_from_memory(&png)
+        .expect("decode reference")
+        .to_rgba8()
+        .into_raw()
 }
 
 /// The golden tolerance of 8-bit images: 1/255 per channel.
@@ -243,7 +218,7 @@ fn assert_close(actual: &[u8], expected: &[u8], what: &str) {
 
 #[test]
 fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switches_targets() {
-    let dir = scratch("run");
+    let dir = common::live::scratch("studio-browser", "run");
     let style = dir.join("sobel_outline.npr");
     let original = std::fs::read_to_string("examples/sobel_outline.npr").expect("style");
     std::fs::write(&style, &original).expect("copy");

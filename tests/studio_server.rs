@@ -10,41 +10,6 @@ mod common;
 use common::http::{self, Events};
 use common::live::{save_by_rename, start_studio as start};
 use serde_json::{json, Value};
-use std::path::{Path, PathBuf};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("studio").join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-/// `npr render --keep-params` of `style` with `sets` at 64×64.
-fn reference(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
-    let mut args = vec![
-        "render".to_string(),
-        style.display().to_string(),
-        "--scene".into(),
-        "examples/scenes/spot.toml".into(),
-        "--size".into(),
-        "64x64".into(),
-        "--keep-params".into(),
-        "-o".into(),
-        out.display().to_string(),
-    ];
-    for s in sets {
-        args.push("--set".into());
-        args.push(s.to_string());
-    }
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(&args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("npr render");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    std::fs::read(out).expect("reference image")
-}
 
 fn frame_id(s: &Value) -> u64 {
     s["frame"]["id"].as_u64().unwrap_or(0)
@@ -74,7 +39,7 @@ fn param<'a>(s: &'a Value, name: &str) -> &'a Value {
 
 #[test]
 fn the_page_the_stream_controls_and_saves_over_real_http() {
-    let dir = scratch("cycle");
+    let dir = common::live::scratch("studio", "cycle");
     let style = dir.join("toon.npr");
     let original = std::fs::read_to_string("examples/toon.npr").expect("toon.npr");
     std::fs::write(&style, &original).expect("copy");
@@ -103,7 +68,10 @@ fn the_page_the_stream_controls_and_saves_over_real_http() {
     let mut events = Events::open(&addr);
     let first = events.until("a first frame", |s| frame_id(s) > 0);
     assert!(errors(&first).is_empty(), "{}", first["diagnostics"]);
-    assert_eq!(output_png(&addr, &first), reference(&style, &[], &dir.join("ref0.png")));
+    assert_eq!(
+        output_png(&addr, &first),
+        common::live::reference_render(&style, &[], &dir.join("ref0.png"))
+    );
     // Controls from the manifest: not the per-object `tint`.
     assert_eq!(param(&first, "bands")["control"], "int");
     assert_eq!(param(&first, "bands")["range_written"], json!([1.0, 8.0]));
@@ -136,7 +104,7 @@ fn the_page_the_stream_controls_and_saves_over_real_http() {
     });
     assert_eq!(
         output_png(&addr, &moved),
-        reference(&style, &["bands=5"], &dir.join("ref5.png"))
+        common::live::reference_render(&style, &["bands=5"], &dir.join("ref5.png"))
     );
     // A value outside the range is refused with its code, and nothing renders.
     http::post(&addr, "/param", &json!({"name": "bands", "literal": "99"}));
@@ -152,7 +120,7 @@ fn the_page_the_stream_controls_and_saves_over_real_http() {
     });
     assert_eq!(
         output_png(&addr, &saved),
-        reference(&style, &["bands=5"], &dir.join("ref_saved.png"))
+        common::live::reference_render(&style, &["bands=5"], &dir.join("ref_saved.png"))
     );
 
     // A broken save: diagnostics with line and column; the last image stays.
@@ -213,7 +181,7 @@ fn the_page_the_stream_controls_and_saves_over_real_http() {
 
 #[test]
 fn a_style_broken_at_start_still_opens_the_page_with_its_diagnostics() {
-    let dir = scratch("broken-start");
+    let dir = common::live::scratch("studio", "broken-start");
     let style = dir.join("broken.npr");
     std::fs::write(
         &style,
@@ -230,7 +198,7 @@ fn a_style_broken_at_start_still_opens_the_page_with_its_diagnostics() {
 
 #[test]
 fn a_texture_is_watched_and_an_unreadable_one_is_reported_while_serving() {
-    let dir = scratch("texture");
+    let dir = common::live::scratch("studio", "texture");
     let grad = dir.join("grad.png");
     let write_grad = |flip: bool| {
         let img = image::RgbaImage::from_fn(8, 8, |x, _| {

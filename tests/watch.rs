@@ -6,14 +6,7 @@
 mod common;
 
 use common::live::{save_by_rename, Live};
-use std::path::{Path, PathBuf};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("watch").join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use std::path::Path;
 
 fn render(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
     let mut args = vec![
@@ -39,7 +32,7 @@ fn render(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
 
 #[test]
 fn saves_re_render_a_broken_save_keeps_the_last_image_and_a_fix_recovers() {
-    let dir = scratch("cycle");
+    let dir = common::live::scratch("watch", "cycle");
     let style = dir.join("toon.npr");
     let original = std::fs::read_to_string("examples/toon.npr").expect("toon.npr");
     std::fs::write(&style, &original).expect("copy style");

@@ -4,7 +4,7 @@
 //! hang guard, not a measurement: nothing asserts how fast a line came.
 
 use std::io::{BufRead, BufReader};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
@@ -117,4 +117,41 @@ pub fn start_studio(style: &Path) -> (Live, String) {
         .trim_end_matches('/')
         .to_string();
     (studio, addr)
+}
+
+/// A fresh scratch directory `<target tmp>/<group>/<name>`.
+pub fn scratch(group: &str, name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(group).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// `npr render --keep-params` of `style` with `sets` on `spot.toml` at
+/// 64×64 into `out`: the reference a studio frame must equal. Returns the
+/// PNG file's bytes.
+pub fn reference_render(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
+    let mut args = vec![
+        "render".to_string(),
+        style.display().to_string(),
+        "--scene".into(),
+        "examples/scenes/spot.toml".into(),
+        "--size".into(),
+        "64x64".into(),
+        "--keep-params".into(),
+        "-o".into(),
+        out.display().to_string(),
+    ];
+    for s in sets {
+        args.push("--set".into());
+        args.push(s.to_string());
+    }
+    let o = Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(&args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("npr render");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::read(out).expect("reference image")
 }
