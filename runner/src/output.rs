@@ -7,8 +7,20 @@ use crate::readback::TargetImage;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Write `bytes` to `path` atomically (temp file + rename).
+/// Whether `path` is something other than a regular file or a directory (a
+/// device like `/dev/null`, a FIFO, a socket): renaming a temporary over
+/// it would replace the device node with a plain file, so it is written in
+/// place instead (atomicity means nothing there).
+fn is_special(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
+/// Write `bytes` to `path` atomically (temp file + rename); a device or FIFO
+/// (`-o /dev/null`) is written in place.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    if is_special(path) {
+        return std::fs::OpenOptions::new().write(true).open(path)?.write_all(bytes);
+    }
     let tmp = temp_path(path)?;
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -52,6 +64,10 @@ pub fn write_all_atomic(files: &[(PathBuf, &[u8])]) -> std::io::Result<()> {
     let result = (|| {
         let mut written = Vec::new();
         for (path, bytes) in files {
+            if is_special(path) {
+                std::fs::OpenOptions::new().write(true).open(path)?.write_all(bytes)?;
+                continue;
+            }
             let tmp = temp_path(path)?;
             let mut f = std::fs::File::create(&tmp)?;
             temps.push((tmp, path));
@@ -246,5 +262,34 @@ mod tests {
         );
         assert_eq!(names(&dir), ["a.wgsl", "blocker"], "no temporary file left");
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_fifo_is_written_in_place_not_replaced() {
+        // `-o /dev/null` once replaced /dev/null with a plain file (as root).
+        // A FIFO stands in for a device here.
+        let dir = std::env::temp_dir().join(format!("npr-output-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let fifo = dir.join("pipe");
+        let _ = std::fs::remove_file(&fifo);
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .expect("mkfifo runs");
+        assert!(made.success(), "mkfifo failed");
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || std::fs::read(fifo).expect("read the fifo"))
+        };
+        write_atomic(&fifo, b"image bytes").expect("write");
+        // Checked before joining: a replaced FIFO never gets a writer, and
+        // the reader would wait for ever.
+        use std::os::unix::fs::FileTypeExt;
+        assert!(
+            std::fs::metadata(&fifo).expect("still there").file_type().is_fifo(),
+            "replaced by a plain file"
+        );
+        assert_eq!(reader.join().expect("reader"), b"image bytes");
+        std::fs::remove_dir_all(&dir).expect("clean up");
     }
 }
