@@ -26,6 +26,7 @@ pub fn frame_block(
     let l = scene.light.direction.normalize_or_zero();
     let c = scene.light.color;
     let point = |p: Vec3| [p.x, p.y, p.z, 1.0];
+    let (more_light_dir, more_light_color) = scene.more_light_frame();
     FrameBlock {
         view: view.to_cols_array_2d(),
         proj: proj.to_cols_array_2d(),
@@ -48,8 +49,8 @@ pub fn frame_block(
         eye_right: point(right),
         camera_forward: [forward.x, forward.y, forward.z, 0.0],
         previous_view_proj: previous_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
-        more_light_dir: scene.more_light_frame().0,
-        more_light_color: scene.more_light_frame().1,
+        more_light_dir,
+        more_light_color,
     }
 }
 

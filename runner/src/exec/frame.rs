@@ -83,6 +83,7 @@ impl Renderer<'_> {
             crate::scene::light_view_proj(scene.light.direction, self.caster_bounds, self.scene_bounds);
         let other_view_proj = proj * pose.view(1 - eye.min(1));
         let (left, right, forward) = (pose.position(0), pose.position(1), pose.forward());
+        let (more_light_dir, more_light_color) = scene.more_light_frame();
         FrameBlock {
             view: view.to_cols_array_2d(),
             proj: proj.to_cols_array_2d(),
@@ -106,8 +107,8 @@ impl Renderer<'_> {
             eye_right: [right.x, right.y, right.z, 1.0],
             camera_forward: [forward.x, forward.y, forward.z, 0.0],
             previous_view_proj: previous_view_proj.to_cols_array_2d(),
-            more_light_dir: scene.more_light_frame().0,
-            more_light_color: scene.more_light_frame().1,
+            more_light_dir,
+            more_light_color,
         }
     }
 
