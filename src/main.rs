@@ -3,10 +3,11 @@
 //! Exit codes: 0 ok, 1 user error (diagnostics printed), 2 internal error.
 
 mod args;
-mod bench_compile;
-mod bench_patterns;
+mod bench;
 mod cli;
+mod commands;
 mod live;
+mod printer;
 mod set_params;
 mod studio;
 mod texture_check;
@@ -15,7 +16,7 @@ mod watch;
 
 fn main() {
     let code = match usage::parse() {
-        Ok(args) => cli::run(args),
+        Ok(args) => commands::run(args),
         Err(code) => code,
     };
     std::process::exit(code);

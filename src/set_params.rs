@@ -13,7 +13,7 @@
 //! back as the language spells it, for "copy as --set" and for rewriting a
 //! default in the `.npr` file.
 
-use crate::cli::Printer;
+use crate::printer::Printer;
 use abi::manifest::{ParamBinding, ParamManifest};
 use compiler::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
@@ -58,7 +58,7 @@ pub(crate) fn compile(
     printer: &Printer,
 ) -> Result<Compiled, i32> {
     let result = compile_with_sets(style, sets, &[], sources, opts);
-    crate::cli::report_compile(result, sources, printer)
+    crate::printer::report_compile(result, sources, printer)
 }
 
 /// The manifest's parameters with `ty` set to `color` where the style

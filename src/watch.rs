@@ -5,10 +5,11 @@
 //! diagnostics and keeps the last good image; fixing it renders again. It
 //! never exits on a bad save (nor on a panic, which is reported as E9001).
 
-use crate::cli::{Printer, EXIT_INTERNAL};
+use crate::cli::EXIT_INTERNAL;
 use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
+use crate::printer::Printer;
 use dsl::{codes, Diagnostic, SourceMap};
 use std::path::PathBuf;
 use std::sync::mpsc;
@@ -28,7 +29,7 @@ pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
     if let Err(d) = crate::args::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
         return printer.fail(d);
     }
-    let gpu = match crate::cli::headless_gpu(printer) {
+    let gpu = match crate::printer::headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -83,7 +84,7 @@ fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut 
         return files;
     }
     let program = built.compiled.program();
-    let rendered = crate::cli::render(
+    let rendered = crate::commands::render::render(
         gpu,
         &program,
         &built.scene,

@@ -13,8 +13,9 @@ mod server;
 pub mod state;
 pub mod write_back;
 
-use crate::cli::{Printer, EXIT_INTERNAL};
+use crate::cli::EXIT_INTERNAL;
 use crate::live::build::Inputs;
+use crate::printer::Printer;
 use dsl::{codes, Diagnostic};
 use std::io::Write;
 use std::net::{IpAddr, SocketAddr};

@@ -429,7 +429,7 @@ fn render_frame<'g>(
             None
         }
     };
-    let images = crate::cli::read_all_targets(&mut s.renderer, &s.built.scene, &spec)?;
+    let images = crate::commands::dump::read_all_targets(&mut s.renderer, &s.built.scene, &spec)?;
     Ok((images, times))
 }
 

@@ -2,7 +2,9 @@
 //! compiling the tracker for each sample count, the device, the table) and
 //! `lab::sliding` (the sliding of each pattern placement and tracker variant).
 
-use crate::cli::{compile_builtin, headless_gpu, Printer, EXIT_INTERNAL, EXIT_OK};
+use super::compile_builtin;
+use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use crate::printer::{headless_gpu, Printer};
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::RunError;
 

@@ -1,0 +1,318 @@
+//! The GPU benchmarks' commands: operators, contours, reductions, pixel
+//! passes, whole styles, passes and runner overhead, each against its
+//! baseline in the same run.
+
+use super::{compile_builtin, scene_style_gpu};
+use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use compiler::CompileOptions;
+use dsl::{codes, Diagnostic, SourceMap};
+use runner::{Gpu, RunError, StyleProgram};
+use std::path::{Path, PathBuf};
+
+/// `npr bench overhead`: the runner against the independent baseline.
+pub(super) fn overhead(
+    style: &Path,
+    scene_path: &Path,
+    size: (u32, u32),
+    (frames, warmup): (u32, u32),
+    printer: &Printer,
+) -> i32 {
+    let mut sources = SourceMap::new();
+    let (scene, compiled, gpu) = match scene_style_gpu(style, scene_path, &mut sources, printer) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    match lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
+        Ok(r) => {
+            println!(
+                "device: {}, {}x{}, style {} ({} pass(es)), scene {}",
+                gpu.describe(),
+                size.0,
+                size.1,
+                style.display(),
+                r.passes,
+                scene_path.display()
+            );
+            println!(
+                "{} rounds of one frame each (order alternating) after {} warm-up frames; images before timing: {}",
+                r.frames, r.warmup, r.diff
+            );
+            print!("{}", r.table());
+            EXIT_OK
+        }
+        Err(lab::bench_overhead::OverheadError::Run(e)) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            if e.is_user_error() {
+                EXIT_USER
+            } else {
+                EXIT_INTERNAL
+            }
+        }
+        Err(e @ lab::bench_overhead::OverheadError::Unsupported(_)) => {
+            printer.fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, e.to_string()))
+        }
+        Err(e) => {
+            // The baseline disagreeing with the runner is a bug in one of them.
+            printer.diagnostics(&[Diagnostic::error(codes::INTERNAL, e.to_string())], &SourceMap::new());
+            EXIT_INTERNAL
+        }
+    }
+}
+
+pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+    let mut sources = SourceMap::new();
+    let scene = match load_scene(scene_path, &mut sources, printer) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    let variants = lab::bench_ops::variants();
+    let mut programs = Vec::new();
+    for v in &variants {
+        let text = lab::bench_ops::style(v);
+        match compile_builtin(v.name, &text, &mut sources, printer) {
+            Ok(p) => programs.push((v.name, p)),
+            Err(code) => return code,
+        }
+    }
+    // Frame-level round robin over all variants, so load changes hit every variant alike.
+    let progs: Vec<&StyleProgram> = programs.iter().map(|(_, p)| p).collect();
+    let best = match lab::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return EXIT_INTERNAL;
+        }
+    };
+    println!(
+        "device: {}, {}x{}, scene {}",
+        gpu.describe(),
+        size.0,
+        size.1,
+        scene_path.display()
+    );
+    println!("| variant | ms/frame | cost vs plain sample | scale error | anisotropy | contrast error |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for (i, (name, _)) in programs.iter().enumerate() {
+        let errors = match &variants[i].model {
+            Some(m) => {
+                let (scale, aniso, contrast) = lab::bench_ops::errors(m);
+                format!("{scale:.3} | {aniso:.1}° | {contrast:.3}")
+            }
+            None => "— | — | —".to_string(),
+        };
+        println!(
+            "| {name} | {:.3} | {:.2}x | {errors} |",
+            best[i] * 1e3,
+            best[i] / best[0]
+        );
+    }
+    EXIT_OK
+}
+
+pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
+    if sizes.contains(&0) {
+        return printer.fail(Diagnostic::error(
+            codes::BAD_ARGUMENT_VALUE,
+            "--sizes 0: an image is at least 1 pixel wide",
+        ));
+    }
+    for s in sizes {
+        if let Err(code) = printer.check(crate::args::check_size((*s, *s))) {
+            return code;
+        }
+    }
+    let mut sources = SourceMap::new();
+    let mut programs = Vec::new();
+    for (name, text, measure) in lab::bench_contours::variants() {
+        match compile_builtin(name, &text, &mut sources, printer) {
+            Ok(p) => programs.push((name, p, measure)),
+            Err(code) => return code,
+        }
+    }
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match lab::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
+        Ok(rows) => {
+            println!("device: {}, {frames} frames per median", gpu.describe());
+            println!("{}", lab::bench_contours::table(&rows));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench reduce`: see `lab::bench_reduce`.
+pub(super) fn reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = elements.iter().chain(objects).find(|n| **n == 0 || **n > 10_000_000) {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("count {bad} is outside 1..=10000000"),
+        ));
+    }
+    with_and_without(
+        ("reduce.npr", lab::bench_reduce::STYLE),
+        lab::bench_reduce::NULL_STYLE,
+        frames,
+        printer,
+        |gpu, programs| {
+            lab::bench_reduce::run(gpu, programs, elements, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| lab::bench_reduce::table(&rows))
+        },
+    )
+}
+
+/// `npr bench pixels`: see `lab::bench_reduce_pixels`.
+pub(super) fn pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > 8192) {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("size {bad} is outside 1..=8192"),
+        ));
+    }
+    if let Some(bad) = objects.iter().find(|n| **n == 0 || **n > 10_000) {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("object count {bad} is outside 1..=10000"),
+        ));
+    }
+    with_and_without(
+        ("pixels.npr", lab::bench_reduce_pixels::STYLE),
+        lab::bench_reduce_pixels::NULL_STYLE,
+        frames,
+        printer,
+        |gpu, programs| {
+            lab::bench_reduce_pixels::run(gpu, programs, sizes, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| lab::bench_reduce_pixels::table(&rows))
+        },
+    )
+}
+
+/// A benchmark of a built-in style against the same frame without the
+/// measured pass (`null`): both compiled, the device opened, `run` measures
+/// and returns its table, which is printed under the device's name.
+fn with_and_without(
+    (name, style): (&str, &str),
+    null: &str,
+    frames: u32,
+    printer: &Printer,
+    run: impl FnOnce(&Gpu, (&StyleProgram, &StyleProgram)) -> Result<String, RunError>,
+) -> i32 {
+    let mut sources = SourceMap::new();
+    let mut programs = Vec::new();
+    for (name, text) in [(name, style), ("null.npr", null)] {
+        match compile_builtin(name, text, &mut sources, printer) {
+            Ok(p) => programs.push(p),
+            Err(code) => return code,
+        }
+    }
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match run(&gpu, (&programs[0], &programs[1])) {
+        Ok(table) => {
+            println!(
+                "device: {}, median of {frames} interleaved frames (wall clock)",
+                gpu.describe()
+            );
+            println!("{table}");
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench styles`: see `lab::bench_styles`.
+pub(super) fn styles(
+    styles: &[PathBuf],
+    baseline: &Path,
+    scene_path: &Path,
+    size: (u32, u32),
+    frames: u32,
+    printer: &Printer,
+) -> i32 {
+    let mut sources = SourceMap::new();
+    let (scene, base, gpu) = match scene_style_gpu(baseline, scene_path, &mut sources, printer) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let mut programs = Vec::new();
+    for s in styles {
+        match compile(s, &mut sources, &opts, printer) {
+            Ok(c) => programs.push((s.display().to_string(), c.program())),
+            Err(code) => return code,
+        }
+    }
+    match lab::bench_styles::run(&gpu, &scene, &base.program(), &programs, size, (frames, 5)) {
+        Ok(rows) => {
+            println!(
+                "device: {}, {}x{}, median of {frames} interleaved frames (wall clock)",
+                gpu.describe(),
+                size.0,
+                size.1
+            );
+            println!("{}", lab::bench_styles::table(&rows, &baseline.display().to_string()));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}
+
+/// `npr bench passes`: each pass's GPU time and its share of the frame.
+pub(super) fn passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+    let mut sources = SourceMap::new();
+    let (scene, compiled, gpu) = match scene_style_gpu(style, scene_path, &mut sources, printer) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    let program = compiled.program();
+    let times = match lab::bench::pass_times(&gpu, &program, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return if e.is_user_error() { EXIT_USER } else { EXIT_INTERNAL };
+        }
+    };
+    let total: f64 = times.iter().map(|t| t.ms).sum();
+    println!(
+        "device: {}, {}x{}, style {}, scene {}, median of {frames} frames",
+        gpu.describe(),
+        size.0,
+        size.1,
+        style.display(),
+        scene_path.display()
+    );
+    println!("| pass | scale | GPU ms | share of frame |");
+    println!("|---|---:|---:|---:|");
+    for (t, p) in times.iter().zip(&compiled.manifest.passes) {
+        println!(
+            "| {} | {} | {:.3} | {:.1}% |",
+            t.name,
+            p.scale,
+            t.ms,
+            100.0 * t.ms / total.max(1e-12)
+        );
+    }
+    println!("| **all passes** | | {total:.3} | 100% |");
+    EXIT_OK
+}

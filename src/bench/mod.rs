@@ -1,0 +1,141 @@
+//! `npr bench`: each benchmark's command (argument limits, the styles it
+//! compiles, the device, its table); the measuring is in `lab`.
+
+mod compile;
+mod gpu;
+mod patterns;
+
+use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
+use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use compiler::{CompileError, CompileOptions, Compiled};
+use dsl::{codes, Diagnostic, SourceMap};
+use runner::{Gpu, StyleProgram};
+use std::path::Path;
+
+pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
+    match cmd {
+        BenchCommand::Compile {
+            styles,
+            iterations,
+            cold,
+            runs,
+        } => {
+            let table = if cold {
+                compile::cold(&styles, runs)
+            } else {
+                compile::in_process(&styles, iterations)
+            };
+            match table {
+                Ok(t) => {
+                    print!("{t}");
+                    EXIT_OK
+                }
+                Err(e) => printer
+                    .fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, "the benchmark could not run").with_note(e)),
+            }
+        }
+        BenchCommand::Ops { scene, size, frames } => gpu::ops(&scene, size, frames, printer),
+        BenchCommand::Contours { sizes, frames } => gpu::contours(&sizes, frames, printer),
+        BenchCommand::Reduce {
+            elements,
+            objects,
+            frames,
+        } => gpu::reduce(&elements, &objects, frames, printer),
+        BenchCommand::Pixels { sizes, objects, frames } => gpu::pixels(&sizes, &objects, frames, printer),
+        BenchCommand::Patterns {
+            samples,
+            objects,
+            frames,
+        } => patterns::run(&samples, &objects, frames, printer),
+        BenchCommand::Styles {
+            styles,
+            baseline,
+            scene,
+            size,
+            frames,
+        } => gpu::styles(&styles, &baseline, &scene, size, frames, printer),
+        BenchCommand::Passes {
+            style,
+            scene,
+            size,
+            frames,
+        } => gpu::passes(&style, &scene, size, frames, printer),
+        BenchCommand::Overhead {
+            style,
+            scene,
+            size,
+            frames,
+            warmup,
+        } => gpu::overhead(&style, &scene, size, (frames, warmup), printer),
+        BenchCommand::Frame {
+            style,
+            scene,
+            size,
+            frames,
+        } => {
+            let mut sources = SourceMap::new();
+            let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
+                Ok(c) => c,
+                Err(code) => return code,
+            };
+            let scene = match load_scene(&scene, &mut sources, printer) {
+                Ok(s) => s,
+                Err(code) => return code,
+            };
+            let gpu = match headless_gpu(printer) {
+                Ok(g) => g,
+                Err(code) => return code,
+            };
+            match lab::bench::frame_overhead(&gpu, &c.program(), &scene, size, frames) {
+                Ok(r) => {
+                    println!("device: {}", gpu.describe());
+                    println!("{}", r.table());
+                    EXIT_OK
+                }
+                Err(e) => {
+                    printer.diagnostics(&e.diagnostics(), &sources);
+                    EXIT_INTERNAL
+                }
+            }
+        }
+    }
+}
+
+/// Compile a style the benchmarks carry in their source: any error in it is
+/// npr's (the internal exit code), printed with its diagnostics.
+pub(crate) fn compile_builtin(
+    name: &str,
+    text: &str,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<StyleProgram, i32> {
+    match compiler::compile_source(name, text, Path::new("."), sources, &CompileOptions::default()) {
+        Ok(c) => Ok(c.program()),
+        Err(CompileError::User(d)) => {
+            printer.diagnostics(&d, sources);
+            Err(EXIT_INTERNAL)
+        }
+        Err(CompileError::Internal(e)) => {
+            printer.diagnostics(&[e.to_diagnostic()], sources);
+            Err(EXIT_INTERNAL)
+        }
+    }
+}
+
+/// What the benchmarks of one style on one scene need: the scene, the style
+/// compiled for it, and the headless GPU; or the exit code, with the
+/// diagnostics printed.
+pub(crate) fn scene_style_gpu(
+    style: &Path,
+    scene_path: &Path,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<(runner::scene::Scene, Compiled, Gpu), i32> {
+    let scene = load_scene(scene_path, sources, printer)?;
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        ..Default::default()
+    };
+    let compiled = compile(style, sources, &opts, printer)?;
+    Ok((scene, compiled, headless_gpu(printer)?))
+}

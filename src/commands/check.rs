@@ -1,0 +1,37 @@
+//! `npr check`: parse and check a style (with its `--set`s and the texture
+//! files it names) and print its diagnostics; nothing is written.
+
+use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
+use crate::printer::Printer;
+use compiler::CompileOptions;
+use dsl::SourceMap;
+
+pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
+    let mut sources = SourceMap::new();
+    match crate::set_params::compile(
+        &args.style,
+        &args.set,
+        &mut sources,
+        &CompileOptions::default(),
+        printer,
+    ) {
+        Ok(c) => {
+            printer.diagnostics(&c.warnings, &sources);
+            let texture_errors = crate::texture_check::texture_file_errors(&c);
+            if !texture_errors.is_empty() {
+                printer.diagnostics(&texture_errors, &sources);
+                return EXIT_USER;
+            }
+            if printer.format == MessageFormat::Human {
+                eprintln!(
+                    "ok: style \"{}\": {} pass(es), {} target(s)",
+                    c.manifest.style,
+                    c.manifest.passes.len(),
+                    c.manifest.targets.len()
+                );
+            }
+            EXIT_OK
+        }
+        Err(code) => code,
+    }
+}

@@ -1,0 +1,56 @@
+//! What each command does: [`run`] hands the parsed command line to the
+//! module of its command and returns the exit code.
+
+mod check;
+mod compile;
+pub(crate) mod dump;
+pub(crate) mod render;
+mod texgen;
+
+use crate::cli::{Cli, Command};
+use crate::live::build::Inputs;
+use crate::printer::Printer;
+
+pub fn run(cli: Cli) -> i32 {
+    let printer = Printer::new(cli.message_format);
+    match cli.command {
+        Command::Check(args) => check::run(&args, &printer),
+        Command::Compile(args) => compile::run(args, &printer),
+        Command::Render(args) => render::run(args, &printer),
+        Command::Texgen(args) => texgen::run(args, &printer),
+        Command::Bench(cmd) => crate::bench::run(cmd, &printer),
+        Command::Watch { live, out } => crate::watch::run(
+            crate::watch::WatchArgs {
+                inputs: Inputs {
+                    style: live.style,
+                    scene: live.scene,
+                    sets: live.set,
+                    keep_params: false,
+                },
+                out,
+                size: live.size,
+                time: live.time,
+                fps: live.fps,
+                eye: live.eye,
+            },
+            &printer,
+        ),
+        Command::Studio { live, host, port } => crate::studio::run(
+            crate::studio::StudioArgs {
+                inputs: Inputs {
+                    style: live.style,
+                    scene: live.scene,
+                    sets: live.set,
+                    keep_params: true,
+                },
+                size: live.size,
+                time: live.time,
+                fps: live.fps,
+                eye: live.eye,
+                host,
+                port,
+            },
+            &printer,
+        ),
+    }
+}

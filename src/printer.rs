@@ -1,0 +1,105 @@
+//! How a command reports: diagnostics printed as text or JSON, and the
+//! steps every command shares (compile, load a scene, open the GPU) turned
+//! into an exit code once their diagnostics are printed.
+
+use crate::cli::{MessageFormat, EXIT_INTERNAL, EXIT_USER};
+use compiler::{CompileError, CompileOptions, Compiled};
+use dsl::{codes, Diagnostic, SourceMap};
+use runner::Gpu;
+use std::io::IsTerminal;
+use std::path::Path;
+
+/// Where and how diagnostics go: `--message-format`, and colour when stderr
+/// is a terminal.
+pub(crate) struct Printer {
+    pub(crate) format: MessageFormat,
+    color: bool,
+}
+
+impl Printer {
+    /// Colour when stderr is a terminal.
+    pub(crate) fn new(format: MessageFormat) -> Self {
+        Printer {
+            format,
+            color: std::io::stderr().is_terminal(),
+        }
+    }
+
+    pub(crate) fn diagnostics(&self, diags: &[Diagnostic], sources: &SourceMap) {
+        if diags.is_empty() {
+            return;
+        }
+        match self.format {
+            MessageFormat::Json => print!("{}", dsl::diagnostic::render_json(diags, sources)),
+            MessageFormat::Human => eprint!("{}", dsl::diagnostic::render(diags, sources, self.color)),
+        }
+    }
+
+    /// Print one diagnostic that points into no file (a command-line value,
+    /// an output path, the device) and give the user-error exit code.
+    pub(crate) fn fail(&self, d: Diagnostic) -> i32 {
+        self.diagnostics(&[d], &SourceMap::new());
+        EXIT_USER
+    }
+
+    /// [`Printer::fail`] for a check of the arguments.
+    pub(crate) fn check(&self, checked: Result<(), Diagnostic>) -> Result<(), i32> {
+        checked.map_err(|d| self.fail(d))
+    }
+}
+
+/// An output that cannot be written: E0503.
+pub(crate) fn cannot_write(path: &Path, e: impl std::fmt::Display) -> Diagnostic {
+    Diagnostic::error(codes::CANNOT_WRITE, format!("cannot write {}: {e}", path.display()))
+        .with_help("check that the directory exists and is writable")
+}
+
+pub(crate) fn compile(
+    style: &Path,
+    sources: &mut SourceMap,
+    opts: &CompileOptions,
+    printer: &Printer,
+) -> Result<Compiled, i32> {
+    report_compile(compiler::compile_file(style, sources, opts), sources, printer)
+}
+
+/// Print a failed compile's diagnostics (and the rejected WGSL of an
+/// internal error); the error is the exit code.
+pub(crate) fn report_compile(
+    result: Result<Compiled, CompileError>,
+    sources: &SourceMap,
+    printer: &Printer,
+) -> Result<Compiled, i32> {
+    match result {
+        Ok(c) => Ok(c),
+        Err(CompileError::User(diags)) => {
+            printer.diagnostics(&diags, sources);
+            Err(EXIT_USER)
+        }
+        Err(CompileError::Internal(e)) => {
+            printer.diagnostics(&[e.to_diagnostic()], sources);
+            if let Some(w) = &e.wgsl {
+                eprintln!("--- generated WGSL ---\n{w}");
+            }
+            Err(EXIT_INTERNAL)
+        }
+    }
+}
+
+/// A headless GPU, or the exit code after saying why there is none.
+pub(crate) fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
+    Gpu::headless().map_err(|e| printer.fail(e.to_diagnostic()))
+}
+
+/// Load a scene, or print its diagnostics and give the user-error exit code.
+pub(crate) fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer) -> Result<runner::scene::Scene, i32> {
+    runner::scene::load_scene(path, sources).map_err(|d| {
+        printer.diagnostics(&d, sources);
+        EXIT_USER
+    })
+}
+
+/// Load a scene only for what the compiler may know of it (its tags).
+pub(crate) fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
+    runner::scene::load_scene(path, sources).map(|s| s.summary(&path.display().to_string()))
+}
