@@ -103,3 +103,21 @@ pub(crate) fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer
 pub(crate) fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
     runner::scene::load_scene(path, sources).map(|s| s.summary(&path.display().to_string()))
 }
+
+/// Say how each art-map was made: filtered now (and whether it reached the
+/// disk cache) or read from a cache.
+pub(crate) fn artmap_notes(builds: &[runner::artmap::ArtmapBuild]) {
+    use runner::artmap_cache::Origin;
+    for b in builds {
+        let how = match b.origin {
+            Origin::Built { on_disk: true } => "filtered and cached",
+            Origin::Built { on_disk: false } => "filtered (no cache directory: set NPR_CACHE_DIR to keep it)",
+            Origin::Memory => "reused from memory",
+            Origin::Disk => "read from the cache",
+        };
+        eprintln!(
+            "note: art-map `{}`: {} level(s) {how} in {:.1} ms",
+            b.texture, b.levels, b.ms
+        );
+    }
+}

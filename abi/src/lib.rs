@@ -18,6 +18,7 @@
 //! Neither the compiler nor the runner depends on the other; both depend on
 //! this crate, which depends on neither.
 
+pub mod artmap;
 mod block;
 pub mod formats;
 pub mod frame;
@@ -29,6 +30,7 @@ pub mod program;
 pub mod scene;
 pub mod validate;
 
+pub use artmap::{ArtmapSpec, FilterProgram};
 pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
 pub use halftone::HalftoneTableSpec;

@@ -571,6 +571,11 @@ pub enum TextureSourceManifest {
     Noise(NoiseSpec),
     /// A halftone's tone-correction table, built at load (its fields inline).
     HalftoneTable(crate::HalftoneTableSpec),
+    /// An art-map: a mip chain filtered level by level, built at load.
+    Artmap(crate::ArtmapSpec),
+    /// In a filter style only: the level the filter runs on, given by the
+    /// runner (`Renderer::new_filter`).
+    FilterInput,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -148,6 +148,31 @@ impl Manifest {
                         return bad(format!("{field}.edge"), format!("{} is outside {lo}..={hi}", spec.edge));
                     }
                 }
+                TextureSourceManifest::Artmap(spec) => {
+                    if spec.resolved.is_empty() {
+                        return bad(format!("{field}.resolved"), "empty image path");
+                    }
+                    if let Some(n) = spec.levels {
+                        if !(1..=crate::ArtmapSpec::MAX_LEVELS).contains(&n) {
+                            return bad(
+                                format!("{field}.levels"),
+                                format!("{n} is outside 1..={}", crate::ArtmapSpec::MAX_LEVELS),
+                            );
+                        }
+                    }
+                    if !t.mips {
+                        return bad(format!("textures[{i}].mips"), "an art-map is a mip chain");
+                    }
+                    spec.filter.program().validate().map_err(|e| Invalid {
+                        field: format!("{field}.filter.{}", e.field),
+                        message: e.message,
+                    })?;
+                    spec.filter.manifest.validate_filter().map_err(|message| Invalid {
+                        field: format!("{field}.filter"),
+                        message,
+                    })?;
+                }
+                TextureSourceManifest::FilterInput => {}
             }
         }
         Ok(())

@@ -582,9 +582,26 @@ pub struct Param {
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
-    Image { path: String, resolved: String, srgb: bool },
+    Image {
+        path: String,
+        resolved: String,
+        srgb: bool,
+    },
     Noise(abi::NoiseSpec),
     HalftoneTable(abi::HalftoneTableSpec),
+    /// `artmap(image("…"), filter: "…", levels: …)` (Klein et al. 2000
+    /// §4.2): `filter` is the filter's key in `Loaded::filters`, and
+    /// `filter_name` the path as written.
+    Artmap {
+        path: String,
+        resolved: String,
+        srgb: bool,
+        filter: String,
+        filter_name: String,
+        levels: Option<u32>,
+    },
+    /// `filter_input()`, in a filter style: the level being filtered.
+    FilterInput,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

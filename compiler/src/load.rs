@@ -17,11 +17,39 @@ pub struct Loaded {
     pub items: Vec<(Item, PathBuf)>,
     /// Names of declarations that did not parse, in every file read.
     pub broken: Vec<String>,
+    /// The filter styles its art-maps name, by resolved path
+    /// (`load_filters`); empty in a filter itself, which may have none.
+    pub filters: std::collections::BTreeMap<String, Loaded>,
+    /// Loaded as an art-map's filter (`load_filter_file`): it must read one
+    /// `filter_input()` and run image passes only (`filter_checks`).
+    pub is_filter: bool,
 }
 
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
 /// (the diagnostic is in `diags`).
 pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
+    load_file_as(path, sources, diags, WithFilters::Yes)
+}
+
+/// Whether the art-maps' filter styles are loaded too: not for a filter,
+/// which may name none (so a filter naming itself cannot recurse).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum WithFilters {
+    Yes,
+    No,
+}
+
+/// [`load_file`] of a filter style: its art-maps' filters are not loaded.
+pub fn load_filter_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
+    load_file_as(path, sources, diags, WithFilters::No)
+}
+
+fn load_file_as(
+    path: &Path,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+    with_filters: WithFilters,
+) -> Option<Loaded> {
     let bytes = match read_bounded(path) {
         Ok(b) => b,
         Err(e) => {
@@ -44,13 +72,13 @@ pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnosti
         }
     };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    Some(load_added(file, &name, &text, &dir, sources, diags))
+    Some(load_added(file, &name, &text, &dir, sources, diags, with_filters))
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
 pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Loaded {
     let file = sources.add(name, text);
-    load_added(file, name, text, dir, sources, diags)
+    load_added(file, name, text, dir, sources, diags, WithFilters::Yes)
 }
 
 /// [`load_source`] of a file already in `sources`.
@@ -61,6 +89,7 @@ fn load_added(
     dir: &Path,
     sources: &mut SourceMap,
     diags: &mut Vec<Diagnostic>,
+    with_filters: WithFilters,
 ) -> Loaded {
     let (ast, mut parse_diags) = dsl::parse(file, text);
     diags.append(&mut parse_diags);
@@ -72,11 +101,17 @@ fn load_added(
     let mut stack = vec![canonical(&own)];
     let mut broken = ast.broken.clone();
     expand_uses(&ast, dir, sources, diags, &mut items, &mut stack, &mut broken);
+    let filters = match with_filters {
+        WithFilters::Yes => crate::load_filters::load(&items, sources, diags),
+        WithFilters::No => Default::default(),
+    };
     Loaded {
         root: ast,
         root_file: file,
         items,
         broken,
+        filters,
+        is_filter: with_filters == WithFilters::No,
     }
 }
 

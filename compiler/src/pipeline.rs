@@ -70,12 +70,16 @@ pub fn run(
         );
     }
     let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags).map_err(CompileError::Internal)?;
+    if loaded.is_filter || crate::filter_checks::reads_a_level(&ir) {
+        crate::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
+    }
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
     crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;
     crate::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
+    let filters = compile_filters(&ir, loaded.filters, sources)?;
     let graph = crate::dag::build(&ir, &mut diags);
     st.done("dag", &ir);
     fail_if_errors(&diags)?;
@@ -136,8 +140,9 @@ pub fn run(
         sources,
     };
     let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
-    let manifest = crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name)
-        .map_err(CompileError::Internal)?;
+    let manifest =
+        crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name, &filters)
+            .map_err(CompileError::Internal)?;
     for a in &manifest.scene_attributes {
         report.push(
             "requires",
@@ -170,4 +175,44 @@ pub fn run(
         timings: st.timings,
         dumps: st.dumps,
     })
+}
+
+/// Compile the filter style of every art-map (each once), as a style of its
+/// own with its defaults: the compiled filters by the key `resolve` gave
+/// them. A filter's errors are the host's errors, spans in the filter file.
+fn compile_filters(
+    ir: &crate::ir::Ir,
+    mut loaded: std::collections::BTreeMap<String, Loaded>,
+    sources: &SourceMap,
+) -> Result<std::collections::BTreeMap<String, abi::FilterProgram>, CompileError> {
+    let mut out = std::collections::BTreeMap::new();
+    for t in &ir.textures {
+        let crate::ir::TextureSource::Artmap {
+            filter, filter_name, ..
+        } = &t.source
+        else {
+            continue;
+        };
+        if out.contains_key(filter) {
+            continue;
+        }
+        let Some(filter_loaded) = loaded.remove(filter) else {
+            return Err(CompileError::Internal(InternalError {
+                message: format!("the filter `{filter_name}` of texture `{}` was not loaded", t.name),
+                detail: "load_filters loads every filter an art-map names".into(),
+                span: Some(t.span),
+                wgsl: None,
+            }));
+        };
+        let c = run(filter_loaded, sources, filter, &CompileOptions::default(), Vec::new())?;
+        out.insert(
+            filter.clone(),
+            abi::FilterProgram {
+                path: filter_name.clone(),
+                manifest: Box::new(c.manifest),
+                shaders: c.shaders.into_iter().collect(),
+            },
+        );
+    }
+    Ok(out)
 }

@@ -14,7 +14,9 @@ pub fn texture_spans(ir: &Ir, sources: &SourceMap) -> Vec<Span> {
     ir.textures
         .iter()
         .map(|t| match &t.source {
-            TextureSource::Image { .. } => path_literal(sources, t.span).unwrap_or(t.span),
+            TextureSource::Image { .. } | TextureSource::Artmap { .. } => {
+                path_literal(sources, t.span).unwrap_or(t.span)
+            }
             _ => t.span,
         })
         .collect()

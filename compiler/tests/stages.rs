@@ -374,8 +374,17 @@ fn an_output_without_a_target_is_an_internal_error() {
     // An impossible state: the allocator always gives the output a target.
     let out = ir.output.expect("output");
     alloc.targets.retain(|(t, _)| *t != out);
-    let err = compiler::emit::manifest::build(&ir, &live, &alloc, &[], &[], &SourceMap::new(), "t.npr")
-        .expect_err("internal error");
+    let err = compiler::emit::manifest::build(
+        &ir,
+        &live,
+        &alloc,
+        &[],
+        &[],
+        &SourceMap::new(),
+        "t.npr",
+        &Default::default(),
+    )
+    .expect_err("internal error");
     assert!(err.message.contains("output"), "{}", err.message);
     assert!(err.detail.contains("`d.c`"), "{}", err.detail);
     assert_eq!(err.to_diagnostic().code, dsl::codes::INTERNAL);

@@ -267,6 +267,10 @@ pub mod codes {
     pub const DEPTH_NOT_KEPT: &str = "E0308";
     /// The target a `compute(pixels, ...)` pass runs over is not an ID target (`r32float`).
     pub const BAD_ID_TARGET: &str = "E0309";
+    /// An art-map filter style that is not one (it must read one
+    /// `filter_input()` and run image passes only), an art-map inside a
+    /// filter, or a filter rendered on a scene.
+    pub const BAD_FILTER: &str = "E0310";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -338,6 +342,7 @@ pub mod codes {
         (NOT_BLENDABLE, "blend on a format that cannot be blended"),
         (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
         (BAD_ID_TARGET, "a pass over pixels of a target that is not an ID target"),
+        (BAD_FILTER, "not an art-map filter, or a filter used as a style"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

@@ -18,6 +18,8 @@
 //! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
 
 pub mod animation;
+pub mod artmap;
+pub mod artmap_cache;
 pub mod device;
 pub mod exec;
 pub mod output;

@@ -95,9 +95,11 @@ pub fn check_files(manifest: &Manifest) -> Vec<(usize, Diagnostic)> {
         .iter()
         .enumerate()
         .filter_map(|(i, t)| {
-            // Only image sources read a file; the others are generated.
-            let TextureSourceManifest::Image { path, resolved, .. } = &t.source else {
-                return None;
+            // Only image and art-map sources read a file; the others are generated.
+            let (path, resolved) = match &t.source {
+                TextureSourceManifest::Image { path, resolved, .. } => (path, resolved),
+                TextureSourceManifest::Artmap(spec) => (&spec.path, &spec.resolved),
+                _ => return None,
             };
             probe(Path::new(resolved))
                 .err()

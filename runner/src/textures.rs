@@ -2,6 +2,7 @@
 //! optional mip chain), generated noise and halftone tone tables, each with
 //! its sampler.
 
+use crate::artmap::{ArtmapBuild, Level};
 use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
@@ -19,11 +20,19 @@ pub struct GpuTexture {
 /// `texture_file` from the file's header.
 pub use dsl::limits::MAX_TEXTURE_SIZE;
 
-pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Result<Vec<GpuTexture>, RunError> {
+/// Every declared texture of `m`, and what building its art-maps did.
+/// `input` is the level a filter style runs on (its `filter_input()`).
+pub fn load_all(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    input: Option<&Level>,
+) -> Result<(Vec<GpuTexture>, Vec<ArtmapBuild>), RunError> {
     let mut out = Vec::new();
     let mut diags = Vec::new();
+    let mut builds = Vec::new();
     for t in &m.textures {
-        match load_one(device, queue, t) {
+        match load_one(device, queue, t, input, &mut builds) {
             Ok(g) => out.push(g),
             Err(d) => {
                 diags.push(d);
@@ -35,7 +44,7 @@ pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Res
     if !diags.is_empty() {
         return Err(RunError::User(diags));
     }
-    Ok(out)
+    Ok((out, builds))
 }
 
 /// The images objects bind to per-object texture params, loaded once per
@@ -69,7 +78,10 @@ pub fn load_object_textures(
             };
             let declared_srgb = match &m.textures[index].source {
                 TextureSourceManifest::Image { srgb, .. } => *srgb,
-                TextureSourceManifest::Noise { .. } | TextureSourceManifest::HalftoneTable(_) => false,
+                TextureSourceManifest::Artmap(spec) => spec.srgb,
+                TextureSourceManifest::Noise { .. }
+                | TextureSourceManifest::HalftoneTable(_)
+                | TextureSourceManifest::FilterInput => false,
             };
             let srgb = b.srgb.unwrap_or(declared_srgb);
             let key = (index, b.resolved.clone(), srgb);
@@ -83,7 +95,7 @@ pub fn load_object_textures(
                 resolved: b.resolved.display().to_string(),
                 srgb,
             };
-            match load_one(device, queue, &decl) {
+            match load_one(device, queue, &decl, None, &mut Vec::new()) {
                 Ok(g) => {
                     cache.insert(key, out.images.len());
                     bound.insert(index, out.images.len());
@@ -177,43 +189,77 @@ fn halftone_table_texels(spec: &abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u32, 
     (texels, TONES as u32, ROWS as u32)
 }
 
-fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> Result<GpuTexture, Diagnostic> {
-    // Linear-light RGBA pixels plus the GPU format they are stored in.
-    let (pixels, w, h, srgb, half_float) = match &t.source {
-        TextureSourceManifest::Image { path, resolved, srgb } => {
-            let img = crate::texture_file::read(std::path::Path::new(resolved))
-                .map_err(|e| e.to_diagnostic(&t.name, path))?;
-            let rgba = img.to_rgba32f();
-            let (w, h) = rgba.dimensions();
-            let mut px: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();
-            if *srgb {
-                for p in &mut px {
-                    for c in &mut p[..3] {
-                        *c = srgb_to_linear(*c);
-                    }
-                }
+/// An image file decoded to linear RGBA, and the file's bytes.
+fn decode_image(t: &TextureManifest, path: &str, resolved: &str, srgb: bool) -> Result<(Level, Vec<u8>), Diagnostic> {
+    let file = std::path::Path::new(resolved);
+    let img = crate::texture_file::read(file).map_err(|e| e.to_diagnostic(&t.name, path))?;
+    let bytes = std::fs::read(file)
+        .map_err(|e| crate::texture_file::TextureFileError::Unreadable(e).to_diagnostic(&t.name, path))?;
+    let rgba = img.to_rgba32f();
+    let (width, height) = rgba.dimensions();
+    let mut pixels: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();
+    if srgb {
+        for p in &mut pixels {
+            for c in &mut p[..3] {
+                *c = srgb_to_linear(*c);
             }
-            (px, w, h, *srgb, false)
+        }
+    }
+    Ok((Level { width, height, pixels }, bytes))
+}
+
+fn load_one(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    t: &TextureManifest,
+    input: Option<&Level>,
+    builds: &mut Vec<ArtmapBuild>,
+) -> Result<GpuTexture, Diagnostic> {
+    // Linear-light levels (one, or a mip chain) plus how they are stored.
+    let (levels, srgb, half_float): (Vec<Level>, bool, bool) = match &t.source {
+        TextureSourceManifest::Image { path, resolved, srgb } => {
+            let (base, _) = decode_image(t, path, resolved, *srgb)?;
+            let count = if t.mips { u32::MAX } else { 1 };
+            (crate::artmap::mip_chain(base, count), *srgb, false)
         }
         TextureSourceManifest::Noise(spec) => {
             let img = texgen::generate(spec);
-            (img.pixels, img.size, img.size, false, true)
+            let base = Level {
+                width: img.size,
+                height: img.size,
+                pixels: img.pixels,
+            };
+            let count = if t.mips { u32::MAX } else { 1 };
+            (crate::artmap::mip_chain(base, count), false, true)
         }
         TextureSourceManifest::HalftoneTable(spec) => {
-            let (texels, w, h) = halftone_table_texels(spec);
-            (texels, w, h, false, true)
+            let (pixels, width, height) = halftone_table_texels(spec);
+            (vec![Level { width, height, pixels }], false, true)
+        }
+        TextureSourceManifest::Artmap(spec) => {
+            let (base, bytes) = decode_image(t, &spec.path, &spec.resolved, spec.srgb)?;
+            let (levels, build) = crate::artmap::build(device, queue, &t.name, spec, &bytes, base).map_err(|e| {
+                let mut d = e.diagnostics();
+                let first = d.remove(0);
+                first.with_note(format!(
+                    "while filtering art-map `{}` with `{}`",
+                    t.name, spec.filter.path
+                ))
+            })?;
+            builds.push(build);
+            // Half floats: a filter's output is linear and may leave [0, 1].
+            ((*levels).clone(), false, true)
+        }
+        TextureSourceManifest::FilterInput => {
+            let level = input.ok_or_else(|| {
+                Diagnostic::error(
+                    dsl::codes::INTERNAL,
+                    format!("texture `{}` is a filter's input, but no level was given", t.name),
+                )
+            })?;
+            (vec![level.clone()], false, true)
         }
     };
-    let mut levels = vec![(pixels, w, h)];
-    if t.mips {
-        while levels.last().is_some_and(|(_, w, h)| *w > 1 || *h > 1) {
-            let (p, w, h) = levels
-                .last()
-                .map(|(p, w, h)| downsample_box(p, *w, *h))
-                .unwrap_or_default();
-            levels.push((p, w, h));
-        }
-    }
     let format = if half_float {
         wgpu::TextureFormat::Rgba16Float
     } else if srgb {
@@ -221,8 +267,9 @@ fn load_one(device: &wgpu::Device, queue: &wgpu::Queue, t: &TextureManifest) -> 
     } else {
         wgpu::TextureFormat::Rgba8Unorm
     };
-    let texture = device.create_texture(&desc(w, h, levels.len() as u32, format));
-    for (mip, (px, lw, lh)) in levels.iter().enumerate() {
+    let texture = device.create_texture(&desc(levels[0].width, levels[0].height, levels.len() as u32, format));
+    for (mip, level) in levels.iter().enumerate() {
+        let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
         let (bytes, bpp): (Vec<u8>, u32) = if half_float {
             let halves: Vec<u16> = px
                 .iter()

@@ -141,6 +141,7 @@ pub(crate) fn render(
     dump: Option<&Path>,
 ) -> Result<(), RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    crate::printer::artmap_notes(r.artmap_builds());
     let io = |e: std::io::Error, p: &Path| RunError::User(vec![cannot_write(p, e)]);
     let request = match frames {
         Some((start, end)) => FrameRequest::Range { start, end },

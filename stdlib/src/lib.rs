@@ -21,6 +21,7 @@
 pub mod halftone_table;
 pub mod metrics;
 pub mod operators;
+pub mod operators_artmaps;
 pub mod operators_patterns;
 pub mod reference;
 pub mod reference_lsa;
@@ -181,8 +182,14 @@ impl Operator {
 /// operators by their index here): the operator table, then the dynamic
 /// 2D patterns' operators.
 pub fn all() -> &'static [Operator] {
-    static ALL: std::sync::LazyLock<Vec<Operator>> =
-        std::sync::LazyLock::new(|| operators::ALL.iter().chain(operators_patterns::ALL).copied().collect());
+    static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
+        operators::ALL
+            .iter()
+            .chain(operators_patterns::ALL)
+            .chain(operators_artmaps::ALL)
+            .copied()
+            .collect()
+    });
     &ALL
 }
 

@@ -11,6 +11,8 @@ mod patterns;
 pub use patterns::*;
 mod halftone;
 pub use halftone::*;
+mod artmaps;
+pub use artmaps::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).
@@ -245,6 +247,7 @@ pub const REFERENCED: &[&str] = &[
     "pattern_uv",
     "halftone_screen",
     "halftone",
+    "sample_biased",
 ];
 
 pub fn has_reference(name: &str) -> bool {

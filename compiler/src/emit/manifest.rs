@@ -9,6 +9,7 @@ use crate::InternalError;
 use abi::manifest::*;
 use dsl::SourceMap;
 
+#[allow(clippy::too_many_arguments)]
 pub fn build(
     ir: &Ir,
     live: &Live,
@@ -17,6 +18,7 @@ pub fn build(
     emitted: &[(PassId, EmittedPass)],
     sources: &SourceMap,
     source_name: &str,
+    filters: &std::collections::BTreeMap<String, abi::FilterProgram>,
 ) -> Result<Manifest, InternalError> {
     let targets = alloc
         .targets
@@ -87,23 +89,17 @@ pub fn build(
     let textures = ir
         .textures
         .iter()
-        .map(|t| TextureManifest {
-            name: t.name.clone(),
-            source: match &t.source {
-                TextureSource::Image { path, resolved, srgb } => TextureSourceManifest::Image {
-                    path: path.clone(),
-                    resolved: resolved.clone(),
-                    srgb: *srgb,
-                },
-                TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
-                TextureSource::HalftoneTable(spec) => TextureSourceManifest::HalftoneTable(*spec),
-            },
-            per_object: t.per_object,
-            wrap_repeat: t.wrap_repeat,
-            filter_linear: t.filter_linear,
-            mips: t.mips,
+        .map(|t| {
+            Ok(TextureManifest {
+                name: t.name.clone(),
+                source: texture_source(t, filters)?,
+                per_object: t.per_object,
+                wrap_repeat: t.wrap_repeat,
+                filter_linear: t.filter_linear,
+                mips: t.mips,
+            })
         })
-        .collect();
+        .collect::<Result<Vec<_>, InternalError>>()?;
     let params = ir
         .params
         .iter()
@@ -294,5 +290,42 @@ fn depth_mode(
                 })?;
             DepthMode::Test { pass: index, bias_px }
         }
+    })
+}
+
+/// A texture's source as the runner builds it; an art-map carries its
+/// compiled filter.
+fn texture_source(
+    t: &Texture,
+    filters: &std::collections::BTreeMap<String, abi::FilterProgram>,
+) -> Result<TextureSourceManifest, InternalError> {
+    Ok(match &t.source {
+        TextureSource::Image { path, resolved, srgb } => TextureSourceManifest::Image {
+            path: path.clone(),
+            resolved: resolved.clone(),
+            srgb: *srgb,
+        },
+        TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
+        TextureSource::HalftoneTable(spec) => TextureSourceManifest::HalftoneTable(*spec),
+        TextureSource::FilterInput => TextureSourceManifest::FilterInput,
+        TextureSource::Artmap {
+            path,
+            resolved,
+            srgb,
+            filter,
+            levels,
+            ..
+        } => TextureSourceManifest::Artmap(abi::ArtmapSpec {
+            path: path.clone(),
+            resolved: resolved.clone(),
+            srgb: *srgb,
+            filter: filters.get(filter).cloned().ok_or_else(|| InternalError {
+                message: format!("the filter of art-map `{}` was not compiled", t.name),
+                detail: "pipeline::compile_filters compiles every art-map's filter".into(),
+                span: Some(t.span),
+                wgsl: None,
+            })?,
+            levels: *levels,
+        }),
     })
 }

@@ -12,9 +12,128 @@ use dsl::{codes, Diagnostic};
 use std::path::Path;
 
 /// The texture sources a declaration may name.
-const SOURCES: [&str; 3] = ["image", "noise", "halftone_table"];
+const SOURCES: [&str; 5] = ["image", "noise", "halftone_table", "artmap", "filter_input"];
 
 impl Resolver<'_> {
+    /// The arguments of `image("path.png", srgb|linear)`: the path as
+    /// written, resolved against `dir`, and the colour space; `None` after
+    /// an error.
+    fn image_args(&mut self, call: &ast::Call, dir: &Path) -> Option<(String, String, bool)> {
+        let mut path = None;
+        let mut srgb = true;
+        for a in &call.args {
+            match (&a.name, &a.value.kind) {
+                (None, AK::Str(s)) => path = Some((s.clone(), a.value.span)),
+                (None, AK::Name(n)) if n.name == "srgb" => srgb = true,
+                (None, AK::Name(n)) if n.name == "linear" => srgb = false,
+                _ => self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `image`")
+                        .with_primary(a.span, "not understood")
+                        .with_help("write `image(\"path.png\", srgb)` or `image(\"path.png\", linear)`"),
+                ),
+            }
+        }
+        let Some((p, span)) = path else {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "`image` needs a file path")
+                    .with_primary(call.span, "no path given")
+                    .with_help("write `image(\"textures/paper.png\", srgb)`"),
+            );
+            return None;
+        };
+        let resolved = dir.join(&p);
+        if !resolved.is_file() {
+            self.error(
+                Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
+                    .with_primary(span, format!("looked for {}", resolved.display()))
+                    .with_help(
+                        "paths are relative to the .npr file; generate a texture with `noise(...)` if you have none",
+                    ),
+            );
+        }
+        Some((p, resolved.display().to_string(), srgb))
+    }
+
+    /// `artmap(image("…"), filter: "filter.npr", levels: auto|N)`
+    /// (Klein et al. 2000 §4.2); the filter itself was loaded by
+    /// `load_filters` under the path it resolves to.
+    fn artmap(&mut self, t: &ast::TextureDecl, dir: &Path) -> Option<TextureSource> {
+        let mut image = None;
+        let mut filter = None;
+        let mut levels = None;
+        for a in &t.source.args {
+            match (a.name.as_ref().map(|n| n.name.as_str()), &a.value.kind) {
+                (None, AK::Call(c)) if c.callee.name == "image" && image.is_none() => {
+                    image = self.image_args(c, dir);
+                    image.as_ref()?;
+                }
+                (Some("filter"), AK::Str(rel)) => filter = Some((rel.clone(), dir.join(rel).display().to_string())),
+                (Some("filter"), _) => self.error(
+                    Diagnostic::error(
+                        codes::BAD_ARGUMENT,
+                        "an art-map's `filter` is the path of a filter style",
+                    )
+                    .with_primary(a.value.span, "not a path")
+                    .with_help("write `filter: \"filters/hatching.npr\"`, relative to this file"),
+                ),
+                (Some("levels"), AK::Name(n)) if n.name == "auto" => levels = None,
+                (Some("levels"), _) => {
+                    let id = self.expr(&a.value);
+                    let max = abi::ArtmapSpec::MAX_LEVELS;
+                    match self.const_scalar(id, "an art-map's levels") {
+                        Some(v) if v.fract() == 0.0 && (1.0..=max as f64).contains(&v) => levels = Some(v as u32),
+                        Some(v) => self.error(
+                            Diagnostic::error(
+                                codes::OUT_OF_RANGE,
+                                format!("an art-map's `levels` is `auto` or a whole number in 1..{max}"),
+                            )
+                            .with_primary(a.value.span, format!("{v} is not allowed")),
+                        ),
+                        None => {}
+                    }
+                }
+                (name, _) => {
+                    let known = ["filter", "levels"];
+                    let mut d = Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `artmap`")
+                        .with_primary(a.span, "not an art-map setting");
+                    d = match name.and_then(|n| did_you_mean(n, known)) {
+                        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                        None => d.with_help(
+                            "write `artmap(image(\"brick.png\", srgb), filter: \"filters/hatching.npr\", levels: auto)`",
+                        ),
+                    };
+                    self.error(d);
+                }
+            }
+        }
+        let Some((path, resolved, srgb)) = image else {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "an art-map needs a source image")
+                    .with_primary(t.source.span, "no `image(\"…\")` first")
+                    .with_help("write `artmap(image(\"brick.png\", srgb), filter: \"filters/hatching.npr\")`"),
+            );
+            return None;
+        };
+        let Some((filter_name, filter)) = filter else {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "an art-map needs a `filter`")
+                    .with_primary(t.source.span, "no filter named")
+                    .with_help(
+                        "add `filter: \"filters/hatching.npr\"`: the style whose image passes filter each level",
+                    ),
+            );
+            return None;
+        };
+        Some(TextureSource::Artmap {
+            path,
+            resolved,
+            srgb,
+            filter,
+            filter_name,
+            levels,
+        })
+    }
+
     /// `halftone_table(edge: 0.1, correction: on)`: the tone-correction table
     /// of `halftone(...)` (Breslav et al. 2007 §3.5), built by the runner.
     fn halftone_table(&mut self, t: &ast::TextureDecl) -> HalftoneTableSpec {
@@ -89,42 +208,30 @@ impl Resolver<'_> {
         let callee = t.source.callee.name.as_str();
         match callee {
             "image" => {
-                let mut path = None;
-                let mut srgb = true;
-                for a in &t.source.args {
-                    match (&a.name, &a.value.kind) {
-                        (None, AK::Str(s)) => path = Some((s.clone(), a.value.span)),
-                        (None, AK::Name(n)) if n.name == "srgb" => srgb = true,
-                        (None, AK::Name(n)) if n.name == "linear" => srgb = false,
-                        _ => self.error(
-                            Diagnostic::error(codes::BAD_ARGUMENT, "unexpected argument to `image`")
-                                .with_primary(a.span, "not understood")
-                                .with_help("write `image(\"path.png\", srgb)` or `image(\"path.png\", linear)`"),
-                        ),
-                    }
+                if let Some((path, resolved, srgb)) = self.image_args(&t.source, dir) {
+                    tex.source = TextureSource::Image { path, resolved, srgb };
                 }
-                match path {
-                    Some((p, span)) => {
-                        let resolved = dir.join(&p);
-                        if !resolved.is_file() {
-                            self.error(
-                                Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
-                                    .with_primary(span, format!("looked for {}", resolved.display()))
-                                    .with_help("paths are relative to the .npr file; generate a texture with `noise(...)` if you have none"),
-                            );
-                        }
-                        tex.source = TextureSource::Image {
-                            path: p,
-                            resolved: resolved.display().to_string(),
-                            srgb,
-                        };
-                    }
-                    None => self.error(
-                        Diagnostic::error(codes::BAD_ARGUMENT, "`image` needs a file path")
-                            .with_primary(t.source.span, "no path given")
-                            .with_help("write `image(\"textures/paper.png\", srgb)`"),
-                    ),
+            }
+            "artmap" => {
+                if let Some(source) = self.artmap(t, dir) {
+                    tex.source = source;
+                    // A mip chain, sampled trilinearly: the hardware's level
+                    // blend is what blends the strokes of neighbouring levels.
+                    tex.mips = true;
+                    tex.filter_linear = true;
                 }
+            }
+            "filter_input" => {
+                if !t.source.args.is_empty() {
+                    self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, "`filter_input()` takes no arguments")
+                            .with_primary(t.source.span, "the level comes from the art-map"),
+                    );
+                }
+                tex.source = TextureSource::FilterInput;
+                // Read texel by texel at the level's own size, clamped at its edges.
+                tex.wrap_repeat = false;
+                tex.mips = false;
             }
             "noise" => {
                 let get = |name: &str, default: f64, lo: f64, hi: f64, this: &mut Self| -> f64 {
@@ -213,7 +320,7 @@ impl Resolver<'_> {
                 d = match did_you_mean(other, SOURCES) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
                     None => d.with_help(
-                        "textures come from `image(\"file.png\")`, `noise(size: 256, octaves: 4)` or `halftone_table(edge: 0.1)`",
+                        "textures come from `image(\"file.png\")`, `noise(size: 256, octaves: 4)`, `halftone_table(edge: 0.1)` or `artmap(image(\"file.png\"), filter: \"filter.npr\")`",
                     ),
                 };
                 self.error(d);
@@ -247,6 +354,13 @@ impl Resolver<'_> {
                     );
                 }
             }
+        }
+        if matches!(tex.source, TextureSource::Artmap { .. }) && !tex.mips {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "an art-map cannot have `mips: off`")
+                    .with_primary(t.span, "an art-map is its filtered mip chain")
+                    .with_help("remove `mips: off`; use `image(...)` for a texture without mips"),
+            );
         }
         tex
     }

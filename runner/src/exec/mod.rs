@@ -84,6 +84,7 @@ pub struct Renderer<'d> {
     /// begun last and of the one before it: `previous_model` and
     /// `previous_view_proj` (the current ones on the first frame).
     motion: frame::Motion,
+    artmap_builds: Vec<crate::artmap::ArtmapBuild>,
 }
 
 impl<'d> Renderer<'d> {
@@ -95,6 +96,49 @@ impl<'d> Renderer<'d> {
         program: &crate::StyleProgram,
         scene: &Scene,
     ) -> Result<Renderer<'d>, RunError> {
+        if program.manifest.validate_filter().is_ok() {
+            return Err(RunError::User(vec![dsl::Diagnostic::error(
+                dsl::codes::BAD_FILTER,
+                format!(
+                    "style \"{}\" is an art-map filter: it runs on a texture level, not on a scene",
+                    program.manifest.style
+                ),
+            )
+            .with_help(
+                "use it in another style: `texture t = artmap(image(\"brick.png\", srgb), filter: \"this.npr\")`",
+            )]));
+        }
+        Self::build(device, queue, program, scene, None)
+    }
+
+    /// A renderer of an art-map's filter style, whose `filter_input()` is
+    /// `level`; it renders on [`Scene::empty`] at the level's size.
+    pub fn new_filter(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &crate::StyleProgram,
+        level: &crate::artmap::Level,
+    ) -> Result<Renderer<'d>, RunError> {
+        program
+            .manifest
+            .validate_filter()
+            .map_err(|e| RunError::Internal(format!("not a filter style: {e}")))?;
+        Self::build(device, queue, program, &Scene::empty(), Some(level))
+    }
+
+    /// What building each art-map of the style did (filtered, or read from
+    /// the cache), in declaration order.
+    pub fn artmap_builds(&self) -> &[crate::artmap::ArtmapBuild] {
+        &self.artmap_builds
+    }
+
+    fn build(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &crate::StyleProgram,
+        scene: &Scene,
+        filter_input: Option<&crate::artmap::Level>,
+    ) -> Result<Renderer<'d>, RunError> {
         // Every index the executors use is checked once here, whether the
         // program came from `load_dir` or was built in memory by an embedder.
         program
@@ -105,7 +149,7 @@ impl<'d> Renderer<'d> {
         if !diags.is_empty() {
             return Err(RunError::User(diags));
         }
-        let textures = textures::load_all(device, queue, &manifest)?;
+        let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
         let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -192,6 +236,7 @@ impl<'d> Renderer<'d> {
             frames_begun: 0,
             values,
             motion: frame::Motion::default(),
+            artmap_builds,
         })
     }
 

@@ -221,6 +221,18 @@ impl Object {
 }
 
 impl Scene {
+    /// No objects, a still camera and the default light: what an art-map's
+    /// filter runs on (its passes are image passes only).
+    pub fn empty() -> Scene {
+        Scene {
+            objects: Vec::new(),
+            camera: Camera::looking_at(glam::Vec3::Z, glam::Vec3::ZERO),
+            light: Light::default(),
+            more_lights: [None, None, None],
+            background: [0.0, 0.0, 0.0, 0.0],
+        }
+    }
+
     /// The scene as it stands at `time_s`: every spinning object's model
     /// turned to that time (borrowed unchanged when nothing spins).
     pub fn posed(&self, time_s: f64) -> std::borrow::Cow<'_, Scene> {

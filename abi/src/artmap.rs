@@ -1,0 +1,83 @@
+//! `artmap(image("…"), filter: "filter.npr", levels: auto)`: the manifest's
+//! description of an art-map (Klein et al. 2000 §4.2): "we simply filter the
+//! photorealistic images as in normal mip-mapping, but then apply an NPR
+//! filter to each level independently". The runner builds it at load:
+//! the box-filtered mip chain of the source image, then the filter style's
+//! image passes run once per level, each level's result one mip level of
+//! the art-map.
+//!
+//! The filter is a style of its own, compiled with the host style and
+//! carried inline (its manifest and WGSL), so a compiled directory is still
+//! one manifest. It reads the level it filters through its one
+//! `filter_input()` texture; `resolution` is that level's size in texels
+//! and `frame` its index (0 = the full-size level).
+
+use crate::manifest::Manifest;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// A filter style, compiled: what `Renderer::new_filter` runs per level.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FilterProgram {
+    /// The filter file as the art-map names it (for messages).
+    pub path: String,
+    pub manifest: Box<Manifest>,
+    /// WGSL by shader file name, as in [`crate::StyleProgram`].
+    pub shaders: BTreeMap<String, String>,
+}
+
+impl FilterProgram {
+    pub fn program(&self) -> crate::StyleProgram {
+        crate::StyleProgram {
+            manifest: (*self.manifest).clone(),
+            shaders: self.shaders.clone(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ArtmapSpec {
+    /// The image that is mip-mapped, then filtered level by level.
+    pub path: String,
+    pub resolved: String,
+    pub srgb: bool,
+    pub filter: FilterProgram,
+    /// How many mip levels are built (and filtered), from the full size
+    /// down; `None` (`levels: auto`) is the whole chain to 1×1.
+    pub levels: Option<u32>,
+}
+
+impl ArtmapSpec {
+    /// The most levels a chain can have (a 16384² image has 15).
+    pub const MAX_LEVELS: u32 = 15;
+
+    /// The levels of a `width × height` source that are built.
+    pub fn level_count(&self, width: u32, height: u32) -> u32 {
+        let full = 32 - width.max(height).max(1).leading_zeros();
+        self.levels.map_or(full, |n| n.clamp(1, full))
+    }
+}
+
+impl Manifest {
+    /// What makes a manifest a filter: exactly one `filter_input()`
+    /// texture, and image passes only (a filter runs on no scene).
+    pub fn validate_filter(&self) -> Result<(), String> {
+        use crate::manifest::{PassKindManifest, TextureSourceManifest};
+        let inputs = self
+            .textures
+            .iter()
+            .filter(|t| t.source == TextureSourceManifest::FilterInput)
+            .count();
+        if inputs != 1 {
+            return Err(format!("a filter reads one `filter_input()` texture, not {inputs}"));
+        }
+        if let Some(p) = self
+            .passes
+            .iter()
+            .find(|p| !matches!(p.kind, PassKindManifest::Image { .. }))
+        {
+            return Err(format!("pass `{}` of a filter is not an image pass", p.name));
+        }
+        Ok(())
+    }
+}

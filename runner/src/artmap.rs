@@ -1,0 +1,122 @@
+//! Building an art-map (Klein et al. 2000 §4.2): "we simply filter the
+//! photorealistic images as in normal mip-mapping, but then apply an NPR
+//! filter to each level independently". The source image's mip chain is
+//! box-filtered in linear light, as `mips: on` textures are; then the
+//! filter style runs once per level on the GPU ([`Renderer::new_filter`],
+//! its image passes at the level's size, `frame` = the level's index), and
+//! its output is that level of the art-map. Levels are cached
+//! (`artmap_cache`): a second build of the same inputs filters nothing.
+
+use crate::artmap_cache::{self, Origin};
+use crate::{FrameSpec, Renderer, RunError};
+use abi::ArtmapSpec;
+use std::sync::Arc;
+
+/// One level: linear RGBA texels, row by row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[f32; 4]>,
+}
+
+/// What building one art-map did, for the caller to report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArtmapBuild {
+    pub texture: String,
+    pub levels: u32,
+    pub origin: Origin,
+    /// Wall time of the build (cache lookup included).
+    pub ms: f64,
+}
+
+/// The mip chain of `base` (2×2 box filter, odd edges clamped), `count` levels.
+pub fn mip_chain(base: Level, count: u32) -> Vec<Level> {
+    let mut levels = vec![base];
+    while (levels.len() as u32) < count {
+        let last = &levels[levels.len() - 1];
+        if last.width == 1 && last.height == 1 {
+            break;
+        }
+        let (pixels, width, height) = crate::textures::downsample_box(&last.pixels, last.width, last.height);
+        levels.push(Level { width, height, pixels });
+    }
+    levels
+}
+
+/// The art-map's levels for `spec`, its source already decoded to linear
+/// `base` from the file's `source_bytes`.
+pub fn build(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    name: &str,
+    spec: &ArtmapSpec,
+    source_bytes: &[u8],
+    base: Level,
+) -> Result<(Arc<Vec<Level>>, ArtmapBuild), RunError> {
+    let start = std::time::Instant::now();
+    let count = spec.level_count(base.width, base.height);
+    let filter_json = serde_json::to_vec(&spec.filter)
+        .map_err(|e| RunError::Internal(format!("art-map `{name}`: the filter does not serialize: {e}")))?;
+    let key = artmap_cache::key(source_bytes, spec.srgb, &filter_json, count);
+    let report = |origin| ArtmapBuild {
+        texture: name.to_string(),
+        levels: count,
+        origin,
+        ms: start.elapsed().as_secs_f64() * 1e3,
+    };
+    if let Some((levels, origin)) = artmap_cache::get(&key) {
+        return Ok((levels.clone(), report(origin)));
+    }
+    let program = spec.filter.program();
+    let mut filtered = Vec::with_capacity(count as usize);
+    for (index, level) in mip_chain(base, count).into_iter().enumerate() {
+        filtered.push(filter_level(device, queue, &program, &level, index as u32)?);
+    }
+    let levels = Arc::new(filtered);
+    let on_disk = artmap_cache::put(&key, levels.clone());
+    Ok((levels, report(Origin::Built { on_disk })))
+}
+
+/// Run the filter on one level: its output target, read back, is the
+/// filtered level (same size).
+pub fn filter_level(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    program: &abi::StyleProgram,
+    level: &Level,
+    index: u32,
+) -> Result<Level, RunError> {
+    let scene = crate::scene::Scene::empty();
+    let mut r = Renderer::new_filter(device, queue, program, level)?;
+    r.render(
+        &scene,
+        &FrameSpec {
+            width: level.width,
+            height: level.height,
+            time_s: 0.0,
+            frame: index,
+            eye: 0,
+        },
+    )?;
+    let out = r.read_output()?;
+    if (out.width, out.height) != (level.width, level.height) {
+        return Err(RunError::User(vec![dsl::Diagnostic::error(
+            dsl::codes::BAD_FILTER,
+            format!(
+                "the filter's output is {}x{}, not the level's {}x{}",
+                out.width, out.height, level.width, level.height
+            ),
+        )
+        .with_help("an art-map filter's output pass must run at scale 1")]));
+    }
+    let pixels = (0..out.height)
+        .flat_map(|y| (0..out.width).map(move |x| (x, y)))
+        .map(|(x, y)| out.texel(x, y))
+        .collect();
+    Ok(Level {
+        width: out.width,
+        height: out.height,
+        pixels,
+    })
+}

@@ -1,0 +1,29 @@
+//! Operators of art-maps (Klein et al. 2000 §4.2): reading an art-map with
+//! a per-surface level-of-detail bias.
+
+use crate::operators::p;
+use crate::{Default, Operator, Param, Stage, Ty, Unit};
+
+pub static ALL: &[Operator] = &[Operator {
+    name: "sample_biased",
+    doc: "Trilinear read of a mip-mapped texture at `uv` with its level of detail moved by `bias` levels (+1: strokes twice as large on screen).",
+    reference: "Klein et al. 2000 §4.2 (LOD bias for stroke size per surface), by textureSampleGrad with the derivatives × 2^bias",
+    params: &[
+        p("tex", Ty::SampledTexture, "a mip-mapped texture, e.g. an `artmap(...)`"),
+        p("uv", Ty::Vec2, "where to read (repeats with `wrap: repeat`)"),
+        Param {
+            name: "bias",
+            ty: Ty::Float,
+            unit: Unit::None,
+            default: Default::Number(0.0),
+            range: Some((-8.0, 8.0)),
+            doc: "levels added to the hardware's level of detail",
+        },
+    ],
+    returns: Ty::Vec4,
+    stage: Stage::Any,
+    wgsl: include_str!("../wgsl/sample_biased.wgsl"),
+    depends: &[],
+    snippets: &[],
+    specializations: &[],
+}];
