@@ -1,0 +1,342 @@
+//! Art-maps (Klein et al. 2000 §4.2) through the compiler and the runner:
+//! the level each read selects with `sample_biased`, against the f64 level
+//! of detail; stroke size on screen across distances, against a plain
+//! mip-mapped texture of the same strokes; and the cache (hit, miss on a
+//! changed source or filter, a damaged entry rebuilt).
+
+mod common;
+
+use common::{gpu, root};
+use runner::{FrameSpec, Renderer};
+use std::path::{Path, PathBuf};
+
+fn scratch(name: &str) -> PathBuf {
+    let d = root().join("target/npr-test-output/artmaps").join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn compile(text: &str, dir: &Path) -> runner::StyleProgram {
+    let mut sources = dsl::SourceMap::new();
+    match compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
+fn scene(text: &str) -> runner::scene::Scene {
+    let mut sources = dsl::SourceMap::new();
+    let file = sources.add("scene.toml", text);
+    runner::scene::parse_scene(text, file, root())
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+}
+
+/// A `size`² grey PNG (sRGB 0.5): the source of the art-maps below.
+fn grey_png(path: &Path, size: u32, value: u8) {
+    image::RgbaImage::from_pixel(size, size, image::Rgba([value, value, value, 255]))
+        .save(path)
+        .unwrap();
+}
+
+fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u32) -> runner::TargetImage {
+    let g = gpu();
+    let mut r = Renderer::new(&g.device, &g.queue, program, scene).unwrap_or_else(|e| panic!("{e:?}"));
+    r.render(
+        scene,
+        &FrameSpec {
+            width: size,
+            height: size,
+            time_s: 0.0,
+            frame: 0,
+            eye: 0,
+        },
+    )
+    .unwrap();
+    r.read_output().unwrap()
+}
+
+#[test]
+fn sample_biased_selects_the_level_of_detail_of_the_reference() {
+    let dir = scratch("lod");
+    grey_png(&dir.join("src.png"), 256, 128);
+    let filter = root().join("tests/data/artmaps/level_index.npr");
+    let size = 64u32;
+    let mut worst: f64 = 0.0;
+    for (k, bias) in [
+        (0.25, 0.0),
+        (0.5, 0.0),
+        (1.0, 0.0),
+        (1.5, 0.0),
+        (3.0, 0.0),
+        (10.0, 0.0),
+        (1.0, -1.0),
+        (1.0, 0.5),
+        (1.0, 2.0),
+        (0.7, 3.3),
+        (0.3, -2.0),
+    ] {
+        let text = format!(
+            "style \"lod\"\n\
+             texture levels = artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}\n\
+             pass read: image() {{\n  out v: rgba16float = sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})\n}}\n\
+             output read.v\n",
+            filter.display()
+        );
+        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
+        // uv = screen_uv · k moves k / size per pixel along each axis.
+        let lod = stdlib::reference::sample_biased_lod([k / size as f64, 0.0], [0.0, k / size as f64], 256, 256, bias);
+        let want = stdlib::reference::sample_biased(lod, 9, 0.0625);
+        for (x, y) in [(0, 0), (31, 17), (63, 63)] {
+            let got = img.texel(x, y)[0] as f64;
+            let err_levels = (got - want).abs() / 0.0625;
+            worst = worst.max(err_levels);
+            // llvmpipe computes the level with a fast log2 approximation
+            // (0.04 level off seen at k = 10) and quantizes the trilinear
+            // weight; the result is stored in half floats: 1/16 of a level.
+            assert!(
+                err_levels <= 1.0 / 16.0,
+                "k {k}, bias {bias}: level {:.4}, the reference {:.4} (clamped to 0..8)",
+                got / 0.0625,
+                want / 0.0625
+            );
+        }
+    }
+    eprintln!("worst level error: {worst:.5}");
+}
+
+/// The stroke period along the middle row of `img`, in px: the first strong
+/// peak of the row's autocorrelation past its first dip, refined by a
+/// parabola.
+fn stroke_period(img: &runner::TargetImage) -> Option<f64> {
+    let y = img.height / 2;
+    let row: Vec<f64> = (0..img.width)
+        .map(|x| {
+            let t = img.texel(x, y);
+            0.2126 * t[0] as f64 + 0.7152 * t[1] as f64 + 0.0722 * t[2] as f64
+        })
+        .collect();
+    let mean = row.iter().sum::<f64>() / row.len() as f64;
+    let centred: Vec<f64> = row.iter().map(|v| v - mean).collect();
+    let n = centred.len();
+    let ac =
+        |lag: usize| -> f64 { (0..n - lag).map(|i| centred[i] * centred[i + lag]).sum::<f64>() / (n - lag) as f64 };
+    let max_lag = n / 3;
+    let values: Vec<f64> = (0..=max_lag).map(ac).collect();
+    let dip = (1..max_lag).find(|&l| values[l] < 0.0)?;
+    // The first local maximum that is at least half the highest past the
+    // dip: the period itself, not a multiple where beats line up.
+    let highest = values[dip..max_lag].iter().cloned().fold(f64::MIN, f64::max);
+    let peak = (dip.max(1)..max_lag)
+        .find(|&l| values[l] >= values[l - 1] && values[l] >= values[l + 1] && values[l] >= 0.5 * highest)?;
+    if peak == 0 || peak >= max_lag || values[peak] <= 0.1 * values[0] {
+        return None;
+    }
+    let (a, b, c) = (values[peak - 1], values[peak], values[peak + 1]);
+    let shift = 0.5 * (a - c) / (a - 2.0 * b + c);
+    Some(peak as f64 + shift.clamp(-0.5, 0.5))
+}
+
+/// A plane facing the camera `d` m away, filling a 40° view.
+fn plane_scene(d: f64) -> runner::scene::Scene {
+    scene(&format!(
+        "[camera]\nposition = [0.0, 0.0, {d}]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\nnear = 0.1\nfar = 400.0\n\n\
+         [[object]]\nname = \"wall\"\nprimitive = {{ kind = \"plane\", size = 200.0, subdivisions = 1 }}\nrotate = [90.0, 0.0, 0.0]\n"
+    ))
+}
+
+#[test]
+fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over_distance() {
+    let dir = scratch("stroke_size");
+    let spacing = 8.0;
+    // The shipped hatching filter with strokes `spacing` texels apart.
+    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
+    let filter = hatching.replace(
+        "param spacing: float = 4 in 2..32",
+        &format!("param spacing: float = {spacing} in 2..32"),
+    );
+    assert_ne!(filter, hatching, "the hatching filter's spacing default moved");
+    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
+    // sRGB 200: linear 0.58, one layer of strokes (below `cross_above`).
+    // 1024 texels: level 6, chosen at 64 m, is 16 texels, still two stroke
+    // periods (a level smaller than one period cannot hold its strokes).
+    let texels = 1024u32;
+    grey_png(&dir.join("src.png"), texels, 200);
+    // Level 0 of the art-map as a plain texture, mip-mapped by box filter.
+    let g = gpu();
+    let filter_program = compile(&filter, &dir);
+    let base = runner::artmap::Level {
+        width: texels,
+        height: texels,
+        pixels: vec![[0.58, 0.58, 0.58, 1.0]; (texels * texels) as usize],
+    };
+    let level0 = runner::artmap::filter_level(&g.device, &g.queue, &filter_program, &base, 0).unwrap();
+    let plain = image::Rgba32FImage::from_fn(texels, texels, |x, y| {
+        image::Rgba(level0.pixels[(y * texels + x) as usize])
+    });
+    image::DynamicImage::ImageRgba32F(plain)
+        .to_rgba16()
+        .save(dir.join("plain.png"))
+        .unwrap();
+
+    let size = 128u32;
+    // uv repeats so that one level-0 texel is one pixel 1 m away.
+    let px_per_m = |d: f64| size as f64 / (2.0 * d * 20f64.to_radians().tan());
+    let repeat = 200.0 * px_per_m(1.0) / texels as f64;
+    let style = |texture: &str| {
+        format!(
+            "style \"strokes\"\n{texture}\n\
+             pass shade: render(scene) {{\n  out color: rgba16float = vec4(sample_biased(t, uv * {repeat:.5}).rgb, 1.0)\n  clear: #ffffff\n}}\n\
+             output shade.color\n"
+        )
+    };
+    let artmap = compile(
+        &style("texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }"),
+        &dir,
+    );
+    let mipped = compile(
+        &style("texture t = image(\"plain.png\", linear) { wrap: repeat, mips: on }"),
+        &dir,
+    );
+    let mut rows = Vec::new();
+    for d in [1.0, 1.5, 2.0, 3.0, 4.0, 5.7, 8.0, 11.0, 16.0, 23.0, 32.0, 45.0, 64.0] {
+        let s = plane_scene(d);
+        let art = stroke_period(&render(&artmap, &s, size));
+        let plain = stroke_period(&render(&mipped, &s, size));
+        rows.push((d, art, plain));
+    }
+    for (d, art, plain) in &rows {
+        eprintln!(
+            "d {d:>5} m: art-map period {art:?} px, plain mips {plain:?} px (target {spacing}, 1/d law {:.2})",
+            spacing / d
+        );
+    }
+    for (d, art, _) in &rows {
+        let p = art.unwrap_or_else(|| panic!("no stroke period on the art-map at {d} m"));
+        assert!(
+            (0.7 * spacing..=1.5 * spacing).contains(&p),
+            "art-map at {d} m: period {p:.2} px, outside [0.7, 1.5] × {spacing}"
+        );
+    }
+    // Plain mips: the level-0 strokes shrink as 1/d while they are still
+    // resolved (then the mips blur them to grey: no period at all).
+    for (d, _, plain) in rows.iter().filter(|r| r.0 <= 3.0) {
+        let p = plain.unwrap_or_else(|| panic!("no stroke period with plain mips at {d} m"));
+        let law = spacing / d;
+        assert!(
+            (p / law - 1.0).abs() < 0.15,
+            "plain mips at {d} m: period {p:.2} px, not {law:.2} (1/d)"
+        );
+    }
+    let far_plain = rows
+        .iter()
+        .filter(|r| r.0 >= 8.0)
+        .filter_map(|r| r.2)
+        .collect::<Vec<_>>();
+    assert!(
+        far_plain.iter().all(|p| *p < 0.7 * spacing),
+        "plain mips far away kept a stroke period near the target: {far_plain:?}"
+    );
+}
+
+/// `npr render` with its own cache directory; its stderr.
+fn render_cli(style: &Path, scene: &Path, out: &Path, cache: &Path) -> String {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .arg("render")
+        .arg(style)
+        .arg("--scene")
+        .arg(scene)
+        .arg("-o")
+        .arg(out)
+        .args(["--size", "32x32"])
+        .env("NPR_CACHE_DIR", cache)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "npr render failed:\n{stderr}");
+    stderr
+}
+
+#[test]
+fn the_cache_is_reused_and_missed_when_the_source_or_the_filter_changes() {
+    let dir = scratch("cache");
+    let cache = dir.join("cache");
+    grey_png(&dir.join("src.png"), 64, 120);
+    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
+    std::fs::write(dir.join("filter.npr"), &hatching).unwrap();
+    let style = dir.join("style.npr");
+    std::fs::write(
+        &style,
+        "style \"cached\"\n\
+         texture t = artmap(image(\"src.png\", srgb), filter: \"filter.npr\") { wrap: repeat }\n\
+         pass shade: render(scene) {\n  out color: rgba8unorm = vec4(sample_biased(t, uv * 4.0).rgb, 1.0)\n}\n\
+         output shade.color\n",
+    )
+    .unwrap();
+    let scene = root().join("examples/scenes/spot.toml");
+    let png = |n: &str| dir.join(format!("{n}.png"));
+
+    let first = render_cli(&style, &scene, &png("first"), &cache);
+    assert!(first.contains("art-map `t`: 7 level(s) filtered and cached"), "{first}");
+    let entries = || std::fs::read_dir(cache.join("artmaps")).unwrap().count();
+    assert_eq!(entries(), 1);
+    let second = render_cli(&style, &scene, &png("second"), &cache);
+    assert!(second.contains("read from the cache"), "{second}");
+    assert_eq!(
+        std::fs::read(png("first")).unwrap(),
+        std::fs::read(png("second")).unwrap()
+    );
+
+    // A filter whose parameter default changed is another art-map.
+    std::fs::write(dir.join("filter.npr"), hatching.replace("= 4 in 2..32", "= 6 in 2..32")).unwrap();
+    let changed_filter = render_cli(&style, &scene, &png("filter"), &cache);
+    assert!(changed_filter.contains("filtered and cached"), "{changed_filter}");
+    assert_eq!(entries(), 2);
+    assert_ne!(
+        std::fs::read(png("first")).unwrap(),
+        std::fs::read(png("filter")).unwrap()
+    );
+
+    // So is a source image with other bytes.
+    grey_png(&dir.join("src.png"), 64, 121);
+    let changed_source = render_cli(&style, &scene, &png("source"), &cache);
+    assert!(changed_source.contains("filtered and cached"), "{changed_source}");
+    assert_eq!(entries(), 3);
+
+    // A damaged entry is rebuilt (and replaced), never read.
+    for e in std::fs::read_dir(cache.join("artmaps")).unwrap() {
+        let path = e.unwrap().path();
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
+    }
+    let damaged = render_cli(&style, &scene, &png("damaged"), &cache);
+    assert!(damaged.contains("filtered and cached"), "{damaged}");
+    assert_eq!(
+        std::fs::read(png("source")).unwrap(),
+        std::fs::read(png("damaged")).unwrap()
+    );
+    let again = render_cli(&style, &scene, &png("again"), &cache);
+    assert!(again.contains("read from the cache"), "{again}");
+}
+
+#[test]
+fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
+    let dir = scratch("memory");
+    grey_png(&dir.join("src.png"), 32, 77);
+    let text = format!(
+        "style \"memory\"\n\
+         texture t = artmap(image(\"src.png\", srgb), filter: \"{}\") {{ wrap: repeat }}\n\
+         pass read: image() {{\n  out v: rgba16float = sample_biased(t, screen_uv)\n}}\n\
+         output read.v\n",
+        root().join("examples/filters/hatching.npr").display()
+    );
+    let program = compile(&text, &dir);
+    let g = gpu();
+    let scene = runner::scene::Scene::empty();
+    let first = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
+    let second = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
+    assert_eq!(first.artmap_builds().len(), 1);
+    assert_eq!(second.artmap_builds()[0].origin, runner::artmap_cache::Origin::Memory);
+    assert_eq!(second.artmap_builds()[0].levels, 6);
+}
