@@ -702,6 +702,51 @@ fn e0309_pixels_of_a_target_that_is_not_an_id_target() {
     check("E0309", (diags, rendered));
 }
 
+/// A filter style with `passes` after its header and level input.
+const FILTER_HEAD: &str = "style \"Filter\"\ntexture level = filter_input()\n";
+
+#[test]
+fn e0310_a_filter_with_a_render_pass() {
+    let text = format!(
+        "{FILTER_HEAD}pass lit: render(scene) {{\n  out c: rgba8unorm = vec4(level.rgb, 1.0)\n}}\noutput lit.c\n"
+    );
+    check("E0310", compile_errors(&text, &scratch("e0310")));
+}
+
+#[test]
+fn e0310_an_art_map_whose_filter_reads_no_level() {
+    let dir = scratch("e0310_no_level");
+    std::fs::write(
+        dir.join("not_a_filter.npr"),
+        "style \"Not a filter\"\npass p: image() {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n",
+    )
+    .unwrap();
+    image::RgbaImage::new(4, 4).save(dir.join("src.png")).unwrap();
+    let text = style(
+        "texture t = artmap(image(\"src.png\"), filter: \"not_a_filter.npr\")\n\
+         pass p: render(scene) {\n  out c: rgba8unorm = sample_biased(t, uv)\n}\noutput p.c\n",
+    );
+    let (d, r) = compile_errors(&text, &dir);
+    check_case(
+        "E0310",
+        "E0310_no_level",
+        (d, r.replace(&dir.display().to_string(), "<dir>")),
+    );
+}
+
+#[test]
+fn e0310_an_art_map_inside_a_filter() {
+    let dir = scratch("e0310_nested");
+    image::RgbaImage::new(4, 4).save(dir.join("src.png")).unwrap();
+    let text = format!(
+        "{FILTER_HEAD}texture inner = artmap(image(\"src.png\"), filter: \"case.npr\")\n\
+         pass p: image() {{\n  out c: rgba16float = level\n}}\noutput p.c\n"
+    );
+    // The filter it names is itself (found on disk, loaded as a filter).
+    std::fs::write(dir.join("case.npr"), &text).unwrap();
+    check_case("E0310", "E0310_nested", compile_errors(&text, &dir));
+}
+
 #[test]
 fn a_pass_over_pixels_without_its_id_target() {
     let text = pixel_passes("r32float", "pixels");

@@ -74,6 +74,22 @@ fn every_example_compiles_and_validates_with_naga() {
     }
 }
 
+/// Absolute paths differ between machines: each texture's file and each
+/// art-map filter's source as written.
+fn relative_paths(manifest: &mut abi::Manifest) {
+    for t in &mut manifest.textures {
+        match &mut t.source {
+            abi::manifest::TextureSourceManifest::Image { resolved, path, .. } => *resolved = path.clone(),
+            abi::manifest::TextureSourceManifest::Artmap(spec) => {
+                spec.resolved = spec.path.clone();
+                spec.filter.manifest.source = spec.filter.path.clone();
+                relative_paths(&mut spec.filter.manifest);
+            }
+            _ => {}
+        }
+    }
+}
+
 #[test]
 fn compile_snapshots() {
     for path in examples() {
@@ -82,11 +98,7 @@ fn compile_snapshots() {
         let mut manifest = c.manifest.clone();
         // Absolute paths differ between machines.
         manifest.source = format!("examples/{name}.npr");
-        for t in &mut manifest.textures {
-            if let abi::manifest::TextureSourceManifest::Image { resolved, path, .. } = &mut t.source {
-                *resolved = path.clone();
-            }
-        }
+        relative_paths(&mut manifest);
         insta::assert_json_snapshot!(format!("{name}__manifest"), manifest);
         for (file, wgsl) in &c.shaders {
             insta::assert_snapshot!(format!("{name}__{file}"), wgsl);

@@ -251,3 +251,14 @@ fn sobel_outline_on_fandisk() {
         "examples/scenes/fandisk.toml",
     );
 }
+
+#[test]
+fn artmap_gallery_on_the_gallery() {
+    // Klein et al. 2000 §4.2: hatching, watercolour and ink-blot art-maps,
+    // built at load (through the art-map cache), on a room of primitives.
+    golden(
+        "artmap_gallery",
+        "examples/artmap_gallery.npr",
+        "examples/scenes/gallery.toml",
+    );
+}

@@ -204,7 +204,19 @@ fn compile_filters(
                 wgsl: None,
             }));
         };
-        let c = run(filter_loaded, sources, filter, &CompileOptions::default(), Vec::new())?;
+        let c = match run(filter_loaded, sources, filter, &CompileOptions::default(), Vec::new()) {
+            Ok(c) => c,
+            // Point from each of the filter's errors back at the art-map.
+            Err(CompileError::User(diags)) => {
+                return Err(CompileError::User(
+                    diags
+                        .into_iter()
+                        .map(|d| d.with_secondary(t.span, format!("the filter of art-map `{}`", t.name)))
+                        .collect(),
+                ))
+            }
+            Err(e) => return Err(e),
+        };
         out.insert(
             filter.clone(),
             abi::FilterProgram {

@@ -165,3 +165,18 @@ fn generators_are_total() {
         assert_eq!(s.pixels.len(), (s.width * s.height) as usize);
     }
 }
+
+/// The art-map gallery's sources (`examples/textures/SOURCES.md`): 256² paint
+/// maps, (file, base colour, seed).
+const GALLERY_MAPS: [(&str, &str, u32); 3] = [
+    ("gallery_wall.png", "#e6cfb4", 7),
+    ("gallery_floor.png", "#d9c8a4", 8),
+    ("gallery_stone.png", "#c8c0b0", 9),
+];
+
+#[test]
+fn shipped_gallery_maps_are_what_texgen_writes() {
+    for (file, base, seed) in GALLERY_MAPS {
+        check_file(file, &paint_map(256, parse_hex(base).expect("colour"), seed));
+    }
+}
