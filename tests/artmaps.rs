@@ -340,3 +340,138 @@ fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
     assert_eq!(second.artmap_builds()[0].origin, runner::artmap_cache::Origin::Memory);
     assert_eq!(second.artmap_builds()[0].levels, 6);
 }
+
+#[test]
+fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
+    let dir = scratch("rip_lod");
+    grey_png(&dir.join("src.png"), 256, 128);
+    let filter = root().join("tests/data/artmaps/level_size.npr");
+    let size = 64u32;
+    let mut worst: f64 = 0.0;
+    for (ku, kv) in [
+        (1.0, 1.0),
+        (0.25, 4.0),
+        (4.0, 0.25),
+        (1.0, 16.0),
+        (10.0, 0.7),
+        (0.1, 0.1),
+        (100.0, 3.0),
+    ] {
+        let text = format!(
+            "style \"rip lod\"\n\
+             texture levels = ripmap(image(\"src.png\", linear), filter: \"{}\")\n\
+             pass read: image() {{\n  out v: rgba16float = sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))\n}}\n\
+             output read.v\n",
+            filter.display()
+        );
+        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
+        let lods = stdlib::reference::sample_ripmap_lods([ku / size as f64, 0.0], [0.0, kv / size as f64], 256, 256);
+        let want = stdlib::reference::sample_ripmap(lods, [9, 9], 1.0);
+        for (x, y) in [(0, 0), (40, 9), (63, 63)] {
+            let t = img.texel(x, y);
+            // Each level holds log2 of its size / 16: 8 − level on a 256² source.
+            let got = [8.0 - 16.0 * t[0] as f64, 8.0 - 16.0 * t[1] as f64];
+            for axis in 0..2 {
+                let err = (got[axis] - want[axis]).abs();
+                worst = worst.max(err);
+                // The shader's own log2 (not the sampler's LOD), the blend
+                // of four levels and half-float storage: 1/64 of a level.
+                assert!(
+                    err <= 1.0 / 64.0,
+                    "ku {ku}, kv {kv}, axis {axis}: level {:.4}, the reference {:.4}",
+                    got[axis],
+                    want[axis]
+                );
+            }
+        }
+    }
+    eprintln!("worst level error: {worst:.5}");
+}
+
+/// The stroke period along the middle column of `img`, in px.
+fn column_period(img: &runner::TargetImage) -> Option<f64> {
+    let mut t = runner::TargetImage {
+        name: img.name.clone(),
+        width: img.height,
+        height: img.width,
+        format: img.format,
+        bytes: Vec::with_capacity(img.bytes.len()),
+    };
+    let bpp = img.format.bytes_per_pixel() as usize;
+    for y in 0..t.height {
+        for x in 0..t.width {
+            let i = (x as usize * img.width as usize + y as usize) * bpp;
+            t.bytes.extend_from_slice(&img.bytes[i..i + bpp]);
+        }
+    }
+    stroke_period(&t)
+}
+
+#[test]
+fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stretch_them() {
+    let dir = scratch("rip_aspect");
+    let spacing = 8.0;
+    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
+    let filter = hatching.replace(
+        "param spacing: float = 4 in 2..32",
+        &format!("param spacing: float = {spacing} in 2..32"),
+    );
+    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
+    grey_png(&dir.join("src.png"), 512, 200);
+    let size = 128u32;
+    let (d, fov) = (40.0f64, 6.0f64);
+    // Two level-0 texels per pixel along u at the plane's centre.
+    let px_per_m = size as f64 / (2.0 * d * (fov / 2.0).to_radians().tan());
+    let repeat = 200.0 * px_per_m * 2.0 / 512.0;
+    let style = |decl: &str, read: &str| {
+        format!(
+            "style \"aspect\"\n{decl}\n\
+             pass shade: render(scene) {{\n  out color: rgba16float = vec4({read}.rgb, 1.0)\n  clear: #ffffff\n}}\n\
+             output shade.color\n"
+        )
+    };
+    let art = compile(
+        &style(
+            "texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }",
+            &format!("sample_biased(t, uv * {repeat:.5})"),
+        ),
+        &dir,
+    );
+    let rip = compile(
+        &style(
+            "texture t = ripmap(image(\"src.png\", srgb), filter: \"hatching8.npr\")",
+            &format!("sample_ripmap(t, uv * {repeat:.5})"),
+        ),
+        &dir,
+    );
+    // Across / down stroke periods; `None` across when the strokes are
+    // stretched past a third of the row (where the autocorrelation looks).
+    let aspect = |program: &runner::StyleProgram, tilt: f64| -> Option<f64> {
+        let scene = scene(&format!(
+            "[camera]\nposition = [0.0, 0.0, {d}]\ntarget = [0.0, 0.0, 0.0]\nfov = {fov}\nnear = 0.1\nfar = 400.0\n\n\
+             [[object]]\nname = \"wall\"\nprimitive = {{ kind = \"plane\", size = 200.0, subdivisions = 1 }}\nrotate = [{:.3}, 0.0, 0.0]\n",
+            90.0 - tilt
+        ));
+        let img = render(program, &scene, size);
+        let down = column_period(&img).unwrap_or_else(|| panic!("no period down at {tilt}°"));
+        stroke_period(&img).map(|across| across / down)
+    };
+    let art_face = aspect(&art, 0.0).expect("art-map face-on");
+    let rip_face = aspect(&rip, 0.0).expect("rip-map face-on");
+    eprintln!("face-on aspect: art-map {art_face:.3}, rip-map {rip_face:.3}");
+    for tilt in [60.0, 70.0, 80.0, 85.0] {
+        let r = aspect(&rip, tilt).unwrap_or_else(|| panic!("rip-map at {tilt}°: no stroke period across")) / rip_face;
+        let a = aspect(&art, tilt).map(|a| a / art_face);
+        eprintln!("{tilt}°: stroke aspect against face-on: art-map {a:?} (None: past the window), rip-map {r:.2}");
+        assert!(
+            (1.0 / 1.5..=1.5).contains(&r),
+            "rip-map at {tilt}°: aspect {r:.2} × face-on"
+        );
+        if let Some(a) = a {
+            assert!(
+                a > 1.5,
+                "mipped art-map at {tilt}°: aspect {a:.2} × face-on, expected stretched"
+            );
+        }
+    }
+}

@@ -43,17 +43,57 @@ pub struct ArtmapSpec {
     pub srgb: bool,
     pub filter: FilterProgram,
     /// How many mip levels are built (and filtered), from the full size
-    /// down; `None` (`levels: auto`) is the whole chain to 1×1.
+    /// down; `None` (`levels: auto`) is the whole chain to 1×1. For a
+    /// rip-map, the levels along each axis.
     pub levels: Option<u32>,
+    /// `ripmap(...)` (§4.2, Fig. 7–8): every 2^-i × 2^-j level, filtered,
+    /// packed into one atlas ([`RipmapAtlas`]) read by `sample_ripmap`;
+    /// otherwise the levels are the texture's mip chain.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rip: bool,
+}
+
+/// Where the rip-map level (i, j) — the source's width halved i times and
+/// its height j times — lies in its atlas of 2W × 2H texels: x from
+/// W·(2 − 2^(1−i)), y from H·(2 − 2^(1−j)) (each axis's levels side by
+/// side, as the mips of one axis would be). `sample_ripmap.wgsl` computes
+/// the same offsets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RipmapAtlas {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl RipmapAtlas {
+    /// Levels along an axis of `size` texels (to 1).
+    pub fn levels(size: u32) -> u32 {
+        32 - size.max(1).leading_zeros()
+    }
+
+    pub fn atlas_size(&self) -> (u32, u32) {
+        (2 * self.width, 2 * self.height)
+    }
+
+    /// Size of level (i, j).
+    pub fn level_size(&self, i: u32, j: u32) -> (u32, u32) {
+        ((self.width >> i).max(1), (self.height >> j).max(1))
+    }
+
+    /// Top-left texel of level (i, j) in the atlas.
+    pub fn offset(&self, i: u32, j: u32) -> (u32, u32) {
+        let along = |size: u32, k: u32| (0..k).map(|l| (size >> l).max(1)).sum::<u32>();
+        (along(self.width, i), along(self.height, j))
+    }
 }
 
 impl ArtmapSpec {
     /// The most levels a chain can have (a 16384² image has 15).
     pub const MAX_LEVELS: u32 = 15;
 
-    /// The levels of a `width × height` source that are built.
+    /// The levels of a `width × height` source that are built (for a
+    /// rip-map: along the longer axis; the other stops at 1 texel).
     pub fn level_count(&self, width: u32, height: u32) -> u32 {
-        let full = 32 - width.max(height).max(1).leading_zeros();
+        let full = RipmapAtlas::levels(width.max(height));
         self.levels.map_or(full, |n| n.clamp(1, full))
     }
 }

@@ -30,7 +30,7 @@ pub mod program;
 pub mod scene;
 pub mod validate;
 
-pub use artmap::{ArtmapSpec, FilterProgram};
+pub use artmap::{ArtmapSpec, FilterProgram, RipmapAtlas};
 pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
 pub use halftone::HalftoneTableSpec;

@@ -160,8 +160,11 @@ impl Manifest {
                             );
                         }
                     }
-                    if !t.mips {
-                        return bad(format!("textures[{i}].mips"), "an art-map is a mip chain");
+                    if t.mips == spec.rip {
+                        return bad(
+                            format!("textures[{i}].mips"),
+                            "an art-map is a mip chain; a rip-map is one atlas level",
+                        );
                     }
                     spec.filter.program().validate().map_err(|e| Invalid {
                         field: format!("{field}.filter.{}", e.field),

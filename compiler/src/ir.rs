@@ -599,6 +599,8 @@ pub enum TextureSource {
         filter: String,
         filter_name: String,
         levels: Option<u32>,
+        /// `ripmap(...)`: every 2^-i × 2^-j level in one atlas.
+        rip: bool,
     },
     /// `filter_input()`, in a filter style: the level being filtered.
     FilterInput,

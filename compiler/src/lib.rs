@@ -26,6 +26,7 @@ pub mod resolve;
 pub mod scene_tags;
 pub mod specialize;
 pub mod texture_spans;
+pub mod texture_uses;
 pub mod typecheck;
 pub mod validate;
 

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// The texture sources whose `filter:` names a filter style.
-pub const FILTERED_SOURCES: [&str; 1] = ["artmap"];
+pub const FILTERED_SOURCES: [&str; 2] = ["artmap", "ripmap"];
 
 /// Every filter the items name, by the path they resolve to (the key
 /// `resolve` records in the IR).

@@ -75,6 +75,7 @@ pub fn run(
     }
     st.done("resolve", &ir);
     crate::typecheck::typecheck(&mut ir, &mut diags);
+    crate::texture_uses::check(&ir, &mut diags);
     st.done("typecheck", &ir);
     crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;

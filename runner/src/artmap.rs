@@ -4,7 +4,8 @@
 //! box-filtered in linear light, as `mips: on` textures are; then the
 //! filter style runs once per level on the GPU ([`Renderer::new_filter`],
 //! its image passes at the level's size, `frame` = the level's index), and
-//! its output is that level of the art-map. Levels are cached
+//! its output is that level of the art-map. A rip-map filters every
+//! 2^-i × 2^-j level the same way and packs them into one atlas. Levels are cached
 //! (`artmap_cache`): a second build of the same inputs filters nothing.
 
 use crate::artmap_cache::{self, Origin};
@@ -44,6 +45,92 @@ pub fn mip_chain(base: Level, count: u32) -> Vec<Level> {
     levels
 }
 
+/// Halve `level` along x (`axis` 0) or y (1) with a 2-tap box filter (an
+/// odd last texel is kept alone): a rip-map's anisotropic reduction.
+pub fn halve_axis(level: &Level, axis: usize) -> Level {
+    let (w, h) = (level.width, level.height);
+    let (nw, nh) = if axis == 0 {
+        ((w / 2).max(1), h)
+    } else {
+        (w, (h / 2).max(1))
+    };
+    let at = |x: u32, y: u32| level.pixels[(y.min(h - 1) * w + x.min(w - 1)) as usize];
+    let mut pixels = Vec::with_capacity((nw * nh) as usize);
+    for y in 0..nh {
+        for x in 0..nw {
+            let (a, b) = if axis == 0 {
+                (at(2 * x, y), at(2 * x + 1, y))
+            } else {
+                (at(x, 2 * y), at(x, 2 * y + 1))
+            };
+            pixels.push(std::array::from_fn(|c| 0.5 * (a[c] + b[c])));
+        }
+    }
+    Level {
+        width: nw,
+        height: nh,
+        pixels,
+    }
+}
+
+/// A rip-map (§4.2, Fig. 7–8): every level (i, j) of the source halved i
+/// times along x and j times along y, each filtered (`frame` = i + 16 j),
+/// packed into one atlas as [`abi::RipmapAtlas`] lays it out.
+fn ripmap_atlas(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    program: &abi::StyleProgram,
+    base: Level,
+) -> Result<Level, RunError> {
+    let layout = abi::RipmapAtlas {
+        width: base.width,
+        height: base.height,
+    };
+    let (aw, ah) = layout.atlas_size();
+    if aw > crate::textures::MAX_TEXTURE_SIZE || ah > crate::textures::MAX_TEXTURE_SIZE {
+        return Err(RunError::User(vec![dsl::Diagnostic::error(
+            dsl::codes::LIMIT_EXCEEDED,
+            format!(
+                "a rip-map of a {}x{} image needs a {aw}x{ah} atlas, over the {} texel limit",
+                base.width,
+                base.height,
+                crate::textures::MAX_TEXTURE_SIZE
+            ),
+        )
+        .with_help(
+            "a rip-map's atlas is twice the image's size on each axis: use an image of at most 8192 texels a side",
+        )]));
+    }
+    let mut atlas = vec![[0.0f32; 4]; (aw * ah) as usize];
+    let columns = abi::RipmapAtlas::levels(base.width);
+    let rows = abi::RipmapAtlas::levels(base.height);
+    let mut row_start = base;
+    for j in 0..rows {
+        let mut level = row_start.clone();
+        for i in 0..columns {
+            let filtered = filter_level(device, queue, program, &level, i + 16 * j)?;
+            let (ox, oy) = layout.offset(i, j);
+            for y in 0..filtered.height {
+                let dst = ((oy + y) * aw + ox) as usize;
+                let src = (y * filtered.width) as usize;
+                atlas[dst..dst + filtered.width as usize]
+                    .copy_from_slice(&filtered.pixels[src..src + filtered.width as usize]);
+            }
+            if i + 1 < columns {
+                level = halve_axis(&level, 0);
+            }
+        }
+        if j + 1 < rows {
+            row_start = halve_axis(&row_start, 1);
+        }
+    }
+    Ok(Level {
+        width: aw,
+        height: ah,
+        pixels: atlas,
+    })
+}
+
 /// The art-map's levels for `spec`, its source already decoded to linear
 /// `base` from the file's `source_bytes`.
 pub fn build(
@@ -55,10 +142,14 @@ pub fn build(
     base: Level,
 ) -> Result<(Arc<Vec<Level>>, ArtmapBuild), RunError> {
     let start = std::time::Instant::now();
-    let count = spec.level_count(base.width, base.height);
+    let count = if spec.rip {
+        abi::RipmapAtlas::levels(base.width) * abi::RipmapAtlas::levels(base.height)
+    } else {
+        spec.level_count(base.width, base.height)
+    };
     let filter_json = serde_json::to_vec(&spec.filter)
         .map_err(|e| RunError::Internal(format!("art-map `{name}`: the filter does not serialize: {e}")))?;
-    let key = artmap_cache::key(source_bytes, spec.srgb, &filter_json, count);
+    let key = artmap_cache::key(source_bytes, spec.srgb, &filter_json, count, spec.rip);
     let report = |origin| ArtmapBuild {
         texture: name.to_string(),
         levels: count,
@@ -69,10 +160,15 @@ pub fn build(
         return Ok((levels.clone(), report(origin)));
     }
     let program = spec.filter.program();
-    let mut filtered = Vec::with_capacity(count as usize);
-    for (index, level) in mip_chain(base, count).into_iter().enumerate() {
-        filtered.push(filter_level(device, queue, &program, &level, index as u32)?);
-    }
+    let filtered = if spec.rip {
+        vec![ripmap_atlas(device, queue, &program, base)?]
+    } else {
+        let mut filtered = Vec::with_capacity(count as usize);
+        for (index, level) in mip_chain(base, count).into_iter().enumerate() {
+            filtered.push(filter_level(device, queue, &program, &level, index as u32)?);
+        }
+        filtered
+    };
     let levels = Arc::new(filtered);
     let on_disk = artmap_cache::put(&key, levels.clone());
     Ok((levels, report(Origin::Built { on_disk })))

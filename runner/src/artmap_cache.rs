@@ -37,7 +37,7 @@ pub enum Origin {
     Disk,
 }
 
-pub fn key(source_bytes: &[u8], srgb: bool, filter_json: &[u8], levels: u32) -> Key {
+pub fn key(source_bytes: &[u8], srgb: bool, filter_json: &[u8], levels: u32, rip: bool) -> Key {
     let mut h = blake3::Hasher::new();
     h.update(&FORMAT_VERSION.to_le_bytes());
     h.update(&(source_bytes.len() as u64).to_le_bytes());
@@ -46,6 +46,7 @@ pub fn key(source_bytes: &[u8], srgb: bool, filter_json: &[u8], levels: u32) -> 
     h.update(&(filter_json.len() as u64).to_le_bytes());
     h.update(filter_json);
     h.update(&levels.to_le_bytes());
+    h.update(&[rip as u8]);
     *h.finalize().as_bytes()
 }
 
@@ -152,6 +153,7 @@ fn decode(bytes: &[u8]) -> Option<Vec<Level>> {
     }
     let count = u32_at(take(4)?);
     if count == 0 || count > abi::ArtmapSpec::MAX_LEVELS {
+        // A rip-map is one atlas level; a mip chain at most MAX_LEVELS.
         return None;
     }
     let mut levels = Vec::new();
@@ -207,11 +209,12 @@ mod tests {
 
     #[test]
     fn the_key_changes_with_every_input() {
-        let base = key(b"png", true, b"{filter}", 9);
-        assert_ne!(base, key(b"pnG", true, b"{filter}", 9));
-        assert_ne!(base, key(b"png", false, b"{filter}", 9));
-        assert_ne!(base, key(b"png", true, b"{filteR}", 9));
-        assert_ne!(base, key(b"png", true, b"{filter}", 8));
-        assert_eq!(base, key(b"png", true, b"{filter}", 9));
+        let base = key(b"png", true, b"{filter}", 9, false);
+        assert_ne!(base, key(b"pnG", true, b"{filter}", 9, false));
+        assert_ne!(base, key(b"png", false, b"{filter}", 9, false));
+        assert_ne!(base, key(b"png", true, b"{filteR}", 9, false));
+        assert_ne!(base, key(b"png", true, b"{filter}", 8, false));
+        assert_ne!(base, key(b"png", true, b"{filter}", 9, true));
+        assert_eq!(base, key(b"png", true, b"{filter}", 9, false));
     }
 }

@@ -239,8 +239,12 @@ fn load_one(
         TextureSourceManifest::Artmap(spec) => {
             let (base, bytes) = decode_image(t, &spec.path, &spec.resolved, spec.srgb)?;
             let (levels, build) = crate::artmap::build(device, queue, &t.name, spec, &bytes, base).map_err(|e| {
-                let mut d = e.diagnostics();
-                let first = d.remove(0);
+                let first = e.diagnostics().into_iter().next().unwrap_or_else(|| {
+                    Diagnostic::error(
+                        dsl::codes::INTERNAL,
+                        format!("art-map `{}` failed with no diagnostic", t.name),
+                    )
+                });
                 first.with_note(format!(
                     "while filtering art-map `{}` with `{}`",
                     t.name, spec.filter.path

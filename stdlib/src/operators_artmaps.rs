@@ -1,10 +1,12 @@
 //! Operators of art-maps (Klein et al. 2000 §4.2): reading an art-map with
-//! a per-surface level-of-detail bias.
+//! a per-surface level-of-detail bias, and reading a rip-map with a level
+//! per axis.
 
 use crate::operators::p;
 use crate::{Default, Operator, Param, Stage, Ty, Unit};
 
-pub static ALL: &[Operator] = &[Operator {
+pub static ALL: &[Operator] = &[
+    Operator {
     name: "sample_biased",
     doc: "Trilinear read of a mip-mapped texture at `uv` with its level of detail moved by `bias` levels (+1: strokes twice as large on screen).",
     reference: "Klein et al. 2000 §4.2 (LOD bias for stroke size per surface), by textureSampleGrad with the derivatives × 2^bias",
@@ -26,4 +28,20 @@ pub static ALL: &[Operator] = &[Operator {
     depends: &[],
     snippets: &[],
     specializations: &[],
-}];
+},
+    Operator {
+        name: "sample_ripmap",
+        doc: "Read of a `ripmap(...)` at `uv`: the level of each axis from that axis's screen derivatives, the four levels around blended bilinearly; uv repeats.",
+        reference: "Klein et al. 2000 §4.2, Fig. 7–8 (rip-maps with art-maps keep strokes' aspect on oblique surfaces)",
+        params: &[
+            p("tex", Ty::SampledTexture, "a `ripmap(...)` texture"),
+            p("uv", Ty::Vec2, "where to read (repeats)"),
+        ],
+        returns: Ty::Vec4,
+        stage: Stage::Any,
+        wgsl: include_str!("../wgsl/sample_ripmap.wgsl"),
+        depends: &[],
+        snippets: &[],
+        specializations: &[],
+    },
+];

@@ -248,6 +248,7 @@ pub const REFERENCED: &[&str] = &[
     "halftone_screen",
     "halftone",
     "sample_biased",
+    "sample_ripmap",
 ];
 
 pub fn has_reference(name: &str) -> bool {

@@ -314,6 +314,7 @@ fn texture_source(
             srgb,
             filter,
             levels,
+            rip,
             ..
         } => TextureSourceManifest::Artmap(abi::ArtmapSpec {
             path: path.clone(),
@@ -326,6 +327,7 @@ fn texture_source(
                 wgsl: None,
             })?,
             levels: *levels,
+            rip: *rip,
         }),
     })
 }

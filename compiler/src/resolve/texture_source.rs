@@ -12,7 +12,7 @@ use dsl::{codes, Diagnostic};
 use std::path::Path;
 
 /// The texture sources a declaration may name.
-const SOURCES: [&str; 5] = ["image", "noise", "halftone_table", "artmap", "filter_input"];
+const SOURCES: [&str; 6] = ["image", "noise", "halftone_table", "artmap", "ripmap", "filter_input"];
 
 impl Resolver<'_> {
     /// The arguments of `image("path.png", srgb|linear)`: the path as
@@ -57,7 +57,7 @@ impl Resolver<'_> {
     /// `artmap(image("…"), filter: "filter.npr", levels: auto|N)`
     /// (Klein et al. 2000 §4.2); the filter itself was loaded by
     /// `load_filters` under the path it resolves to.
-    fn artmap(&mut self, t: &ast::TextureDecl, dir: &Path) -> Option<TextureSource> {
+    fn artmap(&mut self, t: &ast::TextureDecl, dir: &Path, rip: bool) -> Option<TextureSource> {
         let mut image = None;
         let mut filter = None;
         let mut levels = None;
@@ -124,6 +124,13 @@ impl Resolver<'_> {
             );
             return None;
         };
+        if rip && levels.is_some() {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "a rip-map has all its levels")
+                    .with_primary(t.source.span, "`levels` is for `artmap`")
+                    .with_help("remove `levels`: `sample_ripmap` may read any level of either axis"),
+            );
+        }
         Some(TextureSource::Artmap {
             path,
             resolved,
@@ -131,6 +138,7 @@ impl Resolver<'_> {
             filter,
             filter_name,
             levels,
+            rip,
         })
     }
 
@@ -213,12 +221,22 @@ impl Resolver<'_> {
                 }
             }
             "artmap" => {
-                if let Some(source) = self.artmap(t, dir) {
+                if let Some(source) = self.artmap(t, dir, false) {
                     tex.source = source;
                     // A mip chain, sampled trilinearly: the hardware's level
                     // blend is what blends the strokes of neighbouring levels.
                     tex.mips = true;
                     tex.filter_linear = true;
+                }
+            }
+            "ripmap" => {
+                if let Some(source) = self.artmap(t, dir, true) {
+                    tex.source = source;
+                    // One atlas level, read bilinearly inside each level's
+                    // rectangle by `sample_ripmap` (which wraps uv itself).
+                    tex.mips = false;
+                    tex.filter_linear = true;
+                    tex.wrap_repeat = false;
                 }
             }
             "filter_input" => {
@@ -355,12 +373,28 @@ impl Resolver<'_> {
                 }
             }
         }
-        if matches!(tex.source, TextureSource::Artmap { .. }) && !tex.mips {
+        if matches!(tex.source, TextureSource::Artmap { rip: false, .. }) && !tex.mips {
             self.error(
                 Diagnostic::error(codes::BAD_ARGUMENT, "an art-map cannot have `mips: off`")
                     .with_primary(t.span, "an art-map is its filtered mip chain")
                     .with_help("remove `mips: off`; use `image(...)` for a texture without mips"),
             );
+        }
+        if matches!(tex.source, TextureSource::Artmap { rip: true, .. }) {
+            if let Some(s) = t
+                .options
+                .iter()
+                .find(|s| ["wrap", "mips"].contains(&s.key.name.as_str()))
+            {
+                self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, format!("a rip-map has no `{}` option", s.key.name))
+                        .with_primary(s.span, "a rip-map is one atlas, read by `sample_ripmap`")
+                        .with_help("`sample_ripmap` selects the level of each axis itself and always repeats"),
+                );
+            }
+            // The atlas's own sampler: clamped (levels sit side by side).
+            tex.wrap_repeat = false;
+            tex.mips = false;
         }
         tex
     }
