@@ -17,6 +17,7 @@ pub mod follow_ups;
 pub mod ir;
 pub mod load;
 pub mod overrides;
+pub mod paths;
 pub mod pipeline;
 pub mod prune;
 pub mod report;
@@ -44,6 +45,10 @@ pub struct CompileOptions {
     /// New defaults for parameters (`--set`), already typed by the caller;
     /// applied after typecheck, so they fold like written defaults.
     pub overrides: Vec<overrides::ParamOverride>,
+    /// Which files the style may read (`use`, `image("…")`): `None` reads
+    /// any path (library use); the `npr` commands always give one
+    /// (`dsl::paths`, docs/PATHS.md).
+    pub paths: Option<dsl::paths::PathPolicy>,
 }
 
 #[derive(Debug, Clone)]
@@ -114,7 +119,7 @@ pub enum CompileError {
 /// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
 pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let Some(loaded) = load::load_file(path, sources, &mut diags) else {
+    let Some(loaded) = load::load_file(path, sources, opts.paths.as_ref(), &mut diags) else {
         return Err(CompileError::User(diags));
     };
     pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
@@ -129,6 +134,6 @@ pub fn compile_source(
     opts: &CompileOptions,
 ) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let loaded = load::load_source(name, text, dir, sources, &mut diags);
+    let loaded = load::load_source(name, text, dir, sources, opts.paths.as_ref(), &mut diags);
     pipeline::run(loaded, sources, name, opts, diags)
 }

@@ -6,6 +6,7 @@
 
 use dsl::ast::{Ast, Item, UseTarget};
 use dsl::limits::MAX_SOURCE_BYTES;
+use dsl::paths::PathPolicy;
 use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::path::{Path, PathBuf};
 
@@ -21,7 +22,12 @@ pub struct Loaded {
 
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
 /// (the diagnostic is in `diags`).
-pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
+pub fn load_file(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Loaded> {
     let bytes = match read_bounded(path) {
         Ok(b) => b,
         Err(e) => {
@@ -44,13 +50,20 @@ pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnosti
         }
     };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    Some(load_added(file, &name, &text, &dir, sources, diags))
+    Some(load_added(file, &name, &text, &dir, sources, paths, diags))
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
-pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Loaded {
+pub fn load_source(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Loaded {
     let file = sources.add(name, text);
-    load_added(file, name, text, dir, sources, diags)
+    load_added(file, name, text, dir, sources, paths, diags)
 }
 
 /// [`load_source`] of a file already in `sources`.
@@ -60,6 +73,7 @@ fn load_added(
     text: &str,
     dir: &Path,
     sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Loaded {
     let (ast, mut parse_diags) = dsl::parse(file, text);
@@ -71,7 +85,8 @@ fn load_added(
         .unwrap_or_else(|| dir.to_path_buf());
     let mut stack = vec![canonical(&own)];
     let mut broken = ast.broken.clone();
-    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack, &mut broken);
+    let mut reader = Reader { sources, diags, paths };
+    expand_uses(&ast, dir, &mut reader, &mut items, &mut stack, &mut broken);
     Loaded {
         root: ast,
         root_file: file,
@@ -87,16 +102,24 @@ fn canonical(p: &Path) -> PathBuf {
 /// Depth limit for nested `use`, far above any real style.
 const MAX_USE_DEPTH: usize = 32;
 
+/// What reading `use`d files needs: the run's sources, its diagnostics,
+/// and the paths policy.
+struct Reader<'a> {
+    sources: &'a mut SourceMap,
+    diags: &'a mut Vec<Diagnostic>,
+    paths: Option<&'a PathPolicy>,
+}
+
 fn expand_uses(
     ast: &Ast,
     dir: &Path,
-    sources: &mut SourceMap,
-    diags: &mut Vec<Diagnostic>,
+    reader: &mut Reader,
     items: &mut Vec<(Item, PathBuf)>,
     stack: &mut Vec<PathBuf>,
     broken: &mut Vec<String>,
 ) {
     for item in &ast.items {
+        let Reader { sources, diags, paths } = reader;
         let Item::Use(u) = item else {
             items.push((item.clone(), dir.to_path_buf()));
             continue;
@@ -131,6 +154,10 @@ fn expand_uses(
                     );
                     continue;
                 }
+                if let Some(d) = crate::paths::check_use(*paths, u.span, rel, &path) {
+                    diags.push(d);
+                    continue;
+                }
                 let bytes = match read_bounded(&path) {
                     Ok(b) => b,
                     Err(e) => {
@@ -150,7 +177,7 @@ fn expand_uses(
                 broken.extend(used.broken.iter().cloned());
                 let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
                 stack.push(key);
-                expand_uses(&used, &sub_dir, sources, diags, items, stack, broken);
+                expand_uses(&used, &sub_dir, reader, items, stack, broken);
                 stack.pop();
             }
         }

@@ -71,6 +71,7 @@ pub fn run(
     }
     let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags).map_err(CompileError::Internal)?;
     st.done("resolve", &ir);
+    diags.extend(crate::paths::check_textures(&ir, sources, opts.paths.as_ref()));
     crate::typecheck::typecheck(&mut ir, &mut diags);
     st.done("typecheck", &ir);
     crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);

@@ -22,18 +22,18 @@ pub use dsl::limits::MAX_TEXTURE_SIZE;
 pub fn load_all(device: &wgpu::Device, queue: &wgpu::Queue, m: &Manifest) -> Result<Vec<GpuTexture>, RunError> {
     let mut out = Vec::new();
     let mut diags = Vec::new();
-    for t in &m.textures {
+    for (i, t) in m.textures.iter().enumerate() {
         match load_one(device, queue, t) {
             Ok(g) => out.push(g),
             Err(d) => {
-                diags.push(d);
+                diags.push((i, d));
                 // Keep indices aligned; a 1×1 placeholder is never rendered since we return Err.
                 out.push(placeholder(device));
             }
         }
     }
     if !diags.is_empty() {
-        return Err(RunError::User(diags));
+        return Err(RunError::Textures(diags));
     }
     Ok(out)
 }

@@ -130,6 +130,11 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
                     st.publish(None);
                     break;
                 }
+                // A lost device (its E0509 is on the page) is made again,
+                // and the style rebuilt on it.
+                if gpu.watch.lost().is_some() {
+                    break;
+                }
             }
             let Ok(first) = jobs.recv() else { return };
             // Coalesce: a burst of slider moves renders once, with the last values.
@@ -326,7 +331,11 @@ impl Studio {
         // Drop the old renderer (its pipelines and textures) before making the new one.
         *session = None;
         let program = built.compiled.program();
-        match Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene) {
+        let renderer = gpu
+            .watch
+            .check(Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene))
+            .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
+        match renderer {
             Ok(renderer) => {
                 self.params = state::params_json(
                     &set_params::with_declared_types(&built.compiled.manifest.params, &built.sources),
@@ -345,7 +354,7 @@ impl Studio {
 
     fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session<'g>) {
         let start = Instant::now();
-        match render_frame(gpu, s, &self.view) {
+        match gpu.watch.check(render_frame(gpu, s, &self.view)) {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
