@@ -1085,3 +1085,70 @@ fn e0509_a_lost_device() {
     let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0509", (d, rendered));
 }
+
+#[test]
+fn e0203_a_constant_call_outside_its_domain() {
+    // naga evaluates calls on constants and rejects these: each was E9001.
+    for e in [
+        "vec4(sqrt(-0.5))",
+        "vec4(log(0.0))",
+        "vec4(log2(vec3(-1.0)), 1.0)",
+        "vec4(sqrt(vec2(-1.0)), 0.0, 1.0)",
+        "vec4(exp(vec3(100.0)), 1.0)",
+        "vec4(pow(vec3(-1.0), vec3(0.5)), 1.0)",
+        "vec4(acos(2.0))",
+    ] {
+        let text = style(&format!(
+            "pass p: image() {{\n  out c: rgba8unorm = {e}\n}}\noutput p.c\n"
+        ));
+        let (d, r) = compile_errors(&text, &scratch("e0203-domain"));
+        assert_eq!(d[0].code, "E0203", "{e}: {r}");
+        assert!(r.contains("has no finite value"), "{e}: {r}");
+    }
+    // A folded param is a constant too; a kept one (a uniform) is not.
+    let text = style(
+        "param k: float = -2.0 in -4..4\npass p: image() {\n  out c: rgba8unorm = vec4(sqrt(k))\n}\noutput p.c\n",
+    );
+    check_case(
+        "E0203",
+        "E0203_const_domain",
+        compile_errors(&text, &scratch("e0203-domain")),
+    );
+    let mut sources = SourceMap::new();
+    let kept = CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    compiler::compile_source("case.npr", &text, &scratch("e0203-domain"), &mut sources, &kept)
+        .unwrap_or_else(|e| panic!("a kept param is a uniform, evaluated at run time: {e:?}"));
+}
+
+#[test]
+fn int_arguments_of_float_only_functions_are_promoted() {
+    // `mix`, `pow`, `step` and `atan2` of two ints were E9001 (naga: no
+    // integer overload); found by tests/fuzz_generated.rs.
+    for e in [
+        "mix(n, n, 0.5)",
+        "mix(n, 2, 0.5)",
+        "pow(n, 2)",
+        "step(n, 3)",
+        "atan2(n, n)",
+        "min(n, 2) * 0.1",
+    ] {
+        let text = style(&format!(
+            "param n: int = 6 in 0..8\npass p: image() {{\n  out c: r16float = {e}\n}}\noutput p.c\n"
+        ));
+        for keep_params in [false, true] {
+            let mut sources = SourceMap::new();
+            let opts = CompileOptions {
+                keep_params,
+                ..Default::default()
+            };
+            if let Err(err) =
+                compiler::compile_source("case.npr", &text, &scratch("int-promotion"), &mut sources, &opts)
+            {
+                panic!("{e} (keep_params {keep_params}): {err:?}");
+            }
+        }
+    }
+}

@@ -9,6 +9,7 @@
 //! does not depend on the runner, nor the runner on it.
 
 pub mod allocate;
+pub mod const_domains;
 pub mod consteval;
 pub mod dag;
 pub mod dump;

@@ -128,6 +128,8 @@ pub fn run(
         .collect();
     diags.extend(crate::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
     st.done("prune-after-specialize", &ir);
+    diags.extend(crate::const_domains::check(&ir, &live));
+    fail_if_errors(&diags)?;
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
     let emitter = Emitter {

@@ -86,6 +86,12 @@ impl Checker<'_> {
                 let Some((a, b, t)) = self.unify(args[0], args[1]) else {
                     return self.type_error(args[1], self.vt(args[0]).describe(), None);
                 };
+                // WGSL has `min` and `max` of integers, not `pow`, `step`, `atan2`.
+                let (a, b, t) = if t == Ty::Int && !matches!(f, "min" | "max") {
+                    (self.promote_int(a), self.promote_int(b), Ty::Float)
+                } else {
+                    (a, b, t)
+                };
                 let unit = if matches!(f, "min" | "max") {
                     self.same_unit(a, b, "compare", span)
                 } else {
@@ -97,6 +103,12 @@ impl Checker<'_> {
                 if f == "mix" {
                     let Some((a, b, t)) = self.unify(args[0], args[1]) else {
                         return self.type_error(args[1], self.vt(args[0]).describe(), None);
+                    };
+                    // WGSL's `mix` is of floats only: two ints are mixed as floats.
+                    let (a, b, t) = if t == Ty::Int {
+                        (self.promote_int(a), self.promote_int(b), Ty::Float)
+                    } else {
+                        (a, b, t)
                     };
                     let unit = self.same_unit(a, b, "mix", span);
                     // mix(a, b, t): t is a scalar or the same type as a and b.
