@@ -15,6 +15,7 @@
 //!   server runs.
 
 use super::hub::{FrameImages, Hub};
+use super::orbit::Orbit;
 use super::state;
 use crate::live::build::{self, Built, Inputs};
 use crate::live::guard;
@@ -37,8 +38,16 @@ pub enum Job {
     SetParam { name: String, literal: String },
     /// Forget a control's value: back to the file's default.
     ResetParam(String),
-    /// The time scrubber and the eye toggle.
-    SetView { time: Option<f64>, eye: Option<u32> },
+    /// The time scrubber, the eye toggle and the orbit camera
+    /// (`Some(None)`: back to the scene's camera).
+    SetView {
+        time: Option<f64>,
+        eye: Option<u32>,
+        orbit: Option<Option<Orbit>>,
+    },
+    /// Panic inside the render thread (only with `NPR_STUDIO_DEBUG=1`), to
+    /// show that a panic is reported and the server keeps serving.
+    Panic,
     /// Write the control's current value into the `.npr` file as its default.
     WriteParam(String),
 }
@@ -50,6 +59,8 @@ pub struct View {
     pub time: f64,
     pub fps: f64,
     pub eye: u32,
+    /// The page's orbit/zoom camera, overriding the scene's.
+    pub orbit: Option<Orbit>,
 }
 
 /// A build that rendered, with the renderer made for it.
@@ -154,11 +165,14 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
 enum Pending {
     Render,
     Rebuild,
+    /// `Job::Panic`: panic where rendering would happen.
+    Panic,
 }
 
 impl Pending {
     fn merge(a: Option<Pending>, b: Option<Pending>) -> Option<Pending> {
         match (a, b) {
+            (Some(Pending::Panic), _) | (_, Some(Pending::Panic)) => Some(Pending::Panic),
             (Some(Pending::Rebuild), _) | (_, Some(Pending::Rebuild)) => Some(Pending::Rebuild),
             (Some(Pending::Render), _) | (_, Some(Pending::Render)) => Some(Pending::Render),
             _ => None,
@@ -177,7 +191,8 @@ impl Studio {
             "param_error": self.param_error,
             "notice": self.notice,
             "view": { "time": self.view.time, "eye": self.view.eye, "fps": self.view.fps,
-                      "width": self.view.size.0, "height": self.view.size.1, "stereo": self.stereo },
+                      "width": self.view.size.0, "height": self.view.size.1, "stereo": self.stereo,
+                      "orbit": self.view.orbit.map(Orbit::to_json) },
         });
         self.hub.publish(state, images);
     }
@@ -194,9 +209,12 @@ impl Studio {
                 }
                 Some(Pending::Rebuild)
             }
-            Job::SetView { time, eye } => {
+            Job::SetView { time, eye, orbit } => {
                 if let Some(t) = time.filter(|t| t.is_finite()) {
                     self.view.time = t;
+                }
+                if let Some(o) = orbit {
+                    self.view.orbit = o;
                 }
                 if let Some(e) = eye {
                     if e == 0 || (e == 1 && self.stereo) {
@@ -210,6 +228,7 @@ impl Studio {
                 Some(Pending::Rebuild)
             }
             Job::SetParam { name, literal } => self.set_param(&name, &literal),
+            Job::Panic => Some(Pending::Panic),
             Job::WriteParam(name) => {
                 self.write_param(&name);
                 // The watcher sees the write and rebuilds; publish the notice now.
@@ -286,6 +305,9 @@ impl Studio {
         session: &mut Option<Session<'g>>,
         watcher: Option<&mut FileWatcher>,
     ) {
+        if work == Pending::Panic {
+            panic!("forced by POST /debug/panic (NPR_STUDIO_DEBUG=1)");
+        }
         if work == Pending::Rebuild || session.is_none() {
             let files = self.rebuild(gpu, session);
             if let Some(w) = watcher {
@@ -417,6 +439,15 @@ fn render_frame<'g>(
         s.renderer = Renderer::new(&gpu.device, &gpu.queue, &program, &s.built.scene)?;
     }
     let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
+    // The page's orbit camera replaces the scene's for every frame.
+    let orbited;
+    let scene = match view.orbit {
+        Some(o) => {
+            orbited = o.scene(&s.built.scene, view.time);
+            &orbited
+        }
+        None => &s.built.scene,
+    };
     let spec = |time_s: f64, frame: u32| FrameSpec {
         width: view.size.0,
         height: view.size.1,
@@ -428,17 +459,17 @@ fn render_frame<'g>(
         return Err(RunError::Internal("an empty frame schedule".into()));
     };
     for f in replay {
-        s.renderer.render(&s.built.scene, &spec(f.time_s, f.frame))?;
+        s.renderer.render(scene, &spec(f.time_s, f.frame))?;
     }
     let spec = spec(last.time_s, last.frame);
     let times = match &s.timer {
-        Some(t) => Some(t.frame(gpu, &mut s.renderer, &s.built.scene, &spec)?),
+        Some(t) => Some(t.frame(gpu, &mut s.renderer, scene, &spec)?),
         None => {
-            s.renderer.render(&s.built.scene, &spec)?;
+            s.renderer.render(scene, &spec)?;
             None
         }
     };
-    let images = crate::commands::dump::read_all_targets(&mut s.renderer, &s.built.scene, &spec)?;
+    let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
     Ok((images, times))
 }
 
