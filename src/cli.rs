@@ -332,6 +332,28 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 30)]
         frames: u32,
     },
+    /// `npr studio` end to end over HTTP and its event stream: slider →
+    /// new image and save → new image against `npr render`'s own frame
+    /// time in the same run, and the studio's memory across edits.
+    Studio {
+        style: PathBuf,
+        #[arg(long)]
+        scene: PathBuf,
+        #[arg(long, default_value = "512x512", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Frames of the `npr render` reference.
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+        /// Edits in all, alternating slider moves and saves.
+        #[arg(long, default_value_t = 100)]
+        edits: u32,
+        /// The parameter the slider moves.
+        #[arg(long)]
+        param: String,
+        /// The two values it alternates between, `A,B` (as `--set` writes them).
+        #[arg(long, value_delimiter = ',', required = true)]
+        values: Vec<String>,
+    },
     /// The runner's per-frame work against itself: `Renderer::render`
     /// (uniform updates, recording, submit, wait) against `Renderer::encode`
     /// of the same renderer — its own pipelines and bind groups recorded and

@@ -393,6 +393,7 @@ impl Studio {
                     "render_ms": render_ms,
                     "passes": pass_ms.map(|ms| manifest.passes.iter().zip(ms).map(|(p, ms)| json!({"name": p.name, "gpu_ms": ms})).collect::<Vec<_>>()),
                     "device": gpu.describe(),
+                    "memory": memory_json(gpu),
                     "time": self.view.time,
                     "eye": self.view.eye,
                 });
@@ -482,4 +483,21 @@ fn encode(id: u64, images: &[runner::TargetImage]) -> std::io::Result<FrameImage
         f32.push(t.to_rgba_f32().iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
     }
     Ok(FrameImages { id, png, f32 })
+}
+
+/// What the studio holds after this frame: the process's resident memory
+/// (`VmRSS`) and the GPU memory wgpu's allocator has (Vulkan; `null`
+/// elsewhere), so a leak across rebuilds shows (`npr bench studio`).
+fn memory_json(gpu: &Gpu) -> Value {
+    let rss_kib = std::fs::read_to_string("/proc/self/status").ok().and_then(|s| {
+        s.lines()
+            .find_map(|l| l.strip_prefix("VmRSS:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+    });
+    let report = gpu.device.generate_allocator_report();
+    json!({
+        "rss_kib": rss_kib,
+        "gpu_allocated_bytes": report.as_ref().map(|r| r.total_allocated_bytes),
+        "gpu_reserved_bytes": report.as_ref().map(|r| r.total_reserved_bytes),
+    })
 }
