@@ -73,6 +73,12 @@ pub enum Command {
 #[derive(clap::Args, Debug)]
 pub struct CheckArgs {
     pub style: PathBuf,
+    /// Check as `npr render` will for this scene: its directory counts for
+    /// the default root of the paths policy (docs/PATHS.md).
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Set a parameter, typed like a default in the style: `--set bands=5`,
     /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
@@ -82,6 +88,8 @@ pub struct CheckArgs {
 #[derive(clap::Args, Debug)]
 pub struct CompileArgs {
     pub style: PathBuf,
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Output directory.
     #[arg(short, long)]
     pub out: PathBuf,
@@ -112,6 +120,8 @@ pub struct RenderArgs {
     /// The style (.npr); compiled for the scene.
     #[arg(required_unless_present = "compiled")]
     pub style: Option<PathBuf>,
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Run a directory written by `npr compile -o DIR` instead of a style
     /// (its manifest is validated first).
     #[arg(long, value_name = "DIR", conflicts_with_all = ["style", "keep_params"])]
@@ -181,11 +191,28 @@ pub struct TexgenArgs {
     pub color: Option<String>,
 }
 
+/// Which files a style and its scene may read (docs/PATHS.md): every
+/// command that reads a style or a scene has these.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct PathArgs {
+    /// Every file the style and the scene name (`use`, textures, meshes)
+    /// must be inside DIR. Default: the deepest directory holding both the
+    /// style and the scene.
+    #[arg(long, value_name = "DIR")]
+    pub root: Option<PathBuf>,
+    /// Also admit files inside DIR, even by an absolute path or outside the
+    /// root. Repeatable.
+    #[arg(long = "allow-path", value_name = "DIR")]
+    pub allow_path: Vec<PathBuf>,
+}
+
 /// What `npr watch` and `npr studio` share: the style and scene they watch
 /// and the frame they render.
 #[derive(clap::Args, Debug)]
 pub struct LiveArgs {
     pub style: PathBuf,
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Scene file (TOML).
     #[arg(long)]
     pub scene: PathBuf,
@@ -304,6 +331,28 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 30)]
         frames: u32,
+    },
+    /// `npr studio` end to end over HTTP and its event stream: slider →
+    /// new image and save → new image against `npr render`'s own frame
+    /// time in the same run, and the studio's memory across edits.
+    Studio {
+        style: PathBuf,
+        #[arg(long)]
+        scene: PathBuf,
+        #[arg(long, default_value = "512x512", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Frames of the `npr render` reference.
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+        /// Edits in all, alternating slider moves and saves.
+        #[arg(long, default_value_t = 100)]
+        edits: u32,
+        /// The parameter the slider moves.
+        #[arg(long)]
+        param: String,
+        /// The two values it alternates between, `A,B` (as `--set` writes them).
+        #[arg(long, value_delimiter = ',', required = true)]
+        values: Vec<String>,
     },
     /// The runner's per-frame work against itself: `Renderer::render`
     /// (uniform updates, recording, submit, wait) against `Renderer::encode`

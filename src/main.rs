@@ -7,6 +7,7 @@ mod bench;
 mod cli;
 mod commands;
 mod live;
+mod path_args;
 mod printer;
 mod set_params;
 mod studio;

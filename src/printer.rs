@@ -93,15 +93,29 @@ pub(crate) fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
 
 /// Load a scene, or print its diagnostics and give the user-error exit code.
 pub(crate) fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer) -> Result<runner::scene::Scene, i32> {
-    runner::scene::load_scene(path, sources).map_err(|d| {
+    load_scene_in(path, sources, None, printer)
+}
+
+/// [`load_scene`] under a paths policy (`dsl::paths`).
+pub(crate) fn load_scene_in(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&dsl::paths::PathPolicy>,
+    printer: &Printer,
+) -> Result<runner::scene::Scene, i32> {
+    runner::scene::load_scene_in(path, sources, paths).map_err(|d| {
         printer.diagnostics(&d, sources);
         EXIT_USER
     })
 }
 
 /// Load a scene only for what the compiler may know of it (its tags).
-pub(crate) fn load_scene_summary(path: &Path, sources: &mut SourceMap) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
-    runner::scene::load_scene(path, sources).map(|s| s.summary(&path.display().to_string()))
+pub(crate) fn load_scene_summary(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&dsl::paths::PathPolicy>,
+) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
+    runner::scene::load_scene_in(path, sources, paths).map(|s| s.summary(&path.display().to_string()))
 }
 
 /// Say how each art-map was made: filtered now (and whether it reached the

@@ -29,7 +29,7 @@ pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
     if let Err(d) = crate::args::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
         return printer.fail(d);
     }
-    let gpu = match crate::printer::headless_gpu(printer) {
+    let mut gpu = match crate::printer::headless_gpu(printer) {
         Ok(g) => g,
         Err(code) => return code,
     };
@@ -46,6 +46,13 @@ pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
             printer.diagnostics(&[guard::panic_diagnostic(&panic)], &SourceMap::new());
             last_good.clone()
         });
+        // A lost device (E0509, reported by that build) is made again for the next one.
+        if gpu.watch.lost().is_some() {
+            match crate::printer::headless_gpu(printer) {
+                Ok(g) => gpu = g,
+                Err(code) => return code,
+            }
+        }
         let count = watched.len();
         watcher.set_files(watched);
         eprintln!("watch: build {build_no} done; watching {count} file(s) for changes (Ctrl-C stops)");
@@ -96,6 +103,10 @@ fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut 
         Some(&args.out),
         None,
     );
+    let rendered = gpu
+        .watch
+        .check(rendered)
+        .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
     if let Err(e) = rendered {
         printer.diagnostics(&e.diagnostics(), &built.sources);
         eprintln!("watch: kept the last good image; fix the error and save");

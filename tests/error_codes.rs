@@ -942,6 +942,46 @@ fn npr_check_refuses_a_texture_past_the_size_limit_from_its_header() {
 }
 
 #[test]
+fn npr_render_points_at_the_style_for_a_texture_with_a_good_header_and_corrupt_data() {
+    let dir = scratch("render-corrupt-data");
+    let img = image::RgbaImage::from_fn(64, 64, |x, y| {
+        image::Rgba([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8, 255])
+    });
+    img.save(dir.join("paper.png")).expect("write png");
+    let mut bytes = std::fs::read(dir.join("paper.png")).expect("read png");
+    let idat = bytes.windows(4).position(|w| w == b"IDAT").expect("an IDAT chunk");
+    for b in &mut bytes[idat + 8..idat + 40] {
+        *b ^= 0x5a;
+    }
+    std::fs::write(dir.join("paper.png"), &bytes).expect("write corrupt png");
+    let style = style_with_texture(&dir, "paper.png");
+    // The header is fine: `npr check` (which reads headers only) accepts it.
+    assert_eq!(
+        runner::texture_file::probe(&dir.join("paper.png")).expect("header"),
+        (64, 64)
+    );
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            style.to_str().expect("utf-8 path"),
+            "--scene",
+            "examples/scenes/spot.toml",
+            "-o",
+            dir.join("out.png").to_str().expect("utf-8 path"),
+        ],
+        &dir,
+    );
+    assert_eq!(d[0].code, "E0401", "{r}");
+    assert!(r.contains("is not an image npr can read"), "{r}");
+    assert!(
+        r.contains("case.npr:3:23"),
+        "the label is on the path in image(...): {r}"
+    );
+    assert!(!dir.join("out.png").exists(), "nothing is written");
+    check_case("E0401", "E0401_corrupt_data", (d, r));
+}
+
+#[test]
 fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
     let dir = scratch("render-not-an-image");
     std::fs::write(dir.join("paper.png"), [0u8, 1, 2, 3]).expect("write");
@@ -1046,4 +1086,114 @@ fn an_unknown_name_reports_once_not_again_for_its_field() {
     let (diags, rendered) = compile_errors(&text, &scratch("unknown-base"));
     assert_eq!(diags.len(), 1, "{rendered}");
     assert_eq!(diags[0].code, "E0101", "{rendered}");
+}
+
+#[test]
+fn e0406_a_path_outside_the_root() {
+    let dir = scratch("e0406");
+    let style_dir = dir.join("style");
+    std::fs::create_dir_all(&style_dir).expect("dir");
+    image::RgbaImage::new(2, 2)
+        .save(dir.join("paper.png"))
+        .expect("write png");
+    let text = style("texture paper = image(\"../paper.png\", srgb)\npass p: render(scene) {\n  out color: rgba8unorm = paper\n}\noutput p.color\n");
+    let policy = dsl::paths::PathPolicy::new(&style_dir, &[]).expect("root");
+    let mut sources = SourceMap::new();
+    let opts = CompileOptions {
+        paths: Some(policy),
+        ..Default::default()
+    };
+    let Err(CompileError::User(d)) = compiler::compile_source("case.npr", &text, &style_dir, &mut sources, &opts)
+    else {
+        panic!("a texture outside the root must be refused")
+    };
+    let canonical = dir.canonicalize().expect("canonical").display().to_string();
+    let r = dsl::diagnostic::render(&d, &sources, false).replace(&canonical, "<dir>");
+    check("E0406", (d, r));
+}
+
+#[test]
+fn e0508_the_gpu_out_of_memory() {
+    // Forced on the device in tests/gpu_errors.rs (under an address-space
+    // limit); this is its rendered message.
+    let e = runner::RunError::OutOfMemory("the GPU ran out of memory making the targets of a 16384x16384 image".into());
+    let d = e.diagnostics();
+    let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);
+    check("E0508", (d, rendered));
+}
+
+#[test]
+fn e0509_a_lost_device() {
+    // Forced with `Device::destroy` in tests/gpu_errors.rs; its rendered message.
+    let e = runner::RunError::DeviceLost("Destroyed: Device is dying.".into());
+    let d = e.diagnostics();
+    let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);
+    check("E0509", (d, rendered));
+}
+
+#[test]
+fn e0203_a_constant_call_outside_its_domain() {
+    // naga evaluates calls on constants and rejects these: each was E9001.
+    for e in [
+        "vec4(sqrt(-0.5))",
+        "vec4(log(0.0))",
+        "vec4(log2(vec3(-1.0)), 1.0)",
+        "vec4(sqrt(vec2(-1.0)), 0.0, 1.0)",
+        "vec4(exp(vec3(100.0)), 1.0)",
+        "vec4(pow(vec3(-1.0), vec3(0.5)), 1.0)",
+        "vec4(acos(2.0))",
+    ] {
+        let text = style(&format!(
+            "pass p: image() {{\n  out c: rgba8unorm = {e}\n}}\noutput p.c\n"
+        ));
+        let (d, r) = compile_errors(&text, &scratch("e0203-domain"));
+        assert_eq!(d[0].code, "E0203", "{e}: {r}");
+        assert!(r.contains("has no finite value"), "{e}: {r}");
+    }
+    // A folded param is a constant too; a kept one (a uniform) is not.
+    let text = style(
+        "param k: float = -2.0 in -4..4\npass p: image() {\n  out c: rgba8unorm = vec4(sqrt(k))\n}\noutput p.c\n",
+    );
+    check_case(
+        "E0203",
+        "E0203_const_domain",
+        compile_errors(&text, &scratch("e0203-domain")),
+    );
+    let mut sources = SourceMap::new();
+    let kept = CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    compiler::compile_source("case.npr", &text, &scratch("e0203-domain"), &mut sources, &kept)
+        .unwrap_or_else(|e| panic!("a kept param is a uniform, evaluated at run time: {e:?}"));
+}
+
+#[test]
+fn int_arguments_of_float_only_functions_are_promoted() {
+    // `mix`, `pow`, `step` and `atan2` of two ints were E9001 (naga: no
+    // integer overload); found by tests/fuzz_generated.rs.
+    for e in [
+        "mix(n, n, 0.5)",
+        "mix(n, 2, 0.5)",
+        "pow(n, 2)",
+        "step(n, 3)",
+        "atan2(n, n)",
+        "min(n, 2) * 0.1",
+    ] {
+        let text = style(&format!(
+            "param n: int = 6 in 0..8\npass p: image() {{\n  out c: r16float = {e}\n}}\noutput p.c\n"
+        ));
+        for keep_params in [false, true] {
+            let mut sources = SourceMap::new();
+            let opts = CompileOptions {
+                keep_params,
+                ..Default::default()
+            };
+            if let Err(err) =
+                compiler::compile_source("case.npr", &text, &scratch("int-promotion"), &mut sources, &opts)
+            {
+                panic!("{e} (keep_params {keep_params}): {err:?}");
+            }
+        }
+    }
 }

@@ -1,6 +1,8 @@
 //! Property test: random and mutated `.npr` text never panics the parser or
 //! the compiler, and every diagnostic span lies inside the source.
 
+mod common;
+
 use abi::Format;
 use compiler::ir::{Builtin, Intrinsic};
 use compiler::{CompileError, CompileOptions};
@@ -9,22 +11,25 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-/// Every example style, read at run time so a new example is a new seed.
+/// Every example style (`examples/`, `examples/lib/`) and every style of
+/// the compiler's corpus, read at run time so a new one is a new seed.
 fn seeds() -> &'static [(String, String)] {
     static SEEDS: OnceLock<Vec<(String, String)>> = OnceLock::new();
     SEEDS.get_or_init(|| {
-        let mut files: Vec<_> = std::fs::read_dir(examples_dir())
-            .expect("examples/ exists")
-            .map(|e| e.expect("readable examples/").path())
-            .filter(|p| p.extension().is_some_and(|x| x == "npr"))
-            .collect();
-        files.sort();
-        assert!(files.len() >= 10, "expected every example as a seed, found {files:?}");
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut files = common::fuzz::files_with_extension(&examples_dir(), "npr");
+        let examples = files.len();
+        files.extend(common::fuzz::files_with_extension(
+            &root.join("compiler/tests/in"),
+            "npr",
+        ));
+        assert!(examples >= 10, "expected every example as a seed, found {files:?}");
+        assert!(files.len() > examples, "expected the compiler corpus as seeds too");
         files
             .into_iter()
             .map(|p| {
-                let text = std::fs::read_to_string(&p).expect("readable example");
-                (p.file_name().unwrap().to_string_lossy().into_owned(), text)
+                let text = std::fs::read_to_string(&p).expect("readable style");
+                (p.display().to_string(), text)
             })
             .collect()
     })
@@ -142,6 +147,17 @@ const FIXED_TOKENS: &[&str] = &[
     "keep",
     "test",
     "bias",
+    "samples",
+    "count",
+    "seed",
+    "animate",
+    "object",
+    "filter",
+    "nearest",
+    "clamp",
+    "halftone_table",
+    "edge",
+    "correction",
     "std::x",
     "\n",
 ];
@@ -166,7 +182,7 @@ fn tokens() -> &'static [String] {
 }
 
 #[test]
-fn token_list_covers_every_keyword_builtin_and_pass_kind() {
+fn token_list_covers_every_keyword_builtin_operator_format_and_pass_kind() {
     let t = tokens();
     let keywords = grammar_keywords();
     assert!(keywords.len() >= 17, "keyword rule not parsed: {keywords:?}");
@@ -186,8 +202,12 @@ fn token_list_covers_every_keyword_builtin_and_pass_kind() {
             "pixels",
             "previous",
             "other_eye",
+            "samples",
         ])
         .chain(["depth", "keep", "test", "bias", "over", "multiply"])
+        .chain(Format::ALL.iter().map(|(s, _)| *s))
+        .chain(stdlib::all().iter().map(|o| o.name))
+        .chain(Intrinsic::TABLE.iter().map(|(s, _)| *s))
     {
         assert!(t.iter().any(|x| x == needed), "fuzz token list lacks `{needed}`");
     }
@@ -219,7 +239,8 @@ fn check(text: &str) {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 300,
+        // NPR_FUZZ_CASES sets the count for a soak run (docs/FUZZING.md).
+        cases: common::fuzz::cases(300),
         // Fixed so CI is reproducible; a 20,000-case run with random seeds found nothing.
         rng_seed: proptest::test_runner::RngSeed::Fixed(0x6e70_7221),
         ..ProptestConfig::default()

@@ -298,3 +298,49 @@ fn a_state_first_value_deep_through_lets_compiles() {
         Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
+
+/// A scene of `bytes` bytes: a valid scene padded with a comment.
+fn scene_of(bytes: usize) -> String {
+    let head = "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\" }\n# ";
+    let mut text = format!("{head}{}", "x".repeat(bytes.saturating_sub(head.len() + 1)));
+    text.push('\n');
+    text
+}
+
+#[test]
+fn a_scene_at_the_size_limit_loads_and_one_byte_more_is_refused_where_the_limit_is() {
+    use dsl::limits::MAX_SCENE_BYTES;
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("limits");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let at = dir.join("at_limit.toml");
+    std::fs::write(&at, scene_of(MAX_SCENE_BYTES)).expect("write scene");
+    assert_eq!(std::fs::metadata(&at).expect("size").len() as usize, MAX_SCENE_BYTES);
+    let mut sources = dsl::SourceMap::new();
+    runner::scene::load_scene(&at, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+
+    let over = dir.join("over_limit.toml");
+    std::fs::write(&over, scene_of(MAX_SCENE_BYTES + 1)).expect("write scene");
+    let mut sources = dsl::SourceMap::new();
+    let Err(d) = runner::scene::load_scene(&over, &mut sources) else {
+        panic!("a scene of {} bytes must be refused", MAX_SCENE_BYTES + 1)
+    };
+    assert_eq!(d.len(), 1);
+    assert_eq!(d[0].code, dsl::codes::LIMIT_EXCEEDED);
+    let span = d[0].primary_span().expect("a span");
+    assert_eq!(span.start as usize, MAX_SCENE_BYTES);
+    let rendered = dsl::diagnostic::render(&d, &sources, false);
+    assert!(rendered.contains("over the 1048576-byte limit"), "{rendered}");
+
+    // Through the binary: exit 1 with the code.
+    let out = Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(["render", "examples/toon.npr", "--scene"])
+        .arg(&over)
+        .args(["-o", "/dev/null"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run npr");
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("E0404"));
+}

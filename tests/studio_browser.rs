@@ -337,4 +337,48 @@ fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switche
             "{name}"
         );
     });
+
+    b.step("6_orbit", |b| {
+        let before = b.canvas();
+        let frame = b.shown_frame();
+        let rect = b.eval(
+            "(() => { const r = document.getElementById('view').getBoundingClientRect(); \
+             return [r.left + r.width / 2, r.top + r.height / 2]; })()",
+        );
+        let (x, y) = (rect[0].as_f64().expect("x"), rect[1].as_f64().expect("y"));
+        // A real drag: press on the image, move 80 px right and 30 px down, release.
+        let mouse = |b: &mut Browser, kind: &str, x: f64, y: f64| {
+            b.call(
+                "Input.dispatchMouseEvent",
+                json!({"type": kind, "x": x, "y": y, "button": "left", "buttons": 1, "clickCount": 1}),
+            );
+        };
+        mouse(b, "mousePressed", x, y);
+        mouse(b, "mouseMoved", x + 40.0, y + 15.0);
+        mouse(b, "mouseMoved", x + 80.0, y + 30.0);
+        mouse(b, "mouseReleased", x + 80.0, y + 30.0);
+        b.wait_until(
+            "an orbited frame",
+            &format!(
+                "Number(document.body.dataset.shownFrame) > {frame} && state.view.orbit && state.view.orbit.yaw === -40 \
+                 && Number(document.body.dataset.shownFrame) === state.frame.id"
+            ),
+        );
+        let orbited = b.canvas();
+        let changed = before.chunks(4).zip(orbited.chunks(4)).filter(|(p, q)| p != q).count();
+        assert!(changed * 20 > before.len() / 4, "the drag changed only {changed} pixels");
+        let state: Value = serde_json::from_slice(&http::get(&addr, "/state").body).expect("state");
+        assert!(state["view"]["orbit"]["yaw"].as_f64().is_some_and(|y| y < 0.0), "{}", state["view"]);
+        // Reset to the scene's camera: the image from before the drag.
+        let frame = b.shown_frame();
+        b.eval("document.getElementById('camera-reset').click()");
+        b.wait_until(
+            "the scene camera again",
+            &format!(
+                "Number(document.body.dataset.shownFrame) > {frame} && state.view.orbit === null \
+                 && Number(document.body.dataset.shownFrame) === state.frame.id"
+            ),
+        );
+        assert_close(&b.canvas(), &before, "the scene camera after reset");
+    });
 }

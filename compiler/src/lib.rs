@@ -9,6 +9,7 @@
 //! does not depend on the runner, nor the runner on it.
 
 pub mod allocate;
+pub mod const_domains;
 pub mod consteval;
 pub mod dag;
 pub mod dump;
@@ -19,6 +20,7 @@ pub mod ir;
 pub mod load;
 pub mod load_filters;
 pub mod overrides;
+pub mod paths;
 pub mod pipeline;
 pub mod prune;
 pub mod report;
@@ -47,6 +49,10 @@ pub struct CompileOptions {
     /// New defaults for parameters (`--set`), already typed by the caller;
     /// applied after typecheck, so they fold like written defaults.
     pub overrides: Vec<overrides::ParamOverride>,
+    /// Which files the style may read (`use`, `image("…")`): `None` reads
+    /// any path (library use); the `npr` commands always give one
+    /// (`dsl::paths`, docs/PATHS.md).
+    pub paths: Option<dsl::paths::PathPolicy>,
 }
 
 #[derive(Debug, Clone)]
@@ -117,7 +123,7 @@ pub enum CompileError {
 /// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
 pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let Some(loaded) = load::load_file(path, sources, &mut diags) else {
+    let Some(loaded) = load::load_file(path, sources, opts.paths.as_ref(), &mut diags) else {
         return Err(CompileError::User(diags));
     };
     pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
@@ -132,6 +138,6 @@ pub fn compile_source(
     opts: &CompileOptions,
 ) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let loaded = load::load_source(name, text, dir, sources, &mut diags);
+    let loaded = load::load_source(name, text, dir, sources, opts.paths.as_ref(), &mut diags);
     pipeline::run(loaded, sources, name, opts, diags)
 }

@@ -6,6 +6,7 @@
 
 use dsl::ast::{Ast, Item, UseTarget};
 use dsl::limits::MAX_SOURCE_BYTES;
+use dsl::paths::PathPolicy;
 use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::path::{Path, PathBuf};
 
@@ -27,8 +28,13 @@ pub struct Loaded {
 
 /// Read and parse `path` and its `use`s. `None` when the file cannot be read
 /// (the diagnostic is in `diags`).
-pub fn load_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
-    load_file_as(path, sources, diags, WithFilters::Yes)
+pub fn load_file(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Loaded> {
+    load_file_as(path, sources, paths, diags, WithFilters::Yes)
 }
 
 /// Whether the art-maps' filter styles are loaded too: not for a filter,
@@ -40,13 +46,19 @@ pub enum WithFilters {
 }
 
 /// [`load_file`] of a filter style: its art-maps' filters are not loaded.
-pub fn load_filter_file(path: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Option<Loaded> {
-    load_file_as(path, sources, diags, WithFilters::No)
+pub fn load_filter_file(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Loaded> {
+    load_file_as(path, sources, paths, diags, WithFilters::No)
 }
 
 fn load_file_as(
     path: &Path,
     sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
     with_filters: WithFilters,
 ) -> Option<Loaded> {
@@ -72,22 +84,40 @@ fn load_file_as(
         }
     };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    Some(load_added(file, &name, &text, &dir, sources, diags, with_filters))
+    Some(load_added(
+        file,
+        &name,
+        &text,
+        &dir,
+        sources,
+        paths,
+        diags,
+        with_filters,
+    ))
 }
 
 /// Parse `text` (named `name`) and its `use`s, resolving relative paths against `dir`.
-pub fn load_source(name: &str, text: &str, dir: &Path, sources: &mut SourceMap, diags: &mut Vec<Diagnostic>) -> Loaded {
+pub fn load_source(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Loaded {
     let file = sources.add(name, text);
-    load_added(file, name, text, dir, sources, diags, WithFilters::Yes)
+    load_added(file, name, text, dir, sources, paths, diags, WithFilters::Yes)
 }
 
 /// [`load_source`] of a file already in `sources`.
+#[allow(clippy::too_many_arguments)] // each is a separate input of one load; a struct would only rename them
 fn load_added(
     file: FileId,
     name: &str,
     text: &str,
     dir: &Path,
     sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
     with_filters: WithFilters,
 ) -> Loaded {
@@ -100,9 +130,10 @@ fn load_added(
         .unwrap_or_else(|| dir.to_path_buf());
     let mut stack = vec![canonical(&own)];
     let mut broken = ast.broken.clone();
-    expand_uses(&ast, dir, sources, diags, &mut items, &mut stack, &mut broken);
+    let mut reader = Reader { sources, diags, paths };
+    expand_uses(&ast, dir, &mut reader, &mut items, &mut stack, &mut broken);
     let filters = match with_filters {
-        WithFilters::Yes => crate::load_filters::load(&items, sources, diags),
+        WithFilters::Yes => crate::load_filters::load(&items, sources, paths, diags),
         WithFilters::No => Default::default(),
     };
     Loaded {
@@ -122,16 +153,24 @@ fn canonical(p: &Path) -> PathBuf {
 /// Depth limit for nested `use`, far above any real style.
 const MAX_USE_DEPTH: usize = 32;
 
+/// What reading `use`d files needs: the run's sources, its diagnostics,
+/// and the paths policy.
+struct Reader<'a> {
+    sources: &'a mut SourceMap,
+    diags: &'a mut Vec<Diagnostic>,
+    paths: Option<&'a PathPolicy>,
+}
+
 fn expand_uses(
     ast: &Ast,
     dir: &Path,
-    sources: &mut SourceMap,
-    diags: &mut Vec<Diagnostic>,
+    reader: &mut Reader,
     items: &mut Vec<(Item, PathBuf)>,
     stack: &mut Vec<PathBuf>,
     broken: &mut Vec<String>,
 ) {
     for item in &ast.items {
+        let Reader { sources, diags, paths } = reader;
         let Item::Use(u) = item else {
             items.push((item.clone(), dir.to_path_buf()));
             continue;
@@ -166,6 +205,10 @@ fn expand_uses(
                     );
                     continue;
                 }
+                if let Some(d) = crate::paths::check_use(*paths, u.span, rel, &path) {
+                    diags.push(d);
+                    continue;
+                }
                 let bytes = match read_bounded(&path) {
                     Ok(b) => b,
                     Err(e) => {
@@ -185,7 +228,7 @@ fn expand_uses(
                 broken.extend(used.broken.iter().cloned());
                 let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
                 stack.push(key);
-                expand_uses(&used, &sub_dir, sources, diags, items, stack, broken);
+                expand_uses(&used, &sub_dir, reader, items, stack, broken);
                 stack.pop();
             }
         }

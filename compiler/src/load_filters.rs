@@ -2,10 +2,12 @@
 //! (`artmap(image("…"), filter: "filters/hatching.npr")`): each is read and
 //! parsed once, with its own `use`s, so that the pipeline can compile it as
 //! a style of its own (`pipeline::compile_filters`). A filter that cannot be
-//! read is reported at the path in the art-map.
+//! read, or that the paths policy refuses (E0406), is reported at the path
+//! in the art-map.
 
 use crate::load::{load_filter_file, Loaded};
 use dsl::ast::{ExprKind, Item};
+use dsl::paths::PathPolicy;
 use dsl::{codes, Diagnostic, SourceMap};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -18,6 +20,7 @@ pub const FILTERED_SOURCES: [&str; 2] = ["artmap", "ripmap"];
 pub fn load(
     items: &[(Item, PathBuf)],
     sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> BTreeMap<String, Loaded> {
     let mut filters = BTreeMap::new();
@@ -41,6 +44,10 @@ pub fn load(
         if filters.contains_key(&key) {
             continue;
         }
+        if let Some(d) = crate::paths::check_use(paths, arg.value.span, rel, &path) {
+            diags.push(d);
+            continue;
+        }
         if !path.is_file() {
             diags.push(
                 Diagnostic::error(codes::BAD_USE, format!("filter style `{rel}` not found"))
@@ -50,7 +57,7 @@ pub fn load(
             continue;
         }
         let mut own = Vec::new();
-        if let Some(loaded) = load_filter_file(&path, sources, &mut own) {
+        if let Some(loaded) = load_filter_file(&path, sources, paths, &mut own) {
             filters.insert(key, loaded);
         }
         diags.append(&mut own);

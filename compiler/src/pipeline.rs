@@ -74,6 +74,7 @@ pub fn run(
         crate::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
     }
     st.done("resolve", &ir);
+    diags.extend(crate::paths::check_textures(&ir, sources, opts.paths.as_ref()));
     crate::typecheck::typecheck(&mut ir, &mut diags);
     crate::texture_uses::check(&ir, &mut diags);
     st.done("typecheck", &ir);
@@ -132,6 +133,8 @@ pub fn run(
         .collect();
     diags.extend(crate::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
     st.done("prune-after-specialize", &ir);
+    diags.extend(crate::const_domains::check(&ir, &live));
+    fail_if_errors(&diags)?;
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
     let emitter = Emitter {

@@ -16,7 +16,7 @@ use std::path::Path;
 fn front(text: &str) -> (Ir, PassGraph) {
     let mut sources = SourceMap::new();
     let mut diags = Vec::new();
-    let loaded = compiler::load::load_source("t.npr", text, Path::new("."), &mut sources, &mut diags);
+    let loaded = compiler::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
     let mut ir = compiler::resolve::resolve(&loaded, None, &mut diags).expect("no internal error");
     compiler::typecheck::typecheck(&mut ir, &mut diags);
     let graph = compiler::dag::build(&ir, &mut diags);

@@ -281,6 +281,8 @@ pub mod codes {
     pub const LIMIT_EXCEEDED: &str = "E0404";
     /// A scene file is malformed.
     pub const BAD_SCENE: &str = "E0405";
+    /// A file named by a style or scene that is absolute or outside the root (docs/PATHS.md).
+    pub const PATH_OUTSIDE_ROOT: &str = "E0406";
     /// Warning: a scene binds a per-object value to a name the style does not read per object.
     pub const UNUSED_BINDING: &str = "W0401";
     /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
@@ -300,6 +302,10 @@ pub mod codes {
     /// `npr studio` cannot serve (the port is taken, the host cannot be
     /// bound), or `npr watch`/`npr studio` cannot watch the files.
     pub const CANNOT_SERVE: &str = "E0507";
+    /// The GPU cannot allocate the textures or buffers a frame needs.
+    pub const GPU_OUT_OF_MEMORY: &str = "E0508";
+    /// The GPU device was lost (a driver reset, the device destroyed) while npr used it.
+    pub const DEVICE_LOST: &str = "E0509";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -348,6 +354,7 @@ pub mod codes {
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
+        (PATH_OUTSIDE_ROOT, "file path absolute or outside the root"),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),
@@ -357,5 +364,7 @@ pub mod codes {
         (NO_DEVICE, "no GPU device"),
         (BENCH_UNSUPPORTED, "benchmark cannot run on this input"),
         (CANNOT_SERVE, "cannot serve the studio or watch files"),
+        (GPU_OUT_OF_MEMORY, "the GPU ran out of memory"),
+        (DEVICE_LOST, "the GPU device was lost"),
     ];
 }

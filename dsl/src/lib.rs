@@ -9,6 +9,7 @@ pub mod diagnostic;
 pub mod limits;
 mod nesting;
 mod parser;
+pub mod paths;
 pub mod span;
 mod syntax_error;
 pub mod text;

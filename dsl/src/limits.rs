@@ -11,6 +11,8 @@ use crate::codes;
 
 /// Largest style file (a root file or one it `use`s), in bytes.
 pub const MAX_SOURCE_BYTES: usize = 1 << 20;
+/// Largest scene file (TOML), in bytes: geometry goes in mesh files.
+pub const MAX_SCENE_BYTES: usize = 1 << 20;
 /// Deepest nesting of brackets, blocks and `if`s: `(`, `{`, a call's
 /// argument list and an `if` each open a level. The parser checks it on the
 /// raw text before parsing, so the recursive-descent parser never goes
@@ -56,6 +58,13 @@ pub const ALL: &[Limit] = &[
         name: "MAX_SOURCE_BYTES",
         what: "size of one style file",
         value: MAX_SOURCE_BYTES as u64,
+        unit: "bytes",
+        code: codes::LIMIT_EXCEEDED,
+    },
+    Limit {
+        name: "MAX_SCENE_BYTES",
+        what: "size of one scene file",
+        value: MAX_SCENE_BYTES as u64,
         unit: "bytes",
         code: codes::LIMIT_EXCEEDED,
     },

@@ -41,6 +41,8 @@ pub struct Gpu {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
+    /// The device's loss and any error no scope caught (`gpu_error`).
+    pub watch: crate::DeviceWatch,
 }
 
 impl Gpu {
@@ -50,6 +52,14 @@ impl Gpu {
         for backends in [wgpu::Backends::VULKAN, wgpu::Backends::GL] {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
             desc.backends = backends;
+            // Creating a texture or buffer past 90% of the memory budget the
+            // driver reports is an out-of-memory error (E0508), not an
+            // allocation the OS may kill the process for (where the backend
+            // reports a budget: Vulkan with VK_EXT_memory_budget, D3D12).
+            desc.memory_budget_thresholds = wgpu::MemoryBudgetThresholds {
+                for_resource_creation: Some(90),
+                for_device_loss: None,
+            };
             let instance = wgpu::Instance::new(desc);
             let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::HighPerformance,
@@ -80,7 +90,9 @@ impl Gpu {
                 adapter: info.name.clone(),
                 source,
             })?;
+            let watch = crate::DeviceWatch::install(&device);
             return Ok(Gpu {
+                watch,
                 device,
                 queue,
                 adapter_info: info,

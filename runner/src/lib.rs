@@ -22,6 +22,7 @@ pub mod artmap;
 pub mod artmap_cache;
 pub mod device;
 pub mod exec;
+pub mod gpu_error;
 pub mod output;
 pub mod readback;
 pub mod scene;
@@ -35,6 +36,7 @@ pub use device::{DeviceError, Gpu};
 pub use exec::{
     check_scene, check_texture_bindings, scaled_size, scene_warnings, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE,
 };
+pub use gpu_error::DeviceWatch;
 pub use readback::TargetImage;
 
 use dsl::Diagnostic;
@@ -44,11 +46,22 @@ pub enum RunError {
     /// Problems with the user's input (scene, textures), as diagnostics.
     #[error("{} error(s) in the input", .0.len())]
     User(Vec<Diagnostic>),
+    /// Texture files of the style that cannot be used, each with its
+    /// manifest texture index, so that a caller holding the style's spans
+    /// points at the `image("…")` naming the file ([`RunError::at_texture_spans`]).
+    #[error("{} texture file(s) cannot be used", .0.len())]
+    Textures(Vec<(usize, Diagnostic)>),
     /// A size or resource request past a stated limit.
     #[error("limit exceeded: {0}")]
     Limit(String),
     #[error(transparent)]
     Device(#[from] DeviceError),
+    /// The GPU could not allocate what the frame needs (E0508).
+    #[error("{0}")]
+    OutOfMemory(String),
+    /// The device was lost while npr used it (E0509).
+    #[error("the GPU device was lost: {0}")]
+    DeviceLost(String),
     /// A bug in npr.
     #[error("internal error: {0}")]
     Internal(String),
@@ -59,9 +72,22 @@ impl RunError {
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
         match self {
             RunError::User(d) => d.clone(),
+            RunError::Textures(d) => d.iter().map(|(_, d)| d.clone()).collect(),
             RunError::Limit(m) => vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, m.clone())
-                .with_help(format!("the largest image is {0}x{0}", MAX_OUTPUT_SIZE))],
-            RunError::Device(e) => vec![Diagnostic::error(dsl::codes::INTERNAL, e.to_string())],
+                .with_help(format!(
+                    "the largest image is {0}x{0} (docs/LIMITS.md), and a GPU adapter may allow less",
+                    MAX_OUTPUT_SIZE
+                ))],
+            RunError::Device(e) => vec![e.to_diagnostic()],
+            RunError::OutOfMemory(m) => vec![Diagnostic::error(dsl::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
+                "render at a smaller --size, give wide targets a narrower format (rgba16float instead of \
+                 rgba32float) or a smaller `scale`, or use a GPU with more memory",
+            )],
+            RunError::DeviceLost(m) => vec![Diagnostic::error(
+                dsl::codes::DEVICE_LOST,
+                format!("the GPU device was lost: {m}"),
+            )
+            .with_help("the driver reset or the GPU went away; run the command again (`npr studio` makes a new device by itself)")],
             RunError::Internal(m) => {
                 vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())
                     .with_help("this is a bug in npr; please report it")]
@@ -69,8 +95,35 @@ impl RunError {
         }
     }
 
+    /// Texture errors pointed at `spans[index]` (the style's `image("…")`
+    /// per manifest texture, `compiler::Compiled::texture_spans`); other
+    /// errors unchanged.
+    pub fn at_texture_spans(self, spans: &[dsl::Span]) -> RunError {
+        match self {
+            RunError::Textures(d) => RunError::User(
+                d.into_iter()
+                    .map(|(i, d)| match spans.get(i) {
+                        Some(span) => d.with_primary(*span, "this file"),
+                        None => d,
+                    })
+                    .collect(),
+            ),
+            other => other,
+        }
+    }
+
+    /// Whether the error exits 1 (the input, its size, or the machine),
+    /// not 2 (a bug in npr).
     pub fn is_user_error(&self) -> bool {
-        matches!(self, RunError::User(_) | RunError::Limit(_))
+        matches!(
+            self,
+            RunError::User(_)
+                | RunError::Textures(_)
+                | RunError::Limit(_)
+                | RunError::OutOfMemory(_)
+                | RunError::DeviceLost(_)
+                | RunError::Device(_)
+        )
     }
 }
 

@@ -70,6 +70,9 @@ impl TargetImage {
     }
 }
 
+/// Read `texture` back in bands of rows, each band's buffer within the
+/// device's `max_buffer_size` (a 16384² target is 1 GiB at 4 bytes per
+/// pixel), inside error scopes (`gpu_error`).
 pub fn read_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -82,9 +85,48 @@ pub fn read_texture(
     let bpp = format.bytes_per_pixel();
     let unpadded = width * bpp;
     let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let band_rows = (device.limits().max_buffer_size / padded as u64).clamp(1, height.max(1) as u64) as u32;
+    let mut bytes = Vec::with_capacity(unpadded as usize * height as usize);
+    let mut first_row = 0;
+    while first_row < height {
+        let rows = band_rows.min(height - first_row);
+        crate::gpu_error::scoped(
+            device,
+            || format!("reading back target `{name}` ({width}x{height})"),
+            || {
+                read_band(
+                    device,
+                    queue,
+                    texture,
+                    (width, first_row, rows),
+                    (padded, unpadded),
+                    &mut bytes,
+                )
+            },
+        )?;
+        first_row += rows;
+    }
+    Ok(TargetImage {
+        name: name.to_string(),
+        width,
+        height,
+        format,
+        bytes,
+    })
+}
+
+/// Rows `first_row..first_row + rows` of `texture`, unpadded, appended to `bytes`.
+fn read_band(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    (width, first_row, rows): (u32, u32, u32),
+    (padded, unpadded): (u32, u32),
+    bytes: &mut Vec<u8>,
+) -> Result<(), RunError> {
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("npr readback"),
-        size: padded as u64 * height as u64,
+        size: padded as u64 * rows as u64,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
@@ -95,7 +137,11 @@ pub fn read_texture(
         wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: first_row,
+                z: 0,
+            },
             aspect: wgpu::TextureAspect::All,
         },
         wgpu::TexelCopyBufferInfo {
@@ -103,31 +149,24 @@ pub fn read_texture(
             layout: wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(padded),
-                rows_per_image: Some(height),
+                rows_per_image: Some(rows),
             },
         },
         wgpu::Extent3d {
             width,
-            height,
+            height: rows,
             depth_or_array_layers: 1,
         },
     );
     queue.submit([encoder.finish()]);
     let mapped = map_read(device, &buffer)?;
-    let mut bytes = Vec::with_capacity((unpadded * height) as usize);
-    for row in 0..height as usize {
+    for row in 0..rows as usize {
         let start = row * padded as usize;
         bytes.extend_from_slice(&mapped[start..start + unpadded as usize]);
     }
     drop(mapped);
     buffer.unmap();
-    Ok(TargetImage {
-        name: name.to_string(),
-        width,
-        height,
-        format,
-        bytes,
-    })
+    Ok(())
 }
 
 /// Wait for the GPU and map `buffer` (MAP_READ) for reading.
@@ -150,6 +189,14 @@ fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<wgpu::Buffer
 
 /// Copy a whole storage buffer (COPY_SRC) back to the CPU.
 pub fn read_buffer(device: &wgpu::Device, queue: &wgpu::Queue, source: &wgpu::Buffer) -> Result<Vec<u8>, RunError> {
+    crate::gpu_error::scoped(
+        device,
+        || format!("reading back a {}-byte buffer", source.size()),
+        || read_whole_buffer(device, queue, source),
+    )
+}
+
+fn read_whole_buffer(device: &wgpu::Device, queue: &wgpu::Queue, source: &wgpu::Buffer) -> Result<Vec<u8>, RunError> {
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("npr buffer readback"),
         size: source.size(),

@@ -31,18 +31,18 @@ pub fn load_all(
     let mut out = Vec::new();
     let mut diags = Vec::new();
     let mut builds = Vec::new();
-    for t in &m.textures {
+    for (i, t) in m.textures.iter().enumerate() {
         match load_one(device, queue, t, input, &mut builds) {
             Ok(g) => out.push(g),
             Err(d) => {
-                diags.push(d);
+                diags.push((i, d));
                 // Keep indices aligned; a 1×1 placeholder is never rendered since we return Err.
                 out.push(placeholder(device));
             }
         }
     }
     if !diags.is_empty() {
-        return Err(RunError::User(diags));
+        return Err(RunError::Textures(diags));
     }
     Ok((out, builds))
 }

@@ -3,7 +3,9 @@
 
 mod compile;
 mod gpu;
+mod http_client;
 mod patterns;
+mod studio;
 
 use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
@@ -60,6 +62,29 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             size,
             frames,
         } => gpu::passes(&style, &scene, size, frames, printer),
+        BenchCommand::Studio {
+            style,
+            scene,
+            size,
+            frames,
+            edits,
+            param,
+            values,
+        } => match values.as_slice() {
+            [a, b] => studio::run(
+                &studio::StudioBench {
+                    style: &style,
+                    scene: &scene,
+                    size,
+                    frames,
+                    edits,
+                    param: &param,
+                    values: (a, b),
+                },
+                printer,
+            ),
+            _ => printer.fail(Diagnostic::error(codes::USAGE, "--values takes two values, `A,B`")),
+        },
         BenchCommand::Overhead {
             style,
             scene,

@@ -2,19 +2,34 @@
 //! files it names) and print its diagnostics; nothing is written.
 
 use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
-use crate::printer::Printer;
+use crate::printer::{load_scene_summary, Printer};
 use compiler::CompileOptions;
 use dsl::SourceMap;
 
 pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
-    match crate::set_params::compile(
-        &args.style,
-        &args.set,
-        &mut sources,
-        &CompileOptions::default(),
-        printer,
-    ) {
+    let paths = match args.paths.policy(&args.style, args.scene.as_deref()) {
+        Ok(p) => p,
+        Err(d) => return printer.fail(d),
+    };
+    let scene = match args
+        .scene
+        .as_ref()
+        .map(|s| load_scene_summary(s, &mut sources, Some(&paths)))
+        .transpose()
+    {
+        Ok(s) => s,
+        Err(diags) => {
+            printer.diagnostics(&diags, &sources);
+            return EXIT_USER;
+        }
+    };
+    let opts = CompileOptions {
+        scene,
+        paths: Some(paths),
+        ..Default::default()
+    };
+    match crate::set_params::compile(&args.style, &args.set, &mut sources, &opts, printer) {
         Ok(c) => {
             printer.diagnostics(&c.warnings, &sources);
             let texture_errors = crate::texture_check::texture_file_errors(&c);

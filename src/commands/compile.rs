@@ -17,6 +17,7 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         time_passes,
         scene,
         set,
+        paths,
     } = args;
     let mut sources = SourceMap::new();
     if out.exists() && !out.is_dir() {
@@ -28,7 +29,14 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
             .with_help("`npr compile -o` names a directory, for the WGSL files and manifest.json"),
         );
     }
-    let scene = match scene.map(|s| load_scene_summary(&s, &mut sources)).transpose() {
+    let paths = match paths.policy(&style, scene.as_deref()) {
+        Ok(p) => p,
+        Err(d) => return printer.fail(d),
+    };
+    let scene = match scene
+        .map(|s| load_scene_summary(&s, &mut sources, Some(&paths)))
+        .transpose()
+    {
         Ok(s) => s,
         Err(diags) => {
             printer.diagnostics(&diags, &sources);
@@ -39,6 +47,7 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         keep_params,
         dump_ir,
         scene,
+        paths: Some(paths),
         ..Default::default()
     };
     let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {

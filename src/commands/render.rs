@@ -4,7 +4,7 @@
 
 use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::commands::dump::{dump_all_targets, read_all_targets};
-use crate::printer::{cannot_write, headless_gpu, load_scene, Printer};
+use crate::printer::{cannot_write, headless_gpu, load_scene_in, Printer};
 use compiler::CompileOptions;
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
@@ -25,6 +25,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         dump_passes,
         keep_params,
         set,
+        paths,
     } = args;
     let mut sources = SourceMap::new();
     if let Err(code) = printer
@@ -34,13 +35,26 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         return code;
     }
     let scene_name = scene.display().to_string();
-    let scene = match load_scene(&scene, &mut sources, printer) {
+    // The root holds the style, or the compiled directory (whose textures
+    // were checked when it was compiled), and the scene.
+    let compiled_manifest = compiled.as_ref().map(|d| d.join("manifest.json"));
+    let paths = match paths.policy(
+        style.as_deref().or(compiled_manifest.as_deref()).unwrap_or(&scene),
+        Some(&scene),
+    ) {
+        Ok(p) => p,
+        Err(d) => return printer.fail(d),
+    };
+    let scene = match load_scene_in(&scene, &mut sources, Some(&paths), printer) {
         Ok(s) => s,
         Err(code) => return code,
     };
     if let Err(code) = printer.check(crate::args::check_eye(eye, scene.camera.is_stereo())) {
         return code;
     }
+    // Per manifest texture, the `image("…")` naming its file (none for a
+    // compiled directory): render-time texture errors point there.
+    let mut texture_spans = Vec::new();
     let program = match (compiled, style) {
         (Some(dir), _) => match StyleProgram::load_dir(&dir) {
             Ok(p) => p,
@@ -56,6 +70,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
             let opts = CompileOptions {
                 keep_params,
                 scene: Some(scene.summary(&scene_name)),
+                paths: Some(paths),
                 ..Default::default()
             };
             let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {
@@ -68,6 +83,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;
             }
+            texture_spans = c.texture_spans.clone();
             c.program()
         }
         (None, None) => {
@@ -87,7 +103,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         Ok(g) => g,
         Err(code) => return code,
     };
-    match render(
+    let result = render(
         &gpu,
         &program,
         &scene,
@@ -98,7 +114,8 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         eye,
         out.as_deref(),
         dump_passes.as_deref(),
-    ) {
+    );
+    match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
         Ok(()) => EXIT_OK,
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);

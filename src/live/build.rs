@@ -22,6 +22,8 @@ pub struct Inputs {
     pub sets: Vec<String>,
     /// Compile with `--keep-params` (the studio, so sliders need no recompile).
     pub keep_params: bool,
+    /// `--root` and `--allow-path`.
+    pub paths: crate::cli::PathArgs,
 }
 
 pub struct Built {
@@ -42,13 +44,23 @@ pub struct Failed {
 pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Failed> {
     let start = Instant::now();
     let mut sources = SourceMap::new();
-    let scene = match runner::scene::load_scene(&inputs.scene, &mut sources) {
+    let paths = match inputs.paths.policy(&inputs.style, Some(&inputs.scene)) {
+        Ok(p) => p,
+        Err(d) => {
+            return Err(Failed {
+                diagnostics: vec![d],
+                sources,
+            })
+        }
+    };
+    let scene = match runner::scene::load_scene_in(&inputs.scene, &mut sources, Some(&paths)) {
         Ok(s) => s,
         Err(diagnostics) => return Err(Failed { diagnostics, sources }),
     };
     let opts = CompileOptions {
         keep_params: inputs.keep_params,
         scene: Some(scene.summary(&inputs.scene.display().to_string())),
+        paths: Some(paths),
         ..Default::default()
     };
     let result = set_params::compile_with_sets(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);

@@ -8,6 +8,7 @@
 //! - `page.html`, `studio.js`, `studio.css`: the page, embedded with `include_str!`.
 
 mod hub;
+pub mod orbit;
 mod render_thread;
 mod server;
 pub mod state;
@@ -71,6 +72,7 @@ pub fn run(args: StudioArgs, printer: &Printer) -> i32 {
         time: args.time,
         fps: args.fps,
         eye: args.eye,
+        orbit: None,
     };
     let render_hub = hub.clone();
     let watcher_jobs = jobs.clone();

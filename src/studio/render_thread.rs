@@ -15,6 +15,7 @@
 //!   server runs.
 
 use super::hub::{FrameImages, Hub};
+use super::orbit::Orbit;
 use super::state;
 use crate::live::build::{self, Built, Inputs};
 use crate::live::guard;
@@ -37,8 +38,16 @@ pub enum Job {
     SetParam { name: String, literal: String },
     /// Forget a control's value: back to the file's default.
     ResetParam(String),
-    /// The time scrubber and the eye toggle.
-    SetView { time: Option<f64>, eye: Option<u32> },
+    /// The time scrubber, the eye toggle and the orbit camera
+    /// (`Some(None)`: back to the scene's camera).
+    SetView {
+        time: Option<f64>,
+        eye: Option<u32>,
+        orbit: Option<Option<Orbit>>,
+    },
+    /// Panic inside the render thread (only with `NPR_STUDIO_DEBUG=1`), to
+    /// show that a panic is reported and the server keeps serving.
+    Panic,
     /// Write the control's current value into the `.npr` file as its default.
     WriteParam(String),
 }
@@ -50,6 +59,8 @@ pub struct View {
     pub time: f64,
     pub fps: f64,
     pub eye: u32,
+    /// The page's orbit/zoom camera, overriding the scene's.
+    pub orbit: Option<Orbit>,
 }
 
 /// A build that rendered, with the renderer made for it.
@@ -130,6 +141,11 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
                     st.publish(None);
                     break;
                 }
+                // A lost device (its E0509 is on the page) is made again,
+                // and the style rebuilt on it.
+                if gpu.watch.lost().is_some() {
+                    break;
+                }
             }
             let Ok(first) = jobs.recv() else { return };
             // Coalesce: a burst of slider moves renders once, with the last values.
@@ -149,11 +165,14 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
 enum Pending {
     Render,
     Rebuild,
+    /// `Job::Panic`: panic where rendering would happen.
+    Panic,
 }
 
 impl Pending {
     fn merge(a: Option<Pending>, b: Option<Pending>) -> Option<Pending> {
         match (a, b) {
+            (Some(Pending::Panic), _) | (_, Some(Pending::Panic)) => Some(Pending::Panic),
             (Some(Pending::Rebuild), _) | (_, Some(Pending::Rebuild)) => Some(Pending::Rebuild),
             (Some(Pending::Render), _) | (_, Some(Pending::Render)) => Some(Pending::Render),
             _ => None,
@@ -172,7 +191,8 @@ impl Studio {
             "param_error": self.param_error,
             "notice": self.notice,
             "view": { "time": self.view.time, "eye": self.view.eye, "fps": self.view.fps,
-                      "width": self.view.size.0, "height": self.view.size.1, "stereo": self.stereo },
+                      "width": self.view.size.0, "height": self.view.size.1, "stereo": self.stereo,
+                      "orbit": self.view.orbit.map(Orbit::to_json) },
         });
         self.hub.publish(state, images);
     }
@@ -189,9 +209,12 @@ impl Studio {
                 }
                 Some(Pending::Rebuild)
             }
-            Job::SetView { time, eye } => {
+            Job::SetView { time, eye, orbit } => {
                 if let Some(t) = time.filter(|t| t.is_finite()) {
                     self.view.time = t;
+                }
+                if let Some(o) = orbit {
+                    self.view.orbit = o;
                 }
                 if let Some(e) = eye {
                     if e == 0 || (e == 1 && self.stereo) {
@@ -205,6 +228,7 @@ impl Studio {
                 Some(Pending::Rebuild)
             }
             Job::SetParam { name, literal } => self.set_param(&name, &literal),
+            Job::Panic => Some(Pending::Panic),
             Job::WriteParam(name) => {
                 self.write_param(&name);
                 // The watcher sees the write and rebuilds; publish the notice now.
@@ -281,6 +305,9 @@ impl Studio {
         session: &mut Option<Session<'g>>,
         watcher: Option<&mut FileWatcher>,
     ) {
+        if work == Pending::Panic {
+            panic!("forced by POST /debug/panic (NPR_STUDIO_DEBUG=1)");
+        }
         if work == Pending::Rebuild || session.is_none() {
             let files = self.rebuild(gpu, session);
             if let Some(w) = watcher {
@@ -326,7 +353,11 @@ impl Studio {
         // Drop the old renderer (its pipelines and textures) before making the new one.
         *session = None;
         let program = built.compiled.program();
-        match Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene) {
+        let renderer = gpu
+            .watch
+            .check(Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene))
+            .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
+        match renderer {
             Ok(renderer) => {
                 self.params = state::params_json(
                     &set_params::with_declared_types(&built.compiled.manifest.params, &built.sources),
@@ -345,7 +376,7 @@ impl Studio {
 
     fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session<'g>) {
         let start = Instant::now();
-        match render_frame(gpu, s, &self.view) {
+        match gpu.watch.check(render_frame(gpu, s, &self.view)) {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
@@ -362,6 +393,7 @@ impl Studio {
                     "render_ms": render_ms,
                     "passes": pass_ms.map(|ms| manifest.passes.iter().zip(ms).map(|(p, ms)| json!({"name": p.name, "gpu_ms": ms})).collect::<Vec<_>>()),
                     "device": gpu.describe(),
+                    "memory": memory_json(gpu),
                     "time": self.view.time,
                     "eye": self.view.eye,
                 });
@@ -408,6 +440,15 @@ fn render_frame<'g>(
         s.renderer = Renderer::new(&gpu.device, &gpu.queue, &program, &s.built.scene)?;
     }
     let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
+    // The page's orbit camera replaces the scene's for every frame.
+    let orbited;
+    let scene = match view.orbit {
+        Some(o) => {
+            orbited = o.scene(&s.built.scene, view.time);
+            &orbited
+        }
+        None => &s.built.scene,
+    };
     let spec = |time_s: f64, frame: u32| FrameSpec {
         width: view.size.0,
         height: view.size.1,
@@ -419,17 +460,17 @@ fn render_frame<'g>(
         return Err(RunError::Internal("an empty frame schedule".into()));
     };
     for f in replay {
-        s.renderer.render(&s.built.scene, &spec(f.time_s, f.frame))?;
+        s.renderer.render(scene, &spec(f.time_s, f.frame))?;
     }
     let spec = spec(last.time_s, last.frame);
     let times = match &s.timer {
-        Some(t) => Some(t.frame(gpu, &mut s.renderer, &s.built.scene, &spec)?),
+        Some(t) => Some(t.frame(gpu, &mut s.renderer, scene, &spec)?),
         None => {
-            s.renderer.render(&s.built.scene, &spec)?;
+            s.renderer.render(scene, &spec)?;
             None
         }
     };
-    let images = crate::commands::dump::read_all_targets(&mut s.renderer, &s.built.scene, &spec)?;
+    let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
     Ok((images, times))
 }
 
@@ -442,4 +483,21 @@ fn encode(id: u64, images: &[runner::TargetImage]) -> std::io::Result<FrameImage
         f32.push(t.to_rgba_f32().iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
     }
     Ok(FrameImages { id, png, f32 })
+}
+
+/// What the studio holds after this frame: the process's resident memory
+/// (`VmRSS`) and the GPU memory wgpu's allocator has (Vulkan; `null`
+/// elsewhere), so a leak across rebuilds shows (`npr bench studio`).
+fn memory_json(gpu: &Gpu) -> Value {
+    let rss_kib = std::fs::read_to_string("/proc/self/status").ok().and_then(|s| {
+        s.lines()
+            .find_map(|l| l.strip_prefix("VmRSS:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+    });
+    let report = gpu.device.generate_allocator_report();
+    json!({
+        "rss_kib": rss_kib,
+        "gpu_allocated_bytes": report.as_ref().map(|r| r.total_allocated_bytes),
+        "gpu_reserved_bytes": report.as_ref().map(|r| r.total_reserved_bytes),
+    })
 }

@@ -15,6 +15,7 @@
 //! | `POST /view` `{"time"?, "eye"?}` | the time scrubber and the eye toggle |
 
 use super::hub::Hub;
+use super::orbit::Orbit;
 use super::render_thread::Job;
 use serde_json::Value;
 use std::io::{Read, Write};
@@ -73,28 +74,48 @@ fn handle(mut request: Request, hub: &Hub, jobs: &Sender<Job>) {
         (Method::Get, "/state") => respond(request, 200, "application/json", hub.state().to_string().into_bytes()),
         (Method::Get, "/events") => events(request, hub),
         (Method::Get, path) if path.starts_with("/frame/") => frame(request, hub, &path["/frame/".len()..]),
+        // Only for tests of the panic path: the render thread panics.
+        (Method::Post, "/debug/panic") if std::env::var_os("NPR_STUDIO_DEBUG").is_some_and(|v| v == "1") => {
+            if jobs.send(Job::Panic).is_err() {
+                return text(request, 503, "the render thread has stopped");
+            }
+            respond(request, 202, "application/json", b"{}".to_vec());
+        }
         (Method::Post, "/param" | "/param/reset" | "/param/write" | "/view") => {
             let body = match read_json(&mut request) {
                 Ok(v) => v,
                 Err(e) => return text(request, 400, &e),
             };
             let name = body["name"].as_str().map(str::to_string);
-            let job = match (url.as_str(), name) {
-                ("/param", Some(name)) => match body["literal"].as_str() {
-                    Some(l) => Job::SetParam {
-                        name,
-                        literal: l.to_string(),
+            let job =
+                match (url.as_str(), name) {
+                    ("/param", Some(name)) => match body["literal"].as_str() {
+                        Some(l) => Job::SetParam {
+                            name,
+                            literal: l.to_string(),
+                        },
+                        None => return text(request, 400, "expected {\"name\": ..., \"literal\": \"...\"}"),
                     },
-                    None => return text(request, 400, "expected {\"name\": ..., \"literal\": \"...\"}"),
-                },
-                ("/param/reset", Some(name)) => Job::ResetParam(name),
-                ("/param/write", Some(name)) => Job::WriteParam(name),
-                ("/view", _) => Job::SetView {
-                    time: body["time"].as_f64(),
-                    eye: body["eye"].as_u64().map(|e| e as u32),
-                },
-                _ => return text(request, 400, "expected {\"name\": ...}"),
-            };
+                    ("/param/reset", Some(name)) => Job::ResetParam(name),
+                    ("/param/write", Some(name)) => Job::WriteParam(name),
+                    ("/view", _) => Job::SetView {
+                        time: body["time"].as_f64(),
+                        eye: body["eye"].as_u64().map(|e| e as u32),
+                        orbit: match body.get("orbit") {
+                            None => None,
+                            Some(Value::Null) => Some(None),
+                            Some(o) => match Orbit::from_json(o) {
+                                Some(o) => Some(Some(o)),
+                                None => return text(
+                                    request,
+                                    400,
+                                    "expected \"orbit\": {\"yaw\": deg, \"pitch\": deg, \"zoom\": factor > 0} or null",
+                                ),
+                            },
+                        },
+                    },
+                    _ => return text(request, 400, "expected {\"name\": ...}"),
+                };
             if jobs.send(job).is_err() {
                 return text(request, 503, "the render thread has stopped");
             }

@@ -8,6 +8,8 @@ let shown = { frame: -1, target: -1 };
 let pixels = null;        // { w, h, data: Float32Array (rgba) } of the shown target
 let controlsKey = "";
 let playing = null;
+let orbit = null;         // the page's orbit camera { yaw, pitch, zoom }, or null: the scene's
+let drag = null;
 
 function post(path, body) {
   return fetch(path, { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
@@ -111,6 +113,8 @@ function buildControl(p) {
 }
 
 function renderView(s) {
+  orbit = s.view.orbit || null;
+  $("camera-reset").disabled = !orbit;
   const f = s.frame;
   if (!f) return;
   const eyeBox = $("eye-box");
@@ -188,6 +192,31 @@ $("view").addEventListener("mousemove", (e) => {
   const v = Array.from(pixels.data.slice(i, i + 4)).map((c) => c.toFixed(4));
   $("readout").textContent = `(${x}, ${y}) = ${v.join(", ")}`;
 });
+// Orbit/zoom: a drag turns the camera about the scene camera's target
+// (yaw, pitch in degrees), the wheel scales its distance; the server
+// renders with it until "reset to the scene's camera".
+const DEG_PER_PX = 0.5;
+function sendOrbit(o) { orbit = o; $("camera-reset").disabled = !o; post("/view", { orbit: o }); }
+$("view").addEventListener("mousedown", (e) => {
+  const o = orbit || { yaw: 0, pitch: 0, zoom: 1 };
+  drag = { x: e.clientX, y: e.clientY, yaw: o.yaw, pitch: o.pitch, zoom: o.zoom };
+  e.preventDefault();
+});
+window.addEventListener("mousemove", (e) => {
+  if (!drag) return;
+  sendOrbit({
+    yaw: drag.yaw - (e.clientX - drag.x) * DEG_PER_PX,
+    pitch: Math.max(-89, Math.min(89, drag.pitch + (e.clientY - drag.y) * DEG_PER_PX)),
+    zoom: drag.zoom,
+  });
+});
+window.addEventListener("mouseup", () => { drag = null; });
+$("view").addEventListener("wheel", (e) => {
+  const o = orbit || { yaw: 0, pitch: 0, zoom: 1 };
+  sendOrbit({ yaw: o.yaw, pitch: o.pitch, zoom: Math.max(0.05, Math.min(20, o.zoom * Math.exp(e.deltaY * 0.001))) });
+  e.preventDefault();
+}, { passive: false });
+$("camera-reset").addEventListener("click", () => sendOrbit(null));
 for (const id of ["exposure", "ch-r", "ch-g", "ch-b", "ch-a"]) $(id).addEventListener("input", paint);
 $("time").addEventListener("input", () => post("/view", { time: parseFloat($("time").value) }));
 $("eye").addEventListener("change", () => post("/view", { eye: parseInt($("eye").value, 10) }));

@@ -22,8 +22,14 @@ pub struct Live {
 impl Live {
     /// Start `npr args` in the repository root with stdout and stderr captured.
     pub fn start(args: &[&str]) -> Live {
+        Live::start_with_env(args, &[])
+    }
+
+    /// [`Live::start`] with extra environment variables.
+    pub fn start_with_env(args: &[&str], envs: &[(&str, &str)]) -> Live {
         let mut child = Command::new(env!("CARGO_BIN_EXE_npr"))
             .args(args)
+            .envs(envs.iter().copied())
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .env("XDG_RUNTIME_DIR", std::env::temp_dir())
             .stdout(Stdio::piped())
@@ -99,16 +105,24 @@ pub fn save_by_rename(path: &Path, text: &str) {
 /// Start `npr studio` on `style` (64×64, spot.toml, any free port); the
 /// child and its address (`127.0.0.1:PORT`).
 pub fn start_studio(style: &Path) -> (Live, String) {
-    let mut studio = Live::start(&[
-        "studio",
-        style.to_str().expect("utf-8"),
-        "--scene",
-        "examples/scenes/spot.toml",
-        "--size",
-        "64x64",
-        "--port",
-        "0",
-    ]);
+    start_studio_with_env(style, &[])
+}
+
+/// [`start_studio`] with extra environment variables.
+pub fn start_studio_with_env(style: &Path, envs: &[(&str, &str)]) -> (Live, String) {
+    let mut studio = Live::start_with_env(
+        &[
+            "studio",
+            style.to_str().expect("utf-8"),
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--size",
+            "64x64",
+            "--port",
+            "0",
+        ],
+        envs,
+    );
     let line = studio.wait_for("npr studio: http://").pop().expect("address line");
     let addr = line
         .split("http://")

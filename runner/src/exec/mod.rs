@@ -144,11 +144,36 @@ impl<'d> Renderer<'d> {
         program
             .validate()
             .map_err(|e| RunError::Internal(format!("the compiled style is inconsistent: {e}")))?;
-        let manifest = program.manifest.clone();
-        let diags = check_scene(&manifest, scene);
+        let diags = check_scene(&program.manifest, scene);
         if !diags.is_empty() {
             return Err(RunError::User(diags));
         }
+        let targets: Vec<(String, abi::Format)> = program
+            .manifest
+            .targets
+            .iter()
+            .map(|t| (t.name.clone(), t.format))
+            .collect();
+        let diags = crate::gpu_error::check_target_formats(device, &targets, crate::gpu_error::TARGET_USAGE);
+        if !diags.is_empty() {
+            return Err(RunError::User(diags));
+        }
+        crate::gpu_error::scoped(
+            device,
+            || "building the renderer (pipelines, textures, meshes)".to_string(),
+            || Self::build_in_scopes(device, queue, program, scene, filter_input),
+        )
+    }
+
+    /// [`Renderer::build`] after its checks, inside its error scopes.
+    fn build_in_scopes(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &crate::StyleProgram,
+        scene: &Scene,
+        filter_input: Option<&crate::artmap::Level>,
+    ) -> Result<Renderer<'d>, RunError> {
+        let manifest = program.manifest.clone();
         let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
         let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
@@ -243,12 +268,18 @@ impl<'d> Renderer<'d> {
     /// Render one frame; every target stays on the GPU for [`Renderer::read_target`].
     pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         self.prepare(scene, spec)?;
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("npr frame"),
-        });
-        self.encode(&mut encoder);
-        self.queue.submit([encoder.finish()]);
-        Ok(())
+        crate::gpu_error::scoped(
+            self.device,
+            || format!("rendering a {}x{} frame", spec.width, spec.height),
+            || {
+                let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("npr frame"),
+                });
+                self.encode(&mut encoder);
+                self.queue.submit([encoder.finish()]);
+                Ok(())
+            },
+        )
     }
 
     /// Record every pass of the style into `encoder` (after [`Renderer::prepare`]).
@@ -304,7 +335,7 @@ impl<'d> Renderer<'d> {
                 "only objects' transforms and params may change between frames; build a new Renderer for other objects",
             )]));
         }
-        self.ensure_size(spec.width, spec.height);
+        self.ensure_size(spec.width, spec.height)?;
         if begin || self.frames_begun == 0 {
             self.frames_begun += 1;
             self.motion.begin();
@@ -336,11 +367,18 @@ impl<'d> Renderer<'d> {
             .position(|p| p.outputs.contains(&target))
             .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
         self.prepare_frame(scene, spec, false)?;
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("npr partial frame"),
-        });
-        self.encode_passes(&mut encoder, writer + 1, None);
-        self.queue.submit([encoder.finish()]);
+        crate::gpu_error::scoped(
+            self.device,
+            || format!("rendering a {}x{} partial frame", spec.width, spec.height),
+            || {
+                let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("npr partial frame"),
+                });
+                self.encode_passes(&mut encoder, writer + 1, None);
+                self.queue.submit([encoder.finish()]);
+                Ok(())
+            },
+        )?;
         self.read_target(target)
     }
 

@@ -112,14 +112,45 @@ pub(super) struct SizedPass {
 }
 
 impl Renderer<'_> {
-    pub(super) fn ensure_size(&mut self, width: u32, height: u32) {
+    /// Make the size-dependent resources for `width`×`height` unless they
+    /// exist; out of memory (E0508) leaves the renderer without any, so a
+    /// later call at a smaller size starts afresh.
+    pub(super) fn ensure_size(&mut self, width: u32, height: u32) -> Result<(), crate::RunError> {
         if self
             .sized
             .as_ref()
             .is_some_and(|s| s.width == width && s.height == height)
         {
-            return;
+            return Ok(());
         }
+        // A target at a scale above 1 may pass what this adapter allows
+        // even when `--size` does not.
+        let max = self.device.limits().max_texture_dimension_2d;
+        for t in &self.manifest.targets {
+            let (w, h) = scaled_size(width, height, t.scale);
+            if w > max || h > max {
+                return Err(crate::RunError::Limit(format!(
+                    "target `{}` would be {w}x{h} at --size {width}x{height} (scale {}), over this GPU \
+                     adapter's 2D texture limit of {max}",
+                    t.name, t.scale
+                )));
+            }
+        }
+        // Free the old size's textures before making the new ones.
+        self.sized = None;
+        let device = self.device;
+        crate::gpu_error::scoped(
+            device,
+            || format!("making the targets of a {width}x{height} image"),
+            || {
+                self.make_sized(width, height);
+                Ok(())
+            },
+        )
+        .inspect_err(|_| self.sized = None)
+    }
+
+    fn make_sized(&mut self, width: u32, height: u32) {
         let slots = self.frame_buffers.len();
         let physical = Physical {
             slots: (0..slots).map(|_| self.create_physical(width, height)).collect(),
@@ -224,9 +255,7 @@ impl Renderer<'_> {
             &format!("npr physical #{index}"),
             scaled_size(width, height, p.scale),
             wgpu_format(p.format),
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            crate::gpu_error::TARGET_USAGE,
         )
     }
 }

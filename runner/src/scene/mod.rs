@@ -140,6 +140,7 @@ pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
 pub use mesh_file::{load_mesh_file, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
 
+use dsl::limits::MAX_SCENE_BYTES;
 use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -288,20 +289,59 @@ impl Scene {
 /// against it) and parses it with [`parse_scene`]. Mesh paths are relative
 /// to the file's folder.
 pub fn load_scene(path: &Path, sources: &mut SourceMap) -> Result<Scene, Vec<Diagnostic>> {
-    let bytes = std::fs::read(path).map_err(|err| {
+    load_scene_in(path, sources, None)
+}
+
+/// [`load_scene`] under a paths policy: the meshes and images the scene
+/// names must be files it admits (E0406 at the path otherwise).
+pub fn load_scene_in(
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&dsl::paths::PathPolicy>,
+) -> Result<Scene, Vec<Diagnostic>> {
+    let bytes = read_bounded(path).map_err(|err| {
         vec![Diagnostic::error(
             codes::BAD_SCENE,
             format!("cannot read scene file `{}`: {err}", path.display()),
         )
         .with_help("check the path to the scene file (a UTF-8 TOML file)")]
     })?;
+    if bytes.len() > MAX_SCENE_BYTES {
+        return Err(vec![too_large(sources, path, &bytes)]);
+    }
     let (file, text) = dsl::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
-    parse_scene(&text, file, base_dir)
+    parse::parse_scene(&text, file, base_dir, paths)
+}
+
+/// A scene file's bytes, never more than one past [`MAX_SCENE_BYTES`]
+/// (so `/dev/zero` is not read for ever).
+fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_SCENE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// E0404 for a scene file past [`MAX_SCENE_BYTES`], at the byte where the
+/// limit is reached (the file's first [`MAX_SCENE_BYTES`] bytes are added,
+/// lossily, so the label has a line and column).
+fn too_large(sources: &mut SourceMap, path: &Path, bytes: &[u8]) -> Diagnostic {
+    let text = String::from_utf8_lossy(&bytes[..MAX_SCENE_BYTES]).into_owned();
+    let at = text.len();
+    let file = sources.add(path.display().to_string(), text);
+    Diagnostic::error(
+        codes::LIMIT_EXCEEDED,
+        format!("the scene file is over the {MAX_SCENE_BYTES}-byte limit"),
+    )
+    .with_primary(Span::new(file, at, at), "the limit is reached here")
+    .with_help("put large geometry in mesh files (OBJ, glTF) that the scene names with `mesh = \"...\"`")
 }
 
 /// Parses scene TOML `text`, whose spans refer to `file`, loading meshes
 /// relative to `base_dir`. Returns every diagnostic found, in file order.
 pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, Vec<Diagnostic>> {
-    parse::parse_scene(text, file, base_dir)
+    parse::parse_scene(text, file, base_dir, None)
 }

@@ -17,11 +17,17 @@ use toml::de::DeTable;
 const DEFAULT_BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 /// See [`super::parse_scene`].
-pub fn parse_scene(text: &str, file: FileId, base_dir: &Path) -> Result<Scene, Vec<Diagnostic>> {
+pub fn parse_scene(
+    text: &str,
+    file: FileId,
+    base_dir: &Path,
+    paths: Option<&dsl::paths::PathPolicy>,
+) -> Result<Scene, Vec<Diagnostic>> {
     let document = DeTable::parse(text).map_err(|err| vec![syntax_error(&err, file, text)])?;
     let mut report = Report {
         file,
         diagnostics: Vec::new(),
+        paths: paths.cloned(),
     };
     let mut root = Fields::new(document.get_ref(), Span::new(file, 0, 0), "the scene file");
 

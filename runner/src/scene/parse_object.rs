@@ -126,6 +126,9 @@ fn read_mesh(
         }
         (Some(file), None) => {
             let path = base_dir.join(&file.value);
+            if !report.path_allowed(file.span, &file.value, &path) {
+                return None;
+            }
             let loaded = cache
                 .files
                 .entry(path.clone())
@@ -317,6 +320,9 @@ fn texture_value(
         _ => return None,
     };
     let resolved = base_dir.join(&path);
+    if !report.path_allowed(span, &path, &resolved) {
+        return Some(None);
+    }
     if !resolved.is_file() {
         report.diagnostics.push(
             Diagnostic::error(

@@ -23,9 +23,21 @@ pub struct At<T> {
 pub struct Report {
     pub file: FileId,
     pub diagnostics: Vec<Diagnostic>,
+    /// Which files the scene may name (`dsl::paths`); `None` reads any.
+    pub paths: Option<dsl::paths::PathPolicy>,
 }
 
 impl Report {
+    /// Whether the file `written` at `span` (resolved to `resolved`) may be
+    /// read; a refusal (E0406) is recorded at `span`.
+    pub fn path_allowed(&mut self, span: Span, written: &str, resolved: &std::path::Path) -> bool {
+        let Some(refusal) = self.paths.as_ref().and_then(|p| p.check(written, resolved).err()) else {
+            return true;
+        };
+        self.diagnostics.push(refusal.with_primary(span, "this file"));
+        false
+    }
+
     pub fn span(&self, range: std::ops::Range<usize>) -> Span {
         Span::new(self.file, range.start, range.end)
     }
@@ -517,6 +529,7 @@ mod tests {
         let mut report = Report {
             file: FileId(0),
             diagnostics: Vec::new(),
+            paths: None,
         };
         let mut fields = Fields::new(document.get_ref(), Span::default(), "[camera]");
         assert_eq!(fields.number("fov", &mut report).map(|n| n.value), Some(1.0));

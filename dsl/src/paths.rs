@@ -1,0 +1,163 @@
+//! Which files a style and a scene may read: the paths policy
+//! (docs/PATHS.md), one definition for the compiler (`use`d styles,
+//! `image("…")` textures) and the runner (a scene's meshes and bound
+//! images).
+//!
+//! - A path is relative to the file that names it.
+//! - Every file read must be inside the *root*: by default the deepest
+//!   directory that holds both the style and the scene (the style's own
+//!   directory when there is no scene), or `--root DIR`.
+//! - An absolute path, or one that leaves the root (`../..`, or a symbolic
+//!   link pointing out of it: paths are compared after resolving links), is
+//!   E0406 naming the root, unless it is inside a directory admitted with
+//!   `--allow-path DIR`.
+//!
+//! A file that does not exist is not refused here: the reader reports it
+//! (E0004, E0401, E0402) with its own wording.
+
+use crate::{codes, Diagnostic};
+use std::path::{Path, PathBuf};
+
+/// The root and the admitted directories, canonical (links resolved).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PathPolicy {
+    root: PathBuf,
+    allowed: Vec<PathBuf>,
+}
+
+impl PathPolicy {
+    /// A policy with `root` and the `allowed` directories; E0502 when one
+    /// of them is not a directory (they come from the command line).
+    pub fn new(root: &Path, allowed: &[PathBuf]) -> Result<PathPolicy, Diagnostic> {
+        let dir = |flag: &str, p: &Path| {
+            p.canonicalize().ok().filter(|c| c.is_dir()).ok_or_else(|| {
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT_VALUE,
+                    format!("{flag} {}: not a directory", p.display()),
+                )
+                .with_help(format!("give {flag} an existing directory"))
+            })
+        };
+        Ok(PathPolicy {
+            root: dir("--root", root)?,
+            allowed: allowed
+                .iter()
+                .map(|a| dir("--allow-path", a))
+                .collect::<Result<_, _>>()?,
+        })
+    }
+
+    /// The default root for `files` (the style, and the scene when there
+    /// is one): the deepest directory holding all of them.
+    pub fn default_root(files: &[&Path]) -> PathBuf {
+        let mut root: Option<PathBuf> = None;
+        for f in files {
+            let canonical = f.canonicalize().unwrap_or_else(|_| f.to_path_buf());
+            let dir = canonical.parent().map(Path::to_path_buf).unwrap_or_default();
+            root = Some(match root {
+                None => dir,
+                Some(r) => common_ancestor(&r, &dir),
+            });
+        }
+        root.unwrap_or_else(|| PathBuf::from("."))
+    }
+
+    /// The root, canonical.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    /// Whether the file `written` in a style or scene, which resolves to
+    /// `resolved` (joined to the naming file's directory), may be read. The
+    /// refusal has no span: the caller labels the path where it is written.
+    pub fn check(&self, written: &str, resolved: &Path) -> Result<(), Diagnostic> {
+        let Ok(canonical) = resolved.canonicalize() else {
+            return Ok(());
+        };
+        let admitted = self.allowed.iter().any(|a| canonical.starts_with(a));
+        if admitted {
+            return Ok(());
+        }
+        let root = self.root.display();
+        if Path::new(written).is_absolute() {
+            return Err(Diagnostic::error(
+                codes::PATH_OUTSIDE_ROOT,
+                format!("`{written}` is an absolute path; files are named relative to the file that names them"),
+            )
+            .with_note(format!("the root is {root}"))
+            .with_help(format!(
+                "write the path relative to this file, inside {root}, or admit its directory with --allow-path DIR"
+            )));
+        }
+        if canonical.starts_with(&self.root) {
+            return Ok(());
+        }
+        let through_link = lexically_inside(resolved, &self.root);
+        Err(Diagnostic::error(
+            codes::PATH_OUTSIDE_ROOT,
+            if through_link {
+                format!(
+                    "`{written}` leaves the root {root} through a symbolic link (it is {})",
+                    canonical.display()
+                )
+            } else {
+                format!("`{written}` leaves the root {root} (it is {})", canonical.display())
+            },
+        )
+        .with_note(
+            "the root is the deepest directory holding both the style and the scene, unless --root DIR gives another",
+        )
+        .with_help("move the file inside the root, or give --root DIR or --allow-path DIR to admit it"))
+    }
+}
+
+/// The deepest directory that is an ancestor of (or equal to) both.
+fn common_ancestor(a: &Path, b: &Path) -> PathBuf {
+    a.components()
+        .zip(b.components())
+        .take_while(|(x, y)| x == y)
+        .map(|(x, _)| x)
+        .collect()
+}
+
+/// Whether `path`, with `.` and `..` applied to its text alone (no links
+/// followed), is inside `root`: if it is, but its canonical form is not, a
+/// link took it out.
+fn lexically_inside(path: &Path, root: &Path) -> bool {
+    let absolute = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir().unwrap_or_default().join(path)
+    };
+    let mut out = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    // The root is canonical; compare against the cwd's own spelling too.
+    out.starts_with(root)
+        || std::env::current_dir()
+            .ok()
+            .and_then(|cwd| cwd.canonicalize().ok().map(|c| (cwd, c)))
+            .and_then(|(cwd, c)| out.strip_prefix(&cwd).ok().map(|rest| c.join(rest)))
+            .is_some_and(|p| p.starts_with(root))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_common_ancestor_is_the_deepest_shared_directory() {
+        assert_eq!(
+            common_ancestor(Path::new("/a/b/c"), Path::new("/a/b/d/e")),
+            PathBuf::from("/a/b")
+        );
+        assert_eq!(common_ancestor(Path::new("/a"), Path::new("/b")), PathBuf::from("/"));
+    }
+}
