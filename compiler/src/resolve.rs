@@ -56,7 +56,7 @@ pub fn resolve(
         None => String::from("untitled"),
     };
     r.declare_all(&loaded.items);
-    r.resolve_all(&loaded.items);
+    r.resolve_all(&loaded.items, loaded.root.style.as_ref().map(|h| h.span));
     match r.internal {
         Some(e) => Err(e),
         None => Ok(r.ir),
@@ -192,7 +192,7 @@ impl Resolver<'_> {
         }
     }
 
-    fn resolve_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
+    fn resolve_all(&mut self, items: &[(Item, std::path::PathBuf)], header: Option<Span>) {
         let mut param_index = 0;
         let mut pass_index = 0;
         let mut output_seen: Option<Span> = None;
@@ -229,13 +229,20 @@ impl Resolver<'_> {
                 Item::Texture(_) | Item::Use(_) => {}
             }
         }
-        if output_seen.is_none() && !self.ir.passes.is_empty() {
-            let last = self.ir.passes.last().map(|p| p.name_span).unwrap_or_default();
-            self.error(
-                Diagnostic::error(codes::NO_OUTPUT, "the style has no `output`")
-                    .with_primary(last, "the last pass")
-                    .with_help("add `output <pass>.<target>` to say which target is the final image"),
-            );
+        if output_seen.is_none() {
+            // A style with no pass at all is labelled at its header; without
+            // a header either, the missing header is already an error.
+            let place = match self.ir.passes.last() {
+                Some(last) => Some((last.name_span, "the last pass")),
+                None => header.map(|h| (h, "this style has no passes and no `output`")),
+            };
+            if let Some((span, label)) = place {
+                self.error(
+                    Diagnostic::error(codes::NO_OUTPUT, "the style has no `output`")
+                        .with_primary(span, label)
+                        .with_help("add `output <pass>.<target>` to say which target is the final image"),
+                );
+            }
         }
     }
 
