@@ -68,6 +68,12 @@ pub enum Command {
     /// Generate a tileable texture with npr's own generator (the same one
     /// `noise(...)` textures use) and write it as a 16-bit PNG.
     Texgen(TexgenArgs),
+    /// Explain an error or warning code at length: what it means, a wrong
+    /// example and the fixed one (`npr explain E0202`).
+    Explain {
+        /// The code, e.g. E0202 or W0301.
+        code: String,
+    },
 }
 
 #[derive(clap::Args, Debug)]

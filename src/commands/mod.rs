@@ -4,6 +4,7 @@
 mod check;
 mod compile;
 pub(crate) mod dump;
+mod explain;
 pub(crate) mod render;
 mod texgen;
 
@@ -18,6 +19,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::Compile(args) => compile::run(args, &printer),
         Command::Render(args) => render::run(args, &printer),
         Command::Texgen(args) => texgen::run(args, &printer),
+        Command::Explain { code } => explain::run(&code, &printer),
         Command::Bench(cmd) => crate::bench::run(cmd, &printer),
         Command::Watch { live, out } => crate::watch::run(
             crate::watch::WatchArgs {
