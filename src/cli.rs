@@ -74,6 +74,16 @@ pub enum Command {
         /// The code, e.g. E0202 or W0301.
         code: String,
     },
+    /// A language server over stdio for editors (diagnostics, hover,
+    /// completion, go to definition, document symbols); see editors/vscode/.
+    Lsp,
+    /// Write the reference (operators, builtins, pass kinds, units,
+    /// formats, error codes) as Markdown and a static HTML site.
+    Doc {
+        /// Output directory (created if missing).
+        #[arg(short, long)]
+        out: PathBuf,
+    },
 }
 
 #[derive(clap::Args, Debug)]

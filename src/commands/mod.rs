@@ -3,6 +3,7 @@
 
 mod check;
 mod compile;
+mod doc;
 pub(crate) mod dump;
 mod explain;
 pub(crate) mod render;
@@ -20,6 +21,8 @@ pub fn run(cli: Cli) -> i32 {
         Command::Render(args) => render::run(args, &printer),
         Command::Texgen(args) => texgen::run(args, &printer),
         Command::Explain { code } => explain::run(&code, &printer),
+        Command::Lsp => crate::lsp::run(),
+        Command::Doc { out } => doc::run(&out, &printer),
         Command::Bench(cmd) => crate::bench::run(cmd, &printer),
         Command::Watch { live, out } => crate::watch::run(
             crate::watch::WatchArgs {
