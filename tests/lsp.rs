@@ -163,8 +163,8 @@ fn at(doc: &str, text: &str, needle: &str, nth: usize, shift: usize) -> Value {
 const LIB: &str = "style \"Lib\"\n/// Overall gain.\nparam gain: float = 1.0 in 0..2\n";
 
 /// Non-ASCII in a doc comment, the style name and an inline comment before a name.
-const MAIN: &str = "style \"Café\"\nuse \"lib.npr\"\n\n/// Nombre de bandes — «bands» 𝒩.\nparam bands: int = 3 in 1..8\n\
-pass shade: render(scene) {\n  let lit = half_lambert(normal, light.dir)\n  out color: rgba8unorm = vec4(vec3(toon(lit, steps: /* é𝒩 */ bands) * gain), 1.0)\n}\n\
+const MAIN: &str = "style \"Café\"\nuse \"lib.npr\"\n\n/// Nombre de bandes — «bands» 𝒩.\nparam bands: int = 3 in 1..8\n/// Paper grain.\ntexture grain = noise(size: 64)\n\
+pass shade: render(scene) {\n  let lit = half_lambert(normal, light.dir)\n  out color: rgba8unorm = vec4(vec3(toon(lit, steps: /* é𝒩 */ bands) * gain * grain.r), 1.0)\n}\n\
 pass final: image(shade) {\n  out c: rgba8unorm = shade.color\n}\noutput final.c\n";
 
 fn scratch() -> PathBuf {
@@ -244,7 +244,7 @@ fn diagnostics_on_open_and_change_with_utf16_ranges() {
         start["character"].as_u64().expect("col") + 5
     );
     // Byte columns would be larger: `é` is 2 bytes and `𝒩` 4 for 1 and 2 units.
-    let line = broken.lines().nth(7).expect("line 8");
+    let line = broken.lines().find(|l| l.contains("bnads")).expect("the line");
     assert!(line.find("bnads").expect("bnads") > start["character"].as_u64().expect("col") as usize);
     // A warning keeps its severity and code; closing clears the document.
     let warned = MAIN.replace(
@@ -261,6 +261,21 @@ fn diagnostics_on_open_and_change_with_utf16_ranges() {
         (diags[0]["code"].clone(), diags[0]["severity"].clone()),
         (json!("W0301"), json!(2))
     );
+    // An error in the `use`d file: shown at the document's start, naming
+    // the file, with the place itself as related information.
+    std::fs::write(dir.join("lib.npr"), LIB.replace("1.0 in 0..2", "3m in 0..2")).expect("write lib");
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": doc, "version": 4}, "contentChanges": [{"text": MAIN}]}),
+    );
+    let diags = client.diagnostics(&doc);
+    assert!(!diags.is_empty(), "the used file's error is reported");
+    let d = &diags[0];
+    assert_eq!(d["range"]["start"], json!({"line": 0, "character": 0}), "{d}");
+    assert!(d["message"].as_str().expect("message").contains("lib.npr:3:"), "{d}");
+    let related = &d["relatedInformation"][0]["location"];
+    assert_eq!(related["uri"], uri(&dir.join("lib.npr")).as_str(), "{d}");
+    assert_eq!(related["range"]["start"]["line"], 2, "{d}");
     client.notify("textDocument/didClose", json!({"textDocument": {"uri": doc}}));
     assert_eq!(client.diagnostics(&doc), Vec::<Value>::new());
 }
@@ -282,11 +297,13 @@ fn hover_shows_operators_params_builtins_passes_and_targets() {
         param.contains("Nombre de bandes — «bands» 𝒩."),
         "the doc comment: {param}"
     );
-    let used = hover_text(&mut client, at(&doc, MAIN, "gain)", 0, 0));
+    let used = hover_text(&mut client, at(&doc, MAIN, "gain *", 0, 0));
     assert!(
         used.contains("param gain: float = 1.0 in 0..2") && used.contains("Overall gain."),
         "{used}"
     );
+    let texture = hover_text(&mut client, at(&doc, MAIN, "grain.r", 0, 1));
+    assert!(texture.contains("texture grain = noise(size: 64)") && texture.contains("Paper grain."), "{texture}");
     let arg = hover_text(&mut client, at(&doc, MAIN, "steps:", 0, 1));
     assert!(
         arg.contains("number of bands") && arg.contains("range: 1..16") && arg.contains("parameter of `toon`"),
@@ -372,12 +389,14 @@ fn definition_across_use_and_document_symbols() {
     let dir = scratch();
     let (mut client, doc) = started(&dir);
     let lib = uri(&dir.join("lib.npr"));
-    let gain = client.request("textDocument/definition", at(&doc, MAIN, "gain)", 0, 1));
+    let gain = client.request("textDocument/definition", at(&doc, MAIN, "gain *", 0, 1));
     assert_eq!(gain["uri"], lib.as_str(), "{gain}");
     assert_eq!(gain["range"]["start"], json!({"line": 2, "character": 6}), "{gain}");
     let bands = client.request("textDocument/definition", at(&doc, MAIN, "bands)", 0, 0));
     assert_eq!(bands["uri"], doc.as_str());
     assert_eq!(bands["range"]["start"], pos(MAIN, "bands: int", 0, 0));
+    let texture = client.request("textDocument/definition", at(&doc, MAIN, "grain.r", 0, 2));
+    assert_eq!(texture["range"]["start"], pos(MAIN, "grain = noise", 0, 0));
     let pass = client.request("textDocument/definition", at(&doc, MAIN, "image(shade)", 0, 7));
     assert_eq!(pass["range"]["start"], pos(MAIN, "shade: render", 0, 0));
     let target = client.request("textDocument/definition", at(&doc, MAIN, "shade.color", 0, 8));
@@ -396,8 +415,8 @@ fn definition_across_use_and_document_symbols() {
         .iter()
         .map(|s| s["name"].as_str().expect("name"))
         .collect();
-    assert_eq!(names, ["bands", "shade", "final", "output"], "{symbols}");
-    let shade = &symbols[1];
+    assert_eq!(names, ["bands", "grain", "shade", "final", "output"], "{symbols}");
+    let shade = &symbols[2];
     let children: Vec<&str> = shade["children"]
         .as_array()
         .expect("children")
