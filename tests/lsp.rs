@@ -167,8 +167,13 @@ const MAIN: &str = "style \"Café\"\nuse \"lib.npr\"\n\n/// Nombre de bandes —
 pass shade: render(scene) {\n  let lit = half_lambert(normal, light.dir)\n  out color: rgba8unorm = vec4(vec3(toon(lit, steps: /* é𝒩 */ bands) * gain * grain.r), 1.0)\n}\n\
 pass final: image(shade) {\n  out c: rgba8unorm = shade.color\n}\noutput final.c\n";
 
-fn scratch() -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("lsp").join("styles café");
+/// A directory of its own per test (they run in parallel), with a space
+/// and an accent in its name.
+fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("lsp")
+        .join(test)
+        .join("styles café");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("dir");
     std::fs::write(dir.join("lib.npr"), LIB).expect("write lib");
@@ -219,7 +224,7 @@ fn labels(result: &Value) -> Vec<String> {
 
 #[test]
 fn diagnostics_on_open_and_change_with_utf16_ranges() {
-    let dir = scratch();
+    let dir = scratch("diagnostics_on_open_and_change_with_utf16_ranges");
     let (mut client, doc) = started(&dir);
     assert_eq!(client.diagnostics(&doc), Vec::<Value>::new(), "the style compiles");
     // A misspelt name after `é𝒩` on its line: the range counts UTF-16 units.
@@ -282,7 +287,7 @@ fn diagnostics_on_open_and_change_with_utf16_ranges() {
 
 #[test]
 fn hover_shows_operators_params_builtins_passes_and_targets() {
-    let dir = scratch();
+    let dir = scratch("hover_shows_operators_params_builtins_passes_and_targets");
     let (mut client, doc) = started(&dir);
     let op = hover_text(&mut client, at(&doc, MAIN, "toon(", 0, 1));
     assert!(op.contains("toon(x: float, steps: int = 3 in 1..16) -> float"), "{op}");
@@ -303,7 +308,10 @@ fn hover_shows_operators_params_builtins_passes_and_targets() {
         "{used}"
     );
     let texture = hover_text(&mut client, at(&doc, MAIN, "grain.r", 0, 1));
-    assert!(texture.contains("texture grain = noise(size: 64)") && texture.contains("Paper grain."), "{texture}");
+    assert!(
+        texture.contains("texture grain = noise(size: 64)") && texture.contains("Paper grain."),
+        "{texture}"
+    );
     let arg = hover_text(&mut client, at(&doc, MAIN, "steps:", 0, 1));
     assert!(
         arg.contains("number of bands") && arg.contains("range: 1..16") && arg.contains("parameter of `toon`"),
@@ -333,6 +341,8 @@ fn hover_shows_operators_params_builtins_passes_and_targets() {
     assert!(kind.contains("fullscreen pass"), "{kind}");
     let format = hover_text(&mut client, at(&doc, MAIN, "rgba8unorm", 0, 3));
     assert!(format.contains("4 channel(s)"), "{format}");
+    let intrinsic = hover_text(&mut client, at(&doc, MAIN, "vec4(", 0, 1));
+    assert!(intrinsic.contains("a 4-vector from scalars and vectors"), "{intrinsic}");
     // Nothing to say about a number or whitespace.
     let none = client.request("textDocument/hover", at(&doc, MAIN, "1..8", 0, 0));
     assert_eq!(none, Value::Null);
@@ -340,7 +350,7 @@ fn hover_shows_operators_params_builtins_passes_and_targets() {
 
 #[test]
 fn completion_of_targets_formats_named_arguments_and_names() {
-    let dir = scratch();
+    let dir = scratch("completion_of_targets_formats_named_arguments_and_names");
     let (mut client, doc) = started(&dir);
     let targets = labels(&client.request("textDocument/completion", at(&doc, MAIN, "shade.color", 0, 6)));
     assert_eq!(targets, ["color"], "`shade.` → its targets");
@@ -386,7 +396,7 @@ fn completion_of_targets_formats_named_arguments_and_names() {
 
 #[test]
 fn definition_across_use_and_document_symbols() {
-    let dir = scratch();
+    let dir = scratch("definition_across_use_and_document_symbols");
     let (mut client, doc) = started(&dir);
     let lib = uri(&dir.join("lib.npr"));
     let gain = client.request("textDocument/definition", at(&doc, MAIN, "gain *", 0, 1));
@@ -429,7 +439,7 @@ fn definition_across_use_and_document_symbols() {
 
 #[test]
 fn bad_input_never_stops_the_server() {
-    let dir = scratch();
+    let dir = scratch("bad_input_never_stops_the_server");
     let (mut client, doc) = started(&dir);
     assert!(client.diagnostics(&doc).is_empty());
     // A frame whose body is not JSON: a parse error with a null id.

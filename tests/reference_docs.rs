@@ -86,6 +86,12 @@ fn the_reference_covers_every_operator_builtin_and_code() {
             );
         }
     }
+    for (name, _) in compiler::ir::Intrinsic::TABLE {
+        assert!(
+            operators.contains(&format!("| `{name}` |")),
+            "intrinsic {name} is missing"
+        );
+    }
     let builtins = &files["builtins.md"];
     for (spelling, _) in compiler::ir::Builtin::SPELLINGS {
         assert!(

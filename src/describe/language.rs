@@ -63,3 +63,36 @@ pub fn format_text(f: abi::Format) -> String {
 pub fn formats() -> impl Iterator<Item = (&'static str, abi::Format)> {
     abi::Format::ALL.iter().copied()
 }
+
+/// What an intrinsic function does (an exhaustive match on
+/// `compiler::ir::Intrinsic`, so a new one is described before it builds).
+pub fn intrinsic_doc(i: compiler::ir::Intrinsic) -> String {
+    use compiler::ir::Intrinsic::*;
+    match i {
+        Construct(n) => format!("`vec{n}(...)`: a {n}-vector from scalars and vectors (components in order), or one scalar in every component."),
+        Map(name) => format!("WGSL `{name}`, per component; the result has the argument's type."),
+        Map2(name) => format!("WGSL `{name}` of two arguments of one type, per component."),
+        Map3(name) => format!("WGSL `{name}` of three arguments, per component."),
+        Length => "WGSL `length`: the length of a vector.".into(),
+        Dot => "WGSL `dot`: the dot product of two vectors of one size.".into(),
+        Distance => "WGSL `distance`: the distance between two points.".into(),
+        Normalize => "WGSL `normalize`: the unit vector in a vector's direction.".into(),
+        Cross => "WGSL `cross`: the cross product of two `vec3`s.".into(),
+        Project => "`project(p)`: a world point → (screen u, screen v, NDC depth) in this eye.".into(),
+        ProjectOtherEye => "`project_other_eye(p)`: the same in the other eye of a stereo frame.".into(),
+        ProjectPrevious => "`project_previous(p)`: the same with the previous frame's camera.".into(),
+    }
+}
+
+/// Calls the compiler treats specially (not operators, not intrinsics):
+/// (name, as written, what it does).
+pub const SPECIAL_CALLS: &[(&str, &str, &str)] = &[
+    ("previous", "previous(pass.target)", "The target as it was at the end of the previous frame (black on the first frame); no dependency, so a pass may read its own target."),
+    ("other_eye", "other_eye(pass.target)", "The target of the other eye of a stereo frame (LSA §4.2); makes the style stereo."),
+    ("scene_has", "scene_has(tag)", "Whether an object of the scene has the tag: a constant when the scene is known at compile time, else `true`."),
+    ("sum", "reduce name: type = sum(value)", "In a compute pass over elements: the sum of `value` over each object's vertices, samples or pixels (also `min`, `max`)."),
+    ("image", "texture t = image(\"path.png\", srgb)", "A texture read from a PNG or EXR file (`srgb` or `linear`), relative to the style."),
+    ("noise", "texture t = noise(size: 256, octaves: 4, seed: 1, kind: gradient)", "A tileable noise texture made by npr's generator (the one `npr texgen` writes)."),
+    ("halftone_table", "texture t = halftone_table(edge: 0.1)", "The halftone screen's tone-correction table (Breslav et al. 2007 §3.5), for `halftone(...)`."),
+    ("test", "depth: test(pass, bias: 1px)", "A render pass's depth test against the kept depth buffer of another pass."),
+];

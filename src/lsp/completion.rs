@@ -158,8 +158,21 @@ fn everything(a: &Analysis, offset: usize) -> Vec<CompletionItem> {
         it.insert_text_format = Some(InsertTextFormat::SNIPPET);
         items.push(it);
     }
-    for (name, _) in Intrinsic::TABLE {
-        items.push(item(name, CompletionItemKind::FUNCTION, &format!("{name}(...)"), None));
+    for (name, i) in Intrinsic::TABLE {
+        items.push(item(
+            name,
+            CompletionItemKind::FUNCTION,
+            &format!("{name}(...)"),
+            Some(describe::language::intrinsic_doc(*i)),
+        ));
+    }
+    for (name, written, what) in describe::language::SPECIAL_CALLS {
+        items.push(item(
+            name,
+            CompletionItemKind::FUNCTION,
+            written,
+            Some(what.to_string()),
+        ));
     }
     for it in a.items() {
         match it {

@@ -45,9 +45,8 @@ pub fn markdown(a: &Analysis, symbol: &Symbol) -> String {
         ),
         Symbol::Builtin(spelling, b) => describe::builtins::markdown(spelling, *b),
         Symbol::Operator(op) => describe::operator_markdown(op, "###"),
-        Symbol::Intrinsic(name) => {
-            format!("```npr\n{name}(...)\n```\n\nA WGSL built-in function, applied per component.")
-        }
+        Symbol::Intrinsic(name, i) => format!("```npr\n{name}(...)\n```\n\n{}", describe::language::intrinsic_doc(*i)),
+        Symbol::Special(written, what) => format!("```npr\n{written}\n```\n\n{what}"),
         Symbol::OperatorParam(op, p) => {
             let range = describe::range_text(p);
             format!(

@@ -16,7 +16,9 @@ pub enum Symbol<'a> {
     Target(&'a PassDecl, analysis::Target<'a>),
     Builtin(&'static str, Builtin),
     Operator(&'static stdlib::Operator),
-    Intrinsic(&'static str),
+    Intrinsic(&'static str, Intrinsic),
+    /// A call the compiler treats specially (`previous`, `noise`...): as written, what it does.
+    Special(&'static str, &'static str),
     OperatorParam(&'static stdlib::Operator, &'static stdlib::Param),
     PassKind(String),
     Format(&'static str, abi::Format),
@@ -94,8 +96,11 @@ fn callee(name: &str) -> Option<Symbol<'static>> {
     if let Some(op) = stdlib::find(name) {
         return Some(Symbol::Operator(op));
     }
-    Intrinsic::TABLE
+    if let Some((n, i)) = Intrinsic::TABLE.iter().find(|(n, _)| *n == name) {
+        return Some(Symbol::Intrinsic(n, *i));
+    }
+    crate::describe::language::SPECIAL_CALLS
         .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(n, _)| Symbol::Intrinsic(n))
+        .find(|(n, ..)| *n == name)
+        .map(|(_, written, what)| Symbol::Special(written, what))
 }

@@ -67,10 +67,20 @@ fn operators() -> String {
             op.doc.replace('|', "\\|")
         ));
     }
-    out.push('\n');
+    out.push_str(
+        "\nAlso callable: the [intrinsic functions](#intrinsics) and the [special calls](#special-calls).\n\n",
+    );
     for op in stdlib::all() {
         out.push_str(&format!("<a id=\"{}\"></a>\n\n", op.name));
         out.push_str(&describe::operator_markdown(op, "##"));
+    }
+    out.push_str("<a id=\"intrinsics\"></a>\n\n## Intrinsic functions\n\n| function | what it does |\n|---|---|\n");
+    for (name, i) in compiler::ir::Intrinsic::TABLE {
+        out.push_str(&format!("| `{name}` | {} |\n", describe::language::intrinsic_doc(*i)));
+    }
+    out.push_str("\n<a id=\"special-calls\"></a>\n\n## Special calls\n\n| call | what it does |\n|---|---|\n");
+    for (_, written, what) in describe::language::SPECIAL_CALLS {
+        out.push_str(&format!("| `{written}` | {what} |\n"));
     }
     out
 }
