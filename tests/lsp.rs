@@ -281,6 +281,28 @@ fn diagnostics_on_open_and_change_with_utf16_ranges() {
     let related = &d["relatedInformation"][0]["location"];
     assert_eq!(related["uri"], uri(&dir.join("lib.npr")).as_str(), "{d}");
     assert_eq!(related["range"]["start"]["line"], 2, "{d}");
+    // A texture file that is not an image, as `npr check` reports it: at
+    // the path in `image("…")`, after a non-ASCII name on the line.
+    std::fs::write(dir.join("lib.npr"), LIB).expect("write lib");
+    std::fs::write(dir.join("papér.png"), "not a png").expect("write");
+    let textured = MAIN.replace("noise(size: 64)", "image(\"papér.png\", srgb)");
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": doc, "version": 5}, "contentChanges": [{"text": textured}]}),
+    );
+    let diags = client.diagnostics(&doc);
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert_eq!(diags[0]["code"], "E0401", "{diags:?}");
+    assert_eq!(
+        diags[0]["range"]["start"],
+        pos(&textured, "\"papér.png\"", 0, 0),
+        "{diags:?}"
+    );
+    assert_eq!(
+        diags[0]["range"]["end"],
+        pos(&textured, "\"papér.png\"", 0, 12),
+        "{diags:?}"
+    );
     client.notify("textDocument/didClose", json!({"textDocument": {"uri": doc}}));
     assert_eq!(client.diagnostics(&doc), Vec::<Value>::new());
 }

@@ -1,6 +1,6 @@
 //! Diagnostics on open and change: the document compiled as `npr check`
 //! compiles it (its `use`s and texture paths resolved against its
-//! directory), every diagnostic with its code, message, help and notes;
+//! directory, every texture file opened as the runner will), every diagnostic with its code, message, help and notes;
 //! spans become UTF-16 ranges. A diagnostic in a `use`d file is shown at the
 //! start of the document, naming the file, with the real place as related
 //! information.
@@ -16,7 +16,11 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let name = path.display().to_string();
     let found = match compiler::compile_source(&name, text, dir, &mut sources, &CompileOptions::default()) {
-        Ok(c) => c.warnings,
+        Ok(c) => {
+            let mut found = c.warnings.clone();
+            found.extend(crate::texture_check::texture_file_errors(&c));
+            found
+        }
         Err(CompileError::User(d)) => d,
         Err(CompileError::Internal(e)) => vec![e.to_diagnostic()],
     };
@@ -26,12 +30,6 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
 
 fn convert(d: &dsl::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
     let mut message = d.message.clone();
-    for note in &d.notes {
-        message.push_str(&format!("\nnote: {note}"));
-    }
-    if let Some(help) = &d.help {
-        message.push_str(&format!("\nhelp: {help}"));
-    }
     let mut range = Range::default();
     let mut related = Vec::new();
     for label in &d.labels {
@@ -39,25 +37,31 @@ fn convert(d: &dsl::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
             continue;
         };
         let label_range = LineIndex::new(&file.text).range(label.span.start as usize, label.span.end as usize);
-        if file.name == root {
-            if label.primary {
-                range = label_range;
-                if !label.message.is_empty() {
-                    message = format!("{message}\n{}", label.message);
-                }
+        let in_root = file.name == root;
+        if label.primary && in_root {
+            range = label_range;
+            if !label.message.is_empty() {
+                message = format!("{message}: {}", label.message);
             }
-        } else {
-            if label.primary {
-                let (line, col) = sources.line_col(label.span.file, label.span.start);
-                message = format!("in {}:{line}:{col}: {message}", file.name);
-            }
-            if let Some(uri) = super::uri::from_path(&absolute(&file.name)) {
-                related.push(DiagnosticRelatedInformation {
-                    location: lsp_types::Location::new(uri, label_range),
-                    message: label.message.clone(),
-                });
-            }
+            continue;
         }
+        if label.primary {
+            let (line, col) = sources.line_col(label.span.file, label.span.start);
+            message = format!("in {}:{line}:{col}: {message}", file.name);
+        }
+        // Secondary labels, and the primary one in a `use`d file.
+        if let Some(uri) = super::uri::from_path(&absolute(&file.name)) {
+            related.push(DiagnosticRelatedInformation {
+                location: lsp_types::Location::new(uri, label_range),
+                message: label.message.clone(),
+            });
+        }
+    }
+    for note in &d.notes {
+        message.push_str(&format!("\nnote: {note}"));
+    }
+    if let Some(help) = &d.help {
+        message.push_str(&format!("\nhelp: {help}"));
     }
     Diagnostic {
         range,
