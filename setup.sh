@@ -33,6 +33,22 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
+# The VS Code extension's tests (tests/vscode_extension.rs) run its grammar
+# with vscode-textmate and drive `npr lsp` with vscode-jsonrpc: Node.js and
+# the extension's npm packages (pinned by editors/vscode/package-lock.json).
+if ! command -v npm >/dev/null 2>&1; then
+  echo "setup: installing Node.js and npm for the VS Code extension's tests (apt: nodejs npm)"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq nodejs npm >/dev/null
+fi
+if [ ! -d "$(dirname "$0")/editors/vscode/node_modules/vscode-textmate" ]; then
+  echo "setup: npm ci in editors/vscode"
+  (cd "$(dirname "$0")/editors/vscode" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+
 # The Vulkan loader warns when XDG_RUNTIME_DIR is unset; harmless, but noisy.
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   mkdir -p /tmp/npr-xdg-runtime && chmod 700 /tmp/npr-xdg-runtime

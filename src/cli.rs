@@ -68,6 +68,22 @@ pub enum Command {
     /// Generate a tileable texture with npr's own generator (the same one
     /// `noise(...)` textures use) and write it as a 16-bit PNG.
     Texgen(TexgenArgs),
+    /// Explain an error or warning code at length: what it means, a wrong
+    /// example and the fixed one (`npr explain E0202`).
+    Explain {
+        /// The code, e.g. E0202 or W0301.
+        code: String,
+    },
+    /// A language server over stdio for editors (diagnostics, hover,
+    /// completion, go to definition, document symbols); see editors/vscode/.
+    Lsp,
+    /// Write the reference (operators, builtins, pass kinds, units,
+    /// formats, error codes) as Markdown and a static HTML site.
+    Doc {
+        /// Output directory (created if missing).
+        #[arg(short, long)]
+        out: PathBuf,
+    },
 }
 
 #[derive(clap::Args, Debug)]

@@ -205,7 +205,7 @@ fn expand_uses(
                     );
                     continue;
                 }
-                if let Some(d) = crate::paths::check_use(*paths, u.span, rel, &path) {
+                if let Some(d) = crate::paths::check(*paths, u.span, rel, &path) {
                     diags.push(d);
                     continue;
                 }

@@ -44,7 +44,7 @@ pub fn load(
         if filters.contains_key(&key) {
             continue;
         }
-        if let Some(d) = crate::paths::check_use(paths, arg.value.span, rel, &path) {
+        if let Some(d) = crate::paths::check(paths, arg.value.span, rel, &path) {
             diags.push(d);
             continue;
         }

@@ -69,12 +69,12 @@ pub fn run(
                 .with_help("start the file with `style \"Name\"`"),
         );
     }
-    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), &mut diags).map_err(CompileError::Internal)?;
+    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), opts.paths.as_ref(), &mut diags)
+        .map_err(CompileError::Internal)?;
     if loaded.is_filter || crate::filter_checks::reads_a_level(&ir) {
         crate::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
     }
     st.done("resolve", &ir);
-    diags.extend(crate::paths::check_textures(&ir, sources, opts.paths.as_ref()));
     crate::typecheck::typecheck(&mut ir, &mut diags);
     crate::texture_uses::check(&ir, &mut diags);
     st.done("typecheck", &ir);

@@ -33,12 +33,14 @@ pub const MAX_NOISE_SIZE: u32 = 4096;
 pub fn resolve(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
+    paths: Option<&dsl::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
     let mut r = Resolver {
         ir: Ir::default(),
         diags,
         scene,
+        paths,
         names: HashMap::new(),
         pass_outputs: Vec::new(),
         pass_values: Vec::new(),
@@ -75,6 +77,8 @@ struct Resolver<'d> {
     diags: &'d mut Vec<Diagnostic>,
     /// The scene, when the caller knows it (for `scene_has`).
     scene: Option<&'d crate::SceneSummary>,
+    /// The paths policy every `image("…")` is checked against before it is probed.
+    paths: Option<&'d dsl::paths::PathPolicy>,
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,

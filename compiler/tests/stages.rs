@@ -17,7 +17,7 @@ fn front(text: &str) -> (Ir, PassGraph) {
     let mut sources = SourceMap::new();
     let mut diags = Vec::new();
     let loaded = compiler::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
-    let mut ir = compiler::resolve::resolve(&loaded, None, &mut diags).expect("no internal error");
+    let mut ir = compiler::resolve::resolve(&loaded, None, None, &mut diags).expect("no internal error");
     compiler::typecheck::typecheck(&mut ir, &mut diags);
     let graph = compiler::dag::build(&ir, &mut diags);
     let errors: Vec<String> = diags

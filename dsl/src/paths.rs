@@ -52,7 +52,13 @@ impl PathPolicy {
     pub fn default_root(files: &[&Path]) -> PathBuf {
         let mut root: Option<PathBuf> = None;
         for f in files {
-            let canonical = f.canonicalize().unwrap_or_else(|_| f.to_path_buf());
+            // A file that does not exist (yet, or at all: a wrong
+            // `--compiled` path) is taken as absolute, so that the common
+            // ancestor is never the empty path.
+            let canonical = f
+                .canonicalize()
+                .or_else(|_| std::path::absolute(f))
+                .unwrap_or_else(|_| f.to_path_buf());
             let dir = canonical.parent().map(Path::to_path_buf).unwrap_or_default();
             root = Some(match root {
                 None => dir,
@@ -71,9 +77,7 @@ impl PathPolicy {
     /// `resolved` (joined to the naming file's directory), may be read. The
     /// refusal has no span: the caller labels the path where it is written.
     pub fn check(&self, written: &str, resolved: &Path) -> Result<(), Diagnostic> {
-        let Ok(canonical) = resolved.canonicalize() else {
-            return Ok(());
-        };
+        let canonical = canonical_even_if_missing(resolved);
         let admitted = self.allowed.iter().any(|a| canonical.starts_with(a));
         if admitted {
             return Ok(());
@@ -109,6 +113,44 @@ impl PathPolicy {
         )
         .with_help("move the file inside the root, or give --root DIR or --allow-path DIR to admit it"))
     }
+}
+
+/// `path` with links resolved as far as it exists, and the rest (which
+/// does not exist) with `.` and `..` applied to its text: so a file that is
+/// missing is judged by where it would be, and a refused path never says
+/// whether the file outside the root exists.
+fn canonical_even_if_missing(path: &Path) -> PathBuf {
+    if let Ok(c) = path.canonicalize() {
+        return c;
+    }
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut existing = absolute.clone();
+    let mut missing = Vec::new();
+    let base = loop {
+        if let Ok(c) = existing.canonicalize() {
+            break c;
+        }
+        let last = existing.components().next_back().map(|c| c.as_os_str().to_os_string());
+        match (last, existing.parent()) {
+            (Some(name), Some(parent)) => {
+                missing.push(name);
+                existing = parent.to_path_buf();
+            }
+            // The filesystem root itself: the text is all there is.
+            _ => break existing,
+        }
+    };
+    let mut out = base;
+    for name in missing.into_iter().rev() {
+        match name.to_str() {
+            Some("..") => {
+                out.pop();
+            }
+            Some(".") => {}
+            _ => out.push(name),
+        }
+    }
+    out
 }
 
 /// The deepest directory that is an ancestor of (or equal to) both.
@@ -159,5 +201,27 @@ mod tests {
             PathBuf::from("/a/b")
         );
         assert_eq!(common_ancestor(Path::new("/a"), Path::new("/b")), PathBuf::from("/"));
+    }
+
+    #[test]
+    fn a_missing_file_is_judged_by_where_it_would_be() {
+        let root = std::env::temp_dir().join(format!("npr-paths-missing-{}", std::process::id()));
+        let inside = root.join("style");
+        std::fs::create_dir_all(&inside).expect("a scratch directory");
+        let policy = PathPolicy::new(&inside, &[]).expect("a policy");
+        // Inside the root, missing: the reader reports it, not the policy.
+        assert!(policy.check("gone.png", &inside.join("gone.png")).is_ok());
+        assert!(policy.check("a/b/../gone.png", &inside.join("a/b/../gone.png")).is_ok());
+        // Outside, missing or not: refused, so a refusal says nothing of existence.
+        for written in ["../gone.png", "nowhere/../../gone.png"] {
+            let refusal = policy.check(written, &inside.join(written)).expect_err(written);
+            assert_eq!(refusal.code, codes::PATH_OUTSIDE_ROOT, "{written}");
+        }
+        let canonical_root = root.canonicalize().expect("exists");
+        assert_eq!(
+            canonical_even_if_missing(&inside.join("x/../../y/z.png")),
+            canonical_root.join("y/z.png")
+        );
+        std::fs::remove_dir_all(&root).ok();
     }
 }

@@ -3,7 +3,9 @@
 
 mod check;
 mod compile;
+mod doc;
 pub(crate) mod dump;
+mod explain;
 pub(crate) mod render;
 mod texgen;
 
@@ -18,6 +20,9 @@ pub fn run(cli: Cli) -> i32 {
         Command::Compile(args) => compile::run(args, &printer),
         Command::Render(args) => render::run(args, &printer),
         Command::Texgen(args) => texgen::run(args, &printer),
+        Command::Explain { code } => explain::run(&code, &printer),
+        Command::Lsp => crate::lsp::run(),
+        Command::Doc { out } => doc::run(&out, &printer),
         Command::Bench(cmd) => crate::bench::run(cmd, &printer),
         Command::Watch { live, out } => crate::watch::run(
             crate::watch::WatchArgs {

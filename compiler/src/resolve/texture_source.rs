@@ -42,6 +42,10 @@ impl Resolver<'_> {
             return None;
         };
         let resolved = dir.join(&p);
+        if let Some(refused) = crate::paths::check(self.paths, span, &p, &resolved) {
+            self.error(refused);
+            return None;
+        }
         if !resolved.is_file() {
             self.error(
                 Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))

@@ -1,0 +1,192 @@
+//! Explanations of the file and scene codes (E04xx, W04xx): textures,
+//! meshes, attributes, limits and scene files.
+
+use super::{Example, Explanation, EXAMPLE};
+
+/// A scene of one sphere; the examples that need a scene add to it.
+macro_rules! sphere_scene {
+    ($extra:literal) => {
+        concat!(
+            "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n\n[light]\ndirection = [0.0, 1.0, 0.0]\n\n",
+            "[[object]]\nname = \"ball\"\nprimitive = { kind = \"sphere\", radius = 0.5, segments = 8, rings = 4 }\n",
+            $extra
+        )
+    };
+}
+
+/// A scene of one mesh file, `tri.obj`.
+const TRIANGLE_SCENE: &str = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n\n[light]\ndirection = [0.0, 1.0, 0.0]\n\n[[object]]\nname = \"tri\"\nmesh = \"tri.obj\"\n";
+
+/// Render `case.npr` on `scene.toml`, small.
+const RENDER: &[&[&str]] = &[&[
+    "render",
+    "case.npr",
+    "--scene",
+    "scene.toml",
+    "-o",
+    "out.png",
+    "--size",
+    "16x16",
+]];
+
+const GREY: &str = "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n";
+
+pub(super) const ALL: &[Explanation] = &[
+    Explanation {
+        code: "E0401",
+        meaning: "A texture declared `image(\"path\", srgb)` is read from a file when the style is \
+            checked, compiled or rendered. The path is relative to the style file. The file must \
+            exist and be an image npr reads (PNG or EXR), within the texture size limit; the \
+            error points at the path in the style.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture paper = image(\"paper.png\", srgb)\npass p: render(scene) {\n  out c: rgba8unorm = paper\n}\noutput p.c\n",
+            commands: &[
+                &["texgen", "-o", "textures/paper.png", "--size", "16"],
+                &["check", "case.npr"],
+            ],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture paper = image(\"textures/paper.png\", srgb)\npass p: render(scene) {\n  out c: rgba8unorm = paper\n}\noutput p.c\n",
+            commands: &[
+                &["texgen", "-o", "textures/paper.png", "--size", "16"],
+                &["check", "case.npr"],
+            ],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0402",
+        meaning: "A scene object's `mesh = \"file\"` (OBJ or glTF, relative to the scene file) \
+            cannot be read: it is missing, or it does not parse (a face that names no vertex, a \
+            number that is not one). The message carries the reader's own error.",
+        wrong: Example {
+            style: GREY,
+            files: &[("scene.toml", TRIANGLE_SCENE), ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 three\n")],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[("scene.toml", TRIANGLE_SCENE), ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0403",
+        meaning: "A style that reads `uv` (or tangents, which come from UVs) needs every object \
+            it draws to have texture coordinates. Primitives have them; a mesh file has them \
+            when it has `vt` lines (OBJ) or `TEXCOORD_0` (glTF). Export the mesh with UVs, or \
+            shade without them.",
+        wrong: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+            files: &[("scene.toml", TRIANGLE_SCENE), ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+            files: &[
+                ("scene.toml", TRIANGLE_SCENE),
+                ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"),
+            ],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0404",
+        meaning: "Inputs are bounded so that no file or command can exhaust memory or the stack: \
+            the size of a style file, nesting, the number of parameters, passes and targets, \
+            texture and output sizes, mesh triangles and frames. docs/LIMITS.md lists every \
+            limit with its value; the message names the one passed.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture n = noise(size: 100000)\npass p: image() {\n  out c: rgba8unorm = n\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture n = noise(size: 256)\npass p: image() {\n  out c: rgba8unorm = n\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0405",
+        meaning: "A scene file is TOML with a `[camera]`, an optional `[light]` and `[[object]]` \
+            tables. This code is a file that is not TOML, or a field of the wrong type, a \
+            missing one, or one npr does not know; the label points into the scene file.",
+        wrong: Example {
+            style: GREY,
+            files: &[("scene.toml", "[camera\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n")],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[("scene.toml", "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n")],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "W0401",
+        meaning: "A warning: an object in the scene binds `params = { name = value }` for a name \
+            the style does not read per object (an `object param`). The value would be ignored, \
+            so the name is probably misspelt, or the style's parameter is style-wide (the same \
+            for every object, set with `--set`).",
+        wrong: Example {
+            style: "style \"Case\"\nobject param tint: color = #ffffff\npass p: render(scene) {\n  out c: rgba8unorm = tint\n}\noutput p.c\n",
+            files: &[("scene.toml", sphere_scene!("params = { tnit = \"#ff0000\" }\n"))],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\nobject param tint: color = #ffffff\npass p: render(scene) {\n  out c: rgba8unorm = tint\n}\noutput p.c\n",
+            files: &[("scene.toml", sphere_scene!("params = { tint = \"#ff0000\" }\n"))],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "W0402",
+        meaning: "A warning: a `render(tag)` or `compute(domain, tag)` pass draws only the \
+            objects with that tag, and no object of the scene has it. The pass draws nothing \
+            (its targets stay at their clear value). The message lists the scene's tags.",
+        wrong: Example {
+            style: "style \"Case\"\npass ground: render(gorund) {\n  out c: rgba8unorm = #808080\n}\noutput ground.c\n",
+            files: &[("scene.toml", sphere_scene!("tags = [\"ground\"]\n"))],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass ground: render(ground) {\n  out c: rgba8unorm = #808080\n}\noutput ground.c\n",
+            files: &[("scene.toml", sphere_scene!("tags = [\"ground\"]\n"))],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0406",
+        meaning: "npr reads only files inside the root: by default the deepest directory that \
+            holds the style and the scene, or `--root DIR`. A path in a style (`use`, \
+            `image(\"…\")`, an art-map's filter) or in a scene (`mesh`, per-object images) that \
+            is absolute, climbs out of the root with `..`, or follows a symbolic link out of it \
+            is refused before it is read, at the path as written. `--allow-path DIR` admits a \
+            directory outside the root. docs/PATHS.md gives the rules and why: a project should \
+            render the same from any directory, and a style from someone else should not read \
+            what is outside it.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture paper = image(\"../paper.png\", srgb)\npass p: render(scene) {\n  out c: rgba8unorm = paper\n}\noutput p.c\n",
+            commands: &[&["check", "case.npr"]],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture paper = image(\"textures/paper.png\", srgb)\npass p: render(scene) {\n  out c: rgba8unorm = paper\n}\noutput p.c\n",
+            commands: &[
+                &["texgen", "-o", "textures/paper.png", "--size", "16"],
+                &["check", "case.npr"],
+            ],
+            ..EXAMPLE
+        },
+    },
+];

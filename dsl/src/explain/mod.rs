@@ -1,0 +1,217 @@
+//! `npr explain CODE`: a long explanation of every code in
+//! [`crate::codes::ALL`] (what it means, a wrong example, the fixed one), as
+//! rustc's `--explain` gives, and the nearest codes for one that does not
+//! exist.
+//!
+//! The explanations are data, one file per code range (`syntax.rs` E00xx,
+//! `names.rs` E01xx, `types.rs` E02xx, `passes.rs` E03xx and W03xx,
+//! `files.rs` E04xx and W04xx, `command_line.rs` E05xx). Each example is a
+//! set of files and `npr` command lines, so `tests/explain.rs` runs every
+//! pair through the `npr` binary: the wrong one must give exactly its code,
+//! the fixed one none.
+
+mod command_line;
+mod files;
+mod names;
+mod passes;
+mod syntax;
+mod types;
+
+/// The style file every example writes; its commands name it.
+pub const STYLE_FILE: &str = "case.npr";
+
+/// The explanation of one code.
+#[derive(Debug)]
+pub struct Explanation {
+    pub code: &'static str,
+    /// What the code means, in paragraphs separated by blank lines.
+    pub meaning: &'static str,
+    pub wrong: Example,
+    pub fixed: Example,
+}
+
+/// How an example's files are written to disk.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Encoding {
+    Utf8,
+    /// Every character as one byte (Latin-1): what an old editor saves.
+    Latin1,
+}
+
+/// One example: the style file, other files beside it, and the commands
+/// that show the code (the last one) after the ones before it succeeded.
+#[derive(Debug)]
+pub struct Example {
+    /// The text of [`STYLE_FILE`]; each `…` in it is replaced by the next
+    /// entry of `repeat` (a piece written that many times), so an example
+    /// past a limit can be shown short.
+    pub style: &'static str,
+    pub repeat: &'static [(&'static str, usize)],
+    pub encoding: Encoding,
+    /// Other files, by name relative to the style, and their text.
+    pub files: &'static [(&'static str, &'static str)],
+    /// `npr` argument lists run in the directory of the files; empty means
+    /// `npr check case.npr`.
+    pub commands: &'static [&'static [&'static str]],
+    /// The last command is a server: it is fixed when it starts serving
+    /// (prints its address), and the test stops it then.
+    pub serves: bool,
+    /// Why this example cannot be run on a machine where it is tested;
+    /// `tests/explain.rs` lists these and runs everything else.
+    pub not_runnable: Option<&'static str>,
+}
+
+/// The default of every field but `style`.
+pub const EXAMPLE: Example = Example {
+    style: "",
+    repeat: &[],
+    encoding: Encoding::Utf8,
+    files: &[],
+    commands: &[],
+    serves: false,
+    not_runnable: None,
+};
+
+/// The command list of an example with no commands.
+const CHECK: &[&[&str]] = &[&["check", STYLE_FILE]];
+
+impl Example {
+    /// The style file's text with every `…` expanded.
+    pub fn style_text(&self) -> String {
+        let mut out = String::new();
+        let mut pieces = self.repeat.iter();
+        for (i, part) in self.style.split('…').enumerate() {
+            if i > 0 {
+                if let Some((piece, n)) = pieces.next() {
+                    out.push_str(&piece.repeat(*n));
+                }
+            }
+            out.push_str(part);
+        }
+        out
+    }
+
+    /// The style file's bytes, in its encoding.
+    pub fn style_bytes(&self) -> Vec<u8> {
+        let text = self.style_text();
+        match self.encoding {
+            Encoding::Utf8 => text.into_bytes(),
+            Encoding::Latin1 => text
+                .chars()
+                .map(|c| u8::try_from(u32::from(c)).unwrap_or(b'?'))
+                .collect(),
+        }
+    }
+
+    /// The commands to run (`npr check case.npr` when none are given).
+    pub fn command_lines(&self) -> &'static [&'static [&'static str]] {
+        if self.commands.is_empty() {
+            CHECK
+        } else {
+            self.commands
+        }
+    }
+
+    fn write_text(&self, out: &mut String) {
+        if !self.style.is_empty() {
+            out.push_str(&format!("    // {STYLE_FILE}"));
+            if self.encoding == Encoding::Latin1 {
+                out.push_str(" (saved as Latin-1)");
+            }
+            out.push('\n');
+            for line in self.style.lines() {
+                out.push_str(&format!("    {line}\n"));
+            }
+            for (piece, n) in self.repeat {
+                out.push_str(&format!("    // (each `…` is `{piece}` written {n} times)\n"));
+            }
+        }
+        for (name, text) in self.files {
+            out.push_str(&format!("\n    // {name}\n"));
+            for line in text.lines() {
+                out.push_str(&format!("    {line}\n"));
+            }
+        }
+        out.push('\n');
+        for args in self.command_lines() {
+            out.push_str(&format!("    $ npr {}\n", args.join(" ")));
+        }
+        if let Some(why) = self.not_runnable {
+            out.push_str(&format!("    (not run by the tests: {why})\n"));
+        }
+    }
+}
+
+/// Every explanation, in the order of [`crate::codes::ALL`].
+pub fn all() -> impl Iterator<Item = &'static Explanation> {
+    syntax::ALL
+        .iter()
+        .chain(names::ALL)
+        .chain(types::ALL)
+        .chain(passes::ALL)
+        .chain(files::ALL)
+        .chain(command_line::ALL)
+}
+
+/// The explanation of `code` (any letter case).
+pub fn lookup(code: &str) -> Option<&'static Explanation> {
+    all().find(|e| e.code.eq_ignore_ascii_case(code.trim()))
+}
+
+/// The one-line meaning of `code` from [`crate::codes::ALL`].
+pub fn summary(code: &str) -> Option<&'static str> {
+    crate::codes::ALL.iter().find(|(c, _)| *c == code).map(|(_, s)| *s)
+}
+
+/// The codes nearest to one that does not exist: the same letter and the
+/// closest numbers first, then spelling (`E0z02` is near `E0202`).
+pub fn nearest(code: &str, n: usize) -> Vec<&'static str> {
+    let wanted = code.trim().to_ascii_uppercase();
+    let number = |c: &str| c.get(1..).and_then(|d| d.parse::<i64>().ok());
+    let letter = wanted.chars().next();
+    let mut scored: Vec<(bool, i64, f64, &'static str)> = crate::codes::ALL
+        .iter()
+        .map(|(c, _)| {
+            let same_letter = c.chars().next() == letter;
+            let distance = match (number(&wanted), number(c)) {
+                (Some(a), Some(b)) => (a - b).abs(),
+                _ => i64::MAX,
+            };
+            (!same_letter, distance, -strsim::jaro_winkler(&wanted, c), *c)
+        })
+        .collect();
+    scored.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));
+    scored.into_iter().take(n).map(|s| s.3).collect()
+}
+
+/// The explanation as text for a terminal.
+pub fn render(e: &Explanation) -> String {
+    let mut out = format!("{}: {}\n\n", e.code, summary(e.code).unwrap_or(""));
+    for paragraph in e.meaning.trim().split("\n\n") {
+        out.push_str(&fill(paragraph, 76));
+        out.push_str("\n\n");
+    }
+    out.push_str("Wrong:\n\n");
+    e.wrong.write_text(&mut out);
+    out.push_str("\nFixed:\n\n");
+    e.fixed.write_text(&mut out);
+    out
+}
+
+/// `text` with its whitespace re-flowed into lines of at most `width`.
+fn fill(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line_len = 0;
+    for word in text.split_whitespace() {
+        if line_len > 0 && line_len + 1 + word.chars().count() > width {
+            out.push('\n');
+            line_len = 0;
+        } else if line_len > 0 {
+            out.push(' ');
+            line_len += 1;
+        }
+        out.push_str(word);
+        line_len += word.chars().count();
+    }
+    out
+}

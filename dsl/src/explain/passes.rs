@@ -1,0 +1,185 @@
+//! Explanations of the pass codes (E03xx, W0301): the pass graph, outputs,
+//! inputs, compute passes' statements and state, blending and depth.
+
+use super::{Example, Explanation, EXAMPLE};
+
+pub(super) const ALL: &[Explanation] = &[
+    Explanation {
+        code: "E0301",
+        meaning: "Passes run in an order where every pass comes after the passes whose targets \
+            it reads. Two passes that read each other (or a pass that reads its own target) have \
+            no such order. A feedback loop goes through the previous frame: \
+            `previous(pass.target)` reads what the target held one frame ago and is no \
+            dependency.",
+        wrong: Example {
+            style: "style \"Case\"\npass acc: image() {\n  out c: r8unorm = acc.c * 0.9 + 0.1\n}\noutput acc.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass acc: image() {\n  out c: r8unorm = previous(acc.c) * 0.9 + 0.1\n}\noutput acc.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0302",
+        meaning: "A target's format fixes how many channels it has: `r8unorm` one, `rg16float` \
+            two, `rgba8unorm` four. The value written must have that many (a `float` for one \
+            channel, a `vec4` or `color` for four). Widen a scalar with `vec4(x, x, x, 1.0)` or \
+            pick a format with fewer channels.",
+        wrong: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = lambert(normal, light.dir)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  let l = lambert(normal, light.dir)\n  out c: rgba8unorm = vec4(l, l, l, 1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0303",
+        meaning: "Every style ends with `output pass.target`: the target that is the final image. \
+            Only what that target depends on is compiled; a style without one would compile to \
+            nothing.",
+        wrong: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0304",
+        meaning: "What a pass may read depends on its kind. An `image(a, b)` pass reads only the \
+            targets of the passes it lists; a builtin of the geometry (`normal`, `uv`, \
+            `position`) exists only where there is geometry (render passes, compute passes over \
+            vertices or samples); `screen_uv` only where there are pixels; a per-object texture \
+            only in render passes. A depth test runs at its pass's scale. List the pass in the \
+            inputs, or move the read to a pass that has it.",
+        wrong: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out n: rgba16float = vec4(normal, 1.0)\n}\npass p: image() {\n  out c: rgba8unorm = g.n\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out n: rgba16float = vec4(normal, 1.0)\n}\npass p: image(g) {\n  out c: rgba8unorm = g.n\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0305",
+        meaning: "A compute pass's `state name: type = first` keeps a value per object from frame \
+            to frame: it reads `first` on the first frame (and after a reset), and \
+            `name = next` sets what it holds for the next frame. A state is read only after its \
+            declaration, assigned exactly once, and only states can be assigned.",
+        wrong: Example {
+            style: "style \"Case\"\npass follow: compute(objects) {\n  state origin: vec2 = vec2(0.0)\n}\npass shade: render(scene) {\n  out c: rg32float = follow.origin\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass follow: compute(objects) {\n  state origin: vec2 = vec2(0.0)\n  origin = origin + vec2(0.01)\n}\npass shade: render(scene) {\n  out c: rg32float = follow.origin\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0306",
+        meaning: "Each pass kind has its own statements. `out` writes a target in `render` and \
+            `image` passes, and a per-object value in `compute(objects)`; `reduce` exists only in \
+            compute passes over elements (`vertices`, `samples`, `pixels`); `state` only in \
+            compute passes. Move the statement into a pass of the right kind and read its value \
+            as `pass.name`.",
+        wrong: Example {
+            style: "style \"Case\"\npass shade: render(scene) {\n  reduce n: float = sum(1.0)\n  out c: r32float = 1.0\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: r32float = sums.n\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "W0301",
+        meaning: "A warning: a compute pass whose values no pass that reaches the output reads. \
+            It is removed, as every pass the output does not depend on is; the warning is there \
+            because a compute pass is usually written to be read. Read its values where they \
+            are needed, or delete the pass.",
+        wrong: Example {
+            style: "style \"Case\"\npass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: r32float = 1.0\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: r32float = 1.0 / sums.n\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0307",
+        meaning: "`{ blend: add }` (or `over`, `multiply`...) on an output blends on the GPU, \
+            which cannot blend 32-bit float formats. Use a 16-bit float format \
+            (`rgba16float`), or accumulate by reading `previous(...)` without blending.",
+        wrong: Example {
+            style: "style \"Case\"\npass p: image() {\n  out sum: rgba32float = vec4(0.25) { blend: add }\n}\noutput p.sum\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass p: image() {\n  out sum: rgba16float = vec4(0.25) { blend: add }\n}\noutput p.sum\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0308",
+        meaning: "`depth: test(other)` draws a render pass against the depth buffer of pass \
+            `other` (lines hidden behind the surface, for example). A pass's depth buffer is \
+            dropped after it unless it says `depth: keep`.",
+        wrong: Example {
+            style: "style \"Case\"\npass gbuffer: render(scene) {\n  out c: rgba8unorm = #808080\n}\npass lines: render(scene) {\n  out ink: rgba8unorm = #000000 { blend: over }\n  depth: test(gbuffer, bias: 1px)\n}\npass final: image(gbuffer, lines) {\n  out color: rgba8unorm = gbuffer.c * lines.ink\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass gbuffer: render(scene) {\n  out c: rgba8unorm = #808080\n  depth: keep\n}\npass lines: render(scene) {\n  out ink: rgba8unorm = #000000 { blend: over }\n  depth: test(gbuffer, bias: 1px)\n}\npass final: image(gbuffer, lines) {\n  out color: rgba8unorm = gbuffer.c * lines.ink\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0309",
+        meaning: "`compute(pixels, ids.id)` runs over the pixels of an ID target, which says per \
+            pixel which object covers it (`object.id`, written by a render pass). IDs must be \
+            exact, so the target is `r32float`; a 16-bit or 8-bit format would round them.",
+        wrong: Example {
+            style: "style \"Case\"\npass ids: render(scene) {\n  out id: r16float = object.id\n}\npass cover: compute(pixels, ids.id) {\n  reduce area: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: rgba8unorm = vec4(vec3(cover.area / 1000.0), 1.0)\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass ids: render(scene) {\n  out id: r32float = object.id\n}\npass cover: compute(pixels, ids.id) {\n  reduce area: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: rgba8unorm = vec4(vec3(cover.area / 1000.0), 1.0)\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0310",
+        meaning: "An art-map (`artmap(image(\"…\"), filter: \"f.npr\")`, Klein et al. 2000 \
+            §4.2) runs its filter style once per mip level of the image, on the GPU, with no \
+            scene. So a filter reads exactly one `texture level = filter_input()`, has image \
+            passes only, and builds no art-map of its own; in it `frame` is the level index and \
+            `resolution` the level's size. The error is in the filter, with a second label at \
+            the art-map that names it. A filter given to `npr render` as a style is E0310 too: \
+            it has no scene to run on.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture walls = artmap(image(\"paper.png\", srgb), filter: \"hatch.npr\")\npass p: render(scene) {\n  out c: rgba8unorm = sample(walls, uv)\n}\noutput p.c\n",
+            files: &[("hatch.npr", "style \"Hatch\"\ntexture level = filter_input()\npass ink: render(scene) {\n  out c: rgba8unorm = vec4(level.rgb * 0.5, 1.0)\n}\noutput ink.c\n")],
+            commands: &[
+                &["texgen", "-o", "paper.png", "--size", "16"],
+                &["check", "case.npr"],
+            ],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture walls = artmap(image(\"paper.png\", srgb), filter: \"hatch.npr\")\npass p: render(scene) {\n  out c: rgba8unorm = sample(walls, uv)\n}\noutput p.c\n",
+            files: &[("hatch.npr", "style \"Hatch\"\ntexture level = filter_input()\npass ink: image() {\n  out c: rgba8unorm = vec4(level.rgb * 0.5, 1.0)\n}\noutput ink.c\n")],
+            commands: &[
+                &["texgen", "-o", "paper.png", "--size", "16"],
+                &["check", "case.npr"],
+            ],
+            ..EXAMPLE
+        },
+    },
+];

@@ -1,0 +1,91 @@
+//! What each builtin value is, for the reference and hover: one sentence
+//! per `compiler::ir::Builtin` (an exhaustive match, so a new builtin does
+//! not build until it is described), with its type and unit from the IR.
+
+use compiler::ir::Builtin;
+
+/// One sentence saying what the builtin holds.
+pub fn doc(b: Builtin) -> &'static str {
+    use Builtin::*;
+    match b {
+        SampleSpacing => "In a pass over samples: the distance between neighbouring samples on the surface (Breslav et al. 2007 §3.1).",
+        Uv => "The surface's texture coordinates (the mesh's UVs).",
+        NormalWorld => "The unit surface normal in world space.",
+        NormalView => "The unit surface normal in view space.",
+        PositionWorld => "The surface point in world space.",
+        PositionView => "The surface point in view space.",
+        PositionLight => "Light-space NDC of the surface point: x, y in [−1, 1] (unwarped), z in [0, 1].",
+        Tangent => "The unit world tangent: the direction of increasing u.",
+        ViewDir => "The unit direction from the surface point towards the camera.",
+        Depth => "The distance of the surface point along the view direction.",
+        FragCoord => "This pixel's position in pixels (x right, y down), at its centre.",
+        ScreenUv => "This pixel's position in [0, 1]² of the pass's image.",
+        Resolution => "The pass's image size in pixels.",
+        Time => "The frame's time in seconds.",
+        Frame => "The frame's number (0, 1, ...).",
+        Eye => "The eye being rendered: 0 (left or mono) or 1 (right).",
+        LightDir => "The unit direction towards the scene's `[light]`.",
+        LightColor => "The colour of the scene's `[light]`.",
+        LightIntensity => "The intensity of the scene's `[light]`.",
+        MoreLightDir(_) => "The unit direction towards one of the scene's extra lights (`[light2]`..`[light4]`).",
+        MoreLightColor(_) => "The colour of one of the scene's extra lights.",
+        MoreLightIntensity(_) => "The intensity of one of the scene's extra lights.",
+        CameraPosition => "The camera's position in world space (the centre of a stereo camera).",
+        CameraNear => "The camera's near plane distance.",
+        CameraFar => "The camera's far plane distance.",
+        CameraFocal => "(P₀₀, P₁₁) of the projection: the focal lengths in NDC units (Age of Sail eq. 12).",
+        CameraLeftEye => "The left eye's position of a stereo camera (the camera position in mono).",
+        CameraRightEye => "The right eye's position of a stereo camera (the camera position in mono).",
+        CameraForward => "The camera's unit view direction.",
+        TangentScreen => "T_s: the world tangent projected to the screen, px per metre, from the projection's Jacobian (Age of Sail §3.2).",
+        BitangentScreen => "B_s: the bitangent projected to the screen, px per metre (Age of Sail §3.2).",
+        TangentScreenCenter => "T_s projected with the stereo camera's centre (equal to `tangent.screen` in mono).",
+        BitangentScreenCenter => "B_s projected with the stereo camera's centre (equal to `bitangent.screen` in mono).",
+        ObjectIndex => "The object's position in the scene's object list (0, 1, ...).",
+        ObjectId => "The object's id for ID images: its index + 1, so 0 (a cleared target) is no object.",
+        PositionPrevious => "The surface point in world space in the previous frame (equal to `position` on the first frame).",
+    }
+}
+
+/// Where the builtin exists, in words.
+pub fn availability(b: Builtin) -> &'static str {
+    if b.needs_geometry() {
+        "render passes and compute passes over geometry"
+    } else if b.is_per_fragment() {
+        "render and image passes (per pixel)"
+    } else if b.needs_object() {
+        "render and compute passes (per object)"
+    } else {
+        "every pass"
+    }
+}
+
+/// `name: type [unit]` of a builtin spelling.
+pub fn signature(spelling: &str, b: Builtin) -> String {
+    let (ty, unit) = b.ty_unit();
+    let ty = match ty {
+        compiler::ir::Ty::Float => "float",
+        compiler::ir::Ty::Int => "int",
+        compiler::ir::Ty::Bool => "bool",
+        compiler::ir::Ty::Vec2 => "vec2",
+        compiler::ir::Ty::Vec3 => "vec3",
+        compiler::ir::Ty::Vec4 => "vec4",
+        _ => "value",
+    };
+    let mut s = format!("{spelling}: {ty}");
+    let sym = super::unit_symbol(unit);
+    if !sym.is_empty() {
+        s.push_str(&format!(" [{sym}]"));
+    }
+    s
+}
+
+/// A builtin's hover / reference text in Markdown.
+pub fn markdown(spelling: &str, b: Builtin) -> String {
+    format!(
+        "```npr\n{}\n```\n\n{}\n\nAvailable in {}.",
+        signature(spelling, b),
+        doc(b),
+        availability(b)
+    )
+}

@@ -1,0 +1,98 @@
+//! The parts of the language that are not operators or builtins: pass
+//! kinds, units and target formats, each with what it is for.
+
+/// (kind as written, what it does).
+pub const PASS_KINDS: &[(&str, &str)] = &[
+    (
+        "render(scene)",
+        "Draws the scene's geometry (or only the objects with a tag: `render(caster)`), with vertex modifiers (`vertex { inflate: 2px }`), a view (`view(light)`), a depth mode (`depth: keep`, `depth: test(pass, bias: 1px)`) and typed outputs.",
+    ),
+    (
+        "image(a, b)",
+        "A fullscreen pass that reads the targets of the passes it lists, at its own resolution scale (`scale 1/2`).",
+    ),
+    (
+        "compute(vertices)",
+        "Per-object values over each object's vertices: `reduce name: type = sum(value)` and `out` (optionally `compute(vertices, tag)`).",
+    ),
+    (
+        "compute(samples)",
+        "The same over stratified surface samples of each object (Breslav et al. 2007 §3.1); `sample.spacing` is their spacing.",
+    ),
+    (
+        "compute(pixels, ids.id)",
+        "The same over the pixels of an ID target (`r32float`, written with `object.id`): each pixel counts for its object.",
+    ),
+    (
+        "compute(objects)",
+        "Once per object: `out` values and `state` kept from frame to frame (`state s: vec2 = first` then `s = next`).",
+    ),
+];
+
+/// (suffix, what it measures).
+pub const UNITS: &[(&str, &str)] = &[
+    ("px", "screen pixels"),
+    ("%", "a percentage of the image height; converts to px at run time"),
+    ("m", "metres, world lengths"),
+    ("mm", "millimetres; converts to m at compile time"),
+    ("s", "seconds"),
+    ("Hz", "hertz"),
+    ("deg", "degrees; passed to operators in radians"),
+];
+
+/// A target format's properties in words.
+pub fn format_text(f: abi::Format) -> String {
+    format!(
+        "{} channel(s), {} bytes per pixel{}{}",
+        f.channels(),
+        f.bytes_per_pixel(),
+        if f.is_filterable() {
+            ", filterable"
+        } else {
+            ", not filterable"
+        },
+        if f.is_blendable() {
+            ", blendable"
+        } else {
+            ", not blendable"
+        },
+    )
+}
+
+/// Every target format, by name.
+pub fn formats() -> impl Iterator<Item = (&'static str, abi::Format)> {
+    abi::Format::ALL.iter().copied()
+}
+
+/// What an intrinsic function does (an exhaustive match on
+/// `compiler::ir::Intrinsic`, so a new one is described before it builds).
+pub fn intrinsic_doc(i: compiler::ir::Intrinsic) -> String {
+    use compiler::ir::Intrinsic::*;
+    match i {
+        Construct(n) => format!("`vec{n}(...)`: a {n}-vector from scalars and vectors (components in order), or one scalar in every component."),
+        Map(name) => format!("WGSL `{name}`, per component; the result has the argument's type."),
+        Map2(name) => format!("WGSL `{name}` of two arguments of one type, per component."),
+        Map3(name) => format!("WGSL `{name}` of three arguments, per component."),
+        Length => "WGSL `length`: the length of a vector.".into(),
+        Dot => "WGSL `dot`: the dot product of two vectors of one size.".into(),
+        Distance => "WGSL `distance`: the distance between two points.".into(),
+        Normalize => "WGSL `normalize`: the unit vector in a vector's direction.".into(),
+        Cross => "WGSL `cross`: the cross product of two `vec3`s.".into(),
+        Project => "`project(p)`: a world point → (screen u, screen v, NDC depth) in this eye.".into(),
+        ProjectOtherEye => "`project_other_eye(p)`: the same in the other eye of a stereo frame.".into(),
+        ProjectPrevious => "`project_previous(p)`: the same with the previous frame's camera.".into(),
+    }
+}
+
+/// Calls the compiler treats specially (not operators, not intrinsics):
+/// (name, as written, what it does).
+pub const SPECIAL_CALLS: &[(&str, &str, &str)] = &[
+    ("previous", "previous(pass.target)", "The target as it was at the end of the previous frame (black on the first frame); no dependency, so a pass may read its own target."),
+    ("other_eye", "other_eye(pass.target)", "The target of the other eye of a stereo frame (LSA §4.2); makes the style stereo."),
+    ("scene_has", "scene_has(tag)", "Whether an object of the scene has the tag: a constant when the scene is known at compile time, else `true`."),
+    ("sum", "reduce name: type = sum(value)", "In a compute pass over elements: the sum of `value` over each object's vertices, samples or pixels (also `min`, `max`)."),
+    ("image", "texture t = image(\"path.png\", srgb)", "A texture read from a PNG or EXR file (`srgb` or `linear`), relative to the style."),
+    ("noise", "texture t = noise(size: 256, octaves: 4, seed: 1, kind: gradient)", "A tileable noise texture made by npr's generator (the one `npr texgen` writes)."),
+    ("halftone_table", "texture t = halftone_table(edge: 0.1)", "The halftone screen's tone-correction table (Breslav et al. 2007 §3.5), for `halftone(...)`."),
+    ("test", "depth: test(pass, bias: 1px)", "A render pass's depth test against the kept depth buffer of another pass."),
+];

@@ -1,0 +1,28 @@
+//! The stdlib and language reference `npr doc` writes: Markdown pages from
+//! the metadata alone (`pages.rs`) and the same pages as a static HTML site
+//! (`html.rs`). `docs/reference/` is this output, checked by
+//! `tests/reference_docs.rs`.
+
+mod html;
+mod pages;
+
+/// Every file of the reference: (file name, contents).
+pub fn files() -> Vec<(String, String)> {
+    let pages = pages::all();
+    let mut out: Vec<(String, String)> = pages
+        .iter()
+        .map(|p| (format!("{}.md", p.stem), p.markdown.clone()))
+        .collect();
+    for p in &pages {
+        out.push((format!("{}.html", p.stem), html::page(p, &pages)));
+    }
+    out.push(("style.css".into(), html::CSS.into()));
+    out
+}
+
+/// One page: its file stem, its title and its Markdown.
+pub struct Page {
+    pub stem: &'static str,
+    pub title: &'static str,
+    pub markdown: String,
+}
