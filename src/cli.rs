@@ -266,6 +266,21 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         runs: u32,
     },
+    /// Art-maps and rip-maps (Klein et al. 2000 §4.2): build time per filter,
+    /// source size and level (cache bypassed), and the frame time of reading
+    /// a plain mipped image, an art-map, `sample_biased` and `sample_ripmap`
+    /// against a pass that reads no texture, on examples/scenes/gallery.toml.
+    /// Run from the repository root.
+    Artmaps {
+        /// Square source sizes, comma-separated.
+        #[arg(long, default_value = "256,512,1024", value_delimiter = ',')]
+        sizes: Vec<u32>,
+        /// Image size of the sampling table.
+        #[arg(long, default_value = "256x256", value_parser = parse_size)]
+        size: (u32, u32),
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+    },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
         #[arg(long, default_value = "examples/scenes/spheres.toml")]

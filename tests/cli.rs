@@ -242,6 +242,34 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
 }
 
+#[test]
+fn bench_artmaps_reports_every_filter_and_every_read() {
+    // A smoke run at a tiny size: the tables' shape and that the figures
+    // are real (positive, finite), not their values.
+    let o = npr(&["bench", "artmaps", "--sizes", "8", "--size", "32x32", "--frames", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let builds: Vec<&str> = stdout.lines().filter(|l| l.contains("| 8² |")).collect();
+    assert_eq!(builds.len(), 3, "one row per shipped filter:\n{stdout}");
+    for row in &builds {
+        let cells: Vec<&str> = row.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+        // 8² has 4 mip levels and 4 × 4 rip-map levels.
+        assert_eq!((cells[2], cells[7]), ("4", "16"), "{row}");
+        let rip_ms: f64 = cells[8].parse().expect("a number");
+        assert!(rip_ms.is_finite() && rip_ms > 0.0, "{row}");
+    }
+    for v in &lab::bench_artmaps::SAMPLE_VARIANTS {
+        let row = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("| {} |", v.name)))
+            .unwrap_or_else(|| panic!("no row for {}:\n{stdout}", v.name));
+        let ms: f64 = row.split('|').nth(2).expect("ms").trim().parse().expect("a number");
+        assert!(ms.is_finite() && ms > 0.0, "{row}");
+    }
+    let o = npr(&["bench", "artmaps", "--sizes", "0"]);
+    assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
+}
+
 /// Decoded RGBA bytes of a PNG.
 fn rgba(path: &Path) -> Vec<u8> {
     image::open(path)

@@ -21,6 +21,7 @@
 //!   the pixels of an ID image.
 
 pub mod bench;
+pub mod bench_artmaps;
 pub mod bench_contours;
 pub mod bench_ops;
 pub mod bench_overhead;

@@ -76,7 +76,7 @@ pub fn halve_axis(level: &Level, axis: usize) -> Level {
 /// A rip-map (§4.2, Fig. 7–8): every level (i, j) of the source halved i
 /// times along x and j times along y, each filtered (`frame` = i + 16 j),
 /// packed into one atlas as [`abi::RipmapAtlas`] lays it out.
-fn ripmap_atlas(
+pub fn ripmap_atlas(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     program: &abi::StyleProgram,

@@ -1,6 +1,7 @@
 //! `npr bench`: each benchmark's command (argument limits, the styles it
 //! compiles, the device, its table); the measuring is in `lab`.
 
+mod artmaps;
 mod compile;
 mod gpu;
 mod http_client;
@@ -36,6 +37,7 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
                     .fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, "the benchmark could not run").with_note(e)),
             }
         }
+        BenchCommand::Artmaps { sizes, size, frames } => artmaps::run(&sizes, size, frames, printer),
         BenchCommand::Ops { scene, size, frames } => gpu::ops(&scene, size, frames, printer),
         BenchCommand::Contours { sizes, frames } => gpu::contours(&sizes, frames, printer),
         BenchCommand::Reduce {

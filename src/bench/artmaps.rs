@@ -1,0 +1,74 @@
+//! `npr bench artmaps`: the command around `lab::bench_artmaps` (the
+//! shipped filters compiled, the sampling variants compiled against
+//! `examples/`, the device, the two tables).
+
+use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use crate::printer::{compile, headless_gpu, load_scene, report_compile, Printer};
+use compiler::CompileOptions;
+use dsl::{codes, Diagnostic, SourceMap};
+use lab::bench_artmaps as bench;
+use std::path::Path;
+
+/// The filter styles shipped in `examples/filters/`, relative to the
+/// working directory as the other benchmarks' default scenes are.
+const FILTERS: [&str; 3] = ["hatching", "watercolor", "ink_blot"];
+
+pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = sizes.iter().find(|s| !(1..=4096).contains(*s)) {
+        return printer.fail(Diagnostic::error(
+            codes::LIMIT_EXCEEDED,
+            format!("source size {bad} is outside 1..=4096 (a rip-map's atlas is twice the source)"),
+        ));
+    }
+    let mut sources = SourceMap::new();
+    let mut filters = Vec::new();
+    for name in FILTERS {
+        let path = Path::new("examples/filters").join(format!("{name}.npr"));
+        match compile(&path, &mut sources, &CompileOptions::default(), printer) {
+            Ok(c) => filters.push((name.to_string(), c.program())),
+            Err(code) => return code,
+        }
+    }
+    let mut programs = Vec::new();
+    for v in &bench::SAMPLE_VARIANTS {
+        let text = bench::sample_style(v);
+        let compiled = compiler::compile_source(
+            "bench_artmaps.npr",
+            &text,
+            Path::new("examples"),
+            &mut sources,
+            &CompileOptions::default(),
+        );
+        match report_compile(compiled, &sources, printer) {
+            Ok(c) => programs.push(c.program()),
+            Err(_) => return EXIT_INTERNAL,
+        }
+    }
+    let scene = match load_scene(Path::new("examples/scenes/gallery.toml"), &mut sources, printer) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    let built = bench::build_rows(&gpu, &filters, sizes, |m| eprintln!("{m}"));
+    let sampled = built.and_then(|b| bench::sample_rows(&gpu, &programs, &scene, size, frames).map(|s| (b, s)));
+    match sampled {
+        Ok((build, sample)) => {
+            println!("device: {}", gpu.describe());
+            println!("art-map and rip-map builds (cache bypassed; wall clock, GPU waited for):");
+            println!("{}", bench::build_table(&build));
+            println!(
+                "sampling on examples/scenes/gallery.toml at {}x{} (fastest of {frames} interleaved frames):",
+                size.0, size.1
+            );
+            println!("{}", bench::sample_table(&sample));
+            EXIT_OK
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            EXIT_INTERNAL
+        }
+    }
+}

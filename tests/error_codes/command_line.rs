@@ -1,0 +1,187 @@
+//! Error codes of the command line (E05xx) through the `npr` binary, and
+//! internal errors (E9001).
+
+use super::*;
+
+#[test]
+fn e0501_usage_error_keeps_clap_message() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--size",
+            "big",
+        ],
+        &scratch("e0501"),
+    );
+    assert!(r.contains("invalid value 'big' for '--size <SIZE>'"), "{r}");
+    check("E0501", (d, r));
+}
+
+#[test]
+fn e0502_bad_argument_value() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--fps",
+            "0",
+        ],
+        &scratch("e0502"),
+    );
+    check("E0502", (d, r));
+}
+
+#[test]
+fn e0502_an_eye_the_scene_does_not_have() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--eye",
+            "1",
+        ],
+        &scratch("e0502-eye"),
+    );
+    check_case("E0502", "E0502_eye", (d, r));
+}
+
+#[test]
+fn e0503_compile_onto_an_existing_file() {
+    let dir = scratch("e0503");
+    let file = dir.join("taken");
+    std::fs::write(&file, "not a directory").expect("write");
+    let (d, r) = cli_errors(
+        &["compile", "examples/toon.npr", "-o", file.to_str().expect("utf-8 path")],
+        &dir,
+    );
+    check("E0503", (d, r));
+}
+
+#[test]
+fn e0504_bad_compiled_directory() {
+    let dir = scratch("e0504");
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "--compiled",
+            dir.to_str().expect("utf-8 path"),
+            "--scene",
+            "examples/scenes/spot.toml",
+        ],
+        &dir,
+    );
+    check("E0504", (d, r));
+}
+
+#[test]
+fn e0505_no_gpu_device() {
+    // No machine here lacks an adapter (lavapipe, then GL): render the
+    // diagnostic the CLI prints for one.
+    let rendered = dsl::diagnostic::render(
+        &[runner::DeviceError::NoAdapter.to_diagnostic()],
+        &SourceMap::new(),
+        false,
+    );
+    check(
+        "E0505",
+        (vec![runner::DeviceError::NoAdapter.to_diagnostic()], rendered),
+    );
+}
+
+#[test]
+fn e0506_a_benchmark_that_cannot_run() {
+    let dir = scratch("e0506");
+    let missing = dir.join("missing.npr");
+    let (d, r) = cli_errors(
+        &[
+            "bench",
+            "compile",
+            missing.to_str().expect("utf-8 path"),
+            "--iterations",
+            "1",
+        ],
+        &dir,
+    );
+    check("E0506", (d, r));
+}
+
+#[test]
+fn e0507_a_studio_port_in_use() {
+    // Hold a port, then ask the studio for it: it must refuse at once.
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").expect("bind a port");
+    let port = taken.local_addr().expect("address").port().to_string();
+    let (d, r) = cli_errors(
+        &[
+            "studio",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--port",
+            &port,
+        ],
+        &scratch("e0507"),
+    );
+    let r = r.replace(&port, "<port>");
+    assert!(r.contains("--port 0"), "{r}");
+    check("E0507", (d, r));
+}
+
+#[test]
+fn e0404_frames_past_the_frame_limit() {
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--frames",
+            "0..1000000",
+        ],
+        &scratch("e0404-frames"),
+    );
+    check_case("E0404", "E0404_frames", (d, r));
+}
+
+#[test]
+fn e9001_internal_error_names_the_npr_span() {
+    // Internal errors come from compiler bugs, so none can be triggered from
+    // valid input; render one the way the pipeline builds it.
+    let mut sources = SourceMap::new();
+    let file = sources.add("case.npr", SIMPLE_PASS);
+    let err = compiler::InternalError {
+        message: "emitted WGSL for pass `p` failed naga validation".into(),
+        detail: "error: example naga message".into(),
+        span: Some(dsl::Span::new(file, 0, 6)),
+        wgsl: Some("// the rejected module".into()),
+    };
+    let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    assert!(rendered.contains("case.npr:1:1"), "{rendered}");
+    insta::assert_snapshot!("E9001", rendered);
+}
+
+#[test]
+fn e9001_without_wgsl_names_an_impossible_state() {
+    // Internal errors outside validation (allocate, manifest, resolve's
+    // stdlib defaults) carry no module: the label says what happened.
+    let mut sources = SourceMap::new();
+    let file = sources.add("case.npr", SIMPLE_PASS);
+    let err = compiler::InternalError {
+        message: "the output target has no allocated target".into(),
+        detail: "`p.color` is not among the allocated targets".into(),
+        span: Some(dsl::Span::new(file, 0, 6)),
+        wgsl: None,
+    };
+    let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    assert!(rendered.contains("E9001"), "{rendered}");
+    assert!(
+        rendered.contains("the compiler reached an impossible state here"),
+        "{rendered}"
+    );
+}

@@ -1,0 +1,321 @@
+//! Error codes of passes (E03xx, W0301): cycles, formats, outputs, pass
+//! kinds, compute state, blending and depth tests, passes over pixels,
+//! art-map filters and rip-maps.
+
+use super::*;
+
+#[test]
+fn e0301_pass_cycle() {
+    let text = style(
+        "pass a: image(b) {\n  out x: r8unorm = b.y\n}\npass b: image(a) {\n  out y: r8unorm = a.x\n}\noutput b.y\n",
+    );
+    check("E0301", compile_errors(&text, &scratch("e0301")));
+}
+
+#[test]
+fn e0301_a_pass_reading_its_own_target_is_told_about_previous() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = acc.c * 0.9\n}\noutput acc.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0301-self"));
+    assert!(rendered.contains("previous(acc.<target>)"), "{rendered}");
+    check_case("E0301", "E0301_self_read", (diags, rendered));
+}
+
+#[test]
+fn previous_takes_one_pass_target() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(0.5)\n}\noutput acc.c\n");
+    check_case(
+        "E0103",
+        "E0103_previous_not_a_target",
+        compile_errors(&text, &scratch("prev-arg")),
+    );
+}
+
+#[test]
+fn previous_of_a_target_that_does_not_exist() {
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(acc.d)\n}\noutput acc.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("prev-missing"));
+    let code = diags.first().expect("a diagnostic").code;
+    check_case(code, "previous_unknown_target", (diags, rendered));
+    let text = style("pass acc: image() {\n  out c: r8unorm = previous(nosuch.c)\n}\noutput acc.c\n");
+    check_case(
+        "E0101",
+        "previous_unknown_pass",
+        compile_errors(&text, &scratch("prev-missing-pass")),
+    );
+}
+
+#[test]
+fn e0302_format_mismatch() {
+    let text =
+        style("pass p: render(scene) {\n  out color: rgba8unorm = lambert(normal, light.dir)\n}\noutput p.color\n");
+    check("E0302", compile_errors(&text, &scratch("e0302")));
+}
+
+#[test]
+fn e0303_no_output() {
+    let text = style("pass p: render(scene) {\n  out color: rgba8unorm = vec4(1.0)\n}\n");
+    check("E0303", compile_errors(&text, &scratch("e0303")));
+    // A style of nothing but its header: E0303 at the header, not an
+    // internal error (found by tests/fuzz_compiler.rs).
+    check_case(
+        "E0303",
+        "header_only",
+        compile_errors("style \"S\"\n", &scratch("e0303-header-only")),
+    );
+}
+
+#[test]
+fn e0304_bad_pass_input() {
+    let text = style("pass g: render(scene) {\n  out n: rgba16float = vec4(normal, 1.0)\n}\npass p: image() {\n  out color: rgba8unorm = g.n\n}\noutput p.color\n");
+    check("E0304", compile_errors(&text, &scratch("e0304")));
+}
+
+/// A vertex pass summing a bool, a state read before its declaration, a
+/// reduction in a render pass, and a compute pass nobody reads.
+const SUMS: &str = "pass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\n";
+
+#[test]
+fn e0205_a_reduction_over_a_type_it_cannot_sum() {
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce lit: float = sum(normal.y > 0.0)\n}\npass shade: render(scene) {\n  out c: r32float = sums.lit\n}\noutput shade.c\n",
+    );
+    check("E0205", compile_errors(&text, &scratch("e0205")));
+}
+
+#[test]
+fn e0205_a_per_object_value_of_a_type_it_cannot_have() {
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce n: int = sum(1)\n}\npass shade: render(scene) {\n  out c: r32float = sums.n\n}\noutput shade.c\n",
+    );
+    check_case("E0205", "E0205_type", compile_errors(&text, &scratch("e0205t")));
+}
+
+#[test]
+fn e0305_state_read_before_it_is_declared() {
+    let text = style(&format!(
+        "{SUMS}pass follow: compute(objects) {{\n  let twice = 2.0 * origin\n  state origin: float = sums.n\n  origin = twice\n}}\npass shade: render(scene) {{\n  out c: r32float = follow.origin\n}}\noutput shade.c\n"
+    ));
+    check("E0305", compile_errors(&text, &scratch("e0305")));
+}
+
+#[test]
+fn e0305_a_state_that_is_never_updated() {
+    let text = style(
+        "pass follow: compute(objects) {\n  state origin: vec2 = vec2(0.0)\n}\npass shade: render(scene) {\n  out c: rg32float = follow.origin\n}\noutput shade.c\n",
+    );
+    check_case("E0305", "E0305_not_updated", compile_errors(&text, &scratch("e0305u")));
+}
+
+#[test]
+fn e0306_a_statement_the_pass_kind_does_not_have() {
+    let text = style(
+        "pass shade: render(scene) {\n  reduce n: float = sum(1.0)\n  out c: r32float = 1.0\n}\noutput shade.c\n",
+    );
+    check("E0306", compile_errors(&text, &scratch("e0306")));
+}
+
+#[test]
+fn w0301_a_compute_pass_nobody_reads() {
+    let text = style(&format!(
+        "{SUMS}pass shade: render(scene) {{\n  out c: r32float = 1.0\n}}\noutput shade.c\n"
+    ));
+    check("W0301", compile_warnings(&text));
+}
+
+#[test]
+fn e0307_blend_on_a_format_that_cannot_be_blended() {
+    let text = style("pass p: image() {\n  out sum: rgba32float = vec4(0.25) { blend: add }\n}\noutput p.sum\n");
+    check("E0307", compile_errors(&text, &scratch("e0307")));
+}
+
+#[test]
+fn unknown_blend_mode_suggests_one() {
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = #ff000080 { blend: ovr }\n}\noutput p.c\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("blend-unknown"));
+    assert!(rendered.contains("did you mean `over`?"), "{rendered}");
+    check_case("E0103", "E0103_unknown_blend_mode", (diags, rendered));
+}
+
+/// A scene pass and a line pass over it, `depth` setting of each given.
+fn depth_passes(gbuffer_depth: &str, lines_depth: &str) -> String {
+    style(&format!(
+        "pass gbuffer: render(scene) {{\n  out c: rgba8unorm = #808080\n{gbuffer_depth}}}\n\
+         pass lines: render(scene) {{\n  out ink: rgba8unorm = #000000 {{ blend: over }}\n  depth: {lines_depth}\n}}\n\
+         pass final: image(gbuffer, lines) {{\n  out color: rgba8unorm = gbuffer.c * lines.ink\n}}\noutput final.color\n"
+    ))
+}
+
+#[test]
+fn e0308_depth_test_against_a_pass_that_keeps_no_depth() {
+    let text = depth_passes("", "test(gbuffer, bias: 1px)");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0308"));
+    assert!(rendered.contains("add `depth: keep` to pass `gbuffer`"), "{rendered}");
+    check("E0308", (diags, rendered));
+}
+
+#[test]
+fn depth_test_against_an_unknown_pass_suggests_one() {
+    let text = depth_passes("  depth: keep\n", "test(gbufer)");
+    let (diags, rendered) = compile_errors(&text, &scratch("depth-unknown"));
+    assert!(rendered.contains("did you mean `gbuffer`?"), "{rendered}");
+    check_case("E0101", "E0101_depth_test_unknown_pass", (diags, rendered));
+}
+
+#[test]
+fn a_cycle_through_a_depth_test_suggests_previous_on_the_target_read() {
+    let text = style("pass a: render(scene) {\n  out c: rgba8unorm = b.ink\n  depth: keep\n}\npass b: render(scene) {\n  out ink: rgba8unorm = #000000\n  depth: test(a)\n}\noutput b.ink\n");
+    let (diags, rendered) = compile_errors(&text, &scratch("depth-cycle"));
+    assert!(rendered.contains("`previous(b.<target>)` in `a`"), "{rendered}");
+    check_case("E0301", "E0301_depth_cycle", (diags, rendered));
+}
+
+#[test]
+fn depth_test_across_pass_sizes() {
+    let text = depth_passes("  depth: keep\n", "test(gbuffer)")
+        .replace("pass lines: render(scene) {", "pass lines: render(scene) scale 1/2 {");
+    check_case(
+        "E0304",
+        "E0304_depth_test_other_scale",
+        compile_errors(&text, &scratch("depth-scale")),
+    );
+}
+
+/// An ID pass, a pass over its pixels with `kind_args`, and a render pass reading it.
+fn pixel_passes(id_format: &str, kind_args: &str) -> String {
+    style(&format!(
+        "pass ids: render(scene) {{\n  out id: {id_format} = object.id\n}}\n\
+         pass cover: compute({kind_args}) {{\n  reduce area: float = sum(1.0)\n}}\n\
+         pass shade: render(scene) {{\n  out c: rgba8unorm = vec4(vec3(cover.area / 1000.0), 1.0)\n}}\noutput shade.c\n"
+    ))
+}
+
+#[test]
+fn e0309_pixels_of_a_target_that_is_not_an_id_target() {
+    let text = pixel_passes("r16float", "pixels, ids.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0309"));
+    assert!(rendered.contains("out id: r32float = object.id"), "{rendered}");
+    check("E0309", (diags, rendered));
+}
+
+/// A filter style with `passes` after its header and level input.
+const FILTER_HEAD: &str = "style \"Filter\"\ntexture level = filter_input()\n";
+
+#[test]
+fn e0310_a_filter_with_a_render_pass() {
+    let text = format!(
+        "{FILTER_HEAD}pass lit: render(scene) {{\n  out c: rgba8unorm = vec4(level.rgb, 1.0)\n}}\noutput lit.c\n"
+    );
+    check("E0310", compile_errors(&text, &scratch("e0310")));
+}
+
+#[test]
+fn e0310_an_art_map_whose_filter_reads_no_level() {
+    let dir = scratch("e0310_no_level");
+    std::fs::write(
+        dir.join("not_a_filter.npr"),
+        "style \"Not a filter\"\npass p: image() {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n",
+    )
+    .unwrap();
+    image::RgbaImage::new(4, 4).save(dir.join("src.png")).unwrap();
+    let text = style(
+        "texture t = artmap(image(\"src.png\"), filter: \"not_a_filter.npr\")\n\
+         pass p: render(scene) {\n  out c: rgba8unorm = sample_biased(t, uv)\n}\noutput p.c\n",
+    );
+    let (d, r) = compile_errors(&text, &dir);
+    check_case(
+        "E0310",
+        "E0310_no_level",
+        (d, r.replace(&dir.display().to_string(), "<dir>")),
+    );
+}
+
+#[test]
+fn e0310_an_art_map_inside_a_filter() {
+    let dir = scratch("e0310_nested");
+    image::RgbaImage::new(4, 4).save(dir.join("src.png")).unwrap();
+    let text = format!(
+        "{FILTER_HEAD}texture inner = artmap(image(\"src.png\"), filter: \"case.npr\")\n\
+         pass p: image() {{\n  out c: rgba16float = level\n}}\noutput p.c\n"
+    );
+    // The filter it names is itself (found on disk, loaded as a filter).
+    std::fs::write(dir.join("case.npr"), &text).unwrap();
+    check_case("E0310", "E0310_nested", compile_errors(&text, &dir));
+}
+
+/// A rip-map is read only by `sample_ripmap`, and `sample_ripmap` reads
+/// only a rip-map (`compiler/src/texture_uses.rs`).
+#[test]
+fn e0201_rip_maps_and_sample_ripmap_go_together() {
+    let dir = scratch("e0201_ripmap");
+    image::RgbaImage::new(4, 4).save(dir.join("src.png")).unwrap();
+    std::fs::write(
+        dir.join("f.npr"),
+        format!("{FILTER_HEAD}pass p: image() {{\n  out c: rgba16float = level\n}}\noutput p.c\n"),
+    )
+    .unwrap();
+    let ripmap_read_by_sample = style(
+        "texture t = ripmap(image(\"src.png\"), filter: \"f.npr\")\n\
+         pass p: render(scene) {\n  out c: rgba8unorm = sample(t, uv)\n}\noutput p.c\n",
+    );
+    check_case(
+        "E0201",
+        "E0201_ripmap_read_by_sample",
+        compile_errors(&ripmap_read_by_sample, &dir),
+    );
+    let sample_ripmap_of_an_image = style(
+        "texture t = image(\"src.png\")\n\
+         pass p: render(scene) {\n  out c: rgba8unorm = sample_ripmap(t, uv)\n}\noutput p.c\n",
+    );
+    check_case(
+        "E0201",
+        "E0201_sample_ripmap_of_an_image",
+        compile_errors(&sample_ripmap_of_an_image, &dir),
+    );
+}
+
+#[test]
+fn a_pass_over_pixels_without_its_id_target() {
+    let text = pixel_passes("r32float", "pixels");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-no-target"));
+    assert!(rendered.contains("compute(pixels, ids.id)"), "{rendered}");
+    check_case("E0304", "E0304_pixels_without_id_target", (diags, rendered));
+}
+
+#[test]
+fn a_target_where_a_pass_kind_takes_a_name() {
+    let text = pixel_passes("r32float", "vertices, ids.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("kind-arg-field"));
+    assert!(
+        rendered.contains("expected a tag, found the target `ids.id`"),
+        "{rendered}"
+    );
+    check_case("E0304", "E0304_target_as_kind_argument", (diags, rendered));
+}
+
+#[test]
+fn a_pass_over_pixels_of_an_unknown_pass_suggests_one() {
+    let text = pixel_passes("r32float", "pixels, idz.id");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-unknown"));
+    assert!(rendered.contains("did you mean `ids`?"), "{rendered}");
+    check_case("E0101", "E0101_pixels_of_unknown_pass", (diags, rendered));
+}
+
+#[test]
+fn a_fragment_builtin_in_a_pass_over_vertices() {
+    // `screen_uv` is a fragment's; a vertex has none (this once reached naga as E9001).
+    let text = style(
+        "pass sums: compute(vertices) {\n  reduce s: vec2 = sum(screen_uv)\n}\n\
+         pass shade: render(scene) {\n  out c: rgba8unorm = vec4(sums.s, 0.0, 1.0)\n}\noutput shade.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("vertices-screen-uv"));
+    assert!(rendered.contains("`screen_uv` is not available"), "{rendered}");
+    check_case("E0304", "E0304_screen_uv_over_vertices", (diags, rendered));
+}
+
+#[test]
+fn geometry_in_a_pass_over_pixels() {
+    let text = pixel_passes("r32float", "pixels, ids.id").replace("sum(1.0)", "sum(normal.x)");
+    let (diags, rendered) = compile_errors(&text, &scratch("pixels-normal"));
+    assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
+    check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
+}
