@@ -85,7 +85,17 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
                 BinOp::Sub => |x, y| x - y,
                 BinOp::Mul => |x, y| x * y,
                 BinOp::Div => |x, y| x / y,
-                _ => return None,
+                // WGSL's float `%` truncates: x - y · trunc(x / y).
+                BinOp::Rem => |x, y| x - y * (x / y).trunc(),
+                // Booleans as 1 and 0, so a constant `if` can pick its branch.
+                BinOp::Lt => |x, y| f64::from(u8::from(x < y)),
+                BinOp::Le => |x, y| f64::from(u8::from(x <= y)),
+                BinOp::Gt => |x, y| f64::from(u8::from(x > y)),
+                BinOp::Ge => |x, y| f64::from(u8::from(x >= y)),
+                BinOp::Eq => |x, y| f64::from(u8::from(x == y)),
+                BinOp::Ne => |x, y| f64::from(u8::from(x != y)),
+                BinOp::And => |x, y| f64::from(u8::from(x != 0.0 && y != 0.0)),
+                BinOp::Or => |x, y| f64::from(u8::from(x != 0.0 || y != 0.0)),
             };
             zip(&[a.clone(), b.clone()], |xs| f(xs[0], xs[1]))
         }
@@ -122,8 +132,37 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
                     let (a, b) = (vals.first()?, vals.get(1)?);
                     Some(vec![a.iter().zip(b).map(|(x, y)| x * y).sum()])
                 }
-                _ => None,
+                Intrinsic::Distance => {
+                    let (a, b) = (vals.first()?, vals.get(1)?);
+                    Some(vec![a
+                        .iter()
+                        .zip(b)
+                        .map(|(x, y)| (x - y) * (x - y))
+                        .sum::<f64>()
+                        .sqrt()])
+                }
+                // As the emitter writes it: v · inverseSqrt(max(v·v, 1e-30)).
+                Intrinsic::Normalize => {
+                    let v = vals.first()?;
+                    let inv = 1.0 / v.iter().map(|x| x * x).sum::<f64>().max(1e-30).sqrt();
+                    Some(v.iter().map(|x| x * inv).collect())
+                }
+                Intrinsic::Cross => match (vals.first()?.as_slice(), vals.get(1)?.as_slice()) {
+                    ([a0, a1, a2], [b0, b1, b2]) => Some(vec![a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]),
+                    _ => None,
+                },
+                Intrinsic::Construct(_)
+                | Intrinsic::Project
+                | Intrinsic::ProjectOtherEye
+                | Intrinsic::ProjectPrevious => None,
             }
+        }
+        // naga evaluates both arms of a constant `select`; each arm's own
+        // calls were checked where they arose, so only the value is picked.
+        ExprKind::Select { cond, then, otherwise } => {
+            let c = get(cond)?;
+            let chosen = if *c.first()? != 0.0 { then } else { otherwise };
+            get(chosen).cloned()
         }
         _ => None,
     }

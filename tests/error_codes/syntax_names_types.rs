@@ -269,6 +269,14 @@ fn e0203_a_constant_call_outside_its_domain() {
         "vec4(exp(vec3(100.0)), 1.0)",
         "vec4(pow(vec3(-1.0), vec3(0.5)), 1.0)",
         "vec4(acos(2.0))",
+        // Through normalize, clamp, cross, distance, `%`, a comparison and a
+        // constant `if` (a 30,000-case soak of tests/fuzz_generated.rs
+        // found the first).
+        "sqrt(normalize(vec4(2.229) + vec4(0.5)) - clamp(vec4(1.962), vec4(0.0), vec4(1.0)))",
+        "vec4(sqrt(cross(vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0))), 1.0)",
+        "vec4(log(distance(vec2(1.0), vec2(1.0))))",
+        "vec4(sqrt(-(5.0 % 3.0)))",
+        "vec4(sqrt(if 1.0 > 2.0 { 1.0 } else { -1.0 }))",
     ] {
         let text = style(&format!(
             "pass p: image() {{\n  out c: rgba8unorm = {e}\n}}\noutput p.c\n"
