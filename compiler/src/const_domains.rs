@@ -151,10 +151,8 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
                     ([a0, a1, a2], [b0, b1, b2]) => Some(vec![a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]),
                     _ => None,
                 },
-                Intrinsic::Construct(_)
-                | Intrinsic::Project
-                | Intrinsic::ProjectOtherEye
-                | Intrinsic::ProjectPrevious => None,
+                // Projections depend on the camera: never constants.
+                Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious => None,
             }
         }
         // naga evaluates both arms of a constant `select`; each arm's own
