@@ -118,6 +118,31 @@ pub(crate) fn load_scene_summary(
     runner::scene::load_scene_in(path, sources, paths).map(|s| s.summary(&path.display().to_string()))
 }
 
+/// The options `npr check` and `npr compile` share: the paths policy for
+/// `style` (and `scene`), and the scene's summary read under it; the exit
+/// code, with the diagnostics printed, when either fails.
+pub(crate) fn check_options(
+    paths: &crate::cli::PathArgs,
+    style: &Path,
+    scene: Option<&Path>,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<CompileOptions, i32> {
+    let policy = paths.policy(style, scene).map_err(|d| printer.fail(d))?;
+    let summary = scene
+        .map(|s| load_scene_summary(s, sources, Some(&policy)))
+        .transpose()
+        .map_err(|diags| {
+            printer.diagnostics(&diags, sources);
+            EXIT_USER
+        })?;
+    Ok(CompileOptions {
+        scene: summary,
+        paths: Some(policy),
+        ..Default::default()
+    })
+}
+
 /// Say how each art-map was made: filtered now (and whether it reached the
 /// disk cache) or read from a cache.
 pub(crate) fn artmap_notes(builds: &[runner::artmap::ArtmapBuild]) {

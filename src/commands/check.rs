@@ -2,32 +2,14 @@
 //! files it names) and print its diagnostics; nothing is written.
 
 use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
-use crate::printer::{load_scene_summary, Printer};
-use compiler::CompileOptions;
+use crate::printer::{check_options, Printer};
 use dsl::SourceMap;
 
 pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
-    let paths = match args.paths.policy(&args.style, args.scene.as_deref()) {
-        Ok(p) => p,
-        Err(d) => return printer.fail(d),
-    };
-    let scene = match args
-        .scene
-        .as_ref()
-        .map(|s| load_scene_summary(s, &mut sources, Some(&paths)))
-        .transpose()
-    {
-        Ok(s) => s,
-        Err(diags) => {
-            printer.diagnostics(&diags, &sources);
-            return EXIT_USER;
-        }
-    };
-    let opts = CompileOptions {
-        scene,
-        paths: Some(paths),
-        ..Default::default()
+    let opts = match check_options(&args.paths, &args.style, args.scene.as_deref(), &mut sources, printer) {
+        Ok(o) => o,
+        Err(code) => return code,
     };
     match crate::set_params::compile(&args.style, &args.set, &mut sources, &opts, printer) {
         Ok(c) => {

@@ -1,8 +1,8 @@
 //! `npr compile`: a style to WGSL, one file per pass, plus manifest.json and
 //! the report, written atomically into a directory.
 
-use crate::cli::{CompileArgs, EXIT_OK, EXIT_USER};
-use crate::printer::{cannot_write, load_scene_summary, Printer};
+use crate::cli::{CompileArgs, EXIT_OK};
+use crate::printer::{cannot_write, check_options, Printer};
 use compiler::{CompileOptions, Compiled};
 use dsl::{codes, Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
@@ -29,26 +29,13 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
             .with_help("`npr compile -o` names a directory, for the WGSL files and manifest.json"),
         );
     }
-    let paths = match paths.policy(&style, scene.as_deref()) {
-        Ok(p) => p,
-        Err(d) => return printer.fail(d),
-    };
-    let scene = match scene
-        .map(|s| load_scene_summary(&s, &mut sources, Some(&paths)))
-        .transpose()
-    {
-        Ok(s) => s,
-        Err(diags) => {
-            printer.diagnostics(&diags, &sources);
-            return EXIT_USER;
-        }
-    };
-    let opts = CompileOptions {
-        keep_params,
-        dump_ir,
-        scene,
-        paths: Some(paths),
-        ..Default::default()
+    let opts = match check_options(&paths, &style, scene.as_deref(), &mut sources, printer) {
+        Ok(o) => CompileOptions {
+            keep_params,
+            dump_ir,
+            ..o
+        },
+        Err(code) => return code,
     };
     let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {
         Ok(c) => c,
