@@ -5,5 +5,6 @@
 //! static per mesh and rebuilds an eye's strips only when its view changes.
 
 pub mod cache;
+pub mod draw;
 pub mod edges;
 pub mod strip;
