@@ -7,7 +7,8 @@ use glam::{DMat4, DVec2, DVec3};
 use runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
 use runner::lines::draw::{vertices, LinesPipeline};
 use runner::lines::strip::LineStyle;
-use runner::scene::primitives::cube;
+use runner::scene::primitives::{cube, sphere};
+use runner::scene::Mesh;
 use wgpu::util::DeviceExt;
 
 const SIZE: u32 = 256;
@@ -33,8 +34,13 @@ fn vs(@location(0) p: vec3<f32>) -> @builtin(position) vec4<f32> {
 "#;
 
 /// The cube's depth as a `depth: keep` render pass would leave it.
-fn depth_prepass(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, depth: &wgpu::TextureView, vp: DMat4) {
-    let mesh = cube(2.0);
+fn depth_prepass(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    depth: &wgpu::TextureView,
+    vp: DMat4,
+    mesh: &Mesh,
+) {
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: None,
         entries: &[wgpu::BindGroupLayoutEntry {
@@ -156,11 +162,11 @@ fn distance(p: DVec2, points: &[DVec2]) -> f64 {
     points.iter().map(|q| (*q - p).length()).fold(f64::INFINITY, f64::min)
 }
 
-#[test]
-fn visible_creases_are_drawn_and_hidden_ones_are_not() {
+/// The centres of the pixels the lines of `mesh` ink, seen from `eye`,
+/// tested against the mesh's own depth with `bias`.
+fn draw(mesh: &Mesh, eye: DVec3, selection: EdgeSelection, bias: f64) -> Vec<DVec2> {
     let gpu = runner::Gpu::headless().expect("a device (lavapipe)");
     let (device, queue) = (&gpu.device, &gpu.queue);
-    let eye = DVec3::new(3.0, 2.5, 4.0);
     let vp = view_proj(eye);
     let depth = texture(
         device,
@@ -176,7 +182,6 @@ fn visible_creases_are_drawn_and_hidden_ones_are_not() {
         depth.create_view(&Default::default()),
         color.create_view(&Default::default()),
     );
-    let mesh = cube(2.0);
     let mut cache = LinesCache::default();
     let style = LineStyle {
         width_px: 2.0,
@@ -185,12 +190,8 @@ fn visible_creases_are_drawn_and_hidden_ones_are_not() {
         phase: 0.0,
         taper: 0.0,
     };
-    let selection = EdgeSelection {
-        silhouettes: false,
-        crease_deg: Some(40.0),
-    };
     let objects = [LineObject {
-        mesh: &mesh,
+        mesh,
         model: DMat4::IDENTITY,
     }];
     let size = DVec2::splat(f64::from(SIZE));
@@ -215,9 +216,9 @@ fn visible_creases_are_drawn_and_hidden_ones_are_not() {
             multiview_mask: None,
         });
     }
-    depth_prepass(device, &mut encoder, &depth_view, vp);
+    depth_prepass(device, &mut encoder, &depth_view, vp, mesh);
     let pipeline = LinesPipeline::new(device, wgpu::TextureFormat::Rgba8Unorm);
-    let gpu_vertices = vertices(&strips, [size.x, size.y], BIAS);
+    let gpu_vertices = vertices(&strips, [size.x, size.y], bias);
     pipeline.encode(
         device,
         &mut encoder,
@@ -230,10 +231,21 @@ fn visible_creases_are_drawn_and_hidden_ones_are_not() {
     queue.submit([encoder.finish()]);
     let image = runner::readback::read_texture(device, queue, &color, SIZE, SIZE, abi::Format::Rgba8unorm, "ink")
         .expect("read back");
-    let drawn: Vec<DVec2> = (0..SIZE * SIZE)
+    (0..SIZE * SIZE)
         .filter(|i| image.texel(i % SIZE, i / SIZE)[0] < 0.5)
         .map(|i| DVec2::new(f64::from(i % SIZE) + 0.5, f64::from(i / SIZE) + 0.5))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn visible_creases_are_drawn_and_hidden_ones_are_not() {
+    let eye = DVec3::new(3.0, 2.5, 4.0);
+    let vp = view_proj(eye);
+    let selection = EdgeSelection {
+        silhouettes: false,
+        crease_deg: Some(40.0),
+    };
+    let drawn = draw(&cube(2.0), eye, selection, BIAS);
     // Truth: the cube's edges on its three front faces (+X, +Y, +Z from this
     // eye) and the three at the far corner (−1, −1, −1).
     let c = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
@@ -282,5 +294,52 @@ fn visible_creases_are_drawn_and_hidden_ones_are_not() {
     assert!(
         recall >= 0.99 && precision >= 0.99,
         "recall {recall}, precision {precision}"
+    );
+}
+
+#[test]
+fn a_sphere_silhouette_needs_the_bias_to_keep_its_inner_half() {
+    let eye = DVec3::new(0.0, 0.0, 4.0);
+    let vp = view_proj(eye);
+    let selection = EdgeSelection {
+        silhouettes: true,
+        crease_deg: None,
+    };
+    // Truth: the circle p·ê = 1/d of radius √(1 − 1/d²) (see lines_pixels.rs).
+    let d = eye.length();
+    let truth: Vec<DVec2> = (0..=1024)
+        .map(|k| {
+            let a = std::f64::consts::TAU * f64::from(k) / 1024.0;
+            project(
+                vp,
+                DVec3::new(a.cos(), a.sin(), 0.0) * (1.0 - 1.0 / (d * d)).sqrt() + DVec3::Z / d,
+            )
+        })
+        .collect();
+    let centre = project(vp, DVec3::Z / d);
+    let radius = (truth[0] - centre).length();
+    // Pixels on the inner half of the 2 px line: inside the circle.
+    let inner = |drawn: &[DVec2]| drawn.iter().filter(|p| (**p - centre).length() < radius - 0.25).count();
+    let with_bias = draw(&sphere(1.0, 64, 32), eye, selection, BIAS);
+    let without = draw(&sphere(1.0, 64, 32), eye, selection, 0.0);
+    let found = truth
+        .iter()
+        .filter(|t| with_bias.iter().any(|p| (*p - **t).length() <= 1.5))
+        .count();
+    let recall = found as f64 / truth.len() as f64;
+    let near = with_bias.iter().filter(|p| distance(**p, &truth) <= 2.5).count();
+    let precision = near as f64 / with_bias.len() as f64;
+    eprintln!(
+        "sphere silhouette on the GPU: recall {recall:.4}, precision {precision:.4}; inner-half pixels {} with bias {BIAS}, {} without",
+        inner(&with_bias),
+        inner(&without)
+    );
+    assert!(
+        recall >= 0.99 && precision >= 0.99,
+        "recall {recall}, precision {precision}"
+    );
+    assert!(
+        inner(&without) < inner(&with_bias),
+        "without a bias the surface inside the rim hides the line"
     );
 }
