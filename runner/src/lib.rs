@@ -23,6 +23,7 @@ pub mod artmap_cache;
 pub mod device;
 pub mod exec;
 pub mod gpu_error;
+pub mod lines;
 pub mod output;
 pub mod readback;
 pub mod scene;

@@ -1,0 +1,147 @@
+//! The per-renderer state of a `lines` pass: what is static per mesh (the
+//! welded edge mesh, its creases and their chains, §5 "creases at the
+//! intersections of non-coplanar polygons") is built once per mesh content
+//! and crease threshold; the strips of one eye are rebuilt only when that
+//! eye's view, an object's placement, the viewport, the line style or a
+//! mesh changes (issue 10: "geometry is rebuilt only when the view or the
+//! mesh changes"). Silhouettes depend on the eye, so they are found with
+//! the strips, per eye in stereo.
+
+use std::collections::HashMap;
+
+use glam::{DMat4, DVec2, DVec3};
+
+use super::edges::{EdgeMesh, Polyline};
+use super::strip::{self, LineStyle, Strips};
+use crate::scene::Mesh;
+
+/// Which feature edges a pass draws.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeSelection {
+    pub silhouettes: bool,
+    /// The dihedral threshold in degrees; `None` draws no creases.
+    pub crease_deg: Option<f64>,
+}
+
+/// One object as the lines see it: its mesh and object-to-world matrix.
+pub struct LineObject<'a> {
+    pub mesh: &'a Mesh,
+    pub model: DMat4,
+}
+
+/// The static part of one mesh.
+struct MeshEdges {
+    edges: EdgeMesh,
+    /// Crease chains per threshold (bit pattern of the f64), found once.
+    creases: HashMap<u64, Vec<Polyline>>,
+}
+
+/// Everything that decides an eye's strips, compared bit for bit.
+#[derive(Debug, Clone, PartialEq)]
+struct ViewKey {
+    view_proj: [u64; 16],
+    models: Vec<[u64; 16]>,
+    meshes: Vec<blake3::Hash>,
+    size: [u64; 2],
+    style: [u64; 5],
+    selection: (bool, Option<u64>),
+}
+
+/// Edge meshes by content, and each eye's strips with the key they were
+/// built for.
+#[derive(Default)]
+pub struct LinesCache {
+    meshes: HashMap<blake3::Hash, MeshEdges>,
+    eyes: HashMap<u32, (ViewKey, Strips)>,
+    /// How many times strips were built (for tests and `npr bench lines`).
+    pub rebuilds: u64,
+    /// How many edge meshes were built.
+    pub mesh_builds: u64,
+}
+
+fn mesh_hash(mesh: &Mesh) -> blake3::Hash {
+    let mut hasher = blake3::Hasher::new();
+    hasher.update(bytemuck::cast_slice(&mesh.positions));
+    hasher.update(bytemuck::cast_slice(&mesh.indices));
+    hasher.finalize()
+}
+
+fn bits(m: DMat4) -> [u64; 16] {
+    m.to_cols_array().map(f64::to_bits)
+}
+
+impl LinesCache {
+    /// The strips of eye `eye_index` at `eye_position` (world space) through
+    /// `view_proj` on a `size` px viewport: the cached ones when nothing
+    /// they depend on changed.
+    #[allow(clippy::too_many_arguments)]
+    pub fn strips(
+        &mut self,
+        eye_index: u32,
+        objects: &[LineObject<'_>],
+        eye_position: DVec3,
+        view_proj: DMat4,
+        size: DVec2,
+        style: &LineStyle,
+        selection: EdgeSelection,
+    ) -> &Strips {
+        let hashes: Vec<blake3::Hash> = objects.iter().map(|o| mesh_hash(o.mesh)).collect();
+        let key = ViewKey {
+            view_proj: bits(view_proj),
+            models: objects.iter().map(|o| bits(o.model)).collect(),
+            meshes: hashes.clone(),
+            size: [size.x.to_bits(), size.y.to_bits()],
+            style: [
+                style.width_px,
+                style.amplitude_px,
+                style.wavelength_px,
+                style.phase,
+                style.taper,
+            ]
+            .map(f64::to_bits),
+            selection: (selection.silhouettes, selection.crease_deg.map(f64::to_bits)),
+        };
+        let fresh = matches!(self.eyes.get(&eye_index), Some((k, _)) if *k == key);
+        if !fresh {
+            let mut polylines: Vec<(Vec<DVec3>, bool)> = Vec::new();
+            for (object, hash) in objects.iter().zip(&hashes) {
+                let entry = self.meshes.entry(*hash).or_insert_with(|| {
+                    self.mesh_builds += 1;
+                    MeshEdges {
+                        edges: EdgeMesh::new(object.mesh),
+                        creases: HashMap::new(),
+                    }
+                });
+                let world = |line: &Polyline, edges: &EdgeMesh| -> (Vec<DVec3>, bool) {
+                    let points = line
+                        .vertices
+                        .iter()
+                        .map(|&v| object.model.transform_point3(edges.positions[v as usize]));
+                    (points.collect(), line.closed)
+                };
+                if let Some(threshold) = selection.crease_deg {
+                    let edges = &entry.edges;
+                    let chains = entry.creases.entry(threshold.to_bits()).or_insert_with(|| {
+                        let indices: Vec<u32> = edges.creases(threshold).iter().map(|c| c.0).collect();
+                        edges.chain(&indices)
+                    });
+                    polylines.extend(chains.iter().map(|l| world(l, edges)));
+                }
+                if selection.silhouettes {
+                    // The eye in the object's own space: facing is decided
+                    // against the object-space face normals.
+                    let local_eye = object.model.inverse().transform_point3(eye_position);
+                    if local_eye.is_finite() {
+                        let edges = &entry.edges;
+                        let chains = edges.chain(&edges.silhouettes(local_eye));
+                        polylines.extend(chains.iter().map(|l| world(l, edges)));
+                    }
+                }
+            }
+            let strips = strip::build(&polylines, view_proj, size, style);
+            self.rebuilds += 1;
+            self.eyes.insert(eye_index, (key, strips));
+        }
+        &self.eyes[&eye_index].1
+    }
+}

@@ -1,0 +1,10 @@
+//! Run-time lines (Klein et al. 2000, §5): feature edges of the scene's
+//! meshes ([`edges`]: creases once per mesh, silhouettes per eye, chains) and
+//! the wavy screen-space strips drawn along them ([`strip`]). Both on the
+//! CPU in f64; see the module headers for why. [`cache`] keeps what is
+//! static per mesh and rebuilds an eye's strips only when its view changes.
+
+pub mod cache;
+pub mod draw;
+pub mod edges;
+pub mod strip;
