@@ -70,6 +70,11 @@ impl RipmapAtlas {
         32 - size.max(1).leading_zeros()
     }
 
+    /// Every level (i, j) the atlas holds: levels along x times along y.
+    pub fn level_count(&self) -> u32 {
+        Self::levels(self.width) * Self::levels(self.height)
+    }
+
     pub fn atlas_size(&self) -> (u32, u32) {
         (2 * self.width, 2 * self.height)
     }

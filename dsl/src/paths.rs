@@ -120,37 +120,29 @@ impl PathPolicy {
 /// missing is judged by where it would be, and a refused path never says
 /// whether the file outside the root exists.
 fn canonical_even_if_missing(path: &Path) -> PathBuf {
-    if let Ok(c) = path.canonicalize() {
-        return c;
-    }
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let mut existing = absolute.clone();
-    let mut missing = Vec::new();
-    let base = loop {
-        if let Ok(c) = existing.canonicalize() {
-            break c;
-        }
-        let last = existing.components().next_back().map(|c| c.as_os_str().to_os_string());
-        match (last, existing.parent()) {
-            (Some(name), Some(parent)) => {
-                missing.push(name);
-                existing = parent.to_path_buf();
-            }
-            // The filesystem root itself: the text is all there is.
-            _ => break existing,
-        }
-    };
-    let mut out = base;
-    for name in missing.into_iter().rev() {
-        match name.to_str() {
-            Some("..") => {
-                out.pop();
-            }
-            Some(".") => {}
-            _ => out.push(name),
+    for existing in absolute.ancestors() {
+        if let (Ok(base), Ok(rest)) = (existing.canonicalize(), absolute.strip_prefix(existing)) {
+            return join_lexically(base, rest.components());
         }
     }
-    out
+    // Not even the filesystem root resolves: the text is all there is.
+    join_lexically(PathBuf::new(), absolute.components())
+}
+
+/// `base` with `parts` appended to its text alone (no links followed): `.`
+/// dropped, `..` taking off the last part.
+fn join_lexically<'a>(mut base: PathBuf, parts: impl IntoIterator<Item = std::path::Component<'a>>) -> PathBuf {
+    for part in parts {
+        match part {
+            std::path::Component::ParentDir => {
+                base.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => base.push(other),
+        }
+    }
+    base
 }
 
 /// The deepest directory that is an ancestor of (or equal to) both.
@@ -171,16 +163,7 @@ fn lexically_inside(path: &Path, root: &Path) -> bool {
     } else {
         std::env::current_dir().unwrap_or_default().join(path)
     };
-    let mut out = PathBuf::new();
-    for c in absolute.components() {
-        match c {
-            std::path::Component::ParentDir => {
-                out.pop();
-            }
-            std::path::Component::CurDir => {}
-            other => out.push(other),
-        }
-    }
+    let out = join_lexically(PathBuf::new(), absolute.components());
     // The root is canonical; compare against the cwd's own spelling too.
     out.starts_with(root)
         || std::env::current_dir()

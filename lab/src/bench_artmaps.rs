@@ -77,7 +77,11 @@ pub fn build_rows(
                 wait_idle(gpu)?;
                 level_ms.push(t.elapsed().as_secs_f64() * 1e3);
             }
-            let rip_levels = abi::RipmapAtlas::levels(size) * abi::RipmapAtlas::levels(size);
+            let rip_levels = abi::RipmapAtlas {
+                width: size,
+                height: size,
+            }
+            .level_count();
             let t = Instant::now();
             ripmap_atlas(&gpu.device, &gpu.queue, program, base)?;
             wait_idle(gpu)?;
@@ -130,6 +134,10 @@ pub struct SampleVariant {
     pub color: &'static str,
 }
 
+/// The gallery's wall texture as a hatched art-map, read two ways below.
+const HATCHED_WALL: &str =
+    "texture t = artmap(image(\"textures/gallery_wall.png\", srgb), filter: \"filters/hatching.npr\") { wrap: repeat }";
+
 /// The variants, the first being the baseline that samples nothing. Paths
 /// are relative to `examples/` (the gallery's wall texture and the
 /// hatching filter).
@@ -146,12 +154,12 @@ pub const SAMPLE_VARIANTS: [SampleVariant; 5] = [
     },
     SampleVariant {
         name: "art-map, trilinear",
-        texture: "texture t = artmap(image(\"textures/gallery_wall.png\", srgb), filter: \"filters/hatching.npr\") { wrap: repeat }",
+        texture: HATCHED_WALL,
         color: "sample(t, uv * 4.0)",
     },
     SampleVariant {
         name: "art-map, sample_biased(+1)",
-        texture: "texture t = artmap(image(\"textures/gallery_wall.png\", srgb), filter: \"filters/hatching.npr\") { wrap: repeat }",
+        texture: HATCHED_WALL,
         color: "sample_biased(t, uv * 4.0, 1.0)",
     },
     SampleVariant {

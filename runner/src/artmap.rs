@@ -143,7 +143,11 @@ pub fn build(
 ) -> Result<(Arc<Vec<Level>>, ArtmapBuild), RunError> {
     let start = std::time::Instant::now();
     let count = if spec.rip {
-        abi::RipmapAtlas::levels(base.width) * abi::RipmapAtlas::levels(base.height)
+        abi::RipmapAtlas {
+            width: base.width,
+            height: base.height,
+        }
+        .level_count()
     } else {
         spec.level_count(base.width, base.height)
     };

@@ -2,8 +2,9 @@
 //! shipped filters compiled, the sampling variants compiled against
 //! `examples/`, the device, the two tables).
 
+use super::compile_builtin_in;
 use crate::cli::{EXIT_INTERNAL, EXIT_OK};
-use crate::printer::{compile, headless_gpu, load_scene, report_compile, Printer};
+use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::CompileOptions;
 use dsl::{codes, Diagnostic, SourceMap};
 use lab::bench_artmaps as bench;
@@ -31,17 +32,15 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, printer: &Printer) -> i
     }
     let mut programs = Vec::new();
     for v in &bench::SAMPLE_VARIANTS {
-        let text = bench::sample_style(v);
-        let compiled = compiler::compile_source(
+        match compile_builtin_in(
             "bench_artmaps.npr",
-            &text,
+            &bench::sample_style(v),
             Path::new("examples"),
             &mut sources,
-            &CompileOptions::default(),
-        );
-        match report_compile(compiled, &sources, printer) {
-            Ok(c) => programs.push(c.program()),
-            Err(_) => return EXIT_INTERNAL,
+            printer,
+        ) {
+            Ok(p) => programs.push(p),
+            Err(code) => return code,
         }
     }
     let scene = match load_scene(Path::new("examples/scenes/gallery.toml"), &mut sources, printer) {

@@ -136,7 +136,19 @@ pub(crate) fn compile_builtin(
     sources: &mut SourceMap,
     printer: &Printer,
 ) -> Result<StyleProgram, i32> {
-    match compiler::compile_source(name, text, Path::new("."), sources, &CompileOptions::default()) {
+    compile_builtin_in(name, text, Path::new("."), sources, printer)
+}
+
+/// [`compile_builtin`] with its relative paths (textures, filters)
+/// resolved against `dir`.
+pub(crate) fn compile_builtin_in(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<StyleProgram, i32> {
+    match compiler::compile_source(name, text, dir, sources, &CompileOptions::default()) {
         Ok(c) => Ok(c.program()),
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);
