@@ -9,6 +9,7 @@
 //!   generated, so the two cannot drift apart.
 //! - [`object`]: the fixed head of the per-object uniform block
 //!   ([`ObjectHead`]) and its WGSL members ([`OBJECT_HEAD_WGSL`]), the same way.
+//! - [`lines`]: a `lines` pass's edges, shape settings and strip vertex.
 //! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
 //! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
 //! - [`program`]: a compiled style as the runner takes it ([`StyleProgram`]),
@@ -23,6 +24,7 @@ mod block;
 pub mod formats;
 pub mod frame;
 pub mod halftone;
+pub mod lines;
 pub mod manifest;
 pub mod noise;
 pub mod object;

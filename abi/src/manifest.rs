@@ -177,6 +177,27 @@ pub enum PassKindManifest {
         /// The object stage.
         objects_entry: String,
     },
+    /// Wavy strips along the silhouette and crease edges of scene objects
+    /// (Klein et al. 2000, §5), built on the CPU per eye when the view, an
+    /// object or the shape changes, drawn as one indexed triangle list of
+    /// [`crate::lines::LineVertex`] (vertex buffer 0, no object group)
+    /// into the pass's targets, blended per output.
+    Lines {
+        /// Only objects with this tag; `None` takes every object.
+        tag: Option<String>,
+        edges: crate::lines::LineEdges,
+        shape: crate::lines::LineShape,
+        /// `Own`: no depth test (every edge drawn, hidden ones too). `Test`:
+        /// against the depth an earlier pass kept; for lines `bias_px`
+        /// moves every strip vertex towards the eye, along its view ray, by
+        /// the world distance N px span at its depth (a view-space bias:
+        /// the same slack on screen at every distance). A bias in window
+        /// depth is in the WGSL, as for render passes.
+        #[serde(default, skip_serializing_if = "DepthMode::is_own")]
+        depth: DepthMode,
+        vertex_entry: String,
+        fragment_entry: String,
+    },
 }
 
 /// Invocations per workgroup of a compute pass's element stage: each
@@ -340,6 +361,11 @@ impl PassKindManifest {
             | PassKindManifest::Image {
                 vertex_entry,
                 fragment_entry,
+            }
+            | PassKindManifest::Lines {
+                vertex_entry,
+                fragment_entry,
+                ..
             } => vec![("vertex_entry", vertex_entry), ("fragment_entry", fragment_entry)],
             PassKindManifest::Compute {
                 elements_entry,
@@ -365,6 +391,11 @@ impl PassKindManifest {
             | PassKindManifest::Image {
                 vertex_entry,
                 fragment_entry,
+            }
+            | PassKindManifest::Lines {
+                vertex_entry,
+                fragment_entry,
+                ..
             } => Some((vertex_entry, fragment_entry)),
             PassKindManifest::Compute { .. } => None,
         }

@@ -10,6 +10,8 @@ use crate::manifest::*;
 use crate::noise::NoiseSpec;
 use std::collections::BTreeSet;
 
+mod lines;
+
 /// Most colour attachments a pass may write (wgpu's default limit).
 pub const MAX_PASS_OUTPUTS: usize = 8;
 /// Largest pass or target scale, relative to the output size (the compiler's range).
@@ -294,15 +296,29 @@ impl Manifest {
     }
 
     /// A depth test reads the kept depth of an earlier render pass of the
-    /// same size and view; the runner binds that pass's depth texture.
+    /// same size and view; the runner binds that pass's depth texture. A
+    /// `lines` pass sees the scene through the camera, so it tests a camera
+    /// view's depth.
     fn validate_depth(&self, i: usize, field: &str, p: &PassManifest) -> Result<(), Invalid> {
-        let PassKindManifest::Render {
-            depth: DepthMode::Test { pass, bias_px },
-            light_view,
-            ..
-        } = &p.kind
-        else {
-            return Ok(());
+        let (pass, bias_px, light_view) = match &p.kind {
+            PassKindManifest::Render {
+                depth: DepthMode::Test { pass, bias_px },
+                light_view,
+                ..
+            } => (pass, bias_px, *light_view),
+            PassKindManifest::Lines {
+                depth: DepthMode::Test { pass, bias_px },
+                ..
+            } => (pass, bias_px, false),
+            PassKindManifest::Lines {
+                depth: DepthMode::Keep, ..
+            } => {
+                return bad(
+                    format!("{field}.kind.depth"),
+                    format!("lines pass `{}` cannot keep a depth: it has none of its own", p.name),
+                )
+            }
+            _ => return Ok(()),
         };
         let f = format!("{field}.kind.depth");
         if *pass >= i {
@@ -329,7 +345,7 @@ impl Manifest {
                 ),
             );
         };
-        if tested.scale != p.scale || tested_light != light_view {
+        if tested.scale != p.scale || *tested_light != light_view {
             return bad(
                 format!("{f}.pass"),
                 format!(
@@ -396,6 +412,7 @@ impl Manifest {
         }
         self.validate_blend(&field, p)?;
         self.validate_depth(i, &field, p)?;
+        self.validate_lines(&field, p)?;
         if !p.clear.iter().all(|c| c.is_finite()) {
             return bad(format!("{field}.clear"), "clear colour is not finite");
         }
@@ -482,10 +499,10 @@ impl Manifest {
                     if !matches!(self.passes[*pass].kind, PassKindManifest::Compute { .. }) {
                         return bad(f, format!("pass `{}` is not a compute pass", self.passes[*pass].name));
                     }
-                    if matches!(p.kind, PassKindManifest::Image { .. }) {
+                    if matches!(p.kind, PassKindManifest::Image { .. } | PassKindManifest::Lines { .. }) {
                         return bad(
                             f,
-                            format!("image pass `{}` has no object to read per-object values for", p.name),
+                            format!("pass `{}` has no object to read per-object values for", p.name),
                         );
                     }
                 }

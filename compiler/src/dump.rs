@@ -43,6 +43,21 @@ pub fn dump(ir: &Ir) -> String {
                 Some(t) => format!("compute({}, {t})", domain.name()),
                 None => format!("compute({})", domain.name()),
             },
+            PassKind::Lines(lines) => {
+                let settings: Vec<String> = lines
+                    .shape
+                    .named()
+                    .iter()
+                    .map(|(n, e)| format!("{n}=e{}", e.0))
+                    .collect();
+                format!(
+                    "lines({}) edges={:?} {} depth={:?}",
+                    lines.tag.as_deref().unwrap_or("scene"),
+                    lines.edges,
+                    settings.join(" "),
+                    lines.depth
+                )
+            }
         };
         let _ = writeln!(s, "pass #{i} {} : {kind} scale={}", p.name, p.scale);
         for l in &p.lets {

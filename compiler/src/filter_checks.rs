@@ -50,6 +50,7 @@ pub fn check(ir: &Ir, header: Option<Span>, diags: &mut Vec<Diagnostic>) {
             PassKind::Image { .. } => continue,
             PassKind::Render { .. } => "a render pass",
             PassKind::Compute { .. } => "a compute pass",
+            PassKind::Lines(_) => "a lines pass",
         };
         diags.push(
             Diagnostic::error(codes::BAD_FILTER, format!("{kind} in a filter style"))

@@ -10,6 +10,9 @@ use dsl::Span;
 use serde::Serialize;
 use stdlib::Unit;
 
+mod lines;
+pub use lines::{LineSettings, LinesKind};
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct ExprId(pub u32);
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
@@ -185,6 +188,12 @@ pub enum Builtin {
     /// The world position of this surface point in the previous frame (the
     /// object's previous transform; equal to `position` on the first frame).
     PositionPrevious,
+    /// In a `lines` pass: the screen-space arc length along the strip's
+    /// chain, in px (the s of Klein et al. 2000 §5's sin(2π·s/λ + φ)).
+    LineArc,
+    /// In a `lines` pass: −1 on one edge of the strip, +1 on the other,
+    /// interpolated across it (for soft edges or a brush profile).
+    LineAcross,
 }
 
 impl Builtin {
@@ -234,6 +243,8 @@ impl Builtin {
         ("object.id", Builtin::ObjectId),
         ("position.previous", Builtin::PositionPrevious),
         ("sample.spacing", Builtin::SampleSpacing),
+        ("line.s", Builtin::LineArc),
+        ("line.across", Builtin::LineAcross),
     ];
 
     pub fn name(self) -> &'static str {
@@ -257,6 +268,8 @@ impl Builtin {
             CameraForward => (Ty::Vec3, Unit::None),
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
             Time => (Ty::Float, Unit::Seconds),
+            LineArc => (Ty::Float, Unit::Px),
+            LineAcross => (Ty::Float, Unit::None),
             Frame | Eye => (Ty::Int, Unit::None),
             LightColor | MoreLightColor(_) | MoreLightDir(_) => (Ty::Vec3, Unit::None),
             LightIntensity | MoreLightIntensity(_) => (Ty::Float, Unit::None),
@@ -272,10 +285,16 @@ impl Builtin {
     pub fn is_per_fragment(self) -> bool {
         use Builtin::*;
         self.needs_geometry()
+            || self.is_line_value()
             || matches!(
                 self,
                 FragCoord | ScreenUv | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter
             )
+    }
+
+    /// Exists only in the fragments of a `lines` pass's strips.
+    pub fn is_line_value(self) -> bool {
+        matches!(self, Builtin::LineArc | Builtin::LineAcross)
     }
 
     /// Only meaningful on scene geometry (needs vertex data).
@@ -653,6 +672,9 @@ pub enum PassKind {
         /// Its per-object values, one slot each, in slot order.
         values: Vec<ObjectValue>,
     },
+    /// Wavy strips along the silhouettes and creases of scene objects
+    /// (Klein et al. 2000, §5); see [`lines`].
+    Lines(LinesKind),
 }
 
 /// What a compute pass runs over: the manifest's definition, shared.
@@ -698,6 +720,7 @@ impl PassKind {
             PassKind::Render { .. } => "render",
             PassKind::Image { .. } => "image",
             PassKind::Compute { .. } => "compute",
+            PassKind::Lines(_) => "lines",
         }
     }
 
@@ -706,15 +729,18 @@ impl PassKind {
     pub fn has_object(&self) -> bool {
         match self {
             PassKind::Render { .. } | PassKind::Compute { .. } => true,
-            PassKind::Image { .. } => false,
+            // Strips of every object are drawn at once: no object per fragment.
+            PassKind::Image { .. } | PassKind::Lines(_) => false,
         }
     }
 
-    /// The expressions the domain itself evaluates: the ID target read of a
-    /// pass over pixels (none for other kinds and domains).
+    /// The expressions the kind evaluates outside its fragments: the ID
+    /// target read of a pass over pixels, a lines pass's shape settings
+    /// (evaluated on the CPU by the runner; none for other kinds).
     pub fn domain_roots(&self) -> Vec<ExprId> {
         match self {
             PassKind::Compute { key, .. } => key.iter().copied().collect(),
+            PassKind::Lines(lines) => lines.shape.roots().to_vec(),
             PassKind::Render { .. } | PassKind::Image { .. } => Vec::new(),
         }
     }
@@ -723,7 +749,7 @@ impl PassKind {
     pub fn values(&self) -> &[ObjectValue] {
         match self {
             PassKind::Compute { values, .. } => values,
-            PassKind::Render { .. } | PassKind::Image { .. } => &[],
+            PassKind::Render { .. } | PassKind::Image { .. } | PassKind::Lines(_) => &[],
         }
     }
 
@@ -733,7 +759,7 @@ impl PassKind {
     pub fn draws_objects(&self) -> bool {
         match self {
             PassKind::Render { .. } => true,
-            PassKind::Image { .. } | PassKind::Compute { .. } => false,
+            PassKind::Image { .. } | PassKind::Compute { .. } | PassKind::Lines(_) => false,
         }
     }
 }
@@ -784,7 +810,11 @@ impl Pass {
             PassKind::Render {
                 depth: PassDepth::Test { pass, span, .. },
                 ..
-            } => Some((pass, span)),
+            }
+            | PassKind::Lines(LinesKind {
+                depth: PassDepth::Test { pass, span, .. },
+                ..
+            }) => Some((pass, span)),
             _ => None,
         }
     }
@@ -883,7 +913,7 @@ impl Ir {
     pub fn vertex_roots(pass: &Pass) -> Vec<ExprId> {
         match &pass.kind {
             PassKind::Render { vertex, .. } => vertex.roots(),
-            PassKind::Image { .. } | PassKind::Compute { .. } => Vec::new(),
+            PassKind::Image { .. } | PassKind::Compute { .. } | PassKind::Lines(_) => Vec::new(),
         }
     }
 

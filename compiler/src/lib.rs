@@ -17,6 +17,7 @@ pub mod emit;
 pub mod filter_checks;
 pub mod follow_ups;
 pub mod ir;
+pub mod line_settings;
 pub mod load;
 pub mod load_filters;
 pub mod overrides;

@@ -21,6 +21,7 @@ use stdlib::Unit;
 
 mod compute;
 mod kind_args;
+mod lines;
 mod settings;
 mod swizzle;
 mod texture_source;
@@ -655,16 +656,16 @@ impl Resolver<'_> {
                 PassKind::Image { inputs }
             }
             "compute" => self.compute_kind(p),
+            "lines" => self.lines_kind(p),
             other => {
-                let kinds = ["render", "image", "compute"];
+                let kinds = ["render", "image", "compute", "lines"];
                 let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown pass kind `{other}`"))
                     .with_primary(p.kind.kind.span, "not a pass kind");
                 d = match did_you_mean(other, kinds) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                    None if other == "lines" => d.with_help(
-                        "`lines` passes are reserved for a later version; use `render`, `image` or `compute`",
+                    None => d.with_help(
+                        "passes are `render(scene)`, `image(inputs...)`, `compute(domain)` or `lines(scene)`",
                     ),
-                    None => d.with_help("passes are `render(scene)`, `image(inputs...)` or `compute(domain)`"),
                 };
                 self.error(d);
                 PassKind::Image { inputs: Vec::new() }
@@ -695,9 +696,18 @@ impl Resolver<'_> {
         self.vertex_modifiers(&mut kind, p);
         let mut clear = [0.0, 0.0, 0.0, 0.0];
         let mut depth_seen = None;
+        let mut line_settings_seen = Vec::new();
         for s in &p.body.settings {
             match s.key.name.as_str() {
                 "depth" => self.depth_setting(&mut kind, s, &mut depth_seen),
+                key if lines::LINE_SETTINGS.contains(&key) => match &mut kind {
+                    PassKind::Lines(l) => self.line_setting(l, s, &mut line_settings_seen),
+                    _ => self.error(
+                        Diagnostic::error(codes::BAD_ARGUMENT, format!("`{key}` is a setting of lines passes"))
+                            .with_primary(s.key.span, format!("this is a {} pass", kind.name()))
+                            .with_help("edges and their shape are drawn by `pass ink: lines(scene) { ... }`"),
+                    ),
+                },
                 "count" | "seed" => self.sample_setting(&mut kind, s),
                 "clear" => {
                     let cid = self.expr(&s.value);
@@ -716,8 +726,15 @@ impl Resolver<'_> {
                 other => {
                     let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
                         .with_primary(s.key.span, "not a pass setting");
-                    d = match did_you_mean(other, ["clear", "depth", "count", "seed"]) {
+                    let known = ["clear", "depth", "count", "seed"]
+                        .into_iter()
+                        .chain(lines::LINE_SETTINGS);
+                    d = match did_you_mean(other, known) {
                         Some(k) => d.with_help(format!("did you mean `{k}`?")),
+                        None if matches!(kind, PassKind::Lines(_)) => d.with_help(format!(
+                            "lines passes take `clear`, `depth: test(pass)` and {}",
+                            lines::LINE_SETTINGS.map(|k| format!("`{k}`")).join(", ")
+                        )),
                         None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`, and in `compute(samples)` passes `count: n` and `seed: n`"),
                     };
                     self.error(d)
@@ -726,7 +743,7 @@ impl Resolver<'_> {
         }
         let compute_domain = match &kind {
             PassKind::Compute { domain, .. } => Some(*domain),
-            PassKind::Render { .. } | PassKind::Image { .. } => None,
+            PassKind::Render { .. } | PassKind::Image { .. } | PassKind::Lines(_) => None,
         };
         match compute_domain {
             Some(_) => self.states_in_scope(id, p),

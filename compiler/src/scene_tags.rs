@@ -14,23 +14,28 @@ use abi::SceneSummary;
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic};
 
-/// W0402 for each live `render(tag)` / `compute(domain, tag)` pass whose
+/// W0402 for each live `render(tag)` / `compute(domain, tag)` / `lines(tag)` pass whose
 /// tag `scene` lacks. Nothing without a scene.
 pub fn absent_tags(ir: &Ir, live: &Live, scene: Option<&SceneSummary>) -> Vec<Diagnostic> {
     let Some(scene) = scene else { return Vec::new() };
     let mut diags = Vec::new();
     for pid in &live.passes {
         let pass = ir.pass(*pid);
-        let (PassKind::Render { tag: Some(tag), .. } | PassKind::Compute { tag: Some(tag), .. }) = &pass.kind else {
-            continue;
+        let tag = match &pass.kind {
+            PassKind::Render { tag: Some(tag), .. } | PassKind::Compute { tag: Some(tag), .. } => tag,
+            PassKind::Lines(lines) => match &lines.tag {
+                Some(tag) => tag,
+                None => continue,
+            },
+            _ => continue,
         };
         if scene.tags.contains(tag) {
             continue;
         }
-        let verb = if matches!(pass.kind, PassKind::Render { .. }) {
-            "draws"
-        } else {
-            "runs over"
+        let verb = match pass.kind {
+            PassKind::Render { .. } => "draws",
+            PassKind::Lines(_) => "outlines",
+            _ => "runs over",
         };
         let mut d = Diagnostic::warning(
             codes::ABSENT_TAG,

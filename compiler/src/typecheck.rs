@@ -10,7 +10,8 @@
 //! `arith.rs` types operators and their units, `calls.rs` intrinsics and
 //! stdlib operator calls with their arguments, `decls.rs` the declarations
 //! (params, passes, vertex modifiers, depth tests), `defaults.rs` constant
-//! defaults and `compute.rs` what each pass kind may read.
+//! defaults, `compute.rs` what each pass kind may read and `lines.rs` the
+//! shape settings of lines passes.
 
 use crate::consteval::const_eval;
 use crate::ir::*;
@@ -23,6 +24,7 @@ mod calls;
 mod compute;
 mod decls;
 mod defaults;
+mod lines;
 
 pub fn typecheck(ir: &mut Ir, diags: &mut Vec<Diagnostic>) {
     let mut tc = Checker { ir, diags };

@@ -49,6 +49,14 @@ fn percent(p: &ParamManifest, v: Vec<f64>, height: u32) -> Vec<f64> {
     }
 }
 
+/// The first component of parameter `name` at `time_s` (keyframes, `%` of
+/// the image `height`), as the shaders see it; `None` if the manifest has
+/// no such parameter. What a `lines` pass's settings read on the CPU.
+pub fn scalar_at(m: &Manifest, name: &str, time_s: f64, height: u32) -> Option<f64> {
+    let p = m.params.iter().find(|p| p.name == name)?;
+    percent(p, value_at(p, time_s), height).first().copied()
+}
+
 /// The style uniform block at `time_s`.
 pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
     let mut out = vec![0u8; m.style_uniform_size as usize];

@@ -5,7 +5,7 @@
 
 use glam::{DMat4, DVec2, DVec3};
 use runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
-use runner::lines::draw::{vertices, LinesPipeline};
+use runner::lines::draw::{vertices, DepthBias, LinesPipeline};
 use runner::lines::strip::LineStyle;
 use runner::scene::primitives::{cube, sphere};
 use runner::scene::Mesh;
@@ -218,7 +218,14 @@ fn draw(mesh: &Mesh, eye: DVec3, selection: EdgeSelection, bias: f64) -> Vec<DVe
     }
     depth_prepass(device, &mut encoder, &depth_view, vp, mesh);
     let pipeline = LinesPipeline::new(device, wgpu::TextureFormat::Rgba8Unorm);
-    let gpu_vertices = vertices(&strips, [size.x, size.y], bias);
+    let gpu_vertices = vertices(
+        &strips,
+        [size.x, size.y],
+        DepthBias {
+            ndc: bias,
+            ..Default::default()
+        },
+    );
     pipeline.encode(
         device,
         &mut encoder,

@@ -44,6 +44,8 @@ pub fn doc(b: Builtin) -> &'static str {
         ObjectIndex => "The object's position in the scene's object list (0, 1, ...).",
         ObjectId => "The object's id for ID images: its index + 1, so 0 (a cleared target) is no object.",
         PositionPrevious => "The surface point in world space in the previous frame (equal to `position` on the first frame).",
+        LineArc => "In a lines pass: the arc length along the line on screen, in px (the s of Klein et al. 2000 §5's wave).",
+        LineAcross => "In a lines pass: -1 on one edge of the strip, +1 on the other, interpolated across it.",
     }
 }
 

@@ -18,6 +18,8 @@ pub(super) enum KindCtx {
     /// Compute invocations: no texture is read as a value (the typechecker
     /// refuses it), only passed to operators.
     Compute,
+    /// Fragments of strips: textures are sampled at `screen_uv`, as in image passes.
+    Lines,
 }
 
 impl KindCtx {
@@ -26,6 +28,7 @@ impl KindCtx {
             PassKind::Render { .. } => KindCtx::Render,
             PassKind::Image { .. } => KindCtx::Image,
             PassKind::Compute { .. } => KindCtx::Compute,
+            PassKind::Lines(_) => KindCtx::Lines,
         }
     }
 
@@ -33,7 +36,7 @@ impl KindCtx {
     pub fn texture_uv(self) -> &'static str {
         match self {
             KindCtx::Render => "in.uv",
-            KindCtx::Image => "in.screen_uv",
+            KindCtx::Image | KindCtx::Lines => "in.screen_uv",
             KindCtx::Compute => "vec2<f32>(0.0) /* refused by the typechecker */",
         }
     }
@@ -231,6 +234,8 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::ObjectId => "i32(object.ids.y)".into(),
         Builtin::PositionPrevious => "in.position_previous".into(),
         Builtin::SampleSpacing => "in.spacing".into(),
+        Builtin::LineArc => "in.line_s".into(),
+        Builtin::LineAcross => "in.line_across".into(),
     }
 }
 

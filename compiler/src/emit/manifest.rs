@@ -73,6 +73,14 @@ pub fn build(
                         samples,
                         values,
                     } => compute_kind(ir, alloc, *pid, (*domain, *key, *samples), tag, values, e)?,
+                    PassKind::Lines(lines) => PassKindManifest::Lines {
+                        tag: lines.tag.clone(),
+                        edges: lines.edges,
+                        shape: line_shape(ir, &lines.shape)?,
+                        depth: depth_mode(*pid, lines.depth, live, emitted)?,
+                        vertex_entry: "vs_main".into(),
+                        fragment_entry: "fs_main".into(),
+                    },
                 },
                 scale: pass.scale,
                 shader: format!("{}.wgsl", pass.name),
@@ -265,6 +273,26 @@ fn blend_modes(pass: &Pass, pid: PassId, alloc: &Allocation) -> Vec<Blend> {
 /// The manifest's depth mode of a render pass: a kept depth that no live
 /// pass tests against is not kept (nothing would read it), and a test names
 /// the tested pass by its index among the emitted passes.
+/// A lines pass's settings as the runner evaluates them; typecheck has
+/// refused every setting that is not affine, so a failure is internal.
+fn line_shape(ir: &Ir, shape: &LineSettings) -> Result<abi::lines::LineShape, InternalError> {
+    let fold = |id: ExprId| {
+        crate::line_settings::affine(ir, id).map_err(|e| InternalError {
+            message: "a lines setting is not affine after typecheck".into(),
+            detail: e.label,
+            span: Some(e.span),
+            wgsl: None,
+        })
+    };
+    Ok(abi::lines::LineShape {
+        width: fold(shape.width)?,
+        amplitude: fold(shape.amplitude)?,
+        wavelength: fold(shape.wavelength)?,
+        phase: fold(shape.phase)?,
+        taper: fold(shape.taper)?,
+    })
+}
+
 fn depth_mode(
     pid: PassId,
     depth: PassDepth,

@@ -3,7 +3,7 @@
 //! Layout of a module: a header naming the pass and its `.npr` line; the
 //! bindings it uses (`bindings.rs`); the helpers and stdlib operators it
 //! calls (`helpers.rs`); the vertex shader of its kind (`render.rs`,
-//! `image.rs`); the fragment shader with one `let` per user `let`, per
+//! `image.rs`, `lines.rs`); the fragment shader with one `let` per user `let`, per
 //! shared subexpression and per target read more than once, each commented
 //! with the `.npr` line it came from. Expressions are emitted by one
 //! kind-independent emitter (`expr.rs`); `emit_pass` is the one place that
@@ -15,6 +15,7 @@ mod compute_pixels;
 mod expr;
 mod helpers;
 mod image;
+mod lines;
 pub mod manifest;
 mod render;
 mod uses;
@@ -133,6 +134,9 @@ impl Emitter<'_> {
             // The vertex shader projects with the frame's matrices.
             PassKind::Render { vertex, .. } => (true, render::attributes(vertex, &uses)),
             PassKind::Image { .. } | PassKind::Compute { .. } => (uses.expressions_read_frame(), Vec::new()),
+            // The fragment prologue reads the frame's resolution; the strip
+            // vertex is not a mesh attribute.
+            PassKind::Lines(_) => (true, Vec::new()),
         };
 
         let mut w = String::new();
@@ -163,6 +167,7 @@ impl Emitter<'_> {
                 self.render_vertex(&mut w, pass, (*view, vertex), &attributes, &uses.builtins, &mut ctx)
             }
             PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::IMAGE_VERTEX),
+            PassKind::Lines(lines) => self.lines_vertex(&mut w, lines),
         }
         if live_outputs.is_empty() {
             // Kept for its depth alone (a later pass tests against it): the
@@ -186,7 +191,7 @@ impl Emitter<'_> {
         }
         w.push_str("}\n\n");
         match &pass.kind {
-            PassKind::Render { .. } => render::fragment_prologue(&mut w, pass.scale),
+            PassKind::Render { .. } | PassKind::Lines(_) => render::fragment_prologue(&mut w, pass.scale),
             PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::FRAGMENT_PROLOGUE),
         }
         ctx.named.clear();

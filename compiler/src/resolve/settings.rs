@@ -87,15 +87,21 @@ impl Resolver<'_> {
             return;
         }
         *seen = Some(s.key.span.to(s.value.span));
-        let PassKind::Render { depth, .. } = kind else {
+        let is_lines = matches!(kind, PassKind::Lines(_));
+        let (PassKind::Render { depth, .. } | PassKind::Lines(LinesKind { depth, .. })) = kind else {
             self.error(
-                Diagnostic::error(codes::BAD_ARGUMENT, "`depth` is a setting of render passes")
+                Diagnostic::error(codes::BAD_ARGUMENT, "`depth` is a setting of render and lines passes")
                     .with_primary(s.key.span, "this pass has no depth buffer")
-                    .with_help("only `render(...)` passes draw geometry with a depth buffer"),
+                    .with_help("only `render(...)` and `lines(...)` passes draw geometry with a depth test"),
             );
             return;
         };
         match &s.value.kind {
+            AK::Name(n) if n.name == "keep" && is_lines => self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "a lines pass has no depth of its own to keep")
+                    .with_primary(s.value.span, "`keep` on a lines pass")
+                    .with_help("lines test against a render pass's depth: `depth: test(shade, bias: 1px)`; keep the depth in that render pass"),
+            ),
             AK::Name(n) if n.name == "keep" => *depth = PassDepth::Keep,
             AK::Call(c) if c.callee.name == "test" => {
                 // The setting's own span runs on over trailing whitespace.

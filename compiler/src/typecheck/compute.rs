@@ -17,6 +17,19 @@ impl Checker<'_> {
             }
         );
         let refusal = match kind {
+            PassKind::Lines(_) if b.needs_geometry() => Some((
+                "no surface in a lines pass",
+                "a lines pass's fragments lie on strips, not on a surface: they have `line.s`, `line.across`, `frag_coord`, `screen_uv`, the frame values and earlier passes' targets at this pixel",
+            )),
+            PassKind::Lines(_) if b.needs_object() => Some((
+                "no object in a lines pass",
+                "a lines pass draws every object's strips at once; tag the objects and use one lines pass per tag",
+            )),
+            PassKind::Lines(_) => None,
+            _ if b.is_line_value() => Some((
+                "only in `lines` passes",
+                "`line.s` and `line.across` are values of a lines pass's strips",
+            )),
             _ if b == Builtin::SampleSpacing && !over_samples => Some((
                 "only in `compute(samples)` passes",
                 "the sample spacing is an element value of passes over samples; pass what others need through a per-object value",

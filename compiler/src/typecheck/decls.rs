@@ -159,6 +159,8 @@ impl Checker<'_> {
         }
         let view = |p: &Pass| match p.kind {
             PassKind::Render { view, .. } => Some(view),
+            // Strips are built from the camera's eyes.
+            PassKind::Lines(_) => Some(PassView::Camera),
             _ => None,
         };
         if other.scale != pass.scale {
@@ -188,6 +190,7 @@ impl Checker<'_> {
     pub(super) fn passes(&mut self) {
         for pi in 0..self.ir.passes.len() {
             self.depth_test(pi);
+            self.line_settings(pi);
             let pass = self.ir.passes[pi].clone();
             if let PassKind::Render { vertex, .. } = &pass.kind {
                 let checked = self.vertex_modifiers(*vertex);

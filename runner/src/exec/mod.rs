@@ -18,12 +18,14 @@
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
 //! - `values.rs`: compute passes' buffers (per-object values, partials);
 //! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, with
-//!   `render_pass.rs`, `image_pass.rs` and `compute_pass.rs` the executors.
+//!   `render_pass.rs`, `image_pass.rs`, `compute_pass.rs` and
+//!   `lines_pass.rs` the executors.
 
 mod bind;
 mod compute_pass;
 mod frame;
 mod image_pass;
+mod lines_pass;
 mod meshes;
 mod objects;
 mod pass;
@@ -349,7 +351,9 @@ impl<'d> Renderer<'d> {
         }
         meshes::update_time_varying(self.queue, &mut self.meshes, scene, spec.time_s)?;
         // Spinning objects turn with the frame's time (`spin`).
-        self.write_uniforms(&scene.posed(spec.time_s), spec)
+        let posed = scene.posed(spec.time_s);
+        self.write_uniforms(&posed, spec)?;
+        self.prepare_lines(&posed, spec)
     }
 
     /// Run the frame only up to (and including) the pass that writes `target`,
@@ -405,7 +409,7 @@ impl<'d> Renderer<'d> {
                     beginning: (slot == 0).then_some(2 * pi as u32),
                     end: (slot + 1 == eye_slots).then_some(2 * pi as u32 + 1),
                 });
-                pass.encode(encoder, &slot_passes[pi], &ctx, timestamps.as_ref());
+                pass.encode(encoder, (&slot_passes[pi], slot), &ctx, timestamps.as_ref());
             }
         }
     }

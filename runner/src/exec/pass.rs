@@ -7,6 +7,7 @@
 use super::bind::ObjectResources;
 use super::compute_pass::ComputePassExec;
 use super::image_pass::ImagePassExec;
+use super::lines_pass::LinesPassExec;
 use super::meshes::GpuMesh;
 use super::render_pass::RenderPassExec;
 use super::resources::{wgpu_format, SizedPass};
@@ -20,6 +21,8 @@ pub(super) enum PassExec {
     Image(ImagePassExec),
     /// `compute(domain)`: dispatches per object (groups 1 and 2 of its own).
     Compute(ComputePassExec),
+    /// `lines(tag)`: strips built on the CPU per eye slot, one indexed draw.
+    Lines(LinesPassExec),
 }
 
 /// What a pass may read when it is recorded, besides its own state and its
@@ -88,6 +91,7 @@ impl PassExec {
                     .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
                 PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects.buffer, buffers)?)
             }
+            PassKindManifest::Lines { .. } => PassExec::Lines(LinesPassExec::build(device, manifest, pass, wgsl)?),
         })
     }
 
@@ -97,19 +101,24 @@ impl PassExec {
             PassExec::Render(p) => &p.layout0,
             PassExec::Image(p) => &p.layout0,
             PassExec::Compute(p) => &p.layout0,
+            PassExec::Lines(p) => &p.layout0,
         }
     }
 
     /// Whether the pass's [`SizedPass`] gets a depth buffer.
     pub fn needs_depth(&self) -> bool {
-        matches!(self, PassExec::Render(_))
+        match self {
+            PassExec::Render(_) => true,
+            PassExec::Lines(p) => p.tests_depth(),
+            PassExec::Image(_) | PassExec::Compute(_) => false,
+        }
     }
 
-    /// Record the pass for one eye slot.
+    /// Record the pass for eye slot `slot`.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        sized: &SizedPass,
+        (sized, slot): (&SizedPass, usize),
         ctx: &EncodeContext,
         timestamps: Option<&Timestamps>,
     ) {
@@ -117,6 +126,7 @@ impl PassExec {
             PassExec::Render(p) => p.encode(encoder, sized, ctx, timestamps),
             PassExec::Image(p) => p.encode(encoder, sized, timestamps),
             PassExec::Compute(p) => p.encode(encoder, sized, ctx, timestamps),
+            PassExec::Lines(p) => p.encode(encoder, sized, slot, timestamps),
         }
     }
 

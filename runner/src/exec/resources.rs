@@ -192,6 +192,10 @@ impl Renderer<'_> {
                         PassKindManifest::Render {
                             depth: DepthMode::Test { pass, .. },
                             ..
+                        }
+                        | PassKindManifest::Lines {
+                            depth: DepthMode::Test { pass, .. },
+                            ..
                         } => Some(*pass),
                         _ => None,
                     };

@@ -23,17 +23,43 @@ use wgpu::util::DeviceExt;
 
 use super::strip::Strips;
 
-/// One strip vertex as the GPU reads it.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LineVertex {
-    /// x, y in NDC; z the biased NDC depth; w the arc length in px.
-    pub position: [f32; 4],
+pub use abi::lines::LineVertex;
+
+/// How strip vertices are pulled towards the eye before the depth test.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DepthBias {
+    /// Subtracted from the NDC depth (`bias: 0.001`).
+    pub ndc: f64,
+    /// A view-space pull (`bias: N px`): every vertex moves towards the eye
+    /// along its own view ray by the share `pull` of its distance, which
+    /// leaves its NDC x, y unchanged. With `eye_clip_z` the clip z of the eye
+    /// (view_proj · eye; its w is 0 for a perspective camera), clip space is
+    /// linear, c' = (1 − r)·c + r·E, so z'/w' = z/w + r/(1 − r)·E.z/w.
+    pub pull: f64,
+    pub eye_clip_z: f64,
+}
+
+impl DepthBias {
+    /// The pull for `px` pixels at the vertex's own depth: one pixel spans
+    /// 2/(P₁₁·H) of the view depth, so r = px·2/(P₁₁·H) (exact on the
+    /// view axis, up to 1/cos of the ray's angle off it towards the edges).
+    pub fn view_space_px(px: f64, focal_y: f64, height_px: f64, eye_clip_z: f64) -> DepthBias {
+        DepthBias {
+            ndc: 0.0,
+            pull: (px * 2.0 / (focal_y * height_px)).clamp(0.0, 0.5),
+            eye_clip_z,
+        }
+    }
+
+    fn apply(&self, depth: f64, inv_w: f64) -> f64 {
+        let pulled = depth + self.pull / (1.0 - self.pull) * self.eye_clip_z * inv_w;
+        pulled - self.ndc
+    }
 }
 
 /// The GPU vertices of `strips` on a `size` px viewport, depth lowered by
 /// `bias` (clamped to the 0..1 range, so a line at the near plane stays).
-pub fn vertices(strips: &Strips, size: [f64; 2], bias: f64) -> Vec<LineVertex> {
+pub fn vertices(strips: &Strips, size: [f64; 2], bias: DepthBias) -> Vec<LineVertex> {
     strips
         .vertices
         .iter()
@@ -41,9 +67,10 @@ pub fn vertices(strips: &Strips, size: [f64; 2], bias: f64) -> Vec<LineVertex> {
             position: [
                 (v.px.x / size[0] * 2.0 - 1.0) as f32,
                 (1.0 - v.px.y / size[1] * 2.0) as f32,
-                (v.depth - bias).clamp(0.0, 1.0) as f32,
+                bias.apply(v.depth, v.inv_w).clamp(0.0, 1.0) as f32,
                 v.s as f32,
             ],
+            across: v.across as f32,
         })
         .collect()
 }

@@ -64,6 +64,9 @@ pub struct BackbonePoint {
     pub px: DVec2,
     /// NDC depth (0 at the near plane).
     pub depth: f64,
+    /// 1 / clip w (affine in screen space along a projected segment, as the
+    /// NDC depth): what a view-space bias needs (`draw::vertices`).
+    pub inv_w: f64,
     /// Screen-space arc length from the piece's start, px.
     pub s: f64,
 }
@@ -74,7 +77,11 @@ pub struct BackbonePoint {
 pub struct StripVertex {
     pub px: DVec2,
     pub depth: f64,
+    /// 1 / clip w of the backbone sample.
+    pub inv_w: f64,
     pub s: f64,
+    /// +1 on one side of the strip, −1 on the other.
+    pub across: f64,
 }
 
 /// The strips of one eye: every piece's backbone (for tests and
@@ -92,7 +99,7 @@ pub fn build(polylines: &[(Vec<DVec3>, bool)], view_proj: DMat4, size: DVec2, st
     let mut strips = Strips::default();
     for (points, closed) in polylines {
         for (piece, piece_closed) in clip_pieces(points, *closed, view_proj) {
-            let screen: Vec<(DVec2, f64)> = piece.iter().map(|c| to_screen(*c, size)).collect();
+            let screen: Vec<(DVec2, DVec2)> = piece.iter().map(|c| to_screen(*c, size)).collect();
             let backbone = backbone(&screen, piece_closed, style);
             if backbone.len() >= 2 {
                 push_strip(&mut strips, &backbone, piece_closed, style);
@@ -156,19 +163,20 @@ fn clip_pieces(points: &[DVec3], closed: bool, view_proj: DMat4) -> Vec<(Vec<DVe
     pieces
 }
 
-/// Clip space → (px with y down, NDC depth). Only called for w ≥ near > 0.
-fn to_screen(c: DVec4, size: DVec2) -> (DVec2, f64) {
+/// Clip space → (px with y down, (NDC depth, 1/w)). Only called for w ≥
+/// near > 0.
+fn to_screen(c: DVec4, size: DVec2) -> (DVec2, DVec2) {
     let ndc = c.truncate() / c.w;
     (
         DVec2::new((ndc.x + 1.0) * 0.5 * size.x, (1.0 - ndc.y) * 0.5 * size.y),
-        ndc.z.max(0.0),
+        DVec2::new(ndc.z.max(0.0), 1.0 / c.w),
     )
 }
 
 /// Resampled, displaced backbone of one piece.
-fn backbone(screen: &[(DVec2, f64)], closed: bool, style: &LineStyle) -> Vec<BackbonePoint> {
+fn backbone(screen: &[(DVec2, DVec2)], closed: bool, style: &LineStyle) -> Vec<BackbonePoint> {
     // Merge points that coincide on screen (end-on and zero-length edges).
-    let mut points: Vec<(DVec2, f64)> = Vec::with_capacity(screen.len());
+    let mut points: Vec<(DVec2, DVec2)> = Vec::with_capacity(screen.len());
     for &(p, z) in screen {
         if points.last().is_none_or(|(q, _)| (p - *q).length() >= MIN_SEGMENT_PX) {
             points.push((p, z));
@@ -185,7 +193,8 @@ fn backbone(screen: &[(DVec2, f64)], closed: bool, style: &LineStyle) -> Vec<Bac
     }
     let wavelength = style.wavelength_px.max(MIN_SEGMENT_PX);
     let step = wavelength / SAMPLES_PER_WAVELENGTH;
-    let mut samples: Vec<(DVec2, f64, f64)> = vec![(points[0].0, points[0].1, 0.0)];
+    // (px, (NDC depth, 1/w), s): both depth terms are affine in screen space.
+    let mut samples: Vec<(DVec2, DVec2, f64)> = vec![(points[0].0, points[0].1, 0.0)];
     let mut s = 0.0;
     for w in points.windows(2) {
         let ((a, za), (b, zb)) = (w[0], w[1]);
@@ -227,7 +236,8 @@ fn backbone(screen: &[(DVec2, f64)], closed: bool, style: &LineStyle) -> Vec<Bac
                 base,
                 normal,
                 px: base + normal * offset,
-                depth,
+                depth: depth.x,
+                inv_w: depth.y,
                 s,
             }
         })
@@ -278,7 +288,9 @@ fn push_strip(strips: &mut Strips, backbone: &[BackbonePoint], closed: bool, sty
             strips.vertices.push(StripVertex {
                 px: backbone[i].px + normal * (half * side),
                 depth: backbone[i].depth,
+                inv_w: backbone[i].inv_w,
                 s,
+                across: side,
             });
         }
     }

@@ -1,0 +1,153 @@
+//! The contract of a `lines` pass (Klein et al. 2000, §5) between the
+//! compiler and the runner: which feature edges it draws ([`LineEdges`]),
+//! the strips' shape in px ([`LineShape`]), each setting an affine function
+//! of style parameters and time ([`LineScalar`]) that the runner evaluates
+//! on the CPU per frame (the strips are built there), and the vertex the
+//! compiled shader reads ([`LineVertex`], [`LINE_VERTEX_WGSL`]).
+
+use serde::{Deserialize, Serialize};
+
+/// Which feature edges a `lines` pass draws.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LineEdges {
+    /// Edges between a front and a back face, per eye and frame.
+    pub silhouettes: bool,
+    /// Creases: edges whose dihedral angle exceeds this, in degrees (found
+    /// once per mesh); `None` draws no creases.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crease_deg: Option<f64>,
+}
+
+/// One term of a [`LineScalar`]: `coefficient × first component of param`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamTerm {
+    /// A name in `Manifest::params`.
+    pub param: String,
+    pub coefficient: f64,
+}
+
+/// `constant + Σ coefficient·param + per_second·time`: a setting of a
+/// `lines` pass, affine in the style's parameters (at the frame's time,
+/// keyframes included) and the frame's time, so it can be animated and
+/// still be evaluated on the CPU without a second expression evaluator.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct LineScalar {
+    pub constant: f64,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub params: Vec<ParamTerm>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub per_second: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+impl LineScalar {
+    pub fn constant(value: f64) -> LineScalar {
+        LineScalar {
+            constant: value,
+            ..LineScalar::default()
+        }
+    }
+
+    /// The value at `time_s`, with `param(name)` giving a parameter's first
+    /// component at that time (`None` for a name the manifest lacks, which
+    /// validation excludes).
+    pub fn eval(&self, time_s: f64, param: impl Fn(&str) -> Option<f64>) -> Option<f64> {
+        let mut v = self.constant + self.per_second * time_s;
+        for t in &self.params {
+            v += t.coefficient * param(&t.param)?;
+        }
+        Some(v)
+    }
+
+    /// Every number in it is finite.
+    pub fn is_finite(&self) -> bool {
+        self.constant.is_finite()
+            && self.per_second.is_finite()
+            && self.params.iter().all(|t| t.coefficient.is_finite())
+    }
+}
+
+/// The shape of a pass's strips: width, amplitude and wavelength in px on
+/// screen, phase in radians, taper as the share of a piece's length over
+/// which each open end narrows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LineShape {
+    pub width: LineScalar,
+    pub amplitude: LineScalar,
+    pub wavelength: LineScalar,
+    pub phase: LineScalar,
+    pub taper: LineScalar,
+}
+
+impl LineShape {
+    /// The settings by name, in the order the style language documents them.
+    pub fn named(&self) -> [(&'static str, &LineScalar); 5] {
+        [
+            ("width", &self.width),
+            ("amplitude", &self.amplitude),
+            ("wavelength", &self.wavelength),
+            ("phase", &self.phase),
+            ("taper", &self.taper),
+        ]
+    }
+}
+
+/// The smallest wavelength the runner builds strips for (px): the backbone
+/// is resampled every λ/16 px, so a smaller λ would only multiply samples.
+pub const MIN_WAVELENGTH_PX: f64 = 1.0;
+/// The widest line (px).
+pub const MAX_LINE_WIDTH_PX: f64 = 256.0;
+
+/// One strip vertex as the GPU reads it (vertex buffer 0 of a `lines` pass).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LineVertex {
+    /// x, y in NDC; z the biased NDC depth; w the arc length in px.
+    pub position: [f32; 4],
+    /// −1 on one side of the strip, +1 on the other (`line.across`).
+    pub across: f32,
+}
+
+/// The vertex input of a `lines` pass's shader, matching [`LineVertex`].
+pub const LINE_VERTEX_WGSL: &str = "struct LineIn {
+    // x, y: NDC; z: NDC depth, biased towards the eye; w: arc length in px.
+    @location(0) position: vec4<f32>,
+    // -1 on one side of the strip, +1 on the other.
+    @location(1) across: f32,
+}
+";
+
+/// The vertex attributes of [`LineVertex`] in location order: (byte offset,
+/// components).
+pub const LINE_VERTEX_ATTRIBUTES: [(u64, u32); 2] = [(0, 4), (16, 1)];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn affine_settings_evaluate_params_and_time() {
+        let s = LineScalar {
+            constant: 1.0,
+            params: vec![ParamTerm {
+                param: "w".into(),
+                coefficient: 2.0,
+            }],
+            per_second: 0.5,
+        };
+        assert_eq!(s.eval(4.0, |n| (n == "w").then_some(3.0)), Some(1.0 + 6.0 + 2.0));
+        assert_eq!(s.eval(0.0, |_| None), None);
+    }
+
+    #[test]
+    fn the_wgsl_vertex_matches_the_rust_one() {
+        assert_eq!(std::mem::size_of::<LineVertex>(), 20);
+        let (last_offset, last_components) = LINE_VERTEX_ATTRIBUTES[1];
+        assert_eq!(last_offset as usize + 4 * last_components as usize, 20);
+        assert!(LINE_VERTEX_WGSL.contains("@location(0) position: vec4<f32>"));
+        assert!(LINE_VERTEX_WGSL.contains("@location(1) across: f32"));
+    }
+}

@@ -1,0 +1,67 @@
+//! Checks of a `lines` pass in a manifest read from disk: its crease
+//! threshold is an angle, its shape settings are finite and name only
+//! parameters the manifest has (as plain numbers the runner can read on the
+//! CPU), and its constant parts are inside the ranges the runner builds
+//! strips for.
+
+use super::{bad, Invalid};
+use crate::lines::{LineScalar, MAX_LINE_WIDTH_PX};
+use crate::manifest::*;
+
+impl Manifest {
+    pub(super) fn validate_lines(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
+        let PassKindManifest::Lines { edges, shape, .. } = &p.kind else {
+            return Ok(());
+        };
+        let f = format!("{field}.kind");
+        if let Some(deg) = edges.crease_deg {
+            if !(0.0..=180.0).contains(&deg) {
+                return bad(
+                    format!("{f}.edges.crease_deg"),
+                    format!("{deg} is outside 0..=180 degrees"),
+                );
+            }
+        }
+        for (name, s) in shape.named() {
+            self.validate_line_scalar(&format!("{f}.shape.{name}"), s)?;
+        }
+        let constant_only = |s: &LineScalar| s.params.is_empty() && s.per_second == 0.0;
+        if constant_only(&shape.width) && !(0.0..=MAX_LINE_WIDTH_PX).contains(&shape.width.constant) {
+            return bad(
+                format!("{f}.shape.width"),
+                format!("{} px is outside 0..={MAX_LINE_WIDTH_PX}", shape.width.constant),
+            );
+        }
+        if constant_only(&shape.taper) && !(0.0..=0.5).contains(&shape.taper.constant) {
+            return bad(
+                format!("{f}.shape.taper"),
+                format!("{} is outside 0..=0.5", shape.taper.constant),
+            );
+        }
+        Ok(())
+    }
+
+    fn validate_line_scalar(&self, field: &str, s: &LineScalar) -> Result<(), Invalid> {
+        if !s.is_finite() {
+            return bad(field, "not finite");
+        }
+        for (k, t) in s.params.iter().enumerate() {
+            let Some(param) = self.params.iter().find(|p| p.name == t.param) else {
+                return bad(format!("{field}.params[{k}]"), format!("no param `{}`", t.param));
+            };
+            if param.components != 1 || !param.enum_variants.is_empty() {
+                return bad(
+                    format!("{field}.params[{k}]"),
+                    format!("param `{}` is not a plain number", t.param),
+                );
+            }
+            if param.binding == ParamBinding::PerObject {
+                return bad(
+                    format!("{field}.params[{k}]"),
+                    format!("param `{}` is per object; a lines setting is per pass", t.param),
+                );
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,331 @@
+//! The executor of `lines` passes (Klein et al. 2000, §5). Per frame and eye
+//! slot, [`LinesPassExec::prepare`] evaluates the pass's shape settings at
+//! the frame's time, asks the pass's [`LinesCache`] for the strips of the
+//! objects it draws (rebuilt only when the view, an object, a mesh, the
+//! size or the shape changed) and uploads their vertices, biased towards
+//! the eye, into that slot's buffers (grown, never shrunk). `encode` then
+//! draws them with the compiled shader into the pass's targets, tested
+//! against the depth a render pass kept (`LessEqual`, not written), or
+//! untested.
+
+use super::bind;
+use super::pass::{self, Timestamps};
+use super::resources::SizedPass;
+use crate::lines::cache::{EdgeSelection, LineObject, LinesCache};
+use crate::lines::draw::{vertices, DepthBias};
+use crate::lines::strip::LineStyle;
+use crate::RunError;
+use abi::lines::{LineEdges, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MIN_WAVELENGTH_PX};
+use abi::manifest::*;
+use glam::{DMat4, DVec2, DVec3};
+
+/// One eye slot's strips on the GPU.
+struct SlotGeometry {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+pub(super) struct LinesPassExec {
+    name: String,
+    clear: wgpu::Color,
+    tag: Option<String>,
+    edges: LineEdges,
+    shape: LineShape,
+    /// `Some` with a depth test: (pass whose depth is tested, px bias).
+    depth_test: Option<f64>,
+    pipeline: wgpu::RenderPipeline,
+    pub(super) layout0: wgpu::BindGroupLayout,
+    cache: LinesCache,
+    slots: Vec<Option<SlotGeometry>>,
+}
+
+/// What [`LinesPassExec::prepare`] needs of one eye slot.
+pub(super) struct LinesEye {
+    pub slot: usize,
+    /// The eye index the cache keys the strips by (0 mono/left, 1 right).
+    pub eye: u32,
+    pub position: DVec3,
+    pub view_proj: DMat4,
+    /// P₁₁ of the projection (px per view depth, in NDC units).
+    pub focal_y: f64,
+}
+
+/// The frame's values every lines pass reads.
+pub(super) struct LinesFrame<'a> {
+    pub manifest: &'a Manifest,
+    pub scene: &'a crate::scene::Scene,
+    /// The meshes as they are at this frame's time (time-varying ones rebuilt).
+    pub meshes: &'a [std::sync::Arc<crate::scene::Mesh>],
+    pub time_s: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl LinesPassExec {
+    pub fn build(
+        device: &wgpu::Device,
+        manifest: &Manifest,
+        pass: &PassManifest,
+        wgsl: &str,
+    ) -> Result<LinesPassExec, RunError> {
+        let PassKindManifest::Lines {
+            tag,
+            edges,
+            shape,
+            depth,
+            ..
+        } = &pass.kind
+        else {
+            return Err(RunError::Internal(format!("pass `{}` is not a lines pass", pass.name)));
+        };
+        let layout0 = bind::group0_layout(device, pass);
+        let attributes = LINE_VERTEX_ATTRIBUTES.map(|(offset, components)| wgpu::VertexAttribute {
+            format: match components {
+                4 => wgpu::VertexFormat::Float32x4,
+                _ => wgpu::VertexFormat::Float32,
+            },
+            offset,
+            shader_location: 0,
+        });
+        let attributes: Vec<wgpu::VertexAttribute> = attributes
+            .iter()
+            .enumerate()
+            .map(|(location, a)| wgpu::VertexAttribute {
+                shader_location: location as u32,
+                ..*a
+            })
+            .collect();
+        let buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<LineVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &attributes,
+        })];
+        let depth_test = match depth {
+            DepthMode::Own => None,
+            DepthMode::Test { bias_px, .. } => Some(*bias_px),
+            DepthMode::Keep => return Err(RunError::Internal(format!("lines pass `{}` keeps a depth", pass.name))),
+        };
+        // Tested against a kept depth, never written: what the lines draw
+        // does not hide the scene (or other lines) from later tests.
+        let depth_state = depth_test.map(|_| wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::LessEqual),
+            stencil: Default::default(),
+            bias: Default::default(),
+        });
+        let pipeline = pass::render_pipeline(device, manifest, pass, wgsl, &[&layout0], &buffers, depth_state)?;
+        Ok(LinesPassExec {
+            name: pass.name.clone(),
+            clear: pass::clear_color(pass),
+            tag: tag.clone(),
+            edges: *edges,
+            shape: shape.clone(),
+            depth_test,
+            pipeline,
+            layout0,
+            cache: LinesCache::default(),
+            slots: Vec::new(),
+        })
+    }
+
+    /// Whether the pass's [`SizedPass`] carries the tested pass's depth.
+    pub fn tests_depth(&self) -> bool {
+        self.depth_test.is_some()
+    }
+
+    /// The strips' shape at the frame's time. Settings animated past the
+    /// ranges typecheck enforces on constants are held at their ends.
+    fn style(&self, frame: &LinesFrame) -> Result<LineStyle, RunError> {
+        let eval = |name: &str, s: &abi::lines::LineScalar| {
+            s.eval(frame.time_s, |p| {
+                crate::animation::scalar_at(frame.manifest, p, frame.time_s, frame.height)
+            })
+            .ok_or_else(|| RunError::Internal(format!("lines pass `{}`: `{name}` reads a missing param", self.name)))
+        };
+        Ok(LineStyle {
+            width_px: eval("width", &self.shape.width)?.clamp(0.0, MAX_LINE_WIDTH_PX),
+            amplitude_px: eval("amplitude", &self.shape.amplitude)?.max(0.0),
+            wavelength_px: eval("wavelength", &self.shape.wavelength)?.max(MIN_WAVELENGTH_PX),
+            phase: eval("phase", &self.shape.phase)?,
+            taper: eval("taper", &self.shape.taper)?.clamp(0.0, 0.5),
+        })
+    }
+
+    /// Build (or reuse) the strips of one eye slot and upload them.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        frame: &LinesFrame,
+        eye: &LinesEye,
+        scale: f64,
+    ) -> Result<(), RunError> {
+        let style = self.style(frame)?;
+        let objects: Vec<LineObject> = frame
+            .scene
+            .objects
+            .iter()
+            .zip(frame.meshes)
+            .filter(|(o, _)| self.tag.as_ref().is_none_or(|t| o.tags.contains(t)))
+            .map(|(o, mesh)| LineObject {
+                mesh: mesh.as_ref(),
+                model: o.model.as_dmat4(),
+            })
+            .collect();
+        let (w, h) = super::resources::scaled_size(frame.width, frame.height, scale);
+        let size = DVec2::new(f64::from(w), f64::from(h));
+        let selection = EdgeSelection {
+            silhouettes: self.edges.silhouettes,
+            crease_deg: self.edges.crease_deg,
+        };
+        let strips = self
+            .cache
+            .strips(eye.eye, &objects, eye.position, eye.view_proj, size, &style, selection);
+        let eye_clip_z = (eye.view_proj * eye.position.extend(1.0)).z;
+        let bias = DepthBias::view_space_px(self.depth_test.unwrap_or(0.0), eye.focal_y, size.y, eye_clip_z);
+        let gpu_vertices = vertices(strips, [size.x, size.y], bias);
+        let index_bytes: &[u8] = bytemuck::cast_slice(&strips.indices);
+        let vertex_bytes: &[u8] = bytemuck::cast_slice(&gpu_vertices);
+        if self.slots.len() <= eye.slot {
+            self.slots.resize_with(eye.slot + 1, || None);
+        }
+        let fits = self.slots[eye.slot].as_ref().is_some_and(|g| {
+            g.vertices.size() >= vertex_bytes.len() as u64 && g.indices.size() >= index_bytes.len() as u64
+        });
+        if !fits {
+            // Grown to the next power of two, so a slowly changing view does
+            // not reallocate every frame.
+            let buffer = |label: &str, bytes: usize, usage: wgpu::BufferUsages| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: (bytes.max(16) as u64).next_power_of_two(),
+                    usage: usage | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            };
+            self.slots[eye.slot] = Some(SlotGeometry {
+                vertices: buffer(
+                    &format!("{} strip vertices", self.name),
+                    vertex_bytes.len(),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                indices: buffer(
+                    &format!("{} strip indices", self.name),
+                    index_bytes.len(),
+                    wgpu::BufferUsages::INDEX,
+                ),
+                index_count: 0,
+            });
+        }
+        let geometry = self.slots[eye.slot]
+            .as_mut()
+            .ok_or_else(|| RunError::Internal("lines slot buffers missing".into()))?;
+        if !vertex_bytes.is_empty() {
+            queue.write_buffer(&geometry.vertices, 0, vertex_bytes);
+            queue.write_buffer(&geometry.indices, 0, index_bytes);
+        }
+        geometry.index_count = strips.indices.len() as u32;
+        Ok(())
+    }
+
+    /// How many times the pass's strips were built (tests, `npr bench lines`).
+    pub fn rebuilds(&self) -> u64 {
+        self.cache.rebuilds
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        sized: &SizedPass,
+        slot: usize,
+        timestamps: Option<&Timestamps>,
+    ) {
+        // The kept depth is loaded and stored unchanged.
+        let depth_ops = wgpu::Operations {
+            load: wgpu::LoadOp::Load,
+            store: wgpu::StoreOp::Store,
+        };
+        let depth = sized.depth_view.as_ref().map(|v| (v, depth_ops));
+        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
+        let Some(Some(geometry)) = self.slots.get(slot) else {
+            return;
+        };
+        if geometry.index_count == 0 {
+            return;
+        }
+        rp.set_pipeline(&self.pipeline);
+        rp.set_bind_group(0, &sized.group0, &[]);
+        rp.set_vertex_buffer(0, geometry.vertices.slice(..));
+        rp.set_index_buffer(geometry.indices.slice(..), wgpu::IndexFormat::Uint32);
+        rp.draw_indexed(0..geometry.index_count, 0, 0..1);
+    }
+}
+
+impl super::Renderer<'_> {
+    /// Per lines pass (by name): how many times its strips were built since
+    /// the renderer was made (each eye slot counts).
+    pub fn lines_rebuilds(&self) -> Vec<(String, u64)> {
+        self.passes
+            .iter()
+            .zip(&self.manifest.passes)
+            .filter_map(|(exec, pass)| match exec {
+                super::pass::PassExec::Lines(l) => Some((pass.name.clone(), l.rebuilds())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Every lines pass's strips for this frame, per eye slot (after the
+    /// uniforms are written; `scene` is posed at the frame's time).
+    pub(super) fn prepare_lines(
+        &mut self,
+        scene: &crate::scene::Scene,
+        spec: &super::FrameSpec,
+    ) -> Result<(), RunError> {
+        if !self.passes.iter().any(|p| matches!(p, super::pass::PassExec::Lines(_))) {
+            return Ok(());
+        }
+        let meshes: Vec<std::sync::Arc<crate::scene::Mesh>> = scene
+            .objects
+            .iter()
+            .map(|o| match &o.time_varying {
+                Some(primitive) => std::sync::Arc::new(primitive.build_at(spec.time_s)),
+                None => o.mesh.clone(),
+            })
+            .collect();
+        let frame = LinesFrame {
+            manifest: &self.manifest,
+            scene,
+            meshes: &meshes,
+            time_s: spec.time_s,
+            width: spec.width,
+            height: spec.height,
+        };
+        let pose = scene.camera.pose(spec.time_s);
+        let projection = pose.projection(spec.width as f32 / spec.height as f32);
+        let slots = self.frame_buffers.len();
+        let eyes: Vec<LinesEye> = (0..slots)
+            .map(|slot| {
+                let eye = if slots == 2 { slot as u32 } else { spec.eye };
+                LinesEye {
+                    slot,
+                    eye,
+                    position: pose.position(eye).as_dvec3(),
+                    view_proj: (projection * pose.view(eye)).as_dmat4(),
+                    focal_y: f64::from(projection.y_axis.y),
+                }
+            })
+            .collect();
+        for (pi, exec) in self.passes.iter_mut().enumerate() {
+            let super::pass::PassExec::Lines(lines) = exec else {
+                continue;
+            };
+            for eye in &eyes {
+                lines.prepare(self.device, self.queue, &frame, eye, self.manifest.passes[pi].scale)?;
+            }
+        }
+        Ok(())
+    }
+}
