@@ -105,24 +105,34 @@ pub const MAX_LINE_WIDTH_PX: f64 = 256.0;
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct LineVertex {
-    /// x, y in NDC; z the biased NDC depth; w the arc length in px.
+    /// x, y in NDC; z the NDC depth of the edge point, biased towards the
+    /// eye; w the arc length in px.
     pub position: [f32; 4],
-    /// −1 on one side of the strip, +1 on the other (`line.across`).
-    pub across: f32,
+    /// x, y: the undisplaced edge point in the pass's px (where visibility
+    /// is tested); z: −1 on one side of the strip, +1 on the other
+    /// (`line.across`); w: 0.
+    pub line: [f32; 4],
 }
 
 /// The vertex input of a `lines` pass's shader, matching [`LineVertex`].
 pub const LINE_VERTEX_WGSL: &str = "struct LineIn {
-    // x, y: NDC; z: NDC depth, biased towards the eye; w: arc length in px.
+    // x, y: NDC; z: NDC depth of the edge point, biased towards the eye; w: arc length in px.
     @location(0) position: vec4<f32>,
-    // -1 on one side of the strip, +1 on the other.
-    @location(1) across: f32,
+    // x, y: the undisplaced edge point in px; z: -1 on one side of the strip, +1 on the other.
+    @location(1) line: vec4<f32>,
 }
 ";
 
 /// The vertex attributes of [`LineVertex`] in location order: (byte offset,
 /// components).
-pub const LINE_VERTEX_ATTRIBUTES: [(u64, u32); 2] = [(0, 4), (16, 1)];
+pub const LINE_VERTEX_ATTRIBUTES: [(u64, u32); 2] = [(0, 4), (16, 4)];
+
+/// A `lines` pass with `depth: test(pass)` reads that pass's kept depth in
+/// its vertex shader, as group 1, binding 0 (there is no object group):
+/// visibility is decided at the undisplaced edge point, not per fragment,
+/// because the strip's own fragments lie off the edge, where the surface
+/// inside a silhouette bulges towards the eye (see `runner::lines::draw`).
+pub const LINE_DEPTH_WGSL: &str = "@group(1) @binding(0) var kept_depth: texture_depth_2d;\n";
 
 #[cfg(test)]
 mod tests {
@@ -144,10 +154,10 @@ mod tests {
 
     #[test]
     fn the_wgsl_vertex_matches_the_rust_one() {
-        assert_eq!(std::mem::size_of::<LineVertex>(), 20);
+        assert_eq!(std::mem::size_of::<LineVertex>(), 32);
         let (last_offset, last_components) = LINE_VERTEX_ATTRIBUTES[1];
-        assert_eq!(last_offset as usize + 4 * last_components as usize, 20);
+        assert_eq!(last_offset as usize + 4 * last_components as usize, 32);
         assert!(LINE_VERTEX_WGSL.contains("@location(0) position: vec4<f32>"));
-        assert!(LINE_VERTEX_WGSL.contains("@location(1) across: f32"));
+        assert!(LINE_VERTEX_WGSL.contains("@location(1) line: vec4<f32>"));
     }
 }

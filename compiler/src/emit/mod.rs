@@ -191,7 +191,11 @@ impl Emitter<'_> {
         }
         w.push_str("}\n\n");
         match &pass.kind {
-            PassKind::Render { .. } | PassKind::Lines(_) => render::fragment_prologue(&mut w, pass.scale),
+            PassKind::Render { .. } => render::fragment_prologue(&mut w, pass.scale),
+            PassKind::Lines(_) => {
+                render::fragment_prologue(&mut w, pass.scale);
+                w.push_str(lines::FRAGMENT_VISIBILITY);
+            }
             PassKind::Image { .. } | PassKind::Compute { .. } => w.push_str(image::FRAGMENT_PROLOGUE),
         }
         ctx.named.clear();

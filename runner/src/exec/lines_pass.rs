@@ -4,9 +4,10 @@
 //! objects it draws (rebuilt only when the view, an object, a mesh, the
 //! size or the shape changed) and uploads their vertices, biased towards
 //! the eye, into that slot's buffers (grown, never shrunk). `encode` then
-//! draws them with the compiled shader into the pass's targets, tested
-//! against the depth a render pass kept (`LessEqual`, not written), or
-//! untested.
+//! draws them with the compiled shader into the pass's targets. With a
+//! depth test the shader reads the kept depth as group 1
+//! (`abi::lines::LINE_DEPTH_WGSL`) and tests each vertex's edge point; the
+//! pipeline has no depth attachment.
 
 use super::bind;
 use super::pass::{self, Timestamps};
@@ -32,10 +33,12 @@ pub(super) struct LinesPassExec {
     tag: Option<String>,
     edges: LineEdges,
     shape: LineShape,
-    /// `Some` with a depth test: (pass whose depth is tested, px bias).
+    /// `Some` with a depth test: the view-space bias in px.
     depth_test: Option<f64>,
     pipeline: wgpu::RenderPipeline,
     pub(super) layout0: wgpu::BindGroupLayout,
+    /// Group 1 with a depth test: the kept depth, read by the vertex shader.
+    depth_layout: Option<wgpu::BindGroupLayout>,
     cache: LinesCache,
     slots: Vec<Option<SlotGeometry>>,
 }
@@ -106,16 +109,24 @@ impl LinesPassExec {
             DepthMode::Test { bias_px, .. } => Some(*bias_px),
             DepthMode::Keep => return Err(RunError::Internal(format!("lines pass `{}` keeps a depth", pass.name))),
         };
-        // Tested against a kept depth, never written: what the lines draw
-        // does not hide the scene (or other lines) from later tests.
-        let depth_state = depth_test.map(|_| wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth32Float,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::LessEqual),
-            stencil: Default::default(),
-            bias: Default::default(),
+        let depth_layout = depth_test.map(|_| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(&format!("{} kept depth", pass.name)),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                }],
+            })
         });
-        let pipeline = pass::render_pipeline(device, manifest, pass, wgsl, &[&layout0], &buffers, depth_state)?;
+        let mut layouts = vec![&layout0];
+        layouts.extend(depth_layout.as_ref());
+        let pipeline = pass::render_pipeline(device, manifest, pass, wgsl, &layouts, &buffers, None)?;
         Ok(LinesPassExec {
             name: pass.name.clone(),
             clear: pass::clear_color(pass),
@@ -125,14 +136,23 @@ impl LinesPassExec {
             depth_test,
             pipeline,
             layout0,
+            depth_layout,
             cache: LinesCache::default(),
             slots: Vec::new(),
         })
     }
 
-    /// Whether the pass's [`SizedPass`] carries the tested pass's depth.
-    pub fn tests_depth(&self) -> bool {
-        self.depth_test.is_some()
+    /// Group 1 over the tested pass's kept depth (with a depth test).
+    pub fn tested_depth_group(&self, device: &wgpu::Device, kept: &wgpu::TextureView) -> Option<wgpu::BindGroup> {
+        let layout = self.depth_layout.as_ref()?;
+        Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("{} kept depth", self.name)),
+            layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(kept),
+            }],
+        }))
     }
 
     /// The strips' shape at the frame's time. Settings animated past the
@@ -242,13 +262,7 @@ impl LinesPassExec {
         slot: usize,
         timestamps: Option<&Timestamps>,
     ) {
-        // The kept depth is loaded and stored unchanged.
-        let depth_ops = wgpu::Operations {
-            load: wgpu::LoadOp::Load,
-            store: wgpu::StoreOp::Store,
-        };
-        let depth = sized.depth_view.as_ref().map(|v| (v, depth_ops));
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
+        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
         let Some(Some(geometry)) = self.slots.get(slot) else {
             return;
         };
@@ -257,6 +271,9 @@ impl LinesPassExec {
         }
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
+        if let Some(group) = &sized.tested_depth {
+            rp.set_bind_group(1, group, &[]);
+        }
         rp.set_vertex_buffer(0, geometry.vertices.slice(..));
         rp.set_index_buffer(geometry.indices.slice(..), wgpu::IndexFormat::Uint32);
         rp.draw_indexed(0..geometry.index_count, 0, 0..1);

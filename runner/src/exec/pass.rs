@@ -109,8 +109,17 @@ impl PassExec {
     pub fn needs_depth(&self) -> bool {
         match self {
             PassExec::Render(_) => true,
-            PassExec::Lines(p) => p.tests_depth(),
-            PassExec::Image(_) | PassExec::Compute(_) => false,
+            // Lines test in their shader (`tested_depth_group`), with no attachment.
+            PassExec::Image(_) | PassExec::Compute(_) | PassExec::Lines(_) => false,
+        }
+    }
+
+    /// A lines pass with a depth test: its group 1 over `kept`, the tested
+    /// pass's depth texture; `None` for every other pass.
+    pub fn tested_depth_group(&self, device: &wgpu::Device, kept: &wgpu::TextureView) -> Option<wgpu::BindGroup> {
+        match self {
+            PassExec::Lines(p) => p.tested_depth_group(device, kept),
+            _ => None,
         }
     }
 

@@ -106,6 +106,8 @@ pub(super) struct SizedPass {
     pub color_views: Vec<wgpu::TextureView>,
     /// Where the pass kind needs a depth buffer (`PassExec::needs_depth`).
     pub depth_view: Option<wgpu::TextureView>,
+    /// A lines pass with a depth test: group 1, the tested pass's kept depth.
+    pub tested_depth: Option<wgpu::BindGroup>,
     pub group0: wgpu::BindGroup,
     /// A compute pass over pixels: its element workgroups at this size (0 otherwise).
     pub pixel_workgroups: u32,
@@ -142,15 +144,12 @@ impl Renderer<'_> {
         crate::gpu_error::scoped(
             device,
             || format!("making the targets of a {width}x{height} image"),
-            || {
-                self.make_sized(width, height);
-                Ok(())
-            },
+            || self.make_sized(width, height),
         )
         .inspect_err(|_| self.sized = None)
     }
 
-    fn make_sized(&mut self, width: u32, height: u32) {
+    fn make_sized(&mut self, width: u32, height: u32) -> Result<(), crate::RunError> {
         let slots = self.frame_buffers.len();
         let physical = Physical {
             slots: (0..slots).map(|_| self.create_physical(width, height)).collect(),
@@ -180,7 +179,8 @@ impl Renderer<'_> {
                             label,
                             (w, h),
                             wgpu::TextureFormat::Depth32Float,
-                            wgpu::TextureUsages::RENDER_ATTACHMENT,
+                            // Lines passes read a kept depth in their shader.
+                            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
                         )
                     };
                     // `Manifest::validate`: a test names an earlier kept pass
@@ -190,10 +190,6 @@ impl Renderer<'_> {
                             depth: DepthMode::Keep, ..
                         } => Some(pi),
                         PassKindManifest::Render {
-                            depth: DepthMode::Test { pass, .. },
-                            ..
-                        }
-                        | PassKindManifest::Lines {
                             depth: DepthMode::Test { pass, .. },
                             ..
                         } => Some(*pass),
@@ -208,9 +204,27 @@ impl Renderer<'_> {
                         }
                         .create_view(&Default::default())
                     });
+                    // A lines pass's test reads the kept depth as a texture
+                    // (group 1), made above for the earlier keeping pass.
+                    let tested_depth = match &pass.kind {
+                        PassKindManifest::Lines {
+                            depth: DepthMode::Test { pass: tested, .. },
+                            ..
+                        } => {
+                            let texture = kept.get(&(slot, *tested)).ok_or_else(|| {
+                                crate::RunError::Internal(format!(
+                                    "lines pass `{}` tests a depth that no earlier pass kept",
+                                    pass.name
+                                ))
+                            })?;
+                            self.passes[pi].tested_depth_group(self.device, &texture.create_view(&Default::default()))
+                        }
+                        _ => None,
+                    };
                     slot_passes.push(SizedPass {
                         color_views,
                         depth_view,
+                        tested_depth,
                         group0: self.group0(pi, slot, parity, &physical),
                         pixel_workgroups: self.values[pi]
                             .as_ref()
@@ -234,6 +248,7 @@ impl Renderer<'_> {
             passes,
             output_slot: 0,
         });
+        Ok(())
     }
 
     /// The second copy of every history texture, by physical index.

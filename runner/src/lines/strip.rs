@@ -76,6 +76,8 @@ pub struct BackbonePoint {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StripVertex {
     pub px: DVec2,
+    /// The undisplaced backbone point (on the edge) it was built around.
+    pub base: DVec2,
     pub depth: f64,
     /// 1 / clip w of the backbone sample.
     pub inv_w: f64,
@@ -287,6 +289,7 @@ fn push_strip(strips: &mut Strips, backbone: &[BackbonePoint], closed: bool, sty
         for side in [1.0, -1.0] {
             strips.vertices.push(StripVertex {
                 px: backbone[i].px + normal * (half * side),
+                base: backbone[i].base,
                 depth: backbone[i].depth,
                 inv_w: backbone[i].inv_w,
                 s,
