@@ -262,3 +262,33 @@ fn artmap_gallery_on_the_gallery() {
         "examples/scenes/gallery.toml",
     );
 }
+
+// Wavy lines (Klein et al. 2000 §5): silhouettes and creases over a toon
+// fill, tested at their edge points against the fill's kept depth.
+
+#[test]
+fn wavy_lines_on_fandisk() {
+    golden(
+        "wavy_lines_fandisk",
+        "examples/wavy_lines.npr",
+        "examples/scenes/fandisk.toml",
+    );
+}
+
+#[test]
+fn wavy_lines_on_cube() {
+    golden(
+        "wavy_lines_cube",
+        "examples/wavy_lines.npr",
+        "examples/scenes/cube.toml",
+    );
+}
+
+#[test]
+fn wavy_lines_on_teapot() {
+    golden(
+        "wavy_lines_teapot",
+        "examples/wavy_lines.npr",
+        "examples/scenes/teapot.toml",
+    );
+}

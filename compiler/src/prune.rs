@@ -130,6 +130,10 @@ fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
         .collect();
     if !roots.is_empty() || live.depth.contains(&pid) {
         roots.extend(Ir::vertex_roots(pass));
+        // A live lines pass's shape settings, evaluated by the runner.
+        if let PassKind::Lines(lines) = &pass.kind {
+            roots.extend(lines.shape.roots());
+        }
     }
     let mut any_value = false;
     for (slot, v) in pass.kind.values().iter().enumerate() {

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 mod command_line;
 mod files;
+mod lines;
 mod passes;
 mod syntax_names_types;
 
@@ -115,6 +116,7 @@ fn every_code_has_a_case() {
         include_str!("syntax_names_types.rs"),
         include_str!("passes.rs"),
         include_str!("files.rs"),
+        include_str!("lines.rs"),
         include_str!("command_line.rs"),
     ]
     .concat()
@@ -126,7 +128,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        5 + usize::from(here.join("snapshots").exists()),
+        6 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in dsl::codes::ALL {

@@ -129,10 +129,18 @@ impl Checker<'_> {
         let other = self.ir.pass(tested);
         let (name, other_name) = (pass.name.clone(), other.name.clone());
         if tested.0 as usize == pi {
+            let help = if matches!(pass.kind, PassKind::Lines(_)) {
+                "a lines pass has no depth of its own; `depth: test(...)` names an earlier render pass with `depth: keep`"
+            } else {
+                "a pass always tests against its own depth; `depth: test(...)` names an earlier pass with `depth: keep`"
+            };
             self.err(
-                Diagnostic::error(codes::BAD_PASS_INPUT, format!("pass `{name}` tests against its own depth"))
-                    .with_primary(span, "this pass")
-                    .with_help("a pass always tests against its own depth; `depth: test(...)` names an earlier pass with `depth: keep`"),
+                Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!("pass `{name}` tests against its own depth"),
+                )
+                .with_primary(span, "this pass")
+                .with_help(help),
             );
             return;
         }
