@@ -27,6 +27,10 @@ pub const PASS_KINDS: &[(&str, &str)] = &[
         "compute(objects)",
         "Once per object: `out` values and `state` kept from frame to frame (`state s: vec2 = first` then `s = next`).",
     ),
+    (
+        "lines(scene)",
+        "Wavy strips along the visible silhouettes and creases of the objects (or those with a tag: `lines(rocks)`; Klein et al. 2000 §5): `silhouettes: true`, `creases: 40deg | off`, `width`, `amplitude`, `wavelength` (px), `phase`, `taper`, each a sum of numbers, params and `time`; `depth: test(pass, bias: 1px)` hides edges behind a kept depth. Fragments have `line.s` (arc length, px) and `line.across` (-1..1).",
+    ),
 ];
 
 /// (suffix, what it measures).

@@ -48,7 +48,7 @@ fn index() -> String {
         "# npr reference\n\n{GENERATED}\n\n\
          - [Operators](operators.md): the {} stdlib operators, their parameters (type, unit, default, range), sources and specializations.\n\
          - [Builtins](builtins.md): the {} values the runtime provides (`uv`, `normal`, `light.dir`, ...).\n\
-         - [Pass kinds](passes.md): `render`, `image` and `compute` passes.\n\
+         - [Pass kinds](passes.md): `render`, `image`, `compute` and `lines` passes.\n\
          - [Units and formats](units.md): the units checked at compile time and the target formats.\n\
          - [Error codes](errors.md): every error and warning code, explained with a wrong and a fixed example (`npr explain CODE`).\n\n\
          Not here yet: a rendered image per operator and its speed-against-error figures (see docs/PERFORMANCE.md for `npr bench ops`).\n",
