@@ -281,6 +281,21 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 20)]
         frames: u32,
     },
+    /// Lines passes (Klein et al. 2000 §5): strip build and frame time
+    /// against a sphere's edge count (rebuilt every frame, and reused), and
+    /// straight and wavy lines against LSA contours: cost over each
+    /// method's base pass, precision and recall within 1 px on the analytic
+    /// scenes of `npr bench contours`.
+    Lines {
+        /// Sphere resolutions (segments; rings are half), comma-separated.
+        #[arg(long, default_value = "16,32,64,128,256", value_delimiter = ',')]
+        segments: Vec<u32>,
+        /// Square image size.
+        #[arg(long, default_value_t = 256)]
+        size: u32,
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+    },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
         #[arg(long, default_value = "examples/scenes/spheres.toml")]

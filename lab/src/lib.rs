@@ -12,6 +12,7 @@
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
+//! - [`bench_lines`]: `npr bench lines`, lines passes' cost against edges and against LSA contours.
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
 //! - [`bench_patterns`]: `npr bench patterns`, the pattern tracker's cost and its error against f64.
 //! - [`bench_styles`]: `npr bench styles`, whole styles' frame cost against a baseline style.
@@ -23,6 +24,7 @@
 pub mod bench;
 pub mod bench_artmaps;
 pub mod bench_contours;
+pub mod bench_lines;
 pub mod bench_ops;
 pub mod bench_overhead;
 pub mod bench_patterns;

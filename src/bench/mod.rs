@@ -5,6 +5,7 @@ mod artmaps;
 mod compile;
 mod gpu;
 mod http_client;
+mod lines;
 mod patterns;
 mod studio;
 
@@ -38,6 +39,7 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             }
         }
         BenchCommand::Artmaps { sizes, size, frames } => artmaps::run(&sizes, size, frames, printer),
+        BenchCommand::Lines { segments, size, frames } => lines::run(&segments, size, frames, printer),
         BenchCommand::Ops { scene, size, frames } => gpu::ops(&scene, size, frames, printer),
         BenchCommand::Contours { sizes, frames } => gpu::contours(&sizes, frames, printer),
         BenchCommand::Reduce {

@@ -1,0 +1,264 @@
+//! `npr bench lines`: the cost of `lines` passes (Klein et al. 2000 §5)
+//! against the number of edges, and the wavy lines against LSA contours on
+//! the same analytic scenes (a benchmark, never a test).
+//!
+//! Cost against edges: a sphere of n segments (2n(n/2 − 1) triangles) at
+//! every size of `segments`, its silhouette drawn by a lines pass tested
+//! against a kept depth. Per frame the strips are either rebuilt (the
+//! object turns a little every frame, so the cache key changes) or reused
+//! (nothing changes). The CPU build is the difference of the two
+//! `Renderer::prepare` times; the frame is render + GPU wait. Both are the
+//! fastest of `frames` interleaved frames, and µs per 1000 mesh edges shows
+//! whether the build is linear in the edges.
+//!
+//! Against LSA: the lines (straight, amplitude 0, 1 px wide; and wavy as
+//! `examples/wavy_lines.npr` draws them) and LSA full with its density
+//! filter, each with its own base pass (a kept-depth fill for the lines,
+//! the G-buffer for LSA): cost over that base, and precision and recall
+//! within 1 px against the analytic truth of `crate::contours`, minimum
+//! over its scenes.
+
+use crate::bench::{time_interleaved, wait_idle};
+use crate::contours::{accuracy, builtin_scenes, ink_mask};
+use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use std::time::Instant;
+
+/// A fill that keeps its depth, then a lines pass with `settings`, ink over white.
+pub fn lines_style(settings: &str) -> String {
+    format!(
+        "style \"bench lines\"\n\
+         pass shade: render(scene) {{\n  out color: rgba8unorm = #808080\n  depth: keep\n}}\n\
+         pass ink: lines(scene) {{\n  {settings}\n  depth: test(shade, bias: 1px)\n  \
+         out ink: rgba8unorm = vec4(0.0, 0.0, 0.0, 1.0) {{ blend: over }}\n  clear: #ffffff\n}}\n\
+         output ink.ink\n"
+    )
+}
+
+/// The base of the lines styles: the same fill, its colour as the output.
+pub const LINES_BASE: &str = "style \"bench lines base\"\npass shade: render(scene) {\n  out color: rgba8unorm = #808080\n  depth: keep\n}\npass ink: image(shade) {\n  out c: rgba8unorm = vec4(1.0) + 0.0 * shade.color\n}\noutput ink.c\n";
+
+/// Straight lines: silhouettes and creases, as exact as strips can be.
+pub const STRAIGHT: &str = "silhouettes: true  creases: 30deg  width: 1px  amplitude: 0px";
+/// The wavy lines of `examples/wavy_lines.npr`.
+pub const WAVY: &str = "silhouettes: true  creases: 30deg  width: 2.5px  amplitude: 1.5px  wavelength: 28px";
+
+/// One sphere's row of the cost table.
+#[derive(Debug, Clone)]
+pub struct EdgeRow {
+    pub segments: u32,
+    pub triangles: usize,
+    pub mesh_edges: usize,
+    /// Silhouette edges seen from the camera (what is drawn).
+    pub silhouette_edges: usize,
+    /// CPU seconds to build the strips (rebuilt − reused `prepare`).
+    pub build_s: f64,
+    pub frame_rebuilt_s: f64,
+    pub frame_reused_s: f64,
+}
+
+fn sphere_scene(segments: u32, sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene, RunError> {
+    let text = format!(
+        "[camera]\nposition = [0.0, 0.4, 3.5]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"sphere\", radius = 1.0, segments = {segments}, rings = {} }}\n",
+        (segments / 2).max(2)
+    );
+    let file = sources.add(format!("sphere{segments}.toml"), text.clone());
+    runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
+}
+
+/// The fastest of `frames` (prepare seconds, frame seconds) with `turn` set
+/// to whether the object turns every frame.
+fn timed_frames(
+    gpu: &Gpu,
+    renderer: &mut runner::Renderer,
+    scene: &mut runner::scene::Scene,
+    size: u32,
+    turn: bool,
+    frames: u32,
+) -> Result<(f64, f64), RunError> {
+    let spec = FrameSpec::still(size, size, 0);
+    let (mut prepare, mut frame) = (f64::INFINITY, f64::INFINITY);
+    for k in 0..frames.max(1) {
+        if turn {
+            scene.objects[0].model = glam::Mat4::from_rotation_y(0.01 * (k + 1) as f32);
+        }
+        let t = Instant::now();
+        renderer.prepare(scene, &spec)?;
+        prepare = prepare.min(t.elapsed().as_secs_f64());
+        renderer.render(scene, &spec)?;
+        wait_idle(gpu)?;
+        frame = frame.min(t.elapsed().as_secs_f64());
+    }
+    Ok((prepare, frame))
+}
+
+/// Cost against edges: one row per sphere resolution.
+pub fn edge_rows(
+    gpu: &Gpu,
+    silhouettes: &StyleProgram,
+    segments: &[u32],
+    size: u32,
+    frames: u32,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<EdgeRow>, RunError> {
+    let mut rows = Vec::new();
+    let mut sources = dsl::SourceMap::new();
+    for &n in segments {
+        progress(&format!("lines on a sphere of {n} segments"));
+        let mut scene = sphere_scene(n, &mut sources)?;
+        let mesh = scene.objects[0].mesh.clone();
+        let edges = runner::lines::edges::EdgeMesh::new(&mesh);
+        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, silhouettes, &scene)?;
+        r.render(&scene, &FrameSpec::still(size, size, 0))?;
+        wait_idle(gpu)?;
+        // Interleaved rounds, so load on the machine touches both alike.
+        let (mut rebuilt, mut reused) = ((f64::INFINITY, f64::INFINITY), (f64::INFINITY, f64::INFINITY));
+        for _ in 0..3 {
+            let a = timed_frames(gpu, &mut r, &mut scene, size, true, frames)?;
+            let b = timed_frames(gpu, &mut r, &mut scene, size, false, frames)?;
+            rebuilt = (rebuilt.0.min(a.0), rebuilt.1.min(a.1));
+            reused = (reused.0.min(b.0), reused.1.min(b.1));
+        }
+        let silhouette_edges = edges.silhouettes(glam::DVec3::new(0.0, 0.4, 3.5)).len();
+        rows.push(EdgeRow {
+            segments: n,
+            triangles: mesh.indices.len() / 3,
+            mesh_edges: edges.edges.len(),
+            silhouette_edges,
+            build_s: (rebuilt.0 - reused.0).max(0.0),
+            frame_rebuilt_s: rebuilt.1,
+            frame_reused_s: reused.1,
+        });
+    }
+    Ok(rows)
+}
+
+/// Least-squares fit build_s ≈ fixed + per_edge · mesh_edges, and the
+/// largest deviation of a row from it relative to its build time: whether
+/// the build is linear in the edges.
+pub fn linear_fit(rows: &[EdgeRow]) -> Option<(f64, f64, f64)> {
+    if rows.len() < 2 {
+        return None;
+    }
+    let n = rows.len() as f64;
+    let xs: Vec<f64> = rows.iter().map(|r| r.mesh_edges as f64).collect();
+    let ys: Vec<f64> = rows.iter().map(|r| r.build_s).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    if sxx == 0.0 {
+        return None;
+    }
+    let per_edge = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum::<f64>() / sxx;
+    let fixed = my - per_edge * mx;
+    let worst = xs
+        .iter()
+        .zip(&ys)
+        .map(|(x, y)| ((fixed + per_edge * x) - y).abs() / y.max(1e-9))
+        .fold(0.0, f64::max);
+    Some((fixed, per_edge, worst))
+}
+
+pub fn edge_table(rows: &[EdgeRow]) -> String {
+    let mut out = String::from(
+        "| segments | triangles | mesh edges | silhouette edges | strip build (ms) | µs per 1000 mesh edges | frame, rebuilt (ms) | frame, reused (ms) |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {:.3} | {:.1} | {:.2} | {:.2} |\n",
+            r.segments,
+            r.triangles,
+            r.mesh_edges,
+            r.silhouette_edges,
+            r.build_s * 1e3,
+            r.build_s * 1e6 / (r.mesh_edges as f64 / 1000.0),
+            r.frame_rebuilt_s * 1e3,
+            r.frame_reused_s * 1e3
+        ));
+    }
+    if let Some((fixed, per_edge, worst)) = linear_fit(rows) {
+        out.push_str(&format!(
+            "\nbuild ≈ {:.3} ms + {:.2} µs per 1000 mesh edges (least squares; the worst row is {:.0}% off the line)\n",
+            fixed * 1e3,
+            per_edge * 1e9,
+            worst * 100.0
+        ));
+    }
+    out
+}
+
+/// One method's row of the comparison.
+#[derive(Debug, Clone)]
+pub struct MethodRow {
+    pub name: &'static str,
+    pub frame_s: f64,
+    /// Frame time over its base pass's.
+    pub method_s: f64,
+    pub min_precision: f64,
+    pub min_recall: f64,
+}
+
+/// The methods compared: (name, program, index of its base in `bases`).
+pub struct Methods<'a> {
+    pub methods: Vec<(&'static str, &'a StyleProgram, usize)>,
+    pub bases: Vec<&'a StyleProgram>,
+}
+
+/// Cost on the timing scene of `crate::bench_contours` and accuracy on the
+/// analytic scenes, at `size`².
+pub fn method_rows(
+    gpu: &Gpu,
+    methods: &Methods,
+    size: u32,
+    frames: u32,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<MethodRow>, RunError> {
+    let mut sources = dsl::SourceMap::new();
+    let timing_text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
+    let file = sources.add("timing.toml", timing_text);
+    let timing = runner::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    progress(&format!("timing the methods at {size}x{size}"));
+    let mut programs: Vec<&StyleProgram> = methods.bases.clone();
+    programs.extend(methods.methods.iter().map(|m| m.1));
+    let best = time_interleaved(gpu, &programs, &timing, (size, size), frames)?;
+    let scenes = builtin_scenes();
+    let loaded: Vec<_> = scenes
+        .iter()
+        .map(|s| s.scene(&mut sources).map_err(RunError::User))
+        .collect::<Result<_, _>>()?;
+    let mut rows = Vec::new();
+    for (i, (name, program, base)) in methods.methods.iter().enumerate() {
+        progress(&format!("accuracy of {name}"));
+        let (mut min_p, mut min_r) = (1.0f64, 1.0f64);
+        for (s, scene) in scenes.iter().zip(&loaded) {
+            let img = runner::render_frame(gpu, program, scene, &FrameSpec::still(size, size, 0))?;
+            let a = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
+            min_p = min_p.min(a.precision);
+            min_r = min_r.min(a.recall);
+        }
+        let frame_s = best[methods.bases.len() + i];
+        rows.push(MethodRow {
+            name,
+            frame_s,
+            method_s: frame_s - best[*base],
+            min_precision: min_p,
+            min_recall: min_r,
+        });
+    }
+    Ok(rows)
+}
+
+pub fn method_table(rows: &[MethodRow]) -> String {
+    let mut out = String::from(
+        "| method | frame (ms) | over its base pass (ms) | min precision | min recall |\n|---|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        out.push_str(&format!(
+            "| {} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
+            r.name,
+            r.frame_s * 1e3,
+            r.method_s * 1e3,
+            r.min_precision,
+            r.min_recall
+        ));
+    }
+    out
+}
