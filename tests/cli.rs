@@ -270,6 +270,36 @@ fn bench_artmaps_reports_every_filter_and_every_read() {
     assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
 }
 
+#[test]
+fn bench_lines_reports_edges_and_the_methods() {
+    // A smoke run at a tiny size: the tables' shape, real figures, and the
+    // straight lines exact on the analytic scenes (their accuracy does not
+    // depend on timing).
+    let o = npr(&["bench", "lines", "--segments", "8,16", "--size", "64", "--frames", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for segments in ["8", "16"] {
+        let row = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("| {segments} |")))
+            .unwrap_or_else(|| panic!("no row for {segments} segments:\n{stdout}"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+        let frame_ms: f64 = cells[6].parse().expect("a number");
+        assert!(frame_ms.is_finite() && frame_ms > 0.0, "{row}");
+    }
+    assert!(stdout.contains("R² ="), "the linear fit is printed:\n{stdout}");
+    let straight = stdout
+        .lines()
+        .find(|l| l.starts_with("| lines, straight"))
+        .unwrap_or_else(|| panic!("no straight-lines row:\n{stdout}"));
+    let cells: Vec<&str> = straight.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+    let (precision, recall): (f64, f64) = (cells[3].parse().expect("p"), cells[4].parse().expect("r"));
+    assert!(precision >= 0.95 && recall >= 0.95, "{straight}");
+    assert!(stdout.lines().any(|l| l.starts_with("| LSA full")), "{stdout}");
+    let o = npr(&["bench", "lines", "--segments", "2"]);
+    assert_eq!(o.status.code(), Some(1), "2 segments is a user error");
+}
+
 /// Decoded RGBA bytes of a PNG.
 fn rgba(path: &Path) -> Vec<u8> {
     image::open(path)

@@ -132,9 +132,8 @@ pub fn edge_rows(
     Ok(rows)
 }
 
-/// Least-squares fit build_s ≈ fixed + per_edge · mesh_edges, and the
-/// largest deviation of a row from it relative to its build time: whether
-/// the build is linear in the edges.
+/// Least-squares fit build_s ≈ fixed + per_edge · mesh_edges, and its R²
+/// (1 for points on the line): whether the build is linear in the edges.
 pub fn linear_fit(rows: &[EdgeRow]) -> Option<(f64, f64, f64)> {
     if rows.len() < 2 {
         return None;
@@ -149,12 +148,14 @@ pub fn linear_fit(rows: &[EdgeRow]) -> Option<(f64, f64, f64)> {
     }
     let per_edge = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum::<f64>() / sxx;
     let fixed = my - per_edge * mx;
-    let worst = xs
+    let residual: f64 = xs
         .iter()
         .zip(&ys)
-        .map(|(x, y)| ((fixed + per_edge * x) - y).abs() / y.max(1e-9))
-        .fold(0.0, f64::max);
-    Some((fixed, per_edge, worst))
+        .map(|(x, y)| (y - (fixed + per_edge * x)).powi(2))
+        .sum();
+    let total: f64 = ys.iter().map(|y| (y - my) * (y - my)).sum();
+    let r2 = if total == 0.0 { 1.0 } else { 1.0 - residual / total };
+    Some((fixed, per_edge, r2))
 }
 
 pub fn edge_table(rows: &[EdgeRow]) -> String {
@@ -174,12 +175,11 @@ pub fn edge_table(rows: &[EdgeRow]) -> String {
             r.frame_reused_s * 1e3
         ));
     }
-    if let Some((fixed, per_edge, worst)) = linear_fit(rows) {
+    if let Some((fixed, per_edge, r2)) = linear_fit(rows) {
         out.push_str(&format!(
-            "\nbuild ≈ {:.3} ms + {:.2} µs per 1000 mesh edges (least squares; the worst row is {:.0}% off the line)\n",
+            "\nbuild ≈ {:.3} ms + {:.2} µs per 1000 mesh edges (least squares, R² = {r2:.4})\n",
             fixed * 1e3,
             per_edge * 1e9,
-            worst * 100.0
         ));
     }
     out
