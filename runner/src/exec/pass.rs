@@ -21,8 +21,9 @@ pub(super) enum PassExec {
     Image(ImagePassExec),
     /// `compute(domain)`: dispatches per object (groups 1 and 2 of its own).
     Compute(ComputePassExec),
-    /// `lines(tag)`: strips built on the CPU per eye slot, one indexed draw.
-    Lines(LinesPassExec),
+    /// `lines(tag)`: strips built on the CPU per eye slot, one indexed draw
+    /// (boxed: its cache makes it several times the size of the others).
+    Lines(Box<LinesPassExec>),
 }
 
 /// What a pass may read when it is recorded, besides its own state and its
@@ -91,7 +92,9 @@ impl PassExec {
                     .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
                 PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects.buffer, buffers)?)
             }
-            PassKindManifest::Lines { .. } => PassExec::Lines(LinesPassExec::build(device, manifest, pass, wgsl)?),
+            PassKindManifest::Lines { .. } => {
+                PassExec::Lines(Box::new(LinesPassExec::build(device, manifest, pass, wgsl)?))
+            }
         })
     }
 
