@@ -475,3 +475,37 @@ fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stre
         }
     }
 }
+
+#[test]
+fn one_filter_renderer_for_a_whole_chain_gives_what_a_renderer_per_level_gives() {
+    // `artmap::build` reuses one filter renderer across levels (pipelines
+    // built once); each level must come out texel for texel as a fresh
+    // renderer makes it, with `frame` the level's index. The ink-blot
+    // filter has three passes and reads `frame`, hatching one.
+    let g = gpu();
+    for filter in ["ink_blot", "hatching"] {
+        let text = std::fs::read_to_string(root().join(format!("examples/filters/{filter}.npr"))).unwrap();
+        let program = compile(&text, &root().join("examples/filters"));
+        let base = runner::artmap::Level {
+            width: 40,
+            height: 24,
+            pixels: (0..40 * 24)
+                .map(|i| {
+                    let v = ((i * 37) % 101) as f32 / 100.0;
+                    [v, 1.0 - v, 0.5, 1.0]
+                })
+                .collect(),
+        };
+        let chain = runner::artmap::mip_chain(base, u32::MAX);
+        let mut reused = runner::artmap::FilterRunner::new(&g.device, &g.queue, &program);
+        for (index, level) in chain.iter().enumerate() {
+            let fresh = runner::artmap::filter_level(&g.device, &g.queue, &program, level, index as u32).unwrap();
+            let again = reused.filter(level, index as u32).unwrap();
+            assert_eq!(
+                again, fresh,
+                "{filter}: level {index} ({}x{})",
+                level.width, level.height
+            );
+        }
+    }
+}

@@ -616,20 +616,7 @@ impl Resolver<'_> {
         self.current_pass = Some(id);
         let kind = match p.kind.kind.name.as_str() {
             "render" => {
-                let args = self.plain_kind_args(p, "a tag");
-                let tag = match args.as_slice() {
-                    [] => None,
-                    [a] if a.name == "scene" => None,
-                    [a] => Some(a.name.clone()),
-                    [_, extra, ..] => {
-                        self.error(
-                            Diagnostic::error(codes::BAD_PASS_INPUT, "a render pass draws one set of objects")
-                                .with_primary(extra.span, "unexpected")
-                                .with_help("write `render(scene)` for all objects or `render(tag)` for tagged ones"),
-                        );
-                        None
-                    }
-                };
+                let tag = self.scene_or_tag(p, "a render pass draws one set of objects");
                 PassKind::Render {
                     tag,
                     view: PassView::Camera,

@@ -9,7 +9,7 @@
 //!   `sample_ripmap`, against a pass that samples nothing.
 
 use crate::bench::{time_interleaved, wait_idle};
-use runner::artmap::{filter_level, mip_chain, ripmap_atlas, Level};
+use runner::artmap::{mip_chain, ripmap_atlas, FilterRunner, Level};
 use runner::{Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
@@ -70,10 +70,13 @@ pub fn build_rows(
             let t = Instant::now();
             let chain = mip_chain(base.clone(), u32::MAX);
             let mip_ms = t.elapsed().as_secs_f64() * 1e3;
+            // One filter renderer for the chain, as `artmap::build` runs it:
+            // level 0 pays for the pipelines, the others only rebind.
+            let mut runner = FilterRunner::new(&gpu.device, &gpu.queue, program);
             let mut level_ms = Vec::with_capacity(chain.len());
             for (index, level) in chain.iter().enumerate() {
                 let t = Instant::now();
-                filter_level(&gpu.device, &gpu.queue, program, level, index as u32)?;
+                runner.filter(level, index as u32)?;
                 wait_idle(gpu)?;
                 level_ms.push(t.elapsed().as_secs_f64() * 1e3);
             }

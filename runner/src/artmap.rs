@@ -102,13 +102,14 @@ pub fn ripmap_atlas(
         )]));
     }
     let mut atlas = vec![[0.0f32; 4]; (aw * ah) as usize];
+    let mut runner = FilterRunner::new(device, queue, program);
     let columns = abi::RipmapAtlas::levels(base.width);
     let rows = abi::RipmapAtlas::levels(base.height);
     let mut row_start = base;
     for j in 0..rows {
         let mut level = row_start.clone();
         for i in 0..columns {
-            let filtered = filter_level(device, queue, program, &level, i + 16 * j)?;
+            let filtered = runner.filter(&level, i + 16 * j)?;
             let (ox, oy) = layout.offset(i, j);
             for y in 0..filtered.height {
                 let dst = ((oy + y) * aw + ox) as usize;
@@ -167,9 +168,10 @@ pub fn build(
     let filtered = if spec.rip {
         vec![ripmap_atlas(device, queue, &program, base)?]
     } else {
+        let mut runner = FilterRunner::new(device, queue, &program);
         let mut filtered = Vec::with_capacity(count as usize);
         for (index, level) in mip_chain(base, count).into_iter().enumerate() {
-            filtered.push(filter_level(device, queue, &program, &level, index as u32)?);
+            filtered.push(runner.filter(&level, index as u32)?);
         }
         filtered
     };
@@ -178,8 +180,44 @@ pub fn build(
     Ok((levels, report(Origin::Built { on_disk })))
 }
 
-/// Run the filter on one level: its output target, read back, is the
-/// filtered level (same size).
+/// Runs a filter style on level after level with one renderer: its
+/// pipelines are built once, for the first level, and each further level
+/// only replaces the filter's input (`Renderer::set_filter_input`).
+pub struct FilterRunner<'d> {
+    device: &'d wgpu::Device,
+    queue: &'d wgpu::Queue,
+    program: &'d abi::StyleProgram,
+    renderer: Option<Renderer<'d>>,
+}
+
+impl<'d> FilterRunner<'d> {
+    pub fn new(device: &'d wgpu::Device, queue: &'d wgpu::Queue, program: &'d abi::StyleProgram) -> FilterRunner<'d> {
+        FilterRunner {
+            device,
+            queue,
+            program,
+            renderer: None,
+        }
+    }
+
+    /// The filter's output on `level` (`frame` = `index`).
+    pub fn filter(&mut self, level: &Level, index: u32) -> Result<Level, RunError> {
+        let r = match self.renderer.as_mut() {
+            Some(r) => {
+                r.set_filter_input(level)?;
+                r
+            }
+            None => self
+                .renderer
+                .insert(Renderer::new_filter(self.device, self.queue, self.program, level)?),
+        };
+        filtered_output(r, level, index)
+    }
+}
+
+/// Run the filter on one level with a renderer of its own (what
+/// [`FilterRunner`] does for a whole chain): its output target, read back,
+/// is the filtered level (same size).
 pub fn filter_level(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -187,8 +225,11 @@ pub fn filter_level(
     level: &Level,
     index: u32,
 ) -> Result<Level, RunError> {
+    FilterRunner::new(device, queue, program).filter(level, index)
+}
+
+fn filtered_output(r: &mut Renderer, level: &Level, index: u32) -> Result<Level, RunError> {
     let scene = crate::scene::Scene::empty();
-    let mut r = Renderer::new_filter(device, queue, program, level)?;
     r.render(
         &scene,
         &FrameSpec {

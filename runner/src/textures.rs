@@ -47,6 +47,25 @@ pub fn load_all(
     Ok((out, builds))
 }
 
+/// The `filter_input()` textures of a filter style's manifest for `level`,
+/// by manifest index (a filter renderer moving on to its next level).
+pub(crate) fn filter_inputs(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    level: &Level,
+) -> Result<Vec<(usize, GpuTexture)>, RunError> {
+    let mut out = Vec::new();
+    for (i, t) in m.textures.iter().enumerate() {
+        if matches!(t.source, TextureSourceManifest::FilterInput) {
+            let texture = load_one(device, queue, t, Some(level), &mut Vec::new())
+                .map_err(|d| RunError::Textures(vec![(i, d)]))?;
+            out.push((i, texture));
+        }
+    }
+    Ok(out)
+}
+
 /// The images objects bind to per-object texture params, loaded once per
 /// (param, file, colour space) and shared between objects naming the same file.
 pub struct ObjectTextures {

@@ -31,4 +31,27 @@ impl Resolver<'_> {
             );
         }
     }
+
+    /// `kind(scene)` (every object: `None`) or `kind(tag)`; a second
+    /// argument is E0304 with `what` as its message.
+    pub(super) fn scene_or_tag(&mut self, p: &ast::PassDecl, what: &str) -> Option<String> {
+        let kind = p.kind.kind.name.clone();
+        let args = self.plain_kind_args(p, "a tag");
+        match args.as_slice() {
+            [] => None,
+            [a] if a.name == "scene" => None,
+            [a] => Some(a.name.clone()),
+            [_, extra, ..] => {
+                let extra = extra.span;
+                self.error(
+                    Diagnostic::error(codes::BAD_PASS_INPUT, what)
+                        .with_primary(extra, "unexpected")
+                        .with_help(format!(
+                            "write `{kind}(scene)` for all objects or `{kind}(tag)` for tagged ones"
+                        )),
+                );
+                None
+            }
+        }
+    }
 }

@@ -32,23 +32,7 @@ impl Resolver<'_> {
     /// `lines(scene)` or `lines(tag)`, with the default edges (silhouettes,
     /// no creases) and shape.
     pub(super) fn lines_kind(&mut self, p: &ast::PassDecl) -> PassKind {
-        let args = self.plain_kind_args(p, "a tag");
-        let tag = match args.as_slice() {
-            [] => None,
-            [a] if a.name == "scene" => None,
-            [a] => Some(a.name.clone()),
-            [_, extra, ..] => {
-                self.error(
-                    Diagnostic::error(
-                        codes::BAD_PASS_INPUT,
-                        "a lines pass draws the edges of one set of objects",
-                    )
-                    .with_primary(extra.span, "unexpected")
-                    .with_help("write `lines(scene)` for all objects or `lines(tag)` for tagged ones"),
-                );
-                None
-            }
-        };
+        let tag = self.scene_or_tag(p, "a lines pass draws the edges of one set of objects");
         let span = p.kind.span;
         let px = |r: &mut Self, v: f64| {
             r.ir.add_typed(ExprKind::Const(Const::Float(v)), Ty::Float, Unit::Px, span)

@@ -128,6 +128,19 @@ impl<'d> Renderer<'d> {
         Self::build(device, queue, program, &Scene::empty(), Some(level))
     }
 
+    /// A filter renderer ([`Renderer::new_filter`]) moves on to the next
+    /// level: its `filter_input()` texture is replaced by `level`; the
+    /// pipelines stay (what building them costs is most of a level's
+    /// filtering on lavapipe), the size-dependent resources are rebuilt at
+    /// the next frame, since their bind groups hold the old texture.
+    pub fn set_filter_input(&mut self, level: &crate::artmap::Level) -> Result<(), RunError> {
+        for (i, texture) in textures::filter_inputs(self.device, self.queue, &self.manifest, level)? {
+            self.textures[i] = texture;
+        }
+        self.sized = None;
+        Ok(())
+    }
+
     /// What building each art-map of the style did (filtered, or read from
     /// the cache), in declaration order.
     pub fn artmap_builds(&self) -> &[crate::artmap::ArtmapBuild] {
