@@ -11,6 +11,7 @@ mod live;
 mod lsp;
 mod path_args;
 mod printer;
+mod prof;
 mod reference;
 mod set_params;
 mod studio;

@@ -79,7 +79,7 @@ fn start(b: &StudioBench, copy: &Path) -> Result<Studio, String> {
         .arg(b.scene)
         .args(["--size", &size, "--port", "0"])
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(Stdio::inherit())
         .spawn()
         .map_err(|e| format!("cannot start npr studio: {e}"))?;
     let out = child.stdout.take().ok_or("no stdout")?;
@@ -157,6 +157,7 @@ struct Edit {
 fn slider(studio: &Studio, events: &mut Events, b: &StudioBench, k: u32, last: u64) -> Result<(Edit, u64), String> {
     let value = if k.is_multiple_of(2) { b.values.1 } else { b.values.0 };
     let t = Instant::now();
+    crate::prof::mark("bench:slider");
     let body = json!({"name": b.param, "literal": value}).to_string();
     match request(&studio.addr, "POST", "/param", &body)? {
         (202, _) => {}
@@ -172,7 +173,9 @@ fn slider(studio: &Studio, events: &mut Events, b: &StudioBench, k: u32, last: u
     if !s["param_error"].is_null() {
         return Err(format!("--param {}: {}", b.param, s["param_error"]["message"]));
     }
+    crate::prof::mark("bench:event");
     fetch_output(&studio.addr, &s)?;
+    crate::prof::mark("bench:fetched");
     let edit = Edit {
         total_ms: t.elapsed().as_secs_f64() * 1e3,
         compile_ms: 0.0,
@@ -186,9 +189,12 @@ fn save(studio: &Studio, events: &mut Events, text: &str, k: u32, last: u64) -> 
     let tmp = studio.copy.with_extension("npr.saving");
     std::fs::write(&tmp, format!("{text}\n// npr bench studio: save {k}\n")).map_err(|e| e.to_string())?;
     let t = Instant::now();
+    crate::prof::mark("bench:save");
     std::fs::rename(&tmp, &studio.copy).map_err(|e| e.to_string())?;
     let s = events.until(|s| frame_id(s) > last)?;
+    crate::prof::mark("bench:event");
     fetch_output(&studio.addr, &s)?;
+    crate::prof::mark("bench:fetched");
     let edit = Edit {
         total_ms: t.elapsed().as_secs_f64() * 1e3,
         compile_ms: s["frame"]["compile_ms"].as_f64().unwrap_or(f64::NAN),

@@ -23,7 +23,7 @@ use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use abi::manifest::ParamBinding;
 use compiler::overrides::ParamOverride;
-use dsl::{Diagnostic, SourceMap};
+use dsl::SourceMap;
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError};
 use serde_json::{json, Value};
@@ -148,6 +148,7 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
                 }
             }
             let Ok(first) = jobs.recv() else { return };
+            crate::prof::mark("rt:job");
             // Coalesce: a burst of slider moves renders once, with the last values.
             let mut batch = vec![first];
             while let Ok(more) = jobs.try_recv() {
@@ -308,8 +309,10 @@ impl Studio {
         if work == Pending::Panic {
             panic!("forced by POST /debug/panic (NPR_STUDIO_DEBUG=1)");
         }
+        crate::prof::mark("rt:work");
         if work == Pending::Rebuild || session.is_none() {
             let files = self.rebuild(gpu, session);
+            crate::prof::mark("rt:rebuilt");
             if let Some(w) = watcher {
                 w.set_files(files);
             }
@@ -343,6 +346,7 @@ impl Studio {
                 return files;
             }
         };
+        crate::prof::mark("rt:compiled");
         let files = build::dependencies(&self.inputs, &built.sources, Some(&built));
         self.last_good_files = files.clone();
         self.compile_ms = built.compile_ms;
@@ -357,6 +361,7 @@ impl Studio {
             .watch
             .check(Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene))
             .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
+        crate::prof::mark("rt:renderer_new");
         match renderer {
             Ok(renderer) => {
                 self.params = state::params_json(
@@ -364,7 +369,9 @@ impl Studio {
                     &self.overrides,
                 );
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
+                crate::prof::mark("rt:params_json");
                 let timer = lab::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
+                crate::prof::mark("rt:timer_new");
                 *session = Some(Session { built, renderer, timer });
             }
             Err(e) => {
@@ -380,15 +387,17 @@ impl Studio {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
-                let frame = encode(self.frame_id, &images);
+                crate::prof::mark("rt:rendered");
                 let manifest = &s.renderer.manifest;
+                let targets: Vec<Value> = images.iter().enumerate().map(|(i, t)| json!({
+                    "index": i, "name": t.name, "format": format!("{:?}", t.format),
+                    "float": t.is_float(), "width": t.width, "height": t.height,
+                })).collect();
+                let frame = FrameImages::new(self.frame_id, images);
                 self.frame = json!({
                     "id": self.frame_id,
                     "output": manifest.output,
-                    "targets": images.iter().enumerate().map(|(i, t)| json!({
-                        "index": i, "name": t.name, "format": format!("{:?}", t.format),
-                        "float": t.is_float(), "width": t.width, "height": t.height,
-                    })).collect::<Vec<_>>(),
+                    "targets": targets,
                     "compile_ms": self.compile_ms,
                     "render_ms": render_ms,
                     "passes": pass_ms.map(|ms| manifest.passes.iter().zip(ms).map(|(p, ms)| json!({"name": p.name, "gpu_ms": ms})).collect::<Vec<_>>()),
@@ -401,20 +410,9 @@ impl Studio {
                 if let Some(d) = self.diagnostics.as_array_mut() {
                     d.retain(|d| d["stage"] == "compile");
                 }
-                match frame {
-                    Ok(f) => self.publish(Some(f)),
-                    Err(e) => {
-                        self.diagnostics = state::diagnostics_json(
-                            &[Diagnostic::error(
-                                dsl::codes::INTERNAL,
-                                format!("cannot encode the frame: {e}"),
-                            )],
-                            &SourceMap::new(),
-                            "render",
-                        );
-                        self.publish(None);
-                    }
-                }
+                crate::prof::mark("rt:json");
+                self.publish(Some(frame));
+                crate::prof::mark("rt:published");
             }
             Err(e) => {
                 self.diagnostics = state::diagnostics_json(&e.diagnostics(), &s.built.sources, "render");
@@ -463,6 +461,7 @@ fn render_frame<'g>(
         s.renderer.render(scene, &spec(f.time_s, f.frame))?;
     }
     let spec = spec(last.time_s, last.frame);
+    crate::prof::mark("rf:start_last");
     let times = match &s.timer {
         Some(t) => Some(t.frame(gpu, &mut s.renderer, scene, &spec)?),
         None => {
@@ -470,19 +469,9 @@ fn render_frame<'g>(
             None
         }
     };
+    crate::prof::mark("rf:timed_frame");
     let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
     Ok((images, times))
-}
-
-/// Every target as PNG (as `npr render` writes it) and as raw f32 texels.
-fn encode(id: u64, images: &[runner::TargetImage]) -> std::io::Result<FrameImages> {
-    let mut png = Vec::new();
-    let mut f32 = Vec::new();
-    for t in images {
-        png.push(runner::output::encode_png(t)?);
-        f32.push(t.to_rgba_f32().iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
-    }
-    Ok(FrameImages { id, png, f32 })
 }
 
 /// What the studio holds after this frame: the process's resident memory
