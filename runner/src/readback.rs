@@ -73,7 +73,9 @@ impl TargetImage {
     /// show as grey, two-channel as red/green.
     pub fn to_rgba8(&self) -> image::RgbaImage {
         let grey = self.format.channels() == 1;
-        let px: Vec<u8> = if self.format.is_unorm() {
+        let px: Vec<u8> = if matches!(self.format, Format::Rgba8unorm | Format::Rgba8unormSrgb) {
+            self.bytes.clone()
+        } else if self.format.is_unorm() {
             // The bytes themselves: b / 255 quantized again is b.
             let bpp = self.format.bytes_per_pixel() as usize;
             self.bytes

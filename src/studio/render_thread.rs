@@ -364,8 +364,12 @@ impl Studio {
         crate::prof::mark("rt:renderer_new");
         match renderer {
             Ok(renderer) => {
+                let colours = match &built.colours {
+                    Some(c) => c.clone(),
+                    None => set_params::declared_colours(&built.sources),
+                };
                 self.params = state::params_json(
-                    &set_params::with_declared_types(&built.compiled.manifest.params, &built.sources),
+                    &set_params::with_colours(&built.compiled.manifest.params, &colours),
                     &self.overrides,
                 );
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
