@@ -11,7 +11,6 @@ mod live;
 mod lsp;
 mod path_args;
 mod printer;
-mod prof;
 mod reference;
 mod set_params;
 mod studio;

@@ -11,10 +11,11 @@
 //! - **save → image**: the style saved by rename (a comment changed) until
 //!   the rebuilt frame's PNG is fetched; overhead = that − the build's
 //!   compile time (the studio's own figure) − the `npr render` frame. It
-//!   includes the file watcher's debounce (`live::watcher::DEBOUNCE`).
+//!   includes the file watcher's debounce (`live::watcher::QUIET`).
 //! - **memory**: the studio's resident memory and wgpu's allocated GPU
-//!   memory (the frame's `memory`), after the first edits and after all
-//!   `--edits` (alternating slider moves and saves).
+//!   memory (the frame's `memory`), after edits 10, 100, 250, 500 and 750
+//!   and after all `--edits` (alternating slider moves and saves), so a
+//!   steady growth shows apart from the first edits' warm-up.
 //!
 //! The studio is a child `npr studio` process on a free port; the style is
 //! edited as a temporary copy beside the original (so relative paths hold),
@@ -79,7 +80,7 @@ fn start(b: &StudioBench, copy: &Path) -> Result<Studio, String> {
         .arg(b.scene)
         .args(["--size", &size, "--port", "0"])
         .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
+        .stderr(Stdio::null())
         .spawn()
         .map_err(|e| format!("cannot start npr studio: {e}"))?;
     let out = child.stdout.take().ok_or("no stdout")?;
@@ -157,7 +158,6 @@ struct Edit {
 fn slider(studio: &Studio, events: &mut Events, b: &StudioBench, k: u32, last: u64) -> Result<(Edit, u64), String> {
     let value = if k.is_multiple_of(2) { b.values.1 } else { b.values.0 };
     let t = Instant::now();
-    crate::prof::mark("bench:slider");
     let body = json!({"name": b.param, "literal": value}).to_string();
     match request(&studio.addr, "POST", "/param", &body)? {
         (202, _) => {}
@@ -173,9 +173,7 @@ fn slider(studio: &Studio, events: &mut Events, b: &StudioBench, k: u32, last: u
     if !s["param_error"].is_null() {
         return Err(format!("--param {}: {}", b.param, s["param_error"]["message"]));
     }
-    crate::prof::mark("bench:event");
     fetch_output(&studio.addr, &s)?;
-    crate::prof::mark("bench:fetched");
     let edit = Edit {
         total_ms: t.elapsed().as_secs_f64() * 1e3,
         compile_ms: 0.0,
@@ -189,12 +187,9 @@ fn save(studio: &Studio, events: &mut Events, text: &str, k: u32, last: u64) -> 
     let tmp = studio.copy.with_extension("npr.saving");
     std::fs::write(&tmp, format!("{text}\n// npr bench studio: save {k}\n")).map_err(|e| e.to_string())?;
     let t = Instant::now();
-    crate::prof::mark("bench:save");
     std::fs::rename(&tmp, &studio.copy).map_err(|e| e.to_string())?;
     let s = events.until(|s| frame_id(s) > last)?;
-    crate::prof::mark("bench:event");
     fetch_output(&studio.addr, &s)?;
-    crate::prof::mark("bench:fetched");
     let edit = Edit {
         total_ms: t.elapsed().as_secs_f64() * 1e3,
         compile_ms: s["frame"]["compile_ms"].as_f64().unwrap_or(f64::NAN),
@@ -260,7 +255,7 @@ fn measure(b: &StudioBench, copy: &Path, text: &str, frame_ms: f64) -> Result<()
             save(&studio, &mut events, text, k, last)?
         };
         last = id;
-        if [10, 100].contains(&k) || k == b.edits.max(2) {
+        if [10, 100, 250, 500, 750].contains(&k) || k == b.edits.max(2) {
             memory_after.push((k, edit.memory.clone()));
         }
         if !k.is_multiple_of(2) {

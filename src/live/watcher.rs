@@ -101,7 +101,6 @@ impl FileWatcher {
                             Err(RecvTimeoutError::Disconnected) => return,
                         }
                     }
-                    crate::prof::mark("watch:fire");
                     on_change(changed.into_iter().collect());
                 }
             })

@@ -148,7 +148,6 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
                 }
             }
             let Ok(first) = jobs.recv() else { return };
-            crate::prof::mark("rt:job");
             // Coalesce: a burst of slider moves renders once, with the last values.
             let mut batch = vec![first];
             while let Ok(more) = jobs.try_recv() {
@@ -309,10 +308,8 @@ impl Studio {
         if work == Pending::Panic {
             panic!("forced by POST /debug/panic (NPR_STUDIO_DEBUG=1)");
         }
-        crate::prof::mark("rt:work");
         if work == Pending::Rebuild || session.is_none() {
             let files = self.rebuild(gpu, session);
-            crate::prof::mark("rt:rebuilt");
             if let Some(w) = watcher {
                 w.set_files(files);
             }
@@ -346,7 +343,6 @@ impl Studio {
                 return files;
             }
         };
-        crate::prof::mark("rt:compiled");
         let files = build::dependencies(&self.inputs, &built.sources, Some(&built));
         self.last_good_files = files.clone();
         self.compile_ms = built.compile_ms;
@@ -361,7 +357,6 @@ impl Studio {
             .watch
             .check(Renderer::new(&gpu.device, &gpu.queue, &program, &built.scene))
             .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
-        crate::prof::mark("rt:renderer_new");
         match renderer {
             Ok(renderer) => {
                 let colours = match &built.colours {
@@ -373,9 +368,7 @@ impl Studio {
                     &self.overrides,
                 );
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
-                crate::prof::mark("rt:params_json");
                 let timer = lab::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
-                crate::prof::mark("rt:timer_new");
                 *session = Some(Session { built, renderer, timer });
             }
             Err(e) => {
@@ -391,12 +384,17 @@ impl Studio {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
-                crate::prof::mark("rt:rendered");
                 let manifest = &s.renderer.manifest;
-                let targets: Vec<Value> = images.iter().enumerate().map(|(i, t)| json!({
-                    "index": i, "name": t.name, "format": format!("{:?}", t.format),
-                    "float": t.is_float(), "width": t.width, "height": t.height,
-                })).collect();
+                let targets: Vec<Value> = images
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| {
+                        json!({
+                            "index": i, "name": t.name, "format": format!("{:?}", t.format),
+                            "float": t.is_float(), "width": t.width, "height": t.height,
+                        })
+                    })
+                    .collect();
                 let frame = FrameImages::new(self.frame_id, images);
                 self.frame = json!({
                     "id": self.frame_id,
@@ -414,9 +412,7 @@ impl Studio {
                 if let Some(d) = self.diagnostics.as_array_mut() {
                     d.retain(|d| d["stage"] == "compile");
                 }
-                crate::prof::mark("rt:json");
                 self.publish(Some(frame));
-                crate::prof::mark("rt:published");
             }
             Err(e) => {
                 self.diagnostics = state::diagnostics_json(&e.diagnostics(), &s.built.sources, "render");
@@ -465,7 +461,6 @@ fn render_frame<'g>(
         s.renderer.render(scene, &spec(f.time_s, f.frame))?;
     }
     let spec = spec(last.time_s, last.frame);
-    crate::prof::mark("rf:start_last");
     let times = match &s.timer {
         Some(t) => Some(t.frame(gpu, &mut s.renderer, scene, &spec)?),
         None => {
@@ -473,7 +468,6 @@ fn render_frame<'g>(
             None
         }
     };
-    crate::prof::mark("rf:timed_frame");
     let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
     Ok((images, times))
 }

@@ -67,7 +67,6 @@ fn text(request: Request, status: u16, message: &str) {
 
 fn handle(mut request: Request, hub: &Hub, jobs: &Sender<Job>) {
     let url = request.url().split('?').next().unwrap_or("").to_string();
-    crate::prof::mark(&format!("http:start {url}"));
     match (request.method().clone(), url.as_str()) {
         (Method::Get, "/") => respond(request, 200, "text/html; charset=utf-8", PAGE.into()),
         (Method::Get, "/studio.js") => respond(request, 200, "text/javascript; charset=utf-8", SCRIPT.into()),
@@ -154,10 +153,13 @@ fn frame(request: Request, hub: &Hub, rest: &str) {
         "f32" => frame.f32(target).map(|b| Ok((b, "application/octet-stream"))),
         _ => None,
     };
-    crate::prof::mark("http:frame_bytes");
     match bytes {
         Some(Ok((b, ty))) => respond(request, 200, ty, b.to_vec()),
-        Some(Err(e)) => text(request, 500, &format!("cannot encode target {target} of frame {id}: {e}")),
+        Some(Err(e)) => text(
+            request,
+            500,
+            &format!("cannot encode target {target} of frame {id}: {e}"),
+        ),
         None => text(request, 404, &format!("frame {id} has no target {target}.{ext}")),
     }
 }
