@@ -31,11 +31,25 @@ pub fn compile_with_sets(
     sources: &mut SourceMap,
     opts: &CompileOptions,
 ) -> Result<Compiled, CompileError> {
+    compile_with_sets_colours(style, sets, extra, sources, opts).map(|(c, _)| c)
+}
+
+/// [`compile_with_sets`], and the style's colour parameters
+/// ([`declared_colours`]) when typing the overrides needed them, so that the
+/// studio does not parse the style files a third time for its controls.
+pub fn compile_with_sets_colours(
+    style: &Path,
+    sets: &[String],
+    extra: &[ParamOverride],
+    sources: &mut SourceMap,
+    opts: &CompileOptions,
+) -> Result<(Compiled, Option<Vec<String>>), CompileError> {
     let first = compiler::compile_file(style, sources, opts)?;
     if sets.is_empty() && extra.is_empty() {
-        return Ok(first);
+        return Ok((first, None));
     }
-    let params = with_declared_types(&first.manifest.params, sources);
+    let colours = declared_colours(sources);
+    let params = with_colours(&first.manifest.params, &colours);
     let mut overrides = resolve(sets, &params, sources).map_err(CompileError::User)?;
     for o in extra {
         overrides.retain(|x| x.name != o.name);
@@ -45,7 +59,7 @@ pub fn compile_with_sets(
         overrides,
         ..opts.clone()
     };
-    compiler::compile_file(style, sources, &opts)
+    compiler::compile_file(style, sources, &opts).map(|c| (c, Some(colours)))
 }
 
 /// [`compile_with_sets`] for the one-shot commands: diagnostics printed, the
@@ -61,11 +75,11 @@ pub(crate) fn compile(
     crate::printer::report_compile(result, sources, printer)
 }
 
-/// The manifest's parameters with `ty` set to `color` where the style
-/// declares `color` (the manifest writes a colour's type as `vec4`), read
-/// from the declarations in the style files of `sources`, so that a colour
-/// takes `#rrggbb` and gets a colour picker.
-pub fn with_declared_types(params: &[ParamManifest], sources: &SourceMap) -> Vec<ParamManifest> {
+/// The names of the parameters declared `color` in the style files of
+/// `sources` (each parsed again: the manifest writes a colour's type as
+/// `vec4`), so that a colour takes `#rrggbb` and gets a colour picker
+/// ([`with_colours`]).
+pub fn declared_colours(sources: &SourceMap) -> Vec<String> {
     let mut colours = Vec::new();
     for f in sources.files().iter().filter(|f| f.name.ends_with(".npr")) {
         let mut scratch = SourceMap::new();
@@ -79,6 +93,11 @@ pub fn with_declared_types(params: &[ParamManifest], sources: &SourceMap) -> Vec
             }
         }
     }
+    colours
+}
+
+/// `params` with `ty` set to `color` for the names in `colours`.
+pub fn with_colours(params: &[ParamManifest], colours: &[String]) -> Vec<ParamManifest> {
     params
         .iter()
         .map(|p| {

@@ -35,34 +35,68 @@ impl TargetImage {
         out
     }
 
+    /// Every texel as [`TargetImage::texel`] gives it, row-major. One match
+    /// on the format for the whole image, not one per texel: the studio
+    /// converts a whole frame for every image it serves.
     pub fn to_rgba_f32(&self) -> Vec<[f32; 4]> {
-        let mut v = Vec::with_capacity((self.width * self.height) as usize);
-        for y in 0..self.height {
-            for x in 0..self.width {
-                v.push(self.texel(x, y));
+        match self.format {
+            Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => {
+                self.decode(1, |b| b[0] as f32 / 255.0)
+            }
+            Format::R16float | Format::Rg16float | Format::Rgba16float => {
+                self.decode(2, |b| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32())
+            }
+            Format::R32float | Format::Rg32float | Format::Rgba32float => {
+                self.decode(4, |b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             }
         }
-        v
+    }
+
+    /// Texels with `size`-byte channels decoded by `channel`; missing
+    /// channels 0, alpha 1 (as [`TargetImage::texel`]).
+    fn decode(&self, size: usize, channel: impl Fn(&[u8]) -> f32) -> Vec<[f32; 4]> {
+        let channels = self.format.channels() as usize;
+        self.bytes
+            .chunks_exact(self.format.bytes_per_pixel() as usize)
+            .map(|px| {
+                let mut out = [0.0, 0.0, 0.0, 1.0];
+                for (c, slot) in out.iter_mut().enumerate().take(channels) {
+                    *slot = channel(&px[c * size..]);
+                }
+                out
+            })
+            .collect()
     }
 
     /// 8-bit RGBA for display: unorm targets byte for byte (their values are
     /// display-referred), float targets clamped to [0, 1]. One-channel targets
     /// show as grey, two-channel as red/green.
     pub fn to_rgba8(&self) -> image::RgbaImage {
-        let mut img = image::RgbaImage::new(self.width, self.height);
-        for y in 0..self.height {
-            for x in 0..self.width {
-                let t = self.texel(x, y);
-                let t = if self.format.channels() == 1 {
-                    [t[0], t[0], t[0], 1.0]
-                } else {
-                    t
-                };
-                let q = |v: f32| (if v.is_finite() { v } else { 0.0 }.clamp(0.0, 1.0) * 255.0).round() as u8;
-                img.put_pixel(x, y, image::Rgba([q(t[0]), q(t[1]), q(t[2]), q(t[3])]));
-            }
-        }
-        img
+        let grey = self.format.channels() == 1;
+        let px: Vec<u8> = if matches!(self.format, Format::Rgba8unorm | Format::Rgba8unormSrgb) {
+            self.bytes.clone()
+        } else if self.format.is_unorm() {
+            // The bytes themselves: b / 255 quantized again is b.
+            let bpp = self.format.bytes_per_pixel() as usize;
+            self.bytes
+                .chunks_exact(bpp)
+                .flat_map(|b| match (grey, bpp) {
+                    (true, _) => [b[0], b[0], b[0], 255],
+                    (false, 2) => [b[0], b[1], 0, 255],
+                    _ => [b[0], b[1], b[2], b[3]],
+                })
+                .collect()
+        } else {
+            let q = |v: f32| (if v.is_finite() { v } else { 0.0 }.clamp(0.0, 1.0) * 255.0).round() as u8;
+            self.to_rgba_f32()
+                .into_iter()
+                .flat_map(|t| {
+                    let t = if grey { [t[0], t[0], t[0], 1.0] } else { t };
+                    t.map(q)
+                })
+                .collect()
+        };
+        image::RgbaImage::from_raw(self.width, self.height, px).expect("one RGBA texel per pixel")
     }
 
     pub fn is_float(&self) -> bool {

@@ -11,10 +11,11 @@
 //! - **save → image**: the style saved by rename (a comment changed) until
 //!   the rebuilt frame's PNG is fetched; overhead = that − the build's
 //!   compile time (the studio's own figure) − the `npr render` frame. It
-//!   includes the file watcher's debounce (`live::watcher::DEBOUNCE`).
+//!   includes the file watcher's debounce (`live::watcher::QUIET`).
 //! - **memory**: the studio's resident memory and wgpu's allocated GPU
-//!   memory (the frame's `memory`), after the first edits and after all
-//!   `--edits` (alternating slider moves and saves).
+//!   memory (the frame's `memory`), after edits 10, 100, 250, 500 and 750
+//!   and after all `--edits` (alternating slider moves and saves), so a
+//!   steady growth shows apart from the first edits' warm-up.
 //!
 //! The studio is a child `npr studio` process on a free port; the style is
 //! edited as a temporary copy beside the original (so relative paths hold),
@@ -254,7 +255,7 @@ fn measure(b: &StudioBench, copy: &Path, text: &str, frame_ms: f64) -> Result<()
             save(&studio, &mut events, text, k, last)?
         };
         last = id;
-        if [10, 100].contains(&k) || k == b.edits.max(2) {
+        if [10, 100, 250, 500, 750].contains(&k) || k == b.edits.max(2) {
             memory_after.push((k, edit.memory.clone()));
         }
         if !k.is_multiple_of(2) {

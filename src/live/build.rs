@@ -32,6 +32,9 @@ pub struct Built {
     pub sources: SourceMap,
     /// Wall time of scene load + compile (with the `--set` typing).
     pub compile_ms: f64,
+    /// The style's `color` parameters, when typing the `--set`s and
+    /// overrides read them (`set_params::declared_colours`).
+    pub colours: Option<Vec<String>>,
 }
 
 pub struct Failed {
@@ -63,13 +66,14 @@ pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Fail
         paths: Some(paths),
         ..Default::default()
     };
-    let result = set_params::compile_with_sets(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);
+    let result = set_params::compile_with_sets_colours(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);
     match result {
-        Ok(compiled) => Ok(Built {
+        Ok((compiled, colours)) => Ok(Built {
             compiled,
             scene,
             sources,
             compile_ms: start.elapsed().as_secs_f64() * 1e3,
+            colours,
         }),
         Err(CompileError::User(diagnostics)) => Err(Failed { diagnostics, sources }),
         Err(CompileError::Internal(e)) => Err(Failed {

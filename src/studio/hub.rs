@@ -9,15 +9,62 @@
 
 use serde_json::Value;
 use std::sync::mpsc::{channel, Receiver, Sender};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
-/// One rendered frame's targets, served at `/frame/{id}/{index}.png` and `.f32`.
+/// One rendered frame's targets, served at `/frame/{id}/{index}.png` and
+/// `.f32`. The texels are kept as read back, and each file is encoded the
+/// first time it is asked for (then kept with the frame): encoding every
+/// target of every frame before publishing it cost more than rendering it
+/// (docs/PERFORMANCE.md), and the page asks only for the thumbnails and the
+/// target it shows, while slider moves replace frames faster than that.
 pub struct FrameImages {
     pub id: u64,
-    /// Per target: PNG bytes (as `npr render` writes them).
-    pub png: Vec<Vec<u8>>,
-    /// Per target: RGBA f32 texels, row-major, little-endian.
-    pub f32: Vec<Vec<u8>>,
+    targets: Vec<Encoded>,
+}
+
+struct Encoded {
+    image: runner::TargetImage,
+    /// PNG bytes as `npr render` writes them; or why they could not be made.
+    png: OnceLock<Result<Vec<u8>, String>>,
+    /// RGBA f32 texels, row-major, little-endian.
+    f32: OnceLock<Vec<u8>>,
+}
+
+impl FrameImages {
+    pub fn new(id: u64, images: Vec<runner::TargetImage>) -> FrameImages {
+        let targets = images
+            .into_iter()
+            .map(|image| Encoded {
+                image,
+                png: OnceLock::new(),
+                f32: OnceLock::new(),
+            })
+            .collect();
+        FrameImages { id, targets }
+    }
+
+    /// Target `index` as PNG (encoded on first use; a second request waits
+    /// for the first's encoding instead of doing it again).
+    pub fn png(&self, index: usize) -> Option<Result<&[u8], &str>> {
+        let t = self.targets.get(index)?;
+        let png = t
+            .png
+            .get_or_init(|| runner::output::encode_png(&t.image).map_err(|e| e.to_string()));
+        Some(png.as_deref().map_err(String::as_str))
+    }
+
+    /// Target `index` as RGBA f32 texels.
+    pub fn f32(&self, index: usize) -> Option<&[u8]> {
+        let t = self.targets.get(index)?;
+        Some(t.f32.get_or_init(|| {
+            let texels = t.image.to_rgba_f32();
+            let mut bytes = Vec::with_capacity(texels.len() * 16);
+            for v in texels.iter().flatten() {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+            bytes
+        }))
+    }
 }
 
 #[derive(Default)]

@@ -5,9 +5,11 @@
 //! - `render_thread.rs`: builds, renders and publishes, never ending on an error;
 //! - `state.rs`: the page's JSON (controls, diagnostics);
 //! - `write_back.rs`: "write into the file";
+//! - `malloc.rs`: one malloc arena, so resident memory stays flat across edits;
 //! - `page.html`, `studio.js`, `studio.css`: the page, embedded with `include_str!`.
 
 mod hub;
+mod malloc;
 pub mod orbit;
 mod render_thread;
 mod server;
@@ -33,6 +35,7 @@ pub struct StudioArgs {
 
 /// Bind, print the address, and serve until interrupted.
 pub fn run(args: StudioArgs, printer: &Printer) -> i32 {
+    malloc::single_arena();
     if let Err(d) = crate::args::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
         return printer.fail(d);
     }

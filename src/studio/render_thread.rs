@@ -23,7 +23,7 @@ use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use abi::manifest::ParamBinding;
 use compiler::overrides::ParamOverride;
-use dsl::{Diagnostic, SourceMap};
+use dsl::SourceMap;
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError};
 use serde_json::{json, Value};
@@ -359,8 +359,12 @@ impl Studio {
             .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
         match renderer {
             Ok(renderer) => {
+                let colours = match &built.colours {
+                    Some(c) => c.clone(),
+                    None => set_params::declared_colours(&built.sources),
+                };
                 self.params = state::params_json(
-                    &set_params::with_declared_types(&built.compiled.manifest.params, &built.sources),
+                    &set_params::with_colours(&built.compiled.manifest.params, &colours),
                     &self.overrides,
                 );
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
@@ -380,15 +384,22 @@ impl Studio {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
-                let frame = encode(self.frame_id, &images);
                 let manifest = &s.renderer.manifest;
+                let targets: Vec<Value> = images
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| {
+                        json!({
+                            "index": i, "name": t.name, "format": format!("{:?}", t.format),
+                            "float": t.is_float(), "width": t.width, "height": t.height,
+                        })
+                    })
+                    .collect();
+                let frame = FrameImages::new(self.frame_id, images);
                 self.frame = json!({
                     "id": self.frame_id,
                     "output": manifest.output,
-                    "targets": images.iter().enumerate().map(|(i, t)| json!({
-                        "index": i, "name": t.name, "format": format!("{:?}", t.format),
-                        "float": t.is_float(), "width": t.width, "height": t.height,
-                    })).collect::<Vec<_>>(),
+                    "targets": targets,
                     "compile_ms": self.compile_ms,
                     "render_ms": render_ms,
                     "passes": pass_ms.map(|ms| manifest.passes.iter().zip(ms).map(|(p, ms)| json!({"name": p.name, "gpu_ms": ms})).collect::<Vec<_>>()),
@@ -401,20 +412,7 @@ impl Studio {
                 if let Some(d) = self.diagnostics.as_array_mut() {
                     d.retain(|d| d["stage"] == "compile");
                 }
-                match frame {
-                    Ok(f) => self.publish(Some(f)),
-                    Err(e) => {
-                        self.diagnostics = state::diagnostics_json(
-                            &[Diagnostic::error(
-                                dsl::codes::INTERNAL,
-                                format!("cannot encode the frame: {e}"),
-                            )],
-                            &SourceMap::new(),
-                            "render",
-                        );
-                        self.publish(None);
-                    }
-                }
+                self.publish(Some(frame));
             }
             Err(e) => {
                 self.diagnostics = state::diagnostics_json(&e.diagnostics(), &s.built.sources, "render");
@@ -472,17 +470,6 @@ fn render_frame<'g>(
     };
     let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
     Ok((images, times))
-}
-
-/// Every target as PNG (as `npr render` writes it) and as raw f32 texels.
-fn encode(id: u64, images: &[runner::TargetImage]) -> std::io::Result<FrameImages> {
-    let mut png = Vec::new();
-    let mut f32 = Vec::new();
-    for t in images {
-        png.push(runner::output::encode_png(t)?);
-        f32.push(t.to_rgba_f32().iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
-    }
-    Ok(FrameImages { id, png, f32 })
 }
 
 /// What the studio holds after this frame: the process's resident memory

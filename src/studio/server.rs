@@ -149,12 +149,17 @@ fn frame(request: Request, hub: &Hub, rest: &str) {
         return text(request, 404, &format!("frame {id} is not the current frame"));
     };
     let bytes = match ext.as_str() {
-        "png" => frame.png.get(target).map(|b| (b.clone(), "image/png")),
-        "f32" => frame.f32.get(target).map(|b| (b.clone(), "application/octet-stream")),
+        "png" => frame.png(target).map(|b| b.map(|b| (b, "image/png"))),
+        "f32" => frame.f32(target).map(|b| Ok((b, "application/octet-stream"))),
         _ => None,
     };
     match bytes {
-        Some((b, ty)) => respond(request, 200, ty, b),
+        Some(Ok((b, ty))) => respond(request, 200, ty, b.to_vec()),
+        Some(Err(e)) => text(
+            request,
+            500,
+            &format!("cannot encode target {target} of frame {id}: {e}"),
+        ),
         None => text(request, 404, &format!("frame {id} has no target {target}.{ext}")),
     }
 }
