@@ -509,3 +509,40 @@ fn one_filter_renderer_for_a_whole_chain_gives_what_a_renderer_per_level_gives()
         }
     }
 }
+
+#[test]
+fn filter_arguments_at_the_call_site_are_the_filter_with_those_defaults() {
+    // `filter("hatching.npr", spacing: 8)` against a copy of the filter file
+    // whose default is 8: the same art-map, texel for texel, on a plane.
+    let dir = scratch("filter-args");
+    std::fs::create_dir_all(dir.join("filters")).unwrap();
+    grey_png(&dir.join("src.png"), 64, 90);
+    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
+    std::fs::write(dir.join("filters/hatching.npr"), &hatching).unwrap();
+    let copied = hatching.replace("param spacing: float = 4 in 2..32", "param spacing: float = 8 in 2..32");
+    assert_ne!(copied, hatching, "the hatching filter's spacing default moved");
+    std::fs::write(dir.join("filters/hatching8.npr"), copied).unwrap();
+    let style = |filter: &str| {
+        format!(
+            "style \"Args\"\ntexture t = artmap(image(\"src.png\", srgb), filter: {filter})\npass p: render(scene) {{\n  out c: rgba8unorm = sample(t, uv * 2.0)\n}}\noutput p.c\n"
+        )
+    };
+    let plane = scene(
+        "[camera]\nposition = [0.0, 0.0, 2.2]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 2.0 }\nrotate = [90.0, 0.0, 0.0]\n",
+    );
+    let with_args = render(
+        &compile(&style("filter(\"filters/hatching.npr\", spacing: 8)"), &dir),
+        &plane,
+        64,
+    );
+    let with_file = render(&compile(&style("\"filters/hatching8.npr\""), &dir), &plane, 64);
+    let with_default = render(&compile(&style("\"filters/hatching.npr\""), &dir), &plane, 64);
+    let texels = |img: &runner::TargetImage| -> Vec<[f32; 4]> {
+        (0..img.height)
+            .flat_map(|y| (0..img.width).map(move |x| (x, y)))
+            .map(|(x, y)| img.texel(x, y))
+            .collect()
+    };
+    assert_eq!(texels(&with_args), texels(&with_file), "the argument is the default 8");
+    assert_ne!(texels(&with_args), texels(&with_default), "and not the default 4");
+}

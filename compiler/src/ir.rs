@@ -599,6 +599,16 @@ pub struct Param {
     pub name_span: Span,
 }
 
+/// One argument of `filter("…", name: value)`: a constant in canonical
+/// units (degrees as radians), with the unit it was written in.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FilterArg {
+    pub name: String,
+    pub value: Vec<f64>,
+    pub unit: Unit,
+    pub span: Span,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
     Image {
@@ -615,8 +625,15 @@ pub enum TextureSource {
         path: String,
         resolved: String,
         srgb: bool,
+        /// The compiled filter's key: `filter_file`, plus its arguments when
+        /// it has any (one compiled filter per path and argument list).
         filter: String,
+        /// The filter file's key in `Loaded::filters` (its resolved path).
+        filter_file: String,
         filter_name: String,
+        /// `filter: filter("hatching.npr", spacing: 8)`: new defaults for
+        /// the filter's params, checked against them when it is compiled.
+        filter_args: Vec<FilterArg>,
         levels: Option<u32>,
         /// `ripmap(...)`: every 2^-i × 2^-j level in one atlas.
         rip: bool,

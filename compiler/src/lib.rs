@@ -14,6 +14,7 @@ pub mod consteval;
 pub mod dag;
 pub mod dump;
 pub mod emit;
+pub mod filter_args;
 pub mod filter_checks;
 pub mod follow_ups;
 pub mod ir;

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// The parsed style: the root file's header, every item in dependency order,
 /// and the directory each item's relative paths resolve against.
+#[derive(Clone)]
 pub struct Loaded {
     pub root: Ast,
     pub root_file: FileId,

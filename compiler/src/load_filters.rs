@@ -37,21 +37,32 @@ pub fn load(
         else {
             continue;
         };
-        // Anything but a path is reported by `resolve`.
-        let ExprKind::Str(rel) = &arg.value.kind else { continue };
+        // `filter: "path"` or `filter: filter("path", name: value, ...)`;
+        // anything else is reported by `resolve`.
+        let (rel, span) = match &arg.value.kind {
+            ExprKind::Str(rel) => (rel, arg.value.span),
+            ExprKind::Call(c) if c.callee.name == "filter" => match c.args.first().map(|a| (&a.name, &a.value)) {
+                Some((None, v)) => match &v.kind {
+                    ExprKind::Str(rel) => (rel, v.span),
+                    _ => continue,
+                },
+                _ => continue,
+            },
+            _ => continue,
+        };
         let path = dir.join(rel);
         let key = path.display().to_string();
         if filters.contains_key(&key) {
             continue;
         }
-        if let Some(d) = crate::paths::check(paths, arg.value.span, rel, &path) {
+        if let Some(d) = crate::paths::check(paths, span, rel, &path) {
             diags.push(d);
             continue;
         }
         if !path.is_file() {
             diags.push(
                 Diagnostic::error(codes::BAD_USE, format!("filter style `{rel}` not found"))
-                    .with_primary(arg.value.span, format!("looked for {}", path.display()))
+                    .with_primary(span, format!("looked for {}", path.display()))
                     .with_help("a filter is a `.npr` file of image passes, its path relative to this file"),
             );
             continue;

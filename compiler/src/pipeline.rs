@@ -186,13 +186,17 @@ pub fn run(
 /// them. A filter's errors are the host's errors, spans in the filter file.
 fn compile_filters(
     ir: &crate::ir::Ir,
-    mut loaded: std::collections::BTreeMap<String, Loaded>,
+    loaded: std::collections::BTreeMap<String, Loaded>,
     sources: &SourceMap,
 ) -> Result<std::collections::BTreeMap<String, abi::FilterProgram>, CompileError> {
     let mut out = std::collections::BTreeMap::new();
     for t in &ir.textures {
         let crate::ir::TextureSource::Artmap {
-            filter, filter_name, ..
+            filter,
+            filter_file,
+            filter_name,
+            filter_args,
+            ..
         } = &t.source
         else {
             continue;
@@ -200,7 +204,7 @@ fn compile_filters(
         if out.contains_key(filter) {
             continue;
         }
-        let Some(filter_loaded) = loaded.remove(filter) else {
+        let Some(filter_loaded) = loaded.get(filter_file) else {
             return Err(CompileError::Internal(InternalError {
                 message: format!("the filter `{filter_name}` of texture `{}` was not loaded", t.name),
                 detail: "load_filters loads every filter an art-map names".into(),
@@ -208,18 +212,35 @@ fn compile_filters(
                 wgsl: None,
             }));
         };
-        let c = match run(filter_loaded, sources, filter, &CompileOptions::default(), Vec::new()) {
-            Ok(c) => c,
-            // Point from each of the filter's errors back at the art-map.
-            Err(CompileError::User(diags)) => {
-                return Err(CompileError::User(
-                    diags
-                        .into_iter()
-                        .map(|d| d.with_secondary(t.span, format!("the filter of art-map `{}`", t.name)))
-                        .collect(),
-                ))
-            }
-            Err(e) => return Err(e),
+        // Point from each of the filter's errors back at the art-map.
+        let from_filter = |e: CompileError| match e {
+            CompileError::User(diags) => CompileError::User(
+                diags
+                    .into_iter()
+                    .map(|d| d.with_secondary(t.span, format!("the filter of art-map `{}`", t.name)))
+                    .collect(),
+            ),
+            e => e,
+        };
+        let plain = run(
+            filter_loaded.clone(),
+            sources,
+            filter_file,
+            &CompileOptions::default(),
+            Vec::new(),
+        )
+        .map_err(from_filter)?;
+        let c = if filter_args.is_empty() {
+            plain
+        } else {
+            // The arguments are checked against the params the filter declares.
+            let overrides = crate::filter_args::overrides(filter_args, &plain.manifest.params, filter_name)
+                .map_err(CompileError::User)?;
+            let opts = CompileOptions {
+                overrides,
+                ..CompileOptions::default()
+            };
+            run(filter_loaded.clone(), sources, filter_file, &opts, Vec::new()).map_err(from_filter)?
         };
         out.insert(
             filter.clone(),

@@ -319,3 +319,53 @@ fn geometry_in_a_pass_over_pixels() {
     assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
     check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
 }
+
+/// A host style whose art-map passes `args` to a filter with one param,
+/// `spacing: float = 4 in 2..32`.
+fn filter_args_case(name: &str, args: &str) -> (Vec<Diagnostic>, String) {
+    let dir = scratch(name);
+    std::fs::write(
+        dir.join("hatch.npr"),
+        format!(
+            "{FILTER_HEAD}/// Stroke distance.\nparam spacing: float = 4 in 2..32\npass p: image() {{\n  out c: rgba8unorm = vec4(level.rgb * step(0.5, fract(frag_coord.x / spacing)), 1.0)\n}}\noutput p.c\n"
+        ),
+    )
+    .unwrap();
+    let text = format!(
+        "style \"Case\"\ntexture t = artmap(image(\"src.png\"), filter: filter(\"hatch.npr\", {args}))\n\
+         pass p: render(scene) {{\n  out c: rgba8unorm = sample(t, uv)\n}}\noutput p.c\n"
+    );
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([128, 128, 128, 255]))
+        .save(dir.join("src.png"))
+        .unwrap();
+    compile_errors(&text, &dir)
+}
+
+#[test]
+fn filter_arguments_are_checked_against_the_filters_params() {
+    check_case(
+        "E0101",
+        "filter_arg_unknown",
+        filter_args_case("farg-unknown", "spacng: 8"),
+    );
+    check_case(
+        "E0202",
+        "filter_arg_unit",
+        filter_args_case("farg-unit", "spacing: 8px"),
+    );
+    check_case(
+        "E0203",
+        "filter_arg_range",
+        filter_args_case("farg-range", "spacing: 64"),
+    );
+    check_case(
+        "E0201",
+        "filter_arg_components",
+        filter_args_case("farg-type", "spacing: #ff0000"),
+    );
+    check_case(
+        "E0003",
+        "filter_arg_twice",
+        filter_args_case("farg-twice", "spacing: 8, spacing: 6"),
+    );
+}

@@ -71,14 +71,20 @@ impl Resolver<'_> {
                     image = self.image_args(c, dir);
                     image.as_ref()?;
                 }
-                (Some("filter"), AK::Str(rel)) => filter = Some((rel.clone(), dir.join(rel).display().to_string())),
+                (Some("filter"), AK::Str(rel)) => {
+                    let file = dir.join(rel).display().to_string();
+                    filter = Some((rel.clone(), file.clone(), file, Vec::new()))
+                }
+                (Some("filter"), AK::Call(c)) if c.callee.name == "filter" => filter = self.filter_call(c, dir),
                 (Some("filter"), _) => self.error(
                     Diagnostic::error(
                         codes::BAD_ARGUMENT,
                         "an art-map's `filter` is the path of a filter style",
                     )
                     .with_primary(a.value.span, "not a path")
-                    .with_help("write `filter: \"filters/hatching.npr\"`, relative to this file"),
+                    .with_help(
+                        "write `filter: \"filters/hatching.npr\"`, relative to this file, or with new values for its params: `filter: filter(\"filters/hatching.npr\", spacing: 8)`",
+                    ),
                 ),
                 (Some("levels"), AK::Name(n)) if n.name == "auto" => levels = None,
                 (Some("levels"), _) => {
@@ -118,7 +124,7 @@ impl Resolver<'_> {
             );
             return None;
         };
-        let Some((filter_name, filter)) = filter else {
+        let Some((filter_name, filter, filter_file, filter_args)) = filter else {
             self.error(
                 Diagnostic::error(codes::BAD_ARGUMENT, "an art-map needs a `filter`")
                     .with_primary(t.source.span, "no filter named")
@@ -140,10 +146,68 @@ impl Resolver<'_> {
             resolved,
             srgb,
             filter,
+            filter_file,
             filter_name,
+            filter_args,
             levels,
             rip,
         })
+    }
+
+    /// `filter("path", name: value, ...)`: the path as written, the
+    /// compiled filter's key (the resolved path, and the arguments when
+    /// there are any: one compiled filter per argument list), the resolved
+    /// path (`load_filters`' key) and the arguments as constants. Whether the filter has such params, of that type, unit
+    /// and range, is checked when it is compiled (`pipeline`).
+    fn filter_call(&mut self, c: &ast::Call, dir: &Path) -> Option<(String, String, String, Vec<FilterArg>)> {
+        let usage =
+            "write `filter(\"filters/hatching.npr\", spacing: 8)`: the filter's path, then new values for its params";
+        let rel = match c.args.first().map(|a| (&a.name, &a.value.kind)) {
+            Some((None, AK::Str(rel))) => rel.clone(),
+            _ => {
+                self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, "`filter(...)` starts with the filter's path")
+                        .with_primary(c.span, "no path first")
+                        .with_help(usage),
+                );
+                return None;
+            }
+        };
+        let mut args: Vec<FilterArg> = Vec::new();
+        for a in c.args.iter().skip(1) {
+            let Some(name) = &a.name else {
+                self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, "a filter's argument needs the param's name")
+                        .with_primary(a.span, "no name")
+                        .with_help(usage),
+                );
+                continue;
+            };
+            if let Some(first) = args.iter().find(|x| x.name == name.name) {
+                self.error(
+                    Diagnostic::error(codes::DUPLICATE_NAME, format!("`{}` is given twice", name.name))
+                        .with_primary(a.span, "given again here")
+                        .with_secondary(first.span, "first here"),
+                );
+                continue;
+            }
+            let id = self.expr(&a.value);
+            let Some(value) = self.const_values(id) else { continue };
+            args.push(FilterArg {
+                name: name.name.clone(),
+                value,
+                unit: self.ir.expr(id).unit,
+                span: a.span,
+            });
+        }
+        let resolved = dir.join(&rel).display().to_string();
+        let key = if args.is_empty() {
+            resolved.clone()
+        } else {
+            let list: Vec<String> = args.iter().map(|a| format!("{}={:?}", a.name, a.value)).collect();
+            format!("{resolved}?{}", list.join("&"))
+        };
+        Some((rel, key, resolved, args))
     }
 
     /// `halftone_table(edge: 0.1, correction: on)`: the tone-correction table
