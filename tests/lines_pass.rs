@@ -5,7 +5,8 @@
 //! width and the inward half of its wave (the visibility test at the edge
 //! point, not per fragment); an animated width follows its keyframes;
 //! strips are rebuilt only when something they depend on changes; edges
-//! crossing the near plane draw without NaN.
+//! crossing the near plane draw without NaN; in a stereo frame each eye
+//! draws the silhouette seen from that eye.
 //!
 //! Ink is read where the output is darker than half grey. Recall: the share
 //! of truth samples with ink within 1.5 px; precision: the share of ink
@@ -63,7 +64,11 @@ output ink.ink
 }
 
 fn view_proj(eye: DVec3) -> DMat4 {
-    DMat4::perspective_rh(FOV_DEG.to_radians(), 1.0, 0.1, 100.0) * DMat4::look_at_rh(eye, DVec3::ZERO, DVec3::Y)
+    view_proj_looking(eye, DVec3::ZERO)
+}
+
+fn view_proj_looking(eye: DVec3, target: DVec3) -> DMat4 {
+    DMat4::perspective_rh(FOV_DEG.to_radians(), 1.0, 0.1, 100.0) * DMat4::look_at_rh(eye, target, DVec3::Y)
 }
 
 fn project(vp: DMat4, p: DVec3) -> DVec2 {
@@ -180,18 +185,24 @@ fn visible_cube_creases_are_drawn_and_hidden_ones_are_not() {
 /// The sphere's silhouette from `eye` on the z axis: the circle p·ê = 1/d of
 /// radius √(1 − 1/d²), as (its samples, its centre and radius on screen).
 fn sphere_rim(eye: DVec3) -> (Vec<DVec2>, DVec2, f64) {
-    let vp = view_proj(eye);
+    sphere_rim_seen(eye, view_proj(eye))
+}
+
+/// The same from any `eye` through `vp`: the circle around ê/d in the plane
+/// normal to ê (u, v spanning it).
+fn sphere_rim_seen(eye: DVec3, vp: DMat4) -> (Vec<DVec2>, DVec2, f64) {
     let d = eye.length();
+    let e = eye / d;
+    let u = e.any_orthonormal_vector();
+    let v = e.cross(u);
+    let r = (1.0 - 1.0 / (d * d)).sqrt();
     let truth: Vec<DVec2> = (0..=1024)
         .map(|k| {
             let a = std::f64::consts::TAU * f64::from(k) / 1024.0;
-            project(
-                vp,
-                DVec3::new(a.cos(), a.sin(), 0.0) * (1.0 - 1.0 / (d * d)).sqrt() + DVec3::Z / d,
-            )
+            project(vp, (u * a.cos() + v * a.sin()) * r + e / d)
         })
         .collect();
-    let centre = project(vp, DVec3::Z / d);
+    let centre = project(vp, e / d);
     let radius = (truth[0] - centre).length();
     (truth, centre, radius)
 }
@@ -314,4 +325,56 @@ fn edges_crossing_the_near_plane_draw_without_nan() {
         "no strip blew up across the image ({} pixels)",
         drawn.len()
     );
+}
+
+#[test]
+fn a_stereo_frame_draws_each_eyes_own_silhouette() {
+    // A style that reads the other eye is stereo: both eyes render each
+    // frame. A 0.5 m baseline, so the eyes' rims differ by several pixels;
+    // each eye's lines must follow the silhouette seen from that eye.
+    let half = 0.25;
+    let text = format!(
+        "{}\npass both: image(ink) {{\n  out c: rgba8unorm = ink.ink + 0.0 * other_eye(ink.ink)\n}}\noutput both.c\n",
+        style("width: 2px  amplitude: 0px  depth: test(shade, bias: 1px)").replace("output ink.ink\n", "")
+    );
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("lines-pass");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join(format!("stereo-{}.toml", std::process::id()));
+    std::fs::write(
+        &path,
+        format!("[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\nfov = {FOV_DEG}\nipd = {}\nnear = 0.1\nfar = 100.0\n\n{SPHERE}", 2.0 * half),
+    )
+    .expect("write scene");
+    let mut sources = dsl::SourceMap::new();
+    let scene = runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{d:?}"));
+    let program = compile_text(&text);
+    assert!(program.manifest.is_stereo(), "the style renders both eyes");
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let mut drawn = Vec::new();
+    for eye in 0..2u32 {
+        r.render(&scene, &FrameSpec::still(SIZE, SIZE, eye)).expect("render");
+        drawn.push(ink(&r));
+    }
+    let truths: Vec<Vec<DVec2>> = [-half, half]
+        .iter()
+        .map(|dx| {
+            let at = DVec3::new(*dx, 0.0, 4.0);
+            sphere_rim_seen(at, view_proj_looking(at, DVec3::new(*dx, 0.0, 0.0))).0
+        })
+        .collect();
+    for eye in 0..2 {
+        let (recall, precision) = recall_precision(&drawn[eye], &truths[eye], 1.0);
+        let (cross_recall, _) = recall_precision(&drawn[eye], &truths[1 - eye], 1.0);
+        eprintln!(
+            "stereo eye {eye}: recall {recall:.4}, precision {precision:.4}; against the other eye's rim recall {cross_recall:.4}"
+        );
+        assert!(
+            recall >= 0.99 && precision >= 0.99,
+            "eye {eye}: recall {recall}, precision {precision}"
+        );
+        assert!(
+            cross_recall < 0.9,
+            "eye {eye} drew the other eye's rim (recall {cross_recall})"
+        );
+    }
 }
