@@ -378,3 +378,52 @@ fn a_stereo_frame_draws_each_eyes_own_silhouette() {
         );
     }
 }
+
+#[test]
+fn a_cylinders_rims_and_sides_are_drawn_where_they_are_seen() {
+    // Radius 1, height 2, seen from above and to the side. Truth: the top
+    // rim (all of it faces the eye, which is above the cap), the half of the
+    // bottom rim whose side faces the eye, and the two side generators where
+    // the eye's ray grazes the side, n·(e − p) = 0. The mesh has 128
+    // segments: its rims lie within r(1 − cos(π/128)) ≈ 0.0003 of the circle.
+    let eye = DVec3::new(0.0, 2.6, 4.2);
+    let drawn = render_at(
+        &style("creases: 40deg  width: 2px  amplitude: 0px  depth: test(shade, bias: 1px)"),
+        &scene(
+            "[[object]]\nprimitive = { kind = \"cylinder\", radius = 1.0, height = 2.0, segments = 128 }\n",
+            eye,
+        ),
+        0.0,
+    );
+    let vp = view_proj(eye);
+    let circle = |a: f64, y: f64| DVec3::new(a.cos(), y, -a.sin());
+    let mut truth = Vec::new();
+    for k in 0..2048 {
+        let a = std::f64::consts::TAU * f64::from(k) / 2048.0;
+        truth.push(project(vp, circle(a, 1.0)));
+        let bottom = circle(a, -1.0);
+        let outwards = DVec3::new(a.cos(), 0.0, -a.sin());
+        if outwards.dot(eye - bottom) > 0.0 {
+            truth.push(project(vp, bottom));
+        }
+    }
+    // The grazing azimuths: cos(a − φ) = 1/ρ for the eye at horizontal
+    // distance ρ and azimuth φ (outwards · (e − p) = ρ cos(a − φ) − 1).
+    let (rho, phi) = (eye.x.hypot(eye.z), (-eye.z).atan2(eye.x));
+    for side in [-1.0, 1.0] {
+        let a = phi + side * (1.0 / rho).acos();
+        for k in 0..=512 {
+            let y = -1.0 + 2.0 * f64::from(k) / 512.0;
+            truth.push(project(vp, circle(a, y)));
+        }
+    }
+    let (recall, precision) = recall_precision(&drawn, &truth, 1.0);
+    eprintln!(
+        "cylinder through the renderer: recall {recall:.4}, precision {precision:.4}, {} ink pixels",
+        drawn.len()
+    );
+    assert!(
+        recall >= 0.99 && precision >= 0.99,
+        "recall {recall}, precision {precision}"
+    );
+}

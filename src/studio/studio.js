@@ -137,11 +137,18 @@ function markThumbs(target) {
   for (const t of document.querySelectorAll(".thumb")) t.classList.toggle("selected", Number(t.dataset.index) === target);
 }
 
+// Draws overlap (each awaits its fetch, and the server encodes a target on
+// its first request): only the one asked for last may show, or an older
+// frame finishing late would replace a newer one on screen.
+let drawSeq = 0;
+
 async function draw(f, target) {
   const t = f.targets[target];
+  const seq = ++drawSeq;
   const res = await fetch(`/frame/${f.id}/${target}.f32`);
   if (!res.ok) return; // a newer frame replaced it; its event is on the way
   const data = new Float32Array(await res.arrayBuffer());
+  if (seq !== drawSeq) return; // a later draw was asked for meanwhile
   pixels = { w: t.width, h: t.height, data, float: t.float, channels: t.format };
   shown = { frame: f.id, target };
   $("target-name").textContent = `${t.name} · ${t.format} · ${t.width}×${t.height}` + (target === f.output ? " · output" : "");
