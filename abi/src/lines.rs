@@ -100,6 +100,8 @@ impl LineShape {
 pub const MIN_WAVELENGTH_PX: f64 = 1.0;
 /// The widest line (px).
 pub const MAX_LINE_WIDTH_PX: f64 = 256.0;
+/// The largest taper: each open end narrows over at most half the line.
+pub const MAX_TAPER: f64 = 0.5;
 
 /// One strip vertex as the GPU reads it (vertex buffer 0 of a `lines` pass).
 #[repr(C)]

@@ -121,6 +121,15 @@ fn min_frame_times(
     Ok(best)
 }
 
+/// The timing scene: a coarse sphere before a plane that covers every
+/// pixel. Screen-space cost depends on how many pixels, not on what they
+/// show; coarse meshes keep the (CPU-rasterized) G-buffer cheap next to it.
+pub fn timing_scene(sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene, RunError> {
+    let text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
+    let file = sources.add("timing.toml", text);
+    runner::scene::parse_scene(text, file, std::path::Path::new(".")).map_err(RunError::User)
+}
+
 /// Measures every variant at every size (square images).
 pub fn run(
     gpu: &Gpu,
@@ -135,13 +144,7 @@ pub fn run(
         .iter()
         .map(|s| s.scene(&mut sources).map_err(RunError::User))
         .collect::<Result<_, _>>()?;
-    // Timing scene: a coarse sphere before a plane that covers every pixel.
-    // Screen-space cost depends on how many pixels, not on what they show;
-    // coarse meshes keep the (CPU-rasterized) G-buffer cheap next to it.
-    let timing_text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
-    let file = sources.add("timing.toml", timing_text);
-    let timing_scene =
-        runner::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    let timing_scene = timing_scene(&mut sources)?;
     let mut rows = Vec::new();
     for &size in sizes {
         progress(&format!("timing {size}x{size}"));

@@ -7,9 +7,9 @@
 //! against a kept depth. Per frame the strips are either rebuilt (the
 //! object turns a little every frame, so the cache key changes) or reused
 //! (nothing changes). The CPU build is the difference of the two
-//! `Renderer::prepare` times; the frame is render + GPU wait. Both are the
-//! fastest of `frames` interleaved frames, and µs per 1000 mesh edges shows
-//! whether the build is linear in the edges.
+//! `Renderer::prepare` times; the frame is prepare, record, submit and GPU
+//! wait. Both are the fastest of `frames` interleaved frames, and µs per
+//! 1000 mesh edges shows whether the build is linear in the edges.
 //!
 //! Against LSA: the lines (straight, amplitude 0, 1 px wide; and wavy as
 //! `examples/wavy_lines.npr` draws them) and LSA full with its density
@@ -81,10 +81,14 @@ fn timed_frames(
         if turn {
             scene.objects[0].model = glam::Mat4::from_rotation_y(0.01 * (k + 1) as f32);
         }
+        // Prepared once, then recorded and submitted as an embedder does
+        // (`Renderer::render` would prepare a second time).
         let t = Instant::now();
         renderer.prepare(scene, &spec)?;
         prepare = prepare.min(t.elapsed().as_secs_f64());
-        renderer.render(scene, &spec)?;
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        renderer.encode(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
         wait_idle(gpu)?;
         frame = frame.min(t.elapsed().as_secs_f64());
     }
@@ -202,7 +206,7 @@ pub struct Methods<'a> {
     pub bases: Vec<&'a StyleProgram>,
 }
 
-/// Cost on the timing scene of `crate::bench_contours` and accuracy on the
+/// Cost on [`crate::bench_contours::timing_scene`] and accuracy on the
 /// analytic scenes, at `size`².
 pub fn method_rows(
     gpu: &Gpu,
@@ -212,9 +216,7 @@ pub fn method_rows(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<MethodRow>, RunError> {
     let mut sources = dsl::SourceMap::new();
-    let timing_text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
-    let file = sources.add("timing.toml", timing_text);
-    let timing = runner::scene::parse_scene(timing_text, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    let timing = crate::bench_contours::timing_scene(&mut sources)?;
     progress(&format!("timing the methods at {size}x{size}"));
     let mut programs: Vec<&StyleProgram> = methods.bases.clone();
     programs.extend(methods.methods.iter().map(|m| m.1));

@@ -187,17 +187,7 @@ fn npr_render_points_at_the_style_for_a_texture_with_a_good_header_and_corrupt_d
         runner::texture_file::probe(&dir.join("paper.png")).expect("header"),
         (64, 64)
     );
-    let (d, r) = cli_errors(
-        &[
-            "render",
-            style.to_str().expect("utf-8 path"),
-            "--scene",
-            "examples/scenes/spot.toml",
-            "-o",
-            dir.join("out.png").to_str().expect("utf-8 path"),
-        ],
-        &dir,
-    );
+    let (d, r) = render_on_spot(&style, &dir);
     assert_eq!(d[0].code, "E0401", "{r}");
     assert!(r.contains("is not an image npr can read"), "{r}");
     assert!(
@@ -208,12 +198,9 @@ fn npr_render_points_at_the_style_for_a_texture_with_a_good_header_and_corrupt_d
     check_case("E0401", "E0401_corrupt_data", (d, r));
 }
 
-#[test]
-fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
-    let dir = scratch("render-not-an-image");
-    std::fs::write(dir.join("paper.png"), [0u8, 1, 2, 3]).expect("write");
-    let style = style_with_texture(&dir, "paper.png");
-    let (d, r) = cli_errors(
+/// `npr render STYLE --scene examples/scenes/spot.toml -o DIR/out.png`: its diagnostics.
+fn render_on_spot(style: &Path, dir: &Path) -> (Vec<Diagnostic>, String) {
+    cli_errors(
         &[
             "render",
             style.to_str().expect("utf-8 path"),
@@ -222,8 +209,16 @@ fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
             "-o",
             dir.join("out.png").to_str().expect("utf-8 path"),
         ],
-        &dir,
-    );
+        dir,
+    )
+}
+
+#[test]
+fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
+    let dir = scratch("render-not-an-image");
+    std::fs::write(dir.join("paper.png"), [0u8, 1, 2, 3]).expect("write");
+    let style = style_with_texture(&dir, "paper.png");
+    let (d, r) = render_on_spot(&style, &dir);
     assert_eq!(d[0].code, "E0401", "{r}");
     assert!(r.contains("case.npr:3:23"), "{r}");
     assert!(!dir.join("out.png").exists(), "nothing is written");

@@ -5,7 +5,7 @@
 //! strips for.
 
 use super::{bad, Invalid};
-use crate::lines::{LineScalar, MAX_LINE_WIDTH_PX};
+use crate::lines::{LineScalar, MAX_LINE_WIDTH_PX, MAX_TAPER};
 use crate::manifest::*;
 
 impl Manifest {
@@ -32,10 +32,10 @@ impl Manifest {
                 format!("{} px is outside 0..={MAX_LINE_WIDTH_PX}", shape.width.constant),
             );
         }
-        if constant_only(&shape.taper) && !(0.0..=0.5).contains(&shape.taper.constant) {
+        if constant_only(&shape.taper) && !(0.0..=MAX_TAPER).contains(&shape.taper.constant) {
             return bad(
                 format!("{f}.shape.taper"),
-                format!("{} is outside 0..=0.5", shape.taper.constant),
+                format!("{} is outside 0..={MAX_TAPER}", shape.taper.constant),
             );
         }
         Ok(())

@@ -7,7 +7,7 @@
 use super::Checker;
 use crate::ir::*;
 use crate::line_settings::affine;
-use abi::lines::{MAX_LINE_WIDTH_PX, MIN_WAVELENGTH_PX};
+use abi::lines::{MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX};
 use dsl::{codes, Diagnostic};
 use stdlib::Unit;
 
@@ -81,7 +81,7 @@ impl Checker<'_> {
                     f64::INFINITY,
                     format!("{MIN_WAVELENGTH_PX}px or more"),
                 )),
-                "taper" => Some((0.0, 0.5, "0..0.5".to_string())),
+                "taper" => Some((0.0, MAX_TAPER, format!("0..{MAX_TAPER}"))),
                 _ => None,
             };
             if let Some((lo, hi, text)) = range {

@@ -112,8 +112,18 @@ impl Renderer<'_> {
         }
     }
 
+    /// The eye that eye slot `slot` renders: a stereo style renders both eyes,
+    /// a mono one the requested eye.
+    pub(super) fn eye_of_slot(&self, spec: &FrameSpec, slot: u32) -> u32 {
+        if self.frame_buffers.len() == 2 {
+            slot
+        } else {
+            spec.eye
+        }
+    }
+
     /// The view-projection of `eye` for `spec` (as `frame_block` computes it).
-    fn view_proj(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> Mat4 {
+    pub(super) fn view_proj(&self, scene: &Scene, spec: &FrameSpec, eye: u32) -> Mat4 {
         let pose = scene.camera.pose(spec.time_s);
         pose.projection(spec.width as f32 / spec.height as f32) * pose.view(eye)
     }
@@ -125,9 +135,9 @@ impl Renderer<'_> {
     /// buffers are written; meshes and bind groups stay as built.
     pub(super) fn write_uniforms(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         let slots = self.frame_buffers.len() as u32;
-        // A stereo style renders both eyes; otherwise the requested one.
-        let eye_of = |slot: u32| if slots == 2 { slot } else { spec.eye };
-        let view_projs: Vec<Mat4> = (0..slots).map(|s| self.view_proj(scene, spec, eye_of(s))).collect();
+        let view_projs: Vec<Mat4> = (0..slots)
+            .map(|s| self.view_proj(scene, spec, self.eye_of_slot(spec, s)))
+            .collect();
         let models: Vec<Mat4> = scene.objects.iter().map(|o| o.model).collect();
         let (previous_models, previous_view_projs) = self.motion.record(models, view_projs);
         let vertex_counts: Vec<usize> = self.meshes.iter().map(|m| m.vertex_count).collect();
@@ -143,7 +153,12 @@ impl Renderer<'_> {
             self.bounds_models = scene.objects.iter().map(|o| o.model).collect();
         }
         for slot in 0..slots {
-            let frame = self.frame_block(scene, spec, eye_of(slot), previous_view_projs[slot as usize]);
+            let frame = self.frame_block(
+                scene,
+                spec,
+                self.eye_of_slot(spec, slot),
+                previous_view_projs[slot as usize],
+            );
             self.queue
                 .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::bytes_of(&frame));
         }

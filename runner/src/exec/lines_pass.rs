@@ -16,7 +16,9 @@ use crate::lines::cache::{EdgeSelection, LineObject, LinesCache};
 use crate::lines::draw::{vertices, DepthBias};
 use crate::lines::strip::LineStyle;
 use crate::RunError;
-use abi::lines::{LineEdges, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MIN_WAVELENGTH_PX};
+use abi::lines::{
+    LineEdges, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX,
+};
 use abi::manifest::*;
 use glam::{DMat4, DVec2, DVec3};
 
@@ -83,22 +85,24 @@ impl LinesPassExec {
             return Err(RunError::Internal(format!("pass `{}` is not a lines pass", pass.name)));
         };
         let layout0 = bind::group0_layout(device, pass);
-        let attributes = LINE_VERTEX_ATTRIBUTES.map(|(offset, components)| wgpu::VertexAttribute {
-            format: match components {
-                4 => wgpu::VertexFormat::Float32x4,
-                _ => wgpu::VertexFormat::Float32,
-            },
-            offset,
-            shader_location: 0,
-        });
-        let attributes: Vec<wgpu::VertexAttribute> = attributes
+        let attributes = LINE_VERTEX_ATTRIBUTES
             .iter()
             .enumerate()
-            .map(|(location, a)| wgpu::VertexAttribute {
-                shader_location: location as u32,
-                ..*a
+            .map(|(location, &(offset, components))| {
+                let format = match components {
+                    1 => wgpu::VertexFormat::Float32,
+                    2 => wgpu::VertexFormat::Float32x2,
+                    3 => wgpu::VertexFormat::Float32x3,
+                    4 => wgpu::VertexFormat::Float32x4,
+                    n => return Err(RunError::Internal(format!("a line vertex attribute of {n} components"))),
+                };
+                Ok(wgpu::VertexAttribute {
+                    format,
+                    offset,
+                    shader_location: location as u32,
+                })
             })
-            .collect();
+            .collect::<Result<Vec<_>, RunError>>()?;
         let buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<LineVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
@@ -169,7 +173,7 @@ impl LinesPassExec {
             amplitude_px: eval("amplitude", &self.shape.amplitude)?.max(0.0),
             wavelength_px: eval("wavelength", &self.shape.wavelength)?.max(MIN_WAVELENGTH_PX),
             phase: eval("phase", &self.shape.phase)?,
-            taper: eval("taper", &self.shape.taper)?.clamp(0.0, 0.5),
+            taper: eval("taper", &self.shape.taper)?.clamp(0.0, MAX_TAPER),
         })
     }
 
@@ -321,17 +325,16 @@ impl super::Renderer<'_> {
             height: spec.height,
         };
         let pose = scene.camera.pose(spec.time_s);
-        let projection = pose.projection(spec.width as f32 / spec.height as f32);
-        let slots = self.frame_buffers.len();
-        let eyes: Vec<LinesEye> = (0..slots)
+        let focal_y = f64::from(pose.projection(spec.width as f32 / spec.height as f32).y_axis.y);
+        let eyes: Vec<LinesEye> = (0..self.frame_buffers.len())
             .map(|slot| {
-                let eye = if slots == 2 { slot as u32 } else { spec.eye };
+                let eye = self.eye_of_slot(spec, slot as u32);
                 LinesEye {
                     slot,
                     eye,
                     position: pose.position(eye).as_dvec3(),
-                    view_proj: (projection * pose.view(eye)).as_dmat4(),
-                    focal_y: f64::from(projection.y_axis.y),
+                    view_proj: self.view_proj(scene, spec, eye).as_dmat4(),
+                    focal_y,
                 }
             })
             .collect();

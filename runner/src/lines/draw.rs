@@ -25,11 +25,10 @@ use super::strip::Strips;
 
 pub use abi::lines::LineVertex;
 
-/// How strip vertices are pulled towards the eye before the depth test.
+/// How strip vertices are pulled towards the eye before the depth test
+/// (`bias: N px`; a bias in NDC depth, `bias: 0.001`, is the shader's).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DepthBias {
-    /// Subtracted from the NDC depth (`bias: 0.001`).
-    pub ndc: f64,
     /// A view-space pull (`bias: N px`): every vertex moves towards the eye
     /// along its own view ray by the share `pull` of its distance, which
     /// leaves its NDC x, y unchanged. With `eye_clip_z` the clip z of the eye
@@ -45,15 +44,13 @@ impl DepthBias {
     /// view axis, up to 1/cos of the ray's angle off it towards the edges).
     pub fn view_space_px(px: f64, focal_y: f64, height_px: f64, eye_clip_z: f64) -> DepthBias {
         DepthBias {
-            ndc: 0.0,
             pull: (px * 2.0 / (focal_y * height_px)).clamp(0.0, 0.5),
             eye_clip_z,
         }
     }
 
     fn apply(&self, depth: f64, inv_w: f64) -> f64 {
-        let pulled = depth + self.pull / (1.0 - self.pull) * self.eye_clip_z * inv_w;
-        pulled - self.ndc
+        depth + self.pull / (1.0 - self.pull) * self.eye_clip_z * inv_w
     }
 }
 
