@@ -115,6 +115,9 @@ pub struct CompileArgs {
     /// Keep parameters as uniforms (for live tweaking) instead of folding them.
     #[arg(long)]
     pub keep_params: bool,
+    /// How the passes run; `--report` says what each pass got and why.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub schedule: ScheduleArg,
     /// Write the IR after each compiler stage into OUT/ir/.
     #[arg(long)]
     pub dump_ir: bool,
@@ -170,8 +173,13 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0)]
     pub eye: u32,
     /// Write every target as an image, plus a contact sheet, into DIR.
+    /// Implies `--schedule naive` unless one is given, so every declared
+    /// target exists.
     #[arg(long)]
     pub dump_passes: Option<PathBuf>,
+    /// How the passes run (default: auto; naive with --dump-passes).
+    #[arg(long, value_enum, conflicts_with = "compiled")]
+    pub schedule: Option<ScheduleArg>,
     #[arg(long)]
     pub keep_params: bool,
     /// Set a parameter, typed like a default in the style: `--set bands=5`,
@@ -205,6 +213,25 @@ pub struct TexgenArgs {
     /// Base colour `#rrggbb` of a `paint` map.
     #[arg(long)]
     pub color: Option<String>,
+}
+
+/// `--schedule`: how the compiler runs the declared passes (docs/SCHEDULES.md).
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScheduleArg {
+    /// Every declared pass as written, each target stored.
+    Naive,
+    /// The compiler's schedule: image passes read only at their reader's
+    /// own pixel are fused into it (the same image).
+    Auto,
+}
+
+impl From<ScheduleArg> for compiler::schedule::Schedule {
+    fn from(s: ScheduleArg) -> Self {
+        match s {
+            ScheduleArg::Naive => compiler::schedule::Schedule::Naive,
+            ScheduleArg::Auto => compiler::schedule::Schedule::Auto,
+        }
+    }
 }
 
 /// Which files a style and its scene may read (docs/PATHS.md): every
@@ -243,6 +270,10 @@ pub struct LiveArgs {
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
     pub eye: u32,
+    /// How the passes run (default: auto for `watch`; naive for `studio`,
+    /// whose thumbnails show every declared target).
+    #[arg(long, value_enum)]
+    pub schedule: Option<ScheduleArg>,
     /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
     pub set: Vec<String>,

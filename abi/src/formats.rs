@@ -83,4 +83,44 @@ impl Format {
             Rgba32float => 16,
         }
     }
+
+    /// What storing a value in a target of this format and loading it back
+    /// does to each channel: the rounding a fused pass must repeat so that it
+    /// computes what the separate passes did (`compiler::schedule`).
+    pub fn storage(self) -> Storage {
+        use Format::*;
+        match self {
+            R32float | Rg32float | Rgba32float => Storage::Exact,
+            R16float | Rg16float | Rgba16float => Storage::Half,
+            R8unorm | Rg8unorm | Rgba8unorm => Storage::Unorm8,
+            Rgba8unormSrgb => Storage::Srgb8,
+        }
+    }
+}
+
+/// How a format stores a channel (see [`Format::storage`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Storage {
+    /// f32 in, the same f32 out.
+    Exact,
+    /// Rounded to the nearest binary16 (WGSL `pack2x16float`).
+    Half,
+    /// Clamped to [0, 1] and rounded to k/255 (WGSL `pack4x8unorm`:
+    /// ⌊255·x + 0.5⌋).
+    Unorm8,
+    /// sRGB-encoded before the 8-bit rounding; no fused pass repeats it.
+    Srgb8,
+}
+
+impl Storage {
+    /// The stored value of one channel, in f64 (the constant evaluator's
+    /// and the tests' definition; `None` for sRGB, which is never emulated).
+    pub fn stored(self, x: f64) -> Option<f64> {
+        match self {
+            Storage::Exact => Some(x as f32 as f64),
+            Storage::Half => Some(half::f16::from_f64(x).to_f64()),
+            Storage::Unorm8 => Some((x.clamp(0.0, 1.0) * 255.0 + 0.5).floor() / 255.0),
+            Storage::Srgb8 => None,
+        }
+    }
 }

@@ -106,6 +106,7 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
                 Conversion::Splat(n) => vec![*v.first()?; *n as usize],
                 Conversion::Rgb1 => v.iter().copied().chain([1.0]).collect(),
                 Conversion::Rgb => v.iter().copied().take(3).collect(),
+                Conversion::Stored(f) => v.iter().map(|x| f.storage().stored(*x)).collect::<Option<_>>()?,
             })
         }
         ExprKind::Swizzle { base, components } => {

@@ -127,6 +127,17 @@ impl ConstCache {
                         Some(Const::Vec(c))
                     }
                     Conversion::Rgb => Some(Const::Vec(v.as_f64s().into_iter().take(3).collect())),
+                    Conversion::Stored(f) => {
+                        let c: Vec<f64> = v
+                            .as_f64s()
+                            .into_iter()
+                            .map(|x| f.storage().stored(x))
+                            .collect::<Option<_>>()?;
+                        Some(match c.as_slice() {
+                            [x] => Const::Float(*x),
+                            _ => Const::Vec(c),
+                        })
+                    }
                 }
             }
             ExprKind::Swizzle { base, components } => {

@@ -458,6 +458,10 @@ pub enum Conversion {
     Rgb1,
     /// vec4 to vec3 (drop alpha) where a vec3 is expected.
     Rgb,
+    /// The value a target of this format would hold after storing it: what a
+    /// fused pass reads where the separate pass read the target
+    /// (`schedule::fuse`). Never for a 32-bit float or sRGB format.
+    Stored(abi::Format),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -958,6 +962,20 @@ impl Ir {
             ExprKind::Select { cond, then, otherwise } => vec![*cond, *then, *otherwise],
             _ => Vec::new(),
         }
+    }
+
+    /// The node `id` with its operands replaced, in [`Ir::operands`] order.
+    pub fn with_operands(&self, id: ExprId, new: &[ExprId]) -> ExprKind {
+        let mut kind = self.expr(id).kind.clone();
+        match &mut kind {
+            ExprKind::Swizzle { base, .. } => *base = new[0],
+            ExprKind::Unary { operand, .. } | ExprKind::Convert { operand, .. } => *operand = new[0],
+            ExprKind::Binary { lhs, rhs, .. } => (*lhs, *rhs) = (new[0], new[1]),
+            ExprKind::Call { args, .. } => args.copy_from_slice(new),
+            ExprKind::Select { cond, then, otherwise } => (*cond, *then, *otherwise) = (new[0], new[1], new[2]),
+            _ => {}
+        }
+        kind
     }
 
     /// Every node reachable from `roots` (each once), operands before users.

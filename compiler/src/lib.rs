@@ -28,6 +28,7 @@ pub mod prune;
 pub mod report;
 pub mod resolve;
 pub mod scene_tags;
+pub mod schedule;
 pub mod specialize;
 pub mod texture_spans;
 pub mod texture_uses;
@@ -55,6 +56,9 @@ pub struct CompileOptions {
     /// any path (library use); the `npr` commands always give one
     /// (`dsl::paths`, docs/PATHS.md).
     pub paths: Option<dsl::paths::PathPolicy>,
+    /// How the passes run (`--schedule`): `Auto` fuses pointwise image
+    /// chains; `Naive` keeps every declared pass and target.
+    pub schedule: schedule::Schedule,
 }
 
 #[derive(Debug, Clone)]

@@ -1,6 +1,6 @@
 //! The compiler pipeline, in order: load → resolve → typecheck → build the
 //! pass DAG → prune → specialize → prune again (what folding made dead) →
-//! allocate → emit → validate. Each stage is timed, and `dump_ir` records the
+//! schedule (fusion) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
 use crate::emit::Emitter;
@@ -108,7 +108,7 @@ pub fn run(
     // Folded parameters no longer appear in the IR; they stay "folded", not "removed".
     let graph = crate::dag::build(&ir, &mut diags);
     let mut second = Report::default();
-    let live = crate::prune::prune(&ir, &graph, &mut second);
+    let mut live = crate::prune::prune(&ir, &graph, &mut second);
     let folded: Vec<String> = bindings
         .iter()
         .enumerate()
@@ -135,6 +135,8 @@ pub fn run(
     st.done("prune-after-specialize", &ir);
     diags.extend(crate::const_domains::check(&ir, &live));
     fail_if_errors(&diags)?;
+    crate::schedule::apply(&mut ir, &mut live, opts.schedule, &mut report);
+    st.done("schedule", &ir);
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
     let emitter = Emitter {

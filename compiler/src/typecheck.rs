@@ -83,6 +83,7 @@ impl Checker<'_> {
             Conversion::Splat(n) => Ty::float_vec(n),
             Conversion::Rgb1 => Ty::Vec4,
             Conversion::Rgb => Ty::Vec3,
+            Conversion::Stored(f) => Ty::float_vec(f.channels()),
         };
         self.ir.add_typed(
             ExprKind::Convert {

@@ -13,6 +13,7 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         out,
         report,
         keep_params,
+        schedule,
         dump_ir,
         time_passes,
         scene,
@@ -33,6 +34,7 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         Ok(o) => CompileOptions {
             keep_params,
             dump_ir,
+            schedule: schedule.into(),
             ..o
         },
         Err(code) => return code,

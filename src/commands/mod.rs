@@ -32,6 +32,7 @@ pub fn run(cli: Cli) -> i32 {
                     sets: live.set,
                     keep_params: false,
                     paths: live.paths,
+                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
                 },
                 out,
                 size: live.size,
@@ -49,6 +50,8 @@ pub fn run(cli: Cli) -> i32 {
                     sets: live.set,
                     keep_params: true,
                     paths: live.paths,
+                    // Every declared target has a thumbnail.
+                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Naive, Into::into),
                 },
                 size: live.size,
                 time: live.time,

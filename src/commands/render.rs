@@ -23,6 +23,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         fps,
         eye,
         dump_passes,
+        schedule,
         keep_params,
         set,
         paths,
@@ -71,6 +72,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 keep_params,
                 scene: Some(scene.summary(&scene_name)),
                 paths: Some(paths),
+                // `--dump-passes` shows every declared target: none is fused away.
+                schedule: match (schedule, &dump_passes) {
+                    (Some(s), _) => s.into(),
+                    (None, Some(_)) => compiler::schedule::Schedule::Naive,
+                    (None, None) => compiler::schedule::Schedule::Auto,
+                },
                 ..Default::default()
             };
             let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {

@@ -24,6 +24,8 @@ pub struct Inputs {
     pub keep_params: bool,
     /// `--root` and `--allow-path`.
     pub paths: crate::cli::PathArgs,
+    /// `--schedule`, or the command's default.
+    pub schedule: compiler::schedule::Schedule,
 }
 
 pub struct Built {
@@ -64,6 +66,7 @@ pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Fail
         keep_params: inputs.keep_params,
         scene: Some(scene.summary(&inputs.scene.display().to_string())),
         paths: Some(paths),
+        schedule: inputs.schedule,
         ..Default::default()
     };
     let result = set_params::compile_with_sets_colours(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);

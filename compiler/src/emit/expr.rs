@@ -135,6 +135,7 @@ impl Emitter<'_> {
                     Conversion::Splat(n) => format!("vec{n}<f32>({o})"),
                     Conversion::Rgb1 => format!("vec4<f32>({o}, 1.0)"),
                     Conversion::Rgb => format!("({o}).xyz"),
+                    Conversion::Stored(f) => format!("npr_stored_{}({o})", f.name()),
                 }
             }
             ExprKind::Call { callee, args } => match callee {

@@ -47,3 +47,54 @@ fn npr_unit(v: vec3<f32>) -> vec3<f32> {
 }
 
 ";
+
+/// `npr_round_f16(x)`: `x` rounded to the nearest binary16 value (ties to
+/// even), as an f32: the rounding of a store into a 16-bit float target.
+/// Bit arithmetic, because `pack2x16float` needs a capability naga does not
+/// grant every adapter.
+pub(super) const ROUND_F16_HELPER: &str = "// x rounded to the nearest binary16 (ties to even), kept as f32: what a 16-bit float target stores.
+fn npr_round_f16(x: f32) -> f32 {
+    let a = abs(x);
+    if (a != a) {
+        return x;
+    }
+    if (a < 6.1035156e-5) {
+        // Below 2^-14 binary16 is subnormal: a multiple of 2^-24 (exact scalings; round() ties to even).
+        return sign(x) * round(a * 16777216.0) / 16777216.0;
+    }
+    let bits = bitcast<u32>(x);
+    // Drop 13 of f32's 23 mantissa bits, ties to even; a carry moves into the exponent.
+    let rounded = bitcast<f32>((bits + 0xfffu + ((bits >> 13u) & 1u)) & 0xffffe000u);
+    // Past binary16's largest finite value (65504) is infinity.
+    return select(rounded, sign(x) * bitcast<f32>(0x7f800000u), abs(rounded) > 65504.0);
+}
+";
+
+/// `npr_stored_<format>(v)`: `v` as a target of `format` would give it back
+/// (abi::formats::Storage), so that a pass fused into its reader reads what
+/// the target would have held: 16-bit floats by `npr_round_f16` per channel,
+/// 8-bit unorm by WGSL's `pack4x8unorm` / `unpack4x8unorm`
+/// (⌊255·saturate(x) + 0.5⌋ / 255).
+pub(super) fn stored_helper(format: abi::Format) -> String {
+    use abi::formats::Storage;
+    let n = format.channels();
+    let ty = crate::ir::Ty::float_vec(n).wgsl();
+    let body = match (format.storage(), n) {
+        (Storage::Half, 1) => "npr_round_f16(v)".to_string(),
+        (Storage::Half, 2) => "vec2<f32>(npr_round_f16(v.x), npr_round_f16(v.y))".to_string(),
+        (Storage::Half, _) => {
+            "vec4<f32>(npr_round_f16(v.x), npr_round_f16(v.y), npr_round_f16(v.z), npr_round_f16(v.w))".to_string()
+        }
+        (Storage::Unorm8, 1) => "unpack4x8unorm(pack4x8unorm(vec4<f32>(v, 0.0, 0.0, 0.0))).x".to_string(),
+        (Storage::Unorm8, 2) => "unpack4x8unorm(pack4x8unorm(vec4<f32>(v, 0.0, 0.0))).xy".to_string(),
+        (Storage::Unorm8, _) => "unpack4x8unorm(pack4x8unorm(v))".to_string(),
+        // Never inserted for these (schedule::fuse refuses sRGB and needs
+        // nothing for 32-bit floats); the name stays undeclared, so naga's
+        // validation reports it as an internal error if it ever is.
+        (Storage::Exact | Storage::Srgb8, _) => return String::new(),
+    };
+    format!(
+        "// A {name} target's stored value (a pass fused into its reader repeats the rounding).\nfn npr_stored_{name}(v: {ty}) -> {ty} {{\n    return {body};\n}}\n",
+        name = format.name()
+    )
+}

@@ -233,6 +233,14 @@ impl Emitter<'_> {
             w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
+        if uses.stored.iter().any(|f| f.storage() == abi::formats::Storage::Half) {
+            w.push_str(helpers::ROUND_F16_HELPER);
+            w.push('\n');
+        }
+        for f in &uses.stored {
+            w.push_str(&helpers::stored_helper(*f));
+            w.push('\n');
+        }
         self.emit_operators(w, &uses.operators);
     }
 

@@ -33,6 +33,8 @@ pub(super) struct Uses {
     /// How many times each fragment node is read as a value (see
     /// `Emitter::value_uses`); `emit_lets` shares target loads by it.
     pub value_uses: BTreeMap<ExprId, usize>,
+    /// Formats whose stored value a fused read repeats (`npr_stored_*`).
+    pub stored: Vec<abi::Format>,
 }
 
 impl Uses {
@@ -91,6 +93,10 @@ impl Emitter<'_> {
                     u.style_params = true;
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
+                ExprKind::Convert {
+                    conversion: Conversion::Stored(f),
+                    ..
+                } if !u.stored.contains(f) => u.stored.push(*f),
                 ExprKind::Call {
                     callee: Callee::Operator(i),
                     args,

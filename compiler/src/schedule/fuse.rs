@@ -1,0 +1,251 @@
+//! Pointwise fusion: an image pass whose targets only one image pass reads,
+//! and only at its own pixel, is computed inside that reader. The target is
+//! never stored, one pass and one full-image write and read are saved, and
+//! nothing is computed twice (one reader, one read per pixel).
+//!
+//! The reader's reads of the fused targets become the producer's output
+//! expressions, wrapped in `Conversion::Stored(format)` where the format
+//! rounds (16-bit floats, 8-bit unorm), so the fused pass sees the values
+//! the target would have held: the same image as the naive schedule.
+//!
+//! Not fused, with the reason in the report: a target that is the output,
+//! blends, is sRGB, is read from the previous frame or the other eye, is
+//! passed to an operator that reads around the pixel, is read by two
+//! passes, by a pass of another kind, or at another scale.
+
+use crate::dag::pass_roots;
+use crate::ir::*;
+use crate::prune::Live;
+use crate::report::Report;
+use abi::formats::Storage;
+use abi::manifest::Blend;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Fuses every image pass that can be, in execution order (so a chain of
+/// pointwise passes becomes one), and reports each image pass's schedule.
+pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) {
+    let mut i = 0;
+    while i < live.passes.len() {
+        let pid = live.passes[i];
+        if !matches!(ir.pass(pid).kind, PassKind::Image { .. }) {
+            i += 1;
+            continue;
+        }
+        let name = format!("pass `{}`", ir.pass(pid).name);
+        match consumer(ir, live, pid) {
+            Ok((reader, why)) => {
+                let into = ir.pass(reader).name.clone();
+                fuse(ir, live, pid, reader);
+                live.passes.remove(i);
+                report.push("fused", name, format!("into `{into}`: {why}"));
+            }
+            Err(why) => {
+                report.push("schedule", name, format!("separate pass: {why}"));
+                i += 1;
+            }
+        }
+    }
+}
+
+/// The live targets of pass `pid`.
+fn live_targets(live: &Live, pid: PassId) -> Vec<TargetRef> {
+    live.targets.iter().filter(|t| t.pass == pid).copied().collect()
+}
+
+/// The nodes `id` reads as a texture (an operator's texture parameter):
+/// such an operator may read any texel, not only the pixel's own.
+fn handle_args(ir: &Ir, id: ExprId) -> Vec<ExprId> {
+    match &ir.expr(id).kind {
+        ExprKind::Call {
+            callee: Callee::Operator(i),
+            args,
+        } => {
+            let op = &stdlib::all()[*i as usize];
+            op.params
+                .iter()
+                .zip(args)
+                .filter(|(p, _)| matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture))
+                .map(|(_, a)| *a)
+                .collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// The one image pass that `pid`'s targets can be fused into, with why, or
+/// why not.
+fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), String> {
+    let pass = ir.pass(pid);
+    let targets = live_targets(live, pid);
+    for t in &targets {
+        let o = &pass.outputs[t.output as usize];
+        let name = ir.target_name(*t);
+        if ir.output == Some(*t) {
+            return Err(format!("`{name}` is the style's output"));
+        }
+        if o.blend != Blend::Replace {
+            return Err(format!("`{name}` blends into its target"));
+        }
+        if o.format.storage() == Storage::Srgb8 {
+            return Err(format!("`{name}` is {}, whose encoding is not repeated", o.format.name()));
+        }
+    }
+    let mut readers = BTreeSet::new();
+    for q in &live.passes {
+        let reader = ir.pass(*q);
+        let nodes = ir.reachable(&pass_roots(reader));
+        let handles: BTreeMap<ExprId, ExprId> = nodes
+            .iter()
+            .flat_map(|n| handle_args(ir, *n).into_iter().map(move |a| (a, *n)))
+            .collect();
+        for n in &nodes {
+            let ExprKind::Target { target, copy } = ir.expr(*n).kind else {
+                continue;
+            };
+            if target.pass != pid {
+                continue;
+            }
+            let name = ir.target_name(target);
+            match copy {
+                TargetCopy::Previous => {
+                    return Err(format!("`{}` reads `{name}` from the previous frame", reader.name));
+                }
+                TargetCopy::OtherEye => return Err(format!("`{}` reads the other eye's `{name}`", reader.name)),
+                TargetCopy::This => {}
+            }
+            if let Some(call) = handles.get(n) {
+                let op = match &ir.expr(*call).kind {
+                    ExprKind::Call {
+                        callee: Callee::Operator(i),
+                        ..
+                    } => stdlib::all()[*i as usize].name,
+                    _ => "an operator",
+                };
+                return Err(format!(
+                    "`{}` passes `{name}` to `{op}`, which reads around the pixel",
+                    reader.name
+                ));
+            }
+            readers.insert(*q);
+        }
+    }
+    let reader = match readers.iter().collect::<Vec<_>>().as_slice() {
+        [one] => **one,
+        [] => return Err("no pass reads its targets".into()),
+        many => {
+            let names: Vec<String> = many.iter().map(|p| format!("`{}`", ir.pass(**p).name)).collect();
+            return Err(format!(
+                "read by {}: fusing would compute it once per reader",
+                names.join(" and ")
+            ));
+        }
+    };
+    let r = ir.pass(reader);
+    if !matches!(r.kind, PassKind::Image { .. }) {
+        return Err(format!("read by `{}`, a {} pass", r.name, r.kind.name()));
+    }
+    if r.scale != pass.scale {
+        return Err(format!(
+            "`{}` runs at scale {}, this pass at {}",
+            r.name, r.scale, pass.scale
+        ));
+    }
+    let stored: Vec<&str> = targets
+        .iter()
+        .map(|t| pass.outputs[t.output as usize].format)
+        .filter(|f| f.storage() != Storage::Exact)
+        .map(|f| f.name())
+        .collect();
+    let names: Vec<String> = targets.iter().map(|t| format!("`{}`", ir.target_name(*t))).collect();
+    let rounding = if stored.is_empty() {
+        String::new()
+    } else {
+        format!(" ({} rounding repeated)", stored.join(", "))
+    };
+    Ok((
+        reader,
+        format!("it reads {} only at its own pixel{rounding}", names.join(", ")),
+    ))
+}
+
+/// Computes pass `producer` inside `reader`: the reader's reads of its
+/// targets become the producer's (stored) values; its inputs and `let`
+/// names move over; its targets leave `live`.
+fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
+    let targets = live_targets(live, producer);
+    let mut replacement: BTreeMap<TargetRef, ExprId> = BTreeMap::new();
+    for t in &targets {
+        let o = ir.pass(producer).outputs[t.output as usize].clone();
+        let value = ir.expr(o.value).clone();
+        let id = match o.format.storage() {
+            Storage::Exact => o.value,
+            _ => ir.add_typed(
+                ExprKind::Convert {
+                    conversion: Conversion::Stored(o.format),
+                    operand: o.value,
+                },
+                Ty::float_vec(o.format.channels()),
+                value.unit,
+                value.span,
+            ),
+        };
+        replacement.insert(*t, id);
+    }
+    let r = ir.pass(reader);
+    let roots: Vec<ExprId> = pass_roots(r).into_iter().chain(r.lets.iter().map(|l| l.value)).collect();
+    let mut map: BTreeMap<ExprId, ExprId> = BTreeMap::new();
+    for n in ir.reachable(&roots) {
+        let e = ir.expr(n).clone();
+        if let ExprKind::Target {
+            target,
+            copy: TargetCopy::This,
+        } = e.kind
+        {
+            if let Some(r) = replacement.get(&target) {
+                map.insert(n, *r);
+                continue;
+            }
+        }
+        let operands = ir.operands(n);
+        let new: Vec<ExprId> = operands.iter().map(|o| map.get(o).copied().unwrap_or(*o)).collect();
+        if new != operands {
+            let kind = ir.with_operands(n, &new);
+            let id = ir.add_typed(kind, e.ty, e.unit, e.span);
+            map.insert(n, id);
+        }
+    }
+    let moved_inputs = match &ir.pass(producer).kind {
+        PassKind::Image { inputs } => inputs.clone(),
+        _ => Vec::new(),
+    };
+    let producer_name = ir.pass(producer).name.clone();
+    let producer_lets = ir.pass(producer).lets.clone();
+    let r = &mut ir.passes[reader.0 as usize];
+    for o in &mut r.outputs {
+        o.value = map.get(&o.value).copied().unwrap_or(o.value);
+    }
+    for l in &mut r.lets {
+        l.value = map.get(&l.value).copied().unwrap_or(l.value);
+    }
+    // The producer's `let`s keep their names in the fused WGSL, prefixed
+    // with its pass name (and made unique).
+    for mut l in producer_lets {
+        let mut name = format!("{producer_name}_{}", l.name);
+        while r.lets.iter().any(|x| x.name == name) {
+            name.push('_');
+        }
+        l.name = name;
+        r.lets.push(l);
+    }
+    if let PassKind::Image { inputs } = &mut r.kind {
+        inputs.retain(|p| *p != producer);
+        for p in moved_inputs {
+            if !inputs.contains(&p) {
+                inputs.push(p);
+            }
+        }
+    }
+    for t in targets {
+        live.targets.remove(&t);
+    }
+}

@@ -1,0 +1,64 @@
+//! Schedules: how the passes a style declares are run. The style fixes the
+//! algorithm (what each pass computes, at which precision); the schedule is
+//! the compiler's, and every schedule gives the naive one's image.
+//!
+//! - `naive`: one GPU pass per declared pass, each target stored and read
+//!   back, exactly as written.
+//! - `auto`: image passes whose only reader reads them at its own pixel are
+//!   fused into that reader ([`fuse`]); the rounding of the skipped target's
+//!   format is repeated, so the image does not change.
+//!
+//! What each pass got, and why, goes in the `--report` (`schedule` entries).
+
+mod fuse;
+
+use crate::ir::Ir;
+use crate::prune::Live;
+use crate::report::Report;
+
+/// `--schedule naive|auto`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Schedule {
+    /// Every declared pass runs as written (`--dump-passes` needs it: every
+    /// target exists).
+    Naive,
+    /// The compiler's choice: fusion where it saves a target and a pass.
+    #[default]
+    Auto,
+}
+
+impl Schedule {
+    pub const ALL: [(&'static str, Schedule); 2] = [("naive", Schedule::Naive), ("auto", Schedule::Auto)];
+
+    pub fn parse(name: &str) -> Option<Schedule> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Schedule::Naive => "naive",
+            Schedule::Auto => "auto",
+        }
+    }
+}
+
+/// Applies `schedule` to the live passes: rewrites `ir` and `live` (fused
+/// passes leave `live.passes`, their targets `live.targets`) and reports
+/// each image pass's schedule.
+pub fn apply(ir: &mut Ir, live: &mut Live, schedule: Schedule, report: &mut Report) {
+    match schedule {
+        Schedule::Naive => {
+            for pid in &live.passes {
+                let pass = ir.pass(*pid);
+                if matches!(pass.kind, crate::ir::PassKind::Image { .. }) {
+                    report.push(
+                        "schedule",
+                        format!("pass `{}`", pass.name),
+                        "separate pass: --schedule naive".into(),
+                    );
+                }
+            }
+        }
+        Schedule::Auto => fuse::fuse_pointwise(ir, live, report),
+    }
+}
