@@ -116,7 +116,7 @@ pub struct CompileArgs {
     #[arg(long)]
     pub keep_params: bool,
     /// How the passes run; `--report` says what each pass got and why.
-    #[arg(long, value_enum, default_value = "auto")]
+    #[arg(long, value_enum, default_value = "naive")]
     pub schedule: ScheduleArg,
     /// Write the IR after each compiler stage into OUT/ir/.
     #[arg(long)]
@@ -177,7 +177,7 @@ pub struct RenderArgs {
     /// target exists.
     #[arg(long)]
     pub dump_passes: Option<PathBuf>,
-    /// How the passes run (default: auto; naive with --dump-passes).
+    /// How the passes run (default: naive).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,
     #[arg(long)]
@@ -215,7 +215,7 @@ pub struct TexgenArgs {
     pub color: Option<String>,
 }
 
-/// `--schedule`: how the compiler runs the declared passes (docs/SCHEDULES.md).
+/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`).
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScheduleArg {
     /// Every declared pass as written, each target stored.
@@ -270,8 +270,8 @@ pub struct LiveArgs {
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
     pub eye: u32,
-    /// How the passes run (default: auto for `watch`; naive for `studio`,
-    /// whose thumbnails show every declared target).
+    /// How the passes run (default: naive; the studio's thumbnails show
+    /// every declared target only then).
     #[arg(long, value_enum)]
     pub schedule: Option<ScheduleArg>,
     /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.

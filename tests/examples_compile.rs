@@ -27,6 +27,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             dump_ir: false,
             scene: None,
             overrides: Vec::new(),
+            schedule: compiler::schedule::Schedule::Naive,
             // Every example keeps to the default paths policy.
             paths: Some(
                 dsl::paths::PathPolicy::new(&dsl::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),

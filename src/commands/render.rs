@@ -76,7 +76,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 schedule: match (schedule, &dump_passes) {
                     (Some(s), _) => s.into(),
                     (None, Some(_)) => compiler::schedule::Schedule::Naive,
-                    (None, None) => compiler::schedule::Schedule::Auto,
+                    (None, None) => compiler::schedule::Schedule::Naive,
                 },
                 ..Default::default()
             };

@@ -52,7 +52,8 @@ fn npr_unit(v: vec3<f32>) -> vec3<f32> {
 /// even), as an f32: the rounding of a store into a 16-bit float target.
 /// Bit arithmetic, because `pack2x16float` needs a capability naga does not
 /// grant every adapter.
-pub(super) const ROUND_F16_HELPER: &str = "// x rounded to the nearest binary16 (ties to even), kept as f32: what a 16-bit float target stores.
+pub(super) const ROUND_F16_HELPER: &str =
+    "// x rounded to the nearest binary16 (ties to even), kept as f32: what a 16-bit float target stores.
 fn npr_round_f16(x: f32) -> f32 {
     let a = abs(x);
     if (a != a) {

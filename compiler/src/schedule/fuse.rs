@@ -87,7 +87,10 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
             return Err(format!("`{name}` blends into its target"));
         }
         if o.format.storage() == Storage::Srgb8 {
-            return Err(format!("`{name}` is {}, whose encoding is not repeated", o.format.name()));
+            return Err(format!(
+                "`{name}` is {}, whose encoding is not repeated",
+                o.format.name()
+            ));
         }
     }
     let mut readers = BTreeSet::new();
@@ -192,7 +195,10 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
         replacement.insert(*t, id);
     }
     let r = ir.pass(reader);
-    let roots: Vec<ExprId> = pass_roots(r).into_iter().chain(r.lets.iter().map(|l| l.value)).collect();
+    let roots: Vec<ExprId> = pass_roots(r)
+        .into_iter()
+        .chain(r.lets.iter().map(|l| l.value))
+        .collect();
     let mut map: BTreeMap<ExprId, ExprId> = BTreeMap::new();
     for n in ir.reachable(&roots) {
         let e = ir.expr(n).clone();
