@@ -72,12 +72,8 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 keep_params,
                 scene: Some(scene.summary(&scene_name)),
                 paths: Some(paths),
-                // `--dump-passes` shows every declared target: none is fused away.
-                schedule: match (schedule, &dump_passes) {
-                    (Some(s), _) => s.into(),
-                    (None, Some(_)) => compiler::schedule::Schedule::Naive,
-                    (None, None) => compiler::schedule::Schedule::Naive,
-                },
+                // Naive unless asked: `--dump-passes` shows every declared target.
+                schedule: schedule.map_or(compiler::schedule::Schedule::Naive, Into::into),
                 ..Default::default()
             };
             let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {

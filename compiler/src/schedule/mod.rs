@@ -28,21 +28,6 @@ pub enum Schedule {
     Auto,
 }
 
-impl Schedule {
-    pub const ALL: [(&'static str, Schedule); 2] = [("naive", Schedule::Naive), ("auto", Schedule::Auto)];
-
-    pub fn parse(name: &str) -> Option<Schedule> {
-        Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Schedule::Naive => "naive",
-            Schedule::Auto => "auto",
-        }
-    }
-}
-
 /// Applies `schedule` to the live passes: rewrites `ir` and `live` (fused
 /// passes leave `live.passes`, their targets `live.targets`) and reports
 /// each image pass's schedule.
