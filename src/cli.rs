@@ -116,7 +116,7 @@ pub struct CompileArgs {
     #[arg(long)]
     pub keep_params: bool,
     /// How the passes run; `--report` says what each pass got and why.
-    #[arg(long, value_enum, default_value = "naive")]
+    #[arg(long, value_enum, default_value = "auto")]
     pub schedule: ScheduleArg,
     /// Write the IR after each compiler stage into OUT/ir/.
     #[arg(long)]
@@ -174,10 +174,10 @@ pub struct RenderArgs {
     pub eye: u32,
     /// Write every target as an image, plus a contact sheet, into DIR.
     /// Implies `--schedule naive` unless one is given, so every declared
-    /// target exists.
+    /// target exists (auto would leave fused targets out).
     #[arg(long)]
     pub dump_passes: Option<PathBuf>,
-    /// How the passes run (default: naive).
+    /// How the passes run (default: auto; naive with --dump-passes).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,
     #[arg(long)]
@@ -270,8 +270,8 @@ pub struct LiveArgs {
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
     pub eye: u32,
-    /// How the passes run (default: naive; the studio's thumbnails show
-    /// every declared target only then).
+    /// How the passes run (default: auto for `watch`; naive for `studio`,
+    /// whose thumbnails show every declared target only then).
     #[arg(long, value_enum)]
     pub schedule: Option<ScheduleArg>,
     /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.

@@ -103,7 +103,8 @@ impl Format {
 pub enum Storage {
     /// f32 in, the same f32 out.
     Exact,
-    /// Rounded to the nearest binary16 (WGSL `pack2x16float`).
+    /// Rounded to binary16 as the device rounds a store into a 16-bit float
+    /// target ([`HalfRounding`]: Vulkan allows to nearest or toward zero).
     Half,
     /// Clamped to [0, 1] and rounded to k/255 (WGSL `pack4x8unorm`:
     /// ⌊255·x + 0.5⌋).
@@ -114,7 +115,9 @@ pub enum Storage {
 
 impl Storage {
     /// The stored value of one channel, in f64 (the constant evaluator's
-    /// and the tests' definition; `None` for sRGB, which is never emulated).
+    /// definition, which runs before any pass is fused, so it never decides
+    /// a fused pass's value; 16-bit floats round to nearest here, a device
+    /// may truncate: [`HalfRounding`]). `None` for sRGB, never emulated.
     pub fn stored(self, x: f64) -> Option<f64> {
         match self {
             Storage::Exact => Some(x as f32 as f64),
@@ -122,5 +125,65 @@ impl Storage {
             Storage::Unorm8 => Some((x.clamp(0.0, 1.0) * 255.0 + 0.5).floor() / 255.0),
             Storage::Srgb8 => None,
         }
+    }
+}
+
+/// How a device rounds an f32 stored into a 16-bit float target. The Vulkan
+/// specification leaves it to the implementation (round to nearest even, or
+/// toward zero); Mesa's lavapipe truncates, so a fused pass that rounded to
+/// nearest would differ from the stored target by one binary16 step. The
+/// runner measures it once per renderer (`runner::half_rounding`) and gives
+/// it to every shader that repeats the rounding as the pipeline-overridable
+/// constant [`HALF_ROUNDING_OVERRIDE`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HalfRounding {
+    /// To the nearest binary16, ties to even.
+    NearestEven,
+    /// Toward zero: the dropped mantissa bits are cut off (past 65504, the
+    /// largest finite binary16 is kept, not infinity).
+    TowardZero,
+}
+
+/// The WGSL `override` a shader that repeats 16-bit float stores declares
+/// (a `bool`, true when the device truncates; no default, so a runner that
+/// does not set it fails to build the pipeline instead of guessing).
+pub const HALF_ROUNDING_OVERRIDE: &str = "npr_f16_stores_truncate";
+
+impl HalfRounding {
+    /// The value of [`HALF_ROUNDING_OVERRIDE`] for this rounding.
+    pub fn override_value(self) -> f64 {
+        match self {
+            HalfRounding::NearestEven => 0.0,
+            HalfRounding::TowardZero => 1.0,
+        }
+    }
+
+    /// `x` stored as binary16 with this rounding, back as f32: the bit-level
+    /// definition the WGSL helper `npr_round_f16` implements and the
+    /// runner's measurement compares with. Finite inputs only.
+    pub fn round(self, x: f32) -> f32 {
+        let a = x.abs();
+        if a < 6.103_515_6e-5 {
+            // binary16 subnormals are multiples of 2^-24 (exact scalings).
+            let steps = f64::from(a) * 16_777_216.0;
+            let steps = match self {
+                HalfRounding::NearestEven => steps.round_ties_even(),
+                HalfRounding::TowardZero => steps.trunc(),
+            };
+            return (steps / 16_777_216.0).copysign(f64::from(x)) as f32;
+        }
+        let bits = x.to_bits();
+        let carry = match self {
+            HalfRounding::NearestEven => 0xfff + ((bits >> 13) & 1),
+            HalfRounding::TowardZero => 0,
+        };
+        let rounded = f32::from_bits(bits.wrapping_add(carry) & 0xffff_e000);
+        if rounded.abs() > 65504.0 {
+            return match self {
+                HalfRounding::NearestEven => f32::INFINITY.copysign(x),
+                HalfRounding::TowardZero => 65504.0f32.copysign(x),
+            };
+        }
+        rounded
     }
 }

@@ -427,6 +427,11 @@ pub struct PassManifest {
     pub object_bindings: Vec<Binding>,
     /// `.npr` line of the pass declaration (for messages).
     pub line: usize,
+    /// The shader repeats 16-bit float stores (a pass fused into it) and
+    /// declares `formats::HALF_ROUNDING_OVERRIDE`: the runner sets it to the
+    /// device's measured rounding (`formats::HalfRounding`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub device_half_rounding: bool,
 }
 
 /// How a pass output combines with what its target holds already: the

@@ -11,6 +11,11 @@
 //! throughput. Medians of `frames` frames, best of three interleaved rounds,
 //! so machine load affects every variant alike.
 //!
+//! The first two programs must be the passthrough variants of
+//! [`variants`], compiled as declared (`npr bench contours` compiles every
+//! variant `naive`, and each method also `auto` where fusion changes its
+//! passes, as a row of its own).
+//!
 //! Accuracy: precision and recall within 1 px against the analytic ground
 //! truth of [`crate::contours::builtin_scenes`], at each resolution; the
 //! table gives the minimum over the scenes.
@@ -78,7 +83,7 @@ pub fn variants() -> Vec<(&'static str, String, bool)> {
 /// One row of the report.
 #[derive(Debug, Clone)]
 pub struct Row {
-    pub name: &'static str,
+    pub name: String,
     pub size: u32,
     pub frame_s: f64,
     /// Frame time minus the G-buffer's.
@@ -95,7 +100,7 @@ pub struct Row {
 /// variants (render + GPU wait; one warm-up frame each).
 fn min_frame_times(
     gpu: &Gpu,
-    programs: &[(&'static str, StyleProgram, bool)],
+    programs: &[(String, StyleProgram, bool)],
     scene: &runner::scene::Scene,
     size: u32,
     frames: u32,
@@ -133,7 +138,7 @@ pub fn timing_scene(sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene
 /// Measures every variant at every size (square images).
 pub fn run(
     gpu: &Gpu,
-    programs: &[(&'static str, StyleProgram, bool)],
+    programs: &[(String, StyleProgram, bool)],
     sizes: &[u32],
     frames: u32,
     mut progress: impl FnMut(&str),
@@ -171,7 +176,7 @@ pub fn run(
             };
             let image_stage_s = best[i] - gbuffer;
             rows.push(Row {
-                name,
+                name: name.clone(),
                 size,
                 frame_s: best[i],
                 image_stage_s,

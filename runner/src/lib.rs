@@ -23,6 +23,7 @@ pub mod artmap_cache;
 pub mod device;
 pub mod exec;
 pub mod gpu_error;
+pub mod half_rounding;
 pub mod lines;
 pub mod output;
 pub mod readback;

@@ -2,9 +2,10 @@
 //! passes, whole styles, passes and runner overhead, each against its
 //! baseline in the same run.
 
-use super::{compile_builtin, scene_style_gpu};
+use super::{compile_builtin, compile_builtin_scheduled, scene_style_gpu};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use compiler::schedule::Schedule;
 use compiler::CompileOptions;
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, RunError, StyleProgram};
@@ -127,11 +128,20 @@ pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
         }
     }
     let mut sources = SourceMap::new();
+    // Every variant as declared (naive); each method again under `auto`
+    // where the compiler's schedule changes its passes.
     let mut programs = Vec::new();
     for (name, text, measure) in lab::bench_contours::variants() {
-        match compile_builtin(name, &text, &mut sources, printer) {
-            Ok(p) => programs.push((name, p, measure)),
+        match compile_builtin_scheduled(name, &text, Schedule::Naive, &mut sources, printer) {
+            Ok((p, _)) => programs.push((name.to_string(), p, measure)),
             Err(code) => return code,
+        }
+        if measure {
+            match compile_builtin_scheduled(name, &text, Schedule::Auto, &mut sources, printer) {
+                Ok((p, fused)) if fused > 0 => programs.push((format!("{name} [auto: {fused} fused]"), p, measure)),
+                Ok(_) => {}
+                Err(code) => return code,
+            }
         }
     }
     let gpu = match headless_gpu(printer) {

@@ -11,6 +11,7 @@ mod studio;
 
 use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use compiler::schedule::Schedule;
 use compiler::{CompileError, CompileOptions, Compiled};
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, StyleProgram};
@@ -141,6 +142,37 @@ pub(crate) fn compile_builtin(
     compile_builtin_in(name, text, Path::new("."), sources, printer)
 }
 
+/// [`compile_builtin`] under `schedule`. Benchmarks compile `naive` by
+/// default: their baselines (a second passthrough pass, a null pass) are
+/// declared passes that fusion would remove; `npr bench contours` adds the
+/// `auto` rows where the schedule changes the passes.
+pub(crate) fn compile_builtin_scheduled(
+    name: &str,
+    text: &str,
+    schedule: Schedule,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<(StyleProgram, usize), i32> {
+    let opts = CompileOptions {
+        schedule,
+        ..Default::default()
+    };
+    match compiler::compile_source(name, text, Path::new("."), sources, &opts) {
+        Ok(c) => {
+            let fused = c.report.entries.iter().filter(|e| e.action == "fused").count();
+            Ok((c.program(), fused))
+        }
+        Err(CompileError::User(d)) => {
+            printer.diagnostics(&d, sources);
+            Err(EXIT_INTERNAL)
+        }
+        Err(CompileError::Internal(e)) => {
+            printer.diagnostics(&[e.to_diagnostic()], sources);
+            Err(EXIT_INTERNAL)
+        }
+    }
+}
+
 /// [`compile_builtin`] with its relative paths (textures, filters)
 /// resolved against `dir`.
 pub(crate) fn compile_builtin_in(
@@ -150,7 +182,11 @@ pub(crate) fn compile_builtin_in(
     sources: &mut SourceMap,
     printer: &Printer,
 ) -> Result<StyleProgram, i32> {
-    match compiler::compile_source(name, text, dir, sources, &CompileOptions::default()) {
+    let opts = CompileOptions {
+        schedule: Schedule::Naive,
+        ..Default::default()
+    };
+    match compiler::compile_source(name, text, dir, sources, &opts) {
         Ok(c) => Ok(c.program()),
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);

@@ -32,7 +32,7 @@ pub fn run(cli: Cli) -> i32 {
                     sets: live.set,
                     keep_params: false,
                     paths: live.paths,
-                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Naive, Into::into),
+                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
                 },
                 out,
                 size: live.size,

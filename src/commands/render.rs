@@ -72,8 +72,16 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 keep_params,
                 scene: Some(scene.summary(&scene_name)),
                 paths: Some(paths),
-                // Naive unless asked: `--dump-passes` shows every declared target.
-                schedule: schedule.map_or(compiler::schedule::Schedule::Naive, Into::into),
+                // Auto unless asked, but naive for `--dump-passes`, which
+                // shows every declared target.
+                schedule: schedule.map_or(
+                    if dump_passes.is_some() {
+                        compiler::schedule::Schedule::Naive
+                    } else {
+                        compiler::schedule::Schedule::Auto
+                    },
+                    Into::into,
+                ),
                 ..Default::default()
             };
             let c = match crate::set_params::compile(&style, &set, &mut sources, &opts, printer) {

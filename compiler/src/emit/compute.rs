@@ -343,6 +343,7 @@ impl Emitter<'_> {
             bindings: declared.bindings,
             object_bindings: declared.object_bindings,
             attributes,
+            device_half_rounding: uses.repeats_half_stores(),
         }
     }
 

@@ -48,28 +48,40 @@ fn npr_unit(v: vec3<f32>) -> vec3<f32> {
 
 ";
 
-/// `npr_round_f16(x)`: `x` rounded to the nearest binary16 value (ties to
-/// even), as an f32: the rounding of a store into a 16-bit float target.
+/// `npr_round_f16(x)`: `x` rounded to binary16 as this device rounds a store
+/// into a 16-bit float target, as an f32 (`abi::formats::HalfRounding::round`
+/// is the same definition in Rust). Vulkan lets a device round to nearest
+/// even or toward zero, so the mode is the pipeline-overridable constant
+/// `abi::formats::HALF_ROUNDING_OVERRIDE`, measured and set by the runner;
+/// it has no default, so a pipeline without it fails to build.
 /// Bit arithmetic, because `pack2x16float` needs a capability naga does not
-/// grant every adapter.
-pub(super) const ROUND_F16_HELPER: &str =
-    "// x rounded to the nearest binary16 (ties to even), kept as f32: what a 16-bit float target stores.
-fn npr_round_f16(x: f32) -> f32 {
+/// grant every adapter (and rounds as it likes).
+pub(super) fn round_f16_helper() -> String {
+    format!(
+        "// x rounded to binary16 as this device's 16-bit float stores round, kept as f32: what such a target holds.
+override {flag}: bool;
+fn npr_round_f16(x: f32) -> f32 {{
     let a = abs(x);
-    if (a != a) {
+    if (a != a) {{
         return x;
-    }
-    if (a < 6.1035156e-5) {
+    }}
+    if (a < 6.1035156e-5) {{
         // Below 2^-14 binary16 is subnormal: a multiple of 2^-24 (exact scalings; round() ties to even).
-        return sign(x) * round(a * 16777216.0) / 16777216.0;
-    }
+        let steps = select(round(a * 16777216.0), trunc(a * 16777216.0), {flag});
+        return sign(x) * steps / 16777216.0;
+    }}
     let bits = bitcast<u32>(x);
-    // Drop 13 of f32's 23 mantissa bits, ties to even; a carry moves into the exponent.
-    let rounded = bitcast<f32>((bits + 0xfffu + ((bits >> 13u) & 1u)) & 0xffffe000u);
-    // Past binary16's largest finite value (65504) is infinity.
-    return select(rounded, sign(x) * bitcast<f32>(0x7f800000u), abs(rounded) > 65504.0);
+    // Drop 13 of f32's 23 mantissa bits: cut off, or ties to even with a carry into the exponent.
+    let carry = select(0xfffu + ((bits >> 13u) & 1u), 0u, {flag});
+    let rounded = bitcast<f32>((bits + carry) & 0xffffe000u);
+    // Past binary16's largest finite value (65504): infinity, or 65504 when truncating.
+    let past = select(bitcast<f32>(0x7f800000u), 65504.0, {flag});
+    return select(rounded, sign(x) * past, abs(rounded) > 65504.0);
+}}
+",
+        flag = abi::formats::HALF_ROUNDING_OVERRIDE
+    )
 }
-";
 
 /// `npr_stored_<format>(v)`: `v` as a target of `format` would give it back
 /// (abi::formats::Storage), so that a pass fused into its reader reads what

@@ -90,6 +90,7 @@ pub fn build(
                 bindings: e.bindings.clone(),
                 object_bindings: e.object_bindings.clone(),
                 line: sources.line_col(pass.name_span.file, pass.name_span.start).0,
+                device_half_rounding: e.device_half_rounding,
             })
         })
         .collect::<Result<Vec<_>, InternalError>>()?;

@@ -38,6 +38,8 @@ pub struct EmittedPass {
     /// Group 1 bindings after the `Object` block (binding 0): per-object textures.
     pub object_bindings: Vec<Binding>,
     pub attributes: Vec<Attribute>,
+    /// The shader declares `abi::formats::HALF_ROUNDING_OVERRIDE`.
+    pub device_half_rounding: bool,
 }
 
 pub struct Emitter<'a> {
@@ -181,6 +183,7 @@ impl Emitter<'_> {
                 bindings: declared.bindings,
                 object_bindings: declared.object_bindings,
                 attributes,
+                device_half_rounding: uses.repeats_half_stores(),
             };
         }
         // Fragment shader.
@@ -219,6 +222,7 @@ impl Emitter<'_> {
             bindings: declared.bindings,
             object_bindings: declared.object_bindings,
             attributes,
+            device_half_rounding: uses.repeats_half_stores(),
         }
     }
 
@@ -233,8 +237,8 @@ impl Emitter<'_> {
             w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
-        if uses.stored.iter().any(|f| f.storage() == abi::formats::Storage::Half) {
-            w.push_str(helpers::ROUND_F16_HELPER);
+        if uses.repeats_half_stores() {
+            w.push_str(&helpers::round_f16_helper());
             w.push('\n');
         }
         for f in &uses.stored {

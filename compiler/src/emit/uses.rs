@@ -38,6 +38,12 @@ pub(super) struct Uses {
 }
 
 impl Uses {
+    /// Whether a fused read repeats a 16-bit float store: the pass declares
+    /// `abi::formats::HALF_ROUNDING_OVERRIDE`, which the runner sets.
+    pub fn repeats_half_stores(&self) -> bool {
+        self.stored.iter().any(|f| f.storage() == abi::formats::Storage::Half)
+    }
+
     /// Whether an expression reads the `Frame` block: any builtin other
     /// than the varyings and the pixel position, `%`, or a projection.
     pub fn expressions_read_frame(&self) -> bool {

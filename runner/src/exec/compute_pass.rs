@@ -75,7 +75,7 @@ impl ComputePassExec {
     pub fn build(
         device: &wgpu::Device,
         pass: &PassManifest,
-        wgsl: &str,
+        shader: super::pass::PassShader,
         object_buffer: &wgpu::Buffer,
         buffers: &PassBuffers,
     ) -> Result<ComputePassExec, RunError> {
@@ -190,7 +190,7 @@ impl ComputePassExec {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&pass.shader),
-            source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+            source: wgpu::ShaderSource::Wgsl(shader.wgsl.into()),
         });
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -198,7 +198,7 @@ impl ComputePassExec {
                 layout: Some(&layout),
                 module: &module,
                 entry_point: Some(entry),
-                compilation_options: Default::default(),
+                compilation_options: shader.compilation_options(),
                 cache: None,
             })
         };

@@ -19,10 +19,10 @@ impl ImagePassExec {
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
-        wgsl: &str,
+        shader: pass::PassShader,
     ) -> Result<ImagePassExec, RunError> {
         let layout0 = bind::group0_layout(device, pass);
-        let pipeline = pass::render_pipeline(device, manifest, pass, wgsl, &[&layout0], &[], None)?;
+        let pipeline = pass::render_pipeline(device, manifest, pass, shader, &[&layout0], &[], None)?;
         Ok(ImagePassExec {
             name: pass.name.clone(),
             clear: pass::clear_color(pass),

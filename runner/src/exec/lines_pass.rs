@@ -72,7 +72,7 @@ impl LinesPassExec {
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
-        wgsl: &str,
+        shader: pass::PassShader,
     ) -> Result<LinesPassExec, RunError> {
         let PassKindManifest::Lines {
             tag,
@@ -130,7 +130,7 @@ impl LinesPassExec {
         });
         let mut layouts = vec![&layout0];
         layouts.extend(depth_layout.as_ref());
-        let pipeline = pass::render_pipeline(device, manifest, pass, wgsl, &layouts, &buffers, None)?;
+        let pipeline = pass::render_pipeline(device, manifest, pass, shader, &layouts, &buffers, None)?;
         Ok(LinesPassExec {
             name: pass.name.clone(),
             clear: pass::clear_color(pass),

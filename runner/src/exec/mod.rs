@@ -221,6 +221,12 @@ impl<'d> Renderer<'d> {
         let meshes = meshes::upload_scene(device, scene);
         let values = values::create(device, &manifest, scene, &meshes)?;
         values::reset(queue, &values);
+        // Measured once, and only when a fused pass repeats a 16-bit store.
+        let half_rounding = if manifest.passes.iter().any(|p| p.device_half_rounding) {
+            Some(crate::half_rounding::measure(device, queue)?)
+        } else {
+            None
+        };
         let mut passes = Vec::new();
         for pass in &manifest.passes {
             let wgsl = program
@@ -235,6 +241,7 @@ impl<'d> Renderer<'d> {
                 wgsl,
                 &object_resources,
                 values[pi].as_ref(),
+                half_rounding,
             )?);
         }
         let eyes = if manifest.is_stereo() { 2 } else { 1 };

@@ -12,6 +12,7 @@ use super::meshes::GpuMesh;
 use super::render_pass::RenderPassExec;
 use super::resources::{wgpu_format, SizedPass};
 use crate::RunError;
+use abi::formats::HalfRounding;
 use abi::manifest::*;
 
 pub(super) enum PassExec {
@@ -73,7 +74,13 @@ impl PassExec {
         wgsl: &str,
         objects: &ObjectResources,
         buffers: Option<&super::values::PassBuffers>,
+        half_rounding: Option<HalfRounding>,
     ) -> Result<PassExec, RunError> {
+        let constants = pipeline_constants(pass, half_rounding)?;
+        let shader = PassShader {
+            wgsl,
+            constants: &constants,
+        };
         Ok(match &pass.kind {
             PassKindManifest::Render {
                 tag, attributes, depth, ..
@@ -81,19 +88,19 @@ impl PassExec {
                 device,
                 manifest,
                 pass,
-                wgsl,
+                shader,
                 (tag.as_ref(), attributes),
                 depth,
                 objects,
             )?),
-            PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, wgsl)?),
+            PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, shader)?),
             PassKindManifest::Compute { .. } => {
                 let buffers = buffers
                     .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
-                PassExec::Compute(ComputePassExec::build(device, pass, wgsl, objects.buffer, buffers)?)
+                PassExec::Compute(ComputePassExec::build(device, pass, shader, objects.buffer, buffers)?)
             }
             PassKindManifest::Lines { .. } => {
-                PassExec::Lines(Box::new(LinesPassExec::build(device, manifest, pass, wgsl)?))
+                PassExec::Lines(Box::new(LinesPassExec::build(device, manifest, pass, shader)?))
             }
         })
     }
@@ -219,14 +226,52 @@ pub(super) fn blend_state(blend: Blend) -> Option<wgpu::BlendState> {
     }
 }
 
+/// A pass's WGSL and the values of the pipeline-overridable constants it
+/// declares, as every executor builds its pipelines from them.
+#[derive(Clone, Copy)]
+pub(super) struct PassShader<'a> {
+    pub wgsl: &'a str,
+    pub constants: &'a [(&'static str, f64)],
+}
+
+impl PassShader<'_> {
+    pub fn compilation_options(&self) -> wgpu::PipelineCompilationOptions<'_> {
+        wgpu::PipelineCompilationOptions {
+            constants: self.constants,
+            ..Default::default()
+        }
+    }
+}
+
+/// The pipeline-overridable constants `pass`'s shader declares: the device's
+/// 16-bit float store rounding when a fused read repeats such a store
+/// (`abi::formats::HALF_ROUNDING_OVERRIDE`). A pass that needs it without a
+/// measured rounding is an internal error, never a guess.
+pub(super) fn pipeline_constants(
+    pass: &PassManifest,
+    half_rounding: Option<HalfRounding>,
+) -> Result<Vec<(&'static str, f64)>, RunError> {
+    if !pass.device_half_rounding {
+        return Ok(Vec::new());
+    }
+    let rounding = half_rounding.ok_or_else(|| {
+        RunError::Internal(format!(
+            "pass `{}` repeats 16-bit float stores, but the device's rounding was not measured",
+            pass.name
+        ))
+    })?;
+    Ok(vec![(abi::formats::HALF_ROUNDING_OVERRIDE, rounding.override_value())])
+}
+
 /// The render pipeline of `pass` (its WGSL, its outputs' formats and blend
-/// modes, no culling) with the kind's bind group layouts, vertex buffers
-/// and depth state; a pipeline wgpu rejects is an internal error.
+/// modes, no culling) with the kind's bind group layouts, vertex buffers,
+/// depth state and pipeline constants; a pipeline wgpu rejects is an
+/// internal error.
 pub(super) fn render_pipeline(
     device: &wgpu::Device,
     manifest: &Manifest,
     pass: &PassManifest,
-    wgsl: &str,
+    shader: PassShader,
     group_layouts: &[&wgpu::BindGroupLayout],
     buffers: &[Option<wgpu::VertexBufferLayout>],
     depth_stencil: Option<wgpu::DepthStencilState>,
@@ -244,7 +289,7 @@ pub(super) fn render_pipeline(
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&pass.shader),
-        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+        source: wgpu::ShaderSource::Wgsl(shader.wgsl.into()),
     });
     // `blend` is empty (all replace) or one per output (`Manifest::validate`).
     let targets: Vec<Option<wgpu::ColorTargetState>> = pass
@@ -265,7 +310,7 @@ pub(super) fn render_pipeline(
         vertex: wgpu::VertexState {
             module: &module,
             entry_point: Some(vertex_entry),
-            compilation_options: Default::default(),
+            compilation_options: shader.compilation_options(),
             buffers,
         },
         primitive: wgpu::PrimitiveState {
@@ -277,7 +322,7 @@ pub(super) fn render_pipeline(
         fragment: Some(wgpu::FragmentState {
             module: &module,
             entry_point: Some(fragment_entry),
-            compilation_options: Default::default(),
+            compilation_options: shader.compilation_options(),
             targets: &targets,
         }),
         multiview_mask: None,

@@ -1,0 +1,330 @@
+//! Every schedule gives the naive schedule's image (issue 14): each example
+//! style on its scene, the analytic contour scenes, odd image sizes (1×1,
+//! 3×7, 17×513) and scale-½ passes, compiled `--schedule naive` and
+//! `--schedule auto`, rendered through the real runner, and compared.
+//!
+//! The bound is **bit-identical output texels** (the output target read back
+//! as f32, compared by bits). Fusion computes the skipped target's value
+//! inline and repeats its format's rounding (`Conversion::Stored`), so no
+//! float is computed in another order; a difference is a bug, not noise.
+//! On failure both images and their diff go to
+//! `target/npr-test-output/schedule/`.
+//!
+//! Path-dependent styles (history, per-object state) are compared on their
+//! fourth frame, so `previous(...)` and state have been read back and
+//! written under both schedules.
+
+use compiler::schedule::Schedule;
+use lab::harness::{compare_with_golden_file, Tolerance};
+use runner::{FrameSpec, Renderer, StyleProgram};
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{gpu, root};
+
+/// Every example style with the scenes it is shown on (README, goldens).
+/// `every_example_is_covered` fails when an example is missing here.
+const EXAMPLES: &[(&str, &str)] = &[
+    ("afterimage", "orbit"),
+    ("age_of_sail", "age_of_sail"),
+    ("artmap_gallery", "gallery"),
+    ("edge_breakup", "spot"),
+    ("halftone", "cows"),
+    ("hatching", "patched_cow"),
+    ("live_contour", "spheres"),
+    ("lsa_base", "spheres"),
+    ("lsa_base", "spot"),
+    ("lsa_contours", "spheres"),
+    ("lsa_contours", "spot"),
+    ("lsa_stereo", "stereo_sphere_on_plane"),
+    ("metatexture", "spot"),
+    ("object_centroids", "orbit"),
+    ("ocean", "ocean"),
+    ("outline", "spot"),
+    ("overlay_lines", "spheres"),
+    ("painterly", "cows"),
+    ("rounded_shadows", "spot"),
+    ("sobel_outline", "spheres"),
+    ("stipple", "cows"),
+    ("toon", "spot"),
+    ("wavy_lines", "fandisk"),
+];
+
+/// Frames rendered per comparison: enough for a history read and a state
+/// update to have happened under each schedule.
+const FRAMES: u32 = 4;
+
+struct Compiled {
+    program: StyleProgram,
+    /// Passes the runner executes.
+    passes: usize,
+    /// `fused` lines of the compile report.
+    fused: Vec<String>,
+}
+
+fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
+    let mut sources = dsl::SourceMap::new();
+    let opts = compiler::CompileOptions {
+        scene: Some(scene.summary(scene_name)),
+        schedule,
+        ..Default::default()
+    };
+    let c = compiler::compile_file(style, &mut sources, &opts).unwrap_or_else(|e| match e {
+        compiler::CompileError::User(d) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        e => panic!("{}: {e:?}", style.display()),
+    });
+    let fused = c
+        .report
+        .entries
+        .iter()
+        .filter(|e| e.action == "fused")
+        .map(|e| format!("{} {}", e.what, e.why))
+        .collect();
+    let program = c.program();
+    Compiled {
+        passes: program.manifest.passes.len(),
+        program,
+        fused,
+    }
+}
+
+fn load_scene(scene: &Path) -> runner::scene::Scene {
+    let mut sources = dsl::SourceMap::new();
+    runner::scene::load_scene(scene, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+}
+
+/// The output of frame `FRAMES - 1` (frames at 24 fps), per eye.
+fn render(program: &StyleProgram, scene: &runner::scene::Scene, width: u32, height: u32) -> Vec<runner::TargetImage> {
+    let g = gpu();
+    let eyes = if scene.camera.is_stereo() { 2 } else { 1 };
+    (0..eyes)
+        .map(|eye| {
+            let mut r = Renderer::new(&g.device, &g.queue, program, scene)
+                .unwrap_or_else(|e| panic!("renderer: {e}: {:?}", e.diagnostics()));
+            for frame in 0..FRAMES {
+                let spec = FrameSpec {
+                    width,
+                    height,
+                    time_s: f64::from(frame) / 24.0,
+                    frame,
+                    eye,
+                };
+                r.render(scene, &spec)
+                    .unwrap_or_else(|e| panic!("render: {e}: {:?}", e.diagnostics()));
+            }
+            r.read_output().expect("read back the output")
+        })
+        .collect()
+}
+
+/// Texels equal bit for bit; otherwise the two images and their diff are
+/// written and the test fails with the first differing texel.
+fn assert_bit_identical(case: &str, naive: &runner::TargetImage, auto: &runner::TargetImage) {
+    let (a, b) = (naive.to_rgba_f32(), auto.to_rgba_f32());
+    assert_eq!(a.len(), b.len(), "{case}: sizes differ");
+    let first = a
+        .iter()
+        .zip(&b)
+        .position(|(x, y)| x.iter().zip(y).any(|(p, q)| p.to_bits() != q.to_bits()));
+    let Some(i) = first else { return };
+    let differing = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    let dir = root().join("target/npr-test-output/schedule");
+    std::fs::create_dir_all(&dir).expect("output dir");
+    let naive_png = dir.join(format!("{case}_naive.png"));
+    runner::output::write_png8(&naive.to_rgba8(), &naive_png).expect("write naive");
+    let c = compare_with_golden_file(
+        &auto.to_rgba8(),
+        &naive_png,
+        Tolerance::PerPixel {
+            max_abs: 0,
+            outlier_fraction: 0.0,
+        },
+        false,
+    );
+    panic!(
+        "{case}: auto differs from naive at texel {i} ({:?} against {:?}); {differing} texel(s) differ; \
+         8-bit: {}; images: {naive_png:?}, {:?}",
+        b[i], a[i], c.summary, c.written
+    );
+}
+
+/// Compiles `style` both ways, renders both at `width`×`height`, asserts the
+/// same texels; returns the number of passes fused.
+fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u32) -> usize {
+    let scene = load_scene(scene_path);
+    let name = scene_path.display().to_string();
+    let naive = compile(style, &scene, &name, Schedule::Naive);
+    let auto = compile(style, &scene, &name, Schedule::Auto);
+    assert!(naive.fused.is_empty(), "{case}: naive fused {:?}", naive.fused);
+    assert_eq!(
+        naive.passes - auto.passes,
+        auto.fused.len(),
+        "{case}: each fused pass removes one pass ({:?})",
+        auto.fused
+    );
+    let (a, b) = (
+        render(&naive.program, &scene, width, height),
+        render(&auto.program, &scene, width, height),
+    );
+    for (eye, (a, b)) in a.iter().zip(&b).enumerate() {
+        assert_bit_identical(&format!("{case}_eye{eye}"), a, b);
+    }
+    auto.fused.len()
+}
+
+fn example(style: &str) -> PathBuf {
+    root().join(format!("examples/{style}.npr"))
+}
+
+fn scene(name: &str) -> PathBuf {
+    root().join(format!("examples/scenes/{name}.toml"))
+}
+
+#[test]
+fn every_example_gives_the_same_image_under_both_schedules() {
+    let mut fused = Vec::new();
+    for (style, scene_name) in EXAMPLES {
+        let n = same_image(
+            &format!("{style}_on_{scene_name}"),
+            &example(style),
+            &scene(scene_name),
+            64,
+            48,
+        );
+        fused.push((*style, *scene_name, n));
+    }
+    eprintln!("passes fused per example: {fused:?}");
+    // The test must exercise fusion, not only styles where nothing fuses.
+    let lsa = fused.iter().filter(|(s, _, _)| s.starts_with("lsa_")).map(|f| f.2);
+    assert!(
+        lsa.clone().all(|n| n >= 1),
+        "the LSA styles fuse their merge: {fused:?}"
+    );
+}
+
+#[test]
+fn every_example_is_covered() {
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(root().join("examples")).expect("examples/") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "npr") {
+            let stem = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .expect("utf-8 name")
+                .to_owned();
+            if !EXAMPLES.iter().any(|(s, _)| *s == stem) {
+                missing.push(stem);
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "examples without a schedule-equivalence case: {missing:?}"
+    );
+}
+
+/// Fused passes at image edges: sizes whose width and height are not
+/// multiples of anything (1×1, 3×7, 17×513), on the LSA styles (where the
+/// merge fuses) and Age of Sail (scale-½ and ¼ blur chains).
+#[test]
+fn odd_sizes_and_scaled_passes_give_the_same_image() {
+    let cases = [
+        ("lsa_contours", "spheres"),
+        ("lsa_base", "spheres"),
+        ("age_of_sail", "age_of_sail"),
+    ];
+    for (style, scene_name) in cases {
+        for (w, h) in [(1, 1), (3, 7), (17, 513)] {
+            same_image(&format!("{style}_{w}x{h}"), &example(style), &scene(scene_name), w, h);
+        }
+    }
+}
+
+/// A pointwise chain at scale ½ fuses into its scale-½ reader (same scale),
+/// but not into the full-size pass after it; both images equal naive's at
+/// odd sizes, where the ½ size rounds.
+#[test]
+fn a_scale_half_chain_fuses_at_its_own_scale() {
+    let dir = root().join("target/npr-test-output/schedule-styles");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let style = dir.join("half_chain.npr");
+    std::fs::write(
+        &style,
+        r#"style "half chain"
+pass g: render(scene) {
+  out c: rgba16float = vec4(normal.world * 0.5 + 0.5, 1.0)
+}
+pass half: image(g) scale 1/2 {
+  out c: rgba16float = g.c * vec4(0.9, 0.8, 0.7, 1.0)
+}
+pass tone: image(half) scale 1/2 {
+  out c: rgba8unorm = vec4(sqrt(half.c.rgb), 1.0)
+}
+pass up: image(tone) {
+  out c: rgba8unorm = tone.c
+}
+output up.c
+"#,
+    )
+    .expect("write style");
+    let scene_path = scene("spheres");
+    let loaded = load_scene(&scene_path);
+    let auto = compile(&style, &loaded, "spheres", Schedule::Auto);
+    assert_eq!(auto.fused.len(), 1, "`half` fuses into `tone` only: {:?}", auto.fused);
+    assert!(
+        auto.fused[0].contains("`half`") && auto.fused[0].contains("`tone`"),
+        "{:?}",
+        auto.fused
+    );
+    for (w, h) in [(1, 1), (3, 7), (17, 513), (64, 48)] {
+        same_image(&format!("half_chain_{w}x{h}"), &style, &scene_path, w, h);
+    }
+}
+
+/// The measured 16-bit float rounding (`runner::half_rounding`) is how this
+/// device's stores round every value, not only the probes: 8192 values over
+/// 24 octaves stored into an `rgba16float` target, next to the same values
+/// in `rgba32float`, each rounded by the measured mode equals what was
+/// stored, bit for bit.
+#[test]
+fn the_measured_half_rounding_is_how_every_store_rounds() {
+    let g = gpu();
+    let mode = runner::half_rounding::measure(&g.device, &g.queue).expect("a rounding this device has");
+    let style = common::compile_text(
+        r#"style "stores"
+pass a: image() {
+  let x = exp2(mix(-12.0, 12.0, screen_uv.y)) * (1.0 + screen_uv.x * 0.37)
+  out h: rgba16float = vec4(x, -x, x * 0.3, 1.0)
+  out f: rgba32float = vec4(x, -x, x * 0.3, 1.0)
+}
+pass b: image(a) {
+  out c: rgba32float = vec4(a.h.x, a.f.x, a.h.z, a.f.z)
+}
+output b.c
+"#,
+    );
+    let scene = load_scene(&scene("spheres"));
+    let img = runner::render_frame(g, &style, &scene, &FrameSpec::still(64, 64, 0)).expect("render");
+    let (mut checked, mut modes_differ) = (0, 0);
+    for texel in img.to_rgba_f32() {
+        for (stored, exact) in [(texel[0], texel[1]), (texel[2], texel[3])] {
+            let other = match mode {
+                abi::formats::HalfRounding::NearestEven => abi::formats::HalfRounding::TowardZero,
+                abi::formats::HalfRounding::TowardZero => abi::formats::HalfRounding::NearestEven,
+            };
+            assert_eq!(
+                mode.round(exact).to_bits(),
+                stored.to_bits(),
+                "{exact:e} stored as {stored:e}, but {mode:?} gives {:e}",
+                mode.round(exact)
+            );
+            modes_differ += usize::from(other.round(exact) != stored);
+            checked += 1;
+        }
+    }
+    // The check can fail: the other mode disagrees with many stores.
+    assert!(modes_differ > checked / 4, "{modes_differ} of {checked}");
+    eprintln!("{mode:?}: {checked} stores, the other mode differs on {modes_differ}");
+}
