@@ -57,14 +57,53 @@ fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u3
     r.read_output().unwrap()
 }
 
+/// The level(s) of detail a 64² image pass reads from `texture levels =
+/// {decl}` (a 256² grey source, filtered so that every level holds its own
+/// index or size) with `out v: rgba16float = {read(case)}`, decoded by
+/// `got` from the texel, against `want(case)` at three pixels: every error
+/// within `tolerance` levels. The worst error, in levels.
+fn check_levels<C: std::fmt::Debug>(
+    dir: &Path,
+    decl: &str,
+    cases: &[C],
+    read: impl Fn(&C) -> String,
+    want: impl Fn(&C) -> Vec<f64>,
+    got: impl Fn([f32; 4]) -> Vec<f64>,
+    pixels: [(u32, u32); 3],
+    tolerance: f64,
+) -> f64 {
+    grey_png(&dir.join("src.png"), 256, 128);
+    let mut worst: f64 = 0.0;
+    for case in cases {
+        let text = format!(
+            "style \"levels\"\ntexture levels = {decl}\n\
+             pass read: image() {{\n  out v: rgba16float = {}\n}}\n\
+             output read.v\n",
+            read(case)
+        );
+        let img = render(&compile(&text, dir), &runner::scene::Scene::empty(), 64);
+        let want = want(case);
+        for (x, y) in pixels {
+            let got = got(img.texel(x, y));
+            for (axis, (g, w)) in got.iter().zip(&want).enumerate() {
+                let err = (g - w).abs();
+                worst = worst.max(err);
+                assert!(
+                    err <= tolerance,
+                    "{case:?} at ({x}, {y}), axis {axis}: level {g:.4}, the reference {w:.4}"
+                );
+            }
+        }
+    }
+    worst
+}
+
 #[test]
 fn sample_biased_selects_the_level_of_detail_of_the_reference() {
-    let dir = scratch("lod");
-    grey_png(&dir.join("src.png"), 256, 128);
     let filter = root().join("tests/data/artmaps/level_index.npr");
-    let size = 64u32;
-    let mut worst: f64 = 0.0;
-    for (k, bias) in [
+    let size = 64.0;
+    // (k, bias): uv = screen_uv · k moves k / size per pixel along each axis.
+    let cases = [
         (0.25, 0.0),
         (0.5, 0.0),
         (1.0, 0.0),
@@ -76,33 +115,27 @@ fn sample_biased_selects_the_level_of_detail_of_the_reference() {
         (1.0, 2.0),
         (0.7, 3.3),
         (0.3, -2.0),
-    ] {
-        let text = format!(
-            "style \"lod\"\n\
-             texture levels = artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}\n\
-             pass read: image() {{\n  out v: rgba16float = sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})\n}}\n\
-             output read.v\n",
+    ];
+    // llvmpipe computes the level with a fast log2 approximation (0.04
+    // level off seen at k = 10) and quantizes the trilinear weight; the
+    // result is stored in half floats: 1/16 of a level. The reference is
+    // clamped to levels 0..8, and each level holds its index / 16.
+    let worst = check_levels(
+        &scratch("lod"),
+        &format!(
+            "artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}",
             filter.display()
-        );
-        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
-        // uv = screen_uv · k moves k / size per pixel along each axis.
-        let lod = stdlib::reference::sample_biased_lod([k / size as f64, 0.0], [0.0, k / size as f64], 256, 256, bias);
-        let want = stdlib::reference::sample_biased(lod, 9, 0.0625);
-        for (x, y) in [(0, 0), (31, 17), (63, 63)] {
-            let got = img.texel(x, y)[0] as f64;
-            let err_levels = (got - want).abs() / 0.0625;
-            worst = worst.max(err_levels);
-            // llvmpipe computes the level with a fast log2 approximation
-            // (0.04 level off seen at k = 10) and quantizes the trilinear
-            // weight; the result is stored in half floats: 1/16 of a level.
-            assert!(
-                err_levels <= 1.0 / 16.0,
-                "k {k}, bias {bias}: level {:.4}, the reference {:.4} (clamped to 0..8)",
-                got / 0.0625,
-                want / 0.0625
-            );
-        }
-    }
+        ),
+        &cases,
+        |(k, bias)| format!("sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})"),
+        |&(k, bias)| {
+            let lod = stdlib::reference::sample_biased_lod([k / size, 0.0], [0.0, k / size], 256, 256, bias);
+            vec![stdlib::reference::sample_biased(lod, 9, 0.0625) / 0.0625]
+        },
+        |t| vec![f64::from(t[0]) / 0.0625],
+        [(0, 0), (31, 17), (63, 63)],
+        1.0 / 16.0,
+    );
     eprintln!("worst level error: {worst:.5}");
 }
 
@@ -146,26 +179,51 @@ fn plane_scene(d: f64) -> runner::scene::Scene {
     ))
 }
 
+/// The shipped hatching filter with strokes `spacing` texels apart, as a
+/// `filter:` argument.
+fn hatching_spaced(spacing: f64) -> String {
+    format!(
+        "filter(\"{}\", spacing: {spacing:?})",
+        root().join("examples/filters/hatching.npr").display()
+    )
+}
+
 #[test]
 fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over_distance() {
     let dir = scratch("stroke_size");
     let spacing = 8.0;
-    // The shipped hatching filter with strokes `spacing` texels apart.
-    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
-    let filter = hatching.replace(
-        "param spacing: float = 4 in 2..32",
-        &format!("param spacing: float = {spacing} in 2..32"),
-    );
-    assert_ne!(filter, hatching, "the hatching filter's spacing default moved");
-    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
     // sRGB 200: linear 0.58, one layer of strokes (below `cross_above`).
     // 1024 texels: level 6, chosen at 64 m, is 16 texels, still two stroke
     // periods (a level smaller than one period cannot hold its strokes).
     let texels = 1024u32;
     grey_png(&dir.join("src.png"), texels, 200);
-    // Level 0 of the art-map as a plain texture, mip-mapped by box filter.
+
+    let size = 128u32;
+    // uv repeats so that one level-0 texel is one pixel 1 m away.
+    let px_per_m = |d: f64| size as f64 / (2.0 * d * 20f64.to_radians().tan());
+    let repeat = 200.0 * px_per_m(1.0) / texels as f64;
+    let style = |texture: &str| {
+        format!(
+            "style \"strokes\"\n{texture}\n\
+             pass shade: render(scene) {{\n  out color: rgba16float = vec4(sample_biased(t, uv * {repeat:.5}).rgb, 1.0)\n  clear: #ffffff\n}}\n\
+             output shade.color\n"
+        )
+    };
+    // The shipped hatching filter with strokes `spacing` texels apart.
+    let artmap = compile(
+        &style(&format!(
+            "texture t = artmap(image(\"src.png\", srgb), filter: {}) {{ wrap: repeat }}",
+            hatching_spaced(spacing)
+        )),
+        &dir,
+    );
+    // Level 0 of the art-map as a plain texture, mip-mapped by box filter:
+    // the art-map's own filter run on the full-size level.
     let g = gpu();
-    let filter_program = compile(&filter, &dir);
+    let filter_program = match &artmap.manifest.textures[0].source {
+        abi::manifest::TextureSourceManifest::Artmap(spec) => spec.filter.program(),
+        other => panic!("not an art-map: {other:?}"),
+    };
     let base = runner::artmap::Level {
         width: texels,
         height: texels,
@@ -179,22 +237,6 @@ fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over
         .to_rgba16()
         .save(dir.join("plain.png"))
         .unwrap();
-
-    let size = 128u32;
-    // uv repeats so that one level-0 texel is one pixel 1 m away.
-    let px_per_m = |d: f64| size as f64 / (2.0 * d * 20f64.to_radians().tan());
-    let repeat = 200.0 * px_per_m(1.0) / texels as f64;
-    let style = |texture: &str| {
-        format!(
-            "style \"strokes\"\n{texture}\n\
-             pass shade: render(scene) {{\n  out color: rgba16float = vec4(sample_biased(t, uv * {repeat:.5}).rgb, 1.0)\n  clear: #ffffff\n}}\n\
-             output shade.color\n"
-        )
-    };
-    let artmap = compile(
-        &style("texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }"),
-        &dir,
-    );
     let mipped = compile(
         &style("texture t = image(\"plain.png\", linear) { wrap: repeat, mips: on }"),
         &dir,
@@ -343,12 +385,9 @@ fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
 
 #[test]
 fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
-    let dir = scratch("rip_lod");
-    grey_png(&dir.join("src.png"), 256, 128);
     let filter = root().join("tests/data/artmaps/level_size.npr");
-    let size = 64u32;
-    let mut worst: f64 = 0.0;
-    for (ku, kv) in [
+    let size = 64.0;
+    let cases = [
         (1.0, 1.0),
         (0.25, 4.0),
         (4.0, 0.25),
@@ -356,35 +395,23 @@ fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
         (10.0, 0.7),
         (0.1, 0.1),
         (100.0, 3.0),
-    ] {
-        let text = format!(
-            "style \"rip lod\"\n\
-             texture levels = ripmap(image(\"src.png\", linear), filter: \"{}\")\n\
-             pass read: image() {{\n  out v: rgba16float = sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))\n}}\n\
-             output read.v\n",
-            filter.display()
-        );
-        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
-        let lods = stdlib::reference::sample_ripmap_lods([ku / size as f64, 0.0], [0.0, kv / size as f64], 256, 256);
-        let want = stdlib::reference::sample_ripmap(lods, [9, 9], 1.0);
-        for (x, y) in [(0, 0), (40, 9), (63, 63)] {
-            let t = img.texel(x, y);
-            // Each level holds log2 of its size / 16: 8 − level on a 256² source.
-            let got = [8.0 - 16.0 * t[0] as f64, 8.0 - 16.0 * t[1] as f64];
-            for axis in 0..2 {
-                let err = (got[axis] - want[axis]).abs();
-                worst = worst.max(err);
-                // The shader's own log2 (not the sampler's LOD), the blend
-                // of four levels and half-float storage: 1/64 of a level.
-                assert!(
-                    err <= 1.0 / 64.0,
-                    "ku {ku}, kv {kv}, axis {axis}: level {:.4}, the reference {:.4}",
-                    got[axis],
-                    want[axis]
-                );
-            }
-        }
-    }
+    ];
+    // The shader's own log2 (not the sampler's LOD), the blend of four
+    // levels and half-float storage: 1/64 of a level. Each level holds
+    // log2 of its size / 16: 8 − level on a 256² source.
+    let worst = check_levels(
+        &scratch("rip_lod"),
+        &format!("ripmap(image(\"src.png\", linear), filter: \"{}\")", filter.display()),
+        &cases,
+        |(ku, kv)| format!("sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))"),
+        |&(ku, kv)| {
+            let lods = stdlib::reference::sample_ripmap_lods([ku / size, 0.0], [0.0, kv / size], 256, 256);
+            stdlib::reference::sample_ripmap(lods, [9, 9], 1.0).to_vec()
+        },
+        |t| vec![8.0 - 16.0 * f64::from(t[0]), 8.0 - 16.0 * f64::from(t[1])],
+        [(0, 0), (40, 9), (63, 63)],
+        1.0 / 64.0,
+    );
     eprintln!("worst level error: {worst:.5}");
 }
 
@@ -411,12 +438,7 @@ fn column_period(img: &runner::TargetImage) -> Option<f64> {
 fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stretch_them() {
     let dir = scratch("rip_aspect");
     let spacing = 8.0;
-    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
-    let filter = hatching.replace(
-        "param spacing: float = 4 in 2..32",
-        &format!("param spacing: float = {spacing} in 2..32"),
-    );
-    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
+    let filter = hatching_spaced(spacing);
     grey_png(&dir.join("src.png"), 512, 200);
     let size = 128u32;
     let (d, fov) = (40.0f64, 6.0f64);
@@ -432,14 +454,14 @@ fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stre
     };
     let art = compile(
         &style(
-            "texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }",
+            &format!("texture t = artmap(image(\"src.png\", srgb), filter: {filter}) {{ wrap: repeat }}"),
             &format!("sample_biased(t, uv * {repeat:.5})"),
         ),
         &dir,
     );
     let rip = compile(
         &style(
-            "texture t = ripmap(image(\"src.png\", srgb), filter: \"hatching8.npr\")",
+            &format!("texture t = ripmap(image(\"src.png\", srgb), filter: {filter})"),
             &format!("sample_ripmap(t, uv * {repeat:.5})"),
         ),
         &dir,
