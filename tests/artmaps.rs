@@ -568,3 +568,36 @@ fn filter_arguments_at_the_call_site_are_the_filter_with_those_defaults() {
     assert_eq!(texels(&with_args), texels(&with_file), "the argument is the default 8");
     assert_ne!(texels(&with_args), texels(&with_default), "and not the default 4");
 }
+
+#[test]
+fn an_enum_filter_argument_chooses_the_filters_variant_by_name() {
+    // `filter("tone.npr", tone: light)` as `--set tone=light` would: each
+    // variant makes its own grey at every level; no argument keeps `mid`.
+    let dir = scratch("filter-enum");
+    grey_png(&dir.join("src.png"), 16, 90);
+    std::fs::write(
+        dir.join("tone.npr"),
+        "style \"tone\"\ntexture level = filter_input()\n/// Which grey.\nparam tone: enum(dark, mid, light) = mid\n\
+         pass p: image() {\n  let g = if tone == dark { 0.1 } else if tone == light { 0.9 } else { 0.5 }\n  \
+         out c: rgba16float = vec4(g + level.r * 0.0, g, g, 1.0)\n}\noutput p.c\n",
+    )
+    .unwrap();
+    let grey = |filter: &str| {
+        let text = format!(
+            "style \"enum arg\"\ntexture t = artmap(image(\"src.png\", linear), filter: {filter})\n\
+             pass read: image() {{\n  out v: rgba16float = sample(t, screen_uv)\n}}\noutput read.v\n"
+        );
+        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), 16);
+        f64::from(img.texel(8, 8)[0])
+    };
+    for (filter, want) in [
+        ("filter(\"tone.npr\", tone: dark)", 0.1),
+        ("filter(\"tone.npr\", tone: light)", 0.9),
+        ("filter(\"tone.npr\", tone: mid)", 0.5),
+        ("\"tone.npr\"", 0.5),
+    ] {
+        let got = grey(filter);
+        // The art-map's levels are stored in 8 bits.
+        assert!((got - want).abs() <= 1.0 / 255.0 + 1e-3, "{filter}: {got}, want {want}");
+    }
+}
