@@ -72,7 +72,10 @@ fn compare(name: &str, mesh: &EdgeMesh, eyes: &[DVec3]) -> usize {
             .collect();
         for e in &only_one {
             let faces = &mesh.edges[*e as usize].faces;
-            let tie = faces.iter().map(|f| margin(mesh, *f, *eye)).fold(f64::INFINITY, f64::min);
+            let tie = faces
+                .iter()
+                .map(|f| margin(mesh, *f, *eye))
+                .fold(f64::INFINITY, f64::min);
             assert!(
                 tie <= TIE,
                 "{name} from {eye}: edge {e} differs and its nearest face is {tie:e} from edge-on"
@@ -101,7 +104,11 @@ fn the_compute_pass_finds_the_cpus_silhouette_edges() {
     // Those eyes do see faces exactly edge-on.
     let edge_on = cube_eyes[48..]
         .iter()
-        .map(|eye| (0..cube.faces.len() as u32).filter(|f| margin(&cube, *f, *eye) == 0.0).count())
+        .map(|eye| {
+            (0..cube.faces.len() as u32)
+                .filter(|f| margin(&cube, *f, *eye) == 0.0)
+                .count()
+        })
         .collect::<Vec<_>>();
     assert!(edge_on.iter().all(|n| *n >= 2), "edge-on faces per eye: {edge_on:?}");
     let mut total = compare("cube", &cube, &cube_eyes);

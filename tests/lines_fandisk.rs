@@ -163,7 +163,10 @@ fn visible_samples(mesh: &WorldMesh, eye: DVec3, vp: DMat4) -> (Vec<DVec2>, Vec<
         let corners = f.map(|v| project(vp, mesh.positions[v as usize], SIZE));
         let lo = corners.iter().fold(DVec2::INFINITY, |m, c| m.min(*c)) - 1.0;
         let hi = corners.iter().fold(DVec2::NEG_INFINITY, |m, c| m.max(*c)) + 1.0;
-        let (x0, y0) = (((lo.x / TILE).floor() as i64).max(0), ((lo.y / TILE).floor() as i64).max(0));
+        let (x0, y0) = (
+            ((lo.x / TILE).floor() as i64).max(0),
+            ((lo.y / TILE).floor() as i64).max(0),
+        );
         let (x1, y1) = (
             ((hi.x / TILE).floor() as i64).min(tiles - 1),
             ((hi.y / TILE).floor() as i64).min(tiles - 1),
@@ -241,7 +244,12 @@ fn fandisk_lines_match_the_ray_cast_truth_and_fail_without_the_depth_test() {
         );
         let (eye, vp) = view_proj(&scene);
         let (truth, hidden) = visible_samples(&mesh, eye, vp);
-        let tested = render_ink(&style(&format!("{LINES}  depth: test(shade, bias: 1px)")), &scene, SIZE, 0.0);
+        let tested = render_ink(
+            &style(&format!("{LINES}  depth: test(shade, bias: 1px)")),
+            &scene,
+            SIZE,
+            0.0,
+        );
         let untested = render_ink(&style(LINES), &scene, SIZE, 0.0);
         let (recall, precision) = recall_precision(&tested, &truth, 1.0);
         let (recall_untested, precision_untested) = recall_precision(&untested, &truth, 1.0);

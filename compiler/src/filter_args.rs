@@ -127,7 +127,10 @@ fn choice(a: &FilterArg, p: &ParamManifest, filter_name: &str) -> Result<usize, 
             format!("`{}` of filter `{filter_name}` is a choice of names", a.name),
         )
         .with_primary(a.span, format!("expected one of {variants}"))
-        .with_help(format!("write the variant's name, e.g. `{}: {}`", a.name, p.enum_variants[0])));
+        .with_help(format!(
+            "write the variant's name, e.g. `{}: {}`",
+            a.name, p.enum_variants[0]
+        )));
     };
     p.enum_variants.iter().position(|v| v == name).ok_or_else(|| {
         let help = match did_you_mean(name, p.enum_variants.iter().map(String::as_str)) {

@@ -68,8 +68,8 @@ impl GpuSilhouettes {
     /// Upload `mesh`'s static data and build the pipeline.
     pub fn new(gpu: &Gpu, mesh: &EdgeMesh) -> Result<GpuSilhouettes, RunError> {
         let device = &gpu.device;
-        let edges = u32::try_from(mesh.edges.len())
-            .map_err(|_| RunError::Internal("more edges than a u32 counts".into()))?;
+        let edges =
+            u32::try_from(mesh.edges.len()).map_err(|_| RunError::Internal("more edges than a u32 counts".into()))?;
         let words = edges.div_ceil(32);
         let needed = words.div_ceil(WORKGROUP).max(1);
         let groups = (needed.min(MAX_GROUPS_X), needed.div_ceil(MAX_GROUPS_X));
@@ -101,7 +101,11 @@ impl GpuSilhouettes {
                 },
             )
         };
-        let planes_buffer = init("silhouette planes", bytemuck::cast_slice(&planes), wgpu::BufferUsages::STORAGE);
+        let planes_buffer = init(
+            "silhouette planes",
+            bytemuck::cast_slice(&planes),
+            wgpu::BufferUsages::STORAGE,
+        );
         let faces_buffer = init(
             "silhouette edge faces",
             bytemuck::cast_slice(&edge_faces),
@@ -225,7 +229,11 @@ impl GpuSilhouettes {
         gpu.queue.submit([encoder.finish()]);
         let view = self.map_readback(gpu)?;
         let mut out = Vec::new();
-        for (w, &bits) in bytemuck::cast_slice::<u8, u32>(&view).iter().enumerate().take(self.words as usize) {
+        for (w, &bits) in bytemuck::cast_slice::<u8, u32>(&view)
+            .iter()
+            .enumerate()
+            .take(self.words as usize)
+        {
             let mut rest = bits;
             while rest != 0 {
                 out.push(w as u32 * 32 + rest.trailing_zeros());

@@ -389,7 +389,9 @@ fn a_filters_enum_param_takes_one_of_its_variants_by_name() {
     };
     let default = |name: &str| {
         let p = filter.manifest.params.iter().find(|p| p.name == name);
-        p.unwrap_or_else(|| panic!("no `{name}` in {:?}", filter.manifest.params)).default.clone()
+        p.unwrap_or_else(|| panic!("no `{name}` in {:?}", filter.manifest.params))
+            .default
+            .clone()
     };
     assert_eq!(default("mode"), vec![1.0], "`hard` is the second variant");
     assert_eq!(default("spacing"), vec![8.0]);
