@@ -57,39 +57,47 @@ fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u3
     r.read_output().unwrap()
 }
 
-/// The level(s) of detail a 64² image pass reads from `texture levels =
-/// {decl}` (a 256² grey source, filtered so that every level holds its own
-/// index or size) with `out v: rgba16float = {read(case)}`, decoded by
-/// `got` from the texel, against `want(case)` at three pixels: every error
-/// within `tolerance` levels. The worst error, in levels.
-fn check_levels<C: std::fmt::Debug>(
-    dir: &Path,
-    decl: &str,
-    cases: &[C],
-    read: impl Fn(&C) -> String,
-    want: impl Fn(&C) -> Vec<f64>,
-    got: impl Fn([f32; 4]) -> Vec<f64>,
+/// How a level-of-detail test reads its levels: `out v: rgba16float =
+/// read(case)` from `texture levels = decl` (a 256² grey source, filtered
+/// so that every level holds its own index or size), decoded by `got` from
+/// the texel, against `want(case)` at `pixels`, within `tolerance` levels.
+struct LevelReads<R, W, G> {
+    decl: String,
+    read: R,
+    want: W,
+    got: G,
     pixels: [(u32, u32); 3],
     tolerance: f64,
-) -> f64 {
+}
+
+/// Every case of `reads` rendered into a 64² image and checked; the worst
+/// error, in levels.
+fn check_levels<C, R, W, G>(dir: &Path, cases: &[C], reads: LevelReads<R, W, G>) -> f64
+where
+    C: std::fmt::Debug,
+    R: Fn(&C) -> String,
+    W: Fn(&C) -> Vec<f64>,
+    G: Fn([f32; 4]) -> Vec<f64>,
+{
     grey_png(&dir.join("src.png"), 256, 128);
     let mut worst: f64 = 0.0;
     for case in cases {
         let text = format!(
-            "style \"levels\"\ntexture levels = {decl}\n\
+            "style \"levels\"\ntexture levels = {}\n\
              pass read: image() {{\n  out v: rgba16float = {}\n}}\n\
              output read.v\n",
-            read(case)
+            reads.decl,
+            (reads.read)(case)
         );
         let img = render(&compile(&text, dir), &runner::scene::Scene::empty(), 64);
-        let want = want(case);
-        for (x, y) in pixels {
-            let got = got(img.texel(x, y));
+        let want = (reads.want)(case);
+        for (x, y) in reads.pixels {
+            let got = (reads.got)(img.texel(x, y));
             for (axis, (g, w)) in got.iter().zip(&want).enumerate() {
                 let err = (g - w).abs();
                 worst = worst.max(err);
                 assert!(
-                    err <= tolerance,
+                    err <= reads.tolerance,
                     "{case:?} at ({x}, {y}), axis {axis}: level {g:.4}, the reference {w:.4}"
                 );
             }
@@ -120,22 +128,21 @@ fn sample_biased_selects_the_level_of_detail_of_the_reference() {
     // level off seen at k = 10) and quantizes the trilinear weight; the
     // result is stored in half floats: 1/16 of a level. The reference is
     // clamped to levels 0..8, and each level holds its index / 16.
-    let worst = check_levels(
-        &scratch("lod"),
-        &format!(
+    let reads = LevelReads {
+        decl: format!(
             "artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}",
             filter.display()
         ),
-        &cases,
-        |(k, bias)| format!("sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})"),
-        |&(k, bias)| {
+        read: |(k, bias): &(f64, f64)| format!("sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})"),
+        want: |&(k, bias): &(f64, f64)| {
             let lod = stdlib::reference::sample_biased_lod([k / size, 0.0], [0.0, k / size], 256, 256, bias);
             vec![stdlib::reference::sample_biased(lod, 9, 0.0625) / 0.0625]
         },
-        |t| vec![f64::from(t[0]) / 0.0625],
-        [(0, 0), (31, 17), (63, 63)],
-        1.0 / 16.0,
-    );
+        got: |t: [f32; 4]| vec![f64::from(t[0]) / 0.0625],
+        pixels: [(0, 0), (31, 17), (63, 63)],
+        tolerance: 1.0 / 16.0,
+    };
+    let worst = check_levels(&scratch("lod"), &cases, reads);
     eprintln!("worst level error: {worst:.5}");
 }
 
@@ -399,19 +406,20 @@ fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
     // The shader's own log2 (not the sampler's LOD), the blend of four
     // levels and half-float storage: 1/64 of a level. Each level holds
     // log2 of its size / 16: 8 − level on a 256² source.
-    let worst = check_levels(
-        &scratch("rip_lod"),
-        &format!("ripmap(image(\"src.png\", linear), filter: \"{}\")", filter.display()),
-        &cases,
-        |(ku, kv)| format!("sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))"),
-        |&(ku, kv)| {
+    let reads = LevelReads {
+        decl: format!("ripmap(image(\"src.png\", linear), filter: \"{}\")", filter.display()),
+        read: |(ku, kv): &(f64, f64)| {
+            format!("sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))")
+        },
+        want: |&(ku, kv): &(f64, f64)| {
             let lods = stdlib::reference::sample_ripmap_lods([ku / size, 0.0], [0.0, kv / size], 256, 256);
             stdlib::reference::sample_ripmap(lods, [9, 9], 1.0).to_vec()
         },
-        |t| vec![8.0 - 16.0 * f64::from(t[0]), 8.0 - 16.0 * f64::from(t[1])],
-        [(0, 0), (40, 9), (63, 63)],
-        1.0 / 64.0,
-    );
+        got: |t: [f32; 4]| vec![8.0 - 16.0 * f64::from(t[0]), 8.0 - 16.0 * f64::from(t[1])],
+        pixels: [(0, 0), (40, 9), (63, 63)],
+        tolerance: 1.0 / 64.0,
+    };
+    let worst = check_levels(&scratch("rip_lod"), &cases, reads);
     eprintln!("worst level error: {worst:.5}");
 }
 

@@ -111,7 +111,7 @@ impl WorldMesh {
     }
 
     /// The feature edges seen from `eye`: creases over [`CREASE_DEG`] and
-    /// silhouettes, as (edge index, is a silhouette).
+    /// silhouettes, as indices into `edges`.
     fn feature_edges(&self, eye: DVec3) -> Vec<usize> {
         self.edges
             .iter()
