@@ -313,8 +313,9 @@ pub enum BenchCommand {
         frames: u32,
     },
     /// Lines passes (Klein et al. 2000 §5): strip build and frame time
-    /// against a sphere's edge count (rebuilt every frame, and reused), and
-    /// straight and wavy lines against LSA contours: cost over each
+    /// against a sphere's edge count (rebuilt every frame, and reused),
+    /// silhouette classification on the CPU against a compute pass with its
+    /// read-back, and straight and wavy lines against LSA contours: cost over each
     /// method's base pass, precision and recall within 1 px on the analytic
     /// scenes of `npr bench contours`.
     Lines {

@@ -57,14 +57,61 @@ fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u3
     r.read_output().unwrap()
 }
 
+/// How a level-of-detail test reads its levels: `out v: rgba16float =
+/// read(case)` from `texture levels = decl` (a 256² grey source, filtered
+/// so that every level holds its own index or size), decoded by `got` from
+/// the texel, against `want(case)` at `pixels`, within `tolerance` levels.
+struct LevelReads<R, W, G> {
+    decl: String,
+    read: R,
+    want: W,
+    got: G,
+    pixels: [(u32, u32); 3],
+    tolerance: f64,
+}
+
+/// Every case of `reads` rendered into a 64² image and checked; the worst
+/// error, in levels.
+fn check_levels<C, R, W, G>(dir: &Path, cases: &[C], reads: LevelReads<R, W, G>) -> f64
+where
+    C: std::fmt::Debug,
+    R: Fn(&C) -> String,
+    W: Fn(&C) -> Vec<f64>,
+    G: Fn([f32; 4]) -> Vec<f64>,
+{
+    grey_png(&dir.join("src.png"), 256, 128);
+    let mut worst: f64 = 0.0;
+    for case in cases {
+        let text = format!(
+            "style \"levels\"\ntexture levels = {}\n\
+             pass read: image() {{\n  out v: rgba16float = {}\n}}\n\
+             output read.v\n",
+            reads.decl,
+            (reads.read)(case)
+        );
+        let img = render(&compile(&text, dir), &runner::scene::Scene::empty(), 64);
+        let want = (reads.want)(case);
+        for (x, y) in reads.pixels {
+            let got = (reads.got)(img.texel(x, y));
+            for (axis, (g, w)) in got.iter().zip(&want).enumerate() {
+                let err = (g - w).abs();
+                worst = worst.max(err);
+                assert!(
+                    err <= reads.tolerance,
+                    "{case:?} at ({x}, {y}), axis {axis}: level {g:.4}, the reference {w:.4}"
+                );
+            }
+        }
+    }
+    worst
+}
+
 #[test]
 fn sample_biased_selects_the_level_of_detail_of_the_reference() {
-    let dir = scratch("lod");
-    grey_png(&dir.join("src.png"), 256, 128);
     let filter = root().join("tests/data/artmaps/level_index.npr");
-    let size = 64u32;
-    let mut worst: f64 = 0.0;
-    for (k, bias) in [
+    let size = 64.0;
+    // (k, bias): uv = screen_uv · k moves k / size per pixel along each axis.
+    let cases = [
         (0.25, 0.0),
         (0.5, 0.0),
         (1.0, 0.0),
@@ -76,33 +123,26 @@ fn sample_biased_selects_the_level_of_detail_of_the_reference() {
         (1.0, 2.0),
         (0.7, 3.3),
         (0.3, -2.0),
-    ] {
-        let text = format!(
-            "style \"lod\"\n\
-             texture levels = artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}\n\
-             pass read: image() {{\n  out v: rgba16float = sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})\n}}\n\
-             output read.v\n",
+    ];
+    // llvmpipe computes the level with a fast log2 approximation (0.04
+    // level off seen at k = 10) and quantizes the trilinear weight; the
+    // result is stored in half floats: 1/16 of a level. The reference is
+    // clamped to levels 0..8, and each level holds its index / 16.
+    let reads = LevelReads {
+        decl: format!(
+            "artmap(image(\"src.png\", linear), filter: \"{}\") {{ wrap: repeat }}",
             filter.display()
-        );
-        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
-        // uv = screen_uv · k moves k / size per pixel along each axis.
-        let lod = stdlib::reference::sample_biased_lod([k / size as f64, 0.0], [0.0, k / size as f64], 256, 256, bias);
-        let want = stdlib::reference::sample_biased(lod, 9, 0.0625);
-        for (x, y) in [(0, 0), (31, 17), (63, 63)] {
-            let got = img.texel(x, y)[0] as f64;
-            let err_levels = (got - want).abs() / 0.0625;
-            worst = worst.max(err_levels);
-            // llvmpipe computes the level with a fast log2 approximation
-            // (0.04 level off seen at k = 10) and quantizes the trilinear
-            // weight; the result is stored in half floats: 1/16 of a level.
-            assert!(
-                err_levels <= 1.0 / 16.0,
-                "k {k}, bias {bias}: level {:.4}, the reference {:.4} (clamped to 0..8)",
-                got / 0.0625,
-                want / 0.0625
-            );
-        }
-    }
+        ),
+        read: |(k, bias): &(f64, f64)| format!("sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})"),
+        want: |&(k, bias): &(f64, f64)| {
+            let lod = stdlib::reference::sample_biased_lod([k / size, 0.0], [0.0, k / size], 256, 256, bias);
+            vec![stdlib::reference::sample_biased(lod, 9, 0.0625) / 0.0625]
+        },
+        got: |t: [f32; 4]| vec![f64::from(t[0]) / 0.0625],
+        pixels: [(0, 0), (31, 17), (63, 63)],
+        tolerance: 1.0 / 16.0,
+    };
+    let worst = check_levels(&scratch("lod"), &cases, reads);
     eprintln!("worst level error: {worst:.5}");
 }
 
@@ -146,26 +186,51 @@ fn plane_scene(d: f64) -> runner::scene::Scene {
     ))
 }
 
+/// The shipped hatching filter with strokes `spacing` texels apart, as a
+/// `filter:` argument.
+fn hatching_spaced(spacing: f64) -> String {
+    format!(
+        "filter(\"{}\", spacing: {spacing:?})",
+        root().join("examples/filters/hatching.npr").display()
+    )
+}
+
 #[test]
 fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over_distance() {
     let dir = scratch("stroke_size");
     let spacing = 8.0;
-    // The shipped hatching filter with strokes `spacing` texels apart.
-    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
-    let filter = hatching.replace(
-        "param spacing: float = 4 in 2..32",
-        &format!("param spacing: float = {spacing} in 2..32"),
-    );
-    assert_ne!(filter, hatching, "the hatching filter's spacing default moved");
-    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
     // sRGB 200: linear 0.58, one layer of strokes (below `cross_above`).
     // 1024 texels: level 6, chosen at 64 m, is 16 texels, still two stroke
     // periods (a level smaller than one period cannot hold its strokes).
     let texels = 1024u32;
     grey_png(&dir.join("src.png"), texels, 200);
-    // Level 0 of the art-map as a plain texture, mip-mapped by box filter.
+
+    let size = 128u32;
+    // uv repeats so that one level-0 texel is one pixel 1 m away.
+    let px_per_m = |d: f64| size as f64 / (2.0 * d * 20f64.to_radians().tan());
+    let repeat = 200.0 * px_per_m(1.0) / texels as f64;
+    let style = |texture: &str| {
+        format!(
+            "style \"strokes\"\n{texture}\n\
+             pass shade: render(scene) {{\n  out color: rgba16float = vec4(sample_biased(t, uv * {repeat:.5}).rgb, 1.0)\n  clear: #ffffff\n}}\n\
+             output shade.color\n"
+        )
+    };
+    // The shipped hatching filter with strokes `spacing` texels apart.
+    let artmap = compile(
+        &style(&format!(
+            "texture t = artmap(image(\"src.png\", srgb), filter: {}) {{ wrap: repeat }}",
+            hatching_spaced(spacing)
+        )),
+        &dir,
+    );
+    // Level 0 of the art-map as a plain texture, mip-mapped by box filter:
+    // the art-map's own filter run on the full-size level.
     let g = gpu();
-    let filter_program = compile(&filter, &dir);
+    let filter_program = match &artmap.manifest.textures[0].source {
+        abi::manifest::TextureSourceManifest::Artmap(spec) => spec.filter.program(),
+        other => panic!("not an art-map: {other:?}"),
+    };
     let base = runner::artmap::Level {
         width: texels,
         height: texels,
@@ -179,22 +244,6 @@ fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over
         .to_rgba16()
         .save(dir.join("plain.png"))
         .unwrap();
-
-    let size = 128u32;
-    // uv repeats so that one level-0 texel is one pixel 1 m away.
-    let px_per_m = |d: f64| size as f64 / (2.0 * d * 20f64.to_radians().tan());
-    let repeat = 200.0 * px_per_m(1.0) / texels as f64;
-    let style = |texture: &str| {
-        format!(
-            "style \"strokes\"\n{texture}\n\
-             pass shade: render(scene) {{\n  out color: rgba16float = vec4(sample_biased(t, uv * {repeat:.5}).rgb, 1.0)\n  clear: #ffffff\n}}\n\
-             output shade.color\n"
-        )
-    };
-    let artmap = compile(
-        &style("texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }"),
-        &dir,
-    );
     let mipped = compile(
         &style("texture t = image(\"plain.png\", linear) { wrap: repeat, mips: on }"),
         &dir,
@@ -343,12 +392,9 @@ fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
 
 #[test]
 fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
-    let dir = scratch("rip_lod");
-    grey_png(&dir.join("src.png"), 256, 128);
     let filter = root().join("tests/data/artmaps/level_size.npr");
-    let size = 64u32;
-    let mut worst: f64 = 0.0;
-    for (ku, kv) in [
+    let size = 64.0;
+    let cases = [
         (1.0, 1.0),
         (0.25, 4.0),
         (4.0, 0.25),
@@ -356,35 +402,24 @@ fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
         (10.0, 0.7),
         (0.1, 0.1),
         (100.0, 3.0),
-    ] {
-        let text = format!(
-            "style \"rip lod\"\n\
-             texture levels = ripmap(image(\"src.png\", linear), filter: \"{}\")\n\
-             pass read: image() {{\n  out v: rgba16float = sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))\n}}\n\
-             output read.v\n",
-            filter.display()
-        );
-        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), size);
-        let lods = stdlib::reference::sample_ripmap_lods([ku / size as f64, 0.0], [0.0, kv / size as f64], 256, 256);
-        let want = stdlib::reference::sample_ripmap(lods, [9, 9], 1.0);
-        for (x, y) in [(0, 0), (40, 9), (63, 63)] {
-            let t = img.texel(x, y);
-            // Each level holds log2 of its size / 16: 8 − level on a 256² source.
-            let got = [8.0 - 16.0 * t[0] as f64, 8.0 - 16.0 * t[1] as f64];
-            for axis in 0..2 {
-                let err = (got[axis] - want[axis]).abs();
-                worst = worst.max(err);
-                // The shader's own log2 (not the sampler's LOD), the blend
-                // of four levels and half-float storage: 1/64 of a level.
-                assert!(
-                    err <= 1.0 / 64.0,
-                    "ku {ku}, kv {kv}, axis {axis}: level {:.4}, the reference {:.4}",
-                    got[axis],
-                    want[axis]
-                );
-            }
-        }
-    }
+    ];
+    // The shader's own log2 (not the sampler's LOD), the blend of four
+    // levels and half-float storage: 1/64 of a level. Each level holds
+    // log2 of its size / 16: 8 − level on a 256² source.
+    let reads = LevelReads {
+        decl: format!("ripmap(image(\"src.png\", linear), filter: \"{}\")", filter.display()),
+        read: |(ku, kv): &(f64, f64)| {
+            format!("sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))")
+        },
+        want: |&(ku, kv): &(f64, f64)| {
+            let lods = stdlib::reference::sample_ripmap_lods([ku / size, 0.0], [0.0, kv / size], 256, 256);
+            stdlib::reference::sample_ripmap(lods, [9, 9], 1.0).to_vec()
+        },
+        got: |t: [f32; 4]| vec![8.0 - 16.0 * f64::from(t[0]), 8.0 - 16.0 * f64::from(t[1])],
+        pixels: [(0, 0), (40, 9), (63, 63)],
+        tolerance: 1.0 / 64.0,
+    };
+    let worst = check_levels(&scratch("rip_lod"), &cases, reads);
     eprintln!("worst level error: {worst:.5}");
 }
 
@@ -411,12 +446,7 @@ fn column_period(img: &runner::TargetImage) -> Option<f64> {
 fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stretch_them() {
     let dir = scratch("rip_aspect");
     let spacing = 8.0;
-    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
-    let filter = hatching.replace(
-        "param spacing: float = 4 in 2..32",
-        &format!("param spacing: float = {spacing} in 2..32"),
-    );
-    std::fs::write(dir.join("hatching8.npr"), &filter).unwrap();
+    let filter = hatching_spaced(spacing);
     grey_png(&dir.join("src.png"), 512, 200);
     let size = 128u32;
     let (d, fov) = (40.0f64, 6.0f64);
@@ -432,14 +462,14 @@ fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stre
     };
     let art = compile(
         &style(
-            "texture t = artmap(image(\"src.png\", srgb), filter: \"hatching8.npr\") { wrap: repeat }",
+            &format!("texture t = artmap(image(\"src.png\", srgb), filter: {filter}) {{ wrap: repeat }}"),
             &format!("sample_biased(t, uv * {repeat:.5})"),
         ),
         &dir,
     );
     let rip = compile(
         &style(
-            "texture t = ripmap(image(\"src.png\", srgb), filter: \"hatching8.npr\")",
+            &format!("texture t = ripmap(image(\"src.png\", srgb), filter: {filter})"),
             &format!("sample_ripmap(t, uv * {repeat:.5})"),
         ),
         &dir,
@@ -545,4 +575,37 @@ fn filter_arguments_at_the_call_site_are_the_filter_with_those_defaults() {
     };
     assert_eq!(texels(&with_args), texels(&with_file), "the argument is the default 8");
     assert_ne!(texels(&with_args), texels(&with_default), "and not the default 4");
+}
+
+#[test]
+fn an_enum_filter_argument_chooses_the_filters_variant_by_name() {
+    // `filter("tone.npr", tone: light)` as `--set tone=light` would: each
+    // variant makes its own grey at every level; no argument keeps `mid`.
+    let dir = scratch("filter-enum");
+    grey_png(&dir.join("src.png"), 16, 90);
+    std::fs::write(
+        dir.join("tone.npr"),
+        "style \"tone\"\ntexture level = filter_input()\n/// Which grey.\nparam tone: enum(dark, mid, light) = mid\n\
+         pass p: image() {\n  let g = if tone == dark { 0.1 } else if tone == light { 0.9 } else { 0.5 }\n  \
+         out c: rgba16float = vec4(g + level.r * 0.0, g, g, 1.0)\n}\noutput p.c\n",
+    )
+    .unwrap();
+    let grey = |filter: &str| {
+        let text = format!(
+            "style \"enum arg\"\ntexture t = artmap(image(\"src.png\", linear), filter: {filter})\n\
+             pass read: image() {{\n  out v: rgba16float = sample(t, screen_uv)\n}}\noutput read.v\n"
+        );
+        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), 16);
+        f64::from(img.texel(8, 8)[0])
+    };
+    for (filter, want) in [
+        ("filter(\"tone.npr\", tone: dark)", 0.1),
+        ("filter(\"tone.npr\", tone: light)", 0.9),
+        ("filter(\"tone.npr\", tone: mid)", 0.5),
+        ("\"tone.npr\"", 0.5),
+    ] {
+        let got = grey(filter);
+        // The art-map's levels are stored in 8 bits.
+        assert!((got - want).abs() <= 1.0 / 255.0 + 1e-3, "{filter}: {got}, want {want}");
+    }
 }

@@ -293,6 +293,23 @@ fn bench_lines_reports_edges_and_the_methods() {
         assert!(frame_ms.is_finite() && frame_ms > 0.0, "{row}");
     }
     assert!(stdout.contains("R² ="), "the linear fit is printed:\n{stdout}");
+    // The CPU against the compute classification: both timed, same edges.
+    let classify = stdout
+        .split("silhouette classification")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no classification table:\n{stdout}"));
+    for segments in ["8", "16"] {
+        let row = classify
+            .lines()
+            .find(|l| l.starts_with(&format!("| {segments} |")))
+            .unwrap_or_else(|| panic!("no classification row for {segments} segments:\n{stdout}"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+        for column in [3, 4, 5] {
+            let ms: f64 = cells[column].parse().expect("a number");
+            assert!(ms.is_finite() && ms >= 0.0, "{row}");
+        }
+        assert_eq!(cells.last(), Some(&"yes"), "the compute pass found other edges: {row}");
+    }
     let straight = stdout
         .lines()
         .find(|l| l.starts_with("| lines, straight"))

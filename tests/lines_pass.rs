@@ -8,9 +8,7 @@
 //! crossing the near plane draw without NaN; in a stereo frame each eye
 //! draws the silhouette seen from that eye.
 //!
-//! Ink is read where the output is darker than half grey. Recall: the share
-//! of truth samples with ink within 1.5 px; precision: the share of ink
-//! pixels within 1.5 px + the half width of the truth.
+//! Ink, recall and precision are those of `tests/common/lines.rs`.
 
 use glam::{DMat4, DVec2, DVec3, Mat4};
 use runner::scene::Scene;
@@ -18,6 +16,7 @@ use runner::{FrameSpec, Renderer};
 use std::path::Path;
 
 mod common;
+use common::lines::{self, distance, ink, recall_precision, style};
 use common::{compile_text, gpu};
 
 const SIZE: u32 = 256;
@@ -44,25 +43,6 @@ fn scene_looking_at(objects: &str, eye: DVec3, target: DVec3) -> Scene {
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
 }
 
-/// A fill that keeps its depth, and black lines over white with `settings`.
-fn style(settings: &str) -> String {
-    format!(
-        "style \"L\"
-param w: px = 2px animate {{ 0s: 2px, 1s: 8px }}
-pass shade: render(scene) {{
-  out color: rgba8unorm = #808080
-  depth: keep
-}}
-pass ink: lines(scene) {{
-  {settings}
-  out ink: rgba8unorm = vec4(0.0, 0.0, 0.0, 1.0) {{ blend: over }}
-  clear: #ffffff
-}}
-output ink.ink
-"
-    )
-}
-
 fn view_proj(eye: DVec3) -> DMat4 {
     view_proj_looking(eye, DVec3::ZERO)
 }
@@ -72,57 +52,15 @@ fn view_proj_looking(eye: DVec3, target: DVec3) -> DMat4 {
 }
 
 fn project(vp: DMat4, p: DVec3) -> DVec2 {
-    let c = vp * p.extend(1.0);
-    let n = c.truncate() / c.w;
-    DVec2::new((n.x + 1.0) * 0.5 * f64::from(SIZE), (1.0 - n.y) * 0.5 * f64::from(SIZE))
-}
-
-/// Pixel centres with ink.
-fn ink(renderer: &Renderer) -> Vec<DVec2> {
-    let image = renderer.read_output().expect("read back");
-    (0..SIZE * SIZE)
-        .filter(|i| image.texel(i % SIZE, i / SIZE)[0] < 0.5)
-        .map(|i| DVec2::new(f64::from(i % SIZE) + 0.5, f64::from(i / SIZE) + 0.5))
-        .collect()
+    lines::project(vp, p, SIZE)
 }
 
 fn render_at(text: &str, scene: &Scene, time_s: f64) -> Vec<DVec2> {
-    let program = compile_text(text);
-    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, scene).expect("renderer");
-    let mut spec = FrameSpec::still(SIZE, SIZE, 0);
-    spec.time_s = time_s;
-    r.render(scene, &spec).expect("render");
-    ink(&r)
+    lines::render_ink(text, scene, SIZE, time_s)
 }
 
-/// Samples every 0.25 px along the projected segments.
 fn samples(vp: DMat4, segments: &[(DVec3, DVec3)]) -> Vec<DVec2> {
-    let mut out = Vec::new();
-    for (a, b) in segments {
-        let (pa, pb) = (project(vp, *a), project(vp, *b));
-        let n = ((pb - pa).length() * 4.0).ceil().max(1.0) as usize;
-        out.extend((0..=n).map(|k| pa.lerp(pb, k as f64 / n as f64)));
-    }
-    out
-}
-
-fn distance(p: DVec2, truth: &[DVec2]) -> f64 {
-    truth.iter().map(|t| (p - *t).length()).fold(f64::INFINITY, f64::min)
-}
-
-fn recall_precision(drawn: &[DVec2], truth: &[DVec2], half_width: f64) -> (f64, f64) {
-    let found = truth
-        .iter()
-        .filter(|t| drawn.iter().any(|p| (*p - **t).length() <= 1.5))
-        .count();
-    let near = drawn
-        .iter()
-        .filter(|p| distance(**p, truth) <= half_width + 1.5)
-        .count();
-    (
-        found as f64 / truth.len() as f64,
-        near as f64 / drawn.len().max(1) as f64,
-    )
+    lines::samples(vp, segments, SIZE)
 }
 
 const CUBE: &str = "[[object]]\nprimitive = { kind = \"cube\", size = 2.0 }\n";

@@ -2,8 +2,10 @@
 //! (Klein et al. 2000 §4.2): new defaults for the filter style's params,
 //! checked against the params the filter declares, as `--set` values are
 //! against a style's: the name (E0101, did you mean), the number of
-//! components (E0201), the unit (E0202; a plain number fits any) and the
-//! declared range (E0203), each pointing at the argument in the host style.
+//! components (E0201), the unit (E0202; a plain number fits any), the
+//! declared range (E0203) and, for an enum param, the variant named
+//! (`mode: soft`; E0201 with did you mean), each pointing at the argument
+//! in the host style.
 
 use crate::ir::FilterArg;
 use crate::overrides::ParamOverride;
@@ -42,13 +44,24 @@ pub fn overrides(
             continue;
         };
         if !p.enum_variants.is_empty() {
+            match choice(a, p, filter_name) {
+                Ok(index) => out.push(ParamOverride {
+                    name: a.name.clone(),
+                    value: vec![index as f64],
+                    percent_of_height: false,
+                }),
+                Err(d) => diags.push(d),
+            }
+            continue;
+        }
+        if let Some(name) = &a.choice {
             diags.push(
-                Diagnostic::error(codes::TYPE_MISMATCH, format!("`{}` is a choice of names", a.name))
-                    .with_primary(a.span, "a filter's enum param cannot be set from the call")
-                    .with_help(format!(
-                        "its default stays; the choices are {}",
-                        p.enum_variants.join(", ")
-                    )),
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`{}` of filter `{filter_name}` is {}", a.name, p.ty),
+                )
+                .with_primary(a.span, format!("`{name}` is a name, not a value"))
+                .with_help("give a constant such as `8`, `2px` or `#ff0000`"),
             );
             continue;
         }
@@ -101,4 +114,34 @@ pub fn overrides(
     } else {
         Err(diags)
     }
+}
+
+/// The variant index `a` chooses of the enum param `p`, as `--set` types an
+/// enum (`src/set_params.rs`): a name among the variants, E0201 otherwise,
+/// with the nearest variant when one is close.
+fn choice(a: &FilterArg, p: &ParamManifest, filter_name: &str) -> Result<usize, Diagnostic> {
+    let variants = p.enum_variants.join(" | ");
+    let Some(name) = &a.choice else {
+        return Err(Diagnostic::error(
+            codes::TYPE_MISMATCH,
+            format!("`{}` of filter `{filter_name}` is a choice of names", a.name),
+        )
+        .with_primary(a.span, format!("expected one of {variants}"))
+        .with_help(format!(
+            "write the variant's name, e.g. `{}: {}`",
+            a.name, p.enum_variants[0]
+        )));
+    };
+    p.enum_variants.iter().position(|v| v == name).ok_or_else(|| {
+        let help = match did_you_mean(name, p.enum_variants.iter().map(String::as_str)) {
+            Some(close) => format!("did you mean `{close}`?"),
+            None => format!("one of: {}", p.enum_variants.join(", ")),
+        };
+        Diagnostic::error(
+            codes::TYPE_MISMATCH,
+            format!("`{name}` is not a variant of `{}` in filter `{filter_name}`", a.name),
+        )
+        .with_primary(a.span, format!("expected one of {variants}"))
+        .with_help(help)
+    })
 }

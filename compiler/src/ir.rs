@@ -604,12 +604,17 @@ pub struct Param {
 }
 
 /// One argument of `filter("…", name: value)`: a constant in canonical
-/// units (degrees as radians), with the unit it was written in.
+/// units (degrees as radians), with the unit it was written in, or a bare
+/// name that is none of the host's (`mode: soft`), the choice of an enum
+/// param of the filter, resolved against the filter's variants when it is
+/// compiled (`filter_args`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FilterArg {
     pub name: String,
+    /// Empty for a choice.
     pub value: Vec<f64>,
     pub unit: Unit,
+    pub choice: Option<String>,
     pub span: Span,
 }
 

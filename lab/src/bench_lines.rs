@@ -189,6 +189,108 @@ pub fn edge_table(rows: &[EdgeRow]) -> String {
     out
 }
 
+/// One sphere's row of the CPU-against-compute classification table.
+#[derive(Debug, Clone)]
+pub struct ClassifyRow {
+    pub segments: u32,
+    pub mesh_edges: usize,
+    pub silhouette_edges: usize,
+    /// `EdgeMesh::silhouettes` (one facing test per face, then per edge).
+    pub cpu_s: f64,
+    /// `GpuSilhouettes::classify`: eye written, dispatch, flags copied back,
+    /// GPU waited for, bits unpacked into edge indices.
+    pub gpu_s: f64,
+    /// The same round trip without the dispatch (copy, wait, map): the
+    /// fixed cost of asking the GPU mid-frame.
+    pub read_back_s: f64,
+    /// The one-time upload of the planes and edge faces and the pipeline.
+    pub gpu_setup_s: f64,
+    /// Chaining the silhouette edges, which follows either way on the CPU.
+    pub chain_s: f64,
+    /// Whether both gave the same edges at every eye timed.
+    pub same: bool,
+}
+
+/// Silhouette classification on the CPU against the compute pass, fastest
+/// of `frames` interleaved eyes (a slow turn around the sphere, so every
+/// frame classifies anew), one row per sphere resolution.
+pub fn classify_rows(
+    gpu: &Gpu,
+    segments: &[u32],
+    frames: u32,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<ClassifyRow>, RunError> {
+    let mut sources = dsl::SourceMap::new();
+    let mut rows = Vec::new();
+    for &n in segments {
+        progress(&format!("silhouette classification, sphere of {n} segments"));
+        let scene = sphere_scene(n, &mut sources)?;
+        let edges = runner::lines::edges::EdgeMesh::new(&scene.objects[0].mesh);
+        let t = Instant::now();
+        let gpu_classes = crate::silhouettes_gpu::GpuSilhouettes::new(gpu, &edges)?;
+        wait_idle(gpu)?;
+        let gpu_setup_s = t.elapsed().as_secs_f64();
+        gpu_classes.classify(gpu, glam::DVec3::new(0.0, 0.4, 3.5))?; // warm-up
+        let (mut cpu_s, mut gpu_s, mut chain_s) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        let mut read_back_s = f64::INFINITY;
+        let (mut same, mut silhouette_edges) = (true, 0);
+        for k in 0..frames.max(1) {
+            let a = 0.01 * f64::from(k + 1);
+            let eye = glam::DVec3::new(3.5 * a.sin(), 0.4, 3.5 * a.cos());
+            let t = Instant::now();
+            let cpu = edges.silhouettes(eye);
+            cpu_s = cpu_s.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            let on_gpu = gpu_classes.classify(gpu, eye)?;
+            gpu_s = gpu_s.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            gpu_classes.read_back_only(gpu)?;
+            read_back_s = read_back_s.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            let chains = edges.chain(&cpu);
+            chain_s = chain_s.min(t.elapsed().as_secs_f64());
+            std::hint::black_box(chains);
+            same &= cpu == on_gpu;
+            silhouette_edges = cpu.len();
+        }
+        rows.push(ClassifyRow {
+            segments: n,
+            mesh_edges: edges.edges.len(),
+            silhouette_edges,
+            cpu_s,
+            gpu_s,
+            read_back_s,
+            gpu_setup_s,
+            chain_s,
+            same,
+        });
+    }
+    Ok(rows)
+}
+
+pub fn classify_table(rows: &[ClassifyRow]) -> String {
+    let mut out = String::from(
+        "| segments | mesh edges | silhouette edges | CPU classify (ms) | compute classify + read-back (ms) | of which the read-back alone (ms) | compute / CPU | CPU + chain (ms) | compute + chain (ms) | compute setup, once (ms) | same edges |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+    );
+    for r in rows {
+        out.push_str(&format!(
+            "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.2} | {:.3} | {:.3} | {:.1} | {} |\n",
+            r.segments,
+            r.mesh_edges,
+            r.silhouette_edges,
+            r.cpu_s * 1e3,
+            r.gpu_s * 1e3,
+            r.read_back_s * 1e3,
+            r.gpu_s / r.cpu_s,
+            (r.cpu_s + r.chain_s) * 1e3,
+            (r.gpu_s + r.chain_s) * 1e3,
+            r.gpu_setup_s * 1e3,
+            if r.same { "yes" } else { "no" }
+        ));
+    }
+    out
+}
+
 /// One method's row of the comparison.
 #[derive(Debug, Clone)]
 pub struct MethodRow {

@@ -13,6 +13,8 @@
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`bench_lines`]: `npr bench lines`, lines passes' cost against edges and against LSA contours.
+//! - [`silhouettes_gpu`]: silhouette classification in a compute pass, timed
+//!   against the CPU's by `npr bench lines` (not used by the renderer).
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
 //! - [`bench_patterns`]: `npr bench patterns`, the pattern tracker's cost and its error against f64.
 //! - [`bench_styles`]: `npr bench styles`, whole styles' frame cost against a baseline style.
@@ -35,4 +37,5 @@ pub mod contours;
 pub mod harness;
 pub mod pass_timer;
 pub mod patterns_f64;
+pub mod silhouettes_gpu;
 pub mod sliding;

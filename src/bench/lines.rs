@@ -67,12 +67,15 @@ pub fn run(segments: &[u32], size: u32, frames: u32, printer: &Printer) -> i32 {
         Err(code) => return code,
     };
     let result = bench::edge_rows(&gpu, &silhouettes, segments, size, frames, |m| eprintln!("{m}"))
-        .and_then(|e| bench::method_rows(&gpu, &methods, size, frames, |m| eprintln!("{m}")).map(|m| (e, m)));
+        .and_then(|e| bench::classify_rows(&gpu, segments, frames, |m| eprintln!("{m}")).map(|c| (e, c)))
+        .and_then(|(e, c)| bench::method_rows(&gpu, &methods, size, frames, |m| eprintln!("{m}")).map(|m| (e, c, m)));
     match result {
-        Ok((edges, methods)) => {
+        Ok((edges, classify, methods)) => {
             println!("device: {}, fastest of {frames} frames, {size}x{size}", gpu.describe());
             println!("silhouettes of a sphere: strips rebuilt every frame (the sphere turns) or reused:");
             println!("{}", bench::edge_table(&edges));
+            println!("silhouette classification, CPU (`EdgeMesh::silhouettes`, f64) against a compute pass (f32, flags read back and unpacked), the sphere turning so every frame classifies anew; chaining follows on the CPU either way:");
+            println!("{}", bench::classify_table(&classify));
             println!("lines against LSA contours (base: the lines' kept-depth fill, LSA's G-buffer + a passthrough pass; accuracy within 1 px on the analytic scenes of `npr bench contours`):");
             println!("{}", bench::method_table(&methods));
             EXIT_OK

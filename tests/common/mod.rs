@@ -7,6 +7,7 @@
 
 pub mod fuzz;
 pub mod http;
+pub mod lines;
 pub mod live;
 
 use runner::Gpu;

@@ -320,14 +320,20 @@ fn geometry_in_a_pass_over_pixels() {
     check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
 }
 
-/// A host style whose art-map passes `args` to a filter with one param,
-/// `spacing: float = 4 in 2..32`.
+/// A host style whose art-map passes `args` to a filter with two params,
+/// `spacing: float = 4 in 2..32` and `mode: enum(soft, hard) = soft`.
 fn filter_args_case(name: &str, args: &str) -> (Vec<Diagnostic>, String) {
+    let (text, dir) = filter_args_files(name, args);
+    compile_errors(&text, &dir)
+}
+
+/// The files of [`filter_args_case`]: the host style's text and its folder.
+fn filter_args_files(name: &str, args: &str) -> (String, std::path::PathBuf) {
     let dir = scratch(name);
     std::fs::write(
         dir.join("hatch.npr"),
         format!(
-            "{FILTER_HEAD}/// Stroke distance.\nparam spacing: float = 4 in 2..32\npass p: image() {{\n  out c: rgba8unorm = vec4(level.rgb * step(0.5, fract(frag_coord.x / spacing)), 1.0)\n}}\noutput p.c\n"
+            "{FILTER_HEAD}/// Stroke distance.\nparam spacing: float = 4 in 2..32\n/// Stroke edges.\nparam mode: enum(soft, hard) = soft\npass p: image() {{\n  let k = if mode == hard {{ 1.0 }} else {{ 0.5 }}\n  out c: rgba8unorm = vec4(level.rgb * k * step(0.5, fract(frag_coord.x / spacing)), 1.0)\n}}\noutput p.c\n"
         ),
     )
     .unwrap();
@@ -338,7 +344,7 @@ fn filter_args_case(name: &str, args: &str) -> (Vec<Diagnostic>, String) {
     image::RgbaImage::from_pixel(4, 4, image::Rgba([128, 128, 128, 255]))
         .save(dir.join("src.png"))
         .unwrap();
-    compile_errors(&text, &dir)
+    (text, dir)
 }
 
 #[test]
@@ -367,5 +373,41 @@ fn filter_arguments_are_checked_against_the_filters_params() {
         "E0003",
         "filter_arg_twice",
         filter_args_case("farg-twice", "spacing: 8, spacing: 6"),
+    );
+}
+
+#[test]
+fn a_filters_enum_param_takes_one_of_its_variants_by_name() {
+    // As `--set mode=hard` would: the name is the filter's variant.
+    let (text, dir) = filter_args_files("farg-enum-ok", "mode: hard, spacing: 8");
+    let mut sources = dsl::SourceMap::new();
+    let compiled = compiler::compile_source("case.npr", &text, &dir, &mut sources, &Default::default())
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let filter = match &compiled.manifest.textures[0].source {
+        abi::manifest::TextureSourceManifest::Artmap(spec) => &spec.filter,
+        other => panic!("not an art-map: {other:?}"),
+    };
+    let default = |name: &str| {
+        let p = filter.manifest.params.iter().find(|p| p.name == name);
+        p.unwrap_or_else(|| panic!("no `{name}` in {:?}", filter.manifest.params))
+            .default
+            .clone()
+    };
+    assert_eq!(default("mode"), vec![1.0], "`hard` is the second variant");
+    assert_eq!(default("spacing"), vec![8.0]);
+    check_case(
+        "E0201",
+        "filter_arg_enum_variant",
+        filter_args_case("farg-enum-typo", "mode: hrad"),
+    );
+    check_case(
+        "E0201",
+        "filter_arg_enum_number",
+        filter_args_case("farg-enum-number", "mode: 1"),
+    );
+    check_case(
+        "E0201",
+        "filter_arg_name_for_number",
+        filter_args_case("farg-name-number", "spacing: hard"),
     );
 }

@@ -10,6 +10,7 @@ use dsl::ast::{self, ExprKind as AK};
 use dsl::diagnostic::did_you_mean;
 use dsl::{codes, Diagnostic};
 use std::path::Path;
+use stdlib::Unit;
 
 /// The texture sources a declaration may name.
 const SOURCES: [&str; 6] = ["image", "noise", "halftone_table", "artmap", "ripmap", "filter_input"];
@@ -191,12 +192,28 @@ impl Resolver<'_> {
                 );
                 continue;
             }
+            // A bare name the host does not bind is a choice of one of the
+            // filter's enum params (`mode: soft`), as `--set mode=soft` is:
+            // the host's own variants and names are not the filter's.
+            if let AK::Name(choice) = &a.value.kind {
+                if !self.is_bound(&choice.name) {
+                    args.push(FilterArg {
+                        name: name.name.clone(),
+                        value: Vec::new(),
+                        unit: Unit::None,
+                        choice: Some(choice.name.clone()),
+                        span: a.span,
+                    });
+                    continue;
+                }
+            }
             let id = self.expr(&a.value);
             let Some(value) = self.const_values(id) else { continue };
             args.push(FilterArg {
                 name: name.name.clone(),
                 value,
                 unit: self.ir.expr(id).unit,
+                choice: None,
                 span: a.span,
             });
         }
@@ -204,7 +221,13 @@ impl Resolver<'_> {
         let key = if args.is_empty() {
             resolved.clone()
         } else {
-            let list: Vec<String> = args.iter().map(|a| format!("{}={:?}", a.name, a.value)).collect();
+            let list: Vec<String> = args
+                .iter()
+                .map(|a| match &a.choice {
+                    Some(c) => format!("{}={c}", a.name),
+                    None => format!("{}={:?}", a.name, a.value),
+                })
+                .collect();
             format!("{resolved}?{}", list.join("&"))
         };
         Some((rel, key, resolved, args))
