@@ -141,6 +141,51 @@ pub struct Operator {
     pub snippets: &'static [&'static str],
     /// Cheaper operators to call instead when an argument is a known constant.
     pub specializations: &'static [Specialization],
+    /// What it reads of each texture parameter, by parameter name (one
+    /// entry per [`Ty::Texture`] / [`Ty::SampledTexture`] parameter; the
+    /// completeness test checks it, `tests/footprints.rs` measures it).
+    pub footprints: &'static [(&'static str, Footprint)],
+}
+
+/// Which texels of a texture argument an operator reads (issue 14: a
+/// compiler that runs a neighbourhood operator in workgroup tiles sizes the
+/// tile's apron from this; fusion refuses any read but the pixel's own).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Footprint {
+    /// Texels within `radius` (Chebyshev distance, in the texture's own
+    /// texels) of the texel under the parameter named `uv`; when that
+    /// argument is the pixel's `screen_uv`, a neighbourhood of the pixel.
+    Around { uv: &'static str, radius: Radius },
+    /// Anywhere: at a coordinate computed from data (a warp, a
+    /// reprojection, a light-space lookup, a sampled uv, a table lookup).
+    Anywhere,
+}
+
+/// The radius of a [`Footprint::Around`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Radius {
+    Texels(u32),
+    /// min(⌈k · value⌉, max) of the named parameter (e.g. a Gaussian's 3σ),
+    /// known when the argument is a constant.
+    Scaled {
+        param: &'static str,
+        k: f64,
+        max: u32,
+    },
+}
+
+impl Radius {
+    /// The radius in texels, given the constant value of the parameter a
+    /// scaled radius depends on (`None`: not a constant, so only `max` bounds it).
+    pub fn texels(self, value: Option<f64>) -> u32 {
+        match self {
+            Radius::Texels(r) => r,
+            Radius::Scaled { k, max, .. } => match value {
+                Some(v) if v.is_finite() => ((k * v).ceil().max(0.0) as u32).min(max),
+                _ => max,
+            },
+        }
+    }
 }
 
 /// "When `param` is the constant `value`, call `use_operator` instead": the
@@ -175,6 +220,11 @@ impl Operator {
 
     pub fn param(&self, name: &str) -> Option<&Param> {
         self.params.iter().find(|p| p.name == name)
+    }
+
+    /// What it reads of its texture parameter `name` (`None`: not one).
+    pub fn footprint(&self, name: &str) -> Option<Footprint> {
+        self.footprints.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
     }
 }
 

@@ -1,6 +1,6 @@
 //! The operator table: metadata for every stdlib operator, and its WGSL.
 
-use crate::{Default, Operator, Param, Specialization, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Specialization, Stage, Ty, Unit};
 
 /// A required parameter with no unit or range (shared with the other operator tables).
 pub(crate) const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
@@ -38,6 +38,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "half_lambert",
@@ -53,6 +54,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "toon",
@@ -75,6 +77,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "threshold",
@@ -105,6 +108,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "gaussian",
@@ -136,6 +140,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("src", Footprint::Around { uv: "uv", radius: Radius::Scaled { param: "sigma", k: 3.0, max: 48 } })],
     },
     Operator {
         name: "downsample",
@@ -148,6 +153,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("src", Footprint::Around { uv: "uv", radius: Radius::Texels(1) })],
     },
     Operator {
         name: "sobel",
@@ -163,6 +169,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("src", Footprint::Around { uv: "uv", radius: Radius::Texels(1) })],
     },
     Operator {
         name: "normal_depth_edges",
@@ -195,6 +202,10 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[
+            ("normals", Footprint::Around { uv: "uv", radius: Radius::Texels(1) }),
+            ("depth", Footprint::Around { uv: "uv", radius: Radius::Texels(1) }),
+        ],
     },
     Operator {
         name: "over",
@@ -207,6 +218,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "luminance",
@@ -219,6 +231,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "saturation",
@@ -241,6 +254,7 @@ pub static ALL: &[Operator] = &[
         depends: &["luminance"],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "overlay",
@@ -264,6 +278,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "sample",
@@ -286,6 +301,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "metatexture_grad",
@@ -298,6 +314,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &["meta"],
         specializations: &[Specialization { param: "skew", value: 0.0, use_operator: "metatexture4_grad" }],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "metatexture",
@@ -310,6 +327,7 @@ pub static ALL: &[Operator] = &[
         depends: &["metatexture_grad"],
         snippets: &["meta"],
         specializations: &[Specialization { param: "skew", value: 0.0, use_operator: "metatexture4" }],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "metatexture4_grad",
@@ -322,6 +340,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &["meta"],
         specializations: &[],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "metatexture4",
@@ -334,6 +353,7 @@ pub static ALL: &[Operator] = &[
         depends: &["metatexture4_grad"],
         snippets: &["meta"],
         specializations: &[],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     // ---- MetaTexture extensions (§3.2, §3.3, §3.5) and live texture (§6.1)
     Operator {
@@ -381,6 +401,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("depth_map", Footprint::Anywhere)],
     },
     Operator {
         name: "contour_fade",
@@ -401,6 +422,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "reprojection_mask",
@@ -421,6 +443,10 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[
+            ("reproj", Footprint::Around { uv: "uv", radius: Radius::Texels(1) }),
+            ("reproj_other", Footprint::Anywhere),
+        ],
     },
     Operator {
         name: "stereo_consistency",
@@ -439,6 +465,11 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[
+            ("e", Footprint::Around { uv: "uv", radius: Radius::Texels(0) }),
+            ("e_other", Footprint::Anywhere),
+            ("reproj", Footprint::Around { uv: "uv", radius: Radius::Texels(0) }),
+        ],
     },
     Operator {
         name: "radial_alpha",
@@ -468,6 +499,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "uv_gradients",
@@ -513,6 +545,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "metatexture_contour_grad",
@@ -525,6 +558,7 @@ pub static ALL: &[Operator] = &[
         depends: &["metatexture_grad"],
         snippets: &["meta"],
         specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture_grad" }],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "metatexture_contour",
@@ -537,6 +571,7 @@ pub static ALL: &[Operator] = &[
         depends: &["metatexture_contour_grad"],
         snippets: &["meta"],
         specializations: &[Specialization { param: "orient", value: 0.0, use_operator: "metatexture" }],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
     Operator {
         name: "live_texture",
@@ -567,6 +602,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     // ---- Edge Breakup (§4)
     Operator {
@@ -621,6 +657,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "roll_compensate",
@@ -636,6 +673,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "distance_attenuate",
@@ -666,6 +704,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "warp",
@@ -690,6 +729,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("src", Footprint::Anywhere)],
     },
     // ---- LSA contours (Zaidi et al., "Local Surface Approximation Contours for
     // Virtual Reality Stylisation"). Kept at the end of the table.
@@ -707,6 +747,7 @@ pub static ALL: &[Operator] = &[
             Specialization { param: "plane", value: 0.0, use_operator: "lsa_curv_aa" },
             Specialization { param: "aa", value: 0.0, use_operator: "lsa_sum" },
         ],
+        footprints: LSA_FOOTPRINT_AA,
     },
     Operator {
         name: "lsa_sum",
@@ -719,6 +760,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &["lsa_core", "lsa_plane"],
         specializations: &[Specialization { param: "plane", value: 0.0, use_operator: "lsa_curv" }],
+        footprints: LSA_FOOTPRINT,
     },
     Operator {
         name: "lsa_curv_aa",
@@ -731,6 +773,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &["lsa_core", "lsa_aa"],
         specializations: &[Specialization { param: "aa", value: 0.0, use_operator: "lsa_curv" }],
+        footprints: LSA_FOOTPRINT_AA,
     },
     Operator {
         name: "lsa_curv",
@@ -743,6 +786,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &["lsa_core"],
         specializations: &[],
+        footprints: LSA_FOOTPRINT,
     },
     Operator {
         name: "lsa_density",
@@ -766,6 +810,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("src", Footprint::Around { uv: "uv", radius: Radius::Texels(2) })],
     },
 ];
 
@@ -912,6 +957,41 @@ const METATEXTURE4_PARAMS: &[Param] = &{
     let s = metatexture_settings!();
     [METATEXTURE_SAMPLED, METATEXTURE_UV, s[0], s[1], s[2], s[4], s[5]]
 };
+
+/// LSA reads each direction's neighbours one step away (eqs. 1–7)...
+const LSA_FOOTPRINT: &[(&str, Footprint)] = &[
+    (
+        "pos",
+        Footprint::Around {
+            uv: "uv",
+            radius: Radius::Texels(1),
+        },
+    ),
+    (
+        "normals",
+        Footprint::Around {
+            uv: "uv",
+            radius: Radius::Texels(1),
+        },
+    ),
+];
+/// ...and, with the anti-aliasing term (eq. 8), two steps away.
+const LSA_FOOTPRINT_AA: &[(&str, Footprint)] = &[
+    (
+        "pos",
+        Footprint::Around {
+            uv: "uv",
+            radius: Radius::Texels(2),
+        },
+    ),
+    (
+        "normals",
+        Footprint::Around {
+            uv: "uv",
+            radius: Radius::Texels(2),
+        },
+    ),
+];
 
 const LSA_POS: Param = p(
     "pos",

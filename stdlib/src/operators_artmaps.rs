@@ -3,7 +3,7 @@
 //! per axis.
 
 use crate::operators::p;
-use crate::{Default, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
 
 pub static ALL: &[Operator] = &[
     Operator {
@@ -28,6 +28,7 @@ pub static ALL: &[Operator] = &[
     depends: &[],
     snippets: &[],
     specializations: &[],
+    footprints: &[("tex", Footprint::Anywhere)],
 },
     Operator {
         name: "sample_ripmap",
@@ -43,5 +44,6 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("tex", Footprint::Anywhere)],
     },
 ];

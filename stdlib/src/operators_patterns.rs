@@ -5,7 +5,7 @@
 //! blend (§3.4) and tone correction (§3.5).
 
 use crate::operators::p;
-use crate::{Default, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Stage, Ty, Unit};
 
 pub static ALL: &[Operator] = &[
     Operator {
@@ -31,6 +31,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[("ids", Footprint::Around { uv: "uv", radius: Radius::Scaled { param: "radius", k: 1.0, max: 8 } })],
     },
     Operator {
         name: "complex_mul",
@@ -43,6 +44,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "pattern_uv",
@@ -67,6 +69,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "halftone_screen",
@@ -89,6 +92,7 @@ pub static ALL: &[Operator] = &[
         depends: &[],
         snippets: &[],
         specializations: &[],
+        footprints: &[],
     },
     Operator {
         name: "halftone",
@@ -120,5 +124,6 @@ pub static ALL: &[Operator] = &[
         depends: &["halftone_screen"],
         snippets: &[],
         specializations: &[],
+        footprints: &[("table", Footprint::Anywhere)],
     },
 ];

@@ -184,3 +184,42 @@ fn specializations_keep_the_remaining_parameters_in_order() {
         }
     }
 }
+
+/// Every texture parameter has exactly one footprint (issue 14), naming a
+/// real `uv` parameter (a vec2) and, for a scaled radius, a numeric one.
+#[test]
+fn every_texture_parameter_has_a_footprint() {
+    for op in stdlib::all() {
+        let textures: Vec<&str> = op
+            .params
+            .iter()
+            .filter(|p| matches!(p.ty, Ty::Texture | Ty::SampledTexture))
+            .map(|p| p.name)
+            .collect();
+        let declared: Vec<&str> = op.footprints.iter().map(|(n, _)| *n).collect();
+        assert_eq!(
+            declared, textures,
+            "{}: footprints must list the texture parameters in order",
+            op.name
+        );
+        for (name, f) in op.footprints {
+            if let stdlib::Footprint::Around { uv, radius } = f {
+                let p = op
+                    .param(uv)
+                    .unwrap_or_else(|| panic!("{}.{name}: no parameter `{uv}`", op.name));
+                assert_eq!(p.ty, Ty::Vec2, "{}.{name}: `{uv}` is not a vec2", op.name);
+                if let stdlib::Radius::Scaled { param, k, max } = radius {
+                    let p = op
+                        .param(param)
+                        .unwrap_or_else(|| panic!("{}.{name}: no parameter `{param}`", op.name));
+                    assert!(
+                        matches!(p.ty, Ty::Float | Ty::Int),
+                        "{}.{name}: `{param}` is not a number",
+                        op.name
+                    );
+                    assert!(*k > 0.0 && *max > 0, "{}.{name}", op.name);
+                }
+            }
+        }
+    }
+}

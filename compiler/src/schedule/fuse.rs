@@ -13,6 +13,7 @@
 //! passed to an operator that reads around the pixel, is read by two
 //! passes, by a pass of another kind, or at another scale.
 
+use super::footprint::{pass_apron, texture_reads, Read};
 use crate::dag::pass_roots;
 use crate::ir::*;
 use crate::prune::Live;
@@ -40,7 +41,12 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) 
                 report.push("fused", name, format!("into `{into}`: {why}"));
             }
             Err(why) => {
-                report.push("schedule", name, format!("separate pass: {why}"));
+                let apron = match pass_apron(ir, pid) {
+                    Some(0) => "its target reads are at the pixel".to_string(),
+                    Some(r) => format!("a tile of it needs a {r}-texel apron"),
+                    None => "a target read at a computed coordinate bounds no tile".to_string(),
+                };
+                report.push("schedule", name, format!("separate pass: {why}; {apron}"));
                 i += 1;
             }
         }
@@ -50,26 +56,6 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) 
 /// The live targets of pass `pid`.
 fn live_targets(live: &Live, pid: PassId) -> Vec<TargetRef> {
     live.targets.iter().filter(|t| t.pass == pid).copied().collect()
-}
-
-/// The nodes `id` reads as a texture (an operator's texture parameter):
-/// such an operator may read any texel, not only the pixel's own.
-fn handle_args(ir: &Ir, id: ExprId) -> Vec<ExprId> {
-    match &ir.expr(id).kind {
-        ExprKind::Call {
-            callee: Callee::Operator(i),
-            args,
-        } => {
-            let op = &stdlib::all()[*i as usize];
-            op.params
-                .iter()
-                .zip(args)
-                .filter(|(p, _)| matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture))
-                .map(|(_, a)| *a)
-                .collect()
-        }
-        _ => Vec::new(),
-    }
 }
 
 /// The one image pass that `pid`'s targets can be fused into, with why, or
@@ -97,9 +83,12 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
     for q in &live.passes {
         let reader = ir.pass(*q);
         let nodes = ir.reachable(&pass_roots(reader));
-        let handles: BTreeMap<ExprId, ExprId> = nodes
+        // Targets passed to an operator as textures: it reads them itself
+        // (`textureLoad`), so there is no value to substitute, even where
+        // its footprint is the pixel alone.
+        let handles: BTreeMap<ExprId, (ExprId, Read)> = nodes
             .iter()
-            .flat_map(|n| handle_args(ir, *n).into_iter().map(move |a| (a, *n)))
+            .flat_map(|n| texture_reads(ir, *n).into_iter().map(move |(a, read)| (a, (*n, read))))
             .collect();
         for n in &nodes {
             let ExprKind::Target { target, copy } = ir.expr(*n).kind else {
@@ -116,7 +105,7 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
                 TargetCopy::OtherEye => return Err(format!("`{}` reads the other eye's `{name}`", reader.name)),
                 TargetCopy::This => {}
             }
-            if let Some(call) = handles.get(n) {
+            if let Some((call, read)) = handles.get(n) {
                 let op = match &ir.expr(*call).kind {
                     ExprKind::Call {
                         callee: Callee::Operator(i),
@@ -124,10 +113,7 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
                     } => stdlib::all()[*i as usize].name,
                     _ => "an operator",
                 };
-                return Err(format!(
-                    "`{}` passes `{name}` to `{op}`, which reads around the pixel",
-                    reader.name
-                ));
+                return Err(format!("`{}` passes `{name}` to `{op}`, which {read}", reader.name));
             }
             readers.insert(*q);
         }

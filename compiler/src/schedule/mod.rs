@@ -8,8 +8,10 @@
 //!   fused into that reader ([`fuse`]); the rounding of the skipped target's
 //!   format is repeated, so the image does not change.
 //!
-//! What each pass got, and why, goes in the `--report` (`schedule` entries).
+//! What each pass got, and why, goes in the `--report` (`schedule` entries),
+//! with the apron a tiled schedule of it would need ([`footprint`]).
 
+pub mod footprint;
 mod fuse;
 
 use crate::ir::Ir;
