@@ -26,7 +26,13 @@ fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
         text = text.replace(from, to);
     }
     let mut sources = dsl::SourceMap::new();
-    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &Default::default()) {
+    // Naive: the tests read the declared intermediate targets (`error.e`,
+    // `thin.e`), which `auto` fuses away.
+    let opts = compiler::CompileOptions {
+        schedule: compiler::schedule::Schedule::Naive,
+        ..Default::default()
+    };
+    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
         Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
