@@ -60,7 +60,15 @@ fn render_limited(name: &str, style_text: &str, size: &str, limit_kib: u64) -> (
         .arg(&style)
         // Naive: every declared target is allocated (`auto` would fuse the
         // wide pass into its reader and need none of them).
-        .args(["--schedule", "naive", "--scene", "examples/scenes/spot.toml", "--size", size, "-o"])
+        .args([
+            "--schedule",
+            "naive",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--size",
+            size,
+            "-o",
+        ])
         .arg(dir.join("out.png"))
         .current_dir(root())
         .output()
