@@ -53,6 +53,7 @@ impl Uses {
                     | Builtin::ScreenUv
                     | Builtin::ObjectIndex
                     | Builtin::ObjectId
+                    | Builtin::PatchWeight
             )
         });
         frame_builtin || self.percent || self.project
