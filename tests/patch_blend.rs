@@ -464,3 +464,28 @@ fn the_hatching_example_changes_only_within_the_n_ring() {
     assert!(outside > 5_000 && inside > 1_000);
     assert!(changed * 4 > inside, "{changed} of {inside}");
 }
+
+#[test]
+fn patch_weight_exists_in_render_passes_only() {
+    for (kind, body) in [
+        ("image()", "out c: rgba8unorm = vec4(patch.weight)"),
+        ("compute(vertices)", "reduce w: float = sum(patch.weight)"),
+        ("compute(samples)", "count: 10\n  reduce w: float = sum(patch.weight)"),
+    ] {
+        let text = format!("style \"Case\"\npass p: {kind} {{\n  {body}\n}}\npass q: image() {{\n  out c: rgba8unorm = vec4(1.0)\n}}\noutput q.c\n");
+        let text = if kind.starts_with("image") {
+            text.replace("output q.c", "output p.c")
+        } else {
+            text
+        };
+        let mut sources = dsl::SourceMap::new();
+        let err = match compiler::compile_source("case.npr", &text, root(), &mut sources, &Default::default()) {
+            Err(compiler::CompileError::User(d)) => dsl::diagnostic::render(&d, &sources, false),
+            other => panic!("{kind}: {:?}", other.map(|_| ())),
+        };
+        assert!(
+            err.contains("`patch.weight` is not available in") && err.contains(dsl::codes::BAD_PASS_INPUT),
+            "{kind}:\n{err}"
+        );
+    }
+}
