@@ -348,7 +348,9 @@ fn patch_weights_in_a_compute_pass_are_rejected_naming_the_field() {
         .expect("passes")
         .iter()
         .enumerate()
-        .find_map(|(i, p)| Some((i, p["kind"]["attributes"].as_array()?.len())).filter(|_| p["kind"]["kind"] == "compute"))
+        .find_map(|(i, p)| {
+            Some((i, p["kind"]["attributes"].as_array()?.len())).filter(|_| p["kind"]["kind"] == "compute")
+        })
         .expect("a compute pass with attributes");
     let mut m = manifest.clone();
     m["passes"][pi]["kind"]["attributes"]
@@ -357,7 +359,9 @@ fn patch_weights_in_a_compute_pass_are_rejected_naming_the_field() {
         .push(Value::from("patch_weight"));
     let dir = scratch("compute-patch-weight");
     write_dir(&dir, &m, shaders);
-    let err = StyleProgram::load_dir(&dir).expect_err("patch weights in compute").to_string();
+    let err = StyleProgram::load_dir(&dir)
+        .expect_err("patch weights in compute")
+        .to_string();
     let field = format!("`passes[{pi}].kind.attributes[{count}]`");
     assert!(err.contains(&field) && err.contains("patch weights"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);

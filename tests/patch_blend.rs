@@ -141,7 +141,10 @@ fn render(program: &StyleProgram, scene: &runner::scene::Scene) -> TargetImage {
 /// distance `DISTANCE` looking straight at the strip.
 fn surface_point(px: u32, py: u32) -> (f64, f64) {
     let k = 2.0 * DISTANCE * (FOV_DEG.to_radians() / 2.0).tan() / H as f64;
-    ((px as f64 + 0.5 - W as f64 / 2.0) * k, (H as f64 / 2.0 - py as f64 - 0.5) * k)
+    (
+        (px as f64 + 0.5 - W as f64 / 2.0) * k,
+        (H as f64 / 2.0 - py as f64 - 0.5) * k,
+    )
 }
 
 /// The f64 truth: the strip mesh and its per-vertex weights over `rings`.
@@ -244,7 +247,12 @@ fn cross_fade(img: &TargetImage) -> Vec<(u32, f64, f64)> {
 
 /// The width in metres over which patch 0's share falls from 0.9 to 0.1.
 fn fade_width(row: &[(u32, f64, f64)]) -> f64 {
-    let first = |level: f64| row.iter().find(|(_, _, f)| *f < level).map(|(_, x, _)| *x).expect("crossing");
+    let first = |level: f64| {
+        row.iter()
+            .find(|(_, _, f)| *f < level)
+            .map(|(_, x, _)| *x)
+            .expect("crossing")
+    };
     first(0.1) - first(0.9)
 }
 
@@ -274,7 +282,11 @@ fn the_weights_drawn_sum_to_one_and_each_matches_f64() {
             e.strength, e.pixels
         );
         assert!(worst <= F16_TOLERANCE, "{rings} rings: the weights sum to 1 ± {worst}");
-        assert!(e.strength <= F16_TOLERANCE, "{rings} rings: strength off by {}", e.strength);
+        assert!(
+            e.strength <= F16_TOLERANCE,
+            "{rings} rings: strength off by {}",
+            e.strength
+        );
     }
 }
 
@@ -316,16 +328,25 @@ fn patterns_cross_fade_over_the_n_ring_as_f64_says() {
             let w = truth.weights_at(surface_point(*px, ROW), 0.0).expect("on the strip");
             let s = w.map(|w| w.powf(power));
             let want = s[0] / (s[0] + s[1]);
-            assert!((f - want).abs() <= 5e-3, "{rings} rings, power {power}: share {f} at x = {x}, f64 {want}");
+            assert!(
+                (f - want).abs() <= 5e-3,
+                "{rings} rings, power {power}: share {f} at x = {x}, f64 {want}"
+            );
         }
         let width = fade_width(&row);
-        println!("  the share falls from 0.9 to 0.1 over {width:.3} m ({:.2} cells)", width / CELL);
+        println!(
+            "  the share falls from 0.9 to 0.1 over {width:.3} m ({:.2} cells)",
+            width / CELL
+        );
         widths.push(((rings, power), width));
     }
     let width = |key: (u32, f64)| widths.iter().find(|(k, _)| *k == key).expect("measured").1;
     // More rings widen the fade; a higher power sharpens it.
     assert!(width((3, 0.5)) > 1.5 * width((1, 0.5)), "{widths:?}");
-    assert!(width((3, 0.5)) > width((3, 1.0)) && width((3, 1.0)) > width((3, 4.0)), "{widths:?}");
+    assert!(
+        width((3, 0.5)) > width((3, 1.0)) && width((3, 1.0)) > width((3, 4.0)),
+        "{widths:?}"
+    );
 }
 
 #[test]
@@ -441,7 +462,10 @@ fn the_hatching_example_changes_only_within_the_n_ring() {
     let (blended, blended_ids) = frames(&strip_scene(&dir, Some(rings)));
     // Blending changes what is drawn, not what is tracked: the ID image the
     // samples' visibility comes from holds each patch's own faces only.
-    assert_eq!(hard_ids.bytes, blended_ids.bytes, "the ID image does not change with blending");
+    assert_eq!(
+        hard_ids.bytes, blended_ids.bytes,
+        "the ID image does not change with blending"
+    );
     let reach = rings as f64 * CELL + 2.0 * half_pixel();
     let (mut outside, mut inside, mut changed) = (0, 0, 0);
     for py in 0..H {

@@ -109,7 +109,8 @@ fn a_division_that_cannot_be_made_is_an_error_at_its_value() {
 
 #[test]
 fn blend_rings_give_each_patch_its_faces_and_n_ring_with_its_weights() {
-    let text = |rings: &str| format!("{CAMERA}[[object]]\nname = \"cow\"\nmesh = \"../models/cow.obj\"\npatches = 4\n{rings}");
+    let text =
+        |rings: &str| format!("{CAMERA}[[object]]\nname = \"cow\"\nmesh = \"../models/cow.obj\"\npatches = 4\n{rings}");
     // The default is the paper's 1-ring; more rings draw more faces.
     let mut drawn = Vec::new();
     for rings in ["", "blend_rings = 1\n", "blend_rings = 3\n"] {
@@ -119,7 +120,11 @@ fn blend_rings_give_each_patch_its_faces_and_n_ring_with_its_weights() {
             let blend = o.blend.as_ref().expect("blended");
             // Its own faces first, as its own mesh has them.
             assert_eq!(blend.own_indices, o.mesh.indices.len());
-            assert!(blend.mesh.triangle_count() > o.mesh.triangle_count(), "{}: a ring", o.name);
+            assert!(
+                blend.mesh.triangle_count() > o.mesh.triangle_count(),
+                "{}: a ring",
+                o.name
+            );
             assert_eq!(
                 blend.mesh.positions[..o.mesh.positions.len()],
                 o.mesh.positions[..],
@@ -147,10 +152,26 @@ fn blend_rings_of(scene: &Scene) -> u32 {
 #[test]
 fn blend_rings_out_of_range_or_without_patches_are_errors_at_their_value() {
     let cases = [
-        ("patches = 4\nblend_rings = 17", "`blend_rings` must be in 0..=16, not 17", "7 │ blend_rings = 17"),
-        ("patches = 4\nblend_rings = -1", "`blend_rings` must be in 0..=16, not -1", "7 │ blend_rings = -1"),
-        ("patches = 4\nblend_rings = 1.5", "`blend_rings` must be a whole number", "7 │ blend_rings = 1.5"),
-        ("blend_rings = 2", "`blend_rings` needs `patches`", "6 │ blend_rings = 2"),
+        (
+            "patches = 4\nblend_rings = 17",
+            "`blend_rings` must be in 0..=16, not 17",
+            "7 │ blend_rings = 17",
+        ),
+        (
+            "patches = 4\nblend_rings = -1",
+            "`blend_rings` must be in 0..=16, not -1",
+            "7 │ blend_rings = -1",
+        ),
+        (
+            "patches = 4\nblend_rings = 1.5",
+            "`blend_rings` must be a whole number",
+            "7 │ blend_rings = 1.5",
+        ),
+        (
+            "blend_rings = 2",
+            "`blend_rings` needs `patches`",
+            "6 │ blend_rings = 2",
+        ),
     ];
     for (lines, message, at) in cases {
         let text = format!("{CAMERA}[[object]]\nmesh = \"../models/cow.obj\"\n{lines}\n");

@@ -58,8 +58,10 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) 
             gpu.built_for_s = o.time_varying.map(|_| 0.0);
             if weights {
                 let ones = vec![1.0f32; o.mesh.vertex_count()];
-                gpu.buffers
-                    .insert(Attribute::PatchWeight, vertex_buffer(device, "patch weights", bytemuck::cast_slice(&ones)));
+                gpu.buffers.insert(
+                    Attribute::PatchWeight,
+                    vertex_buffer(device, "patch weights", bytemuck::cast_slice(&ones)),
+                );
                 if let Some(blend) = &o.blend {
                     let mut patch = upload_mesh(device, &blend.mesh);
                     patch.buffers.insert(

@@ -3,8 +3,8 @@
 
 use super::mesh::Mesh;
 use super::mesh_file::{load_mesh_file, MeshLoadError};
-use super::parse_primitive::parse_primitive;
 use super::parse_patches::PatchRequest;
+use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::{Object, TextureBinding};

@@ -60,10 +60,7 @@ fn blend_of(mesh: &Mesh, labels: &[u32], patch: u32, weights: &PatchWeights, rin
     let faces: Vec<usize> = own.chain(ring).collect();
     let own_indices = 3 * labels.iter().filter(|&&l| l == patch).count();
     let (sub, used) = sub_mesh(mesh, &faces, format!("{} (patch {patch}, {rings}-ring)", mesh.source));
-    let weights = used
-        .iter()
-        .map(|&v| weights.weight(v as usize, patch) as f32)
-        .collect();
+    let weights = used.iter().map(|&v| weights.weight(v as usize, patch) as f32).collect();
     PatchBlend {
         mesh: sub,
         weights,
@@ -128,11 +125,21 @@ mod tests {
         let mut labels = Vec::new();
         for y in 0..n {
             for x in 0..n {
-                indices.extend([at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y), at(x + 1, y + 1), at(x, y + 1)]);
+                indices.extend([
+                    at(x, y),
+                    at(x + 1, y),
+                    at(x + 1, y + 1),
+                    at(x, y),
+                    at(x + 1, y + 1),
+                    at(x, y + 1),
+                ]);
                 labels.extend([u32::from(2 * x >= n); 2]);
             }
         }
-        (Mesh::from_parts(positions, None, None, None, indices, "grid".into()), labels)
+        (
+            Mesh::from_parts(positions, None, None, None, indices, "grid".into()),
+            labels,
+        )
     }
 
     /// The faces within `rings` rings of `patch`'s faces, by shared vertices
@@ -141,7 +148,10 @@ mod tests {
         let triangles = mesh.indices.len() / 3;
         let mut faces: BTreeSet<usize> = (0..triangles).filter(|&t| labels[t] == patch).collect();
         for _ in 0..rings {
-            let verts: BTreeSet<u32> = faces.iter().flat_map(|&t| mesh.indices[3 * t..3 * t + 3].to_vec()).collect();
+            let verts: BTreeSet<u32> = faces
+                .iter()
+                .flat_map(|&t| mesh.indices[3 * t..3 * t + 3].to_vec())
+                .collect();
             faces = (0..triangles)
                 .filter(|&t| mesh.indices[3 * t..3 * t + 3].iter().any(|v| verts.contains(v)))
                 .collect();
