@@ -110,10 +110,10 @@ fn a_division_that_cannot_be_made_is_an_error_at_its_value() {
 #[test]
 fn blend_rings_give_each_patch_its_faces_and_n_ring_with_its_weights() {
     let text =
-        |rings: &str| format!("{CAMERA}[[object]]\nname = \"cow\"\nmesh = \"../models/cow.obj\"\npatches = 4\n{rings}");
+        |rings: &str| format!("{CAMERA}[[object]]\nname = \"cow\"\nmesh = \"../models/cow.obj\"\npatches = 6\n{rings}");
     // The default is the paper's 1-ring; more rings draw more faces.
     let mut drawn = Vec::new();
-    for rings in ["", "blend_rings = 1\n", "blend_rings = 3\n"] {
+    for rings in ["", "blend_rings = 1\n", "blend_rings = 2\n", "blend_rings = 4\n"] {
         let scene = parse(&text(rings), &scenes_dir()).expect("scene");
         let mut faces = 0;
         for o in &scene.objects {
@@ -136,10 +136,16 @@ fn blend_rings_give_each_patch_its_faces_and_n_ring_with_its_weights() {
             assert!(blend.weights[..o.mesh.positions.len()].iter().all(|w| *w > 0.0));
             faces += blend.mesh.triangle_count();
         }
+        let own: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
+        println!(
+            "cow in 6 patches, {} ring(s): {faces} triangles drawn by a blending pass, {own} own ({:.0}% more)",
+            blend_rings_of(&scene),
+            100.0 * (faces as f64 / own as f64 - 1.0)
+        );
         drawn.push((blend_rings_of(&scene), faces));
     }
     assert_eq!(drawn[0], drawn[1], "the default is 1 ring");
-    assert!(drawn[2].1 > drawn[1].1, "{drawn:?}");
+    assert!(drawn[2].1 > drawn[1].1 && drawn[3].1 > drawn[2].1, "{drawn:?}");
     // 0 rings: no blending, the hard seams of the patches' own faces.
     let scene = parse(&text("blend_rings = 0\n"), &scenes_dir()).expect("scene");
     assert!(scene.objects.iter().all(|o| o.blend.is_none()));
