@@ -3,7 +3,7 @@
 //! pattern slides far less than one fixed to the screen under a pan, a
 //! dolly and a roll; the elongated strip of Fig. 4, whose ends move
 //! differently, is where a single similarity slides most, and patches
-//! (§3.6, one similarity each) reduce it. The full table
+//! (§3.6, one similarity each) reduce it, as they reduce the orbit's. The full table
 //! (every motion and tracker variant) is `npr bench patterns`'s.
 
 mod common;
@@ -86,5 +86,10 @@ fn patches_reduce_the_sliding_of_the_orbit() {
         100.0 * six.tracked / one.tracked
     );
     assert!((six.screen_fixed - one.screen_fixed).abs() < 1e-3 * one.screen_fixed);
-    assert!(six.tracked < 0.9 * one.tracked, "{} against {}", six.tracked, one.tracked);
+    assert!(
+        six.tracked < 0.9 * one.tracked,
+        "{} against {}",
+        six.tracked,
+        one.tracked
+    );
 }
