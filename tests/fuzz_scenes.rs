@@ -124,6 +124,7 @@ const TOML_TOKENS: &[&str] = &[
     "params",
     "crease_angle",
     "patches",
+    "blend_rings",
     "\"parts\"",
     "spin",
     "background",

@@ -337,6 +337,37 @@ fn bad_depth_tests_and_blends_are_rejected_naming_the_field() {
 }
 
 #[test]
+fn patch_weights_in_a_compute_pass_are_rejected_naming_the_field() {
+    let centroids = STYLES
+        .iter()
+        .position(|s| s.ends_with("object_centroids.npr"))
+        .expect("centroids style");
+    let (manifest, shaders) = &compiled()[centroids];
+    let (pi, count) = manifest["passes"]
+        .as_array()
+        .expect("passes")
+        .iter()
+        .enumerate()
+        .find_map(|(i, p)| {
+            Some((i, p["kind"]["attributes"].as_array()?.len())).filter(|_| p["kind"]["kind"] == "compute")
+        })
+        .expect("a compute pass with attributes");
+    let mut m = manifest.clone();
+    m["passes"][pi]["kind"]["attributes"]
+        .as_array_mut()
+        .expect("attributes")
+        .push(Value::from("patch_weight"));
+    let dir = scratch("compute-patch-weight");
+    write_dir(&dir, &m, shaders);
+    let err = StyleProgram::load_dir(&dir)
+        .expect_err("patch weights in compute")
+        .to_string();
+    let field = format!("`passes[{pi}].kind.attributes[{count}]`");
+    assert!(err.contains(&field) && err.contains("patch weights"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn mutated_manifests_never_panic() {
     let config = Config {
         cases: 256,

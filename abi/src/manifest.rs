@@ -92,6 +92,14 @@ pub enum Attribute {
     Normal,
     Uv,
     Tangent,
+    /// One `f32` per vertex: the blending weight of the patch being drawn
+    /// (Breslav et al. 2007 §3.6), the `patch.weight` builtin. Every mesh
+    /// has it: 1 at every vertex of an object without patches. A render pass
+    /// that reads it draws each patch over its own faces and the n-ring of
+    /// faces outside it (where its weight is above 0), so that the patches'
+    /// weights sum to 1 at every pixel; every other pass draws a patch's own
+    /// faces only. Render passes only: compute passes never read it.
+    PatchWeight,
 }
 
 impl Attribute {
@@ -101,6 +109,7 @@ impl Attribute {
             Attribute::Normal => "normal",
             Attribute::Uv => "uv",
             Attribute::Tangent => "tangent",
+            Attribute::PatchWeight => "patch_weight",
         }
     }
 
@@ -111,6 +120,7 @@ impl Attribute {
             Attribute::Normal => "normals",
             Attribute::Uv => "UVs",
             Attribute::Tangent => "tangents",
+            Attribute::PatchWeight => "patch weights",
         }
     }
 }

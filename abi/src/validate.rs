@@ -609,6 +609,12 @@ impl Manifest {
                 format!("a pass over {} reads no vertex attributes", domain.name()),
             );
         }
+        if let Some(k) = attributes.iter().position(|a| *a == Attribute::PatchWeight) {
+            return bad(
+                format!("{field}.kind.attributes[{k}]"),
+                "a compute pass reads no patch weights (render passes only, §3.6)",
+            );
+        }
         match (domain, pixels_of) {
             (ComputeDomain::Pixels, Some(t)) => match self.targets.get(*t) {
                 Some(target) if target.format == Format::R32float => {}

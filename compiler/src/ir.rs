@@ -194,6 +194,11 @@ pub enum Builtin {
     /// In a `lines` pass: −1 on one edge of the strip, +1 on the other,
     /// interpolated across it (for soft edges or a brush profile).
     LineAcross,
+    /// In a render pass: the blending weight of the patch being drawn at
+    /// this point (Breslav et al. 2007 §3.6), interpolated from its
+    /// vertices; 1 on objects without patches. A pass that reads it draws
+    /// each patch over its n-ring too (`abi::Attribute::PatchWeight`).
+    PatchWeight,
 }
 
 impl Builtin {
@@ -245,6 +250,7 @@ impl Builtin {
         ("sample.spacing", Builtin::SampleSpacing),
         ("line.s", Builtin::LineArc),
         ("line.across", Builtin::LineAcross),
+        ("patch.weight", Builtin::PatchWeight),
     ];
 
     pub fn name(self) -> &'static str {
@@ -269,7 +275,7 @@ impl Builtin {
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
             Time => (Ty::Float, Unit::Seconds),
             LineArc => (Ty::Float, Unit::Px),
-            LineAcross => (Ty::Float, Unit::None),
+            LineAcross | PatchWeight => (Ty::Float, Unit::None),
             Frame | Eye => (Ty::Int, Unit::None),
             LightColor | MoreLightColor(_) | MoreLightDir(_) => (Ty::Vec3, Unit::None),
             LightIntensity | MoreLightIntensity(_) => (Ty::Float, Unit::None),
@@ -316,6 +322,7 @@ impl Builtin {
                 | BitangentScreenCenter
                 | PositionPrevious
                 | SampleSpacing
+                | PatchWeight
         )
     }
 

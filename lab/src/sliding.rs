@@ -100,12 +100,14 @@ fn elongated(extra: &str) -> String {
     )
 }
 
-/// Pan, zoom (a dolly), roll and orbit around the paper's cow, and the
-/// elongated-object worst case of Fig. 4 without and with patches.
+/// Pan, zoom (a dolly), roll and orbit around the paper's cow, the orbit
+/// again with the cow in 6 patches (§3.6), and the elongated-object worst
+/// case of Fig. 4 without and with patches.
 pub fn motions() -> Vec<(&'static str, String)> {
     let cam = |keys: &str| {
         format!("[camera]\nposition = [0.0, 1.2, 5.0]\ntarget = [0.0, 0.8, 0.0]\nfov = 40.0\n{keys}\n[light]\ndirection = [0.4, 1.0, 0.6]\n")
     };
+    let orbit = "[[camera.keys]]\ntime = 0.0\nposition = [0.0, 1.2, 5.0]\n[[camera.keys]]\ntime = 0.5\nposition = [2.5, 1.2, 4.33]\n[[camera.keys]]\ntime = 1.0\nposition = [4.33, 1.2, 2.5]\n";
     vec![
         (
             "pan",
@@ -119,10 +121,8 @@ pub fn motions() -> Vec<(&'static str, String)> {
             "roll",
             cam("[[camera.keys]]\ntime = 0.0\nroll = 0.0\n[[camera.keys]]\ntime = 1.0\nroll = 30.0\n") + COW,
         ),
-        (
-            "orbit",
-            cam("[[camera.keys]]\ntime = 0.0\nposition = [0.0, 1.2, 5.0]\n[[camera.keys]]\ntime = 0.5\nposition = [2.5, 1.2, 4.33]\n[[camera.keys]]\ntime = 1.0\nposition = [4.33, 1.2, 2.5]\n") + COW,
-        ),
+        ("orbit", cam(orbit) + COW),
+        ("orbit, 6 patches", cam(orbit) + COW + "patches = 6\n"),
         ("elongated", elongated("")),
         ("elongated, 4 patches", elongated("patches = 4\n")),
     ]

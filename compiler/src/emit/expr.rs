@@ -237,6 +237,7 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::SampleSpacing => "in.spacing".into(),
         Builtin::LineArc => "in.line_s".into(),
         Builtin::LineAcross => "in.line_across".into(),
+        Builtin::PatchWeight => "in.patch_weight".into(),
     }
 }
 

@@ -33,6 +33,11 @@ pub(super) fn attributes(vertex: &VertexModifiers, uses: &Uses) -> Vec<Attribute
     if builtins.contains(&Builtin::Tangent) || builtins.iter().any(|b| is_screen_frame(*b)) {
         attributes.push(Attribute::Tangent);
     }
+    // Breslav et al. 2007 §3.6: reading the weight is what makes the runner
+    // draw each patch over its n-ring (see `abi::Attribute::PatchWeight`).
+    if builtins.contains(&Builtin::PatchWeight) {
+        attributes.push(Attribute::PatchWeight);
+    }
     attributes
 }
 
@@ -68,6 +73,7 @@ impl Emitter<'_> {
                 Attribute::Position | Attribute::Normal => "vec3<f32>",
                 Attribute::Uv => "vec2<f32>",
                 Attribute::Tangent => "vec4<f32>",
+                Attribute::PatchWeight => "f32",
             };
             let _ = writeln!(w, "    @location({loc}) {}: {ty},", a.name());
         }
@@ -81,6 +87,9 @@ impl Emitter<'_> {
         }
         if has(Attribute::Tangent) {
             w.push_str("    @location(4) tangent: vec4<f32>,\n");
+        }
+        if has(Attribute::PatchWeight) {
+            w.push_str("    @location(5) patch_weight: f32,\n");
         }
         for (b, loc, field) in SCREEN_FRAME_VARYINGS {
             if builtins.contains(b) {
@@ -137,6 +146,9 @@ impl Emitter<'_> {
         }
         if has(Attribute::Uv) {
             w.push_str("    out.uv = v.uv;\n");
+        }
+        if has(Attribute::PatchWeight) {
+            w.push_str("    out.patch_weight = v.patch_weight;\n");
         }
         if has(Attribute::Tangent) {
             w.push_str(

@@ -59,6 +59,7 @@ impl Uses {
                     | Builtin::ScreenUv
                     | Builtin::ObjectIndex
                     | Builtin::ObjectId
+                    | Builtin::PatchWeight
             )
         });
         frame_builtin || self.percent || self.project

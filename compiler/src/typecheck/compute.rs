@@ -34,6 +34,10 @@ impl Checker<'_> {
                 "only in `compute(samples)` passes",
                 "the sample spacing is an element value of passes over samples; pass what others need through a per-object value",
             )),
+            _ if b == Builtin::PatchWeight && !matches!(kind, PassKind::Render { .. }) => Some((
+                "only in `render` passes",
+                "a patch's blending weight (Breslav et al. 2007 §3.6) exists where a render pass draws the patch over its n-ring; a compute pass sees each patch's own faces only",
+            )),
             PassKind::Render { .. } if b == Builtin::PositionPrevious => Some((
                 "only in `compute(vertices)` passes",
                 "the previous position is an element value of compute passes; pass what a render pass needs through a per-object value",

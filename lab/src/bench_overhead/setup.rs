@@ -86,6 +86,8 @@ pub fn upload_mesh(device: &wgpu::Device, mesh: &runner::scene::Mesh, attributes
             Attribute::Normal => bytemuck::cast_slice(&mesh.normals),
             Attribute::Uv => mesh.uvs.as_deref().map(bytemuck::cast_slice).unwrap_or_default(),
             Attribute::Tangent => mesh.tangents.as_deref().map(bytemuck::cast_slice).unwrap_or_default(),
+            // `support::check` refuses styles that read patch weights.
+            Attribute::PatchWeight => &[],
         };
         vertices.insert(*a, init(a.name(), bytes, wgpu::BufferUsages::VERTEX));
     }
@@ -220,6 +222,7 @@ fn vertex_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
         Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
         Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
         Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
+        Attribute::PatchWeight => (wgpu::VertexFormat::Float32, 4),
     }
 }
 

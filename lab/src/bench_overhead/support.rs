@@ -8,7 +8,7 @@
 //! block, the style block (keyframed parameters too), targets of this frame and
 //! the linear clamp sampler. Everything else the runner does — compute
 //! passes, lines passes, history, stereo, `view(light)`, kept and tested depth, blending,
-//! declared and per-object textures, time-varying meshes — is refused.
+//! declared and per-object textures, time-varying meshes, patch weights — is refused.
 
 use abi::manifest::*;
 use runner::scene::Scene;
@@ -52,6 +52,9 @@ pub fn check(manifest: &Manifest, scene: &Scene) -> Result<(), String> {
     }
     if manifest.is_path_dependent() {
         return Err("styles that depend on earlier frames".into());
+    }
+    if manifest.scene_attributes.contains(&Attribute::PatchWeight) {
+        return Err("patch weights (`patch.weight`)".into());
     }
     for o in &scene.objects {
         if o.time_varying.is_some() {

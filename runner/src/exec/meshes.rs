@@ -1,6 +1,9 @@
 //! The scene's meshes on the GPU: one vertex buffer per attribute and an
 //! index buffer per object, uploaded once in `Renderer::new`; time-varying
 //! primitives (the ocean) have their vertices rewritten in place per frame.
+//! When a render pass reads `patch.weight` (Breslav et al. 2007 §3.6), every
+//! mesh also gets a weight buffer (all 1), and each blended patch a second
+//! mesh: its faces and n-ring with its weights, which such passes draw.
 
 use crate::scene::{Mesh, Scene};
 use crate::RunError;
@@ -15,6 +18,7 @@ pub(super) fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
         Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
         Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
         Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
+        Attribute::PatchWeight => (wgpu::VertexFormat::Float32, 4),
     }
 }
 
@@ -25,10 +29,26 @@ pub(super) struct GpuMesh {
     pub vertex_count: usize,
     /// For a time-varying primitive: the time its vertices were built for.
     pub built_for_s: Option<f64>,
+    /// A blended patch (`Object::blend`), with its weights: what render
+    /// passes reading `patch.weight` draw instead of this mesh.
+    pub blend: Option<Box<GpuMesh>>,
+}
+
+impl GpuMesh {
+    /// The mesh a render pass draws for this object: a blended patch's faces
+    /// and n-ring when the pass reads `patch.weight`, else the object's own.
+    pub fn drawn_by(&self, attributes: &[Attribute]) -> &GpuMesh {
+        match &self.blend {
+            Some(blend) if attributes.contains(&Attribute::PatchWeight) => blend,
+            _ => self,
+        }
+    }
 }
 
 /// Every object's mesh; a time-varying primitive's is its geometry at t = 0.
-pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene) -> Vec<GpuMesh> {
+/// With `weights` (a render pass reads `patch.weight`), a weight buffer for
+/// each (1 at every vertex) and each blended patch's mesh with its weights.
+pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) -> Vec<GpuMesh> {
     scene
         .objects
         .iter()
@@ -36,9 +56,33 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene) -> Vec<GpuMesh>
             let mut gpu = upload_mesh(device, &o.mesh);
             // `Object::mesh` is a time-varying primitive's geometry at t = 0.
             gpu.built_for_s = o.time_varying.map(|_| 0.0);
+            if weights {
+                let ones = vec![1.0f32; o.mesh.vertex_count()];
+                gpu.buffers.insert(
+                    Attribute::PatchWeight,
+                    vertex_buffer(device, "patch weights", bytemuck::cast_slice(&ones)),
+                );
+                if let Some(blend) = &o.blend {
+                    let mut patch = upload_mesh(device, &blend.mesh);
+                    patch.buffers.insert(
+                        Attribute::PatchWeight,
+                        vertex_buffer(device, "patch weights", bytemuck::cast_slice(&blend.weights)),
+                    );
+                    gpu.blend = Some(Box::new(patch));
+                }
+            }
             gpu
         })
         .collect()
+}
+
+/// A vertex buffer holding `data` (16 zero bytes when empty: wgpu refuses empty buffers).
+fn vertex_buffer(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: if data.is_empty() { &[0u8; 16] } else { data },
+        usage: wgpu::BufferUsages::VERTEX,
+    })
 }
 
 pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
@@ -81,6 +125,7 @@ pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
         index_count: mesh.indices.len() as u32,
         vertex_count: mesh.positions.len(),
         built_for_s: None,
+        blend: None,
     }
 }
 

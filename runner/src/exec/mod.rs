@@ -218,7 +218,13 @@ impl<'d> Renderer<'d> {
             textures: &textures,
             object_textures: &object_textures,
         };
-        let meshes = meshes::upload_scene(device, scene);
+        let meshes = meshes::upload_scene(
+            device,
+            scene,
+            manifest.passes.iter().any(|p| {
+                matches!(&p.kind, PassKindManifest::Render { attributes, .. } if attributes.contains(&Attribute::PatchWeight))
+            }),
+        );
         let values = values::create(device, &manifest, scene, &meshes)?;
         values::reset(queue, &values);
         // Measured once, and only when a fused pass repeats a 16-bit store.

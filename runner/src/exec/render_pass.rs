@@ -2,7 +2,9 @@
 //! of the scene with its own vertex buffers, one object block per draw at a
 //! dynamic offset into group 1, into the pass's targets and a depth buffer:
 //! its own, cleared per pass (stored with `depth: keep`), or with `depth:
-//! test(other)` the one `other` kept, loaded and tested, never written.
+//! test(other)` the one `other` kept, loaded and tested, never written. A
+//! pass that reads `patch.weight` draws each blended patch over its faces
+//! and n-ring (Breslav et al. 2007 §3.6), every other pass its own faces.
 
 use super::bind::{self, ObjectResources};
 use super::meshes::attribute_format;
@@ -150,6 +152,8 @@ impl RenderPassExec {
                     continue;
                 }
             }
+            // §3.6: a pass reading `patch.weight` draws a blended patch over its n-ring.
+            let mesh = mesh.drawn_by(&self.attributes);
             let group = self.object_groups.get(oi).unwrap_or(ctx.object_group);
             rp.set_bind_group(1, group, &[(oi as u64 * ctx.object_stride) as u32]);
             for (slot, a) in self.attributes.iter().enumerate() {

@@ -15,6 +15,7 @@ pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<dsl::Diagnostic> {
             Attribute::Normal => crate::scene::Attribute::Normal,
             Attribute::Uv => crate::scene::Attribute::Uv,
             Attribute::Tangent => crate::scene::Attribute::Tangent,
+            Attribute::PatchWeight => crate::scene::Attribute::PatchWeight,
         })
         .collect();
     let mut diags = scene.check_attributes(

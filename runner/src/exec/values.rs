@@ -90,6 +90,8 @@ fn attribute_data(mesh: &crate::scene::Mesh, a: Attribute) -> Option<&[u8]> {
         Attribute::Normal => bytemuck::cast_slice(&mesh.normals),
         Attribute::Uv => bytemuck::cast_slice(mesh.uvs.as_ref()?),
         Attribute::Tangent => bytemuck::cast_slice(mesh.tangents.as_ref()?),
+        // `abi::validate` refuses it in compute passes.
+        Attribute::PatchWeight => return None,
     })
 }
 

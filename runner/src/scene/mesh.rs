@@ -52,6 +52,8 @@ impl Mesh {
             Attribute::Position | Attribute::Normal => true,
             Attribute::Uv => self.uvs.is_some(),
             Attribute::Tangent => self.tangents.is_some(),
+            // 1 at every vertex of an object without patches (§3.6).
+            Attribute::PatchWeight => true,
         }
     }
 

@@ -47,6 +47,9 @@
 //! patches = 4                     # optional (Breslav et al. §3.6): split into 2..=64 patches, each
 //!                                 # an object of its own named `<name>.<k>`; or "parts": the
 //!                                 # file's OBJ `o`/`g` groups or glTF primitives
+//! blend_rings = 1                 # optional, with `patches`, 0..=16, default 1: render passes that
+//!                                 # read `patch.weight` draw each patch over the n rings of faces
+//!                                 # around it, where patterns cross-fade (0: hard seams)
 //! # an `object param albedo: texture` takes an image, relative to this file:
 //! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
@@ -128,6 +131,7 @@ mod parse_camera;
 mod parse_object;
 mod parse_patches;
 mod parse_primitive;
+pub mod patch_blend;
 pub mod patch_weights;
 pub mod patches;
 pub mod primitives;
@@ -185,6 +189,11 @@ pub struct Object {
     /// `spin = [x, y, z]`: turning about the object's own origin, in degrees
     /// per second about Y, then X, then Z (as `rotate`); zero when still.
     pub spin: glam::Vec3,
+    /// A patch of a patched object (Breslav et al. 2007 §3.6) blended over
+    /// `blend_rings` rings: what a render pass reading `patch.weight` draws
+    /// instead of `mesh` (its faces and n-ring, with its weights). `None`:
+    /// `mesh` with weight 1 at every vertex (no patches, or `blend_rings = 0`).
+    pub blend: Option<Arc<patch_blend::PatchBlend>>,
 }
 
 /// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:

@@ -118,7 +118,7 @@ fn patch_names_are_unique(objects: &[super::Object], report: &mut Report) {
 fn unique_names(
     declarations: Vec<ObjectDecl>,
     report: &mut Report,
-) -> Vec<(super::Object, Option<super::toml_fields::At<super::patches::PatchSpec>>)> {
+) -> Vec<(super::Object, Option<super::parse_patches::PatchRequest>)> {
     let mut explicit: HashMap<String, Span> = HashMap::new();
     for declaration in &declarations {
         let Some(span) = declaration.name_span else {

@@ -3,8 +3,8 @@
 
 use super::mesh::Mesh;
 use super::mesh_file::{load_mesh_file, MeshLoadError};
+use super::parse_patches::PatchRequest;
 use super::parse_primitive::parse_primitive;
-use super::patches::PatchSpec;
 use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::{Object, TextureBinding};
@@ -26,8 +26,9 @@ pub struct MeshCache {
 /// An object as read, with what duplicate-name checking needs.
 pub struct ObjectDecl {
     pub object: Object,
-    /// `patches = ...`: expanded into one object per patch after naming.
-    pub patches: Option<At<PatchSpec>>,
+    /// `patches = ...` and `blend_rings`: expanded into one object per
+    /// patch after naming.
+    pub patches: Option<PatchRequest>,
     /// Where the name was written; `None` when it was derived.
     pub name_span: Option<Span>,
 }
@@ -60,7 +61,7 @@ pub fn parse_object(
     let casts_shadows = fields.boolean("casts_shadows", report).is_none_or(|flag| flag.value);
     let spin = fields.vec3("spin", report).map_or(Vec3::ZERO, |s| s.value);
     let (params, param_spans, textures) = read_params(&mut fields, base_dir, report);
-    let patches = super::parse_patches::read_patches(&mut fields, report);
+    let patches = super::parse_patches::read_request(&mut fields, report);
     fields.finish(report);
     if report.diagnostics.len() > errors_before {
         return None;
@@ -92,6 +93,7 @@ pub fn parse_object(
             casts_shadows,
             time_varying,
             spin,
+            blend: None,
         },
         name_span,
         patches,

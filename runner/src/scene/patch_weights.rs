@@ -16,9 +16,9 @@
 //! position first, so seams where a mesh file splits vertices (UV or normal
 //! seams) do not cut the smoothing.
 //!
-//! These weights are what the next step of §3.6 draws with (each patch over
-//! its faces and n-ring, with strength weight^power); the renderer does not
-//! read them yet.
+//! Render passes that read `patch.weight` draw with them: each patch over
+//! its faces and n-ring ([`super::patch_blend`]), the style raising the
+//! weight to a power for the pattern's strength.
 
 use super::mesh::Mesh;
 use std::collections::{BTreeMap, BTreeSet, HashMap};

@@ -11,10 +11,9 @@
 //! the object's transform, tags and bindings, so every per-object pass
 //! (samples, the ID image, the tracker) works per patch unchanged.
 //!
-//! Not yet here: the §3.6 blending across patch boundaries (weights per
-//! vertex per patch, smoothed over an n-ring, each patch drawn over its
-//! n-ring outside it with strength weight^power). Until then patches meet
-//! at hard seams.
+//! Blending across patch boundaries (§3.6) is in [`super::patch_weights`]
+//! (the weights) and [`super::patch_blend`] (each patch with its n-ring, as
+//! render passes reading `patch.weight` draw it).
 
 use super::mesh::Mesh;
 use std::collections::HashMap;
@@ -146,38 +145,8 @@ fn kmeans(mesh: &Mesh, k: u32) -> Option<Vec<u32>> {
 /// with the object's normals, UVs and tangents (so shading is continuous
 /// across a seam).
 pub fn patch_mesh(mesh: &Mesh, labels: &[u32], patch: u32) -> Mesh {
-    let mut index_of: HashMap<u32, u32> = HashMap::new();
-    let mut used: Vec<u32> = Vec::new();
-    let mut indices = Vec::new();
-    for (t, &label) in labels.iter().enumerate() {
-        if label != patch {
-            continue;
-        }
-        for &v in &mesh.indices[3 * t..3 * t + 3] {
-            let next = used.len() as u32;
-            let i = *index_of.entry(v).or_insert_with(|| {
-                used.push(v);
-                next
-            });
-            indices.push(i);
-        }
-    }
-    let pick = |v: &[[f32; 3]]| used.iter().map(|&i| v[i as usize]).collect::<Vec<_>>();
-    Mesh {
-        positions: pick(&mesh.positions),
-        normals: pick(&mesh.normals),
-        uvs: mesh
-            .uvs
-            .as_ref()
-            .map(|uvs| used.iter().map(|&i| uvs[i as usize]).collect()),
-        tangents: mesh
-            .tangents
-            .as_ref()
-            .map(|ts| used.iter().map(|&i| ts[i as usize]).collect()),
-        indices,
-        source: format!("{} (patch {patch})", mesh.source),
-        parts: None,
-    }
+    let faces: Vec<usize> = (0..labels.len()).filter(|&t| labels[t] == patch).collect();
+    super::patch_blend::sub_mesh(mesh, &faces, format!("{} (patch {patch})", mesh.source)).0
 }
 
 #[cfg(test)]
