@@ -142,10 +142,11 @@ pub(crate) fn compile_builtin(
     compile_builtin_in(name, text, Path::new("."), sources, printer)
 }
 
-/// [`compile_builtin`] under `schedule`. Benchmarks compile `naive` by
-/// default: their baselines (a second passthrough pass, a null pass) are
-/// declared passes that fusion would remove; `npr bench contours` adds the
-/// `auto` rows where the schedule changes the passes.
+/// [`compile_builtin`] under `schedule`, with the number of passes fused.
+/// Benchmarks compile `naive` by default: their baselines (a second
+/// passthrough pass, a null pass) are declared passes that fusion would
+/// remove; `npr bench contours` adds the `auto` rows where the schedule
+/// changes the passes.
 pub(crate) fn compile_builtin_scheduled(
     name: &str,
     text: &str,
@@ -153,24 +154,7 @@ pub(crate) fn compile_builtin_scheduled(
     sources: &mut SourceMap,
     printer: &Printer,
 ) -> Result<(StyleProgram, usize), i32> {
-    let opts = CompileOptions {
-        schedule,
-        ..Default::default()
-    };
-    match compiler::compile_source(name, text, Path::new("."), sources, &opts) {
-        Ok(c) => {
-            let fused = c.report.entries.iter().filter(|e| e.action == "fused").count();
-            Ok((c.program(), fused))
-        }
-        Err(CompileError::User(d)) => {
-            printer.diagnostics(&d, sources);
-            Err(EXIT_INTERNAL)
-        }
-        Err(CompileError::Internal(e)) => {
-            printer.diagnostics(&[e.to_diagnostic()], sources);
-            Err(EXIT_INTERNAL)
-        }
-    }
+    compile_builtin_with(name, text, Path::new("."), schedule, sources, printer)
 }
 
 /// [`compile_builtin`] with its relative paths (textures, filters)
@@ -182,12 +166,26 @@ pub(crate) fn compile_builtin_in(
     sources: &mut SourceMap,
     printer: &Printer,
 ) -> Result<StyleProgram, i32> {
+    compile_builtin_with(name, text, dir, Schedule::Naive, sources, printer).map(|(p, _)| p)
+}
+
+fn compile_builtin_with(
+    name: &str,
+    text: &str,
+    dir: &Path,
+    schedule: Schedule,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<(StyleProgram, usize), i32> {
     let opts = CompileOptions {
-        schedule: Schedule::Naive,
+        schedule,
         ..Default::default()
     };
     match compiler::compile_source(name, text, dir, sources, &opts) {
-        Ok(c) => Ok(c.program()),
+        Ok(c) => {
+            let fused = c.report.entries.iter().filter(|e| e.action == "fused").count();
+            Ok((c.program(), fused))
+        }
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);
             Err(EXIT_INTERNAL)

@@ -136,6 +136,8 @@ pub mod patch_weights;
 pub mod patches;
 pub mod primitives;
 pub mod samples;
+#[cfg(test)]
+mod test_grid;
 mod toml_fields;
 
 pub use camera::{Camera, CameraKey, CameraPose};

@@ -109,37 +109,14 @@ pub fn sub_mesh(mesh: &Mesh, faces: &[usize], source: String) -> (Mesh, Vec<u32>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::test_grid::{grid, halves as split};
     use std::collections::BTreeSet;
 
-    /// An n × n grid of unit squares in the xy plane, two triangles each,
-    /// split at x = n/2 into patch 0 (left) and 1 (right).
+    /// An n × n grid split at x = n/2 into patch 0 (left) and 1 (right).
     fn halves(n: u32) -> (Mesh, Vec<u32>) {
-        let mut positions = Vec::new();
-        for y in 0..=n {
-            for x in 0..=n {
-                positions.push([x as f32, y as f32, 0.0]);
-            }
-        }
-        let at = |x: u32, y: u32| y * (n + 1) + x;
-        let mut indices = Vec::new();
-        let mut labels = Vec::new();
-        for y in 0..n {
-            for x in 0..n {
-                indices.extend([
-                    at(x, y),
-                    at(x + 1, y),
-                    at(x + 1, y + 1),
-                    at(x, y),
-                    at(x + 1, y + 1),
-                    at(x, y + 1),
-                ]);
-                labels.extend([u32::from(2 * x >= n); 2]);
-            }
-        }
-        (
-            Mesh::from_parts(positions, None, None, None, indices, "grid".into()),
-            labels,
-        )
+        let mesh = grid(n);
+        let labels = split(&mesh, n);
+        (mesh, labels)
     }
 
     /// The faces within `rings` rings of `patch`'s faces, by shared vertices
