@@ -8,6 +8,7 @@
 pub mod fuzz;
 pub mod http;
 pub mod lines;
+pub mod lsa;
 pub mod live;
 
 use runner::Gpu;
