@@ -13,7 +13,7 @@ use crate::{Operator, Stage, Ty};
 pub static ALL: &[Operator] = &[
     Operator {
         name: "oct_encode",
-        doc: "Octahedral encoding of a unit vector, signed variant: the point of the octahedron |x|+|y|+|z| = 1 on n's ray, the lower hemisphere folded over the diagonals, in [−1, 1]². Store it in an `rg16float` target: decoded, the round trip is within 0.04° (measured over the sphere, the folds and both poles, with rounding or truncating 16-bit stores).",
+        doc: "Octahedral encoding of a unit vector, signed variant: the point of the octahedron |x|+|y|+|z| = 1 on n's ray, the lower hemisphere folded over the diagonals, in [−1, 1]². Store it in an `rg16float` target: decoded, the round trip is within 0.06° where 16-bit stores round to nearest and 0.12° where they truncate (lavapipe), measured over the sphere, the folds and both poles.",
         reference: "Cigolle et al. 2014, A Survey of Efficient Representations for Independent Unit Vectors, §3.1 (float32x3_to_oct)",
         params: &[p("n", Ty::Vec3, "a direction (any length but 0), e.g. `normal.view`")],
         returns: Ty::Vec2,

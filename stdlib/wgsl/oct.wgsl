@@ -5,7 +5,9 @@
 // lower hemisphere (z < 0) is folded over the diagonals onto the outer
 // triangles of the square, so e ∈ [−1, 1]². An `rg16float` target stores e
 // as it is (no remap to [0, 1]): its spacing is 2^-11 at |e| ≥ ½ and finer
-// towards 0, the round-trip bound is measured in stdlib/tests/gpu_gbuffer.rs.
+// towards 0; decoded, the round trip is within 0.06° (stores rounded to
+// nearest) or 0.12° (truncated, as lavapipe does), measured in
+// stdlib/tests/gpu_gbuffer.rs.
 
 // ±1 per component, +1 at 0 (the paper's signNotZero): the folds at x = 0
 // or y = 0 of the lower hemisphere must pick a side.
