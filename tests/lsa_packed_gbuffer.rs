@@ -131,8 +131,9 @@ fn packed_accuracy_matches_float32_against_analytic_truth() {
         let scene = scene_of(&s);
         for size in [128u32, 256] {
             let truth = s.truth(size, size);
-            let measure =
-                |p: &runner::StyleProgram| -> Accuracy { accuracy(&ink_mask(&output(p, &scene, size), 0.5), &truth, 1) };
+            let measure = |p: &runner::StyleProgram| -> Accuracy {
+                accuracy(&ink_mask(&output(p, &scene, size), 0.5), &truth, 1)
+            };
             let (a, b) = (measure(&full), measure(&packed));
             let (hp, on) = (measure(&half_positions), measure(&oct_normals));
             table.push_str(&format!(

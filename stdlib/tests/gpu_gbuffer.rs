@@ -65,13 +65,29 @@ fn directions(count: usize) -> Vec<[f64; 3]> {
 }
 
 fn gpu_encode(dirs: &[[f64; 3]]) -> Vec<[f32; 4]> {
-    let cases: Vec<[[f64; 4]; 3]> = dirs.iter().map(|n| [[n[0], n[1], n[2], 0.0], [0.0; 4], [0.0; 4]]).collect();
-    one("oct_encode", "result = vec4<f32>(npr_oct_encode(a.xyz), 0.0, 0.0);", &cases, &[])
+    let cases: Vec<[[f64; 4]; 3]> = dirs
+        .iter()
+        .map(|n| [[n[0], n[1], n[2], 0.0], [0.0; 4], [0.0; 4]])
+        .collect();
+    one(
+        "oct_encode",
+        "result = vec4<f32>(npr_oct_encode(a.xyz), 0.0, 0.0);",
+        &cases,
+        &[],
+    )
 }
 
 fn gpu_decode(codes: &[[f64; 2]]) -> Vec<[f32; 4]> {
-    let cases: Vec<[[f64; 4]; 3]> = codes.iter().map(|e| [[e[0], e[1], 0.0, 0.0], [0.0; 4], [0.0; 4]]).collect();
-    one("oct_decode", "result = vec4<f32>(npr_oct_decode(a.xy), 0.0);", &cases, &[])
+    let cases: Vec<[[f64; 4]; 3]> = codes
+        .iter()
+        .map(|e| [[e[0], e[1], 0.0, 0.0], [0.0; 4], [0.0; 4]])
+        .collect();
+    one(
+        "oct_decode",
+        "result = vec4<f32>(npr_oct_decode(a.xy), 0.0);",
+        &cases,
+        &[],
+    )
 }
 
 /// The angle between two unit vectors in degrees (atan2 of |a×b| and a·b,

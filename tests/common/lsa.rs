@@ -55,7 +55,12 @@ pub fn spec(width: u32, height: u32) -> FrameSpec {
 }
 
 /// Targets `names` (e.g. "gbuffer.pos") after rendering up to each one's pass.
-pub fn targets(program: &StyleProgram, scene: &runner::scene::Scene, size: (u32, u32), names: &[&str]) -> Vec<TargetImage> {
+pub fn targets(
+    program: &StyleProgram,
+    scene: &runner::scene::Scene,
+    size: (u32, u32),
+    names: &[&str],
+) -> Vec<TargetImage> {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).unwrap_or_else(|e| panic!("{e}"));
     names
         .iter()

@@ -8,8 +8,8 @@
 pub mod fuzz;
 pub mod http;
 pub mod lines;
-pub mod lsa;
 pub mod live;
+pub mod lsa;
 
 use runner::Gpu;
 use std::path::Path;
