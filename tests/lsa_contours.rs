@@ -14,7 +14,7 @@ use std::path::Path;
 use stdlib::reference_lsa::{self as lsa, LsaSettings};
 
 mod common;
-use common::lsa::{output, scene_of, spec, style, targets, to_f64, uv};
+use common::lsa::{output, scene_of, style, targets, to_f64, uv};
 use common::root;
 
 fn scene_text(text: &str) -> runner::scene::Scene {

@@ -8,7 +8,11 @@ use lab::contours::AnalyticScene;
 use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 use stdlib::reference::ImageF64;
 
-/// An example style with some of its text replaced (parameter defaults, formats).
+/// An example style with some of its text replaced (parameter defaults,
+/// formats), compiled `--schedule naive`: the tests read intermediate
+/// targets (`thin.e`, which `auto` computes inside the ink pass, so it is
+/// no target there); the output is the same bit for bit under either
+/// schedule (`tests/schedule_equivalence.rs`).
 pub fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
     let path = root().join("examples").join(name);
     let mut text = std::fs::read_to_string(&path).expect("read style");
@@ -17,7 +21,11 @@ pub fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
         text = text.replace(from, to);
     }
     let mut sources = dsl::SourceMap::new();
-    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &Default::default()) {
+    let opts = compiler::CompileOptions {
+        schedule: compiler::schedule::Schedule::Naive,
+        ..Default::default()
+    };
+    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
         Ok(c) => c.program(),
         Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
