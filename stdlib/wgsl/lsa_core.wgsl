@@ -37,7 +37,8 @@ fn npr_lsa_core__pixel(tex: texture_2d<f32>, uv: vec2<f32>) -> vec2<i32> {
 // from rgb, 1 (octahedral) decodes it from rg (`oct_encode`, Cigolle et al.
 // 2014 §3.1), the packed G-buffer of docs/PERFORMANCE.md. Only this read
 // differs: the LSA math below is the same for both layouts. A constant
-// encoding is a literal argument, which the driver folds once it inlines.
+// encoding is a literal argument (`0i` or `1i`), a branch a driver that
+// inlines can fold; no variant operators, so no second copy of the loops.
 fn npr_lsa_core__fetch(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: i32, q: vec2<i32>) -> npr_lsa_core__Texel {
     let dims = vec2<i32>(textureDimensions(pos));
     let ndims = vec2<i32>(textureDimensions(normals));
