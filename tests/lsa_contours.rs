@@ -9,81 +9,19 @@
 //! on lavapipe.
 
 use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
-use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
+use runner::StyleProgram;
 use std::path::Path;
-use stdlib::reference::ImageF64;
 use stdlib::reference_lsa::{self as lsa, LsaSettings};
 
 mod common;
-use common::{gpu, root};
-
-/// An example style with some of its text replaced (parameter defaults, formats).
-fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
-    let path = root().join("examples").join(name);
-    let mut text = std::fs::read_to_string(&path).expect("read style");
-    for (from, to) in replacements {
-        assert!(text.contains(from), "`{from}` not in {name}");
-        text = text.replace(from, to);
-    }
-    let mut sources = dsl::SourceMap::new();
-    // Naive: the tests read the declared intermediate targets (`error.e`,
-    // `thin.e`), which `auto` fuses away.
-    let opts = compiler::CompileOptions {
-        schedule: compiler::schedule::Schedule::Naive,
-        ..Default::default()
-    };
-    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
-    }
-}
-
-fn scene_of(s: &AnalyticScene) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
-    s.scene(&mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
-}
+use common::lsa::{output, scene_of, style, targets, to_f64, uv};
+use common::root;
 
 fn scene_text(text: &str) -> runner::scene::Scene {
     let mut sources = dsl::SourceMap::new();
     let file = sources.add("hard.toml", text.to_string());
     runner::scene::parse_scene(text, file, Path::new("."))
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
-}
-
-fn spec(width: u32, height: u32) -> FrameSpec {
-    FrameSpec::still(width, height, 0)
-}
-
-/// Targets `names` (e.g. "gbuffer.pos") after rendering up to each one's pass.
-fn targets(program: &StyleProgram, scene: &runner::scene::Scene, size: (u32, u32), names: &[&str]) -> Vec<TargetImage> {
-    let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).unwrap_or_else(|e| panic!("{e}"));
-    names
-        .iter()
-        .map(|name| {
-            let index = program
-                .manifest
-                .targets
-                .iter()
-                .position(|t| t.name == *name)
-                .unwrap_or_else(|| panic!("no target {name}"));
-            r.render_until_target(scene, &spec(size.0, size.1), index)
-                .unwrap_or_else(|e| panic!("{name}: {e}"))
-        })
-        .collect()
-}
-
-fn output(program: &StyleProgram, scene: &runner::scene::Scene, size: u32) -> TargetImage {
-    runner::render_frame(gpu(), program, scene, &spec(size, size)).unwrap_or_else(|e| panic!("render: {e}"))
-}
-
-fn to_f64(t: &TargetImage) -> ImageF64 {
-    ImageF64::new(t.width, t.height, |x, y| t.texel(x, y).map(f64::from))
-}
-
-fn uv(x: u32, y: u32, w: u32, h: u32) -> [f64; 2] {
-    [(x as f64 + 0.5) / w as f64, (y as f64 + 0.5) / h as f64]
 }
 
 /// The styles compared, with the line threshold on the red channel of their

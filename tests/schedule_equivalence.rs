@@ -328,3 +328,35 @@ output b.c
     assert!(modes_differ > checked / 4, "{modes_differ} of {checked}");
     eprintln!("{mode:?}: {checked} stores, the other mode differs on {modes_differ}");
 }
+
+/// A constant written to a target and read through `sqrt`: fused,
+/// `sqrt(vec4(-0.827))` would be a WGSL const-expression that naga rejects
+/// (E9001; the generated-style soak's case 48924), and even wrapped so that
+/// naga accepts it, lavapipe folds it to NaN where its run-time `sqrt` of
+/// the stored -0.827 gives 0.909 (WGSL leaves it indeterminate). So a
+/// constant target is not fused: the style compiles under `auto` and gives
+/// naive's image.
+#[test]
+fn a_constant_target_fuses_without_becoming_a_constant_expression() {
+    let dir = root().join("target/npr-test-output/schedule-styles");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let style = dir.join("constant_target.npr");
+    std::fs::write(
+        &style,
+        r#"style "constant target"
+pass k: image() {
+  out o: rgba32float = vec4(-0.827)
+}
+pass r: image(k) {
+  out c: rgba32float = vec4(fract(length(sqrt(k.o))), screen_uv, 1.0)
+}
+output r.c
+"#,
+    )
+    .expect("write style");
+    let scene_path = scene("spheres");
+    let loaded = load_scene(&scene_path);
+    let auto = compile(&style, &loaded, "spheres", Schedule::Auto);
+    assert!(auto.fused.is_empty(), "{:?}", auto.fused);
+    same_image("constant_target", &style, &scene_path, 8, 8);
+}

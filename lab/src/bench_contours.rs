@@ -3,8 +3,9 @@
 //! Roberts normal+depth — per resolution (a benchmark, never a test).
 //!
 //! Cost: every variant shares one G-buffer pass (world positions and
-//! normals in rgba32float, linear depth, encoded view normals; the final
-//! pass reads all four so none is pruned). A passthrough image pass (one
+//! normals in rgba32float, linear depth, encoded view normals, and the
+//! packed LSA layout: view positions in rgba16float and octahedral view
+//! normals in rg16float; the final pass reads all six so none is pruned). A passthrough image pass (one
 //! texel of each target) costs t_pass = T(two passthrough passes) −
 //! T(one); the G-buffer alone T_gb = T(one) − t_pass. A method's image
 //! stage is T − T_gb, stated in ms, relative to t_pass, and as pixel
@@ -24,10 +25,15 @@ use crate::bench::wait_idle;
 use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
 use runner::{FrameSpec, Gpu, RunError, StyleProgram};
 
-const GBUFFER: &str = "style \"bench contours\"\npass gbuffer: render(scene) {\n  out pos: rgba32float = vec4(position.world, 1.0)\n  out nrm: rgba32float = vec4(normal.world, 1.0)\n  out depth: r32float = depth\n  out enc: rgba16float = vec4(normal.view * 0.5 + 0.5, 1.0)\n}\n";
+/// The shared G-buffer. `vpos` and `oct` are the packed LSA layout (view
+/// positions in rgba16float, octahedral view normals in rg16float, 12 bytes
+/// a pixel against the 32 of `pos` and `nrm`); every variant writes both
+/// layouts, so the G-buffer cost subtracted from each is the same.
+const GBUFFER: &str = "style \"bench contours\"\npass gbuffer: render(scene) {\n  out pos: rgba32float = vec4(position.world, 1.0)\n  out nrm: rgba32float = vec4(normal.world, 1.0)\n  out depth: r32float = depth\n  out enc: rgba16float = vec4(normal.view * 0.5 + 0.5, 1.0)\n  out vpos: rgba16float = vec4(position.view, 1.0)\n  out oct: rg16float = oct_encode(normal.view)\n}\n";
 
 /// Reads every G-buffer target at zero weight, so all variants keep the same G-buffer.
-const KEEP: &str = "0.0 * (gbuffer.pos.x + gbuffer.nrm.x + gbuffer.depth + gbuffer.enc.x)";
+const KEEP: &str =
+    "0.0 * (gbuffer.pos.x + gbuffer.nrm.x + gbuffer.depth + gbuffer.enc.x + gbuffer.vpos.x + gbuffer.oct.x)";
 
 /// LSA passes: error (the operator call), line density, ink.
 fn lsa_passes(call: &str, density: Option<f64>) -> String {
@@ -53,6 +59,9 @@ fn single_pass(line: &str) -> String {
 pub fn variants() -> Vec<(&'static str, String, bool)> {
     let g = |rest: String| format!("{GBUFFER}{rest}");
     let lsa = |plane: bool, aa: bool| format!("lsa(gbuffer.pos, gbuffer.nrm, plane: {plane}, aa: {aa})");
+    let packed = |plane: bool, aa: bool| {
+        format!("lsa(gbuffer.vpos, gbuffer.oct, plane: {plane}, aa: {aa}, normal_encoding: octahedral)")
+    };
     vec![
         ("passthrough", g(single_pass(&format!("gbuffer.pos.w * 0.0 + {KEEP}"))), false),
         (
@@ -67,6 +76,16 @@ pub fn variants() -> Vec<(&'static str, String, bool)> {
         ("LSA + aa (eq. 8)", g(lsa_passes(&lsa(false, true), Some(1.0))), true),
         ("LSA full, no density filter", g(lsa_passes(&lsa(true, true), None)), true),
         ("LSA full (plane + aa, density 1)", g(lsa_passes(&lsa(true, true), Some(1.0))), true),
+        (
+            "LSA base, packed G-buffer (view rgba16float + octahedral normals)",
+            g(lsa_passes(&packed(false, false), Some(0.5))),
+            true,
+        ),
+        (
+            "LSA full, packed G-buffer (view rgba16float + octahedral normals)",
+            g(lsa_passes(&packed(true, true), Some(1.0))),
+            true,
+        ),
         (
             "Sobel on depth (0.05 m/px)",
             g(single_pass("threshold(sobel(gbuffer.depth), lo: 0.05, hi: 0.05)")),

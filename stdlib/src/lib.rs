@@ -22,8 +22,10 @@ pub mod halftone_table;
 pub mod metrics;
 pub mod operators;
 pub mod operators_artmaps;
+pub mod operators_gbuffer;
 pub mod operators_patterns;
 pub mod reference;
+pub mod reference_gbuffer;
 pub mod reference_lsa;
 pub mod reference_pipeline;
 pub mod reference_stereo;
@@ -206,6 +208,7 @@ pub mod snippets {
         ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
         ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
         ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
+        ("oct", include_str!("../wgsl/oct.wgsl")),
     ];
 
     pub fn find(name: &str) -> Option<&'static str> {
@@ -230,13 +233,15 @@ impl Operator {
 
 /// Every operator in the standard library, in a fixed order (the IR names
 /// operators by their index here): the operator table, then the dynamic
-/// 2D patterns' operators.
+/// 2D patterns' operators, the art-map operators and the G-buffer packing
+/// operators.
 pub fn all() -> &'static [Operator] {
     static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
         operators::ALL
             .iter()
             .chain(operators_patterns::ALL)
             .chain(operators_artmaps::ALL)
+            .chain(operators_gbuffer::ALL)
             .copied()
             .collect()
     });

@@ -742,7 +742,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa.wgsl"),
         depends: &[],
-        snippets: &["lsa_core", "lsa_plane", "lsa_aa"],
+        snippets: &["oct", "lsa_core", "lsa_plane", "lsa_aa"],
         specializations: &[
             Specialization { param: "plane", value: 0.0, use_operator: "lsa_curv_aa" },
             Specialization { param: "aa", value: 0.0, use_operator: "lsa_sum" },
@@ -758,7 +758,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa_sum.wgsl"),
         depends: &[],
-        snippets: &["lsa_core", "lsa_plane"],
+        snippets: &["oct", "lsa_core", "lsa_plane"],
         specializations: &[Specialization { param: "plane", value: 0.0, use_operator: "lsa_curv" }],
         footprints: LSA_FOOTPRINT,
     },
@@ -771,7 +771,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa_curv_aa.wgsl"),
         depends: &[],
-        snippets: &["lsa_core", "lsa_aa"],
+        snippets: &["oct", "lsa_core", "lsa_aa"],
         specializations: &[Specialization { param: "aa", value: 0.0, use_operator: "lsa_curv" }],
         footprints: LSA_FOOTPRINT_AA,
     },
@@ -784,7 +784,7 @@ pub static ALL: &[Operator] = &[
         stage: Stage::Image,
         wgsl: include_str!("../wgsl/lsa_curv.wgsl"),
         depends: &[],
-        snippets: &["lsa_core"],
+        snippets: &["oct", "lsa_core"],
         specializations: &[],
         footprints: LSA_FOOTPRINT,
     },
@@ -1001,8 +1001,19 @@ const LSA_POS: Param = p(
 const LSA_NORMALS: Param = p(
     "normals",
     Ty::Texture,
-    "G-buffer unit normals in rgb (same space and size as `pos`)",
+    "G-buffer unit normals (same space and size as `pos`): xyz in rgb, or octahedral codes in rg (see `normal_encoding`)",
 );
+/// How `normals` stores a normal. Last in every LSA parameter list, so the
+/// specializations keep it, and positional calls written before it existed
+/// keep their meaning. Only `npr_lsa_core__fetch` reads it.
+const LSA_NORMAL_ENCODING: Param = Param {
+    name: "normal_encoding",
+    ty: Ty::Enum(&["xyz", "octahedral"]),
+    unit: Unit::None,
+    default: Default::Variant("xyz"),
+    range: None,
+    doc: "xyz: the normal in rgb; octahedral: `oct_encode(normal)` in rg (an `rg16float` target), for the packed G-buffer with view-space `rgba16float` positions",
+};
 const LSA_PLANE: Param = Param {
     name: "plane",
     ty: Ty::Bool,
@@ -1043,7 +1054,31 @@ const LSA_FULL_PARAMS: &[Param] = &[
     LSA_AA,
     LSA_ETA_MIN,
     LSA_ETA_MAX,
+    LSA_NORMAL_ENCODING,
 ];
-const LSA_SUM_PARAMS: &[Param] = &[LSA_POS, LSA_NORMALS, UV_SCREEN, LSA_PLANE, LSA_ETA_MIN, LSA_ETA_MAX];
-const LSA_AA_PARAMS: &[Param] = &[LSA_POS, LSA_NORMALS, UV_SCREEN, LSA_AA, LSA_ETA_MIN, LSA_ETA_MAX];
-const LSA_BASE_PARAMS: &[Param] = &[LSA_POS, LSA_NORMALS, UV_SCREEN, LSA_ETA_MIN, LSA_ETA_MAX];
+const LSA_SUM_PARAMS: &[Param] = &[
+    LSA_POS,
+    LSA_NORMALS,
+    UV_SCREEN,
+    LSA_PLANE,
+    LSA_ETA_MIN,
+    LSA_ETA_MAX,
+    LSA_NORMAL_ENCODING,
+];
+const LSA_AA_PARAMS: &[Param] = &[
+    LSA_POS,
+    LSA_NORMALS,
+    UV_SCREEN,
+    LSA_AA,
+    LSA_ETA_MIN,
+    LSA_ETA_MAX,
+    LSA_NORMAL_ENCODING,
+];
+const LSA_BASE_PARAMS: &[Param] = &[
+    LSA_POS,
+    LSA_NORMALS,
+    UV_SCREEN,
+    LSA_ETA_MIN,
+    LSA_ETA_MAX,
+    LSA_NORMAL_ENCODING,
+];

@@ -252,7 +252,9 @@ pub const REFERENCED: &[&str] = &[
 ];
 
 pub fn has_reference(name: &str) -> bool {
-    REFERENCED.contains(&name) || crate::reference_lsa::REFERENCED.contains(&name)
+    REFERENCED.contains(&name)
+        || crate::reference_lsa::REFERENCED.contains(&name)
+        || crate::reference_gbuffer::REFERENCED.contains(&name)
 }
 
 /// Bilinear filtering with repeat addressing at level 0 (a tileable texture).

@@ -53,11 +53,16 @@ pub struct Texel {
     pub inside: bool,
 }
 
-pub fn fetch(pos: &ImageF64, normals: &ImageF64, x: i64, y: i64) -> Texel {
+/// `octahedral`: `normal_encoding: octahedral`, the normal decoded from rg.
+pub fn fetch(pos: &ImageF64, normals: &ImageF64, octahedral: bool, x: i64, y: i64) -> Texel {
     let inside = x >= 0 && y >= 0 && x < pos.width as i64 && y < pos.height as i64;
     let pw = pos.load(x, y);
     let n4 = normals.load(x, y);
-    let n = [n4[0], n4[1], n4[2]];
+    let n = if octahedral {
+        crate::reference_gbuffer::oct_decode([n4[0], n4[1]])
+    } else {
+        [n4[0], n4[1], n4[2]]
+    };
     let big = 1.0e37;
     let finite = pw.iter().all(|v| v.abs() < big) && n.iter().all(|v| v.abs() < big);
     let geo = inside && finite && pw[3] > 0.5;
@@ -168,6 +173,8 @@ pub struct LsaSettings {
     pub aa: bool,
     pub eta_min: f64,
     pub eta_max: f64,
+    /// `normal_encoding: octahedral` (the packed G-buffer).
+    pub octahedral: bool,
 }
 
 impl LsaSettings {
@@ -177,6 +184,7 @@ impl LsaSettings {
         aa: false,
         eta_min: 0.25,
         eta_max: 0.5,
+        octahedral: false,
     };
     /// The full monoscopic method (`lsa` with both extensions on).
     pub const FULL: LsaSettings = LsaSettings {
@@ -184,6 +192,7 @@ impl LsaSettings {
         aa: true,
         eta_min: 0.25,
         eta_max: 0.5,
+        octahedral: false,
     };
 }
 
@@ -220,7 +229,7 @@ pub fn aa(a: f64, b: f64, c: f64) -> f64 {
 /// `lsa_curv_aa` has `plane: false`.
 pub fn lsa(pos: &ImageF64, normals: &ImageF64, uv: [f64; 2], s: &LsaSettings) -> [f64; 4] {
     let (x, y) = pos.pixel_of(uv);
-    let f = |dx: i64, dy: i64| fetch(pos, normals, x + dx, y + dy);
+    let f = |dx: i64, dy: i64| fetch(pos, normals, s.octahedral, x + dx, y + dy);
     let p = f(0, 0);
     let mut out = [0.0; 4];
     for (i, (mx, my)) in DIRS.iter().enumerate() {

@@ -171,10 +171,13 @@ fn cases() -> Vec<Case> {
         });
     }
     for (op, body) in [
-        ("lsa", "result = npr_lsa(t0, t1, uv, true, true, 0.0, 0.001);"),
-        ("lsa_sum", "result = npr_lsa_sum(t0, t1, uv, true, 0.0, 0.001);"),
-        ("lsa_curv_aa", "result = npr_lsa_curv_aa(t0, t1, uv, true, 0.0, 0.001);"),
-        ("lsa_curv", "result = npr_lsa_curv(t0, t1, uv, 0.0, 0.001);"),
+        ("lsa", "result = npr_lsa(t0, t1, uv, true, true, 0.0, 0.001, 0);"),
+        ("lsa_sum", "result = npr_lsa_sum(t0, t1, uv, true, 0.0, 0.001, 0);"),
+        (
+            "lsa_curv_aa",
+            "result = npr_lsa_curv_aa(t0, t1, uv, true, 0.0, 0.001, 0);",
+        ),
+        ("lsa_curv", "result = npr_lsa_curv(t0, t1, uv, 0.0, 0.001, 0);"),
     ] {
         for (param, index) in [("pos", 0), ("normals", 1)] {
             v.push(Case {

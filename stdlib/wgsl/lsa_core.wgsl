@@ -1,7 +1,9 @@
 // Shared helpers of the LSA contour operators (Zaidi et al., "Local Surface
 // Approximation Contours for Virtual Reality Stylisation"; equation numbers
-// are the paper's). The G-buffer holds world positions (alpha 1 on geometry,
-// 0 on the cleared background) and world normals.
+// are the paper's). The G-buffer holds positions (alpha 1 on geometry, 0 on
+// the cleared background) and normals in one space, world or view: LSA only
+// compares them with each other. Normals are xyz, or octahedral codes in a
+// 2-channel target (the packed G-buffer; see `npr_lsa_core__fetch`).
 //
 // The 8-neighbourhood W(p) of eq. 1 is walked as 4 directions m (E, SE, S,
 // SW in image coordinates); the pair p − m, p + m serves both neighbours: the
@@ -31,13 +33,23 @@ fn npr_lsa_core__pixel(tex: texture_2d<f32>, uv: vec2<f32>) -> vec2<i32> {
     return clamp(vec2<i32>(floor(uv * vec2<f32>(dims))), vec2<i32>(0), dims - vec2<i32>(1));
 }
 
-fn npr_lsa_core__fetch(pos: texture_2d<f32>, normals: texture_2d<f32>, q: vec2<i32>) -> npr_lsa_core__Texel {
+// `encoding` is the operators' `normal_encoding`: 0 (xyz) reads the normal
+// from rgb, 1 (octahedral) decodes it from rg (`oct_encode`, Cigolle et al.
+// 2014 §3.1), the packed G-buffer of docs/PERFORMANCE.md. Only this read
+// differs: the LSA math below is the same for both layouts. A constant
+// encoding is a literal argument (`0i` or `1i`), a branch a driver that
+// inlines can fold; no variant operators, so no second copy of the loops.
+fn npr_lsa_core__fetch(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: i32, q: vec2<i32>) -> npr_lsa_core__Texel {
     let dims = vec2<i32>(textureDimensions(pos));
     let ndims = vec2<i32>(textureDimensions(normals));
     var t: npr_lsa_core__Texel;
     t.inside = all(q >= vec2<i32>(0)) && all(q < dims);
     let pw = textureLoad(pos, clamp(q, vec2<i32>(0), dims - vec2<i32>(1)), 0);
-    let n = textureLoad(normals, clamp(q, vec2<i32>(0), ndims - vec2<i32>(1)), 0).xyz;
+    let nw = textureLoad(normals, clamp(q, vec2<i32>(0), ndims - vec2<i32>(1)), 0);
+    var n = nw.xyz;
+    if (encoding == 1) {
+        n = npr_oct__decode(nw.xy);
+    }
     // A non-finite texel (an f16 overflow, say) counts as background: the
     // comparisons are false for NaN and ±Inf, so no NaN spreads.
     let big = vec3<f32>(1.0e37);

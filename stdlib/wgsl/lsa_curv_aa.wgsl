@@ -1,13 +1,13 @@
 // LSA contours with the anti-aliasing extension (eq. 8) on e_curv alone;
 // what `lsa` compiles to with plane = false.
-fn npr_lsa_curv_aa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, aa: bool, eta_min: f32, eta_max: f32) -> vec4<f32> {
+fn npr_lsa_curv_aa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, aa: bool, eta_min: f32, eta_max: f32, normal_encoding: i32) -> vec4<f32> {
     let px = npr_lsa_core__pixel(pos, uv);
-    let p = npr_lsa_core__fetch(pos, normals, px);
+    let p = npr_lsa_core__fetch(pos, normals, normal_encoding, px);
     var out = vec4<f32>(0.0);
     for (var i = 0; i < 4; i = i + 1) {
         let m = npr_lsa_core__dir(i);
-        let b = npr_lsa_core__fetch(pos, normals, px - m);
-        let d = npr_lsa_core__fetch(pos, normals, px + m);
+        let b = npr_lsa_core__fetch(pos, normals, normal_encoding, px - m);
+        let d = npr_lsa_core__fetch(pos, normals, normal_encoding, px + m);
         // Both halves of the pair (e_max, §4.1): d tested against S(p, ·)
         // fitted to b, and b against the sphere fitted to d.
         var vd = max(npr_lsa_core__error(b, p, d, 0.0, eta_min, eta_max), 0.0);
@@ -15,8 +15,8 @@ fn npr_lsa_curv_aa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>
         if (aa) {
             // Eq. 8 with the pixels two steps away: for q = d, q̂ = f and the
             // control of S(p, q̂) is a; offsets over two steps are halved.
-            let a = npr_lsa_core__fetch(pos, normals, px - 2 * m);
-            let f = npr_lsa_core__fetch(pos, normals, px + 2 * m);
+            let a = npr_lsa_core__fetch(pos, normals, normal_encoding, px - 2 * m);
+            let f = npr_lsa_core__fetch(pos, normals, normal_encoding, px + 2 * m);
             vd = npr_lsa_aa__mix(npr_lsa_core__error(b, p, f, 0.0, eta_min, eta_max), npr_lsa_core__error(a, p, d, 0.0, eta_min, eta_max), vd);
             vb = npr_lsa_aa__mix(npr_lsa_core__error(d, p, a, 0.0, eta_min, eta_max), npr_lsa_core__error(f, p, b, 0.0, eta_min, eta_max), vb);
         }

@@ -9,6 +9,7 @@ pub mod fuzz;
 pub mod http;
 pub mod lines;
 pub mod live;
+pub mod lsa;
 
 use runner::Gpu;
 use std::path::Path;

@@ -72,6 +72,16 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
         if o.blend != Blend::Replace {
             return Err(format!("`{name}` blends into its target"));
         }
+        // A constant stays a stored target: inlined, the reader's expressions
+        // over it would be constant too, and a shader compiler folds them,
+        // where out-of-domain math (`sqrt(-0.8)`, indeterminate in WGSL)
+        // may give another value than the same math at run time (naga
+        // rejects some outright: the generated-style soak's case 48924).
+        if matches!(ir.expr(o.value).kind, ExprKind::Const(_)) {
+            return Err(format!(
+                "`{name}` is a constant, which would make its reader's expressions over it constant"
+            ));
+        }
         if o.format.storage() == Storage::Srgb8 {
             return Err(format!(
                 "`{name}` is {}, whose encoding is not repeated",
