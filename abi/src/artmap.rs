@@ -107,7 +107,7 @@ impl Manifest {
     /// What makes a manifest a filter: exactly one `filter_input()`
     /// texture, and image passes only (a filter runs on no scene).
     pub fn validate_filter(&self) -> Result<(), String> {
-        use crate::manifest::{PassKindManifest, TextureSourceManifest};
+        use crate::manifest::TextureSourceManifest;
         let inputs = self
             .textures
             .iter()
@@ -116,11 +116,7 @@ impl Manifest {
         if inputs != 1 {
             return Err(format!("a filter reads one `filter_input()` texture, not {inputs}"));
         }
-        if let Some(p) = self
-            .passes
-            .iter()
-            .find(|p| !matches!(p.kind, PassKindManifest::Image { .. }))
-        {
+        if let Some(p) = self.passes.iter().find(|p| !p.kind.is_image()) {
             return Err(format!("pass `{}` of a filter is not an image pass", p.name));
         }
         Ok(())

@@ -31,6 +31,16 @@ impl Format {
         ("rgba32float", Format::Rgba32float),
     ];
 
+    /// Whether a compute shader can write this format as a storage texture
+    /// in core WebGPU (no adapter feature): what a tiled image pass needs
+    /// of its outputs.
+    pub fn storage_capable(self) -> bool {
+        matches!(
+            self,
+            Format::Rgba8unorm | Format::Rgba16float | Format::R32float | Format::Rg32float | Format::Rgba32float
+        )
+    }
+
     pub fn parse(name: &str) -> Option<Format> {
         Self::ALL.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
     }

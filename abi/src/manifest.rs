@@ -20,7 +20,10 @@ mod compute;
 pub use compute::*;
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 5;
+pub const MANIFEST_VERSION: u32 = 6;
+
+/// The side of a [`PassKindManifest::TiledImage`] workgroup, in pixels.
+pub const TILE_SIZE: u32 = 16;
 
 /// Byte size of the fixed per-frame uniform block (`struct Frame` in every shader that reads it).
 pub const FRAME_UNIFORM_SIZE: u64 = core::mem::size_of::<FrameBlock>() as u64;
@@ -153,6 +156,14 @@ pub enum PassKindManifest {
         vertex_entry: String,
         fragment_entry: String,
     },
+    /// An `image` pass the compiler scheduled as a compute shader over
+    /// workgroup tiles (issue 14): the same pixels, each computed by one
+    /// invocation of a `TILE_SIZE` × `TILE_SIZE` workgroup that first loads
+    /// the texels its operators read around the pixel into workgroup
+    /// memory. Group 0 as an image pass; group 1: the outputs as write-only
+    /// storage textures, binding i = output i (every output's format is
+    /// [`Format::storage_capable`], no output blends).
+    TiledImage { entry: String },
     /// Per-object values computed on the GPU. Group 0 as every kind; group
     /// 1: every object's block as a read-only storage array of
     /// [`object_stride`]-byte slots (binding 0), the pass's member table
@@ -240,7 +251,16 @@ impl PassKindManifest {
                 .map(|e| ("elements_entry", e.as_str()))
                 .chain([("objects_entry", objects_entry.as_str())])
                 .collect(),
+            PassKindManifest::TiledImage { entry } => vec![("entry", entry)],
         }
+    }
+
+    /// An image pass, run by a render pipeline or as workgroup tiles.
+    pub fn is_image(&self) -> bool {
+        matches!(
+            self,
+            PassKindManifest::Image { .. } | PassKindManifest::TiledImage { .. }
+        )
     }
 
     /// The (vertex, fragment) entry points of a kind drawn by a render
@@ -261,7 +281,7 @@ impl PassKindManifest {
                 fragment_entry,
                 ..
             } => Some((vertex_entry, fragment_entry)),
-            PassKindManifest::Compute { .. } => None,
+            PassKindManifest::Compute { .. } | PassKindManifest::TiledImage { .. } => None,
         }
     }
 }

@@ -263,6 +263,33 @@ impl Manifest {
         Ok(())
     }
 
+    /// A tiled image pass stores its outputs from a compute shader: each
+    /// must have a storage format, and none may blend.
+    fn validate_tiled(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
+        if !matches!(p.kind, PassKindManifest::TiledImage { .. }) {
+            return Ok(());
+        }
+        if p.blend.iter().any(|b| *b != Blend::Replace) {
+            return bad(
+                format!("{field}.blend"),
+                format!("tiled image pass `{}` blends", p.name),
+            );
+        }
+        for (k, t) in p.outputs.iter().enumerate() {
+            let format = self.targets.get(*t).map(|t| t.format);
+            if format.is_some_and(|f| !f.storage_capable()) {
+                return bad(
+                    format!("{field}.outputs[{k}]"),
+                    format!(
+                        "tiled image pass `{}` writes a target whose format is not a storage format",
+                        p.name
+                    ),
+                );
+            }
+        }
+        Ok(())
+    }
+
     /// One blend mode per output (or none: all replace), and only on
     /// formats the runner can blend.
     fn validate_blend(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
@@ -412,6 +439,7 @@ impl Manifest {
             );
         }
         self.validate_blend(&field, p)?;
+        self.validate_tiled(&field, p)?;
         self.validate_depth(i, &field, p)?;
         self.validate_lines(&field, p)?;
         if !p.clear.iter().all(|c| c.is_finite()) {
@@ -500,7 +528,7 @@ impl Manifest {
                     if !matches!(self.passes[*pass].kind, PassKindManifest::Compute { .. }) {
                         return bad(f, format!("pass `{}` is not a compute pass", self.passes[*pass].name));
                     }
-                    if matches!(p.kind, PassKindManifest::Image { .. } | PassKindManifest::Lines { .. }) {
+                    if p.kind.is_image() || matches!(p.kind, PassKindManifest::Lines { .. }) {
                         return bad(
                             f,
                             format!("pass `{}` has no object to read per-object values for", p.name),

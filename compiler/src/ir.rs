@@ -368,6 +368,8 @@ pub struct Ir {
     pub output_span: Span,
     /// `scene_has(tag)` calls folded against a known scene: (tag, answer).
     pub scene_queries: Vec<(String, bool)>,
+    /// Image passes the schedule runs as compute over workgroup tiles.
+    pub tiled: std::collections::BTreeMap<PassId, crate::schedule::tile::Tiling>,
 }
 
 impl Ir {

@@ -1,14 +1,20 @@
 //! Image passes: the fullscreen-triangle vertex shader and the fragment
 //! prologue. An image pass has no geometry and no per-object data; what it
-//! reads (targets, textures, parameters) is declared by `bindings.rs`.
+//! reads (targets, textures, parameters) is declared by `bindings.rs`. A
+//! tiled image pass (`tiled/`) shares the varyings and the prologue's
+//! `screen_uv`, so both schedules see the same value at every pixel.
 
-/// One triangle that covers the viewport, and the varyings it writes.
-pub(super) const IMAGE_VERTEX: &str = "struct Varyings {
+/// What the fragment (or a tiled pass's pixel function) receives.
+pub(super) const IMAGE_VARYINGS: &str = "struct Varyings {
     @builtin(position) clip: vec4<f32>,
     @location(0) @interpolate(linear) screen_uv: vec2<f32>,
 }
 
-// One triangle that covers the viewport; screen_uv is (0,0) at the top-left corner.
+";
+
+/// One triangle that covers the viewport.
+pub(super) const IMAGE_VERTEX: &str =
+    "// One triangle that covers the viewport; screen_uv is (0,0) at the top-left corner.
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> Varyings {
     let p = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
@@ -20,5 +26,19 @@ fn vs_main(@builtin(vertex_index) index: u32) -> Varyings {
 
 ";
 
-/// The fragment shader's opening: `screen_uv` is the interpolated varying.
-pub(super) const FRAGMENT_PROLOGUE: &str = "@fragment\nfn fs_main(in: Varyings) -> FragOut {\n";
+/// The opening of the function that computes one pixel: the fragment
+/// shader, or (tiled) the function each invocation calls. `screen_uv` is
+/// the pixel centre over the pass size, as in render passes: exact, where
+/// the interpolated varying may be an ulp off, which a compute invocation
+/// could not repeat.
+pub(super) fn pixel_prologue(tiled: bool, scale: f64) -> String {
+    let head = if tiled {
+        "// One pixel of the pass, for the invocation that owns it (`cs_main`).\nfn npr_pixel(in_raw: Varyings) -> FragOut {"
+    } else {
+        "@fragment\nfn fs_main(in_raw: Varyings) -> FragOut {"
+    };
+    format!(
+        "{head}\n    var in = in_raw;\n    in.screen_uv = in_raw.clip.xy / {};\n",
+        super::render::pass_size_wgsl(scale)
+    )
+}

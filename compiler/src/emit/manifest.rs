@@ -62,6 +62,9 @@ pub fn build(
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),
                     },
+                    PassKind::Image { .. } if ir.tiled.contains_key(pid) => PassKindManifest::TiledImage {
+                        entry: super::tiled::TILED_ENTRY.into(),
+                    },
                     PassKind::Image { .. } => PassKindManifest::Image {
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),

@@ -217,7 +217,7 @@ fn is_screen_frame(b: Builtin) -> bool {
 
 /// The size in px of a pass at `scale` of the output, as the runner allocates
 /// it (`runner::render::scaled_size`: rounded half up, at least 1).
-fn pass_size_wgsl(scale: f64) -> String {
+pub(super) fn pass_size_wgsl(scale: f64) -> String {
     if scale == 1.0 {
         "frame.resolution".into()
     } else {

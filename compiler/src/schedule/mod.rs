@@ -6,13 +6,16 @@
 //!   back, exactly as written.
 //! - `auto`: image passes whose only reader reads them at its own pixel are
 //!   fused into that reader ([`fuse`]); the rounding of the skipped target's
-//!   format is repeated, so the image does not change.
+//!   format is repeated, so the image does not change. Then image passes
+//!   whose operators read targets around the pixel run as compute over
+//!   workgroup tiles ([`tile`]).
 //!
 //! What each pass got, and why, goes in the `--report` (`schedule` entries),
 //! with the apron a tiled schedule of it would need ([`footprint`]).
 
 pub mod footprint;
 mod fuse;
+pub mod tile;
 
 use crate::ir::Ir;
 use crate::prune::Live;
@@ -37,6 +40,9 @@ pub enum Schedule {
 pub fn apply(ir: &mut Ir, live: &mut Live, schedule: Schedule, report: &mut Report) {
     match schedule {
         Schedule::Naive => {}
-        Schedule::Auto => fuse::fuse_pointwise(ir, live, report),
+        Schedule::Auto => {
+            fuse::fuse_pointwise(ir, live, report);
+            tile::tile_neighbourhoods(ir, live, report);
+        }
     }
 }

@@ -7,7 +7,7 @@
 //! outputs that replace their target, and in group 0 the frame
 //! block, the style block (keyframed parameters too), targets of this frame and
 //! the linear clamp sampler. Everything else the runner does — compute
-//! passes, lines passes, history, stereo, `view(light)`, kept and tested depth, blending,
+//! passes, lines passes, tiled image passes, history, stereo, `view(light)`, kept and tested depth, blending,
 //! declared and per-object textures, time-varying meshes, patch weights — is refused.
 
 use abi::manifest::*;
@@ -20,6 +20,7 @@ pub fn check(manifest: &Manifest, scene: &Scene) -> Result<(), String> {
         match &pass.kind {
             PassKindManifest::Compute { .. } => return what("compute passes"),
             PassKindManifest::Lines { .. } => return what("lines passes"),
+            PassKindManifest::TiledImage { .. } => return what("tiled image passes (compile with `--schedule naive`)"),
             PassKindManifest::Render { light_view: true, .. } => return what("`view(light)` passes"),
             PassKindManifest::Render { depth, .. } if *depth != DepthMode::Own => {
                 return what("`depth: keep` and `depth: test(...)`")

@@ -33,6 +33,7 @@ mod render_pass;
 mod resources;
 mod scene_check;
 mod scene_warnings;
+mod tiled_pass;
 mod values;
 
 pub use frame::FrameSpec;

@@ -11,6 +11,7 @@ use super::lines_pass::LinesPassExec;
 use super::meshes::GpuMesh;
 use super::render_pass::RenderPassExec;
 use super::resources::{wgpu_format, SizedPass};
+use super::tiled_pass::{TiledOutputs, TiledPassExec};
 use crate::RunError;
 use abi::formats::HalfRounding;
 use abi::manifest::*;
@@ -20,6 +21,8 @@ pub(super) enum PassExec {
     Render(RenderPassExec),
     /// `image`: one fullscreen triangle.
     Image(ImagePassExec),
+    /// `image`, scheduled as compute over workgroup tiles.
+    Tiled(TiledPassExec),
     /// `compute(domain)`: dispatches per object (groups 1 and 2 of its own).
     Compute(ComputePassExec),
     /// `lines(tag)`: strips built on the CPU per eye slot, one indexed draw
@@ -94,6 +97,9 @@ impl PassExec {
                 objects,
             )?),
             PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, shader)?),
+            PassKindManifest::TiledImage { .. } => {
+                PassExec::Tiled(TiledPassExec::build(device, manifest, pass, shader)?)
+            }
             PassKindManifest::Compute { .. } => {
                 let buffers = buffers
                     .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
@@ -110,6 +116,7 @@ impl PassExec {
         match self {
             PassExec::Render(p) => &p.layout0,
             PassExec::Image(p) => &p.layout0,
+            PassExec::Tiled(p) => &p.layout0,
             PassExec::Compute(p) => &p.layout0,
             PassExec::Lines(p) => &p.layout0,
         }
@@ -120,7 +127,7 @@ impl PassExec {
         match self {
             PassExec::Render(_) => true,
             // Lines test in their shader (`tested_depth_group`), with no attachment.
-            PassExec::Image(_) | PassExec::Compute(_) | PassExec::Lines(_) => false,
+            PassExec::Image(_) | PassExec::Tiled(_) | PassExec::Compute(_) | PassExec::Lines(_) => false,
         }
     }
 
@@ -129,6 +136,20 @@ impl PassExec {
     pub fn tested_depth_group(&self, device: &wgpu::Device, kept: &wgpu::TextureView) -> Option<wgpu::BindGroup> {
         match self {
             PassExec::Lines(p) => p.tested_depth_group(device, kept),
+            _ => None,
+        }
+    }
+
+    /// A tiled pass: its output group over `outputs` (one eye slot's views)
+    /// at `size`; `None` for every other pass.
+    pub fn tiled_outputs(
+        &self,
+        device: &wgpu::Device,
+        outputs: &[wgpu::TextureView],
+        size: (u32, u32),
+    ) -> Option<TiledOutputs> {
+        match self {
+            PassExec::Tiled(p) => Some(p.outputs(device, outputs, size)),
             _ => None,
         }
     }
@@ -144,6 +165,12 @@ impl PassExec {
         match self {
             PassExec::Render(p) => p.encode(encoder, sized, ctx, timestamps),
             PassExec::Image(p) => p.encode(encoder, sized, timestamps),
+            // `make_sized` gives every tiled pass its outputs.
+            PassExec::Tiled(p) => {
+                if let Some(outputs) = &sized.tiled_outputs {
+                    p.encode(encoder, sized, outputs, timestamps)
+                }
+            }
             PassExec::Compute(p) => p.encode(encoder, sized, ctx, timestamps),
             PassExec::Lines(p) => p.encode(encoder, sized, slot, timestamps),
         }

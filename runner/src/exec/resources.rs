@@ -111,6 +111,8 @@ pub(super) struct SizedPass {
     pub group0: wgpu::BindGroup,
     /// A compute pass over pixels: its element workgroups at this size (0 otherwise).
     pub pixel_workgroups: u32,
+    /// A tiled image pass: its outputs as storage textures, and its grid.
+    pub tiled_outputs: Option<super::tiled_pass::TiledOutputs>,
 }
 
 impl Renderer<'_> {
@@ -172,7 +174,7 @@ impl Renderer<'_> {
                             .texture(slot, parity, self.manifest.targets[t].physical, false)
                             .create_view(&Default::default())
                     };
-                    let color_views = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
+                    let color_views: Vec<wgpu::TextureView> = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
                     let depth_texture = |label: &str| {
                         texture_2d(
                             self.device,
@@ -221,7 +223,9 @@ impl Renderer<'_> {
                         }
                         _ => None,
                     };
+                    let tiled_outputs = self.passes[pi].tiled_outputs(self.device, &color_views, (w, h));
                     slot_passes.push(SizedPass {
+                        tiled_outputs,
                         color_views,
                         depth_view,
                         tested_depth,
@@ -269,12 +273,22 @@ impl Renderer<'_> {
     /// Physical texture `index` of the manifest at `width`×`height` × its scale.
     fn physical_texture(&self, index: usize, width: u32, height: u32) -> wgpu::Texture {
         let p = &self.manifest.physical[index];
+        // A tiled pass writes its outputs as storage textures.
+        let stored_by_compute = self.manifest.passes.iter().any(|pass| {
+            matches!(pass.kind, PassKindManifest::TiledImage { .. })
+                && pass.outputs.iter().any(|t| self.manifest.targets[*t].physical == index)
+        });
+        let usage = if stored_by_compute {
+            crate::gpu_error::TARGET_USAGE | wgpu::TextureUsages::STORAGE_BINDING
+        } else {
+            crate::gpu_error::TARGET_USAGE
+        };
         texture_2d(
             self.device,
             &format!("npr physical #{index}"),
             scaled_size(width, height, p.scale),
             wgpu_format(p.format),
-            crate::gpu_error::TARGET_USAGE,
+            usage,
         )
     }
 }

@@ -1,0 +1,209 @@
+//! Tiled compute for neighbourhood reads (issue 14): an image pass whose
+//! operators read a target within a bounded radius of the pixel runs as a
+//! compute shader over `abi::manifest::TILE_SIZE`² workgroups. Each
+//! workgroup loads the tile plus an apron of that radius (the operators'
+//! declared footprints, `footprint.rs`) into workgroup memory once, and the
+//! operators' `textureLoad`s of that target read it from there
+//! (`emit/tiled`).
+//!
+//! The footprint only sizes the apron: a read outside it (or outside the
+//! image) falls through to `textureLoad`, so the image never depends on
+//! the metadata being right, only the speed does (`stdlib/tests/
+//! footprints.rs` checks the metadata is sound and tight).
+//!
+//! Not tiled, with the reason in the report: a pass that reads no target
+//! around the pixel, blends, writes a format compute cannot store, reads a
+//! texture as a value or calls an operator that takes screen derivatives
+//! (compute has none), or whose tiles would not fit in workgroup memory.
+
+use super::footprint::{texture_reads, Read};
+use crate::dag::pass_roots;
+use crate::ir::*;
+use crate::prune::Live;
+use crate::report::Report;
+use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Workgroup memory a tiled pass may use: WebGPU's default limit
+/// (`maxComputeWorkgroupStorageSize`), which every adapter offers.
+pub const WORKGROUP_MEMORY: u32 = 16384;
+
+/// Bytes of one tile texel (a `vec4<f32>`, what `textureLoad` returns).
+const TEXEL_BYTES: u32 = 16;
+
+/// One target a tiled pass keeps in workgroup memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct TileRead {
+    pub target: TargetRef,
+    /// The apron, in texels on each side of the `TILE_SIZE`² block.
+    pub radius: u32,
+}
+
+impl TileRead {
+    /// Texels per row (and rows) of the tile with its apron.
+    pub fn side(&self) -> u32 {
+        TILE_SIZE + 2 * self.radius
+    }
+
+    pub fn bytes(&self) -> u32 {
+        self.side() * self.side() * TEXEL_BYTES
+    }
+}
+
+/// How one image pass is tiled: the targets kept in workgroup memory.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Tiling {
+    pub reads: Vec<TileRead>,
+}
+
+/// Decides, for every live image pass, whether it runs tiled; records the
+/// tilings in `ir.tiled` and reports each decision.
+pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, report: &mut Report) {
+    for pid in &live.passes {
+        if !matches!(ir.pass(*pid).kind, PassKind::Image { .. }) {
+            continue;
+        }
+        let name = format!("pass `{}`", ir.pass(*pid).name);
+        match tiling(ir, live, *pid) {
+            Ok(t) => {
+                let what: Vec<String> = t
+                    .reads
+                    .iter()
+                    .map(|r| format!("`{}` with a {}-texel apron", ir.target_name(r.target), r.radius))
+                    .collect();
+                let bytes: u32 = t.reads.iter().map(TileRead::bytes).sum();
+                report.push(
+                    "tiled",
+                    name,
+                    format!(
+                        "compute over {TILE_SIZE}×{TILE_SIZE} tiles, keeping {} in workgroup memory ({bytes} bytes)",
+                        what.join(", ")
+                    ),
+                );
+                ir.tiled.insert(*pid, t);
+            }
+            Err(why) => report.push("not tiled", name, why),
+        }
+    }
+}
+
+/// The tiling of image pass `pid`, or why it is not tiled.
+fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
+    let pass = ir.pass(pid);
+    let live_outputs: Vec<&PassOutput> = pass
+        .outputs
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| {
+            live.targets.contains(&TargetRef {
+                pass: pid,
+                output: *i as u32,
+            })
+        })
+        .map(|(_, o)| o)
+        .collect();
+    for o in &live_outputs {
+        if o.blend != Blend::Replace {
+            return Err(format!("`{}` blends into its target (compute has no blending)", o.name));
+        }
+        if !o.format.storage_capable() {
+            return Err(format!(
+                "`{}` is {}, which a compute shader cannot store",
+                o.name,
+                o.format.name()
+            ));
+        }
+    }
+    if live_outputs.is_empty() {
+        return Err("it writes no live target".into());
+    }
+    let nodes = ir.reachable(&pass_roots(pass));
+    let mut radii: BTreeMap<TargetRef, u32> = BTreeMap::new();
+    for n in &nodes {
+        let e = ir.expr(*n);
+        if matches!(e.kind, ExprKind::Texture(_)) && !matches!(e.ty, Ty::Texture(_)) {
+            return Err("it samples a texture as a value, which takes screen derivatives".into());
+        }
+        if let ExprKind::Call {
+            callee: Callee::Operator(i),
+            ..
+        } = &e.kind
+        {
+            if let Some(op) = uses_derivatives(*i as usize) {
+                return Err(format!("`{op}` takes screen derivatives, which compute has none of"));
+            }
+        }
+        for (arg, read) in texture_reads(ir, *n) {
+            let ExprKind::Target {
+                target,
+                copy: TargetCopy::This,
+            } = ir.expr(arg).kind
+            else {
+                continue;
+            };
+            // A tile is in the pass's own pixel grid: only a target of the
+            // same scale lines up texel for pixel.
+            if ir.pass(target.pass).scale != pass.scale {
+                continue;
+            }
+            if let Read::AroundPixel { radius } = read {
+                if radius > 0 && is_loaded(ir, *n, arg) {
+                    let r = radii.entry(target).or_default();
+                    *r = (*r).max(radius);
+                }
+            }
+        }
+    }
+    if radii.is_empty() {
+        return Err("no operator reads a target around the pixel".into());
+    }
+    let reads: Vec<TileRead> = radii
+        .into_iter()
+        .map(|(target, radius)| TileRead { target, radius })
+        .collect();
+    let bytes: u32 = reads.iter().map(TileRead::bytes).sum();
+    if bytes > WORKGROUP_MEMORY {
+        return Err(format!(
+            "its tiles need {bytes} bytes of workgroup memory (widest apron {} texels), over the {WORKGROUP_MEMORY} every adapter has",
+            reads.iter().map(|r| r.radius).max().unwrap_or(0)
+        ));
+    }
+    Ok(Tiling { reads })
+}
+
+/// Whether `call` passes `arg` as a plain texture (read by `textureLoad`),
+/// not a sampled one (filtered reads stay on the texture unit).
+fn is_loaded(ir: &Ir, call: ExprId, arg: ExprId) -> bool {
+    let ExprKind::Call {
+        callee: Callee::Operator(i),
+        args,
+    } = &ir.expr(call).kind
+    else {
+        return false;
+    };
+    let op = &stdlib::all()[*i as usize];
+    op.params
+        .iter()
+        .zip(args)
+        .any(|(p, a)| *a == arg && p.ty == stdlib::Ty::Texture)
+}
+
+/// The name of operator `i` or of one it depends on when its WGSL takes
+/// screen derivatives (explicitly, or through an implicit-LOD sample).
+fn uses_derivatives(i: usize) -> Option<&'static str> {
+    let op = &stdlib::all()[i];
+    let takes = |wgsl: &str| {
+        ["dpdx", "dpdy", "fwidth", "textureSample("]
+            .iter()
+            .any(|d| wgsl.contains(d))
+    };
+    let own = takes(op.wgsl) || op.snippets.iter().any(|s| stdlib::snippets::find(s).is_some_and(takes));
+    if own {
+        return Some(op.name);
+    }
+    op.depends.iter().find_map(|d| {
+        let j = stdlib::all().iter().position(|o| o.name == *d)?;
+        uses_derivatives(j)
+    })
+}
