@@ -6,7 +6,10 @@
 //! The bound is **bit-identical output texels** (the output target read back
 //! as f32, compared by bits). Fusion computes the skipped target's value
 //! inline and repeats its format's rounding (`Conversion::Stored`), so no
-//! float is computed in another order; a difference is a bug, not noise.
+//! float is computed in another order; a tiled pass runs the same WGSL per
+//! pixel, reads the same texels (from workgroup memory) and rounds its
+//! storage writes as the device rounds attachment stores. A difference is a
+//! bug, not noise.
 //! On failure both images and their diff go to
 //! `target/npr-test-output/schedule/`.
 //!
@@ -60,6 +63,8 @@ struct Compiled {
     passes: usize,
     /// `fused` lines of the compile report.
     fused: Vec<String>,
+    /// Passes run as workgroup tiles (`tiled` lines of the report).
+    tiled: Vec<String>,
 }
 
 fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
@@ -73,18 +78,33 @@ fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedul
         compiler::CompileError::User(d) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
         e => panic!("{}: {e:?}", style.display()),
     });
-    let fused = c
-        .report
-        .entries
-        .iter()
-        .filter(|e| e.action == "fused")
-        .map(|e| format!("{} {}", e.what, e.why))
-        .collect();
+    let entries = |action: &str| -> Vec<String> {
+        c.report
+            .entries
+            .iter()
+            .filter(|e| e.action == action)
+            .map(|e| format!("{} {}", e.what, e.why))
+            .collect()
+    };
+    let (fused, tiled) = (entries("fused"), entries("tiled"));
     let program = c.program();
+    let tiled_passes = program
+        .manifest
+        .passes
+        .iter()
+        .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::TiledImage { .. }))
+        .count();
+    assert_eq!(
+        tiled_passes,
+        tiled.len(),
+        "{}: the report's tiled passes: {tiled:?}",
+        style.display()
+    );
     Compiled {
         passes: program.manifest.passes.len(),
         program,
         fused,
+        tiled,
     }
 }
 
@@ -149,14 +169,22 @@ fn assert_bit_identical(case: &str, naive: &runner::TargetImage, auto: &runner::
     );
 }
 
+/// What `auto` did to one style: passes fused, passes tiled.
+#[derive(Debug, Clone, Copy)]
+struct Changes {
+    fused: usize,
+    tiled: usize,
+}
+
 /// Compiles `style` both ways, renders both at `width`×`height`, asserts the
-/// same texels; returns the number of passes fused.
-fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u32) -> usize {
+/// same texels; returns what the `auto` schedule changed.
+fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u32) -> Changes {
     let scene = load_scene(scene_path);
     let name = scene_path.display().to_string();
     let naive = compile(style, &scene, &name, Schedule::Naive);
     let auto = compile(style, &scene, &name, Schedule::Auto);
     assert!(naive.fused.is_empty(), "{case}: naive fused {:?}", naive.fused);
+    assert!(naive.tiled.is_empty(), "{case}: naive tiled {:?}", naive.tiled);
     assert_eq!(
         naive.passes - auto.passes,
         auto.fused.len(),
@@ -170,7 +198,10 @@ fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u
     for (eye, (a, b)) in a.iter().zip(&b).enumerate() {
         assert_bit_identical(&format!("{case}_eye{eye}"), a, b);
     }
-    auto.fused.len()
+    Changes {
+        fused: auto.fused.len(),
+        tiled: auto.tiled.len(),
+    }
 }
 
 fn example(style: &str) -> PathBuf {
@@ -183,7 +214,7 @@ fn scene(name: &str) -> PathBuf {
 
 #[test]
 fn every_example_gives_the_same_image_under_both_schedules() {
-    let mut fused = Vec::new();
+    let mut changed = Vec::new();
     for (style, scene_name) in EXAMPLES {
         let n = same_image(
             &format!("{style}_on_{scene_name}"),
@@ -192,15 +223,21 @@ fn every_example_gives_the_same_image_under_both_schedules() {
             64,
             48,
         );
-        fused.push((*style, *scene_name, n));
+        changed.push((*style, *scene_name, n));
     }
-    eprintln!("passes fused per example: {fused:?}");
-    // The test must exercise fusion, not only styles where nothing fuses.
-    let lsa = fused.iter().filter(|(s, _, _)| s.starts_with("lsa_")).map(|f| f.2);
+    eprintln!("passes fused and tiled per example: {changed:?}");
+    // The test must exercise fusion and tiling, not only styles where
+    // nothing changes.
+    let lsa = changed.iter().filter(|(s, _, _)| s.starts_with("lsa_")).map(|f| f.2);
     assert!(
-        lsa.clone().all(|n| n >= 1),
-        "the LSA styles fuse their merge: {fused:?}"
+        lsa.clone().all(|c| c.fused >= 1 && c.tiled >= 1),
+        "the LSA styles fuse their merge and tile their error pass: {changed:?}"
     );
+    let tiled_elsewhere = changed
+        .iter()
+        .filter(|(s, _, c)| !s.starts_with("lsa_") && c.tiled >= 1)
+        .count();
+    assert!(tiled_elsewhere >= 2, "Sobel and the outline tile too: {changed:?}");
 }
 
 #[test]
@@ -225,14 +262,17 @@ fn every_example_is_covered() {
     );
 }
 
-/// Fused passes at image edges: sizes whose width and height are not
-/// multiples of anything (1×1, 3×7, 17×513), on the LSA styles (where the
-/// merge fuses) and Age of Sail (scale-½ and ¼ blur chains).
+/// Fused and tiled passes at image edges: sizes whose width and height are
+/// not multiples of anything (1×1, 3×7, 17×513: partial tiles, tiles whose
+/// apron leaves the image on every side), on the LSA styles (where the
+/// merge fuses and the errors tile), Sobel, and Age of Sail (scale-½ and ¼
+/// blur chains).
 #[test]
 fn odd_sizes_and_scaled_passes_give_the_same_image() {
     let cases = [
         ("lsa_contours", "spheres"),
         ("lsa_base", "spheres"),
+        ("sobel_outline", "spheres"),
         ("age_of_sail", "age_of_sail"),
     ];
     for (style, scene_name) in cases {
@@ -243,8 +283,10 @@ fn odd_sizes_and_scaled_passes_give_the_same_image() {
 }
 
 /// A pointwise chain at scale ½ fuses into its scale-½ reader (same scale),
-/// but not into the full-size pass after it; both images equal naive's at
-/// odd sizes, where the ½ size rounds.
+/// but not into the full-size pass after it; a scale-½ neighbourhood pass
+/// tiles the scale-½ target it reads and not the full-size one (a tile is
+/// in the pass's own pixel grid); every image equals naive's at odd sizes,
+/// where the ½ size rounds.
 #[test]
 fn a_scale_half_chain_fuses_at_its_own_scale() {
     let dir = root().join("target/npr-test-output/schedule-styles");
@@ -262,8 +304,12 @@ pass half: image(g) scale 1/2 {
 pass tone: image(half) scale 1/2 {
   out c: rgba8unorm = vec4(sqrt(half.c.rgb), 1.0)
 }
-pass up: image(tone) {
-  out c: rgba8unorm = tone.c
+pass edges: image(g, tone) scale 1/2 {
+  let e = sobel(tone.c, screen_uv) + sobel(g.c, screen_uv)
+  out c: rgba8unorm = vec4(e, e, e, 1.0)
+}
+pass up: image(edges) {
+  out c: rgba8unorm = edges.c
 }
 output up.c
 "#,
@@ -273,6 +319,17 @@ output up.c
     let loaded = load_scene(&scene_path);
     let auto = compile(&style, &loaded, "spheres", Schedule::Auto);
     assert_eq!(auto.fused.len(), 1, "`half` fuses into `tone` only: {:?}", auto.fused);
+    assert_eq!(
+        auto.tiled.len(),
+        1,
+        "`edges` tiles `tone.c` at scale ½, not `g.c` at full size: {:?}",
+        auto.tiled
+    );
+    assert!(
+        auto.tiled[0].contains("`tone.c`") && !auto.tiled[0].contains("`g.c`"),
+        "{:?}",
+        auto.tiled
+    );
     assert!(
         auto.fused[0].contains("`half`") && auto.fused[0].contains("`tone`"),
         "{:?}",

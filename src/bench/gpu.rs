@@ -138,7 +138,7 @@ pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
         }
         if measure {
             match compile_builtin_scheduled(name, &text, Schedule::Auto, &mut sources, printer) {
-                Ok((p, fused)) if fused > 0 => programs.push((format!("{name} [auto: {fused} fused]"), p, measure)),
+                Ok((p, changes)) if changes.any() => programs.push((format!("{name} [{changes}]"), p, measure)),
                 Ok(_) => {}
                 Err(code) => return code,
             }

@@ -153,7 +153,7 @@ pub(crate) fn compile_builtin_scheduled(
     schedule: Schedule,
     sources: &mut SourceMap,
     printer: &Printer,
-) -> Result<(StyleProgram, usize), i32> {
+) -> Result<(StyleProgram, ScheduleChanges), i32> {
     compile_builtin_with(name, text, Path::new("."), schedule, sources, printer)
 }
 
@@ -169,6 +169,26 @@ pub(crate) fn compile_builtin_in(
     compile_builtin_with(name, text, dir, Schedule::Naive, sources, printer).map(|(p, _)| p)
 }
 
+/// What the schedule changed in a compiled style: passes fused into their
+/// reader, and image passes run as workgroup tiles (the report's entries).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct ScheduleChanges {
+    pub fused: usize,
+    pub tiled: usize,
+}
+
+impl ScheduleChanges {
+    pub fn any(self) -> bool {
+        self.fused + self.tiled > 0
+    }
+}
+
+impl std::fmt::Display for ScheduleChanges {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "auto: {} fused, {} tiled", self.fused, self.tiled)
+    }
+}
+
 fn compile_builtin_with(
     name: &str,
     text: &str,
@@ -176,15 +196,19 @@ fn compile_builtin_with(
     schedule: Schedule,
     sources: &mut SourceMap,
     printer: &Printer,
-) -> Result<(StyleProgram, usize), i32> {
+) -> Result<(StyleProgram, ScheduleChanges), i32> {
     let opts = CompileOptions {
         schedule,
         ..Default::default()
     };
     match compiler::compile_source(name, text, dir, sources, &opts) {
         Ok(c) => {
-            let fused = c.report.entries.iter().filter(|e| e.action == "fused").count();
-            Ok((c.program(), fused))
+            let count = |action: &str| c.report.entries.iter().filter(|e| e.action == action).count();
+            let changes = ScheduleChanges {
+                fused: count("fused"),
+                tiled: count("tiled"),
+            };
+            Ok((c.program(), changes))
         }
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);
