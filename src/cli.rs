@@ -223,6 +223,10 @@ pub enum ScheduleArg {
     /// The compiler's schedule: image passes read only at their reader's
     /// own pixel are fused into it (the same image).
     Auto,
+    /// `auto`, and every image pass whose operators read around the pixel
+    /// runs as compute over workgroup tiles (the same image). Not `auto`'s
+    /// choice: on lavapipe the tiles are slower (docs/PERFORMANCE.md).
+    Tiled,
 }
 
 impl From<ScheduleArg> for compiler::schedule::Schedule {
@@ -230,6 +234,7 @@ impl From<ScheduleArg> for compiler::schedule::Schedule {
         match s {
             ScheduleArg::Naive => compiler::schedule::Schedule::Naive,
             ScheduleArg::Auto => compiler::schedule::Schedule::Auto,
+            ScheduleArg::Tiled => compiler::schedule::Schedule::Tiled,
         }
     }
 }

@@ -129,7 +129,8 @@ pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
     }
     let mut sources = SourceMap::new();
     // Every variant as declared (naive); each method again under `auto`
-    // where the compiler's schedule changes its passes.
+    // where the compiler's schedule changes its passes, and under `tiled`
+    // where it tiles.
     let mut programs = Vec::new();
     for (name, text, measure) in lab::bench_contours::variants() {
         match compile_builtin_scheduled(name, &text, Schedule::Naive, &mut sources, printer) {
@@ -137,10 +138,15 @@ pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
             Err(code) => return code,
         }
         if measure {
-            match compile_builtin_scheduled(name, &text, Schedule::Auto, &mut sources, printer) {
-                Ok((p, changes)) if changes.any() => programs.push((format!("{name} [{changes}]"), p, measure)),
-                Ok(_) => {}
-                Err(code) => return code,
+            for (schedule, label) in [(Schedule::Auto, "auto"), (Schedule::Tiled, "tiled")] {
+                match compile_builtin_scheduled(name, &text, schedule, &mut sources, printer) {
+                    // `tiled` only where it tiles (else it is `auto`).
+                    Ok((p, changes)) if changes.any() && (schedule == Schedule::Auto || changes.tiled > 0) => {
+                        programs.push((format!("{name} [{label}: {changes}]"), p, measure))
+                    }
+                    Ok(_) => {}
+                    Err(code) => return code,
+                }
             }
         }
     }

@@ -185,7 +185,7 @@ impl ScheduleChanges {
 
 impl std::fmt::Display for ScheduleChanges {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "auto: {} fused, {} tiled", self.fused, self.tiled)
+        write!(f, "{} fused, {} tiled", self.fused, self.tiled)
     }
 }
 

@@ -6,9 +6,13 @@
 //!   back, exactly as written.
 //! - `auto`: image passes whose only reader reads them at its own pixel are
 //!   fused into that reader ([`fuse`]); the rounding of the skipped target's
-//!   format is repeated, so the image does not change. Then image passes
-//!   whose operators read targets around the pixel run as compute over
-//!   workgroup tiles ([`tile`]).
+//!   format is repeated, so the image does not change. Each remaining
+//!   image pass that a tile would serve is reported with its apron.
+//! - `tiled`: `auto`, then image passes whose operators read targets
+//!   around the pixel run as compute over workgroup tiles ([`tile`]). Not
+//!   `auto`'s choice, by measurement: on lavapipe, the one device measured,
+//!   a tiled pass costs 1.3–2.1× its fragment pass (docs/PERFORMANCE.md,
+//!   "Tiled compute"); a device where tiles pay would make it the choice.
 //!
 //! What each pass got, and why, goes in the `--report` (`schedule` entries),
 //! with the apron a tiled schedule of it would need ([`footprint`]).
@@ -32,6 +36,9 @@ pub enum Schedule {
     /// image, bit for bit, on every example.
     #[default]
     Auto,
+    /// `auto` plus workgroup tiles for neighbourhood passes: the same image
+    /// (`tests/schedule_equivalence.rs`), slower on lavapipe.
+    Tiled,
 }
 
 /// Applies `schedule` to the live passes: rewrites `ir` and `live` (fused
@@ -41,6 +48,10 @@ pub fn apply(ir: &mut Ir, live: &mut Live, schedule: Schedule, report: &mut Repo
     match schedule {
         Schedule::Naive => {}
         Schedule::Auto => {
+            fuse::fuse_pointwise(ir, live, report);
+            tile::report_tilable(ir, live, report);
+        }
+        Schedule::Tiled => {
             fuse::fuse_pointwise(ir, live, report);
             tile::tile_neighbourhoods(ir, live, report);
         }
