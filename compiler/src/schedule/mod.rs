@@ -11,7 +11,7 @@
 //! - `tiled`: `auto`, then image passes whose operators read targets
 //!   around the pixel run as compute over workgroup tiles ([`tile`]). Not
 //!   `auto`'s choice, by measurement: on lavapipe, the one device measured,
-//!   a tiled pass costs 1.3–2.1× its fragment pass (docs/PERFORMANCE.md,
+//!   a tiled pass costs 1.0–2.2× its fragment pass (docs/PERFORMANCE.md,
 //!   "Tiled compute"); a device where tiles pay would make it the choice.
 //!
 //! What each pass got, and why, goes in the `--report` (`schedule` entries),

@@ -101,7 +101,7 @@ pub(super) fn report_tilable(ir: &Ir, live: &Live, report: &mut Report) {
                 "not tiled",
                 format!("pass `{}`", ir.pass(*pid).name),
                 format!(
-                    "`--schedule tiled` would keep {bytes} bytes in workgroup memory; auto does not, as tiles measured 1.3-2.1x slower than the fragment pass on lavapipe (docs/PERFORMANCE.md)"
+                    "`--schedule tiled` would keep {bytes} bytes in workgroup memory; auto does not, as tiles measured 1.0-2.2x slower than the fragment pass on lavapipe (docs/PERFORMANCE.md)"
                 ),
             );
         }
