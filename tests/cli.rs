@@ -230,11 +230,14 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("| 24²")).collect();
     // Every variant, plus an `auto` row for each method the schedule fuses
-    // (the LSA styles fuse their ink pass).
+    // (the LSA styles fuse their ink pass) and a `tiled` row for each
+    // method `--schedule tiled` tiles (LSA, Sobel, normal+depth).
     let declared = lab::bench_contours::variants().len();
     let auto = rows.iter().filter(|r| r.contains("[auto: ")).count();
-    assert_eq!(rows.len(), declared + auto, "{stdout}");
+    let tiled = rows.iter().filter(|r| r.contains("[tiled: ")).count();
+    assert_eq!(rows.len(), declared + auto + tiled, "{stdout}");
     assert!(auto >= 1, "no method was fused: {stdout}");
+    assert!(tiled >= 3, "LSA, Sobel and normal+depth tile: {stdout}");
     let full = rows
         .iter()
         .find(|r| r.contains("LSA full (plane + aa"))
