@@ -185,7 +185,7 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     let bytes: u32 = reads.iter().map(TileRead::bytes).sum();
     if bytes > WORKGROUP_MEMORY {
         return Err(format!(
-            "its tiles need {bytes} bytes of workgroup memory (widest apron {} texels), over the {WORKGROUP_MEMORY} every adapter has",
+            "its tiles need {bytes} bytes of workgroup memory (widest apron: {} texel(s)), over the {WORKGROUP_MEMORY} every adapter has",
             reads.iter().map(|r| r.radius).max().unwrap_or(0)
         ));
     }
@@ -226,4 +226,34 @@ fn uses_derivatives(i: usize) -> Option<&'static str> {
         let j = stdlib::all().iter().position(|o| o.name == *d)?;
         uses_derivatives(j)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn index(name: &str) -> usize {
+        stdlib::all().iter().position(|o| o.name == name).expect("operator")
+    }
+
+    #[test]
+    fn derivative_takers_are_found_through_their_dependencies() {
+        assert_eq!(uses_derivatives(index("metatexture")), Some("metatexture"));
+        assert_eq!(uses_derivatives(index("sample_biased")), Some("sample_biased"));
+        assert_eq!(uses_derivatives(index("sobel")), None);
+        assert_eq!(uses_derivatives(index("lsa")), None);
+    }
+
+    #[test]
+    fn a_tile_is_its_block_and_apron_of_vec4s() {
+        let t = TileRead {
+            target: TargetRef {
+                pass: PassId(0),
+                output: 0,
+            },
+            radius: 2,
+        };
+        assert_eq!(t.side(), 20);
+        assert_eq!(t.bytes(), 20 * 20 * 16);
+    }
 }

@@ -110,13 +110,13 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
             out,
             "    workgroupBarrier();
     let px = npr_tile_origin + vec2<i32>(i32(li % {TILE_SIZE}u), i32(li / {TILE_SIZE}u));
-    if (any(px >= vec2<i32>(textureDimensions(npr_out_{}))) ) {{
+    if (any(px >= vec2<i32>(textureDimensions(npr_out_{})))) {{
         return;
     }}
     var v: Varyings;
     // The pixel centre, as a fragment's position.
     v.clip = vec4<f32>(vec2<f32>(px) + vec2<f32>(0.5), 0.0, 1.0);
-    v.screen_uv = vec2<f32>(0.0);
+    v.screen_uv = vec2<f32>(0.0); // npr_pixel's prologue sets it from clip
     let o = npr_pixel(v);",
             first.name
         );
