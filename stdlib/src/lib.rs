@@ -24,6 +24,7 @@ pub mod operators;
 pub mod operators_artmaps;
 pub mod operators_gbuffer;
 pub mod operators_patterns;
+pub mod ops;
 pub mod reference;
 pub mod reference_gbuffer;
 pub mod reference_lsa;
@@ -231,19 +232,77 @@ impl Operator {
     }
 }
 
+/// The order of [`all`] (while operators move into [`ops`]; the IR names
+/// operators by their index here).
+const ORDER: &[&str] = &[
+    "lambert",
+    "half_lambert",
+    "toon",
+    "threshold",
+    "gaussian",
+    "downsample",
+    "sobel",
+    "normal_depth_edges",
+    "over",
+    "luminance",
+    "saturation",
+    "overlay",
+    "sample",
+    "metatexture_grad",
+    "metatexture",
+    "metatexture4_grad",
+    "metatexture4",
+    "shadow",
+    "contour_fade",
+    "reprojection_mask",
+    "stereo_consistency",
+    "radial_alpha",
+    "uv_gradients",
+    "metatexture_contour_grad",
+    "metatexture_contour",
+    "live_texture",
+    "line_boil",
+    "roll_compensate",
+    "distance_attenuate",
+    "warp",
+    "lsa",
+    "lsa_sum",
+    "lsa_curv_aa",
+    "lsa_curv",
+    "lsa_density",
+    "id_share",
+    "complex_mul",
+    "pattern_uv",
+    "halftone_screen",
+    "halftone",
+    "sample_biased",
+    "sample_ripmap",
+    "oct_encode",
+    "oct_decode",
+];
+
 /// Every operator in the standard library, in a fixed order (the IR names
 /// operators by their index here): the operator table, then the dynamic
 /// 2D patterns' operators, the art-map operators and the G-buffer packing
 /// operators.
 pub fn all() -> &'static [Operator] {
     static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
-        operators::ALL
+        let old: Vec<Operator> = operators::ALL
             .iter()
             .chain(operators_patterns::ALL)
             .chain(operators_artmaps::ALL)
             .chain(operators_gbuffer::ALL)
             .copied()
-            .collect()
+            .collect();
+        let all: Vec<Operator> = ORDER
+            .iter()
+            .map(|n| match ops::find(n) {
+                Some(d) => d.op,
+                None => *old.iter().find(|o| o.name == *n).expect("every operator is in ORDER"),
+            })
+            .collect();
+        assert_eq!(all.len(), ops::ALL.len() + old.len(), "every operator is in ORDER once");
+        all
     });
     &ALL
 }

@@ -2,7 +2,7 @@
 //! a per-surface level-of-detail bias, and reading a rip-map with a level
 //! per axis.
 
-use crate::operators::p;
+use crate::ops::p;
 use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
 
 pub static ALL: &[Operator] = &[

@@ -7,7 +7,7 @@
 //! §6 asks for precise G-buffers; docs/PERFORMANCE.md measures this one).
 //! The WGSL lives in the `oct` snippet, which the LSA operators share.
 
-use crate::operators::p;
+use crate::ops::p;
 use crate::{Operator, Stage, Ty};
 
 pub static ALL: &[Operator] = &[

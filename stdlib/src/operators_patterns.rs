@@ -4,7 +4,7 @@
 //! (§3.3), and the halftone screen that such a frame carries, with its LOD
 //! blend (§3.4) and tone correction (§3.5).
 
-use crate::operators::p;
+use crate::ops::p;
 use crate::{Default, Footprint, Operator, Param, Radius, Stage, Ty, Unit};
 
 pub static ALL: &[Operator] = &[

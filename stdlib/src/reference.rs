@@ -12,6 +12,7 @@ pub use patterns::*;
 mod halftone;
 pub use halftone::*;
 mod artmaps;
+pub use crate::ops::shading::{half_lambert, lambert, threshold, toon};
 pub use artmaps::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
@@ -49,42 +50,15 @@ impl ImageF64 {
     }
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
+pub(crate) fn unit(v: [f64; 3]) -> [f64; 3] {
     let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     // Same guard as the WGSL: a zero vector stays zero.
     let s = 1.0 / l2.max(1e-30).sqrt();
     [v[0] * s, v[1] * s, v[2] * s]
 }
 
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub fn lambert(n: [f64; 3], l: [f64; 3]) -> f64 {
-    dot3(unit(n), unit(l)).max(0.0)
-}
-
-pub fn half_lambert(n: [f64; 3], l: [f64; 3]) -> f64 {
-    let h = 0.5 * dot3(unit(n), unit(l)) + 0.5;
-    h * h
-}
-
-pub fn toon(x: f64, steps: i64) -> f64 {
-    let n = steps.max(1) as f64;
-    let band = (x.clamp(0.0, 1.0) * n).floor().min(n - 1.0);
-    if n > 1.0 {
-        band / (n - 1.0)
-    } else {
-        0.0
-    }
-}
-
-pub fn threshold(x: f64, lo: f64, hi: f64) -> f64 {
-    if hi <= lo {
-        return if x >= lo { 1.0 } else { 0.0 };
-    }
-    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 /// Largest blur radius in texels (as in gaussian.wgsl).

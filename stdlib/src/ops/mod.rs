@@ -1,0 +1,78 @@
+//! The operators, one folder per operator or family of variants: its
+//! metadata (an [`OpDef`]: the [`Operator`], its f64 reference as a
+//! function of one call's arguments, its GPU cases), its f64 reference
+//! functions (each under its operator's name) and its WGSL files. Each
+//! operator is registered with one line below, in the order of
+//! [`crate::all`] (the IR names operators by that index).
+//!
+//! Adding an operator: a folder `ops/<name>/` with `<name>.wgsl` (the
+//! function `npr_<name>`) and `mod.rs` (the `Operator`, `pub fn <name>` in
+//! f64, `pub const <NAME>: OpDef` with at least one [`Case`]), a `mod`
+//! line and a registration line here. `tests/completeness.rs` checks the
+//! rest; `tests/gpu_cases.rs` runs the cases.
+
+pub mod case;
+pub use case::*;
+
+/// `each![a, b, …]`: numbers in turn, an [`Arg::Each`] of scalars.
+macro_rules! each {
+    ($($x:expr),* $(,)?) => {
+        $crate::ops::Arg::Each(&[$([$x as f64, 0.0, 0.0, 0.0]),*])
+    };
+}
+
+pub mod shading;
+
+use crate::{Default, Operator, Param, Ty, Unit};
+
+/// A required parameter with no unit or range.
+pub(crate) const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
+    Param {
+        name,
+        ty,
+        unit: Unit::None,
+        default: Default::Required,
+        range: None,
+        doc,
+    }
+}
+
+/// `uv: vec2 = screen_uv`: where an image operator reads (this pixel by default).
+pub(crate) const UV_SCREEN: Param = Param {
+    name: "uv",
+    ty: Ty::Vec2,
+    unit: Unit::None,
+    default: Default::Builtin("screen_uv"),
+    range: None,
+    doc: "where to read, in [0, 1]² (default: this pixel)",
+};
+
+/// `family::DEF => reference`: the registered operators in order, each
+/// with the name of its f64 reference function, which must exist in its
+/// family's module (this does not compile otherwise).
+macro_rules! registry {
+    ($($family:ident :: $def:ident => $reference:ident),* $(,)?) => {
+        /// Every registered operator, in the order of [`crate::all`].
+        pub static ALL: &[OpDef] = &[$(OpDef { reference_fn: stringify!($reference), ..$family::$def }),*];
+        const _: () = {
+            $(let _ = $family::$reference;)*
+        };
+    };
+}
+
+registry! {
+    shading::LAMBERT => lambert,
+    shading::HALF_LAMBERT => half_lambert,
+    shading::TOON => toon,
+    shading::THRESHOLD => threshold,
+}
+
+/// The registered operator `name`.
+pub fn find(name: &str) -> Option<&'static OpDef> {
+    ALL.iter().find(|d| d.op.name == name)
+}
+
+/// Is `op` registered here (moved into `ops/`)?
+pub fn is_registered(op: &Operator) -> bool {
+    find(op.name).is_some()
+}
