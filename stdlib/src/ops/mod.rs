@@ -21,6 +21,10 @@ macro_rules! each {
     };
 }
 
+pub mod colour;
+pub mod filters;
+pub mod images;
+pub mod sample;
 pub mod shading;
 
 use crate::{Default, Operator, Param, Ty, Unit};
@@ -65,6 +69,15 @@ registry! {
     shading::HALF_LAMBERT => half_lambert,
     shading::TOON => toon,
     shading::THRESHOLD => threshold,
+    filters::GAUSSIAN => gaussian,
+    filters::DOWNSAMPLE => downsample,
+    filters::SOBEL => sobel,
+    filters::NORMAL_DEPTH_EDGES => normal_depth_edges,
+    colour::OVER => over,
+    colour::LUMINANCE => luminance,
+    colour::SATURATION => saturation,
+    colour::OVERLAY => overlay,
+    sample::SAMPLE => sample,
 }
 
 /// The registered operator `name`.
