@@ -205,7 +205,7 @@ pub struct Specialization {
 /// `npr_<name>__` and are emitted once per module that needs them.
 pub mod snippets {
     pub const ALL: &[(&str, &str)] = &[
-        ("meta", include_str!("../wgsl/metatexture_common.wgsl")),
+        ("meta", include_str!("ops/metatexture/meta.wgsl")),
         ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
         ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
         ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),

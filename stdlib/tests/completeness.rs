@@ -12,18 +12,12 @@ use stdlib::{Default, Ty};
 /// Operators still in the old tables (`operators*.rs`), not yet moved into
 /// `stdlib/src/ops/`; each is checked as before, without the data cases.
 const NOT_YET_MOVED: &[&str] = &[
-    "metatexture_grad",
-    "metatexture",
-    "metatexture4_grad",
-    "metatexture4",
     "shadow",
     "contour_fade",
     "reprojection_mask",
     "stereo_consistency",
     "radial_alpha",
     "uv_gradients",
-    "metatexture_contour_grad",
-    "metatexture_contour",
     "live_texture",
     "line_boil",
     "roll_compensate",

@@ -24,6 +24,7 @@ macro_rules! each {
 pub mod colour;
 pub mod filters;
 pub mod images;
+pub mod metatexture;
 pub mod sample;
 pub mod shading;
 
@@ -78,6 +79,12 @@ registry! {
     colour::SATURATION => saturation,
     colour::OVERLAY => overlay,
     sample::SAMPLE => sample,
+    metatexture::METATEXTURE_GRAD => metatexture_grad,
+    metatexture::METATEXTURE => metatexture,
+    metatexture::METATEXTURE4_GRAD => metatexture4_grad,
+    metatexture::METATEXTURE4 => metatexture4,
+    metatexture::METATEXTURE_CONTOUR_GRAD => metatexture_contour_grad,
+    metatexture::METATEXTURE_CONTOUR => metatexture_contour,
 }
 
 /// The registered operator `name`.
