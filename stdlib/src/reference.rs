@@ -5,8 +5,7 @@
 //! The MetaTexture extensions and the Edge Breakup operators (Age of Sail
 //! §3.2–3.5, §4, eqs. 9–13, 26–30) are in [`breakup`], re-exported here.
 
-mod breakup;
-pub use breakup::*;
+pub use crate::ops::breakup::reference::*;
 mod patterns;
 pub use patterns::*;
 mod halftone;

@@ -21,6 +21,7 @@ macro_rules! each {
     };
 }
 
+pub mod breakup;
 pub mod colour;
 pub mod filters;
 pub mod images;
@@ -83,8 +84,15 @@ registry! {
     metatexture::METATEXTURE => metatexture,
     metatexture::METATEXTURE4_GRAD => metatexture4_grad,
     metatexture::METATEXTURE4 => metatexture4,
+    breakup::RADIAL_ALPHA => radial_alpha,
+    breakup::UV_GRADIENTS => uv_gradients,
     metatexture::METATEXTURE_CONTOUR_GRAD => metatexture_contour_grad,
     metatexture::METATEXTURE_CONTOUR => metatexture_contour,
+    breakup::LIVE_TEXTURE => live_texture,
+    breakup::LINE_BOIL => line_boil,
+    breakup::ROLL_COMPENSATE => roll_compensate,
+    breakup::DISTANCE_ATTENUATE => distance_attenuate,
+    breakup::WARP => warp,
 }
 
 /// The registered operator `name`.

@@ -3,7 +3,7 @@
 //! texture) and the Edge Breakup operators (§4.2 line boil, §4.3 camera
 //! roll, §4.4 distance, the warp itself). Each follows its WGSL file.
 
-use super::ImageF64;
+use crate::reference::ImageF64;
 
 fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]
@@ -94,4 +94,26 @@ pub fn warp(src: &ImageF64, offset: [f64; 2], strength: f64, uv: [f64; 2]) -> [f
     let d = [offset[0] * strength, offset[1] * strength].map(|x| if x.is_nan() { 0.0 } else { x.clamp(-1e6, 1e6) });
     let p = [uv[0] * src.width as f64 + d[0], uv[1] * src.height as f64 + d[1]];
     src.load(p[0].floor() as i64, p[1].floor() as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radial_alpha_is_1_at_the_centre_and_3_in_a_corner_at_90_degrees() {
+        // With a 90° field of view (P₀₀ = 1) α = 3 in a corner.
+        assert_eq!(radial_alpha([0.5, 0.5], [1.0, 1.0]), 1.0);
+        assert!((radial_alpha([1.0, 0.0], [1.0, 1.0]) - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn distance_attenuation_stays_in_0_rho() {
+        for d in [0.0, 1e-3, 1.0, 7.5, 1e5, 1e20, -3.0] {
+            for falloff in [0.001, 1.0, 1e5] {
+                let r = distance_attenuate(2.0, d, falloff);
+                assert!((0.0..=2.0).contains(&r), "ρ' out of [0, ρ]: {r}");
+            }
+        }
+    }
 }
