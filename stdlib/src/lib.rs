@@ -28,8 +28,10 @@ pub mod ops;
 pub mod reference;
 pub mod reference_gbuffer;
 pub mod reference_lsa;
-pub mod reference_pipeline;
-pub mod reference_stereo;
+/// The f64 references of `shadow` (the Age of Sail pipeline, §5).
+pub use ops::shadow::reference as reference_pipeline;
+/// The f64 references of the stereo operators (LSA contours §4.2).
+pub use ops::stereo::reference as reference_stereo;
 
 use serde::Serialize;
 

@@ -24,6 +24,9 @@ pub enum Arg {
     /// `n` values drawn uniformly per component from `[lo, hi]` by a fixed
     /// generator (seeded by the operator, case and argument): a factor like `Each`.
     Random { lo: Value, hi: Value, n: u32 },
+    /// A function of another (number) argument's value in the same call,
+    /// e.g. a point on a sphere from its normal.
+    From { arg: usize, f: fn(Value) -> Value },
     /// The call's pixel of the case's `pixels` grid, as a texel centre
     /// ((x + ½)/w, (y + ½)/h): "this pixel" for operators that read a texture there.
     Uv,

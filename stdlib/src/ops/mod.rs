@@ -28,6 +28,8 @@ pub mod images;
 pub mod metatexture;
 pub mod sample;
 pub mod shading;
+pub mod shadow;
+pub mod stereo;
 
 use crate::{Default, Operator, Param, Ty, Unit};
 
@@ -84,6 +86,10 @@ registry! {
     metatexture::METATEXTURE => metatexture,
     metatexture::METATEXTURE4_GRAD => metatexture4_grad,
     metatexture::METATEXTURE4 => metatexture4,
+    shadow::SHADOW => shadow,
+    stereo::CONTOUR_FADE => contour_fade,
+    stereo::REPROJECTION_MASK => reprojection_mask,
+    stereo::STEREO_CONSISTENCY => stereo_consistency,
     breakup::RADIAL_ALPHA => radial_alpha,
     breakup::UV_GRADIENTS => uv_gradients,
     metatexture::METATEXTURE_CONTOUR_GRAD => metatexture_contour_grad,

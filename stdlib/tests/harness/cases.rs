@@ -123,8 +123,19 @@ pub fn run_case(def: &OpDef, index: usize, case: &Case) -> usize {
             _ => unreachable!(),
         }
     };
+    let value = |j: usize, k: usize| -> Value {
+        match case.args[k] {
+            Arg::From { arg, f } => q(f(value(j, arg))),
+            _ => value(j, k),
+        }
+    };
     let slots: Vec<usize> = (0..case.args.len())
-        .filter(|k| matches!(case.args[*k], Arg::Const(_) | Arg::Each(_) | Arg::Random { .. }))
+        .filter(|k| {
+            matches!(
+                case.args[*k],
+                Arg::Const(_) | Arg::Each(_) | Arg::Random { .. } | Arg::From { .. }
+            )
+        })
         .collect();
     let cols = (256 / w as usize).clamp(1, calls);
     let rows = calls.div_ceil(cols);
