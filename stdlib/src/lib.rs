@@ -22,11 +22,10 @@ pub mod halftone_table;
 pub mod metrics;
 pub mod operators;
 pub mod operators_artmaps;
-pub mod operators_gbuffer;
-pub mod operators_patterns;
 pub mod ops;
 pub mod reference;
-pub mod reference_gbuffer;
+/// The f64 references of the G-buffer packing operators.
+pub use ops::gbuffer::reference as reference_gbuffer;
 pub mod reference_lsa;
 /// The f64 references of `shadow` (the Age of Sail pipeline, §5).
 pub use ops::shadow::reference as reference_pipeline;
@@ -211,7 +210,7 @@ pub mod snippets {
         ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
         ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
         ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
-        ("oct", include_str!("../wgsl/oct.wgsl")),
+        ("oct", include_str!("ops/gbuffer/oct.wgsl")),
     ];
 
     pub fn find(name: &str) -> Option<&'static str> {
@@ -289,13 +288,7 @@ const ORDER: &[&str] = &[
 /// operators.
 pub fn all() -> &'static [Operator] {
     static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
-        let old: Vec<Operator> = operators::ALL
-            .iter()
-            .chain(operators_patterns::ALL)
-            .chain(operators_artmaps::ALL)
-            .chain(operators_gbuffer::ALL)
-            .copied()
-            .collect();
+        let old: Vec<Operator> = operators::ALL.iter().chain(operators_artmaps::ALL).copied().collect();
         let all: Vec<Operator> = ORDER
             .iter()
             .map(|n| match ops::find(n) {

@@ -6,10 +6,8 @@
 //! §3.2–3.5, §4, eqs. 9–13, 26–30) are in [`breakup`], re-exported here.
 
 pub use crate::ops::breakup::reference::*;
-mod patterns;
-pub use patterns::*;
-mod halftone;
-pub use halftone::*;
+pub use crate::ops::gbuffer::reference::{oct_decode, oct_encode};
+pub use crate::ops::patterns::reference::*;
 mod artmaps;
 pub use crate::ops::colour::{luminance, over, overlay, saturation};
 pub use crate::ops::filters::{downsample, gaussian, normal_depth_edges, sobel, GAUSSIAN_MAX_RADIUS};

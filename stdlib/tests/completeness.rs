@@ -17,15 +17,8 @@ const NOT_YET_MOVED: &[&str] = &[
     "lsa_curv_aa",
     "lsa_curv",
     "lsa_density",
-    "id_share",
-    "complex_mul",
-    "pattern_uv",
-    "halftone_screen",
-    "halftone",
     "sample_biased",
     "sample_ripmap",
-    "oct_encode",
-    "oct_decode",
 ];
 
 fn wgsl_with_deps(op: &stdlib::Operator) -> String {
@@ -300,7 +293,7 @@ fn every_registered_operator_has_gpu_cases() {
                 let fits = match a {
                     Arg::Texture(_) => matches!(p.ty, Ty::Texture | Ty::SampledTexture),
                     Arg::Uv => p.ty == Ty::Vec2,
-                    Arg::ScreenUv { .. } => p.ty == Ty::Vec2 && case.pixels.0 % 2 == 0 && case.pixels.1 % 2 == 0,
+                    Arg::ScreenUv { .. } => p.ty == Ty::Vec2,
                     Arg::Const(_) | Arg::Each(_) | Arg::Random { .. } => {
                         !matches!(p.ty, Ty::Texture | Ty::SampledTexture)
                     }

@@ -31,8 +31,9 @@ pub enum Arg {
     /// ((x + ½)/w, (y + ½)/h): "this pixel" for operators that read a texture there.
     Uv,
     /// A uv affine in the pixel: `origin + (x + ½)·dx + (y + ½)·dy`, so its
-    /// screen derivatives are `dx` and `dy` (operators that take
-    /// derivatives: the case's grid must have an even width and height).
+    /// screen derivatives are `dx` and `dy`. (An operator that takes
+    /// derivatives needs an even grid when a case has several calls: the
+    /// 2×2 quads derivatives are taken over must not straddle two calls.)
     ScreenUv {
         origin: [f64; 2],
         dx: [f64; 2],

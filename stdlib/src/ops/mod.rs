@@ -24,8 +24,10 @@ macro_rules! each {
 pub mod breakup;
 pub mod colour;
 pub mod filters;
+pub mod gbuffer;
 pub mod images;
 pub mod metatexture;
+pub mod patterns;
 pub mod sample;
 pub mod shading;
 pub mod shadow;
@@ -99,6 +101,13 @@ registry! {
     breakup::ROLL_COMPENSATE => roll_compensate,
     breakup::DISTANCE_ATTENUATE => distance_attenuate,
     breakup::WARP => warp,
+    patterns::ID_SHARE => id_share,
+    patterns::COMPLEX_MUL => complex_mul,
+    patterns::PATTERN_UV => pattern_uv,
+    patterns::HALFTONE_SCREEN => halftone_screen,
+    patterns::HALFTONE => halftone,
+    gbuffer::OCT_ENCODE => oct_encode,
+    gbuffer::OCT_DECODE => oct_decode,
 }
 
 /// The registered operator `name`.

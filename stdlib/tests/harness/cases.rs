@@ -102,12 +102,23 @@ pub fn run_case(def: &OpDef, index: usize, case: &Case) -> usize {
                     .collect();
                 factors.push((k, vs));
             }
-            Arg::ScreenUv { .. } => assert!(w % 2 == 0 && h % 2 == 0, "{label}: a screen uv needs an even grid"),
             _ => {}
         }
     }
     let calls: usize = factors.iter().map(|(_, v)| v.len()).product();
     assert!(calls > 0, "{label}: no calls");
+    // Screen derivatives are taken over 2×2 quads: they must not straddle two calls.
+    let prelude = with_deps(op);
+    if calls > 1
+        && ["dpdx", "dpdy", "fwidth", "textureSample(", "textureSampleBias("]
+            .iter()
+            .any(|f| prelude.contains(f))
+    {
+        assert!(
+            w % 2 == 0 && h % 2 == 0,
+            "{label}: an operator that takes derivatives needs an even grid"
+        );
+    }
     // The value of argument k in call j (factors in mixed radix, the first fastest).
     let value = |j: usize, k: usize| -> Value {
         let mut rest = j;
@@ -217,7 +228,6 @@ fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {{
     return {wrapped};
 }}
 ",
-        prelude = with_deps(op),
         last = calls - 1,
     );
     let mut inputs: Vec<[f32; 4]> = Vec::new();
