@@ -20,13 +20,13 @@
 
 pub mod halftone_table;
 pub mod metrics;
-pub mod operators;
 pub mod operators_artmaps;
 pub mod ops;
 pub mod reference;
 /// The f64 references of the G-buffer packing operators.
 pub use ops::gbuffer::reference as reference_gbuffer;
-pub mod reference_lsa;
+/// The f64 references of the LSA contour operators.
+pub use ops::lsa::reference as reference_lsa;
 /// The f64 references of `shadow` (the Age of Sail pipeline, §5).
 pub use ops::shadow::reference as reference_pipeline;
 /// The f64 references of the stereo operators (LSA contours §4.2).
@@ -207,9 +207,9 @@ pub struct Specialization {
 pub mod snippets {
     pub const ALL: &[(&str, &str)] = &[
         ("meta", include_str!("ops/metatexture/meta.wgsl")),
-        ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
-        ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
-        ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
+        ("lsa_core", include_str!("ops/lsa/lsa_core.wgsl")),
+        ("lsa_plane", include_str!("ops/lsa/lsa_plane.wgsl")),
+        ("lsa_aa", include_str!("ops/lsa/lsa_aa.wgsl")),
         ("oct", include_str!("ops/gbuffer/oct.wgsl")),
     ];
 
@@ -288,7 +288,7 @@ const ORDER: &[&str] = &[
 /// operators.
 pub fn all() -> &'static [Operator] {
     static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
-        let old: Vec<Operator> = operators::ALL.iter().chain(operators_artmaps::ALL).copied().collect();
+        let old: Vec<Operator> = operators_artmaps::ALL.to_vec();
         let all: Vec<Operator> = ORDER
             .iter()
             .map(|n| match ops::find(n) {

@@ -62,51 +62,9 @@ pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Operators that have a reference here (checked by the completeness test).
-pub const REFERENCED: &[&str] = &[
-    "lambert",
-    "half_lambert",
-    "toon",
-    "threshold",
-    "gaussian",
-    "downsample",
-    "sobel",
-    "normal_depth_edges",
-    "over",
-    "luminance",
-    "saturation",
-    "overlay",
-    "sample",
-    "metatexture_grad",
-    "metatexture",
-    "metatexture4_grad",
-    "metatexture4",
-    "shadow",
-    "contour_fade",
-    "reprojection_mask",
-    "stereo_consistency",
-    "radial_alpha",
-    "uv_gradients",
-    "metatexture_contour_grad",
-    "metatexture_contour",
-    "live_texture",
-    "line_boil",
-    "roll_compensate",
-    "distance_attenuate",
-    "warp",
-    "id_share",
-    "complex_mul",
-    "pattern_uv",
-    "halftone_screen",
-    "halftone",
-    "sample_biased",
-    "sample_ripmap",
-];
-
+/// Does operator `name` have an f64 reference (is it registered in [`crate::ops`])?
 pub fn has_reference(name: &str) -> bool {
-    REFERENCED.contains(&name)
-        || crate::reference_lsa::REFERENCED.contains(&name)
-        || crate::reference_gbuffer::REFERENCED.contains(&name)
+    crate::ops::find(name).is_some()
 }
 
 /// Bilinear filtering with repeat addressing at level 0 (a tileable texture).

@@ -26,6 +26,7 @@ pub mod colour;
 pub mod filters;
 pub mod gbuffer;
 pub mod images;
+pub mod lsa;
 pub mod metatexture;
 pub mod patterns;
 pub mod sample;
@@ -101,6 +102,11 @@ registry! {
     breakup::ROLL_COMPENSATE => roll_compensate,
     breakup::DISTANCE_ATTENUATE => distance_attenuate,
     breakup::WARP => warp,
+    lsa::LSA => lsa,
+    lsa::LSA_SUM => lsa_sum,
+    lsa::LSA_CURV_AA => lsa_curv_aa,
+    lsa::LSA_CURV => lsa_curv,
+    lsa::LSA_DENSITY => lsa_density,
     patterns::ID_SHARE => id_share,
     patterns::COMPLEX_MUL => complex_mul,
     patterns::PATTERN_UV => pattern_uv,

@@ -3,9 +3,6 @@
 //! with `stdlib/wgsl/oct.wgsl`, and the 16-bit float stores a target of
 //! codes rounds through (to nearest, or truncating, as lavapipe does).
 
-/// Operators with a reference here (read by `reference::has_reference`).
-pub const REFERENCED: &[&str] = &["oct_encode", "oct_decode"];
-
 /// ±1, +1 at 0 (`npr_oct__sign_not_zero`).
 fn sign_not_zero(v: f64) -> f64 {
     if v >= 0.0 {
