@@ -20,7 +20,6 @@
 
 pub mod halftone_table;
 pub mod metrics;
-pub mod operators_artmaps;
 pub mod ops;
 pub mod reference;
 /// The f64 references of the G-buffer packing operators.
@@ -233,72 +232,13 @@ impl Operator {
     }
 }
 
-/// The order of [`all`] (while operators move into [`ops`]; the IR names
-/// operators by their index here).
-const ORDER: &[&str] = &[
-    "lambert",
-    "half_lambert",
-    "toon",
-    "threshold",
-    "gaussian",
-    "downsample",
-    "sobel",
-    "normal_depth_edges",
-    "over",
-    "luminance",
-    "saturation",
-    "overlay",
-    "sample",
-    "metatexture_grad",
-    "metatexture",
-    "metatexture4_grad",
-    "metatexture4",
-    "shadow",
-    "contour_fade",
-    "reprojection_mask",
-    "stereo_consistency",
-    "radial_alpha",
-    "uv_gradients",
-    "metatexture_contour_grad",
-    "metatexture_contour",
-    "live_texture",
-    "line_boil",
-    "roll_compensate",
-    "distance_attenuate",
-    "warp",
-    "lsa",
-    "lsa_sum",
-    "lsa_curv_aa",
-    "lsa_curv",
-    "lsa_density",
-    "id_share",
-    "complex_mul",
-    "pattern_uv",
-    "halftone_screen",
-    "halftone",
-    "sample_biased",
-    "sample_ripmap",
-    "oct_encode",
-    "oct_decode",
-];
-
 /// Every operator in the standard library, in a fixed order (the IR names
 /// operators by their index here): the operator table, then the dynamic
 /// 2D patterns' operators, the art-map operators and the G-buffer packing
 /// operators.
 pub fn all() -> &'static [Operator] {
-    static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
-        let old: Vec<Operator> = operators_artmaps::ALL.to_vec();
-        let all: Vec<Operator> = ORDER
-            .iter()
-            .map(|n| match ops::find(n) {
-                Some(d) => d.op,
-                None => *old.iter().find(|o| o.name == *n).expect("every operator is in ORDER"),
-            })
-            .collect();
-        assert_eq!(all.len(), ops::ALL.len() + old.len(), "every operator is in ORDER once");
-        all
-    });
+    static ALL: std::sync::LazyLock<Vec<Operator>> =
+        std::sync::LazyLock::new(|| ops::ALL.iter().map(|d| d.op).collect());
     &ALL
 }
 

@@ -2,19 +2,20 @@
 //! tests. They follow the WGSL line by line in meaning, not in precision:
 //! the GPU runs in f32 and the tests state the tolerance they allow.
 //!
-//! The MetaTexture extensions and the Edge Breakup operators (Age of Sail
-//! §3.2–3.5, §4, eqs. 9–13, 26–30) are in [`breakup`], re-exported here.
+//! Each operator's reference lives with it in `stdlib/src/ops/<family>/`
+//! (under the operator's own name); this module keeps the shared image
+//! type and helpers, and re-exports every reference so that
+//! `stdlib::reference::<name>` reaches it.
 
+pub use crate::ops::artmaps::reference::*;
 pub use crate::ops::breakup::reference::*;
-pub use crate::ops::gbuffer::reference::{oct_decode, oct_encode};
-pub use crate::ops::patterns::reference::*;
-mod artmaps;
 pub use crate::ops::colour::{luminance, over, overlay, saturation};
 pub use crate::ops::filters::{downsample, gaussian, normal_depth_edges, sobel, GAUSSIAN_MAX_RADIUS};
+pub use crate::ops::gbuffer::reference::{oct_decode, oct_encode};
 pub use crate::ops::metatexture::reference::*;
+pub use crate::ops::patterns::reference::*;
 pub use crate::ops::sample::sample;
 pub use crate::ops::shading::{half_lambert, lambert, threshold, toon};
-pub use artmaps::*;
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).

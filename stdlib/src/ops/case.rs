@@ -51,6 +51,8 @@ pub struct Tex {
     pub format: TexFormat,
     /// A sampled texture's sampler repeats (otherwise it clamps to the edge); both filter linearly.
     pub repeat: bool,
+    /// A full mip chain: level k ≥ 1's texels (the sampler filters between levels linearly).
+    pub levels: Option<fn(u32) -> ImageF64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -214,6 +216,7 @@ pub const fn tex32(image: fn() -> ImageF64) -> Arg {
         image,
         format: TexFormat::Rgba32Float,
         repeat: false,
+        levels: None,
     })
 }
 
@@ -223,6 +226,17 @@ pub const fn tex8(image: fn() -> ImageF64, repeat: bool) -> Arg {
         image,
         format: TexFormat::Rgba8Unorm,
         repeat,
+        levels: None,
+    })
+}
+
+/// An 8-bit unorm texture with a full mip chain: level 0 is `image`, level k is `level(k)`.
+pub const fn tex8_mipmapped(image: fn() -> ImageF64, level: fn(u32) -> ImageF64, repeat: bool) -> Arg {
+    Arg::Texture(Tex {
+        image,
+        format: TexFormat::Rgba8Unorm,
+        repeat,
+        levels: Some(level),
     })
 }
 

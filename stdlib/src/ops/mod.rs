@@ -21,6 +21,7 @@ macro_rules! each {
     };
 }
 
+pub mod artmaps;
 pub mod breakup;
 pub mod colour;
 pub mod filters;
@@ -112,6 +113,8 @@ registry! {
     patterns::PATTERN_UV => pattern_uv,
     patterns::HALFTONE_SCREEN => halftone_screen,
     patterns::HALFTONE => halftone,
+    artmaps::SAMPLE_BIASED => sample_biased,
+    artmaps::SAMPLE_RIPMAP => sample_ripmap,
     gbuffer::OCT_ENCODE => oct_encode,
     gbuffer::OCT_DECODE => oct_decode,
 }

@@ -79,6 +79,7 @@ pub fn run_case(def: &OpDef, index: usize, case: &Case) -> usize {
     // Textures, per argument; the values of each factor, per argument.
     let mut images: Vec<Option<ImageF64>> = Vec::new();
     let mut textures: Vec<TexIn> = Vec::new();
+    let mut levels: Vec<Vec<ImageF64>> = Vec::new();
     let mut factors: Vec<(usize, Vec<Value>)> = Vec::new();
     for (k, a) in case.args.iter().enumerate() {
         images.push(None);
@@ -91,6 +92,11 @@ pub fn run_case(def: &OpDef, index: usize, case: &Case) -> usize {
                         TexFormat::Rgba8Unorm => wgpu::TextureFormat::Rgba8Unorm,
                         TexFormat::Rgba32Float => wgpu::TextureFormat::Rgba32Float,
                     },
+                });
+                let count = 32 - image.width.max(image.height).leading_zeros();
+                levels.push(match t.levels {
+                    Some(f) => (1..count).map(f).collect(),
+                    None => Vec::new(),
                 });
                 images[k] = Some(image);
             }
@@ -236,7 +242,7 @@ fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {{
             inputs.push(value(j, *k).map(|x| x as f32));
         }
     }
-    let out = render(&label, &src, &inputs, size, &textures, &call);
+    let out = render(&label, &src, &inputs, size, (&textures, &levels), &call);
 
     // The reference, call by call and pixel by pixel.
     let (mut compared, mut skipped, mut max) = (0usize, 0usize, 0.0f64);
@@ -317,7 +323,7 @@ fn render(
     src: &str,
     inputs: &[[f32; 4]],
     size: (u32, u32),
-    textures: &[TexIn],
+    (textures, levels): (&[TexIn], &[Vec<ImageF64>]),
     call: &str,
 ) -> Vec<[f32; 4]> {
     use wgpu::util::DeviceExt;
@@ -355,6 +361,7 @@ fn render(
             address_mode_v: mode,
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         })
     };
@@ -367,7 +374,7 @@ fn render(
         contents: bytemuck::cast_slice(if inputs.is_empty() { &[[0.0f32; 4]] } else { inputs }),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let views: Vec<wgpu::TextureView> = textures.iter().map(|t| upload(g, t)).collect();
+    let views: Vec<wgpu::TextureView> = textures.iter().zip(levels).map(|(t, l)| upload(g, t, l)).collect();
     // Auto layouts hold only what the shader uses.
     let mut entries = Vec::new();
     if !inputs.is_empty() {
@@ -475,42 +482,66 @@ fn render(
     out
 }
 
-fn upload(g: &super::Gpu, t: &TexIn) -> wgpu::TextureView {
-    use wgpu::util::DeviceExt;
-    let bytes: Vec<u8> = match t.format {
-        wgpu::TextureFormat::Rgba8Unorm => t
-            .image
-            .pixels
-            .iter()
-            .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
-            .collect(),
-        _ => t
-            .image
-            .pixels
-            .iter()
-            .flat_map(|p| p.map(|c| c as f32))
-            .flat_map(f32::to_le_bytes)
-            .collect(),
+/// A texture with level 0 from `t` and the levels after it from `levels`.
+fn upload(g: &super::Gpu, t: &TexIn, levels: &[ImageF64]) -> wgpu::TextureView {
+    let bytes = |image: &ImageF64| -> (Vec<u8>, u32) {
+        match t.format {
+            wgpu::TextureFormat::Rgba8Unorm => (
+                image
+                    .pixels
+                    .iter()
+                    .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+                    .collect(),
+                4,
+            ),
+            _ => (
+                image
+                    .pixels
+                    .iter()
+                    .flat_map(|p| p.map(|c| c as f32))
+                    .flat_map(f32::to_le_bytes)
+                    .collect(),
+                16,
+            ),
+        }
     };
-    g.device
-        .create_texture_with_data(
-            &g.queue,
-            &wgpu::TextureDescriptor {
-                label: None,
-                size: wgpu::Extent3d {
-                    width: t.image.width,
-                    height: t.image.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: t.format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
+    let texture = g.device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: t.image.width,
+            height: t.image.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1 + levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: t.format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (mip, image) in std::iter::once(&t.image).chain(levels).enumerate() {
+        let (data, bpp) = bytes(image);
+        let (w, h) = ((t.image.width >> mip).max(1), (t.image.height >> mip).max(1));
+        assert_eq!((image.width, image.height), (w, h), "mip level {mip} is {w}×{h}");
+        g.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
             },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            &bytes,
-        )
-        .create_view(&Default::default())
+            &data,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(w * bpp),
+                rows_per_image: Some(h),
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    texture.create_view(&Default::default())
 }
