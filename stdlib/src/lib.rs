@@ -1,10 +1,12 @@
 //! The npr operator standard library.
 //!
-//! Each operator is a WGSL function (in `stdlib/wgsl/<name>.wgsl`) plus
-//! metadata: its signature, parameter types, units, defaults, ranges, docs,
-//! and the paper and equation numbers it implements. Each also has a CPU f64
-//! reference implementation in [`reference`] (the LSA contour operators in
-//! [`reference_lsa`]), used by the accuracy tests.
+//! Each operator lives in a folder of [`ops`] (one per operator or family
+//! of variants): a WGSL function (`<name>.wgsl`) plus metadata (its
+//! signature, parameter types, units, defaults, ranges, docs, and the paper
+//! and equation numbers it implements), a CPU f64 reference under its own
+//! name, and the GPU-against-reference cases the generic test runs. Every
+//! reference is re-exported by [`reference`]; [`all`] is the registry of
+//! [`ops`], in order.
 //!
 //! WGSL conventions (the compiler relies on them):
 //! - operator `foo` is the WGSL function `npr_foo`; private helpers in the same

@@ -1,6 +1,6 @@
 //! CPU f64 references of the G-buffer packing operators: the signed
 //! octahedral encoding (Cigolle et al. 2014 §3.1), line by line in meaning
-//! with `stdlib/wgsl/oct.wgsl`, and the 16-bit float stores a target of
+//! with `oct.wgsl` beside it, and the 16-bit float stores a target of
 //! codes rounds through (to nearest, or truncating, as lavapipe does).
 
 /// ±1, +1 at 0 (`npr_oct__sign_not_zero`).

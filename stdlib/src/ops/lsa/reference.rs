@@ -1,6 +1,6 @@
 //! CPU f64 references of the LSA contour operators (Zaidi et al., "Local
 //! Surface Approximation Contours for Virtual Reality Stylisation"), line by
-//! line in meaning with `stdlib/wgsl/lsa_*.wgsl`. Equation numbers are the
+//! line in meaning with `lsa*.wgsl` beside it. Equation numbers are the
 //! paper's; see the WGSL files for the reasoning behind each choice (the
 //! e_plane offsets, the background and border rules).
 
