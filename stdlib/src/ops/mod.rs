@@ -1,15 +1,25 @@
 //! The operators, one folder per operator or family of variants: its
-//! metadata (an [`OpDef`]: the [`Operator`], its f64 reference as a
+//! metadata (an [`OpDef`]: the [`crate::Operator`], its f64 reference as a
 //! function of one call's arguments, its GPU cases), its f64 reference
 //! functions (each under its operator's name) and its WGSL files. Each
 //! operator is registered with one line below, in the order of
 //! [`crate::all`] (the IR names operators by that index).
 //!
-//! Adding an operator: a folder `ops/<name>/` with `<name>.wgsl` (the
-//! function `npr_<name>`) and `mod.rs` (the `Operator`, `pub fn <name>` in
-//! f64, `pub const <NAME>: OpDef` with at least one [`Case`]), a `mod`
-//! line and a registration line here. `tests/completeness.rs` checks the
-//! rest; `tests/gpu_cases.rs` runs the cases.
+//! Adding an operator (or a variant to a family's folder):
+//! 1. `ops/<name>/<name>.wgsl` with the function `npr_<name>` (helpers
+//!    `npr_<name>__*`; shared helpers are snippets, see [`crate::snippets`]);
+//! 2. `ops/<name>/mod.rs` with a `//!` header citing the paper, the f64
+//!    reference `pub fn <name>` (or in a `reference.rs` beside it,
+//!    re-exported), and `pub const <NAME>: OpDef = OpDef::new(Operator { …
+//!    }, |args| <reference of one call>, &[Case::new(…), …])`: at least one
+//!    data case, with its tolerance and why;
+//! 3. `pub mod <name>;` and `<name>::<NAME> => <name>,` at the end of the
+//!    registry below (appending keeps every operator's index), and the
+//!    reference's re-export in `crate::reference`.
+//!
+//! `tests/completeness.rs` says what is missing (naga, the signature, the
+//! docs, the reference's name, the cases' fit to the signature);
+//! `tests/gpu_cases.rs` runs the cases on the GPU, no test code needed.
 
 pub mod case;
 pub use case::*;
@@ -35,7 +45,7 @@ pub mod shading;
 pub mod shadow;
 pub mod stereo;
 
-use crate::{Default, Operator, Param, Ty, Unit};
+use crate::{Default, Param, Ty, Unit};
 
 /// A required parameter with no unit or range.
 pub(crate) const fn p(name: &'static str, ty: Ty, doc: &'static str) -> Param {
@@ -122,9 +132,4 @@ registry! {
 /// The registered operator `name`.
 pub fn find(name: &str) -> Option<&'static OpDef> {
     ALL.iter().find(|d| d.op.name == name)
-}
-
-/// Is `op` registered here (moved into `ops/`)?
-pub fn is_registered(op: &Operator) -> bool {
-    find(op.name).is_some()
 }

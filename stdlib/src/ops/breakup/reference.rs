@@ -1,7 +1,8 @@
 //! f64 references for the MetaTexture extensions (Age of Sail §3.2 smooth
-//! gradients, §3.3 radial angle, §3.5 contour orientation, §6.1 live
-//! texture) and the Edge Breakup operators (§4.2 line boil, §4.3 camera
-//! roll, §4.4 distance, the warp itself). Each follows its WGSL file.
+//! gradients, §3.3 radial angle, §6.1 live texture; §3.5's contour
+//! orientation is with MetaTexture in `ops/metatexture`) and the Edge
+//! Breakup operators (§4.2 line boil, §4.3 camera roll, §4.4 distance, the
+//! warp itself). Each follows its WGSL file beside it.
 
 use crate::reference::ImageF64;
 
