@@ -151,3 +151,28 @@ fn inverse_row(edge: f64, blend: f64) -> [f64; TONES] {
         ts[k - 1] + (ts[k] - ts[k - 1]) * f
     })
 }
+
+impl HalftoneTable {
+    /// The table a 256 × 17 texture of [`HalftoneTable::texels`] holds
+    /// (channel r), as the shader reads it.
+    pub fn from_image(image: &crate::reference::ImageF64) -> HalftoneTable {
+        assert_eq!(
+            (image.width, image.height),
+            (TONES as u32, ROWS as u32),
+            "a halftone table texture"
+        );
+        let at = |i: usize, j: usize| image.pixels[j * TONES + i][0];
+        HalftoneTable {
+            edge: at(0, BLENDS),
+            thresholds: (0..BLENDS).map(|j| std::array::from_fn(|i| at(i, j))).collect(),
+        }
+    }
+
+    /// The table as a 256 × 17 texture (f32 texels, in channel r).
+    pub fn image(&self) -> crate::reference::ImageF64 {
+        let texels = self.texels();
+        crate::reference::ImageF64::new(TONES as u32, ROWS as u32, |x, y| {
+            [f64::from(texels[y as usize * TONES + x as usize]), 0.0, 0.0, 1.0]
+        })
+    }
+}

@@ -1,10 +1,12 @@
 //! The npr operator standard library.
 //!
-//! Each operator is a WGSL function (in `stdlib/wgsl/<name>.wgsl`) plus
-//! metadata: its signature, parameter types, units, defaults, ranges, docs,
-//! and the paper and equation numbers it implements. Each also has a CPU f64
-//! reference implementation in [`reference`] (the LSA contour operators in
-//! [`reference_lsa`]), used by the accuracy tests.
+//! Each operator lives in a folder of [`ops`] (one per operator or family
+//! of variants): a WGSL function (`<name>.wgsl`) plus metadata (its
+//! signature, parameter types, units, defaults, ranges, docs, and the paper
+//! and equation numbers it implements), a CPU f64 reference under its own
+//! name, and the GPU-against-reference cases the generic test runs. Every
+//! reference is re-exported by [`reference`]; [`all`] is the registry of
+//! [`ops`], in order.
 //!
 //! WGSL conventions (the compiler relies on them):
 //! - operator `foo` is the WGSL function `npr_foo`; private helpers in the same
@@ -20,15 +22,16 @@
 
 pub mod halftone_table;
 pub mod metrics;
-pub mod operators;
-pub mod operators_artmaps;
-pub mod operators_gbuffer;
-pub mod operators_patterns;
+pub mod ops;
 pub mod reference;
-pub mod reference_gbuffer;
-pub mod reference_lsa;
-pub mod reference_pipeline;
-pub mod reference_stereo;
+/// The f64 references of the G-buffer packing operators.
+pub use ops::gbuffer::reference as reference_gbuffer;
+/// The f64 references of the LSA contour operators.
+pub use ops::lsa::reference as reference_lsa;
+/// The f64 references of `shadow` (the Age of Sail pipeline, §5).
+pub use ops::shadow::reference as reference_pipeline;
+/// The f64 references of the stereo operators (LSA contours §4.2).
+pub use ops::stereo::reference as reference_stereo;
 
 use serde::Serialize;
 
@@ -204,11 +207,11 @@ pub struct Specialization {
 /// `npr_<name>__` and are emitted once per module that needs them.
 pub mod snippets {
     pub const ALL: &[(&str, &str)] = &[
-        ("meta", include_str!("../wgsl/metatexture_common.wgsl")),
-        ("lsa_core", include_str!("../wgsl/lsa_core.wgsl")),
-        ("lsa_plane", include_str!("../wgsl/lsa_plane.wgsl")),
-        ("lsa_aa", include_str!("../wgsl/lsa_aa.wgsl")),
-        ("oct", include_str!("../wgsl/oct.wgsl")),
+        ("meta", include_str!("ops/metatexture/meta.wgsl")),
+        ("lsa_core", include_str!("ops/lsa/lsa_core.wgsl")),
+        ("lsa_plane", include_str!("ops/lsa/lsa_plane.wgsl")),
+        ("lsa_aa", include_str!("ops/lsa/lsa_aa.wgsl")),
+        ("oct", include_str!("ops/gbuffer/oct.wgsl")),
     ];
 
     pub fn find(name: &str) -> Option<&'static str> {
@@ -236,15 +239,8 @@ impl Operator {
 /// 2D patterns' operators, the art-map operators and the G-buffer packing
 /// operators.
 pub fn all() -> &'static [Operator] {
-    static ALL: std::sync::LazyLock<Vec<Operator>> = std::sync::LazyLock::new(|| {
-        operators::ALL
-            .iter()
-            .chain(operators_patterns::ALL)
-            .chain(operators_artmaps::ALL)
-            .chain(operators_gbuffer::ALL)
-            .copied()
-            .collect()
-    });
+    static ALL: std::sync::LazyLock<Vec<Operator>> =
+        std::sync::LazyLock::new(|| ops::ALL.iter().map(|d| d.op).collect());
     &ALL
 }
 

@@ -2,17 +2,20 @@
 //! tests. They follow the WGSL line by line in meaning, not in precision:
 //! the GPU runs in f32 and the tests state the tolerance they allow.
 //!
-//! The MetaTexture extensions and the Edge Breakup operators (Age of Sail
-//! §3.2–3.5, §4, eqs. 9–13, 26–30) are in [`breakup`], re-exported here.
+//! Each operator's reference lives with it in `stdlib/src/ops/<family>/`
+//! (under the operator's own name); this module keeps the shared image
+//! type and helpers, and re-exports every reference so that
+//! `stdlib::reference::<name>` reaches it.
 
-mod breakup;
-pub use breakup::*;
-mod patterns;
-pub use patterns::*;
-mod halftone;
-pub use halftone::*;
-mod artmaps;
-pub use artmaps::*;
+pub use crate::ops::artmaps::reference::*;
+pub use crate::ops::breakup::reference::*;
+pub use crate::ops::colour::{luminance, over, overlay, saturation};
+pub use crate::ops::filters::{downsample, gaussian, normal_depth_edges, sobel, GAUSSIAN_MAX_RADIUS};
+pub use crate::ops::gbuffer::reference::{oct_decode, oct_encode};
+pub use crate::ops::metatexture::reference::*;
+pub use crate::ops::patterns::reference::*;
+pub use crate::ops::sample::sample;
+pub use crate::ops::shading::{half_lambert, lambert, threshold, toon};
 
 /// An RGBA image of f64 texels with clamp-to-edge reads (like `textureLoad`
 /// with clamped coordinates in the WGSL operators).
@@ -49,212 +52,20 @@ impl ImageF64 {
     }
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
+pub(crate) fn unit(v: [f64; 3]) -> [f64; 3] {
     let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     // Same guard as the WGSL: a zero vector stays zero.
     let s = 1.0 / l2.max(1e-30).sqrt();
     [v[0] * s, v[1] * s, v[2] * s]
 }
 
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub fn lambert(n: [f64; 3], l: [f64; 3]) -> f64 {
-    dot3(unit(n), unit(l)).max(0.0)
-}
-
-pub fn half_lambert(n: [f64; 3], l: [f64; 3]) -> f64 {
-    let h = 0.5 * dot3(unit(n), unit(l)) + 0.5;
-    h * h
-}
-
-pub fn toon(x: f64, steps: i64) -> f64 {
-    let n = steps.max(1) as f64;
-    let band = (x.clamp(0.0, 1.0) * n).floor().min(n - 1.0);
-    if n > 1.0 {
-        band / (n - 1.0)
-    } else {
-        0.0
-    }
-}
-
-pub fn threshold(x: f64, lo: f64, hi: f64) -> f64 {
-    if hi <= lo {
-        return if x >= lo { 1.0 } else { 0.0 };
-    }
-    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
-/// Largest blur radius in texels (as in gaussian.wgsl).
-pub const GAUSSIAN_MAX_RADIUS: i64 = 48;
-
-pub fn gaussian(src: &ImageF64, uv: [f64; 2], sigma: f64, axis: i64) -> [f64; 4] {
-    let (px, py) = src.pixel_of(uv);
-    let s = sigma.max(1e-3);
-    let radius = ((3.0 * s).ceil() as i64).min(GAUSSIAN_MAX_RADIUS);
-    let (dx, dy) = if axis == 0 { (1, 0) } else { (0, 1) };
-    let mut acc = [0.0; 4];
-    let mut total = 0.0;
-    for i in -radius..=radius {
-        let w = (-((i * i) as f64) / (2.0 * s * s)).exp();
-        let t = src.load(px + dx * i, py + dy * i);
-        for c in 0..4 {
-            acc[c] += w * t[c];
-        }
-        total += w;
-    }
-    acc.map(|a| a / total)
-}
-
-pub fn downsample(src: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
-    let bx = (uv[0] * src.width as f64 - 0.5).floor() as i64;
-    let by = (uv[1] * src.height as f64 - 0.5).floor() as i64;
-    let mut acc = [0.0; 4];
-    for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-        let t = src.load(bx + dx, by + dy);
-        for c in 0..4 {
-            acc[c] += 0.25 * t[c];
-        }
-    }
-    acc
-}
-
-pub fn sobel(src: &ImageF64, uv: [f64; 2]) -> f64 {
-    let (px, py) = src.pixel_of(uv);
-    let v = |i: i64, j: i64| src.load(px + i, py + j)[0];
-    let gx = (v(1, -1) + 2.0 * v(1, 0) + v(1, 1)) - (v(-1, -1) + 2.0 * v(-1, 0) + v(-1, 1));
-    let gy = (v(-1, 1) + 2.0 * v(0, 1) + v(1, 1)) - (v(-1, -1) + 2.0 * v(0, -1) + v(1, -1));
-    (gx * gx + gy * gy).sqrt() / 8.0
-}
-
-pub fn normal_depth_edges(
-    normals: &ImageF64,
-    depth: &ImageF64,
-    uv: [f64; 2],
-    depth_threshold: f64,
-    normal_threshold: f64,
-) -> f64 {
-    let (nx, ny) = normals.pixel_of(uv);
-    let (dx, dy) = depth.pixel_of(uv);
-    let n = |i: i64, j: i64| {
-        let t = normals.load(nx + i, ny + j);
-        [t[0] * 2.0 - 1.0, t[1] * 2.0 - 1.0, t[2] * 2.0 - 1.0]
-    };
-    let d = |i: i64, j: i64| depth.load(dx + i, dy + j)[0];
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let (a, b) = (sub(n(1, 1), n(0, 0)), sub(n(0, 1), n(1, 0)));
-    let dn = (dot3(a, a) + dot3(b, b)).sqrt();
-    let dd = ((d(1, 1) - d(0, 0)).powi(2) + (d(0, 1) - d(1, 0)).powi(2)).sqrt();
-    if dn > normal_threshold || dd > depth_threshold {
-        1.0
-    } else {
-        0.0
-    }
-}
-
-pub fn over(fg: [f64; 4], bg: [f64; 4]) -> [f64; 4] {
-    let a = fg[3] + bg[3] * (1.0 - fg[3]);
-    if a <= 0.0 {
-        return [0.0; 4];
-    }
-    let c = |i: usize| (fg[i] * fg[3] + bg[i] * bg[3] * (1.0 - fg[3])) / a.max(1e-8);
-    [c(0), c(1), c(2), a]
-}
-
-pub fn luminance(c: [f64; 4]) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-}
-
-pub fn saturation(c: [f64; 4], amount: f64) -> [f64; 4] {
-    let g = luminance(c);
-    [
-        g + (c[0] - g) * amount,
-        g + (c[1] - g) * amount,
-        g + (c[2] - g) * amount,
-        c[3],
-    ]
-}
-
-pub fn overlay(base: [f64; 4], blend: [f64; 4], opacity: f64) -> [f64; 4] {
-    let ch = |i: usize| {
-        let (b, s) = (base[i], blend[i]);
-        let o = if b < 0.5 {
-            2.0 * b * s
-        } else {
-            1.0 - 2.0 * (1.0 - b) * (1.0 - s)
-        };
-        b + (o - b) * opacity
-    };
-    [ch(0), ch(1), ch(2), base[3]]
-}
-
-/// Bilinear filtering with clamp-to-edge addressing at level 0.
-pub fn sample(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
-    let x = uv[0] * tex.width as f64 - 0.5;
-    let y = uv[1] * tex.height as f64 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let (x0, y0) = (x0 as i64, y0 as i64);
-    let (a, b, c, d) = (
-        tex.load(x0, y0),
-        tex.load(x0 + 1, y0),
-        tex.load(x0, y0 + 1),
-        tex.load(x0 + 1, y0 + 1),
-    );
-    std::array::from_fn(|i| {
-        let top = a[i] * (1.0 - fx) + b[i] * fx;
-        let bottom = c[i] * (1.0 - fx) + d[i] * fx;
-        top * (1.0 - fy) + bottom * fy
-    })
-}
-
-/// Operators that have a reference here (checked by the completeness test).
-pub const REFERENCED: &[&str] = &[
-    "lambert",
-    "half_lambert",
-    "toon",
-    "threshold",
-    "gaussian",
-    "downsample",
-    "sobel",
-    "normal_depth_edges",
-    "over",
-    "luminance",
-    "saturation",
-    "overlay",
-    "sample",
-    "metatexture_grad",
-    "metatexture",
-    "metatexture4_grad",
-    "metatexture4",
-    "shadow",
-    "contour_fade",
-    "reprojection_mask",
-    "stereo_consistency",
-    "radial_alpha",
-    "uv_gradients",
-    "metatexture_contour_grad",
-    "metatexture_contour",
-    "live_texture",
-    "line_boil",
-    "roll_compensate",
-    "distance_attenuate",
-    "warp",
-    "id_share",
-    "complex_mul",
-    "pattern_uv",
-    "halftone_screen",
-    "halftone",
-    "sample_biased",
-    "sample_ripmap",
-];
-
+/// Does operator `name` have an f64 reference (is it registered in [`crate::ops`])?
 pub fn has_reference(name: &str) -> bool {
-    REFERENCED.contains(&name)
-        || crate::reference_lsa::REFERENCED.contains(&name)
-        || crate::reference_gbuffer::REFERENCED.contains(&name)
+    crate::ops::find(name).is_some()
 }
 
 /// Bilinear filtering with repeat addressing at level 0 (a tileable texture).
@@ -272,138 +83,4 @@ pub fn sample_repeat(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
         let bottom = c[i] * (1.0 - fx) + d[i] * fx;
         top * (1.0 - fy) + bottom * fy
     })
-}
-
-/// MetaTexture settings (see `metatexture_grad.wgsl`).
-#[derive(Debug, Clone, Copy)]
-pub struct MetaSettings {
-    pub width: f64,
-    /// 0 linear, 1 cubic, 2 quintic.
-    pub beta: i64,
-    pub base: f64,
-    pub skew: i64,
-    /// 0 none, 1 printed (× c), 2 variance-preserving (÷ √c).
-    pub contrast: i64,
-    pub mean: [f64; 4],
-}
-
-impl Default for MetaSettings {
-    fn default() -> Self {
-        MetaSettings {
-            width: 256.0,
-            beta: 1,
-            base: 2.0,
-            skew: 0,
-            contrast: 0,
-            mean: [0.5; 4],
-        }
-    }
-}
-
-/// The largest texture scale MetaTexture uses (keeps k·uv precise in f32).
-pub const META_MAX_SCALE: f64 = 4096.0;
-/// log₂ of the smallest texture scale (far away and at grazing angles k·uv
-/// only shrinks, so this bound is only there to keep 2^E a normal f32).
-pub const META_MIN_LOG2_SCALE: f64 = -40.0;
-
-/// The sign applied to eq. 14's skew σ. The shear of eqs. 20–21 gives
-/// ∇u'·∇v' = ∇u·∇v + ½ sin 2ψ (|∇u|² + |∇v|²), so ψ = atan(σ/2) straightens the
-/// screen-space axes only when σ has the opposite sign of ∇u·∇v; as printed
-/// (sign +1) it skews them further. Measured in `metrics` (test
-/// `skew_sign_that_reduces_anisotropy`): on a plane seen at 10° elevation
-/// from 35° round (pixels with |cos∠(∇u, ∇v)| > 0.2), the mean
-/// |axis angle − 90°| is 41.1° without skew compensation, 51.5° with the
-/// printed sign and 26.2° with this one (n = 4). The printed sign is right
-/// for the gradients of eqs. 9–10 as printed (∇u ∥ T_s, ∇v ∥ B_s), whose dot
-/// product has the opposite sign of the true gradients' (26.2° there too):
-/// the operators take true gradients (derivatives, or `uv_gradients`'
-/// default inverse mode), hence −1.
-pub const SKEW_SIGN: f64 = -1.0;
-
-/// Eqs. 14–15 (with [`SKEW_SIGN`] as `sign`): the skew factor σ.
-pub fn meta_skew_sigma(du: [f64; 2], dv: [f64; 2], sign: f64) -> f64 {
-    let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().max(1e-30);
-    let (lu, lv) = (len(du), len(dv));
-    let eps = lu.min(lv) / lu.max(lv);
-    sign * eps.atan() * ((du[0] * dv[0] + du[1] * dv[1]) / (lu * lv))
-}
-
-/// β of eq. 7.
-pub fn meta_beta(x: f64, kind: i64) -> f64 {
-    let t = x.clamp(0.0, 1.0);
-    match kind {
-        0 => t,
-        1 => t * t * (3.0 - 2.0 * t),
-        _ => t * t * t * (t * (t * 6.0 - 15.0) + 10.0),
-    }
-}
-
-/// k(t) of eq. 25.
-pub fn meta_k(t: f64) -> f64 {
-    2.0 * t * t - 2.0 * t + 1.0
-}
-
-/// Eqs. 1, 2 and 7: (E, per-axis scale base^⌊E⌋, blend weights B).
-pub fn meta_level(du: [f64; 2], dv: [f64; 2], s: &MetaSettings) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let lb = s.base.max(1.0001).log2();
-    let max_e = META_MAX_SCALE.log2() / lb;
-    let min_e = META_MIN_LOG2_SCALE / lb;
-    let len = |g: [f64; 2]| (g[0] * g[0] + g[1] * g[1]).sqrt().clamp(1e-30, 1e30);
-    let e = [
-        (-(s.width.max(1e-6) * len(du)).log2() / lb).clamp(min_e, max_e),
-        (-(s.width.max(1e-6) * len(dv)).log2() / lb).clamp(min_e, max_e),
-    ];
-    let fe = [e[0].floor(), e[1].floor()];
-    let scale = [(fe[0] * lb).exp2(), (fe[1] * lb).exp2()];
-    let blend = [meta_beta(e[0] - fe[0], s.beta), meta_beta(e[1] - fe[1], s.beta)];
-    (e, scale, blend)
-}
-
-fn meta_four(tex: &ImageF64, uv: [f64; 2], scale: [f64; 2], blend: [f64; 2], base: f64) -> [f64; 4] {
-    let tap = |kx: f64, ky: f64| sample_repeat(tex, [(kx * uv[0]).rem_euclid(1.0), (ky * uv[1]).rem_euclid(1.0)]);
-    // Eq. 8 with U1 = ⟨u0, b·v0⟩ and U2 = ⟨b·u0, v0⟩ (eqs. 4–5 corrected).
-    let t0 = tap(scale[0], scale[1]);
-    let t1 = tap(scale[0], base * scale[1]);
-    let t2 = tap(base * scale[0], scale[1]);
-    let t3 = tap(base * scale[0], base * scale[1]);
-    let (bu, bv) = (blend[0], blend[1]);
-    std::array::from_fn(|i| (1.0 - bv) * ((1.0 - bu) * t0[i] + bu * t2[i]) + bv * ((1.0 - bu) * t1[i] + bu * t3[i]))
-}
-
-/// MetaTexture M (eq. 8, or eq. 23 with skew) with contrast compensation.
-pub fn metatexture_grad(tex: &ImageF64, uv: [f64; 2], du: [f64; 2], dv: [f64; 2], s: &MetaSettings) -> [f64; 4] {
-    let (m, c) = if s.skew <= 0 {
-        let (_, scale, blend) = meta_level(du, dv, s);
-        (
-            meta_four(tex, uv, scale, blend, s.base),
-            meta_k(blend[0]) * meta_k(blend[1]),
-        )
-    } else {
-        let sigma = meta_skew_sigma(du, dv, SKEW_SIGN);
-        let n = s.skew as f64;
-        let fl = (n * sigma).floor();
-        let psi0 = (fl / n / 2.0).atan();
-        let psi1 = ((fl + 1.0) / n / 2.0).atan();
-        let bw = meta_beta(n * sigma - fl, s.beta);
-        let set = |psi: f64| {
-            let (c, sn) = (psi.cos(), psi.sin());
-            // Eqs. 20–21: a symmetric shear.
-            let uvp = [uv[0] * c + uv[1] * sn, uv[1] * c + uv[0] * sn];
-            let dup = [c * du[0] + sn * dv[0], c * du[1] + sn * dv[1]];
-            let dvp = [c * dv[0] + sn * du[0], c * dv[1] + sn * du[1]];
-            let (_, scale, blend) = meta_level(dup, dvp, s);
-            (meta_four(tex, uvp, scale, blend, s.base), blend)
-        };
-        let (m0, b0) = set(psi0);
-        let (m1, b1) = set(psi1);
-        let m: [f64; 4] = std::array::from_fn(|i| (1.0 - bw) * m0[i] + bw * m1[i]);
-        // Eq. 24 as the sum of the eight squared weights (each set its own B_u, B_v).
-        let c = (1.0 - bw).powi(2) * meta_k(b0[0]) * meta_k(b0[1]) + bw * bw * meta_k(b1[0]) * meta_k(b1[1]);
-        (m, c)
-    };
-    match s.contrast {
-        1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),
-        2 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) / c.max(1e-6).sqrt()),
-        _ => m,
-    }
 }

@@ -1,89 +1,13 @@
-//! GPU versus CPU reference for the dynamic 2D patterns' operators (Breslav
-//! et al. 2007): the fuzzy visibility, the similarity's complex product, the
-//! pattern frame's coordinates, the halftone screen and the tone-corrected
-//! halftone (§3.1–3.5); and the tone the halftone actually produces over an
-//! LOD transition, with and without its correction table (§3.5).
+//! The tone the halftone (Breslav et al. 2007 §3.5) actually produces on
+//! the GPU over an LOD transition, with and without its correction table,
+//! and the table's shape. (The patterns' operators against their f64
+//! references are data cases in `stdlib/src/ops/patterns/`.)
 
 mod harness;
 
 use harness::*;
 use stdlib::halftone_table::{HalftoneTable, ROWS, TONES};
-use stdlib::reference::{self as r, ImageF64};
-
-#[test]
-fn dynamic_pattern_operators_match_reference() {
-    // complex_mul and pattern_uv on random vectors (pattern frames with
-    // scales from 1e-3 to 1e3), including a zero u.
-    let mut g = Lcg(41);
-    let mut cases = Vec::new();
-    for k in 0..200 {
-        let s = 10f64.powf(g.next() * 6.0 - 3.0);
-        let v = |g: &mut Lcg, scale: f64| [(g.next() * 2.0 - 1.0) * scale, (g.next() * 2.0 - 1.0) * scale];
-        let (o, q) = (v(&mut g, 500.0), v(&mut g, 500.0));
-        let u = if k == 7 { [0.0, 0.0] } else { v(&mut g, s) };
-        let w = v(&mut g, s);
-        cases.push((o, u, w, q));
-    }
-    let inputs: Vec<[f32; 4]> = cases
-        .iter()
-        .flat_map(|(o, u, v, q)| [f32v([o[0], o[1], u[0], u[1]]), f32v([v[0], v[1], q[0], q[1]]), [0.0; 4]])
-        .collect();
-    let n = cases.len() as u32;
-    let out = run(
-        &op_wgsl(&["complex_mul", "pattern_uv"]),
-        "result = vec4<f32>(npr_complex_mul(a.zw, b.xy), npr_pattern_uv(a.xy, a.zw, b.xy, b.zw));",
-        &inputs,
-        (n, 1),
-        &[],
-    );
-    // Reference from the f32-rounded inputs the GPU saw.
-    let reference: Vec<[f64; 4]> = inputs
-        .chunks(3)
-        .map(|x| {
-            let (a, b) = (x[0].map(|c| c as f64), x[1].map(|c| c as f64));
-            let m = r::complex_mul([a[2], a[3]], [b[0], b[1]]);
-            let uv = r::pattern_uv([a[0], a[1]], [a[2], a[3]], [b[0], b[1]], [b[2], b[3]]);
-            [m[0], m[1], uv[0], uv[1]]
-        })
-        .collect();
-    compare_rel("complex_mul, pattern_uv", &out, &reference, 4, 1e-4);
-    assert_eq!(out[7][2], 0.0, "a zero u gives 0, not NaN");
-
-    // id_share on an ID image with three objects, at sizes down to 1×1 and
-    // at points off the image, for every radius.
-    for (w, h) in [(1, 1), (3, 7), (33, 20)] {
-        let ids = ImageF64::new(w, h, |x, y| [((x / 3 + y / 2) % 3) as f64, 0.0, 0.0, 1.0]);
-        let tex = [TexIn {
-            image: ids.clone(),
-            format: wgpu::TextureFormat::Rgba32Float,
-        }];
-        for radius in [0.0, 1.0, 2.4, 8.0] {
-            for id in [0.0, 1.0, 2.0, 5.0] {
-                // Points on and off the image (uv from -0.5 to 1.5).
-                let out = run(
-                    &op_wgsl(&["id_share"]),
-                    &format!(
-                        "let at = uv * 2.0 - vec2<f32>(0.5);\n    result = vec4<f32>(npr_id_share(t0, at, {id:?}, {radius:?}), 0.0, 0.0, 0.0);"
-                    ),
-                    &[],
-                    (2 * w + 1, 2 * h + 1),
-                    &tex,
-                );
-                let reference = pixels_ref((2 * w + 1, 2 * h + 1), |uv| {
-                    let at = [uv[0] * 2.0 - 0.5, uv[1] * 2.0 - 0.5];
-                    [r::id_share(&ids, at, id, radius), 0.0, 0.0, 0.0]
-                });
-                compare(
-                    &format!("id_share {w}x{h} r {radius} id {id}"),
-                    &out,
-                    &reference,
-                    1,
-                    1e-6,
-                );
-            }
-        }
-    }
-}
+use stdlib::reference::ImageF64;
 
 /// A table as a texture input (Rgba32Float: the thresholds exactly as f32).
 fn table_texture(table: &HalftoneTable) -> TexIn {
@@ -93,64 +17,6 @@ fn table_texture(table: &HalftoneTable) -> TexIn {
             [texels[y as usize * TONES + x as usize] as f64, 0.0, 0.0, 1.0]
         }),
         format: wgpu::TextureFormat::Rgba32Float,
-    }
-}
-
-#[test]
-fn halftone_operators_match_reference() {
-    // The screen at random points near and far from the origin (where f32
-    // pattern coordinates are coarse), at blends inside and outside [0, 1].
-    let mut g = Lcg(7);
-    let mut cases: Vec<[[f64; 4]; 3]> = (0..400)
-        .map(|i| {
-            let scale = [1.0, 10.0, 1000.0][i % 3];
-            let uv = [g.range(-scale, scale), g.range(-scale, scale)];
-            let blend = [0.0, 1.0, g.next(), -0.5, 2.0][i % 5];
-            let tone = g.range(-0.1, 1.1);
-            [q([uv[0], uv[1], blend, tone]), [0.0; 4], [0.0; 4]]
-        })
-        .collect();
-    // Cell corners and centres, where the screen has its extremes.
-    for uv in [[0.0, 0.0], [0.5, 0.5], [0.25, 0.75], [-3.0, 7.5]] {
-        cases.push([[uv[0], uv[1], 0.5, 0.5], [0.0; 4], [0.0; 4]]);
-    }
-    let out = one(
-        "halftone_screen",
-        "result = vec4<f32>(npr_halftone_screen(a.xy, a.z), 0.0, 0.0, 0.0);",
-        &cases,
-        &[],
-    );
-    let reference: Vec<[f64; 4]> = cases
-        .iter()
-        .map(|c| [r::halftone_screen([c[0][0], c[0][1]], c[0][2]), 0.0, 0.0, 0.0])
-        .collect();
-    compare("halftone_screen", &out, &reference, 1, 2e-6);
-
-    // The corrected and the uncorrected halftone, with soft and sharp edges.
-    for (edge, corrected) in [(0.1, true), (0.2, true), (0.02, true), (0.1, false)] {
-        let table = HalftoneTable::build(edge as f32 as f64, corrected);
-        let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
-        let out = run(
-            &op_wgsl(&["halftone_screen", "halftone"]),
-            "result = vec4<f32>(npr_halftone(t0, a.xy, a.w, a.z), 0.0, 0.0, 0.0);",
-            &inputs,
-            (cases.len() as u32, 1),
-            &[table_texture(&table)],
-        );
-        let reference: Vec<[f64; 4]> = cases
-            .iter()
-            .map(|c| [r::halftone(&table, [c[0][0], c[0][1]], c[0][3], c[0][2]), 0.0, 0.0, 0.0])
-            .collect();
-        // smoothstep's slope is 1.5/(2·edge): the screen's f32 error (2e-6)
-        // and the thresholds' f32 rounding, times that.
-        let tol = 1e-5 * 1.5 / (2.0 * edge);
-        compare(
-            &format!("halftone edge {edge} corrected {corrected}"),
-            &out,
-            &reference,
-            1,
-            tol,
-        );
     }
 }
 

@@ -4,6 +4,8 @@
 //! inputs. Each test binary uses part of it.
 #![allow(dead_code)]
 
+pub mod cases;
+
 use std::sync::OnceLock;
 use stdlib::reference::ImageF64;
 use wgpu::util::DeviceExt;

@@ -1,9 +1,10 @@
 //! f64 references for the MetaTexture extensions (Age of Sail §3.2 smooth
-//! gradients, §3.3 radial angle, §3.5 contour orientation, §6.1 live
-//! texture) and the Edge Breakup operators (§4.2 line boil, §4.3 camera
-//! roll, §4.4 distance, the warp itself). Each follows its WGSL file.
+//! gradients, §3.3 radial angle, §6.1 live texture; §3.5's contour
+//! orientation is with MetaTexture in `ops/metatexture`) and the Edge
+//! Breakup operators (§4.2 line boil, §4.3 camera roll, §4.4 distance, the
+//! warp itself). Each follows its WGSL file beside it.
 
-use super::{meta_beta, meta_k, metatexture_grad, ImageF64, MetaSettings};
+use crate::reference::ImageF64;
 
 fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]
@@ -44,46 +45,6 @@ pub fn uv_gradients(tangent: [f64; 2], bitangent: [f64; 2], density: [f64; 2], m
         ]
     };
     out.map(|x| x.clamp(-1e30, 1e30))
-}
-
-/// §3.5: the blend weight towards the 90°-rotated orientation, β(½ + log₂(|∇u|/|∇v|)/band).
-pub fn contour_weight(du: [f64; 2], dv: [f64; 2], band: f64, beta: i64) -> f64 {
-    let len = |g: [f64; 2]| dot2(g, g).sqrt().clamp(1e-30, 1e30);
-    let r = len(du).log2() - len(dv).log2();
-    meta_beta(0.5 + r / band.max(1e-3), beta)
-}
-
-/// §3.5: MetaTexture re-oriented to indicate contour (`orient` 0 = off).
-pub fn metatexture_contour_grad(
-    tex: &ImageF64,
-    uv: [f64; 2],
-    du: [f64; 2],
-    dv: [f64; 2],
-    s: &MetaSettings,
-    orient: i64,
-    band: f64,
-) -> [f64; 4] {
-    if orient == 0 {
-        return metatexture_grad(tex, uv, du, dv, s);
-    }
-    let w = contour_weight(du, dv, band, s.beta);
-    let m0 = if w < 1.0 {
-        metatexture_grad(tex, uv, du, dv, s)
-    } else {
-        [0.0; 4]
-    };
-    let m1 = if w > 0.0 {
-        metatexture_grad(tex, [uv[1], -uv[0]], dv, [-du[0], -du[1]], s)
-    } else {
-        [0.0; 4]
-    };
-    let m: [f64; 4] = std::array::from_fn(|i| m0[i] + (m1[i] - m0[i]) * w);
-    let c = meta_k(w);
-    match s.contrast {
-        1 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) * c),
-        2 => std::array::from_fn(|i| s.mean[i] + (m[i] - s.mean[i]) / c.max(1e-6).sqrt()),
-        _ => m,
-    }
 }
 
 /// Eq. 29 as printed.
@@ -134,4 +95,26 @@ pub fn warp(src: &ImageF64, offset: [f64; 2], strength: f64, uv: [f64; 2]) -> [f
     let d = [offset[0] * strength, offset[1] * strength].map(|x| if x.is_nan() { 0.0 } else { x.clamp(-1e6, 1e6) });
     let p = [uv[0] * src.width as f64 + d[0], uv[1] * src.height as f64 + d[1]];
     src.load(p[0].floor() as i64, p[1].floor() as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radial_alpha_is_1_at_the_centre_and_3_in_a_corner_at_90_degrees() {
+        // With a 90° field of view (P₀₀ = 1) α = 3 in a corner.
+        assert_eq!(radial_alpha([0.5, 0.5], [1.0, 1.0]), 1.0);
+        assert!((radial_alpha([1.0, 0.0], [1.0, 1.0]) - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn distance_attenuation_stays_in_0_rho() {
+        for d in [0.0, 1e-3, 1.0, 7.5, 1e5, 1e20, -3.0] {
+            for falloff in [0.001, 1.0, 1e5] {
+                let r = distance_attenuate(2.0, d, falloff);
+                assert!((0.0..=2.0).contains(&r), "ρ' out of [0, ρ]: {r}");
+            }
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! f64 references for the stereo operators of LSA contours §4.2: the contour
 //! fade-out, the reprojection mask (eqs. 9–11) and the consistency bound.
-//! They follow `stdlib/wgsl/{contour_fade,reprojection_mask,stereo_consistency}.wgsl`.
+//! They follow `{contour_fade,reprojection_mask,stereo_consistency}.wgsl` beside it.
 
 use crate::reference::ImageF64;
 use std::f64::consts::FRAC_PI_2;

@@ -16,7 +16,7 @@ pub fn shadow_warp(x: f64, k: f64) -> f64 {
 }
 
 /// Lit fraction of `p_light` (light NDC) against `depth_map` (channel r):
-/// see `stdlib/wgsl/shadow.wgsl`.
+/// see `shadow.wgsl` beside it.
 pub fn shadow(depth_map: &ImageF64, p_light: [f64; 3], bias: f64, warp: f64, radius: i64) -> f64 {
     if p_light[0].abs() > 1.0 || p_light[1].abs() > 1.0 || p_light[2] > 1.0 || p_light.iter().any(|v| v.is_nan()) {
         return 1.0;

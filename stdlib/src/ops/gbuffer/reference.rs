@@ -1,10 +1,7 @@
 //! CPU f64 references of the G-buffer packing operators: the signed
 //! octahedral encoding (Cigolle et al. 2014 §3.1), line by line in meaning
-//! with `stdlib/wgsl/oct.wgsl`, and the 16-bit float stores a target of
+//! with `oct.wgsl` beside it, and the 16-bit float stores a target of
 //! codes rounds through (to nearest, or truncating, as lavapipe does).
-
-/// Operators with a reference here (read by `reference::has_reference`).
-pub const REFERENCED: &[&str] = &["oct_encode", "oct_decode"];
 
 /// ±1, +1 at 0 (`npr_oct__sign_not_zero`).
 fn sign_not_zero(v: f64) -> f64 {

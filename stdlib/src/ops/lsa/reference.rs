@@ -1,13 +1,10 @@
 //! CPU f64 references of the LSA contour operators (Zaidi et al., "Local
 //! Surface Approximation Contours for Virtual Reality Stylisation"), line by
-//! line in meaning with `stdlib/wgsl/lsa_*.wgsl`. Equation numbers are the
+//! line in meaning with `lsa*.wgsl` beside it. Equation numbers are the
 //! paper's; see the WGSL files for the reasoning behind each choice (the
 //! e_plane offsets, the background and border rules).
 
 use crate::reference::ImageF64;
-
-/// Operators with a reference here (read by `reference::has_reference`).
-pub const REFERENCED: &[&str] = &["lsa", "lsa_sum", "lsa_curv_aa", "lsa_curv", "lsa_density"];
 
 /// The half neighbourhood: E, SE, S, SW in image coordinates (y down).
 pub const DIRS: [(i64, i64); 4] = [(1, 0), (1, 1), (0, 1), (-1, 1)];
@@ -59,7 +56,7 @@ pub fn fetch(pos: &ImageF64, normals: &ImageF64, octahedral: bool, x: i64, y: i6
     let pw = pos.load(x, y);
     let n4 = normals.load(x, y);
     let n = if octahedral {
-        crate::reference_gbuffer::oct_decode([n4[0], n4[1]])
+        crate::ops::gbuffer::oct_decode([n4[0], n4[1]])
     } else {
         [n4[0], n4[1], n4[2]]
     };
@@ -244,6 +241,71 @@ pub fn lsa(pos: &ImageF64, normals: &ImageF64, uv: [f64; 2], s: &LsaSettings) ->
         out[i] = vd.max(vb);
     }
     out
+}
+
+/// `lsa_sum`: [`lsa`] without the anti-aliasing term.
+pub fn lsa_sum(
+    pos: &ImageF64,
+    normals: &ImageF64,
+    uv: [f64; 2],
+    plane: bool,
+    eta: (f64, f64),
+    octahedral: bool,
+) -> [f64; 4] {
+    let (eta_min, eta_max) = eta;
+    lsa(
+        pos,
+        normals,
+        uv,
+        &LsaSettings {
+            plane,
+            aa: false,
+            eta_min,
+            eta_max,
+            octahedral,
+        },
+    )
+}
+
+/// `lsa_curv_aa`: [`lsa`] on e_curv alone (no e_plane).
+pub fn lsa_curv_aa(
+    pos: &ImageF64,
+    normals: &ImageF64,
+    uv: [f64; 2],
+    aa: bool,
+    eta: (f64, f64),
+    octahedral: bool,
+) -> [f64; 4] {
+    let (eta_min, eta_max) = eta;
+    lsa(
+        pos,
+        normals,
+        uv,
+        &LsaSettings {
+            plane: false,
+            aa,
+            eta_min,
+            eta_max,
+            octahedral,
+        },
+    )
+}
+
+/// `lsa_curv`: the base method, e_curv alone without anti-aliasing.
+pub fn lsa_curv(pos: &ImageF64, normals: &ImageF64, uv: [f64; 2], eta: (f64, f64), octahedral: bool) -> [f64; 4] {
+    let (eta_min, eta_max) = eta;
+    lsa(
+        pos,
+        normals,
+        uv,
+        &LsaSettings {
+            plane: false,
+            aa: false,
+            eta_min,
+            eta_max,
+            octahedral,
+        },
+    )
 }
 
 /// The line-density filter (§4.1) on per-direction errors.
