@@ -72,6 +72,21 @@ pub fn range(values: &[f64], scale: Scale) -> (f64, f64) {
     }
 }
 
+/// A tick label on a log axis: plotters puts a tick at every 1…9 × 10^k
+/// when the axis spans few decades, and nine labels per decade overlap;
+/// only 1, 2 and 5 × 10^k are labelled (the others keep their grid line).
+pub fn log_tick(v: f64) -> String {
+    if v <= 0.0 || !v.is_finite() {
+        return String::new();
+    }
+    let mantissa = v / 10f64.powf(v.log10().floor());
+    if [1.0, 2.0, 5.0, 10.0].iter().any(|m| (mantissa - m).abs() < 1e-6 * m) {
+        tick(v)
+    } else {
+        String::new()
+    }
+}
+
 fn min_max(values: &[f64]) -> (f64, f64) {
     values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(*v), hi.max(*v))
@@ -79,13 +94,13 @@ fn min_max(values: &[f64]) -> (f64, f64) {
 }
 
 /// A tick label: short, with exponents only where plain decimals would be
-/// long (1e-7, 4e5), and no trailing zeros (0.25, not 0.250000).
+/// long (1e-7, 1e4), and no trailing zeros (0.25, not 0.250000).
 pub fn tick(v: f64) -> String {
     let a = v.abs();
     if v == 0.0 {
         return "0".into();
     }
-    if !(1e-3..1e5).contains(&a) {
+    if !(1e-3..1e4).contains(&a) {
         let s = format!("{v:.1e}");
         // 1.0e-7 → 1e-7
         return s.replace(".0e", "e");
@@ -174,7 +189,18 @@ mod tests {
         assert_eq!(tick(1e-7), "1e-7");
         assert_eq!(tick(2.5e-8), "2.5e-8");
         assert_eq!(tick(1e5), "1e5");
-        assert_eq!(tick(65536.0), "65536");
+        assert_eq!(tick(4096.0), "4096");
+        assert_eq!(tick(65536.0), "6.6e4");
         assert_eq!(tick(-0.0001), "-1e-4");
+    }
+
+    #[test]
+    fn a_log_axis_labels_one_two_and_five_of_each_decade() {
+        let labelled: Vec<String> = [0.1, 0.2, 0.3, 0.5, 0.9, 1.0, 1.0000000000000002, 7.0, 20.0, 1e5]
+            .iter()
+            .map(|v| log_tick(*v))
+            .collect();
+        assert_eq!(labelled, ["0.1", "0.2", "", "0.5", "", "1", "1", "", "20", "1e5"]);
+        assert_eq!(log_tick(0.0), "");
     }
 }

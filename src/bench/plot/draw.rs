@@ -145,6 +145,40 @@ struct Label {
     color: RGBColor,
 }
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Corner {
+    UpperLeft,
+    UpperRight,
+    LowerLeft,
+    LowerRight,
+}
+
+/// The corner of the plotting area (x in `xs`, y in `ys`, pixels, y down)
+/// with the fewest `occupied` pixels in its 40% × 40% box, the first of
+/// `preferred` on a tie: where the legend hides least.
+fn emptiest_corner(
+    occupied: &[(i32, i32)],
+    (xs, ys): (std::ops::Range<i32>, std::ops::Range<i32>),
+    preferred: [Corner; 4],
+) -> Corner {
+    let (w, h) = ((xs.end - xs.start) * 2 / 5, (ys.end - ys.start) * 2 / 5);
+    let inside = |c: Corner, (x, y): (i32, i32)| {
+        let left = x < xs.start + w;
+        let right = x > xs.end - w;
+        let top = y < ys.start + h;
+        let bottom = y > ys.end - h;
+        match c {
+            Corner::UpperLeft => left && top,
+            Corner::UpperRight => right && top,
+            Corner::LowerLeft => left && bottom,
+            Corner::LowerRight => right && bottom,
+        }
+    };
+    let count = |c: Corner| occupied.iter().filter(|p| inside(c, **p)).count();
+    // `min_by_key` keeps the first of equal counts: the preferred one.
+    preferred.into_iter().min_by_key(|c| count(*c)).unwrap_or(preferred[0])
+}
+
 #[derive(Clone, Copy)]
 struct Scales {
     x: Scale,
@@ -168,16 +202,22 @@ where
     let mut ctx = ChartBuilder::on(area)
         .caption(caption, (FAMILY, 16))
         .margin(12)
+        // Room for the key numbers of points at the right edge.
+        .margin_right(72)
         .x_label_area_size(44)
         .y_label_area_size(64)
         .build_cartesian_2d(x, y)
         .map_err(err)?;
-    let tick = |v: &f64| axis::tick(*v);
+    let tick = |s: Scale| match s {
+        Scale::Linear => |v: &f64| axis::tick(*v),
+        Scale::Log => |v: &f64| axis::log_tick(*v),
+    };
+    let (x_tick, y_tick) = (tick(scales.x), tick(scales.y));
     ctx.configure_mesh()
         .x_desc(format!("{}{}", chart.x_label, scale_name(scales.x)))
         .y_desc(format!("{}{}", chart.y_label, scale_name(scales.y)))
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
+        .x_label_formatter(&x_tick)
+        .y_label_formatter(&y_tick)
         .label_style((FAMILY, 12))
         .axis_desc_style((FAMILY, 13))
         // No minor grid: on a log axis it packs into grey bands near each decade.
@@ -188,9 +228,19 @@ where
     let legend = (2..=MAX_LEGEND).contains(&chart.series.len());
     let on_axes = |p: &&super::Point| axis::drawable(p.x, scales.x) && axis::drawable(p.y, scales.y);
     let mut labels: Vec<Label> = Vec::new();
+    // Where markers and lines are, in pixels, for the legend's corner.
+    let mut occupied: Vec<(i32, i32)> = Vec::new();
     for (i, series) in chart.series.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
         let points: Vec<(f64, f64)> = series.points.iter().filter(on_axes).map(|p| (p.x, p.y)).collect();
+        let pixels: Vec<(i32, i32)> = points.iter().map(|p| ctx.backend_coord(p)).collect();
+        occupied.extend(&pixels);
+        if chart.kind == ChartKind::CostSize {
+            for w in pixels.windows(2) {
+                occupied
+                    .extend((1..8).map(|k| (w[0].0 + (w[1].0 - w[0].0) * k / 8, w[0].1 + (w[1].1 - w[0].1) * k / 8)));
+            }
+        }
         if chart.kind == ChartKind::CostSize && points.len() > 1 {
             ctx.draw_series(LineSeries::new(points.iter().copied(), color.stroke_width(2)))
                 .map_err(err)?;
@@ -233,11 +283,28 @@ where
         .map_err(err)?;
     }
     if legend {
-        let position = match chart.kind {
+        let (xs, ys) = ctx.plotting_area().get_pixel_range();
+        let preferred = match chart.kind {
             // The costly, inaccurate corner is the one most often empty.
-            ChartKind::SpeedError => SeriesLabelPosition::UpperRight,
-            // Lines rise to the right: the upper left is free.
-            ChartKind::CostSize => SeriesLabelPosition::UpperLeft,
+            ChartKind::SpeedError => [
+                Corner::UpperRight,
+                Corner::UpperLeft,
+                Corner::LowerRight,
+                Corner::LowerLeft,
+            ],
+            // Lines rise to the right: the upper left is most often free.
+            ChartKind::CostSize => [
+                Corner::UpperLeft,
+                Corner::LowerRight,
+                Corner::UpperRight,
+                Corner::LowerLeft,
+            ],
+        };
+        let position = match emptiest_corner(&occupied, (xs, ys), preferred) {
+            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+            Corner::LowerRight => SeriesLabelPosition::LowerRight,
         };
         ctx.configure_series_labels()
             .position(position)
@@ -349,6 +416,20 @@ mod tests {
             "{texts:?}"
         );
         assert!(texts.iter().any(|t| t == "pixels, log") && texts.iter().any(|t| t == "ms, log"));
+    }
+
+    #[test]
+    fn the_legend_goes_to_the_emptiest_corner() {
+        use super::{emptiest_corner, Corner::*};
+        let area = (0..100, 0..100);
+        let order = [UpperRight, UpperLeft, LowerRight, LowerLeft];
+        // Nothing anywhere: the first preferred.
+        assert_eq!(emptiest_corner(&[], area.clone(), order), UpperRight);
+        // Upper right taken (y grows downward): the next free one.
+        assert_eq!(emptiest_corner(&[(90, 5)], area.clone(), order), UpperLeft);
+        // Every corner taken, the lower left least.
+        let taken = [(90, 5), (90, 6), (5, 5), (5, 6), (95, 95), (96, 95), (5, 95)];
+        assert_eq!(emptiest_corner(&taken, area, order), LowerLeft);
     }
 
     #[test]
