@@ -96,7 +96,13 @@ pub fn contours(rows: &[bench_contours::Row], subtitle: &str) -> Figure {
     let mut by_size = Chart::new(ChartKind::CostSize, "image stage against pixel count", "pixels", y);
     for r in rows {
         let key = fig.key(&r.name);
-        let stage_ms = r.image_stage_s * 1e3;
+        // A passthrough's image stage is t_pass; at its floor it was not
+        // measured (the table's 0.000), and not drawn.
+        let stage_ms = if r.image_stage_s > bench_contours::T_PASS_FLOOR_S {
+            r.image_stage_s * 1e3
+        } else {
+            f64::NAN
+        };
         if let Some((precision, recall, planes)) = r.accuracy {
             let series = format!("{}²", r.size);
             charts[0]
@@ -117,7 +123,9 @@ pub fn contours(rows: &[bench_contours::Row], subtitle: &str) -> Figure {
         fig.charts.push(by_size);
     }
     fig.notes.push(
-        "image stage = frame − G-buffer (the table's column); errors over the analytic scenes, within 1 px".into(),
+        "image stage = frame − G-buffer (the table's column; not drawn where ≤ 0, or at t_pass's floor); \
+         errors over the analytic scenes, within 1 px"
+            .into(),
     );
     fig
 }
@@ -326,6 +334,12 @@ mod tests {
         let lsa = &by_size.series[1];
         assert_eq!(lsa.points.iter().map(|p| p.x).collect::<Vec<_>>(), [4096.0, 16384.0]);
         assert_eq!(lsa.points.iter().map(|p| p.key).collect::<Vec<_>>(), [None, Some(1)]);
+        // t_pass at its floor is not a measurement: left out (NaN).
+        let floor = [
+            contour_row("passthrough", 64, 1e-6, None),
+            contour_row("passthrough", 128, 0.3, None),
+        ];
+        assert!(contours(&floor, "test").charts[2].series[0].points[0].y.is_nan());
         // One size: no chart against pixels.
         assert_eq!(contours(&rows[..2], "test").charts.len(), 2);
     }
