@@ -172,10 +172,10 @@ pub fn check_path(path: &Path) -> Result<(), Diagnostic> {
 /// rename: `runner::output::write_atomic`); the exit code.
 pub fn write(figure: &Figure, path: &Path, printer: &Printer) -> Result<(), i32> {
     let svg = render_svg(figure).map_err(|e| {
-        printer.fail(Diagnostic::error(
-            codes::INTERNAL,
-            format!("the plot could not be drawn: {e}"),
-        ))
+        // Drawing numbers the bench produced cannot fail on the user's input.
+        let d = Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}"));
+        printer.diagnostics(&[d], &dsl::SourceMap::new());
+        crate::cli::EXIT_INTERNAL
     })?;
     runner::output::write_atomic(path, svg.as_bytes())
         .map_err(|e| printer.fail(crate::printer::cannot_write(path, e)))?;
