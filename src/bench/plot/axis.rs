@@ -97,7 +97,9 @@ fn min_max(values: &[f64]) -> (f64, f64) {
 /// long (1e-7, 1e4), and no trailing zeros (0.25, not 0.250000).
 pub fn tick(v: f64) -> String {
     let a = v.abs();
-    if v == 0.0 {
+    // Tick positions are computed in floating point: 0 comes out as
+    // -2.8e-17 on an axis from -0.2 to 0.6. No axis here is that fine.
+    if a < 1e-12 {
         return "0".into();
     }
     if !(1e-3..1e4).contains(&a) {
@@ -184,6 +186,7 @@ mod tests {
     #[test]
     fn tick_labels_are_short() {
         assert_eq!(tick(0.0), "0");
+        assert_eq!(tick(-2.8e-17), "0");
         assert_eq!(tick(0.25), "0.25");
         assert_eq!(tick(10.0), "10");
         assert_eq!(tick(1e-7), "1e-7");
