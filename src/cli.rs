@@ -316,6 +316,10 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 20)]
         frames: u32,
+        /// Also draw the figures into this SVG file (speed against error;
+        /// cost against size, log–log): see docs/PERFORMANCE.md.
+        #[arg(long, value_name = "PATH.svg")]
+        plot: Option<PathBuf>,
     },
     /// Lines passes (Klein et al. 2000 §5): strip build and frame time
     /// against a sphere's edge count (rebuilt every frame, and reused),
@@ -332,6 +336,10 @@ pub enum BenchCommand {
         size: u32,
         #[arg(long, default_value_t = 20)]
         frames: u32,
+        /// Also draw the figures into this SVG file (speed against error;
+        /// cost against size, log–log): see docs/PERFORMANCE.md.
+        #[arg(long, value_name = "PATH.svg")]
+        plot: Option<PathBuf>,
     },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
@@ -341,6 +349,10 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 20)]
         frames: u32,
+        /// Also draw the figures into this SVG file (speed against error;
+        /// cost against size, log–log): see docs/PERFORMANCE.md.
+        #[arg(long, value_name = "PATH.svg")]
+        plot: Option<PathBuf>,
     },
     /// Contour methods (LSA base/full and each extension, Sobel,
     /// normal+depth): image-stage cost against a passthrough pass over the
@@ -352,6 +364,10 @@ pub enum BenchCommand {
         sizes: Vec<u32>,
         #[arg(long, default_value_t = 10)]
         frames: u32,
+        /// Also draw the figures into this SVG file (speed against error;
+        /// cost against size, log–log): see docs/PERFORMANCE.md.
+        #[arg(long, value_name = "PATH.svg")]
+        plot: Option<PathBuf>,
     },
     /// A compute pass's per-object reduction (Σ px and a count over each
     /// object's vertices): GPU time against elements and objects, against a
@@ -391,6 +407,10 @@ pub enum BenchCommand {
         objects: Vec<usize>,
         #[arg(long, default_value_t = 10)]
         frames: u32,
+        /// Also draw the figures into this SVG file (speed against error;
+        /// cost against size, log–log): see docs/PERFORMANCE.md.
+        #[arg(long, value_name = "PATH.svg")]
+        plot: Option<PathBuf>,
     },
     /// Whole styles' frame time against a baseline style on one scene, in one run
     /// (each style's frames in order, so path-dependent styles are measured as they render).

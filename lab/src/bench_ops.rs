@@ -155,3 +155,50 @@ pub fn errors(model: &Variant) -> (f64, f64, f64) {
     };
     (e.scale, e.anisotropy_deg, contrast)
 }
+
+/// One variant's row of the table.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub name: &'static str,
+    pub frame_s: f64,
+    /// Frame time over the plain sample's (the first variant).
+    pub vs_plain: f64,
+    /// (scale, anisotropy in degrees, contrast error) from [`errors`];
+    /// `None` for a variant the plane does not model.
+    pub errors: Option<(f64, f64, f64)>,
+}
+
+/// The rows of `variants` from their fastest frame times (same order,
+/// the plain sample first).
+pub fn rows(variants: &[OpsVariant], best: &[f64]) -> Vec<Row> {
+    variants
+        .iter()
+        .zip(best)
+        .map(|(v, t)| Row {
+            name: v.name,
+            frame_s: *t,
+            vs_plain: t / best[0],
+            errors: v.model.as_ref().map(errors),
+        })
+        .collect()
+}
+
+/// The rows as a Markdown table.
+pub fn table(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| variant | ms/frame | cost vs plain sample | scale error | anisotropy | contrast error |\n|---|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        let errors = match r.errors {
+            Some((scale, aniso, contrast)) => format!("{scale:.3} | {aniso:.1}° | {contrast:.3}"),
+            None => "— | — | —".to_string(),
+        };
+        s += &format!(
+            "| {} | {:.3} | {:.2}x | {errors} |\n",
+            r.name,
+            r.frame_s * 1e3,
+            r.vs_plain
+        );
+    }
+    s
+}

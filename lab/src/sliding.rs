@@ -272,8 +272,12 @@ pub fn table(rows: &[Row]) -> String {
     }
     s += "| frame ms (median, tracker + measure) | | |";
     for i in 0..VARIANTS.len() {
-        let ms: Vec<f64> = rows.iter().map(|r| r.variants[i].frame_ms).collect();
-        s += &format!(" {:.2} |", crate::bench_reduce::median(ms));
+        s += &format!(" {:.2} |", frame_ms(rows, i));
     }
     s + "\n"
+}
+
+/// The frame ms of variant `i` the table prints: the median over the motions.
+pub fn frame_ms(rows: &[Row], i: usize) -> f64 {
+    crate::bench_reduce::median(rows.iter().map(|r| r.variants[i].frame_ms).collect())
 }

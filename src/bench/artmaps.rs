@@ -2,8 +2,8 @@
 //! shipped filters compiled, the sampling variants compiled against
 //! `examples/`, the device, the two tables).
 
-use super::compile_builtin_in;
-use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use super::{compile_builtin_in, plot, plotted};
+use crate::cli::EXIT_INTERNAL;
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::CompileOptions;
 use dsl::{codes, Diagnostic, SourceMap};
@@ -14,7 +14,7 @@ use std::path::Path;
 /// working directory as the other benchmarks' default scenes are.
 const FILTERS: [&str; 3] = ["hatching", "watercolor", "ink_blot"];
 
-pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     if let Some(bad) = sizes.iter().find(|s| !(1..=4096).contains(*s)) {
         return printer.fail(Diagnostic::error(
             codes::LIMIT_EXCEEDED,
@@ -63,7 +63,8 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, printer: &Printer) -> i
                 size.0, size.1
             );
             println!("{}", bench::sample_table(&sample));
-            EXIT_OK
+            let subtitle = format!("{}, cache bypassed, wall clock with the GPU waited for", gpu.describe());
+            plotted(|| plot::figures::artmaps(&build, &subtitle), plot, printer)
         }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);

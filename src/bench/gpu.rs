@@ -2,7 +2,7 @@
 //! passes, whole styles, passes and runner overhead, each against its
 //! baseline in the same run.
 
-use super::{compile_builtin, compile_builtin_scheduled, scene_style_gpu};
+use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::schedule::Schedule;
@@ -61,7 +61,7 @@ pub(super) fn overhead(
     }
 }
 
-pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
     let scene = match load_scene(scene_path, &mut sources, printer) {
         Ok(s) => s,
@@ -96,26 +96,19 @@ pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, printer: &Pr
         size.1,
         scene_path.display()
     );
-    println!("| variant | ms/frame | cost vs plain sample | scale error | anisotropy | contrast error |");
-    println!("|---|---:|---:|---:|---:|---:|");
-    for (i, (name, _)) in programs.iter().enumerate() {
-        let errors = match &variants[i].model {
-            Some(m) => {
-                let (scale, aniso, contrast) = lab::bench_ops::errors(m);
-                format!("{scale:.3} | {aniso:.1}° | {contrast:.3}")
-            }
-            None => "— | — | —".to_string(),
-        };
-        println!(
-            "| {name} | {:.3} | {:.2}x | {errors} |",
-            best[i] * 1e3,
-            best[i] / best[0]
-        );
-    }
-    EXIT_OK
+    let rows = lab::bench_ops::rows(&variants, &best);
+    print!("{}", lab::bench_ops::table(&rows));
+    let subtitle = format!(
+        "{}, {}x{}, scene {}, fastest of {frames} interleaved frames",
+        gpu.describe(),
+        size.0,
+        size.1,
+        scene_path.display()
+    );
+    plotted(|| plot::figures::ops(&rows, &subtitle), plot, printer)
 }
 
-pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
+pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     if sizes.contains(&0) {
         return printer.fail(Diagnostic::error(
             codes::BAD_ARGUMENT_VALUE,
@@ -158,7 +151,8 @@ pub(super) fn contours(sizes: &[u32], frames: u32, printer: &Printer) -> i32 {
         Ok(rows) => {
             println!("device: {}, {frames} frames per median", gpu.describe());
             println!("{}", lab::bench_contours::table(&rows));
-            EXIT_OK
+            let subtitle = format!("{}, fastest of {frames} interleaved frames", gpu.describe());
+            plotted(|| plot::figures::contours(&rows, &subtitle), plot, printer)
         }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);

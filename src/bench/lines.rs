@@ -1,13 +1,14 @@
 //! `npr bench lines`: the command around `lab::bench_lines` (the lines and
 //! LSA styles compiled, the device, the two tables).
 
-use super::compile_builtin;
-use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use super::{compile_builtin, plot, plotted};
+use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
 use dsl::{codes, Diagnostic, SourceMap};
 use lab::bench_lines as bench;
+use std::path::Path;
 
-pub fn run(segments: &[u32], size: u32, frames: u32, printer: &Printer) -> i32 {
+pub fn run(segments: &[u32], size: u32, frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     if let Some(bad) = segments.iter().find(|n| !(4..=1024).contains(*n)) {
         return printer.fail(Diagnostic::error(
             codes::BAD_ARGUMENT_VALUE,
@@ -78,7 +79,12 @@ pub fn run(segments: &[u32], size: u32, frames: u32, printer: &Printer) -> i32 {
             println!("{}", bench::classify_table(&classify));
             println!("lines against LSA contours (base: the lines' kept-depth fill, LSA's G-buffer + a passthrough pass; accuracy within 1 px on the analytic scenes of `npr bench contours`):");
             println!("{}", bench::method_table(&methods));
-            EXIT_OK
+            let subtitle = format!("{}, {size}x{size}, fastest of {frames} frames", gpu.describe());
+            plotted(
+                || plot::figures::lines(&edges, &classify, &methods, size, &subtitle),
+                plot,
+                printer,
+            )
         }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);

@@ -7,6 +7,7 @@ mod gpu;
 mod http_client;
 mod lines;
 mod patterns;
+pub mod plot;
 mod studio;
 
 use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
@@ -18,6 +19,12 @@ use runner::{Gpu, StyleProgram};
 use std::path::Path;
 
 pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
+    // A bad `--plot` path is refused before minutes of measuring.
+    if let Some(path) = cmd.plot() {
+        if let Err(code) = printer.check(plot::check_path(path)) {
+            return code;
+        }
+    }
     match cmd {
         BenchCommand::Compile {
             styles,
@@ -39,10 +46,25 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
                     .fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, "the benchmark could not run").with_note(e)),
             }
         }
-        BenchCommand::Artmaps { sizes, size, frames } => artmaps::run(&sizes, size, frames, printer),
-        BenchCommand::Lines { segments, size, frames } => lines::run(&segments, size, frames, printer),
-        BenchCommand::Ops { scene, size, frames } => gpu::ops(&scene, size, frames, printer),
-        BenchCommand::Contours { sizes, frames } => gpu::contours(&sizes, frames, printer),
+        BenchCommand::Artmaps {
+            sizes,
+            size,
+            frames,
+            plot,
+        } => artmaps::run(&sizes, size, frames, plot.as_deref(), printer),
+        BenchCommand::Lines {
+            segments,
+            size,
+            frames,
+            plot,
+        } => lines::run(&segments, size, frames, plot.as_deref(), printer),
+        BenchCommand::Ops {
+            scene,
+            size,
+            frames,
+            plot,
+        } => gpu::ops(&scene, size, frames, plot.as_deref(), printer),
+        BenchCommand::Contours { sizes, frames, plot } => gpu::contours(&sizes, frames, plot.as_deref(), printer),
         BenchCommand::Reduce {
             elements,
             objects,
@@ -53,7 +75,8 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             samples,
             objects,
             frames,
-        } => patterns::run(&samples, &objects, frames, printer),
+            plot,
+        } => patterns::run(&samples, &objects, frames, plot.as_deref(), printer),
         BenchCommand::Styles {
             styles,
             baseline,
@@ -128,6 +151,31 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
                 }
             }
         }
+    }
+}
+
+impl BenchCommand {
+    /// The `--plot` file of the benchmarks that draw one.
+    fn plot(&self) -> Option<&Path> {
+        match self {
+            BenchCommand::Artmaps { plot, .. }
+            | BenchCommand::Lines { plot, .. }
+            | BenchCommand::Ops { plot, .. }
+            | BenchCommand::Contours { plot, .. }
+            | BenchCommand::Patterns { plot, .. } => plot.as_deref(),
+            _ => None,
+        }
+    }
+}
+
+/// Writes `figure` when `--plot` was given: the exit code of the command.
+fn plotted(figure: impl FnOnce() -> plot::Figure, path: Option<&Path>, printer: &Printer) -> i32 {
+    match path {
+        Some(path) => match plot::write(&figure(), path, printer) {
+            Ok(()) => EXIT_OK,
+            Err(code) => code,
+        },
+        None => EXIT_OK,
     }
 }
 

@@ -2,13 +2,14 @@
 //! compiling the tracker for each sample count, the device, the table) and
 //! `lab::sliding` (the sliding of each pattern placement and tracker variant).
 
-use super::compile_builtin;
-use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use super::{compile_builtin, plot, plotted};
+use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::RunError;
+use std::path::Path;
 
-pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
+pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     if let Some(bad) = samples
         .iter()
         .find(|n| **n == 0 || **n > abi::manifest::MAX_SAMPLES_PER_OBJECT)
@@ -45,7 +46,7 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -
         compile_builtin("patterns.npr", text, &mut sources.borrow_mut(), printer)
             .map_err(|_| RunError::Internal("the benchmark's tracker style does not compile".into()))
     };
-    match lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
+    let costs = match lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!(
                 "device: {}, {}², median of {frames} interleaved frames (wall clock)",
@@ -53,16 +54,17 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -
                 lab::bench_patterns::SIZE
             );
             println!("{}", lab::bench_patterns::table(&rows));
+            rows
         }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources.borrow());
             return EXIT_INTERNAL;
         }
-    }
+    };
     // Sliding (§4, Fig. 4): px per frame between the pattern's and the
     // surface's motion, per placement and tracker variant.
     // Relative to the working directory, as the other benchmarks' default scenes.
-    let scenes_dir = std::path::Path::new("examples/scenes");
+    let scenes_dir = Path::new("examples/scenes");
     match lab::sliding::run(&gpu, compile, scenes_dir, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!(
@@ -72,7 +74,12 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, printer: &Printer) -
                 lab::sliding::FRAMES
             );
             println!("{}", lab::sliding::table(&rows));
-            EXIT_OK
+            let subtitle = format!(
+                "{}, {}², median of {frames} interleaved frames (wall clock)",
+                gpu.describe(),
+                lab::bench_patterns::SIZE
+            );
+            plotted(|| plot::figures::patterns(&costs, &rows, &subtitle), plot, printer)
         }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources.borrow());

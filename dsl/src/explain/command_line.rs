@@ -50,9 +50,11 @@ pub(super) const ALL: &[Explanation] = &[
     },
     Explanation {
         code: "E0503",
-        meaning: "An output (an image, a compiled directory, a dump) cannot be written: its \
-            directory does not exist or is not writable, or `npr compile -o` names a file, not a \
-            directory. Outputs are written atomically, so nothing half-written is left behind.",
+        meaning: "An output (an image, a compiled directory, a dump, a benchmark's `--plot`) \
+            cannot be written: its directory does not exist or is not writable, its extension is \
+            not one npr writes (`.png`/`.exr` images, `.svg` plots), or `npr compile -o` names a \
+            file, not a directory. A `--plot` path is checked before the benchmark runs. Outputs \
+            are written atomically, so nothing half-written is left behind.",
         wrong: Example {
             style: GREY,
             commands: &[&["compile", "case.npr", "-o", "case.npr"]],
