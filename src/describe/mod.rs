@@ -86,11 +86,33 @@ pub fn signature(op: &Operator) -> String {
     format!("{}({}) -> {}", op.name, params.join(", "), ty_name(op.returns))
 }
 
-/// Where an operator runs, in words.
-pub fn stage_text(op: &Operator) -> &'static str {
-    match op.stage {
-        stdlib::Stage::Any => "any pass",
-        stdlib::Stage::Image => "image passes (reads neighbouring pixels)",
+/// What an operator reads of each texture argument, in words, from its
+/// declared footprints (`stdlib::Footprint`): what decides fusion and a
+/// tile's apron. Every operator runs in any pass kind that can call it.
+pub fn reads_text(op: &Operator) -> String {
+    let reads: Vec<String> = op
+        .footprints
+        .iter()
+        .map(|(param, f)| match f {
+            stdlib::Footprint::Around {
+                uv,
+                radius: stdlib::Radius::Texels(0),
+            } => format!("`{param}` at the texel under `{uv}` only"),
+            stdlib::Footprint::Around {
+                uv,
+                radius: stdlib::Radius::Texels(r),
+            } => format!("`{param}` within {r} texel(s) of `{uv}`"),
+            stdlib::Footprint::Around {
+                uv,
+                radius: stdlib::Radius::Scaled { param: by, k, max },
+            } => format!("`{param}` within ⌈{k}·`{by}`⌉ texels of `{uv}` (at most {max})"),
+            stdlib::Footprint::Anywhere => format!("`{param}` anywhere (at a computed coordinate)"),
+        })
+        .collect();
+    if reads.is_empty() {
+        "no texture".into()
+    } else {
+        reads.join("; ")
     }
 }
 
@@ -136,7 +158,7 @@ pub fn operator_markdown(op: &Operator, heading: &str) -> String {
         op.doc
     );
     out.push_str(&format!("- **Source:** {}\n", op.reference));
-    out.push_str(&format!("- **Runs in:** {}\n", stage_text(op)));
+    out.push_str(&format!("- **Reads:** {}\n", reads_text(op)));
     for s in specializations(op) {
         out.push_str(&format!("- **Specialization:** {s}\n"));
     }

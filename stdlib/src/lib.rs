@@ -120,15 +120,6 @@ pub struct Param {
     pub doc: &'static str,
 }
 
-/// Where an operator can run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum Stage {
-    /// Any fragment shader.
-    Any,
-    /// Only in `image` passes (it reads other targets at neighbouring pixels).
-    Image,
-}
-
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Operator {
     pub name: &'static str,
@@ -137,7 +128,6 @@ pub struct Operator {
     pub reference: &'static str,
     pub params: &'static [Param],
     pub returns: Ty,
-    pub stage: Stage,
     /// The WGSL source defining `npr_<name>` (and its private helpers).
     pub wgsl: &'static str,
     /// Other operators whose WGSL functions this one calls.

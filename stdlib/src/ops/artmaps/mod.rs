@@ -10,7 +10,7 @@ pub use reference::*;
 
 use super::{p, tex8_mipmapped, Arg, Case, OpDef, Tol};
 use crate::reference::ImageF64;
-use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// The value per level (exact in 8 bits: 17/255).
 const STEP: f64 = 1.0 / 15.0;
@@ -98,7 +98,6 @@ pub const SAMPLE_BIASED: OpDef = OpDef::new(
         },
     ],
     returns: Ty::Vec4,
-    stage: Stage::Any,
     wgsl: include_str!("sample_biased.wgsl"),
     depends: &[],
     snippets: &[],
@@ -130,7 +129,6 @@ pub const SAMPLE_RIPMAP: OpDef = OpDef::new(
             p("uv", Ty::Vec2, "where to read (repeats)"),
         ],
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("sample_ripmap.wgsl"),
         depends: &[],
         snippets: &[],

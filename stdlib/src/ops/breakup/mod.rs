@@ -8,7 +8,7 @@ pub mod reference;
 pub use reference::*;
 
 use super::{images, p, pair, random, scalar, tex32, Arg, Case, OpDef, Tol, Value, UV_SCREEN};
-use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// Screen positions at the centre and corners; focal lengths incl. 0 and huge.
 const CORNERS: &[Value] = &[
@@ -104,7 +104,6 @@ pub const RADIAL_ALPHA: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("radial_alpha.wgsl"),
         depends: &[],
         snippets: &[],
@@ -158,7 +157,6 @@ pub const UV_GRADIENTS: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("uv_gradients.wgsl"),
         depends: &[],
         snippets: &[],
@@ -210,7 +208,6 @@ pub const LIVE_TEXTURE: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("live_texture.wgsl"),
         depends: &[],
         snippets: &[],
@@ -278,7 +275,6 @@ pub const LINE_BOIL: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec2,
-        stage: Stage::Any,
         wgsl: include_str!("line_boil.wgsl"),
         depends: &[],
         snippets: &[],
@@ -319,7 +315,6 @@ pub const ROLL_COMPENSATE: OpDef = OpDef::new(
             p("grad_u", Ty::Vec2, "screen-space gradient of u (e.g. `uv_gradients(...).xy`)"),
         ],
         returns: Ty::Vec2,
-        stage: Stage::Any,
         wgsl: include_str!("roll_compensate.wgsl"),
         depends: &[],
         snippets: &[],
@@ -359,7 +354,6 @@ pub const DISTANCE_ATTENUATE: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("distance_attenuate.wgsl"),
         depends: &[],
         snippets: &[],
@@ -397,7 +391,6 @@ pub const WARP: OpDef = OpDef::new(
             UV_SCREEN,
         ],
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("warp.wgsl"),
         depends: &[],
         snippets: &[],

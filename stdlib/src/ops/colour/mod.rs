@@ -4,7 +4,7 @@
 //! rounding of a few operations on values ≤ 1.
 
 use super::{p, random, scalar, Arg, Case, OpDef, Tol, Value};
-use crate::{Default, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Operator, Param, Ty, Unit};
 
 pub fn over(fg: [f64; 4], bg: [f64; 4]) -> [f64; 4] {
     let a = fg[3] + bg[3] * (1.0 - fg[3]);
@@ -55,7 +55,6 @@ pub const OVER: OpDef = OpDef::new(
         reference: "Porter & Duff, Compositing Digital Images, SIGGRAPH 1984",
         params: &[p("fg", Ty::Color, "foreground"), p("bg", Ty::Color, "background")],
         returns: Ty::Color,
-        stage: Stage::Any,
         wgsl: include_str!("over.wgsl"),
         depends: &[],
         snippets: &[],
@@ -80,7 +79,6 @@ pub const LUMINANCE: OpDef = OpDef::new(
         reference: "ITU-R BT.709",
         params: &[p("c", Ty::Color, "colour")],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("luminance.wgsl"),
         depends: &[],
         snippets: &[],
@@ -115,7 +113,6 @@ pub const SATURATION: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Color,
-        stage: Stage::Any,
         wgsl: include_str!("saturation.wgsl"),
         depends: &["luminance"],
         snippets: &[],
@@ -155,7 +152,6 @@ pub const OVERLAY: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Color,
-        stage: Stage::Any,
         wgsl: include_str!("overlay.wgsl"),
         depends: &[],
         snippets: &[],

@@ -7,7 +7,7 @@
 
 use super::{images, p, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::{dot3, ImageF64};
-use crate::{Default, Footprint, Operator, Param, Radius, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 /// Largest blur radius in texels (as in gaussian.wgsl).
 pub const GAUSSIAN_MAX_RADIUS: i64 = 48;
@@ -147,7 +147,6 @@ pub const GAUSSIAN: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("gaussian.wgsl"),
         depends: &[],
         snippets: &[],
@@ -181,7 +180,6 @@ pub const DOWNSAMPLE: OpDef = OpDef::new(
         reference: "box-filter mip reduction",
         params: &[p("src", Ty::Texture, "the full-resolution target"), UV_SCREEN],
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("downsample.wgsl"),
         depends: &[],
         snippets: &[],
@@ -232,7 +230,6 @@ pub const SOBEL: OpDef = OpDef::new(
             UV_SCREEN,
         ],
         returns: Ty::Float,
-        stage: Stage::Image,
         wgsl: include_str!("sobel.wgsl"),
         depends: &[],
         snippets: &[],
@@ -290,7 +287,6 @@ pub const NORMAL_DEPTH_EDGES: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Image,
         wgsl: include_str!("normal_depth_edges.wgsl"),
         depends: &[],
         snippets: &[],

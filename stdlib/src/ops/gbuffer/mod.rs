@@ -12,7 +12,7 @@ pub mod reference;
 pub use reference::*;
 
 use super::{p, pair, random, triple, Arg, Case, OpDef, Tol, Value};
-use crate::{Operator, Stage, Ty};
+use crate::{Operator, Ty};
 
 const S: f64 = std::f64::consts::FRAC_1_SQRT_2;
 const T: f64 = 0.577_350_269_189_625_8;
@@ -56,7 +56,6 @@ pub const OCT_ENCODE: OpDef = OpDef::new(
         reference: "Cigolle et al. 2014, A Survey of Efficient Representations for Independent Unit Vectors, §3.1 (float32x3_to_oct)",
         params: &[p("n", Ty::Vec3, "a direction (any length but 0), e.g. `normal.view`")],
         returns: Ty::Vec2,
-        stage: Stage::Any,
         wgsl: include_str!("oct_encode.wgsl"),
         depends: &[],
         snippets: &["oct"],
@@ -78,7 +77,6 @@ pub const OCT_DECODE: OpDef = OpDef::new(
         reference: "Cigolle et al. 2014, A Survey of Efficient Representations for Independent Unit Vectors, §3.1 (oct_to_float32x3)",
         params: &[p("e", Ty::Vec2, "an octahedral code in [−1, 1]² (e.g. an `rg16float` target's rg)")],
         returns: Ty::Vec3,
-        stage: Stage::Any,
         wgsl: include_str!("oct_decode.wgsl"),
         depends: &[],
         snippets: &["oct"],

@@ -14,7 +14,7 @@ pub use reference::*;
 
 use super::{images, p, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::ImageF64;
-use crate::{Default, Footprint, Operator, Param, Radius, Specialization, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Specialization, Ty, Unit};
 
 /// The G-buffers' size.
 const N: u32 = 33;
@@ -228,7 +228,6 @@ pub const LSA: OpDef = OpDef::new(
         reference: "Zaidi et al., LSA Contours for VR, eqs. 1–8 and the e_max acceleration of §4.1",
         params: LSA_FULL_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("lsa.wgsl"),
         depends: &[],
         snippets: &["oct", "lsa_core", "lsa_plane", "lsa_aa"],
@@ -249,7 +248,6 @@ pub const LSA_SUM: OpDef = OpDef::new(
         reference: "Zaidi et al., LSA Contours for VR, eqs. 1–7",
         params: LSA_SUM_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("lsa_sum.wgsl"),
         depends: &[],
         snippets: &["oct", "lsa_core", "lsa_plane"],
@@ -267,7 +265,6 @@ pub const LSA_CURV_AA: OpDef = OpDef::new(
         reference: "Zaidi et al., LSA Contours for VR, eqs. 1–5 and 8",
         params: LSA_AA_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("lsa_curv_aa.wgsl"),
         depends: &[],
         snippets: &["oct", "lsa_core", "lsa_aa"],
@@ -285,7 +282,6 @@ pub const LSA_CURV: OpDef = OpDef::new(
         reference: "Zaidi et al., LSA Contours for VR, eqs. 1–5",
         params: LSA_BASE_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("lsa_curv.wgsl"),
         depends: &[],
         snippets: &["oct", "lsa_core"],
@@ -314,7 +310,6 @@ pub const LSA_DENSITY: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec4,
-        stage: Stage::Image,
         wgsl: include_str!("lsa_density.wgsl"),
         depends: &[],
         snippets: &[],

@@ -16,7 +16,7 @@ pub use reference::*;
 
 use super::{p, random, Arg, Case, OpDef, Tol, Value};
 use crate::reference::ImageF64;
-use crate::{Default, Footprint, Operator, Param, Specialization, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Specialization, Ty, Unit};
 
 /// The MetaTexture settings shared by both variants, after the texture/uv/gradients.
 macro_rules! metatexture_settings {
@@ -235,7 +235,6 @@ pub const METATEXTURE_GRAD: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3, eqs. 1–8 (eqs. 4–5 swapped, see erratum), skew eqs. 14–23 (σ of eq. 14 negated, see reference::SKEW_SIGN), contrast eqs. 24–25",
         params: METATEXTURE_GRAD_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture_grad.wgsl"),
         depends: &[],
         snippets: &["meta"],
@@ -257,7 +256,6 @@ pub const METATEXTURE: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8",
         params: METATEXTURE_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture.wgsl"),
         depends: &["metatexture_grad"],
         snippets: &["meta"],
@@ -316,7 +314,6 @@ pub const METATEXTURE4_GRAD: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8 (eqs. 4–5 swapped, see erratum), contrast eqs. 24–25",
         params: METATEXTURE4_GRAD_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture4_grad.wgsl"),
         depends: &[],
         snippets: &["meta"],
@@ -338,7 +335,6 @@ pub const METATEXTURE4: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3.1, eqs. 1–8",
         params: METATEXTURE4_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture4.wgsl"),
         depends: &["metatexture4_grad"],
         snippets: &["meta"],
@@ -362,7 +358,6 @@ pub const METATEXTURE_CONTOUR_GRAD: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3.5 (Fig. 8), on eqs. 1–8, 14–25",
         params: METATEXTURE_CONTOUR_GRAD_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture_contour_grad.wgsl"),
         depends: &["metatexture_grad"],
         snippets: &["meta"],
@@ -384,7 +379,6 @@ pub const METATEXTURE_CONTOUR: OpDef = OpDef::new(
         reference: "Harvill et al., Age of Sail (journal 2019) §3.5 (Fig. 8), on eqs. 1–8, 14–25",
         params: METATEXTURE_CONTOUR_PARAMS,
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("metatexture_contour.wgsl"),
         depends: &["metatexture_contour_grad"],
         snippets: &["meta"],

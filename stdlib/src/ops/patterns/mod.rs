@@ -9,7 +9,7 @@ pub use reference::*;
 
 use super::{p, pair, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
 use crate::halftone_table::HalftoneTable;
-use crate::{Default, Footprint, Operator, Param, Radius, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 /// An ID image with three objects at sizes down to 1×1, read on and off
 /// it (uv from −0.5 to 1.5), every radius and ID.
@@ -89,7 +89,6 @@ pub const ID_SHARE: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("id_share.wgsl"),
         depends: &[],
         snippets: &[],
@@ -114,7 +113,6 @@ pub const COMPLEX_MUL: OpDef = OpDef::new(
             p("b", Ty::Vec2, "a complex number"),
         ],
         returns: Ty::Vec2,
-        stage: Stage::Any,
         wgsl: include_str!("complex_mul.wgsl"),
         depends: &[],
         snippets: &[],
@@ -155,7 +153,6 @@ pub const PATTERN_UV: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec2,
-        stage: Stage::Any,
         wgsl: include_str!("pattern_uv.wgsl"),
         depends: &[],
         snippets: &[],
@@ -192,7 +189,6 @@ pub const HALFTONE_SCREEN: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("halftone_screen.wgsl"),
         depends: &[],
         snippets: &[],
@@ -234,7 +230,6 @@ pub const HALFTONE: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("halftone.wgsl"),
         depends: &["halftone_screen"],
         snippets: &[],

@@ -4,7 +4,7 @@
 
 use super::{p, tex8, Arg, Case, OpDef, Tol};
 use crate::reference::ImageF64;
-use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// Bilinear filtering with clamp-to-edge addressing at level 0.
 pub fn sample(tex: &ImageF64, uv: [f64; 2]) -> [f64; 4] {
@@ -51,7 +51,6 @@ pub const SAMPLE: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Vec4,
-        stage: Stage::Any,
         wgsl: include_str!("sample.wgsl"),
         depends: &[],
         snippets: &[],

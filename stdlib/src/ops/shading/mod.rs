@@ -3,7 +3,7 @@
 
 use super::{nums, p, random, scalar, Arg, Case, OpDef, Tol, Value};
 use crate::reference::{dot3, unit};
-use crate::{Default, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Operator, Param, Ty, Unit};
 
 pub fn lambert(n: [f64; 3], l: [f64; 3]) -> f64 {
     dot3(unit(n), unit(l)).max(0.0)
@@ -66,7 +66,6 @@ pub const LAMBERT: OpDef = OpDef::new(
         reference: "Lambert 1760; any graphics text",
         params: NL,
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("lambert.wgsl"),
         depends: &[],
         snippets: &[],
@@ -84,7 +83,6 @@ pub const HALF_LAMBERT: OpDef = OpDef::new(
         reference: "Mitchell et al., Shading in Valve's Source Engine, SIGGRAPH 2006 course",
         params: NL,
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("half_lambert.wgsl"),
         depends: &[],
         snippets: &[],
@@ -115,7 +113,6 @@ pub const TOON: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("toon.wgsl"),
         depends: &[],
         snippets: &[],
@@ -162,7 +159,6 @@ pub const THRESHOLD: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("threshold.wgsl"),
         depends: &[],
         snippets: &[],

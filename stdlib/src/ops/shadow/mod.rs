@@ -8,7 +8,7 @@ pub use reference::*;
 
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
 use crate::reference::ImageF64;
-use crate::{Default, Footprint, Operator, Param, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// A 24×16 depth map, depths on a 1/8 grid.
 fn depth_map() -> ImageF64 {
@@ -66,7 +66,6 @@ pub const SHADOW: OpDef = OpDef::new(
             },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("shadow.wgsl"),
         depends: &[],
         snippets: &[],

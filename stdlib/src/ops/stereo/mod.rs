@@ -7,7 +7,7 @@ pub use reference::*;
 
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::{unit, ImageF64};
-use crate::{Default, Footprint, Operator, Param, Radius, Stage, Ty, Unit};
+use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 const LEFT: Arg = Arg::Const([-0.032, 0.01, 0.0, 0.0]);
 const RIGHT: Arg = Arg::Const([0.032, 0.01, 0.0, 0.0]);
@@ -81,7 +81,6 @@ pub const CONTOUR_FADE: OpDef = OpDef::new(
             Param { name: "end", ty: Ty::Float, unit: Unit::None, default: Default::Number(0.4375), range: Some((0.0, 8.0)), doc: "c_end / ᾱ, where it reaches full strength (paper: 7/16)" },
         ],
         returns: Ty::Float,
-        stage: Stage::Any,
         wgsl: include_str!("contour_fade.wgsl"),
         depends: &[],
         snippets: &[],
@@ -128,7 +127,6 @@ pub const REPROJECTION_MASK: OpDef = OpDef::new(
             Param { name: "n_hi", ty: Ty::Float, unit: Unit::Px, default: Default::Number(6.0), range: Some((0.0, 64.0)), doc: "neighbour jump that masks fully" },
         ],
         returns: Ty::Float,
-        stage: Stage::Image,
         wgsl: include_str!("reprojection_mask.wgsl"),
         depends: &[],
         snippets: &[],
@@ -163,7 +161,6 @@ pub const STEREO_CONSISTENCY: OpDef = OpDef::new(
             UV_SCREEN,
         ],
         returns: Ty::Float,
-        stage: Stage::Image,
         wgsl: include_str!("stereo_consistency.wgsl"),
         depends: &[],
         snippets: &[],
