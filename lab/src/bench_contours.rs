@@ -9,8 +9,9 @@
 //! texel of each target) costs t_pass = T(two passthrough passes) −
 //! T(one); the G-buffer alone T_gb = T(one) − t_pass. A method's image
 //! stage is T − T_gb, stated in ms, relative to t_pass, and as pixel
-//! throughput. Medians of `frames` frames, best of three interleaved rounds,
-//! so machine load affects every variant alike.
+//! throughput. Each time is the fastest of `frames` frames, the frames
+//! interleaved across variants, so machine load affects every variant
+//! alike and a frame slowed by another process does not count.
 //!
 //! The first two programs must be the passthrough variants of
 //! [`variants`], compiled as declared (`npr bench contours` compiles every
