@@ -113,8 +113,10 @@ pub struct Row {
     pub frame_s: f64,
     /// Frame time minus the G-buffer's.
     pub image_stage_s: f64,
-    /// Image-stage cost over one passthrough pass's.
-    pub vs_passthrough: f64,
+    /// Image-stage cost over one passthrough pass's; `None` when either
+    /// was not measurable in this run (two passthrough frames equal or
+    /// reversed under load, or an image stage at or below 0: tiny sizes).
+    pub vs_passthrough: Option<f64>,
     /// Over the analytic scenes except `parallel_planes`: the minimum
     /// precision and the minimum recall; then the recall on
     /// `parallel_planes` (the step e_curv and Sobel cannot see).
@@ -179,6 +181,7 @@ pub fn run(
     for &size in sizes {
         progress(&format!("timing {size}x{size}"));
         let best = min_frame_times(gpu, programs, &timing_scene, size, frames)?;
+        let measured_pass = best[1] - best[0] > T_PASS_FLOOR_S;
         let t_pass = (best[1] - best[0]).max(T_PASS_FLOOR_S);
         let gbuffer = best[0] - t_pass;
         for (i, (name, p, measure)) in programs.iter().enumerate() {
@@ -205,7 +208,7 @@ pub fn run(
                 size,
                 frame_s: best[i],
                 image_stage_s,
-                vs_passthrough: image_stage_s / t_pass,
+                vs_passthrough: (measured_pass && image_stage_s > 0.0).then(|| image_stage_s / t_pass),
                 accuracy,
             });
         }
@@ -235,12 +238,12 @@ pub fn table(rows: &[Row]) -> String {
             "–".into()
         };
         s.push_str(&format!(
-            "| {0}² | {1} | {2:.3} | {3} | {4:.2}x | {5} | {6} | {7} | {8} |\n",
+            "| {0}² | {1} | {2:.3} | {3} | {4} | {5} | {6} | {7} | {8} |\n",
             r.size,
             r.name,
             r.frame_s * 1e3,
             stage,
-            r.vs_passthrough,
+            r.vs_passthrough.map_or("–".into(), |v| format!("{v:.2}x")),
             throughput,
             p,
             rc,

@@ -301,7 +301,7 @@ mod tests {
             size,
             frame_s: stage_ms * 2e-3,
             image_stage_s: stage_ms * 1e-3,
-            vs_passthrough: 1.0,
+            vs_passthrough: Some(1.0),
             accuracy,
         }
     }
