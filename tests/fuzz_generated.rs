@@ -8,7 +8,7 @@
 //!
 //! Deterministic: case `k` is generated from seed `k`, so a failure names
 //! its case and prints its style. `NPR_FUZZ_CASES` sets the count for a
-//! soak run (docs/FUZZING.md).
+//! soak run and `NPR_FUZZ_FIRST` its first seed (docs/FUZZING.md).
 
 mod common;
 
@@ -315,7 +315,8 @@ fn generated_styles_compile_to_naga_valid_wgsl_or_get_user_errors() {
     // Seeds past the CI count that a soak found failing once (docs/FUZZING.md),
     // run every time so the fix stays in.
     const FOUND_BY_SOAK: &[u64] = &[48924];
-    for seed in (0..cases as u64).chain(FOUND_BY_SOAK.iter().copied()) {
+    let first = common::fuzz::first_case();
+    for seed in (first..first + cases as u64).chain(FOUND_BY_SOAK.iter().copied()) {
         let text = style(seed);
         let mut sources = SourceMap::new();
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {

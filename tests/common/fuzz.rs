@@ -1,6 +1,6 @@
 //! What the fuzzers share: how many cases a run makes. CI runs the default;
-//! a soak run sets `NPR_FUZZ_CASES` (docs/FUZZING.md has the command and
-//! the last result).
+//! a soak run sets `NPR_FUZZ_CASES` (and `NPR_FUZZ_FIRST` for the seeded
+//! generator; docs/FUZZING.md has the command and the last result).
 
 /// `NPR_FUZZ_CASES` when set (a positive number), else `default`.
 pub fn cases(default: u32) -> u32 {
@@ -12,6 +12,19 @@ pub fn cases(default: u32) -> u32 {
             .filter(|n| *n > 0)
             .unwrap_or_else(|| panic!("NPR_FUZZ_CASES={v:?} is not a positive number")),
         Err(_) => default,
+    }
+}
+
+/// `NPR_FUZZ_FIRST` when set, else 0: the first seed of a generator that
+/// names its cases by seed (`fuzz_generated`), so a soak can go on where
+/// the last one stopped instead of repeating its cases.
+pub fn first_case() -> u64 {
+    match std::env::var("NPR_FUZZ_FIRST") {
+        Ok(v) => v
+            .trim()
+            .parse()
+            .unwrap_or_else(|_| panic!("NPR_FUZZ_FIRST={v:?} is not a number")),
+        Err(_) => 0,
     }
 }
 
