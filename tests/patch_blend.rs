@@ -14,26 +14,19 @@
 //! the n-ring, monotone, wider with more rings and steeper with a higher
 //! power; `blend_rings = 0` the hard seam (which the cross-fade checks
 //! reject); the paper's compositing (a pattern's alpha times its strength,
-//! `blend: over`) against its formula; and the hatching example: its ID
-//! image unchanged by blending, its pixels equal to the unblended drawing's
-//! outside the n-ring and different inside it.
+//! `blend: over`) against its formula. The pattern examples on the same
+//! strip are in `tests/patch_blend_styles.rs`; the strip is
+//! `tests/common/patch_strip.rs`.
 
 use runner::scene::patch_weights::blend_weights;
 use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 mod common;
+use common::patch_strip::{
+    half_pixel, scratch, strip_obj, strip_scene, surface_point, CELL, CELLS_X, CELLS_Y, DISTANCE, FOV_DEG, H, W,
+};
 use common::{compile_text, gpu, root};
-
-const W: u32 = 256;
-const H: u32 = 96;
-/// Cells of the strip along x and y, and their side in metres.
-const CELLS_X: i32 = 16;
-const CELLS_Y: i32 = 4;
-const CELL: f64 = 0.25;
-/// The camera, 3 m in front of the strip, 40° vertical field of view.
-const DISTANCE: f64 = 3.0;
-const FOV_DEG: f64 = 40.0;
 
 /// Each patch's strength s = weight^power, accumulated: r = patch 0's, g =
 /// patch 1's, a = their sum. Tested against the ID pass's kept depth, so
@@ -70,64 +63,9 @@ pass ink: render(scene) {
 output ink.color
 "#;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = root().join("target/npr-test-output/patch-blend").join(name);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
-}
-
-/// The strip as an OBJ: a grid of CELLS_X × CELLS_Y squares centred on the
-/// origin in the xy plane, two triangles each (diagonal from lower left to
-/// upper right), in two groups split at x = 0.
-fn strip_obj() -> String {
-    let mut text = String::new();
-    for j in 0..=CELLS_Y {
-        for i in 0..=CELLS_X {
-            let x = (i - CELLS_X / 2) as f64 * CELL;
-            let y = (j - CELLS_Y / 2) as f64 * CELL;
-            text.push_str(&format!("v {x} {y} 0\n"));
-        }
-    }
-    let at = |i: i32, j: i32| j * (CELLS_X + 1) + i + 1;
-    for (group, range) in [("left", 0..CELLS_X / 2), ("right", CELLS_X / 2..CELLS_X)] {
-        text.push_str(&format!("o {group}\n"));
-        for j in 0..CELLS_Y {
-            for i in range.clone() {
-                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                text.push_str(&format!("f {a} {b} {c}\nf {a} {c} {d}\n"));
-            }
-        }
-    }
-    text
-}
-
-/// The scene file: the strip split into its two parts, blended over
-/// `rings` rings (`None`: the default).
-fn strip_scene(dir: &Path, rings: Option<u32>) -> runner::scene::Scene {
-    std::fs::write(dir.join("strip.obj"), strip_obj()).expect("obj");
-    let rings = rings.map_or(String::new(), |n| format!("blend_rings = {n}\n"));
-    let text = format!(
-        "background = \"#ffffff\"\n[camera]\nposition = [0.0, 0.0, {DISTANCE}]\ntarget = [0.0, 0.0, 0.0]\nfov = {FOV_DEG}\nnear = 0.5\nfar = 20.0\n\n[light]\ndirection = [0.3, 0.5, 1.0]\n\n[[object]]\nname = \"strip\"\nmesh = \"strip.obj\"\npatches = \"parts\"\n{rings}"
-    );
-    let path = dir.join(format!("strip_{}.toml", rings.trim().replace([' ', '='], "")));
-    std::fs::write(&path, text).expect("scene");
-    let mut sources = dsl::SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
-}
-
 /// `style` with `POWER` as its power's default.
 fn with_power(style: &str, power: f64) -> StyleProgram {
     compile_text(&style.replace("POWER", &format!("{power:?}")))
-}
-
-fn target(program: &StyleProgram, name: &str) -> usize {
-    program
-        .manifest
-        .targets
-        .iter()
-        .position(|t| t.name == name)
-        .unwrap_or_else(|| panic!("no target `{name}`"))
 }
 
 /// Frame 0 of `program` on `scene`.
@@ -135,16 +73,6 @@ fn render(program: &StyleProgram, scene: &runner::scene::Scene) -> TargetImage {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
     r.render(scene, &FrameSpec::still(W, H, 0)).expect("frame");
     r.read_output().expect("output")
-}
-
-/// The surface point under pixel (x, y)'s centre: a pinhole camera at
-/// distance `DISTANCE` looking straight at the strip.
-fn surface_point(px: u32, py: u32) -> (f64, f64) {
-    let k = 2.0 * DISTANCE * (FOV_DEG.to_radians() / 2.0).tan() / H as f64;
-    (
-        (px as f64 + 0.5 - W as f64 / 2.0) * k,
-        (H as f64 / 2.0 - py as f64 - 0.5) * k,
-    )
 }
 
 /// The f64 truth: the strip mesh and its per-vertex weights over `rings`.
@@ -188,11 +116,6 @@ impl Truth {
         }
         None
     }
-}
-
-/// Half a pixel on the strip, in metres: pixels this close to its border are skipped.
-fn half_pixel() -> f64 {
-    DISTANCE * (FOV_DEG.to_radians() / 2.0).tan() / H as f64
 }
 
 /// Largest |GPU − f64| of each patch's strength and of their sum, over the
@@ -435,58 +358,6 @@ fn an_object_without_patches_draws_weight_one_over_its_own_faces() {
         }
     }
     assert!(pixels > 6_000, "{pixels}");
-}
-
-#[test]
-fn the_hatching_example_changes_only_within_the_n_ring() {
-    let dir = scratch("hatching");
-    let mut sources = dsl::SourceMap::new();
-    let program = compiler::compile_file(&root().join("examples/hatching.npr"), &mut sources, &Default::default())
-        .unwrap_or_else(|e| panic!("{e:?}"))
-        .program();
-    let ids = target(&program, "ids.id");
-    let frames = |scene: &runner::scene::Scene| {
-        let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, scene).expect("renderer");
-        for frame in 0..3 {
-            let spec = FrameSpec {
-                frame,
-                time_s: frame as f64 / 24.0,
-                ..FrameSpec::still(W, H, 0)
-            };
-            r.render(scene, &spec).expect("frame");
-        }
-        (r.read_output().expect("read"), r.read_target(ids).expect("ids"))
-    };
-    let rings = 2;
-    let (hard, hard_ids) = frames(&strip_scene(&dir, Some(0)));
-    let (blended, blended_ids) = frames(&strip_scene(&dir, Some(rings)));
-    // Blending changes what is drawn, not what is tracked: the ID image the
-    // samples' visibility comes from holds each patch's own faces only.
-    assert_eq!(
-        hard_ids.bytes, blended_ids.bytes,
-        "the ID image does not change with blending"
-    );
-    let reach = rings as f64 * CELL + 2.0 * half_pixel();
-    let (mut outside, mut inside, mut changed) = (0, 0, 0);
-    for py in 0..H {
-        for px in 0..W {
-            let (x, y) = surface_point(px, py);
-            if y.abs() > CELLS_Y as f64 / 2.0 * CELL - 2.0 * half_pixel() {
-                continue;
-            }
-            let (a, b) = (hard.texel(px, py), blended.texel(px, py));
-            if x.abs() > reach {
-                outside += 1;
-                assert_eq!(a, b, "pixel ({px}, {py}) at x = {x:.3} is outside the {rings}-ring");
-            } else if x.abs() < rings as f64 * CELL - 2.0 * half_pixel() {
-                inside += 1;
-                changed += usize::from(a != b);
-            }
-        }
-    }
-    println!("hatching: {outside} px outside the {rings}-ring equal; {changed} of {inside} px inside it changed");
-    assert!(outside > 5_000 && inside > 1_000);
-    assert!(changed * 4 > inside, "{changed} of {inside}");
 }
 
 #[test]

@@ -261,6 +261,10 @@ pub mod codes {
     pub const BAD_STATEMENT: &str = "E0306";
     /// Warning: a compute pass whose values no live pass reads (it is removed).
     pub const UNREAD_COMPUTE: &str = "W0301";
+    /// Warning: a render pass reads `patch.weight` (it draws each patch over
+    /// its n-ring, Breslav et al. 2007 §3.6) without a depth test against an
+    /// earlier pass's kept depth, so the overlapping copies are not occluded.
+    pub const PATCH_BLEND_UNOCCLUDED: &str = "W0302";
     /// A blend mode on an output whose format cannot be blended (32-bit float; integer formats, should they come).
     pub const NOT_BLENDABLE: &str = "E0307";
     /// A depth test against a pass that keeps no depth buffer.
@@ -345,6 +349,10 @@ pub mod codes {
         (STATE_ORDER, "state read before declared, or not updated once"),
         (BAD_STATEMENT, "statement the pass kind does not have"),
         (UNREAD_COMPUTE, "compute pass whose values nothing reads (warning)"),
+        (
+            PATCH_BLEND_UNOCCLUDED,
+            "`patch.weight` read without a depth test against an earlier pass (warning)",
+        ),
         (NOT_BLENDABLE, "blend on a format that cannot be blended"),
         (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
         (BAD_ID_TARGET, "a pass over pixels of a target that is not an ID target"),

@@ -10,6 +10,7 @@ pub mod http;
 pub mod lines;
 pub mod live;
 pub mod lsa;
+pub mod patch_strip;
 
 use runner::Gpu;
 use std::path::Path;

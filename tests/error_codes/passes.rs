@@ -1,4 +1,4 @@
-//! Error codes of passes (E03xx, W0301): cycles, formats, outputs, pass
+//! Error codes of passes (E03xx, W0301, W0302): cycles, formats, outputs, pass
 //! kinds, compute state, blending and depth tests, passes over pixels,
 //! art-map filters and rip-maps.
 
@@ -120,6 +120,24 @@ fn w0301_a_compute_pass_nobody_reads() {
         "{SUMS}pass shade: render(scene) {{\n  out c: r32float = 1.0\n}}\noutput shade.c\n"
     ));
     check("W0301", compile_warnings(&text));
+}
+
+#[test]
+fn w0302_patch_weight_without_a_depth_test_against_an_earlier_pass() {
+    let shade = "pass shade: render(scene) {\n  let s = pow(patch.weight, 0.5)\n  out c: rgba8unorm = vec4(0.2, 0.2, 0.2, s) { blend: over }\n  clear: #ffffff\n}\noutput shade.c\n";
+    let (diags, rendered) = compile_warnings(&style(shade));
+    // Pointing at the `patch.weight` read: line 3, column 15 of the case.
+    assert!(rendered.contains("case.npr:3:15"), "{rendered}");
+    check("W0302", (diags, rendered));
+    // `depth: keep` is the pass's own buffer too.
+    let kept = shade.replace("{\n  let s", "{\n  depth: keep\n  let s");
+    let (diags, rendered) = compile_warnings(&style(&kept));
+    check_case("W0302", "W0302_depth_keep", (diags, rendered));
+    // A depth test against an earlier pass's kept depth: no warning.
+    let ids = "pass ids: render(scene) {\n  out id: r32float = object.id\n  depth: keep\n}\n";
+    let tested = shade.replace("{\n  let s", "{\n  depth: test(ids)\n  let s");
+    let (diags, rendered) = compile_warnings(&style(&format!("{ids}{tested}")));
+    assert!(diags.is_empty(), "{rendered}");
 }
 
 #[test]

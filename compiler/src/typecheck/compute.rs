@@ -87,6 +87,38 @@ impl Checker<'_> {
         }
     }
 
+    /// W0302: a render pass that reads `patch.weight` draws each patch over
+    /// its n-ring too (Breslav et al. 2007 §3.6), where the patches overlap
+    /// on the same surface. Only a depth test against the depth an earlier
+    /// pass kept makes those copies blend on the front surface alone: with
+    /// the pass's own depth buffer a farther surface drawn first stays in
+    /// the blend, and a ring drawn after its neighbour's own faces at the
+    /// same depth may fail the test. `span` is the first `patch.weight` read.
+    pub(super) fn patch_weight_occlusion(&mut self, pass: &Pass, span: Span) {
+        let PassKind::Render { depth, .. } = &pass.kind else {
+            return;
+        };
+        let setting = match depth {
+            PassDepth::Test { .. } => return,
+            PassDepth::Own => "its own depth buffer",
+            PassDepth::Keep => "`depth: keep` (its own depth buffer, kept)",
+        };
+        self.err(
+            Diagnostic::warning(
+                codes::PATCH_BLEND_UNOCCLUDED,
+                format!(
+                    "pass `{}` blends patches over their n-rings without a depth test against an earlier pass",
+                    pass.name
+                ),
+            )
+            .with_primary(span, "each patch is drawn over its n-ring here, overlapping its neighbours")
+            .with_secondary(pass.name_span, format!("this pass tests against {setting} only"))
+            .with_help(
+                "draw the objects first in a pass with `depth: keep` (an ID pass) and add `depth: test(<that pass>)` to this one, so that the overlapping copies blend on the front surface only",
+            ),
+        );
+    }
+
     /// The values of compute pass `pi`: each evaluates to its declared type
     /// (an int converts to float; reductions sum float vectors only), and
     /// reads targets and textures only as operator arguments (a compute

@@ -226,10 +226,16 @@ impl Checker<'_> {
             }
             let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
             roots.extend(pass.kind.values().iter().flat_map(ObjectValue::roots));
+            let mut patch_weight: Option<Span> = None;
             for id in self.ir.reachable(&roots) {
                 let e = self.ir.expr(id).clone();
                 match e.kind {
-                    ExprKind::Builtin(b) => self.builtin_in_kind(b, &pass.kind, e.span),
+                    ExprKind::Builtin(b) => {
+                        if b == Builtin::PatchWeight && patch_weight.is_none_or(|s| e.span.start < s.start) {
+                            patch_weight = Some(e.span);
+                        }
+                        self.builtin_in_kind(b, &pass.kind, e.span)
+                    }
                     // A previous-frame read is no dependency within the frame,
                     // so it needs no input listing.
                     ExprKind::Target { target: t, copy } if copy != TargetCopy::Previous => {
@@ -250,6 +256,9 @@ impl Checker<'_> {
                     }
                     _ => {}
                 }
+            }
+            if let Some(span) = patch_weight {
+                self.patch_weight_occlusion(&pass, span);
             }
             for (oi, o) in pass.outputs.iter().enumerate() {
                 if self.is_error(o.value) {

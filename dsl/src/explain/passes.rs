@@ -1,4 +1,4 @@
-//! Explanations of the pass codes (E03xx, W0301): the pass graph, outputs,
+//! Explanations of the pass codes (E03xx, W0301, W0302): the pass graph, outputs,
 //! inputs, compute passes' statements and state, blending and depth.
 
 use super::{Example, Explanation, EXAMPLE};
@@ -109,6 +109,24 @@ pub(super) const ALL: &[Explanation] = &[
         },
         fixed: Example {
             style: "style \"Case\"\npass sums: compute(vertices) {\n  reduce n: float = sum(1.0)\n}\npass shade: render(scene) {\n  out c: r32float = 1.0 / sums.n\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "W0302",
+        meaning: "A warning: a render pass reads `patch.weight`, so it draws each patch of a \
+            patched object over its own faces and the n-ring of faces outside it (Breslav et al. \
+            2007 §3.6), where the patches overlap on the same surface. With only the pass's own \
+            depth buffer, those copies are not occluded as they should be: a farther surface \
+            drawn first stays in the blend, and a ring drawn after its neighbour's faces at the \
+            same depth may be rejected. Draw the objects first in a pass that keeps its depth \
+            (`depth: keep`, such as an ID pass) and test against it with `depth: test(<pass>)`.",
+        wrong: Example {
+            style: "style \"Case\"\npass shade: render(scene) {\n  out c: rgba8unorm = vec4(0.2, 0.2, 0.2, pow(patch.weight, 0.5)) { blend: over }\n  clear: #ffffff\n}\noutput shade.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass ids: render(scene) {\n  out id: r32float = object.id\n  depth: keep\n}\npass shade: render(scene) {\n  depth: test(ids)\n  out c: rgba8unorm = vec4(0.2, 0.2, 0.2, pow(patch.weight, 0.5)) { blend: over }\n  clear: #ffffff\n}\noutput shade.c\n",
             ..EXAMPLE
         },
     },
