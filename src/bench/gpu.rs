@@ -149,7 +149,10 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
     };
     match lab::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
         Ok(rows) => {
-            println!("device: {}, fastest of {frames} interleaved frames per variant", gpu.describe());
+            println!(
+                "device: {}, fastest of {frames} interleaved frames per variant",
+                gpu.describe()
+            );
             println!("{}", lab::bench_contours::table(&rows));
             let subtitle = format!("{}, fastest of {frames} interleaved frames", gpu.describe());
             plotted(|| plot::figures::contours(&rows, &subtitle), plot, printer)
