@@ -314,7 +314,7 @@ fn generated_styles_compile_to_naga_valid_wgsl_or_get_user_errors() {
     let mut refusals: std::collections::BTreeMap<&'static str, u32> = Default::default();
     // Seeds past the CI count that a soak found failing once (docs/FUZZING.md),
     // run every time so the fix stays in.
-    const FOUND_BY_SOAK: &[u64] = &[48924];
+    const FOUND_BY_SOAK: &[u64] = &[48924, 272687];
     let first = common::fuzz::first_case();
     for seed in (first..first + cases as u64).chain(FOUND_BY_SOAK.iter().copied()) {
         let text = style(seed);

@@ -122,12 +122,16 @@ impl Emitter<'_> {
             ExprKind::Binary { op, lhs, rhs } => {
                 format!("({} {} {})", self.expr(*lhs, ctx), op.as_str(), self.expr(*rhs, ctx))
             }
-            ExprKind::Select { cond, then, otherwise } => format!(
-                "select({}, {}, {})",
-                self.expr(*otherwise, ctx),
-                self.expr(*then, ctx),
-                self.expr(*cond, ctx)
-            ),
+            ExprKind::Select { cond, then, otherwise } => {
+                let c = self.expr(*cond, ctx);
+                // Not a const-expression: see `needs_runtime_condition`.
+                let c = if self.needs_runtime_condition(id, *cond) {
+                    format!("npr_runtime_bool({c})")
+                } else {
+                    c
+                };
+                format!("select({}, {}, {c})", self.expr(*otherwise, ctx), self.expr(*then, ctx))
+            }
             ExprKind::Convert { conversion, operand } => {
                 let o = self.expr(*operand, ctx);
                 match conversion {

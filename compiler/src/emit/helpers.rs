@@ -15,6 +15,17 @@ fn npr_project(view_proj: mat4x4<f32>, p: vec3<f32>) -> vec3<f32> {
 }
 ";
 
+/// The identity on `bool`, which is not a WGSL const-expression (a
+/// user function call never is), so a `select` over it is evaluated when
+/// the shader runs rather than by naga's constant evaluator (`uses.rs`,
+/// `needs_runtime_condition`).
+pub(super) const RUNTIME_BOOL_HELPER: &str =
+    "// The identity, to keep a select with a constant condition out of naga's constant evaluator.
+fn npr_runtime_bool(c: bool) -> bool {
+    return c;
+}
+";
+
 /// Target reads as values (nearest texel at `screen_uv`).
 pub(super) const LOAD_HELPER: &str = "// Nearest texel of `t` at `uv`, so targets of different scales line up.
 fn npr_load(t: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {

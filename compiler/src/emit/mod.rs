@@ -257,6 +257,10 @@ impl Emitter<'_> {
             w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
+        if uses.constant_select {
+            w.push_str(helpers::RUNTIME_BOOL_HELPER);
+            w.push('\n');
+        }
         if uses.repeats_half_stores() {
             w.push_str(&helpers::round_f16_helper());
             w.push('\n');

@@ -35,6 +35,10 @@ pub(super) struct Uses {
     pub value_uses: BTreeMap<ExprId, usize>,
     /// Formats whose stored value a fused read repeats (`npr_stored_*`).
     pub stored: Vec<abi::Format>,
+    /// A vector `if` whose condition is built from constants alone: its
+    /// `select` takes the condition through `npr_runtime_bool` (see
+    /// `helpers::RUNTIME_BOOL_HELPER`).
+    pub constant_select: bool,
 }
 
 impl Uses {
@@ -100,6 +104,7 @@ impl Emitter<'_> {
                     u.style_params = true;
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
+                ExprKind::Select { cond, .. } if self.needs_runtime_condition(*id, *cond) => u.constant_select = true,
                 ExprKind::Convert {
                     conversion: Conversion::Stored(f),
                     ..
@@ -126,6 +131,22 @@ impl Emitter<'_> {
             .iter()
             .any(|id| matches!(self.ir.expr(*id).kind, ExprKind::Texture(_)) && u.value_uses.contains_key(id));
         u
+    }
+
+    /// Whether the `select` of node `select` must not be a WGSL
+    /// const-expression: a vector result and a condition made of constants
+    /// alone (our folding could not evaluate it, e.g. `cos` of a constant).
+    /// naga 30 evaluates such a `select` at parse time and panics
+    /// (`unreachable!` in `constant_evaluator.rs`) when an operand is a
+    /// vector built from a nested vector, `vec3(1.1, v2)`: soak case
+    /// 272687 (docs/FUZZING.md).
+    pub(super) fn needs_runtime_condition(&self, select: ExprId, cond: ExprId) -> bool {
+        let vector = !matches!(self.ir.expr(select).ty, Ty::Float | Ty::Int | Ty::Bool);
+        vector
+            && self.ir.reachable(&[cond]).iter().all(|n| {
+                let operands = self.ir.operands(*n);
+                !operands.is_empty() || matches!(self.ir.expr(*n).kind, ExprKind::Const(_))
+            })
     }
 
     /// How many times each node is read as a value by `nodes` and `roots`
