@@ -83,6 +83,10 @@ pub enum Command {
         /// Output directory (created if missing).
         #[arg(short, long)]
         out: PathBuf,
+        /// The examples directory the operators' demos render from (their
+        /// scenes, textures and `use`d files).
+        #[arg(long, default_value = "examples")]
+        examples: PathBuf,
     },
 }
 

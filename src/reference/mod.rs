@@ -4,6 +4,7 @@
 //! `tests/reference_docs.rs`.
 
 mod html;
+pub mod images;
 mod pages;
 
 /// Every file of the reference: (file name, contents).

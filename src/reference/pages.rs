@@ -51,7 +51,7 @@ fn index() -> String {
          - [Pass kinds](passes.md): `render`, `image`, `compute` and `lines` passes.\n\
          - [Units and formats](units.md): the units checked at compile time and the target formats.\n\
          - [Error codes](errors.md): every error and warning code, explained with a wrong and a fixed example (`npr explain CODE`).\n\n\
-         Not here yet: a rendered image per operator and its speed-against-error figures (see docs/PERFORMANCE.md for `npr bench ops`).\n",
+         Each operator's section shows a small image rendered by the runner from a style that calls it (`img/`).\n",
         stdlib::all().len(),
         Builtin::SPELLINGS.len()
     )
@@ -73,6 +73,7 @@ fn operators() -> String {
     for op in stdlib::all() {
         out.push_str(&format!("<a id=\"{}\"></a>\n\n", op.name));
         out.push_str(&describe::operator_markdown(op, "##"));
+        out.push_str(&demo_markdown(op.name));
     }
     out.push_str("<a id=\"intrinsics\"></a>\n\n## Intrinsic functions\n\n| function | what it does |\n|---|---|\n");
     for (name, i) in compiler::ir::Intrinsic::TABLE {
@@ -83,6 +84,34 @@ fn operators() -> String {
         out.push_str(&format!("| `{written}` | {what} |\n"));
     }
     out
+}
+
+/// An operator's demo: its image (rendered by `npr doc` into `img/`) with
+/// what it shows as the alt text and the style it was rendered from, or why
+/// it has none.
+fn demo_markdown(name: &str) -> String {
+    use stdlib::ops::{Demo, DEMO_SIZE};
+    match stdlib::ops::find(name).map(|d| d.demo) {
+        Some(Demo::Render(d)) => {
+            let at = if d.time_s == 0.0 {
+                String::new()
+            } else {
+                format!(" at t = {} s", d.time_s)
+            };
+            format!(
+                "![{}]({})\n\n*Demo:* {} Rendered by `npr doc` at {}×{}{at} from this style on `examples/{}`:\n\n```npr\n{}```\n\n",
+                d.shows.replace(['[', ']'], ""),
+                super::images::image_path(name),
+                d.shows,
+                DEMO_SIZE.0,
+                DEMO_SIZE.1,
+                d.scene,
+                d.style
+            )
+        }
+        Some(Demo::NoDemo(why)) => format!("*Demo:* no image: {why}\n\n"),
+        Some(Demo::Missing) | None => String::new(),
+    }
 }
 
 fn builtins() -> String {
