@@ -33,14 +33,14 @@ output shade.color
 );
 
 pub const LIVE_TEXTURE: Demo = Demo::Render(crate::ops::DemoRender {
-    shows: "One frame (t = 0.4 s) of a live texture on Spot the cow: a three-channel noise's channels mixed by the time-varying weights of eq. 27, the phase offset by height so that the pattern travels.",
+    shows: "One frame (t = 0.4 s) of a live texture on Spot the cow as dark/light: a three-channel noise's channels mixed by the time-varying weights of eq. 27, the phase offset by height so that the pattern travels.",
     scene: "scenes/spot.toml",
     style: r#"style "live_texture demo"
 texture dither = noise(size: 64, octaves: 3, seed: 9, channels: 3, kind: gradient) { wrap: repeat, filter: linear }
 pass shade: render(scene) {
   let t = sample(dither, uv * 4.0)
-  let live = live_texture(t, freq: 0.75Hz, time: time + position.world.y * 1s / 1m)
-  out color: rgba8unorm = mix(#2b2540, #f0e6d2, live * half_lambert(normal, light.dir) * 1.4)
+  let live = live_texture(t, freq: 0.75Hz, time: time + (position.world.y / 1m) * 1s)
+  out color: rgba8unorm = mix(#2b2540, #f0e6d2, live)
   clear: #e8e4da
 }
 output shade.color

@@ -45,14 +45,14 @@ output show.c
 );
 
 pub const SOBEL: Demo = render(
-    "Sobel on a linear-depth G-buffer of the spheres scene, thresholded: ink where depth jumps (the objects' outlines), paper elsewhere.",
+    "Sobel on a linear-depth G-buffer of the spheres scene, thresholded at 0.4 m per pixel: ink where depth jumps (the objects' outlines and the ground's far edge), paper elsewhere.",
     "scenes/spheres.toml",
     r#"style "sobel demo"
 pass gbuffer: render(scene) {
   out depth: r32float = depth
 }
 pass ink_lines: image(gbuffer) {
-  let edge = threshold(sobel(gbuffer.depth), lo: 0.05, hi: 0.05)
+  let edge = threshold(sobel(gbuffer.depth), lo: 0.4, hi: 0.4)
   out color: rgba8unorm = mix(#f4efe4, #141414, edge)
 }
 output ink_lines.color

@@ -3,8 +3,8 @@
 use crate::ops::{render, Demo};
 
 pub const SHADOW: Demo = render(
-    "Spot the cow and a lamp casting shadows onto the ground: Lambert shading times the shadow-map visibility (PCF radius 1) from a light-view depth pass.",
-    "scenes/age_of_sail.toml",
+    "A sphere and a torus lit low from the left, casting shadows to the right onto the ground: Lambert shading times the shadow-map visibility (PCF radius 1) from a light-view depth pass.",
+    "scenes/spheres_shadows.toml",
     r#"style "shadow demo"
 pass depth: render(caster) view(light) {
   out d: r32float = position.light.z
