@@ -31,7 +31,10 @@ pub fn render_all(examples: &Path, printer: &Printer) -> Result<Vec<(String, Vec
     let mut out = Vec::new();
     for def in stdlib::ops::ALL {
         if let Demo::Render(demo) = def.demo {
-            out.push((image_path(def.op.name), render_one(&gpu, def.op.name, &demo, examples, printer)?));
+            out.push((
+                image_path(def.op.name),
+                render_one(&gpu, def.op.name, &demo, examples, printer)?,
+            ));
         }
     }
     Ok(out)

@@ -372,7 +372,8 @@ pub const DISTANCE_ATTENUATE: OpDef = OpDef::new(
         ],
         Tol::Rel(1e-6),
     )],
-).with_demo(demos::DISTANCE_ATTENUATE);
+)
+.with_demo(demos::DISTANCE_ATTENUATE);
 
 pub const WARP: OpDef = OpDef::new(
     Operator {

@@ -72,7 +72,8 @@ pub const OVER: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-).with_demo(demos::OVER);
+)
+.with_demo(demos::OVER);
 
 pub const LUMINANCE: OpDef = OpDef::new(
     Operator {
@@ -96,7 +97,8 @@ pub const LUMINANCE: OpDef = OpDef::new(
             Tol::Abs(1e-6),
         ),
     ],
-).with_demo(demos::LUMINANCE);
+)
+.with_demo(demos::LUMINANCE);
 
 pub const SATURATION: OpDef = OpDef::new(
     Operator {
@@ -134,7 +136,8 @@ pub const SATURATION: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-).with_demo(demos::SATURATION);
+)
+.with_demo(demos::SATURATION);
 
 pub const OVERLAY: OpDef = OpDef::new(
     Operator {
@@ -173,4 +176,5 @@ pub const OVERLAY: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-).with_demo(demos::OVERLAY);
+)
+.with_demo(demos::OVERLAY);

@@ -307,7 +307,8 @@ pub const METATEXTURE: OpDef = OpDef::new(
             1.5e-2
         ),
     ],
-).with_demo(demos::METATEXTURE);
+)
+.with_demo(demos::METATEXTURE);
 
 pub const METATEXTURE4_GRAD: OpDef = OpDef::new(
     Operator {

@@ -134,7 +134,8 @@ pub const COMPLEX_MUL: OpDef = OpDef::new(
             Tol::Rel(1e-4),
         ),
     ],
-).with_demo(demos::COMPLEX_MUL);
+)
+.with_demo(demos::COMPLEX_MUL);
 
 pub const PATTERN_UV: OpDef = OpDef::new(
     Operator {
@@ -172,7 +173,8 @@ pub const PATTERN_UV: OpDef = OpDef::new(
         ],
         Tol::Rel(1e-4),
     )],
-).with_demo(demos::PATTERN_UV);
+)
+.with_demo(demos::PATTERN_UV);
 
 pub const HALFTONE_SCREEN: OpDef = OpDef::new(
     Operator {

@@ -66,4 +66,5 @@ pub const SAMPLE: OpDef = OpDef::new(
         Tol::Abs(4e-3),
     )
     .over(37, 29)],
-).with_demo(demos::SAMPLE);
+)
+.with_demo(demos::SAMPLE);
