@@ -87,6 +87,10 @@ pub enum Command {
         /// scenes, textures and `use`d files).
         #[arg(long, default_value = "examples")]
         examples: PathBuf,
+        /// The file with the committed `npr bench ops` table, whose rows
+        /// are shown as the operators' speed against error.
+        #[arg(long, default_value = "docs/PERFORMANCE.md")]
+        performance: PathBuf,
     },
 }
 
