@@ -83,6 +83,14 @@ pub enum Command {
         /// Output directory (created if missing).
         #[arg(short, long)]
         out: PathBuf,
+        /// The examples directory the operators' demos render from (their
+        /// scenes, textures and `use`d files).
+        #[arg(long, default_value = "examples")]
+        examples: PathBuf,
+        /// The file with the committed `npr bench ops` table, whose rows
+        /// are shown as the operators' speed against error.
+        #[arg(long, default_value = "docs/PERFORMANCE.md")]
+        performance: PathBuf,
     },
 }
 

@@ -1,22 +1,50 @@
 //! `npr doc -o DIR`: the reference (`crate::reference`) written into DIR as
-//! Markdown and HTML, every file atomically in one sync.
+//! Markdown and HTML, with each operator's demo image rendered by the
+//! runner into `DIR/img/` (`crate::reference::images`) and the committed
+//! `npr bench ops` figures (`crate::reference::figures`), every file
+//! atomically in one sync.
 
 use crate::cli::EXIT_OK;
 use crate::printer::{cannot_write, Printer};
 use std::path::Path;
 
-pub fn run(out: &Path, printer: &Printer) -> i32 {
-    if let Err(e) = std::fs::create_dir_all(out) {
+pub fn run(out: &Path, examples: &Path, performance: &Path, printer: &Printer) -> i32 {
+    let figures = match std::fs::read_to_string(performance)
+        .map_err(|e| e.to_string())
+        .and_then(|text| crate::reference::figures::Figures::parse(&text))
+    {
+        Ok(f) => f,
+        Err(e) => {
+            return printer.fail(
+                dsl::Diagnostic::error(
+                    dsl::codes::BAD_ARGUMENT_VALUE,
+                    format!("--performance {}: {e}", performance.display()),
+                )
+                .with_help("run `npr doc` in the repository, or give the file with `--performance PATH`"),
+            )
+        }
+    };
+    let images = match crate::reference::images::render_all(examples, printer) {
+        Ok(i) => i,
+        Err(code) => return code,
+    };
+    if let Err(e) = std::fs::create_dir_all(out.join("img")) {
         return printer.fail(cannot_write(out, e));
     }
-    let files = crate::reference::files();
+    let files = crate::reference::files(&figures);
     let writes: Vec<(std::path::PathBuf, &[u8])> = files
         .iter()
         .map(|(name, text)| (out.join(name), text.as_bytes()))
+        .chain(images.iter().map(|(name, png)| (out.join(name), png.as_slice())))
         .collect();
     match runner::output::write_all_atomic(&writes) {
         Ok(()) => {
-            eprintln!("wrote {} files of the reference into {}", files.len(), out.display());
+            eprintln!(
+                "wrote {} files of the reference and {} demo images into {}",
+                files.len(),
+                images.len(),
+                out.display()
+            );
             EXIT_OK
         }
         Err(e) => printer.fail(cannot_write(out, e)),

@@ -22,7 +22,11 @@ pub fn run(cli: Cli) -> i32 {
         Command::Texgen(args) => texgen::run(args, &printer),
         Command::Explain { code } => explain::run(&code, &printer),
         Command::Lsp => crate::lsp::run(),
-        Command::Doc { out } => doc::run(&out, &printer),
+        Command::Doc {
+            out,
+            examples,
+            performance,
+        } => doc::run(&out, &examples, &performance, &printer),
         Command::Bench(cmd) => crate::bench::run(cmd, &printer),
         Command::Watch { live, out } => crate::watch::run(
             crate::watch::WatchArgs {

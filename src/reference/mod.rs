@@ -1,14 +1,17 @@
 //! The stdlib and language reference `npr doc` writes: Markdown pages from
-//! the metadata alone (`pages.rs`) and the same pages as a static HTML site
-//! (`html.rs`). `docs/reference/` is this output, checked by
+//! the metadata (`pages.rs`), with each operator's demo image (`images.rs`)
+//! and its committed benchmark figures (`figures.rs`), and the same pages as
+//! a static HTML site (`html.rs`). `docs/reference/` is this output, checked by
 //! `tests/reference_docs.rs`.
 
+pub mod figures;
 mod html;
+pub mod images;
 mod pages;
 
 /// Every file of the reference: (file name, contents).
-pub fn files() -> Vec<(String, String)> {
-    let pages = pages::all();
+pub fn files(figures: &figures::Figures) -> Vec<(String, String)> {
+    let pages = pages::all(figures);
     let mut out: Vec<(String, String)> = pages
         .iter()
         .map(|p| (format!("{}.md", p.stem), p.markdown.clone()))

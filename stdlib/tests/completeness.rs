@@ -3,10 +3,12 @@
 //! a doc line, a paper or source reference, an f64 reference function under
 //! its own name, at least one GPU-against-reference case that the generic
 //! GPU test (`gpu_cases.rs`) can build from its signature, defaults inside
-//! their ranges, and a footprint per texture parameter.
+//! their ranges, a footprint per texture parameter, and a demo: a style
+//! that calls it on a scene of `examples/` (which `npr doc` renders), or an
+//! explicit reason why no image can show it.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use stdlib::ops::{Arg, Tol};
+use stdlib::ops::{Arg, Demo, Tol};
 use stdlib::{Default, Ty};
 
 /// The order of `stdlib::all()` when the operators moved into folders:
@@ -330,4 +332,68 @@ fn every_registered_operator_has_gpu_cases() {
             }
         }
     }
+}
+
+/// Whether `text` calls `name`: `name(` not preceded by a name's character
+/// (`sample(` is not found in `sample_biased(` or in `resample(`).
+fn calls(text: &str, name: &str) -> bool {
+    let call = format!("{name}(");
+    text.match_indices(&call).any(|(at, _)| {
+        !text[..at]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_')
+    })
+}
+
+/// Every operator has a demo for `npr doc`: a style that calls it, on a
+/// scene of `examples/` that exists, with a one-sentence description (the
+/// image's alt text); or `Demo::NoDemo` with its reason. A missing demo
+/// fails here.
+#[test]
+fn every_operator_has_a_demo() {
+    let examples = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    for def in stdlib::ops::ALL {
+        let name = def.op.name;
+        match def.demo {
+            Demo::Missing => panic!(
+                "{name}: no demo: add `.with_demo(demos::…)` with a style that calls it (ops/<family>/demos.rs), \
+                 or `Demo::NoDemo(\"why no image can show it\")`"
+            ),
+            Demo::Render(d) => {
+                assert!(calls(d.style, name), "{name}: the demo style does not call `{name}(`");
+                assert!(
+                    d.style.trim_start().starts_with("style "),
+                    "{name}: the demo style does not start with `style \"…\"`"
+                );
+                let shows = d.shows.trim();
+                assert!(
+                    shows.len() >= 20 && shows.ends_with('.') && !shows.contains('\n'),
+                    "{name}: say what the image shows in one sentence (its alt text): {shows:?}"
+                );
+                assert!(
+                    examples.join(d.scene).is_file(),
+                    "{name}: the demo's scene examples/{} does not exist",
+                    d.scene
+                );
+                assert!(
+                    d.time_s.is_finite() && d.time_s >= 0.0,
+                    "{name}: demo time {}",
+                    d.time_s
+                );
+            }
+            Demo::NoDemo(why) => assert!(
+                why.trim().len() >= 20,
+                "{name}: `Demo::NoDemo` needs a reason in words, not {why:?}"
+            ),
+        }
+    }
+}
+
+#[test]
+fn a_call_is_found_by_its_whole_name() {
+    assert!(calls("let x = sample(t, uv)", "sample"));
+    assert!(calls("sample(t, uv)", "sample"));
+    assert!(!calls("let x = sample_biased(t, uv)", "sample"));
+    assert!(!calls("let x = resample(t, uv)", "sample"));
 }

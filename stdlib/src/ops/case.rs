@@ -193,6 +193,8 @@ pub struct OpDef {
     /// the reference is undefined (see [`Case::max_skipped`]).
     pub eval: fn(&[Val]) -> [f64; 4],
     pub cases: &'static [Case],
+    /// What `npr doc` renders to show the operator (see [`super::Demo`]).
+    pub demo: super::Demo,
 }
 
 /// Uniform random values in a box (shorthand for [`Arg::Random`]).
@@ -248,6 +250,12 @@ impl OpDef {
             reference_fn: "",
             eval,
             cases,
+            demo: super::Demo::Missing,
         }
+    }
+
+    /// The same operator with its demo (every operator needs one).
+    pub const fn with_demo(self, demo: super::Demo) -> OpDef {
+        OpDef { demo, ..self }
     }
 }

@@ -12,7 +12,9 @@
 //!    reference `pub fn <name>` (or in a `reference.rs` beside it,
 //!    re-exported), and `pub const <NAME>: OpDef = OpDef::new(Operator { …
 //!    }, |args| <reference of one call>, &[Case::new(…), …])`: at least one
-//!    data case, with its tolerance and why;
+//!    data case, with its tolerance and why, and `.with_demo(demos::<NAME>)`:
+//!    its demo in `ops/<name>/demos.rs` (a style calling it and a scene of
+//!    `examples/`, which `npr doc` renders, or `Demo::NoDemo("why")`);
 //! 3. `pub mod <name>;` and `<name>::<NAME> => <name>,` at the end of the
 //!    registry below (appending keeps every operator's index), and the
 //!    reference's re-export in `crate::reference`.
@@ -22,7 +24,9 @@
 //! `tests/gpu_cases.rs` runs the cases on the GPU, no test code needed.
 
 pub mod case;
+pub mod demo;
 pub use case::*;
+pub use demo::*;
 
 /// `each![a, b, …]`: numbers in turn, an [`Arg::Each`] of scalars.
 macro_rules! each {

@@ -8,6 +8,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, tex8_mipmapped, Arg, Case, OpDef, Tol};
 use crate::reference::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
@@ -117,7 +119,7 @@ pub const SAMPLE_BIASED: OpDef = OpDef::new(
         biased_case!("4 texels per pixel", 4.0),
         biased_case!("0.3 texels per pixel (magnified)", 0.3),
     ],
-);
+).with_demo(demos::SAMPLE_BIASED);
 
 pub const SAMPLE_RIPMAP: OpDef = OpDef::new(
     Operator {
@@ -151,4 +153,4 @@ pub const SAMPLE_RIPMAP: OpDef = OpDef::new(
         ripmap_case!("both, unequally", 16.0, 2.5),
         ripmap_case!("magnified along u, beyond the last level along v", 0.5, 100.0),
     ],
-);
+).with_demo(demos::SAMPLE_RIPMAP);

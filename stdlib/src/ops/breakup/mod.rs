@@ -7,6 +7,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{images, p, pair, random, scalar, tex32, Arg, Case, OpDef, Tol, Value, UV_SCREEN};
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
@@ -115,7 +117,7 @@ pub const RADIAL_ALPHA: OpDef = OpDef::new(
         Case::new("the centre and corners", &[Arg::Each(CORNERS), Arg::Each(FOCALS)], Tol::Rel(1e-5)),
         Case::new("random pixels", &[random([0.0; 4], [1.0, 1.0, 0.0, 0.0], 8), Arg::Each(FOCALS)], Tol::Rel(1e-5)),
     ],
-);
+).with_demo(demos::RADIAL_ALPHA);
 
 pub const UV_GRADIENTS: OpDef = OpDef::new(
     Operator {
@@ -181,7 +183,7 @@ pub const UV_GRADIENTS: OpDef = OpDef::new(
             Tol::Rel(1e-5),
         ),
     ],
-);
+).with_demo(demos::UV_GRADIENTS);
 
 pub const LIVE_TEXTURE: OpDef = OpDef::new(
     Operator {
@@ -225,7 +227,7 @@ pub const LIVE_TEXTURE: OpDef = OpDef::new(
         // f32 phase: f·t ≤ 3000 keeps fract(f·t) within 2.5e-4 of f64.
         Tol::Abs(3e-3),
     )],
-);
+).with_demo(demos::LIVE_TEXTURE);
 
 pub const LINE_BOIL: OpDef = OpDef::new(
     Operator {
@@ -303,7 +305,7 @@ pub const LINE_BOIL: OpDef = OpDef::new(
         Tol::Abs(2e-4),
     )
     .skipping(0.05)],
-);
+).with_demo(demos::LINE_BOIL);
 
 pub const ROLL_COMPENSATE: OpDef = OpDef::new(
     Operator {
@@ -327,7 +329,7 @@ pub const ROLL_COMPENSATE: OpDef = OpDef::new(
         &[random([-1.0; 4], [1.0; 4], 6), Arg::Each(GRAD_U)],
         Tol::Abs(1e-6),
     )],
-);
+).with_demo(demos::ROLL_COMPENSATE);
 
 pub const DISTANCE_ATTENUATE: OpDef = OpDef::new(
     Operator {
@@ -370,7 +372,8 @@ pub const DISTANCE_ATTENUATE: OpDef = OpDef::new(
         ],
         Tol::Rel(1e-6),
     )],
-);
+)
+.with_demo(demos::DISTANCE_ATTENUATE);
 
 pub const WARP: OpDef = OpDef::new(
     Operator {
@@ -408,4 +411,4 @@ pub const WARP: OpDef = OpDef::new(
         )
         .over(24, 16),
     ],
-);
+).with_demo(demos::WARP);

@@ -3,6 +3,8 @@
 //! Sail §5.2 colour controls). Tolerances 1e-5 (1e-6 for luma): f32
 //! rounding of a few operations on values ≤ 1.
 
+mod demos;
+
 use super::{p, random, scalar, Arg, Case, OpDef, Tol, Value};
 use crate::{Default, Operator, Param, Ty, Unit};
 
@@ -70,7 +72,8 @@ pub const OVER: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-);
+)
+.with_demo(demos::OVER);
 
 pub const LUMINANCE: OpDef = OpDef::new(
     Operator {
@@ -94,7 +97,8 @@ pub const LUMINANCE: OpDef = OpDef::new(
             Tol::Abs(1e-6),
         ),
     ],
-);
+)
+.with_demo(demos::LUMINANCE);
 
 pub const SATURATION: OpDef = OpDef::new(
     Operator {
@@ -132,7 +136,8 @@ pub const SATURATION: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-);
+)
+.with_demo(demos::SATURATION);
 
 pub const OVERLAY: OpDef = OpDef::new(
     Operator {
@@ -171,4 +176,5 @@ pub const OVERLAY: OpDef = OpDef::new(
             Tol::Abs(1e-5),
         ),
     ],
-);
+)
+.with_demo(demos::OVERLAY);

@@ -5,6 +5,8 @@
 //! Tolerances: blurs 1e-5 (sums of ≤ 97 weights, renormalized); the edge
 //! detector is exact except within 1e-4 of a threshold (skipped).
 
+mod demos;
+
 use super::{images, p, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::{dot3, ImageF64};
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
@@ -171,7 +173,8 @@ pub const GAUSSIAN: OpDef = OpDef::new(
         gaussian_case!("a 32×24 checker", 32, 24, images::checker(32, 24)),
         gaussian_case!("32×24 noise", 32, 24, images::noise(32, 24, 12)),
     ],
-);
+)
+.with_demo(demos::GAUSSIAN);
 
 pub const DOWNSAMPLE: OpDef = OpDef::new(
     Operator {
@@ -218,7 +221,8 @@ pub const DOWNSAMPLE: OpDef = OpDef::new(
         )
         .over(16, 12),
     ],
-);
+)
+.with_demo(demos::DOWNSAMPLE);
 
 pub const SOBEL: OpDef = OpDef::new(
     Operator {
@@ -258,7 +262,8 @@ pub const SOBEL: OpDef = OpDef::new(
         )
         .over(40, 30),
     ],
-);
+)
+.with_demo(demos::SOBEL);
 
 pub const NORMAL_DEPTH_EDGES: OpDef = OpDef::new(
     Operator {
@@ -320,4 +325,5 @@ pub const NORMAL_DEPTH_EDGES: OpDef = OpDef::new(
         edges_case!("a 3×7 depth step", 3, 7),
         edges_case!("a 40×30 depth step", 40, 30),
     ],
-);
+)
+.with_demo(demos::NORMAL_DEPTH_EDGES);

@@ -11,6 +11,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, pair, random, triple, Arg, Case, OpDef, Tol, Value};
 use crate::{Operator, Ty};
 
@@ -68,7 +70,7 @@ pub const OCT_ENCODE: OpDef = OpDef::new(
         Case::new("random directions of any length", &[random([-1.0; 4], [1.0; 4], 400)], Tol::Abs(1e-6)),
         Case::new("axes, the equator (±0), octant diagonals, near the poles", &[Arg::Each(HARD_DIRECTIONS)], Tol::Abs(1e-6)),
     ],
-);
+).with_demo(demos::OCT_ENCODE);
 
 pub const OCT_DECODE: OpDef = OpDef::new(
     Operator {
@@ -88,4 +90,4 @@ pub const OCT_DECODE: OpDef = OpDef::new(
         Case::new("random codes", &[random([-1.0; 4], [1.0; 4], 400)], Tol::Abs(2e-6)),
         Case::new("the square's edges, corners and centre", &[Arg::Each(HARD_CODES)], Tol::Abs(2e-6)),
     ],
-);
+).with_demo(demos::OCT_DECODE);

@@ -12,6 +12,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{images, p, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Radius, Specialization, Ty, Unit};
@@ -239,7 +241,7 @@ pub const LSA: OpDef = OpDef::new(
     },
     |a| lsa(a[0].tex(), a[1].tex(), a[2].v2(), &LsaSettings { plane: a[3].b(), aa: a[4].b(), eta_min: a[5].f(), eta_max: a[6].f(), octahedral: a[7].i() == 1 }),
     &[lsa_case!("a sphere over background", sphere, false, [each![0, 1], each![0, 1]]), lsa_case!("a sphere, octahedral normals", sphere, true, [each![0, 1], each![0, 1]]), lsa_case!("a wavy surface", waves, false, [each![0, 1], each![0, 1]]), lsa_case!("a depth step between parallel planes", planes, false, [each![1], each![0, 1]])],
-);
+).with_demo(demos::LSA);
 
 pub const LSA_SUM: OpDef = OpDef::new(
     Operator {
@@ -256,7 +258,7 @@ pub const LSA_SUM: OpDef = OpDef::new(
     },
     |a| lsa(a[0].tex(), a[1].tex(), a[2].v2(), &LsaSettings { plane: a[3].b(), aa: false, eta_min: a[4].f(), eta_max: a[5].f(), octahedral: a[6].i() == 1 }),
     &[lsa_case!("a sphere over background", sphere, false, [each![0, 1]]), lsa_case!("a depth step between parallel planes", planes, false, [each![1]]), lsa_case!("a wavy surface", waves, false, [each![0, 1]])],
-);
+).with_demo(demos::LSA_SUM);
 
 pub const LSA_CURV_AA: OpDef = OpDef::new(
     Operator {
@@ -273,7 +275,7 @@ pub const LSA_CURV_AA: OpDef = OpDef::new(
     },
     |a| lsa(a[0].tex(), a[1].tex(), a[2].v2(), &LsaSettings { plane: false, aa: a[3].b(), eta_min: a[4].f(), eta_max: a[5].f(), octahedral: a[6].i() == 1 }),
     &[lsa_case!("a sphere over background", sphere, false, [each![0, 1]]), lsa_case!("a depth step between parallel planes", planes, false, [each![1]]), lsa_case!("a wavy surface", waves, false, [each![0, 1]])],
-);
+).with_demo(demos::LSA_CURV_AA);
 
 pub const LSA_CURV: OpDef = OpDef::new(
     Operator {
@@ -290,7 +292,7 @@ pub const LSA_CURV: OpDef = OpDef::new(
     },
     |a| lsa(a[0].tex(), a[1].tex(), a[2].v2(), &LsaSettings { plane: false, aa: false, eta_min: a[3].f(), eta_max: a[4].f(), octahedral: a[5].i() == 1 }),
     &[lsa_case!("a sphere over background", sphere, false, []), lsa_case!("a depth step between parallel planes", planes, false, []), lsa_case!("a wavy surface", waves, false, [])],
-);
+).with_demo(demos::LSA_CURV);
 
 pub const LSA_DENSITY: OpDef = OpDef::new(
     Operator {
@@ -323,4 +325,4 @@ pub const LSA_DENSITY: OpDef = OpDef::new(
         Tol::Abs(1e-6),
     )
     .over(N, N)],
-);
+).with_demo(demos::LSA_DENSITY);

@@ -14,6 +14,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, random, Arg, Case, OpDef, Tol, Value};
 use crate::reference::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Specialization, Ty, Unit};
@@ -247,7 +249,7 @@ pub const METATEXTURE_GRAD: OpDef = OpDef::new(
         &[TEX, UVS, Arg::Each(GRADS_U), Arg::Each(GRADS_V), WIDTH, BETA, BASE, SKEW, CONTRAST, MEAN],
         Tol::Abs(1.2e-2),
     )],
-);
+).with_demo(demos::METATEXTURE_GRAD);
 
 pub const METATEXTURE: OpDef = OpDef::new(
     Operator {
@@ -305,7 +307,8 @@ pub const METATEXTURE: OpDef = OpDef::new(
             1.5e-2
         ),
     ],
-);
+)
+.with_demo(demos::METATEXTURE);
 
 pub const METATEXTURE4_GRAD: OpDef = OpDef::new(
     Operator {
@@ -326,7 +329,7 @@ pub const METATEXTURE4_GRAD: OpDef = OpDef::new(
         &[TEX, UVS, Arg::Each(GRADS_U), Arg::Each(GRADS_V), WIDTH, BETA, BASE, CONTRAST, MEAN],
         Tol::Abs(1.2e-2),
     )],
-);
+).with_demo(demos::METATEXTURE4_GRAD);
 
 pub const METATEXTURE4: OpDef = OpDef::new(
     Operator {
@@ -349,7 +352,7 @@ pub const METATEXTURE4: OpDef = OpDef::new(
         screen_case!("ordinary derivatives", ORDINARY, [TEX, ORDINARY, WIDTH, BETA, BASE, CONTRAST, MEAN], 1.2e-2),
         screen_case!("anisotropic derivatives", ANISOTROPIC, [TEX, ANISOTROPIC, WIDTH, BETA, BASE, CONTRAST, MEAN], 1.2e-2),
     ],
-);
+).with_demo(demos::METATEXTURE4);
 
 pub const METATEXTURE_CONTOUR_GRAD: OpDef = OpDef::new(
     Operator {
@@ -370,7 +373,7 @@ pub const METATEXTURE_CONTOUR_GRAD: OpDef = OpDef::new(
         &[TEX, UVS, Arg::Each(GRADS_U), Arg::Each(GRADS_V), WIDTH, each![1], each![2.0], each![0, 2], CONTRAST, MEAN, each![0, 1], BANDS],
         Tol::Abs(1.7e-2),
     )],
-);
+).with_demo(demos::METATEXTURE_CONTOUR_GRAD);
 
 pub const METATEXTURE_CONTOUR: OpDef = OpDef::new(
     Operator {
@@ -403,4 +406,4 @@ pub const METATEXTURE_CONTOUR: OpDef = OpDef::new(
             1.7e-2
         ),
     ],
-);
+).with_demo(demos::METATEXTURE_CONTOUR);

@@ -7,6 +7,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, pair, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
 use crate::halftone_table::HalftoneTable;
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
@@ -101,7 +103,7 @@ pub const ID_SHARE: OpDef = OpDef::new(
         id_case!("a 3×7 image", 3, 7),
         id_case!("a 33×20 image", 33, 20),
     ],
-);
+).with_demo(demos::ID_SHARE);
 
 pub const COMPLEX_MUL: OpDef = OpDef::new(
     Operator {
@@ -132,7 +134,8 @@ pub const COMPLEX_MUL: OpDef = OpDef::new(
             Tol::Rel(1e-4),
         ),
     ],
-);
+)
+.with_demo(demos::COMPLEX_MUL);
 
 pub const PATTERN_UV: OpDef = OpDef::new(
     Operator {
@@ -170,7 +173,8 @@ pub const PATTERN_UV: OpDef = OpDef::new(
         ],
         Tol::Rel(1e-4),
     )],
-);
+)
+.with_demo(demos::PATTERN_UV);
 
 pub const HALFTONE_SCREEN: OpDef = OpDef::new(
     Operator {
@@ -202,7 +206,7 @@ pub const HALFTONE_SCREEN: OpDef = OpDef::new(
         Case::new("1000 cells out (coarse f32 coordinates)", &[random([-1e3; 4], [1e3; 4], 20), BLENDS], Tol::Abs(2e-6)),
         Case::new("cell corners and centres", &[Arg::Each(CELL_POINTS), BLENDS], Tol::Abs(2e-6)),
     ],
-);
+).with_demo(demos::HALFTONE_SCREEN);
 
 pub const HALFTONE: OpDef = OpDef::new(
     Operator {
@@ -243,4 +247,4 @@ pub const HALFTONE: OpDef = OpDef::new(
         halftone_case!("sharp edges, corrected", 0.02, true),
         halftone_case!("soft edges, uncorrected", 0.1, false),
     ],
-);
+).with_demo(demos::HALFTONE);

@@ -2,6 +2,8 @@
 //! Tolerance 4e-3 on 8-bit data: bilinear weights are quantized by the
 //! sampler (8 sub-texel bits on lavapipe).
 
+mod demos;
+
 use super::{p, tex8, Arg, Case, OpDef, Tol};
 use crate::reference::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
@@ -64,4 +66,5 @@ pub const SAMPLE: OpDef = OpDef::new(
         Tol::Abs(4e-3),
     )
     .over(37, 29)],
-);
+)
+.with_demo(demos::SAMPLE);

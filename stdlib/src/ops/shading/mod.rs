@@ -1,6 +1,8 @@
 //! Shading terms and ramps: Lambert and half-Lambert diffuse, the N-step
 //! toon ramp and the smooth threshold (Age of Sail §5.1 shadow shapes).
 
+mod demos;
+
 use super::{nums, p, random, scalar, Arg, Case, OpDef, Tol, Value};
 use crate::reference::{dot3, unit};
 use crate::{Default, Operator, Param, Ty, Unit};
@@ -74,7 +76,8 @@ pub const LAMBERT: OpDef = OpDef::new(
     },
     |a| scalar(lambert(a[0].v3(), a[1].v3())),
     DIFFUSE_CASES,
-);
+)
+.with_demo(demos::LAMBERT);
 
 pub const HALF_LAMBERT: OpDef = OpDef::new(
     Operator {
@@ -91,7 +94,8 @@ pub const HALF_LAMBERT: OpDef = OpDef::new(
     },
     |a| scalar(half_lambert(a[0].v3(), a[1].v3())),
     DIFFUSE_CASES,
-);
+)
+.with_demo(demos::HALF_LAMBERT);
 
 /// Steps at both ends of the range; x outside [0, 1], on band edges, and random.
 const STEPS: Arg = each![1, 2, 3, 5, 16];
@@ -128,7 +132,8 @@ pub const TOON: OpDef = OpDef::new(
         ),
         Case::new("random x", &[random([0.0; 4], [1.0; 4], 20), STEPS], Tol::Abs(1e-6)),
     ],
-);
+)
+.with_demo(demos::TOON);
 
 /// Bands including lo == hi and lo > hi (a step).
 const LOS: Arg = each![0.45, 0.5, 0.6, 0.0];
@@ -174,4 +179,5 @@ pub const THRESHOLD: OpDef = OpDef::new(
         ),
         Case::new("random x", &[random([-0.2; 4], [1.2; 4], 20), LOS, HIS], Tol::Abs(1e-5)),
     ],
-);
+)
+.with_demo(demos::THRESHOLD);

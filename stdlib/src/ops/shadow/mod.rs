@@ -6,6 +6,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
 use crate::reference::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
@@ -97,4 +99,4 @@ pub const SHADOW: OpDef = OpDef::new(
         // and corner-depth points are compared.
         .skipping(0.3),
     ],
-);
+).with_demo(demos::SHADOW);

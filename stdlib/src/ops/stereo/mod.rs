@@ -5,6 +5,8 @@
 pub mod reference;
 pub use reference::*;
 
+mod demos;
+
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
 use crate::reference::{unit, ImageF64};
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
@@ -110,7 +112,7 @@ pub const CONTOUR_FADE: OpDef = OpDef::new(
             Tol::Abs(2e-3),
         ),
     ],
-);
+).with_demo(demos::CONTOUR_FADE);
 
 pub const REPROJECTION_MASK: OpDef = OpDef::new(
     Operator {
@@ -146,7 +148,7 @@ pub const REPROJECTION_MASK: OpDef = OpDef::new(
         Tol::Abs(1e-5),
     )
     .over(W, H)],
-);
+).with_demo(demos::REPROJECTION_MASK);
 
 pub const STEREO_CONSISTENCY: OpDef = OpDef::new(
     Operator {
@@ -181,4 +183,4 @@ pub const STEREO_CONSISTENCY: OpDef = OpDef::new(
         Tol::Abs(1e-6),
     )
     .over(W, H)],
-);
+).with_demo(demos::STEREO_CONSISTENCY);
