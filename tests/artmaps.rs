@@ -1,61 +1,14 @@
 //! Art-maps (Klein et al. 2000 §4.2) through the compiler and the runner:
 //! the level each read selects with `sample_biased`, against the f64 level
 //! of detail; stroke size on screen across distances, against a plain
-//! mip-mapped texture of the same strokes; and the cache (hit, miss on a
-//! changed source or filter, a damaged entry rebuilt).
+//! mip-mapped texture of the same strokes; rip-maps; filter chains and
+//! filter arguments. The cache is `tests/artmap_cache.rs`.
 
 mod common;
 
+use common::artmaps::{compile, grey_png, render, scene, scratch};
 use common::{gpu, root};
-use runner::{FrameSpec, Renderer};
-use std::path::{Path, PathBuf};
-
-fn scratch(name: &str) -> PathBuf {
-    let d = root().join("target/npr-test-output/artmaps").join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn compile(text: &str, dir: &Path) -> runner::StyleProgram {
-    let mut sources = dsl::SourceMap::new();
-    match compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
-}
-
-fn scene(text: &str) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
-    let file = sources.add("scene.toml", text);
-    runner::scene::parse_scene(text, file, root())
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
-}
-
-/// A `size`² grey PNG (sRGB 0.5): the source of the art-maps below.
-fn grey_png(path: &Path, size: u32, value: u8) {
-    image::RgbaImage::from_pixel(size, size, image::Rgba([value, value, value, 255]))
-        .save(path)
-        .unwrap();
-}
-
-fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u32) -> runner::TargetImage {
-    let g = gpu();
-    let mut r = Renderer::new(&g.device, &g.queue, program, scene).unwrap_or_else(|e| panic!("{e:?}"));
-    r.render(
-        scene,
-        &FrameSpec {
-            width: size,
-            height: size,
-            time_s: 0.0,
-            frame: 0,
-            eye: 0,
-        },
-    )
-    .unwrap();
-    r.read_output().unwrap()
-}
+use std::path::Path;
 
 /// How a level-of-detail test reads its levels: `out v: rgba16float =
 /// read(case)` from `texture levels = decl` (a 256² grey source, filtered
@@ -287,107 +240,6 @@ fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over
         far_plain.iter().all(|p| *p < 0.7 * spacing),
         "plain mips far away kept a stroke period near the target: {far_plain:?}"
     );
-}
-
-/// `npr render` with its own cache directory; its stderr.
-fn render_cli(style: &Path, scene: &Path, out: &Path, cache: &Path) -> String {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
-        .arg("render")
-        .arg(style)
-        .arg("--scene")
-        .arg(scene)
-        .arg("-o")
-        .arg(out)
-        .args(["--size", "32x32"])
-        .env("NPR_CACHE_DIR", cache)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "npr render failed:\n{stderr}");
-    stderr
-}
-
-#[test]
-fn the_cache_is_reused_and_missed_when_the_source_or_the_filter_changes() {
-    let dir = scratch("cache");
-    let cache = dir.join("cache");
-    grey_png(&dir.join("src.png"), 64, 120);
-    let hatching = std::fs::read_to_string(root().join("examples/filters/hatching.npr")).unwrap();
-    std::fs::write(dir.join("filter.npr"), &hatching).unwrap();
-    let style = dir.join("style.npr");
-    std::fs::write(
-        &style,
-        "style \"cached\"\n\
-         texture t = artmap(image(\"src.png\", srgb), filter: \"filter.npr\") { wrap: repeat }\n\
-         pass shade: render(scene) {\n  out color: rgba8unorm = vec4(sample_biased(t, uv * 4.0).rgb, 1.0)\n}\n\
-         output shade.color\n",
-    )
-    .unwrap();
-    let scene = root().join("examples/scenes/spot.toml");
-    let png = |n: &str| dir.join(format!("{n}.png"));
-
-    let first = render_cli(&style, &scene, &png("first"), &cache);
-    assert!(first.contains("art-map `t`: 7 level(s) filtered and cached"), "{first}");
-    let entries = || std::fs::read_dir(cache.join("artmaps")).unwrap().count();
-    assert_eq!(entries(), 1);
-    let second = render_cli(&style, &scene, &png("second"), &cache);
-    assert!(second.contains("read from the cache"), "{second}");
-    assert_eq!(
-        std::fs::read(png("first")).unwrap(),
-        std::fs::read(png("second")).unwrap()
-    );
-
-    // A filter whose parameter default changed is another art-map.
-    std::fs::write(dir.join("filter.npr"), hatching.replace("= 4 in 2..32", "= 6 in 2..32")).unwrap();
-    let changed_filter = render_cli(&style, &scene, &png("filter"), &cache);
-    assert!(changed_filter.contains("filtered and cached"), "{changed_filter}");
-    assert_eq!(entries(), 2);
-    assert_ne!(
-        std::fs::read(png("first")).unwrap(),
-        std::fs::read(png("filter")).unwrap()
-    );
-
-    // So is a source image with other bytes.
-    grey_png(&dir.join("src.png"), 64, 121);
-    let changed_source = render_cli(&style, &scene, &png("source"), &cache);
-    assert!(changed_source.contains("filtered and cached"), "{changed_source}");
-    assert_eq!(entries(), 3);
-
-    // A damaged entry is rebuilt (and replaced), never read.
-    for e in std::fs::read_dir(cache.join("artmaps")).unwrap() {
-        let path = e.unwrap().path();
-        let bytes = std::fs::read(&path).unwrap();
-        std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
-    }
-    let damaged = render_cli(&style, &scene, &png("damaged"), &cache);
-    assert!(damaged.contains("filtered and cached"), "{damaged}");
-    assert_eq!(
-        std::fs::read(png("source")).unwrap(),
-        std::fs::read(png("damaged")).unwrap()
-    );
-    let again = render_cli(&style, &scene, &png("again"), &cache);
-    assert!(again.contains("read from the cache"), "{again}");
-}
-
-#[test]
-fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
-    let dir = scratch("memory");
-    grey_png(&dir.join("src.png"), 32, 77);
-    let text = format!(
-        "style \"memory\"\n\
-         texture t = artmap(image(\"src.png\", srgb), filter: \"{}\") {{ wrap: repeat }}\n\
-         pass read: image() {{\n  out v: rgba16float = sample_biased(t, screen_uv)\n}}\n\
-         output read.v\n",
-        root().join("examples/filters/hatching.npr").display()
-    );
-    let program = compile(&text, &dir);
-    let g = gpu();
-    let scene = runner::scene::Scene::empty();
-    let first = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
-    let second = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
-    assert_eq!(first.artmap_builds().len(), 1);
-    assert_eq!(second.artmap_builds()[0].origin, runner::artmap_cache::Origin::Memory);
-    assert_eq!(second.artmap_builds()[0].levels, 6);
 }
 
 #[test]

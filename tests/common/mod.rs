@@ -5,6 +5,7 @@
 // Each test binary uses its own subset of these.
 #![allow(dead_code)]
 
+pub mod artmaps;
 pub mod fuzz;
 pub mod http;
 pub mod lines;

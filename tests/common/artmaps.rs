@@ -1,0 +1,54 @@
+//! What the art-map tests share (`tests/artmaps.rs`, `tests/artmap_cache.rs`):
+//! a scratch directory, compiling a style text, a scene from text, a grey
+//! source image, and one frame through the runner.
+
+use super::{gpu, root};
+use runner::{FrameSpec, Renderer};
+use std::path::{Path, PathBuf};
+
+pub fn scratch(name: &str) -> PathBuf {
+    let d = root().join("target/npr-test-output/artmaps").join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+pub fn compile(text: &str, dir: &Path) -> runner::StyleProgram {
+    let mut sources = dsl::SourceMap::new();
+    match compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
+pub fn scene(text: &str) -> runner::scene::Scene {
+    let mut sources = dsl::SourceMap::new();
+    let file = sources.add("scene.toml", text);
+    runner::scene::parse_scene(text, file, root())
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+}
+
+/// A `size`² grey PNG (sRGB 0.5): the source of the art-maps below.
+pub fn grey_png(path: &Path, size: u32, value: u8) {
+    image::RgbaImage::from_pixel(size, size, image::Rgba([value, value, value, 255]))
+        .save(path)
+        .unwrap();
+}
+
+pub fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u32) -> runner::TargetImage {
+    let g = gpu();
+    let mut r = Renderer::new(&g.device, &g.queue, program, scene).unwrap_or_else(|e| panic!("{e:?}"));
+    r.render(
+        scene,
+        &FrameSpec {
+            width: size,
+            height: size,
+            time_s: 0.0,
+            frame: 0,
+            eye: 0,
+        },
+    )
+    .unwrap();
+    r.read_output().unwrap()
+}
