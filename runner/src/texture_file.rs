@@ -87,9 +87,21 @@ impl TextureFileError {
     }
 }
 
-/// Every image file `manifest`'s textures name, opened as [`probe`] does:
+/// How far [`check_files`] opens each file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Depth {
+    /// The header ([`probe`]): size and format. Enough before a render,
+    /// whose own decode reports corrupt data at the same place; and cheap
+    /// enough for the language server on every edit.
+    Header,
+    /// The whole decode ([`read`]): `npr check`, which must refuse what
+    /// render would, corrupt data past a good header included.
+    Decode,
+}
+
+/// Every image file `manifest`'s textures name, opened to `depth`:
 /// (texture index, diagnostic) for each one that render would refuse.
-pub fn check_files(manifest: &Manifest) -> Vec<(usize, Diagnostic)> {
+pub fn check_files(manifest: &Manifest, depth: Depth) -> Vec<(usize, Diagnostic)> {
     manifest
         .textures
         .iter()
@@ -101,9 +113,11 @@ pub fn check_files(manifest: &Manifest) -> Vec<(usize, Diagnostic)> {
                 TextureSourceManifest::Artmap(spec) => (&spec.path, &spec.resolved),
                 _ => return None,
             };
-            probe(Path::new(resolved))
-                .err()
-                .map(|e| (i, e.to_diagnostic(&t.name, path)))
+            let opened = match depth {
+                Depth::Header => probe(Path::new(resolved)).map(|_| ()),
+                Depth::Decode => read(Path::new(resolved)).map(|_| ()),
+            };
+            opened.err().map(|e| (i, e.to_diagnostic(&t.name, path)))
         })
         .collect()
 }

@@ -89,7 +89,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 Err(code) => return code,
             };
             printer.diagnostics(&c.warnings, &sources);
-            let texture_errors = crate::texture_check::texture_file_errors(&c);
+            let texture_errors = crate::texture_check::texture_file_errors(&c, runner::texture_file::Depth::Header);
             if !texture_errors.is_empty() {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;

@@ -27,7 +27,10 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     let found = match compiler::compile_source(&name, text, dir, &mut sources, &options) {
         Ok(c) => {
             let mut found = c.warnings.clone();
-            found.extend(crate::texture_check::texture_file_errors(&c));
+            found.extend(crate::texture_check::texture_file_errors(
+                &c,
+                runner::texture_file::Depth::Header,
+            ));
             found
         }
         Err(CompileError::User(d)) => d,

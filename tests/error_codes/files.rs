@@ -169,7 +169,7 @@ fn npr_check_refuses_a_texture_past_the_size_limit_from_its_header() {
 }
 
 #[test]
-fn npr_render_points_at_the_style_for_a_texture_with_a_good_header_and_corrupt_data() {
+fn npr_check_and_render_point_at_the_style_for_a_texture_with_a_good_header_and_corrupt_data() {
     let dir = scratch("render-corrupt-data");
     let img = image::RgbaImage::from_fn(64, 64, |x, y| {
         image::Rgba([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8, 255])
@@ -182,10 +182,18 @@ fn npr_render_points_at_the_style_for_a_texture_with_a_good_header_and_corrupt_d
     }
     std::fs::write(dir.join("paper.png"), &bytes).expect("write corrupt png");
     let style = style_with_texture(&dir, "paper.png");
-    // The header is fine: `npr check` (which reads headers only) accepts it.
+    // The header is fine; only a whole decode finds the damage.
     assert_eq!(
         runner::texture_file::probe(&dir.join("paper.png")).expect("header"),
         (64, 64)
+    );
+    // `npr check` decodes it, and refuses it at the same place.
+    let (dc, rc) = cli_errors(&["check", style.to_str().expect("utf-8 path")], &dir);
+    assert_eq!(dc[0].code, "E0401", "{rc}");
+    assert!(rc.contains("is not an image npr can read"), "{rc}");
+    assert!(
+        rc.contains("case.npr:3:23"),
+        "check labels the path in image(...): {rc}"
     );
     let (d, r) = render_on_spot(&style, &dir);
     assert_eq!(d[0].code, "E0401", "{r}");
