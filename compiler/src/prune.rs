@@ -26,6 +26,11 @@ pub struct Live {
 }
 
 impl Live {
+    /// The live targets of pass `pass`, in output order.
+    pub fn targets_of(&self, pass: PassId) -> Vec<TargetRef> {
+        self.targets.iter().filter(|t| t.pass == pass).copied().collect()
+    }
+
     /// The live slots of a compute pass, in slot order.
     pub fn value_slots(&self, pass: PassId) -> Vec<u32> {
         self.values
@@ -116,17 +121,10 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
 /// when the pass is dead.
 fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
     let pass = ir.pass(pid);
-    let mut roots: Vec<ExprId> = pass
-        .outputs
+    let mut roots: Vec<ExprId> = live
+        .targets_of(pid)
         .iter()
-        .enumerate()
-        .filter(|(i, _)| {
-            live.targets.contains(&TargetRef {
-                pass: pid,
-                output: *i as u32,
-            })
-        })
-        .map(|(_, o)| o.value)
+        .map(|t| pass.outputs[t.output as usize].value)
         .collect();
     if !roots.is_empty() || live.depth.contains(&pid) {
         roots.extend(Ir::vertex_roots(pass));

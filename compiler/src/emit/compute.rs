@@ -316,6 +316,7 @@ impl Emitter<'_> {
             named: Default::default(),
             target_names: declared.target_names,
             uses_linear_sampler: uses.linear_sampler,
+            runtime_conditions: uses.runtime_conditions.clone(),
         };
         match domain {
             ComputeDomain::Vertices | ComputeDomain::Samples => self.vertex_stages(

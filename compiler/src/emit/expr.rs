@@ -124,8 +124,8 @@ impl Emitter<'_> {
             }
             ExprKind::Select { cond, then, otherwise } => {
                 let c = self.expr(*cond, ctx);
-                // Not a const-expression: see `needs_runtime_condition`.
-                let c = if self.needs_runtime_condition(id, *cond) {
+                // Not a const-expression: see `Uses::runtime_conditions`.
+                let c = if ctx.runtime_conditions.contains(&id) {
                     format!("npr_runtime_bool({c})")
                 } else {
                     c

@@ -83,6 +83,9 @@ struct PassCtx {
     /// The binding name of each target read, per copy.
     target_names: BTreeMap<(TargetCopy, TargetRef), String>,
     uses_linear_sampler: bool,
+    /// `select`s whose condition goes through `npr_runtime_bool`
+    /// (`Uses::runtime_conditions`).
+    runtime_conditions: BTreeSet<ExprId>,
 }
 
 impl Emitter<'_> {
@@ -167,6 +170,7 @@ impl Emitter<'_> {
             named: BTreeMap::new(),
             target_names: declared.target_names,
             uses_linear_sampler: uses.linear_sampler,
+            runtime_conditions: uses.runtime_conditions.clone(),
         };
         match &pass.kind {
             PassKind::Render { view, vertex, .. } => {
@@ -231,11 +235,10 @@ impl Emitter<'_> {
         let mut device_half_rounding = uses.repeats_half_stores();
         if let Some(tiling) = tiling {
             let outputs: Vec<&PassOutput> = live_outputs.iter().map(|(_, o)| *o).collect();
-            w = self.finish_tiled(w, tiling, &outputs, &uses, &ctx);
             // Its 16-bit stores are rounded in the shader, as the device would.
-            device_half_rounding |= outputs
-                .iter()
-                .any(|o| o.format.storage() == abi::formats::Storage::Half);
+            let (tiled, stores_half) = self.finish_tiled(w, tiling, &outputs, &uses, &ctx);
+            w = tiled;
+            device_half_rounding |= stores_half;
         }
         EmittedPass {
             wgsl: w,
@@ -257,7 +260,7 @@ impl Emitter<'_> {
             w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
-        if uses.constant_select {
+        if !uses.runtime_conditions.is_empty() {
             w.push_str(helpers::RUNTIME_BOOL_HELPER);
             w.push('\n');
         }

@@ -35,10 +35,10 @@ pub(super) struct Uses {
     pub value_uses: BTreeMap<ExprId, usize>,
     /// Formats whose stored value a fused read repeats (`npr_stored_*`).
     pub stored: Vec<abi::Format>,
-    /// A vector `if` whose condition is built from constants alone: its
-    /// `select` takes the condition through `npr_runtime_bool` (see
-    /// `helpers::RUNTIME_BOOL_HELPER`).
-    pub constant_select: bool,
+    /// The vector `if`s whose condition is built from constants alone: each
+    /// `select` takes its condition through `npr_runtime_bool` (see
+    /// `needs_runtime_condition`, `helpers::RUNTIME_BOOL_HELPER`).
+    pub runtime_conditions: BTreeSet<ExprId>,
 }
 
 impl Uses {
@@ -104,7 +104,9 @@ impl Emitter<'_> {
                     u.style_params = true;
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
-                ExprKind::Select { cond, .. } if self.needs_runtime_condition(*id, *cond) => u.constant_select = true,
+                ExprKind::Select { cond, .. } if self.needs_runtime_condition(*id, *cond) => {
+                    u.runtime_conditions.insert(*id);
+                }
                 ExprKind::Convert {
                     conversion: Conversion::Stored(f),
                     ..
@@ -140,7 +142,7 @@ impl Emitter<'_> {
     /// (`unreachable!` in `constant_evaluator.rs`) when an operand is a
     /// vector built from a nested vector, `vec3(1.1, v2)`: soak case
     /// 272687 (docs/FUZZING.md).
-    pub(super) fn needs_runtime_condition(&self, select: ExprId, cond: ExprId) -> bool {
+    fn needs_runtime_condition(&self, select: ExprId, cond: ExprId) -> bool {
         let vector = !matches!(self.ir.expr(select).ty, Ty::Float | Ty::Int | Ty::Bool);
         vector
             && self.ir.reachable(&[cond]).iter().all(|n| {

@@ -53,16 +53,11 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) 
     }
 }
 
-/// The live targets of pass `pid`.
-fn live_targets(live: &Live, pid: PassId) -> Vec<TargetRef> {
-    live.targets.iter().filter(|t| t.pass == pid).copied().collect()
-}
-
 /// The one image pass that `pid`'s targets can be fused into, with why, or
 /// why not.
 fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), String> {
     let pass = ir.pass(pid);
-    let targets = live_targets(live, pid);
+    let targets = live.targets_of(pid);
     for t in &targets {
         let o = &pass.outputs[t.output as usize];
         let name = ir.target_name(*t);
@@ -171,7 +166,7 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
 /// targets become the producer's (stored) values; its inputs and `let`
 /// names move over; its targets leave `live`.
 fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
-    let targets = live_targets(live, producer);
+    let targets = live.targets_of(producer);
     let mut replacement: BTreeMap<TargetRef, ExprId> = BTreeMap::new();
     for t in &targets {
         let o = ir.pass(producer).outputs[t.output as usize].clone();

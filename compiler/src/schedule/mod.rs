@@ -49,11 +49,11 @@ pub fn apply(ir: &mut Ir, live: &mut Live, schedule: Schedule, report: &mut Repo
         Schedule::Naive => {}
         Schedule::Auto => {
             fuse::fuse_pointwise(ir, live, report);
-            tile::report_tilable(ir, live, report);
+            tile::tile_neighbourhoods(ir, live, report, false);
         }
         Schedule::Tiled => {
             fuse::fuse_pointwise(ir, live, report);
-            tile::tile_neighbourhoods(ir, live, report);
+            tile::tile_neighbourhoods(ir, live, report, true);
         }
     }
 }

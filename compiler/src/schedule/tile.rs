@@ -57,53 +57,52 @@ pub struct Tiling {
     pub reads: Vec<TileRead>,
 }
 
-/// Decides, for every live image pass, whether it runs tiled; records the
-/// tilings in `ir.tiled` and reports each decision.
-pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, report: &mut Report) {
+impl Tiling {
+    /// Workgroup memory all its tiles take.
+    pub fn bytes(&self) -> u32 {
+        self.reads.iter().map(TileRead::bytes).sum()
+    }
+}
+
+/// Decides, for every live image pass, whether `--schedule tiled` would
+/// tile it. With `apply` (that schedule) the tilings go in `ir.tiled` and
+/// every decision is reported; without (`auto`), only the passes it would
+/// tile are reported, with why `auto` does not (measured slower on
+/// lavapipe).
+pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, report: &mut Report, apply: bool) {
     for pid in &live.passes {
         if !matches!(ir.pass(*pid).kind, PassKind::Image { .. }) {
             continue;
         }
         let name = format!("pass `{}`", ir.pass(*pid).name);
         match tiling(ir, live, *pid) {
-            Ok(t) => {
+            Ok(t) if apply => {
                 let what: Vec<String> = t
                     .reads
                     .iter()
                     .map(|r| format!("`{}` with a {}-texel apron", ir.target_name(r.target), r.radius))
                     .collect();
-                let bytes: u32 = t.reads.iter().map(TileRead::bytes).sum();
                 report.push(
                     "tiled",
                     name,
                     format!(
-                        "compute over {TILE_SIZE}×{TILE_SIZE} tiles, keeping {} in workgroup memory ({bytes} bytes)",
-                        what.join(", ")
+                        "compute over {TILE_SIZE}×{TILE_SIZE} tiles, keeping {} in workgroup memory ({} bytes)",
+                        what.join(", "),
+                        t.bytes()
                     ),
                 );
                 ir.tiled.insert(*pid, t);
             }
-            Err(why) => report.push("not tiled", name, why),
-        }
-    }
-}
-
-/// Under `auto`: reports the image passes `--schedule tiled` would tile,
-/// and why `auto` does not (measured slower on lavapipe).
-pub(super) fn report_tilable(ir: &Ir, live: &Live, report: &mut Report) {
-    for pid in &live.passes {
-        if !matches!(ir.pass(*pid).kind, PassKind::Image { .. }) {
-            continue;
-        }
-        if let Ok(t) = tiling(ir, live, *pid) {
-            let bytes: u32 = t.reads.iter().map(TileRead::bytes).sum();
-            report.push(
+            Ok(t) => report.push(
                 "not tiled",
-                format!("pass `{}`", ir.pass(*pid).name),
+                name,
                 format!(
-                    "`--schedule tiled` would keep {bytes} bytes in workgroup memory; auto does not, as tiles measured 1.0-2.2x slower than the fragment pass on lavapipe (docs/PERFORMANCE.md)"
+                    "`--schedule tiled` would keep {} bytes in workgroup memory; auto does not, as tiles measured 1.0-2.2x slower than the fragment pass on lavapipe (docs/PERFORMANCE.md)",
+                    t.bytes()
                 ),
-            );
+            ),
+            Err(why) if apply => report.push("not tiled", name, why),
+            Err(_) => {}
         }
     }
 }
@@ -111,17 +110,10 @@ pub(super) fn report_tilable(ir: &Ir, live: &Live, report: &mut Report) {
 /// The tiling of image pass `pid`, or why it is not tiled.
 fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     let pass = ir.pass(pid);
-    let live_outputs: Vec<&PassOutput> = pass
-        .outputs
+    let live_outputs: Vec<&PassOutput> = live
+        .targets_of(pid)
         .iter()
-        .enumerate()
-        .filter(|(i, _)| {
-            live.targets.contains(&TargetRef {
-                pass: pid,
-                output: *i as u32,
-            })
-        })
-        .map(|(_, o)| o)
+        .map(|t| &pass.outputs[t.output as usize])
         .collect();
     for o in &live_outputs {
         if o.blend != Blend::Replace {
@@ -178,18 +170,20 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     if radii.is_empty() {
         return Err("no operator reads a target around the pixel".into());
     }
-    let reads: Vec<TileRead> = radii
-        .into_iter()
-        .map(|(target, radius)| TileRead { target, radius })
-        .collect();
-    let bytes: u32 = reads.iter().map(TileRead::bytes).sum();
+    let tiling = Tiling {
+        reads: radii
+            .into_iter()
+            .map(|(target, radius)| TileRead { target, radius })
+            .collect(),
+    };
+    let bytes = tiling.bytes();
     if bytes > WORKGROUP_MEMORY {
         return Err(format!(
             "its tiles need {bytes} bytes of workgroup memory (widest apron: {} texel(s)), over the {WORKGROUP_MEMORY} every adapter has",
-            reads.iter().map(|r| r.radius).max().unwrap_or(0)
+            tiling.reads.iter().map(|r| r.radius).max().unwrap_or(0)
         ));
     }
-    Ok(Tiling { reads })
+    Ok(tiling)
 }
 
 /// Whether `call` passes `arg` as a plain texture (read by `textureLoad`),

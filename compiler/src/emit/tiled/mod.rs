@@ -28,7 +28,8 @@ pub(crate) const TILED_ENTRY: &str = "cs_main";
 
 impl Emitter<'_> {
     /// The tiled module, from the fragment-style module `w` whose pixel
-    /// function is `npr_pixel`.
+    /// function is `npr_pixel`, and whether its stores round to binary16
+    /// (so it declares `abi::formats::HALF_ROUNDING_OVERRIDE`).
     pub(super) fn finish_tiled(
         &self,
         w: String,
@@ -36,7 +37,7 @@ impl Emitter<'_> {
         outputs: &[&PassOutput],
         uses: &Uses,
         ctx: &PassCtx,
-    ) -> String {
+    ) -> (String, bool) {
         let global = |r: &TileRead| ctx.target_names[&(TargetCopy::This, r.target)].clone();
         let tiled: Vec<(String, &TileRead)> = tiling.reads.iter().map(|r| (global(r), r)).collect();
         let rename = |g: &str| {
@@ -78,7 +79,7 @@ impl Emitter<'_> {
             tile_declarations(&mut out, name, r);
         }
         self.entry(&mut out, &tiled, outputs);
-        out
+        (out, half)
     }
 
     fn entry(&self, out: &mut String, tiled: &[(String, &TileRead)], outputs: &[&PassOutput]) {
