@@ -2,26 +2,13 @@
 //! that parses as XML, with a marker for every measured variant and every
 //! name in its key; bad paths are refused before anything is measured.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn npr(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run npr")
-}
+use common::cli::{npr, stderr};
+use std::path::{Path, PathBuf};
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench_plot").join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    common::cli::scratch("bench_plot", name)
 }
 
 /// The SVG at `path`, parsed: (point markers, every text).

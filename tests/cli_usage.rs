@@ -3,16 +3,9 @@
 //! outside their domain exit 1 with E0502 or a limit's code, and `--help`
 //! and `--version` exit 0. Each runs before any GPU work.
 
-use std::process::{Command, Output};
+mod common;
 
-fn npr(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("run npr")
-}
+use common::cli::npr;
 
 /// Exit 1, `error[code]` on stderr, and nothing that looks like a crash.
 fn assert_user_error(args: &[&str], code: &str) -> String {

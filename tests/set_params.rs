@@ -3,17 +3,10 @@
 //! kept as a uniform with `--keep-params`), later `--set`s win, and each
 //! mistake is a diagnostic pointing into the `--set` argument (snapshots).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn npr(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("run npr")
-}
+use common::cli::npr;
+use std::path::{Path, PathBuf};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("set-params").join(name);
