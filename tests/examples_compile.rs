@@ -171,7 +171,7 @@ fn disabled_lsa_extensions_compile_away() {
     const PLANE_OFF: (&str, &str) = ("param plane: bool = true", "param plane: bool = false");
     const AA_OFF: (&str, &str) = ("param aa: bool = true", "param aa: bool = false");
     // Markers of each extension's code in the emitted WGSL.
-    let plane_code = "fn npr_lsa_plane__err(";
+    let plane_code = "fn npr_lsa_plane__den(";
     let aa_code = "fn npr_lsa_aa__mix(";
     let has = |c: &compiler::Compiled, s: &str| c.shader("error.wgsl").expect("error pass").contains(s);
 

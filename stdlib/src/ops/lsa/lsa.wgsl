@@ -3,27 +3,60 @@
 // both halves of each direction merged (e_max). With a constant false flag
 // the compiler calls `lsa_sum`, `lsa_curv_aa` or `lsa_curv` instead, so
 // the disabled code is not emitted.
+
+// One direction m: b = p − m, d = p + m and, with `aa`, a = p − 2m,
+// f = p + 2m. Six errors are tested per direction (eq. 8: c, a and b for
+// each half), but κ and eq. 6's denominator depend only on the control and
+// eq. 6's numerator only on the check, so each is computed once per texel:
+// four of each instead of six.
+fn npr_lsa__direction(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: i32, px: vec2<i32>, p: npr_lsa_core__Texel, m: vec2<i32>, plane: bool, aa: bool, lo: f32, hi: f32) -> f32 {
+    let b = npr_lsa_core__fetch(pos, normals, encoding, px - m);
+    let d = npr_lsa_core__fetch(pos, normals, encoding, px + m);
+    let kb = npr_lsa_core__kappa(b, p);
+    let kd = npr_lsa_core__kappa(d, p);
+    var den_b = 0.0;
+    var den_d = 0.0;
+    var num_b = 0.0;
+    var num_d = 0.0;
+    if (plane) {
+        den_b = npr_lsa_plane__den(b, p, 1.0);
+        den_d = npr_lsa_plane__den(d, p, 1.0);
+        num_b = npr_lsa_plane__num(b, p, 1.0);
+        num_d = npr_lsa_plane__num(d, p, 1.0);
+    }
+    var vd = max(npr_lsa_core__error(b, p, d, kb, npr_lsa_plane__term(plane, num_d, den_b), lo, hi), 0.0);
+    var vb = max(npr_lsa_core__error(d, p, b, kd, npr_lsa_plane__term(plane, num_b, den_d), lo, hi), 0.0);
+    if (aa) {
+        // For q = d, q̂ = f and the control of S(p, q̂) is a; offsets over
+        // two steps are halved in eq. 6.
+        let a = npr_lsa_core__fetch(pos, normals, encoding, px - 2 * m);
+        let f = npr_lsa_core__fetch(pos, normals, encoding, px + 2 * m);
+        var den_a = 0.0;
+        var den_f = 0.0;
+        var num_a = 0.0;
+        var num_f = 0.0;
+        if (plane) {
+            den_a = npr_lsa_plane__den(a, p, 0.5);
+            den_f = npr_lsa_plane__den(f, p, 0.5);
+            num_a = npr_lsa_plane__num(a, p, 0.5);
+            num_f = npr_lsa_plane__num(f, p, 0.5);
+        }
+        let ka = npr_lsa_core__kappa(a, p);
+        let kf = npr_lsa_core__kappa(f, p);
+        vd = npr_lsa_aa__mix(npr_lsa_core__error(b, p, f, kb, npr_lsa_plane__term(plane, num_f, den_b), lo, hi), npr_lsa_core__error(a, p, d, ka, npr_lsa_plane__term(plane, num_d, den_a), lo, hi), vd);
+        vb = npr_lsa_aa__mix(npr_lsa_core__error(d, p, a, kd, npr_lsa_plane__term(plane, num_a, den_d), lo, hi), npr_lsa_core__error(f, p, b, kf, npr_lsa_plane__term(plane, num_b, den_f), lo, hi), vb);
+    }
+    return max(vd, vb);
+}
+
+// The directions are written out (see `npr_lsa_curv`).
 fn npr_lsa(pos: texture_2d<f32>, normals: texture_2d<f32>, uv: vec2<f32>, plane: bool, aa: bool, eta_min: f32, eta_max: f32, normal_encoding: i32) -> vec4<f32> {
     let px = npr_lsa_core__pixel(pos, uv);
     let p = npr_lsa_core__fetch(pos, normals, normal_encoding, px);
-    var out = vec4<f32>(0.0);
-    for (var i = 0; i < 4; i = i + 1) {
-        let m = npr_lsa_core__dir(i);
-        let b = npr_lsa_core__fetch(pos, normals, normal_encoding, px - m);
-        let d = npr_lsa_core__fetch(pos, normals, normal_encoding, px + m);
-        // Both halves of the pair (e_max, §4.1): d tested against S(p, ·)
-        // fitted to b, and b against the sphere fitted to d.
-        var vd = max(npr_lsa_plane__error(b, p, d, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
-        var vb = max(npr_lsa_plane__error(d, p, b, 1.0, 1.0, plane, eta_min, eta_max), 0.0);
-        if (aa) {
-            // Eq. 8 with the pixels two steps away: for q = d, q̂ = f and the
-            // control of S(p, q̂) is a; offsets over two steps are halved.
-            let a = npr_lsa_core__fetch(pos, normals, normal_encoding, px - 2 * m);
-            let f = npr_lsa_core__fetch(pos, normals, normal_encoding, px + 2 * m);
-            vd = npr_lsa_aa__mix(npr_lsa_plane__error(b, p, f, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa_plane__error(a, p, d, 0.5, 1.0, plane, eta_min, eta_max), vd);
-            vb = npr_lsa_aa__mix(npr_lsa_plane__error(d, p, a, 1.0, 0.5, plane, eta_min, eta_max), npr_lsa_plane__error(f, p, b, 0.5, 1.0, plane, eta_min, eta_max), vb);
-        }
-        out[i] = max(vd, vb);
-    }
-    return out;
+    return vec4<f32>(
+        npr_lsa__direction(pos, normals, normal_encoding, px, p, vec2<i32>(1, 0), plane, aa, eta_min, eta_max),
+        npr_lsa__direction(pos, normals, normal_encoding, px, p, vec2<i32>(1, 1), plane, aa, eta_min, eta_max),
+        npr_lsa__direction(pos, normals, normal_encoding, px, p, vec2<i32>(0, 1), plane, aa, eta_min, eta_max),
+        npr_lsa__direction(pos, normals, normal_encoding, px, p, vec2<i32>(-1, 1), plane, aa, eta_min, eta_max),
+    );
 }

@@ -22,11 +22,6 @@ struct npr_lsa_core__Texel {
     inside: bool,
 }
 
-// Direction i of the half neighbourhood: (1,0), (1,1), (0,1), (−1,1).
-fn npr_lsa_core__dir(i: i32) -> vec2<i32> {
-    return select(select(select(vec2<i32>(-1, 1), vec2<i32>(0, 1), i == 2), vec2<i32>(1, 1), i == 1), vec2<i32>(1, 0), i == 0);
-}
-
 // The texel of `tex` under `uv` (as `npr_load` picks it).
 fn npr_lsa_core__pixel(tex: texture_2d<f32>, uv: vec2<f32>) -> vec2<i32> {
     let dims = vec2<i32>(textureDimensions(tex));
@@ -79,16 +74,12 @@ fn npr_lsa_core__guard(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_ls
 // normals (eqs. 2–3): |r| = |P_c − P_p| / |N_c − N_p|, sign
 // sgn((N_c − N_p)·(P_c − P_p)). Equal normals give exactly κ = 0 (a plane),
 // and coincident positions are floored at 1e-5 m, so κ is always finite.
+// It depends on the control texel only, so each operator computes it once
+// per control and reuses it for every check texel tested against S(p, c).
 fn npr_lsa_core__kappa(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel) -> f32 {
     let dn = c.n - p.n;
     let dp = c.p - p.p;
     return sign(dot(dn, dp)) * length(dn) / max(1e-5, length(dp));
-}
-
-// e_curv (eq. 5): |κ(P_q − P_p) − (N_q − N_p)|, with κ from the control texel.
-fn npr_lsa_core__curv(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel) -> f32 {
-    let k = npr_lsa_core__kappa(c, p);
-    return length(k * (q.p - p.p) - (q.n - p.n));
 }
 
 // The remap of §3.2: [η_min, η_max] → [0, 1], clamped (a step when η_max ≤ η_min).
@@ -99,16 +90,28 @@ fn npr_lsa_core__remap(e: f32, lo: f32, hi: f32) -> f32 {
     return clamp((e - lo) / (hi - lo), 0.0, 1.0);
 }
 
-// The remapped error of check q against the LSA fitted to p and control c:
-// e_curv (eq. 5) plus `extra` (e_plane for e_sum, eq. 7, or 0). −1 when c or
-// q lies outside the image; the background/geometry value when they mix.
-fn npr_lsa_core__error(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, extra: f32, lo: f32, hi: f32) -> f32 {
+// The remapped error of check q against the sphere S(p, c) of curvature k
+// (κ of control c): e_curv (eq. 5), |κ(P_q − P_p) − (N_q − N_p)|, plus
+// `extra` (e_plane for e_sum, eq. 7, or 0). −1 when c or q lies outside the
+// image; the background/geometry value of `guard` when they mix.
+//
+// Branch-free on purpose: e_curv is computed for every texel (background
+// texels hold zeros, so it stays finite) and the guard picks the result.
+// A driver that runs pixels in SIMD lanes (lavapipe) executes both sides of
+// a divergent branch anyway; the selects save the masking.
+fn npr_lsa_core__error(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, k: f32, extra: f32, lo: f32, hi: f32) -> f32 {
     let g = npr_lsa_core__guard(c, p, q);
-    if (g < -1.5) {
-        return -1.0;
-    }
-    if (g >= 0.0) {
-        return npr_lsa_core__remap(g, lo, hi);
-    }
-    return npr_lsa_core__remap(npr_lsa_core__curv(c, p, q) + extra, lo, hi);
+    let e = select(g, length(k * (q.p - p.p) - (q.n - p.n)) + extra, g == -1.0);
+    return select(npr_lsa_core__remap(e, lo, hi), -1.0, g < -1.5);
+}
+
+// One direction m of the base method (eqs. 1–5 with e_max, §4.1): the
+// larger remapped e_curv of the two neighbours b = p − m and d = p + m,
+// each tested against the sphere fitted to p and the opposite neighbour.
+fn npr_lsa_core__direction(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: i32, px: vec2<i32>, p: npr_lsa_core__Texel, m: vec2<i32>, lo: f32, hi: f32) -> f32 {
+    let b = npr_lsa_core__fetch(pos, normals, encoding, px - m);
+    let d = npr_lsa_core__fetch(pos, normals, encoding, px + m);
+    let vd = npr_lsa_core__error(b, p, d, npr_lsa_core__kappa(b, p), 0.0, lo, hi);
+    let vb = npr_lsa_core__error(d, p, b, npr_lsa_core__kappa(d, p), 0.0, lo, hi);
+    return max(max(vd, vb), 0.0);
 }

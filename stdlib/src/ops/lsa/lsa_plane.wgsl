@@ -37,16 +37,23 @@ fn npr_lsa_plane__arc_max(d: vec3<f32>, na: vec3<f32>, nb: vec3<f32>) -> f32 {
     return select(ends, max(ends, length(dp)), on_arc);
 }
 
-// e_plane (eq. 6) with k: [50, 150] → [0, 1], clamped; sc and sq scale the
-// control and check offsets to one pixel step (0.5 for the doubled offsets
-// of eq. 8).
-fn npr_lsa_plane__err(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32) -> f32 {
-    let num = npr_lsa_plane__arc_min((q.p - p.p) * sq, p.n, q.n);
-    let den = npr_lsa_plane__arc_max((c.p - p.p) * sc, p.n, c.n);
-    return clamp((num / (den + 1e-5) - 50.0) / 100.0, 0.0, 1.0);
+// Eq. 6's denominator for control c: the arc maximum of |ΔP·N| from N_p to
+// N_c, with the offset scaled by sc (1 for a one-step control, 0.5 for the
+// doubled offsets of eq. 8). It depends on the control alone, so each
+// operator computes it once per control and reuses it for every check.
+fn npr_lsa_plane__den(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, sc: f32) -> f32 {
+    return npr_lsa_plane__arc_max((c.p - p.p) * sc, p.n, c.n);
 }
 
-// e_sum (eq. 7): the core error with e_plane added when `plane`.
-fn npr_lsa_plane__error(c: npr_lsa_core__Texel, p: npr_lsa_core__Texel, q: npr_lsa_core__Texel, sc: f32, sq: f32, plane: bool, lo: f32, hi: f32) -> f32 {
-    return npr_lsa_core__error(c, p, q, select(0.0, npr_lsa_plane__err(c, p, q, sc, sq), plane), lo, hi);
+// Eq. 6's numerator for check q: the arc minimum of |ΔP·N| from N_p to N_q,
+// the offset scaled by sq as for `den`. It depends on the check alone.
+fn npr_lsa_plane__num(q: npr_lsa_core__Texel, p: npr_lsa_core__Texel, sq: f32) -> f32 {
+    return npr_lsa_plane__arc_min((q.p - p.p) * sq, p.n, q.n);
+}
+
+// e_plane (eq. 6) from its numerator and denominator, with k: [50, 150] →
+// [0, 1], clamped; 0 when the planarity extension is off (eq. 7's e_sum is
+// then e_curv alone).
+fn npr_lsa_plane__term(plane: bool, num: f32, den: f32) -> f32 {
+    return select(0.0, clamp((num / (den + 1e-5) - 50.0) / 100.0, 0.0, 1.0), plane);
 }
