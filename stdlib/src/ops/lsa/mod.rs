@@ -92,7 +92,11 @@ macro_rules! lsa_case {
                 each![0.5],
                 each![$octahedral as i32],
             ],
-            Tol::Abs(1e-4),
+            // Remapped errors in [0, 1]: 5.5e-7 measured on lavapipe (the
+            // wavy surface; the others are exact), so 1e-5 leaves 18× for
+            // drivers' 2-ulp `inverseSqrt` and `length` and the ×4 of the
+            // remap from [¼, ½].
+            Tol::Abs(1e-5),
         )
         .over(N, N)
     };
