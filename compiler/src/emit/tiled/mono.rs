@@ -20,6 +20,11 @@ use std::collections::BTreeMap;
 /// One top-level function of the module.
 #[derive(Debug, Clone)]
 struct Function {
+    /// The `//` comment lines directly above the function (its doc and,
+    /// for a stdlib operator, the emitter's `// ---- stdlib operator`
+    /// header), moved with it so that no comment is left describing a
+    /// function that is now elsewhere or gone.
+    doc: String,
     /// Parameters as (name, type text).
     params: Vec<(String, String)>,
     /// From after the parameter list's `)` to the end of the body's `}`.
@@ -62,7 +67,7 @@ pub fn monomorphize(module: &str, rename_load: &dyn Fn(&str) -> Option<String>) 
             continue;
         }
         let rest = rewrite_body(&f.rest, &BTreeMap::new(), &by_name, &mut copies, rename_load, 0)?;
-        kept.push_str(&format!("fn {name}({}){rest}\n\n", join_params(&f.params)));
+        kept.push_str(&format!("{}fn {name}({}){rest}\n\n", f.doc, join_params(&f.params)));
     }
     let mut out = parsed.other;
     out.push_str(&kept);
@@ -70,7 +75,21 @@ pub fn monomorphize(module: &str, rename_load: &dyn Fn(&str) -> Option<String>) 
         out.push_str(text);
         out.push_str("\n\n");
     }
-    Ok(out)
+    Ok(collapse_blank_lines(&out))
+}
+
+/// `text` with every run of blank lines shortened to one: the functions
+/// taken out of the module leave their line breaks behind.
+fn collapse_blank_lines(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut blank_run = 0;
+    for line in text.split_inclusive('\n') {
+        blank_run = if line.trim().is_empty() { blank_run + 1 } else { 0 };
+        if blank_run <= 1 {
+            out.push_str(line);
+        }
+    }
+    out
 }
 
 fn join_params(params: &[(String, String)]) -> String {
@@ -117,7 +136,7 @@ fn instantiate(
     let rest = rewrite_body(&f.rest, &bound, by_name, copies, rename_load, depth + 1)?;
     copies.insert(
         copy_name.clone(),
-        format!("fn {copy_name}({}){rest}", join_params(&kept)),
+        format!("{}fn {copy_name}({}){rest}", f.doc, join_params(&kept)),
     );
     Ok(copy_name)
 }
@@ -305,10 +324,14 @@ fn split_module(module: &str) -> Result<Module, String> {
     let mut other = String::new();
     let mut functions = Vec::new();
     let mut depth = 0usize;
+    // Where in `other` the run of `//` lines just above the next token
+    // starts (no blank line, no code in between): the next `fn`'s doc.
+    let mut doc_start: Option<usize> = None;
     let mut i = 0;
     while i < tokens.len() {
         let t = &tokens[i];
         if depth == 0 && matches!(t, Token::Ident(k) if k == "fn") {
+            let doc = doc_start.take().map(|at| other.split_off(at)).unwrap_or_default();
             let name_at = next_significant(&tokens, i + 1).ok_or("`fn` without a name")?;
             let Token::Ident(name) = &tokens[name_at] else {
                 return Err("`fn` without a name".into());
@@ -348,7 +371,7 @@ fn split_module(module: &str) -> Result<Module, String> {
             if !seen_body || body_depth != 0 {
                 return Err(format!("function `{name}` has no complete body"));
             }
-            functions.push((name.clone(), Function { params, rest }));
+            functions.push((name.clone(), Function { doc, params, rest }));
             i = k + 1;
             continue;
         }
@@ -357,6 +380,12 @@ fn split_module(module: &str) -> Result<Module, String> {
             Token::Punct(p) if p == "}" => depth = depth.checked_sub(1).ok_or("unbalanced `}`")?,
             _ => {}
         }
+        doc_start = match t {
+            Token::Blank(c) if c.starts_with("//") => doc_start.or(Some(other.len())),
+            // Line ends inside the run; a blank line ends it.
+            Token::Blank(w) if !w.starts_with("/*") && w.matches('\n').count() <= 1 => doc_start,
+            _ => None,
+        };
         other.push_str(t.text());
         i += 1;
     }
@@ -392,8 +421,26 @@ fn main_px() -> vec4<f32> {
         assert!(out.contains("return twice__t_a(vec2<i32>(0))"), "{out}");
         // The generic originals are gone; the comment and binding stay.
         assert!(!out.contains("fn load1(src"), "{out}");
-        assert!(out.contains("// a comment with fn and { braces"), "{out}");
+        assert!(
+            out.contains("// a comment with fn and { braces\nfn load1__t_a("),
+            "{out}"
+        );
         assert!(out.contains("fn plain(x: f32)"), "{out}");
+    }
+
+    #[test]
+    fn a_functions_comment_moves_with_it_and_a_detached_one_stays() {
+        let module = "// about the module\n\n// ---- header\n// doc of gen\nfn gen(t: texture_2d<f32>) -> f32 { return 1.0; }\n\n// doc of user\nfn user() -> f32 { return gen(t_a); }\n@group(0) @binding(0) var t_a: texture_2d<f32>;\n";
+        let out = monomorphize(module, &|_| None).unwrap();
+        assert!(out.starts_with("// about the module\n\n"), "{out}");
+        assert_eq!(
+            out.matches("// ---- header\n// doc of gen\nfn gen__t_a()").count(),
+            1,
+            "{out}"
+        );
+        assert!(out.contains("// doc of user\nfn user()"), "{out}");
+        // Nothing of gen's comment is left where the generic function was.
+        assert_eq!(out.matches("doc of gen").count(), 1, "{out}");
     }
 
     #[test]
