@@ -442,6 +442,11 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 30)]
         frames: u32,
+        /// Schedules to compile the style under, comma-separated (e.g.
+        /// `naive,auto`): each is measured in the same run, and the frame
+        /// totals are compared with the first's.
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "auto")]
+        schedule: Vec<ScheduleArg>,
     },
     /// `npr studio` end to end over HTTP and its event stream: slider →
     /// new image and save → new image against `npr render`'s own frame

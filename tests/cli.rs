@@ -238,6 +238,58 @@ fn bench_contours_reports_every_variant_with_accuracy() {
 }
 
 #[test]
+fn bench_passes_compares_schedules_in_one_run() {
+    // A smoke run at a tiny size: what each schedule changed, and the ratio
+    // column against the first schedule, not timings.
+    let o = npr(&[
+        "bench",
+        "passes",
+        "examples/lsa_contours.npr",
+        "--scene",
+        "examples/scenes/orbit.toml",
+        "--size",
+        "32x32",
+        "--frames",
+        "1",
+        "--schedule",
+        "naive,auto,tiled",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let row = |schedule: &str| -> Vec<String> {
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("| {schedule} | ")))
+            .unwrap_or_else(|| panic!("no summary row for {schedule}: {stdout}"));
+        line.split('|')
+            .map(|c| c.trim().to_string())
+            .filter(|c| !c.is_empty())
+            .collect()
+    };
+    // LSA: error, density, ink passes on a G-buffer; `auto` fuses the ink
+    // pass, `tiled` also tiles the error and density passes.
+    assert_eq!(row("naive")[1..3], ["0 fused, 0 tiled", "4"], "{stdout}");
+    assert_eq!(row("naive")[4], "1.00", "{stdout}");
+    assert_eq!(row("auto")[1..3], ["1 fused, 0 tiled", "3"], "{stdout}");
+    assert_eq!(row("tiled")[1..3], ["1 fused, 2 tiled", "3"], "{stdout}");
+    let o = npr(&[
+        "bench",
+        "passes",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--schedule",
+        "fast",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("error[E0501]: invalid value 'fast'"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn bench_artmaps_reports_every_filter_and_every_read() {
     // A smoke run at a tiny size: the tables' shape and that the figures
     // are real (positive, finite), not their values.

@@ -157,35 +157,60 @@ pub fn pass_times(
     gpu: &Gpu,
     program: &StyleProgram,
     scene: &runner::scene::Scene,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     frames: u32,
 ) -> Result<Vec<PassTime>, RunError> {
-    let passes = program.manifest.passes.len();
-    let timer = crate::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
-        RunError::Limit(format!(
-            "{} has no timestamp queries: per-pass times cannot be measured",
-            gpu.describe()
-        ))
-    })?;
-    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut all = pass_times_interleaved(gpu, std::slice::from_ref(program), scene, size, frames)?;
+    all.pop()
+        .ok_or_else(|| RunError::Internal("pass_times_interleaved returned no program".into()))
+}
+
+/// [`pass_times`] of several programs (the same style under different
+/// schedules, say), their frames interleaved so that a change of load
+/// falls on all of them alike; one list per program, in order.
+pub fn pass_times_interleaved(
+    gpu: &Gpu,
+    programs: &[StyleProgram],
+    scene: &runner::scene::Scene,
+    (width, height): (u32, u32),
+    frames: u32,
+) -> Result<Vec<Vec<PassTime>>, RunError> {
     let spec = FrameSpec::still(width, height, 0);
-    let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); passes];
+    let mut timed = Vec::new();
+    for program in programs {
+        let passes = program.manifest.passes.len();
+        let timer = crate::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
+            RunError::Limit(format!(
+                "{} has no timestamp queries: per-pass times cannot be measured",
+                gpu.describe()
+            ))
+        })?;
+        let r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+        timed.push((timer, r, vec![Vec::new(); passes]));
+    }
     for frame in 0..=frames.max(1) {
-        let ms = timer.frame(gpu, &mut r, scene, &spec)?;
-        // Frame 0 warms up pipelines and caches; it is not counted.
-        if frame > 0 {
-            for (times, t) in per_pass.iter_mut().zip(ms) {
-                times.push(t);
+        for (timer, r, per_pass) in timed.iter_mut() {
+            let ms = timer.frame(gpu, r, scene, &spec)?;
+            // Frame 0 warms up pipelines and caches; it is not counted.
+            if frame > 0 {
+                for (times, t) in per_pass.iter_mut().zip(ms) {
+                    times.push(t);
+                }
             }
         }
     }
-    Ok(r.manifest
-        .passes
-        .iter()
-        .zip(per_pass)
-        .map(|(p, times)| PassTime {
-            name: p.name.clone(),
-            ms: median(times),
+    Ok(timed
+        .into_iter()
+        .map(|(_, r, per_pass)| {
+            r.manifest
+                .passes
+                .iter()
+                .zip(per_pass)
+                .map(|(p, times)| PassTime {
+                    name: p.name.clone(),
+                    ms: median(times),
+                })
+                .collect()
         })
         .collect())
 }

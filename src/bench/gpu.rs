@@ -2,11 +2,11 @@
 //! passes, whole styles, passes and runner overhead, each against its
 //! baseline in the same run.
 
-use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu};
+use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu, scene_styles_gpu};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::schedule::Schedule;
-use compiler::CompileOptions;
+use compiler::{CompileOptions, Compiled};
 use dsl::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, RunError, StyleProgram};
 use std::path::{Path, PathBuf};
@@ -292,21 +292,28 @@ pub(super) fn styles(
 }
 
 /// `npr bench passes`: each pass's GPU time and its share of the frame.
-pub(super) fn passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: u32, printer: &Printer) -> i32 {
+/// The `--schedule` value that selects `s`.
+fn schedule_name(s: Schedule) -> &'static str {
+    match s {
+        Schedule::Naive => "naive",
+        Schedule::Auto => "auto",
+        Schedule::Tiled => "tiled",
+    }
+}
+
+pub(super) fn passes(
+    style: &Path,
+    scene_path: &Path,
+    size: (u32, u32),
+    frames: u32,
+    schedules: &[Schedule],
+    printer: &Printer,
+) -> i32 {
     let mut sources = SourceMap::new();
-    let (scene, compiled, gpu) = match scene_style_gpu(style, scene_path, &mut sources, printer) {
+    let (scene, compiled, gpu) = match scene_styles_gpu(style, scene_path, schedules, &mut sources, printer) {
         Ok(t) => t,
         Err(code) => return code,
     };
-    let program = compiled.program();
-    let times = match lab::bench::pass_times(&gpu, &program, &scene, size, frames) {
-        Ok(t) => t,
-        Err(e) => {
-            printer.diagnostics(&e.diagnostics(), &sources);
-            return if e.is_user_error() { EXIT_USER } else { EXIT_INTERNAL };
-        }
-    };
-    let total: f64 = times.iter().map(|t| t.ms).sum();
     println!(
         "device: {}, {}x{}, style {}, scene {}, median of {frames} frames",
         gpu.describe(),
@@ -315,17 +322,49 @@ pub(super) fn passes(style: &Path, scene_path: &Path, size: (u32, u32), frames: 
         style.display(),
         scene_path.display()
     );
-    println!("| pass | scale | GPU ms | share of frame |");
-    println!("|---|---:|---:|---:|");
-    for (t, p) in times.iter().zip(&compiled.manifest.passes) {
-        println!(
-            "| {} | {} | {:.3} | {:.1}% |",
-            t.name,
-            p.scale,
-            t.ms,
-            100.0 * t.ms / total.max(1e-12)
-        );
+    // Every schedule is measured in this run, frames interleaved, so the
+    // totals compare (docs/PERFORMANCE.md: ratios from one run).
+    let programs: Vec<StyleProgram> = compiled.iter().map(Compiled::program).collect();
+    let all_times = match lab::bench::pass_times_interleaved(&gpu, &programs, &scene, size, frames) {
+        Ok(t) => t,
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources);
+            return if e.is_user_error() { EXIT_USER } else { EXIT_INTERNAL };
+        }
+    };
+    let mut totals = Vec::new();
+    for ((schedule, c), times) in schedules.iter().zip(&compiled).zip(all_times) {
+        let total: f64 = times.iter().map(|t| t.ms).sum();
+        let changes = super::ScheduleChanges::of(c);
+        if schedules.len() > 1 {
+            println!("\nschedule `{}` ({changes}):", schedule_name(*schedule));
+        }
+        println!("| pass | scale | GPU ms | share of frame |");
+        println!("|---|---:|---:|---:|");
+        for (t, p) in times.iter().zip(&c.manifest.passes) {
+            println!(
+                "| {} | {} | {:.3} | {:.1}% |",
+                t.name,
+                p.scale,
+                t.ms,
+                100.0 * t.ms / total.max(1e-12)
+            );
+        }
+        println!("| **all passes** | | {total:.3} | 100% |");
+        totals.push((schedule_name(*schedule), changes, c.manifest.passes.len(), total));
     }
-    println!("| **all passes** | | {total:.3} | 100% |");
+    if let [(first, ..), ..] = totals.as_slice() {
+        if totals.len() > 1 {
+            println!("\n| schedule | changes | passes | GPU ms, all passes | / {first} |");
+            println!("|---|---|---:|---:|---:|");
+            let base = totals[0].3;
+            for (name, changes, passes, total) in &totals {
+                println!(
+                    "| {name} | {changes} | {passes} | {total:.3} | {:.2} |",
+                    total / base.max(1e-12)
+                );
+            }
+        }
+    }
     EXIT_OK
 }

@@ -89,7 +89,11 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             scene,
             size,
             frames,
-        } => gpu::passes(&style, &scene, size, frames, printer),
+            schedule,
+        } => {
+            let schedules: Vec<Schedule> = schedule.into_iter().map(Schedule::from).collect();
+            gpu::passes(&style, &scene, size, frames, &schedules, printer)
+        }
         BenchCommand::Studio {
             style,
             scene,
@@ -226,6 +230,15 @@ pub(crate) struct ScheduleChanges {
 }
 
 impl ScheduleChanges {
+    /// The changes a compilation's report lists.
+    pub fn of(c: &Compiled) -> ScheduleChanges {
+        let count = |action: &str| c.report.entries.iter().filter(|e| e.action == action).count();
+        ScheduleChanges {
+            fused: count("fused"),
+            tiled: count("tiled"),
+        }
+    }
+
     pub fn any(self) -> bool {
         self.fused + self.tiled > 0
     }
@@ -250,14 +263,7 @@ fn compile_builtin_with(
         ..Default::default()
     };
     match compiler::compile_source(name, text, dir, sources, &opts) {
-        Ok(c) => {
-            let count = |action: &str| c.report.entries.iter().filter(|e| e.action == action).count();
-            let changes = ScheduleChanges {
-                fused: count("fused"),
-                tiled: count("tiled"),
-            };
-            Ok((c.program(), changes))
-        }
+        Ok(c) => Ok((c.program(), ScheduleChanges::of(&c))),
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);
             Err(EXIT_INTERNAL)
@@ -278,11 +284,28 @@ pub(crate) fn scene_style_gpu(
     sources: &mut SourceMap,
     printer: &Printer,
 ) -> Result<(runner::scene::Scene, Compiled, Gpu), i32> {
+    let (scene, mut compiled, gpu) = scene_styles_gpu(style, scene_path, &[Schedule::default()], sources, printer)?;
+    let compiled = compiled.pop().ok_or(EXIT_INTERNAL)?;
+    Ok((scene, compiled, gpu))
+}
+
+/// [`scene_style_gpu`] with the style compiled once per schedule, in order.
+pub(crate) fn scene_styles_gpu(
+    style: &Path,
+    scene_path: &Path,
+    schedules: &[Schedule],
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<(runner::scene::Scene, Vec<Compiled>, Gpu), i32> {
     let scene = load_scene(scene_path, sources, printer)?;
-    let opts = CompileOptions {
-        scene: Some(scene.summary(&scene_path.display().to_string())),
-        ..Default::default()
-    };
-    let compiled = compile(style, sources, &opts, printer)?;
+    let mut compiled = Vec::new();
+    for &schedule in schedules {
+        let opts = CompileOptions {
+            scene: Some(scene.summary(&scene_path.display().to_string())),
+            schedule,
+            ..Default::default()
+        };
+        compiled.push(compile(style, sources, &opts, printer)?);
+    }
     Ok((scene, compiled, headless_gpu(printer)?))
 }
