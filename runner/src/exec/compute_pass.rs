@@ -183,33 +183,21 @@ impl ComputePassExec {
                 &own,
             ));
         }
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(&pass.name),
-            bind_group_layouts: &[Some(&layout0), Some(&layout1), Some(&layout2)],
-            immediate_size: 0,
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&pass.shader),
-            source: wgpu::ShaderSource::Wgsl(shader.wgsl.into()),
-        });
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(&format!("{} {entry}", pass.name)),
-                layout: Some(&layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: shader.compilation_options(),
-                cache: None,
-            })
-        };
-        let elements = elements_entry.as_deref().map(pipeline);
-        let objects_pipeline = pipeline(objects_entry);
+        // The objects' entry point first, then the elements' (over vertices).
+        let entries: Vec<&str> = std::iter::once(objects_entry.as_str())
+            .chain(elements_entry.as_deref())
+            .collect();
+        let pipelines = shader.compute_pipelines(device, pass, &[&layout0, &layout1, &layout2], &entries);
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(RunError::Internal(format!(
                 "compute pipelines for pass `{}` rejected by wgpu: {err}",
                 pass.name
             )));
         }
+        let mut pipelines = pipelines.into_iter();
+        let (Some(objects_pipeline), elements) = (pipelines.next(), pipelines.next()) else {
+            return Err(RunError::Internal(format!("pass `{}` built no pipeline", pass.name)));
+        };
         let mut time_varying = Vec::new();
         for (o, first) in &buffers.time_varying {
             for (a, pooled) in &buffers.attributes {

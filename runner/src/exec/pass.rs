@@ -268,6 +268,41 @@ impl PassShader<'_> {
             ..Default::default()
         }
     }
+
+    /// This shader as compute pipelines over one layout of `groups`: one
+    /// pipeline per entry point, in order (the compute and tiled passes).
+    /// The caller holds the validation scope that checks them.
+    pub fn compute_pipelines(
+        &self,
+        device: &wgpu::Device,
+        pass: &PassManifest,
+        groups: &[&wgpu::BindGroupLayout],
+        entries: &[&str],
+    ) -> Vec<wgpu::ComputePipeline> {
+        let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().copied().map(Some).collect();
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&pass.name),
+            bind_group_layouts: &bind_group_layouts,
+            immediate_size: 0,
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&pass.shader),
+            source: wgpu::ShaderSource::Wgsl(self.wgsl.into()),
+        });
+        entries
+            .iter()
+            .map(|entry| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(&format!("{} {entry}", pass.name)),
+                    layout: Some(&layout),
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: self.compilation_options(),
+                    cache: None,
+                })
+            })
+            .collect()
+    }
 }
 
 /// The pipeline-overridable constants `pass`'s shader declares: the device's

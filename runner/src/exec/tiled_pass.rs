@@ -51,29 +51,18 @@ impl TiledPassExec {
             label: Some(&format!("{} outputs", pass.name)),
             entries: &entries,
         });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(&pass.name),
-            bind_group_layouts: &[Some(&layout0), Some(&layout1)],
-            immediate_size: 0,
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&pass.shader),
-            source: wgpu::ShaderSource::Wgsl(shader.wgsl.into()),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&pass.name),
-            layout: Some(&layout),
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: shader.compilation_options(),
-            cache: None,
-        });
+        let pipeline = shader
+            .compute_pipelines(device, pass, &[&layout0, &layout1], &[entry])
+            .pop();
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(RunError::Internal(format!(
                 "tiled pipeline for pass `{}` rejected by wgpu: {err}",
                 pass.name
             )));
         }
+        let Some(pipeline) = pipeline else {
+            return Err(RunError::Internal(format!("pass `{}` built no pipeline", pass.name)));
+        };
         Ok(TiledPassExec {
             name: pass.name.clone(),
             pipeline,
