@@ -6,7 +6,9 @@
 //! point, not per fragment); an animated width follows its keyframes;
 //! strips are rebuilt only when something they depend on changes; edges
 //! crossing the near plane draw without NaN; in a stereo frame each eye
-//! draws the silhouette seen from that eye.
+//! draws the silhouette seen from that eye; a mesh divided into patches
+//! (Breslav et al. 2007 §3.6) draws the lines of the undivided mesh, no
+//! seam between patches as a boundary.
 //!
 //! Ink, recall and precision are those of `tests/common/lines.rs`.
 
@@ -380,4 +382,62 @@ fn a_cylinders_rims_and_sides_are_drawn_where_they_are_seen() {
         precision_untested < 0.9,
         "precision without the depth test {precision_untested}"
     );
+}
+
+/// The paper's cow in 6 patches (`examples/scenes/patched_cow.toml`, §3.6)
+/// and the same cow undivided: the same feature edges at 40° (no seam
+/// between patches is a boundary or a crease unless the surface bends
+/// there), and the same ink, pixel for pixel, so no line runs along a seam.
+/// Drawn patch by patch, every seam edge was a boundary edge.
+#[test]
+fn a_patched_cows_lines_are_the_undivided_cows() {
+    use runner::lines::edges::{EdgeKind, EdgeMesh};
+    let root = common::root();
+    let path = root.join("examples/scenes/patched_cow.toml");
+    let mut sources = dsl::SourceMap::new();
+    let patched = runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    let text = std::fs::read_to_string(&path).expect("scene");
+    assert!(text.contains("patches = 6\n"), "the scene splits the cow in 6");
+    let whole_text = text.replace("patches = 6\n", "").replace("blend_rings = 2\n", "");
+    let file = sources.add("whole_cow.toml", whole_text.clone());
+    let whole = runner::scene::parse_scene(&whole_text, file, &root.join("examples/scenes"))
+        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+    assert_eq!((patched.objects.len(), whole.objects.len()), (6, 1));
+
+    let edges = |meshes: Vec<&runner::scene::Mesh>| {
+        let mut counts = [0usize; 2];
+        for mesh in meshes {
+            for (_, kind) in EdgeMesh::new(mesh).creases(40.0) {
+                counts[usize::from(kind == EdgeKind::Boundary)] += 1;
+            }
+        }
+        counts
+    };
+    let surfaces = |scene: &Scene| {
+        let drawn: Vec<_> = scene.objects.iter().map(|o| (o, o.mesh.as_ref())).collect();
+        edges(
+            runner::lines::objects::line_objects(&drawn)
+                .iter()
+                .map(|s| s.mesh)
+                .collect(),
+        )
+    };
+    let [creases, boundaries] = surfaces(&whole);
+    let per_patch = edges(patched.objects.iter().map(|o| o.mesh.as_ref()).collect());
+    eprintln!(
+        "cow at 40°: {creases} creases, {boundaries} boundary edges; patch by patch {} and {}",
+        per_patch[0], per_patch[1]
+    );
+    assert_eq!(surfaces(&patched), [creases, boundaries]);
+    assert!(
+        per_patch[1] > boundaries + 100,
+        "patch by patch, the seams are boundaries: {per_patch:?}"
+    );
+
+    let text = style("creases: 40deg  depth: test(shade, bias: 1px)");
+    let (a, b) = (render_at(&text, &patched, 0.0), render_at(&text, &whole, 0.0));
+    eprintln!("ink: {} px patched, {} px whole", a.len(), b.len());
+    assert!(b.len() > 500, "the cow's lines are drawn: {} px", b.len());
+    assert_eq!(a, b, "the patched cow's lines differ from the whole cow's");
 }

@@ -13,24 +13,39 @@
 //!   the unblended drawing (the other patch's ink or paint, which nothing
 //!   else can add: a patch alone at strength < 1 over the paper or the
 //!   lightest paint only lightens) and, for the ink styles, some are lighter
-//!   (this side's pattern weakened): both patches contribute there.
+//!   (this side's pattern weakened): both patches contribute there;
+//! - the step across the seam (the mean |Δ| between the two pixel columns
+//!   either side of it) is smaller blended than hard, by a factor measured
+//!   per style (`SEAM_RATIO`).
 //!
-//! Not measured here: a seam step across the boundary. On this still strip
-//! every patch starts from the same pattern frame (o = 0, the same u and v),
-//! so the halftone's and stipple's patterns agree across the boundary and
-//! there is no seam to hide (hatching and painterly turn theirs per
-//! `object.id`); a correlation measure of the step between the two columns
-//! either side did not tell the hard seam from the blend for hatching
-//! (0.95 against 1.06 × the median step) either.
+//! The seam step needs each patch to start from its own pattern frame: the
+//! tracker shifts object k's first o by fract(k·α) of the period
+//! (`examples/lib/dynamic_pattern.npr`). With o = 0 for every patch, as
+//! before, the halftone's and stipple's patterns agreed across the boundary
+//! on this still strip and the steps hard and blended were alike (halftone
+//! 0.248 and 0.237, stipple 0.316 and 0.294); with the shift they are 0.599
+//! and 0.389, 0.870 and 0.398. Hatching and painterly turn their patterns
+//! per `object.id` too, so their seams showed before as well.
 
 use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 
 mod common;
-use common::patch_strip::{half_pixel, scratch, strip_scene, surface_point, CELL, CELLS_Y, H, W};
+use common::patch_strip::{half_pixel, scratch, strip_scene, surface_point, CELL, CELLS_X, CELLS_Y, H, W};
 use common::{gpu, root};
 
 /// Rings of the blended drawing.
 const RINGS: u32 = 2;
+
+/// Per style, how many times the blended seam step the hard one is at
+/// least: measured 1.54 (halftone), 2.19 (stipple), 1.19 (hatching, whose
+/// thin slanted lines already step a lot between neighbouring columns:
+/// 0.38 within a patch, against 0.52 at the hard seam), 1.49 (painterly).
+const SEAM_RATIO: [(&str, f64); 4] = [
+    ("halftone", 1.4),
+    ("stipple", 1.8),
+    ("hatching", 1.1),
+    ("painterly", 1.3),
+];
 
 fn example(style: &str) -> StyleProgram {
     let mut sources = dsl::SourceMap::new();
@@ -78,6 +93,38 @@ fn on_strip_row(py: u32) -> bool {
 fn value(img: &TargetImage, px: u32, py: u32) -> f64 {
     let t = img.texel(px, py);
     f64::from(t[0] + t[1] + t[2])
+}
+
+/// The mean over the strip's rows of |value(right) − value(left)| between
+/// the two pixel columns either side of the seam (x = 0 falls between
+/// columns W/2 − 1 and W/2).
+fn seam_step(img: &TargetImage) -> f64 {
+    column_step(img, W / 2 - 1)
+}
+
+/// The mean over the strip's rows of |value(px + 1) − value(px)|.
+fn column_step(img: &TargetImage, px: u32) -> f64 {
+    let rows: Vec<u32> = (0..H).filter(|py| on_strip_row(*py)).collect();
+    rows.iter()
+        .map(|&py| (value(img, px + 1, py) - value(img, px, py)).abs())
+        .sum::<f64>()
+        / rows.len() as f64
+}
+
+/// The median of [`column_step`] over the column pairs of one patch outside
+/// the n-ring: the step a pattern makes between neighbouring columns.
+fn pattern_step(img: &TargetImage) -> f64 {
+    let reach = RINGS as f64 * CELL + 2.0 * half_pixel();
+    let end = CELLS_X as f64 / 2.0 * CELL - 2.0 * half_pixel();
+    let mut steps: Vec<f64> = (0..W - 1)
+        .filter(|&px| {
+            let (x0, x1) = (surface_point(px, 0).0, surface_point(px + 1, 0).0);
+            x0.abs() > reach && x1.abs() > reach && x0.signum() == x1.signum() && x0.abs() < end
+        })
+        .map(|px| column_step(img, px))
+        .collect();
+    steps.sort_by(f64::total_cmp);
+    steps[steps.len() / 2]
 }
 
 /// Drawn over `RINGS` rings against the hard seam: what changes where.
@@ -134,6 +181,20 @@ fn blends_over_the_n_ring(style: &str) {
             ring[side]
         );
     }
+    let (hard_step, blended_step) = (seam_step(&hard), seam_step(&blended));
+    let within = pattern_step(&hard);
+    println!(
+        "{style}: mean step across the seam {hard_step:.4} hard, {blended_step:.4} blended; {within:.4} between neighbouring columns of one patch"
+    );
+    let ratio = SEAM_RATIO
+        .iter()
+        .find(|(s, _)| *s == style)
+        .expect("a ratio per style")
+        .1;
+    assert!(
+        hard_step > ratio * blended_step,
+        "{style}: the hard seam steps {hard_step:.4}, the blended one {blended_step:.4}: not {ratio}× smaller"
+    );
     if style != "painterly" {
         for side in 0..2 {
             assert!(

@@ -12,8 +12,9 @@
 use super::bind;
 use super::pass::{self, Timestamps};
 use super::resources::SizedPass;
-use crate::lines::cache::{EdgeSelection, LineObject, LinesCache};
+use crate::lines::cache::{EdgeSelection, LinesCache};
 use crate::lines::draw::{vertices, DepthBias};
+use crate::lines::objects::line_objects;
 use crate::lines::strip::LineStyle;
 use crate::RunError;
 use abi::lines::{
@@ -187,17 +188,16 @@ impl LinesPassExec {
         scale: f64,
     ) -> Result<(), RunError> {
         let style = self.style(frame)?;
-        let objects: Vec<LineObject> = frame
+        let drawn: Vec<(&crate::scene::Object, &crate::scene::Mesh)> = frame
             .scene
             .objects
             .iter()
             .zip(frame.meshes)
             .filter(|(o, _)| self.tag.as_ref().is_none_or(|t| o.tags.contains(t)))
-            .map(|(o, mesh)| LineObject {
-                mesh: mesh.as_ref(),
-                model: o.model.as_dmat4(),
-            })
+            .map(|(o, mesh)| (o, mesh.as_ref()))
             .collect();
+        // A patched object's patches are one surface: its whole mesh.
+        let objects = line_objects(&drawn);
         let (w, h) = super::resources::scaled_size(frame.width, frame.height, scale);
         let size = DVec2::new(f64::from(w), f64::from(h));
         let selection = EdgeSelection {

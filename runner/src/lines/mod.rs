@@ -3,8 +3,11 @@
 //! the wavy screen-space strips drawn along them ([`strip`]). Both on the
 //! CPU in f64; see the module headers for why. [`cache`] keeps what is
 //! static per mesh and rebuilds an eye's strips only when its view changes.
+//! [`objects`] says which surfaces a pass draws (a patched object's patches
+//! as its whole mesh).
 
 pub mod cache;
 pub mod draw;
 pub mod edges;
+pub mod objects;
 pub mod strip;

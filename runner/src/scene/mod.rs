@@ -196,6 +196,9 @@ pub struct Object {
     /// instead of `mesh` (its faces and n-ring, with its weights). `None`:
     /// `mesh` with weight 1 at every vertex (no patches, or `blend_rings = 0`).
     pub blend: Option<Arc<patch_blend::PatchBlend>>,
+    /// A patch of a patched object: which, and the object's whole mesh.
+    /// `None` for an object that is not divided.
+    pub patch: Option<patches::PatchOf>,
 }
 
 /// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:

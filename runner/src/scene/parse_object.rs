@@ -94,6 +94,7 @@ pub fn parse_object(
             time_varying,
             spin,
             blend: None,
+            patch: None,
         },
         name_span,
         patches,

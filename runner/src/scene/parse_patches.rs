@@ -6,7 +6,7 @@
 //! its faces with their n-ring and weights for passes that blend.
 
 use super::patch_blend::{blends, DEFAULT_BLEND_RINGS, MAX_BLEND_RINGS};
-use super::patches::{assign, patch_mesh, PatchSpec, MAX_PATCHES};
+use super::patches::{assign, patch_mesh, PatchOf, PatchSpec, MAX_PATCHES};
 use super::toml_fields::{describe, At, Fields, Report};
 use super::Object;
 use std::sync::Arc;
@@ -130,6 +130,12 @@ pub fn expand(objects: Vec<(Object, Option<PatchRequest>)>, report: &mut Report)
             piece.name = format!("{}.{patch}", object.name);
             piece.mesh = Arc::new(patch_mesh(&object.mesh, &labels, patch));
             piece.blend = blended[patch as usize].take();
+            piece.patch = Some(PatchOf {
+                source: object.name.clone(),
+                whole: object.mesh.clone(),
+                index: patch,
+                count,
+            });
             out.push(piece);
         }
     }

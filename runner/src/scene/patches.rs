@@ -7,9 +7,12 @@
 //! area-weighted k-means of the triangles' centroids (the paper's patches
 //! are drawn by hand; any division will do for the method).
 //!
-//! Each patch becomes an object of its own at load ([`split_object`]), with
-//! the object's transform, tags and bindings, so every per-object pass
-//! (samples, the ID image, the tracker) works per patch unchanged.
+//! Each patch becomes an object of its own at load
+//! (`parse_patches::expand`), with the object's transform, tags and
+//! bindings, so every per-object pass (samples, the ID image, the tracker)
+//! works per patch unchanged. What is of the surface as a whole (its feature
+//! edges: a seam between two patches is no edge of the surface) is found on
+//! the whole mesh, which each patch keeps ([`PatchOf`]).
 //!
 //! Blending across patch boundaries (§3.6) is in [`super::patch_weights`]
 //! (the weights) and [`super::patch_blend`] (each patch with its n-ring, as
@@ -25,6 +28,22 @@ pub enum PatchSpec {
     Parts,
     /// This many pieces, by k-means of the triangles.
     Split(u32),
+}
+
+/// Where a patch object came from: the object it is a piece of. Feature
+/// edges for `lines` passes are found on `whole` (`crate::lines::objects`),
+/// so that a seam between two patches is a crease only where the surface
+/// bends there, never a boundary.
+#[derive(Debug, Clone)]
+pub struct PatchOf {
+    /// The patched object's name as the scene wrote it (unique in the
+    /// scene; its patches are `<source>.<index>`).
+    pub source: String,
+    /// The object's whole mesh, every patch's faces together.
+    pub whole: std::sync::Arc<Mesh>,
+    /// This patch, in `0..count`.
+    pub index: u32,
+    pub count: u32,
 }
 
 /// The most patches an object may be split into.
