@@ -156,13 +156,14 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     if live_outputs.is_empty() {
         return Err("it writes no live target".into());
     }
-    let nodes = ir.reachable(&pass_roots(pass));
+    let roots = pass_roots(pass);
+    let nodes = ir.reachable(&roots);
+    if samples_a_texture(ir, &roots, &nodes) {
+        return Err("it samples a texture as a value, which takes screen derivatives".into());
+    }
     let mut radii: BTreeMap<TargetRef, u32> = BTreeMap::new();
     for n in &nodes {
         let e = ir.expr(*n);
-        if matches!(e.kind, ExprKind::Texture(_)) && !matches!(e.ty, Ty::Texture(_)) {
-            return Err("it samples a texture as a value, which takes screen derivatives".into());
-        }
         if let ExprKind::Call {
             callee: Callee::Operator(i),
             ..
@@ -210,6 +211,30 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
         ));
     }
     Ok(tiling)
+}
+
+/// Whether the pass whose expressions are `nodes` (from `roots`) reads a
+/// texture as a value, which the emitter samples with `textureSample`
+/// (implicit derivatives, a fragment-stage builtin): a texture that is a
+/// root, or an operand of anything but an operator's texture parameter.
+/// The typechecker leaves such a read typed as the texture, so the type
+/// alone does not tell it from an operator's argument.
+fn samples_a_texture(ir: &Ir, roots: &[ExprId], nodes: &[ExprId]) -> bool {
+    let is_texture = |e: ExprId| matches!(ir.expr(e).kind, ExprKind::Texture(_));
+    if roots.iter().any(|r| is_texture(*r)) {
+        return true;
+    }
+    nodes.iter().any(|n| match &ir.expr(*n).kind {
+        ExprKind::Call {
+            callee: Callee::Operator(i),
+            args,
+        } => stdlib::all()[*i as usize]
+            .params
+            .iter()
+            .zip(args)
+            .any(|(p, a)| is_texture(*a) && !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture)),
+        _ => ir.operands(*n).into_iter().any(is_texture),
+    })
 }
 
 /// Whether `call` passes `arg` as a plain texture (read by `textureLoad`),
