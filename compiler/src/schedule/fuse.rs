@@ -158,7 +158,11 @@ fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, S
     };
     let r = ir.pass(reader);
     if let Some(f) = plan.forced(reader) {
-        return Err(format!("its reader `{}` is {}, so nothing is fused into it", r.name, f.why()));
+        return Err(format!(
+            "its reader `{}` is {}, so nothing is fused into it",
+            r.name,
+            f.why()
+        ));
     }
     if !matches!(r.kind, PassKind::Image { .. }) {
         return Err(format!("read by `{}`, a {} pass", r.name, r.kind.name()));

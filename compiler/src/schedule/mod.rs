@@ -105,10 +105,7 @@ impl Plan {
     fn new(ir: &Ir, run: Schedule, sources: &SourceMap, root: FileId) -> Plan {
         let mut forced = BTreeMap::new();
         for (i, p) in ir.passes.iter().enumerate() {
-            let PassKind::Image {
-                schedule: Some(s), ..
-            } = &p.kind
-            else {
+            let PassKind::Image { schedule: Some(s), .. } = &p.kind else {
                 continue;
             };
             if s.schedule == Schedule::Auto {
