@@ -92,6 +92,40 @@ fn compile_writes_wgsl_manifest_and_report() {
         .contains(".tmp-")));
 }
 
+/// `schedule:` in a pass through the binary: the report says the pass was
+/// forced and where, whatever `--schedule` says; a `schedule: tiled` the
+/// tiler refuses exits 1 with E0311 at the setting.
+#[test]
+fn compile_report_says_which_passes_the_style_forced() {
+    let dir = scratch("schedule-setting");
+    let style = dir.join("forced.npr");
+    let text = |setting: &str| {
+        format!(
+            "style \"Forced\"\npass g: render(scene) {{\n  out d: r32float = depth\n}}\npass edges: image(g) {{\n  {setting}\n  out e: rgba16float = vec4(sobel(g.d, screen_uv), 0.0, 0.0, 1.0)\n}}\npass ink: image(edges) {{\n  out c: rgba8unorm = edges.e\n}}\noutput ink.c\n"
+        )
+    };
+    std::fs::write(&style, text("schedule: naive")).expect("write");
+    let out = dir.join("out");
+    let (style_arg, out_arg) = (style.to_str().expect("path"), out.to_str().expect("path"));
+    let o = npr(&["compile", style_arg, "-o", out_arg, "--report", "--schedule", "tiled"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("not tiled pass `edges`                         forced by `schedule: naive` at line 6"),
+        "{stdout}"
+    );
+    // Sobel on depth into r16float, which compute cannot store.
+    std::fs::write(
+        &style,
+        "style \"Forced\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: tiled\n  out e: r16float = sobel(g.d, screen_uv)\n}\noutput edges.e\n",
+    )
+    .expect("write");
+    let o = npr(&["compile", style_arg, "-o", out_arg, "--schedule", "naive"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("error[E0311]") && err.contains("forced.npr:6:3"), "{err}");
+}
+
 #[test]
 fn render_writes_png_and_exr_and_dumps_passes() {
     let dir = scratch("render");
