@@ -123,7 +123,9 @@ pub struct CompileArgs {
     /// Keep parameters as uniforms (for live tweaking) instead of folding them.
     #[arg(long)]
     pub keep_params: bool,
-    /// How the passes run; `--report` says what each pass got and why.
+    /// How the passes run; `--report` says what each pass got and why. An
+    /// image pass's `schedule: naive | tiled` setting overrides it for that
+    /// pass.
     #[arg(long, value_enum, default_value = "auto")]
     pub schedule: ScheduleArg,
     /// Write the IR after each compiler stage into OUT/ir/.
@@ -223,7 +225,8 @@ pub struct TexgenArgs {
     pub color: Option<String>,
 }
 
-/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`).
+/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`),
+/// except the image passes whose `schedule: naive | tiled` setting forces theirs.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScheduleArg {
     /// Every declared pass as written, each target stored.
