@@ -368,7 +368,9 @@ pub enum BenchCommand {
     /// Contour methods (LSA base/full and each extension, Sobel,
     /// normal+depth): image-stage cost against a passthrough pass over the
     /// same G-buffer, pixel throughput, and precision/recall against
-    /// analytic ground truth, per resolution.
+    /// analytic ground truth, per resolution; then, over the sizes, each
+    /// method's image stage against pixels (least squares: ns per pixel,
+    /// and the log–log exponent, 1.00 for linear).
     Contours {
         /// Square image sizes, comma-separated.
         #[arg(long, default_value = "128,256,512", value_delimiter = ',')]

@@ -231,12 +231,16 @@ pub fn table(rows: &[Row]) -> String {
             Some((p, rc, planes)) => (format!("{p:.3}"), format!("{rc:.3}"), format!("{planes:.3}")),
             None => ("–".into(), "–".into(), "–".into()),
         };
-        let stage = if r.image_stage_s > 0.0 {
+        // At or below t_pass's floor (a passthrough whose t_pass was not
+        // measured, or a method no slower than the G-buffer estimate) the
+        // image stage is no measurement: its throughput would be absurd.
+        let measured = r.image_stage_s > T_PASS_FLOOR_S;
+        let stage = if measured {
             format!("{:.3}", r.image_stage_s * 1e3)
         } else {
             "–".into()
         };
-        let throughput = if r.image_stage_s > 0.0 {
+        let throughput = if measured {
             format!("{:.1}", px / r.image_stage_s / 1e6)
         } else {
             "–".into()
@@ -373,6 +377,14 @@ mod tests {
             table.contains("| passthrough | 128², 512², 1024² | 5.00 | 0.000 | 1.00 |"),
             "{table}"
         );
+    }
+
+    #[test]
+    fn an_image_stage_at_the_floor_is_no_measurement() {
+        // 1024² in one run: t_pass not measured, so the passthrough's
+        // image stage is the floor, and its Mpx/s was printed as 10⁹.
+        let t = table(&[row("passthrough", 1024, T_PASS_FLOOR_S)]);
+        assert!(t.contains("| 1024² | passthrough | 1.000 | – | – | – |"), "{t}");
     }
 
     #[test]
