@@ -123,7 +123,9 @@ pub struct CompileArgs {
     /// Keep parameters as uniforms (for live tweaking) instead of folding them.
     #[arg(long)]
     pub keep_params: bool,
-    /// How the passes run; `--report` says what each pass got and why.
+    /// How the passes run; `--report` says what each pass got and why. An
+    /// image pass's `schedule: naive | tiled` setting overrides it for that
+    /// pass.
     #[arg(long, value_enum, default_value = "auto")]
     pub schedule: ScheduleArg,
     /// Write the IR after each compiler stage into OUT/ir/.
@@ -223,7 +225,8 @@ pub struct TexgenArgs {
     pub color: Option<String>,
 }
 
-/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`).
+/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`),
+/// except the image passes whose `schedule: naive | tiled` setting forces theirs.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScheduleArg {
     /// Every declared pass as written, each target stored.
@@ -365,7 +368,9 @@ pub enum BenchCommand {
     /// Contour methods (LSA base/full and each extension, Sobel,
     /// normal+depth): image-stage cost against a passthrough pass over the
     /// same G-buffer, pixel throughput, and precision/recall against
-    /// analytic ground truth, per resolution.
+    /// analytic ground truth, per resolution; then, over the sizes, each
+    /// method's image stage against pixels (least squares: ns per pixel,
+    /// and the log–log exponent, 1.00 for linear).
     Contours {
         /// Square image sizes, comma-separated.
         #[arg(long, default_value = "128,256,512", value_delimiter = ',')]

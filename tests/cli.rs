@@ -92,6 +92,40 @@ fn compile_writes_wgsl_manifest_and_report() {
         .contains(".tmp-")));
 }
 
+/// `schedule:` in a pass through the binary: the report says the pass was
+/// forced and where, whatever `--schedule` says; a `schedule: tiled` the
+/// tiler refuses exits 1 with E0311 at the setting.
+#[test]
+fn compile_report_says_which_passes_the_style_forced() {
+    let dir = scratch("schedule-setting");
+    let style = dir.join("forced.npr");
+    let text = |setting: &str| {
+        format!(
+            "style \"Forced\"\npass g: render(scene) {{\n  out d: r32float = depth\n}}\npass edges: image(g) {{\n  {setting}\n  out e: rgba16float = vec4(sobel(g.d, screen_uv), 0.0, 0.0, 1.0)\n}}\npass ink: image(edges) {{\n  out c: rgba8unorm = edges.e\n}}\noutput ink.c\n"
+        )
+    };
+    std::fs::write(&style, text("schedule: naive")).expect("write");
+    let out = dir.join("out");
+    let (style_arg, out_arg) = (style.to_str().expect("path"), out.to_str().expect("path"));
+    let o = npr(&["compile", style_arg, "-o", out_arg, "--report", "--schedule", "tiled"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("not tiled pass `edges`                         forced by `schedule: naive` at line 6"),
+        "{stdout}"
+    );
+    // Sobel on depth into r16float, which compute cannot store.
+    std::fs::write(
+        &style,
+        "style \"Forced\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: tiled\n  out e: r16float = sobel(g.d, screen_uv)\n}\noutput edges.e\n",
+    )
+    .expect("write");
+    let o = npr(&["compile", style_arg, "-o", out_arg, "--schedule", "naive"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("error[E0311]") && err.contains("forced.npr:6:3"), "{err}");
+}
+
 #[test]
 fn render_writes_png_and_exr_and_dumps_passes() {
     let dir = scratch("render");
@@ -211,8 +245,8 @@ fn lsa_styles_render_an_analytic_scene_from_the_cli() {
 
 #[test]
 fn bench_contours_reports_every_variant_with_accuracy() {
-    // A smoke run at a tiny size: the table's shape, not its timings.
-    let o = npr(&["bench", "contours", "--sizes", "24", "--frames", "1"]);
+    // A smoke run at tiny sizes: the tables' shape, not their timings.
+    let o = npr(&["bench", "contours", "--sizes", "16,24", "--frames", "1"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("| 24²")).collect();
@@ -233,6 +267,27 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     let cells: Vec<&str> = full.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
     let recall_planes: f64 = cells[cells.len() - 1].parse().expect("a number");
     assert!(recall_planes > 0.5, "{full}");
+    // Then one fit per method: the sizes it fits, slope, intercept,
+    // exponent. At these sizes an image stage is often within noise of
+    // the G-buffer's (a size left out, a fit of one point is "–"): only
+    // the shape is checked.
+    let fits = stdout
+        .split_once("| method | sizes fitted | slope (ns/px) | intercept (ms) | log–log exponent |")
+        .map(|(_, t)| t)
+        .expect("the slope table");
+    let fit_rows: Vec<&str> = fits
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("|---"))
+        .collect();
+    assert_eq!(fit_rows.len(), rows.len(), "{stdout}");
+    let lsa_full = fit_rows
+        .iter()
+        .find(|r| r.starts_with("| LSA full (plane + aa, density 1) |"))
+        .expect("LSA full's fit");
+    // "", method, sizes, slope, intercept, exponent, "".
+    let cells: Vec<&str> = lsa_full.split('|').map(str::trim).collect();
+    assert_eq!(cells.len(), 7, "{lsa_full}");
+    assert!(["16², 24²", "16²", "24²", ""].contains(&cells[2]), "{lsa_full}");
     let o = npr(&["bench", "contours", "--sizes", "0"]);
     assert_eq!(o.status.code(), Some(1), "size 0 is a user error");
 }

@@ -145,6 +145,7 @@ const FIXED_TOKENS: &[&str] = &[
     "clear",
     "depth",
     "keep",
+    "schedule",
     "test",
     "bias",
     "samples",
@@ -163,8 +164,8 @@ const FIXED_TOKENS: &[&str] = &[
 ];
 
 /// Every token the fuzzer splices: the fixed list, the grammar's keywords,
-/// every builtin spelling, intrinsic, stdlib operator, target format and
-/// blend mode.
+/// every builtin spelling, intrinsic, stdlib operator, target format, blend
+/// mode and schedule.
 fn tokens() -> &'static [String] {
     static TOKENS: OnceLock<Vec<String>> = OnceLock::new();
     TOKENS.get_or_init(|| {
@@ -175,6 +176,7 @@ fn tokens() -> &'static [String] {
         t.extend(stdlib::all().iter().map(|o| o.name.to_string()));
         t.extend(Format::ALL.iter().map(|(s, _)| s.to_string()));
         t.extend(abi::manifest::Blend::ALL.iter().map(|(s, _)| s.to_string()));
+        t.extend(compiler::schedule::Schedule::ALL.iter().map(|s| s.name().to_string()));
         t.sort();
         t.dedup();
         t
@@ -205,6 +207,7 @@ fn token_list_covers_every_keyword_builtin_operator_format_and_pass_kind() {
             "samples",
         ])
         .chain(["depth", "keep", "test", "bias", "over", "multiply"])
+        .chain(["schedule", "naive", "auto", "tiled"])
         .chain(Format::ALL.iter().map(|(s, _)| *s))
         .chain(stdlib::all().iter().map(|o| o.name))
         .chain(Intrinsic::TABLE.iter().map(|(s, _)| *s))

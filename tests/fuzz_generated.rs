@@ -1,5 +1,6 @@
 //! A grammar-aware generator of valid-looking styles (issue 13): params of
-//! every kind, a render pass and image passes reading it, `let`s, typed
+//! every kind, a render pass and image passes reading it (some with a
+//! `schedule:` setting), `let`s, typed
 //! expressions over builtins, intrinsics, swizzles, `if`s, target reads and
 //! params, every target format. Each generated style either compiles, and
 //! then every WGSL module it emits is validated again here by naga, or is
@@ -267,6 +268,9 @@ fn style(seed: u64) -> String {
     }
     out.push_str("}\n");
     let mut last = targets[0].0.clone();
+    // Image passes' `schedule:` settings come from a stream of their own,
+    // so every other draw, and each case found by a soak, stays as it was.
+    let mut settings = Rng(seed ^ 0x5c4e_d01e);
     // Image passes, each reading what came before.
     for p in 0..r.below(3) {
         let scope = Scope {
@@ -284,8 +288,16 @@ fn style(seed: u64) -> String {
         };
         let scale = *r.pick(&["", " scale 1/2", " scale 2"]);
         let (fmt, w) = *r.pick(FORMATS);
+        // Mostly none; `tiled` is mostly E0311 here (no generated pass reads
+        // around the pixel), so it is the rarest.
+        let schedule = match settings.below(100) {
+            0..=69 => "",
+            70..=81 => "  schedule: naive\n",
+            82..=91 => "  schedule: auto\n",
+            _ => "  schedule: tiled\n",
+        };
         out.push_str(&format!(
-            "pass i{p}: image({}){scale} {{\n  out o: {fmt} = {}\n}}\n",
+            "pass i{p}: image({}){scale} {{\n{schedule}  out o: {fmt} = {}\n}}\n",
             inputs.join(", "),
             expr(&mut r, &scope, T::of_width(w), depth)
         ));
@@ -367,6 +379,9 @@ fn the_generator_covers_every_format_and_both_pass_kinds() {
         "render(scene)",
         ": image(",
         "scale 1/2",
+        "schedule: naive",
+        "schedule: auto",
+        "schedule: tiled",
         "if ",
         "let ",
         "animate",

@@ -13,6 +13,10 @@
 //! On failure both images and their diff go to
 //! `target/npr-test-output/schedule/`.
 //!
+//! A style's own `schedule:` settings are held to the same bound: LSA
+//! contours with passes forced `naive` and `tiled`, under every
+//! `--schedule`, against the unannotated style compiled `naive`.
+//!
 //! Path-dependent styles (history, per-object state) are compared on their
 //! fourth frame, so `previous(...)` and state have been read back and
 //! written under both schedules.
@@ -416,4 +420,70 @@ output r.c
     let auto = compile(&style, &loaded, "spheres", Schedule::Auto);
     assert!(auto.fused.is_empty(), "{:?}", auto.fused);
     same_image("constant_target", &style, &scene_path, 8, 8);
+}
+
+/// `schedule:` settings in the style (issue 14's per-pass annotation) give
+/// the naive image too: LSA contours with its error pass forced `tiled`
+/// and its density pass forced `naive` (so it is not fused into the ink
+/// pass), and the other way round (the density pass tiled as its own pass
+/// instead of fused), each compiled under every `--schedule` and compared
+/// bit for bit with the unannotated style compiled `naive`. A forced
+/// `tiled` pass runs tiled even under `--schedule naive`.
+#[test]
+fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
+    let dir = root().join("target/npr-test-output/schedule-styles");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let original = example("lsa_contours");
+    let text = std::fs::read_to_string(&original).expect("lsa_contours.npr");
+    let scene_path = scene("spheres");
+    let loaded = load_scene(&scene_path);
+    let reference = compile(&original, &loaded, "spheres", Schedule::Naive);
+    let sizes = [(64, 48), (17, 33)];
+    let expected: Vec<_> = sizes
+        .iter()
+        .map(|(w, h)| render(&reference.program, &loaded, *w, *h))
+        .collect();
+    let variants = [
+        ("error_tiled_thin_naive", "schedule: tiled", "schedule: naive", 1, 0),
+        ("error_naive_thin_tiled", "schedule: naive", "schedule: tiled", 1, 0),
+    ];
+    for (name, error, thin, tiled_passes, fused_passes) in variants {
+        let annotated = text
+            .replacen(
+                "pass error: image(gbuffer) {\n",
+                &format!("pass error: image(gbuffer) {{\n  {error}\n"),
+                1,
+            )
+            .replacen(
+                "pass thin: image(error) {\n",
+                &format!("pass thin: image(error) {{\n  {thin}\n"),
+                1,
+            );
+        assert_eq!(
+            annotated.matches("schedule: ").count(),
+            2,
+            "the passes moved in lsa_contours.npr"
+        );
+        let style = dir.join(format!("{name}.npr"));
+        std::fs::write(&style, &annotated).expect("write style");
+        for schedule in Schedule::ALL {
+            let c = compile(&style, &loaded, "spheres", schedule);
+            assert_eq!(
+                c.tiled.len(),
+                tiled_passes,
+                "{name} --schedule {}: {:?}",
+                schedule.name(),
+                c.tiled
+            );
+            assert!(c.tiled[0].contains("forced by `schedule: tiled`"), "{:?}", c.tiled);
+            // Neither forced pass fuses, and `ink_lines` is the output: nothing fuses.
+            assert_eq!(c.fused.len(), fused_passes, "{name}: {:?}", c.fused);
+            for ((w, h), want) in sizes.iter().zip(&expected) {
+                let got = render(&c.program, &loaded, *w, *h);
+                for (eye, (a, b)) in want.iter().zip(&got).enumerate() {
+                    assert_bit_identical(&format!("{name}_{}_{w}x{h}_eye{eye}", schedule.name()), a, b);
+                }
+            }
+        }
+    }
 }

@@ -35,9 +35,12 @@ pub fn dump(ir: &Ir) -> String {
                 expr_ref(vertex.inflate),
                 expr_ref(vertex.shadow_warp)
             ),
-            PassKind::Image { inputs } => {
+            PassKind::Image { inputs, schedule } => {
                 let names: Vec<&str> = inputs.iter().map(|i| ir.pass(*i).name.as_str()).collect();
-                format!("image({})", names.join(", "))
+                match schedule {
+                    Some(s) => format!("image({}) schedule={}", names.join(", "), s.schedule.name()),
+                    None => format!("image({})", names.join(", ")),
+                }
             }
             PassKind::Compute { domain, tag, .. } => match tag {
                 Some(t) => format!("compute({}, {t})", domain.name()),

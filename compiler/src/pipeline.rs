@@ -69,6 +69,7 @@ pub fn run(
                 .with_help("start the file with `style \"Name\"`"),
         );
     }
+    let root_file = loaded.root_file;
     let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), opts.paths.as_ref(), &mut diags)
         .map_err(CompileError::Internal)?;
     if loaded.is_filter || crate::filter_checks::reads_a_level(&ir) {
@@ -135,7 +136,15 @@ pub fn run(
     st.done("prune-after-specialize", &ir);
     diags.extend(crate::const_domains::check(&ir, &live));
     fail_if_errors(&diags)?;
-    crate::schedule::apply(&mut ir, &mut live, opts.schedule, &mut report);
+    diags.extend(crate::schedule::apply(
+        &mut ir,
+        &mut live,
+        opts.schedule,
+        sources,
+        root_file,
+        &mut report,
+    ));
+    fail_if_errors(&diags)?;
     st.done("schedule", &ir);
     let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);

@@ -189,7 +189,10 @@ impl Resolver<'_> {
                     self.ir.passes.push(Pass {
                         name: p.name.name.clone(),
                         doc: p.doc.clone(),
-                        kind: PassKind::Image { inputs: Vec::new() },
+                        kind: PassKind::Image {
+                            inputs: Vec::new(),
+                            schedule: None,
+                        },
                         scale: 1.0,
                         clear: [0.0, 0.0, 0.0, 0.0],
                         lets: Vec::new(),

@@ -142,3 +142,33 @@ fn auto_tiles_nothing_and_reports_what_tiled_would() {
         .iter()
         .all(|p| !matches!(p.kind, abi::manifest::PassKindManifest::TiledImage { .. })));
 }
+
+/// A texture read as a value is sampled with `textureSample`, which a
+/// compute shader has no derivatives for: the pass is not tiled (it was,
+/// and naga refused the module: E9001), though the typechecker leaves the
+/// read typed as the texture, as an operator's texture argument is.
+#[test]
+fn a_texture_read_as_a_value_is_not_tiled() {
+    let style = r#"style "grain"
+texture grain = noise(size: 16, octaves: 1, seed: 1, kind: value)
+pass g: render(scene) {
+  out d: r32float = depth
+}
+pass grainy: image(g) {
+  out c: rgba16float = vec4(sobel(g.d, screen_uv)) * grain
+}
+output grainy.c
+"#;
+    let mut sources = SourceMap::new();
+    let opts = CompileOptions {
+        schedule: Schedule::Tiled,
+        ..Default::default()
+    };
+    let c = compiler::compile_source("grain.npr", style, Path::new("."), &mut sources, &opts)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let lines = tiling_lines(&c);
+    assert_eq!(
+        lines,
+        "not tiled pass `grainy`: it samples a texture as a value, which takes screen derivatives"
+    );
+}

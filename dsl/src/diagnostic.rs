@@ -275,6 +275,10 @@ pub mod codes {
     /// `filter_input()` and run image passes only), an art-map inside a
     /// filter, or a filter rendered on a scene.
     pub const BAD_FILTER: &str = "E0310";
+    /// An image pass whose `schedule: tiled` the tiler refuses (it blends,
+    /// writes a format compute cannot store, takes screen derivatives, reads
+    /// nothing around the pixel, or its tiles do not fit in workgroup memory).
+    pub const CANNOT_TILE: &str = "E0311";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -357,6 +361,7 @@ pub mod codes {
         (DEPTH_NOT_KEPT, "depth test against a pass that keeps no depth"),
         (BAD_ID_TARGET, "a pass over pixels of a target that is not an ID target"),
         (BAD_FILTER, "not an art-map filter, or a filter used as a style"),
+        (CANNOT_TILE, "`schedule: tiled` on a pass that cannot be tiled"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

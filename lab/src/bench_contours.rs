@@ -21,6 +21,10 @@
 //! Accuracy: precision and recall within 1 px against the analytic ground
 //! truth of [`crate::contours::builtin_scenes`], at each resolution; the
 //! table gives the minimum over the scenes.
+//!
+//! Linearity: over the sizes measured, per method, the least-squares line
+//! of the image stage against the pixel count (its slope in ns per pixel)
+//! and the log–log exponent ([`slopes`], [`crate::fit`]).
 
 use crate::bench::wait_idle;
 use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
@@ -227,12 +231,16 @@ pub fn table(rows: &[Row]) -> String {
             Some((p, rc, planes)) => (format!("{p:.3}"), format!("{rc:.3}"), format!("{planes:.3}")),
             None => ("–".into(), "–".into(), "–".into()),
         };
-        let stage = if r.image_stage_s > 0.0 {
+        // At or below t_pass's floor (a passthrough whose t_pass was not
+        // measured, or a method no slower than the G-buffer estimate) the
+        // image stage is no measurement: its throughput would be absurd.
+        let measured = r.image_stage_s > T_PASS_FLOOR_S;
+        let stage = if measured {
             format!("{:.3}", r.image_stage_s * 1e3)
         } else {
             "–".into()
         };
-        let throughput = if r.image_stage_s > 0.0 {
+        let throughput = if measured {
             format!("{:.1}", px / r.image_stage_s / 1e6)
         } else {
             "–".into()
@@ -251,4 +259,138 @@ pub fn table(rows: &[Row]) -> String {
         ));
     }
     s
+}
+
+/// One method's image stage against its pixel count over the sizes
+/// measured (issue 14: "cost linear in pixels from 128² to 1024², with the
+/// slope reported").
+#[derive(Debug, Clone)]
+pub struct Slope {
+    pub name: String,
+    /// The sizes whose image stage was measured (above t_pass's floor);
+    /// the others are left out of both fits.
+    pub sizes: Vec<u32>,
+    /// Image stage (s) = intercept + slope · pixels.
+    pub line: Option<crate::fit::Line>,
+    /// Image stage = c · pixels^exponent: 1 is linear with no fixed cost.
+    pub power: Option<crate::fit::PowerLaw>,
+}
+
+/// Per method, in the order of the rows, the least-squares fits of its
+/// image stage against its pixel count.
+pub fn slopes(rows: &[Row]) -> Vec<Slope> {
+    let mut names: Vec<&str> = Vec::new();
+    for r in rows {
+        if !names.contains(&r.name.as_str()) {
+            names.push(&r.name);
+        }
+    }
+    names
+        .into_iter()
+        .map(|name| {
+            let measured: Vec<&Row> = rows
+                .iter()
+                .filter(|r| r.name == name && r.image_stage_s > T_PASS_FLOOR_S)
+                .collect();
+            let points: Vec<(f64, f64)> = measured
+                .iter()
+                .map(|r| (f64::from(r.size) * f64::from(r.size), r.image_stage_s))
+                .collect();
+            Slope {
+                name: name.to_string(),
+                sizes: measured.iter().map(|r| r.size).collect(),
+                line: crate::fit::line(&points),
+                power: crate::fit::power_law(&points),
+            }
+        })
+        .collect()
+}
+
+/// The fits as a Markdown table: the slope in ns per pixel, the intercept
+/// (the fixed cost the line puts at zero pixels) and the log–log exponent.
+pub fn slope_table(slopes: &[Slope]) -> String {
+    let mut s = String::from(
+        "| method | sizes fitted | slope (ns/px) | intercept (ms) | log–log exponent |\n|---|---|---:|---:|---:|\n",
+    );
+    for f in slopes {
+        let sizes: Vec<String> = f.sizes.iter().map(|n| format!("{n}²")).collect();
+        let (slope, intercept) = match f.line {
+            Some(l) => (format!("{:.2}", l.slope * 1e9), format!("{:.3}", l.intercept * 1e3)),
+            None => ("–".into(), "–".into()),
+        };
+        let exponent = f.power.map_or("–".into(), |p| format!("{:.2}", p.exponent));
+        s.push_str(&format!(
+            "| {} | {} | {slope} | {intercept} | {exponent} |\n",
+            f.name,
+            sizes.join(", ")
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(name: &str, size: u32, image_stage_s: f64) -> Row {
+        Row {
+            name: name.into(),
+            size,
+            frame_s: image_stage_s + 1e-3,
+            image_stage_s,
+            vs_passthrough: None,
+            accuracy: None,
+        }
+    }
+
+    #[test]
+    fn slopes_fit_each_method_over_its_measured_sizes() {
+        let mut rows = Vec::new();
+        for size in [128, 256, 512, 1024] {
+            let px = f64::from(size * size);
+            rows.push(row(
+                "passthrough",
+                size,
+                if size == 256 { T_PASS_FLOOR_S } else { 5e-9 * px },
+            ));
+            rows.push(row("LSA", size, 1e-3 + 50e-9 * px));
+        }
+        let s = slopes(&rows);
+        assert_eq!(s.len(), 2);
+        // The floored 256² passthrough is no measurement: left out.
+        assert_eq!(s[0].name, "passthrough");
+        assert_eq!(s[0].sizes, [128, 512, 1024]);
+        let p = s[0].power.expect("a fit");
+        assert!((p.exponent - 1.0).abs() < 1e-9, "{p:?}");
+        assert_eq!(s[1].sizes, [128, 256, 512, 1024]);
+        let l = s[1].line.expect("a fit");
+        assert!(
+            (l.slope - 50e-9).abs() < 1e-15 && (l.intercept - 1e-3).abs() < 1e-12,
+            "{l:?}"
+        );
+        let table = slope_table(&s);
+        assert!(
+            table.contains("| LSA | 128², 256², 512², 1024² | 50.00 | 1.000 |"),
+            "{table}"
+        );
+        assert!(
+            table.contains("| passthrough | 128², 512², 1024² | 5.00 | 0.000 | 1.00 |"),
+            "{table}"
+        );
+    }
+
+    #[test]
+    fn an_image_stage_at_the_floor_is_no_measurement() {
+        // 1024² in one run: t_pass not measured, so the passthrough's
+        // image stage is the floor, and its Mpx/s was printed as 10⁹.
+        let t = table(&[row("passthrough", 1024, T_PASS_FLOOR_S)]);
+        assert!(t.contains("| 1024² | passthrough | 1.000 | – | – | – |"), "{t}");
+    }
+
+    #[test]
+    fn one_size_fits_nothing() {
+        let s = slopes(&[row("LSA", 128, 1e-3)]);
+        assert!(s[0].line.is_none() && s[0].power.is_none());
+        assert!(slope_table(&s).contains("| LSA | 128² | – | – | – |"));
+    }
 }

@@ -12,6 +12,7 @@
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
+//! - [`fit`]: least-squares line and log–log power law of a cost against a size.
 //! - [`bench_lines`]: `npr bench lines`, lines passes' cost against edges and against LSA contours.
 //! - [`silhouettes_gpu`]: silhouette classification in a compute pass, timed
 //!   against the CPU's by `npr bench lines` (not used by the renderer).
@@ -34,6 +35,7 @@ pub mod bench_reduce;
 pub mod bench_reduce_pixels;
 pub mod bench_styles;
 pub mod contours;
+pub mod fit;
 pub mod harness;
 pub mod pass_timer;
 pub mod patterns_f64;

@@ -154,6 +154,16 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
                 gpu.describe()
             );
             println!("{}", lab::bench_contours::table(&rows));
+            let mut distinct = sizes.to_vec();
+            distinct.sort_unstable();
+            distinct.dedup();
+            if distinct.len() > 1 {
+                println!("image stage against pixels, least squares over the sizes (1.00 = linear):");
+                println!(
+                    "{}",
+                    lab::bench_contours::slope_table(&lab::bench_contours::slopes(&rows))
+                );
+            }
             let subtitle = format!("{}, fastest of {frames} interleaved frames", gpu.describe());
             plotted(|| plot::figures::contours(&rows, &subtitle), plot, printer)
         }

@@ -9,7 +9,7 @@ pub const PASS_KINDS: &[(&str, &str)] = &[
     ),
     (
         "image(a, b)",
-        "A fullscreen pass that reads the targets of the passes it lists, at its own resolution scale (`scale 1/2`).",
+        "A fullscreen pass that reads the targets of the passes it lists, at its own resolution scale (`scale 1/2`). `schedule: naive`, `schedule: tiled` or `schedule: auto` in its body forces how it runs (never fused, or as compute over workgroup tiles) whatever `--schedule` says, or leaves it to `--schedule`.",
     ),
     (
         "compute(vertices)",
@@ -29,7 +29,7 @@ pub const PASS_KINDS: &[(&str, &str)] = &[
     ),
     (
         "lines(scene)",
-        "Wavy strips along the visible silhouettes and creases of the objects (or those with a tag: `lines(rocks)`; Klein et al. 2000 §5): `silhouettes: true`, `creases: 40deg | off`, `width`, `amplitude`, `wavelength` (px), `phase`, `taper`, each a sum of numbers, params and `time`; `depth: test(pass, bias: 1px)` hides edges behind a kept depth. Fragments have `line.s` (arc length, px) and `line.across` (-1..1).",
+        "Wavy strips along the visible silhouettes and creases of the objects (or those with a tag: `lines(rocks)`; Klein et al. 2000 §5): `silhouettes: true`, `creases: 40deg` or `creases: off`, `width`, `amplitude`, `wavelength` (px), `phase`, `taper`, each a sum of numbers, params and `time`; `depth: test(pass, bias: 1px)` hides edges behind a kept depth. Fragments have `line.s` (arc length, px) and `line.across` (-1..1).",
     ),
 ];
 

@@ -1,6 +1,6 @@
 //! Error codes of passes (E03xx, W0301, W0302): cycles, formats, outputs, pass
 //! kinds, compute state, blending and depth tests, passes over pixels,
-//! art-map filters and rip-maps.
+//! art-map filters and rip-maps, and the `schedule:` setting.
 
 use super::*;
 
@@ -258,6 +258,96 @@ fn e0310_an_art_map_inside_a_filter() {
     // The filter it names is itself (found on disk, loaded as a filter).
     std::fs::write(dir.join("case.npr"), &text).unwrap();
     check_case("E0310", "E0310_nested", compile_errors(&text, &dir));
+}
+
+/// A G-buffer pass for the `schedule:` cases: depth and normals.
+const SCHEDULE_GBUFFER: &str =
+    "pass g: render(scene) {\n  out d: r32float = depth\n  out n: rgba16float = vec4(normal.world, 1.0)\n}\n";
+
+/// `schedule: tiled` on a pass the tiler refuses is an error at the
+/// setting whose help gives the tiler's reason, under every `--schedule`
+/// (the default `auto` here; `naive` below), never a fragment pass instead.
+#[test]
+fn e0311_schedule_tiled_on_a_pass_compute_cannot_store() {
+    let text = style(&format!(
+        "{SCHEDULE_GBUFFER}pass edges: image(g) {{\n  schedule: tiled\n  out e: r16float = sobel(g.d, screen_uv)\n}}\noutput edges.e\n"
+    ));
+    let (d, r) = compile_errors(&text, &scratch("e0311"));
+    assert!(
+        r.contains("`e` is r16float, which a compute shader cannot store"),
+        "{r}"
+    );
+    check("E0311", (d, r));
+    for schedule in compiler::schedule::Schedule::ALL {
+        let mut sources = SourceMap::new();
+        let opts = CompileOptions {
+            schedule,
+            ..CompileOptions::default()
+        };
+        match compiler::compile_source("case.npr", &text, &scratch("e0311"), &mut sources, &opts) {
+            Err(CompileError::User(d)) => assert_eq!(d[0].code, "E0311", "--schedule {}", schedule.name()),
+            _ => panic!("--schedule {}: not E0311", schedule.name()),
+        }
+    }
+}
+
+#[test]
+fn e0311_the_hint_gives_each_reason_of_the_tiler() {
+    let cases = [
+        (
+            "blends",
+            "pass over: image(g) {\n  schedule: tiled\n  out c: rgba8unorm = vec4(sobel(g.d, screen_uv)) { blend: over }\n}\noutput over.c\n",
+            "blends into its target",
+        ),
+        (
+            "derivatives",
+            "texture grain = noise(size: 16, octaves: 1, seed: 1, kind: value)\npass grainy: image(g) {\n  schedule: tiled\n  out c: rgba16float = vec4(sobel(g.d, screen_uv)) * grain\n}\noutput grainy.c\n",
+            "samples a texture as a value, which takes screen derivatives",
+        ),
+        (
+            "pointwise",
+            "pass point: image(g) {\n  schedule: tiled\n  out c: rgba16float = g.n * 0.5\n}\noutput point.c\n",
+            "no operator reads a target around the pixel",
+        ),
+        (
+            "memory",
+            "pass wide: image(g) {\n  schedule: tiled\n  out c: rgba16float = gaussian(g.n, screen_uv, sigma: 10.0, axis: 0)\n}\noutput wide.c\n",
+            "its tiles need 92416 bytes of workgroup memory",
+        ),
+    ];
+    for (name, body, reason) in cases {
+        let text = style(&format!("{SCHEDULE_GBUFFER}{body}"));
+        let (d, r) = compile_errors(&text, &scratch(&format!("e0311_{name}")));
+        assert!(r.contains(reason), "{name}: {r}");
+        check_case("E0311", &format!("E0311_{name}"), (d, r));
+    }
+}
+
+/// The `schedule:` setting itself: a schedule's name, once, in an image pass.
+#[test]
+fn e0103_bad_schedule_settings() {
+    let unknown = style(&format!(
+        "{SCHEDULE_GBUFFER}pass p: image(g) {{\n  schedule: tiles\n  out c: rgba16float = g.n\n}}\noutput p.c\n"
+    ));
+    check_case(
+        "E0103",
+        "E0103_unknown_schedule",
+        compile_errors(&unknown, &scratch("schedule_unknown")),
+    );
+    let render = style("pass g: render(scene) {\n  schedule: naive\n  out c: rgba8unorm = vec4(1.0)\n}\noutput g.c\n");
+    check_case(
+        "E0103",
+        "E0103_schedule_on_a_render_pass",
+        compile_errors(&render, &scratch("schedule_render")),
+    );
+    let twice = style(&format!(
+        "{SCHEDULE_GBUFFER}pass p: image(g) {{\n  schedule: naive\n  schedule: tiled\n  out c: rgba16float = g.n\n}}\noutput p.c\n"
+    ));
+    check_case(
+        "E0103",
+        "E0103_schedule_twice",
+        compile_errors(&twice, &scratch("schedule_twice")),
+    );
 }
 
 /// A rip-map is read only by `sample_ripmap`, and `sample_ripmap` reads

@@ -20,7 +20,13 @@ pub enum PassKind {
         depth: PassDepth,
     },
     /// A fullscreen pass over its inputs.
-    Image { inputs: Vec<PassId> },
+    Image {
+        inputs: Vec<PassId>,
+        /// `schedule: naive | auto | tiled` in its body: the schedule the
+        /// style asks of this pass (`crate::schedule`); `None` leaves it to
+        /// `--schedule`, as `schedule: auto` does.
+        schedule: Option<PassSchedule>,
+    },
     /// A compute pass over a domain, producing per-object values.
     Compute {
         domain: ComputeDomain,
@@ -193,6 +199,14 @@ impl Pass {
             }
         )
     }
+}
+
+/// An image pass's `schedule:` setting: the schedule it names and where.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct PassSchedule {
+    pub schedule: crate::schedule::Schedule,
+    /// The whole setting, `schedule: tiled`: errors and the report point at it.
+    pub span: Span,
 }
 
 /// The camera a render pass projects with.

@@ -33,7 +33,7 @@ impl Resolver<'_> {
                         }
                     }
                 }
-                PassKind::Image { inputs }
+                PassKind::Image { inputs, schedule: None }
             }
             "compute" => self.compute_kind(p),
             "lines" => self.lines_kind(p),
@@ -48,7 +48,10 @@ impl Resolver<'_> {
                     ),
                 };
                 self.error(d);
-                PassKind::Image { inputs: Vec::new() }
+                PassKind::Image {
+                    inputs: Vec::new(),
+                    schedule: None,
+                }
             }
         };
         self.draws_objects = kind.draws_objects();
@@ -76,10 +79,12 @@ impl Resolver<'_> {
         self.vertex_modifiers(&mut kind, p);
         let mut clear = [0.0, 0.0, 0.0, 0.0];
         let mut depth_seen = None;
+        let mut schedule_seen = None;
         let mut line_settings_seen = Vec::new();
         for s in &p.body.settings {
             match s.key.name.as_str() {
                 "depth" => self.depth_setting(&mut kind, s, &mut depth_seen),
+                "schedule" => self.schedule_setting(&mut kind, s, &mut schedule_seen),
                 key if lines::LINE_SETTINGS.contains(&key) => match &mut kind {
                     PassKind::Lines(l) => self.line_setting(l, s, &mut line_settings_seen),
                     _ => self.error(
@@ -106,7 +111,7 @@ impl Resolver<'_> {
                 other => {
                     let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("unknown pass setting `{other}`"))
                         .with_primary(s.key.span, "not a pass setting");
-                    let known = ["clear", "depth", "count", "seed"]
+                    let known = ["clear", "depth", "schedule", "count", "seed"]
                         .into_iter()
                         .chain(lines::LINE_SETTINGS);
                     d = match did_you_mean(other, known) {
@@ -115,7 +120,7 @@ impl Resolver<'_> {
                             "lines passes take `clear`, `depth: test(pass)` and {}",
                             lines::LINE_SETTINGS.map(|k| format!("`{k}`")).join(", ")
                         )),
-                        None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`, and in `compute(samples)` passes `count: n` and `seed: n`"),
+                        None => d.with_help("pass settings are: `clear: #rrggbb`, `depth: keep`, `depth: test(pass)`, in image passes `schedule: naive | auto | tiled`, and in `compute(samples)` passes `count: n` and `seed: n`"),
                     };
                     self.error(d)
                 }

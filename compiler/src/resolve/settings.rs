@@ -1,11 +1,14 @@
 //! Resolve the settings of passes and outputs that name modes rather than
-//! values: an output's `{ blend: mode }`, and a render pass's `depth: keep`
-//! / `depth: test(pass, bias: ...)`. Whether a tested pass keeps its depth,
-//! and has the tester's size and view, is checked once every pass is
-//! resolved (`typecheck`).
+//! values: an output's `{ blend: mode }`, a render pass's `depth: keep` /
+//! `depth: test(pass, bias: ...)`, and an image pass's `schedule: naive |
+//! auto | tiled`. Whether a tested pass keeps its depth, and has the
+//! tester's size and view, is checked once every pass is resolved
+//! (`typecheck`); whether a pass forced `tiled` can be tiled, once it is
+//! scheduled (`schedule`).
 
 use super::{Resolver, Symbol};
 use crate::ir::*;
+use crate::schedule::Schedule;
 use abi::manifest::Blend;
 use abi::Format;
 use dsl::ast::{self, ExprKind as AK, UnitSuffix};
@@ -128,6 +131,58 @@ impl Resolver<'_> {
                 self.error(d);
             }
         }
+    }
+
+    /// `schedule: naive | auto | tiled` of an image pass: the schedule the
+    /// style asks of it. Only image passes are fused or tiled, so on any
+    /// other kind the setting would mean nothing and is refused rather
+    /// than ignored.
+    pub(super) fn schedule_setting(&mut self, kind: &mut PassKind, s: &ast::Setting, seen: &mut Option<Span>) {
+        let span = s.key.span.to(s.value.span);
+        if let Some(first) = *seen {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "`schedule` is set twice")
+                    .with_primary(span, "second `schedule`")
+                    .with_secondary(first, "first `schedule`")
+                    .with_help("a pass runs under one schedule"),
+            );
+            return;
+        }
+        *seen = Some(span);
+        let PassKind::Image { schedule, .. } = kind else {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "`schedule` is a setting of image passes")
+                    .with_primary(s.key.span, format!("this is a {} pass", kind.name()))
+                    .with_help("only image passes are fused or tiled; every other pass runs as written"),
+            );
+            return;
+        };
+        let name = match &s.value.kind {
+            AK::Name(n) => n.name.as_str(),
+            _ => "",
+        };
+        let Some(mode) = Schedule::parse(name) else {
+            let names = Schedule::ALL.map(Schedule::name);
+            let mut d = Diagnostic::error(
+                codes::BAD_ARGUMENT,
+                if name.is_empty() {
+                    "`schedule` takes a schedule's name".to_string()
+                } else {
+                    format!("unknown schedule `{name}`")
+                },
+            )
+            .with_primary(s.value.span, "not a schedule");
+            d = match did_you_mean(name, names) {
+                Some(m) => d.with_help(format!("did you mean `{m}`?")),
+                None => d.with_help(
+                    "write `schedule: naive` (run as written), `schedule: tiled` (compute over tiles) \
+                     or `schedule: auto` (the compiler decides)",
+                ),
+            };
+            self.error(d);
+            return;
+        };
+        *schedule = Some(PassSchedule { schedule: mode, span });
     }
 
     /// `test(pass, bias: b)`: the tested pass, and the bias, a literal in px

@@ -11,9 +11,12 @@
 //! Not fused, with the reason in the report: a target that is the output,
 //! blends, is sRGB, is read from the previous frame or the other eye, is
 //! passed to an operator that reads around the pixel, is read by two
-//! passes, by a pass of another kind, or at another scale.
+//! passes, by a pass of another kind, or at another scale; a pass whose
+//! `schedule:` forces it (or its reader) to run as written or tiled; every
+//! pass under `--schedule naive`.
 
 use super::footprint::{pass_apron, texture_reads, Read};
+use super::{Plan, Schedule};
 use crate::dag::pass_roots;
 use crate::ir::*;
 use crate::prune::Live;
@@ -22,9 +25,10 @@ use abi::formats::Storage;
 use abi::manifest::Blend;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// Fuses every image pass that can be, in execution order (so a chain of
-/// pointwise passes becomes one), and reports each image pass's schedule.
-pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) {
+/// Fuses every image pass that `plan` lets be fused and can be, in
+/// execution order (so a chain of pointwise passes becomes one), and
+/// reports each image pass's schedule.
+pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, plan: &Plan, report: &mut Report) {
     let mut i = 0;
     while i < live.passes.len() {
         let pid = live.passes[i];
@@ -33,7 +37,25 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) 
             continue;
         }
         let name = format!("pass `{}`", ir.pass(pid).name);
-        match consumer(ir, live, pid) {
+        if let Some(f) = plan.forced(pid) {
+            let how = match f.schedule {
+                Schedule::Tiled => ", which runs it as its own pass, over tiles",
+                _ => ", which runs it as written",
+            };
+            report.push("schedule", name, format!("separate pass: {}{how}", f.why()));
+            i += 1;
+            continue;
+        }
+        if plan.run == Schedule::Naive {
+            report.push(
+                "schedule",
+                name,
+                "separate pass: `--schedule naive` runs every pass as written".into(),
+            );
+            i += 1;
+            continue;
+        }
+        match consumer(ir, live, plan, pid) {
             Ok((reader, why)) => {
                 let into = ir.pass(reader).name.clone();
                 fuse(ir, live, pid, reader);
@@ -55,7 +77,7 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, report: &mut Report) 
 
 /// The one image pass that `pid`'s targets can be fused into, with why, or
 /// why not.
-fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), String> {
+fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, String), String> {
     let pass = ir.pass(pid);
     let targets = live.targets_of(pid);
     for t in &targets {
@@ -135,6 +157,13 @@ fn consumer(ir: &Ir, live: &Live, pid: PassId) -> Result<(PassId, String), Strin
         }
     };
     let r = ir.pass(reader);
+    if let Some(f) = plan.forced(reader) {
+        return Err(format!(
+            "its reader `{}` is {}, so nothing is fused into it",
+            r.name,
+            f.why()
+        ));
+    }
     if !matches!(r.kind, PassKind::Image { .. }) {
         return Err(format!("read by `{}`, a {} pass", r.name, r.kind.name()));
     }
@@ -212,7 +241,7 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
         }
     }
     let moved_inputs = match &ir.pass(producer).kind {
-        PassKind::Image { inputs } => inputs.clone(),
+        PassKind::Image { inputs, .. } => inputs.clone(),
         _ => Vec::new(),
     };
     let producer_name = ir.pass(producer).name.clone();
@@ -234,7 +263,7 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
         l.name = name;
         r.lets.push(l);
     }
-    if let PassKind::Image { inputs } = &mut r.kind {
+    if let PassKind::Image { inputs, .. } = &mut r.kind {
         inputs.retain(|p| *p != producer);
         for p in moved_inputs {
             if !inputs.contains(&p) {

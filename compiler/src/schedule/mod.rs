@@ -14,19 +14,37 @@
 //!   a tiled pass costs 1.0–2.2× its fragment pass (docs/PERFORMANCE.md,
 //!   "Tiled compute"); a device where tiles pay would make it the choice.
 //!
-//! What each pass got, and why, goes in the `--report` (`schedule` entries),
-//! with the apron a tiled schedule of it would need ([`footprint`]).
+//! `--schedule` sets the run's schedule; an image pass's `schedule:`
+//! setting overrides it for that pass ([`Plan`]). `schedule: naive` runs
+//! the pass as written: it is never fused into its reader, nothing is
+//! fused into it, and it is not tiled. `schedule: tiled` runs it as its own
+//! pass over tiles, also never fused either way, so whether it can be tiled
+//! is a question about the pass as written, answered the same under every
+//! `--schedule`; where the tiler refuses it, that is E0311 at the setting,
+//! with the tiler's reason, never a silent fragment pass. `schedule: auto`
+//! (the same as no setting) leaves the pass to `--schedule`; it does not
+//! override `--schedule naive`, which `--dump-passes` and the studio use to
+//! show every declared target.
+//!
+//! What each pass got, and why, goes in the `--report` (`schedule`,
+//! `fused`, `tiled`, `not tiled` entries; a forced pass's say "forced by
+//! `schedule: …` at line L"), with the apron a tiled schedule of it would
+//! need ([`footprint`]).
 
 pub mod footprint;
 mod fuse;
 pub mod tile;
 
-use crate::ir::Ir;
+use crate::ir::{Ir, PassId, PassKind};
 use crate::prune::Live;
 use crate::report::Report;
+use dsl::{Diagnostic, FileId, SourceMap, Span};
+use serde::Serialize;
+use std::collections::BTreeMap;
 
-/// `--schedule naive|auto`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// `--schedule naive|auto|tiled`, and the `schedule:` setting of an image
+/// pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub enum Schedule {
     /// Every declared pass runs as written: every target exists, so
     /// `--dump-passes` and the studio's thumbnails use it.
@@ -41,19 +59,94 @@ pub enum Schedule {
     Tiled,
 }
 
-/// Applies `schedule` to the live passes: rewrites `ir` and `live` (fused
-/// passes leave `live.passes`, their targets `live.targets`) and reports
-/// each image pass's schedule.
-pub fn apply(ir: &mut Ir, live: &mut Live, schedule: Schedule, report: &mut Report) {
-    match schedule {
-        Schedule::Naive => {}
-        Schedule::Auto => {
-            fuse::fuse_pointwise(ir, live, report);
-            tile::tile_neighbourhoods(ir, live, report, false);
-        }
-        Schedule::Tiled => {
-            fuse::fuse_pointwise(ir, live, report);
-            tile::tile_neighbourhoods(ir, live, report, true);
+impl Schedule {
+    pub const ALL: [Schedule; 3] = [Schedule::Naive, Schedule::Auto, Schedule::Tiled];
+
+    /// As written in a style and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Schedule::Naive => "naive",
+            Schedule::Auto => "auto",
+            Schedule::Tiled => "tiled",
         }
     }
+
+    pub fn parse(name: &str) -> Option<Schedule> {
+        Schedule::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// A pass whose `schedule:` setting overrides the run's schedule.
+#[derive(Debug, Clone)]
+pub(crate) struct Forced {
+    /// `Naive` or `Tiled`: `schedule: auto` forces nothing.
+    pub schedule: Schedule,
+    pub span: Span,
+    /// "line 12", or "line 12 of lib/x.npr" for a pass from a `use`d file.
+    pub at: String,
+}
+
+impl Forced {
+    /// The report's reason: "forced by `schedule: naive` at line 12".
+    pub fn why(&self) -> String {
+        format!("forced by `schedule: {}` at {}", self.schedule.name(), self.at)
+    }
+}
+
+/// Which schedule decides each image pass: the run's (`--schedule`), or
+/// the pass's own `schedule: naive | tiled`.
+#[derive(Debug, Clone)]
+pub(crate) struct Plan {
+    pub run: Schedule,
+    pub forced: BTreeMap<PassId, Forced>,
+}
+
+impl Plan {
+    fn new(ir: &Ir, run: Schedule, sources: &SourceMap, root: FileId) -> Plan {
+        let mut forced = BTreeMap::new();
+        for (i, p) in ir.passes.iter().enumerate() {
+            let PassKind::Image { schedule: Some(s), .. } = &p.kind else {
+                continue;
+            };
+            if s.schedule == Schedule::Auto {
+                continue;
+            }
+            let (line, _) = sources.line_col(s.span.file, s.span.start);
+            let at = match sources.get(s.span.file) {
+                Some(f) if s.span.file != root => format!("line {line} of {}", f.name),
+                _ => format!("line {line}"),
+            };
+            forced.insert(
+                PassId(i as u32),
+                Forced {
+                    schedule: s.schedule,
+                    span: s.span,
+                    at,
+                },
+            );
+        }
+        Plan { run, forced }
+    }
+
+    pub fn forced(&self, pass: PassId) -> Option<&Forced> {
+        self.forced.get(&pass)
+    }
+}
+
+/// Applies `schedule` (`--schedule`) and the passes' `schedule:` settings
+/// to the live passes: rewrites `ir` and `live` (fused passes leave
+/// `live.passes`, their targets `live.targets`) and reports each image
+/// pass's schedule. A pass forced `tiled` that cannot be tiled is E0311,
+/// returned.
+pub fn apply(
+    ir: &mut Ir,
+    live: &mut Live,
+    schedule: Schedule,
+    sources: &SourceMap,
+    root: FileId,
+    report: &mut Report,
+) -> Vec<Diagnostic> {
+    let plan = Plan::new(ir, schedule, sources, root);
+    fuse::fuse_pointwise(ir, live, &plan, report);
+    tile::tile_neighbourhoods(ir, live, &plan, report)
 }

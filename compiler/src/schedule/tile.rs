@@ -15,13 +15,17 @@
 //! around the pixel, blends, writes a format compute cannot store, reads a
 //! texture as a value or calls an operator that takes screen derivatives
 //! (compute has none), or whose tiles would not fit in workgroup memory.
+//! A pass whose `schedule: tiled` forces tiles gets them under every
+//! `--schedule`, or E0311 at that setting with the reason above.
 
 use super::footprint::{texture_reads, Read};
+use super::{Plan, Schedule};
 use crate::dag::pass_roots;
 use crate::ir::*;
 use crate::prune::Live;
 use crate::report::Report;
 use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
+use dsl::{codes, Diagnostic};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -64,36 +68,58 @@ impl Tiling {
     }
 }
 
-/// Decides, for every live image pass, whether `--schedule tiled` would
-/// tile it. With `apply` (that schedule) the tilings go in `ir.tiled` and
-/// every decision is reported; without (`auto`), only the passes it would
-/// tile are reported, with why `auto` does not (measured slower on
-/// lavapipe).
-pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, report: &mut Report, apply: bool) {
+/// Decides, for every live image pass, whether it runs tiled: under
+/// `--schedule tiled` every pass the tiler accepts, and under every
+/// schedule the passes whose `schedule: tiled` forces it. The tilings go in
+/// `ir.tiled`, every decision in the report; under `auto` only the passes
+/// `tiled` would tile are reported, with why `auto` does not (measured
+/// slower on lavapipe). A forced pass the tiler refuses is E0311.
+pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report: &mut Report) -> Vec<Diagnostic> {
+    let mut errors = Vec::new();
     for pid in &live.passes {
         if !matches!(ir.pass(*pid).kind, PassKind::Image { .. }) {
             continue;
         }
         let name = format!("pass `{}`", ir.pass(*pid).name);
-        match tiling(ir, live, *pid) {
-            Ok(t) if apply => {
+        let forced = plan.forced(*pid);
+        let schedule = forced.map_or(plan.run, |f| f.schedule);
+        match (tiling(ir, live, *pid), schedule) {
+            (Ok(t), Schedule::Tiled) => {
                 let what: Vec<String> = t
                     .reads
                     .iter()
                     .map(|r| format!("`{}` with a {}-texel apron", ir.target_name(r.target), r.radius))
                     .collect();
+                let by = forced.map_or(String::new(), |f| format!("{}: ", f.why()));
                 report.push(
                     "tiled",
                     name,
                     format!(
-                        "compute over {TILE_SIZE}×{TILE_SIZE} tiles, keeping {} in workgroup memory ({} bytes)",
+                        "{by}compute over {TILE_SIZE}×{TILE_SIZE} tiles, keeping {} in workgroup memory ({} bytes)",
                         what.join(", "),
                         t.bytes()
                     ),
                 );
                 ir.tiled.insert(*pid, t);
             }
-            Ok(t) => report.push(
+            (Err(why), Schedule::Tiled) => match forced {
+                Some(f) => errors.push(
+                    Diagnostic::error(codes::CANNOT_TILE, format!("pass `{}` cannot run tiled", ir.pass(*pid).name))
+                        .with_primary(f.span, "`schedule: tiled` asked for here")
+                        .with_secondary(ir.pass(*pid).name_span, "this pass")
+                        .with_help(format!(
+                            "the tiler refuses it: {why}; write `schedule: auto` (or no `schedule:`) to let the compiler choose, or `schedule: naive`"
+                        )),
+                ),
+                None => report.push("not tiled", name, why),
+            },
+            // A pass forced `naive` under `--schedule tiled`: say why the
+            // run's schedule did not tile it.
+            (_, Schedule::Naive) if plan.run == Schedule::Tiled => {
+                let why = forced.map_or(String::new(), |f| f.why());
+                report.push("not tiled", name, why);
+            }
+            (Ok(t), Schedule::Auto) => report.push(
                 "not tiled",
                 name,
                 format!(
@@ -101,10 +127,10 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, report: &mut Report,
                     t.bytes()
                 ),
             ),
-            Err(why) if apply => report.push("not tiled", name, why),
-            Err(_) => {}
+            (_, Schedule::Naive) | (Err(_), Schedule::Auto) => {}
         }
     }
+    errors
 }
 
 /// The tiling of image pass `pid`, or why it is not tiled.
@@ -130,13 +156,14 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     if live_outputs.is_empty() {
         return Err("it writes no live target".into());
     }
-    let nodes = ir.reachable(&pass_roots(pass));
+    let roots = pass_roots(pass);
+    let nodes = ir.reachable(&roots);
+    if samples_a_texture(ir, &roots, &nodes) {
+        return Err("it samples a texture as a value, which takes screen derivatives".into());
+    }
     let mut radii: BTreeMap<TargetRef, u32> = BTreeMap::new();
     for n in &nodes {
         let e = ir.expr(*n);
-        if matches!(e.kind, ExprKind::Texture(_)) && !matches!(e.ty, Ty::Texture(_)) {
-            return Err("it samples a texture as a value, which takes screen derivatives".into());
-        }
         if let ExprKind::Call {
             callee: Callee::Operator(i),
             ..
@@ -184,6 +211,30 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
         ));
     }
     Ok(tiling)
+}
+
+/// Whether the pass whose expressions are `nodes` (from `roots`) reads a
+/// texture as a value, which the emitter samples with `textureSample`
+/// (implicit derivatives, a fragment-stage builtin): a texture that is a
+/// root, or an operand of anything but an operator's texture parameter.
+/// The typechecker leaves such a read typed as the texture, so the type
+/// alone does not tell it from an operator's argument.
+fn samples_a_texture(ir: &Ir, roots: &[ExprId], nodes: &[ExprId]) -> bool {
+    let is_texture = |e: ExprId| matches!(ir.expr(e).kind, ExprKind::Texture(_));
+    if roots.iter().any(|r| is_texture(*r)) {
+        return true;
+    }
+    nodes.iter().any(|n| match &ir.expr(*n).kind {
+        ExprKind::Call {
+            callee: Callee::Operator(i),
+            args,
+        } => stdlib::all()[*i as usize]
+            .params
+            .iter()
+            .zip(args)
+            .any(|(p, a)| is_texture(*a) && !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture)),
+        _ => ir.operands(*n).into_iter().any(is_texture),
+    })
 }
 
 /// Whether `call` passes `arg` as a plain texture (read by `textureLoad`),

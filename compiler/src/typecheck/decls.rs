@@ -239,7 +239,7 @@ impl Checker<'_> {
                     // A previous-frame read is no dependency within the frame,
                     // so it needs no input listing.
                     ExprKind::Target { target: t, copy } if copy != TargetCopy::Previous => {
-                        if let PassKind::Image { inputs } = &pass.kind {
+                        if let PassKind::Image { inputs, .. } = &pass.kind {
                             if t.pass.0 as usize != pi && !inputs.contains(&t.pass) {
                                 let other = self.ir.pass(t.pass).name.clone();
                                 self.err(

@@ -1,5 +1,5 @@
 //! Explanations of the pass codes (E03xx, W0301, W0302): the pass graph, outputs,
-//! inputs, compute passes' statements and state, blending and depth.
+//! inputs, compute passes' statements and state, blending, depth and schedules.
 
 use super::{Example, Explanation, EXAMPLE};
 
@@ -197,6 +197,28 @@ pub(super) const ALL: &[Explanation] = &[
                 &["texgen", "-o", "paper.png", "--size", "16"],
                 &["check", "case.npr"],
             ],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0311",
+        meaning: "`schedule: tiled` in an image pass asks that it run as a compute shader over \
+            16×16 workgroup tiles, whatever `--schedule` says: each tile loads the targets its \
+            operators read around the pixel (with the apron their footprints declare) into \
+            workgroup memory once. A pass can run so only if it writes formats a compute shader \
+            can store (rgba8unorm, rgba16float, r32float, rg32float, rgba32float), does not \
+            blend, takes no screen derivatives (no `sample(...)` of a texture, no operator that \
+            calls `dpdx`), reads some target around the pixel with an operator (`sobel`, `lsa`, \
+            `gaussian`), and its tiles fit in 16 KiB of workgroup memory. The help line gives the \
+            reason for this pass. The compiler does not fall back to a fragment pass: write \
+            `schedule: auto` (or no setting) to let it choose, `schedule: naive` to run the pass \
+            as written, or change what the pass writes.",
+        wrong: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: tiled\n  out e: r16float = sobel(g.d, screen_uv)\n}\noutput edges.e\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: tiled\n  out e: rgba16float = vec4(sobel(g.d, screen_uv), 0.0, 0.0, 1.0)\n}\noutput edges.e\n",
             ..EXAMPLE
         },
     },
