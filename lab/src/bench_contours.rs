@@ -11,8 +11,9 @@
 //! T_gb = T(one) − t_pass. A method's image
 //! stage is T − T_gb, stated in ms, relative to t_pass, and as pixel
 //! throughput. Each time is the fastest of `frames` frames, the frames
-//! interleaved across variants, so machine load affects every variant
-//! alike and a frame slowed by another process does not count.
+//! interleaved across variants and sizes, so machine load affects every
+//! variant and size alike and a frame slowed by another process does not
+//! count.
 //!
 //! The first two programs must be the passthrough variants of
 //! [`variants`], compiled as declared (`npr bench contours` compiles every
@@ -170,31 +171,41 @@ pub struct Row {
     pub accuracy: Option<(f64, f64, f64)>,
 }
 
-/// The fastest of `frames` frames per variant, frames interleaved across
-/// variants (render + GPU wait; one warm-up frame each).
+/// The fastest of `frames` frames per variant and size, `[size][variant]`,
+/// frames interleaved across variants and sizes (render + GPU wait; one
+/// warm-up frame each): a change of load falls on every size alike, so it
+/// does not tilt the fit of cost against pixels ([`slopes`]). Every
+/// (variant, size) keeps its own renderer and targets meanwhile: about
+/// 70 bytes a pixel per variant, some 2 GB for 28 variants at 1024².
 fn min_frame_times(
     gpu: &Gpu,
     programs: &[(String, StyleProgram, bool)],
     scene: &runner::scene::Scene,
-    size: u32,
+    sizes: &[u32],
     frames: u32,
-) -> Result<Vec<f64>, RunError> {
-    let spec = FrameSpec::still(size, size, 0);
+) -> Result<Vec<Vec<f64>>, RunError> {
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
-    for (_, p, _) in programs {
-        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
-        r.render(scene, &spec)?;
-        wait()?;
-        renderers.push(r);
-    }
-    let mut best = vec![f64::INFINITY; programs.len()];
-    for _ in 0..frames.max(1) {
-        for (i, r) in renderers.iter_mut().enumerate() {
-            let t = std::time::Instant::now();
+    for &size in sizes {
+        let spec = FrameSpec::still(size, size, 0);
+        let mut row = Vec::new();
+        for (_, p, _) in programs {
+            let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
             r.render(scene, &spec)?;
             wait()?;
-            best[i] = best[i].min(t.elapsed().as_secs_f64());
+            row.push(r);
+        }
+        renderers.push((spec, row));
+    }
+    let mut best = vec![vec![f64::INFINITY; programs.len()]; sizes.len()];
+    for _ in 0..frames.max(1) {
+        for ((spec, row), best) in renderers.iter_mut().zip(best.iter_mut()) {
+            for (r, best) in row.iter_mut().zip(best.iter_mut()) {
+                let t = std::time::Instant::now();
+                r.render(scene, spec)?;
+                wait()?;
+                *best = best.min(t.elapsed().as_secs_f64());
+            }
         }
     }
     Ok(best)
@@ -225,9 +236,9 @@ pub fn run(
         .collect::<Result<_, _>>()?;
     let timing_scene = timing_scene(&mut sources)?;
     let mut rows = Vec::new();
-    for &size in sizes {
-        progress(&format!("timing {size}x{size}"));
-        let best = min_frame_times(gpu, programs, &timing_scene, size, frames)?;
+    progress("timing every size, frames interleaved");
+    let bests = min_frame_times(gpu, programs, &timing_scene, sizes, frames)?;
+    for (&size, best) in sizes.iter().zip(&bests) {
         let t_chain = (best[1] - best[0]) / (CHAINED_PASSTHROUGHS - 1) as f64;
         let measured_pass = t_chain > T_PASS_FLOOR_S;
         let t_pass = t_chain.max(T_PASS_FLOOR_S);
