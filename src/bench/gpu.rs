@@ -301,16 +301,8 @@ pub(super) fn styles(
     }
 }
 
-/// `npr bench passes`: each pass's GPU time and its share of the frame.
-/// The `--schedule` value that selects `s`.
-fn schedule_name(s: Schedule) -> &'static str {
-    match s {
-        Schedule::Naive => "naive",
-        Schedule::Auto => "auto",
-        Schedule::Tiled => "tiled",
-    }
-}
-
+/// `npr bench passes`: each pass's GPU time and its share of the frame,
+/// under each schedule, and the totals against the first schedule's.
 pub(super) fn passes(
     style: &Path,
     scene_path: &Path,
@@ -347,7 +339,7 @@ pub(super) fn passes(
         let total: f64 = times.iter().map(|t| t.ms).sum();
         let changes = super::ScheduleChanges::of(c);
         if schedules.len() > 1 {
-            println!("\nschedule `{}` ({changes}):", schedule_name(*schedule));
+            println!("\nschedule `{}` ({changes}):", schedule.name());
         }
         println!("| pass | scale | GPU ms | share of frame |");
         println!("|---|---:|---:|---:|");
@@ -361,19 +353,16 @@ pub(super) fn passes(
             );
         }
         println!("| **all passes** | | {total:.3} | 100% |");
-        totals.push((schedule_name(*schedule), changes, c.manifest.passes.len(), total));
+        totals.push((schedule.name(), changes, c.manifest.passes.len(), total));
     }
-    if let [(first, ..), ..] = totals.as_slice() {
-        if totals.len() > 1 {
-            println!("\n| schedule | changes | passes | GPU ms, all passes | / {first} |");
-            println!("|---|---|---:|---:|---:|");
-            let base = totals[0].3;
-            for (name, changes, passes, total) in &totals {
-                println!(
-                    "| {name} | {changes} | {passes} | {total:.3} | {:.2} |",
-                    total / base.max(1e-12)
-                );
-            }
+    if let [(first, _, _, base), _, ..] = totals.as_slice() {
+        println!("\n| schedule | changes | passes | GPU ms, all passes | / {first} |");
+        println!("|---|---|---:|---:|---:|");
+        for (name, changes, passes, total) in &totals {
+            println!(
+                "| {name} | {changes} | {passes} | {total:.3} | {:.2} |",
+                total / base.max(1e-12)
+            );
         }
     }
     EXIT_OK
