@@ -50,19 +50,10 @@ fn matches_its_goldens_on(style: &str, scene_name: &str) {
             continue;
         }
         let img = r.read_output().expect("read").to_rgba8();
-        let golden = root().join(format!("examples/golden/{style}_{scene_name}_{frame:02}.png"));
-        let cmp = lab::harness::compare_with_golden(
+        assert_golden(
             &img,
-            &golden,
-            lab::harness::Tolerance::PerPixel {
-                max_abs: 2,
-                outlier_fraction: 0.005,
-            },
-        );
-        assert!(
-            cmp.passed,
-            "{style} frame {frame}: {} (images in {:?})",
-            cmp.summary, cmp.written
+            &format!("{style}_{scene_name}_{frame:02}"),
+            &format!("{style} frame {frame}"),
         );
     }
 }
@@ -241,20 +232,27 @@ fn mid_transition_matches_its_golden(style: &str) {
         );
     }
     let img = r.read_output().expect("read").to_rgba8();
-    let golden = root().join(format!("examples/golden/{style}_cows_lod_band.png"));
-    let cmp = lab::harness::compare_with_golden(
+    assert_golden(
         &img,
+        &format!("{style}_cows_lod_band"),
+        &format!("{style} in the LOD band"),
+    );
+}
+
+/// `img` against `examples/golden/{name}.png`, within 2/255 per channel
+/// except 0.5% of the pixels, the one tolerance of the pattern goldens;
+/// the actual and diff images are written on failure.
+fn assert_golden(img: &image::RgbaImage, name: &str, what: &str) {
+    let golden = root().join(format!("examples/golden/{name}.png"));
+    let cmp = lab::harness::compare_with_golden(
+        img,
         &golden,
         lab::harness::Tolerance::PerPixel {
             max_abs: 2,
             outlier_fraction: 0.005,
         },
     );
-    assert!(
-        cmp.passed,
-        "{style} in the LOD band: {} (images in {:?})",
-        cmp.summary, cmp.written
-    );
+    assert!(cmp.passed, "{what}: {} (images in {:?})", cmp.summary, cmp.written);
 }
 
 /// §3.4 mid-way: the hatching's two copies alpha-blended.
