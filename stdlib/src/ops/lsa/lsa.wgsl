@@ -14,37 +14,19 @@ fn npr_lsa__direction(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: 
     let d = npr_lsa_core__fetch(pos, normals, encoding, px + m);
     let kb = npr_lsa_core__kappa(b, p);
     let kd = npr_lsa_core__kappa(d, p);
-    var den_b = 0.0;
-    var den_d = 0.0;
-    var num_b = 0.0;
-    var num_d = 0.0;
-    if (plane) {
-        den_b = npr_lsa_plane__den(b, p, 1.0);
-        den_d = npr_lsa_plane__den(d, p, 1.0);
-        num_b = npr_lsa_plane__num(b, p, 1.0);
-        num_d = npr_lsa_plane__num(d, p, 1.0);
-    }
-    var vd = max(npr_lsa_core__error(b, p, d, kb, npr_lsa_plane__term(plane, num_d, den_b), lo, hi), 0.0);
-    var vb = max(npr_lsa_core__error(d, p, b, kd, npr_lsa_plane__term(plane, num_b, den_d), lo, hi), 0.0);
+    let one = npr_lsa_plane__pair(b, d, p, 1.0, plane);
+    var vd = max(npr_lsa_core__error(b, p, d, kb, npr_lsa_plane__term(plane, one.num_ahead, one.den_back), lo, hi), 0.0);
+    var vb = max(npr_lsa_core__error(d, p, b, kd, npr_lsa_plane__term(plane, one.num_back, one.den_ahead), lo, hi), 0.0);
     if (aa) {
         // For q = d, q̂ = f and the control of S(p, q̂) is a; offsets over
         // two steps are halved in eq. 6.
         let a = npr_lsa_core__fetch(pos, normals, encoding, px - 2 * m);
         let f = npr_lsa_core__fetch(pos, normals, encoding, px + 2 * m);
-        var den_a = 0.0;
-        var den_f = 0.0;
-        var num_a = 0.0;
-        var num_f = 0.0;
-        if (plane) {
-            den_a = npr_lsa_plane__den(a, p, 0.5);
-            den_f = npr_lsa_plane__den(f, p, 0.5);
-            num_a = npr_lsa_plane__num(a, p, 0.5);
-            num_f = npr_lsa_plane__num(f, p, 0.5);
-        }
+        let two = npr_lsa_plane__pair(a, f, p, 0.5, plane);
         let ka = npr_lsa_core__kappa(a, p);
         let kf = npr_lsa_core__kappa(f, p);
-        vd = npr_lsa_aa__mix(npr_lsa_core__error(b, p, f, kb, npr_lsa_plane__term(plane, num_f, den_b), lo, hi), npr_lsa_core__error(a, p, d, ka, npr_lsa_plane__term(plane, num_d, den_a), lo, hi), vd);
-        vb = npr_lsa_aa__mix(npr_lsa_core__error(d, p, a, kd, npr_lsa_plane__term(plane, num_a, den_d), lo, hi), npr_lsa_core__error(f, p, b, kf, npr_lsa_plane__term(plane, num_b, den_f), lo, hi), vb);
+        vd = npr_lsa_aa__mix(npr_lsa_core__error(b, p, f, kb, npr_lsa_plane__term(plane, two.num_ahead, one.den_back), lo, hi), npr_lsa_core__error(a, p, d, ka, npr_lsa_plane__term(plane, one.num_ahead, two.den_back), lo, hi), vd);
+        vb = npr_lsa_aa__mix(npr_lsa_core__error(d, p, a, kd, npr_lsa_plane__term(plane, two.num_back, one.den_ahead), lo, hi), npr_lsa_core__error(f, p, b, kf, npr_lsa_plane__term(plane, one.num_back, two.den_ahead), lo, hi), vb);
     }
     return max(vd, vb);
 }

@@ -51,6 +51,29 @@ fn npr_lsa_plane__num(q: npr_lsa_core__Texel, p: npr_lsa_core__Texel, sq: f32) -
     return npr_lsa_plane__arc_min((q.p - p.p) * sq, p.n, q.n);
 }
 
+// Eq. 6's terms of two texels on opposite sides of p, `back` = p − k·m and
+// `ahead` = p + k·m, with offsets scaled by `scale` (1 for k = 1, 0.5 for
+// the two-step texels of eq. 8): each texel's denominator, for when it is
+// the control, and numerator, for when it is the check, computed once;
+// all 0 when the planarity extension is off.
+struct npr_lsa_plane__Pair {
+    den_back: f32,
+    den_ahead: f32,
+    num_back: f32,
+    num_ahead: f32,
+}
+
+fn npr_lsa_plane__pair(back: npr_lsa_core__Texel, ahead: npr_lsa_core__Texel, p: npr_lsa_core__Texel, scale: f32, plane: bool) -> npr_lsa_plane__Pair {
+    var t = npr_lsa_plane__Pair(0.0, 0.0, 0.0, 0.0);
+    if (plane) {
+        t.den_back = npr_lsa_plane__den(back, p, scale);
+        t.den_ahead = npr_lsa_plane__den(ahead, p, scale);
+        t.num_back = npr_lsa_plane__num(back, p, scale);
+        t.num_ahead = npr_lsa_plane__num(ahead, p, scale);
+    }
+    return t;
+}
+
 // e_plane (eq. 6) from its numerator and denominator, with k: [50, 150] →
 // [0, 1], clamped; 0 when the planarity extension is off (eq. 7's e_sum is
 // then e_curv alone).

@@ -6,14 +6,9 @@
 fn npr_lsa_sum__direction(pos: texture_2d<f32>, normals: texture_2d<f32>, encoding: i32, px: vec2<i32>, p: npr_lsa_core__Texel, m: vec2<i32>, plane: bool, lo: f32, hi: f32) -> f32 {
     let b = npr_lsa_core__fetch(pos, normals, encoding, px - m);
     let d = npr_lsa_core__fetch(pos, normals, encoding, px + m);
-    var plane_d = 0.0;
-    var plane_b = 0.0;
-    if (plane) {
-        plane_d = npr_lsa_plane__term(plane, npr_lsa_plane__num(d, p, 1.0), npr_lsa_plane__den(b, p, 1.0));
-        plane_b = npr_lsa_plane__term(plane, npr_lsa_plane__num(b, p, 1.0), npr_lsa_plane__den(d, p, 1.0));
-    }
-    let vd = npr_lsa_core__error(b, p, d, npr_lsa_core__kappa(b, p), plane_d, lo, hi);
-    let vb = npr_lsa_core__error(d, p, b, npr_lsa_core__kappa(d, p), plane_b, lo, hi);
+    let one = npr_lsa_plane__pair(b, d, p, 1.0, plane);
+    let vd = npr_lsa_core__error(b, p, d, npr_lsa_core__kappa(b, p), npr_lsa_plane__term(plane, one.num_ahead, one.den_back), lo, hi);
+    let vb = npr_lsa_core__error(d, p, b, npr_lsa_core__kappa(d, p), npr_lsa_plane__term(plane, one.num_back, one.den_ahead), lo, hi);
     return max(max(vd, vb), 0.0);
 }
 
