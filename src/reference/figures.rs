@@ -93,25 +93,14 @@ impl Figures {
 /// Whether the style text `text` runs `op`: calls it, or calls an operator
 /// with a specialization to it and writes that argument (`skew: 0`).
 fn runs(text: &str, op: &stdlib::Operator) -> bool {
-    calls(text, op.name)
+    stdlib::ops::style_calls(text, op.name)
         || stdlib::all().iter().any(|from| {
-            calls(text, from.name)
+            stdlib::ops::style_calls(text, from.name)
                 && from.specializations.iter().any(|s| {
                     s.use_operator == op.name
                         && text.contains(&format!("{}: {}", s.param, crate::describe::number(s.value)))
                 })
         })
-}
-
-/// Whether `text` calls `name` (`name(` not inside a longer name).
-fn calls(text: &str, name: &str) -> bool {
-    let call = format!("{name}(");
-    text.match_indices(&call).any(|(at, _)| {
-        !text[..at]
-            .chars()
-            .next_back()
-            .is_some_and(|c| c.is_alphanumeric() || c == '_')
-    })
 }
 
 #[cfg(test)]

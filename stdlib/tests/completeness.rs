@@ -8,7 +8,7 @@
 //! explicit reason why no image can show it.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use stdlib::ops::{Arg, Demo, Tol};
+use stdlib::ops::{style_calls as calls, Arg, Demo, Tol};
 use stdlib::{Default, Ty};
 
 /// The order of `stdlib::all()` when the operators moved into folders:
@@ -332,18 +332,6 @@ fn every_registered_operator_has_gpu_cases() {
             }
         }
     }
-}
-
-/// Whether `text` calls `name`: `name(` not preceded by a name's character
-/// (`sample(` is not found in `sample_biased(` or in `resample(`).
-fn calls(text: &str, name: &str) -> bool {
-    let call = format!("{name}(");
-    text.match_indices(&call).any(|(at, _)| {
-        !text[..at]
-            .chars()
-            .next_back()
-            .is_some_and(|c| c.is_alphanumeric() || c == '_')
-    })
 }
 
 /// Every operator has a demo for `npr doc`: a style that calls it, on a

@@ -44,3 +44,17 @@ pub const fn render(shows: &'static str, scene: &'static str, style: &'static st
         time_s: 0.0,
     })
 }
+
+/// Whether the style text `text` calls the operator `name`: `name(` not
+/// preceded by a name's character (`sample(` is not found in
+/// `sample_biased(` or in `resample(`). The completeness test checks each
+/// demo with it, and `npr doc` finds the benchmark rows of an operator.
+pub fn style_calls(text: &str, name: &str) -> bool {
+    let call = format!("{name}(");
+    text.match_indices(&call).any(|(at, _)| {
+        !text[..at]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_')
+    })
+}
