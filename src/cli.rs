@@ -238,6 +238,10 @@ pub enum ScheduleArg {
     /// runs as compute over workgroup tiles (the same image). Not `auto`'s
     /// choice: on lavapipe the tiles are slower (docs/PERFORMANCE.md).
     Tiled,
+    /// `tiled`, and each neighbourhood pass whose one reader reads it
+    /// around the pixel is computed in that reader's tiles instead of
+    /// stored (the same image). Not `auto`'s choice: slower on lavapipe.
+    Recompute,
 }
 
 impl From<ScheduleArg> for compiler::schedule::Schedule {
@@ -246,6 +250,7 @@ impl From<ScheduleArg> for compiler::schedule::Schedule {
             ScheduleArg::Naive => compiler::schedule::Schedule::Naive,
             ScheduleArg::Auto => compiler::schedule::Schedule::Auto,
             ScheduleArg::Tiled => compiler::schedule::Schedule::Tiled,
+            ScheduleArg::Recompute => compiler::schedule::Schedule::Recompute,
         }
     }
 }

@@ -71,8 +71,7 @@ pub fn allocate(
     // Last use of each target, by execution position.
     let mut last_use: BTreeMap<TargetRef, usize> = BTreeMap::new();
     for (pos, pid) in live.passes.iter().enumerate() {
-        let pass = ir.pass(*pid);
-        let roots: Vec<ExprId> = crate::dag::pass_roots(pass);
+        let roots: Vec<ExprId> = crate::dag::scheduled_roots(ir, *pid);
         for id in ir.reachable(&roots) {
             if let Some(t) = ir.expr(id).kind.target_read() {
                 let e = last_use.entry(t).or_insert(pos);

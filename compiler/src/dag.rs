@@ -22,6 +22,19 @@ pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
     roots
 }
 
+/// Expressions pass `pid`'s shaders evaluate once scheduled: its own
+/// ([`pass_roots`]) and the values of the targets it computes in its tiles
+/// (`schedule/recompute.rs`), whose reads are its reads.
+pub fn scheduled_roots(ir: &Ir, pid: PassId) -> Vec<ExprId> {
+    let mut roots = pass_roots(ir.pass(pid));
+    for (t, r) in &ir.recomputed {
+        if r.reader == pid {
+            roots.push(ir.pass(t.pass).outputs[t.output as usize].value);
+        }
+    }
+    roots
+}
+
 pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     let n = ir.passes.len();
     let mut reads: Vec<Vec<(PassId, Span)>> = vec![Vec::new(); n];

@@ -370,6 +370,9 @@ pub struct Ir {
     pub scene_queries: Vec<(String, bool)>,
     /// Image passes the schedule runs as compute over workgroup tiles.
     pub tiled: std::collections::BTreeMap<PassId, crate::schedule::tile::Tiling>,
+    /// Targets the schedule does not store: their reader computes them in
+    /// its tiles (`schedule/recompute.rs`).
+    pub recomputed: std::collections::BTreeMap<TargetRef, crate::schedule::recompute::Recomputed>,
 }
 
 impl Ir {

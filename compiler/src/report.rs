@@ -9,7 +9,9 @@ pub struct Report {
 
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct ReportEntry {
-    /// `removed`, `folded`, `kept`, `aliased`, `requires`.
+    /// `removed`, `folded`, `kept`, `aliased`, `requires`, and the
+    /// schedule's (`schedule`, `fused`, `tiled`, `recomputed`, and their
+    /// `not …`): at most 14 characters, the width of the first column.
     pub action: &'static str,
     pub what: String,
     pub why: String,
@@ -28,7 +30,7 @@ impl Report {
     pub fn render(&self) -> String {
         let mut s = String::new();
         for e in &self.entries {
-            s.push_str(&format!("{:<8} {:<36} {}\n", e.action, e.what, e.why));
+            s.push_str(&format!("{:<14} {:<36} {}\n", e.action, e.what, e.why));
         }
         s
     }

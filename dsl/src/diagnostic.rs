@@ -279,6 +279,10 @@ pub mod codes {
     /// writes a format compute cannot store, takes screen derivatives, reads
     /// nothing around the pixel, or its tiles do not fit in workgroup memory).
     pub const CANNOT_TILE: &str = "E0311";
+    /// An image pass whose `schedule: recompute` cannot be done: its target
+    /// is not read by one same-scale image pass around the pixel, or that
+    /// reader cannot be tiled with it (`compiler/src/schedule/recompute.rs`).
+    pub const CANNOT_RECOMPUTE: &str = "E0312";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -362,6 +366,10 @@ pub mod codes {
         (BAD_ID_TARGET, "a pass over pixels of a target that is not an ID target"),
         (BAD_FILTER, "not an art-map filter, or a filter used as a style"),
         (CANNOT_TILE, "`schedule: tiled` on a pass that cannot be tiled"),
+        (
+            CANNOT_RECOMPUTE,
+            "`schedule: recompute` on a pass that its reader cannot compute in its tiles",
+        ),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

@@ -24,6 +24,18 @@ pub(super) struct Declared {
 }
 
 impl Emitter<'_> {
+    /// The WGSL name of a target's binding (a target computed in tiles has
+    /// no binding, but its reads keep this name until `emit/tiled`
+    /// redirects them).
+    pub(super) fn target_binding_name(&self, copy: TargetCopy, t: TargetRef) -> String {
+        let prefix = match copy {
+            TargetCopy::This => "t_",
+            TargetCopy::OtherEye => "t_other_",
+            TargetCopy::Previous => "t_prev_",
+        };
+        format!("{prefix}{}", self.ir.target_name(t).replace('.', "_"))
+    }
+
     pub(super) fn declare(&self, kind: &PassKind, uses: &Uses, uses_frame: bool) -> Declared {
         let mut d = Declared {
             text: String::new(),
@@ -52,12 +64,12 @@ impl Emitter<'_> {
             let Some(index) = self.alloc.target_index(*t) else {
                 continue;
             };
-            let (prefix, note) = match copy {
-                TargetCopy::This => ("t_", ""),
-                TargetCopy::OtherEye => ("t_other_", ", the other eye's"),
-                TargetCopy::Previous => ("t_prev_", ", the previous frame's"),
+            let note = match copy {
+                TargetCopy::This => "",
+                TargetCopy::OtherEye => ", the other eye's",
+                TargetCopy::Previous => ", the previous frame's",
             };
-            let name = format!("{prefix}{}", self.ir.target_name(*t).replace('.', "_"));
+            let name = self.target_binding_name(*copy, *t);
             let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
             let _ = writeln!(
                 d.text,

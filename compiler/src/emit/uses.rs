@@ -69,6 +69,39 @@ impl Uses {
         frame_builtin || self.percent || self.project
     }
 
+    /// Adds what another function of the same module reads (a producer
+    /// computed in this pass's tiles, `emit/tiled`), so the module declares
+    /// and defines it. `value_uses` stays this pass's: it names the lets of
+    /// one function.
+    pub fn absorb(&mut self, other: Uses) {
+        self.builtins.extend(other.builtins);
+        self.targets.extend(other.targets);
+        self.textures.extend(other.textures);
+        self.project |= other.project;
+        self.style_params |= other.style_params;
+        self.percent |= other.percent;
+        self.operators.extend(other.operators);
+        self.linear_sampler |= other.linear_sampler;
+        self.texture_as_value |= other.texture_as_value;
+        self.object_values.extend(other.object_values);
+        for f in other.stored {
+            self.store(f);
+        }
+        self.runtime_conditions.extend(other.runtime_conditions);
+    }
+
+    /// Records that the module repeats a `format` store (its `npr_stored_*`
+    /// helper), for the formats that round.
+    pub fn store(&mut self, format: abi::Format) {
+        let rounds = matches!(
+            format.storage(),
+            abi::formats::Storage::Half | abi::formats::Storage::Unorm8
+        );
+        if rounds && !self.stored.contains(&format) {
+            self.stored.push(format);
+        }
+    }
+
     /// Whether any target is read as a value or a handle (`npr_load` is needed
     /// only for values, but the helper has always come with any target read).
     pub fn reads_targets(&self) -> bool {

@@ -40,6 +40,7 @@ pub(super) fn fuse_pointwise(ir: &mut Ir, live: &mut Live, plan: &Plan, report: 
         if let Some(f) = plan.forced(pid) {
             let how = match f.schedule {
                 Schedule::Tiled => ", which runs it as its own pass, over tiles",
+                Schedule::Recompute => ", which computes it in its reader's tiles",
                 _ => ", which runs it as written",
             };
             report.push("schedule", name, format!("separate pass: {}{how}", f.why()));

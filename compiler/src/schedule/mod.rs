@@ -13,9 +13,16 @@
 //!   `auto`'s choice, by measurement: on lavapipe, the one device measured,
 //!   a tiled pass costs 1.0–2.2× its fragment pass (docs/PERFORMANCE.md,
 //!   "Tiled compute"); a device where tiles pay would make it the choice.
+//! - `recompute`: `tiled`, then a neighbourhood pass whose one reader reads
+//!   it around the pixel is not stored: the reader's workgroups compute it
+//!   on their tile and apron ([`recompute`], Halide's `compute_at`). Not
+//!   `auto`'s choice either, by the same measurement (docs/PERFORMANCE.md,
+//!   "Recomputed tiles").
 //!
 //! `--schedule` sets the run's schedule; an image pass's `schedule:`
-//! setting overrides it for that pass ([`Plan`]). `schedule: naive` runs
+//! setting overrides it for that pass ([`Plan`]). `schedule: recompute`
+//! asks that the pass be computed in its reader's tiles, under every
+//! `--schedule`; where that cannot be, it is E0312 at the setting. `schedule: naive` runs
 //! the pass as written: it is never fused into its reader, nothing is
 //! fused into it, and it is not tiled. `schedule: tiled` runs it as its own
 //! pass over tiles, also never fused either way, so whether it can be tiled
@@ -33,6 +40,7 @@
 
 pub mod footprint;
 mod fuse;
+pub mod recompute;
 pub mod tile;
 
 use crate::ir::{Ir, PassId, PassKind};
@@ -57,10 +65,14 @@ pub enum Schedule {
     /// `auto` plus workgroup tiles for neighbourhood passes: the same image
     /// (`tests/schedule_equivalence.rs`), slower on lavapipe.
     Tiled,
+    /// `tiled`, and each neighbourhood pass whose one reader reads it
+    /// around the pixel is computed in that reader's tiles instead of
+    /// stored: the same image, slower on lavapipe.
+    Recompute,
 }
 
 impl Schedule {
-    pub const ALL: [Schedule; 3] = [Schedule::Naive, Schedule::Auto, Schedule::Tiled];
+    pub const ALL: [Schedule; 4] = [Schedule::Naive, Schedule::Auto, Schedule::Tiled, Schedule::Recompute];
 
     /// As written in a style and on the command line.
     pub fn name(self) -> &'static str {
@@ -68,18 +80,24 @@ impl Schedule {
             Schedule::Naive => "naive",
             Schedule::Auto => "auto",
             Schedule::Tiled => "tiled",
+            Schedule::Recompute => "recompute",
         }
     }
 
     pub fn parse(name: &str) -> Option<Schedule> {
         Schedule::ALL.into_iter().find(|s| s.name() == name)
     }
+
+    /// Whether neighbourhood passes run over workgroup tiles.
+    pub fn tiles(self) -> bool {
+        matches!(self, Schedule::Tiled | Schedule::Recompute)
+    }
 }
 
 /// A pass whose `schedule:` setting overrides the run's schedule.
 #[derive(Debug, Clone)]
 pub(crate) struct Forced {
-    /// `Naive` or `Tiled`: `schedule: auto` forces nothing.
+    /// `Naive`, `Tiled` or `Recompute`: `schedule: auto` forces nothing.
     pub schedule: Schedule,
     pub span: Span,
     /// "line 12", or "line 12 of lib/x.npr" for a pass from a `use`d file.
@@ -137,7 +155,7 @@ impl Plan {
 /// to the live passes: rewrites `ir` and `live` (fused passes leave
 /// `live.passes`, their targets `live.targets`) and reports each image
 /// pass's schedule. A pass forced `tiled` that cannot be tiled is E0311,
-/// returned.
+/// one forced `recompute` that cannot be recomputed E0312, returned.
 pub fn apply(
     ir: &mut Ir,
     live: &mut Live,
@@ -148,5 +166,7 @@ pub fn apply(
 ) -> Vec<Diagnostic> {
     let plan = Plan::new(ir, schedule, sources, root);
     fuse::fuse_pointwise(ir, live, &plan, report);
-    tile::tile_neighbourhoods(ir, live, &plan, report)
+    let mut errors = recompute::recompute_neighbourhoods(ir, live, &plan, report);
+    errors.extend(tile::tile_neighbourhoods(ir, live, &plan, report));
+    errors
 }

@@ -17,6 +17,10 @@
 //! (compute has none), or whose tiles would not fit in workgroup memory.
 //! A pass whose `schedule: tiled` forces tiles gets them under every
 //! `--schedule`, or E0311 at that setting with the reason above.
+//!
+//! A pass that computes a target in its tiles (`recompute.rs`) is tiled
+//! under every schedule, that target's tile filled by its producer's
+//! expression instead of a load.
 
 use super::footprint::{texture_reads, Read};
 use super::{Plan, Schedule};
@@ -36,12 +40,23 @@ pub const WORKGROUP_MEMORY: u32 = 16384;
 /// Bytes of one tile texel (a `vec4<f32>`, what `textureLoad` returns).
 const TEXEL_BYTES: u32 = 16;
 
+/// Where a tile's texels come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum TileSource {
+    /// `textureLoad` of the stored target.
+    Load,
+    /// The producer's expression, evaluated at each texel: the target is
+    /// not stored (`recompute.rs`).
+    Recompute,
+}
+
 /// One target a tiled pass keeps in workgroup memory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct TileRead {
     pub target: TargetRef,
     /// The apron, in texels on each side of the `TILE_SIZE`² block.
     pub radius: u32,
+    pub source: TileSource,
 }
 
 impl TileRead {
@@ -69,8 +84,9 @@ impl Tiling {
 }
 
 /// Decides, for every live image pass, whether it runs tiled: under
-/// `--schedule tiled` every pass the tiler accepts, and under every
-/// schedule the passes whose `schedule: tiled` forces it. The tilings go in
+/// `--schedule tiled` and `recompute` every pass the tiler accepts, and
+/// under every schedule the passes whose `schedule: tiled` forces it and
+/// those that compute a target in their tiles. The tilings go in
 /// `ir.tiled`, every decision in the report; under `auto` only the passes
 /// `tiled` would tile are reported, with why `auto` does not (measured
 /// slower on lavapipe). A forced pass the tiler refuses is E0311.
@@ -82,15 +98,35 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
         }
         let name = format!("pass `{}`", ir.pass(*pid).name);
         let forced = plan.forced(*pid);
-        let schedule = forced.map_or(plan.run, |f| f.schedule);
+        let computes = ir.recomputed.values().any(|r| r.reader == *pid);
+        if forced.is_some_and(|f| f.schedule == Schedule::Recompute) {
+            // Still live, so not computed in its reader: E0312 says why.
+            continue;
+        }
+        // A pass that computes a target in its tiles runs tiled.
+        let schedule = if computes {
+            Schedule::Tiled
+        } else {
+            forced.map_or(plan.run, |f| f.schedule)
+        };
         match (tiling(ir, live, *pid), schedule) {
-            (Ok(t), Schedule::Tiled) => {
+            (Ok(t), s) if s.tiles() => {
                 let what: Vec<String> = t
                     .reads
                     .iter()
-                    .map(|r| format!("`{}` with a {}-texel apron", ir.target_name(r.target), r.radius))
+                    .map(|r| {
+                        let from = match r.source {
+                            TileSource::Load => String::new(),
+                            TileSource::Recompute => format!(", computed from pass `{}`", ir.pass(r.target.pass).name),
+                        };
+                        format!("`{}` with a {}-texel apron{from}", ir.target_name(r.target), r.radius)
+                    })
                     .collect();
-                let by = forced.map_or(String::new(), |f| format!("{}: ", f.why()));
+                let by = match forced {
+                    Some(f) => format!("{}: ", f.why()),
+                    None if computes => "it computes a target in its tiles: ".to_string(),
+                    None => String::new(),
+                };
                 report.push(
                     "tiled",
                     name,
@@ -102,7 +138,7 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
                 );
                 ir.tiled.insert(*pid, t);
             }
-            (Err(why), Schedule::Tiled) => match forced {
+            (Err(why), s) if s.tiles() => match forced {
                 Some(f) => errors.push(
                     Diagnostic::error(codes::CANNOT_TILE, format!("pass `{}` cannot run tiled", ir.pass(*pid).name))
                         .with_primary(f.span, "`schedule: tiled` asked for here")
@@ -115,7 +151,7 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
             },
             // A pass forced `naive` under `--schedule tiled`: say why the
             // run's schedule did not tile it.
-            (_, Schedule::Naive) if plan.run == Schedule::Tiled => {
+            (_, Schedule::Naive) if plan.run.tiles() => {
                 let why = forced.map_or(String::new(), |f| f.why());
                 report.push("not tiled", name, why);
             }
@@ -127,14 +163,16 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
                     t.bytes()
                 ),
             ),
-            (_, Schedule::Naive) | (Err(_), Schedule::Auto) => {}
+            _ => {}
         }
     }
     errors
 }
 
-/// The tiling of image pass `pid`, or why it is not tiled.
-fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
+/// The tiling of image pass `pid`, or why it is not tiled: the targets its
+/// operators load around the pixel, and those it computes in its tiles
+/// (`ir.recomputed`).
+pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
     let pass = ir.pass(pid);
     let live_outputs: Vec<&PassOutput> = live
         .targets_of(pid)
@@ -194,13 +232,29 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
             }
         }
     }
+    let mut recomputed = BTreeMap::new();
+    for (target, r) in &ir.recomputed {
+        if r.reader == pid {
+            let radius = radii.entry(*target).or_default();
+            *radius = (*radius).max(r.radius);
+            recomputed.insert(*target, ());
+        }
+    }
     if radii.is_empty() {
         return Err("no operator reads a target around the pixel".into());
     }
     let tiling = Tiling {
         reads: radii
             .into_iter()
-            .map(|(target, radius)| TileRead { target, radius })
+            .map(|(target, radius)| TileRead {
+                target,
+                radius,
+                source: if recomputed.contains_key(&target) {
+                    TileSource::Recompute
+                } else {
+                    TileSource::Load
+                },
+            })
             .collect(),
     };
     let bytes = tiling.bytes();
@@ -219,7 +273,7 @@ fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String> {
 /// root, or an operand of anything but an operator's texture parameter.
 /// The typechecker leaves such a read typed as the texture, so the type
 /// alone does not tell it from an operator's argument.
-fn samples_a_texture(ir: &Ir, roots: &[ExprId], nodes: &[ExprId]) -> bool {
+pub(super) fn samples_a_texture(ir: &Ir, roots: &[ExprId], nodes: &[ExprId]) -> bool {
     let is_texture = |e: ExprId| matches!(ir.expr(e).kind, ExprKind::Texture(_));
     if roots.iter().any(|r| is_texture(*r)) {
         return true;
@@ -256,7 +310,7 @@ fn is_loaded(ir: &Ir, call: ExprId, arg: ExprId) -> bool {
 
 /// The name of operator `i` or of one it depends on when its WGSL takes
 /// screen derivatives (explicitly, or through an implicit-LOD sample).
-fn uses_derivatives(i: usize) -> Option<&'static str> {
+pub(super) fn uses_derivatives(i: usize) -> Option<&'static str> {
     let op = &stdlib::all()[i];
     let takes = |wgsl: &str| {
         ["dpdx", "dpdy", "fwidth", "textureSample("]
@@ -297,6 +351,7 @@ mod tests {
                 output: 0,
             },
             radius: 2,
+            source: TileSource::Load,
         };
         assert_eq!(t.side(), 20);
         assert_eq!(t.bytes(), 20 * 20 * 16);

@@ -222,4 +222,27 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0312",
+        meaning: "`schedule: recompute` in an image pass asks that its target not be stored: the \
+            one pass that reads it runs over 16×16 workgroup tiles, and each workgroup computes \
+            this pass's expression on its tile and the apron its reads need, rounded as the \
+            target's format would round it (Halide's `compute_at`). That needs one live target, \
+            not the style's output, not blended, not sRGB and not a constant; one reader, an \
+            image pass at the same scale, whose own `schedule:` is not set, that reads it this \
+            frame (not `previous(...)`, not the other eye's) with operators that load it around \
+            the pixel (`sobel`, `lsa_density`, `gaussian`) or as a value at the pixel, and that \
+            the tiler accepts with the target in its tile (see E0311); and a pass that takes no \
+            screen derivatives, since it runs in compute. The help line gives the reason for \
+            this pass. Write `schedule: auto` (or no setting) to let the compiler choose, or \
+            `schedule: naive` to store the target.",
+        wrong: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: recompute\n  out e: rgba16float = vec4(sobel(g.d, screen_uv), 0.0, 0.0, 1.0)\n}\noutput edges.e\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\npass g: render(scene) {\n  out d: r32float = depth\n}\npass edges: image(g) {\n  schedule: recompute\n  out e: rgba16float = vec4(sobel(g.d, screen_uv), 0.0, 0.0, 1.0)\n}\npass ink: image(edges) {\n  out c: rgba8unorm = vec4(vec3(sobel(edges.e, screen_uv)), 1.0)\n}\noutput ink.c\n",
+            ..EXAMPLE
+        },
+    },
 ];

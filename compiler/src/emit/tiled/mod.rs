@@ -12,19 +12,36 @@
 //!   (`npr_stored_<format>`, the same helpers fusion uses), so a storage
 //!   write holds what a colour attachment of the naive schedule would: a
 //!   16-bit float is rounded as this device rounds attachment stores.
+//! - A target computed in the tiles (`schedule/recompute.rs`) has no
+//!   binding: its producer's expression becomes `npr_compute_<t>(q)`, the
+//!   texel a store would have left at q (the same arithmetic as the
+//!   producer's fragment at q's centre, then the format's rounding). The
+//!   workgroup fills the tile with it after the loaded tiles (which it may
+//!   read), and a read outside the tile evaluates it there.
 
 mod mono;
 
+use super::expr::KindCtx;
 use super::uses::Uses;
 use super::{helpers, Emitter, PassCtx};
 use crate::ir::*;
-use crate::schedule::tile::{TileRead, Tiling};
+use crate::schedule::tile::{TileRead, TileSource, Tiling};
 use abi::formats::Storage;
 use abi::manifest::{TargetCopy, TILE_SIZE};
+use std::collections::BTreeMap;
 use std::fmt::Write;
 
 /// The entry point of a tiled pass.
 pub(crate) const TILED_ENTRY: &str = "cs_main";
+
+/// A target computed in a tiled pass's tiles: what its function evaluates.
+pub(in crate::emit) struct Producer {
+    pub target: TargetRef,
+    /// The producer's expressions for the target, operands first.
+    nodes: Vec<ExprId>,
+    /// How often each is read as a value there (names its `let`s).
+    value_uses: BTreeMap<ExprId, usize>,
+}
 
 impl Emitter<'_> {
     /// The tiled module, from the fragment-style module `w` whose pixel
@@ -40,11 +57,14 @@ impl Emitter<'_> {
     ) -> (String, bool) {
         let global = |r: &TileRead| ctx.target_names[&(TargetCopy::This, r.target)].clone();
         let tiled: Vec<(String, &TileRead)> = tiling.reads.iter().map(|r| (global(r), r)).collect();
-        let rename = |g: &str| {
-            tiled
-                .iter()
-                .find(|(name, _)| name == g)
-                .map(|(name, _)| format!("npr_tile_load_{name}"))
+        let rename = |builtin: &str, g: &str| {
+            let (name, r) = tiled.iter().find(|(name, _)| name == g)?;
+            match (builtin, r.source) {
+                ("textureLoad", _) => Some(format!("npr_tile_load_{name}")),
+                // A computed target has no texture to ask.
+                ("textureDimensions", TileSource::Recompute) => Some(format!("npr_computed_dims_{name}")),
+                _ => None,
+            }
         };
         let mut out = match mono::monomorphize(&w, &rename) {
             Ok(m) => m,
@@ -75,8 +95,17 @@ impl Emitter<'_> {
             out,
             "\n// The first pixel of this invocation's workgroup.\nvar<private> npr_tile_origin: vec2<i32>;\n"
         );
+        if tiled.iter().any(|(_, r)| r.source == TileSource::Recompute) {
+            let _ = writeln!(
+                out,
+                "// The pass's size in pixels: that of the targets computed in its tiles.\nvar<private> npr_pass_dims: vec2<i32>;\n"
+            );
+        }
         for (name, r) in &tiled {
-            tile_declarations(&mut out, name, r);
+            match r.source {
+                TileSource::Load => tile_declarations(&mut out, name, r),
+                TileSource::Recompute => computed_tile_declarations(&mut out, name, r),
+            }
         }
         self.entry(&mut out, &tiled, outputs);
         (out, half)
@@ -90,7 +119,19 @@ impl Emitter<'_> {
 fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) li: u32) {{
     npr_tile_origin = vec2<i32>(wg.xy) * {TILE_SIZE};"
         );
-        for (name, r) in tiled {
+        let first = outputs[0];
+        let computed: Vec<&(String, &TileRead)> = tiled
+            .iter()
+            .filter(|(_, r)| r.source == TileSource::Recompute)
+            .collect();
+        if !computed.is_empty() {
+            let _ = writeln!(
+                out,
+                "    npr_pass_dims = vec2<i32>(textureDimensions(npr_out_{}));",
+                first.name
+            );
+        }
+        for (name, r) in tiled.iter().filter(|(_, r)| r.source == TileSource::Load) {
             let side = r.side();
             let _ = writeln!(
                 out,
@@ -106,7 +147,25 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
                 count = side * side,
             );
         }
-        let first = outputs[0];
+        if !computed.is_empty() && tiled.iter().any(|(_, r)| r.source == TileSource::Load) {
+            // The computed tiles may read the loaded ones.
+            out.push_str("    workgroupBarrier();\n");
+        }
+        for (name, r) in computed {
+            let side = r.side();
+            let _ = writeln!(
+                out,
+                "    // `{name}`, not stored: computed on the tile and its {radius}-texel apron, {threads} texels per round.
+    for (var k = i32(li); k < {count}; k += {threads}) {{
+        let q = npr_tile_origin - vec2<i32>({radius}) + vec2<i32>(k % {side}, k / {side});
+        if (all(q >= vec2<i32>(0)) && all(q < npr_pass_dims)) {{
+            npr_tile_{name}[k] = npr_compute_{name}(q);
+        }}
+    }}",
+                radius = r.radius,
+                count = side * side,
+            );
+        }
         let _ = writeln!(
             out,
             "    workgroupBarrier();
@@ -122,18 +181,87 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
             first.name
         );
         for o in outputs {
-            let rounded = match o.format.storage() {
-                Storage::Half | Storage::Unorm8 => format!("npr_stored_{}(o.o_{})", o.format.name(), o.name),
-                Storage::Exact | Storage::Srgb8 => format!("o.o_{}", o.name),
-            };
-            let value = match o.format.channels() {
-                1 => format!("vec4<f32>({rounded}, 0.0, 0.0, 1.0)"),
-                2 => format!("vec4<f32>({rounded}, 0.0, 1.0)"),
-                _ => rounded,
-            };
+            let value = stored_texel(o.format, &format!("o.o_{}", o.name));
             let _ = writeln!(out, "    textureStore(npr_out_{}, px, {value});", o.name);
         }
         out.push_str("}\n");
+    }
+
+    /// The producers of the targets computed in `tiling`'s tiles, with what
+    /// they read added to `uses` (the module declares it) and their formats'
+    /// rounding helpers.
+    pub(in crate::emit) fn recomputed_uses(&self, tiling: &Tiling, uses: &mut Uses) -> Vec<Producer> {
+        let mut producers = Vec::new();
+        for r in tiling.reads.iter().filter(|r| r.source == TileSource::Recompute) {
+            let o = &self.ir.pass(r.target.pass).outputs[r.target.output as usize];
+            let nodes = self.ir.reachable(&[o.value]);
+            let mut own = self.uses(&nodes, &[o.value], &[]);
+            let value_uses = std::mem::take(&mut own.value_uses);
+            uses.absorb(own);
+            uses.store(o.format);
+            producers.push(Producer {
+                target: r.target,
+                nodes,
+                value_uses,
+            });
+        }
+        producers
+    }
+
+    /// `npr_compute_<t>(q)`: the texel producer `p`'s target would hold at
+    /// q, as `textureLoad` would return it. Its pixel is set up as the tiled
+    /// entry sets up the pass's own (`in.clip` at the texel centre, the
+    /// prologue's `screen_uv`), which is how the producer's fragment saw it.
+    pub(in crate::emit) fn recompute_function(&self, w: &mut String, p: &Producer, ctx: &PassCtx) {
+        let pass = self.ir.pass(p.target.pass);
+        let o = &pass.outputs[p.target.output as usize];
+        let name = &ctx.target_names[&(TargetCopy::This, p.target)];
+        let _ = writeln!(
+            w,
+            "\n// `{}` of pass `{}` ({}), computed at texel q instead of stored.
+fn npr_compute_{name}(q: vec2<i32>) -> vec4<f32> {{
+    var in: Varyings;
+    in.clip = vec4<f32>(vec2<f32>(q) + vec2<f32>(0.5), 0.0, 1.0);
+    in.screen_uv = in.clip.xy / {};",
+            self.ir.target_name(p.target),
+            pass.name,
+            self.line_of(pass.name_span),
+            super::render::pass_size_wgsl(pass.scale)
+        );
+        let mut own = PassCtx {
+            kind: KindCtx::of(&pass.kind),
+            named: BTreeMap::new(),
+            target_names: ctx.target_names.clone(),
+            uses_linear_sampler: ctx.uses_linear_sampler,
+            runtime_conditions: ctx.runtime_conditions.clone(),
+        };
+        self.emit_lets(w, pass, &p.nodes, &p.value_uses, &mut own);
+        let _ = writeln!(
+            w,
+            "    // {}: out {}: {} = {}",
+            self.line_of(o.span),
+            o.name,
+            o.format.name(),
+            self.snippet(self.ir.expr(o.value).span)
+        );
+        let v = self.expr(o.value, &own);
+        let _ = writeln!(w, "    return {};\n}}", stored_texel(o.format, &v));
+    }
+}
+
+/// What a `format` texel holds after `value` (of the format's channel
+/// count) is stored in it, as a `vec4<f32>` as `textureLoad` returns it:
+/// rounded where the format rounds (`npr_stored_<format>`), the missing
+/// channels (0, 0, 1).
+fn stored_texel(format: abi::Format, value: &str) -> String {
+    let rounded = match format.storage() {
+        Storage::Half | Storage::Unorm8 => format!("npr_stored_{}({value})", format.name()),
+        Storage::Exact | Storage::Srgb8 => value.to_string(),
+    };
+    match format.channels() {
+        1 => format!("vec4<f32>({rounded}, 0.0, 0.0, 1.0)"),
+        2 => format!("vec4<f32>({rounded}, 0.0, 1.0)"),
+        _ => rounded,
     }
 }
 
@@ -146,6 +274,36 @@ fn stored_formats(outputs: &[&PassOutput]) -> Vec<abi::Format> {
         }
     }
     formats
+}
+
+/// The workgroup array of one computed target, its load function (the
+/// tile's texel, or the producer evaluated at q), and its dimensions.
+fn computed_tile_declarations(out: &mut String, name: &str, r: &TileRead) {
+    let side = r.side();
+    let _ = writeln!(
+        out,
+        "var<workgroup> npr_tile_{name}: array<vec4<f32>, {count}>;
+// `textureLoad({name}, q, level)` of the target this pass computes: from the tile when q is in
+// it, else computed at q. A load outside the image is the device's choice in WebGPU (a texel
+// of the texture, or zero) and the stdlib makes none; the nearest edge texel is one. The
+// target has one level, so `level` chooses nothing.
+fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
+    let local = q - npr_tile_origin + vec2<i32>({radius});
+    let in_tile = all(local >= vec2<i32>(0)) && all(local < vec2<i32>({side}));
+    let in_image = all(q >= vec2<i32>(0)) && all(q < npr_pass_dims);
+    if (in_tile && in_image) {{
+        return npr_tile_{name}[local.y * {side} + local.x];
+    }}
+    return npr_compute_{name}(clamp(q, vec2<i32>(0), npr_pass_dims - vec2<i32>(1)));
+}}
+// `textureDimensions({name})`: the pass's size, which is the target's.
+fn npr_computed_dims_{name}() -> vec2<u32> {{
+    return vec2<u32>(npr_pass_dims);
+}}
+",
+        count = side * side,
+        radius = r.radius,
+    );
 }
 
 /// The workgroup array of one tiled target and its load function.

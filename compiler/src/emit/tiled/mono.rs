@@ -53,11 +53,13 @@ struct Module {
 }
 
 /// Rewrites `module` so that no function takes a handle parameter: see the
-/// module doc. `rename_load(global)` names the function that replaces
-/// `textureLoad(global, …)` in the copies (`None` keeps `textureLoad`).
+/// module doc. `rename_load(builtin, global)` names the function that
+/// replaces `textureLoad(global, …)` or `textureDimensions(global, …)` (the
+/// `builtin`) in the copies, called with the other arguments (`None` keeps
+/// the builtin).
 /// Returns `Err` with a reason when the text is not WGSL the scanner can
 /// split (an internal error to the caller).
-pub fn monomorphize(module: &str, rename_load: &dyn Fn(&str) -> Option<String>) -> Result<String, String> {
+pub fn monomorphize(module: &str, rename_load: &dyn Fn(&str, &str) -> Option<String>) -> Result<String, String> {
     let parsed = split_module(module)?;
     let by_name: BTreeMap<&str, &Function> = parsed.functions.iter().map(|(n, f)| (n.as_str(), f)).collect();
     let mut copies: BTreeMap<String, String> = BTreeMap::new();
@@ -107,7 +109,7 @@ fn instantiate(
     globals: &[String],
     by_name: &BTreeMap<&str, &Function>,
     copies: &mut BTreeMap<String, String>,
-    rename_load: &dyn Fn(&str) -> Option<String>,
+    rename_load: &dyn Fn(&str, &str) -> Option<String>,
     depth: usize,
 ) -> Result<String, String> {
     let copy_name = format!("{name}__{}", globals.join("__"));
@@ -143,13 +145,14 @@ fn instantiate(
 
 /// `body` with bound handle names replaced by their globals, calls of
 /// handle-taking functions replaced by calls of their copies, and
-/// `textureLoad(g, …)` of a renamed global `g` redirected.
+/// `textureLoad(g, …)` and `textureDimensions(g, …)` of a renamed global
+/// `g` redirected.
 fn rewrite_body(
     body: &str,
     bound: &BTreeMap<String, String>,
     by_name: &BTreeMap<&str, &Function>,
     copies: &mut BTreeMap<String, String>,
-    rename_load: &dyn Fn(&str) -> Option<String>,
+    rename_load: &dyn Fn(&str, &str) -> Option<String>,
     depth: usize,
 ) -> Result<String, String> {
     let tokens = tokenize(body)?;
@@ -193,12 +196,12 @@ fn rewrite_body(
             i = close + 1;
             continue;
         }
-        if id == "textureLoad" && is_call {
+        if (id == "textureLoad" || id == "textureDimensions") && is_call {
             let open = open.unwrap_or(i + 1);
             let (args, close) = call_args(&tokens, open)?;
             let first = args.first().map(|a| a.trim().to_string()).unwrap_or_default();
             let global = bound.get(&first).cloned().unwrap_or(first);
-            if let Some(load) = rename_load(&global) {
+            if let Some(load) = rename_load(id, &global) {
                 let rest: Vec<String> = args[1..]
                     .iter()
                     .map(|a| rewrite_body(a, bound, by_name, copies, rename_load, depth).map(|s| s.trim().to_string()))
@@ -412,7 +415,10 @@ fn main_px() -> vec4<f32> {
 
     #[test]
     fn copies_replace_handle_parameters_and_redirect_loads() {
-        let out = monomorphize(MODULE, &|g| (g == "t_a").then(|| "tile_a".to_string())).unwrap();
+        let out = monomorphize(MODULE, &|b, g| {
+            (b == "textureLoad" && g == "t_a").then(|| "tile_a".to_string())
+        })
+        .unwrap();
         assert!(out.contains("fn twice__t_a(q: vec2<i32>)"), "{out}");
         assert!(out.contains("fn load1__t_a(q: vec2<i32>)"), "{out}");
         assert!(out.contains("return tile_a(q, 0)"), "{out}");
@@ -429,9 +435,25 @@ fn main_px() -> vec4<f32> {
     }
 
     #[test]
+    fn dimensions_are_redirected_with_their_own_name() {
+        let out = monomorphize(MODULE, &|b, g| {
+            (g == "t_a").then(|| match b {
+                "textureLoad" => "tile_a".to_string(),
+                _ => "dims_a".to_string(),
+            })
+        })
+        .unwrap();
+        assert!(
+            out.contains("return tile_a(q, 0) + vec4<f32>(f32(dims_a().x))"),
+            "{out}"
+        );
+        assert!(!out.contains("textureDimensions"), "{out}");
+    }
+
+    #[test]
     fn a_functions_comment_moves_with_it_and_a_detached_one_stays() {
         let module = "// about the module\n\n// ---- header\n// doc of gen\nfn gen(t: texture_2d<f32>) -> f32 { return 1.0; }\n\n// doc of user\nfn user() -> f32 { return gen(t_a); }\n@group(0) @binding(0) var t_a: texture_2d<f32>;\n";
-        let out = monomorphize(module, &|_| None).unwrap();
+        let out = monomorphize(module, &|_, _| None).unwrap();
         assert!(out.starts_with("// about the module\n\n"), "{out}");
         assert_eq!(
             out.matches("// ---- header\n// doc of gen\nfn gen__t_a()").count(),
@@ -445,13 +467,13 @@ fn main_px() -> vec4<f32> {
 
     #[test]
     fn without_a_redirect_loads_stay() {
-        let out = monomorphize(MODULE, &|_| None).unwrap();
+        let out = monomorphize(MODULE, &|_, _| None).unwrap();
         assert!(out.contains("textureLoad(t_a, q, 0)"), "{out}");
     }
 
     #[test]
     fn unsplittable_text_is_an_error() {
-        assert!(monomorphize("fn f(x: f32) -> f32 { return x;", &|_| None).is_err());
-        assert!(monomorphize("fn f(x) { }", &|_| None).is_err());
+        assert!(monomorphize("fn f(x: f32) -> f32 { return x;", &|_, _| None).is_err());
+        assert!(monomorphize("fn f(x) { }", &|_, _| None).is_err());
     }
 }
