@@ -271,6 +271,9 @@ fn style(seed: u64) -> String {
     // Image passes' `schedule:` settings come from a stream of their own,
     // so every other draw, and each case found by a soak, stays as it was.
     let mut settings = Rng(seed ^ 0x5c4e_d01e);
+    // Half the `tiled` settings become `recompute`, drawn from a third
+    // stream, so the cases with any other setting stay as they were.
+    let mut recompute = Rng(seed ^ 0x7e_c0de);
     // Image passes, each reading what came before.
     for p in 0..r.below(3) {
         let scope = Scope {
@@ -289,11 +292,12 @@ fn style(seed: u64) -> String {
         let scale = *r.pick(&["", " scale 1/2", " scale 2"]);
         let (fmt, w) = *r.pick(FORMATS);
         // Mostly none; `tiled` is mostly E0311 here (no generated pass reads
-        // around the pixel), so it is the rarest.
+        // around the pixel), and `recompute` E0312, so they are the rarest.
         let schedule = match settings.below(100) {
             0..=69 => "",
             70..=81 => "  schedule: naive\n",
             82..=91 => "  schedule: auto\n",
+            _ if recompute.below(2) == 0 => "  schedule: recompute\n",
             _ => "  schedule: tiled\n",
         };
         out.push_str(&format!(
@@ -382,6 +386,7 @@ fn the_generator_covers_every_format_and_both_pass_kinds() {
         "schedule: naive",
         "schedule: auto",
         "schedule: tiled",
+        "schedule: recompute",
         "if ",
         "let ",
         "animate",

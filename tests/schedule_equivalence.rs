@@ -1,15 +1,16 @@
 //! Every schedule gives the naive schedule's image (issue 14): each example
 //! style on its scene, the analytic contour scenes, odd image sizes (1×1,
-//! 3×7, 17×513) and scale-½ passes, compiled `--schedule naive`, `auto`
-//! and `tiled`, rendered through the real runner, and compared.
+//! 3×7, 17×513) and scale-½ passes, compiled `--schedule naive`, `auto`,
+//! `tiled` and `recompute`, rendered through the real runner, and compared.
 //!
 //! The bound is **bit-identical output texels** (the output target read back
 //! as f32, compared by bits). Fusion computes the skipped target's value
 //! inline and repeats its format's rounding (`Conversion::Stored`), so no
 //! float is computed in another order; a tiled pass runs the same WGSL per
 //! pixel, reads the same texels (from workgroup memory) and rounds its
-//! storage writes as the device rounds attachment stores. A difference is a
-//! bug, not noise.
+//! storage writes as the device rounds attachment stores; a recomputed
+//! target's texels are its producer's WGSL at each texel, rounded as the
+//! store would round them. A difference is a bug, not noise.
 //! On failure both images and their diff go to
 //! `target/npr-test-output/schedule/`.
 //!
@@ -69,6 +70,8 @@ struct Compiled {
     fused: Vec<String>,
     /// Passes run as workgroup tiles (`tiled` lines of the report).
     tiled: Vec<String>,
+    /// Passes computed in their reader's tiles (`recomputed` lines).
+    recomputed: Vec<String>,
 }
 
 fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
@@ -90,7 +93,7 @@ fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedul
             .map(|e| format!("{} {}", e.what, e.why))
             .collect()
     };
-    let (fused, tiled) = (entries("fused"), entries("tiled"));
+    let (fused, tiled, recomputed) = (entries("fused"), entries("tiled"), entries("recomputed"));
     let program = c.program();
     let tiled_passes = program
         .manifest
@@ -109,6 +112,7 @@ fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedul
         program,
         fused,
         tiled,
+        recomputed,
     }
 }
 
@@ -174,11 +178,12 @@ fn assert_bit_identical(case: &str, naive: &runner::TargetImage, scheduled: &run
 }
 
 /// What the schedules did to one style: passes fused (`auto`), passes
-/// tiled (`tiled`).
+/// tiled (`tiled`), passes computed in their reader's tiles (`recompute`).
 #[derive(Debug, Clone, Copy)]
 struct Changes {
     fused: usize,
     tiled: usize,
+    recomputed: usize,
 }
 
 /// Compiles `style` both ways, renders both at `width`×`height`, asserts the
@@ -199,8 +204,21 @@ fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u
         "{case}: each fused pass removes one pass ({:?})",
         auto.fused
     );
+    let recompute = compile(style, &scene, &name, Schedule::Recompute);
+    assert_eq!(recompute.fused, auto.fused, "{case}: `recompute` fuses as `auto` does");
+    assert_eq!(
+        tiled.passes - recompute.passes,
+        recompute.recomputed.len(),
+        "{case}: each recomputed pass removes one pass ({:?})",
+        recompute.recomputed
+    );
     let expected = render(&naive.program, &scene, width, height);
-    for (schedule, program) in [("auto", &auto.program), ("tiled", &tiled.program)] {
+    let mut schedules = vec![("auto", &auto.program), ("tiled", &tiled.program)];
+    // Without a recomputed pass, `recompute` compiles to `tiled`'s program.
+    if !recompute.recomputed.is_empty() {
+        schedules.push(("recompute", &recompute.program));
+    }
+    for (schedule, program) in schedules {
         let got = render(program, &scene, width, height);
         for (eye, (a, b)) in expected.iter().zip(&got).enumerate() {
             assert_bit_identical(&format!("{case}_{schedule}_eye{eye}"), a, b);
@@ -209,6 +227,7 @@ fn same_image(case: &str, style: &Path, scene_path: &Path, width: u32, height: u
     Changes {
         fused: auto.fused.len(),
         tiled: tiled.tiled.len(),
+        recomputed: recompute.recomputed.len(),
     }
 }
 
@@ -240,6 +259,11 @@ fn every_example_gives_the_same_image_under_every_schedule() {
     assert!(
         lsa.clone().all(|c| c.fused >= 1 && c.tiled >= 1),
         "the LSA styles fuse their merge and tile their error pass: {changed:?}"
+    );
+    let recomputed: Vec<&str> = changed.iter().filter(|c| c.2.recomputed >= 1).map(|c| c.0).collect();
+    assert!(
+        recomputed.contains(&"lsa_contours") && recomputed.contains(&"lsa_base"),
+        "the monoscopic LSA styles compute their error pass in the merge's tiles: {changed:?}"
     );
     let tiled_elsewhere = changed
         .iter()
@@ -293,8 +317,9 @@ fn odd_sizes_and_scaled_passes_give_the_same_image() {
 /// A pointwise chain at scale ½ fuses into its scale-½ reader (same scale),
 /// but not into the full-size pass after it; a scale-½ neighbourhood pass
 /// tiles the scale-½ target it reads and not the full-size one (a tile is
-/// in the pass's own pixel grid); every image equals naive's at odd sizes,
-/// where the ½ size rounds.
+/// in the pass's own pixel grid), and computes it in its tiles under
+/// `recompute`; every image equals naive's at odd sizes, where the ½ size
+/// rounds.
 #[test]
 fn a_scale_half_chain_fuses_at_its_own_scale() {
     let dir = root().join("target/npr-test-output/schedule-styles");
@@ -339,8 +364,21 @@ output up.c
         "{:?}",
         tiled.tiled
     );
+    let recompute = compile(&style, &loaded, "spheres", Schedule::Recompute);
+    assert_eq!(
+        recompute.recomputed.len(),
+        1,
+        "`tone` (with `half` fused in) is computed in `edges`'s scale-½ tiles: {:?}",
+        recompute.recomputed
+    );
+    assert!(
+        recompute.recomputed[0].starts_with("pass `tone` in `edges`'s tiles"),
+        "{:?}",
+        recompute.recomputed
+    );
     for (w, h) in [(1, 1), (3, 7), (17, 513), (64, 48)] {
-        same_image(&format!("half_chain_{w}x{h}"), &style, &scene_path, w, h);
+        let changes = same_image(&format!("half_chain_{w}x{h}"), &style, &scene_path, w, h);
+        assert_eq!(changes.recomputed, 1, "{w}x{h}");
     }
 }
 
@@ -425,10 +463,11 @@ output r.c
 /// `schedule:` settings in the style (issue 14's per-pass annotation) give
 /// the naive image too: LSA contours with its error pass forced `tiled`
 /// and its density pass forced `naive` (so it is not fused into the ink
-/// pass), and the other way round (the density pass tiled as its own pass
-/// instead of fused), each compiled under every `--schedule` and compared
+/// pass), the other way round (the density pass tiled as its own pass
+/// instead of fused), and its error pass forced `recompute`, each compiled under every `--schedule` and compared
 /// bit for bit with the unannotated style compiled `naive`. A forced
-/// `tiled` pass runs tiled even under `--schedule naive`.
+/// `tiled` pass runs tiled even under `--schedule naive`; so does the
+/// reader of a pass forced `recompute` (the error pass, the third variant).
 #[test]
 fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
     let dir = root().join("target/npr-test-output/schedule-styles");
@@ -443,11 +482,37 @@ fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
         .iter()
         .map(|(w, h)| render(&reference.program, &loaded, *w, *h))
         .collect();
-    let variants = [
-        ("error_tiled_thin_naive", "schedule: tiled", "schedule: naive", 1, 0),
-        ("error_naive_thin_tiled", "schedule: naive", "schedule: tiled", 1, 0),
+    // Neither forced pass fuses, and `ink_lines` is the output: nothing
+    // fuses, except where `thin` is left to the run's schedule.
+    let none = |_: Schedule| 0;
+    let unless_naive = |s: Schedule| usize::from(s != Schedule::Naive);
+    let variants: [(&str, &str, &str, &str, &dyn Fn(Schedule) -> usize); 3] = [
+        (
+            "error_tiled_thin_naive",
+            "schedule: tiled",
+            "schedule: naive",
+            "forced by `schedule: tiled`",
+            &none,
+        ),
+        (
+            "error_naive_thin_tiled",
+            "schedule: naive",
+            "schedule: tiled",
+            "forced by `schedule: tiled`",
+            &none,
+        ),
+        // `error` is computed in its reader's tiles: `thin`'s under
+        // `--schedule naive`, else `ink_lines`'s, into which `thin` fuses.
+        (
+            "error_recompute",
+            "schedule: recompute",
+            "schedule: auto",
+            "it computes a target in its tiles",
+            &unless_naive,
+        ),
     ];
-    for (name, error, thin, tiled_passes, fused_passes) in variants {
+    for (name, error, thin, tiled_why, fused_passes) in variants {
+        let tiled_passes = 1;
         let annotated = text
             .replacen(
                 "pass error: image(gbuffer) {\n",
@@ -475,9 +540,14 @@ fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
                 schedule.name(),
                 c.tiled
             );
-            assert!(c.tiled[0].contains("forced by `schedule: tiled`"), "{:?}", c.tiled);
-            // Neither forced pass fuses, and `ink_lines` is the output: nothing fuses.
-            assert_eq!(c.fused.len(), fused_passes, "{name}: {:?}", c.fused);
+            assert!(c.tiled[0].contains(tiled_why), "{:?}", c.tiled);
+            assert_eq!(
+                c.fused.len(),
+                fused_passes(schedule),
+                "{name} --schedule {}: {:?}",
+                schedule.name(),
+                c.fused
+            );
             for ((w, h), want) in sizes.iter().zip(&expected) {
                 let got = render(&c.program, &loaded, *w, *h);
                 for (eye, (a, b)) in want.iter().zip(&got).enumerate() {

@@ -117,7 +117,7 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
                     .map(|r| {
                         let from = match r.source {
                             TileSource::Load => String::new(),
-                            TileSource::Recompute => format!(", computed from pass `{}`", ir.pass(r.target.pass).name),
+                            TileSource::Recompute => format!(" (computed from pass `{}`)", ir.pass(r.target.pass).name),
                         };
                         format!("`{}` with a {}-texel apron{from}", ir.target_name(r.target), r.radius)
                     })
