@@ -69,7 +69,10 @@ fn compile_writes_wgsl_manifest_and_report() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("removed  pass `sobel_debug`"), "{stdout}");
+    assert!(
+        stdout.contains(&format!("{:<14} pass `sobel_debug`", "removed")),
+        "{stdout}"
+    );
     assert!(stdout.contains("validate"), "stage timings printed: {stdout}");
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).expect("manifest")).expect("json");
@@ -111,7 +114,10 @@ fn compile_report_says_which_passes_the_style_forced() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.contains("not tiled pass `edges`                         forced by `schedule: naive` at line 6"),
+        stdout.contains(&format!(
+            "{:<14} {:<36} forced by `schedule: naive` at line 6",
+            "not tiled", "pass `edges`"
+        )),
         "{stdout}"
     );
     // Sobel on depth into r16float, which compute cannot store.
@@ -251,12 +257,16 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("| 24²")).collect();
     // Every variant, plus an `auto` row for each method the schedule fuses
-    // (the LSA styles fuse their ink pass) and a `tiled` row for each
-    // method `--schedule tiled` tiles (LSA, Sobel, normal+depth).
+    // (the LSA styles fuse their ink pass), a `tiled` row for each method
+    // `--schedule tiled` tiles (LSA, Sobel, normal+depth).
     let declared = lab::bench_contours::variants().len();
     let auto = rows.iter().filter(|r| r.contains("[auto: ")).count();
     let tiled = rows.iter().filter(|r| r.contains("[tiled: ")).count();
-    assert_eq!(rows.len(), declared + auto + tiled, "{stdout}");
+    // And a `recompute` row for each method whose error pass `--schedule
+    // recompute` computes in the density filter's tiles (the LSA methods).
+    let recompute = rows.iter().filter(|r| r.contains("[recompute: ")).count();
+    assert_eq!(rows.len(), declared + auto + tiled + recompute, "{stdout}");
+    assert!(recompute >= 2, "LSA base and full recompute: {stdout}");
     assert!(auto >= 1, "no method was fused: {stdout}");
     assert!(tiled >= 3, "LSA, Sobel and normal+depth tile: {stdout}");
     let full = rows

@@ -122,8 +122,8 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
     }
     let mut sources = SourceMap::new();
     // Every variant as declared (naive); each method again under `auto`
-    // where the compiler's schedule changes its passes, and under `tiled`
-    // where it tiles.
+    // where the compiler's schedule changes its passes, under `tiled`
+    // where it tiles, and under `recompute` where it recomputes.
     let mut programs = Vec::new();
     for (name, text, measure) in lab::bench_contours::variants() {
         match compile_builtin_scheduled(name, &text, Schedule::Naive, &mut sources, printer) {
@@ -131,10 +131,19 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
             Err(code) => return code,
         }
         if measure {
-            for (schedule, label) in [(Schedule::Auto, "auto"), (Schedule::Tiled, "tiled")] {
+            for schedule in [Schedule::Auto, Schedule::Tiled, Schedule::Recompute] {
+                let label = schedule.name();
                 match compile_builtin_scheduled(name, &text, schedule, &mut sources, printer) {
-                    // `tiled` only where it tiles (else it is `auto`).
-                    Ok((p, changes)) if changes.any() && (schedule == Schedule::Auto || changes.tiled > 0) => {
+                    // `tiled` only where it tiles (else it is `auto`),
+                    // `recompute` only where it recomputes (else `tiled`).
+                    Ok((p, changes))
+                        if changes.any()
+                            && match schedule {
+                                Schedule::Tiled => changes.tiled > 0,
+                                Schedule::Recompute => changes.recomputed > 0,
+                                Schedule::Naive | Schedule::Auto => true,
+                            } =>
+                    {
                         programs.push((format!("{name} [{label}: {changes}]"), p, measure))
                     }
                     Ok(_) => {}

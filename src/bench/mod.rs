@@ -227,6 +227,8 @@ pub(crate) fn compile_builtin_in(
 pub(crate) struct ScheduleChanges {
     pub fused: usize,
     pub tiled: usize,
+    /// Passes computed in their reader's tiles.
+    pub recomputed: usize,
 }
 
 impl ScheduleChanges {
@@ -236,17 +238,22 @@ impl ScheduleChanges {
         ScheduleChanges {
             fused: count("fused"),
             tiled: count("tiled"),
+            recomputed: count("recomputed"),
         }
     }
 
     pub fn any(self) -> bool {
-        self.fused + self.tiled > 0
+        self.fused + self.tiled + self.recomputed > 0
     }
 }
 
 impl std::fmt::Display for ScheduleChanges {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} fused, {} tiled", self.fused, self.tiled)
+        write!(f, "{} fused, {} tiled", self.fused, self.tiled)?;
+        if self.recomputed > 0 {
+            write!(f, ", {} recomputed", self.recomputed)?;
+        }
+        Ok(())
     }
 }
 

@@ -323,6 +323,57 @@ fn e0311_the_hint_gives_each_reason_of_the_tiler() {
     }
 }
 
+/// `schedule: recompute` on a pass its reader cannot compute in its tiles
+/// is an error at the setting, under every `--schedule`, whose help gives
+/// the reason; never a stored target instead.
+#[test]
+fn e0312_schedule_recompute_on_the_output() {
+    let text = style(&format!(
+        "{SCHEDULE_GBUFFER}pass edges: image(g) {{\n  schedule: recompute\n  out e: rgba16float = vec4(sobel(g.d, screen_uv))\n}}\noutput edges.e\n"
+    ));
+    let (d, r) = compile_errors(&text, &scratch("e0312"));
+    assert!(r.contains("`edges.e` is the style's output"), "{r}");
+    check("E0312", (d, r));
+    for schedule in compiler::schedule::Schedule::ALL {
+        let mut sources = SourceMap::new();
+        let opts = CompileOptions {
+            schedule,
+            ..CompileOptions::default()
+        };
+        match compiler::compile_source("case.npr", &text, &scratch("e0312"), &mut sources, &opts) {
+            Err(CompileError::User(d)) => assert_eq!(d[0].code, "E0312", "--schedule {}", schedule.name()),
+            _ => panic!("--schedule {}: not E0312", schedule.name()),
+        }
+    }
+}
+
+#[test]
+fn e0312_the_hint_gives_the_reason() {
+    let cases = [
+        (
+            "two_readers",
+            "pass e: image(g) {\n  schedule: recompute\n  out c: rgba16float = vec4(sobel(g.d, screen_uv))\n}\npass a: image(e) {\n  out c: rgba16float = vec4(sobel(e.c, screen_uv))\n}\npass b: image(e, a) {\n  out c: rgba8unorm = vec4(sobel(e.c, screen_uv) + sobel(a.c, screen_uv))\n}\noutput b.c\n",
+            "read by `a` and `b`: each would compute it in its own tiles",
+        ),
+        (
+            "reader_untileable",
+            "pass e: image(g) {\n  schedule: recompute\n  out c: rgba16float = vec4(sobel(g.d, screen_uv))\n}\npass r: image(e) {\n  out c: r16float = sobel(e.c, screen_uv)\n}\noutput r.c\n",
+            "its reader `r` cannot be tiled with it: `c` is r16float, which a compute shader cannot store",
+        ),
+        (
+            "derivatives",
+            "texture grain = noise(size: 16, octaves: 1, seed: 1, kind: value)\npass e: image(g) {\n  schedule: recompute\n  out c: rgba16float = vec4(sobel(g.d, screen_uv)) * grain\n}\npass r: image(e) {\n  out c: rgba8unorm = vec4(sobel(e.c, screen_uv))\n}\noutput r.c\n",
+            "it samples a texture as a value, which takes screen derivatives",
+        ),
+    ];
+    for (name, body, reason) in cases {
+        let text = style(&format!("{SCHEDULE_GBUFFER}{body}"));
+        let (d, r) = compile_errors(&text, &scratch(&format!("e0312_{name}")));
+        assert!(r.contains(reason), "{name}: {r}");
+        check_case("E0312", &format!("E0312_{name}"), (d, r));
+    }
+}
+
 /// The `schedule:` setting itself: a schedule's name, once, in an image pass.
 #[test]
 fn e0103_bad_schedule_settings() {
