@@ -484,22 +484,23 @@ fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
         .collect();
     // Neither forced pass fuses, and `ink_lines` is the output: nothing
     // fuses, except where `thin` is left to the run's schedule.
-    let none = |_: Schedule| 0;
-    let unless_naive = |s: Schedule| usize::from(s != Schedule::Naive);
-    let variants: [(&str, &str, &str, &str, &dyn Fn(Schedule) -> usize); 3] = [
+    type FusedUnder = fn(Schedule) -> usize;
+    let none: FusedUnder = |_| 0;
+    let unless_naive: FusedUnder = |s| usize::from(s != Schedule::Naive);
+    let variants: [(&str, &str, &str, &str, FusedUnder); 3] = [
         (
             "error_tiled_thin_naive",
             "schedule: tiled",
             "schedule: naive",
             "forced by `schedule: tiled`",
-            &none,
+            none,
         ),
         (
             "error_naive_thin_tiled",
             "schedule: naive",
             "schedule: tiled",
             "forced by `schedule: tiled`",
-            &none,
+            none,
         ),
         // `error` is computed in its reader's tiles: `thin`'s under
         // `--schedule naive`, else `ink_lines`'s, into which `thin` fuses.
@@ -508,7 +509,7 @@ fn schedule_settings_give_the_naive_image_under_every_run_schedule() {
             "schedule: recompute",
             "schedule: auto",
             "it computes a target in its tiles",
-            &unless_naive,
+            unless_naive,
         ),
     ];
     for (name, error, thin, tiled_why, fused_passes) in variants {

@@ -242,7 +242,7 @@ impl Emitter<'_> {
         let mut device_half_rounding = uses.repeats_half_stores();
         if let Some(tiling) = tiling {
             for p in &producers {
-                self.recompute_function(&mut w, p, &mut ctx);
+                self.recompute_function(&mut w, p, &ctx);
             }
             let outputs: Vec<&PassOutput> = live_outputs.iter().map(|(_, o)| *o).collect();
             // Its 16-bit stores are rounded in the shader, as the device would.
