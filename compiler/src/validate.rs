@@ -8,19 +8,13 @@
 //! panic inside naga becomes that same internal error, never an abort.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Parse and validate WGSL with naga; `Err` holds naga's rendered message
-/// (or, if naga panicked, its panic message).
+/// (or, if naga panicked, its panic message). The panic is expected
+/// (`dsl::panics`): `npr` prints the internal error, not Rust's panic line.
 pub fn validate_wgsl(name: &str, wgsl: &str) -> Result<naga::Module, String> {
-    catch_unwind(AssertUnwindSafe(|| parse_and_validate(name, wgsl))).unwrap_or_else(|payload| {
-        let why = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "no message".into());
-        Err(format!("naga panicked on {name}: {why}"))
-    })
+    dsl::panics::catch(|| parse_and_validate(name, wgsl))
+        .unwrap_or_else(|why| Err(format!("naga panicked on {name}: {why}")))
 }
 
 fn parse_and_validate(name: &str, wgsl: &str) -> Result<naga::Module, String> {
@@ -48,7 +42,7 @@ mod tests {
             "fn f() -> vec3<f32> {\n    return select(vec3<f32>(1.0, vec2<f32>(2.0)), vec3<f32>(1.0), 1.0 > 2.0);\n}\n";
         // (naga's panic message is printed to stderr; the hook is global,
         // so it is left alone while other tests run.)
-        let raw = catch_unwind(|| parse_and_validate("case.wgsl", wgsl));
+        let raw = std::panic::catch_unwind(|| parse_and_validate("case.wgsl", wgsl));
         assert!(raw.is_err(), "naga 30 panics on this module");
         let e = validate_wgsl("case.wgsl", wgsl).expect_err("an error, not a panic");
         assert!(e.starts_with("naga panicked on case.wgsl: "), "{e}");

@@ -8,6 +8,7 @@ pub mod ast;
 pub mod diagnostic;
 pub mod explain;
 pub mod limits;
+pub mod panics;
 mod nesting;
 mod parser;
 pub mod paths;

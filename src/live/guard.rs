@@ -9,13 +9,13 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 pub fn catch<T>(step: impl FnOnce() -> T) -> Result<T, String> {
     // The state a panicking step touched is dropped by the caller (the
     // renderer is rebuilt), so observing it half-updated cannot happen.
+    // Not `dsl::panics::catch`: this panic is a bug, so the hook still
+    // prints where it happened.
     catch_unwind(AssertUnwindSafe(step)).map_err(|payload| {
-        let what = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "a panic without a message".into());
-        format!("internal error: the render thread panicked: {what}")
+        format!(
+            "internal error: the render thread panicked: {}",
+            dsl::panics::message(payload.as_ref())
+        )
     })
 }
 

@@ -63,13 +63,15 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
     })?;
     let source = path.display().to_string();
     let base_dir = path.parent().unwrap_or(Path::new("."));
-    let parsed = std::panic::catch_unwind(|| match extension.as_str() {
+    // A reader that panics on a malformed file is an error about the file
+    // (an expected panic: `npr` prints the error alone).
+    let parsed = dsl::panics::catch(|| match extension.as_str() {
         "obj" => obj_file::parse_obj(&bytes, &source),
         _ => gltf_file::parse_gltf(&bytes, base_dir, &source),
     });
-    let mesh = parsed.unwrap_or_else(|_| {
+    let mesh = parsed.unwrap_or_else(|why| {
         Err(MeshLoadError::unreadable(
-            format!("the mesh reader failed on `{source}`"),
+            format!("the mesh reader failed on `{source}`: {why}"),
             "the file is probably malformed; re-export it from a modelling tool",
         ))
     })?;
