@@ -75,10 +75,23 @@ struct Compiled {
 }
 
 fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
+    compile_narrowed(style, scene, scene_name, schedule, 0)
+}
+
+/// [`compile`] with every tile `deficit` texels narrower than the
+/// footprints ask (`CompileOptions::tile_apron_deficit`).
+fn compile_narrowed(
+    style: &Path,
+    scene: &runner::scene::Scene,
+    scene_name: &str,
+    schedule: Schedule,
+    deficit: u32,
+) -> Compiled {
     let mut sources = dsl::SourceMap::new();
     let opts = compiler::CompileOptions {
         scene: Some(scene.summary(scene_name)),
         schedule,
+        tile_apron_deficit: deficit,
         ..Default::default()
     };
     let c = compiler::compile_file(style, &mut sources, &opts).unwrap_or_else(|e| match e {
@@ -379,6 +392,51 @@ output up.c
     for (w, h) in [(1, 1), (3, 7), (17, 513), (64, 48)] {
         let changes = same_image(&format!("half_chain_{w}x{h}"), &style, &scene_path, w, h);
         assert_eq!(changes.recomputed, 1, "{w}x{h}");
+    }
+}
+
+/// A tile narrower than the footprints ask (what a wrong footprint would
+/// do; `CompileOptions::tile_apron_deficit`): reads fall outside the tiles,
+/// each workgroup where one did runs again reading the targets themselves
+/// (computing a recomputed one where it is read), and the image is still
+/// the naive one, bit for bit, with the apron 1 or 2 texels short (no
+/// apron at all for Sobel). The check can fail: the same program with the
+/// second run taken out gives another image.
+#[test]
+fn reads_outside_a_too_narrow_tile_give_the_same_image() {
+    let scene_path = scene("spheres");
+    let loaded = load_scene(&scene_path);
+    let (w, h) = (40, 33);
+    for style in ["lsa_contours", "sobel_outline"] {
+        let path = example(style);
+        let naive = compile(&path, &loaded, "spheres", Schedule::Naive);
+        let expected = render(&naive.program, &loaded, w, h);
+        for schedule in [Schedule::Tiled, Schedule::Recompute] {
+            for deficit in [1, 2] {
+                let c = compile_narrowed(&path, &loaded, "spheres", schedule, deficit);
+                assert!(!c.tiled.is_empty(), "{style}: nothing tiled");
+                let case = format!("{style}_{}_deficit{deficit}", schedule.name());
+                let got = render(&c.program, &loaded, w, h);
+                for (eye, (a, b)) in expected.iter().zip(&got).enumerate() {
+                    assert_bit_identical(&format!("{case}_eye{eye}"), a, b);
+                }
+                if deficit == 1 && schedule == Schedule::Tiled {
+                    let mut without = c.program.clone();
+                    let mut removed = 0;
+                    for wgsl in without.shaders.values_mut() {
+                        let second_run = "if (workgroupUniformLoad(&npr_tile_any_missed) != 0u) {";
+                        removed += wgsl.matches(second_run).count();
+                        *wgsl = wgsl.replace(second_run, "if (false) {");
+                    }
+                    assert!(removed >= 1, "{case}: no second run in the tiled modules");
+                    let wrong = render(&without, &loaded, w, h);
+                    assert!(
+                        wrong[0].to_rgba_f32() != expected[0].to_rgba_f32(),
+                        "{case}: without its second run the narrow tile still gave naive's image"
+                    );
+                }
+            }
+        }
     }
 }
 

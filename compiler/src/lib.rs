@@ -59,6 +59,13 @@ pub struct CompileOptions {
     /// How the passes run (`--schedule`): `Auto` fuses pointwise image
     /// chains; `Naive` keeps every declared pass and target.
     pub schedule: schedule::Schedule,
+    /// Tests only: every workgroup tile is this many texels narrower than
+    /// the operators' footprints say, so reads fall outside it and the
+    /// tiled pass takes the path a wrong footprint would (the workgroup
+    /// runs again, reading the targets themselves; `emit/tiled`). The
+    /// image must not change.
+    #[doc(hidden)]
+    pub tile_apron_deficit: u32,
 }
 
 #[derive(Debug, Clone)]

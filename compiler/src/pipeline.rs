@@ -140,6 +140,7 @@ pub fn run(
         &mut ir,
         &mut live,
         opts.schedule,
+        opts.tile_apron_deficit,
         sources,
         root_file,
         &mut report,

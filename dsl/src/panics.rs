@@ -71,7 +71,11 @@ mod tests {
             let inner: Result<(), String> = catch(|| panic!("inner"));
             (inner, expected())
         });
-        assert_eq!(nested, Ok((Err("inner".to_string()), true)), "still inside the outer catch");
+        assert_eq!(
+            nested,
+            Ok((Err("inner".to_string()), true)),
+            "still inside the outer catch"
+        );
         assert!(!expected());
         assert_eq!(catch(|| 3), Ok(3));
     }

@@ -26,5 +26,9 @@ fn only_unexpected_panics_reach_the_previous_hook() {
 
     let other = std::thread::spawn(|| panic!("a bug")).join();
     assert!(other.is_err());
-    assert_eq!(*SEEN.lock().expect("lock"), ["a bug"], "an unexpected panic reaches the hook once");
+    assert_eq!(
+        *SEEN.lock().expect("lock"),
+        ["a bug"],
+        "an unexpected panic reaches the hook once"
+    );
 }

@@ -117,10 +117,12 @@ impl Forced {
 pub(crate) struct Plan {
     pub run: Schedule,
     pub forced: BTreeMap<PassId, Forced>,
+    /// `CompileOptions::tile_apron_deficit` (tests only).
+    pub apron_deficit: u32,
 }
 
 impl Plan {
-    fn new(ir: &Ir, run: Schedule, sources: &SourceMap, root: FileId) -> Plan {
+    fn new(ir: &Ir, run: Schedule, apron_deficit: u32, sources: &SourceMap, root: FileId) -> Plan {
         let mut forced = BTreeMap::new();
         for (i, p) in ir.passes.iter().enumerate() {
             let PassKind::Image { schedule: Some(s), .. } = &p.kind else {
@@ -143,7 +145,11 @@ impl Plan {
                 },
             );
         }
-        Plan { run, forced }
+        Plan {
+            run,
+            forced,
+            apron_deficit,
+        }
     }
 
     pub fn forced(&self, pass: PassId) -> Option<&Forced> {
@@ -160,11 +166,12 @@ pub fn apply(
     ir: &mut Ir,
     live: &mut Live,
     schedule: Schedule,
+    apron_deficit: u32,
     sources: &SourceMap,
     root: FileId,
     report: &mut Report,
 ) -> Vec<Diagnostic> {
-    let plan = Plan::new(ir, schedule, sources, root);
+    let plan = Plan::new(ir, schedule, apron_deficit, sources, root);
     fuse::fuse_pointwise(ir, live, &plan, report);
     let mut errors = recompute::recompute_neighbourhoods(ir, live, &plan, report);
     errors.extend(tile::tile_neighbourhoods(ir, live, &plan, report));

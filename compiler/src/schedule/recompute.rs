@@ -3,9 +3,10 @@
 //! around the pixel is not stored. The reader runs tiled (`tile.rs`), and
 //! each workgroup fills its tile of that target, apron included, by
 //! evaluating the producer's expression at every tile texel, rounded to
-//! the target's format as a store would round it (`emit/tiled`). A read
-//! outside the tile evaluates the producer there too, so a footprint that
-//! is too small costs speed, never a different image.
+//! the target's format as a store would round it (`emit/tiled`). After a
+//! read outside the tile, the workgroup runs again evaluating the producer
+//! where each read falls, so a footprint that is too small costs speed,
+//! never a different image.
 //!
 //! What it trades: the target's write and read (its bytes per pixel, twice)
 //! and one pass, against computing the producer on the apron as well,

@@ -7,9 +7,10 @@
 //! (`emit/tiled`).
 //!
 //! The footprint only sizes the apron: a read outside it (or outside the
-//! image) falls through to `textureLoad`, so the image never depends on
-//! the metadata being right, only the speed does (`stdlib/tests/
-//! footprints.rs` checks the metadata is sound and tight).
+//! image) makes the workgroup run again without its tiles (`emit/tiled`),
+//! so the image never depends on the metadata being right, only the speed
+//! does (`stdlib/tests/footprints.rs` checks the metadata is sound and
+//! tight; `tests/schedule_equivalence.rs` narrows the tiles on purpose).
 //!
 //! Not tiled, with the reason in the report: a pass that reads no target
 //! around the pixel, blends, writes a format compute cannot store, reads a
@@ -77,6 +78,15 @@ pub struct Tiling {
 }
 
 impl Tiling {
+    /// Each tile `deficit` texels narrower than the footprints ask (the
+    /// tests' `CompileOptions::tile_apron_deficit`; 0 changes nothing).
+    fn narrowed(mut self, deficit: u32) -> Tiling {
+        for r in &mut self.reads {
+            r.radius = r.radius.saturating_sub(deficit);
+        }
+        self
+    }
+
     /// Workgroup memory all its tiles take.
     pub fn bytes(&self) -> u32 {
         self.reads.iter().map(TileRead::bytes).sum()
@@ -136,7 +146,7 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
                         t.bytes()
                     ),
                 );
-                ir.tiled.insert(*pid, t);
+                ir.tiled.insert(*pid, t.narrowed(plan.apron_deficit));
             }
             (Err(why), s) if s.tiles() => match forced {
                 Some(f) => errors.push(

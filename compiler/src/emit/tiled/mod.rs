@@ -4,9 +4,17 @@
 //!
 //! - Every function taking a texture is copied per binding ([`mono`]), and
 //!   in the copies `textureLoad(t, q, level)` of a tiled target `t` becomes
-//!   `npr_tile_load_t(q, level)`: the tile's texel when `q` lies in the
-//!   tile with its apron and in the image, else `textureLoad` itself, so a
-//!   footprint that is too small costs speed, never a different image.
+//!   `npr_tile_load_t(q, level)`: the tile's texel. A read outside the
+//!   tile with its apron or outside the image is a miss: after its pixel,
+//!   a workgroup where any invocation missed runs `npr_pixel` again with
+//!   the tiles bypassed (`npr_tile_direct`: `textureLoad` itself), so a
+//!   footprint that is too small costs speed, never a different image. The
+//!   second run's condition is workgroup-uniform (`workgroupUniformLoad`),
+//!   so a device that branches on uniform conditions skips it; a per-read
+//!   fallback branch instead cost every read on llvmpipe, which executes
+//!   both sides (docs/PERFORMANCE.md, "Recomputed tiles"). Every
+//!   invocation, inside the image or not, reaches the barriers; one outside
+//!   stores nothing.
 //! - The outputs are written with `textureStore` (group 1, binding i =
 //!   output i) after the target format's own rounding
 //!   (`npr_stored_<format>`, the same helpers fusion uses), so a storage
@@ -17,7 +25,7 @@
 //!   texel a store would have left at q (the same arithmetic as the
 //!   producer's fragment at q's centre, then the format's rounding). The
 //!   workgroup fills the tile with it after the loaded tiles (which it may
-//!   read), and a read outside the tile evaluates it there.
+//!   read); the second run evaluates it where it is read.
 
 mod mono;
 
@@ -93,7 +101,14 @@ impl Emitter<'_> {
         }
         let _ = writeln!(
             out,
-            "\n// The first pixel of this invocation's workgroup.\nvar<private> npr_tile_origin: vec2<i32>;\n"
+            "\n// The first pixel of this invocation's workgroup.\nvar<private> npr_tile_origin: vec2<i32>;
+// Whether a read of this invocation fell outside the tiles.
+var<private> npr_tile_missed: bool;
+// Whether the tiles are bypassed: the workgroup's second run, after a miss.
+var<private> npr_tile_direct: bool;
+// Whether any invocation of the workgroup missed, and that, for a uniform load.
+var<workgroup> npr_tile_misses: atomic<u32>;
+var<workgroup> npr_tile_any_missed: u32;\n"
         );
         if tiled.iter().any(|(_, r)| r.source == TileSource::Recompute) {
             let _ = writeln!(
@@ -170,14 +185,33 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
             out,
             "    workgroupBarrier();
     let px = npr_tile_origin + vec2<i32>(i32(li % {TILE_SIZE}u), i32(li / {TILE_SIZE}u));
-    if (any(px >= vec2<i32>(textureDimensions(npr_out_{})))) {{
-        return;
-    }}
+    // Every invocation takes part in the barriers below; one outside the
+    // image stores nothing.
+    let inside = all(px < vec2<i32>(textureDimensions(npr_out_{})));
     var v: Varyings;
     // The pixel centre, as a fragment's position.
     v.clip = vec4<f32>(vec2<f32>(px) + vec2<f32>(0.5), 0.0, 1.0);
     v.screen_uv = vec2<f32>(0.0); // npr_pixel's prologue sets it from clip
-    let o = npr_pixel(v);",
+    var o = npr_pixel(v);
+    // A read outside the tiles (a footprint too small, a read outside the
+    // image): the whole workgroup runs again, reading the targets
+    // themselves. The flag is workgroup-uniform, so no device runs that
+    // path unless a read missed (a per-read fallback branch costs every
+    // read on a device that executes both sides, as llvmpipe does).
+    if (inside && npr_tile_missed) {{
+        atomicOr(&npr_tile_misses, 1u);
+    }}
+    workgroupBarrier();
+    if (li == 0u) {{
+        npr_tile_any_missed = atomicLoad(&npr_tile_misses);
+    }}
+    if (workgroupUniformLoad(&npr_tile_any_missed) != 0u) {{
+        npr_tile_direct = true;
+        o = npr_pixel(v);
+    }}
+    if (!inside) {{
+        return;
+    }}",
             first.name
         );
         for o in outputs {
@@ -283,18 +317,21 @@ fn computed_tile_declarations(out: &mut String, name: &str, r: &TileRead) {
     let _ = writeln!(
         out,
         "var<workgroup> npr_tile_{name}: array<vec4<f32>, {count}>;
-// `textureLoad({name}, q, level)` of the target this pass computes: from the tile when q is in
-// it, else computed at q. A load outside the image is the device's choice in WebGPU (a texel
-// of the texture, or zero) and the stdlib makes none; the nearest edge texel is one. The
-// target has one level, so `level` chooses nothing.
+// `textureLoad({name}, q, level)` of the target this pass computes: the tile's texel, a miss
+// when q is outside the tile or the image; in the workgroup's second run, computed at q. A load
+// outside the image is the device's choice in WebGPU (a texel of the texture, or zero) and the
+// stdlib makes none; the nearest edge texel is one. The target has one level, so `level`
+// chooses nothing.
 fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
+    if (npr_tile_direct) {{
+        return npr_compute_{name}(clamp(q, vec2<i32>(0), npr_pass_dims - vec2<i32>(1)));
+    }}
     let local = q - npr_tile_origin + vec2<i32>({radius});
     let in_tile = all(local >= vec2<i32>(0)) && all(local < vec2<i32>({side}));
     let in_image = all(q >= vec2<i32>(0)) && all(q < npr_pass_dims);
-    if (in_tile && in_image) {{
-        return npr_tile_{name}[local.y * {side} + local.x];
-    }}
-    return npr_compute_{name}(clamp(q, vec2<i32>(0), npr_pass_dims - vec2<i32>(1)));
+    npr_tile_missed = npr_tile_missed || !(in_tile && in_image);
+    let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
+    return npr_tile_{name}[k.y * {side} + k.x];
 }}
 // `textureDimensions({name})`: the pass's size, which is the target's.
 fn npr_computed_dims_{name}() -> vec2<u32> {{
@@ -303,6 +340,7 @@ fn npr_computed_dims_{name}() -> vec2<u32> {{
 ",
         count = side * side,
         radius = r.radius,
+        last = side - 1,
     );
 }
 
@@ -313,18 +351,22 @@ fn tile_declarations(out: &mut String, name: &str, r: &TileRead) {
         out,
         "var<workgroup> npr_tile_{name}: array<vec4<f32>, {count}>;
 var<private> npr_tile_dims_{name}: vec2<i32>;
-// `textureLoad({name}, q, level)` from the tile when q is in it and in the image.
+// `textureLoad({name}, q, level)`: the tile's texel, a miss when q is outside the tile or
+// the image (or level is not 0); in the workgroup's second run, `textureLoad` itself.
 fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
+    if (npr_tile_direct) {{
+        return textureLoad({name}, q, level);
+    }}
     let local = q - npr_tile_origin + vec2<i32>({radius});
     let in_tile = all(local >= vec2<i32>(0)) && all(local < vec2<i32>({side}));
     let in_image = all(q >= vec2<i32>(0)) && all(q < npr_tile_dims_{name});
-    if (level == 0 && in_tile && in_image) {{
-        return npr_tile_{name}[local.y * {side} + local.x];
-    }}
-    return textureLoad({name}, q, level);
+    npr_tile_missed = npr_tile_missed || !(level == 0 && in_tile && in_image);
+    let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
+    return npr_tile_{name}[k.y * {side} + k.x];
 }}
 ",
         count = side * side,
         radius = r.radius,
+        last = side - 1,
     );
 }
