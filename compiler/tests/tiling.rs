@@ -33,7 +33,7 @@ pass point: image(g) {
   out e: rgba16float = g.n * 0.5
 }
 /// Reads every target around the pixel (so none fuses into it), four
-/// 1-texel tiles: 20736 bytes, not tiled either.
+/// 1-texel tiles of 4, 2, 4 and 4 channels: 18144 bytes, not tiled either.
 pass final: image(edges, narrow, wide, point) {
   out c: rgba8unorm = vec4(sobel(edges.e, screen_uv) + sobel(narrow.e, screen_uv), sobel(wide.e, screen_uv), sobel(point.e, screen_uv), 1.0)
 }
@@ -76,7 +76,7 @@ fn tiled_schedule_says_which_passes_tile_and_why_not() {
         "{lines}"
     );
     assert!(
-        lines.contains("not tiled pass `final`: its tiles need 20736 bytes"),
+        lines.contains("not tiled pass `final`: its tiles need 18144 bytes"),
         "{lines}"
     );
     insta::assert_snapshot!("tiled_report", lines);
@@ -124,6 +124,44 @@ fn a_tiled_module_loads_its_tile_and_stores_rounded_outputs() {
     assert!(edges.device_half_rounding, "its f16 stores use the measured rounding");
     let cs = &wgsl[wgsl.find("@compute").expect("entry")..];
     insta::assert_snapshot!("tiled_entry", cs);
+}
+
+/// A tile keeps the target's channels alone: Sobel on an `r32float` depth
+/// target keeps one `f32` per texel (1296 bytes, a quarter of a `vec4`
+/// tile) and gives its reads back as `textureLoad` would, `(d, 0, 0, 1)`.
+#[test]
+fn a_tile_keeps_only_its_targets_channels() {
+    let style = r#"style "depth tile"
+pass g: render(scene) {
+  out d: r32float = depth
+}
+pass edges: image(g) {
+  out e: rgba16float = vec4(sobel(g.d, screen_uv))
+}
+output edges.e
+"#;
+    let mut sources = SourceMap::new();
+    let opts = CompileOptions {
+        schedule: Schedule::Tiled,
+        ..Default::default()
+    };
+    let c = compiler::compile_source("depth.npr", style, Path::new("."), &mut sources, &opts)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let lines = tiling_lines(&c);
+    assert!(lines.contains("(1296 bytes)"), "{lines}");
+    let wgsl = c.shader("edges.wgsl").expect("edges pass");
+    assert!(
+        wgsl.contains("var<workgroup> npr_tile_t_g_d: array<f32, 324>;"),
+        "{wgsl}"
+    );
+    assert!(
+        wgsl.contains("npr_tile_t_g_d[k] = textureLoad(t_g_d, q, 0).x;"),
+        "{wgsl}"
+    );
+    assert!(
+        wgsl.contains("return vec4<f32>(npr_tile_t_g_d[k.y * 18 + k.x], 0.0, 0.0, 1.0);"),
+        "{wgsl}"
+    );
 }
 
 #[test]

@@ -38,8 +38,9 @@ use std::collections::BTreeMap;
 /// (`maxComputeWorkgroupStorageSize`), which every adapter offers.
 pub const WORKGROUP_MEMORY: u32 = 16384;
 
-/// Bytes of one tile texel (a `vec4<f32>`, what `textureLoad` returns).
-const TEXEL_BYTES: u32 = 16;
+/// Bytes of one channel of a tile texel (an `f32`: what `textureLoad`
+/// returns, whatever the target's format).
+const CHANNEL_BYTES: u32 = 4;
 
 /// Where a tile's texels come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -58,6 +59,9 @@ pub struct TileRead {
     /// The apron, in texels on each side of the `TILE_SIZE`² block.
     pub radius: u32,
     pub source: TileSource,
+    /// The target's channels (1, 2 or 4): a tile texel keeps those alone,
+    /// so a depth tile is a quarter of an `rgba32float` one.
+    pub channels: u32,
 }
 
 impl TileRead {
@@ -67,7 +71,7 @@ impl TileRead {
     }
 
     pub fn bytes(&self) -> u32 {
-        self.side() * self.side() * TEXEL_BYTES
+        self.side() * self.side() * self.channels * CHANNEL_BYTES
     }
 }
 
@@ -259,6 +263,7 @@ pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String
             .map(|(target, radius)| TileRead {
                 target,
                 radius,
+                channels: ir.pass(target.pass).outputs[target.output as usize].format.channels(),
                 source: if recomputed.contains_key(&target) {
                     TileSource::Recompute
                 } else {
@@ -354,7 +359,7 @@ mod tests {
     }
 
     #[test]
-    fn a_tile_is_its_block_and_apron_of_vec4s() {
+    fn a_tile_is_its_block_and_apron_of_its_channels() {
         let t = TileRead {
             target: TargetRef {
                 pass: PassId(0),
@@ -362,8 +367,11 @@ mod tests {
             },
             radius: 2,
             source: TileSource::Load,
+            channels: 4,
         };
         assert_eq!(t.side(), 20);
         assert_eq!(t.bytes(), 20 * 20 * 16);
+        let depth = TileRead { channels: 1, ..t };
+        assert_eq!(depth.bytes(), 20 * 20 * 4);
     }
 }

@@ -155,11 +155,12 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
     for (var k = i32(li); k < {count}; k += {threads}) {{
         let q = npr_tile_origin - vec2<i32>({radius}) + vec2<i32>(k % {side}, k / {side});
         if (all(q >= vec2<i32>(0)) && all(q < npr_tile_dims_{name})) {{
-            npr_tile_{name}[k] = textureLoad({name}, q, 0);
+            npr_tile_{name}[k] = textureLoad({name}, q, 0){keep};
         }}
     }}",
                 radius = r.radius,
                 count = side * side,
+                keep = kept_channels(r),
             );
         }
         if !computed.is_empty() && tiled.iter().any(|(_, r)| r.source == TileSource::Load) {
@@ -174,11 +175,12 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
     for (var k = i32(li); k < {count}; k += {threads}) {{
         let q = npr_tile_origin - vec2<i32>({radius}) + vec2<i32>(k % {side}, k / {side});
         if (all(q >= vec2<i32>(0)) && all(q < npr_pass_dims)) {{
-            npr_tile_{name}[k] = npr_compute_{name}(q);
+            npr_tile_{name}[k] = npr_compute_{name}(q){keep};
         }}
     }}",
                 radius = r.radius,
                 count = side * side,
+                keep = kept_channels(r),
             );
         }
         let _ = writeln!(
@@ -310,13 +312,40 @@ fn stored_formats(outputs: &[&PassOutput]) -> Vec<abi::Format> {
     formats
 }
 
+/// The type of one tile texel: the target's channels.
+fn tile_element(r: &TileRead) -> &'static str {
+    match r.channels {
+        1 => "f32",
+        2 => "vec2<f32>",
+        _ => "vec4<f32>",
+    }
+}
+
+/// The swizzle that keeps a texel's channels in its tile.
+fn kept_channels(r: &TileRead) -> &'static str {
+    match r.channels {
+        1 => ".x",
+        2 => ".xy",
+        _ => "",
+    }
+}
+
+/// A tile texel as `textureLoad` returns it: the missing channels (0, 0, 1).
+fn padded_texel(r: &TileRead, texel: &str) -> String {
+    match r.channels {
+        1 => format!("vec4<f32>({texel}, 0.0, 0.0, 1.0)"),
+        2 => format!("vec4<f32>({texel}, 0.0, 1.0)"),
+        _ => texel.to_string(),
+    }
+}
+
 /// The workgroup array of one computed target, its load function (the
 /// tile's texel, or the producer evaluated at q), and its dimensions.
 fn computed_tile_declarations(out: &mut String, name: &str, r: &TileRead) {
     let side = r.side();
     let _ = writeln!(
         out,
-        "var<workgroup> npr_tile_{name}: array<vec4<f32>, {count}>;
+        "var<workgroup> npr_tile_{name}: array<{element}, {count}>;
 // `textureLoad({name}, q, level)` of the target this pass computes: the tile's texel, a miss
 // when q is outside the tile or the image; in the workgroup's second run, computed at q. A load
 // outside the image is the device's choice in WebGPU (a texel of the texture, or zero) and the
@@ -331,7 +360,7 @@ fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
     let in_image = all(q >= vec2<i32>(0)) && all(q < npr_pass_dims);
     npr_tile_missed = npr_tile_missed || !(in_tile && in_image);
     let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
-    return npr_tile_{name}[k.y * {side} + k.x];
+    return {texel};
 }}
 // `textureDimensions({name})`: the pass's size, which is the target's.
 fn npr_computed_dims_{name}() -> vec2<u32> {{
@@ -341,6 +370,8 @@ fn npr_computed_dims_{name}() -> vec2<u32> {{
         count = side * side,
         radius = r.radius,
         last = side - 1,
+        element = tile_element(r),
+        texel = padded_texel(r, &format!("npr_tile_{name}[k.y * {side} + k.x]")),
     );
 }
 
@@ -349,7 +380,7 @@ fn tile_declarations(out: &mut String, name: &str, r: &TileRead) {
     let side = r.side();
     let _ = writeln!(
         out,
-        "var<workgroup> npr_tile_{name}: array<vec4<f32>, {count}>;
+        "var<workgroup> npr_tile_{name}: array<{element}, {count}>;
 var<private> npr_tile_dims_{name}: vec2<i32>;
 // `textureLoad({name}, q, level)`: the tile's texel, a miss when q is outside the tile or
 // the image (or level is not 0); in the workgroup's second run, `textureLoad` itself.
@@ -362,11 +393,13 @@ fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
     let in_image = all(q >= vec2<i32>(0)) && all(q < npr_tile_dims_{name});
     npr_tile_missed = npr_tile_missed || !(level == 0 && in_tile && in_image);
     let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
-    return npr_tile_{name}[k.y * {side} + k.x];
+    return {texel};
 }}
 ",
         count = side * side,
         radius = r.radius,
         last = side - 1,
+        element = tile_element(r),
+        texel = padded_texel(r, &format!("npr_tile_{name}[k.y * {side} + k.x]")),
     );
 }
