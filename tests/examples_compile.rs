@@ -28,6 +28,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             scene: None,
             overrides: Vec::new(),
             schedule: compiler::schedule::Schedule::Naive,
+            tile_apron_deficit: 0,
             // Every example keeps to the default paths policy.
             paths: Some(
                 dsl::paths::PathPolicy::new(&dsl::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),
