@@ -104,6 +104,9 @@ pub(super) fn create(
 ) -> Result<Vec<Option<PassBuffers>>, RunError> {
     let objects = scene.objects.len().max(1) as u64;
     let mut all = Vec::new();
+    // Samples drawn per (object, count, seed): two passes that sample the
+    // same objects alike (the pattern tracker's two) share one draw.
+    let mut drawn_samples: BTreeMap<(usize, u32, u64), crate::scene::samples::Samples> = BTreeMap::new();
     for p in &manifest.passes {
         let PassKindManifest::Compute {
             domain,
@@ -154,7 +157,9 @@ pub(super) fn create(
                     // Breslav et al. 2007 §3.1: stratified, stored as a
                     // triangle (pooled vertex indices) and barycentrics.
                     let seed = crate::scene::samples::object_seed(spec.seed, o);
-                    let drawn = crate::scene::samples::stratified(&scene.objects[o].mesh, spec.count as usize, seed);
+                    let drawn = drawn_samples.entry((o, spec.count, seed)).or_insert_with(|| {
+                        crate::scene::samples::stratified(&scene.objects[o].mesh, spec.count as usize, seed)
+                    });
                     for x in &drawn.samples {
                         sample_words.extend(x.triangle.map(|i| i + first_vertex as u32));
                         sample_words.extend([x.b1.to_bits(), x.b2.to_bits(), drawn.spacing.to_bits()]);
