@@ -177,7 +177,7 @@ pub struct RenderArgs {
     /// writing them.
     #[arg(long, value_parser = parse_frames)]
     pub frames: Option<(u32, u32)>,
-    #[arg(long, default_value_t = 24.0)]
+    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
@@ -286,7 +286,7 @@ pub struct LiveArgs {
     /// Time in seconds (for animated parameters and cameras).
     #[arg(long, default_value_t = 0.0)]
     pub time: f64,
-    #[arg(long, default_value_t = 24.0)]
+    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]

@@ -44,11 +44,7 @@ fn slot(program: &StyleProgram, pass: &str, name: &str) -> usize {
 }
 
 fn spec(size: u32, frame: u32) -> FrameSpec {
-    FrameSpec {
-        time_s: frame as f64 / 24.0,
-        frame,
-        ..FrameSpec::still(size, size, 0)
-    }
+    FrameSpec::animated(size, size, frame, FrameSpec::DEFAULT_FPS, 0)
 }
 
 /// `npr_project` in f64: world point → screen uv (y down), or far off
@@ -112,7 +108,7 @@ fn centroids_match_a_cpu_f64_reduction() {
         );
         let (centroid_slot, size_slot) = (slot(&program, "extent", "centroid"), slot(&program, "extent", "size"));
         let gpu_extent = r.read_object_values("extent").expect("extent values");
-        let cpu = cpu_reduction(&scene, size, frame as f64 / 24.0);
+        let cpu = cpu_reduction(&scene, size, spec(size, frame).time_s);
         assert_eq!(gpu_screen.len(), scene.objects.len());
         for (o, ((g, e), c)) in gpu_screen.iter().zip(&gpu_extent).zip(&cpu).enumerate() {
             let name = &scene.objects[o].name;
@@ -308,7 +304,7 @@ output shade.c
         let pose = scene.camera.pose(t);
         (pose.projection(1.0) * pose.view(0)).as_dmat4()
     };
-    let (now, then) = (vp(1.0 / 24.0), vp(0.0));
+    let (now, then) = (vp(1.0 / FrameSpec::DEFAULT_FPS), vp(0.0));
     let mut want = [0.0f64; 2];
     for p in &scene.objects[ground].mesh.positions {
         let p = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);

@@ -87,11 +87,7 @@ fn a_known_image_similarity_is_recovered() {
     let program = program(&style(|t| t));
     let mut scene = scene(QUAD);
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-    let spec = |frame: u32| FrameSpec {
-        frame,
-        time_s: frame as f64 / 24.0,
-        ..FrameSpec::still(size, size, 0)
-    };
+    let spec = |frame: u32| FrameSpec::animated(size, size, frame, FrameSpec::DEFAULT_FPS, 0);
     // Frame 0 has no previous ID image: the frame is held at its first value.
     scene.objects[0].model = placed(0.0, 0.0, 5.0, 0.0);
     r.render(&scene, &spec(0)).expect("frame 0");
@@ -161,11 +157,7 @@ fn zoom_cycles(edit: impl Fn(String) -> String, cycles: u32) -> f64 {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     let mut frame_no = 0;
     let mut render = |scene: &Scene, r: &mut Renderer| {
-        let spec = FrameSpec {
-            frame: frame_no,
-            time_s: frame_no as f64 / 24.0,
-            ..FrameSpec::still(size, size, 0)
-        };
+        let spec = FrameSpec::animated(size, size, frame_no, FrameSpec::DEFAULT_FPS, 0);
         frame_no += 1;
         r.render(scene, &spec).expect("frame");
     };
@@ -230,11 +222,7 @@ fn track(edit: impl Fn(String) -> String, scene: &mut Scene, size: (u32, u32), m
     let mut out = Vec::new();
     for (k, m) in models.iter().enumerate() {
         scene.objects[0].model = *m;
-        let spec = FrameSpec {
-            frame: k as u32,
-            time_s: k as f64 / 24.0,
-            ..FrameSpec::still(size.0, size.1, 0)
-        };
+        let spec = FrameSpec::animated(size.0, size.1, k as u32, FrameSpec::DEFAULT_FPS, 0);
         r.render(scene, &spec).expect("frame");
         let (o, u, v, zoom) = pattern_frame(&r);
         let f = [o.x, o.y, u.x, u.y, v.x, v.y, zoom];
@@ -338,11 +326,7 @@ fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
     let mut previous: Option<(DMat4, ImageF64, DVec2)> = None;
     for frame in 0..8u32 {
         scene.objects[0].model = model.as_mat4();
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(size, size, 0)
-        };
+        let spec = FrameSpec::animated(size, size, frame, FrameSpec::DEFAULT_FPS, 0);
         r.render(&scene, &spec).expect("frame");
         let ids = read_ids(&r);
         let (_, u, _, _) = pattern_frame(&r);
@@ -407,11 +391,7 @@ fn each_object_and_patch_starts_from_its_own_pattern_frame() {
     let program = program(&style(|t| t));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     for frame in 0..3 {
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(64, 64, 0)
-        };
+        let spec = FrameSpec::animated(64, 64, frame, FrameSpec::DEFAULT_FPS, 0);
         r.render(&scene, &spec).expect("frame");
         let values = r.read_object_values("pattern").expect("pattern values");
         for (k, v) in values.iter().enumerate() {

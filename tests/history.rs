@@ -26,11 +26,7 @@ fn scene(path: &str) -> runner::scene::Scene {
 }
 
 fn spec(size: u32, frame: u32) -> FrameSpec {
-    FrameSpec {
-        time_s: frame as f64 / 24.0,
-        frame,
-        ..FrameSpec::still(size, size, 0)
-    }
+    FrameSpec::animated(size, size, frame, FrameSpec::DEFAULT_FPS, 0)
 }
 
 /// Every texel's red channel.

@@ -73,11 +73,7 @@ fn frames(program: &StyleProgram, scene: &runner::scene::Scene) -> (TargetImage,
     let ids = target(program, "ids.id");
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
     for frame in 0..3 {
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(W, H, 0)
-        };
+        let spec = FrameSpec::animated(W, H, frame, FrameSpec::DEFAULT_FPS, 0);
         r.render(scene, &spec).expect("frame");
     }
     (r.read_output().expect("read"), r.read_target(ids).expect("ids"))

@@ -40,11 +40,7 @@ fn matches_its_goldens_on(style: &str, scene_name: &str) {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     // Path-dependent: every frame in order, as `--frames 0..25` renders them.
     for frame in 0u32..=24 {
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(128, 96, 0)
-        };
+        let spec = FrameSpec::animated(128, 96, frame, FrameSpec::DEFAULT_FPS, 0);
         r.render(&scene, &spec).expect("frame");
         if frame % 12 != 0 {
             continue;
@@ -205,11 +201,7 @@ fn mid_transition_matches_its_golden(style: &str) {
         .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     for frame in 0..=BAND_FRAME {
-        let spec = FrameSpec {
-            frame,
-            time_s: frame as f64 / 24.0,
-            ..FrameSpec::still(128, 96, 0)
-        };
+        let spec = FrameSpec::animated(128, 96, frame, FrameSpec::DEFAULT_FPS, 0);
         r.render(&scene, &spec).expect("frame");
     }
     let values = r.read_object_values("pattern").expect("pattern values");

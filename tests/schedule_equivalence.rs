@@ -144,13 +144,7 @@ fn render(program: &StyleProgram, scene: &runner::scene::Scene, width: u32, heig
             let mut r = Renderer::new(&g.device, &g.queue, program, scene)
                 .unwrap_or_else(|e| panic!("renderer: {e}: {:?}", e.diagnostics()));
             for frame in 0..FRAMES {
-                let spec = FrameSpec {
-                    width,
-                    height,
-                    time_s: f64::from(frame) / 24.0,
-                    frame,
-                    eye,
-                };
+                let spec = FrameSpec::animated(width, height, frame, FrameSpec::DEFAULT_FPS, eye);
                 r.render(scene, &spec)
                     .unwrap_or_else(|e| panic!("render: {e}: {:?}", e.diagnostics()));
             }

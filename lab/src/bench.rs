@@ -53,13 +53,7 @@ pub fn frame_overhead(
 ) -> Result<FrameOverhead, RunError> {
     let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
-    let spec = |frame: u32| FrameSpec {
-        width,
-        height,
-        time_s: frame as f64 / 24.0,
-        frame,
-        eye: 0,
-    };
+    let spec = |frame: u32| FrameSpec::animated(width, height, frame, FrameSpec::DEFAULT_FPS, 0);
     // Warm up: pipelines compiled, textures allocated.
     r.render(scene, &spec(0))?;
     wait()?;

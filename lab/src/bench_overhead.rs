@@ -123,13 +123,7 @@ pub fn image_diff(a: &TargetImage, b: &TargetImage) -> Result<ImageDiff, Overhea
 }
 
 fn spec((width, height): (u32, u32), frame: u32) -> FrameSpec {
-    FrameSpec {
-        width,
-        height,
-        time_s: frame as f64 / 24.0,
-        frame,
-        eye: 0,
-    }
+    FrameSpec::animated(width, height, frame, FrameSpec::DEFAULT_FPS, 0)
 }
 
 /// Draw frame `frame` with both and compare the outputs; over

@@ -129,11 +129,7 @@ pub fn run(
                 for (o, object) in scene.objects.iter_mut().enumerate() {
                     object.model = model(bases[o], o, k);
                 }
-                let spec = FrameSpec {
-                    frame: k,
-                    time_s: k as f64 / 24.0,
-                    ..FrameSpec::still(SIZE, SIZE, 0)
-                };
+                let spec = FrameSpec::animated(SIZE, SIZE, k, FrameSpec::DEFAULT_FPS, 0);
                 r.render(scene, &spec)?;
                 wait_idle(gpu)
             };

@@ -37,11 +37,7 @@ pub fn run(
     let mut times = vec![Vec::new(); styles.len()];
     let mut base_times = Vec::new();
     for k in 0..warmup + frames {
-        let spec = FrameSpec {
-            frame: k,
-            time_s: k as f64 / 24.0,
-            ..FrameSpec::still(size.0, size.1, 0)
-        };
+        let spec = FrameSpec::animated(size.0, size.1, k, FrameSpec::DEFAULT_FPS, 0);
         let timed = |r: &mut runner::Renderer| -> Result<f64, RunError> {
             let t = Instant::now();
             r.render(scene, &spec)?;

@@ -21,6 +21,22 @@ pub struct FrameSpec {
 }
 
 impl FrameSpec {
+    /// The frame rate `npr render` plays at unless `--fps` says otherwise,
+    /// and the one tests and benchmarks animate at.
+    pub const DEFAULT_FPS: f64 = 24.0;
+
+    /// Frame `frame` of `eye` in an animation played at `fps` frames a
+    /// second: at t = frame / fps, as `npr render --frames` renders it.
+    pub fn animated(width: u32, height: u32, frame: u32, fps: f64, eye: u32) -> FrameSpec {
+        FrameSpec {
+            width,
+            height,
+            time_s: f64::from(frame) / fps,
+            frame,
+            eye,
+        }
+    }
+
     /// Frame 0 at t = 0 of `eye`, `width`×`height`: a still image.
     pub fn still(width: u32, height: u32, eye: u32) -> FrameSpec {
         FrameSpec {
