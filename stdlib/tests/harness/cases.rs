@@ -484,27 +484,7 @@ fn render(
 
 /// A texture with level 0 from `t` and the levels after it from `levels`.
 fn upload(g: &super::Gpu, t: &TexIn, levels: &[ImageF64]) -> wgpu::TextureView {
-    let bytes = |image: &ImageF64| -> (Vec<u8>, u32) {
-        match t.format {
-            wgpu::TextureFormat::Rgba8Unorm => (
-                image
-                    .pixels
-                    .iter()
-                    .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
-                    .collect(),
-                4,
-            ),
-            _ => (
-                image
-                    .pixels
-                    .iter()
-                    .flat_map(|p| p.map(|c| c as f32))
-                    .flat_map(f32::to_le_bytes)
-                    .collect(),
-                16,
-            ),
-        }
-    };
+    let bytes = |image: &ImageF64| super::texel_bytes(t.format, image);
     let texture = g.device.create_texture(&wgpu::TextureDescriptor {
         label: None,
         size: wgpu::Extent3d {

@@ -83,25 +83,7 @@ pub fn run(prelude: &str, body: &str, inputs: &[[f32; 4]], out_size: (u32, u32),
     let views: Vec<wgpu::TextureView> = textures
         .iter()
         .map(|t| {
-            let (bytes, bpp): (Vec<u8>, u32) = match t.format {
-                wgpu::TextureFormat::Rgba8Unorm => (
-                    t.image
-                        .pixels
-                        .iter()
-                        .flat_map(|p| p.map(|c| (c * 255.0).round() as u8))
-                        .collect(),
-                    4,
-                ),
-                _ => (
-                    t.image
-                        .pixels
-                        .iter()
-                        .flat_map(|p| p.map(|c| c as f32))
-                        .flat_map(f32::to_le_bytes)
-                        .collect(),
-                    16,
-                ),
-            };
+            let (bytes, _) = texel_bytes(t.format, &t.image);
             let tex = g.device.create_texture_with_data(
                 &g.queue,
                 &wgpu::TextureDescriptor {
@@ -121,7 +103,6 @@ pub fn run(prelude: &str, body: &str, inputs: &[[f32; 4]], out_size: (u32, u32),
                 wgpu::util::TextureDataOrder::LayerMajor,
                 &bytes,
             );
-            let _ = bpp;
             tex.create_view(&Default::default())
         })
         .collect();
@@ -341,4 +322,29 @@ pub fn compare_rel(name: &str, gpu: &[[f32; 4]], reference: &[[f64; 4]], channel
 pub fn one(name: &str, body: &str, cases: &[[[f64; 4]; 3]], textures: &[TexIn]) -> Vec<[f32; 4]> {
     let inputs: Vec<[f32; 4]> = cases.iter().flat_map(|c| c.map(f32v)).collect();
     run(&op_wgsl(&[name]), body, &inputs, (cases.len() as u32, 1), textures)
+}
+
+/// The bytes of `image` as texels of `format` (`Rgba8Unorm`, else
+/// `Rgba32Float`), and the bytes a texel takes. 8-bit channels are clamped
+/// to [0, 1] and rounded (a saturating cast would give the same bytes).
+pub fn texel_bytes(format: wgpu::TextureFormat, image: &ImageF64) -> (Vec<u8>, u32) {
+    match format {
+        wgpu::TextureFormat::Rgba8Unorm => (
+            image
+                .pixels
+                .iter()
+                .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+                .collect(),
+            4,
+        ),
+        _ => (
+            image
+                .pixels
+                .iter()
+                .flat_map(|p| p.map(|c| c as f32))
+                .flat_map(f32::to_le_bytes)
+                .collect(),
+            16,
+        ),
+    }
 }
