@@ -132,6 +132,48 @@ fn compile_report_says_which_passes_the_style_forced() {
     assert!(err.contains("error[E0311]") && err.contains("forced.npr:6:3"), "{err}");
 }
 
+/// `schedule: recompute` wins even under the naive schedule `--dump-passes`
+/// uses, so that pass has no target to dump: the dump says so, and holds
+/// every other target.
+#[test]
+fn dump_passes_says_which_pass_is_recomputed_and_not_stored() {
+    let dir = scratch("dump-recompute");
+    let text = std::fs::read_to_string("examples/lsa_contours.npr")
+        .expect("style")
+        .replace(
+            "pass error: image(gbuffer) {\n",
+            "pass error: image(gbuffer) {\n  schedule: recompute\n",
+        );
+    assert!(text.contains("schedule: recompute"), "the error pass moved");
+    let style = dir.join("recomputed.npr");
+    std::fs::write(&style, text).expect("write");
+    let o = npr(&[
+        "render",
+        style.to_str().expect("path"),
+        "--scene",
+        "examples/scenes/spheres.toml",
+        "--allow-path",
+        "examples",
+        "-o",
+        dir.join("out.png").to_str().expect("path"),
+        "--size",
+        "32x24",
+        "--dump-passes",
+        dir.join("passes").to_str().expect("path"),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains(
+            "note: pass `error` is not stored, so --dump-passes has no image of it: forced by `schedule: recompute`"
+        ),
+        "{err}"
+    );
+    let index = std::fs::read_to_string(dir.join("passes/contact_sheet.txt")).expect("index");
+    assert!(!index.contains("error.e"), "{index}");
+    assert!(index.contains("thin.e") && index.contains("gbuffer.pos"), "{index}");
+}
+
 #[test]
 fn render_writes_png_and_exr_and_dumps_passes() {
     let dir = scratch("render");

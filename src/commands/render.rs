@@ -95,6 +95,16 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 return EXIT_USER;
             }
             texture_spans = c.texture_spans.clone();
+            if dump_passes.is_some() {
+                // A pass whose `schedule: recompute` wins even under naive
+                // has no target to dump: say so rather than leave it out.
+                for e in c.report.entries.iter().filter(|e| e.action == "recomputed") {
+                    eprintln!(
+                        "note: {} is not stored, so --dump-passes has no image of it: {}",
+                        e.what, e.why
+                    );
+                }
+            }
             c.program()
         }
         (None, None) => {

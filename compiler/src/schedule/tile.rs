@@ -32,7 +32,7 @@ use crate::report::Report;
 use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
 use dsl::{codes, Diagnostic};
 use serde::Serialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Workgroup memory a tiled pass may use: WebGPU's default limit
 /// (`maxComputeWorkgroupStorageSize`), which every adapter offers.
@@ -246,12 +246,12 @@ pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String
             }
         }
     }
-    let mut recomputed = BTreeMap::new();
+    let mut recomputed = BTreeSet::new();
     for (target, r) in &ir.recomputed {
         if r.reader == pid {
             let radius = radii.entry(*target).or_default();
             *radius = (*radius).max(r.radius);
-            recomputed.insert(*target, ());
+            recomputed.insert(*target);
         }
     }
     if radii.is_empty() {
@@ -264,7 +264,7 @@ pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String
                 target,
                 radius,
                 channels: ir.pass(target.pass).outputs[target.output as usize].format.channels(),
-                source: if recomputed.contains_key(&target) {
+                source: if recomputed.contains(&target) {
                     TileSource::Recompute
                 } else {
                     TileSource::Load
