@@ -117,10 +117,7 @@ var<workgroup> npr_tile_any_missed: u32;\n"
             );
         }
         for (name, r) in &tiled {
-            match r.source {
-                TileSource::Load => tile_declarations(&mut out, name, r),
-                TileSource::Recompute => computed_tile_declarations(&mut out, name, r),
-            }
+            tile_declarations(&mut out, name, r);
         }
         self.entry(&mut out, &tiled, outputs);
         (out, half)
@@ -139,6 +136,7 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
             .iter()
             .filter(|(_, r)| r.source == TileSource::Recompute)
             .collect();
+        let mut filled_barrier = false;
         if !computed.is_empty() {
             let _ = writeln!(
                 out,
@@ -146,38 +144,33 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
                 first.name
             );
         }
-        for (name, r) in tiled.iter().filter(|(_, r)| r.source == TileSource::Load) {
+        // The loaded tiles first: a computed tile may read them.
+        let loaded_first = tiled
+            .iter()
+            .filter(|(_, r)| r.source == TileSource::Load)
+            .chain(computed.iter().copied());
+        for (name, r) in loaded_first {
+            if r.source == TileSource::Recompute && !filled_barrier {
+                filled_barrier = true;
+                if tiled.iter().any(|(_, r)| r.source == TileSource::Load) {
+                    out.push_str("    workgroupBarrier();\n");
+                }
+            }
             let side = r.side();
+            let a = TileAccess::of(name, r);
             let _ = writeln!(
                 out,
-                "    // `{name}`: the tile and its {radius}-texel apron, {threads} texels per round.
-    npr_tile_dims_{name} = vec2<i32>(textureDimensions({name}));
-    for (var k = i32(li); k < {count}; k += {threads}) {{
+                "    // `{name}`{what} the tile and its {radius}-texel apron, {threads} texels per round.
+{setup}    for (var k = i32(li); k < {count}; k += {threads}) {{
         let q = npr_tile_origin - vec2<i32>({radius}) + vec2<i32>(k % {side}, k / {side});
-        if (all(q >= vec2<i32>(0)) && all(q < npr_tile_dims_{name})) {{
-            npr_tile_{name}[k] = textureLoad({name}, q, 0){keep};
+        if (all(q >= vec2<i32>(0)) && all(q < {dims})) {{
+            npr_tile_{name}[k] = {fetch}{keep};
         }}
     }}",
-                radius = r.radius,
-                count = side * side,
-                keep = kept_channels(r),
-            );
-        }
-        if !computed.is_empty() && tiled.iter().any(|(_, r)| r.source == TileSource::Load) {
-            // The computed tiles may read the loaded ones.
-            out.push_str("    workgroupBarrier();\n");
-        }
-        for (name, r) in computed {
-            let side = r.side();
-            let _ = writeln!(
-                out,
-                "    // `{name}`, not stored: computed on the tile and its {radius}-texel apron, {threads} texels per round.
-    for (var k = i32(li); k < {count}; k += {threads}) {{
-        let q = npr_tile_origin - vec2<i32>({radius}) + vec2<i32>(k % {side}, k / {side});
-        if (all(q >= vec2<i32>(0)) && all(q < npr_pass_dims)) {{
-            npr_tile_{name}[k] = npr_compute_{name}(q){keep};
-        }}
-    }}",
+                what = a.what,
+                setup = a.setup,
+                dims = a.dims,
+                fetch = a.fetch,
                 radius = r.radius,
                 count = side * side,
                 keep = kept_channels(r),
@@ -339,63 +332,99 @@ fn padded_texel(r: &TileRead, texel: &str) -> String {
     }
 }
 
-/// The workgroup array of one computed target, its load function (the
-/// tile's texel, or the producer evaluated at q), and its dimensions.
-fn computed_tile_declarations(out: &mut String, name: &str, r: &TileRead) {
-    let side = r.side();
-    let _ = writeln!(
-        out,
-        "var<workgroup> npr_tile_{name}: array<{element}, {count}>;
-// `textureLoad({name}, q, level)` of the target this pass computes: the tile's texel, a miss
+/// How a tile reaches its target: the loaded one's texture, or the
+/// computed one's producer (`npr_compute_<t>`).
+struct TileAccess {
+    /// Its fill loop's note after the name.
+    what: &'static str,
+    /// The fill loop's first statement (the loaded target's size).
+    setup: String,
+    /// The image's size, `vec2<i32>`.
+    dims: String,
+    /// The texel at an in-image `q`, for the fill.
+    fetch: String,
+    /// The read in the workgroup's second run, tiles bypassed.
+    direct: String,
+    /// The part of the hit test about `level`.
+    level_hit: &'static str,
+    /// The load function's doc.
+    doc: String,
+    /// Declarations after the load function.
+    extra: String,
+}
+
+impl TileAccess {
+    fn of(name: &str, r: &TileRead) -> TileAccess {
+        match r.source {
+            TileSource::Load => TileAccess {
+                what: ":",
+                setup: format!("    npr_tile_dims_{name} = vec2<i32>(textureDimensions({name}));\n"),
+                dims: format!("npr_tile_dims_{name}"),
+                fetch: format!("textureLoad({name}, q, 0)"),
+                direct: format!("textureLoad({name}, q, level)"),
+                level_hit: "level == 0 && ",
+                doc: format!(
+                    "// `textureLoad({name}, q, level)`: the tile's texel, a miss when q is outside the tile or
+// the image (or level is not 0); in the workgroup's second run, `textureLoad` itself."
+                ),
+                extra: String::new(),
+            },
+            TileSource::Recompute => TileAccess {
+                what: ", not stored: computed on",
+                setup: String::new(),
+                dims: "npr_pass_dims".into(),
+                fetch: format!("npr_compute_{name}(q)"),
+                direct: format!("npr_compute_{name}(clamp(q, vec2<i32>(0), npr_pass_dims - vec2<i32>(1)))"),
+                level_hit: "",
+                doc: format!(
+                    "// `textureLoad({name}, q, level)` of the target this pass computes: the tile's texel, a miss
 // when q is outside the tile or the image; in the workgroup's second run, computed at q. A load
 // outside the image is the device's choice in WebGPU (a texel of the texture, or zero) and the
 // stdlib makes none; the nearest edge texel is one. The target has one level, so `level`
-// chooses nothing.
-fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
-    if (npr_tile_direct) {{
-        return npr_compute_{name}(clamp(q, vec2<i32>(0), npr_pass_dims - vec2<i32>(1)));
-    }}
-    let local = q - npr_tile_origin + vec2<i32>({radius});
-    let in_tile = all(local >= vec2<i32>(0)) && all(local < vec2<i32>({side}));
-    let in_image = all(q >= vec2<i32>(0)) && all(q < npr_pass_dims);
-    npr_tile_missed = npr_tile_missed || !(in_tile && in_image);
-    let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
-    return {texel};
-}}
-// `textureDimensions({name})`: the pass's size, which is the target's.
+// chooses nothing."
+                ),
+                extra: format!(
+                    "// `textureDimensions({name})`: the pass's size, which is the target's.
 fn npr_computed_dims_{name}() -> vec2<u32> {{
     return vec2<u32>(npr_pass_dims);
 }}
-",
-        count = side * side,
-        radius = r.radius,
-        last = side - 1,
-        element = tile_element(r),
-        texel = padded_texel(r, &format!("npr_tile_{name}[k.y * {side} + k.x]")),
-    );
+"
+                ),
+            },
+        }
+    }
 }
 
-/// The workgroup array of one tiled target and its load function.
+/// The workgroup array of one tiled target, its load function and what
+/// else its source needs (`TileAccess`).
 fn tile_declarations(out: &mut String, name: &str, r: &TileRead) {
     let side = r.side();
+    let a = TileAccess::of(name, r);
+    let dims_var = match r.source {
+        TileSource::Load => format!("var<private> npr_tile_dims_{name}: vec2<i32>;\n"),
+        TileSource::Recompute => String::new(),
+    };
     let _ = writeln!(
         out,
         "var<workgroup> npr_tile_{name}: array<{element}, {count}>;
-var<private> npr_tile_dims_{name}: vec2<i32>;
-// `textureLoad({name}, q, level)`: the tile's texel, a miss when q is outside the tile or
-// the image (or level is not 0); in the workgroup's second run, `textureLoad` itself.
+{dims_var}{doc}
 fn npr_tile_load_{name}(q: vec2<i32>, level: i32) -> vec4<f32> {{
     if (npr_tile_direct) {{
-        return textureLoad({name}, q, level);
+        return {direct};
     }}
     let local = q - npr_tile_origin + vec2<i32>({radius});
     let in_tile = all(local >= vec2<i32>(0)) && all(local < vec2<i32>({side}));
-    let in_image = all(q >= vec2<i32>(0)) && all(q < npr_tile_dims_{name});
-    npr_tile_missed = npr_tile_missed || !(level == 0 && in_tile && in_image);
+    let in_image = all(q >= vec2<i32>(0)) && all(q < {dims});
+    npr_tile_missed = npr_tile_missed || !({level_hit}in_tile && in_image);
     let k = clamp(local, vec2<i32>(0), vec2<i32>({last}));
     return {texel};
 }}
-",
+{extra}",
+        doc = a.doc,
+        direct = a.direct,
+        dims = a.dims,
+        level_hit = a.level_hit,
+        extra = a.extra,
         count = side * side,
         radius = r.radius,
         last = side - 1,
