@@ -227,14 +227,7 @@ impl Emitter<'_> {
         self.emit_lets(&mut w, pass, &frag_nodes, &uses.value_uses, &mut ctx);
         w.push_str("    var out: FragOut;\n");
         for (_, o) in &live_outputs {
-            let _ = writeln!(
-                w,
-                "    // {}: out {}: {} = {}",
-                self.line_of(o.span),
-                o.name,
-                o.format.name(),
-                self.snippet(self.ir.expr(o.value).span)
-            );
+            self.output_comment(&mut w, o);
             let v = self.expr(o.value, &ctx);
             let _ = writeln!(w, "    out.o_{} = {v};", o.name);
         }
@@ -455,6 +448,19 @@ impl Emitter<'_> {
         for n in group {
             ctx.named.insert(*n, name.clone());
         }
+    }
+
+    /// `// file:line: out name: format = expression`, above the line that
+    /// computes an output.
+    fn output_comment(&self, w: &mut String, o: &PassOutput) {
+        let _ = writeln!(
+            w,
+            "    // {}: out {}: {} = {}",
+            self.line_of(o.span),
+            o.name,
+            o.format.name(),
+            self.snippet(self.ir.expr(o.value).span)
+        );
     }
 
     fn user_let_comment(&self, w: &mut String, l: &Let) {

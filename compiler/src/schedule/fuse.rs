@@ -16,13 +16,13 @@
 //! pass under `--schedule naive`.
 
 use super::footprint::{pass_apron, texture_reads, Read};
+use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
 use super::{Plan, Schedule};
 use crate::dag::pass_roots;
 use crate::ir::*;
 use crate::prune::Live;
 use crate::report::Report;
 use abi::formats::Storage;
-use abi::manifest::Blend;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Fuses every image pass that `plan` lets be fused and can be, in
@@ -82,30 +82,12 @@ fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, S
     let pass = ir.pass(pid);
     let targets = live.targets_of(pid);
     for t in &targets {
-        let o = &pass.outputs[t.output as usize];
-        let name = ir.target_name(*t);
-        if ir.output == Some(*t) {
-            return Err(format!("`{name}` is the style's output"));
-        }
-        if o.blend != Blend::Replace {
-            return Err(format!("`{name}` blends into its target"));
-        }
         // A constant stays a stored target: inlined, the reader's expressions
         // over it would be constant too, and a shader compiler folds them,
         // where out-of-domain math (`sqrt(-0.8)`, indeterminate in WGSL)
         // may give another value than the same math at run time (naga
         // rejects some outright: the generated-style soak's case 48924).
-        if matches!(ir.expr(o.value).kind, ExprKind::Const(_)) {
-            return Err(format!(
-                "`{name}` is a constant, which would make its reader's expressions over it constant"
-            ));
-        }
-        if o.format.storage() == Storage::Srgb8 {
-            return Err(format!(
-                "`{name}` is {}, whose encoding is not repeated",
-                o.format.name()
-            ));
-        }
+        must_be_stored(ir, *t, "which would make its reader's expressions over it constant")?;
     }
     let mut readers = BTreeSet::new();
     for q in &live.passes {
@@ -165,15 +147,7 @@ fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, S
             f.why()
         ));
     }
-    if !matches!(r.kind, PassKind::Image { .. }) {
-        return Err(format!("read by `{}`, a {} pass", r.name, r.kind.name()));
-    }
-    if r.scale != pass.scale {
-        return Err(format!(
-            "`{}` runs at scale {}, this pass at {}",
-            r.name, r.scale, pass.scale
-        ));
-    }
+    reader_kind_and_scale(ir, reader, pid)?;
     let stored: Vec<&str> = targets
         .iter()
         .map(|t| pass.outputs[t.output as usize].format)
@@ -241,10 +215,6 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
             map.insert(n, id);
         }
     }
-    let moved_inputs = match &ir.pass(producer).kind {
-        PassKind::Image { inputs, .. } => inputs.clone(),
-        _ => Vec::new(),
-    };
     let producer_name = ir.pass(producer).name.clone();
     let producer_lets = ir.pass(producer).lets.clone();
     let r = &mut ir.passes[reader.0 as usize];
@@ -264,14 +234,7 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
         l.name = name;
         r.lets.push(l);
     }
-    if let PassKind::Image { inputs, .. } = &mut r.kind {
-        inputs.retain(|p| *p != producer);
-        for p in moved_inputs {
-            if !inputs.contains(&p) {
-                inputs.push(p);
-            }
-        }
-    }
+    take_over_inputs(ir, reader, producer);
     for t in targets {
         live.targets.remove(&t);
     }

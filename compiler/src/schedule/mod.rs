@@ -42,6 +42,7 @@ pub mod footprint;
 mod fuse;
 pub mod recompute;
 pub mod tile;
+mod unstored;
 
 use crate::ir::{Ir, PassId, PassKind};
 use crate::prune::Live;

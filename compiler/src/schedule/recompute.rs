@@ -28,13 +28,13 @@
 
 use super::footprint::{texture_reads, Read};
 use super::tile::{self, samples_a_texture, uses_derivatives};
+use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
 use super::{Plan, Schedule};
 use crate::dag::pass_roots;
 use crate::ir::*;
 use crate::prune::Live;
 use crate::report::Report;
-use abi::formats::Storage;
-use abi::manifest::{Blend, TILE_SIZE};
+use abi::manifest::TILE_SIZE;
 use dsl::{codes, Diagnostic};
 use serde::Serialize;
 use std::collections::BTreeSet;
@@ -141,18 +141,7 @@ fn explain(ir: &Ir, target: TargetRef, reader: PassId, radius: u32) -> String {
 fn commit(ir: &mut Ir, live: &mut Live, target: TargetRef, reader: PassId, radius: u32) {
     ir.recomputed.insert(target, Recomputed { reader, radius });
     live.targets.remove(&target);
-    let moved = match &ir.pass(target.pass).kind {
-        PassKind::Image { inputs, .. } => inputs.clone(),
-        _ => Vec::new(),
-    };
-    if let PassKind::Image { inputs, .. } = &mut ir.passes[reader.0 as usize].kind {
-        inputs.retain(|p| *p != target.pass);
-        for p in moved {
-            if !inputs.contains(&p) {
-                inputs.push(p);
-            }
-        }
-    }
+    take_over_inputs(ir, reader, target.pass);
 }
 
 /// The target of `pid` that its reader could compute in its tiles, that
@@ -169,23 +158,7 @@ fn reader_tile(ir: &mut Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(Ta
             ))
         }
     };
-    let o = &pass.outputs[target.output as usize];
-    let name = ir.target_name(target);
-    if ir.output == Some(target) {
-        return Err(format!("`{name}` is the style's output"));
-    }
-    if o.blend != Blend::Replace {
-        return Err(format!("`{name}` blends into its target"));
-    }
-    if matches!(ir.expr(o.value).kind, ExprKind::Const(_)) {
-        return Err(format!("`{name}` is a constant, which is cheaper stored"));
-    }
-    if o.format.storage() == Storage::Srgb8 {
-        return Err(format!(
-            "`{name}` is {}, whose encoding is not repeated",
-            o.format.name()
-        ));
-    }
+    must_be_stored(ir, target, "which is cheaper stored")?;
     let roots = pass_roots(pass);
     let nodes = ir.reachable(&roots);
     if samples_a_texture(ir, &roots, &nodes) {
@@ -215,15 +188,7 @@ fn reader_tile(ir: &mut Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(Ta
     if let Some(f) = plan.forced(reader) {
         return Err(format!("its reader `{}` is {}", r.name, f.why()));
     }
-    if !matches!(r.kind, PassKind::Image { .. }) {
-        return Err(format!("read by `{}`, a {} pass", r.name, r.kind.name()));
-    }
-    if r.scale != pass.scale {
-        return Err(format!(
-            "`{}` runs at scale {}, this pass at {}",
-            r.name, r.scale, pass.scale
-        ));
-    }
+    reader_kind_and_scale(ir, reader, pid)?;
     // The reader's tiling with this target in it: tentatively recorded, so
     // the tiler sizes its apron and counts its bytes.
     ir.recomputed.insert(target, Recomputed { reader, radius });

@@ -265,14 +265,7 @@ fn npr_compute_{name}(q: vec2<i32>) -> vec4<f32> {{
             runtime_conditions: ctx.runtime_conditions.clone(),
         };
         self.emit_lets(w, pass, &p.nodes, &p.value_uses, &mut own);
-        let _ = writeln!(
-            w,
-            "    // {}: out {}: {} = {}",
-            self.line_of(o.span),
-            o.name,
-            o.format.name(),
-            self.snippet(self.ir.expr(o.value).span)
-        );
+        self.output_comment(w, o);
         let v = self.expr(o.value, &own);
         let _ = writeln!(w, "    return {};\n}}", stored_texel(o.format, &v));
     }
