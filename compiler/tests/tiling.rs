@@ -41,13 +41,17 @@ output final.c
 "#;
 
 fn compile(schedule: Schedule) -> compiler::Compiled {
+    compile_text("tiling.npr", STYLE, schedule)
+}
+
+/// Style `text`, named `name`, compiled under `schedule`.
+fn compile_text(name: &str, text: &str, schedule: Schedule) -> compiler::Compiled {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         schedule,
         ..Default::default()
     };
-    compiler::compile_source("tiling.npr", STYLE, Path::new("."), &mut sources, &opts)
-        .unwrap_or_else(|e| panic!("{e:?}"))
+    compiler::compile_source(name, text, Path::new("."), &mut sources, &opts).unwrap_or_else(|e| panic!("{e:?}"))
 }
 
 /// The report's tiling lines, one per image pass.
@@ -140,13 +144,7 @@ pass edges: image(g) {
 }
 output edges.e
 "#;
-    let mut sources = SourceMap::new();
-    let opts = CompileOptions {
-        schedule: Schedule::Tiled,
-        ..Default::default()
-    };
-    let c = compiler::compile_source("depth.npr", style, Path::new("."), &mut sources, &opts)
-        .unwrap_or_else(|e| panic!("{e:?}"));
+    let c = compile_text("depth.npr", style, Schedule::Tiled);
     let lines = tiling_lines(&c);
     assert!(lines.contains("(1296 bytes)"), "{lines}");
     let wgsl = c.shader("edges.wgsl").expect("edges pass");
@@ -197,13 +195,7 @@ pass grainy: image(g) {
 }
 output grainy.c
 "#;
-    let mut sources = SourceMap::new();
-    let opts = CompileOptions {
-        schedule: Schedule::Tiled,
-        ..Default::default()
-    };
-    let c = compiler::compile_source("grain.npr", style, Path::new("."), &mut sources, &opts)
-        .unwrap_or_else(|e| panic!("{e:?}"));
+    let c = compile_text("grain.npr", style, Schedule::Tiled);
     let lines = tiling_lines(&c);
     assert_eq!(
         lines,

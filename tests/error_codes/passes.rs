@@ -264,6 +264,22 @@ fn e0310_an_art_map_inside_a_filter() {
 const SCHEDULE_GBUFFER: &str =
     "pass g: render(scene) {\n  out d: r32float = depth\n  out n: rgba16float = vec4(normal.world, 1.0)\n}\n";
 
+/// `text` fails with `code` under every `--schedule`: a forced `schedule:`
+/// wins over the run's schedule, and its refusal with it.
+fn same_code_under_every_schedule(code: &str, text: &str, dir: &Path) {
+    for schedule in compiler::schedule::Schedule::ALL {
+        let mut sources = SourceMap::new();
+        let opts = CompileOptions {
+            schedule,
+            ..CompileOptions::default()
+        };
+        match compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
+            Err(CompileError::User(d)) => assert_eq!(d[0].code, code, "--schedule {}", schedule.name()),
+            _ => panic!("--schedule {}: not {code}", schedule.name()),
+        }
+    }
+}
+
 /// `schedule: tiled` on a pass the tiler refuses is an error at the
 /// setting whose help gives the tiler's reason, under every `--schedule`
 /// (the default `auto` here; `naive` below), never a fragment pass instead.
@@ -278,17 +294,7 @@ fn e0311_schedule_tiled_on_a_pass_compute_cannot_store() {
         "{r}"
     );
     check("E0311", (d, r));
-    for schedule in compiler::schedule::Schedule::ALL {
-        let mut sources = SourceMap::new();
-        let opts = CompileOptions {
-            schedule,
-            ..CompileOptions::default()
-        };
-        match compiler::compile_source("case.npr", &text, &scratch("e0311"), &mut sources, &opts) {
-            Err(CompileError::User(d)) => assert_eq!(d[0].code, "E0311", "--schedule {}", schedule.name()),
-            _ => panic!("--schedule {}: not E0311", schedule.name()),
-        }
-    }
+    same_code_under_every_schedule("E0311", &text, &scratch("e0311"));
 }
 
 #[test]
@@ -334,17 +340,7 @@ fn e0312_schedule_recompute_on_the_output() {
     let (d, r) = compile_errors(&text, &scratch("e0312"));
     assert!(r.contains("`edges.e` is the style's output"), "{r}");
     check("E0312", (d, r));
-    for schedule in compiler::schedule::Schedule::ALL {
-        let mut sources = SourceMap::new();
-        let opts = CompileOptions {
-            schedule,
-            ..CompileOptions::default()
-        };
-        match compiler::compile_source("case.npr", &text, &scratch("e0312"), &mut sources, &opts) {
-            Err(CompileError::User(d)) => assert_eq!(d[0].code, "E0312", "--schedule {}", schedule.name()),
-            _ => panic!("--schedule {}: not E0312", schedule.name()),
-        }
-    }
+    same_code_under_every_schedule("E0312", &text, &scratch("e0312"));
 }
 
 #[test]
