@@ -264,6 +264,18 @@ fn e0310_an_art_map_inside_a_filter() {
 const SCHEDULE_GBUFFER: &str =
     "pass g: render(scene) {\n  out d: r32float = depth\n  out n: rgba16float = vec4(normal.world, 1.0)\n}\n";
 
+/// Each (name, pass text after the G-buffer, reason) case fails with
+/// `code`, its help giving the reason; its rendered message is snapshot
+/// `<code>_<name>`.
+fn check_reasons(code: &str, cases: &[(&str, &str, &str)]) {
+    for (name, body, reason) in cases {
+        let text = style(&format!("{SCHEDULE_GBUFFER}{body}"));
+        let (d, r) = compile_errors(&text, &scratch(&format!("{}_{name}", code.to_lowercase())));
+        assert!(r.contains(reason), "{name}: {r}");
+        check_case(code, &format!("{code}_{name}"), (d, r));
+    }
+}
+
 /// `text` fails with `code` under every `--schedule`: a forced `schedule:`
 /// wins over the run's schedule, and its refusal with it.
 fn same_code_under_every_schedule(code: &str, text: &str, dir: &Path) {
@@ -321,12 +333,7 @@ fn e0311_the_hint_gives_each_reason_of_the_tiler() {
             "its tiles need 92416 bytes of workgroup memory",
         ),
     ];
-    for (name, body, reason) in cases {
-        let text = style(&format!("{SCHEDULE_GBUFFER}{body}"));
-        let (d, r) = compile_errors(&text, &scratch(&format!("e0311_{name}")));
-        assert!(r.contains(reason), "{name}: {r}");
-        check_case("E0311", &format!("E0311_{name}"), (d, r));
-    }
+    check_reasons("E0311", &cases);
 }
 
 /// `schedule: recompute` on a pass its reader cannot compute in its tiles
@@ -362,12 +369,7 @@ fn e0312_the_hint_gives_the_reason() {
             "it samples a texture as a value, which takes screen derivatives",
         ),
     ];
-    for (name, body, reason) in cases {
-        let text = style(&format!("{SCHEDULE_GBUFFER}{body}"));
-        let (d, r) = compile_errors(&text, &scratch(&format!("e0312_{name}")));
-        assert!(r.contains(reason), "{name}: {r}");
-        check_case("E0312", &format!("E0312_{name}"), (d, r));
-    }
+    check_reasons("E0312", &cases);
 }
 
 /// The `schedule:` setting itself: a schedule's name, once, in an image pass.
