@@ -17,7 +17,7 @@ if ! have_vulkan_icd; then
   $SUDO apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
 fi
 
-# The studio's browser test (tests/studio_browser.rs) drives Debian's
+# The studio's browser test (tests/general/studio_browser.rs) drives Debian's
 # Chromium headless over the DevTools protocol; no browser is downloaded.
 if [ ! -x /usr/bin/chromium ]; then
   echo "setup: installing Chromium for the studio's browser test (apt: chromium)"
@@ -33,7 +33,7 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
-# The VS Code extension's tests (tests/vscode_extension.rs) run its grammar
+# The VS Code extension's tests (tests/general/vscode_extension.rs) run its grammar
 # with vscode-textmate and drive `npr lsp` with vscode-jsonrpc: Node.js and
 # the extension's npm packages (pinned by editors/vscode/package-lock.json).
 if ! command -v npm >/dev/null 2>&1; then

@@ -15,7 +15,7 @@
 
 use crate::printer::Printer;
 use abi::manifest::{ParamBinding, ParamManifest};
-use compiler::overrides::ParamOverride;
+use compiler::mid::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
 use dsl::{codes, Diagnostic, SourceMap, Span};
 use std::path::Path;

@@ -8,32 +8,14 @@
 //! frame block, [`abi::StyleProgram`] via [`Compiled::program`]); the compiler
 //! does not depend on the runner, nor the runner on it.
 
-pub mod allocate;
-pub mod const_domains;
-pub mod consteval;
-pub mod dag;
+pub mod back;
 pub mod dump;
-pub mod emit;
-pub mod filter_args;
-pub mod filter_checks;
-pub mod follow_ups;
+pub mod front;
 pub mod ir;
-pub mod line_settings;
-pub mod load;
-pub mod load_filters;
-pub mod overrides;
-pub mod paths;
+pub mod mid;
 pub mod pipeline;
-pub mod prune;
 pub mod report;
-pub mod resolve;
-pub mod scene_tags;
 pub mod schedule;
-pub mod specialize;
-pub mod texture_spans;
-pub mod texture_uses;
-pub mod typecheck;
-pub mod validate;
 
 use abi::SceneSummary;
 use dsl::{Diagnostic, SourceMap, Span};
@@ -51,7 +33,7 @@ pub struct CompileOptions {
     pub scene: Option<SceneSummary>,
     /// New defaults for parameters (`--set`), already typed by the caller;
     /// applied after typecheck, so they fold like written defaults.
-    pub overrides: Vec<overrides::ParamOverride>,
+    pub overrides: Vec<mid::overrides::ParamOverride>,
     /// Which files the style may read (`use`, `image("…")`): `None` reads
     /// any path (library use); the `npr` commands always give one
     /// (`dsl::paths`, docs/PATHS.md).
@@ -136,7 +118,7 @@ pub enum CompileError {
 /// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
 pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let Some(loaded) = load::load_file(path, sources, opts.paths.as_ref(), &mut diags) else {
+    let Some(loaded) = front::load::load_file(path, sources, opts.paths.as_ref(), &mut diags) else {
         return Err(CompileError::User(diags));
     };
     pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
@@ -151,6 +133,6 @@ pub fn compile_source(
     opts: &CompileOptions,
 ) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let loaded = load::load_source(name, text, dir, sources, opts.paths.as_ref(), &mut diags);
+    let loaded = front::load::load_source(name, text, dir, sources, opts.paths.as_ref(), &mut diags);
     pipeline::run(loaded, sources, name, opts, diags)
 }

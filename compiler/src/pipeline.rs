@@ -3,9 +3,9 @@
 //! schedule (fusion) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
-use crate::emit::Emitter;
+use crate::back::emit::Emitter;
+use crate::front::load::Loaded;
 use crate::ir::Ir;
-use crate::load::Loaded;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
 use abi::manifest::ParamBinding;
@@ -70,25 +70,25 @@ pub fn run(
         );
     }
     let root_file = loaded.root_file;
-    let mut ir = crate::resolve::resolve(&loaded, opts.scene.as_ref(), opts.paths.as_ref(), &mut diags)
+    let mut ir = crate::front::resolve::resolve(&loaded, opts.scene.as_ref(), opts.paths.as_ref(), &mut diags)
         .map_err(CompileError::Internal)?;
-    if loaded.is_filter || crate::filter_checks::reads_a_level(&ir) {
-        crate::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
+    if loaded.is_filter || crate::front::filter_checks::reads_a_level(&ir) {
+        crate::front::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
     }
     st.done("resolve", &ir);
-    crate::typecheck::typecheck(&mut ir, &mut diags);
-    crate::texture_uses::check(&ir, &mut diags);
+    crate::front::typecheck::typecheck(&mut ir, &mut diags);
+    crate::front::texture_uses::check(&ir, &mut diags);
     st.done("typecheck", &ir);
-    crate::follow_ups::suppress(&mut diags, &loaded.broken, sources);
+    crate::front::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;
-    crate::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
+    crate::mid::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
     let filters = compile_filters(&ir, loaded.filters, sources)?;
-    let graph = crate::dag::build(&ir, &mut diags);
+    let graph = crate::mid::dag::build(&ir, &mut diags);
     st.done("dag", &ir);
     fail_if_errors(&diags)?;
     let mut scratch = Report::default();
-    let live = crate::prune::prune(&ir, &graph, &mut scratch);
-    diags.extend(crate::prune::unread_compute_passes(&ir, &live));
+    let live = crate::mid::prune::prune(&ir, &graph, &mut scratch);
+    diags.extend(crate::mid::prune::unread_compute_passes(&ir, &live));
     st.done("prune", &ir);
     let mut report = Report::default();
     for (tag, present) in &ir.scene_queries {
@@ -103,13 +103,13 @@ pub fn run(
             },
         );
     }
-    let bindings = crate::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
+    let bindings = crate::mid::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
     st.done("specialize", &ir);
     // Folding may have made passes, targets and params dead: prune again.
     // Folded parameters no longer appear in the IR; they stay "folded", not "removed".
-    let graph = crate::dag::build(&ir, &mut diags);
+    let graph = crate::mid::dag::build(&ir, &mut diags);
     let mut second = Report::default();
-    let mut live = crate::prune::prune(&ir, &graph, &mut second);
+    let mut live = crate::mid::prune::prune(&ir, &graph, &mut second);
     let folded: Vec<String> = bindings
         .iter()
         .enumerate()
@@ -132,9 +132,9 @@ pub fn run(
             }
         })
         .collect();
-    diags.extend(crate::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
+    diags.extend(crate::mid::scene_tags::absent_tags(&ir, &live, opts.scene.as_ref()));
     st.done("prune-after-specialize", &ir);
-    diags.extend(crate::const_domains::check(&ir, &live));
+    diags.extend(crate::mid::const_domains::check(&ir, &live));
     fail_if_errors(&diags)?;
     diags.extend(crate::schedule::apply(
         &mut ir,
@@ -147,7 +147,7 @@ pub fn run(
     ));
     fail_if_errors(&diags)?;
     st.done("schedule", &ir);
-    let alloc = crate::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
+    let alloc = crate::back::allocate::allocate(&ir, &live, &bindings, &mut report).map_err(CompileError::Internal)?;
     st.done("allocate", &ir);
     let emitter = Emitter {
         ir: &ir,
@@ -157,7 +157,7 @@ pub fn run(
     };
     let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
     let manifest =
-        crate::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name, &filters)
+        crate::back::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name, &filters)
             .map_err(CompileError::Internal)?;
     for a in &manifest.scene_attributes {
         report.push(
@@ -171,7 +171,7 @@ pub fn run(
     for (pid, e) in emitted {
         let pass = ir.pass(pid);
         let file = format!("{}.wgsl", pass.name);
-        if let Err(message) = crate::validate::validate_wgsl(&file, &e.wgsl) {
+        if let Err(message) = crate::back::validate::validate_wgsl(&file, &e.wgsl) {
             return Err(CompileError::Internal(InternalError {
                 message: format!("emitted WGSL for pass `{}` failed naga validation", pass.name),
                 detail: message,
@@ -187,7 +187,7 @@ pub fn run(
         shaders,
         report,
         warnings: diags,
-        texture_spans: crate::texture_spans::texture_spans(&ir, sources),
+        texture_spans: crate::front::texture_spans::texture_spans(&ir, sources),
         timings: st.timings,
         dumps: st.dumps,
     })
@@ -246,7 +246,7 @@ fn compile_filters(
             plain
         } else {
             // The arguments are checked against the params the filter declares.
-            let overrides = crate::filter_args::overrides(filter_args, &plain.manifest.params, filter_name)
+            let overrides = crate::front::filter_args::overrides(filter_args, &plain.manifest.params, filter_name)
                 .map_err(CompileError::User)?;
             let opts = CompileOptions {
                 overrides,

@@ -5,7 +5,7 @@
 //! computed tile); and that `auto` does none but reports what `recompute`
 //! would do. Every module here passed naga's validation inside
 //! `compile_source`; that the images equal the naive schedule's is
-//! `tests/schedule_equivalence.rs`.
+//! `tests/gpu/schedule_equivalence.rs`.
 
 use abi::manifest::{PassKindManifest, Resource};
 use compiler::schedule::Schedule;

@@ -2,7 +2,7 @@
 //! `tiled` override `--schedule` for their pass under every run schedule,
 //! `auto` leaves the pass to it, and the report says, per image pass, what
 //! it got and why ("forced by `schedule: naive` at line L"). That the
-//! images equal the naive schedule's is `tests/schedule_equivalence.rs`;
+//! images equal the naive schedule's is `tests/gpu/schedule_equivalence.rs`;
 //! E0311 (a forced `tiled` the tiler refuses) is in `tests/error_codes/`.
 
 use abi::manifest::PassKindManifest;

@@ -4,10 +4,10 @@
 //! internal errors of impossible states.
 
 use abi::manifest::ParamBinding;
-use compiler::allocate::{allocate, Allocation};
-use compiler::dag::PassGraph;
+use compiler::back::allocate::{allocate, Allocation};
 use compiler::ir::*;
-use compiler::prune::{prune, Live};
+use compiler::mid::dag::PassGraph;
+use compiler::mid::prune::{prune, Live};
 use compiler::report::Report;
 use dsl::SourceMap;
 use std::path::Path;
@@ -16,10 +16,10 @@ use std::path::Path;
 fn front(text: &str) -> (Ir, PassGraph) {
     let mut sources = SourceMap::new();
     let mut diags = Vec::new();
-    let loaded = compiler::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
-    let mut ir = compiler::resolve::resolve(&loaded, None, None, &mut diags).expect("no internal error");
-    compiler::typecheck::typecheck(&mut ir, &mut diags);
-    let graph = compiler::dag::build(&ir, &mut diags);
+    let loaded = compiler::front::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
+    let mut ir = compiler::front::resolve::resolve(&loaded, None, None, &mut diags).expect("no internal error");
+    compiler::front::typecheck::typecheck(&mut ir, &mut diags);
+    let graph = compiler::mid::dag::build(&ir, &mut diags);
     let errors: Vec<String> = diags
         .iter()
         .filter(|d| d.is_error())
@@ -169,8 +169,8 @@ fn specialized(text: &str, keep_params: bool) -> (Ir, Vec<ParamBinding>, Live, R
     let (mut ir, graph) = front(text);
     let live = prune(&ir, &graph, &mut Report::default());
     let mut report = Report::default();
-    let bindings = compiler::specialize::specialize(&mut ir, &live, keep_params, &mut report);
-    let graph = compiler::dag::build(&ir, &mut Vec::new());
+    let bindings = compiler::mid::specialize::specialize(&mut ir, &live, keep_params, &mut report);
+    let graph = compiler::mid::dag::build(&ir, &mut Vec::new());
     let live = prune(&ir, &graph, &mut report);
     (ir, bindings, live, report)
 }
@@ -374,7 +374,7 @@ fn an_output_without_a_target_is_an_internal_error() {
     // An impossible state: the allocator always gives the output a target.
     let out = ir.output.expect("output");
     alloc.targets.retain(|(t, _)| *t != out);
-    let err = compiler::emit::manifest::build(
+    let err = compiler::back::emit::manifest::build(
         &ir,
         &live,
         &alloc,
@@ -432,7 +432,7 @@ fn prune_keeps_the_values_a_live_pass_reads_and_the_states_they_read() {
             "{what} not reported: {removed:?}"
         );
     }
-    let warnings = compiler::prune::unread_compute_passes(&ir, &live);
+    let warnings = compiler::mid::prune::unread_compute_passes(&ir, &live);
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(warnings[0].message.contains("`spare`"));
 }

@@ -3,7 +3,7 @@
 //! shape (its tiles, their load functions, the storage outputs); and that
 //! `auto` tiles nothing but reports what `tiled` would tile. Every module
 //! here passed naga's validation inside `compile_source`; that the images
-//! equal the naive schedule's is `tests/schedule_equivalence.rs`.
+//! equal the naive schedule's is `tests/gpu/schedule_equivalence.rs`.
 
 use compiler::schedule::Schedule;
 use compiler::CompileOptions;

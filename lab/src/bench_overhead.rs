@@ -2,7 +2,7 @@
 //! hand-written wgpu program that draws the same WGSL passes
 //! ([`baseline::Baseline`], which shares no object and no code with the
 //! runner's executors). A benchmark, never a test; the test of the baseline
-//! (`tests/bench_overhead.rs`) only checks that it draws the same image.
+//! (`tests/gpu/bench_overhead.rs`) only checks that it draws the same image.
 //!
 //! Before timing, both draw one frame and their output images are compared
 //! (as [`same_image`] does): the baseline must do the same work, so a difference

@@ -4,7 +4,7 @@
 //! over, with its read-back of one flag bit per edge and their unpacking
 //! into the edge indices that chaining needs. `npr bench lines` times it
 //! against the CPU's `EdgeMesh::silhouettes` on the same meshes, and
-//! `tests/lines_classify.rs` checks that both give the same edges. It is
+//! `tests/gpu/lines_classify.rs` checks that both give the same edges. It is
 //! not wired into the renderer (ARCHITECTURE.md, "Lines are built on the
 //! CPU", says why with the numbers).
 //!

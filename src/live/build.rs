@@ -7,7 +7,7 @@
 //! sends them to the page.
 
 use crate::set_params;
-use compiler::overrides::ParamOverride;
+use compiler::mid::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
 use dsl::{Diagnostic, SourceMap};
 use runner::scene::Scene;

@@ -2,7 +2,7 @@
 //! the compiler loads a style (the document and every file it `use`s,
 //! parsed with recovery), and the declarations of all of them by name.
 
-use compiler::load::Loaded;
+use compiler::front::load::Loaded;
 use dsl::ast::{Item, ParamDecl, PassDecl, TextureDecl};
 use dsl::{FileId, SourceMap, Span};
 use std::path::{Path, PathBuf};
@@ -32,7 +32,7 @@ impl Analysis {
         // Without a policy (the directory is gone) nothing `use`d can be
         // read anyway; `diagnostics::check` reports why.
         let policy = super::policy::for_document(path).ok();
-        let loaded = compiler::load::load_source(&name, text, dir, &mut sources, policy.as_ref(), &mut diags);
+        let loaded = compiler::front::load::load_source(&name, text, dir, &mut sources, policy.as_ref(), &mut diags);
         Analysis { sources, loaded }
     }
 

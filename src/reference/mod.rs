@@ -2,7 +2,7 @@
 //! the metadata (`pages.rs`), with each operator's demo image (`images.rs`)
 //! and its committed benchmark figures (`figures.rs`), and the same pages as
 //! a static HTML site (`html.rs`). `docs/reference/` is this output, checked by
-//! `tests/reference_docs.rs`.
+//! `tests/general/reference_docs.rs`.
 
 pub mod figures;
 mod html;

@@ -22,7 +22,7 @@ use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use abi::manifest::ParamBinding;
-use compiler::overrides::ParamOverride;
+use compiler::mid::overrides::ParamOverride;
 use dsl::SourceMap;
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError};

@@ -5,7 +5,7 @@
 
 use crate::set_params::{self, Kind};
 use abi::manifest::{ParamBinding, ParamManifest};
-use compiler::overrides::ParamOverride;
+use compiler::mid::overrides::ParamOverride;
 use dsl::{Diagnostic, SourceMap};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;

@@ -1,4 +1,4 @@
-//! What the art-map tests share (`tests/artmaps.rs`, `tests/artmap_cache.rs`):
+//! What the art-map tests share (`tests/gpu/artmaps.rs`, `tests/gpu/artmap_cache.rs`):
 //! a scratch directory, compiling a style text, a scene from text, a grey
 //! source image, and one frame through the runner.
 

@@ -1,5 +1,5 @@
-//! What the `lines` pass tests share (`tests/lines_pass.rs`,
-//! `tests/lines_fandisk.rs`; Klein et al. 2000 §5): the test style (a fill
+//! What the `lines` pass tests share (`tests/gpu/lines_pass.rs`,
+//! `tests/general/lines_fandisk.rs`; Klein et al. 2000 §5): the test style (a fill
 //! that keeps its depth, black lines over white), projection to pixels, the
 //! ink read back from the real renderer, and recall and precision of ink
 //! pixels against truth samples (issue 10: "precision and recall of the

@@ -12,7 +12,7 @@ use stdlib::reference::ImageF64;
 /// formats), compiled `--schedule naive`: the tests read intermediate
 /// targets (`thin.e`, which `auto` computes inside the ink pass, so it is
 /// no target there); the output is the same bit for bit under either
-/// schedule (`tests/schedule_equivalence.rs`).
+/// schedule (`tests/gpu/schedule_equivalence.rs`).
 pub fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
     let path = root().join("examples").join(name);
     let mut text = std::fs::read_to_string(&path).expect("read style");

@@ -2,7 +2,7 @@
 //! grid facing the camera, two OBJ groups meeting at x = 0 (patch 0 on the
 //! left, patch 1 on the right), the scene around it, and the surface point
 //! under each pixel (a plane parallel to the image maps to it affinely).
-//! Shared by `tests/patch_blend.rs` and `tests/patch_blend_styles.rs`.
+//! Shared by `tests/gpu/patch_blend.rs` and `tests/gpu/patch_blend_styles.rs`.
 
 use super::root;
 use std::path::{Path, PathBuf};

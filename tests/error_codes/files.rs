@@ -276,7 +276,7 @@ fn e0406_a_path_outside_the_root() {
 
 #[test]
 fn e0508_the_gpu_out_of_memory() {
-    // Forced on the device in tests/gpu_errors.rs (under an address-space
+    // Forced on the device in tests/gpu/gpu_errors.rs (under an address-space
     // limit); this is its rendered message.
     let e = runner::RunError::OutOfMemory("the GPU ran out of memory making the targets of a 16384x16384 image".into());
     let d = e.diagnostics();
@@ -286,7 +286,7 @@ fn e0508_the_gpu_out_of_memory() {
 
 #[test]
 fn e0509_a_lost_device() {
-    // Forced with `Device::destroy` in tests/gpu_errors.rs; its rendered message.
+    // Forced with `Device::destroy` in tests/gpu/gpu_errors.rs; its rendered message.
     let e = runner::RunError::DeviceLost("Destroyed: Device is dying.".into());
     let d = e.diagnostics();
     let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);

@@ -56,7 +56,7 @@ fn e0303_no_output() {
     let text = style("pass p: render(scene) {\n  out color: rgba8unorm = vec4(1.0)\n}\n");
     check("E0303", compile_errors(&text, &scratch("e0303")));
     // A style of nothing but its header: E0303 at the header, not an
-    // internal error (found by tests/fuzz_compiler.rs).
+    // internal error (found by tests/general/fuzz_compiler.rs).
     check_case(
         "E0303",
         "header_only",

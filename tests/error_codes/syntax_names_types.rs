@@ -270,7 +270,7 @@ fn e0203_a_constant_call_outside_its_domain() {
         "vec4(pow(vec3(-1.0), vec3(0.5)), 1.0)",
         "vec4(acos(2.0))",
         // Through normalize, clamp, cross, distance, `%`, a comparison and a
-        // constant `if` (a 30,000-case soak of tests/fuzz_generated.rs
+        // constant `if` (a 30,000-case soak of tests/general/fuzz_generated.rs
         // found the first).
         "sqrt(normalize(vec4(2.229) + vec4(0.5)) - clamp(vec4(1.962), vec4(0.0), vec4(1.0)))",
         "vec4(sqrt(cross(vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0))), 1.0)",
@@ -306,7 +306,7 @@ fn e0203_a_constant_call_outside_its_domain() {
 #[test]
 fn int_arguments_of_float_only_functions_are_promoted() {
     // `mix`, `pow`, `step` and `atan2` of two ints were E9001 (naga: no
-    // integer overload); found by tests/fuzz_generated.rs.
+    // integer overload); found by tests/general/fuzz_generated.rs.
     for e in [
         "mix(n, n, 0.5)",
         "mix(n, 2, 0.5)",

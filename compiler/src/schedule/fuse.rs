@@ -18,9 +18,9 @@
 use super::footprint::{pass_apron, texture_reads, Read};
 use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
 use super::{Plan, Schedule};
-use crate::dag::pass_roots;
 use crate::ir::*;
-use crate::prune::Live;
+use crate::mid::dag::pass_roots;
+use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::formats::Storage;
 use std::collections::{BTreeMap, BTreeSet};

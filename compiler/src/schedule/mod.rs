@@ -45,7 +45,7 @@ pub mod tile;
 mod unstored;
 
 use crate::ir::{Ir, PassId, PassKind};
-use crate::prune::Live;
+use crate::mid::prune::Live;
 use crate::report::Report;
 use dsl::{Diagnostic, FileId, SourceMap, Span};
 use serde::Serialize;
@@ -59,12 +59,12 @@ pub enum Schedule {
     /// `--dump-passes` and the studio's thumbnails use it.
     Naive,
     /// The compiler's choice: fusion where it saves a target and a pass.
-    /// The default: `tests/schedule_equivalence.rs` shows it gives the naive
+    /// The default: `tests/gpu/schedule_equivalence.rs` shows it gives the naive
     /// image, bit for bit, on every example.
     #[default]
     Auto,
     /// `auto` plus workgroup tiles for neighbourhood passes: the same image
-    /// (`tests/schedule_equivalence.rs`), slower on lavapipe.
+    /// (`tests/gpu/schedule_equivalence.rs`), slower on lavapipe.
     Tiled,
     /// `tiled`, and each neighbourhood pass whose one reader reads it
     /// around the pixel is computed in that reader's tiles instead of

@@ -10,7 +10,7 @@
 //! image) makes the workgroup run again without its tiles (`emit/tiled`),
 //! so the image never depends on the metadata being right, only the speed
 //! does (`stdlib/tests/footprints.rs` checks the metadata is sound and
-//! tight; `tests/schedule_equivalence.rs` narrows the tiles on purpose).
+//! tight; `tests/gpu/schedule_equivalence.rs` narrows the tiles on purpose).
 //!
 //! Not tiled, with the reason in the report: a pass that reads no target
 //! around the pixel, blends, writes a format compute cannot store, reads a
@@ -25,9 +25,9 @@
 
 use super::footprint::{texture_reads, Read};
 use super::{Plan, Schedule};
-use crate::dag::pass_roots;
 use crate::ir::*;
-use crate::prune::Live;
+use crate::mid::dag::pass_roots;
+use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
 use dsl::{codes, Diagnostic};

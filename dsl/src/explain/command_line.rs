@@ -155,7 +155,7 @@ pub(super) const ALL: &[Explanation] = &[
             style: GREY,
             files: SCENE,
             commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "out.png", "--size", "16384x16384"]],
-            not_runnable: Some("whether a size runs out of memory depends on the device; tests/gpu_errors.rs provokes it under an address-space limit"),
+            not_runnable: Some("whether a size runs out of memory depends on the device; tests/gpu/gpu_errors.rs provokes it under an address-space limit"),
             ..EXAMPLE
         },
         fixed: Example {
@@ -176,7 +176,7 @@ pub(super) const ALL: &[Explanation] = &[
             style: GREY,
             files: SCENE,
             commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "out.png", "--size", "16x16"]],
-            not_runnable: Some("it needs the driver to reset during the run; tests/gpu_errors.rs destroys the device to provoke it"),
+            not_runnable: Some("it needs the driver to reset during the run; tests/gpu/gpu_errors.rs destroys the device to provoke it"),
             ..EXAMPLE
         },
         fixed: Example {

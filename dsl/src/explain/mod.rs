@@ -6,7 +6,7 @@
 //! The explanations are data, one file per code range (`syntax.rs` E00xx,
 //! `names.rs` E01xx, `types.rs` E02xx, `passes.rs` E03xx and W03xx,
 //! `files.rs` E04xx and W04xx, `command_line.rs` E05xx). Each example is a
-//! set of files and `npr` command lines, so `tests/explain.rs` runs every
+//! set of files and `npr` command lines, so `tests/general/explain.rs` runs every
 //! pair through the `npr` binary: the wrong one must give exactly its code,
 //! the fixed one none.
 
@@ -57,7 +57,7 @@ pub struct Example {
     /// (prints its address), and the test stops it then.
     pub serves: bool,
     /// Why this example cannot be run on a machine where it is tested;
-    /// `tests/explain.rs` lists these and runs everything else.
+    /// `tests/general/explain.rs` lists these and runs everything else.
     pub not_runnable: Option<&'static str>,
 }
 

@@ -13,8 +13,8 @@
 //! object stage reads complete partials.
 
 use super::bind;
+use super::common::{EncodeContext, Timestamps};
 use super::meshes::{attribute_format, GpuMesh};
-use super::pass::{EncodeContext, Timestamps};
 use super::resources::SizedPass;
 use super::values::PassBuffers;
 use crate::RunError;
@@ -75,7 +75,7 @@ impl ComputePassExec {
     pub fn build(
         device: &wgpu::Device,
         pass: &PassManifest,
-        shader: super::pass::PassShader,
+        shader: super::common::PassShader,
         object_buffer: &wgpu::Buffer,
         buffers: &PassBuffers,
     ) -> Result<ComputePassExec, RunError> {

@@ -2,7 +2,7 @@
 //! buffers, no depth, group 0 only) into the pass's targets.
 
 use super::bind;
-use super::pass::{self, Timestamps};
+use super::common::{self, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
 use abi::manifest::*;
@@ -19,20 +19,20 @@ impl ImagePassExec {
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
-        shader: pass::PassShader,
+        shader: common::PassShader,
     ) -> Result<ImagePassExec, RunError> {
         let layout0 = bind::group0_layout(device, pass);
-        let pipeline = pass::render_pipeline(device, manifest, pass, shader, &[&layout0], &[], None)?;
+        let pipeline = common::render_pipeline(device, manifest, pass, shader, &[&layout0], &[], None)?;
         Ok(ImagePassExec {
             name: pass.name.clone(),
-            clear: pass::clear_color(pass),
+            clear: common::clear_color(pass),
             pipeline,
             layout0,
         })
     }
 
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, sized: &SizedPass, timestamps: Option<&Timestamps>) {
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
+        let mut rp = common::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
         rp.draw(0..3, 0..1);

@@ -10,7 +10,7 @@
 //! pipeline has no depth attachment.
 
 use super::bind;
-use super::pass::{self, Timestamps};
+use super::common::{self, Timestamps};
 use super::resources::SizedPass;
 use crate::lines::cache::{EdgeSelection, LinesCache};
 use crate::lines::draw::{vertices, DepthBias};
@@ -73,7 +73,7 @@ impl LinesPassExec {
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
-        shader: pass::PassShader,
+        shader: common::PassShader,
     ) -> Result<LinesPassExec, RunError> {
         let PassKindManifest::Lines {
             tag,
@@ -131,10 +131,10 @@ impl LinesPassExec {
         });
         let mut layouts = vec![&layout0];
         layouts.extend(depth_layout.as_ref());
-        let pipeline = pass::render_pipeline(device, manifest, pass, shader, &layouts, &buffers, None)?;
+        let pipeline = common::render_pipeline(device, manifest, pass, shader, &layouts, &buffers, None)?;
         Ok(LinesPassExec {
             name: pass.name.clone(),
-            clear: pass::clear_color(pass),
+            clear: common::clear_color(pass),
             tag: tag.clone(),
             edges: *edges,
             shape: shape.clone(),
@@ -266,7 +266,7 @@ impl LinesPassExec {
         slot: usize,
         timestamps: Option<&Timestamps>,
     ) {
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
+        let mut rp = common::begin_render_pass(encoder, &self.name, self.clear, sized, None, timestamps);
         let Some(Some(geometry)) = self.slots.get(slot) else {
             return;
         };
@@ -281,71 +281,5 @@ impl LinesPassExec {
         rp.set_vertex_buffer(0, geometry.vertices.slice(..));
         rp.set_index_buffer(geometry.indices.slice(..), wgpu::IndexFormat::Uint32);
         rp.draw_indexed(0..geometry.index_count, 0, 0..1);
-    }
-}
-
-impl super::Renderer<'_> {
-    /// Per lines pass (by name): how many times its strips were built since
-    /// the renderer was made (each eye slot counts).
-    pub fn lines_rebuilds(&self) -> Vec<(String, u64)> {
-        self.passes
-            .iter()
-            .zip(&self.manifest.passes)
-            .filter_map(|(exec, pass)| match exec {
-                super::pass::PassExec::Lines(l) => Some((pass.name.clone(), l.rebuilds())),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// Every lines pass's strips for this frame, per eye slot (after the
-    /// uniforms are written; `scene` is posed at the frame's time).
-    pub(super) fn prepare_lines(
-        &mut self,
-        scene: &crate::scene::Scene,
-        spec: &super::FrameSpec,
-    ) -> Result<(), RunError> {
-        if !self.passes.iter().any(|p| matches!(p, super::pass::PassExec::Lines(_))) {
-            return Ok(());
-        }
-        let meshes: Vec<std::sync::Arc<crate::scene::Mesh>> = scene
-            .objects
-            .iter()
-            .map(|o| match &o.time_varying {
-                Some(primitive) => std::sync::Arc::new(primitive.build_at(spec.time_s)),
-                None => o.mesh.clone(),
-            })
-            .collect();
-        let frame = LinesFrame {
-            manifest: &self.manifest,
-            scene,
-            meshes: &meshes,
-            time_s: spec.time_s,
-            width: spec.width,
-            height: spec.height,
-        };
-        let pose = scene.camera.pose(spec.time_s);
-        let focal_y = f64::from(pose.projection(spec.width as f32 / spec.height as f32).y_axis.y);
-        let eyes: Vec<LinesEye> = (0..self.frame_buffers.len())
-            .map(|slot| {
-                let eye = self.eye_of_slot(spec, slot as u32);
-                LinesEye {
-                    slot,
-                    eye,
-                    position: pose.position(eye).as_dvec3(),
-                    view_proj: self.view_proj(scene, spec, eye).as_dmat4(),
-                    focal_y,
-                }
-            })
-            .collect();
-        for (pi, exec) in self.passes.iter_mut().enumerate() {
-            let super::pass::PassExec::Lines(lines) = exec else {
-                continue;
-            };
-            for eye in &eyes {
-                lines.prepare(self.device, self.queue, &frame, eye, self.manifest.passes[pi].scale)?;
-            }
-        }
-        Ok(())
     }
 }

@@ -22,6 +22,7 @@
 //!   `lines_pass.rs` the executors.
 
 mod bind;
+mod common;
 mod compute_pass;
 mod frame;
 mod image_pass;
@@ -29,6 +30,7 @@ mod lines_pass;
 mod meshes;
 mod objects;
 mod pass;
+mod prepare_lines;
 mod render_pass;
 mod resources;
 mod scene_check;
@@ -45,8 +47,9 @@ use crate::scene::Scene;
 use crate::textures::{self, GpuTexture};
 use crate::{readback, RunError};
 use abi::manifest::*;
+use common::{EncodeContext, Timestamps};
 use glam::Mat4;
-use pass::{EncodeContext, PassExec, Timestamps};
+use pass::PassExec;
 
 /// The largest image (`--size`): `dsl::limits`, where every limit is listed.
 pub use dsl::limits::MAX_OUTPUT_SIZE;

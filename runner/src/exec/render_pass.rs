@@ -7,8 +7,8 @@
 //! and n-ring (Breslav et al. 2007 §3.6), every other pass its own faces.
 
 use super::bind::{self, ObjectResources};
+use super::common::{self, EncodeContext, Timestamps};
 use super::meshes::attribute_format;
-use super::pass::{self, EncodeContext, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
 use abi::manifest::*;
@@ -83,7 +83,7 @@ impl RenderPassExec {
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
-        shader: pass::PassShader,
+        shader: common::PassShader,
         (tag, attributes): (Option<&String>, &[Attribute]),
         depth_mode: &DepthMode,
         objects: &ObjectResources,
@@ -114,7 +114,7 @@ impl RenderPassExec {
             })
             .collect();
         let (depth, depth_ops) = depth_state(depth_mode);
-        let pipeline = pass::render_pipeline(
+        let pipeline = common::render_pipeline(
             device,
             manifest,
             pass,
@@ -125,7 +125,7 @@ impl RenderPassExec {
         )?;
         Ok(RenderPassExec {
             name: pass.name.clone(),
-            clear: pass::clear_color(pass),
+            clear: common::clear_color(pass),
             tag: tag.cloned(),
             attributes: attributes.to_vec(),
             pipeline,
@@ -143,7 +143,7 @@ impl RenderPassExec {
         timestamps: Option<&Timestamps>,
     ) {
         let depth = sized.depth_view.as_ref().map(|v| (v, self.depth_ops));
-        let mut rp = pass::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
+        let mut rp = common::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
         for (oi, mesh) in ctx.meshes.iter().enumerate() {

@@ -5,7 +5,7 @@
 //! since the outputs are the slot's textures.
 
 use super::bind;
-use super::pass::{PassShader, Timestamps};
+use super::common::{PassShader, Timestamps};
 use super::resources::{wgpu_format, SizedPass};
 use crate::RunError;
 use abi::manifest::*;

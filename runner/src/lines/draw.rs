@@ -14,7 +14,7 @@
 //! inner-half pixels of the sphere's rim (of ~700) and leaked no hidden
 //! crease; 1e-3 kept 400 and leaked 7 of 512 hidden-edge samples; 3e-3
 //! kept 460 and leaked 91. The edge-point test keeps 752 inside against
-//! 668 outside and leaks none (`tests/lines_pass.rs`).
+//! 668 outside and leaks none (`tests/gpu/lines_pass.rs`).
 //!
 //! The bias: `bias: N px` is a view-space pull (every vertex moves towards
 //! the eye along its own ray by the world distance N px span at its depth,

@@ -224,7 +224,7 @@ pub fn artmaps(build: &[bench_artmaps::BuildRow], subtitle: &str) -> Figure {
             .push("one source size: no cost-against-size chart (give --sizes A,B,…)".into());
     }
     fig.notes.push(
-        "this command measures no error (tests/artmaps.rs asserts the reads' errors), so no speed-against-error chart; \
+        "this command measures no error (tests/gpu/artmaps.rs asserts the reads' errors), so no speed-against-error chart; \
          the sampling table has one image size"
             .into(),
     );

@@ -2,7 +2,7 @@
 //! a per-surface level-of-detail bias, and reading a rip-map with a level
 //! per axis. Both take screen derivatives. Their references give the level
 //! a read selects, so the cases read textures whose level i holds i·STEP:
-//! the value read is the level (`tests/artmaps.rs` checks the same through
+//! the value read is the level (`tests/gpu/artmaps.rs` checks the same through
 //! the runner).
 
 pub mod reference;

@@ -1,0 +1,384 @@
+//! `npr studio` in a real browser: Debian's Chromium, headless, driven over
+//! the DevTools protocol (a WebSocket, `tungstenite`) against the real
+//! server. It checks that
+//! 1. the page's canvas shows the rendered image: its pixels equal
+//!    `npr render --keep-params` within 1/255 (8-bit output: exact in practice);
+//! 2. moving a slider changes the image (to `--set` of the slider's value);
+//! 3. a broken save shows the diagnostic with its line and column while the
+//!    last image stays;
+//! 4. fixing it brings a new image;
+//! 5. clicking a pass thumbnail shows that target.
+//!
+//! A failing step saves a screenshot into `target/tmp/studio-browser/`.
+//! Chromium missing is a failure with the install command, never a skip.
+
+use crate::common;
+
+use common::http;
+use common::live::{save_by_rename, start_studio};
+use serde_json::{json, Value};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+use tungstenite::{stream::MaybeTlsStream, Message, WebSocket};
+
+const CHROMIUM: &str = "/usr/bin/chromium";
+
+/// A headless Chromium with one page, driven over the DevTools protocol.
+struct Browser {
+    child: Child,
+    ws: WebSocket<MaybeTlsStream<TcpStream>>,
+    next_id: u64,
+    /// The page's session (flat mode); `None` while talking to the browser.
+    session: Option<String>,
+    shots: PathBuf,
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Browser {
+    fn launch(profile: &Path, shots: PathBuf) -> Browser {
+        assert!(
+            Path::new(CHROMIUM).exists(),
+            "this test needs Chromium at {CHROMIUM}: install it with `sudo apt-get install -y chromium` (./setup.sh does)"
+        );
+        let port_file = profile.join("DevToolsActivePort");
+        let child = Command::new(CHROMIUM)
+            .args([
+                "--headless=new",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-quic",
+                "--no-first-run",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                "--remote-debugging-port=0",
+                &format!("--user-data-dir={}", profile.display()),
+                "about:blank",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start chromium");
+        // Chromium writes the port it chose and its browser socket's path
+        // into the profile.
+        let deadline = Instant::now() + common::live::HANG;
+        let (port, path) = loop {
+            let text = std::fs::read_to_string(&port_file).unwrap_or_default();
+            let mut lines = text.lines();
+            if let (Some(port), Some(path)) = (lines.next(), lines.next()) {
+                break (port.to_string(), path.to_string());
+            }
+            assert!(Instant::now() < deadline, "chromium never opened its DevTools port");
+            std::thread::sleep(Duration::from_millis(50));
+        };
+        let url = format!("ws://127.0.0.1:{port}{path}");
+        let (ws, _) = tungstenite::connect(url.as_str()).expect("connect to chromium's DevTools socket");
+        let mut b = Browser {
+            child,
+            ws,
+            next_id: 0,
+            session: None,
+            shots,
+        };
+        // One page, attached in flat mode: its commands carry the session id.
+        let target = b.call("Target.createTarget", json!({"url": "about:blank"}));
+        let attached = b.call(
+            "Target.attachToTarget",
+            json!({"targetId": target["targetId"], "flatten": true}),
+        );
+        b.session = attached["sessionId"].as_str().map(str::to_string);
+        assert!(b.session.is_some(), "no DevTools session: {attached}");
+        b
+    }
+    /// One DevTools command (to the page once attached); its result (events before it are skipped).
+    fn call(&mut self, method: &str, params: Value) -> Value {
+        self.next_id += 1;
+        let id = self.next_id;
+        let mut msg = json!({"id": id, "method": method, "params": params});
+        if let Some(s) = &self.session {
+            msg["sessionId"] = json!(s);
+        }
+        let msg = msg.to_string();
+        self.ws.send(Message::text(msg)).expect("send DevTools command");
+        loop {
+            let reply = self.ws.read().expect("read DevTools reply");
+            let Message::Text(text) = reply else { continue };
+            let v: Value = serde_json::from_str(text.as_str()).expect("DevTools JSON");
+            if v["id"] == id {
+                assert!(v["error"].is_null(), "{method}: {}", v["error"]);
+                return v["result"].clone();
+            }
+        }
+    }
+
+    /// Evaluate JavaScript in the page (promises awaited); its value.
+    fn eval(&mut self, expr: &str) -> Value {
+        let r = self.call(
+            "Runtime.evaluate",
+            json!({"expression": expr, "returnByValue": true, "awaitPromise": true}),
+        );
+        assert!(r["exceptionDetails"].is_null(), "{expr}: {}", r["exceptionDetails"]);
+        r["result"]["value"].clone()
+    }
+
+    /// Wait until `expr` is truthy in the page (the page updates on server events).
+    fn wait_until(&mut self, what: &str, expr: &str) {
+        let deadline = Instant::now() + common::live::HANG;
+        // Before the page has loaded, `document.body` is null: not yet.
+        let probe = format!("(() => {{ try {{ return !!({expr}); }} catch (e) {{ return false; }} }})()");
+        while !self.eval(&probe).as_bool().unwrap_or(false) {
+            assert!(Instant::now() < deadline, "the page never showed {what}");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    /// The canvas's RGBA bytes.
+    fn canvas(&mut self) -> Vec<u8> {
+        let v = self.eval(
+            "(() => { const c = document.getElementById('view'); \
+             return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data); })()",
+        );
+        v.as_array()
+            .expect("pixel array")
+            .iter()
+            .map(|x| x.as_u64().expect("byte") as u8)
+            .collect()
+    }
+
+    fn shown_frame(&mut self) -> u64 {
+        self.eval("Number(document.body.dataset.shownFrame || 0)")
+            .as_u64()
+            .unwrap_or(0)
+    }
+
+    /// Run a step; if it fails, save a screenshot named after it first.
+    fn step(&mut self, name: &str, f: impl FnOnce(&mut Browser)) {
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(self)));
+        if let Err(e) = result {
+            let shot = self.call("Page.captureScreenshot", json!({"format": "png"}));
+            if let Some(b64) = shot["data"].as_str() {
+                let path = self.shots.join(format!("{name}.png"));
+                std::fs::write(&path, base64_decode(b64)).expect("write screenshot");
+                eprintln!("step `{name}` failed; screenshot: {}", path.display());
+            }
+            std::panic::resume_unwind(e);
+        }
+    }
+}
+
+/// Standard base64 (DevTools' screenshot encoding).
+fn base64_decode(s: &str) -> Vec<u8> {
+    let val = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        _ => 63,
+    };
+    let clean: Vec<u8> = s.bytes().filter(|c| *c != b'=' && !c.is_ascii_whitespace()).collect();
+    let mut out = Vec::with_capacity(clean.len() * 3 / 4);
+    for chunk in clean.chunks(4) {
+        let n = chunk
+            .iter()
+            .enumerate()
+            .fold(0u32, |n, (i, c)| n | (val(*c) as u32) << (18 - 6 * i));
+        out.extend_from_slice(&n.to_be_bytes()[1..chunk.len()]);
+    }
+    out
+}
+
+/// [`common::live::reference_render`] decoded to RGBA bytes.
+fn reference(style: &Path, sets: &[&str], out: &Path) -> Vec<u8> {
+    let png = common::live::reference_render(style, sets, out);
+    image::load_from_memory(&png)
+        .expect("decode reference")
+        .to_rgba8()
+        .into_raw()
+}
+
+/// The golden tolerance of 8-bit images: 1/255 per channel.
+fn assert_close(actual: &[u8], expected: &[u8], what: &str) {
+    assert_eq!(actual.len(), expected.len(), "{what}: sizes differ");
+    let worst = actual
+        .iter()
+        .zip(expected)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    assert!(worst <= 1, "{what}: a channel differs by {worst}/255");
+}
+
+#[test]
+fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switches_targets() {
+    let dir = common::live::scratch("studio-browser", "run");
+    let style = dir.join("sobel_outline.npr");
+    let original = std::fs::read_to_string("examples/sobel_outline.npr").expect("style");
+    std::fs::write(&style, &original).expect("copy");
+    let (_studio, addr) = start_studio(&style);
+    let mut b = Browser::launch(&dir.join("profile"), dir.clone());
+    b.call("Page.enable", json!({}));
+    b.call("Page.navigate", json!({"url": format!("http://{addr}/")}));
+
+    let mut first = Vec::new();
+    b.step("1_image", |b| {
+        b.wait_until("a frame", "document.body.dataset.shownFrame");
+        first = b.canvas();
+        assert_close(
+            &first,
+            &reference(&style, &[], &dir.join("ref0.png")),
+            "the first frame",
+        );
+    });
+
+    let mut moved = Vec::new();
+    b.step("2_slider", |b| {
+        let before = b.shown_frame();
+        b.wait_until(
+            "the threshold slider",
+            "document.querySelector('.param[data-name=threshold] input[type=range]')",
+        );
+        b.eval(
+            "(() => { const i = document.querySelector('.param[data-name=threshold] .input'); \
+             i.value = 0; i.dispatchEvent(new Event('input')); })()",
+        );
+        b.wait_until(
+            "the slider's frame",
+            &format!("Number(document.body.dataset.shownFrame) > {before}"),
+        );
+        moved = b.canvas();
+        assert_ne!(moved, first, "moving the slider changes the image");
+        assert_close(
+            &moved,
+            &reference(&style, &["threshold=0"], &dir.join("ref1.png")),
+            "the slider's frame",
+        );
+    });
+
+    b.step("3_broken", |b| {
+        let before = b.shown_frame();
+        save_by_rename(
+            &style,
+            &original.replace("output ink_lines.color", "output ink_lines.colour"),
+        );
+        b.wait_until("a diagnostic", "document.querySelector('#diagnostics .diag.error')");
+        let text = b
+            .eval("document.getElementById('diagnostics').innerText")
+            .as_str()
+            .unwrap_or("")
+            .to_string();
+        assert!(text.contains("sobel_outline.npr:21:"), "line and column shown: {text}");
+        assert!(
+            text.contains("output ink_lines.colour"),
+            "the source line shown: {text}"
+        );
+        assert_eq!(b.shown_frame(), before, "the last image stays");
+        assert_eq!(b.canvas(), moved, "the last image stays");
+    });
+
+    b.step("4_fixed", |b| {
+        let before = b.shown_frame();
+        save_by_rename(&style, &original);
+        b.wait_until(
+            "the fixed frame",
+            &format!(
+                "!document.querySelector('#diagnostics .diag') && Number(document.body.dataset.shownFrame) > {before}"
+            ),
+        );
+        // The slider's value survives the save.
+        assert_close(
+            &b.canvas(),
+            &reference(&style, &["threshold=0"], &dir.join("ref2.png")),
+            "the fixed frame",
+        );
+    });
+
+    b.step("5_thumbnail", |b| {
+        let state: Value = serde_json::from_slice(&http::get(&addr, "/state").body).expect("state");
+        let frame = state["frame"]["id"].as_u64().expect("frame id");
+        let targets = state["frame"]["targets"].as_array().expect("targets").clone();
+        let output = state["frame"]["output"].as_u64().expect("output");
+        let other = targets
+            .iter()
+            .find(|t| t["index"].as_u64() != Some(output))
+            .expect("a target besides the output");
+        let index = other["index"].as_u64().expect("index");
+        b.eval(&format!(
+            "document.querySelector('.thumb[data-index=\"{index}\"]').click()"
+        ));
+        b.wait_until(
+            "the clicked target",
+            &format!("document.body.dataset.shownTarget === '{index}'"),
+        );
+        // The large view shows that target's texels as `npr render` writes a
+        // one-channel float target: grey, clamped to [0, 1].
+        let raw = http::get(&addr, &format!("/frame/{frame}/{index}.f32")).body;
+        let expected: Vec<u8> = raw
+            .chunks(16)
+            .flat_map(|t| {
+                let r = f32::from_le_bytes([t[0], t[1], t[2], t[3]]);
+                let g = (r.clamp(0.0, 1.0) * 255.0).round() as u8;
+                [g, g, g, 255]
+            })
+            .collect();
+        assert_close(&b.canvas(), &expected, &format!("target {}", other["name"]));
+        let name = b.eval("document.getElementById('target-name').textContent");
+        assert!(
+            name.as_str()
+                .unwrap_or("")
+                .contains(other["name"].as_str().unwrap_or("?")),
+            "{name}"
+        );
+    });
+
+    b.step("6_orbit", |b| {
+        let before = b.canvas();
+        let frame = b.shown_frame();
+        let rect = b.eval(
+            "(() => { const r = document.getElementById('view').getBoundingClientRect(); \
+             return [r.left + r.width / 2, r.top + r.height / 2]; })()",
+        );
+        let (x, y) = (rect[0].as_f64().expect("x"), rect[1].as_f64().expect("y"));
+        // A real drag: press on the image, move 80 px right and 30 px down, release.
+        let mouse = |b: &mut Browser, kind: &str, x: f64, y: f64| {
+            b.call(
+                "Input.dispatchMouseEvent",
+                json!({"type": kind, "x": x, "y": y, "button": "left", "buttons": 1, "clickCount": 1}),
+            );
+        };
+        mouse(b, "mousePressed", x, y);
+        mouse(b, "mouseMoved", x + 40.0, y + 15.0);
+        mouse(b, "mouseMoved", x + 80.0, y + 30.0);
+        mouse(b, "mouseReleased", x + 80.0, y + 30.0);
+        b.wait_until(
+            "an orbited frame",
+            &format!(
+                "Number(document.body.dataset.shownFrame) > {frame} && state.view.orbit && state.view.orbit.yaw === -40 \
+                 && Number(document.body.dataset.shownFrame) === state.frame.id"
+            ),
+        );
+        let orbited = b.canvas();
+        let changed = before.chunks(4).zip(orbited.chunks(4)).filter(|(p, q)| p != q).count();
+        assert!(changed * 20 > before.len() / 4, "the drag changed only {changed} pixels");
+        let state: Value = serde_json::from_slice(&http::get(&addr, "/state").body).expect("state");
+        assert!(state["view"]["orbit"]["yaw"].as_f64().is_some_and(|y| y < 0.0), "{}", state["view"]);
+        // Reset to the scene's camera: the image from before the drag.
+        let frame = b.shown_frame();
+        b.eval("document.getElementById('camera-reset').click()");
+        b.wait_until(
+            "the scene camera again",
+            &format!(
+                "Number(document.body.dataset.shownFrame) > {frame} && state.view.orbit === null \
+                 && Number(document.body.dataset.shownFrame) === state.frame.id"
+            ),
+        );
+        assert_close(&b.canvas(), &before, "the scene camera after reset");
+    });
+}

@@ -1,0 +1,35 @@
+//! The integration tests that open a wgpu device in this process (one
+//! per binary, `common::gpu`): rendering, compute, goldens, the runner's
+//! API. One binary instead of one per file, so the suite links once.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod age_of_sail_pipeline;
+mod artmap_cache;
+mod artmaps;
+mod artmaps_hard_cases;
+mod bench_overhead;
+mod blend_depth;
+mod compute;
+mod compute_pixels;
+mod compute_samples;
+mod dynamic_patterns;
+mod golden_images;
+mod gpu_errors;
+mod halftone_tone;
+mod history;
+mod lines_classify;
+mod lines_pass;
+mod lsa_gbuffer_precision;
+mod lsa_stereo;
+mod manifest_mutation;
+mod object_textures;
+mod patch_blend;
+mod patch_blend_styles;
+mod pattern_styles;
+mod runner_api;
+mod schedule_equivalence;
+mod screen_uv;
+mod sliding;
+mod stereo_passes;
