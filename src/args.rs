@@ -1,15 +1,15 @@
 //! Checks of command-line values that clap's types cannot express: an fps
 //! above 0, a finite time, an eye the scene has, frame counts and sizes under
-//! `dsl::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
+//! `diag::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
 //! code (E0502 for a value outside its domain, E0404 for a limit), which the
 //! CLI prints and exits 1 with, before any work starts.
 //!
 //! The syntax of `--size WxH` and `--frames A..B` is checked by clap's value
 //! parsers here too; what they refuse is a usage error (E0501, `usage.rs`).
 
-use dsl::codes;
-use dsl::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
-use dsl::Diagnostic;
+use diag::codes;
+use diag::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
+use diag::Diagnostic;
 
 /// `--size WIDTHxHEIGHT`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {

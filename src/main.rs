@@ -21,7 +21,7 @@ mod watch;
 fn main() {
     // A panic npr expects (naga's, a mesh reader's) is reported as a
     // diagnostic; Rust's own panic line above it would only confuse.
-    dsl::panics::install_quiet_hook();
+    diag::panics::install_quiet_hook();
     let code = match usage::parse() {
         Ok(args) => commands::run(args),
         Err(code) => code,

@@ -1,9 +1,9 @@
 //! `--root` and `--allow-path` made into the paths policy
-//! (`dsl::paths::PathPolicy`, docs/PATHS.md) for a style and its scene.
+//! (`diag::paths::PathPolicy`, docs/PATHS.md) for a style and its scene.
 
 use crate::cli::PathArgs;
-use dsl::paths::PathPolicy;
-use dsl::Diagnostic;
+use diag::paths::PathPolicy;
+use diag::Diagnostic;
 use std::path::Path;
 
 impl PathArgs {

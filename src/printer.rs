@@ -4,7 +4,7 @@
 
 use crate::cli::{MessageFormat, EXIT_INTERNAL, EXIT_USER};
 use compiler::{CompileError, CompileOptions, Compiled};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::Gpu;
 use std::io::IsTerminal;
 use std::path::Path;
@@ -30,8 +30,8 @@ impl Printer {
             return;
         }
         match self.format {
-            MessageFormat::Json => print!("{}", dsl::diagnostic::render_json(diags, sources)),
-            MessageFormat::Human => eprint!("{}", dsl::diagnostic::render(diags, sources, self.color)),
+            MessageFormat::Json => print!("{}", diag::diagnostic::render_json(diags, sources)),
+            MessageFormat::Human => eprint!("{}", diag::diagnostic::render(diags, sources, self.color)),
         }
     }
 
@@ -96,11 +96,11 @@ pub(crate) fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer
     load_scene_in(path, sources, None, printer)
 }
 
-/// [`load_scene`] under a paths policy (`dsl::paths`).
+/// [`load_scene`] under a paths policy (`diag::paths`).
 pub(crate) fn load_scene_in(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&dsl::paths::PathPolicy>,
+    paths: Option<&diag::paths::PathPolicy>,
     printer: &Printer,
 ) -> Result<runner::scene::Scene, i32> {
     runner::scene::load_scene_in(path, sources, paths).map_err(|d| {
@@ -113,7 +113,7 @@ pub(crate) fn load_scene_in(
 pub(crate) fn load_scene_summary(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&dsl::paths::PathPolicy>,
+    paths: Option<&diag::paths::PathPolicy>,
 ) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
     runner::scene::load_scene_in(path, sources, paths).map(|s| s.summary(&path.display().to_string()))
 }

@@ -17,7 +17,7 @@ use crate::printer::Printer;
 use abi::manifest::{ParamBinding, ParamManifest};
 use compiler::mid::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
-use dsl::{codes, Diagnostic, SourceMap, Span};
+use diag::{codes, Diagnostic, SourceMap, Span};
 use std::path::Path;
 
 /// Compile `style` with `sets` applied, then `extra` (the studio's slider
@@ -163,7 +163,7 @@ fn unknown_name(name: &str, span: Span, params: &[ParamManifest]) -> Diagnostic 
         format!("--set {name}: the style has no parameter `{name}`"),
     )
     .with_primary(span, "no parameter of this name");
-    match dsl::diagnostic::did_you_mean(name, settable.iter().copied()) {
+    match diag::diagnostic::did_you_mean(name, settable.iter().copied()) {
         Some(close) => d.with_help(format!("did you mean `{close}`?")),
         None if settable.is_empty() => d.with_help("this style declares no parameter that --set can change"),
         None => d.with_help(format!("its parameters are: {}", settable.join(", "))),
@@ -317,7 +317,7 @@ pub fn parse_value(p: &ParamManifest, text: &str) -> Result<ParamOverride, Value
         Kind::Enum => match p.enum_variants.iter().position(|v| v == text) {
             Some(i) => vec![i as f64],
             None => {
-                let help = match dsl::diagnostic::did_you_mean(text, p.enum_variants.iter().map(String::as_str)) {
+                let help = match diag::diagnostic::did_you_mean(text, p.enum_variants.iter().map(String::as_str)) {
                     Some(close) => format!("did you mean `{close}`?"),
                     None => format!("one of: {}", p.enum_variants.join(", ")),
                 };

@@ -6,7 +6,7 @@
 //! render's own decode reports the rest at the same place).
 
 use compiler::Compiled;
-use dsl::Diagnostic;
+use diag::Diagnostic;
 
 /// E0401/E0404 for every texture file that cannot be used, each pointing at
 /// the path in the style; `depth` says how far each file is opened

@@ -7,7 +7,7 @@
 
 use crate::cli::{Cli, EXIT_OK, EXIT_USER};
 use clap::Parser;
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 
 /// The parsed command line, or the exit code after printing why there is none.
 pub fn parse() -> Result<Cli, i32> {
@@ -29,7 +29,7 @@ where
         }
         let d = diagnostic(&e);
         if wants_json(&args) {
-            print!("{}", dsl::diagnostic::render_json(&[d], &dsl::SourceMap::new()));
+            print!("{}", diag::diagnostic::render_json(&[d], &diag::SourceMap::new()));
         } else {
             eprint!("{}", rendered(&e));
         }

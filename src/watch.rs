@@ -10,7 +10,7 @@ use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::printer::Printer;
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use std::path::PathBuf;
 use std::sync::mpsc;
 

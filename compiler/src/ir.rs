@@ -6,7 +6,7 @@
 //! after its operands, so iterating the arena in order visits operands first
 //! (the typechecker relies on this).
 
-use dsl::Span;
+use diag::Span;
 use serde::Serialize;
 use stdlib::Unit;
 

@@ -1,7 +1,7 @@
 //! The npr compiler: `.npr` source to validated WGSL plus a manifest.
 //!
 //! See [`pipeline`] for the order of the stages. User errors come back as
-//! [`dsl::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
+//! [`diag::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
 //! as emitted WGSL that naga rejects, is a separate [`InternalError`].
 //!
 //! What it produces is defined in the `abi` crate (the manifest types, the
@@ -18,7 +18,7 @@ pub mod report;
 pub mod schedule;
 
 use abi::SceneSummary;
-use dsl::{Diagnostic, SourceMap, Span};
+use diag::{Diagnostic, SourceMap, Span};
 use std::path::Path;
 
 #[derive(Debug, Clone, Default)]
@@ -36,8 +36,8 @@ pub struct CompileOptions {
     pub overrides: Vec<mid::overrides::ParamOverride>,
     /// Which files the style may read (`use`, `image("…")`): `None` reads
     /// any path (library use); the `npr` commands always give one
-    /// (`dsl::paths`, docs/PATHS.md).
-    pub paths: Option<dsl::paths::PathPolicy>,
+    /// (`diag::paths`, docs/PATHS.md).
+    pub paths: Option<diag::paths::PathPolicy>,
     /// How the passes run (`--schedule`): `Auto` fuses pointwise image
     /// chains; `Naive` keeps every declared pass and target.
     pub schedule: schedule::Schedule,
@@ -92,7 +92,7 @@ impl InternalError {
     /// As a diagnostic pointing at the `.npr` source (code E9001).
     pub fn to_diagnostic(&self) -> Diagnostic {
         let mut d = Diagnostic::error(
-            dsl::codes::INTERNAL,
+            diag::codes::INTERNAL,
             format!("internal compiler error: {}", self.message),
         )
         .with_note(self.detail.clone())

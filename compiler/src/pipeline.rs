@@ -9,7 +9,7 @@ use crate::ir::Ir;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
 use abi::manifest::ParamBinding;
-use dsl::{Diagnostic, SourceMap};
+use diag::{Diagnostic, SourceMap};
 use std::time::Instant;
 
 struct Stages<'o> {
@@ -40,7 +40,7 @@ fn fail_if_errors(diags: &[Diagnostic]) -> Result<(), CompileError> {
 /// The parser's limit errors: a file too large, nested too deeply, or an
 /// expression too deep.
 fn is_parse_limit(d: &Diagnostic) -> bool {
-    use dsl::codes::{EXPRESSION_TOO_DEEP, LIMIT_EXCEEDED, NESTED_TOO_DEEP};
+    use diag::codes::{EXPRESSION_TOO_DEEP, LIMIT_EXCEEDED, NESTED_TOO_DEEP};
     d.is_error() && [LIMIT_EXCEEDED, NESTED_TOO_DEEP, EXPRESSION_TOO_DEEP].contains(&d.code)
 }
 
@@ -65,7 +65,7 @@ pub fn run(
     }
     if loaded.root.style.is_none() && !diags.iter().any(Diagnostic::is_error) {
         diags.push(
-            Diagnostic::error(dsl::codes::STYLE_HEADER, "missing `style` header")
+            Diagnostic::error(diag::codes::STYLE_HEADER, "missing `style` header")
                 .with_help("start the file with `style \"Name\"`"),
         );
     }

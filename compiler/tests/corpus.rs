@@ -7,7 +7,7 @@
 
 use abi::SceneSummary;
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -56,7 +56,7 @@ fn snapshot_text(path: &Path) -> String {
     let compiled = match compiler::compile_file(path, &mut sources, &options) {
         Ok(c) => c,
         Err(compiler::CompileError::User(d)) => {
-            panic!("{name}:\n{}", dsl::diagnostic::render(&d, &sources, false))
+            panic!("{name}:\n{}", diag::diagnostic::render(&d, &sources, false))
         }
         Err(compiler::CompileError::Internal(e)) => panic!("{name}: {e}\n{}", e.wgsl.clone().unwrap_or_default()),
     };

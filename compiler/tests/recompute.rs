@@ -10,7 +10,7 @@
 use abi::manifest::{PassKindManifest, Resource};
 use compiler::schedule::Schedule;
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::Path;
 
 /// A G-buffer, a Sobel pass read around the pixel by one reader, and a

@@ -8,7 +8,7 @@
 use abi::manifest::PassKindManifest;
 use compiler::schedule::Schedule;
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::Path;
 
 /// A G-buffer and five image passes. Unforced, `auto` would fuse `tone`

@@ -4,7 +4,7 @@
 //! expressions (`g.d.x + g.d.y`).
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::Path;
 
 const STYLE: &str = r#"style "shared reads"

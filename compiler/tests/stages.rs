@@ -9,7 +9,7 @@ use compiler::ir::*;
 use compiler::mid::dag::PassGraph;
 use compiler::mid::prune::{prune, Live};
 use compiler::report::Report;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::Path;
 
 /// Load, resolve, typecheck and build the DAG of `text`, which must be valid.
@@ -363,7 +363,7 @@ fn a_live_target_without_a_reader_is_an_internal_error() {
     live.targets.insert(TargetRef { pass: a, output: 1 });
     let err = allocate(&ir, &live, &[], &mut Report::default()).expect_err("internal error");
     assert!(err.message.contains("`a.stray` has no reader"), "{}", err.message);
-    assert_eq!(err.to_diagnostic().code, dsl::codes::INTERNAL);
+    assert_eq!(err.to_diagnostic().code, diag::codes::INTERNAL);
 }
 
 #[test]
@@ -387,7 +387,7 @@ fn an_output_without_a_target_is_an_internal_error() {
     .expect_err("internal error");
     assert!(err.message.contains("output"), "{}", err.message);
     assert!(err.detail.contains("`d.c`"), "{}", err.detail);
-    assert_eq!(err.to_diagnostic().code, dsl::codes::INTERNAL);
+    assert_eq!(err.to_diagnostic().code, diag::codes::INTERNAL);
 }
 
 // ---------------------------------------------------------------- compute

@@ -7,7 +7,7 @@
 
 use compiler::schedule::Schedule;
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::Path;
 
 /// One G-buffer and five image passes, each a case of the tiling rule.

@@ -1,23 +1,17 @@
-//! The `.npr` style language: grammar, AST with spans, and diagnostics.
+//! The `.npr` style language: grammar, parser and AST with spans, and the
+//! `npr explain` texts. Diagnostics, spans and limits are the `diag` crate's.
 //!
 //! The public API is independent of pest: [`parse`] turns text into an
 //! [`ast::Ast`] plus a list of [`Diagnostic`]s. Parsing recovers at top-level
 //! item boundaries, so one run reports several syntax errors.
 
 pub mod ast;
-pub mod diagnostic;
 pub mod explain;
-pub mod limits;
 mod nesting;
-pub mod panics;
 mod parser;
-pub mod paths;
-pub mod span;
 mod syntax_error;
-pub mod text;
 
-pub use diagnostic::{codes, Diagnostic, Label, Severity};
-pub use span::{FileId, SourceMap, Span};
+use diag::{Diagnostic, FileId};
 
 /// Parse one `.npr` source file. Spans refer to `file`.
 ///

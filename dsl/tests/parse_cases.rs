@@ -2,7 +2,7 @@
 //! diagnostics (AST snapshot), every `cases/err/*.npr` reports at least one
 //! error (rendered-diagnostics snapshot).
 
-use dsl::{FileId, SourceMap};
+use diag::{FileId, SourceMap};
 
 #[test]
 fn ok_cases_parse_cleanly() {
@@ -32,7 +32,7 @@ fn err_cases_report_errors() {
                 assert!(l.span.end as usize <= text.len());
             }
         }
-        insta::assert_snapshot!(dsl::diagnostic::render(&diags, &sources, false));
+        insta::assert_snapshot!(diag::diagnostic::render(&diags, &sources, false));
     });
 }
 
@@ -59,7 +59,7 @@ fn no_syntax_message_says_expected_x_found_x() {
             }
             let broken = format!("{}{}", &text[..i], &text[i + c.len_utf8()..]);
             let (_, diags) = dsl::parse(FileId(0), &broken);
-            for d in diags.iter().filter(|d| d.code == dsl::codes::SYNTAX) {
+            for d in diags.iter().filter(|d| d.code == diag::codes::SYNTAX) {
                 assert!(
                     contradiction(&d.message).is_none(),
                     "{}: removing {c:?} at {i}: {}",

@@ -1,5 +1,5 @@
 //! Frame-time measurements for `npr bench frame` and `npr bench passes`
-//! (benchmarks, never tests; per-pass timestamps are `pass_timer.rs`).
+//! (benchmarks, never tests; per-pass timestamps are `runner::pass_timer`).
 //!
 //! Ratios are taken in one run with interleaved samples, so machine load
 //! affects both sides alike.
@@ -33,10 +33,7 @@ impl FrameOverhead {
 
 /// Block until the GPU has finished everything submitted.
 pub fn wait_idle(gpu: &Gpu) -> Result<(), RunError> {
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map(|_| ())
-        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+    runner::readback::wait_idle(&gpu.device)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -173,7 +170,7 @@ pub fn pass_times_interleaved(
     let mut timed = Vec::new();
     for program in programs {
         let passes = program.manifest.passes.len();
-        let timer = crate::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
+        let timer = runner::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
             RunError::Limit(format!(
                 "{} has no timestamp queries: per-pass times cannot be measured",
                 gpu.describe()

@@ -214,7 +214,7 @@ fn min_frame_times(
 /// The timing scene: a coarse sphere before a plane that covers every
 /// pixel. Screen-space cost depends on how many pixels, not on what they
 /// show; coarse meshes keep the (CPU-rasterized) G-buffer cheap next to it.
-pub fn timing_scene(sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene, RunError> {
+pub fn timing_scene(sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, RunError> {
     let text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
     let file = sources.add("timing.toml", text);
     runner::scene::parse_scene(text, file, std::path::Path::new(".")).map_err(RunError::User)
@@ -229,7 +229,7 @@ pub fn run(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<Row>, RunError> {
     let scenes = builtin_scenes();
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let loaded: Vec<_> = scenes
         .iter()
         .map(|s| s.scene(&mut sources).map_err(RunError::User))

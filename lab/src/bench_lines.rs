@@ -56,7 +56,7 @@ pub struct EdgeRow {
     pub frame_reused_s: f64,
 }
 
-fn sphere_scene(segments: u32, sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene, RunError> {
+fn sphere_scene(segments: u32, sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, RunError> {
     let text = format!(
         "[camera]\nposition = [0.0, 0.4, 3.5]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"sphere\", radius = 1.0, segments = {segments}, rings = {} }}\n",
         (segments / 2).max(2)
@@ -105,7 +105,7 @@ pub fn edge_rows(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<EdgeRow>, RunError> {
     let mut rows = Vec::new();
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     for &n in segments {
         progress(&format!("lines on a sphere of {n} segments"));
         let mut scene = sphere_scene(n, &mut sources)?;
@@ -220,7 +220,7 @@ pub fn classify_rows(
     frames: u32,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<ClassifyRow>, RunError> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let mut rows = Vec::new();
     for &n in segments {
         progress(&format!("silhouette classification, sphere of {n} segments"));
@@ -317,7 +317,7 @@ pub fn method_rows(
     frames: u32,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<MethodRow>, RunError> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let timing = crate::bench_contours::timing_scene(&mut sources)?;
     progress(&format!("timing the methods at {size}x{size}"));
     let mut programs: Vec<&StyleProgram> = methods.bases.clone();

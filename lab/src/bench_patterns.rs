@@ -69,7 +69,7 @@ pub fn scene(objects: usize) -> Result<Scene, RunError> {
             -2.0 + step * ((o / n) as f64 + 0.5)
         );
     }
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("patterns-bench.toml", text.clone());
     runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
 }

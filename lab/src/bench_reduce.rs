@@ -87,7 +87,7 @@ fn point(i: u64) -> [f32; 3] {
 
 /// `elements` points split evenly over `objects` objects without triangles.
 pub fn scene(elements: usize, objects: usize) -> Result<Scene, RunError> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("reduce-bench.toml", SCENE.to_string());
     let mut scene = runner::scene::parse_scene(SCENE, file, std::path::Path::new(".")).map_err(RunError::User)?;
     let template = scene

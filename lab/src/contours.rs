@@ -340,7 +340,7 @@ impl AnalyticScene {
     }
 
     /// The scene for the runner (parsed from [`AnalyticScene::to_toml`]).
-    pub fn scene(&self, sources: &mut dsl::SourceMap) -> Result<runner::scene::Scene, Vec<dsl::Diagnostic>> {
+    pub fn scene(&self, sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, Vec<diag::Diagnostic>> {
         let text = self.to_toml();
         let file = sources.add(format!("{}.toml", self.name), text.clone());
         runner::scene::parse_scene(&text, file, std::path::Path::new("."))

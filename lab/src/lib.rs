@@ -7,7 +7,6 @@
 //!   precision/recall of a rendered line mask.
 //! - [`bench`]: frame overhead against the runner's own passes, frame time
 //!   and per-pass GPU time.
-//! - [`pass_timer`]: per-pass GPU time of one frame from timestamp queries
 //!   (`npr bench passes`, `npr studio`).
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
@@ -37,7 +36,6 @@ pub mod bench_styles;
 pub mod contours;
 pub mod fit;
 pub mod harness;
-pub mod pass_timer;
 pub mod patterns_f64;
 pub mod silhouettes_gpu;
 pub mod sliding;

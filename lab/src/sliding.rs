@@ -166,7 +166,7 @@ pub struct Sliding {
 
 /// Parses a motion's scene; relative mesh paths resolve against `base`.
 pub fn scene(text: &str, base: &std::path::Path) -> Result<Scene, RunError> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("sliding.toml", text.to_string());
     runner::scene::parse_scene(text, file, base).map_err(RunError::User)
 }

@@ -4,7 +4,7 @@
 
 use crate::scene::Object;
 use abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 
 /// Value of a parameter at `time_s` (keyframes, or the default).
 pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {

@@ -88,8 +88,8 @@ pub fn ripmap_atlas(
     };
     let (aw, ah) = layout.atlas_size();
     if aw > crate::textures::MAX_TEXTURE_SIZE || ah > crate::textures::MAX_TEXTURE_SIZE {
-        return Err(RunError::User(vec![dsl::Diagnostic::error(
-            dsl::codes::LIMIT_EXCEEDED,
+        return Err(RunError::User(vec![diag::Diagnostic::error(
+            diag::codes::LIMIT_EXCEEDED,
             format!(
                 "a rip-map of a {}x{} image needs a {aw}x{ah} atlas, over the {} texel limit",
                 base.width,
@@ -242,8 +242,8 @@ fn filtered_output(r: &mut Renderer, level: &Level, index: u32) -> Result<Level,
     )?;
     let out = r.read_output()?;
     if (out.width, out.height) != (level.width, level.height) {
-        return Err(RunError::User(vec![dsl::Diagnostic::error(
-            dsl::codes::BAD_FILTER,
+        return Err(RunError::User(vec![diag::Diagnostic::error(
+            diag::codes::BAD_FILTER,
             format!(
                 "the filter's output is {}x{}, not the level's {}x{}",
                 out.width, out.height, level.width, level.height

@@ -22,15 +22,16 @@ pub enum DeviceError {
 
 impl DeviceError {
     /// As a diagnostic with its code (E0505), the install hint as its help.
-    pub fn to_diagnostic(&self) -> dsl::Diagnostic {
+    pub fn to_diagnostic(&self) -> diag::Diagnostic {
         match self {
             DeviceError::NoAdapter => {
-                dsl::Diagnostic::error(dsl::codes::NO_DEVICE, "no GPU adapter found (tried Vulkan, then GL)").with_help(
-                    "on Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install -y \
+                diag::Diagnostic::error(diag::codes::NO_DEVICE, "no GPU adapter found (tried Vulkan, then GL)")
+                    .with_help(
+                        "on Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install -y \
                  mesa-vulkan-drivers` (or run ./setup.sh), then check with `vulkaninfo --summary`",
-                )
+                    )
             }
-            DeviceError::RequestDevice { .. } => dsl::Diagnostic::error(dsl::codes::NO_DEVICE, self.to_string()),
+            DeviceError::RequestDevice { .. } => diag::Diagnostic::error(diag::codes::NO_DEVICE, self.to_string()),
         }
     }
 }

@@ -116,7 +116,7 @@ pub fn check_target_formats(
     device: &wgpu::Device,
     targets: &[(String, Format)],
     usage: wgpu::TextureUsages,
-) -> Vec<dsl::Diagnostic> {
+) -> Vec<diag::Diagnostic> {
     let mut checked: Vec<Format> = Vec::new();
     let mut out = Vec::new();
     for (name, format) in targets {
@@ -141,8 +141,8 @@ pub fn check_target_formats(
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
             out.push(
-                dsl::Diagnostic::error(
-                    dsl::codes::LIMIT_EXCEEDED,
+                diag::Diagnostic::error(
+                    diag::codes::LIMIT_EXCEEDED,
                     format!(
                         "this GPU adapter cannot render to `{}` targets (target `{name}`)",
                         format.name()

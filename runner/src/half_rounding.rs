@@ -64,8 +64,8 @@ pub fn measure(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HalfRoundin
             .zip(&stored)
             .map(|(x, s)| format!("{x:e} → {s:e}"))
             .collect();
-        RunError::User(vec![dsl::Diagnostic::error(
-            dsl::codes::LIMIT_EXCEEDED,
+        RunError::User(vec![diag::Diagnostic::error(
+            diag::codes::LIMIT_EXCEEDED,
             format!(
                 "this GPU rounds values stored into 16-bit float targets neither to nearest nor toward zero ({}), \
                  so a pass fused into its reader cannot repeat the store",

@@ -5,8 +5,10 @@
 //! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
 //!   executor per pass kind).
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
+//! - [`pass_timer`]: each pass's GPU time in a frame, from timestamp queries.
 //!
-//! The runner depends on neither the compiler nor the stdlib: what it runs is
+//! The runner depends on neither the compiler, the stdlib nor the parser
+//! (`dsl`, pest); its errors are `diag` diagnostics, and what it runs is
 //! defined in the `abi` crate ([`StyleProgram`], the manifest, the frame
 //! block). Golden comparison, contour ground truth and benchmarks live in the
 //! `lab` crate.
@@ -26,6 +28,7 @@ pub mod gpu_error;
 pub mod half_rounding;
 pub mod lines;
 pub mod output;
+pub mod pass_timer;
 pub mod readback;
 pub mod scene;
 pub mod schedule;
@@ -41,7 +44,7 @@ pub use exec::{
 pub use gpu_error::DeviceWatch;
 pub use readback::TargetImage;
 
-use dsl::Diagnostic;
+use diag::Diagnostic;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -75,23 +78,23 @@ impl RunError {
         match self {
             RunError::User(d) => d.clone(),
             RunError::Textures(d) => d.iter().map(|(_, d)| d.clone()).collect(),
-            RunError::Limit(m) => vec![Diagnostic::error(dsl::codes::LIMIT_EXCEEDED, m.clone())
+            RunError::Limit(m) => vec![Diagnostic::error(diag::codes::LIMIT_EXCEEDED, m.clone())
                 .with_help(format!(
                     "the largest image is {0}x{0} (docs/LIMITS.md), and a GPU adapter may allow less",
                     MAX_OUTPUT_SIZE
                 ))],
             RunError::Device(e) => vec![e.to_diagnostic()],
-            RunError::OutOfMemory(m) => vec![Diagnostic::error(dsl::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
+            RunError::OutOfMemory(m) => vec![Diagnostic::error(diag::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
                 "render at a smaller --size, give wide targets a narrower format (rgba16float instead of \
                  rgba32float) or a smaller `scale`, or use a GPU with more memory",
             )],
             RunError::DeviceLost(m) => vec![Diagnostic::error(
-                dsl::codes::DEVICE_LOST,
+                diag::codes::DEVICE_LOST,
                 format!("the GPU device was lost: {m}"),
             )
             .with_help("the driver reset or the GPU went away; run the command again (`npr studio` makes a new device by itself)")],
             RunError::Internal(m) => {
-                vec![Diagnostic::error(dsl::codes::INTERNAL, m.clone())
+                vec![Diagnostic::error(diag::codes::INTERNAL, m.clone())
                     .with_help("this is a bug in npr; please report it")]
             }
         }
@@ -100,7 +103,7 @@ impl RunError {
     /// Texture errors pointed at `spans[index]` (the style's `image("…")`
     /// per manifest texture, `compiler::Compiled::texture_spans`); other
     /// errors unchanged.
-    pub fn at_texture_spans(self, spans: &[dsl::Span]) -> RunError {
+    pub fn at_texture_spans(self, spans: &[diag::Span]) -> RunError {
         match self {
             RunError::Textures(d) => RunError::User(
                 d.into_iter()

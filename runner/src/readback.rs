@@ -203,6 +203,14 @@ fn read_band(
     Ok(())
 }
 
+/// Block until the GPU has finished everything submitted to `device`.
+pub fn wait_idle(device: &wgpu::Device) -> Result<(), RunError> {
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))
+}
+
 /// Wait for the GPU and map `buffer` (MAP_READ) for reading.
 fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<wgpu::BufferView, RunError> {
     let slice = buffer.slice(..);
@@ -210,9 +218,7 @@ fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<wgpu::Buffer
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RunError::Internal(format!("GPU wait failed: {e}")))?;
+    wait_idle(device)?;
     rx.recv()
         .map_err(|e| RunError::Internal(format!("readback channel closed: {e}")))?
         .map_err(|e| RunError::Internal(format!("readback map failed: {e}")))?;

@@ -7,8 +7,8 @@
 //! texture file is; [`TextureFileError::to_diagnostic`] is the one wording.
 
 use abi::manifest::{Manifest, TextureSourceManifest};
-use dsl::limits::MAX_TEXTURE_SIZE;
-use dsl::{codes, Diagnostic};
+use diag::limits::MAX_TEXTURE_SIZE;
+use diag::{codes, Diagnostic};
 use image::ImageReader;
 use std::io::BufReader;
 use std::path::Path;

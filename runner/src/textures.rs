@@ -7,7 +7,7 @@ use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
 use abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
-use dsl::Diagnostic;
+use diag::Diagnostic;
 use std::collections::{BTreeMap, HashMap};
 
 pub struct GpuTexture {
@@ -16,9 +16,9 @@ pub struct GpuTexture {
 }
 
 /// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most
-/// GPUs), from `dsl::limits`, where every limit is listed; checked by
+/// GPUs), from `diag::limits`, where every limit is listed; checked by
 /// `texture_file` from the file's header.
-pub use dsl::limits::MAX_TEXTURE_SIZE;
+pub use diag::limits::MAX_TEXTURE_SIZE;
 
 /// Every declared texture of `m`, and what building its art-maps did.
 /// `input` is the level a filter style runs on (its `filter_input()`).
@@ -201,7 +201,7 @@ pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u3
 /// will read it back from the half-float texture (so that table and shader
 /// use the same edge to the bit), in the red channel.
 fn halftone_table_texels(spec: &abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u32, u32) {
-    use stdlib::halftone_table::{HalftoneTable, ROWS, TONES};
+    use abi::halftone::table::{HalftoneTable, ROWS, TONES};
     let edge = half::f16::from_f32(spec.edge).to_f64();
     let table = HalftoneTable::build(edge, spec.corrected);
     let texels = table.texels().into_iter().map(|t| [t, 0.0, 0.0, 1.0]).collect();
@@ -260,7 +260,7 @@ fn load_one(
             let (levels, build) = crate::artmap::build(device, queue, &t.name, spec, &bytes, base).map_err(|e| {
                 let first = e.diagnostics().into_iter().next().unwrap_or_else(|| {
                     Diagnostic::error(
-                        dsl::codes::INTERNAL,
+                        diag::codes::INTERNAL,
                         format!("art-map `{}` failed with no diagnostic", t.name),
                     )
                 });
@@ -276,7 +276,7 @@ fn load_one(
         TextureSourceManifest::FilterInput => {
             let level = input.ok_or_else(|| {
                 Diagnostic::error(
-                    dsl::codes::INTERNAL,
+                    diag::codes::INTERNAL,
                     format!("texture `{}` is a filter's input, but no level was given", t.name),
                 )
             })?;

@@ -5,7 +5,7 @@
 //! draws what a fresh renderer built for the changed scene draws.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::scene::Scene;
 use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
 use std::path::Path;
@@ -71,7 +71,7 @@ fn program() -> StyleProgram {
         &CompileOptions::default(),
     ) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -89,7 +89,7 @@ fn load() -> Scene {
     std::fs::write(&path, SCENE).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn draw(r: &mut Renderer, scene: &Scene) -> Vec<u8> {

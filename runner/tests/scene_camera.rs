@@ -6,7 +6,7 @@ use runner::scene::{parse_scene, Camera, CameraPose, Scene};
 use std::path::Path;
 
 fn scene(text: &str) -> Scene {
-    match parse_scene(text, dsl::FileId(0), Path::new(".")) {
+    match parse_scene(text, diag::FileId(0), Path::new(".")) {
         Ok(scene) => scene,
         Err(diagnostics) => panic!("scene did not parse: {diagnostics:#?}"),
     }

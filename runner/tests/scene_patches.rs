@@ -13,9 +13,9 @@ fn scenes_dir() -> PathBuf {
 }
 
 fn parse(text: &str, dir: &Path) -> Result<Scene, String> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("patches.toml", text.to_string());
-    parse_scene(text, file, dir).map_err(|d| dsl::diagnostic::render(&d, &sources, false))
+    parse_scene(text, file, dir).map_err(|d| diag::diagnostic::render(&d, &sources, false))
 }
 
 const CAMERA: &str = "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n";

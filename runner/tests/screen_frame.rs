@@ -6,7 +6,7 @@
 //! equals `tangent.screen` in mono; `camera.focal` is (P₀₀, P₁₁).
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use glam::{DMat4, DVec3, DVec4};
 use runner::{FrameSpec, Gpu};
 use std::path::Path;
@@ -32,7 +32,7 @@ fn scene(name: &str, ipd: Option<f64>) -> runner::scene::Scene {
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// Render `value` (a vec4 expression) into an rgba32float target for `eye`.
@@ -43,7 +43,7 @@ fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> 
     let mut sources = SourceMap::new();
     let c = match compiler::compile_source("t.npr", &text, Path::new("."), &mut sources, &CompileOptions::default()) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, eye);
@@ -198,7 +198,7 @@ fn roll_scene(name: &str, up: [f64; 3]) -> runner::scene::Scene {
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
@@ -211,7 +211,7 @@ fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
         &CompileOptions::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, 0);

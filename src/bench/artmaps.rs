@@ -6,7 +6,7 @@ use super::{compile_builtin_in, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::CompileOptions;
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use lab::bench_artmaps as bench;
 use std::path::Path;
 

@@ -9,7 +9,7 @@
 //!   naga's share of it taken from the child's own `validate` stage time.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -30,7 +30,7 @@ pub fn in_process(styles: &[PathBuf], iterations: u32) -> Result<String, String>
         for _ in 0..iterations.max(1) {
             let mut sources = SourceMap::new();
             let c = compiler::compile_file(style, &mut sources, &CompileOptions::default()).map_err(|e| match e {
-                compiler::CompileError::User(d) => dsl::diagnostic::render(&d, &sources, false),
+                compiler::CompileError::User(d) => diag::diagnostic::render(&d, &sources, false),
                 compiler::CompileError::Internal(e) => e.to_string(),
             })?;
             let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();

@@ -7,7 +7,7 @@ use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::schedule::Schedule;
 use compiler::{CompileOptions, Compiled};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, RunError, StyleProgram};
 use std::path::{Path, PathBuf};
 

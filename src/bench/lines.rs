@@ -4,7 +4,7 @@
 use super::{compile_builtin, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use lab::bench_lines as bench;
 use std::path::Path;
 

@@ -14,7 +14,7 @@ use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use compiler::schedule::Schedule;
 use compiler::{CompileError, CompileOptions, Compiled};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, StyleProgram};
 use std::path::Path;
 

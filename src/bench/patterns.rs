@@ -5,7 +5,7 @@
 use super::{compile_builtin, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::RunError;
 use std::path::Path;
 

@@ -24,7 +24,7 @@
 use super::http_client::{request, Events};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::Printer;
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::{FrameSpec, Renderer};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader};

@@ -3,7 +3,7 @@
 
 use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
 use crate::printer::{check_options, Printer};
-use dsl::SourceMap;
+use diag::SourceMap;
 
 pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();

@@ -4,7 +4,7 @@
 use crate::cli::{CompileArgs, EXIT_OK};
 use crate::printer::{cannot_write, check_options, Printer};
 use compiler::{CompileOptions, Compiled};
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
 
 pub fn run(args: CompileArgs, printer: &Printer) -> i32 {

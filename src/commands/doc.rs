@@ -16,8 +16,8 @@ pub fn run(out: &Path, examples: &Path, performance: &Path, printer: &Printer) -
         Ok(f) => f,
         Err(e) => {
             return printer.fail(
-                dsl::Diagnostic::error(
-                    dsl::codes::BAD_ARGUMENT_VALUE,
+                diag::Diagnostic::error(
+                    diag::codes::BAD_ARGUMENT_VALUE,
                     format!("--performance {}: {e}", performance.display()),
                 )
                 .with_help("run `npr doc` in the repository, or give the file with `--performance PATH`"),

@@ -4,7 +4,7 @@
 
 use crate::cli::EXIT_OK;
 use crate::printer::Printer;
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 
 pub fn run(code: &str, printer: &Printer) -> i32 {
     match dsl::explain::lookup(code) {

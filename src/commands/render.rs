@@ -6,7 +6,7 @@ use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::printer::{cannot_write, headless_gpu, load_scene_in, Printer};
 use compiler::CompileOptions;
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@
 use crate::set_params;
 use compiler::mid::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
-use dsl::{Diagnostic, SourceMap};
+use diag::{Diagnostic, SourceMap};
 use runner::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -3,8 +3,8 @@
 //! parsed with recovery), and the declarations of all of them by name.
 
 use compiler::front::load::Loaded;
+use diag::{FileId, SourceMap, Span};
 use dsl::ast::{Item, ParamDecl, PassDecl, TextureDecl};
-use dsl::{FileId, SourceMap, Span};
 use std::path::{Path, PathBuf};
 
 pub struct Analysis {

@@ -4,7 +4,7 @@
 use super::analysis::Analysis;
 use super::position::LineIndex;
 use super::symbol::Symbol;
-use dsl::Span;
+use diag::Span;
 use lsp_types::Location;
 
 /// The span of the name in the symbol's declaration.

@@ -7,7 +7,7 @@
 
 use super::position::LineIndex;
 use compiler::{CompileError, CompileOptions};
-use dsl::{Severity, SourceMap};
+use diag::{Severity, SourceMap};
 use lsp_types::{Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, NumberOrString, Range};
 use std::path::Path;
 
@@ -40,7 +40,7 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     found.iter().map(|d| convert(d, &sources, &root)).collect()
 }
 
-fn convert(d: &dsl::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
+fn convert(d: &diag::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
     let mut message = d.message.clone();
     let mut range = Range::default();
     let mut related = Vec::new();

@@ -3,8 +3,8 @@
 
 use super::analysis::{self, Analysis};
 use super::position::LineIndex;
+use diag::Span;
 use dsl::ast::Item;
-use dsl::Span;
 use lsp_types::{DocumentSymbol, SymbolKind};
 
 pub fn outline(a: &Analysis) -> Vec<DocumentSymbol> {

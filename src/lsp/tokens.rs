@@ -27,7 +27,7 @@ pub enum Token<'a> {
 }
 
 impl Token<'_> {
-    fn span(&self) -> dsl::Span {
+    fn span(&self) -> diag::Span {
         match self {
             Token::Name { ident, .. } => ident.span,
             Token::Field { field, .. } => field.span,
@@ -61,7 +61,7 @@ pub fn at(ast: &Ast, offset: usize) -> Option<(Token<'_>, Option<&PassDecl>)> {
         .map(|t| (t, in_pass))
 }
 
-fn item_span(item: &Item) -> dsl::Span {
+fn item_span(item: &Item) -> diag::Span {
     match item {
         Item::Use(u) => u.span,
         Item::Param(p) => p.span,

@@ -9,7 +9,7 @@
 use crate::cli::{EXIT_INTERNAL, EXIT_USER};
 use crate::printer::{headless_gpu, load_scene, Printer};
 use compiler::{CompileError, CompileOptions};
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer};
 use std::path::Path;
@@ -86,8 +86,8 @@ fn render_one(gpu: &Gpu, name: &str, demo: &DemoRender, examples: &Path, printer
         }
     };
     encode_png8(&img).map_err(|e| {
-        printer.fail(dsl::Diagnostic::error(
-            dsl::codes::INTERNAL,
+        printer.fail(diag::Diagnostic::error(
+            diag::codes::INTERNAL,
             format!("cannot encode the demo image of {name}: {e}"),
         ))
     })

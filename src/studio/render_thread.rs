@@ -23,7 +23,7 @@ use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use abi::manifest::ParamBinding;
 use compiler::mid::overrides::ParamOverride;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError};
 use serde_json::{json, Value};
@@ -67,7 +67,7 @@ pub struct View {
 struct Session<'g> {
     built: Built,
     renderer: Renderer<'g>,
-    timer: Option<lab::pass_timer::PassTimer>,
+    timer: Option<runner::pass_timer::PassTimer>,
 }
 
 /// The thread's own state across builds and device restarts.
@@ -368,7 +368,7 @@ impl Studio {
                     &self.overrides,
                 );
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
-                let timer = lab::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
+                let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
                 *session = Some(Session { built, renderer, timer });
             }
             Err(e) => {

@@ -6,7 +6,7 @@
 use crate::set_params::{self, Kind};
 use abi::manifest::{ParamBinding, ParamManifest};
 use compiler::mid::overrides::ParamOverride;
-use dsl::{Diagnostic, SourceMap};
+use diag::{Diagnostic, SourceMap};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -101,7 +101,7 @@ pub fn set_values(params: &mut [Value], overrides: &[ParamOverride]) {
 /// help, labels with file, line and column, and the rendered text with the
 /// source lines and the span marked), plus the stage that produced them.
 pub fn diagnostics_json(diags: &[Diagnostic], sources: &SourceMap, stage: &str) -> Value {
-    let list: Vec<Value> = dsl::diagnostic::render_json(diags, sources)
+    let list: Vec<Value> = diag::diagnostic::render_json(diags, sources)
         .lines()
         .filter_map(|line| serde_json::from_str::<Value>(line).ok())
         .map(|mut d| {

@@ -15,7 +15,7 @@ pub fn rewrite_default(style: &Path, name: &str, literal: &str) -> Result<(), St
 
 /// `text` with `name`'s default replaced by `literal`.
 pub fn replace_default(text: &str, name: &str, literal: &str) -> Result<String, String> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("style", text.to_string());
     let (ast, _) = dsl::parse(file, text);
     let decl = ast

@@ -14,19 +14,19 @@ pub fn scratch(name: &str) -> PathBuf {
 }
 
 pub fn compile(text: &str, dir: &Path) -> runner::StyleProgram {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     match compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
 
 pub fn scene(text: &str) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("scene.toml", text);
     runner::scene::parse_scene(text, file, root())
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// A `size`² grey PNG (sRGB 0.5): the source of the art-maps below.

@@ -20,14 +20,14 @@ pub fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
         assert!(text.contains(from), "`{from}` not in {name}");
         text = text.replace(from, to);
     }
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let opts = compiler::CompileOptions {
         schedule: compiler::schedule::Schedule::Naive,
         ..Default::default()
     };
     match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -53,9 +53,9 @@ pub const PACKED: &[(&str, &str)] = &[
 ];
 
 pub fn scene_of(s: &AnalyticScene) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     s.scene(&mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 pub fn spec(width: u32, height: u32) -> FrameSpec {

@@ -31,10 +31,10 @@ pub fn gpu() -> &'static Gpu {
 /// A style given as text, compiled with paths relative to the repository
 /// root; a user or internal error fails the test with its rendered message.
 pub fn compile_text(text: &str) -> runner::StyleProgram {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     match compiler::compile_source("case.npr", text, root(), &mut sources, &Default::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }

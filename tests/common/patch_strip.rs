@@ -59,9 +59,9 @@ pub fn strip_scene(dir: &Path, rings: Option<u32>) -> runner::scene::Scene {
     );
     let path = dir.join(format!("strip_{}.toml", rings.trim().replace([' ', '='], "")));
     std::fs::write(&path, text).expect("scene");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The surface point under pixel (x, y)'s centre: a pinhole camera at

@@ -84,7 +84,7 @@ fn e0504_bad_compiled_directory() {
 fn e0505_no_gpu_device() {
     // No machine here lacks an adapter (lavapipe, then GL): render the
     // diagnostic the CLI prints for one.
-    let rendered = dsl::diagnostic::render(
+    let rendered = diag::diagnostic::render(
         &[runner::DeviceError::NoAdapter.to_diagnostic()],
         &SourceMap::new(),
         false,
@@ -158,10 +158,10 @@ fn e9001_internal_error_names_the_npr_span() {
     let err = compiler::InternalError {
         message: "emitted WGSL for pass `p` failed naga validation".into(),
         detail: "error: example naga message".into(),
-        span: Some(dsl::Span::new(file, 0, 6)),
+        span: Some(diag::Span::new(file, 0, 6)),
         wgsl: Some("// the rejected module".into()),
     };
-    let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    let rendered = diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("case.npr:1:1"), "{rendered}");
     insta::assert_snapshot!("E9001", rendered);
 }
@@ -175,10 +175,10 @@ fn e9001_without_wgsl_names_an_impossible_state() {
     let err = compiler::InternalError {
         message: "the output target has no allocated target".into(),
         detail: "`p.color` is not among the allocated targets".into(),
-        span: Some(dsl::Span::new(file, 0, 6)),
+        span: Some(diag::Span::new(file, 0, 6)),
         wgsl: None,
     };
-    let rendered = dsl::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    let rendered = diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("E9001"), "{rendered}");
     assert!(
         rendered.contains("the compiler reached an impossible state here"),

@@ -40,7 +40,7 @@ fn e0403_scene_lacks_uvs() {
         .contains(&abi::manifest::Attribute::Uv));
     let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
     let diags = runner::check_scene(&compiled.manifest, &scene);
-    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     check("E0403", (diags, rendered));
 }
 
@@ -83,7 +83,7 @@ fn w0401_a_scene_binding_the_style_does_not_read() {
     .expect("write scene");
     let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
     let diags = runner::scene_warnings(&compiled.manifest, &scene);
-    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     // The misspelt name and the style-wide param; not `tint`, which is read.
     assert_eq!(diags.len(), 2, "{rendered}");
     assert!(rendered.contains("did you mean `tint`?"), "{rendered}");
@@ -111,7 +111,7 @@ fn w0402_a_render_pass_over_a_tag_no_object_has() {
     let mut sources = SourceMap::new();
     let compiled = compiler::compile_source("case.npr", &text, Path::new("."), &mut sources, &opts)
         .unwrap_or_else(|_| panic!("compiles"));
-    let rendered = dsl::diagnostic::render(&compiled.warnings, &sources, false);
+    let rendered = diag::diagnostic::render(&compiled.warnings, &sources, false);
     assert!(rendered.contains("did you mean `ground`?"), "{rendered}");
     assert!(rendered.contains("caster, ground"), "{rendered}");
     check("W0402", (compiled.warnings.clone(), rendered));
@@ -158,7 +158,7 @@ fn npr_check_opens_texture_files_that_are_not_images() {
 #[test]
 fn npr_check_refuses_a_texture_past_the_size_limit_from_its_header() {
     let dir = scratch("check-too-large");
-    let wide = dsl::limits::MAX_TEXTURE_SIZE + 1;
+    let wide = diag::limits::MAX_TEXTURE_SIZE + 1;
     image::GrayImage::new(wide, 1)
         .save(dir.join("wide.png"))
         .expect("write png");
@@ -259,7 +259,7 @@ fn e0406_a_path_outside_the_root() {
         .save(dir.join("paper.png"))
         .expect("write png");
     let text = style("texture paper = image(\"../paper.png\", srgb)\npass p: render(scene) {\n  out color: rgba8unorm = paper\n}\noutput p.color\n");
-    let policy = dsl::paths::PathPolicy::new(&style_dir, &[]).expect("root");
+    let policy = diag::paths::PathPolicy::new(&style_dir, &[]).expect("root");
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         paths: Some(policy),
@@ -270,7 +270,7 @@ fn e0406_a_path_outside_the_root() {
         panic!("a texture outside the root must be refused")
     };
     let canonical = dir.canonicalize().expect("canonical").display().to_string();
-    let r = dsl::diagnostic::render(&d, &sources, false).replace(&canonical, "<dir>");
+    let r = diag::diagnostic::render(&d, &sources, false).replace(&canonical, "<dir>");
     check("E0406", (d, r));
 }
 
@@ -280,7 +280,7 @@ fn e0508_the_gpu_out_of_memory() {
     // limit); this is its rendered message.
     let e = runner::RunError::OutOfMemory("the GPU ran out of memory making the targets of a 16384x16384 image".into());
     let d = e.diagnostics();
-    let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);
+    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0508", (d, rendered));
 }
 
@@ -289,6 +289,6 @@ fn e0509_a_lost_device() {
     // Forced with `Device::destroy` in tests/gpu/gpu_errors.rs; its rendered message.
     let e = runner::RunError::DeviceLost("Destroyed: Device is dying.".into());
     let d = e.diagnostics();
-    let rendered = dsl::diagnostic::render(&d, &SourceMap::new(), false);
+    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0509", (d, rendered));
 }

@@ -1,9 +1,9 @@
 //! Every error code has a case here that triggers it, and a snapshot of its
 //! rendered message (rustc style, no colour). A completeness check makes sure
-//! no code in `dsl::codes::ALL` is left without a case.
+//! no code in `diag::codes::ALL` is left without a case.
 
 use compiler::{CompileError, CompileOptions};
-use dsl::{Diagnostic, SourceMap};
+use diag::{Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
 
 mod command_line;
@@ -25,7 +25,7 @@ fn compile_errors(text: &str, dir: &Path) -> (Vec<Diagnostic>, String) {
     match compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => panic!("expected an error for:\n{text}"),
         Err(CompileError::User(d)) => {
-            let r = dsl::diagnostic::render(&d, &sources, false);
+            let r = diag::diagnostic::render(&d, &sources, false);
             (d, r)
         }
         Err(CompileError::Internal(e)) => panic!("internal error instead of a user error: {e}"),
@@ -39,7 +39,7 @@ fn scene_errors(toml: &str, dir: &Path) -> (Vec<Diagnostic>, String) {
     match runner::scene::load_scene(&path, &mut sources) {
         Ok(_) => panic!("expected a scene error for:\n{toml}"),
         Err(d) => {
-            let r = dsl::diagnostic::render(&d, &sources, false);
+            let r = diag::diagnostic::render(&d, &sources, false);
             (d, r.replace(&dir.display().to_string(), "<dir>"))
         }
     }
@@ -60,7 +60,7 @@ fn check_case(code: &str, name: &str, (diags, rendered): (Vec<Diagnostic>, Strin
 }
 
 /// Run the `npr` binary from the repository root and return the diagnostic
-/// code of its first error line (looked up in `dsl::codes::ALL`) with its
+/// code of its first error line (looked up in `diag::codes::ALL`) with its
 /// whole stderr, scratch paths replaced by `<dir>`.
 fn cli_errors(args: &[&str], dir: &Path) -> (Vec<Diagnostic>, String) {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
@@ -75,7 +75,7 @@ fn cli_errors(args: &[&str], dir: &Path) -> (Vec<Diagnostic>, String) {
         .split("error[")
         .nth(1)
         .and_then(|rest| rest.split(']').next())
-        .and_then(|c| dsl::codes::ALL.iter().find(|(k, _)| *k == c))
+        .and_then(|c| diag::codes::ALL.iter().find(|(k, _)| *k == c))
         .map_or("none", |(k, _)| k);
     (vec![Diagnostic::error(code, "")], stderr)
 }
@@ -91,10 +91,10 @@ fn compile_warnings(text: &str) -> (Vec<Diagnostic>, String) {
         &CompileOptions::default(),
     ) {
         Ok(c) => {
-            let r = dsl::diagnostic::render(&c.warnings, &sources, false);
+            let r = diag::diagnostic::render(&c.warnings, &sources, false);
             (c.warnings, r)
         }
-        Err(CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
@@ -131,7 +131,7 @@ fn every_code_has_a_case() {
         6 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
-    for (code, _) in dsl::codes::ALL {
+    for (code, _) in diag::codes::ALL {
         let needle = format!("check(\"{code}\"");
         assert!(
             cases.contains(&needle),

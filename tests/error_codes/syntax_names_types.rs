@@ -62,7 +62,7 @@ fn e0006_expression_too_deep() {
 #[test]
 fn e0404_a_style_file_over_the_size_limit() {
     // Short lines, so the snapshot shows one of them.
-    let big = style(&"// padding\n".repeat(dsl::limits::MAX_SOURCE_BYTES / 10));
+    let big = style(&"// padding\n".repeat(diag::limits::MAX_SOURCE_BYTES / 10));
     check_case(
         "E0404",
         "E0404_source_size",
@@ -202,7 +202,7 @@ fn e0007_a_style_that_is_not_utf8() {
     let Err(CompileError::User(diags)) = compiler::compile_file(&path, &mut sources, &CompileOptions::default()) else {
         panic!("expected a user error");
     };
-    let rendered = dsl::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     assert!(
         rendered.contains("latin1.npr:2:8"),
         "line and column of the byte: {rendered}"
@@ -226,7 +226,7 @@ fn a_used_style_or_a_scene_that_is_not_utf8() {
     let Err(diags) = runner::scene::load_scene(&scene, &mut sources) else {
         panic!("a scene that is not UTF-8 must be refused");
     };
-    let rendered = dsl::diagnostic::render(&diags, &sources, false);
+    let rendered = diag::diagnostic::render(&diags, &sources, false);
     assert_eq!(diags[0].code, "E0007", "{rendered}");
     assert!(rendered.contains("scene.toml:1:3"), "{rendered}");
 }

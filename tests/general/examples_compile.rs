@@ -2,7 +2,7 @@
 //! and naga parses and validates every emitted module.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use std::path::{Path, PathBuf};
 
 fn examples() -> Vec<PathBuf> {
@@ -31,12 +31,12 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             tile_apron_deficit: 0,
             // Every example keeps to the default paths policy.
             paths: Some(
-                dsl::paths::PathPolicy::new(&dsl::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),
+                diag::paths::PathPolicy::new(&diag::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),
             ),
         },
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.clone().unwrap_or_default()),
     }
 }

@@ -1,4 +1,4 @@
-//! `npr explain`: every code of `dsl::codes::ALL` has an explanation whose
+//! `npr explain`: every code of `diag::codes::ALL` has an explanation whose
 //! two examples are run through the `npr` binary, as a user would run them:
 //! the wrong one must give exactly its code (an error exits 1, a warning
 //! 0), the fixed one no diagnostic at all. An example that cannot run here
@@ -158,8 +158,8 @@ fn every_code_has_one_explanation() {
     let explained: Vec<&str> = dsl::explain::all().map(|e| e.code).collect();
     let unique: BTreeSet<&str> = explained.iter().copied().collect();
     assert_eq!(unique.len(), explained.len(), "a code explained twice: {explained:?}");
-    let codes: BTreeSet<&str> = dsl::codes::ALL.iter().map(|(c, _)| *c).collect();
-    assert_eq!(unique, codes, "explanations and dsl::codes::ALL differ");
+    let codes: BTreeSet<&str> = diag::codes::ALL.iter().map(|(c, _)| *c).collect();
+    assert_eq!(unique, codes, "explanations and diag::codes::ALL differ");
     for e in dsl::explain::all() {
         assert!(
             e.meaning.split_whitespace().count() >= 20,
@@ -207,7 +207,7 @@ fn npr_explain_prints_the_explanation() {
     assert!(text.contains("Wrong:") && text.contains("Fixed:"), "{text}");
     insta::assert_snapshot!("explain_E0202", text);
     // Every code, in any letter case.
-    for (code, _) in dsl::codes::ALL {
+    for (code, _) in diag::codes::ALL {
         let lower = code.to_ascii_lowercase();
         let o = npr(Path::new(env!("CARGO_MANIFEST_DIR")), &["explain", &lower])
             .output()

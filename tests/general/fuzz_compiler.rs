@@ -6,7 +6,7 @@ use crate::common;
 use abi::Format;
 use compiler::ir::{Builtin, Intrinsic};
 use compiler::{CompileError, CompileOptions};
-use dsl::SourceMap;
+use diag::SourceMap;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -231,7 +231,7 @@ fn check(text: &str) {
                     );
                 }
             }
-            let _ = dsl::diagnostic::render(&diags, &sources, false);
+            let _ = diag::diagnostic::render(&diags, &sources, false);
         }
         Err(CompileError::Internal(e)) => panic!(
             "internal compiler error on input:\n{text}\n{e}\n{}",

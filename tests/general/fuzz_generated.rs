@@ -14,7 +14,7 @@
 use crate::common;
 
 use compiler::{CompileError, CompileOptions};
-use dsl::SourceMap;
+use diag::SourceMap;
 
 /// A small deterministic generator (SplitMix64).
 struct Rng(u64);
@@ -355,7 +355,7 @@ fn generated_styles_compile_to_naga_valid_wgsl_or_get_user_errors() {
             Ok(Err(CompileError::User(d))) => {
                 assert!(!d.is_empty(), "case {seed}: a user error with no diagnostic");
                 for diag in &d {
-                    assert_ne!(diag.code, dsl::codes::INTERNAL, "case {seed}:\n{text}");
+                    assert_ne!(diag.code, diag::codes::INTERNAL, "case {seed}:\n{text}");
                     *refusals.entry(diag.code).or_default() += 1;
                 }
                 refused += 1;

@@ -221,7 +221,7 @@ proptest! {
     ) {
         let (_, text) = seed.get(scene_seeds());
         let text = mutate(text, &edits, TOML_TOKENS);
-        let mut sources = dsl::SourceMap::new();
+        let mut sources = diag::SourceMap::new();
         let file = sources.add("fuzz.toml", text.clone());
         // Relative meshes and images resolve against examples/scenes, as the seeds' do.
         match runner::scene::parse_scene(&text, file, &examples().join("scenes")) {
@@ -229,12 +229,12 @@ proptest! {
             Err(diags) => {
                 prop_assert!(!diags.is_empty());
                 for d in &diags {
-                    prop_assert!(dsl::codes::ALL.iter().any(|(c, _)| *c == d.code), "unknown code {}", d.code);
+                    prop_assert!(diag::codes::ALL.iter().any(|(c, _)| *c == d.code), "unknown code {}", d.code);
                     for l in &d.labels {
                         prop_assert!(l.span.start <= l.span.end && l.span.end as usize <= text.len(), "{d:?}");
                     }
                 }
-                let _ = dsl::diagnostic::render(&diags, &sources, false);
+                let _ = diag::diagnostic::render(&diags, &sources, false);
             }
         }
     }
@@ -255,7 +255,7 @@ proptest! {
                 let n = mesh.positions.len() as u32;
                 prop_assert!(mesh.indices.iter().all(|i| *i < n), "an index past {n} vertices");
             }
-            Err(e) => prop_assert!(dsl::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
+            Err(e) => prop_assert!(diag::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
         }
     }
 }

@@ -1,4 +1,4 @@
-//! The limits of `dsl::limits`, from both sides: input at a limit compiles to
+//! The limits of `diag::limits`, from both sides: input at a limit compiles to
 //! WGSL that naga accepts (never E9001), and input past it, up to ten times
 //! past, is a user error with the limit's code, never a crash.
 //!
@@ -7,8 +7,8 @@
 //! they fit in `npr`. The property test at the end runs the real binary.
 
 use compiler::{CompileError, CompileOptions};
-use dsl::limits::{MAX_EXPR_DEPTH, MAX_NESTING, MAX_PARAMS, MAX_SOURCE_BYTES};
-use dsl::SourceMap;
+use diag::limits::{MAX_EXPR_DEPTH, MAX_NESTING, MAX_PARAMS, MAX_SOURCE_BYTES};
+use diag::SourceMap;
 use proptest::prelude::*;
 use std::path::Path;
 use std::process::Command;
@@ -158,14 +158,14 @@ fn too_many_params() {
     assert_refused(
         "params",
         &format!("style \"S\"\n{params}pass p: image() {{ out c: r8unorm = p0 }}\noutput p.c\n"),
-        dsl::codes::LIMIT_EXCEEDED,
+        diag::codes::LIMIT_EXCEEDED,
     );
 }
 
 #[test]
 fn a_file_past_the_size_limit_is_refused_where_the_limit_is() {
     let text = style_with(&format!("a // {}", "x".repeat(MAX_SOURCE_BYTES)));
-    assert_refused("source size", &text, dsl::codes::LIMIT_EXCEEDED);
+    assert_refused("source size", &text, diag::codes::LIMIT_EXCEEDED);
 }
 
 /// Runs `npr check` on `text`, written to a scratch file.
@@ -184,14 +184,14 @@ fn npr_check(name: &str, text: &str) -> std::process::Output {
 
 fn shape_strategy() -> impl Strategy<Value = (Shape, usize, &'static str)> {
     let brackets = (prop::sample::select(BRACKETS.to_vec()), MAX_NESTING..=10 * MAX_NESTING)
-        .prop_map(|(s, n)| (s, n, dsl::codes::NESTED_TOO_DEEP));
+        .prop_map(|(s, n)| (s, n, diag::codes::NESTED_TOO_DEEP));
     let chains = (
         prop::sample::select(CHAINS.to_vec()),
         MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH,
     )
-        .prop_map(|(s, n)| (s, n, dsl::codes::EXPRESSION_TOO_DEEP));
+        .prop_map(|(s, n)| (s, n, diag::codes::EXPRESSION_TOO_DEEP));
     let fields =
-        (MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH).prop_map(|n| (Shape::Fields, n, dsl::codes::EXPRESSION_TOO_DEEP));
+        (MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH).prop_map(|n| (Shape::Fields, n, diag::codes::EXPRESSION_TOO_DEEP));
     prop_oneof![brackets, chains, fields]
 }
 
@@ -218,31 +218,31 @@ fn ten_times_past_every_limit_in_process() {
         assert_refused(
             &format!("{shape:?}"),
             &style_with(&nested(shape, 10 * MAX_NESTING)),
-            dsl::codes::NESTED_TOO_DEEP,
+            diag::codes::NESTED_TOO_DEEP,
         );
     }
     for shape in CHAINS.into_iter().chain([Shape::Fields]) {
         assert_refused(
             &format!("{shape:?}"),
             &style_with(&nested(shape, 10 * MAX_EXPR_DEPTH)),
-            dsl::codes::EXPRESSION_TOO_DEEP,
+            diag::codes::EXPRESSION_TOO_DEEP,
         );
     }
     // The cases: a sum of 10⁵ terms and a thousand parentheses.
     assert_refused(
         "sum",
         &style_with(&nested(Shape::Sum, 100_000)),
-        dsl::codes::EXPRESSION_TOO_DEEP,
+        diag::codes::EXPRESSION_TOO_DEEP,
     );
     assert_refused(
         "parens",
         &style_with(&nested(Shape::Parens, 1000)),
-        dsl::codes::NESTED_TOO_DEEP,
+        diag::codes::NESTED_TOO_DEEP,
     );
     assert_refused(
         "blocks",
         &style_with(&nested(Shape::Blocks, 1000)),
-        dsl::codes::NESTED_TOO_DEEP,
+        diag::codes::NESTED_TOO_DEEP,
     );
 }
 
@@ -285,7 +285,7 @@ fn a_state_first_value_deep_through_lets_compiles() {
         text += &format!("  let a{i} = a{} * 1.001 + 0.5\n", i - 1);
     }
     text += "  state s: float = a199\n  s = s + 1.0\n}\npass shade: render(scene) {\n  out c: r32float = f.s\n}\noutput shade.c\n";
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     match compiler::compile_source(
         "deep.npr",
         &text,
@@ -294,7 +294,7 @@ fn a_state_first_value_deep_through_lets_compiles() {
         &Default::default(),
     ) {
         Ok(_) => {}
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
@@ -309,27 +309,27 @@ fn scene_of(bytes: usize) -> String {
 
 #[test]
 fn a_scene_at_the_size_limit_loads_and_one_byte_more_is_refused_where_the_limit_is() {
-    use dsl::limits::MAX_SCENE_BYTES;
+    use diag::limits::MAX_SCENE_BYTES;
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("limits");
     std::fs::create_dir_all(&dir).expect("scratch dir");
     let at = dir.join("at_limit.toml");
     std::fs::write(&at, scene_of(MAX_SCENE_BYTES)).expect("write scene");
     assert_eq!(std::fs::metadata(&at).expect("size").len() as usize, MAX_SCENE_BYTES);
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&at, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
 
     let over = dir.join("over_limit.toml");
     std::fs::write(&over, scene_of(MAX_SCENE_BYTES + 1)).expect("write scene");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let Err(d) = runner::scene::load_scene(&over, &mut sources) else {
         panic!("a scene of {} bytes must be refused", MAX_SCENE_BYTES + 1)
     };
     assert_eq!(d.len(), 1);
-    assert_eq!(d[0].code, dsl::codes::LIMIT_EXCEEDED);
+    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED);
     let span = d[0].primary_span().expect("a span");
     assert_eq!(span.start as usize, MAX_SCENE_BYTES);
-    let rendered = dsl::diagnostic::render(&d, &sources, false);
+    let rendered = diag::diagnostic::render(&d, &sources, false);
     assert!(rendered.contains("over the 1048576-byte limit"), "{rendered}");
 
     // Through the binary: exit 1 with the code.

@@ -43,10 +43,10 @@ fn fandisk_scene(eye: [f32; 3]) -> Scene {
          scale = 0.4\ntranslate = [-0.966, -6.091, 0.536]\n",
         eye[0], eye[1], eye[2]
     );
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("fandisk.toml", text.clone());
     runner::scene::parse_scene(&text, file, root())
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The mesh in world space, welded, with face normals and edge-face

@@ -18,10 +18,10 @@ use common::lsa::{output, scene_of, style, targets, to_f64, uv};
 use common::root;
 
 fn scene_text(text: &str) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("hard.toml", text.to_string());
     runner::scene::parse_scene(text, file, Path::new("."))
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The styles compared, with the line threshold on the red channel of their
@@ -341,7 +341,7 @@ fn scene_files_match_the_analytic_definitions() {
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(text, s.to_toml(), "{} is stale", path.display());
         // And it loads as a scene with one object per analytic object.
-        let mut sources = dsl::SourceMap::new();
+        let mut sources = diag::SourceMap::new();
         let scene = runner::scene::load_scene(&path, &mut sources).expect("loads");
         assert_eq!(scene.objects.len(), s.objects.len());
     }

@@ -9,6 +9,7 @@ mod common;
 mod bench_plot;
 mod cli;
 mod cli_usage;
+mod crate_boundaries;
 mod determinism;
 mod examples_compile;
 mod explain;

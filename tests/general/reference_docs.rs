@@ -176,7 +176,7 @@ fn the_reference_covers_every_operator_builtin_and_code() {
         );
     }
     let errors = &files["errors.md"];
-    for (code, what) in dsl::codes::ALL {
+    for (code, what) in diag::codes::ALL {
         assert!(errors.contains(&format!("## {code}: {what}\n")), "{code} is missing");
     }
     for (name, _) in abi::Format::ALL {

@@ -5,7 +5,7 @@
 
 use abi::SceneSummary;
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use glam::{Vec3, Vec4};
 use runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
@@ -27,7 +27,7 @@ fn compile(text: &str, scene: Option<SceneSummary>) -> compiler::Compiled {
     };
     match compiler::compile_source("test.npr", text, root(), &mut sources, &opts) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -38,7 +38,7 @@ fn scene_from(text: &str, name: &str) -> runner::scene::Scene {
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 const SHADOW_STYLE: &str = r#"
@@ -247,7 +247,7 @@ fn dump_passes_reproduces_every_pass_even_where_textures_are_shared() {
 fn error_text(text: &str) -> String {
     let mut sources = SourceMap::new();
     match compiler::compile_source("bad.npr", text, root(), &mut sources, &CompileOptions::default()) {
-        Err(compiler::CompileError::User(d)) => dsl::diagnostic::render(&d, &sources, false),
+        Err(compiler::CompileError::User(d)) => diag::diagnostic::render(&d, &sources, false),
         Ok(_) => panic!("expected an error for:\n{text}"),
         Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
     }

@@ -55,13 +55,13 @@ fn plane(tilt_deg: f64) -> runner::scene::Scene {
         "[camera]\nposition = [0.0, 0.0, 2.5]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"plane\", size = 2.0 }}\nrotate = [{}, 0.0, 0.0]\n",
         90.0 - tilt_deg
     );
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("scene.toml", text.clone());
     runner::scene::parse_scene(&text, file, root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 fn build_and_sample(dir: &Path, rip: bool) -> Result<(), RunError> {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let compiled = match compiler::compile_source(
         "case.npr",
         &style("src.png", rip),
@@ -70,7 +70,7 @@ fn build_and_sample(dir: &Path, rip: bool) -> Result<(), RunError> {
         &Default::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     };
     let program = compiled.program();
@@ -121,7 +121,7 @@ fn a_source_at_the_texture_limit() {
         Err(e) => {
             let diags = e.diagnostics();
             assert!(
-                diags.iter().any(|d| d.code == dsl::codes::LIMIT_EXCEEDED),
+                diags.iter().any(|d| d.code == diag::codes::LIMIT_EXCEEDED),
                 "a limit error, got {e}: {diags:?}"
             );
         }

@@ -11,9 +11,9 @@ use crate::common;
 use common::{gpu, root};
 
 fn load(style: &str, scene: &str) -> (StyleProgram, Scene) {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let loaded = runner::scene::load_scene(&root().join(scene), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let opts = compiler::CompileOptions {
         scene: Some(loaded.summary(scene)),
         ..Default::default()

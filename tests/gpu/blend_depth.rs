@@ -15,7 +15,7 @@
 //! view depths, converted to window depth with the camera's near and far.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::readback::TargetImage;
 use runner::scene::Scene;
 use runner::{FrameSpec, Renderer};
@@ -39,7 +39,7 @@ fn load_scene(dir: &Path, toml: &str) -> Scene {
     std::fs::write(&path, toml).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// Compile `text` and render it on `scene`: the output target.
@@ -47,7 +47,7 @@ fn render(text: &str, dir: &Path, scene: &Scene) -> TargetImage {
     let mut sources = SourceMap::new();
     let compiled = match compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     };
     let program = compiled.program();

@@ -18,16 +18,16 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn example(path: &str) -> StyleProgram {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     compiler::compile_file(&root().join(path), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"))
         .program()
 }
 
 fn scene(path: &str) -> Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The slot of value `name` of compute pass `pass` (live values are packed

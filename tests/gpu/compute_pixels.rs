@@ -17,7 +17,7 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn scene_from(text: &str) -> Scene {
-    runner::scene::parse_scene(text, dsl::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
+    runner::scene::parse_scene(text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 /// A grid of `n × n` small spheres that overlap on screen (so tiles hold

@@ -16,9 +16,9 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn scene(path: &str) -> Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 const STYLE: &str = r#"style "Samples"
@@ -90,11 +90,11 @@ fn sample_sums_match_the_same_samples_in_f64() {
 
 #[test]
 fn a_sample_count_that_is_not_a_whole_number_is_refused() {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let text = STYLE.replace("count: 300", "count: 2.5");
     match compiler::compile_source("c.npr", &text, root(), &mut sources, &Default::default()) {
         Err(compiler::CompileError::User(d)) => {
-            let r = dsl::diagnostic::render(&d, &sources, false);
+            let r = diag::diagnostic::render(&d, &sources, false);
             assert!(r.contains("E0203") && r.contains("whole number"), "{r}");
         }
         other => panic!("expected E0203, got {:?}", other.map(|_| ())),

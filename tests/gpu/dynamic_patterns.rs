@@ -39,7 +39,7 @@ fn scene(object: &str) -> Scene {
         "[camera]\nposition = [0.0, 0.0, 0.0]\ntarget = [0.0, 0.0, -1.0]\nfov = 40.0\nnear = 0.1\nfar = 50.0\n\
          [light]\ndirection = [0.0, 0.0, 1.0]\n\n[[object]]\nprimitive = {object}\n"
     );
-    runner::scene::parse_scene(&text, dsl::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
+    runner::scene::parse_scene(&text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 const QUAD: &str = "{ kind = \"plane\", size = 1.0, subdivisions = 4 }";
@@ -386,7 +386,7 @@ fn each_object_and_patch_starts_from_its_own_pattern_frame() {
     let v0 = DVec2::new(-angle.sin(), angle.cos()) * period;
     let text = "[camera]\nposition = [0.0, 0.0, 0.0]\ntarget = [0.0, 0.0, -1.0]\n[[object]]\n\
                 primitive = { kind = \"sphere\", radius = 0.5, segments = 32, rings = 16 }\ntranslate = [0.0, 0.0, -4.0]\npatches = 4\n";
-    let scene = runner::scene::parse_scene(text, dsl::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"));
+    let scene = runner::scene::parse_scene(text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"));
     assert_eq!(scene.objects.len(), 4);
     let program = program(&style(|t| t));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");

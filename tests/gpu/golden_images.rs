@@ -18,10 +18,10 @@ const SIZE: u32 = 192;
 
 fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let scene_name = scene;
     let scene = runner::scene::load_scene(&root.join(scene), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     // Compiled for its scene, as `npr render` does.
     let opts = compiler::CompileOptions {
         scene: Some(scene.summary(scene_name)),

@@ -101,7 +101,7 @@ output p.c
     );
     let scene = runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        dsl::FileId(0),
+        diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -117,7 +117,7 @@ output p.c
         .render(&scene, &spec(max / 2 + 1))
         .expect_err("past the texture limit");
     let d = err.diagnostics();
-    assert_eq!(d[0].code, dsl::codes::LIMIT_EXCEEDED, "{d:?}");
+    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED, "{d:?}");
     assert!(
         d[0].message.contains(&format!("2D texture limit of {max}")),
         "{}",
@@ -140,7 +140,7 @@ output p.c
     );
     let scene = runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        dsl::FileId(0),
+        diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -163,7 +163,7 @@ output p.c
         other => panic!("expected a lost device, got {:?}", other.map(|_| ())),
     }
     let e = RunError::DeviceLost("Destroyed: device destroyed".into());
-    assert_eq!(e.diagnostics()[0].code, dsl::codes::DEVICE_LOST);
+    assert_eq!(e.diagnostics()[0].code, diag::codes::DEVICE_LOST);
     assert!(e.is_user_error(), "a lost device is not a bug in npr: exit 1");
     drop(r);
     // What the studio and `npr watch` do next: a new device.
@@ -185,7 +185,7 @@ output p.c
     );
     let scene = runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        dsl::FileId(0),
+        diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -248,7 +248,7 @@ fn a_format_the_adapter_cannot_create_is_a_limit_error_with_an_install_hint() {
     // No adapter has storage on sRGB formats.
     let d = runner::gpu_error::check_target_formats(&gpu.device, &targets, wgpu::TextureUsages::STORAGE_BINDING);
     assert_eq!(d.len(), 1, "{d:?}");
-    assert_eq!(d[0].code, dsl::codes::LIMIT_EXCEEDED);
+    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED);
     assert!(
         d[0].message.contains("`rgba8unorm_srgb` targets (target `shade`)"),
         "{}",

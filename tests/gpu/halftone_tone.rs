@@ -40,7 +40,7 @@ output ht.paper
 fn tone_errors(correction: &str) -> Vec<(f64, f64, f64)> {
     let program = common::compile_text(&style(correction));
     let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nprimitive = { kind = \"sphere\" }\n";
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("tone.toml", text.to_string());
     let scene = runner::scene::parse_scene(text, file, std::path::Path::new(".")).expect("scene");
     let (w, h) = (TONES * CELL, BLENDS * CELL);

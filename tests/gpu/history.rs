@@ -13,16 +13,16 @@ use crate::common;
 use common::{gpu, root};
 
 fn program(text: &str) -> StyleProgram {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let c = compiler::compile_source("h.npr", text, root(), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     c.program()
 }
 
 fn scene(path: &str) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn spec(size: u32, frame: u32) -> FrameSpec {
@@ -81,7 +81,7 @@ fn a_pass_reads_the_previous_frame_of_a_pass_that_runs_after_it() {
 /// the rgba8unorm target does; then frame 8 against its golden.
 #[test]
 fn afterimage_matches_its_recurrence_and_golden() {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let c = compiler::compile_file(
         &root().join("examples/afterimage.npr"),
         &mut sources,

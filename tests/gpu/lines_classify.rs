@@ -23,10 +23,10 @@ const TIE: f64 = 1e-6;
 
 fn mesh(object: &str) -> EdgeMesh {
     let text = format!("[camera]\nposition = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\n{object}\n");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let file = sources.add("scene.toml", text.clone());
     let scene = runner::scene::parse_scene(&text, file, root())
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     EdgeMesh::new(&scene.objects[0].mesh)
 }
 

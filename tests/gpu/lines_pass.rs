@@ -40,9 +40,9 @@ fn scene_looking_at(objects: &str, eye: DVec3, target: DVec3) -> Scene {
         eye.x, eye.y, eye.z, target.x, target.y, target.z
     );
     std::fs::write(&path, text).expect("write scene");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn view_proj(eye: DVec3) -> DMat4 {
@@ -285,7 +285,7 @@ fn a_stereo_frame_draws_each_eyes_own_silhouette() {
         format!("[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\nfov = {FOV_DEG}\nipd = {}\nnear = 0.1\nfar = 100.0\n\n{SPHERE}", 2.0 * half),
     )
     .expect("write scene");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let scene = runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{d:?}"));
     let program = compile_text(&text);
     assert!(program.manifest.is_stereo(), "the style renders both eyes");
@@ -394,15 +394,15 @@ fn a_patched_cows_lines_are_the_undivided_cows() {
     use runner::lines::edges::{EdgeKind, EdgeMesh};
     let root = common::root();
     let path = root.join("examples/scenes/patched_cow.toml");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let patched = runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let text = std::fs::read_to_string(&path).expect("scene");
     assert!(text.contains("patches = 6\n"), "the scene splits the cow in 6");
     let whole_text = text.replace("patches = 6\n", "").replace("blend_rings = 2\n", "");
     let file = sources.add("whole_cow.toml", whole_text.clone());
     let whole = runner::scene::parse_scene(&whole_text, file, &root.join("examples/scenes"))
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     assert_eq!((patched.objects.len(), whole.objects.len()), (6, 1));
 
     let edges = |meshes: Vec<&runner::scene::Mesh>| {

@@ -49,7 +49,7 @@ fn variant(format: &str, space: &str) -> StyleProgram {
         assert!(text.contains(from), "`{from}` not in lsa_contours.npr");
         text = text.replace(from, &to);
     }
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     match compiler::compile_source(
         "lsa_contours.npr",
         &text,
@@ -58,7 +58,7 @@ fn variant(format: &str, space: &str) -> StyleProgram {
         &Default::default(),
     ) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -100,10 +100,10 @@ fn gbuffer_precision_and_space_against_distance_from_the_origin() {
         for s in builtin_scenes() {
             let moved = s.translated(DIRECTION.map(|c| c * d));
             let truth = moved.truth(SIZE, SIZE);
-            let mut sources = dsl::SourceMap::new();
+            let mut sources = diag::SourceMap::new();
             let scene = moved
                 .scene(&mut sources)
-                .unwrap_or_else(|e| panic!("{}", dsl::diagnostic::render(&e, &sources, false)));
+                .unwrap_or_else(|e| panic!("{}", diag::diagnostic::render(&e, &sources, false)));
             for (i, (name, program)) in variants.iter().enumerate() {
                 let img = runner::render_frame(&gpu, program, &scene, &spec).unwrap_or_else(|e| panic!("{e}"));
                 let a = accuracy(&ink_mask(&img, 0.5), &truth, 1);

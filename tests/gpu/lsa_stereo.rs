@@ -4,7 +4,7 @@
 //! the full method with the stereo consistency pass (`examples/lsa_stereo.npr`).
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use glam::Vec4;
 use lab::contours::{ink_mask, Mask};
 use runner::{FrameSpec, Renderer, StyleProgram};
@@ -17,7 +17,7 @@ fn program(text: &str) -> StyleProgram {
     let mut sources = SourceMap::new();
     match compiler::compile_source("style.npr", text, root(), &mut sources, &CompileOptions::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -32,7 +32,7 @@ fn stereo_scene(name: &str, ipd: f64) -> runner::scene::Scene {
     std::fs::write(&path, text).expect("write");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn render(p: &StyleProgram, scene: &runner::scene::Scene, size: u32, eye: u32) -> runner::TargetImage {

@@ -10,7 +10,7 @@ use crate::common;
 use abi::StyleProgram;
 use common::{gpu, root};
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use runner::{FrameSpec, Renderer};

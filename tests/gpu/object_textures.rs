@@ -4,7 +4,7 @@
 //! read outside a render pass give diagnostics.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::{FrameSpec, Gpu, Renderer};
 use std::path::{Path, PathBuf};
 
@@ -68,7 +68,7 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     .expect("write scene");
     let mut sources = SourceMap::new();
     let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let compiled = compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let pass = &compiled.manifest.passes[0];
@@ -113,14 +113,14 @@ fn renderer_errors(left: &str, right: &str, name: &str) -> String {
     std::fs::write(&scene_path, scene_text(left, right)).expect("write scene");
     let mut sources = SourceMap::new();
     let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let compiled = compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let program = compiled.program();
     match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("expected the renderer to refuse {left} / {right}"),
         Err(runner::RunError::User(d)) => {
-            dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+            diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
         }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     }
@@ -152,14 +152,14 @@ output p.c
 ";
     let mut sources = SourceMap::new();
     let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let compiled = compiler::compile_source("tint.npr", style, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let program = compiled.program();
     let text = match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("an image bound to a colour param must be refused"),
         Err(runner::RunError::User(d)) => {
-            dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+            diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
         }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
@@ -187,7 +187,7 @@ fn a_missing_bound_image_is_refused_while_loading_the_scene() {
         Ok(_) => panic!("a missing image must be refused"),
         Err(d) => d,
     };
-    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
+    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
 }
 
 #[test]
@@ -200,7 +200,7 @@ fn a_table_binding_without_an_image_is_refused_with_did_you_mean() {
         Ok(_) => panic!("a binding without an image must be refused"),
         Err(d) => d,
     };
-    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
+    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
 }
 
 #[test]
@@ -222,7 +222,7 @@ output q.c
         Err(compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]
@@ -242,7 +242,7 @@ output p.c
         Err(compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]
@@ -261,7 +261,7 @@ output p.c
         Err(compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(dsl::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]

@@ -341,7 +341,7 @@ fn an_object_without_patches_draws_weight_one_over_its_own_faces() {
     );
     let path = dir.join("plain.toml");
     std::fs::write(&path, text).expect("scene");
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let scene = runner::scene::load_scene(&path, &mut sources).expect("scene");
     assert!(scene.objects.iter().all(|o| o.blend.is_none()));
     let img = render(&with_power(ACCUMULATE, 0.5), &scene);
@@ -373,13 +373,13 @@ fn patch_weight_exists_in_render_passes_only() {
         } else {
             text
         };
-        let mut sources = dsl::SourceMap::new();
+        let mut sources = diag::SourceMap::new();
         let err = match compiler::compile_source("case.npr", &text, root(), &mut sources, &Default::default()) {
-            Err(compiler::CompileError::User(d)) => dsl::diagnostic::render(&d, &sources, false),
+            Err(compiler::CompileError::User(d)) => diag::diagnostic::render(&d, &sources, false),
             other => panic!("{kind}: {:?}", other.map(|_| ())),
         };
         assert!(
-            err.contains("`patch.weight` is not available in") && err.contains(dsl::codes::BAD_PASS_INPUT),
+            err.contains("`patch.weight` is not available in") && err.contains(diag::codes::BAD_PASS_INPUT),
             "{kind}:\n{err}"
         );
     }

@@ -48,7 +48,7 @@ const SEAM_RATIO: [(&str, f64); 4] = [
 ];
 
 fn example(style: &str) -> StyleProgram {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
         &mut sources,

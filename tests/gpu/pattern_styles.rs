@@ -27,7 +27,7 @@ fn matches_its_goldens(style: &str) {
 /// [`matches_its_goldens`] on `examples/scenes/<scene>.toml`, with goldens
 /// `examples/golden/<style>_<scene>_{00,12,24}.png`.
 fn matches_its_goldens_on(style: &str, scene_name: &str) {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let program = compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
         &mut sources,
@@ -36,7 +36,7 @@ fn matches_its_goldens_on(style: &str, scene_name: &str) {
     .unwrap_or_else(|e| panic!("{e:?}"))
     .program();
     let scene = runner::scene::load_scene(&root().join(format!("examples/scenes/{scene_name}.toml")), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     // Path-dependent: every frame in order, as `--frames 0..25` renders them.
     for frame in 0u32..=24 {
@@ -188,7 +188,7 @@ const BAND_FRAME: u32 = 51;
 /// `examples/golden/<style>_cows_lod_band.png` within 2/255 per channel
 /// with at most 0.5% of the pixels further off.
 fn mid_transition_matches_its_golden(style: &str) {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let program = compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
         &mut sources,
@@ -198,7 +198,7 @@ fn mid_transition_matches_its_golden(style: &str) {
     .program();
     let zoom = value_slot(&program, "pattern", "zoom");
     let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     for frame in 0..=BAND_FRAME {
         let spec = FrameSpec::animated(128, 96, frame, FrameSpec::DEFAULT_FPS, 0);

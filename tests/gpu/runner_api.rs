@@ -2,7 +2,7 @@
 //! files and from the generator, `use` of another style, stereo eyes.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::{Path, PathBuf};
 
@@ -19,7 +19,7 @@ fn compile_text(text: &str, dir: &Path) -> StyleProgram {
     let mut sources = SourceMap::new();
     match compiler::compile_source("test.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -27,7 +27,7 @@ fn compile_text(text: &str, dir: &Path) -> StyleProgram {
 fn scene(path: &str) -> runner::scene::Scene {
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn spec(width: u32, height: u32) -> FrameSpec {

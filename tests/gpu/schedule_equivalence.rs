@@ -87,7 +87,7 @@ fn compile_narrowed(
     schedule: Schedule,
     deficit: u32,
 ) -> Compiled {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     let opts = compiler::CompileOptions {
         scene: Some(scene.summary(scene_name)),
         schedule,
@@ -95,7 +95,7 @@ fn compile_narrowed(
         ..Default::default()
     };
     let c = compiler::compile_file(style, &mut sources, &opts).unwrap_or_else(|e| match e {
-        compiler::CompileError::User(d) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        compiler::CompileError::User(d) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         e => panic!("{}: {e:?}", style.display()),
     });
     let entries = |action: &str| -> Vec<String> {
@@ -130,9 +130,9 @@ fn compile_narrowed(
 }
 
 fn load_scene(scene: &Path) -> runner::scene::Scene {
-    let mut sources = dsl::SourceMap::new();
+    let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(scene, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The output of frame `FRAMES - 1` (frames at 24 fps), per eye.

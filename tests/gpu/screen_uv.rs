@@ -3,7 +3,7 @@
 //! ground plane running under the camera), at full and at reduced scale.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::{FrameSpec, Gpu, Renderer};
 use std::path::Path;
 
@@ -24,7 +24,7 @@ fn screen_uv_is_the_pixel_centre_even_on_clipped_triangles() {
     .expect("write scene");
     let mut sources = SourceMap::new();
     let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     for (scale, (w, h)) in [("1", (37u32, 23u32)), ("1/2", (37, 23))] {
         let text = format!(
             "style \"uv\"\npass p: render(scene) scale {scale} {{\n  out s: rgba32float = vec4(screen_uv, 0.0, 1.0)\n  clear: #00000000\n}}\noutput p.s\n"

@@ -4,7 +4,7 @@
 //! and `project_other_eye` maps a world point into the other eye's image.
 
 use compiler::CompileOptions;
-use dsl::SourceMap;
+use diag::SourceMap;
 use runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
 
@@ -21,7 +21,7 @@ fn compile(text: &str) -> compiler::Compiled {
         &CompileOptions::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", dsl::diagnostic::render(&d, &sources, false)),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
         Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
@@ -50,7 +50,7 @@ primitive = {{ kind = "plane", size = 6.0, subdivisions = 4 }}
     runner::output::write_atomic(&path, text.as_bytes()).expect("write scene");
     let mut sources = SourceMap::new();
     runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", dsl::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn render(program: &StyleProgram, scene: &runner::scene::Scene, eye: u32, size: u32) -> Vec<[f32; 4]> {
@@ -159,7 +159,7 @@ fn other_eye_of_something_that_is_not_a_target_is_an_error() {
         &CompileOptions::default(),
     ) {
         Err(compiler::CompileError::User(d)) => {
-            insta::assert_snapshot!("other_eye_not_a_target", dsl::diagnostic::render(&d, &sources, false))
+            insta::assert_snapshot!("other_eye_not_a_target", diag::diagnostic::render(&d, &sources, false))
         }
         _ => panic!("expected a user error"),
     }

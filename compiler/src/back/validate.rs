@@ -11,9 +11,9 @@ use naga::valid::{Capabilities, ValidationFlags, Validator};
 
 /// Parse and validate WGSL with naga; `Err` holds naga's rendered message
 /// (or, if naga panicked, its panic message). The panic is expected
-/// (`dsl::panics`): `npr` prints the internal error, not Rust's panic line.
+/// (`diag::panics`): `npr` prints the internal error, not Rust's panic line.
 pub fn validate_wgsl(name: &str, wgsl: &str) -> Result<naga::Module, String> {
-    dsl::panics::catch(|| parse_and_validate(name, wgsl))
+    diag::panics::catch(|| parse_and_validate(name, wgsl))
         .unwrap_or_else(|why| Err(format!("naga panicked on {name}: {why}")))
 }
 

@@ -10,8 +10,8 @@
 use crate::ir::FilterArg;
 use crate::mid::overrides::ParamOverride;
 use abi::manifest::{ParamBinding, ParamManifest};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic};
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic};
 use stdlib::Unit;
 
 /// The overrides `args` make of the filter `filter_name`'s `params`, or

@@ -7,7 +7,7 @@
 //! syntax error in the run, they are dropped. Every other error of the
 //! declarations that did parse is still reported.
 
-use dsl::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap};
 
 /// Drop from `diags` the errors that a syntax error in the same run
 /// explains: unknown names that are names of `broken` declarations, and a

@@ -8,8 +8,8 @@
 
 use crate::ir::*;
 use abi::lines::{LineScalar, ParamTerm};
+use diag::Span;
 use dsl::ast::{BinOp, UnOp};
-use dsl::Span;
 
 /// Why a setting is not affine: where, and what to say there.
 #[derive(Debug, Clone, PartialEq)]

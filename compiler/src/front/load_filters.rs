@@ -6,9 +6,9 @@
 //! in the art-map.
 
 use crate::front::load::{load_filter_file, Loaded};
+use diag::paths::PathPolicy;
+use diag::{codes, Diagnostic, SourceMap};
 use dsl::ast::{ExprKind, Item};
-use dsl::paths::PathPolicy;
-use dsl::{codes, Diagnostic, SourceMap};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

@@ -12,9 +12,9 @@ use crate::ir::*;
 use crate::mid::consteval::const_eval;
 use crate::InternalError;
 use abi::Format;
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, Span};
 use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, Span};
 use std::collections::HashMap;
 use std::path::Path;
 use stdlib::Unit;
@@ -33,14 +33,14 @@ mod texture_source;
 pub use calls::signature;
 
 /// Resolution limits, stated in the error messages (the table of every
-/// limit is `dsl::limits`).
-pub use dsl::limits::{MAX_PARAMS, MAX_PASSES, MAX_TARGETS_PER_PASS as MAX_OUTPUTS_PER_PASS};
+/// limit is `diag::limits`).
+pub use diag::limits::{MAX_PARAMS, MAX_PASSES, MAX_TARGETS_PER_PASS as MAX_OUTPUTS_PER_PASS};
 pub const MAX_NOISE_SIZE: u32 = 4096;
 
 pub fn resolve(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
-    paths: Option<&dsl::paths::PathPolicy>,
+    paths: Option<&diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
     let mut r = Resolver {
@@ -85,7 +85,7 @@ struct Resolver<'d> {
     /// The scene, when the caller knows it (for `scene_has`).
     scene: Option<&'d crate::SceneSummary>,
     /// The paths policy every `image("…")` is checked against before it is probed.
-    paths: Option<&'d dsl::paths::PathPolicy>,
+    paths: Option<&'d diag::paths::PathPolicy>,
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,

@@ -4,7 +4,7 @@
 //! Checked after typecheck, on every use of a declared texture (E0201).
 
 use crate::ir::{Callee, ExprKind, Ir, TextureSource};
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 use std::collections::HashSet;
 
 const RIPMAP_READER: &str = "sample_ripmap";

@@ -15,8 +15,8 @@
 
 use crate::ir::*;
 use crate::mid::consteval::const_eval;
+use diag::{codes, Diagnostic, Span};
 use dsl::ast::{BinOp, UnOp};
-use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
 mod arith;

@@ -11,8 +11,8 @@
 
 use crate::ir::*;
 use crate::mid::prune::Live;
+use diag::{codes, Diagnostic};
 use dsl::ast::BinOp;
-use dsl::{codes, Diagnostic};
 use std::collections::HashMap;
 
 /// E0203 for each live intrinsic call on constants that has no finite value.

@@ -11,8 +11,8 @@
 use crate::ir::{Ir, PassKind};
 use crate::mid::prune::Live;
 use abi::SceneSummary;
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic};
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic};
 
 /// W0402 for each live `render(tag)` / `compute(domain, tag)` / `lines(tag)` pass whose
 /// tag `scene` lacks. Nothing without a scene.

@@ -47,7 +47,7 @@ mod unstored;
 use crate::ir::{Ir, PassId, PassKind};
 use crate::mid::prune::Live;
 use crate::report::Report;
-use dsl::{Diagnostic, FileId, SourceMap, Span};
+use diag::{Diagnostic, FileId, SourceMap, Span};
 use serde::Serialize;
 use std::collections::BTreeMap;
 

@@ -35,7 +35,7 @@ use crate::mid::dag::pass_roots;
 use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::manifest::TILE_SIZE;
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 use serde::Serialize;
 use std::collections::BTreeSet;
 

@@ -1,5 +1,5 @@
 //! `npr explain CODE`: a long explanation of every code in
-//! [`crate::codes::ALL`] (what it means, a wrong example, the fixed one), as
+//! [`diag::codes::ALL`] (what it means, a wrong example, the fixed one), as
 //! rustc's `--explain` gives, and the nearest codes for one that does not
 //! exist.
 //!
@@ -142,7 +142,7 @@ impl Example {
     }
 }
 
-/// Every explanation, in the order of [`crate::codes::ALL`].
+/// Every explanation, in the order of [`diag::codes::ALL`].
 pub fn all() -> impl Iterator<Item = &'static Explanation> {
     syntax::ALL
         .iter()
@@ -158,9 +158,9 @@ pub fn lookup(code: &str) -> Option<&'static Explanation> {
     all().find(|e| e.code.eq_ignore_ascii_case(code.trim()))
 }
 
-/// The one-line meaning of `code` from [`crate::codes::ALL`].
+/// The one-line meaning of `code` from [`diag::codes::ALL`].
 pub fn summary(code: &str) -> Option<&'static str> {
-    crate::codes::ALL.iter().find(|(c, _)| *c == code).map(|(_, s)| *s)
+    diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(_, s)| *s)
 }
 
 /// The codes nearest to one that does not exist: the same letter and the
@@ -169,7 +169,7 @@ pub fn nearest(code: &str, n: usize) -> Vec<&'static str> {
     let wanted = code.trim().to_ascii_uppercase();
     let number = |c: &str| c.get(1..).and_then(|d| d.parse::<i64>().ok());
     let letter = wanted.chars().next();
-    let mut scored: Vec<(bool, i64, f64, &'static str)> = crate::codes::ALL
+    let mut scored: Vec<(bool, i64, f64, &'static str)> = diag::codes::ALL
         .iter()
         .map(|(c, _)| {
             let same_letter = c.chars().next() == letter;

@@ -13,8 +13,8 @@ mod recovery;
 use recovery::{content_len, recover};
 
 use crate::ast::*;
-use crate::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
-use crate::{codes, Diagnostic, FileId, Span};
+use diag::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
+use diag::{codes, Diagnostic, FileId, Span};
 use pest::iterators::Pair;
 use pest::Parser;
 use std::cell::{Cell, RefCell};

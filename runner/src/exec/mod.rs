@@ -51,8 +51,8 @@ use common::{EncodeContext, Timestamps};
 use glam::Mat4;
 use pass::PassExec;
 
-/// The largest image (`--size`): `dsl::limits`, where every limit is listed.
-pub use dsl::limits::MAX_OUTPUT_SIZE;
+/// The largest image (`--size`): `diag::limits`, where every limit is listed.
+pub use diag::limits::MAX_OUTPUT_SIZE;
 
 pub struct Renderer<'d> {
     device: &'d wgpu::Device,
@@ -103,8 +103,8 @@ impl<'d> Renderer<'d> {
         scene: &Scene,
     ) -> Result<Renderer<'d>, RunError> {
         if program.manifest.validate_filter().is_ok() {
-            return Err(RunError::User(vec![dsl::Diagnostic::error(
-                dsl::codes::BAD_FILTER,
+            return Err(RunError::User(vec![diag::Diagnostic::error(
+                diag::codes::BAD_FILTER,
                 format!(
                     "style \"{}\" is an art-map filter: it runs on a texture level, not on a scene",
                     program.manifest.style
@@ -355,8 +355,8 @@ impl<'d> Renderer<'d> {
             )));
         }
         if scene.objects.len() != self.meshes.len() {
-            return Err(RunError::User(vec![dsl::Diagnostic::error(
-                dsl::codes::BAD_SCENE,
+            return Err(RunError::User(vec![diag::Diagnostic::error(
+                diag::codes::BAD_SCENE,
                 format!(
                     "the scene has {} object(s), the renderer was built for {}",
                     scene.objects.len(),

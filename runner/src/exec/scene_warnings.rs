@@ -10,8 +10,8 @@
 
 use crate::scene::Scene;
 use abi::manifest::{Manifest, ParamBinding};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, Span};
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, Span};
 
 /// W0401 for every binding of every object whose name is no per-object
 /// param or per-object texture of `manifest`.

@@ -3,7 +3,7 @@
 
 use super::mesh::Attribute;
 use super::Scene;
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 use std::path::Path;
 
 impl Scene {

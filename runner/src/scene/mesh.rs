@@ -3,9 +3,9 @@
 
 use super::geometry;
 
-/// The most triangles one mesh (file or primitive) may have: `dsl::limits`,
+/// The most triangles one mesh (file or primitive) may have: `diag::limits`,
 /// where every limit is listed.
-pub use dsl::limits::MAX_TRIANGLES;
+pub use diag::limits::MAX_TRIANGLES;
 
 /// An indexed triangle mesh. All vertex arrays have one entry per vertex.
 ///

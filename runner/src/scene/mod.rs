@@ -102,7 +102,7 @@
 //!
 //! # Limits and errors
 //!
-//! Every problem is a [`dsl::Diagnostic`] pointing into the scene file, and
+//! Every problem is a [`diag::Diagnostic`] pointing into the scene file, and
 //! as many are collected as the file allows: malformed TOML, unknown or
 //! mistyped fields and bad values are E0405 (`BAD_SCENE`); a missing,
 //! unreadable or unsupported mesh file E0402 (`UNREADABLE_MESH`); a mesh or
@@ -146,8 +146,8 @@ pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
 pub use mesh_file::{load_mesh_file, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
 
-use dsl::limits::MAX_SCENE_BYTES;
-use dsl::{codes, Diagnostic, FileId, SourceMap, Span};
+use diag::limits::MAX_SCENE_BYTES;
+use diag::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -311,7 +311,7 @@ pub fn load_scene(path: &Path, sources: &mut SourceMap) -> Result<Scene, Vec<Dia
 pub fn load_scene_in(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&dsl::paths::PathPolicy>,
+    paths: Option<&diag::paths::PathPolicy>,
 ) -> Result<Scene, Vec<Diagnostic>> {
     let bytes = read_bounded(path).map_err(|err| {
         vec![Diagnostic::error(
@@ -323,7 +323,7 @@ pub fn load_scene_in(
     if bytes.len() > MAX_SCENE_BYTES {
         return Err(vec![too_large(sources, path, &bytes)]);
     }
-    let (file, text) = dsl::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
+    let (file, text) = diag::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
     parse::parse_scene(&text, file, base_dir, paths)
 }

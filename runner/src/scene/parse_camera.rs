@@ -3,7 +3,7 @@
 use super::camera::{Camera, CameraKey};
 use super::light::Light;
 use super::toml_fields::{At, Fields, Report};
-use dsl::Span;
+use diag::Span;
 use glam::Vec3;
 
 const DEFAULT_FOV_DEG: f64 = 40.0;
@@ -189,8 +189,8 @@ fn check_distinct_times(keys: &[At<CameraKey>], report: &mut Report) {
             .find(|earlier| earlier.value.time_s == key.value.time_s)
         {
             report.push(
-                dsl::Diagnostic::error(
-                    dsl::codes::BAD_SCENE,
+                diag::Diagnostic::error(
+                    diag::codes::BAD_SCENE,
                     format!("two camera keys at time {}", key.value.time_s),
                 )
                 .with_primary(key.span, "second key at this time")

@@ -6,8 +6,8 @@
 //! (wrong types, bad values and unknown keys together) instead of stopping at
 //! the first, and so that every value keeps its byte span.
 
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, FileId, Span};
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, FileId, Span};
 use glam::Vec3;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
@@ -23,8 +23,8 @@ pub struct At<T> {
 pub struct Report {
     pub file: FileId,
     pub diagnostics: Vec<Diagnostic>,
-    /// Which files the scene may name (`dsl::paths`); `None` reads any.
-    pub paths: Option<dsl::paths::PathPolicy>,
+    /// Which files the scene may name (`diag::paths`); `None` reads any.
+    pub paths: Option<diag::paths::PathPolicy>,
 }
 
 impl Report {

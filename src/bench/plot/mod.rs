@@ -15,7 +15,7 @@ mod draw;
 pub mod figures;
 
 use crate::printer::Printer;
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 use std::path::Path;
 
 /// Everything one `--plot` file shows.
@@ -174,7 +174,7 @@ pub fn write(figure: &Figure, path: &Path, printer: &Printer) -> Result<(), i32>
     let svg = render_svg(figure).map_err(|e| {
         // Drawing numbers the bench produced cannot fail on the user's input.
         let d = Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}"));
-        printer.diagnostics(&[d], &dsl::SourceMap::new());
+        printer.diagnostics(&[d], &diag::SourceMap::new());
         crate::cli::EXIT_INTERNAL
     })?;
     runner::output::write_atomic(path, svg.as_bytes())

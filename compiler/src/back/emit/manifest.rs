@@ -7,7 +7,7 @@ use crate::mid::consteval::const_eval;
 use crate::mid::prune::Live;
 use crate::InternalError;
 use abi::manifest::*;
-use dsl::SourceMap;
+use diag::SourceMap;
 
 #[allow(clippy::too_many_arguments)]
 pub fn build(

@@ -26,7 +26,7 @@ pub use expr::fmt_f32;
 use crate::back::allocate::Allocation;
 use crate::ir::*;
 use abi::manifest::{Attribute, Binding, ParamBinding};
-use dsl::SourceMap;
+use diag::SourceMap;
 use expr::KindCtx;
 use helpers::{LOAD_HELPER, PROJECT_HELPER};
 use std::collections::{BTreeMap, BTreeSet};
@@ -89,7 +89,7 @@ struct PassCtx {
 }
 
 impl Emitter<'_> {
-    fn line_of(&self, span: dsl::Span) -> String {
+    fn line_of(&self, span: diag::Span) -> String {
         let (line, _) = self.sources.line_col(span.file, span.start);
         let name = self.sources.get(span.file).map(|f| f.name.as_str()).unwrap_or("?");
         let file = std::path::Path::new(name)
@@ -99,7 +99,7 @@ impl Emitter<'_> {
         format!("{file}:{line}")
     }
 
-    fn snippet(&self, span: dsl::Span) -> String {
+    fn snippet(&self, span: diag::Span) -> String {
         let s = self.sources.snippet(span);
         let one_line: String = s.split_whitespace().collect::<Vec<_>>().join(" ");
         if one_line.len() > 80 {

@@ -11,9 +11,9 @@ use super::{Resolver, Symbol};
 use crate::ir::*;
 use abi::manifest::ReduceOp;
 use abi::validate::MAX_VALUE_SLOTS;
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, Span};
 use dsl::ast;
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
 /// The kind of a compute pass whose domain did not resolve (reported): a

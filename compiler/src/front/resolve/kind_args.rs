@@ -3,7 +3,8 @@
 //! target; everywhere else an argument is a plain name.
 
 use super::Resolver;
-use dsl::{ast, codes, Diagnostic};
+use diag::{codes, Diagnostic};
+use dsl::ast;
 
 impl Resolver<'_> {
     /// The kind's arguments as names; an argument written as a target

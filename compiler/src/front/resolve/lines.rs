@@ -6,9 +6,9 @@
 
 use super::Resolver;
 use crate::ir::*;
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, Span};
 use dsl::ast::{self, ExprKind as AK, UnitSuffix};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, Span};
 use stdlib::Unit;
 
 /// The settings of a lines pass besides `depth` and `clear`.

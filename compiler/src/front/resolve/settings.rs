@@ -11,9 +11,9 @@ use crate::ir::*;
 use crate::schedule::Schedule;
 use abi::manifest::Blend;
 use abi::Format;
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic, Span};
 use dsl::ast::{self, ExprKind as AK, UnitSuffix};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic, Span};
 
 impl Resolver<'_> {
     /// `out name: format = value { blend: mode }`: the only output setting.

@@ -6,9 +6,9 @@
 use super::{Resolver, MAX_NOISE_SIZE};
 use crate::ir::*;
 use abi::{HalftoneTableSpec, NoiseSpec};
+use diag::diagnostic::did_you_mean;
+use diag::{codes, Diagnostic};
 use dsl::ast::{self, ExprKind as AK};
-use dsl::diagnostic::did_you_mean;
-use dsl::{codes, Diagnostic};
 use std::path::Path;
 use stdlib::Unit;
 

@@ -3,7 +3,7 @@
 
 use super::Checker;
 use crate::ir::*;
-use dsl::{codes, Diagnostic, Span};
+use diag::{codes, Diagnostic, Span};
 use std::collections::BTreeSet;
 
 impl Checker<'_> {

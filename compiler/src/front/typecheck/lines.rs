@@ -8,7 +8,7 @@ use super::Checker;
 use crate::front::line_settings::affine;
 use crate::ir::*;
 use abi::lines::{MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX};
-use dsl::{codes, Diagnostic};
+use diag::{codes, Diagnostic};
 use stdlib::Unit;
 
 impl Checker<'_> {

@@ -10,7 +10,7 @@ pub use reference::*;
 mod demos;
 
 use super::{p, pair, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
-use crate::halftone_table::HalftoneTable;
+use crate::halftone_table::{table_from_image, table_image, HalftoneTable};
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 /// An ID image with three objects at sizes down to 1×1, read on and off
@@ -62,7 +62,7 @@ macro_rules! halftone_case {
         Case::new(
             $what,
             &[
-                tex32(|| HalftoneTable::build($edge as f32 as f64, $corrected).image()),
+                tex32(|| table_image(&HalftoneTable::build($edge as f32 as f64, $corrected))),
                 random([-10.0; 4], [10.0; 4], 10),
                 random([-0.1; 4], [1.1; 4], 8),
                 BLENDS,
@@ -240,7 +240,7 @@ pub const HALFTONE: OpDef = OpDef::new(
         specializations: &[],
         footprints: &[("table", Footprint::Anywhere)],
     },
-    |a| scalar(halftone(&HalftoneTable::from_image(a[0].tex()), a[1].v2(), a[2].f(), a[3].f())),
+    |a| scalar(halftone(&table_from_image(a[0].tex()), a[1].v2(), a[2].f(), a[3].f())),
     &[
         halftone_case!("soft edges, corrected", 0.1, true),
         halftone_case!("softer edges, corrected", 0.2, true),

@@ -93,19 +93,7 @@ pub fn similarity(points: &[PointPair], symmetric: bool) -> Option<([f64; 2], [f
     Some((pbar, cbar, z))
 }
 
-/// `npr_halftone_screen`: the mean over both axes of 0.5 + 0.4·cos(2πx), at
-/// the period 1 and at the period ½, mixed by `blend` (jot-lib's procedural
-/// dots, `Halftone_TX::procedural_dots`).
-pub fn halftone_screen(uv: [f64; 2], blend: f64) -> f64 {
-    let b = blend.clamp(0.0, 1.0);
-    let turn = std::f64::consts::TAU;
-    let axis = |x: f64| {
-        let coarse = 0.5 + 0.4 * (x.rem_euclid(1.0) * turn).cos();
-        let fine = 0.5 + 0.4 * ((2.0 * x).rem_euclid(1.0) * turn).cos();
-        coarse + (fine - coarse) * b
-    };
-    0.5 * (axis(uv[0]) + axis(uv[1]))
-}
+pub use abi::halftone::screen as halftone_screen;
 
 /// GLSL/WGSL `smoothstep(lo, hi, x)` for lo < hi.
 pub fn smoothstep(lo: f64, hi: f64, x: f64) -> f64 {

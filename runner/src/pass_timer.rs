@@ -4,7 +4,7 @@
 //! `npr bench passes` takes the median over frames; `npr studio` shows the
 //! times of the frame it displays.
 
-use runner::{FrameSpec, Gpu, Renderer, RunError};
+use crate::{FrameSpec, Gpu, Renderer, RunError};
 
 pub struct PassTimer {
     passes: u32,
@@ -53,7 +53,7 @@ impl PassTimer {
         &self,
         gpu: &Gpu,
         r: &mut Renderer,
-        scene: &runner::scene::Scene,
+        scene: &crate::scene::Scene,
         spec: &FrameSpec,
     ) -> Result<Vec<f64>, RunError> {
         r.prepare(scene, spec)?;
@@ -64,7 +64,7 @@ impl PassTimer {
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, bytes);
         gpu.queue.submit([encoder.finish()]);
         self.readback.slice(..).map_async(wgpu::MapMode::Read, |_| {});
-        crate::bench::wait_idle(gpu)?;
+        crate::readback::wait_idle(&gpu.device)?;
         let period_ns = gpu.queue.get_timestamp_period() as f64;
         let times = {
             let view = self

@@ -1,0 +1,20 @@
+//! npr's diagnostics, the one vocabulary the compiler, the runtime and the
+//! CLI report problems in: [`Diagnostic`] with its error [`codes`], spans
+//! into a [`SourceMap`] (style files, scene files, `--set` arguments), the
+//! terminal and JSON renderings, the [`limits`] on every input, the
+//! [`paths`] policy for files a style or scene may read, UTF-8 text
+//! loading, and the catcher of panics npr expects from its dependencies.
+//!
+//! It holds no parser: the runtime (`runner`), which reports scene and
+//! device errors in the same form, depends on this crate and not on `dsl`
+//! or pest.
+
+pub mod diagnostic;
+pub mod limits;
+pub mod panics;
+pub mod paths;
+pub mod span;
+pub mod text;
+
+pub use diagnostic::{codes, Diagnostic, Label, Severity};
+pub use span::{FileId, SourceMap, Span};

@@ -1,0 +1,144 @@
+//! The crate boundaries ARCHITECTURE.md promises, read from `cargo metadata`
+//! (the resolved graph, normal dependencies only, followed transitively):
+//! an application that embeds the runtime (`runner`) links no compiler, no
+//! stdlib, no parser and no pest; the contract crates (`abi`, `diag`) depend
+//! on none of npr's own crates but each other; the compiler does not depend
+//! on the runtime. A forbidden edge that comes back fails here, naming the
+//! path by which it came.
+
+use serde_json::Value;
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::sync::OnceLock;
+
+/// The host's target triple (`rustc -vV`): the graph is resolved for the
+/// platform this runs on, whose packages the build has already fetched.
+fn host_triple() -> String {
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let out = std::process::Command::new(rustc)
+        .arg("-vV")
+        .output()
+        .expect("run rustc -vV");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    text.lines()
+        .find_map(|l| l.strip_prefix("host: "))
+        .unwrap_or_else(|| panic!("no `host:` line in rustc -vV:\n{text}"))
+        .to_string()
+}
+
+/// Package name → the names of its normal (non-dev, non-build) dependencies,
+/// read once per test binary.
+fn normal_dependency_graph() -> &'static BTreeMap<String, Vec<String>> {
+    static GRAPH: OnceLock<BTreeMap<String, Vec<String>>> = OnceLock::new();
+    GRAPH.get_or_init(read_graph)
+}
+
+fn read_graph() -> BTreeMap<String, Vec<String>> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let out = std::process::Command::new(cargo)
+        .args(["metadata", "--format-version", "1", "--offline", "--filter-platform"])
+        .arg(host_triple())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run cargo metadata");
+    assert!(
+        out.status.success(),
+        "cargo metadata failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let meta: Value = serde_json::from_slice(&out.stdout).expect("cargo metadata's JSON");
+    let name_of: BTreeMap<&str, &str> = meta["packages"]
+        .as_array()
+        .expect("packages")
+        .iter()
+        .map(|p| (p["id"].as_str().expect("id"), p["name"].as_str().expect("name")))
+        .collect();
+    let mut graph = BTreeMap::new();
+    for node in meta["resolve"]["nodes"].as_array().expect("resolve.nodes") {
+        let from = name_of[node["id"].as_str().expect("id")].to_string();
+        let deps = node["deps"]
+            .as_array()
+            .expect("deps")
+            .iter()
+            .filter(|d| {
+                d["dep_kinds"]
+                    .as_array()
+                    .expect("dep_kinds")
+                    .iter()
+                    .any(|k| k["kind"].is_null())
+            })
+            .map(|d| name_of[d["pkg"].as_str().expect("pkg")].to_string())
+            .collect();
+        graph.insert(from, deps);
+    }
+    graph
+}
+
+/// The dependency path from `from` to `to`, if `to` is reachable.
+fn path(graph: &BTreeMap<String, Vec<String>>, from: &str, to: &str) -> Option<Vec<String>> {
+    let mut came_from: BTreeMap<&str, &str> = BTreeMap::new();
+    let mut seen = BTreeSet::from([from]);
+    let mut queue = VecDeque::from([from]);
+    while let Some(at) = queue.pop_front() {
+        if at == to {
+            let mut p = vec![to.to_string()];
+            let mut cur = to;
+            while let Some(prev) = came_from.get(cur) {
+                p.push(prev.to_string());
+                cur = prev;
+            }
+            p.reverse();
+            return Some(p);
+        }
+        for next in graph.get(at).into_iter().flatten() {
+            if seen.insert(next) {
+                came_from.insert(next, at);
+                queue.push_back(next);
+            }
+        }
+    }
+    None
+}
+
+fn assert_no_edge(graph: &BTreeMap<String, Vec<String>>, from: &str, forbidden: &[&str]) {
+    assert!(graph.contains_key(from), "`{from}` is not in the workspace's graph");
+    let found: Vec<String> = forbidden
+        .iter()
+        .filter_map(|to| path(graph, from, to))
+        .map(|p| p.join(" → "))
+        .collect();
+    assert!(
+        found.is_empty(),
+        "`{from}` must not depend on {forbidden:?}, but does through:\n  {}",
+        found.join("\n  ")
+    );
+}
+
+#[test]
+fn the_runtime_links_no_compiler_stdlib_parser_or_benchmarks() {
+    let graph = normal_dependency_graph();
+    assert_no_edge(graph, "runner", &["compiler", "stdlib", "dsl", "pest", "lab", "npr"]);
+    // The path finder finds what is there: the runner does reach wgpu and abi.
+    assert!(path(graph, "runner", "wgpu").is_some() && path(graph, "runner", "abi").is_some());
+}
+
+#[test]
+fn the_contract_crates_depend_on_no_other_npr_crate() {
+    let graph = normal_dependency_graph();
+    assert_no_edge(
+        graph,
+        "abi",
+        &["diag", "dsl", "compiler", "stdlib", "runner", "lab", "pest"],
+    );
+    assert_no_edge(
+        graph,
+        "diag",
+        &["abi", "dsl", "compiler", "stdlib", "runner", "lab", "pest"],
+    );
+}
+
+#[test]
+fn the_compiler_does_not_depend_on_the_runtime() {
+    let graph = normal_dependency_graph();
+    assert_no_edge(graph, "compiler", &["runner", "lab", "wgpu"]);
+    assert_no_edge(graph, "stdlib", &["compiler", "runner", "lab", "dsl", "wgpu"]);
+}
