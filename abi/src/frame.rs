@@ -9,7 +9,7 @@
 //! at a multiple of 8), so the Rust struct has no padding; the test
 //! `frame_layout_matches_naga` checks every offset against naga's layouter.
 //!
-//! The block grows only at its end (see ARCHITECTURE.md).
+//! The block grows only at its end (docs/decisions/0011).
 
 use crate::block::{render, uniform_block};
 pub use crate::block::{BlockField, Mat4x4, Vec2, Vec4};

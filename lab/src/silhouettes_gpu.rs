@@ -5,8 +5,8 @@
 //! into the edge indices that chaining needs. `npr bench lines` times it
 //! against the CPU's `EdgeMesh::silhouettes` on the same meshes, and
 //! `tests/gpu/lines_classify.rs` checks that both give the same edges. It is
-//! not wired into the renderer (ARCHITECTURE.md, "Lines are built on the
-//! CPU", says why with the numbers).
+//! not wired into the renderer (docs/decisions/0030, "Lines are built on
+//! the CPU", says why with the numbers).
 //!
 //! What is static per mesh (the face planes and each edge's two faces) is
 //! uploaded once in [`GpuSilhouettes::new`]; per eye only 32 bytes go up

@@ -1,4 +1,4 @@
-//! The studio's HTTP side (tiny_http; ARCHITECTURE.md says why): the page
+//! The studio's HTTP side (tiny_http; docs/decisions/0026 says why): the page
 //! and its script and style (embedded in the binary, no build step, nothing
 //! fetched from elsewhere), the event stream, the frame images, and the
 //! control endpoints that hand jobs to the render thread.

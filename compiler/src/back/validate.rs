@@ -4,8 +4,8 @@
 //!
 //! naga itself can panic on WGSL it should reject or accept (naga 30's
 //! constant evaluator has `unreachable!`s: soak case 272687,
-//! docs/FUZZING.md). Invariant 3 is that nothing panics on any input, so a
-//! panic inside naga becomes that same internal error, never an abort.
+//! docs/FUZZING.md). Nothing may panic on any input (ARCHITECTURE.md), so
+//! a panic inside naga becomes that same internal error, never an abort.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 
