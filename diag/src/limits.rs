@@ -4,7 +4,7 @@
 //! The limits are on purpose: past them npr refuses the input with a user
 //! error (exit 1) instead of running out of stack, memory or time. Each one
 //! is far above what a real style, scene or command line needs. The table in
-//! `docs/LIMITS.md` is checked against [`ALL`] by a test (`dsl/tests/general/limits.rs`),
+//! `docs/LIMITS.md` is checked against [`ALL`] by a test (`dsl/tests/limits.rs`),
 //! so the documentation cannot drift from the code.
 
 use crate::codes;

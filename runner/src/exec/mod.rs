@@ -17,9 +17,11 @@
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
 //! - `values.rs`: compute passes' buffers (per-object values, partials);
-//! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, with
-//!   `render_pass.rs`, `image_pass.rs`, `compute_pass.rs` and
-//!   `lines_pass.rs` the executors.
+//! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, dispatching
+//!   to the executors `render_pass.rs`, `image_pass.rs`, `tiled_pass.rs`,
+//!   `compute_pass.rs` and `lines_pass.rs`;
+//! - `common.rs`: what the executors share (they import it, never `pass.rs`);
+//! - `prepare_lines.rs`: each frame's strips of the `lines` passes.
 
 mod bind;
 mod common;
