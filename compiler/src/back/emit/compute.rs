@@ -252,7 +252,7 @@ impl Emitter<'_> {
         let nodes = self.ir.reachable(&value_roots);
         // The ID target of a pass over pixels is bound too.
         let mut roots = value_roots.clone();
-        roots.extend(pass.kind.domain_roots());
+        roots.extend(pass.roots().key);
         let uses = self.uses(&self.ir.reachable(&roots), &roots, &[]);
         let attributes = attributes(domain, &uses.builtins);
         let per_object = self.alloc.slots_per_object.get(&pid).copied().unwrap_or(0);

@@ -133,7 +133,7 @@ impl Emitter<'_> {
             .collect();
         let frag_roots: Vec<ExprId> = live_outputs.iter().map(|(_, o)| o.value).collect();
         let frag_nodes = self.ir.reachable(&frag_roots);
-        let vert_nodes = self.ir.reachable(&Ir::vertex_roots(pass));
+        let vert_nodes = self.ir.reachable(&pass.roots().vertex);
         let mut uses = self.uses(&frag_nodes, &frag_roots, &vert_nodes);
         let tiling = self.ir.tiled.get(&pid);
         // Targets computed in this pass's tiles: their producers' reads are

@@ -33,7 +33,6 @@ use super::expr::KindCtx;
 use super::uses::Uses;
 use super::{helpers, Emitter, PassCtx};
 use crate::ir::*;
-use crate::schedule::tile::{TileRead, TileSource, Tiling};
 use abi::formats::Storage;
 use abi::manifest::{TargetCopy, TILE_SIZE};
 use std::collections::BTreeMap;
