@@ -317,6 +317,7 @@ impl Emitter<'_> {
             target_names: declared.target_names,
             uses_linear_sampler: uses.linear_sampler,
             runtime_conditions: uses.runtime_conditions.clone(),
+            per_binding: None,
         };
         match domain {
             ComputeDomain::Vertices | ComputeDomain::Samples => self.vertex_stages(
