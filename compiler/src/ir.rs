@@ -14,10 +14,14 @@ mod builtins;
 mod intrinsics;
 mod lines;
 mod passes;
+mod roots;
+mod schedule;
 pub use builtins::Builtin;
 pub use intrinsics::Intrinsic;
 pub use lines::{LineSettings, LinesKind};
 pub use passes::*;
+pub use roots::PassRoots;
+pub use schedule::{Recomputed, Schedule, TileRead, TileSource, Tiling};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct ExprId(pub u32);
@@ -369,10 +373,10 @@ pub struct Ir {
     /// `scene_has(tag)` calls folded against a known scene: (tag, answer).
     pub scene_queries: Vec<(String, bool)>,
     /// Image passes the schedule runs as compute over workgroup tiles.
-    pub tiled: std::collections::BTreeMap<PassId, crate::schedule::tile::Tiling>,
+    pub tiled: std::collections::BTreeMap<PassId, Tiling>,
     /// Targets the schedule does not store: their reader computes them in
     /// its tiles (`schedule/recompute.rs`).
-    pub recomputed: std::collections::BTreeMap<TargetRef, crate::schedule::recompute::Recomputed>,
+    pub recomputed: std::collections::BTreeMap<TargetRef, Recomputed>,
 }
 
 impl Ir {
@@ -397,14 +401,6 @@ impl Ir {
 
     pub fn expr_mut(&mut self, id: ExprId) -> &mut Expr {
         &mut self.exprs[id.0 as usize]
-    }
-
-    /// The expressions a pass's vertex shader evaluates (`vertex { ... }`).
-    pub fn vertex_roots(pass: &Pass) -> Vec<ExprId> {
-        match &pass.kind {
-            PassKind::Render { vertex, .. } => vertex.roots(),
-            PassKind::Image { .. } | PassKind::Compute { .. } | PassKind::Lines(_) => Vec::new(),
-        }
     }
 
     pub fn pass(&self, id: PassId) -> &Pass {

@@ -71,7 +71,7 @@ pub fn allocate(
     // Last use of each target, by execution position.
     let mut last_use: BTreeMap<TargetRef, usize> = BTreeMap::new();
     for (pos, pid) in live.passes.iter().enumerate() {
-        let roots: Vec<ExprId> = crate::mid::dag::scheduled_roots(ir, *pid);
+        let roots: Vec<ExprId> = ir.scheduled_roots(*pid);
         for id in ir.reachable(&roots) {
             if let Some(t) = ir.expr(id).kind.target_read() {
                 let e = last_use.entry(t).or_insert(pos);

@@ -134,7 +134,9 @@ fn load_added(
     let mut reader = Reader { sources, diags, paths };
     expand_uses(&ast, dir, &mut reader, &mut items, &mut stack, &mut broken);
     let filters = match with_filters {
-        WithFilters::Yes => crate::front::load_filters::load(&items, sources, paths, diags),
+        WithFilters::Yes => crate::front::load_filters::load(&items, paths, diags, |path, diags| {
+            load_filter_file(path, sources, paths, diags)
+        }),
         WithFilters::No => Default::default(),
     };
     Loaded {

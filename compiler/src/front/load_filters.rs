@@ -3,25 +3,26 @@
 //! parsed once, with its own `use`s, so that the pipeline can compile it as
 //! a style of its own (`pipeline::compile_filters`). A filter that cannot be
 //! read, or that the paths policy refuses (E0406), is reported at the path
-//! in the art-map.
+//! in the art-map. Reading and parsing a filter file is `load.rs`'s, which
+//! calls this and hands it that as `load_one`.
 
-use crate::front::load::{load_filter_file, Loaded};
-use diag::paths::PathPolicy;
-use diag::{codes, Diagnostic, SourceMap};
 use dsl::ast::{ExprKind, Item};
+use diag::paths::PathPolicy;
+use diag::{codes, Diagnostic};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The texture sources whose `filter:` names a filter style.
 pub const FILTERED_SOURCES: [&str; 2] = ["artmap", "ripmap"];
 
 /// Every filter the items name, by the path they resolve to (the key
-/// `resolve` records in the IR).
-pub fn load(
+/// `resolve` records in the IR), each loaded by `load_one` (`None` when it
+/// cannot be, its diagnostics in the vector it is given).
+pub fn load<Loaded>(
     items: &[(Item, PathBuf)],
-    sources: &mut SourceMap,
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
+    mut load_one: impl FnMut(&Path, &mut Vec<Diagnostic>) -> Option<Loaded>,
 ) -> BTreeMap<String, Loaded> {
     let mut filters = BTreeMap::new();
     for (item, dir) in items {
@@ -68,7 +69,7 @@ pub fn load(
             continue;
         }
         let mut own = Vec::new();
-        if let Some(loaded) = load_filter_file(&path, sources, paths, &mut own) {
+        if let Some(loaded) = load_one(&path, &mut own) {
             filters.insert(key, loaded);
         }
         diags.append(&mut own);

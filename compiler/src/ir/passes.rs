@@ -104,17 +104,6 @@ impl PassKind {
         }
     }
 
-    /// The expressions the kind evaluates outside its fragments: the ID
-    /// target read of a pass over pixels, a lines pass's shape settings
-    /// (evaluated on the CPU by the runner; none for other kinds).
-    pub fn domain_roots(&self) -> Vec<ExprId> {
-        match self {
-            PassKind::Compute { key, .. } => key.iter().copied().collect(),
-            PassKind::Lines(lines) => lines.shape.roots().to_vec(),
-            PassKind::Render { .. } | PassKind::Image { .. } => Vec::new(),
-        }
-    }
-
     /// The per-object values of a compute pass (none for other kinds).
     pub fn values(&self) -> &[ObjectValue] {
         match self {
@@ -204,7 +193,7 @@ impl Pass {
 /// An image pass's `schedule:` setting: the schedule it names and where.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct PassSchedule {
-    pub schedule: crate::schedule::Schedule,
+    pub schedule: Schedule,
     /// The whole setting, `schedule: tiled`: errors and the report point at it.
     pub span: Span,
 }

@@ -17,11 +17,7 @@ use std::collections::HashMap;
 
 /// E0203 for each live intrinsic call on constants that has no finite value.
 pub fn check(ir: &Ir, live: &Live) -> Vec<Diagnostic> {
-    let roots: Vec<ExprId> = live
-        .passes
-        .iter()
-        .flat_map(|p| crate::mid::dag::pass_roots(ir.pass(*p)))
-        .collect();
+    let roots: Vec<ExprId> = live.passes.iter().flat_map(|p| ir.pass(*p).roots().all()).collect();
     // Operands come before users in `reachable`'s order, so one forward
     // sweep knows every operand's constant value (if any) before its user.
     let mut values: HashMap<ExprId, Vec<f64>> = HashMap::new();

@@ -13,28 +13,6 @@ pub struct PassGraph {
     pub order: Vec<PassId>,
 }
 
-/// Expressions a pass evaluates: its output values and vertex modifiers.
-pub fn pass_roots(pass: &Pass) -> Vec<ExprId> {
-    let mut roots: Vec<ExprId> = pass.outputs.iter().map(|o| o.value).collect();
-    roots.extend(Ir::vertex_roots(pass));
-    roots.extend(pass.kind.values().iter().flat_map(ObjectValue::roots));
-    roots.extend(pass.kind.domain_roots());
-    roots
-}
-
-/// Expressions pass `pid`'s shaders evaluate once scheduled: its own
-/// ([`pass_roots`]) and the values of the targets it computes in its tiles
-/// (`schedule/recompute.rs`), whose reads are its reads.
-pub fn scheduled_roots(ir: &Ir, pid: PassId) -> Vec<ExprId> {
-    let mut roots = pass_roots(ir.pass(pid));
-    for (t, r) in &ir.recomputed {
-        if r.reader == pid {
-            roots.push(ir.pass(t.pass).outputs[t.output as usize].value);
-        }
-    }
-    roots
-}
-
 pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
     let n = ir.passes.len();
     let mut reads: Vec<Vec<(PassId, Span)>> = vec![Vec::new(); n];
@@ -43,7 +21,7 @@ pub fn build(ir: &Ir, diags: &mut Vec<Diagnostic>) -> PassGraph {
         if let Some((tested, span)) = pass.depth_test() {
             reads[pi].push((tested, span));
         }
-        for id in ir.reachable(&pass_roots(pass)) {
+        for id in ir.reachable(&pass.roots().all()) {
             let e = ir.expr(id);
             let read = e
                 .kind

@@ -116,33 +116,29 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
     live
 }
 
-/// The expressions a pass must evaluate for its live outputs: their values
-/// and the vertex modifiers (also when it runs for its depth alone). Empty
+/// The expressions a pass must evaluate for its live outputs and values
+/// ([`Pass::roots`] of those alone): the live outputs' values, what the
+/// pass evaluates whenever it runs (also when it runs for its depth
+/// alone), the live values and, for any of those, what they need. Empty
 /// when the pass is dead.
 fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
-    let pass = ir.pass(pid);
-    let mut roots: Vec<ExprId> = live
-        .targets_of(pid)
-        .iter()
-        .map(|t| pass.outputs[t.output as usize].value)
-        .collect();
+    let all = ir.pass(pid).roots();
+    let live_outputs: Vec<u32> = live.targets_of(pid).iter().map(|t| t.output).collect();
+    let mut roots: Vec<ExprId> = live_outputs.iter().map(|i| all.outputs[*i as usize]).collect();
     if !roots.is_empty() || live.depth.contains(&pid) {
-        roots.extend(Ir::vertex_roots(pass));
-        // A live lines pass's shape settings, evaluated by the runner.
-        if let PassKind::Lines(lines) = &pass.kind {
-            roots.extend(lines.shape.roots());
-        }
+        roots.extend(&all.vertex);
+        roots.extend(&all.settings);
     }
     let mut any_value = false;
-    for (slot, v) in pass.kind.values().iter().enumerate() {
+    for (slot, v) in all.values.iter().enumerate() {
         if live.values.contains(&(pid, slot as u32)) {
-            roots.extend(v.roots());
+            roots.extend(v);
             any_value = true;
         }
     }
     if any_value {
         // A pass over pixels reads its ID target for every live value.
-        roots.extend(pass.kind.domain_roots());
+        roots.extend(all.key);
     }
     roots
 }

@@ -91,7 +91,7 @@ pub fn texture_reads(ir: &Ir, call: ExprId) -> Vec<(ExprId, Read)> {
 pub fn pass_apron(ir: &Ir, pid: PassId) -> Option<u32> {
     let pass = ir.pass(pid);
     let mut widest = 0;
-    for n in ir.reachable(&crate::mid::dag::pass_roots(pass)) {
+    for n in ir.reachable(&pass.roots().all()) {
         for (arg, read) in texture_reads(ir, n) {
             if !matches!(ir.expr(arg).kind, ExprKind::Target { .. }) {
                 continue;

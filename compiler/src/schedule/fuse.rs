@@ -16,10 +16,9 @@
 //! pass under `--schedule naive`.
 
 use super::footprint::{pass_apron, texture_reads, Read};
+use super::plan::Plan;
 use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
-use super::{Plan, Schedule};
 use crate::ir::*;
-use crate::mid::dag::pass_roots;
 use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::formats::Storage;
@@ -92,7 +91,7 @@ fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, S
     let mut readers = BTreeSet::new();
     for q in &live.passes {
         let reader = ir.pass(*q);
-        let nodes = ir.reachable(&pass_roots(reader));
+        let nodes = ir.reachable(&reader.roots().all());
         // Targets passed to an operator as textures: it reads them itself
         // (`textureLoad`), so there is no value to substitute, even where
         // its footprint is the pixel alone.
@@ -190,7 +189,9 @@ fn fuse(ir: &mut Ir, live: &mut Live, producer: PassId, reader: PassId) {
         replacement.insert(*t, id);
     }
     let r = ir.pass(reader);
-    let roots: Vec<ExprId> = pass_roots(r)
+    let roots: Vec<ExprId> = r
+        .roots()
+        .all()
         .into_iter()
         .chain(r.lets.iter().map(|l| l.value))
         .collect();

@@ -40,123 +40,20 @@
 
 pub mod footprint;
 mod fuse;
+mod plan;
 pub mod recompute;
 pub mod tile;
 mod unstored;
 
-use crate::ir::{Ir, PassId, PassKind};
+/// The schedules' names are IR data (a pass's `schedule:` setting holds
+/// one); they are offered here too, where the schedules are described.
+pub use crate::ir::Schedule;
+
+use crate::ir::Ir;
 use crate::mid::prune::Live;
 use crate::report::Report;
-use diag::{Diagnostic, FileId, SourceMap, Span};
-use serde::Serialize;
-use std::collections::BTreeMap;
-
-/// `--schedule naive|auto|tiled`, and the `schedule:` setting of an image
-/// pass.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub enum Schedule {
-    /// Every declared pass runs as written: every target exists, so
-    /// `--dump-passes` and the studio's thumbnails use it.
-    Naive,
-    /// The compiler's choice: fusion where it saves a target and a pass.
-    /// The default: `tests/gpu/schedule_equivalence.rs` shows it gives the naive
-    /// image, bit for bit, on every example.
-    #[default]
-    Auto,
-    /// `auto` plus workgroup tiles for neighbourhood passes: the same image
-    /// (`tests/gpu/schedule_equivalence.rs`), slower on lavapipe.
-    Tiled,
-    /// `tiled`, and each neighbourhood pass whose one reader reads it
-    /// around the pixel is computed in that reader's tiles instead of
-    /// stored: the same image, slower on lavapipe.
-    Recompute,
-}
-
-impl Schedule {
-    pub const ALL: [Schedule; 4] = [Schedule::Naive, Schedule::Auto, Schedule::Tiled, Schedule::Recompute];
-
-    /// As written in a style and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Schedule::Naive => "naive",
-            Schedule::Auto => "auto",
-            Schedule::Tiled => "tiled",
-            Schedule::Recompute => "recompute",
-        }
-    }
-
-    pub fn parse(name: &str) -> Option<Schedule> {
-        Schedule::ALL.into_iter().find(|s| s.name() == name)
-    }
-
-    /// Whether neighbourhood passes run over workgroup tiles.
-    pub fn tiles(self) -> bool {
-        matches!(self, Schedule::Tiled | Schedule::Recompute)
-    }
-}
-
-/// A pass whose `schedule:` setting overrides the run's schedule.
-#[derive(Debug, Clone)]
-pub(crate) struct Forced {
-    /// `Naive`, `Tiled` or `Recompute`: `schedule: auto` forces nothing.
-    pub schedule: Schedule,
-    pub span: Span,
-    /// "line 12", or "line 12 of lib/x.npr" for a pass from a `use`d file.
-    pub at: String,
-}
-
-impl Forced {
-    /// The report's reason: "forced by `schedule: naive` at line 12".
-    pub fn why(&self) -> String {
-        format!("forced by `schedule: {}` at {}", self.schedule.name(), self.at)
-    }
-}
-
-/// Which schedule decides each image pass: the run's (`--schedule`), or
-/// the pass's own `schedule: naive | tiled`.
-#[derive(Debug, Clone)]
-pub(crate) struct Plan {
-    pub run: Schedule,
-    pub forced: BTreeMap<PassId, Forced>,
-    /// `CompileOptions::tile_apron_deficit` (tests only).
-    pub apron_deficit: u32,
-}
-
-impl Plan {
-    fn new(ir: &Ir, run: Schedule, apron_deficit: u32, sources: &SourceMap, root: FileId) -> Plan {
-        let mut forced = BTreeMap::new();
-        for (i, p) in ir.passes.iter().enumerate() {
-            let PassKind::Image { schedule: Some(s), .. } = &p.kind else {
-                continue;
-            };
-            if s.schedule == Schedule::Auto {
-                continue;
-            }
-            let (line, _) = sources.line_col(s.span.file, s.span.start);
-            let at = match sources.get(s.span.file) {
-                Some(f) if s.span.file != root => format!("line {line} of {}", f.name),
-                _ => format!("line {line}"),
-            };
-            forced.insert(
-                PassId(i as u32),
-                Forced {
-                    schedule: s.schedule,
-                    span: s.span,
-                    at,
-                },
-            );
-        }
-        Plan {
-            run,
-            forced,
-            apron_deficit,
-        }
-    }
-
-    pub fn forced(&self, pass: PassId) -> Option<&Forced> {
-        self.forced.get(&pass)
-    }
-}
+use diag::{Diagnostic, FileId, SourceMap};
+use plan::Plan;
 
 /// Applies `schedule` (`--schedule`) and the passes' `schedule:` settings
 /// to the live passes: rewrites `ir` and `live` (fused passes leave

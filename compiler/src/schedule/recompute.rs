@@ -27,26 +27,15 @@
 //! schedule is forced, or one the tiler refuses with the target in its tile.
 
 use super::footprint::{texture_reads, Read};
+use super::plan::Plan;
 use super::tile::{self, samples_a_texture, uses_derivatives};
 use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
-use super::{Plan, Schedule};
 use crate::ir::*;
-use crate::mid::dag::pass_roots;
 use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::manifest::TILE_SIZE;
 use diag::{codes, Diagnostic};
-use serde::Serialize;
 use std::collections::BTreeSet;
-
-/// A target that is not stored: its reader computes it in its tiles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Recomputed {
-    /// The pass that reads it (tiled), the producer's only reader.
-    pub reader: PassId,
-    /// How far around its pixel the reader reads it: the tile's apron.
-    pub radius: u32,
-}
 
 /// Decides, in execution order, which image passes are computed in their
 /// reader's tiles: under `--schedule recompute` every one that can be, and
@@ -159,7 +148,7 @@ fn reader_tile(ir: &mut Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(Ta
         }
     };
     must_be_stored(ir, target, "which is cheaper stored")?;
-    let roots = pass_roots(pass);
+    let roots = pass.roots().all();
     let nodes = ir.reachable(&roots);
     if samples_a_texture(ir, &roots, &nodes) {
         return Err("it samples a texture as a value, which takes screen derivatives".into());
@@ -207,7 +196,7 @@ fn sole_reader(ir: &Ir, live: &Live, target: TargetRef) -> Result<(PassId, u32),
     let mut radius = 0;
     for q in &live.passes {
         let reader = ir.pass(*q);
-        let nodes = ir.reachable(&pass_roots(reader));
+        let nodes = ir.reachable(&reader.roots().all());
         for n in &nodes {
             for (arg, read) in texture_reads(ir, *n) {
                 if !matches!(ir.expr(arg).kind, ExprKind::Target { target: t, .. } if t == target) {

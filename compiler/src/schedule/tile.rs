@@ -24,77 +24,26 @@
 //! expression instead of a load.
 
 use super::footprint::{texture_reads, Read};
-use super::{Plan, Schedule};
+use super::plan::Plan;
 use crate::ir::*;
-use crate::mid::dag::pass_roots;
 use crate::mid::prune::Live;
 use crate::report::Report;
 use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
 use diag::{codes, Diagnostic};
-use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Workgroup memory a tiled pass may use: WebGPU's default limit
 /// (`maxComputeWorkgroupStorageSize`), which every adapter offers.
 pub const WORKGROUP_MEMORY: u32 = 16384;
 
-/// Bytes of one channel of a tile texel (an `f32`: what `textureLoad`
-/// returns, whatever the target's format).
-const CHANNEL_BYTES: u32 = 4;
-
-/// Where a tile's texels come from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum TileSource {
-    /// `textureLoad` of the stored target.
-    Load,
-    /// The producer's expression, evaluated at each texel: the target is
-    /// not stored (`recompute.rs`).
-    Recompute,
-}
-
-/// One target a tiled pass keeps in workgroup memory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct TileRead {
-    pub target: TargetRef,
-    /// The apron, in texels on each side of the `TILE_SIZE`² block.
-    pub radius: u32,
-    pub source: TileSource,
-    /// The target's channels (1, 2 or 4): a tile texel keeps those alone,
-    /// so a depth tile is a quarter of an `rgba32float` one.
-    pub channels: u32,
-}
-
-impl TileRead {
-    /// Texels per row (and rows) of the tile with its apron.
-    pub fn side(&self) -> u32 {
-        TILE_SIZE + 2 * self.radius
+/// Each tile of `tiling` `deficit` texels narrower than the footprints
+/// ask (the tests' `CompileOptions::tile_apron_deficit`; 0 changes
+/// nothing).
+fn narrowed(mut tiling: Tiling, deficit: u32) -> Tiling {
+    for r in &mut tiling.reads {
+        r.radius = r.radius.saturating_sub(deficit);
     }
-
-    pub fn bytes(&self) -> u32 {
-        self.side() * self.side() * self.channels * CHANNEL_BYTES
-    }
-}
-
-/// How one image pass is tiled: the targets kept in workgroup memory.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct Tiling {
-    pub reads: Vec<TileRead>,
-}
-
-impl Tiling {
-    /// Each tile `deficit` texels narrower than the footprints ask (the
-    /// tests' `CompileOptions::tile_apron_deficit`; 0 changes nothing).
-    fn narrowed(mut self, deficit: u32) -> Tiling {
-        for r in &mut self.reads {
-            r.radius = r.radius.saturating_sub(deficit);
-        }
-        self
-    }
-
-    /// Workgroup memory all its tiles take.
-    pub fn bytes(&self) -> u32 {
-        self.reads.iter().map(TileRead::bytes).sum()
-    }
+    tiling
 }
 
 /// Decides, for every live image pass, whether it runs tiled: under
@@ -150,7 +99,7 @@ pub(super) fn tile_neighbourhoods(ir: &mut Ir, live: &Live, plan: &Plan, report:
                         t.bytes()
                     ),
                 );
-                ir.tiled.insert(*pid, t.narrowed(plan.apron_deficit));
+                ir.tiled.insert(*pid, narrowed(t, plan.apron_deficit));
             }
             (Err(why), s) if s.tiles() => match forced {
                 Some(f) => errors.push(
@@ -208,7 +157,7 @@ pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String
     if live_outputs.is_empty() {
         return Err("it writes no live target".into());
     }
-    let roots = pass_roots(pass);
+    let roots = pass.roots().all();
     let nodes = ir.reachable(&roots);
     if samples_a_texture(ir, &roots, &nodes) {
         return Err("it samples a texture as a value, which takes screen derivatives".into());
@@ -356,22 +305,5 @@ mod tests {
         assert_eq!(uses_derivatives(index("sample_biased")), Some("sample_biased"));
         assert_eq!(uses_derivatives(index("sobel")), None);
         assert_eq!(uses_derivatives(index("lsa")), None);
-    }
-
-    #[test]
-    fn a_tile_is_its_block_and_apron_of_its_channels() {
-        let t = TileRead {
-            target: TargetRef {
-                pass: PassId(0),
-                output: 0,
-            },
-            radius: 2,
-            source: TileSource::Load,
-            channels: 4,
-        };
-        assert_eq!(t.side(), 20);
-        assert_eq!(t.bytes(), 20 * 20 * 16);
-        let depth = TileRead { channels: 1, ..t };
-        assert_eq!(depth.bytes(), 20 * 20 * 4);
     }
 }

@@ -252,7 +252,7 @@ impl Emitter<'_> {
         let nodes = self.ir.reachable(&value_roots);
         // The ID target of a pass over pixels is bound too.
         let mut roots = value_roots.clone();
-        roots.extend(pass.kind.domain_roots());
+        roots.extend(pass.roots().key);
         let uses = self.uses(&self.ir.reachable(&roots), &roots, &[]);
         let attributes = attributes(domain, &uses.builtins);
         let per_object = self.alloc.slots_per_object.get(&pid).copied().unwrap_or(0);
@@ -317,6 +317,7 @@ impl Emitter<'_> {
             target_names: declared.target_names,
             uses_linear_sampler: uses.linear_sampler,
             runtime_conditions: uses.runtime_conditions.clone(),
+            per_binding: None,
         };
         match domain {
             ComputeDomain::Vertices | ComputeDomain::Samples => self.vertex_stages(

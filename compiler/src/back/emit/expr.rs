@@ -83,7 +83,12 @@ impl Emitter<'_> {
                     3 => ".xyz",
                     _ => "",
                 };
-                format!("npr_load({name}, in.screen_uv){sw}")
+                let load = call(
+                    "npr_load",
+                    vec![Arg::Handle(name), Arg::Value("in.screen_uv".into())],
+                    ctx,
+                );
+                format!("{load}{sw}")
             }
             ExprKind::Texture(t) => {
                 let name = &self.ir.textures[t.0 as usize].name;
@@ -160,15 +165,15 @@ impl Emitter<'_> {
                     let mut a = Vec::new();
                     for (p, x) in op.params.iter().zip(args) {
                         match p.ty {
-                            stdlib::Ty::Texture => a.push(self.handle(*x, ctx)),
+                            stdlib::Ty::Texture => a.push(Arg::Handle(self.handle(*x, ctx))),
                             stdlib::Ty::SampledTexture => {
-                                a.push(self.handle(*x, ctx));
-                                a.push(self.sampler(*x, ctx));
+                                a.push(Arg::Handle(self.handle(*x, ctx)));
+                                a.push(Arg::Handle(self.sampler(*x, ctx)));
                             }
-                            _ => a.push(self.expr(*x, ctx)),
+                            _ => a.push(Arg::Value(self.expr(*x, ctx))),
                         }
                     }
-                    format!("npr_{}({})", op.name, a.join(", "))
+                    call(&op.wgsl_fn(), a, ctx)
                 }
             },
             ExprKind::Error => "0.0 /* error */".into(),
@@ -195,6 +200,44 @@ impl Emitter<'_> {
             }
         }
     }
+}
+
+/// One argument of a call the emitter writes: a binding passed as a
+/// texture or sampler, or a value.
+enum Arg {
+    Handle(String),
+    Value(String),
+}
+
+/// `function(args)`, the arguments in parameter order. In a tiled module,
+/// whose functions take no handle, a call with bindings calls the copy of
+/// `function` for them with the values alone, recorded in `ctx` so that the
+/// module includes it (`tiled/library.rs`).
+fn call(function: &str, args: Vec<Arg>, ctx: &PassCtx) -> String {
+    let handles: Vec<String> = args
+        .iter()
+        .filter_map(|a| match a {
+            Arg::Handle(h) => Some(h.clone()),
+            Arg::Value(_) => None,
+        })
+        .collect();
+    let copies = ctx.per_binding.as_ref().filter(|_| !handles.is_empty());
+    let written: Vec<String> = args
+        .into_iter()
+        .filter_map(|a| match a {
+            Arg::Handle(h) => copies.is_none().then_some(h),
+            Arg::Value(v) => Some(v),
+        })
+        .collect();
+    let callee = match copies {
+        Some(copies) => {
+            let copy = super::copy_name(function, &handles);
+            copies.borrow_mut().insert((function.to_string(), handles));
+            copy
+        }
+        None => function.to_string(),
+    };
+    format!("{callee}({})", written.join(", "))
 }
 
 /// A builtin in value context; the same text in every kind (a pass kind

@@ -122,3 +122,21 @@ pub(super) fn stored_helper(format: abi::Format) -> String {
         name = format.name()
     )
 }
+
+/// Every helper text a module may include (each format's `npr_stored_*`):
+/// the tests split them all (`tiled/library.rs`).
+#[cfg(test)]
+pub(super) fn library_texts() -> Vec<String> {
+    let mut texts: Vec<String> = [
+        PROJECT_HELPER,
+        RUNTIME_BOOL_HELPER,
+        LOAD_HELPER,
+        PROJECT_DIR_HELPER,
+        UNIT_HELPER,
+    ]
+    .map(String::from)
+    .to_vec();
+    texts.push(round_f16_helper());
+    texts.extend(abi::Format::ALL.iter().map(|(_, f)| stored_helper(*f)));
+    texts
+}

@@ -26,19 +26,18 @@ fn vs_main(@builtin(vertex_index) index: u32) -> Varyings {
 
 ";
 
-/// The opening of the function that computes one pixel: the fragment
+/// The signature of an image pass's fragment shader (a tiled pass's pixel
+/// function is `tiled/`'s).
+pub(super) const FRAGMENT_SIGNATURE: &str = "@fragment\nfn fs_main(in_raw: Varyings) -> FragOut {\n";
+
+/// The first lines of the function that computes one pixel: the fragment
 /// shader, or (tiled) the function each invocation calls. `screen_uv` is
 /// the pixel centre over the pass size, as in render passes: exact, where
 /// the interpolated varying may be an ulp off, which a compute invocation
 /// could not repeat.
-pub(super) fn pixel_prologue(tiled: bool, scale: f64) -> String {
-    let head = if tiled {
-        "// One pixel of the pass, for the invocation that owns it (`cs_main`).\nfn npr_pixel(in_raw: Varyings) -> FragOut {"
-    } else {
-        "@fragment\nfn fs_main(in_raw: Varyings) -> FragOut {"
-    };
+pub(super) fn pixel_prologue(scale: f64) -> String {
     format!(
-        "{head}\n    var in = in_raw;\n    in.screen_uv = in_raw.clip.xy / {};\n",
+        "    var in = in_raw;\n    in.screen_uv = in_raw.clip.xy / {};\n",
         super::render::pass_size_wgsl(scale)
     )
 }

@@ -207,7 +207,7 @@ impl Checker<'_> {
                 }
             }
             // Vertex modifiers run per vertex: no fragment varyings there.
-            for id in self.ir.reachable(&Ir::vertex_roots(&pass)) {
+            for id in self.ir.reachable(&pass.roots().vertex) {
                 let e = self.ir.expr(id).clone();
                 if let ExprKind::Builtin(b) = e.kind {
                     if b.is_per_fragment() {
