@@ -27,5 +27,6 @@ mod set_params;
 mod studio_browser;
 mod studio_camera;
 mod studio_server;
+mod style_tests;
 mod vscode_extension;
 mod watch;
