@@ -38,6 +38,11 @@ pub enum Command {
     Compile(CompileArgs),
     /// Render a style on a scene to an image.
     Render(RenderArgs),
+    /// Run styles' tests, declared beside each style in
+    /// `<style>.tests.toml`: golden images (FLIP or per pixel), every
+    /// target finite, not blank, deterministic. Exit 0 when all pass, 1
+    /// when one fails or its input is bad, 2 on an internal error.
+    Test(TestArgs),
     /// Render on every change to the style, what it `use`s, the scene, its
     /// textures and meshes; a bad save prints diagnostics and keeps the last
     /// good image. Runs until interrupted.
@@ -196,6 +201,33 @@ pub struct RenderArgs {
     /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", conflicts_with = "compiled", value_parser = crate::set_params::parse_set_arg)]
     pub set: Vec<String>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct TestArgs {
+    /// Styles (.npr), their test files (.tests.toml), or directories to
+    /// search for test files.
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Accept the current images as the goldens: write each test's golden
+    /// instead of comparing (only for tests whose other checks pass).
+    #[arg(long)]
+    pub bless: bool,
+    /// How to report the run.
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: crate::style_tests::report::ReportFormat,
+    /// Write the report to FILE instead of stdout.
+    #[arg(short = 'o', long = "report", value_name = "FILE")]
+    pub report: Option<PathBuf>,
+    /// Where a failing test's images go (actual, diff, FLIP error map).
+    #[arg(long = "out", value_name = "DIR", default_value = "target/npr-test")]
+    pub out: PathBuf,
+    /// Run only shard i of n (`2/4`): the tests sorted by id, every n-th.
+    #[arg(long, value_name = "i/n")]
+    pub shard: Option<String>,
+    /// Run only the tests whose id (`style.npr::name`) contains SUBSTR.
+    #[arg(long, value_name = "SUBSTR")]
+    pub filter: Option<String>,
 }
 
 #[derive(clap::Args, Debug)]

@@ -1,4 +1,4 @@
-//! `npr`: the command-line front end — check, compile, render.
+//! `npr`: the command-line front end — check, compile, render, test.
 //!
 //! Exit codes: 0 ok, 1 user error (diagnostics printed), 2 internal error.
 
@@ -14,6 +14,7 @@ mod printer;
 mod reference;
 mod set_params;
 mod studio;
+mod style_tests;
 mod texture_check;
 mod usage;
 mod watch;

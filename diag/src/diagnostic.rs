@@ -295,6 +295,13 @@ pub mod codes {
     pub const BAD_SCENE: &str = "E0405";
     /// A file named by a style or scene that is absolute or outside the root (docs/PATHS.md).
     pub const PATH_OUTSIDE_ROOT: &str = "E0406";
+    /// A style's test file (`<style>.tests.toml`, `npr test`) is malformed:
+    /// not TOML, an unknown or missing field, a value of the wrong type or
+    /// outside its domain, a scene or style it names that does not exist.
+    pub const BAD_TEST_FILE: &str = "E0407";
+    /// A test's golden image is missing (and `--bless` was not given), not
+    /// an image, or not the size the test renders.
+    pub const BAD_GOLDEN: &str = "E0408";
     /// Warning: a scene binds a per-object value to a name the style does not read per object.
     pub const UNUSED_BINDING: &str = "W0401";
     /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
@@ -376,6 +383,8 @@ pub mod codes {
         (LIMIT_EXCEEDED, "limit exceeded"),
         (BAD_SCENE, "malformed scene file"),
         (PATH_OUTSIDE_ROOT, "file path absolute or outside the root"),
+        (BAD_TEST_FILE, "malformed style test file"),
+        (BAD_GOLDEN, "golden image missing, unreadable or of another size"),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),

@@ -156,6 +156,43 @@ pub fn flip_mean(a: &image::RgbaImage, b: &image::RgbaImage) -> f32 {
     nv_flip::FlipPool::from_image(&map).mean()
 }
 
+/// A picture of where two same-sized images differ: white where equal,
+/// red where any channel differs, darker the larger the difference (×8, so
+/// a difference of a few levels is visible).
+pub fn diff_image(actual: &image::RgbaImage, expected: &image::RgbaImage) -> image::RgbaImage {
+    image::RgbaImage::from_fn(actual.width(), actual.height(), |x, y| {
+        let (a, b) = (actual.get_pixel(x, y).0, expected.get_pixel(x, y).0);
+        let d = a.iter().zip(b.iter()).map(|(p, q)| p.abs_diff(*q)).max().unwrap_or(0);
+        let v = (d as u32 * 8).min(255) as u8;
+        image::Rgba([if d > 0 { 255 } else { 0 }, 255 - v, 255 - v, 255])
+    })
+}
+
+/// FLIP's error at every pixel of `actual` against `reference` (same size;
+/// row-major, 0 = identical, 1 = maximal), and the map coloured with
+/// FLIP's magma scale for people to look at.
+pub fn flip_error_map(actual: &image::RgbaImage, reference: &image::RgbaImage) -> (Vec<f32>, image::RgbaImage) {
+    let map = nv_flip::flip(rgb8(reference), rgb8(actual), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let coloured = map.apply_color_lut(&nv_flip::magma_lut()).to_vec();
+    let picture = image::RgbaImage::from_fn(map.width(), map.height(), |x, y| {
+        let i = 3 * (y * map.width() + x) as usize;
+        image::Rgba([coloured[i], coloured[i + 1], coloured[i + 2], 255])
+    });
+    (map.to_vec(), picture)
+}
+
+/// The error that `percentile` % of `errors` are at or under (the
+/// nearest-rank percentile: exact, no histogram buckets); 0 for no errors.
+pub fn percentile(errors: &[f32], percentile: f64) -> f32 {
+    if errors.is_empty() {
+        return 0.0;
+    }
+    let mut sorted = errors.to_vec();
+    sorted.sort_by(f32::total_cmp);
+    let rank = ((percentile / 100.0) * sorted.len() as f64).ceil() as usize;
+    sorted[rank.clamp(1, sorted.len()) - 1]
+}
+
 fn write_failure(
     actual: &image::RgbaImage,
     expected: Option<&image::RgbaImage>,
@@ -172,15 +209,34 @@ fn write_failure(
     let diff_path = dir.join(format!("{stem}.diff.png"));
     runner::output::write_png8(actual, &actual_path).ok()?;
     let diff = match expected {
-        Some(e) => image::RgbaImage::from_fn(actual.width(), actual.height(), |x, y| {
-            let (a, b) = (actual.get_pixel(x, y).0, e.get_pixel(x, y).0);
-            let d = a.iter().zip(b.iter()).map(|(p, q)| p.abs_diff(*q)).max().unwrap_or(0);
-            // Amplify small differences so they are visible; red marks any difference.
-            let v = (d as u32 * 8).min(255) as u8;
-            image::Rgba([if d > 0 { 255 } else { 0 }, 255 - v, 255 - v, 255])
-        }),
+        Some(e) => diff_image(actual, e),
         None => actual.clone(),
     };
     runner::output::write_png8(&diff, &diff_path).ok()?;
     Some((actual_path, diff_path))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_are_nearest_rank() {
+        let errors: Vec<f32> = (1..=100).map(|i| i as f32 / 100.0).collect();
+        assert_eq!(percentile(&errors, 99.0), 0.99);
+        assert_eq!(percentile(&errors, 50.0), 0.5);
+        assert_eq!(percentile(&errors, 100.0), 1.0);
+        assert_eq!(percentile(&[0.3], 1.0), 0.3);
+        assert_eq!(percentile(&[], 99.0), 0.0);
+    }
+
+    #[test]
+    fn the_flip_map_is_zero_for_equal_images_and_not_for_different_ones() {
+        let a = image::RgbaImage::from_pixel(8, 8, image::Rgba([40, 90, 200, 255]));
+        let (same, picture) = flip_error_map(&a, &a);
+        assert!(same.iter().all(|e| *e == 0.0) && picture.dimensions() == (8, 8));
+        let b = image::RgbaImage::from_pixel(8, 8, image::Rgba([240, 90, 20, 255]));
+        let (differ, _) = flip_error_map(&b, &a);
+        assert!(differ.iter().all(|e| *e > 0.1), "{differ:?}");
+    }
 }

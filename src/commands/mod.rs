@@ -7,6 +7,7 @@ mod doc;
 pub(crate) mod dump;
 mod explain;
 pub(crate) mod render;
+mod test;
 mod texgen;
 
 use crate::cli::{Cli, Command};
@@ -20,6 +21,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::Compile(args) => compile::run(args, &printer),
         Command::Render(args) => render::run(args, &printer),
         Command::Texgen(args) => texgen::run(args, &printer),
+        Command::Test(args) => test::run(args, &printer),
         Command::Explain { code } => explain::run(&code, &printer),
         Command::Lsp => crate::lsp::run(),
         Command::Doc {

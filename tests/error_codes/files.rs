@@ -292,3 +292,35 @@ fn e0509_a_lost_device() {
     let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0509", (d, rendered));
 }
+
+/// `case.npr` (a grey sphere) and its scene in `dir`, with `tests` as `case.tests.toml`.
+fn style_with_tests(dir: &Path, tests: &str) -> String {
+    std::fs::write(dir.join("case.npr"), style(SIMPLE_PASS)).expect("write");
+    std::fs::write(dir.join("scene.toml"), "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n[[object]]\nname = \"ball\"\nprimitive = { kind = \"sphere\", radius = 0.5, segments = 8, rings = 4 }\n").expect("write");
+    std::fs::write(dir.join("case.tests.toml"), tests).expect("write");
+    dir.join("case.npr").display().to_string()
+}
+
+#[test]
+fn e0407_bad_test_file() {
+    let dir = scratch("e0407");
+    let case = style_with_tests(
+        &dir,
+        "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nsize = \"16x16\"\nmay_be_blnk = true\n",
+    );
+    check("E0407", cli_errors(&["test", &case], &dir));
+}
+
+#[test]
+fn e0408_missing_golden() {
+    let dir = scratch("e0408");
+    let case = style_with_tests(&dir, "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nsize = \"16x16\"\ngolden = \"golden/ball.png\"\nflip = { mean = 0.01 }\n");
+    let (diags, stderr) = cli_errors(&["test", &case], &dir);
+    // The test's own line ends with its time, which varies.
+    let rendered: String = stderr
+        .lines()
+        .filter(|l| !l.starts_with("INVALID "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    check("E0408", (diags, rendered));
+}

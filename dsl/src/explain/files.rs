@@ -1,5 +1,5 @@
 //! Explanations of the file and scene codes (E04xx, W04xx): textures,
-//! meshes, attributes, limits and scene files.
+//! meshes, attributes, limits, scene files and style test files.
 
 use super::{Example, Explanation, EXAMPLE};
 
@@ -28,6 +28,12 @@ const RENDER: &[&[&str]] = &[&[
     "--size",
     "16x16",
 ]];
+
+/// Run the tests of `case.npr` (its `case.tests.toml`).
+const TEST: &[&[&str]] = &[&["test", "case.npr"]];
+
+/// One test of `case.npr` against a golden that is not there until blessed.
+const GOLDEN_TEST: &str = "[[test]]\nname = \"grey\"\nscene = \"scene.toml\"\nsize = \"16x16\"\ngolden = \"golden/grey.png\"\nper_pixel = { max = 1, outliers = 0.0 }\n";
 
 const GREY: &str = "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n";
 
@@ -186,6 +192,52 @@ pub(super) const ALL: &[Explanation] = &[
                 &["texgen", "-o", "textures/paper.png", "--size", "16"],
                 &["check", "case.npr"],
             ],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0407",
+        meaning: "`npr test` reads a style's tests from `<style>.tests.toml` beside it: an optional \
+            `[defaults]` table and one `[[test]]` table per test, with `name`, `scene`, `size`, \
+            `time`, `frame` or `frames`, `eye`, `set`, `golden` with its `flip` or `per_pixel` \
+            tolerance, and `may_be_blank`. This code is a file that is not TOML, a field npr does \
+            not know, one missing or of the wrong type, a value outside its domain, two tests of \
+            one name, or a scene that does not exist; the label points into the test file.",
+        wrong: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", sphere_scene!("")),
+                ("case.tests.toml", "[[test]]\nname = \"grey\"\nsceen = \"scene.toml\"\nsize = \"16x16\"\n"),
+            ],
+            commands: TEST,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", sphere_scene!("")),
+                ("case.tests.toml", "[[test]]\nname = \"grey\"\nscene = \"scene.toml\"\nsize = \"16x16\"\n"),
+            ],
+            commands: TEST,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0408",
+        meaning: "A test with `golden = \"file.png\"` compares its image with that file. The file \
+            must exist, be a PNG npr can read, and have the size the test renders. A new test has \
+            no golden yet: `npr test --bless` renders it and writes the golden (only then, and \
+            only for tests whose other checks pass); look at it before you commit it.",
+        wrong: Example {
+            style: GREY,
+            files: &[("scene.toml", sphere_scene!("")), ("case.tests.toml", GOLDEN_TEST)],
+            commands: TEST,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[("scene.toml", sphere_scene!("")), ("case.tests.toml", GOLDEN_TEST)],
+            commands: &[&["test", "case.npr", "--bless"], &["test", "case.npr"]],
             ..EXAMPLE
         },
     },

@@ -138,7 +138,7 @@ pub mod primitives;
 pub mod samples;
 #[cfg(test)]
 mod test_grid;
-mod toml_fields;
+pub mod toml_fields;
 
 pub use camera::{Camera, CameraKey, CameraPose};
 pub use light::{light_view_proj, Light};

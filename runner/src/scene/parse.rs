@@ -24,11 +24,7 @@ pub fn parse_scene(
     paths: Option<&diag::paths::PathPolicy>,
 ) -> Result<Scene, Vec<Diagnostic>> {
     let document = DeTable::parse(text).map_err(|err| vec![syntax_error(&err, file, text)])?;
-    let mut report = Report {
-        file,
-        diagnostics: Vec::new(),
-        paths: paths.cloned(),
-    };
+    let mut report = Report::for_scene(file, paths.cloned());
     let mut root = Fields::new(document.get_ref(), Span::new(file, 0, 0), "the scene file");
 
     let background = root

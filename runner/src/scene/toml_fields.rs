@@ -1,5 +1,7 @@
 //! Typed, spanned access to the fields of a parsed TOML table, reporting
-//! every problem as an E0405 diagnostic that points into the scene file.
+//! every problem as a diagnostic that points into the file: E0405 in a
+//! scene file, the code the [`Report`] was made with in other TOML files
+//! (`npr test`'s `<style>.tests.toml` gives E0407).
 //!
 //! The scene is read from toml's spanned document tree ([`DeTable`]) rather
 //! than through serde derive, so that one pass can report several errors
@@ -22,12 +24,25 @@ pub struct At<T> {
 /// Where diagnostics go while a scene file is read.
 pub struct Report {
     pub file: FileId,
+    /// The code of every problem [`Report::bad_scene`] records: E0405
+    /// ([`Report::for_scene`]), or another file format's own.
+    pub code: &'static str,
     pub diagnostics: Vec<Diagnostic>,
     /// Which files the scene may name (`diag::paths`); `None` reads any.
     pub paths: Option<diag::paths::PathPolicy>,
 }
 
 impl Report {
+    /// A report on the scene file `file`, read under `paths`.
+    pub fn for_scene(file: FileId, paths: Option<diag::paths::PathPolicy>) -> Report {
+        Report {
+            file,
+            code: codes::BAD_SCENE,
+            diagnostics: Vec::new(),
+            paths,
+        }
+    }
+
     /// Whether the file `written` at `span` (resolved to `resolved`) may be
     /// read; a refusal (E0406) is recorded at `span`.
     pub fn path_allowed(&mut self, span: Span, written: &str, resolved: &std::path::Path) -> bool {
@@ -42,7 +57,7 @@ impl Report {
         Span::new(self.file, range.start, range.end)
     }
 
-    /// Records an E0405 error at `span`.
+    /// Records an error with the report's code (E0405 in a scene) at `span`.
     pub fn bad_scene(
         &mut self,
         span: Span,
@@ -51,7 +66,7 @@ impl Report {
         help: impl Into<String>,
     ) {
         self.push(
-            Diagnostic::error(codes::BAD_SCENE, message)
+            Diagnostic::error(self.code, message)
                 .with_primary(span, label)
                 .with_help(help),
         );
@@ -526,11 +541,7 @@ mod tests {
     #[test]
     fn unknown_keys_are_reported_once_each() {
         let document = DeTable::parse("fov = 1\nfob = 2\nzzz = 3\n").expect("valid TOML");
-        let mut report = Report {
-            file: FileId(0),
-            diagnostics: Vec::new(),
-            paths: None,
-        };
+        let mut report = Report::for_scene(FileId(0), None);
         let mut fields = Fields::new(document.get_ref(), Span::default(), "[camera]");
         assert_eq!(fields.number("fov", &mut report).map(|n| n.value), Some(1.0));
         fields.finish(&mut report);

@@ -1,0 +1,134 @@
+//! `npr test PATH...`: find the test files, read them all (any mistake in
+//! one is reported with the others and stops the run before rendering),
+//! select by `--filter` and `--shard`, run each test with a progress bar,
+//! and report. Exit 0 when every test passes, 1 when one fails or has bad
+//! input, 2 when npr itself failed.
+
+use crate::cli::{TestArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::printer::{cannot_write, headless_gpu, Printer};
+use crate::style_tests::declare::{self, TestDecl, TestFile};
+use crate::style_tests::report::{self, ReportFormat, RunReport};
+use crate::style_tests::run::{self, Settings, Status};
+use crate::style_tests::select;
+use diag::{codes, Diagnostic};
+use std::time::Instant;
+
+pub fn run(args: TestArgs, printer: &Printer) -> i32 {
+    let started = Instant::now();
+    let shard = match args.shard.as_deref().map(select::parse_shard).transpose() {
+        Ok(s) => s,
+        Err(d) => return printer.fail(d),
+    };
+    let found = match select::find(&args.paths) {
+        Ok(f) => f,
+        Err(d) => return printer.fail(d),
+    };
+    let mut files: Vec<TestFile> = Vec::new();
+    let mut bad_input = false;
+    for path in &found.test_files {
+        match declare::read(path) {
+            Ok(f) => files.push(f),
+            Err((diags, sources)) => {
+                printer.diagnostics(&diags, &sources);
+                bad_input = true;
+            }
+        }
+    }
+    if bad_input {
+        return EXIT_USER;
+    }
+    let tests: Vec<(&TestFile, &TestDecl)> = files.iter().flat_map(|f| f.tests.iter().map(move |t| (f, t))).collect();
+    let ids: Vec<String> = tests.iter().map(|(f, t)| run::id(f, t)).collect();
+    if let Some(filter) = &args.filter {
+        if !ids.iter().any(|id| id.contains(filter.as_str())) {
+            return printer.fail(
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT_VALUE,
+                    format!("--filter {filter}: no test's id contains it"),
+                )
+                .with_help(format!(
+                    "the ids are `style.npr::name`; there are {} test(s)",
+                    ids.len()
+                )),
+            );
+        }
+    }
+    let selected = select::select(&ids, args.filter.as_deref(), shard);
+    let gpu = if selected.is_empty() {
+        None
+    } else {
+        match headless_gpu(printer) {
+            Ok(g) => Some(g),
+            Err(code) => return code,
+        }
+    };
+    let bar = indicatif::ProgressBar::new(selected.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} tests {elapsed_precise} {wide_msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let mut outcomes = Vec::with_capacity(selected.len());
+    // A style's warnings would repeat for each of its tests: each once.
+    let mut warned = std::collections::HashSet::new();
+    if let Some(gpu) = &gpu {
+        let settings = Settings {
+            gpu,
+            out_dir: &args.out,
+            bless: args.bless,
+        };
+        for &i in &selected {
+            let (file, test) = tests[i];
+            bar.set_message(ids[i].clone());
+            let result = run::run(file, test, &settings);
+            let fresh: Vec<Diagnostic> = result
+                .diagnostics
+                .iter()
+                .filter(|d| {
+                    d.is_error()
+                        || warned.insert(diag::diagnostic::render(
+                            std::slice::from_ref(*d),
+                            &result.sources,
+                            false,
+                        ))
+                })
+                .cloned()
+                .collect();
+            bar.suspend(|| {
+                printer.diagnostics(&fresh, &result.sources);
+                eprintln!("{}", report::line(&result.outcome));
+            });
+            outcomes.push(result.outcome);
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    let run_report = RunReport {
+        outcomes: &outcomes,
+        seconds: started.elapsed().as_secs_f64(),
+        untested: &found.untested,
+        not_selected: tests.len() - selected.len(),
+    };
+    let text = match args.format {
+        ReportFormat::Human => report::human(&run_report),
+        ReportFormat::Json => report::json(&run_report),
+        ReportFormat::Junit => report::junit(&run_report),
+    };
+    match &args.report {
+        Some(path) => {
+            if let Err(e) = runner::output::write_atomic(path, text.as_bytes()) {
+                return printer.fail(cannot_write(path, e));
+            }
+            if args.format != ReportFormat::Human {
+                eprint!("{}", report::human(&run_report));
+            }
+        }
+        None => print!("{text}"),
+    }
+    if outcomes.iter().any(|o| o.status == Status::Internal) {
+        EXIT_INTERNAL
+    } else if outcomes.iter().any(|o| o.status != Status::Passed) {
+        EXIT_USER
+    } else {
+        EXIT_OK
+    }
+}

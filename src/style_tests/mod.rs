@@ -1,0 +1,18 @@
+//! `npr test`: a style's tests, declared beside it in `<style>.tests.toml`
+//! and run the way `npr render` renders, so a style author tests a style
+//! without writing Rust (and npr tests its own examples the same way).
+//!
+//! - `declare.rs`: the test file, read with spanned diagnostics (E0407);
+//! - `select.rs`: test files under the paths given, `--filter`, `--shard`;
+//! - `run.rs`: one test compiled, rendered and checked;
+//! - `checks.rs`: the checks on its images (finite, not blank,
+//!   deterministic, golden);
+//! - `report.rs`: the lines, the summary, JSON and JUnit XML.
+//!
+//! The command itself is `commands/test.rs`.
+
+pub mod checks;
+pub mod declare;
+pub mod report;
+pub mod run;
+pub mod select;

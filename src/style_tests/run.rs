@@ -1,0 +1,500 @@
+//! Running one declared test: its scene loaded, its style compiled for the
+//! scene with its `set` values (typed exactly as `npr render --set`), its
+//! frames rendered as `npr render` renders them, and then the checks of
+//! `checks.rs` on what came back. Bad input (a parameter that does not
+//! exist, a golden of another size) stops the test with diagnostics;
+//! a check that does not hold is a [`Failure`].
+
+use super::checks;
+use super::declare::{Golden, TestDecl, TestFile, When};
+use crate::cli::PathArgs;
+use compiler::mid::overrides::ParamOverride;
+use compiler::{CompileError, CompileOptions, Compiled};
+use diag::{codes, Diagnostic, SourceMap};
+use runner::schedule::{FrameRequest, ScheduledFrame};
+use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// How a test ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    Passed,
+    /// A check did not hold.
+    Failed,
+    /// Its input is wrong (diagnostics with codes): exit 1 like a failure.
+    Invalid,
+    /// npr or the device failed: exit 2.
+    Internal,
+}
+
+/// A check that did not hold.
+#[derive(Debug, Clone)]
+pub struct Failure {
+    /// `golden`, `finite`, `blank` or `deterministic`.
+    pub check: &'static str,
+    pub message: String,
+    /// The images written to look at it (actual, diff, FLIP map).
+    pub files: Vec<PathBuf>,
+}
+
+/// What one test did.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// `<style>::<name>`: what `--filter` matches and `--shard` sorts.
+    pub id: String,
+    pub style: PathBuf,
+    pub name: String,
+    pub status: Status,
+    pub seconds: f64,
+    pub failures: Vec<Failure>,
+    /// Its diagnostics as plain text, for the JSON and JUnit reports.
+    pub messages: Vec<String>,
+    /// The golden written by `--bless`.
+    pub blessed: Option<PathBuf>,
+}
+
+/// What every test of a run shares.
+pub struct Settings<'a> {
+    pub gpu: &'a Gpu,
+    /// Where a failing test's images go (`<out>/<style>/<test>.*.png`).
+    pub out_dir: &'a Path,
+    pub bless: bool,
+}
+
+/// An outcome, and the diagnostics to print with the sources they point into.
+pub struct Run {
+    pub outcome: Outcome,
+    pub diagnostics: Vec<Diagnostic>,
+    pub sources: SourceMap,
+}
+
+/// Why a test stopped before its checks: bad input, or an internal error.
+enum Stop {
+    Invalid(Vec<Diagnostic>),
+    Internal(Vec<Diagnostic>),
+}
+
+impl From<RunError> for Stop {
+    fn from(e: RunError) -> Stop {
+        if e.is_user_error() {
+            Stop::Invalid(e.diagnostics())
+        } else {
+            Stop::Internal(e.diagnostics())
+        }
+    }
+}
+
+/// What the checks found, and the warnings met on the way.
+struct Checked {
+    failures: Vec<Failure>,
+    warnings: Vec<Diagnostic>,
+    blessed: Option<PathBuf>,
+}
+
+pub fn id(file: &TestFile, test: &TestDecl) -> String {
+    format!("{}::{}", file.style.display(), test.name.value)
+}
+
+/// Run `test` of `file`.
+pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
+    let started = Instant::now();
+    let mut sources = file.sources.clone();
+    let result = execute(file, test, settings, &mut sources);
+    let (status, failures, diagnostics, blessed) = match result {
+        Ok(c) if c.failures.is_empty() => (Status::Passed, Vec::new(), c.warnings, c.blessed),
+        Ok(c) => (Status::Failed, c.failures, c.warnings, c.blessed),
+        Err(Stop::Invalid(d)) => (Status::Invalid, Vec::new(), d, None),
+        Err(Stop::Internal(d)) => (Status::Internal, Vec::new(), d, None),
+    };
+    let messages = diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
+        .collect();
+    Run {
+        outcome: Outcome {
+            id: id(file, test),
+            style: file.style.clone(),
+            name: test.name.value.clone(),
+            status,
+            seconds: started.elapsed().as_secs_f64(),
+            failures,
+            messages,
+            blessed,
+        },
+        diagnostics,
+        sources,
+    }
+}
+
+fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut SourceMap) -> Result<Checked, Stop> {
+    let gpu = settings.gpu;
+    let scene_path = &test.scene.value;
+    let policy = PathArgs::default()
+        .policy(&file.style, Some(scene_path))
+        .map_err(|d| Stop::Invalid(vec![d]))?;
+    let scene = runner::scene::load_scene_in(scene_path, sources, Some(&policy)).map_err(Stop::Invalid)?;
+    if test.eye.value == 1 && !scene.camera.is_stereo() {
+        return Err(Stop::Invalid(vec![Diagnostic::error(
+            codes::BAD_TEST_FILE,
+            format!(
+                "test `{}` renders eye 1, but its scene's camera is mono",
+                test.name.value
+            ),
+        )
+        .with_primary(test.eye.span, "eye 1 of a mono camera")
+        .with_help("give the scene's [camera] an `ipd` to make it stereo, or test eye 0")]));
+    }
+    let opts = CompileOptions {
+        scene: Some(scene.summary(&scene_path.display().to_string())),
+        paths: Some(policy),
+        ..Default::default()
+    };
+    let first = compile(&file.style, sources, &opts)?;
+    let overrides = typed_sets(test, &first, sources)?;
+    let opts = CompileOptions { overrides, ..opts };
+    let compiled = if opts.overrides.is_empty() {
+        first
+    } else {
+        compile(&file.style, sources, &opts)?
+    };
+    let texture_errors = crate::texture_check::texture_file_errors(&compiled, runner::texture_file::Depth::Header);
+    if !texture_errors.is_empty() {
+        return Err(Stop::Invalid(texture_errors));
+    }
+    let program = compiled.program();
+    let mut warnings = compiled.warnings.clone();
+    warnings.extend(runner::scene_warnings(&program.manifest, &scene));
+    let request = match test.when {
+        When::At { time_s } => FrameRequest::At { time_s },
+        When::Range { start, end } => FrameRequest::Range { start, end },
+    };
+    let path_dependent = program.manifest.is_path_dependent();
+    let count = runner::schedule::frame_count(request, test.fps, path_dependent);
+    crate::args::check_frame_count(count as usize)
+        .map_err(|d| Stop::Invalid(vec![d.with_primary(test.name.span, "this test")]))?;
+    let frames = runner::schedule::schedule(request, test.fps, path_dependent);
+    let frame = Frames { test, frames: &frames };
+
+    let checked = (|| -> Result<Checked, RunError> {
+        let first_run = frame.render(gpu, &program, &scene, true)?;
+        let mut failures = non_finite_failures(&program, &first_run.non_finite);
+        // A fused target is not stored under the auto schedule: the naive
+        // one stores every declared target, so each is read back there.
+        if compiled
+            .report
+            .entries
+            .iter()
+            .any(|e| matches!(e.action, "fused" | "recomputed"))
+        {
+            let naive = CompileOptions {
+                schedule: compiler::schedule::Schedule::Naive,
+                ..opts.clone()
+            };
+            let naive = compiler::compile_file(&file.style, sources, &naive)
+                .map_err(|e| RunError::Internal(format!("the style compiled under auto but not naive: {e:?}")))?
+                .program();
+            let stored: Vec<&str> = program.manifest.targets.iter().map(|t| t.name.as_str()).collect();
+            let mut found = frame.render(gpu, &naive, &scene, true)?.non_finite;
+            found.retain(|f| !stored.contains(&naive.manifest.targets[f.target].name.as_str()));
+            failures.extend(non_finite_failures(&naive, &found));
+        }
+        let second_run = frame.render(gpu, &program, &scene, false)?;
+        failures.extend(determinism_failures(&first_run.outputs, &second_run.outputs));
+        if !test.may_be_blank {
+            failures.extend(blank_failures(&first_run.outputs));
+        }
+        let last = first_run.outputs.last().map(|(_, img)| img.to_rgba8());
+        let (golden_failures, blessed) = match (&test.golden, last) {
+            (Some(golden), Some(actual)) => golden_check(file, test, golden, &actual, failures.is_empty(), settings)?,
+            _ => (Vec::new(), None),
+        };
+        failures.extend(golden_failures);
+        Ok(Checked {
+            failures,
+            warnings,
+            blessed,
+        })
+    })();
+    Ok(gpu
+        .watch
+        .check(checked)
+        .map_err(|e| e.at_texture_spans(&compiled.texture_spans))?)
+}
+
+fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, Stop> {
+    compiler::compile_file(style, sources, opts).map_err(|e| match e {
+        CompileError::User(d) => Stop::Invalid(d),
+        CompileError::Internal(e) => Stop::Internal(vec![e.to_diagnostic()]),
+    })
+}
+
+/// The test's `set` values typed against the style's parameters by
+/// `npr render --set`'s own typing, each error pointing at the value in
+/// the test file.
+fn typed_sets(test: &TestDecl, first: &Compiled, sources: &SourceMap) -> Result<Vec<ParamOverride>, Stop> {
+    if test.sets.is_empty() {
+        return Ok(Vec::new());
+    }
+    let colours = crate::set_params::declared_colours(sources);
+    let params = crate::set_params::with_colours(&first.manifest.params, &colours);
+    let mut overrides = Vec::new();
+    let mut diags = Vec::new();
+    for (name, value) in &test.sets {
+        let Some(param) = params.iter().find(|p| p.name == name.value) else {
+            let settable = params
+                .iter()
+                .filter(|p| crate::set_params::settable(p))
+                .map(|p| p.name.as_str());
+            let help = match diag::diagnostic::did_you_mean(&name.value, settable) {
+                Some(close) => format!("did you mean `{close}`?"),
+                None => "`set` takes the style's parameters (`npr check --message-format json` lists them)".into(),
+            };
+            diags.push(
+                Diagnostic::error(
+                    codes::UNKNOWN_NAME,
+                    format!("set.{0}: the style has no parameter `{0}`", name.value),
+                )
+                .with_primary(name.span, "no parameter of this name")
+                .with_help(help),
+            );
+            continue;
+        };
+        match crate::set_params::parse_value(param, value.value.trim()) {
+            Ok(o) => overrides.push(o),
+            Err(e) => diags.push(
+                Diagnostic::error(e.code, format!("set.{}: {}", name.value, e.message))
+                    .with_primary(value.span, e.label)
+                    .with_help(e.help),
+            ),
+        }
+    }
+    if diags.is_empty() {
+        Ok(overrides)
+    } else {
+        Err(Stop::Invalid(diags))
+    }
+}
+
+/// A target found holding NaN or ±Inf in one frame.
+struct FoundNonFinite {
+    frame: u32,
+    target: usize,
+    found: checks::NonFinite,
+}
+
+/// The frames of one render of a test.
+struct Rendered {
+    /// Per written frame, its number and its output.
+    outputs: Vec<(u32, TargetImage)>,
+    /// Per target, the first frame it was non-finite in.
+    non_finite: Vec<FoundNonFinite>,
+}
+
+struct Frames<'a> {
+    test: &'a TestDecl,
+    frames: &'a [ScheduledFrame],
+}
+
+impl Frames<'_> {
+    /// Render the frames with a new renderer, as `npr render` does; with
+    /// `read_targets`, read every target of each written frame back as
+    /// floats (a target a later pass reuses by a partial re-render).
+    fn render(
+        &self,
+        gpu: &Gpu,
+        program: &StyleProgram,
+        scene: &runner::scene::Scene,
+        read_targets: bool,
+    ) -> Result<Rendered, RunError> {
+        let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+        let (width, height) = self.test.size;
+        let mut rendered = Rendered {
+            outputs: Vec::new(),
+            non_finite: Vec::new(),
+        };
+        for f in self.frames {
+            let spec = FrameSpec {
+                width,
+                height,
+                time_s: f.time_s,
+                frame: f.frame,
+                eye: self.test.eye.value,
+            };
+            r.render(scene, &spec)?;
+            if !f.write {
+                continue;
+            }
+            // Before the partial re-renders of `read_all_targets`, which
+            // overwrite what shares the output's texture.
+            rendered.outputs.push((f.frame, r.read_output()?));
+            if read_targets {
+                let targets = crate::commands::dump::read_all_targets(&mut r, scene, &spec)?;
+                for (index, image) in targets.iter().enumerate() {
+                    let seen = rendered.non_finite.iter().any(|n| n.target == index);
+                    if let Some(found) = checks::non_finite(image).filter(|_| !seen) {
+                        rendered.non_finite.push(FoundNonFinite {
+                            frame: f.frame,
+                            target: index,
+                            found,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(rendered)
+    }
+}
+
+fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
+    found
+        .iter()
+        .map(|n| {
+            let target = &program.manifest.targets[n.target];
+            let writer = program
+                .manifest
+                .passes
+                .iter()
+                .find(|p| p.outputs.contains(&n.target))
+                .map_or("no pass", |p| p.name.as_str());
+            let (x, y) = n.found.first;
+            Failure {
+                check: "finite",
+                message: format!(
+                    "target `{}` ({}, written by pass `{writer}`) has {} non-finite texel(s) in frame {}; the first at ({x}, {y}) is {:?}",
+                    target.name,
+                    format!("{:?}", target.format).to_lowercase(),
+                    n.found.count,
+                    n.frame,
+                    n.found.first_value
+                ),
+                files: Vec::new(),
+            }
+        })
+        .collect()
+}
+
+fn determinism_failures(first: &[(u32, TargetImage)], second: &[(u32, TargetImage)]) -> Vec<Failure> {
+    first
+        .iter()
+        .zip(second)
+        .filter_map(|((frame, a), (_, b))| {
+            let at = checks::first_difference(&a.bytes, &b.bytes)?;
+            let texel = at / a.format.bytes_per_pixel().max(1) as usize;
+            let (x, y) = (texel % a.width.max(1) as usize, texel / a.width.max(1) as usize);
+            Some(Failure {
+                check: "deterministic",
+                message: format!("frame {frame}: a second render differs from the first, first at pixel ({x}, {y})"),
+                files: Vec::new(),
+            })
+        })
+        .take(1)
+        .collect()
+}
+
+fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
+    outputs
+        .iter()
+        .filter_map(|(frame, img)| {
+            let [r, g, b, a] = checks::single_colour(&img.to_rgba8())?;
+            Some(Failure {
+                check: "blank",
+                message: format!(
+                    "frame {frame}: the output is one colour, #{r:02x}{g:02x}{b:02x}{a:02x}; say `may_be_blank = true` if it may be"
+                ),
+                files: Vec::new(),
+            })
+        })
+        .take(1)
+        .collect()
+}
+
+/// Compare with the golden, or write it with `--bless` when every other
+/// check held (a golden is never an image that failed them).
+fn golden_check(
+    file: &TestFile,
+    test: &TestDecl,
+    golden: &Golden,
+    actual: &image::RgbaImage,
+    others_passed: bool,
+    settings: &Settings,
+) -> Result<(Vec<Failure>, Option<PathBuf>), RunError> {
+    let path = &golden.path.value;
+    let bad_golden = |message: String, label: &str| {
+        RunError::User(vec![Diagnostic::error(codes::BAD_GOLDEN, message)
+            .with_primary(golden.path.span, label.to_string())
+            .with_help(
+                "`npr test --bless` writes the golden from the current render; look at it before committing it",
+            )])
+    };
+    if settings.bless {
+        if !others_passed {
+            return Ok((Vec::new(), None));
+        }
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(dir, e)]))?;
+        }
+        runner::output::write_png8(actual, path)
+            .map_err(|e| RunError::User(vec![crate::printer::cannot_write(path, e)]))?;
+        return Ok((Vec::new(), Some(path.clone())));
+    }
+    if !path.exists() {
+        return Err(bad_golden(
+            format!("golden {} does not exist", path.display()),
+            "no such file",
+        ));
+    }
+    let expected = match image::open(path) {
+        Ok(img) => img.to_rgba8(),
+        Err(e) => {
+            return Err(bad_golden(
+                format!("golden {} is not an image npr reads: {e}", path.display()),
+                "not a PNG",
+            ))
+        }
+    };
+    if expected.dimensions() != actual.dimensions() {
+        let (w, h) = expected.dimensions();
+        return Err(bad_golden(
+            format!(
+                "golden {} is {w}x{h}, but test `{}` renders {}x{}",
+                path.display(),
+                test.name.value,
+                actual.width(),
+                actual.height()
+            ),
+            "another size",
+        ));
+    }
+    let verdict = checks::compare(actual, &expected, golden);
+    if verdict.passed {
+        return Ok((Vec::new(), None));
+    }
+    let stem = file
+        .style
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let dir = settings.out_dir.join(stem);
+    let name = &test.name.value;
+    let mut images = vec![
+        (dir.join(format!("{name}.actual.png")), actual.clone()),
+        (dir.join(format!("{name}.diff.png")), verdict.diff),
+    ];
+    if let Some(flip) = verdict.flip_picture {
+        images.push((dir.join(format!("{name}.flip.png")), flip));
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(&dir, e)]))?;
+    for (p, img) in &images {
+        runner::output::write_png8(img, p).map_err(|e| RunError::User(vec![crate::printer::cannot_write(p, e)]))?;
+    }
+    Ok((
+        vec![Failure {
+            check: "golden",
+            message: format!("differs from {}: {}", path.display(), verdict.lines.join("; ")),
+            files: images.into_iter().map(|(p, _)| p).collect(),
+        }],
+        None,
+    ))
+}

@@ -1,0 +1,70 @@
+//! npr tests its own examples the way a user tests a style: `npr test
+//! examples/` runs the golden-image tests declared beside each example in
+//! `examples/*.tests.toml` (each rendered as `npr render` renders it, every
+//! target checked finite, the output not blank and the same twice, and
+//! compared with `examples/golden/` within its declared tolerance).
+
+use crate::common::cli::npr;
+
+/// The golden-image tests the examples declare (were `tests/gpu/golden_images.rs`).
+const EXPECTED: &[&str] = &[
+    "age_of_sail.npr::spot",
+    "artmap_gallery.npr::gallery",
+    "edge_breakup.npr::spot",
+    "live_contour.npr::spheres",
+    "lsa_base.npr::fandisk",
+    "lsa_base.npr::spheres",
+    "lsa_base.npr::spot",
+    "lsa_contours.npr::fandisk",
+    "lsa_contours.npr::spheres",
+    "lsa_contours.npr::spot",
+    "lsa_stereo.npr::sphere_on_plane",
+    "metatexture.npr::spot",
+    "ocean.npr::ocean",
+    "outline.npr::spot",
+    "overlay_lines.npr::spheres",
+    "rounded_shadows.npr::spot",
+    "sobel_outline.npr::fandisk",
+    "sobel_outline.npr::spheres",
+    "sobel_outline.npr::spot",
+    "toon.npr::spheres",
+    "toon.npr::spot",
+    "wavy_lines.npr::cube",
+    "wavy_lines.npr::fandisk",
+    "wavy_lines.npr::teapot",
+];
+
+#[test]
+fn every_example_test_passes_under_npr_test() {
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("npr-test-examples");
+    let out = out.to_str().expect("a UTF-8 path");
+    let o = npr(&["test", "examples/", "--format", "json", "--out", out]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("{e}: {stdout}"));
+    let mut ids: Vec<String> = report["tests"]
+        .as_array()
+        .expect("tests")
+        .iter()
+        .map(|t| {
+            t["id"]
+                .as_str()
+                .expect("id")
+                .trim_start_matches("examples/")
+                .to_string()
+        })
+        .collect();
+    ids.sort();
+    assert_eq!(ids, EXPECTED, "the examples' declared tests");
+    let not_passed: Vec<&serde_json::Value> = report["tests"]
+        .as_array()
+        .expect("tests")
+        .iter()
+        .filter(|t| t["status"] != "passed")
+        .collect();
+    assert!(
+        not_passed.is_empty(),
+        "{not_passed:#?}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(o.status.code(), Some(0));
+}
