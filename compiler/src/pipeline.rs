@@ -1,6 +1,8 @@
-//! The compiler pipeline, in order: load → resolve → typecheck → build the
-//! pass DAG → prune → specialize → prune again (what folding made dead) →
-//! schedule (fusion) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
+//! The compiler pipeline, in order: load → resolve (with the filter checks)
+//! → typecheck (with the rip-map checks) → apply overrides → build the pass
+//! DAG → prune → specialize → prune again (what folding made dead) → the
+//! checks of constant domains and absent tags → schedule (fusion, tiles,
+//! recomputation) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
 use crate::back::emit::Emitter;

@@ -6,8 +6,10 @@
 //! `image.rs`, `lines.rs`); the fragment shader with one `let` per user `let`, per
 //! shared subexpression and per target read more than once, each commented
 //! with the `.npr` line it came from. Expressions are emitted by one
-//! kind-independent emitter (`expr.rs`); `emit_pass` is the one place that
-//! matches on the pass kind.
+//! kind-independent emitter (`expr.rs`), which asks its `KindCtx` what
+//! differs by kind; `emit_pass` matches on the kind for the module's parts,
+//! and each kind's file (`render.rs`, `image.rs`, `lines.rs`, `compute.rs`,
+//! `tiled/`) writes its own entry points.
 
 mod bindings;
 pub mod compute;
