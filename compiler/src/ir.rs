@@ -269,6 +269,9 @@ pub struct Expr {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum ParamTy {
     Value(Ty),
+    /// `color`: a `vec4` that `--set`, the studio and the manifest know as
+    /// a colour (`#rrggbb`, a colour picker).
+    Color,
     Enum(Vec<String>),
     Range(Ty),
 }
@@ -293,6 +296,23 @@ pub struct Param {
     pub interpolation: String,
     pub span: Span,
     pub name_span: Span,
+}
+
+impl Param {
+    /// The type as declared, as the manifest writes it: `float`, `int`,
+    /// `bool`, `vec2`..`vec4`, `color`, `enum(a|b)`, `range`, or the unit
+    /// of a unit type (`px`, `m`, `s`, `Hz`, `deg`).
+    pub fn declared_type(&self) -> String {
+        match &self.ty {
+            ParamTy::Enum(v) => format!("enum({})", v.join("|")),
+            ParamTy::Range(_) => "range".into(),
+            ParamTy::Color => "color".into(),
+            ParamTy::Value(t) => match self.unit {
+                Unit::None => t.describe().into(),
+                u => u.name().into(),
+            },
+        }
+    }
 }
 
 /// One argument of `filter("…", name: value)`: a constant in canonical
