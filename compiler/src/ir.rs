@@ -315,21 +315,6 @@ impl Param {
     }
 }
 
-/// One argument of `filter("…", name: value)`: a constant in canonical
-/// units (degrees as radians), with the unit it was written in, or a bare
-/// name that is none of the host's (`mode: soft`), the choice of an enum
-/// param of the filter, resolved against the filter's variants when it is
-/// compiled (`filter_args`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FilterArg {
-    pub name: String,
-    /// Empty for a choice.
-    pub value: Vec<f64>,
-    pub unit: Unit,
-    pub choice: Option<String>,
-    pub span: Span,
-}
-
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum TextureSource {
     Image {
@@ -353,8 +338,8 @@ pub enum TextureSource {
         filter_file: String,
         filter_name: String,
         /// `filter: filter("hatching.npr", spacing: 8)`: new defaults for
-        /// the filter's params, checked against them when it is compiled.
-        filter_args: Vec<FilterArg>,
+        /// the filter's params, typed against them in its compile.
+        filter_args: Vec<crate::front::param_settings::ParamSetting>,
         levels: Option<u32>,
         /// `ripmap(...)`: every 2^-i × 2^-j level in one atlas.
         rip: bool,
