@@ -273,6 +273,9 @@ pub struct Expr {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum ParamTy {
     Value(Ty),
+    /// `color`: a `vec4` that `--set`, the studio and the manifest know as
+    /// a colour (`#rrggbb`, a colour picker).
+    Color,
     Enum(Vec<String>),
     Range(Ty),
 }
@@ -299,19 +302,21 @@ pub struct Param {
     pub name_span: Span,
 }
 
-/// One argument of `filter("…", name: value)`: a constant in canonical
-/// units (degrees as radians), with the unit it was written in, or a bare
-/// name that is none of the host's (`mode: soft`), the choice of an enum
-/// param of the filter, resolved against the filter's variants when it is
-/// compiled (`filter_args`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FilterArg {
-    pub name: String,
-    /// Empty for a choice.
-    pub value: Vec<f64>,
-    pub unit: Unit,
-    pub choice: Option<String>,
-    pub span: Span,
+impl Param {
+    /// The type as declared, as the manifest writes it: `float`, `int`,
+    /// `bool`, `vec2`..`vec4`, `color`, `enum(a|b)`, `range`, or the unit
+    /// of a unit type (`px`, `m`, `s`, `Hz`, `deg`).
+    pub fn declared_type(&self) -> String {
+        match &self.ty {
+            ParamTy::Enum(v) => format!("enum({})", v.join("|")),
+            ParamTy::Range(_) => "range".into(),
+            ParamTy::Color => "color".into(),
+            ParamTy::Value(t) => match self.unit {
+                Unit::None => t.describe().into(),
+                u => u.name().into(),
+            },
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -337,8 +342,8 @@ pub enum TextureSource {
         filter_file: String,
         filter_name: String,
         /// `filter: filter("hatching.npr", spacing: 8)`: new defaults for
-        /// the filter's params, checked against them when it is compiled.
-        filter_args: Vec<FilterArg>,
+        /// the filter's params, typed against them in its compile.
+        filter_args: Vec<crate::front::param_settings::ParamSetting>,
         levels: Option<u32>,
         /// `ripmap(...)`: every 2^-i × 2^-j level in one atlas.
         rip: bool,

@@ -31,9 +31,11 @@ pub struct CompileOptions {
     /// a constant, so passes only an absent tag needs are pruned. `None` keeps
     /// everything (`scene_has` is conservatively `true`).
     pub scene: Option<SceneSummary>,
-    /// New defaults for parameters (`--set`), already typed by the caller;
-    /// applied after typecheck, so they fold like written defaults.
-    pub overrides: Vec<mid::overrides::ParamOverride>,
+    /// New defaults for parameters (`--set`, the studio's controls, a
+    /// filter's arguments), as written: typed against the params after
+    /// typecheck (`front::param_settings`) and applied there, so they fold
+    /// like written defaults. Their spans are in the caller's `SourceMap`.
+    pub settings: Vec<front::param_settings::ParamSetting>,
     /// Which files the style may read (`use`, `image("…")`): `None` reads
     /// any path (library use); the `npr` commands always give one
     /// (`diag::paths`, docs/PATHS.md).

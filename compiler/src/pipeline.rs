@@ -46,6 +46,13 @@ fn is_parse_limit(d: &Diagnostic) -> bool {
     d.is_error() && [LIMIT_EXCEEDED, NESTED_TOO_DEEP, EXPRESSION_TOO_DEEP].contains(&d.code)
 }
 
+#[cfg(test)]
+thread_local! {
+    /// How many styles [`run`] compiled on this thread (filters included):
+    /// what shows that a filter with arguments is compiled once.
+    static RUNS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
 pub fn run(
     loaded: Loaded,
     sources: &SourceMap,
@@ -53,6 +60,8 @@ pub fn run(
     opts: &CompileOptions,
     mut diags: Vec<Diagnostic>,
 ) -> Result<Compiled, CompileError> {
+    #[cfg(test)]
+    RUNS.with(|r| r.set(r.get() + 1));
     let mut st = Stages {
         opts,
         timings: Vec::new(),
@@ -83,7 +92,11 @@ pub fn run(
     st.done("typecheck", &ir);
     crate::front::follow_ups::suppress(&mut diags, &loaded.broken, sources);
     fail_if_errors(&diags)?;
-    crate::mid::overrides::apply(&mut ir, &opts.overrides).map_err(CompileError::Internal)?;
+    // The style's own warnings are not repeated beside a refused setting:
+    // the setting is what the caller gets wrong.
+    let overrides =
+        crate::front::param_settings::type_settings(&ir, &opts.settings, sources).map_err(CompileError::User)?;
+    crate::mid::overrides::apply(&mut ir, &overrides).map_err(CompileError::Internal)?;
     let filters = compile_filters(&ir, loaded.filters, sources)?;
     let graph = crate::mid::dag::build(&ir, &mut diags);
     st.done("dag", &ir);
@@ -196,8 +209,10 @@ pub fn run(
 }
 
 /// Compile the filter style of every art-map (each once), as a style of its
-/// own with its defaults: the compiled filters by the key `resolve` gave
-/// them. A filter's errors are the host's errors, spans in the filter file.
+/// own with its defaults, or with the art-map's arguments as settings (typed
+/// against the filter's params after its typecheck, as `--set` values are
+/// against a style's): the compiled filters by the key `resolve` gave them.
+/// A filter's errors are the host's errors, spans in the filter file.
 fn compile_filters(
     ir: &crate::ir::Ir,
     loaded: std::collections::BTreeMap<String, Loaded>,
@@ -226,36 +241,26 @@ fn compile_filters(
                 wgsl: None,
             }));
         };
-        // Point from each of the filter's errors back at the art-map.
+        // Point from each of the filter's errors back at the art-map, unless
+        // it already points into it (a refused argument).
+        let in_art_map = |s: diag::Span| s.file == t.span.file && t.span.start <= s.start && s.end <= t.span.end;
         let from_filter = |e: CompileError| match e {
             CompileError::User(diags) => CompileError::User(
                 diags
                     .into_iter()
-                    .map(|d| d.with_secondary(t.span, format!("the filter of art-map `{}`", t.name)))
+                    .map(|d| match d.primary_span() {
+                        Some(s) if in_art_map(s) => d,
+                        _ => d.with_secondary(t.span, format!("the filter of art-map `{}`", t.name)),
+                    })
                     .collect(),
             ),
             e => e,
         };
-        let plain = run(
-            filter_loaded.clone(),
-            sources,
-            filter_file,
-            &CompileOptions::default(),
-            Vec::new(),
-        )
-        .map_err(from_filter)?;
-        let c = if filter_args.is_empty() {
-            plain
-        } else {
-            // The arguments are checked against the params the filter declares.
-            let overrides = crate::front::filter_args::overrides(filter_args, &plain.manifest.params, filter_name)
-                .map_err(CompileError::User)?;
-            let opts = CompileOptions {
-                overrides,
-                ..CompileOptions::default()
-            };
-            run(filter_loaded.clone(), sources, filter_file, &opts, Vec::new()).map_err(from_filter)?
+        let opts = CompileOptions {
+            settings: filter_args.clone(),
+            ..CompileOptions::default()
         };
+        let c = run(filter_loaded.clone(), sources, filter_file, &opts, Vec::new()).map_err(from_filter)?;
         out.insert(
             filter.clone(),
             abi::FilterProgram {
@@ -266,4 +271,50 @@ fn compile_filters(
         );
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use abi::manifest::TextureSourceManifest;
+    use std::path::Path;
+
+    /// Compile `text` in `examples/` (its textures and filters), and count
+    /// the styles compiled for it.
+    fn compile_counting_runs(text: &str) -> (Compiled, usize) {
+        let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+        let before = RUNS.with(std::cell::Cell::get);
+        let mut sources = SourceMap::new();
+        let compiled = crate::compile_source("host.npr", text, &examples, &mut sources, &CompileOptions::default())
+            .unwrap_or_else(|e| panic!("{e:?}"));
+        (compiled, RUNS.with(std::cell::Cell::get) - before)
+    }
+
+    /// A host whose art-map runs the shipped hatching filter with `args`.
+    fn host(args: &str) -> String {
+        format!(
+            "style \"Host\"\ntexture t = artmap(image(\"textures/gallery_wall.png\", srgb), filter: filter(\"filters/hatching.npr\"{args}))\n\
+             pass p: render(scene) {{\n  out c: rgba8unorm = sample(t, uv)\n}}\noutput p.c\n"
+        )
+    }
+
+    #[test]
+    fn a_filter_with_arguments_is_compiled_once_with_them_as_its_defaults() {
+        let (_, runs) = compile_counting_runs(&host(""));
+        assert_eq!(runs, 2, "the host, and the filter with its defaults");
+        let (compiled, runs) = compile_counting_runs(&host(", spacing: 8, ink: #ff0000"));
+        assert_eq!(
+            runs, 2,
+            "the host, and the filter with the arguments typed in its one compile"
+        );
+        let TextureSourceManifest::Artmap(spec) = &compiled.manifest.textures[0].source else {
+            panic!("not an art-map: {:?}", compiled.manifest.textures[0].source);
+        };
+        let default = |name: &str| {
+            let p = spec.filter.manifest.params.iter().find(|p| p.name == name);
+            p.unwrap_or_else(|| panic!("no `{name}`")).default.clone()
+        };
+        assert_eq!(default("spacing"), vec![8.0]);
+        assert_eq!(default("ink"), vec![1.0, 0.0, 0.0, 1.0]);
+    }
 }

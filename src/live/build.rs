@@ -1,5 +1,5 @@
 //! One build of a watched style: load the scene, compile the style for it
-//! (with the `--set`s and the studio's overrides), and list every file the
+//! (with the `--set`s and the studio's controls), and list every file the
 //! result depends on, whether the build succeeded or not, so that a fix to
 //! any of them triggers the next build.
 //!
@@ -7,7 +7,6 @@
 //! sends them to the page.
 
 use crate::set_params;
-use compiler::mid::overrides::ParamOverride;
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{Diagnostic, SourceMap};
 use runner::scene::Scene;
@@ -34,9 +33,6 @@ pub struct Built {
     pub sources: SourceMap,
     /// Wall time of scene load + compile (with the `--set` typing).
     pub compile_ms: f64,
-    /// The style's `color` parameters, when typing the `--set`s and
-    /// overrides read them (`set_params::declared_colours`).
-    pub colours: Option<Vec<String>>,
 }
 
 pub struct Failed {
@@ -44,9 +40,11 @@ pub struct Failed {
     pub sources: SourceMap,
 }
 
-/// Build once. `overrides` (the studio's slider values) apply after the
-/// `--set`s, so a slider wins over the command line.
-pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Failed> {
+/// Build once. `controls` (the studio's values, `name=value` as a `--set`
+/// writes them) apply after the `--set`s, so a control wins over the
+/// command line; they are typed against the style as it is now, so a value
+/// that an edit of the file made wrong is a diagnostic like a `--set`'s.
+pub fn build(inputs: &Inputs, controls: &[String]) -> Result<Built, Failed> {
     let start = Instant::now();
     let mut sources = SourceMap::new();
     let paths = match inputs.paths.policy(&inputs.style, Some(&inputs.scene)) {
@@ -69,14 +67,13 @@ pub fn build(inputs: &Inputs, overrides: &[ParamOverride]) -> Result<Built, Fail
         schedule: inputs.schedule,
         ..Default::default()
     };
-    let result = set_params::compile_with_sets_colours(&inputs.style, &inputs.sets, overrides, &mut sources, &opts);
-    match result {
-        Ok((compiled, colours)) => Ok(Built {
+    let sets: Vec<String> = inputs.sets.iter().chain(controls).cloned().collect();
+    match set_params::compile_with_sets(&inputs.style, &sets, &mut sources, &opts) {
+        Ok(compiled) => Ok(Built {
             compiled,
             scene,
             sources,
             compile_ms: start.elapsed().as_secs_f64() * 1e3,
-            colours,
         }),
         Err(CompileError::User(diagnostics)) => Err(Failed { diagnostics, sources }),
         Err(CompileError::Internal(e)) => Err(Failed {

@@ -1,7 +1,7 @@
 //! Live authoring: what `npr watch` and `npr studio` share.
 //!
 //! - `watcher.rs`: the debounced directory watcher and its file set;
-//! - `build.rs`: one build (scene + compile with `--set`s and overrides)
+//! - `build.rs`: one build (scene + compile with `--set`s and the controls)
 //!   and the files it depends on;
 //! - `guard.rs`: running a step so that a panic becomes a report.
 

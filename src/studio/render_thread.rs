@@ -6,9 +6,11 @@
 //! - A file change rebuilds: scene + compile (with `--keep-params`, the
 //!   `--set`s and the controls' values) + a new `Renderer`, through the same
 //!   `runner::Renderer` as `npr render`.
-//! - A control change types the value with `set_params::parse_value` (the
-//!   `--set` rules), writes it into the renderer's manifest (a uniform) and
-//!   renders again without recompiling.
+//! - A control change types the value by the `--set` rules against the
+//!   running manifest (`compiler::front::param_values::type_value`), writes
+//!   it into the renderer's manifest (a uniform) and renders again without
+//!   recompiling. A rebuild passes the controls' values as written, after
+//!   the `--set`s, so the compiler types them against the edited style.
 //! - A failed build keeps the last good frame and publishes the
 //!   diagnostics; a render error likewise. A panic is caught, reported, and
 //!   the device and renderer are made again; the thread never ends while the
@@ -22,6 +24,8 @@ use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use abi::manifest::ParamBinding;
+use compiler::front::param_settings::SettingOrigin;
+use compiler::front::param_values::{format_literal, type_value, ParamShape};
 use compiler::mid::overrides::ParamOverride;
 use diag::SourceMap;
 use runner::schedule::FrameRequest;
@@ -70,13 +74,21 @@ struct Session<'g> {
     timer: Option<runner::pass_timer::PassTimer>,
 }
 
+/// A control moved away from the file's default.
+struct Control {
+    /// The value as the page sent it: what a rebuild types again, as a `--set`.
+    literal: String,
+    /// The value typed against the running style: what the uniforms and the page show.
+    typed: ParamOverride,
+}
+
 /// The thread's own state across builds and device restarts.
 struct Studio {
     inputs: Inputs,
     view: View,
     hub: Hub,
     /// The controls' values, applied on every rebuild after the `--set`s.
-    overrides: Vec<ParamOverride>,
+    controls: Vec<Control>,
     frame_id: u64,
     /// The last good frame's description (kept while the style is broken).
     frame: Value,
@@ -104,7 +116,7 @@ pub fn run(inputs: Inputs, view: View, hub: Hub, jobs: Receiver<Job>, job_sender
         inputs,
         view,
         hub,
-        overrides: Vec::new(),
+        controls: Vec::new(),
         frame_id: 0,
         frame: Value::Null,
         params: json!([]),
@@ -224,7 +236,7 @@ impl Studio {
                 Some(Pending::Render)
             }
             Job::ResetParam(name) => {
-                self.overrides.retain(|o| o.name != name);
+                self.controls.retain(|c| c.typed.name != name);
                 Some(Pending::Rebuild)
             }
             Job::SetParam { name, literal } => self.set_param(&name, &literal),
@@ -246,16 +258,31 @@ impl Studio {
             .map(|p| p.manifest)
     }
 
+    /// The controls' typed values, for the page and the uniforms.
+    fn typed_controls(&self) -> Vec<ParamOverride> {
+        self.controls.iter().map(|c| c.typed.clone()).collect()
+    }
+
     fn set_param(&mut self, name: &str, literal: &str) -> Option<Pending> {
         let Some(param) = self.manifest_param(name) else {
             self.param_error = json!({ "name": name, "message": format!("the style has no parameter `{name}`") });
             self.publish(None);
             return None;
         };
-        match set_params::parse_value(&param, literal.trim()) {
+        let literal = literal.trim();
+        let value = set_params::read_literal(literal);
+        match type_value(
+            &ParamShape::of_manifest(&param),
+            &value,
+            literal,
+            &SettingOrigin::CommandLine,
+        ) {
             Ok(o) => {
-                self.overrides.retain(|x| x.name != o.name);
-                self.overrides.push(o);
+                self.controls.retain(|c| c.typed.name != o.name);
+                self.controls.push(Control {
+                    literal: literal.to_string(),
+                    typed: o,
+                });
                 // A kept uniform changes without a recompile.
                 Some(
                     if param.binding == ParamBinding::Uniform && !param.default_percent_of_height {
@@ -275,7 +302,12 @@ impl Studio {
     }
 
     fn write_param(&mut self, name: &str) {
-        let Some(o) = self.overrides.iter().find(|o| o.name == name).cloned() else {
+        let Some(o) = self
+            .controls
+            .iter()
+            .find(|c| c.typed.name == name)
+            .map(|c| c.typed.clone())
+        else {
             self.notice = json!(format!("`{name}` already has the file's value"));
             return;
         };
@@ -283,12 +315,12 @@ impl Studio {
         let literal = if o.percent_of_height {
             Some(format!("{}%", o.value[0]))
         } else {
-            set_params::format_literal(&param, &o.value)
+            format_literal(&ParamShape::of_manifest(&param), &o.value)
         };
         let Some(literal) = literal else { return };
         match super::write_back::rewrite_default(&self.inputs.style, name, &literal) {
             Ok(()) => {
-                self.overrides.retain(|x| x.name != name);
+                self.controls.retain(|c| c.typed.name != name);
                 self.notice = json!(format!(
                     "wrote `{name} = {literal}` into {}",
                     self.inputs.style.display()
@@ -314,14 +346,15 @@ impl Studio {
                 w.set_files(files);
             }
         } else if let Some(s) = session.as_mut() {
-            for o in &self.overrides {
-                if let Some(p) = s.renderer.manifest.params.iter_mut().find(|p| p.name == o.name) {
-                    p.default = o.value.clone();
+            for c in &self.controls {
+                if let Some(p) = s.renderer.manifest.params.iter_mut().find(|p| p.name == c.typed.name) {
+                    p.default = c.typed.value.clone();
                     p.keyframes.clear();
                 }
             }
+            let typed = self.typed_controls();
             if let Some(p) = &mut self.params.as_array_mut() {
-                state::set_values(p, &self.overrides);
+                state::set_values(p, &typed);
             }
         }
         if let Some(s) = session.as_mut() {
@@ -333,7 +366,12 @@ impl Studio {
 
     /// Build and make a renderer; the files to watch.
     fn rebuild<'g>(&mut self, gpu: &'g Gpu, session: &mut Option<Session<'g>>) -> Vec<PathBuf> {
-        let built = match build::build(&self.inputs, &self.overrides) {
+        let controls: Vec<String> = self
+            .controls
+            .iter()
+            .map(|c| format!("{}={}", c.typed.name, c.literal))
+            .collect();
+        let built = match build::build(&self.inputs, &controls) {
             Ok(b) => b,
             Err(failed) => {
                 self.diagnostics = state::diagnostics_json(&failed.diagnostics, &failed.sources, "compile");
@@ -359,14 +397,7 @@ impl Studio {
             .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
         match renderer {
             Ok(renderer) => {
-                let colours = match &built.colours {
-                    Some(c) => c.clone(),
-                    None => set_params::declared_colours(&built.sources),
-                };
-                self.params = state::params_json(
-                    &set_params::with_colours(&built.compiled.manifest.params, &colours),
-                    &self.overrides,
-                );
+                self.params = state::params_json(&built.compiled.manifest.params, &self.typed_controls());
                 self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
                 let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
                 *session = Some(Session { built, renderer, timer });

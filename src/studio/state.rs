@@ -3,8 +3,8 @@
 //! line and column, help). One definition for the render thread, which
 //! writes it, and the tests, which read it.
 
-use crate::set_params::{self, Kind};
 use abi::manifest::{ParamBinding, ParamManifest};
+use compiler::front::param_values::{format_literal, ParamShape, ValueKind};
 use compiler::mid::overrides::ParamOverride;
 use diag::{Diagnostic, SourceMap};
 use serde::{Deserialize, Serialize};
@@ -34,38 +34,38 @@ pub struct ParamState {
 pub fn params_json(params: &[ParamManifest], overrides: &[ParamOverride]) -> Value {
     let list: Vec<ParamState> = params
         .iter()
-        .filter(|p| set_params::settable(p))
+        .filter(|p| p.binding != ParamBinding::PerObject)
         .map(|p| param_state(p, overrides))
         .collect();
     serde_json::to_value(list).unwrap_or(Value::Null)
 }
 
 fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
-    let kind = set_params::kind(p);
-    let (control, suffix, to_written): (&str, &str, fn(f64) -> f64) = match kind {
-        Kind::Float => ("float", "", |v| v),
-        Kind::Int => ("int", "", |v| v),
-        Kind::Bool => ("bool", "", |v| v),
-        Kind::Enum => ("enum", "", |v| v),
-        Kind::Color => ("color", "", |v| v),
-        Kind::Range => ("range", "", |v| v),
-        Kind::Vector => ("vector", "", |v| v),
-        Kind::Unit(set_params::UnitKind::Degrees) => ("unit", "deg", f64::to_degrees),
-        Kind::Unit(u) => ("unit", u.suffix(), |v| v),
-        Kind::Unsupported => ("none", "", |v| v),
+    let shape = ParamShape::of_manifest(p);
+    let kind = shape.kind;
+    let control = match kind {
+        ValueKind::Float => "float",
+        ValueKind::Int => "int",
+        ValueKind::Bool => "bool",
+        ValueKind::Enum => "enum",
+        ValueKind::Colour => "color",
+        ValueKind::Range => "range",
+        ValueKind::Vector => "vector",
+        ValueKind::Unit(_) => "unit",
+        ValueKind::Unsupported => "none",
     };
-    let range_written = p.range.map(|(lo, hi)| (to_written(lo), to_written(hi)));
+    let range_written = p.range.map(|(lo, hi)| (kind.to_written(lo), kind.to_written(hi)));
     let step = match (kind, range_written) {
-        (Kind::Int, _) => 1.0,
+        (ValueKind::Int, _) => 1.0,
         (_, Some((lo, hi))) if hi > lo => (hi - lo) / 200.0,
         _ => 0.01,
     };
     let set = overrides.iter().find(|o| o.name == p.name);
     let literal = match set {
         Some(o) if o.percent_of_height => format!("{}%", o.value[0]),
-        Some(o) => set_params::format_literal(p, &o.value).unwrap_or_default(),
+        Some(o) => format_literal(&shape, &o.value).unwrap_or_default(),
         None if p.default_percent_of_height => format!("{}%", p.default.first().copied().unwrap_or(0.0)),
-        None => set_params::format_literal(p, &p.default).unwrap_or_default(),
+        None => format_literal(&shape, &p.default).unwrap_or_default(),
     };
     let mut manifest = p.clone();
     if let Some(o) = set {
@@ -75,7 +75,7 @@ fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
     ParamState {
         manifest,
         control: control.into(),
-        suffix: suffix.into(),
+        suffix: kind.suffix().into(),
         range_written,
         step,
         literal,

@@ -8,9 +8,9 @@
 use super::checks;
 use super::declare::{Golden, TestDecl, TestFile, When};
 use crate::cli::PathArgs;
-use compiler::mid::overrides::ParamOverride;
+use compiler::front::param_settings::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap};
+use diag::{codes, Diagnostic, SourceMap, Span};
 use runner::schedule::{FrameRequest, ScheduledFrame};
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
 use std::path::{Path, PathBuf};
@@ -151,14 +151,11 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         paths: Some(policy),
         ..Default::default()
     };
-    let first = compile(&file.style, sources, &opts)?;
-    let overrides = typed_sets(test, &first, sources)?;
-    let opts = CompileOptions { overrides, ..opts };
-    let compiled = if opts.overrides.is_empty() {
-        first
-    } else {
-        compile(&file.style, sources, &opts)?
+    let opts = CompileOptions {
+        settings: param_settings(test, sources),
+        ..opts
     };
+    let compiled = compile(&file.style, sources, &opts)?;
     let texture_errors = crate::texture_check::texture_file_errors(&compiled, runner::texture_file::Depth::Header);
     if !texture_errors.is_empty() {
         return Err(Stop::Invalid(texture_errors));
@@ -230,51 +227,32 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Resu
     })
 }
 
-/// The test's `set` values typed against the style's parameters by
-/// `npr render --set`'s own typing, each error pointing at the value in
-/// the test file.
-fn typed_sets(test: &TestDecl, first: &Compiled, sources: &SourceMap) -> Result<Vec<ParamOverride>, Stop> {
-    if test.sets.is_empty() {
-        return Ok(Vec::new());
-    }
-    let colours = crate::set_params::declared_colours(sources);
-    let params = crate::set_params::with_colours(&first.manifest.params, &colours);
-    let mut overrides = Vec::new();
-    let mut diags = Vec::new();
-    for (name, value) in &test.sets {
-        let Some(param) = params.iter().find(|p| p.name == name.value) else {
-            let settable = params
-                .iter()
-                .filter(|p| crate::set_params::settable(p))
-                .map(|p| p.name.as_str());
-            let help = match diag::diagnostic::did_you_mean(&name.value, settable) {
-                Some(close) => format!("did you mean `{close}`?"),
-                None => "`set` takes the style's parameters (`npr check --message-format json` lists them)".into(),
-            };
-            diags.push(
-                Diagnostic::error(
-                    codes::UNKNOWN_NAME,
-                    format!("set.{0}: the style has no parameter `{0}`", name.value),
-                )
-                .with_primary(name.span, "no parameter of this name")
-                .with_help(help),
-            );
-            continue;
-        };
-        match crate::set_params::parse_value(param, value.value.trim()) {
-            Ok(o) => overrides.push(o),
-            Err(e) => diags.push(
-                Diagnostic::error(e.code, format!("set.{}: {}", name.value, e.message))
-                    .with_primary(value.span, e.label)
-                    .with_help(e.help),
-            ),
-        }
-    }
-    if diags.is_empty() {
-        Ok(overrides)
-    } else {
-        Err(Stop::Invalid(diags))
-    }
+/// The test's `set` values as settings the compiler types as it types
+/// `npr render --set` (`compiler::front::param_settings`), each error
+/// pointing at the value in the test file.
+fn param_settings(test: &TestDecl, sources: &SourceMap) -> Vec<ParamSetting> {
+    test.sets
+        .iter()
+        .map(|(name, value)| {
+            // A TOML string's span holds its quotes; messages quote the text inside.
+            let mut value_span = value.span;
+            let raw = sources.snippet(value_span);
+            if raw.len() >= 2 && raw.starts_with('"') && raw.ends_with('"') {
+                value_span = Span::new(
+                    value_span.file,
+                    value_span.start as usize + 1,
+                    value_span.end as usize - 1,
+                );
+            }
+            ParamSetting {
+                name: name.value.clone(),
+                name_span: name.span,
+                value: crate::set_params::read_literal(value.value.trim()),
+                value_span,
+                origin: SettingOrigin::TestFile,
+            }
+        })
+        .collect()
 }
 
 /// A target found holding NaN or ±Inf in one frame.

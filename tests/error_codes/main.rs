@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 mod command_line;
 mod files;
 mod lines;
+mod param_settings;
 mod passes;
 mod syntax_names_types;
 
@@ -118,6 +119,7 @@ fn every_code_has_a_case() {
         include_str!("files.rs"),
         include_str!("lines.rs"),
         include_str!("command_line.rs"),
+        include_str!("param_settings.rs"),
     ]
     .concat()
     .chars()
@@ -128,7 +130,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        6 + usize::from(here.join("snapshots").exists()),
+        7 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in diag::codes::ALL {

@@ -1,6 +1,7 @@
 //! Error codes of passes (E03xx, W0301, W0302): cycles, formats, outputs, pass
 //! kinds, compute state, blending and depth tests, passes over pixels,
-//! art-map filters and rip-maps, and the `schedule:` setting.
+//! art-map filters and rip-maps, and the `schedule:` setting. A filter's
+//! arguments are in `param_settings.rs`.
 
 use super::*;
 
@@ -216,7 +217,7 @@ fn e0309_pixels_of_a_target_that_is_not_an_id_target() {
 }
 
 /// A filter style with `passes` after its header and level input.
-const FILTER_HEAD: &str = "style \"Filter\"\ntexture level = filter_input()\n";
+pub(crate) const FILTER_HEAD: &str = "style \"Filter\"\ntexture level = filter_input()\n";
 
 #[test]
 fn e0310_a_filter_with_a_render_pass() {
@@ -475,96 +476,4 @@ fn geometry_in_a_pass_over_pixels() {
     let (diags, rendered) = compile_errors(&text, &scratch("pixels-normal"));
     assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
     check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
-}
-
-/// A host style whose art-map passes `args` to a filter with two params,
-/// `spacing: float = 4 in 2..32` and `mode: enum(soft, hard) = soft`.
-fn filter_args_case(name: &str, args: &str) -> (Vec<Diagnostic>, String) {
-    let (text, dir) = filter_args_files(name, args);
-    compile_errors(&text, &dir)
-}
-
-/// The files of [`filter_args_case`]: the host style's text and its folder.
-fn filter_args_files(name: &str, args: &str) -> (String, std::path::PathBuf) {
-    let dir = scratch(name);
-    std::fs::write(
-        dir.join("hatch.npr"),
-        format!(
-            "{FILTER_HEAD}/// Stroke distance.\nparam spacing: float = 4 in 2..32\n/// Stroke edges.\nparam mode: enum(soft, hard) = soft\npass p: image() {{\n  let k = if mode == hard {{ 1.0 }} else {{ 0.5 }}\n  out c: rgba8unorm = vec4(level.rgb * k * step(0.5, fract(frag_coord.x / spacing)), 1.0)\n}}\noutput p.c\n"
-        ),
-    )
-    .unwrap();
-    let text = format!(
-        "style \"Case\"\ntexture t = artmap(image(\"src.png\"), filter: filter(\"hatch.npr\", {args}))\n\
-         pass p: render(scene) {{\n  out c: rgba8unorm = sample(t, uv)\n}}\noutput p.c\n"
-    );
-    image::RgbaImage::from_pixel(4, 4, image::Rgba([128, 128, 128, 255]))
-        .save(dir.join("src.png"))
-        .unwrap();
-    (text, dir)
-}
-
-#[test]
-fn filter_arguments_are_checked_against_the_filters_params() {
-    check_case(
-        "E0101",
-        "filter_arg_unknown",
-        filter_args_case("farg-unknown", "spacng: 8"),
-    );
-    check_case(
-        "E0202",
-        "filter_arg_unit",
-        filter_args_case("farg-unit", "spacing: 8px"),
-    );
-    check_case(
-        "E0203",
-        "filter_arg_range",
-        filter_args_case("farg-range", "spacing: 64"),
-    );
-    check_case(
-        "E0201",
-        "filter_arg_components",
-        filter_args_case("farg-type", "spacing: #ff0000"),
-    );
-    check_case(
-        "E0003",
-        "filter_arg_twice",
-        filter_args_case("farg-twice", "spacing: 8, spacing: 6"),
-    );
-}
-
-#[test]
-fn a_filters_enum_param_takes_one_of_its_variants_by_name() {
-    // As `--set mode=hard` would: the name is the filter's variant.
-    let (text, dir) = filter_args_files("farg-enum-ok", "mode: hard, spacing: 8");
-    let mut sources = diag::SourceMap::new();
-    let compiled = compiler::compile_source("case.npr", &text, &dir, &mut sources, &Default::default())
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    let filter = match &compiled.manifest.textures[0].source {
-        abi::manifest::TextureSourceManifest::Artmap(spec) => &spec.filter,
-        other => panic!("not an art-map: {other:?}"),
-    };
-    let default = |name: &str| {
-        let p = filter.manifest.params.iter().find(|p| p.name == name);
-        p.unwrap_or_else(|| panic!("no `{name}` in {:?}", filter.manifest.params))
-            .default
-            .clone()
-    };
-    assert_eq!(default("mode"), vec![1.0], "`hard` is the second variant");
-    assert_eq!(default("spacing"), vec![8.0]);
-    check_case(
-        "E0201",
-        "filter_arg_enum_variant",
-        filter_args_case("farg-enum-typo", "mode: hrad"),
-    );
-    check_case(
-        "E0201",
-        "filter_arg_enum_number",
-        filter_args_case("farg-enum-number", "mode: 1"),
-    );
-    check_case(
-        "E0201",
-        "filter_arg_name_for_number",
-        filter_args_case("farg-name-number", "spacing: hard"),
-    );
 }

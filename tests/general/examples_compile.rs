@@ -26,7 +26,7 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             keep_params,
             dump_ir: false,
             scene: None,
-            overrides: Vec::new(),
+            settings: Vec::new(),
             schedule: compiler::schedule::Schedule::Naive,
             tile_apron_deficit: 0,
             // Every example keeps to the default paths policy.

@@ -1,13 +1,13 @@
-//! Parameter overrides (`--set name=value`, the studio's "apply"): a value
-//! the caller has already typed against the parameter replaces its default
-//! in the IR, after typecheck and before specialize, so that folding, the
+//! Parameter overrides (`--set name=value`, the studio's controls, a
+//! filter's arguments): a typed value replaces its parameter's default in
+//! the IR, after typecheck and before specialize, so that folding, the
 //! manifest's `default` and everything downstream see the override exactly
 //! as if it had been written in the file.
 //!
-//! The caller (the CLI's `set_params`) checks names, types, units and ranges
-//! against the manifest with diagnostics that point at the `--set` argument;
-//! a name that reaches this stage unchecked is a bug, so it is an internal
-//! error rather than a silent no-op.
+//! `front::param_settings::type_settings` types them just before, checking
+//! names, types, units and ranges with diagnostics that point at each
+//! setting; a name that reaches this stage unchecked is a bug, so it is an
+//! internal error rather than a silent no-op.
 
 use crate::ir::{Const, ExprKind, Ir, Ty};
 use crate::InternalError;
@@ -30,7 +30,7 @@ pub fn apply(ir: &mut Ir, overrides: &[ParamOverride]) -> Result<(), InternalErr
         let Some(i) = ir.params.iter().position(|p| p.name == o.name) else {
             return Err(InternalError {
                 message: format!("an override names no parameter `{}`", o.name),
-                detail: "overrides are checked against the manifest before compiling".into(),
+                detail: "param_settings::type_settings checks every name before apply".into(),
                 span: None,
                 wgsl: None,
             });

@@ -125,21 +125,14 @@ pub fn build(
                     false,
                 ),
             };
-            let (ty, variants) = match &p.ty {
-                ParamTy::Enum(v) => (format!("enum({})", v.join("|")), v.clone()),
-                ParamTy::Range(_) => ("range".to_string(), Vec::new()),
-                ParamTy::Value(t) => (
-                    match p.unit {
-                        stdlib::Unit::None => t.describe().to_string(),
-                        u => u.name().to_string(),
-                    },
-                    Vec::new(),
-                ),
+            let variants = match &p.ty {
+                ParamTy::Enum(v) => v.clone(),
+                _ => Vec::new(),
             };
             ParamManifest {
                 name: p.name.clone(),
                 doc: p.doc.clone(),
-                ty,
+                ty: p.declared_type(),
                 unit: p.unit.name().to_string(),
                 components: p.value_ty.components().unwrap_or(1),
                 default,

@@ -39,7 +39,8 @@ impl Resolver<'_> {
                     "bool" => v(Ty::Bool),
                     "vec2" => v(Ty::Vec2),
                     "vec3" => v(Ty::Vec3),
-                    "vec4" | "color" => v(Ty::Vec4),
+                    "vec4" => v(Ty::Vec4),
+                    "color" => (ParamTy::Color, Ty::Vec4, Unit::None),
                     "px" => u(Unit::Px),
                     "m" | "mm" => u(Unit::Meters),
                     "s" => u(Unit::Seconds),
@@ -189,11 +190,16 @@ impl Resolver<'_> {
     }
 
     pub(super) fn const_values(&mut self, id: ExprId) -> Option<Vec<f64>> {
+        self.constant(id).map(|c| c.as_f64s())
+    }
+
+    /// [`Self::const_values`], keeping the constant's kind (an int, a bool).
+    pub(super) fn constant(&mut self, id: ExprId) -> Option<Const> {
         if matches!(self.ir.expr(id).kind, ExprKind::Error) {
             return None;
         }
         match const_eval(&self.ir, id) {
-            Some(c) => Some(c.as_f64s()),
+            Some(c) => Some(c),
             None => {
                 let span = self.ir.expr(id).span;
                 self.error(

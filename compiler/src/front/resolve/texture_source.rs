@@ -4,13 +4,14 @@
 //! sampler options.
 
 use super::{Resolver, MAX_NOISE_SIZE};
+use crate::front::param_settings::{ParamSetting, SettingOrigin};
+use crate::front::param_values::{suffix_of, Literal};
 use crate::ir::*;
 use abi::{HalftoneTableSpec, NoiseSpec};
 use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic};
+use diag::{codes, Diagnostic, Span};
 use dsl::ast::{self, ExprKind as AK};
 use std::path::Path;
-use stdlib::Unit;
 
 /// The texture sources a declaration may name.
 const SOURCES: [&str; 6] = ["image", "noise", "halftone_table", "artmap", "ripmap", "filter_input"];
@@ -158,9 +159,10 @@ impl Resolver<'_> {
     /// `filter("path", name: value, ...)`: the path as written, the
     /// compiled filter's key (the resolved path, and the arguments when
     /// there are any: one compiled filter per argument list), the resolved
-    /// path (`load_filters`' key) and the arguments as constants. Whether the filter has such params, of that type, unit
-    /// and range, is checked when it is compiled (`pipeline`).
-    fn filter_call(&mut self, c: &ast::Call, dir: &Path) -> Option<(String, String, String, Vec<FilterArg>)> {
+    /// path (`load_filters`' key) and the arguments as settings. Whether
+    /// the filter has such params, of that type, unit and range, is checked
+    /// when it is compiled (`param_settings`, as for `--set`).
+    fn filter_call(&mut self, c: &ast::Call, dir: &Path) -> Option<(String, String, String, Vec<ParamSetting>)> {
         let usage =
             "write `filter(\"filters/hatching.npr\", spacing: 8)`: the filter's path, then new values for its params";
         let rel = match c.args.first().map(|a| (&a.name, &a.value.kind)) {
@@ -174,7 +176,7 @@ impl Resolver<'_> {
                 return None;
             }
         };
-        let mut args: Vec<FilterArg> = Vec::new();
+        let mut args: Vec<(ParamSetting, Span)> = Vec::new();
         for a in c.args.iter().skip(1) {
             let Some(name) = &a.name else {
                 self.error(
@@ -184,53 +186,60 @@ impl Resolver<'_> {
                 );
                 continue;
             };
-            if let Some(first) = args.iter().find(|x| x.name == name.name) {
+            if let Some((_, first)) = args.iter().find(|(x, _)| x.name == name.name) {
                 self.error(
                     Diagnostic::error(codes::DUPLICATE_NAME, format!("`{}` is given twice", name.name))
                         .with_primary(a.span, "given again here")
-                        .with_secondary(first.span, "first here"),
+                        .with_secondary(*first, "first here"),
                 );
                 continue;
             }
-            // A bare name the host does not bind is a choice of one of the
-            // filter's enum params (`mode: soft`), as `--set mode=soft` is:
-            // the host's own variants and names are not the filter's.
-            if let AK::Name(choice) = &a.value.kind {
-                if !self.is_bound(&choice.name) {
-                    args.push(FilterArg {
-                        name: name.name.clone(),
-                        value: Vec::new(),
-                        unit: Unit::None,
-                        choice: Some(choice.name.clone()),
-                        span: a.span,
-                    });
-                    continue;
-                }
-            }
-            let id = self.expr(&a.value);
-            let Some(value) = self.const_values(id) else { continue };
-            args.push(FilterArg {
+            let Some(value) = self.filter_arg_value(&a.value) else {
+                continue;
+            };
+            let setting = ParamSetting {
                 name: name.name.clone(),
+                name_span: name.span,
                 value,
-                unit: self.ir.expr(id).unit,
-                choice: None,
-                span: a.span,
-            });
+                value_span: a.value.span,
+                origin: SettingOrigin::FilterArgument { filter: rel.clone() },
+            };
+            args.push((setting, a.span));
         }
+        let args: Vec<ParamSetting> = args.into_iter().map(|(s, _)| s).collect();
         let resolved = dir.join(&rel).display().to_string();
         let key = if args.is_empty() {
             resolved.clone()
         } else {
-            let list: Vec<String> = args
-                .iter()
-                .map(|a| match &a.choice {
-                    Some(c) => format!("{}={c}", a.name),
-                    None => format!("{}={:?}", a.name, a.value),
-                })
-                .collect();
+            let list: Vec<String> = args.iter().map(|a| format!("{}={:?}", a.name, a.value)).collect();
             format!("{resolved}?{}", list.join("&"))
         };
         Some((rel, key, resolved, args))
+    }
+
+    /// A filter's argument as a literal: a bare name the host does not bind
+    /// is the choice of one of the filter's enum params (`mode: soft`), as
+    /// `--set mode=soft` is (the host's own variants and names are not the
+    /// filter's); anything else a constant, read as it was written (a
+    /// colour, a range, whole numbers or not, with its unit).
+    fn filter_arg_value(&mut self, value: &ast::Expr) -> Option<Literal> {
+        match &value.kind {
+            AK::Name(choice) if !self.is_bound(&choice.name) => return Some(Literal::Name(choice.name.clone())),
+            AK::Color(c) => return Some(Literal::Colour(*c)),
+            _ => {}
+        }
+        let id = self.expr(value);
+        let unit = self.ir.expr(id).unit;
+        let constant = self.constant(id)?;
+        Some(match (&value.kind, constant) {
+            (AK::Range { .. }, Const::Vec(v)) if v.len() == 2 => Literal::Range(v[0], v[1]),
+            (_, Const::Bool(b)) => Literal::Bool(b),
+            (_, c) => Literal::Numbers {
+                whole: matches!(c, Const::Int(_)),
+                values: c.as_f64s(),
+                suffix: suffix_of(unit).to_string(),
+            },
+        })
     }
 
     /// `halftone_table(edge: 0.1, correction: on)`: the tone-correction table

@@ -20,7 +20,7 @@ impl Checker<'_> {
             }
             let ok = have == want
                 || (have == Ty::Int && want == Ty::Float)
-                || (have == Ty::Vec3 && want == Ty::Vec4 && matches!(p.ty, ParamTy::Value(_)));
+                || (have == Ty::Vec3 && want == Ty::Vec4 && matches!(p.ty, ParamTy::Value(_) | ParamTy::Color));
             if !ok {
                 self.err(
                     Diagnostic::error(
