@@ -13,8 +13,8 @@
 //! pointing into the `--set` argument itself.
 
 use crate::printer::Printer;
-use compiler::front::param_settings::{ParamSetting, SettingOrigin};
-use compiler::front::param_values::Literal;
+use compiler::ir::Literal;
+use compiler::ir::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{SourceMap, Span};
 use std::path::Path;

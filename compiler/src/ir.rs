@@ -16,12 +16,14 @@ mod lines;
 mod passes;
 mod roots;
 mod schedule;
+mod settings;
 pub use builtins::Builtin;
 pub use intrinsics::Intrinsic;
 pub use lines::{LineSettings, LinesKind};
 pub use passes::*;
 pub use roots::PassRoots;
 pub use schedule::{Recomputed, Schedule, TileRead, TileSource, Tiling};
+pub use settings::{Literal, ParamSetting, SettingOrigin};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct ExprId(pub u32);
@@ -343,7 +345,7 @@ pub enum TextureSource {
         filter_name: String,
         /// `filter: filter("hatching.npr", spacing: 8)`: new defaults for
         /// the filter's params, typed against them in its compile.
-        filter_args: Vec<crate::front::param_settings::ParamSetting>,
+        filter_args: Vec<ParamSetting>,
         levels: Option<u32>,
         /// `ripmap(...)`: every 2^-i × 2^-j level in one atlas.
         rip: bool,

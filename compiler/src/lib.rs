@@ -35,7 +35,7 @@ pub struct CompileOptions {
     /// filter's arguments), as written: typed against the params after
     /// typecheck (`front::param_settings`) and applied there, so they fold
     /// like written defaults. Their spans are in the caller's `SourceMap`.
-    pub settings: Vec<front::param_settings::ParamSetting>,
+    pub settings: Vec<ir::ParamSetting>,
     /// Which files the style may read (`use`, `image("…")`): `None` reads
     /// any path (library use); the `npr` commands always give one
     /// (`diag::paths`, docs/PATHS.md).

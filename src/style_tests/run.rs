@@ -8,7 +8,7 @@
 use super::checks;
 use super::declare::{Golden, TestDecl, TestFile, When};
 use crate::cli::PathArgs;
-use compiler::front::param_settings::{ParamSetting, SettingOrigin};
+use compiler::ir::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{codes, Diagnostic, SourceMap, Span};
 use runner::schedule::{FrameRequest, ScheduledFrame};

@@ -13,81 +13,11 @@
 //! each diagnostic pointing at the setting. `mid::overrides::apply` then
 //! writes the values in as defaults.
 
-use crate::front::param_values::{type_value, Literal, ParamShape};
-use crate::ir::Ir;
+use crate::front::param_values::{type_value, ParamShape};
+use crate::ir::{Ir, ParamSetting, SettingOrigin};
 use crate::mid::overrides::ParamOverride;
 use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, SourceMap, Span};
-use serde::Serialize;
-
-/// One setting: `name` given the value `value`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ParamSetting {
-    pub name: String,
-    pub name_span: Span,
-    pub value: Literal,
-    /// The value as written (the text diagnostics quote is read here).
-    pub value_span: Span,
-    pub origin: SettingOrigin,
-}
-
-/// Where a setting was written, which decides how its diagnostics name it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub enum SettingOrigin {
-    /// `--set name=value` (or a studio control): text in a `--set` file of
-    /// the SourceMap.
-    CommandLine,
-    /// `filter("path", name: value)`: a constant expression in the host
-    /// style; `filter` is the path as written.
-    FilterArgument { filter: String },
-    /// `set = { name = value }` in a style's `<style>.tests.toml`: typed as
-    /// `--set` types it, named as the test file writes it.
-    TestFile,
-}
-
-impl SettingOrigin {
-    /// How a diagnostic's message starts: `--set bands`, `filter `hatch.npr``.
-    fn subject(&self, name: &str) -> String {
-        match self {
-            SettingOrigin::CommandLine => format!("--set {name}"),
-            SettingOrigin::FilterArgument { filter } => format!("filter `{filter}`"),
-            SettingOrigin::TestFile => format!("set.{name}"),
-        }
-    }
-
-    /// The style whose params are set, as the messages name it.
-    fn owner(&self) -> &'static str {
-        match self {
-            SettingOrigin::CommandLine | SettingOrigin::TestFile => "style",
-            SettingOrigin::FilterArgument { .. } => "filter",
-        }
-    }
-
-    /// `name` given `value`, as this origin writes it (for the help).
-    pub(crate) fn example(&self, name: &str, value: &str) -> String {
-        match self {
-            SettingOrigin::CommandLine => format!("{name}={value}"),
-            SettingOrigin::FilterArgument { .. } => format!("{name}: {value}"),
-            SettingOrigin::TestFile => format!("{name} = \"{value}\""),
-        }
-    }
-
-    /// What a vector of `n` components looks like written this way.
-    pub(crate) fn expected_vector(&self, n: u32) -> String {
-        match self {
-            SettingOrigin::CommandLine | SettingOrigin::TestFile => format!("{n} numbers separated by commas"),
-            SettingOrigin::FilterArgument { .. } => format!("a vec{n} of plain numbers"),
-        }
-    }
-
-    /// Whether a number without a unit fits a unit parameter. A filter's
-    /// argument is an expression of the language, where a plain number fits
-    /// any unit (as in a default); `--set` asks for the unit (`2px`), since
-    /// `2` on the command line could as well have meant `2%` or `2mm`.
-    pub(crate) fn plain_number_takes_any_unit(&self) -> bool {
-        matches!(self, SettingOrigin::FilterArgument { .. })
-    }
-}
+use diag::{codes, Diagnostic, SourceMap};
 
 /// Type every setting against the params of `ir` (after typecheck): the
 /// overrides to apply, a later setting of a name replacing an earlier one,
@@ -158,6 +88,8 @@ fn unknown_name(ir: &Ir, s: &ParamSetting) -> Diagnostic {
 mod tests {
     use super::*;
     use crate::front::param_values::ValueKind;
+    use crate::ir::Literal;
+    use diag::Span;
 
     #[test]
     fn a_colour_is_typed_by_the_declared_type_that_the_manifest_keeps() {

@@ -11,57 +11,12 @@
 //! a manifest entry (the studio, typing a control's value against the
 //! running style without compiling).
 
-use crate::front::param_settings::SettingOrigin;
-use crate::ir::{ExprKind, Ir, Param, ParamTy};
+use crate::ir::{ExprKind, Ir, Literal, Param, ParamTy, SettingOrigin};
 use crate::mid::consteval::const_eval;
 use crate::mid::overrides::ParamOverride;
 use abi::manifest::{ParamBinding, ParamManifest};
 use diag::codes;
-use serde::Serialize;
 use stdlib::Unit;
-
-/// A value as written, before it meets a parameter: `--set` text read by
-/// the CLI, or a filter's argument read by resolve from the host's AST.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub enum Literal {
-    /// One number or several (`8`, `2px`, `50%`, `30deg`, `1, 0.5`,
-    /// `vec2(1, 0.5)`), in canonical units when the suffix is a unit's (mm
-    /// as m, deg as radians; see [`Literal::number`]), with the suffix as
-    /// written ("" for none), and whether every number was written whole
-    /// (without a `.` or an exponent).
-    Numbers {
-        values: Vec<f64>,
-        suffix: String,
-        whole: bool,
-    },
-    /// `#rrggbb` or `#rrggbbaa`, each component in 0..1.
-    Colour([f64; 4]),
-    Bool(bool),
-    /// A bare name: the variant of an enum (`cubic`).
-    Name(String),
-    /// `lo..hi`.
-    Range(f64, f64),
-    /// Text that reads as none of these (`#12`, `1..x`): only `--set` text
-    /// can be this, and every parameter refuses it.
-    Unreadable,
-}
-
-impl Literal {
-    /// A number written with `suffix`, converted as resolve converts a
-    /// number literal of the language (`50mm` is 0.05 m, `30deg` is π/6).
-    pub fn number(written: f64, suffix: &str, whole: bool) -> Literal {
-        let value = match suffix {
-            "mm" => written * 1e-3,
-            "deg" => written.to_radians(),
-            _ => written,
-        };
-        Literal::Numbers {
-            values: vec![value],
-            suffix: suffix.to_string(),
-            whole,
-        }
-    }
-}
 
 /// The unit a suffix writes: "" a plain number, `mm` metres; `None` for a
 /// suffix that is no unit (`%` is a share of the image height, not a unit).

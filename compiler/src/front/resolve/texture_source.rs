@@ -4,9 +4,9 @@
 //! sampler options.
 
 use super::{Resolver, MAX_NOISE_SIZE};
-use crate::front::param_settings::{ParamSetting, SettingOrigin};
-use crate::front::param_values::{suffix_of, Literal};
+use crate::front::param_values::suffix_of;
 use crate::ir::*;
+use crate::ir::{Literal, ParamSetting, SettingOrigin};
 use abi::{HalftoneTableSpec, NoiseSpec};
 use diag::diagnostic::did_you_mean;
 use diag::{codes, Diagnostic, Span};
