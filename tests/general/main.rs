@@ -28,3 +28,4 @@ mod studio_camera;
 mod studio_server;
 mod vscode_extension;
 mod watch;
+mod webgpu_portability;
