@@ -86,9 +86,20 @@ pub(crate) fn report_compile(
     }
 }
 
-/// A headless GPU, or the exit code after saying why there is none.
+/// A headless GPU for whichever style comes, or the exit code after
+/// saying why there is none.
 pub(crate) fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
     Gpu::headless().map_err(|e| printer.fail(e.to_diagnostic()))
+}
+
+/// A headless GPU with exactly what `manifest` needs beyond WebGPU's
+/// defaults, or the exit code after saying why there is none (E0510 for
+/// each need the adapter lacks, with its pass).
+pub(crate) fn style_gpu(manifest: &abi::Manifest, printer: &Printer) -> Result<Gpu, i32> {
+    Gpu::for_style(manifest).map_err(|e| {
+        printer.diagnostics(&e.diagnostics(), &SourceMap::new());
+        EXIT_USER
+    })
 }
 
 /// Load a scene, or print its diagnostics and give the user-error exit code.

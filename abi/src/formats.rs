@@ -83,6 +83,25 @@ impl Format {
         !matches!(self, Format::R32float | Format::Rg32float | Format::Rgba32float)
     }
 
+    /// WebGPU's render-target pixel byte cost and component alignment of
+    /// the format (the spec's table of colour formats): what a colour
+    /// attachment adds to `maxColorAttachmentBytesPerSample`. 8-bit RGBA
+    /// costs 8, not 4: the table's value.
+    pub fn render_target_cost_and_alignment(self) -> (u64, u64) {
+        use Format::*;
+        match self {
+            R8unorm => (1, 1),
+            Rg8unorm => (2, 1),
+            Rgba8unorm | Rgba8unormSrgb => (8, 1),
+            R16float => (2, 2),
+            Rg16float => (4, 2),
+            Rgba16float => (8, 2),
+            R32float => (4, 4),
+            Rg32float => (8, 4),
+            Rgba32float => (16, 4),
+        }
+    }
+
     pub fn bytes_per_pixel(self) -> u32 {
         use Format::*;
         match self {

@@ -17,10 +17,13 @@ use crate::noise::NoiseSpec;
 use serde::{Deserialize, Serialize};
 
 mod compute;
+mod device;
+pub mod layout;
 pub use compute::*;
+pub use device::*;
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 6;
+pub const MANIFEST_VERSION: u32 = 7;
 
 /// The side of a [`PassKindManifest::TiledImage`] workgroup, in pixels.
 pub const TILE_SIZE: u32 = 16;
@@ -62,6 +65,12 @@ pub struct Manifest {
     pub scene_attributes: Vec<Attribute>,
     /// The target that is the final image.
     pub output: usize,
+    /// What the style needs of the device beyond WebGPU's defaults: an
+    /// optional feature, or a limit above its default, each with the pass
+    /// that needs it (empty for most styles). A host requests exactly
+    /// these; the runner refuses a device without one (E0510).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub device_needs: Vec<DeviceNeed>,
 }
 
 impl Manifest {
@@ -116,6 +125,17 @@ impl Attribute {
             Attribute::Uv => "uv",
             Attribute::Tangent => "tangent",
             Attribute::PatchWeight => "patch_weight",
+        }
+    }
+
+    /// Its f32 components per vertex (WebGPU vertex format `float32`,
+    /// `float32x2`, ...), tightly packed in its own vertex buffer.
+    pub fn components(self) -> u32 {
+        match self {
+            Attribute::Position | Attribute::Normal => 3,
+            Attribute::Uv => 2,
+            Attribute::Tangent => 4,
+            Attribute::PatchWeight => 1,
         }
     }
 

@@ -81,6 +81,15 @@ impl Manifest {
         for (i, p) in self.passes.iter().enumerate() {
             self.validate_pass(i, p)?;
         }
+        for (i, need) in self.device_needs.iter().enumerate() {
+            // A need names its pass for the device error (E0510).
+            if !self.passes.iter().any(|p| p.name == need.pass()) {
+                return bad(
+                    format!("device_needs[{i}].pass"),
+                    format!("no pass is named `{}`", need.pass()),
+                );
+            }
+        }
         check_index("output", self.output, self.targets.len(), "target")
     }
 

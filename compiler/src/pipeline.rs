@@ -171,7 +171,7 @@ pub fn run(
         sources,
     };
     let emitted: Vec<_> = live.passes.iter().map(|p| (*p, emitter.emit_pass(*p))).collect();
-    let manifest =
+    let mut manifest =
         crate::back::emit::manifest::build(&ir, &live, &alloc, &bindings, &emitted, sources, source_name, &filters)
             .map_err(CompileError::Internal)?;
     for a in &manifest.scene_attributes {
@@ -183,18 +183,32 @@ pub fn run(
     }
     st.done("emit", &ir);
     let mut shaders = Vec::new();
+    let mut modules = Vec::new();
     for (pid, e) in emitted {
         let pass = ir.pass(pid);
         let file = format!("{}.wgsl", pass.name);
-        if let Err(message) = crate::back::validate::validate_wgsl(&file, &e.wgsl) {
-            return Err(CompileError::Internal(InternalError {
-                message: format!("emitted WGSL for pass `{}` failed naga validation", pass.name),
-                detail: message,
-                span: Some(pass.span),
-                wgsl: Some(e.wgsl),
-            }));
+        match crate::back::validate::validate_wgsl(&file, &e.wgsl) {
+            Ok(module) => modules.push((file.clone(), module)),
+            Err(message) => {
+                return Err(CompileError::Internal(InternalError {
+                    message: format!("emitted WGSL for pass `{}` failed naga validation", pass.name),
+                    detail: message,
+                    span: Some(pass.span),
+                    wgsl: Some(e.wgsl),
+                }))
+            }
         }
         shaders.push((file, e.wgsl));
+    }
+    manifest.device_needs = crate::back::device_needs::device_needs(&manifest, |pass| {
+        modules.iter().find(|(file, _)| *file == pass.shader).map(|(_, m)| m)
+    });
+    for need in &manifest.device_needs {
+        report.push(
+            "requires",
+            format!("pass `{}`", need.pass()),
+            format!("{}, past what every WebGPU device gives", need.describe()),
+        );
     }
     st.done("validate", &ir);
     Ok(Compiled {

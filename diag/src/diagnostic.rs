@@ -325,6 +325,9 @@ pub mod codes {
     pub const GPU_OUT_OF_MEMORY: &str = "E0508";
     /// The GPU device was lost (a driver reset, the device destroyed) while npr used it.
     pub const DEVICE_LOST: &str = "E0509";
+    /// The device (or its adapter) lacks a WebGPU feature, or a limit above
+    /// the default, that a pass of the style needs (`Manifest::device_needs`).
+    pub const DEVICE_LACKS_NEED: &str = "E0510";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -396,5 +399,6 @@ pub mod codes {
         (CANNOT_SERVE, "cannot serve the studio or watch files"),
         (GPU_OUT_OF_MEMORY, "the GPU ran out of memory"),
         (DEVICE_LOST, "the GPU device was lost"),
+        (DEVICE_LACKS_NEED, "the device lacks a feature or limit the style needs"),
     ];
 }

@@ -1,5 +1,17 @@
 //! Headless wgpu device creation: Vulkan first (lavapipe on CPU-only
 //! machines), then GL. When no adapter exists the error says how to get one.
+//!
+//! Two requests (`device_needs.rs` maps the manifest's terms to wgpu's):
+//! - [`Gpu::for_style`]: exactly what one style needs: WebGPU's default
+//!   limits, raised to the manifest's `device_needs`, and its features;
+//!   an adapter without one is E0510 naming the pass. `npr render` uses it.
+//! - [`Gpu::headless`]: for a host that runs whichever style comes (the
+//!   studio, `npr watch`, the benchmarks, the tests): every limit a style
+//!   may need at what the adapter allows, and timestamp queries when the
+//!   adapter has them. A style it cannot run is E0510 from `Renderer::new`.
+//!
+//! Both also take the adapter's largest 2D texture: the image size is the
+//! host's choice (`--size`, up to `MAX_OUTPUT_SIZE`), not the style's.
 
 use thiserror::Error;
 
@@ -18,12 +30,28 @@ pub enum DeviceError {
         #[source]
         source: wgpu::RequestDeviceError,
     },
+    /// The adapter lacks a feature or limit the style needs (E0510 each).
+    #[error("{}", .0.iter().map(|d| d.message.clone()).collect::<Vec<_>>().join("; "))]
+    LacksNeeds(Vec<diag::Diagnostic>),
 }
 
 impl DeviceError {
-    /// As a diagnostic with its code (E0505), the install hint as its help.
+    /// As diagnostics: E0510 per need the adapter lacks; otherwise one
+    /// with its code (E0505), the install hint as its help.
+    pub fn diagnostics(&self) -> Vec<diag::Diagnostic> {
+        match self {
+            DeviceError::LacksNeeds(d) => d.clone(),
+            _ => vec![self.to_diagnostic()],
+        }
+    }
+
+    /// As one diagnostic: [`DeviceError::diagnostics`]' first.
     pub fn to_diagnostic(&self) -> diag::Diagnostic {
         match self {
+            DeviceError::LacksNeeds(d) => d
+                .first()
+                .cloned()
+                .unwrap_or_else(|| diag::Diagnostic::error(diag::codes::DEVICE_LACKS_NEED, self.to_string())),
             DeviceError::NoAdapter => {
                 diag::Diagnostic::error(diag::codes::NO_DEVICE, "no GPU adapter found (tried Vulkan, then GL)")
                     .with_help(
@@ -47,8 +75,49 @@ pub struct Gpu {
 }
 
 impl Gpu {
-    /// Create a headless device, preferring Vulkan, then GL.
+    /// A headless device for whichever style comes, preferring Vulkan,
+    /// then GL: every limit a style may need at what the adapter allows,
+    /// and timestamp queries (benchmarks) when the adapter has them.
     pub fn headless() -> Result<Gpu, DeviceError> {
+        Self::create(|adapter| {
+            let limits = crate::device_needs::every_limit_the_adapter_allows(base_limits(adapter), &adapter.limits());
+            Ok((adapter.features() & wgpu::Features::TIMESTAMP_QUERY, limits))
+        })
+    }
+
+    /// A headless device with exactly what `manifest` needs beyond WebGPU's
+    /// defaults (its `device_needs`), preferring Vulkan, then GL. An
+    /// adapter without a need is E0510, naming it and its pass.
+    pub fn for_style(manifest: &abi::Manifest) -> Result<Gpu, DeviceError> {
+        Self::create(|adapter| {
+            let info = adapter.get_info();
+            let lacking = crate::device_needs::unmet(
+                manifest,
+                adapter.features(),
+                &adapter.limits(),
+                &format!("the adapter `{}` ({:?})", info.name, info.backend),
+            );
+            if !lacking.is_empty() {
+                return Err(DeviceError::LacksNeeds(lacking));
+            }
+            let features = manifest
+                .required_features()
+                .into_iter()
+                .fold(wgpu::Features::empty(), |f, need| {
+                    f | crate::device_needs::wgpu_feature(need)
+                });
+            Ok((
+                features,
+                crate::device_needs::requested_limits(manifest, base_limits(adapter)),
+            ))
+        })
+    }
+
+    /// The first adapter (Vulkan, then GL) with the device `request` asks
+    /// of it (features and limits; `Err` refuses the adapter outright).
+    fn create(
+        request: impl Fn(&wgpu::Adapter) -> Result<(wgpu::Features, wgpu::Limits), DeviceError>,
+    ) -> Result<Gpu, DeviceError> {
         silence_loader_warning();
         for backends in [wgpu::Backends::VULKAN, wgpu::Backends::GL] {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
@@ -70,17 +139,7 @@ impl Gpu {
             }));
             let Ok(adapter) = adapter else { continue };
             let info = adapter.get_info();
-            let mut limits = wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits());
-            limits.max_color_attachments = limits
-                .max_color_attachments
-                .max(8)
-                .min(adapter.limits().max_color_attachments);
-            limits.max_color_attachment_bytes_per_sample = adapter.limits().max_color_attachment_bytes_per_sample;
-            limits.max_texture_dimension_2d = adapter.limits().max_texture_dimension_2d;
-            // Compute passes bind their objects, members, vertex attributes,
-            // values and partials as storage buffers (downlevel allows 4).
-            limits.max_storage_buffers_per_shader_stage = adapter.limits().max_storage_buffers_per_shader_stage;
-            let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+            let (features, limits) = request(&adapter)?;
             let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
                 label: Some("npr"),
                 required_features: features,
@@ -105,6 +164,21 @@ impl Gpu {
     pub fn describe(&self) -> String {
         format!("{} ({:?})", self.adapter_info.name, self.adapter_info.backend)
     }
+}
+
+/// WebGPU's default limits, which every conforming device gives, with the
+/// adapter's largest 2D texture (the host's image size); on an adapter
+/// below WebGPU's defaults (a GL ES one), the downlevel defaults at its
+/// resolution, as before there were device needs.
+fn base_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
+    let allowed = adapter.limits();
+    let mut limits = if wgpu::Limits::default().check_limits(&allowed) {
+        wgpu::Limits::default()
+    } else {
+        wgpu::Limits::downlevel_defaults().using_resolution(allowed.clone())
+    };
+    limits.max_texture_dimension_2d = limits.max_texture_dimension_2d.max(allowed.max_texture_dimension_2d);
+    limits
 }
 
 /// The Vulkan loader prints "XDG_RUNTIME_DIR is invalid" when the variable is

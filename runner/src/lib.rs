@@ -23,6 +23,7 @@ pub mod animation;
 pub mod artmap;
 pub mod artmap_cache;
 pub mod device;
+pub mod device_needs;
 pub mod exec;
 pub mod gpu_error;
 pub mod half_rounding;
@@ -83,7 +84,7 @@ impl RunError {
                     "the largest image is {0}x{0} (docs/LIMITS.md), and a GPU adapter may allow less",
                     MAX_OUTPUT_SIZE
                 ))],
-            RunError::Device(e) => vec![e.to_diagnostic()],
+            RunError::Device(e) => e.diagnostics(),
             RunError::OutOfMemory(m) => vec![Diagnostic::error(diag::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
                 "render at a smaller --size, give wide targets a narrower format (rgba16float instead of \
                  rgba32float) or a smaller `scale`, or use a GPU with more memory",

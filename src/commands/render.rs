@@ -4,7 +4,7 @@
 
 use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::commands::dump::{dump_all_targets, read_all_targets};
-use crate::printer::{cannot_write, headless_gpu, load_scene_in, Printer};
+use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
 use compiler::CompileOptions;
 use diag::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
@@ -120,7 +120,8 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     if let Err(code) = printer.check(crate::args::check_frame_count(count as usize)) {
         return code;
     }
-    let gpu = match headless_gpu(printer) {
+    // Exactly what this style needs of the device (`Manifest::device_needs`).
+    let gpu = match style_gpu(&program.manifest, printer) {
         Ok(g) => g,
         Err(code) => return code,
     };

@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod artmaps;
+pub mod chromium;
 pub mod cli;
 pub mod fuzz;
 pub mod http;

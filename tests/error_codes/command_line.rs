@@ -96,6 +96,32 @@ fn e0505_no_gpu_device() {
 }
 
 #[test]
+fn e0510_a_device_without_a_limit_the_style_needs() {
+    // Refused by a real device made with WebGPU's defaults in
+    // tests/gpu/device_needs.rs; here the runner's check of the same style
+    // against WebGPU's default limits, and its rendered message.
+    let text = style("pass g: render(scene) {\n  out c: rgba16float = vec4(normal, 1.0)\n}\npass b: image(g) {\n  schedule: tiled\n  let v = gaussian(g.c, sigma: 1px, axis: x)\n  out o1: rgba8unorm = v\n  out o2: rgba8unorm = v\n  out o3: rgba16float = v\n  out o4: r32float = v.r\n  out o5: rgba32float = v\n}\npass f: image(b) {\n  out c: rgba8unorm = b.o1 + b.o2 + b.o3 + vec4(b.o4) + b.o5\n}\noutput f.c\n");
+    let mut sources = SourceMap::new();
+    let compiled = compiler::compile_source(
+        "case.npr",
+        &text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    let d = runner::device_needs::unmet(
+        &compiled.manifest,
+        wgpu::Features::empty(),
+        &wgpu::Limits::default(),
+        "this device",
+    );
+    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    assert!(rendered.contains("pass `b` needs"), "{rendered}");
+    check("E0510", (d, rendered));
+}
+
+#[test]
 fn e0506_a_benchmark_that_cannot_run() {
     let dir = scratch("e0506");
     let missing = dir.join("missing.npr");

@@ -331,7 +331,7 @@ fn e0311_the_hint_gives_each_reason_of_the_tiler() {
         (
             "memory",
             "pass wide: image(g) {\n  schedule: tiled\n  out c: rgba16float = gaussian(g.n, screen_uv, sigma: 10.0, axis: 0)\n}\noutput wide.c\n",
-            "its tiles need 92416 bytes of workgroup memory",
+            "its tiles need 92448 bytes of workgroup memory",
         ),
     ];
     check_reasons("E0311", &cases);

@@ -212,8 +212,9 @@ const FORMATS: &[(&str, usize)] = &[
     ("rgba32float", 4),
 ];
 
-/// Style number `seed`.
-fn style(seed: u64) -> String {
+/// Style number `seed` (also handed to Chromium's WGSL compiler by
+/// `webgpu_portability`).
+pub(crate) fn style(seed: u64) -> String {
     let mut r = Rng(seed);
     let mut out = String::from("style \"Generated\"\n");
     let mut names = Vec::new();

@@ -31,3 +31,4 @@ mod style_tests;
 mod style_tests_examples;
 mod vscode_extension;
 mod watch;
+mod webgpu_portability;

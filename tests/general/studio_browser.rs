@@ -10,123 +10,44 @@
 //! 5. clicking a pass thumbnail shows that target.
 //!
 //! A failing step saves a screenshot into `target/tmp/studio-browser/`.
-//! Chromium missing is a failure with the install command, never a skip.
+//! Chromium missing is a failure with the install command, never a skip
+//! (`common::chromium`).
 
 use crate::common;
 
+use common::chromium::Browser;
 use common::http;
 use common::live::{save_by_rename, start_studio};
 use serde_json::{json, Value};
-use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
-use tungstenite::{stream::MaybeTlsStream, Message, WebSocket};
 
-const CHROMIUM: &str = "/usr/bin/chromium";
-
-/// A headless Chromium with one page, driven over the DevTools protocol.
-struct Browser {
-    child: Child,
-    ws: WebSocket<MaybeTlsStream<TcpStream>>,
-    next_id: u64,
-    /// The page's session (flat mode); `None` while talking to the browser.
-    session: Option<String>,
+/// The studio's page in a headless Chromium (`common::chromium`), and
+/// where a failing step saves its screenshot.
+struct Page {
+    browser: Browser,
     shots: PathBuf,
 }
 
-impl Drop for Browser {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+impl std::ops::Deref for Page {
+    type Target = Browser;
+    fn deref(&self) -> &Browser {
+        &self.browser
     }
 }
 
-impl Browser {
-    fn launch(profile: &Path, shots: PathBuf) -> Browser {
-        assert!(
-            Path::new(CHROMIUM).exists(),
-            "this test needs Chromium at {CHROMIUM}: install it with `sudo apt-get install -y chromium` (./setup.sh does)"
-        );
-        let port_file = profile.join("DevToolsActivePort");
-        let child = Command::new(CHROMIUM)
-            .args([
-                "--headless=new",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-quic",
-                "--no-first-run",
-                "--disable-background-networking",
-                "--disable-component-update",
-                "--disable-sync",
-                "--remote-debugging-port=0",
-                &format!("--user-data-dir={}", profile.display()),
-                "about:blank",
-            ])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("start chromium");
-        // Chromium writes the port it chose and its browser socket's path
-        // into the profile.
-        let deadline = Instant::now() + common::live::HANG;
-        let (port, path) = loop {
-            let text = std::fs::read_to_string(&port_file).unwrap_or_default();
-            let mut lines = text.lines();
-            if let (Some(port), Some(path)) = (lines.next(), lines.next()) {
-                break (port.to_string(), path.to_string());
-            }
-            assert!(Instant::now() < deadline, "chromium never opened its DevTools port");
-            std::thread::sleep(Duration::from_millis(50));
-        };
-        let url = format!("ws://127.0.0.1:{port}{path}");
-        let (ws, _) = tungstenite::connect(url.as_str()).expect("connect to chromium's DevTools socket");
-        let mut b = Browser {
-            child,
-            ws,
-            next_id: 0,
-            session: None,
-            shots,
-        };
-        // One page, attached in flat mode: its commands carry the session id.
-        let target = b.call("Target.createTarget", json!({"url": "about:blank"}));
-        let attached = b.call(
-            "Target.attachToTarget",
-            json!({"targetId": target["targetId"], "flatten": true}),
-        );
-        b.session = attached["sessionId"].as_str().map(str::to_string);
-        assert!(b.session.is_some(), "no DevTools session: {attached}");
-        b
+impl std::ops::DerefMut for Page {
+    fn deref_mut(&mut self) -> &mut Browser {
+        &mut self.browser
     }
-    /// One DevTools command (to the page once attached); its result (events before it are skipped).
-    fn call(&mut self, method: &str, params: Value) -> Value {
-        self.next_id += 1;
-        let id = self.next_id;
-        let mut msg = json!({"id": id, "method": method, "params": params});
-        if let Some(s) = &self.session {
-            msg["sessionId"] = json!(s);
-        }
-        let msg = msg.to_string();
-        self.ws.send(Message::text(msg)).expect("send DevTools command");
-        loop {
-            let reply = self.ws.read().expect("read DevTools reply");
-            let Message::Text(text) = reply else { continue };
-            let v: Value = serde_json::from_str(text.as_str()).expect("DevTools JSON");
-            if v["id"] == id {
-                assert!(v["error"].is_null(), "{method}: {}", v["error"]);
-                return v["result"].clone();
-            }
-        }
-    }
+}
 
-    /// Evaluate JavaScript in the page (promises awaited); its value.
-    fn eval(&mut self, expr: &str) -> Value {
-        let r = self.call(
-            "Runtime.evaluate",
-            json!({"expression": expr, "returnByValue": true, "awaitPromise": true}),
-        );
-        assert!(r["exceptionDetails"].is_null(), "{expr}: {}", r["exceptionDetails"]);
-        r["result"]["value"].clone()
+impl Page {
+    fn launch(profile: &Path, shots: PathBuf) -> Page {
+        Page {
+            browser: Browser::launch(profile, &["--disable-gpu", "--disable-quic"], common::live::HANG),
+            shots,
+        }
     }
 
     /// Wait until `expr` is truthy in the page (the page updates on server events).
@@ -160,7 +81,7 @@ impl Browser {
     }
 
     /// Run a step; if it fails, save a screenshot named after it first.
-    fn step(&mut self, name: &str, f: impl FnOnce(&mut Browser)) {
+    fn step(&mut self, name: &str, f: impl FnOnce(&mut Page)) {
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(self)));
         if let Err(e) = result {
             let shot = self.call("Page.captureScreenshot", json!({"format": "png"}));
@@ -223,7 +144,7 @@ fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switche
     let original = std::fs::read_to_string("examples/sobel_outline.npr").expect("style");
     std::fs::write(&style, &original).expect("copy");
     let (_studio, addr) = start_studio(&style);
-    let mut b = Browser::launch(&dir.join("profile"), dir.clone());
+    let mut b = Page::launch(&dir.join("profile"), dir.clone());
     b.call("Page.enable", json!({}));
     b.call("Page.navigate", json!({"url": format!("http://{addr}/")}));
 
@@ -347,7 +268,7 @@ fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switche
         );
         let (x, y) = (rect[0].as_f64().expect("x"), rect[1].as_f64().expect("y"));
         // A real drag: press on the image, move 80 px right and 30 px down, release.
-        let mouse = |b: &mut Browser, kind: &str, x: f64, y: f64| {
+        let mouse = |b: &mut Page, kind: &str, x: f64, y: f64| {
             b.call(
                 "Input.dispatchMouseEvent",
                 json!({"type": kind, "x": x, "y": y, "button": "left", "buttons": 1, "clickCount": 1}),

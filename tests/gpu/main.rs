@@ -14,6 +14,7 @@ mod blend_depth;
 mod compute;
 mod compute_pixels;
 mod compute_samples;
+mod device_needs;
 mod dynamic_patterns;
 mod golden_images;
 mod gpu_errors;

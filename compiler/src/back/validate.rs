@@ -9,20 +9,24 @@
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 
+/// A module naga parsed and validated, with what validation learnt of it
+/// (which globals each entry point uses: `back::device_needs`).
+pub type ValidModule = (naga::Module, naga::valid::ModuleInfo);
+
 /// Parse and validate WGSL with naga; `Err` holds naga's rendered message
 /// (or, if naga panicked, its panic message). The panic is expected
 /// (`diag::panics`): `npr` prints the internal error, not Rust's panic line.
-pub fn validate_wgsl(name: &str, wgsl: &str) -> Result<naga::Module, String> {
+pub fn validate_wgsl(name: &str, wgsl: &str) -> Result<ValidModule, String> {
     diag::panics::catch(|| parse_and_validate(name, wgsl))
         .unwrap_or_else(|why| Err(format!("naga panicked on {name}: {why}")))
 }
 
-fn parse_and_validate(name: &str, wgsl: &str) -> Result<naga::Module, String> {
+fn parse_and_validate(name: &str, wgsl: &str) -> Result<ValidModule, String> {
     let module = naga::front::wgsl::parse_str(wgsl).map_err(|e| e.emit_to_string_with_path(wgsl, name))?;
-    Validator::new(ValidationFlags::all(), Capabilities::default())
+    let info = Validator::new(ValidationFlags::all(), Capabilities::default())
         .validate(&module)
         .map_err(|e| e.emit_to_string_with_path(wgsl, name))?;
-    Ok(module)
+    Ok((module, info))
 }
 
 #[cfg(test)]

@@ -36,6 +36,13 @@ use std::collections::{BTreeMap, BTreeSet};
 /// (`maxComputeWorkgroupStorageSize`), which every adapter offers.
 pub const WORKGROUP_MEMORY: u32 = 16384;
 
+/// Workgroup memory a tiled shader declares besides its tiles: the two
+/// miss flags (`npr_tile_misses`, `npr_tile_any_missed`; `emit::tiled`),
+/// 16 bytes each by WebGPU's rule (every workgroup variable's size is
+/// rounded up to 16). Without them a 4-channel tile with an 8-texel apron
+/// (exactly 16384 bytes) passed here and then needed 16416.
+pub const TILE_FLAGS_BYTES: u32 = 32;
+
 /// Each tile of `tiling` `deficit` texels narrower than the footprints
 /// ask (the tests' `CompileOptions::tile_apron_deficit`; 0 changes
 /// nothing).
@@ -221,7 +228,7 @@ pub(super) fn tiling(ir: &Ir, live: &Live, pid: PassId) -> Result<Tiling, String
             })
             .collect(),
     };
-    let bytes = tiling.bytes();
+    let bytes = tiling.bytes() + TILE_FLAGS_BYTES;
     if bytes > WORKGROUP_MEMORY {
         return Err(format!(
             "its tiles need {bytes} bytes of workgroup memory (widest apron: {} texel(s)), over the {WORKGROUP_MEMORY} every adapter has",

@@ -186,4 +186,37 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0510",
+        meaning: "A pass needs a WebGPU feature, or a limit above WebGPU's default, that the \
+            device (or its adapter) does not have. WebGPU guarantees its defaults on every \
+            device; anything past them must be asked for when the device is made: a tiled pass \
+            with five outputs needs five storage textures per shader stage (the default is four), \
+            a pass with five rgba32float outputs 80 bytes of colour attachments per sample (the \
+            default is 32). The compiler writes each pass's needs into the manifest \
+            (`device_needs`, WebGPU's names; `npr compile --report` lists them), `npr render` \
+            asks the adapter for exactly those, and a host that makes its own device must ask \
+            for them too. Change the pass to need less (fewer outputs, or narrower formats), or \
+            run it on an adapter that has more.",
+        wrong: Example {
+            style: FIVE_TILED_OUTPUTS,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "out.png", "--size", "16x16"]],
+            not_runnable: Some("lavapipe allows more storage textures than WebGPU's default, so the style renders here; tests/gpu/device_needs.rs renders it on a device with WebGPU's defaults"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: FOUR_TILED_OUTPUTS,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "out.png", "--size", "16x16"]],
+            ..EXAMPLE
+        },
+    },
 ];
+
+/// A tiled pass writing five live outputs: five storage textures in its
+/// compute stage, one past WebGPU's default (E0510 on a default device).
+const FIVE_TILED_OUTPUTS: &str = "style \"Case\"\npass g: render(scene) {\n  out c: rgba16float = vec4(normal, 1.0)\n}\npass b: image(g) {\n  schedule: tiled\n  let v = gaussian(g.c, sigma: 1px, axis: x)\n  out o1: rgba8unorm = v\n  out o2: rgba8unorm = v * 0.5\n  out o3: rgba16float = v\n  out o4: r32float = v.r\n  out o5: rgba32float = v\n}\npass f: image(b) {\n  out c: rgba8unorm = (b.o1 + b.o2 + b.o3 + vec4(b.o4) + b.o5) * 0.2\n}\noutput f.c\n";
+
+/// [`FIVE_TILED_OUTPUTS`] with four: within every device's defaults.
+const FOUR_TILED_OUTPUTS: &str = "style \"Case\"\npass g: render(scene) {\n  out c: rgba16float = vec4(normal, 1.0)\n}\npass b: image(g) {\n  schedule: tiled\n  let v = gaussian(g.c, sigma: 1px, axis: x)\n  out o1: rgba8unorm = v\n  out o2: rgba8unorm = v * 0.5\n  out o3: rgba16float = v\n  out o4: r32float = v.r\n}\npass f: image(b) {\n  out c: rgba8unorm = (b.o1 + b.o2 + b.o3 + vec4(b.o4)) * 0.25\n}\noutput f.c\n";

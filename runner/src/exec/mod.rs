@@ -165,6 +165,12 @@ impl<'d> Renderer<'d> {
         program
             .validate()
             .map_err(|e| RunError::Internal(format!("the compiled style is inconsistent: {e}")))?;
+        // A feature or limit the style needs that this device lacks: E0510
+        // naming it and its pass, before any pipeline fails on it.
+        let lacking = crate::device_needs::unmet(&program.manifest, device.features(), &device.limits(), "this device");
+        if !lacking.is_empty() {
+            return Err(RunError::User(lacking));
+        }
         let diags = check_scene(&program.manifest, scene);
         if !diags.is_empty() {
             return Err(RunError::User(diags));

@@ -54,12 +54,15 @@ pub(super) fn attributes(domain: ComputeDomain, builtins: &std::collections::BTr
 }
 
 /// The identity of a reduction, as a `vec4<f32>` (min and max start at
-/// ±f32::MAX, so an object with no element reads ±3.4e38).
-pub(super) fn identity(op: ReduceOp) -> &'static str {
+/// ±f32::MAX, so an object with no element reads ±3.4e38). Not ±infinity:
+/// WGSL has no literal for it and refuses a constant expression that makes
+/// one. f32::MAX is spelled exactly (`expr::F32_MAX_WGSL`), since Tint
+/// refuses the shortest decimal, `3.4028235e38`, as past the f32 range.
+pub(super) fn identity(op: ReduceOp) -> String {
     match op {
-        ReduceOp::Sum => "vec4<f32>(0.0)",
-        ReduceOp::Min => "vec4<f32>(3.4028235e38)",
-        ReduceOp::Max => "vec4<f32>(-3.4028235e38)",
+        ReduceOp::Sum => "vec4<f32>(0.0)".to_string(),
+        ReduceOp::Min => format!("vec4<f32>({})", super::expr::F32_MAX_WGSL),
+        ReduceOp::Max => format!("vec4<f32>(-{})", super::expr::F32_MAX_WGSL),
     }
 }
 
@@ -199,7 +202,7 @@ pub(super) fn object_stage(
     count: &str,
     partial: &str,
 ) {
-    let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
+    let identities: Vec<String> = ops.iter().map(|o| identity(*o)).collect();
     let _ = writeln!(
         w,
         "{doc}
@@ -392,7 +395,7 @@ impl Emitter<'_> {
             "// The reduced values of vertex `i` (of the members' vertices), one slot each.\nfn npr_element(i: u32)",
             "    let in = npr_vertex(i);",
         );
-        let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
+        let identities: Vec<String> = ops.iter().map(|o| identity(*o)).collect();
         // Element stage.
         let _ = writeln!(
             w,

@@ -99,7 +99,7 @@ fn npr_id(in: NprPixel) -> f32 {{
             "// The reduced values of a pixel (of `object`, its object), one slot each.\nfn npr_element(in: NprPixel)",
             "",
         );
-        let identities: Vec<&str> = ops.iter().map(|o| identity(*o)).collect();
+        let identities: Vec<String> = ops.iter().map(|o| identity(*o)).collect();
         // The two smallest distinct indices, and a round. The four pixels of
         // an invocation are written out, not looped over: constant indices
         // keep them in registers (a software rasterizer's compute shaders
@@ -215,7 +215,7 @@ fn {ELEMENTS_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocat
 /// One round over object `index` (a uniform expression): its pixels among
 /// the invocation's four reduced over the workgroup, folded into workgroup
 /// g's partial of it by invocation 0, and no longer pending.
-fn round(ops: &[abi::manifest::ReduceOp], identities: &[&str], index: &str) -> String {
+fn round(ops: &[abi::manifest::ReduceOp], identities: &[String], index: &str) -> String {
     let mut r = format!("            {{\n                let mine = pending == vec4<u32>({index});\n");
     for (k, op) in ops.iter().enumerate() {
         let pick = |px: u32| {

@@ -308,7 +308,9 @@ pub(super) fn to_slot(value: &str, ty: Ty) -> String {
     }
 }
 
-/// An f32 literal WGSL accepts, e.g. `0.5f`, `1e-5f`.
+/// An f32 literal every WGSL implementation accepts, e.g. `0.5f`, `1e-5f`:
+/// a non-finite value is held at the largest finite one (NaN at 0), since
+/// WGSL has no literal for either.
 pub fn fmt_f32(v: f64) -> String {
     let f = v as f32;
     let f = if f.is_finite() {
@@ -318,9 +320,19 @@ pub fn fmt_f32(v: f64) -> String {
     } else {
         f32::MAX.copysign(f)
     };
+    if f.abs() == f32::MAX {
+        // Rust's shortest spelling of f32::MAX, `3.4028235e38`, names a
+        // decimal just above it: naga rounds it down, Tint (Chrome) refuses
+        // it as out of range. The hex float is the exact value.
+        return format!("{}{F32_MAX_WGSL}", if f < 0.0 { "-" } else { "" });
+    }
     let s = format!("{f:?}");
     format!("{s}f")
 }
+
+/// f32::MAX exactly, as a hex float: the one spelling of the largest
+/// finite f32 that no WGSL implementation may read as out of range.
+pub const F32_MAX_WGSL: &str = "0x1.fffffep+127f";
 
 fn const_wgsl(c: &Const, ty: Ty) -> String {
     match (c, ty) {
@@ -340,6 +352,26 @@ fn const_wgsl(c: &Const, ty: Ty) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn literals_past_f32_are_held_at_its_exact_maximum() {
+        assert_eq!(fmt_f32(0.5), "0.5f");
+        assert_eq!(fmt_f32(f32::MAX as f64), F32_MAX_WGSL);
+        assert_eq!(fmt_f32(f64::INFINITY), F32_MAX_WGSL);
+        assert_eq!(fmt_f32(-1e300), format!("-{F32_MAX_WGSL}"));
+        assert_eq!(fmt_f32(f64::NAN), "0.0f");
+        // The hex spelling is f32::MAX, bit for bit: 0x1.fffffe × 2^127.
+        let (digits, exponent) = F32_MAX_WGSL
+            .trim_start_matches("0x")
+            .trim_end_matches('f')
+            .split_once("p+")
+            .expect("a hex float");
+        let (whole, fraction) = digits.split_once('.').expect("a hex point");
+        let mantissa = u64::from_str_radix(&format!("{whole}{fraction}"), 16).expect("hex digits");
+        let exponent: i32 = exponent.parse().expect("an exponent");
+        let value = mantissa as f64 * 2f64.powi(exponent - 4 * fraction.len() as i32);
+        assert_eq!(value, f32::MAX as f64);
+    }
 
     #[test]
     fn per_fragment_builtins_are_exactly_those_read_from_the_fragment_inputs() {

@@ -85,9 +85,12 @@ fn npr_round_f16(x: f32) -> f32 {{
     // Drop 13 of f32's 23 mantissa bits: cut off, or ties to even with a carry into the exponent.
     let carry = select(0xfffu + ((bits >> 13u) & 1u), 0u, {flag});
     let rounded = bitcast<f32>((bits + carry) & 0xffffe000u);
-    // Past binary16's largest finite value (65504): infinity, or 65504 when truncating.
-    let past = select(bitcast<f32>(0x7f800000u), 65504.0, {flag});
-    return select(rounded, sign(x) * past, abs(rounded) > 65504.0);
+    // Past binary16's largest finite value (65504): infinity with x's sign, or ±65504 when truncating.
+    // The infinity is made from x's bits, not from constants: WGSL refuses a constant
+    // expression whose value is infinite (Tint does; naga lets it through).
+    let infinity = bitcast<f32>((bits & 0x80000000u) | 0x7f800000u);
+    let past = select(infinity, sign(x) * 65504.0, {flag});
+    return select(rounded, past, abs(rounded) > 65504.0);
 }}
 ",
         flag = abi::formats::HALF_ROUNDING_OVERRIDE

@@ -173,6 +173,8 @@ pub fn build(
         object_uniform_size: alloc.object_uniform_size,
         scene_attributes: attributes,
         output,
+        // Filled in once naga has validated the shaders (`back::device_needs`).
+        device_needs: Vec::new(),
     })
 }
 
