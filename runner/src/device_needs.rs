@@ -79,7 +79,12 @@ pub fn every_limit_the_adapter_allows(base: wgpu::Limits, adapter: &wgpu::Limits
 /// E0510 for each need of `manifest` that `features` and `limits` (a
 /// device's, or an adapter's) do not meet; `what` names them ("this
 /// device", "the adapter `llvmpipe`").
-pub fn unmet(manifest: &Manifest, features: wgpu::Features, limits: &wgpu::Limits, what: &str) -> Vec<diag::Diagnostic> {
+pub fn unmet(
+    manifest: &Manifest,
+    features: wgpu::Features,
+    limits: &wgpu::Limits,
+    what: &str,
+) -> Vec<diag::Diagnostic> {
     manifest
         .every_device_need()
         .into_iter()

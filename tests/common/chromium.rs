@@ -9,6 +9,7 @@ use serde_json::{json, Value};
 use std::net::TcpStream;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 use tungstenite::{stream::MaybeTlsStream, Message, WebSocket};
 
@@ -60,6 +61,11 @@ impl Browser {
             Path::new(CHROMIUM).exists(),
             "this test needs Chromium at {CHROMIUM}: install it with `sudo apt-get install -y chromium` (./setup.sh does)"
         );
+        // A directory of its own per launch: a browser restarted after a
+        // crash must not read the port file its predecessor (or that one's
+        // surviving child processes) left in a shared profile.
+        static LAUNCHES: AtomicU32 = AtomicU32::new(0);
+        let profile = &profile.join(format!("launch-{}", LAUNCHES.fetch_add(1, Ordering::Relaxed)));
         let _ = std::fs::remove_dir_all(profile);
         std::fs::create_dir_all(profile).expect("chromium profile directory");
         let port_file = profile.join("DevToolsActivePort");
@@ -85,7 +91,14 @@ impl Browser {
             std::thread::sleep(Duration::from_millis(50));
         };
         let url = format!("ws://127.0.0.1:{port}{path}");
-        let (ws, _) = tungstenite::connect(url.as_str()).expect("connect to chromium's DevTools socket");
+        // The port file can be written a moment before the socket accepts.
+        let ws = loop {
+            match tungstenite::connect(url.as_str()) {
+                Ok((ws, _)) => break ws,
+                Err(e) if Instant::now() >= deadline => panic!("connect to chromium's DevTools socket {url}: {e}"),
+                Err(_) => std::thread::sleep(Duration::from_millis(100)),
+            }
+        };
         if let MaybeTlsStream::Plain(tcp) = ws.get_ref() {
             tcp.set_read_timeout(Some(patience)).expect("a read timeout");
         }
