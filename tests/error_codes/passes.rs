@@ -401,7 +401,7 @@ fn e0103_bad_schedule_settings() {
 }
 
 /// A rip-map is read only by `sample_ripmap`, and `sample_ripmap` reads
-/// only a rip-map (`compiler/src/texture_uses.rs`).
+/// only a rip-map (`compiler/src/front/texture_uses.rs`).
 #[test]
 fn e0201_rip_maps_and_sample_ripmap_go_together() {
     let dir = scratch("e0201_ripmap");

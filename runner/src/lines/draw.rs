@@ -3,7 +3,7 @@
 //! point pulled towards the eye by the pass's bias ([`DepthBias`]). The
 //! `lines` pass executor (`exec/lines_pass.rs`) uploads them; its compiled
 //! shader tests visibility at the edge point against the kept depth
-//! (`compiler/src/emit/lines.rs`).
+//! (`compiler/src/back/emit/lines.rs`).
 //!
 //! Why the test is at the edge point and not per fragment with a
 //! fixed-function `LessEqual`: a strip lies across the edge it outlines,
