@@ -156,9 +156,9 @@ pub fn flip_mean(a: &image::RgbaImage, b: &image::RgbaImage) -> f32 {
     nv_flip::FlipPool::from_image(&map).mean()
 }
 
-/// A picture of where two same-sized images differ: white where equal,
-/// red where any channel differs, darker the larger the difference (×8, so
-/// a difference of a few levels is visible).
+/// A picture of where two same-sized images differ: cyan where equal, red
+/// where any channel differs, darker the larger the difference (×8, so a
+/// difference of a few levels is visible).
 pub fn diff_image(actual: &image::RgbaImage, expected: &image::RgbaImage) -> image::RgbaImage {
     image::RgbaImage::from_fn(actual.width(), actual.height(), |x, y| {
         let (a, b) = (actual.get_pixel(x, y).0, expected.get_pixel(x, y).0);
