@@ -1,56 +1,93 @@
 #!/usr/bin/env bash
-# Set up a fresh Debian/Ubuntu machine for npr: a software Vulkan driver
-# (Mesa lavapipe) when no Vulkan driver is installed, and a Rust toolchain
-# check. Safe to run repeatedly.
+# Set up a fresh Debian/Ubuntu machine for npr. Safe to run repeatedly.
+#
+#   ./setup.sh          what rendering needs: a Vulkan driver (Mesa's software
+#                       driver, lavapipe, when none is installed) and cargo.
+#   ./setup.sh --tests  that, plus what the test suite needs: Chromium (the
+#                       studio's browser test and the WebGPU portability test),
+#                       Node.js and the VS Code extension's npm packages, Xvfb
+#                       (the `npr view` and embedding windows), ffmpeg (video
+#                       output) and openjd-cli (the render-farm job template).
+#
+# Rendering an image needs none of the test tools, so the README's first
+# command does not wait for them.
 set -euo pipefail
+cd "$(dirname "$0")"
 
-have_vulkan_icd() {
-  ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json 2>/dev/null | grep -q .
+want_tests=0
+for arg in "$@"; do
+  case "$arg" in
+    --tests) want_tests=1 ;;
+    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "setup: unknown option '$arg' (expected --tests)" >&2; exit 2 ;;
+  esac
+done
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+apt_updated=0
+# Installs Debian packages, running `apt-get update` at most once.
+apt_install() {
+  export DEBIAN_FRONTEND=noninteractive
+  if [ "$apt_updated" -eq 0 ]; then
+    $SUDO apt-get update -qq
+    apt_updated=1
+  fi
+  $SUDO apt-get install -y -qq "$@" >/dev/null
 }
 
-if ! have_vulkan_icd; then
-  echo "setup: no Vulkan driver found; installing Mesa's software driver (mesa-vulkan-drivers)"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
-fi
-
-# The studio's browser test (tests/general/studio_browser.rs) drives Debian's
-# Chromium headless over the DevTools protocol; no browser is downloaded.
-if [ ! -x /usr/bin/chromium ]; then
-  echo "setup: installing Chromium for the studio's browser test (apt: chromium)"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq chromium >/dev/null
-fi
+# True when any Vulkan driver manifest is installed. (A `ls a/* b/* | grep`
+# pipeline fails under pipefail when one folder is missing, which made every
+# run reinstall Mesa.)
+have_vulkan_icd() {
+  local manifest
+  for manifest in /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json; do
+    [ -e "$manifest" ] && return 0
+  done
+  return 1
+}
 
 if ! command -v cargo >/dev/null 2>&1; then
   echo "setup: cargo not found; install Rust from your distribution or rustup" >&2
   exit 1
 fi
 
-# The VS Code extension's tests (tests/general/vscode_extension.rs) run its grammar
-# with vscode-textmate and drive `npr lsp` with vscode-jsonrpc: Node.js and
-# the extension's npm packages (pinned by editors/vscode/package-lock.json).
-if ! command -v npm >/dev/null 2>&1; then
-  echo "setup: installing Node.js and npm for the VS Code extension's tests (apt: nodejs npm)"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq nodejs npm >/dev/null
-fi
-if [ ! -d "$(dirname "$0")/editors/vscode/node_modules/vscode-textmate" ]; then
-  echo "setup: npm ci in editors/vscode"
-  (cd "$(dirname "$0")/editors/vscode" && npm ci --no-audit --no-fund --loglevel=error)
+if ! have_vulkan_icd; then
+  echo "setup: no Vulkan driver found; installing Mesa's software driver (apt: mesa-vulkan-drivers)"
+  apt_install mesa-vulkan-drivers libvulkan1
 fi
 
 # The Vulkan loader warns when XDG_RUNTIME_DIR is unset; harmless, but noisy.
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   mkdir -p /tmp/npr-xdg-runtime && chmod 700 /tmp/npr-xdg-runtime
+fi
+
+if [ "$want_tests" -eq 1 ]; then
+  missing=()
+  # tests/general/studio_browser.rs and webgpu_portability.rs drive Debian's
+  # Chromium headless over the DevTools protocol; no browser is downloaded.
+  [ -x /usr/bin/chromium ] || missing+=(chromium)
+  # tests/general/vscode_extension.rs runs the extension's grammar with
+  # vscode-textmate and drives `npr lsp` with vscode-jsonrpc.
+  command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
+  # `npr view` and examples/embed.rs open real windows on an X server.
+  command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)
+  command -v xdpyinfo >/dev/null 2>&1 || missing+=(x11-utils)
+  # Video and GIF output pipe frames to ffmpeg.
+  command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)
+  if [ "${#missing[@]}" -gt 0 ]; then
+    echo "setup: installing the test suite's tools (apt: ${missing[*]})"
+    apt_install "${missing[@]}"
+  fi
+  if [ ! -d editors/vscode/node_modules/vscode-textmate ]; then
+    echo "setup: npm ci in editors/vscode (pinned by package-lock.json)"
+    (cd editors/vscode && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+  # The render-farm job template (farm/openjd/) is run by Open Job
+  # Description's own runner, from PyPI.
+  if ! command -v openjd >/dev/null 2>&1; then
+    echo "setup: installing openjd-cli (pip) for the job template's test"
+    python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore openjd-cli
+  fi
 fi
 echo "setup: ok"

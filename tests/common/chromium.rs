@@ -59,7 +59,7 @@ impl Browser {
     pub fn launch(profile: &Path, flags: &[&str], patience: Duration) -> Browser {
         assert!(
             Path::new(CHROMIUM).exists(),
-            "this test needs Chromium at {CHROMIUM}: install it with `sudo apt-get install -y chromium` (./setup.sh does)"
+            "this test needs Chromium at {CHROMIUM}: install it with `sudo apt-get install -y chromium` (`./setup.sh --tests` does)"
         );
         // A directory of its own per launch: a browser restarted after a
         // crash must not read the port file its predecessor (or that one's

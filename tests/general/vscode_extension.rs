@@ -2,7 +2,7 @@
 //! tokenizes every example with no unscoped or illegal token (and does
 //! flag a bad one), `npr lsp` works through vscode-jsonrpc (the library
 //! vscode-languageclient talks through), and the manifest names files that
-//! exist. Needs node and the extension's npm packages (`./setup.sh` runs
+//! exist. Needs node and the extension's npm packages (`./setup.sh --tests` runs
 //! `npm ci` there); without them the tests fail and say so.
 
 use std::path::{Path, PathBuf};
@@ -16,13 +16,13 @@ fn node(args: &[&str]) -> Output {
     let dir = extension_dir();
     assert!(
         dir.join("node_modules/vscode-textmate").is_dir() && dir.join("node_modules/vscode-jsonrpc").is_dir(),
-        "editors/vscode/node_modules is missing: run ./setup.sh (it runs `npm ci` in editors/vscode)"
+        "editors/vscode/node_modules is missing: run `./setup.sh --tests` (it runs `npm ci` in editors/vscode)"
     );
     Command::new("node")
         .args(args)
         .current_dir(&dir)
         .output()
-        .unwrap_or_else(|e| panic!("cannot run node ({e}): install Node.js 18 or later (./setup.sh)"))
+        .unwrap_or_else(|e| panic!("cannot run node ({e}): install Node.js 18 or later (`./setup.sh --tests`)"))
 }
 
 fn describe(o: &Output) -> String {
