@@ -27,10 +27,36 @@ fn project(vp: DMat4, p: DVec3) -> DVec2 {
 
 /// The pixels whose centres the strips' triangles cover.
 fn rasterize(strips: &Strips) -> Vec<bool> {
+    rasterize_triangles(&strips.vertices, &strips.indices)
+}
+
+/// One mask per piece (backbone) of `strips`: a piece's vertices are
+/// contiguous, two per backbone sample, in the backbones' order.
+fn rasterize_pieces(strips: &Strips) -> Vec<Vec<bool>> {
+    let mut first = 0u32;
+    strips
+        .backbones
+        .iter()
+        .map(|backbone| {
+            let end = first + 2 * backbone.len() as u32;
+            let indices: Vec<u32> = strips
+                .indices
+                .chunks_exact(3)
+                .filter(|t| t.iter().all(|&i| (first..end).contains(&i)))
+                .flatten()
+                .copied()
+                .collect();
+            first = end;
+            rasterize_triangles(&strips.vertices, &indices)
+        })
+        .collect()
+}
+
+fn rasterize_triangles(vertices: &[strip::StripVertex], indices: &[u32]) -> Vec<bool> {
     let mut mask = vec![false; SIZE * SIZE];
     let cross = |a: DVec2, b: DVec2, p: DVec2| (b - a).perp_dot(p - a);
-    for t in strips.indices.chunks_exact(3) {
-        let [a, b, c] = [0, 1, 2].map(|k| strips.vertices[t[k] as usize].px);
+    for t in indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| vertices[t[k] as usize].px);
         let area = cross(a, b, c);
         if area.abs() < 1e-12 {
             continue;
@@ -229,19 +255,25 @@ fn strips_are_rebuilt_only_when_the_view_or_the_mesh_changes() {
 /// pixels binned by position along the chord, the mean offset per bin, its
 /// best-fitting sine's wavelength and amplitude (least squares).
 fn measure_pixels(mask: &[bool], a: DVec2, b: DVec2) -> (f64, f64) {
+    measure_between(mask, a, b, 0.0, (b - a).length(), f64::INFINITY)
+}
+
+/// [`measure_pixels`] over the part of the chord from `from` to `to` px
+/// along it, counting only pixels within `reach` px across it.
+fn measure_between(mask: &[bool], a: DVec2, b: DVec2, from: f64, to: f64, reach: f64) -> (f64, f64) {
     let along = (b - a).normalize();
     let across = along.perp();
-    let length = (b - a).length();
-    let bins = length.floor() as usize;
+    let bins = (to - from).floor() as usize;
     let mut sum = vec![(0.0, 0usize); bins];
     for i in (0..SIZE * SIZE).filter(|&i| mask[i]) {
         let p = DVec2::new((i % SIZE) as f64 + 0.5, (i / SIZE) as f64 + 0.5) - a;
-        let u = p.dot(along);
-        if u >= 0.0 && (u as usize) < bins {
+        let u = p.dot(along) - from;
+        if u >= 0.0 && (u as usize) < bins && p.dot(across).abs() <= reach {
             sum[u as usize].0 += p.dot(across);
             sum[u as usize].1 += 1;
         }
     }
+    let length = to - from;
     let signal: Vec<(f64, f64)> = sum
         .iter()
         .enumerate()
@@ -312,4 +344,156 @@ fn drawn_waviness_is_consistent_across_orientations_and_distances() {
         "drawn pixels, worst relative error: wavelength {:.4}, amplitude {:.4}",
         worst.0, worst.1
     );
+}
+
+/// The corners of the cube of side 2 and its 12 edges (corner pairs one
+/// coordinate apart).
+fn cube_edges() -> Vec<(DVec3, DVec3)> {
+    let corner = |k: u32| {
+        DVec3::new(
+            [-1.0, 1.0][k as usize & 1],
+            [-1.0, 1.0][(k >> 1) as usize & 1],
+            [-1.0, 1.0][(k >> 2) as usize & 1],
+        )
+    };
+    let mut edges = Vec::new();
+    for k in 0..8u32 {
+        for axis in [1, 2, 4] {
+            if k & axis == 0 {
+                edges.push((corner(k), corner(k | axis)));
+            }
+        }
+    }
+    edges
+}
+
+/// Ink per px of chord of a strip of `width` around `amplitude`·sin(2πu/λ)
+/// over whole periods: width × the sine's mean arc length per px (the
+/// strip's area; its ends are cut square by the measuring window).
+fn ink_per_px(style: &LineStyle) -> f64 {
+    let k = TAU / style.wavelength_px;
+    let n = 100_000;
+    let arc: f64 = (0..n)
+        .map(|i| {
+            let u = (i as f64 + 0.5) / n as f64 * style.wavelength_px;
+            (1.0 + (style.amplitude_px * k * (k * u).cos()).powi(2)).sqrt()
+        })
+        .sum::<f64>()
+        / n as f64;
+    style.width_px * arc
+}
+
+/// Issue 35 item 8: with silhouettes and creases both on, each of a cube's
+/// outer edges (a silhouette and a crease at once) is one strip, with one
+/// phase along the silhouette loop. Exact truth: the backbones' total
+/// screen length is the 12 projected edges' once each; along every outline
+/// edge one piece is drawn; its ink per px of edge is a lone strip's
+/// (width × the sine's arc length per px), as is a lone edge's drawn with
+/// the same style; and the drawn wave has the wavelength and amplitude set.
+/// Drawn from both lists (the bug), the outline edges are two pieces each,
+/// the total length counts them twice, and their ink is up to twice as wide.
+#[test]
+fn an_edge_both_silhouette_and_crease_is_one_strip() {
+    let mesh = cube(2.0);
+    let eye = DVec3::new(2.6, 2.1, 3.4);
+    let vp = view_proj(eye);
+    let style = LineStyle {
+        width_px: 2.0,
+        amplitude_px: 3.0,
+        wavelength_px: 16.0,
+        phase: 0.7,
+        taper: 0.0,
+    };
+    let selection = EdgeSelection {
+        silhouettes: true,
+        crease_deg: Some(40.0),
+    };
+    let objects = [LineObject {
+        mesh: &mesh,
+        model: DMat4::IDENTITY,
+    }];
+    let size = DVec2::splat(SIZE as f64);
+    let strips = LinesCache::default()
+        .strips(0, &objects, eye, vp, size, &style, selection)
+        .clone();
+
+    let edges = cube_edges();
+    assert_eq!(edges.len(), 12);
+    let truth: f64 = edges
+        .iter()
+        .map(|(a, b)| (project(vp, *a) - project(vp, *b)).length())
+        .sum();
+    let drawn: f64 = strips.backbones.iter().map(|b| b.last().map_or(0.0, |p| p.s)).sum();
+    eprintln!(
+        "backbones: {} pieces, {drawn:.6} px; the 12 edges: {truth:.6} px",
+        strips.backbones.len()
+    );
+    assert!(
+        (drawn / truth - 1.0).abs() < 1e-9,
+        "drawn {drawn} px of backbone, edges {truth} px"
+    );
+
+    // The outline: edges whose two faces differ in facing from the eye.
+    let facing = |n: DVec3| n.dot(eye - n) > 0.0; // a face of the cube is at n, normal n
+    let normals = [DVec3::X, DVec3::Y, DVec3::Z];
+    let outline: Vec<(DVec3, DVec3)> = edges
+        .iter()
+        .copied()
+        .filter(|(a, b)| {
+            // The edge's two faces: the axes along which a and b agree.
+            let faces: Vec<DVec3> = normals
+                .iter()
+                .filter(|n| (a.dot(**n) - b.dot(**n)).abs() < 1e-12)
+                .map(|n| *n * a.dot(*n))
+                .collect();
+            facing(faces[0]) != facing(faces[1])
+        })
+        .collect();
+    assert_eq!(
+        outline.len(),
+        6,
+        "a cube seen from a general eye has a hexagonal outline"
+    );
+
+    let pieces = rasterize_pieces(&strips);
+    let union = rasterize(&strips);
+    let expected_ink = ink_per_px(&style);
+    let reach = style.amplitude_px + 0.5 * style.width_px + 1.5;
+    for (a3, b3) in outline {
+        let (a, b) = (project(vp, a3), project(vp, b3));
+        let length = (b - a).length();
+        let (from, to) = (0.15 * length, 0.85 * length);
+        let (along, across) = ((b - a).normalize(), (b - a).normalize().perp());
+        let in_window = |i: usize| {
+            let p = DVec2::new((i % SIZE) as f64 + 0.5, (i / SIZE) as f64 + 0.5) - a;
+            (from..to).contains(&p.dot(along)) && p.dot(across).abs() <= reach
+        };
+        let ink = |mask: &[bool]| (0..SIZE * SIZE).filter(|&i| mask[i] && in_window(i)).count() as f64 / (to - from);
+        let drawing: Vec<usize> = (0..pieces.len()).filter(|&k| ink(&pieces[k]) > 0.0).collect();
+        let lone = rasterize(&strip::build(&[(vec![a3, b3], false)], vp, size, &style));
+        let (wavelength, amplitude) = measure_between(&union, a, b, from, to, reach);
+        eprintln!(
+            "edge {a3} → {b3} ({length:.1} px): pieces {drawing:?}, ink {:.3} px/px (lone edge {:.3}, truth {expected_ink:.3}), wavelength {wavelength:.3}, amplitude {amplitude:.3}",
+            ink(&union),
+            ink(&lone)
+        );
+        assert_eq!(drawing.len(), 1, "one strip along the edge, not {}", drawing.len());
+        assert!(strips.backbones[drawing[0]].len() > 2, "the outline is chained");
+        // Pixel centres sample the strip's area: ±6% over a window of
+        // ≥ 35 px of chord (a strip 2 px wide quantizes to 2 ± 1 px per
+        // column, and the window's ends cut the sine mid-period).
+        for (what, measured) in [("drawn", ink(&union)), ("lone edge", ink(&lone))] {
+            assert!(
+                (measured / expected_ink - 1.0).abs() < 0.06,
+                "{what}: {measured:.3} px of ink per px, a lone strip has {expected_ink:.3}"
+            );
+        }
+        // ±5%, as for the lone lines above: a bin's mean pixel centre
+        // rounds the sine's peaks in (2.87–2.95 px measured for 3 px).
+        assert!(
+            (wavelength / style.wavelength_px - 1.0).abs() < 0.05
+                && (amplitude / style.amplitude_px - 1.0).abs() < 0.05,
+            "wavelength {wavelength:.3} px, amplitude {amplitude:.3} px"
+        );
+    }
 }

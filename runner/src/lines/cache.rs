@@ -6,6 +6,16 @@
 //! mesh changes (issue 10: "geometry is rebuilt only when the view or the
 //! mesh changes"). Silhouettes depend on the eye, so they are found with
 //! the strips, per eye in stereo.
+//!
+//! An edge is drawn once, whatever it is (issue 35 item 8): with both
+//! silhouettes and creases on, a cube's outer edges are silhouettes and
+//! creases at once, and drawn from both lists they made two strips whose
+//! sines had different phases (a doubled line up to 2·amplitude wider, or a
+//! wave that cancelled). The silhouettes are chained first, so a
+//! silhouette loop keeps one phase all round it (the outline is the line
+//! that must read as one stroke, §5); the creases are then chained from the
+//! crease edges that are not silhouettes from this eye. Without silhouettes
+//! the crease chains are static and cached.
 
 use std::collections::HashMap;
 
@@ -32,8 +42,16 @@ pub struct LineObject<'a> {
 /// The static part of one mesh.
 struct MeshEdges {
     edges: EdgeMesh,
-    /// Crease chains per threshold (bit pattern of the f64), found once.
-    creases: HashMap<u64, Vec<Polyline>>,
+    /// Crease edges and their chains per threshold (bit pattern of the
+    /// f64), found once.
+    creases: HashMap<u64, Creases>,
+}
+
+/// The crease edges at one threshold (indices into the edge mesh's edges)
+/// and their chains when no silhouette takes any of them.
+struct Creases {
+    indices: Vec<u32>,
+    chains: Vec<Polyline>,
 }
 
 /// Everything that decides an eye's strips, compared bit for bit.
@@ -119,22 +137,40 @@ impl LinesCache {
                         .map(|&v| object.model.transform_point3(edges.positions[v as usize]));
                     (points.collect(), line.closed)
                 };
-                if let Some(threshold) = selection.crease_deg {
-                    let edges = &entry.edges;
-                    let chains = entry.creases.entry(threshold.to_bits()).or_insert_with(|| {
+                let edges = &entry.edges;
+                let creases = selection.crease_deg.map(|threshold| {
+                    &*entry.creases.entry(threshold.to_bits()).or_insert_with(|| {
                         let indices: Vec<u32> = edges.creases(threshold).iter().map(|c| c.0).collect();
-                        edges.chain(&indices)
-                    });
-                    polylines.extend(chains.iter().map(|l| world(l, edges)));
-                }
-                if selection.silhouettes {
-                    // The eye in the object's own space: facing is decided
-                    // against the object-space face normals.
-                    let local_eye = object.model.inverse().transform_point3(eye_position);
-                    if local_eye.is_finite() {
-                        let edges = &entry.edges;
-                        let chains = edges.chain(&edges.silhouettes(local_eye));
-                        polylines.extend(chains.iter().map(|l| world(l, edges)));
+                        let chains = edges.chain(&indices);
+                        Creases { indices, chains }
+                    })
+                });
+                // The eye in the object's own space: facing is decided
+                // against the object-space face normals.
+                let local_eye = object.model.inverse().transform_point3(eye_position);
+                let silhouettes = if selection.silhouettes && local_eye.is_finite() {
+                    edges.silhouettes(local_eye)
+                } else {
+                    Vec::new()
+                };
+                polylines.extend(edges.chain(&silhouettes).iter().map(|l| world(l, edges)));
+                if let Some(creases) = creases {
+                    if silhouettes.is_empty() {
+                        polylines.extend(creases.chains.iter().map(|l| world(l, edges)));
+                    } else {
+                        // Each edge once: a crease that is a silhouette from
+                        // this eye is already in a silhouette chain.
+                        let mut taken = vec![false; edges.edges.len()];
+                        for &i in &silhouettes {
+                            taken[i as usize] = true;
+                        }
+                        let rest: Vec<u32> = creases
+                            .indices
+                            .iter()
+                            .copied()
+                            .filter(|&i| !taken[i as usize])
+                            .collect();
+                        polylines.extend(edges.chain(&rest).iter().map(|l| world(l, edges)));
                     }
                 }
             }
