@@ -230,6 +230,70 @@ pub fn sky_map(width: u32, height: u32, seed: u32) -> Rgba8Image {
     Rgba8Image { width, height, pixels }
 }
 
+/// The foam "erosion" map of Age of Sail §6.1 (Fig. 19c): `strokes` brush
+/// strokes on a tileable `size`² tile, in every colour channel. A stroke is
+/// a capsule around a short spine, laid roughly along u (±20°: foam lies
+/// along the crests, across the wind that runs along v), whose half-width
+/// narrows from the pressed start to the lifted end (a brush leaving the
+/// canvas). Each stroke has a strength in (0.1, 1]: its value is that
+/// strength over the inner half of its half-width, falling to 0 over the
+/// outer half. Where strokes overlap the map keeps the larger value.
+/// Thresholding the map at e erodes it stroke by stroke: the strokes
+/// stronger than e stay, at least half their width, the others vanish, so
+/// foam grows and shrinks as connected shapes, never as slivers or specks;
+/// the ramp lets a stroke swell over a few frames rather than pop in.
+/// Seamless: offsets wrap by one tile.
+pub fn foam_strokes(size: u32, strokes: u32, seed: u32) -> Rgba8Image {
+    // (centre, unit direction, half-length, half-width at the start, strength).
+    type Stroke = ([f64; 2], [f64; 2], f64, f64, f64);
+    let size = size.clamp(1, 4096);
+    let unit = |k: u32, i: u32| f64::from(hash(k, i, seed)) / f64::from(u32::MAX);
+    let shapes: Vec<Stroke> = (0..strokes.min(4096))
+        .map(|k| {
+            let angle = (unit(k, 2) - 0.5) * 40f64.to_radians();
+            (
+                [unit(k, 0), unit(k, 1)],
+                [angle.cos(), angle.sin()],
+                0.04 + 0.05 * unit(k, 3),
+                0.022 + 0.018 * unit(k, 4),
+                0.1 + 0.9 * unit(k, 5),
+            )
+        })
+        .collect();
+    let mut pixels = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            let p = [
+                (f64::from(x) + 0.5) / f64::from(size),
+                (f64::from(y) + 0.5) / f64::from(size),
+            ];
+            let mut value: f64 = 0.0;
+            for (centre, dir, half_length, half_width, strength) in &shapes {
+                // The nearest copy of the stroke on the torus.
+                let d = [0, 1].map(|i| {
+                    let o = p[i] - centre[i];
+                    o - o.round()
+                });
+                let along = (d[0] * dir[0] + d[1] * dir[1]).clamp(-half_length, *half_length);
+                let off = [d[0] - along * dir[0], d[1] - along * dir[1]];
+                let distance = off[0].hypot(off[1]);
+                // 1 at the start of the spine, 0.4 at its end.
+                let press = 1.0 - 0.3 * (along / half_length + 1.0);
+                let width = half_width * press;
+                let body = (2.0 * (1.0 - distance / width)).clamp(0.0, 1.0);
+                value = value.max(strength * body);
+            }
+            let byte = to_byte(value);
+            pixels.push([byte, byte, byte, 255]);
+        }
+    }
+    Rgba8Image {
+        width: size,
+        height: size,
+        pixels,
+    }
+}
+
 /// A painterly colour map for Age of Sail §5.2's per-object lit and shadow
 /// textures ("two full sets of texture maps, one for shadowed areas, one
 /// for illuminated areas"): tileable value-noise fBm (`seed`, 5 octaves,

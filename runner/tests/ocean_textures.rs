@@ -5,7 +5,7 @@
 //! Regenerate after changing a generator with
 //! `NPR_UPDATE_TEXTURES=1 cargo test -p runner --test ocean_textures`.
 
-use runner::texgen::{bathic_map, paint_map, parse_hex, sky_map, Rgba8Image};
+use runner::texgen::{bathic_map, foam_strokes, paint_map, parse_hex, sky_map, Rgba8Image};
 use std::path::{Path, PathBuf};
 
 fn texture_path(name: &str) -> PathBuf {
@@ -15,7 +15,11 @@ fn texture_path(name: &str) -> PathBuf {
 }
 
 fn bathic() -> Rgba8Image {
-    bathic_map(64, 16, 8)
+    bathic_map(64, 16, 4)
+}
+
+fn foam() -> Rgba8Image {
+    foam_strokes(256, 64, 29)
 }
 
 fn sky() -> Rgba8Image {
@@ -63,6 +67,7 @@ fn paint(base: &str, seed: u32) -> Rgba8Image {
 fn the_checked_in_maps_are_the_generated_ones() {
     check_file("ocean_bathic.png", &bathic());
     check_file("ocean_sky.png", &sky());
+    check_file("ocean_foam.png", &foam());
     for (file, base, seed) in PAINT_MAPS {
         check_file(file, &paint(base, seed));
     }
@@ -122,10 +127,11 @@ fn the_bathic_map_brightens_with_tone_and_light_in_flat_bands() {
     for y in 0..map.height {
         let row: Vec<f64> = (0..map.width).map(|x| luma(at(x, y))).collect();
         assert!(row.windows(2).all(|w| w[1] >= w[0]), "row {y} not monotonic: {row:?}");
-        // 8 bands: exactly 8 distinct colours per row.
+        // 4 bands ("only four shades of blue in the ocean", Age of Sail
+        // §2): exactly 4 distinct colours per row.
         let mut distinct: Vec<[u8; 4]> = (0..map.width).map(|x| at(x, y)).collect();
         distinct.dedup();
-        assert_eq!(distinct.len(), 8, "row {y}");
+        assert_eq!(distinct.len(), 4, "row {y}");
     }
     for x in 0..map.width {
         assert!(
@@ -179,4 +185,46 @@ fn shipped_gallery_maps_are_what_texgen_writes() {
     for (file, base, seed) in GALLERY_MAPS {
         check_file(file, &paint_map(256, parse_hex(base).expect("colour"), seed));
     }
+}
+
+/// The foam map is brush strokes: both 0 (open water) and near 1 (the
+/// strongest strokes) occur, the strokes cover a minority of the tile at a low threshold, and
+/// it wraps (the left column continues the right, as the top the bottom:
+/// no edge steps larger than inside the tile).
+#[test]
+fn the_foam_map_is_seamless_strokes() {
+    let map = foam();
+    let v = |x: u32, y: u32| f64::from(map.pixels[((y % map.height) * map.width + x % map.width) as usize][0]);
+    let n = f64::from(map.width * map.height);
+    let covered = (0..map.height)
+        .flat_map(|y| (0..map.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| v(x, y) > 25.0)
+        .count() as f64
+        / n;
+    let spines = (0..map.height)
+        .flat_map(|y| (0..map.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| v(x, y) > 240.0)
+        .count();
+    assert!((0.1..0.6).contains(&covered), "strokes cover {covered:.3} of the tile");
+    assert!(spines > 0, "no stroke is near full strength");
+    let step = |a: f64, b: f64| (a - b).abs();
+    let seam = (0..map.height)
+        .map(|y| step(v(map.width - 1, y), v(0, y)))
+        .fold(0.0, f64::max)
+        .max(
+            (0..map.width)
+                .map(|x| step(v(x, map.height - 1), v(x, 0)))
+                .fold(0.0, f64::max),
+        );
+    let inside = (0..map.height)
+        .flat_map(|y| (1..map.width).map(move |x| (x, y)))
+        .map(|(x, y)| step(v(x - 1, y), v(x, y)))
+        .fold(0.0, f64::max)
+        .max(
+            (0..map.width)
+                .flat_map(|x| (1..map.height).map(move |y| (x, y)))
+                .map(|(x, y)| step(v(x, y - 1), v(x, y)))
+                .fold(0.0, f64::max),
+        );
+    assert!(seam <= inside, "seam step {seam} over the largest inner step {inside}");
 }

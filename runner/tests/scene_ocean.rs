@@ -396,7 +396,7 @@ fn an_ocean_scene_object_is_time_varying_with_its_fields() {
     let scene = scene_with(
         "{ kind = \"ocean\", size = 30.0, cells = 16, tiles = 3, period = 10.0, modes = 4, wave_height = 0.5, \
          wind_speed = 7.0, wind_direction = [1.0, 1.0], choppiness = 0.0, seed = 9, drift = [0, -1], \
-         horizon = 40.0, horizon_drop = 0.2 }",
+         horizon = 40.0, horizon_drop = 0.2, ring = 100.0 }",
     )
     .unwrap_or_else(|(d, s)| panic!("{}", diag::diagnostic::render(&d, &s, false)));
     let object = &scene.objects[0];
@@ -420,10 +420,15 @@ fn an_ocean_scene_object_is_time_varying_with_its_fields() {
             drift: [0, -1],
             horizon: 40.0,
             horizon_drop: 0.2,
+            ring: 100.0,
         }
     );
     assert_eq!(*object.mesh, ocean_mesh(&ocean, 0.0));
-    assert_eq!(object.mesh.triangle_count(), 2 * 48 * 48);
+    // The grid, and the ring's quads around.
+    assert_eq!(
+        object.mesh.triangle_count(),
+        2 * 48 * 48 + 2 * runner::scene::ocean::RING_SEGMENTS as usize
+    );
     // Defaults are the paper's grid.
     let scene = scene_with("{ kind = \"ocean\" }")
         .unwrap_or_else(|(d, s)| panic!("{}", diag::diagnostic::render(&d, &s, false)));
@@ -491,4 +496,44 @@ fn bad_ocean_fields_point_at_the_value() {
     let (diagnostics, _) =
         scene_with("{ kind = \"ocean\", size = 0, tiles = 2, horizon = -1 }").expect_err("three errors");
     assert_eq!(diagnostics.len(), 3, "{diagnostics:#?}");
+}
+
+/// §6.1's "simpler geometry for the ring of ocean between [the false
+/// horizon] and the real horizon": a flat annulus at y = 0 from R to
+/// `ring`, every triangle facing up, its UVs the lattice coordinates under
+/// it (world position less the treadmill offset, as the grid's), and the
+/// grid's outermost rows sunk under it once they are a few metres past R.
+#[test]
+fn the_ring_is_flat_faces_up_and_covers_the_sunk_grid() {
+    let ocean = Ocean {
+        ring: 1000.0,
+        ..small()
+    };
+    let plain = Ocean { ring: 0.0, ..ocean };
+    let t = 3.7;
+    let (mesh, grid) = (ocean_mesh(&ocean, t), ocean_mesh(&plain, t));
+    let first = grid.positions.len();
+    assert_eq!(mesh.positions[..first], grid.positions[..]);
+    let offset = ocean.treadmill_offset(t);
+    for (i, p) in mesh.positions[first..].iter().enumerate() {
+        let r = f64::from(p[0]).hypot(f64::from(p[2]));
+        let expected = if i % 2 == 0 { 40.0 } else { 1000.0 };
+        assert!((r - expected).abs() < 1e-3 * expected, "ring vertex {i} at r = {r}");
+        assert_eq!(p[1], 0.0);
+        let uv = mesh.uvs.as_ref().unwrap()[first + i];
+        assert!((f64::from(uv[0]) - (f64::from(p[0]) - offset.x)).abs() < 1e-3);
+        assert!((f64::from(uv[1]) - (f64::from(p[2]) - offset.y)).abs() < 1e-3);
+    }
+    for tri in mesh.indices[grid.indices.len()..].chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| DVec3::from(mesh.positions[tri[k] as usize].map(f64::from)));
+        assert!((b - a).cross(c - a).y > 0.0, "a ring triangle faces down");
+    }
+    // Past R + 10 m the drop (0.1 m per m² here) is 10 m: under the ring
+    // whatever the waves (2 m significant height).
+    for p in &grid.positions {
+        let r = f64::from(p[0]).hypot(f64::from(p[2]));
+        if r > 50.0 {
+            assert!(p[1] < 0.0, "a grid vertex at r = {r} is above the ring ({})", p[1]);
+        }
+    }
 }

@@ -26,6 +26,7 @@ mod lsa_gbuffer_precision;
 mod lsa_stereo;
 mod manifest_mutation;
 mod object_textures;
+mod ocean_look;
 mod patch_blend;
 mod patch_blend_styles;
 mod pattern_styles;

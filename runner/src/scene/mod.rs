@@ -91,6 +91,7 @@
 //! | `drift`          | [0, 0]     | whole tiles the water moves per period along x and z; \|·\| ≤ 100 |
 //! | `horizon`        | 120        | false-horizon radius in metres; (0, 100000]                     |
 //! | `horizon_drop`   | 0.05       | drop past the horizon, metres per square metre; [0, 10]         |
+//! | `ring`           | 0          | outer radius of the flat ring past the horizon, metres; 0 = none; [0, 100000] |
 //!
 //! The model matrix is `translate · rotate · scale`, with the rotation
 //! `Rz · Rx · Ry` (a vertex turns about Y first).

@@ -51,6 +51,14 @@
 //! `horizon_drop · (r − R)²` (C¹ at R), which hides the tiles' edges: with the
 //! defaults the grid reaches at least `2.5 L − L/2 = 120 m` from the origin.
 //!
+//! Past the false horizon, the paper uses "simpler geometry for the ring of
+//! ocean between that and the real horizon (about 1km away)": with `ring`
+//! set, [`ocean_mesh`] appends a flat annulus at the mean sea level (y = 0)
+//! from R to `ring` metres, [`RING_SEGMENTS`] quads around and one across.
+//! The grid's edge rows, lowered by the drop, pass under it a few metres
+//! past R, so the treadmilling rows never show against the sky; the ring's
+//! UVs move with the treadmill, so the texture on it travels with the water.
+//!
 //! # Time
 //!
 //! [`ocean_mesh`] reduces the time modulo T before evaluating anything, so
@@ -75,6 +83,9 @@ pub const MAX_TILES: u32 = 15;
 pub const MAX_MODES: u32 = 32;
 /// The most tiles the water may drift per period along an axis.
 pub const MAX_DRIFT: i32 = 100;
+/// Quads around the horizon ring: at 1 km a chord of 1/256 turn sags
+/// 1000·(1 − cos(π/256)) ≈ 0.08 m below the circle, under a pixel.
+pub const RING_SEGMENTS: u32 = 256;
 
 /// The ocean primitive's parameters, as written in a scene (see the scene
 /// module docs for the field names and defaults).
@@ -105,6 +116,10 @@ pub struct Ocean {
     pub horizon: f32,
     /// Drop beyond R, per square metre past R.
     pub horizon_drop: f32,
+    /// Outer radius of the flat ring from R to the real horizon (§6.1:
+    /// "simpler geometry for the ring of ocean between that and the real
+    /// horizon (about 1km away)"); 0 draws no ring.
+    pub ring: f32,
 }
 
 impl Default for Ocean {
@@ -125,6 +140,7 @@ impl Default for Ocean {
             drift: [0, 0],
             horizon: 120.0,
             horizon_drop: 0.05,
+            ring: 0.0,
         }
     }
 }
@@ -201,6 +217,7 @@ impl Ocean {
             drift: self.drift.map(|c| c.clamp(-MAX_DRIFT, MAX_DRIFT)),
             horizon: clamp(self.horizon, 1e-3, 1e5, d.horizon),
             horizon_drop: clamp(self.horizon_drop, 0.0, 10.0, d.horizon_drop),
+            ring: clamp(self.ring, 0.0, 1e5, d.ring),
         }
     }
 
@@ -488,6 +505,28 @@ pub fn ocean_mesh(ocean: &Ocean, time_s: f64) -> Mesh {
             indices.extend([top_left, bottom_left, bottom_right, top_left, bottom_right, top_right]);
         }
     }
+    if o.ring > o.horizon {
+        let offset = o.treadmill_offset(t);
+        let first = positions.len() as u32;
+        for k in 0..RING_SEGMENTS {
+            let angle = TAU * f64::from(k) / f64::from(RING_SEGMENTS);
+            for radius in [f64::from(o.horizon), f64::from(o.ring)] {
+                let (x, z) = (radius * angle.cos(), radius * angle.sin());
+                positions.push([x as f32, 0.0, z as f32]);
+                normals.push([0.0, 1.0, 0.0]);
+                // The lattice point under (x, z): the grid's UV convention.
+                uvs.push([(x - offset.x) as f32, (z - offset.y) as f32]);
+                tangents.push(orthonormal_tangent(Vec3::Y, Vec3::X, Vec3::NEG_Z));
+            }
+        }
+        for k in 0..RING_SEGMENTS {
+            let (inner, outer) = (first + 2 * k, first + 2 * k + 1);
+            let next = first + 2 * ((k + 1) % RING_SEGMENTS);
+            // Facing +y, as the grid's quads: (next − inner) × (outer −
+            // inner) points up for a ring running counter-clockwise in xz.
+            indices.extend([inner, next + 1, outer, inner, next, next + 1]);
+        }
+    }
     Mesh {
         positions,
         normals,
@@ -504,7 +543,7 @@ pub fn ocean_mesh(ocean: &Ocean, time_s: f64) -> Mesh {
 pub fn description(o: &Ocean) -> String {
     format!(
         "ocean(size={}, cells={}, tiles={}, period={}, modes={}, wave_height={}, wind_speed={}, \
-         wind_direction=[{}, {}], choppiness={}, seed={}, drift=[{}, {}], horizon={}, horizon_drop={})",
+         wind_direction=[{}, {}], choppiness={}, seed={}, drift=[{}, {}], horizon={}, horizon_drop={}, ring={})",
         o.size,
         o.cells,
         o.tiles,
@@ -519,6 +558,7 @@ pub fn description(o: &Ocean) -> String {
         o.drift[0],
         o.drift[1],
         o.horizon,
-        o.horizon_drop
+        o.horizon_drop,
+        o.ring
     )
 }

@@ -210,6 +210,7 @@ fn parse_ocean(fields: &mut Fields, report: &mut Report) -> Ocean {
     };
     let horizon = bounded(fields, "horizon", d.horizon, (0.0, false), 1e5, "metres", report);
     let horizon_drop = bounded(fields, "horizon_drop", d.horizon_drop, (0.0, true), 10.0, "", report);
+    let ring = bounded(fields, "ring", d.ring, (0.0, true), 1e5, "metres", report);
     Ocean {
         size,
         cells,
@@ -224,6 +225,7 @@ fn parse_ocean(fields: &mut Fields, report: &mut Report) -> Ocean {
         drift,
         horizon,
         horizon_drop,
+        ring,
     }
 }
 
