@@ -6,7 +6,8 @@
 #   ./setup.sh --tests  that, plus what the test suite needs: Chromium (the
 #                       studio's browser test and the WebGPU portability test),
 #                       Node.js and the VS Code extension's npm packages, Xvfb
-#                       (the `npr view` and embedding windows), ffmpeg (video
+#                       and winit's X11 libraries (the `npr view` and embedding
+#                       windows), ffmpeg (video
 #                       output) and openjd-cli (the render-farm job template).
 #
 # Rendering an image needs none of the test tools, so the README's first
@@ -73,6 +74,14 @@ if [ "$want_tests" -eq 1 ]; then
   # `npr view` and examples/embed.rs open real windows on an X server.
   command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)
   command -v xdpyinfo >/dev/null 2>&1 || missing+=(x11-utils)
+  # winit loads these X11 libraries at run time (dlopen), so nothing fails
+  # to link without them; the window does not open.
+  local_lib() { ldconfig -p | grep -q "$1"; }
+  local_lib libxkbcommon-x11.so.0 || missing+=(libxkbcommon-x11-0)
+  local_lib libX11-xcb.so.1 || missing+=(libx11-xcb1)
+  local_lib libXcursor.so.1 || missing+=(libxcursor1)
+  local_lib libXi.so.6 || missing+=(libxi6)
+  local_lib libXrandr.so.2 || missing+=(libxrandr2)
   # Video and GIF output pipe frames to ffmpeg.
   command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)
   if [ "${#missing[@]}" -gt 0 ]; then
