@@ -25,6 +25,7 @@ pub mod artmap_cache;
 pub mod device;
 pub mod device_needs;
 pub mod exec;
+pub mod exr_layers;
 pub mod gpu_error;
 pub mod half_rounding;
 pub mod lines;

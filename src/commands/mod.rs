@@ -6,6 +6,7 @@ mod compile;
 mod doc;
 pub(crate) mod dump;
 mod explain;
+pub(crate) mod frame_sink;
 pub(crate) mod render;
 mod test;
 mod texgen;

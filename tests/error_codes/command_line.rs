@@ -175,6 +175,48 @@ fn e0404_frames_past_the_frame_limit() {
     check_case("E0404", "E0404_frames", (d, r));
 }
 
+/// `npr render toon on spot` with `extra` arguments, expecting an error.
+fn render_errors(extra: &[&str], case: &str) -> (Vec<Diagnostic>, String) {
+    let mut args = vec!["render", "examples/toon.npr", "--scene", "examples/scenes/spot.toml"];
+    args.extend_from_slice(extra);
+    cli_errors(&args, &scratch(case))
+}
+
+#[test]
+fn e0502_a_frame_range_that_ends_before_it_starts() {
+    let (d, r) = render_errors(&["--frames", "10-5"], "e0502-frames");
+    assert!(r.contains("--frames:1:1"), "the span points into the argument: {r}");
+    check_case("E0502", "E0502_frames_backwards", (d, r));
+}
+
+#[test]
+fn e0502_a_frame_range_that_is_not_a_number() {
+    let (d, r) = render_errors(&["--frames", "0-x"], "e0502-frames-nan");
+    assert!(r.contains("--frames:1:3"), "{r}");
+    check_case("E0502", "E0502_frames_not_a_number", (d, r));
+}
+
+#[test]
+fn e0502_a_chunk_past_the_last() {
+    let (d, r) = render_errors(&["--frames", "0-47", "--chunk", "3/2"], "e0502-chunk");
+    assert!(r.contains("--chunk:1:1"), "{r}");
+    check_case("E0502", "E0502_chunk_past_the_last", (d, r));
+}
+
+#[test]
+fn e0502_more_chunks_than_frames() {
+    let (d, r) = render_errors(&["--frames", "0..3", "--chunk", "0/4"], "e0502-chunk-count");
+    assert!(r.contains("--chunk:1:3"), "{r}");
+    check_case("E0502", "E0502_more_chunks_than_frames", (d, r));
+}
+
+#[test]
+fn e0501_a_chunk_without_its_range() {
+    let (d, r) = render_errors(&["--chunk", "0/2"], "e0501-chunk");
+    assert!(r.contains("--frames"), "{r}");
+    check_case("E0501", "E0501_chunk_without_frames", (d, r));
+}
+
 #[test]
 fn e9001_internal_error_names_the_npr_span() {
     // Internal errors come from compiler bugs, so none can be triggered from
