@@ -16,7 +16,8 @@
 //! to the file as they render, and the bytes are deterministic. Each frame
 //! gets its own 256-colour palette (NeuQuant); GIF counts delays in
 //! hundredths of a second, so the frame delay is 100/fps rounded (24 fps
-//! plays at 25).
+//! plays at 25). Alpha is dropped here too (made opaque): GIF's one-bit
+//! transparency would punch holes where a frame is translucent.
 //!
 //! Nothing half-written: the video is written to a hidden temporary file
 //! beside the output and renamed into place by [`VideoWriter::finish`]; an
@@ -230,6 +231,9 @@ impl VideoWriter {
             )));
         }
         let mut rgba = img.to_rgba8().into_raw();
+        // Alpha is dropped, as the video codecs' common profiles do: GIF's
+        // one-bit transparency would punch holes where a frame is translucent.
+        rgba.chunks_exact_mut(4).for_each(|px| px[3] = 255);
         match self.encoder.as_mut() {
             Some(Encoder::Ffmpeg { stdin: Some(stdin), .. }) => {
                 if let Err(e) = stdin.write_all(&rgba) {

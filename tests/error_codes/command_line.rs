@@ -218,6 +218,28 @@ fn e0501_a_chunk_without_its_range() {
 }
 
 #[test]
+fn e0511_a_video_without_ffmpeg() {
+    let dir = scratch("e0511");
+    let clip = dir.join("clip.mp4");
+    let (d, r) = cli_errors_with_env(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--frames",
+            "0-3",
+            "-o",
+            clip.to_str().expect("utf-8"),
+        ],
+        &dir,
+        &[("NPR_FFMPEG", &dir.join("no-ffmpeg"))],
+    );
+    assert!(!clip.exists());
+    check("E0511", (d, r));
+}
+
+#[test]
 fn e9001_internal_error_names_the_npr_span() {
     // Internal errors come from compiler bugs, so none can be triggered from
     // valid input; render one the way the pipeline builds it.

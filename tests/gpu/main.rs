@@ -32,5 +32,6 @@ mod pattern_styles;
 mod runner_api;
 mod schedule_equivalence;
 mod screen_uv;
+mod sequence_outputs;
 mod sliding;
 mod stereo_passes;

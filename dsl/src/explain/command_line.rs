@@ -212,6 +212,27 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0511",
+        meaning: "`-o NAME.mp4` and `-o NAME.webm` are encoded by the system's ffmpeg (H.264 \
+            with libx264, VP9 with libvpx-vp9), fed the frames on a pipe as they render. It is \
+            looked for before anything is compiled or rendered, so a long render never fails at \
+            its end: `ffmpeg` on the PATH, or the program `NPR_FFMPEG` names. Install it \
+            (Debian/Ubuntu: `apt install ffmpeg`), or write a `.gif`, which npr encodes itself.",
+        wrong: Example {
+            style: GREY,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "clip.mp4", "--frames", "0..2", "--size", "16x16"]],
+            not_runnable: Some("it needs a machine without ffmpeg, and the tests' machines have it; tests/error_codes/ runs it with NPR_FFMPEG naming no program"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "clip.gif", "--frames", "0..2", "--size", "16x16"]],
+            ..EXAMPLE
+        },
+    },
 ];
 
 /// A tiled pass writing five live outputs: five storage textures in its
