@@ -204,6 +204,17 @@ pub struct RenderArgs {
     /// `--schedule naive` unless one is given, as --dump-passes does.
     #[arg(long, requires = "out")]
     pub layers: bool,
+    /// A directory of state checkpoints for a style that reads
+    /// `previous(...)` or keeps `state`: the render starts from the latest
+    /// checkpoint at or before its first frame (instead of replaying from
+    /// frame 0) and writes one for the frame after its last, where the next
+    /// chunk starts.
+    #[arg(long, value_name = "DIR", requires = "frames")]
+    pub checkpoints: Option<PathBuf>,
+    /// With --checkpoints, also write one at every multiple of K frames (a
+    /// first pass without -o then prepares every chunk's start).
+    #[arg(long, value_name = "K", requires = "checkpoints", value_parser = clap::value_parser!(u32).range(1..))]
+    pub checkpoint_every: Option<u32>,
     /// How the passes run (default: auto; naive with --dump-passes).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,

@@ -102,6 +102,7 @@ fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut 
         args.eye,
         Some((args.out.as_path(), crate::commands::frame_sink::OutputKind::Image)),
         None,
+        None,
     );
     let rendered = gpu
         .watch

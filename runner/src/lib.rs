@@ -22,6 +22,7 @@
 pub mod animation;
 pub mod artmap;
 pub mod artmap_cache;
+pub mod checkpoint;
 pub mod device;
 pub mod device_needs;
 pub mod exec;

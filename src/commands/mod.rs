@@ -2,6 +2,7 @@
 //! module of its command and returns the exit code.
 
 mod check;
+mod checkpoints;
 mod compile;
 mod doc;
 pub(crate) mod dump;

@@ -3,6 +3,7 @@
 //! A path-dependent style replays its earlier frames first.
 
 use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
@@ -26,6 +27,8 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         eye,
         dump_passes,
         layers,
+        checkpoints,
+        checkpoint_every,
         schedule,
         keep_params,
         set,
@@ -151,6 +154,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         eye,
         out.as_deref().zip(out_kind),
         dump_passes.as_deref(),
+        checkpoints.as_deref().map(|dir| (dir, checkpoint_every)),
     );
     match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
         Ok(()) => EXIT_OK,
@@ -177,6 +181,7 @@ pub(crate) fn render(
     eye: u32,
     out: Option<(&Path, OutputKind)>,
     dump: Option<&Path>,
+    checkpoints: Option<(&Path, Option<u32>)>,
 ) -> Result<(), RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     crate::printer::artmap_notes(r.artmap_builds());
@@ -186,11 +191,25 @@ pub(crate) fn render(
         None => FrameRequest::At { time_s: time },
     };
     let path_dependent = program.manifest.is_path_dependent();
-    let schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let mut schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let checkpoints = match (checkpoints, frames) {
+        (Some((dir, every)), Some((start, end))) if path_dependent => {
+            let c = Checkpoints::new(dir, program, scene, (width, height), fps, every, end);
+            let resumed = c.resume(&mut r, start)?;
+            schedule.retain(|f| f.frame >= resumed);
+            Some(c)
+        }
+        (Some(_), _) => {
+            eprintln!("note: the style's frames do not depend on earlier ones, so it needs no checkpoints");
+            None
+        }
+        (None, _) => None,
+    };
     let replayed = schedule.iter().filter(|f| !f.write).count();
     if replayed > 0 {
         eprintln!(
-            "note: the style reads `previous(...)` or keeps `state`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame 0 at {fps} fps"
+            "note: the style reads `previous(...)` or keeps `state`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame {} at {fps} fps",
+            schedule.first().map_or(0, |f| f.frame)
         );
     }
     // Opened before the first frame: a video's encoder starts now.
@@ -220,6 +239,9 @@ pub(crate) fn render(
                 eye,
             },
         )?;
+        if let Some(c) = &checkpoints {
+            c.after(&r, scheduled)?;
+        }
         if !scheduled.write {
             if let Some(b) = &bar {
                 b.inc(1);

@@ -239,6 +239,60 @@ fn e0511_a_video_without_ffmpeg() {
     check("E0511", (d, r));
 }
 
+/// `npr render afterimage on spot` at `size` for `frames`, with checkpoints in `ck`.
+fn afterimage_chunk(size: &str, frames: &str, ck: &Path) -> Vec<String> {
+    [
+        "render",
+        "examples/afterimage.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        size,
+        "--frames",
+        frames,
+        "--checkpoints",
+        ck.to_str().expect("utf-8"),
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+#[test]
+fn e0512_a_checkpoint_of_another_size() {
+    let dir = scratch("e0512");
+    let ck = dir.join("ck");
+    let _ = std::fs::remove_dir_all(&ck);
+    let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(afterimage_chunk("16x16", "0-2", &ck))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run npr");
+    assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    let args = afterimage_chunk("24x16", "3-5", &ck);
+    let (d, r) = cli_errors(&args.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
+    assert!(r.contains("16x16") && r.contains("24x16"), "{r}");
+    check("E0512", (d, r));
+}
+
+#[test]
+fn e0513_a_truncated_checkpoint() {
+    let dir = scratch("e0513");
+    let ck = dir.join("ck");
+    let _ = std::fs::remove_dir_all(&ck);
+    let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(afterimage_chunk("16x16", "0-2", &ck))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run npr");
+    assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    let file = ck.join("frame_000003.nprstate");
+    let bytes = std::fs::read(&file).expect("checkpoint written");
+    std::fs::write(&file, &bytes[..bytes.len() / 2]).expect("truncate");
+    let args = afterimage_chunk("16x16", "3-5", &ck);
+    let (d, r) = cli_errors(&args.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
+    check("E0513", (d, r));
+}
+
 #[test]
 fn e9001_internal_error_names_the_npr_span() {
     // Internal errors come from compiler bugs, so none can be triggered from
