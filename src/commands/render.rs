@@ -201,6 +201,10 @@ pub(crate) fn render(
         }
         (Some(_), _) => {
             eprintln!("note: the style's frames do not depend on earlier ones, so it needs no checkpoints");
+            if out.is_none() && dump.is_none() {
+                // A checkpoint pass (no output) of such a style has nothing to do.
+                return Ok(());
+            }
             None
         }
         (None, _) => None,

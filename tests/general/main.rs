@@ -21,6 +21,7 @@ mod lines_fandisk;
 mod lsa_contours;
 mod lsa_packed_gbuffer;
 mod lsp;
+mod openjd;
 mod paths;
 mod reference_docs;
 mod set_params;
