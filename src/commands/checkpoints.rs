@@ -93,7 +93,7 @@ impl Checkpoints {
     /// frame when it is the end of the request or a multiple of `every`.
     pub(crate) fn after(&self, r: &Renderer, scheduled: &ScheduledFrame) -> Result<(), RunError> {
         let next = scheduled.frame + 1;
-        if next != self.end && !self.every.is_some_and(|k| next % k == 0) {
+        if next != self.end && self.every.is_none_or(|k| !next.is_multiple_of(k)) {
             return Ok(());
         }
         let c = Checkpoint {

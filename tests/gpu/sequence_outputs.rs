@@ -27,8 +27,11 @@ pass final: image(d, shade) { out color: rgba8unorm = vec4(d.r.r, shade.light, s
 output final.color
 "#;
 
-/// Every layer of an EXR: name → (width, height, channels by name, each as f32).
-fn read_layers(path: &Path) -> Vec<(String, usize, usize, Vec<(String, Vec<f32>)>)> {
+/// One layer of an EXR: name, width, height, and each channel's name and samples as f32.
+type Layer = (String, usize, usize, Vec<(String, Vec<f32>)>);
+
+/// Every layer of an EXR.
+fn read_layers(path: &Path) -> Vec<Layer> {
     use exr::prelude::*;
     let image = read()
         .no_deep_data()
