@@ -73,6 +73,12 @@ impl Checkpoints {
             .filter(|f| *f <= start && *f > 0)
             .max();
         let Some(frame) = latest else {
+            if start > 0 {
+                eprintln!(
+                    "note: no checkpoint at or before frame {start} in {}, so the frames before it are replayed",
+                    self.dir.display()
+                );
+            }
             return Ok(0);
         };
         let path = path_of(&self.dir, frame);

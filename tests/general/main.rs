@@ -13,6 +13,7 @@ mod crate_boundaries;
 mod determinism;
 mod examples_compile;
 mod explain;
+mod flamenco;
 mod fuzz_compiler;
 mod fuzz_generated;
 mod fuzz_scenes;
