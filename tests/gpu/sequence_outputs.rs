@@ -235,7 +235,7 @@ fn check_video(ext: &str, tol: Tolerance) {
 }
 
 // Tolerances: mean FLIP per frame. Measured on this clip (lavapipe,
-// Debian's ffmpeg 5.1): mp4 up to 0.068, webm up to 0.077, gif under 0.05;
+// Debian's ffmpeg 5.1): mp4 up to 0.067, webm up to 0.060, gif under 0.05;
 // bounded at 0.1 (mp4, webm) and 0.05 (gif). A lossy codec's error is no
 // per-pixel bound: 4:2:0 chroma moves the pixels of a saturated orange edge
 // by up to 89 levels on a 192×128 frame, while FLIP, a perceptual measure,
