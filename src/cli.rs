@@ -2,7 +2,7 @@
 //! arguments, and the exit codes. What each command does is in
 //! `commands/` and `bench/`.
 
-use crate::args::{parse_frames, parse_size};
+use crate::args::parse_size;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -164,7 +164,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub scene: PathBuf,
     /// Output image (.png or .exr). With --frames, `{frame}` in the name is
-    /// replaced by the frame number (otherwise `_NNNN` is appended).
+    /// replaced by the frame number (otherwise `_NNNN` is appended); a
+    /// .mp4, .webm or .gif is one video of the frames.
     #[arg(short, long)]
     pub out: Option<PathBuf>,
     /// Output size, WIDTHxHEIGHT.
@@ -177,11 +178,17 @@ pub struct RenderArgs {
     /// the same frame of a --frames sequence), and the last one is written.
     #[arg(long, default_value_t = 0.0)]
     pub time: f64,
-    /// Render frames A..B (exclusive) at --fps. A style that reads
+    /// Render frames at --fps: A..B (B exclusive), A-B (B inclusive, as
+    /// render farms write it) or one frame N. A style that reads
     /// `previous(...)` or keeps `state` first replays frames 0..A without
     /// writing them.
-    #[arg(long, value_parser = parse_frames)]
-    pub frames: Option<(u32, u32)>,
+    #[arg(long, value_name = "A..B|A-B|N")]
+    pub frames: Option<String>,
+    /// Render only chunk I (from 0) of N contiguous chunks of --frames, for
+    /// schedulers that give a task an index (Kubernetes indexed jobs, Slurm
+    /// arrays).
+    #[arg(long, value_name = "I/N", requires = "frames")]
+    pub chunk: Option<String>,
     #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
@@ -192,6 +199,22 @@ pub struct RenderArgs {
     /// target exists (auto would leave fused targets out).
     #[arg(long)]
     pub dump_passes: Option<PathBuf>,
+    /// Write every target of the frame as a named layer of one EXR (-o
+    /// NAME.exr; float targets kept as float), for compositors. Implies
+    /// `--schedule naive` unless one is given, as --dump-passes does.
+    #[arg(long, requires = "out")]
+    pub layers: bool,
+    /// A directory of state checkpoints for a style that reads
+    /// `previous(...)` or keeps `state`: the render starts from the latest
+    /// checkpoint at or before its first frame (instead of replaying from
+    /// frame 0) and writes one for the frame after its last, where the next
+    /// chunk starts.
+    #[arg(long, value_name = "DIR", requires = "frames")]
+    pub checkpoints: Option<PathBuf>,
+    /// With --checkpoints, also write one at every multiple of K frames (a
+    /// first pass without -o then prepares every chunk's start).
+    #[arg(long, value_name = "K", requires = "checkpoints", value_parser = clap::value_parser!(u32).range(1..))]
+    pub checkpoint_every: Option<u32>,
     /// How the passes run (default: auto; naive with --dump-passes).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,

@@ -7,6 +7,7 @@ mod bench;
 mod cli;
 mod commands;
 mod describe;
+mod frame_range;
 mod live;
 mod lsp;
 mod path_args;
@@ -17,6 +18,7 @@ mod studio;
 mod style_tests;
 mod texture_check;
 mod usage;
+mod video;
 mod watch;
 
 fn main() {

@@ -100,7 +100,8 @@ fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut 
         None,
         args.fps,
         args.eye,
-        Some(&args.out),
+        Some((args.out.as_path(), crate::commands::frame_sink::OutputKind::Image)),
+        None,
         None,
     );
     let rendered = gpu

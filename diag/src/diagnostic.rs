@@ -328,6 +328,14 @@ pub mod codes {
     /// The device (or its adapter) lacks a WebGPU feature, or a limit above
     /// the default, that a pass of the style needs (`Manifest::device_needs`).
     pub const DEVICE_LACKS_NEED: &str = "E0510";
+    /// A video output (`-o NAME.mp4`, `.webm`) whose encoder, the system's
+    /// ffmpeg, is not installed or lacks the codec.
+    pub const NO_VIDEO_ENCODER: &str = "E0511";
+    /// A checkpoint (`--checkpoints`) made for another style, scene, size,
+    /// frame rate or npr version.
+    pub const CHECKPOINT_MISMATCH: &str = "E0512";
+    /// A checkpoint file that is not one, or is truncated or corrupted.
+    pub const BAD_CHECKPOINT: &str = "E0513";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -400,5 +408,8 @@ pub mod codes {
         (GPU_OUT_OF_MEMORY, "the GPU ran out of memory"),
         (DEVICE_LOST, "the GPU device was lost"),
         (DEVICE_LACKS_NEED, "the device lacks a feature or limit the style needs"),
+        (NO_VIDEO_ENCODER, "the video encoder (ffmpeg) is missing"),
+        (CHECKPOINT_MISMATCH, "checkpoint made for another render"),
+        (BAD_CHECKPOINT, "checkpoint truncated, corrupted or not one"),
     ];
 }

@@ -22,9 +22,11 @@
 pub mod animation;
 pub mod artmap;
 pub mod artmap_cache;
+pub mod checkpoint;
 pub mod device;
 pub mod device_needs;
 pub mod exec;
+pub mod exr_layers;
 pub mod gpu_error;
 pub mod half_rounding;
 pub mod lines;

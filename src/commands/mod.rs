@@ -2,10 +2,12 @@
 //! module of its command and returns the exit code.
 
 mod check;
+mod checkpoints;
 mod compile;
 mod doc;
 pub(crate) mod dump;
 mod explain;
+pub(crate) mod frame_sink;
 pub(crate) mod render;
 mod test;
 mod texgen;

@@ -3,13 +3,15 @@
 //! A path-dependent style replays its earlier frames first.
 
 use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
+use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
 use compiler::CompileOptions;
 use diag::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     let RenderArgs {
@@ -20,15 +22,31 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         size,
         time,
         frames,
+        chunk,
         fps,
         eye,
         dump_passes,
+        layers,
+        checkpoints,
+        checkpoint_every,
         schedule,
         keep_params,
         set,
         paths,
     } = args;
     let mut sources = SourceMap::new();
+    let frames = match crate::frame_range::resolve(frames.as_deref(), chunk.as_deref(), &mut sources) {
+        Ok(f) => f,
+        Err(d) => {
+            printer.diagnostics(&[d], &sources);
+            return EXIT_USER;
+        }
+    };
+    // A bad output (or a missing video encoder) is found before anything runs.
+    let out_kind = match frame_sink::check_or_exit(out.as_deref(), layers, frames.is_some(), printer) {
+        Ok(k) => k,
+        Err(code) => return code,
+    };
     if let Err(code) = printer
         .check(crate::args::check_size(size))
         .and_then(|()| printer.check(crate::args::check_time(time, fps)))
@@ -75,7 +93,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 // Auto unless asked, but naive for `--dump-passes`, which
                 // shows every declared target.
                 schedule: schedule.map_or(
-                    if dump_passes.is_some() {
+                    if dump_passes.is_some() || layers {
                         compiler::schedule::Schedule::Naive
                     } else {
                         compiler::schedule::Schedule::Auto
@@ -134,8 +152,9 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         frames,
         fps,
         eye,
-        out.as_deref(),
+        out.as_deref().zip(out_kind),
         dump_passes.as_deref(),
+        checkpoints.as_deref().map(|dir| (dir, checkpoint_every)),
     );
     match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
         Ok(()) => EXIT_OK,
@@ -150,22 +169,6 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     }
 }
 
-fn frame_path(out: &Path, frame: u32) -> PathBuf {
-    let s = out.to_string_lossy();
-    if s.contains("{frame}") {
-        return PathBuf::from(s.replace("{frame}", &format!("{frame:04}")));
-    }
-    let stem = out
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "frame".into());
-    let ext = out
-        .extension()
-        .map(|e| e.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "png".into());
-    out.with_file_name(format!("{stem}_{frame:04}.{ext}"))
-}
-
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render(
     gpu: &Gpu,
@@ -176,8 +179,9 @@ pub(crate) fn render(
     frames: Option<(u32, u32)>,
     fps: f64,
     eye: u32,
-    out: Option<&Path>,
+    out: Option<(&Path, OutputKind)>,
     dump: Option<&Path>,
+    checkpoints: Option<(&Path, Option<u32>)>,
 ) -> Result<(), RunError> {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     crate::printer::artmap_notes(r.artmap_builds());
@@ -187,13 +191,36 @@ pub(crate) fn render(
         None => FrameRequest::At { time_s: time },
     };
     let path_dependent = program.manifest.is_path_dependent();
-    let schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let mut schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let checkpoints = match (checkpoints, frames) {
+        (Some((dir, every)), Some((start, end))) if path_dependent => {
+            let c = Checkpoints::new(dir, program, scene, (width, height), fps, every, end);
+            let resumed = c.resume(&mut r, start)?;
+            schedule.retain(|f| f.frame >= resumed);
+            Some(c)
+        }
+        (Some(_), _) => {
+            eprintln!("note: the style's frames do not depend on earlier ones, so it needs no checkpoints");
+            if out.is_none() && dump.is_none() {
+                // A checkpoint pass (no output) of such a style has nothing to do.
+                return Ok(());
+            }
+            None
+        }
+        (None, _) => None,
+    };
     let replayed = schedule.iter().filter(|f| !f.write).count();
     if replayed > 0 {
         eprintln!(
-            "note: the style reads `previous(...)` or keeps `state`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame 0 at {fps} fps"
+            "note: the style reads `previous(...)` or keeps `state`, so its frames depend on earlier ones: replaying {replayed} frame(s) from frame {} at {fps} fps",
+            schedule.first().map_or(0, |f| f.frame)
         );
     }
+    // Opened before the first frame: a video's encoder starts now.
+    let mut sink = match out {
+        Some((path, kind)) => Some(FrameSink::open(path, kind, frames.is_some(), (width, height), fps)?),
+        None => None,
+    };
     let bar = if schedule.len() > 1 {
         let b = indicatif::ProgressBar::new(schedule.len() as u64);
         b.set_style(
@@ -216,29 +243,29 @@ pub(crate) fn render(
                 eye,
             },
         )?;
+        if let Some(c) = &checkpoints {
+            c.after(&r, scheduled)?;
+        }
         if !scheduled.write {
             if let Some(b) = &bar {
                 b.inc(1);
             }
             continue;
         }
-        if let Some(out) = out {
-            let path = if frames.is_some() {
-                frame_path(out, frame)
-            } else {
-                out.to_path_buf()
-            };
-            let img = r.read_output()?;
-            runner::output::write_target(&img, &path).map_err(|e| io(e, &path))?;
-            if frames.is_none() {
-                eprintln!(
-                    "wrote {} ({}x{}, {})",
-                    path.display(),
-                    img.width,
-                    img.height,
-                    gpu.describe()
-                );
-            }
+        let spec = FrameSpec {
+            width,
+            height,
+            time_s: scheduled.time_s,
+            frame,
+            eye,
+        };
+        if let Some((path, w, h)) = sink
+            .as_mut()
+            .map(|s| s.frame(&mut r, scene, &spec))
+            .transpose()?
+            .flatten()
+        {
+            eprintln!("wrote {} ({w}x{h}, {})", path.display(), gpu.describe());
         }
         if let Some(b) = &bar {
             b.inc(1);
@@ -246,6 +273,9 @@ pub(crate) fn render(
     }
     if let Some(b) = bar {
         b.finish();
+    }
+    if let Some(sink) = sink {
+        sink.finish()?;
     }
     if let Some(dir) = dump {
         // A path-dependent style's dump is of the last frame rendered (its

@@ -175,6 +175,124 @@ fn e0404_frames_past_the_frame_limit() {
     check_case("E0404", "E0404_frames", (d, r));
 }
 
+/// `npr render toon on spot` with `extra` arguments, expecting an error.
+fn render_errors(extra: &[&str], case: &str) -> (Vec<Diagnostic>, String) {
+    let mut args = vec!["render", "examples/toon.npr", "--scene", "examples/scenes/spot.toml"];
+    args.extend_from_slice(extra);
+    cli_errors(&args, &scratch(case))
+}
+
+#[test]
+fn e0502_a_frame_range_that_ends_before_it_starts() {
+    let (d, r) = render_errors(&["--frames", "10-5"], "e0502-frames");
+    assert!(r.contains("--frames:1:1"), "the span points into the argument: {r}");
+    check_case("E0502", "E0502_frames_backwards", (d, r));
+}
+
+#[test]
+fn e0502_a_frame_range_that_is_not_a_number() {
+    let (d, r) = render_errors(&["--frames", "0-x"], "e0502-frames-nan");
+    assert!(r.contains("--frames:1:3"), "{r}");
+    check_case("E0502", "E0502_frames_not_a_number", (d, r));
+}
+
+#[test]
+fn e0502_a_chunk_past_the_last() {
+    let (d, r) = render_errors(&["--frames", "0-47", "--chunk", "3/2"], "e0502-chunk");
+    assert!(r.contains("--chunk:1:1"), "{r}");
+    check_case("E0502", "E0502_chunk_past_the_last", (d, r));
+}
+
+#[test]
+fn e0502_more_chunks_than_frames() {
+    let (d, r) = render_errors(&["--frames", "0..3", "--chunk", "0/4"], "e0502-chunk-count");
+    assert!(r.contains("--chunk:1:3"), "{r}");
+    check_case("E0502", "E0502_more_chunks_than_frames", (d, r));
+}
+
+#[test]
+fn e0501_a_chunk_without_its_range() {
+    let (d, r) = render_errors(&["--chunk", "0/2"], "e0501-chunk");
+    assert!(r.contains("--frames"), "{r}");
+    check_case("E0501", "E0501_chunk_without_frames", (d, r));
+}
+
+#[test]
+fn e0511_a_video_without_ffmpeg() {
+    let dir = scratch("e0511");
+    let clip = dir.join("clip.mp4");
+    let (d, r) = cli_errors_with_env(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--frames",
+            "0-3",
+            "-o",
+            clip.to_str().expect("utf-8"),
+        ],
+        &dir,
+        &[("NPR_FFMPEG", &dir.join("no-ffmpeg"))],
+    );
+    assert!(!clip.exists());
+    check("E0511", (d, r));
+}
+
+/// `npr render afterimage on spot` at `size` for `frames`, with checkpoints in `ck`.
+fn afterimage_chunk(size: &str, frames: &str, ck: &Path) -> Vec<String> {
+    [
+        "render",
+        "examples/afterimage.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        size,
+        "--frames",
+        frames,
+        "--checkpoints",
+        ck.to_str().expect("utf-8"),
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+#[test]
+fn e0512_a_checkpoint_of_another_size() {
+    let dir = scratch("e0512");
+    let ck = dir.join("ck");
+    let _ = std::fs::remove_dir_all(&ck);
+    let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(afterimage_chunk("16x16", "0-2", &ck))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run npr");
+    assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    let args = afterimage_chunk("24x16", "3-5", &ck);
+    let (d, r) = cli_errors(&args.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
+    assert!(r.contains("16x16") && r.contains("24x16"), "{r}");
+    check("E0512", (d, r));
+}
+
+#[test]
+fn e0513_a_truncated_checkpoint() {
+    let dir = scratch("e0513");
+    let ck = dir.join("ck");
+    let _ = std::fs::remove_dir_all(&ck);
+    let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(afterimage_chunk("16x16", "0-2", &ck))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run npr");
+    assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    let file = ck.join("frame_000003.nprstate");
+    let bytes = std::fs::read(&file).expect("checkpoint written");
+    std::fs::write(&file, &bytes[..bytes.len() / 2]).expect("truncate");
+    let args = afterimage_chunk("16x16", "3-5", &ck);
+    let (d, r) = cli_errors(&args.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
+    check("E0513", (d, r));
+}
+
 #[test]
 fn e9001_internal_error_names_the_npr_span() {
     // Internal errors come from compiler bugs, so none can be triggered from

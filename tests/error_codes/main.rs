@@ -64,8 +64,14 @@ fn check_case(code: &str, name: &str, (diags, rendered): (Vec<Diagnostic>, Strin
 /// code of its first error line (looked up in `diag::codes::ALL`) with its
 /// whole stderr, scratch paths replaced by `<dir>`.
 fn cli_errors(args: &[&str], dir: &Path) -> (Vec<Diagnostic>, String) {
+    cli_errors_with_env(args, dir, &[])
+}
+
+/// [`cli_errors`] with environment variables set for the run.
+fn cli_errors_with_env(args: &[&str], dir: &Path, env: &[(&str, &Path)]) -> (Vec<Diagnostic>, String) {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
         .args(args)
+        .envs(env.iter().copied())
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
         .output()

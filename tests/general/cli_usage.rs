@@ -52,8 +52,6 @@ fn clap_errors_are_usage_errors_with_clap_message() {
     for (extra, says) in [
         (&["--size", "512"][..], "expected WIDTHxHEIGHT"),
         (&["--size", "0x4"], "at least 1"),
-        (&["--frames", "9..3"], "empty frame range 9..3"),
-        (&["--frames", "a..b"], "bad frame"),
         (&["--message-format", "xml"], "possible values: human, json"),
         (&["--no-such-flag"], "unexpected argument"),
     ] {
@@ -93,6 +91,17 @@ fn render_values_outside_their_domain() {
     ] {
         let args = render_with(extra);
         assert_user_error(&strs(&args), diag::codes::BAD_ARGUMENT_VALUE);
+    }
+    // Frame ranges are read after clap, pointing into the argument.
+    for (extra, says) in [
+        (&["--frames", "9..3"][..], "the frame range 9..3 is empty"),
+        (&["--frames", "a..b"], "`a` is not a frame number"),
+        (&["--frames", "10-5"], "ends before it starts"),
+        (&["--frames", "0-9", "--chunk", "3/2"], "chunk 3 of 2 does not exist"),
+    ] {
+        let args = render_with(extra);
+        let stderr = assert_user_error(&strs(&args), diag::codes::BAD_ARGUMENT_VALUE);
+        assert!(stderr.contains(says), "{extra:?}: {stderr}");
     }
 }
 

@@ -5,6 +5,10 @@ use super::{Example, Explanation, EXAMPLE};
 
 const GREY: &str = "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n";
 
+/// A path-dependent style: each frame over the fading previous one.
+const TRAIL: &str =
+    "style \"Case\"\npass p: image() {\n  out c: rgba8unorm = mix(#808080, previous(p.c), 0.5)\n}\noutput p.c\n";
+
 const SCENE: &[(&str, &str)] = &[(
     "scene.toml",
     "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n\n[[object]]\nname = \"ball\"\nprimitive = { kind = \"sphere\", radius = 0.5, segments = 8, rings = 4 }\n",
@@ -209,6 +213,76 @@ pub(super) const ALL: &[Explanation] = &[
             style: FOUR_TILED_OUTPUTS,
             files: SCENE,
             commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "out.png", "--size", "16x16"]],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0511",
+        meaning: "`-o NAME.mp4` and `-o NAME.webm` are encoded by the system's ffmpeg (H.264 \
+            with libx264, VP9 with libvpx-vp9), fed the frames on a pipe as they render. It is \
+            looked for before anything is compiled or rendered, so a long render never fails at \
+            its end: `ffmpeg` on the PATH, or the program `NPR_FFMPEG` names. Install it \
+            (Debian/Ubuntu: `apt install ffmpeg`), or write a `.gif`, which npr encodes itself.",
+        wrong: Example {
+            style: GREY,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "clip.mp4", "--frames", "0..2", "--size", "16x16"]],
+            not_runnable: Some("it needs a machine without ffmpeg, and the tests' machines have it; tests/error_codes/ runs it with NPR_FFMPEG naming no program"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "-o", "clip.gif", "--frames", "0..2", "--size", "16x16"]],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0512",
+        meaning: "`npr render --checkpoints DIR` starts a path-dependent style's chunk (one that \
+            reads `previous(...)` or keeps `state`) from the state the frames before it left, \
+            saved in DIR by the chunk before it. A checkpoint holds that state for one render \
+            only: the compiled style (with its `--set` values), the scene, `--size`, `--fps` \
+            and the npr that wrote it. One made for anything else would give other frames than \
+            a single run, so it is refused, naming what differs; npr never replaces it by a \
+            replay silently. Render with what wrote it, or give each render its own directory.",
+        wrong: Example {
+            style: TRAIL,
+            files: SCENE,
+            commands: &[
+                &["render", "case.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "0-1", "--checkpoints", "ck"],
+                &["render", "case.npr", "--scene", "scene.toml", "--size", "24x24", "--frames", "2-3", "--checkpoints", "ck"],
+            ],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: TRAIL,
+            files: SCENE,
+            commands: &[
+                &["render", "case.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "0-1", "--checkpoints", "ck"],
+                &["render", "case.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "2-3", "--checkpoints", "ck"],
+            ],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0513",
+        meaning: "A file in the `--checkpoints` directory named as a checkpoint \
+            (`frame_NNNNNN.nprstate`) is not a whole one: truncated (a copy cut short), \
+            corrupted, or not a checkpoint at all. Every checkpoint ends with a BLAKE3 hash of \
+            its contents, checked before anything in it is used. npr writes checkpoints \
+            atomically, so a chunk that failed leaves none; delete the file and render the \
+            chunk before it again.",
+        wrong: Example {
+            style: TRAIL,
+            files: &[SCENE[0], ("ck/frame_000002.nprstate", "not a checkpoint")],
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "2-3", "--checkpoints", "ck"]],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: TRAIL,
+            files: SCENE,
+            commands: &[&["render", "case.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "2-3", "--checkpoints", "ck"]],
             ..EXAMPLE
         },
     },

@@ -57,9 +57,9 @@ impl FrameSpec {
 #[derive(Debug, Default)]
 pub(super) struct Motion {
     /// The current frame's, once its uniforms were written.
-    this: Option<(Vec<Mat4>, Vec<Mat4>)>,
+    pub(super) this: Option<(Vec<Mat4>, Vec<Mat4>)>,
     /// The previous frame's.
-    previous: Option<(Vec<Mat4>, Vec<Mat4>)>,
+    pub(super) previous: Option<(Vec<Mat4>, Vec<Mat4>)>,
 }
 
 impl Motion {

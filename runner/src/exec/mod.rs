@@ -21,7 +21,8 @@
 //!   to the executors `render_pass.rs`, `image_pass.rs`, `tiled_pass.rs`,
 //!   `compute_pass.rs` and `lines_pass.rs`;
 //! - `common.rs`: what the executors share (they import it, never `pass.rs`);
-//! - `prepare_lines.rs`: each frame's strips of the `lines` passes.
+//! - `prepare_lines.rs`: each frame's strips of the `lines` passes;
+//! - `state.rs`: what outlives a frame, saved and restored (checkpoints).
 
 mod bind;
 mod common;
@@ -37,6 +38,7 @@ mod render_pass;
 mod resources;
 mod scene_check;
 mod scene_warnings;
+mod state;
 mod tiled_pass;
 mod values;
 
@@ -44,6 +46,7 @@ pub use frame::FrameSpec;
 pub use resources::{scaled_size, wgpu_format};
 pub use scene_check::{check_scene, check_texture_bindings};
 pub use scene_warnings::scene_warnings;
+pub use state::{FrameTransforms, RendererState, StateBlock, StateKind};
 
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture};

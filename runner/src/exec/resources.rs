@@ -278,11 +278,15 @@ impl Renderer<'_> {
             matches!(pass.kind, PassKindManifest::TiledImage { .. })
                 && pass.outputs.iter().any(|t| self.manifest.targets[*t].physical == index)
         });
-        let usage = if stored_by_compute {
+        let mut usage = if stored_by_compute {
             crate::gpu_error::TARGET_USAGE | wgpu::TextureUsages::STORAGE_BINDING
         } else {
             crate::gpu_error::TARGET_USAGE
         };
+        // A history texture is written back from a checkpoint (`state.rs`).
+        if p.history {
+            usage |= wgpu::TextureUsages::COPY_DST;
+        }
         texture_2d(
             self.device,
             &format!("npr physical #{index}"),
