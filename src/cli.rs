@@ -228,6 +228,14 @@ pub struct TestArgs {
     /// Run only the tests whose id (`style.npr::name`) contains SUBSTR.
     #[arg(long, value_name = "SUBSTR")]
     pub filter: Option<String>,
+    /// Also sweep each style's parameters across their declared ranges on
+    /// its tests' scenes and on the hard scenes npr ships (a style without
+    /// tests on the hard scenes alone): one more test per style,
+    /// `style.npr::@sweep`, reporting each combination that puts NaN or Inf
+    /// in a target, blanks the image or fails, with an `npr render` line
+    /// that reproduces it.
+    #[arg(long)]
+    pub sweep: bool,
 }
 
 #[derive(clap::Args, Debug)]

@@ -12,6 +12,7 @@
 //! set = { bands = 5 }
 //! golden = "golden/toon_spot.png"
 //! flip = { mean = 0.01, p99 = 0.3 }
+//! sweep = true        # also sweep every parameter's range on this scene
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
@@ -56,6 +57,9 @@ pub struct TestDecl {
     pub sets: Vec<(At<String>, At<String>)>,
     pub golden: Option<Golden>,
     pub may_be_blank: bool,
+    /// `sweep = true`: also sweep every parameter's range on this test's
+    /// scene, size and frames (`sweep/`).
+    pub sweep: bool,
 }
 
 /// Which frame (or frames) a test renders.
@@ -115,6 +119,7 @@ struct Partial {
     flip: Option<FlipBound>,
     per_pixel: Option<PerPixelBound>,
     may_be_blank: Option<bool>,
+    sweep: Option<bool>,
 }
 
 /// The style a test file is for: `x.tests.toml` → `x.npr`.
@@ -378,6 +383,7 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
         p.per_pixel = per_pixel_bound(per_pixel, report);
     }
     p.may_be_blank = fields.boolean("may_be_blank", report).map(|b| b.value);
+    p.sweep = fields.boolean("sweep", report).map(|b| b.value);
     p
 }
 
@@ -602,6 +608,7 @@ fn merge(
         sets,
         golden,
         may_be_blank: own.may_be_blank.or(defaults.may_be_blank).unwrap_or(false),
+        sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
         name,
     })
 }

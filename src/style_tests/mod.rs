@@ -7,7 +7,9 @@
 //! - `run.rs`: one test compiled, rendered and checked;
 //! - `checks.rs`: the checks on its images (finite, not blank,
 //!   deterministic, golden);
-//! - `report.rs`: the lines, the summary, JSON and JUnit XML.
+//! - `report.rs`: the lines, the summary, JSON and JUnit XML;
+//! - `sweep/`: stability sweeps over every parameter's range, on the
+//!   style's scenes and the hard scenes npr ships (`--sweep`, `sweep = true`).
 //!
 //! The command itself is `commands/test.rs`.
 
@@ -16,3 +18,4 @@ pub mod declare;
 pub mod report;
 pub mod run;
 pub mod select;
+pub mod sweep;

@@ -36,6 +36,8 @@ pub struct Failure {
     pub message: String,
     /// The images written to look at it (actual, diff, FLIP map).
     pub files: Vec<PathBuf>,
+    /// A sweep's finding: the one `npr render` command line that shows it.
+    pub reproduce: Option<String>,
 }
 
 /// What one test did.
@@ -52,6 +54,8 @@ pub struct Outcome {
     pub messages: Vec<String>,
     /// The golden written by `--bless`.
     pub blessed: Option<PathBuf>,
+    /// What a sweep covered, for its line.
+    pub note: Option<String>,
 }
 
 /// What every test of a run shares.
@@ -90,6 +94,7 @@ struct Checked {
     failures: Vec<Failure>,
     warnings: Vec<Diagnostic>,
     blessed: Option<PathBuf>,
+    note: Option<String>,
 }
 
 pub fn id(file: &TestFile, test: &TestDecl) -> String {
@@ -101,11 +106,11 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
     let started = Instant::now();
     let mut sources = file.sources.clone();
     let result = execute(file, test, settings, &mut sources);
-    let (status, failures, diagnostics, blessed) = match result {
-        Ok(c) if c.failures.is_empty() => (Status::Passed, Vec::new(), c.warnings, c.blessed),
-        Ok(c) => (Status::Failed, c.failures, c.warnings, c.blessed),
-        Err(Stop::Invalid(d)) => (Status::Invalid, Vec::new(), d, None),
-        Err(Stop::Internal(d)) => (Status::Internal, Vec::new(), d, None),
+    let (status, failures, diagnostics, blessed, note) = match result {
+        Ok(c) if c.failures.is_empty() => (Status::Passed, Vec::new(), c.warnings, c.blessed, c.note),
+        Ok(c) => (Status::Failed, c.failures, c.warnings, c.blessed, c.note),
+        Err(Stop::Invalid(d)) => (Status::Invalid, Vec::new(), d, None, None),
+        Err(Stop::Internal(d)) => (Status::Internal, Vec::new(), d, None, None),
     };
     let messages = diagnostics
         .iter()
@@ -122,10 +127,65 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
             failures,
             messages,
             blessed,
+            note,
         },
         diagnostics,
         sources,
     }
+}
+
+/// The `--sweep` of `style` over `cases`, as one outcome named `@sweep`.
+pub fn run_sweep(style: &Path, cases: &[super::sweep::cases::Case], settings: &Settings) -> Run {
+    let started = Instant::now();
+    let (status, failures, diagnostics, note, sources) = match super::sweep::sweep(style, cases, settings) {
+        Ok(r) if r.failures.is_empty() => (
+            Status::Passed,
+            Vec::new(),
+            Vec::new(),
+            Some(r.summary),
+            SourceMap::new(),
+        ),
+        Ok(r) => (
+            Status::Failed,
+            r.failures,
+            Vec::new(),
+            Some(r.summary),
+            SourceMap::new(),
+        ),
+        Err(s) => {
+            let internal = s.diagnostics.iter().any(|d| d.code == codes::INTERNAL);
+            let status = if internal { Status::Internal } else { Status::Invalid };
+            (status, Vec::new(), s.diagnostics, None, s.sources)
+        }
+    };
+    let messages = diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
+        .collect();
+    Run {
+        outcome: Outcome {
+            id: sweep_id(style),
+            style: style.to_path_buf(),
+            name: SWEEP_NAME.into(),
+            status,
+            seconds: started.elapsed().as_secs_f64(),
+            failures,
+            messages,
+            blessed: None,
+            note,
+        },
+        diagnostics,
+        sources,
+    }
+}
+
+/// The name of a style's sweep: not a test name (`@` is not allowed in
+/// one), so it never meets a declared test's id.
+pub const SWEEP_NAME: &str = "@sweep";
+
+pub fn sweep_id(style: &Path) -> String {
+    format!("{}::{SWEEP_NAME}", style.display())
 }
 
 fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut SourceMap) -> Result<Checked, Stop> {
@@ -172,7 +232,11 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
     crate::args::check_frame_count(count as usize)
         .map_err(|d| Stop::Invalid(vec![d.with_primary(test.name.span, "this test")]))?;
     let frames = runner::schedule::schedule(request, test.fps, path_dependent);
-    let frame = Frames { test, frames: &frames };
+    let frame = Frames {
+        size: test.size,
+        eye: test.eye.value,
+        frames: &frames,
+    };
 
     let checked = (|| -> Result<Checked, RunError> {
         let first_run = frame.render(gpu, &program, &scene, true)?;
@@ -212,12 +276,32 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
             failures,
             warnings,
             blessed,
+            note: None,
         })
     })();
-    Ok(gpu
+    let mut checked = gpu
         .watch
         .check(checked)
-        .map_err(|e| e.at_texture_spans(&compiled.texture_spans))?)
+        .map_err(|e| e.at_texture_spans(&compiled.texture_spans))?;
+    if test.sweep {
+        let case = super::sweep::cases::Case::of_test(test);
+        match super::sweep::sweep(&file.style, std::slice::from_ref(&case), settings) {
+            Ok(r) => {
+                checked.failures.extend(r.failures);
+                checked.note = Some(r.summary);
+            }
+            // Its spans point into the sweep's own sources: the messages alone.
+            Err(s) => {
+                return Err(Stop::Invalid(
+                    s.diagnostics
+                        .iter()
+                        .map(|d| Diagnostic::error(d.code, d.message.clone()))
+                        .collect(),
+                ))
+            }
+        }
+    }
+    Ok(checked)
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, Stop> {
@@ -256,30 +340,32 @@ fn param_settings(test: &TestDecl, sources: &SourceMap) -> Vec<ParamSetting> {
 }
 
 /// A target found holding NaN or ±Inf in one frame.
-struct FoundNonFinite {
-    frame: u32,
-    target: usize,
-    found: checks::NonFinite,
+pub(super) struct FoundNonFinite {
+    pub frame: u32,
+    pub target: usize,
+    pub found: checks::NonFinite,
 }
 
 /// The frames of one render of a test.
-struct Rendered {
+pub(super) struct Rendered {
     /// Per written frame, its number and its output.
-    outputs: Vec<(u32, TargetImage)>,
+    pub outputs: Vec<(u32, TargetImage)>,
     /// Per target, the first frame it was non-finite in.
-    non_finite: Vec<FoundNonFinite>,
+    pub non_finite: Vec<FoundNonFinite>,
 }
 
-struct Frames<'a> {
-    test: &'a TestDecl,
-    frames: &'a [ScheduledFrame],
+/// What to render: the size, the eye, the frames.
+pub(super) struct Frames<'a> {
+    pub size: (u32, u32),
+    pub eye: u32,
+    pub frames: &'a [ScheduledFrame],
 }
 
 impl Frames<'_> {
     /// Render the frames with a new renderer, as `npr render` does; with
     /// `read_targets`, read every target of each written frame back as
     /// floats (a target a later pass reuses by a partial re-render).
-    fn render(
+    pub(super) fn render(
         &self,
         gpu: &Gpu,
         program: &StyleProgram,
@@ -287,7 +373,18 @@ impl Frames<'_> {
         read_targets: bool,
     ) -> Result<Rendered, RunError> {
         let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-        let (width, height) = self.test.size;
+        self.render_with(&mut r, scene, read_targets)
+    }
+
+    /// [`Frames::render`] with a renderer made before (a sweep's, whose
+    /// uniform parameters it sets between renders).
+    pub(super) fn render_with(
+        &self,
+        r: &mut Renderer,
+        scene: &runner::scene::Scene,
+        read_targets: bool,
+    ) -> Result<Rendered, RunError> {
+        let (width, height) = self.size;
         let mut rendered = Rendered {
             outputs: Vec::new(),
             non_finite: Vec::new(),
@@ -298,7 +395,7 @@ impl Frames<'_> {
                 height,
                 time_s: f.time_s,
                 frame: f.frame,
-                eye: self.test.eye.value,
+                eye: self.eye,
             };
             r.render(scene, &spec)?;
             if !f.write {
@@ -308,7 +405,7 @@ impl Frames<'_> {
             // overwrite what shares the output's texture.
             rendered.outputs.push((f.frame, r.read_output()?));
             if read_targets {
-                let targets = crate::commands::dump::read_all_targets(&mut r, scene, &spec)?;
+                let targets = crate::commands::dump::read_all_targets(r, scene, &spec)?;
                 for (index, image) in targets.iter().enumerate() {
                     let seen = rendered.non_finite.iter().any(|n| n.target == index);
                     if let Some(found) = checks::non_finite(image).filter(|_| !seen) {
@@ -325,7 +422,7 @@ impl Frames<'_> {
     }
 }
 
-fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
+pub(super) fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
     found
         .iter()
         .map(|n| {
@@ -348,6 +445,7 @@ fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<
                     n.found.first_value
                 ),
                 files: Vec::new(),
+                reproduce: None,
             }
         })
         .collect()
@@ -365,13 +463,14 @@ fn determinism_failures(first: &[(u32, TargetImage)], second: &[(u32, TargetImag
                 check: "deterministic",
                 message: format!("frame {frame}: a second render differs from the first, first at pixel ({x}, {y})"),
                 files: Vec::new(),
+                reproduce: None,
             })
         })
         .take(1)
         .collect()
 }
 
-fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
+pub(super) fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
     outputs
         .iter()
         .filter_map(|(frame, img)| {
@@ -382,6 +481,7 @@ fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
                     "frame {frame}: the output is one colour, #{r:02x}{g:02x}{b:02x}{a:02x}; say `may_be_blank = true` if it may be"
                 ),
                 files: Vec::new(),
+                reproduce: None,
             })
         })
         .take(1)
@@ -472,6 +572,7 @@ fn golden_check(
             check: "golden",
             message: format!("differs from {}: {}", path.display(), verdict.lines.join("; ")),
             files: images.into_iter().map(|(p, _)| p).collect(),
+            reproduce: None,
         }],
         None,
     ))
