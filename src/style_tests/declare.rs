@@ -13,6 +13,7 @@
 //! golden = "golden/toon_spot.png"
 //! flip = { mean = 0.01, p99 = 0.3 }
 //! sweep = true        # also sweep every parameter's range on this scene
+//! # frames = "0..12" and flicker = 0.02: the mean change between frames
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
@@ -60,6 +61,10 @@ pub struct TestDecl {
     /// `sweep = true`: also sweep every parameter's range on this test's
     /// scene, size and frames (`sweep/`).
     pub sweep: bool,
+    /// `flicker = 0.02`: over `frames`, with a still camera, the mean
+    /// absolute change of the output between consecutive frames (channels
+    /// in 0..1) stays at or under this.
+    pub flicker: Option<At<f64>>,
 }
 
 /// Which frame (or frames) a test renders.
@@ -120,6 +125,7 @@ struct Partial {
     per_pixel: Option<PerPixelBound>,
     may_be_blank: Option<bool>,
     sweep: Option<bool>,
+    flicker: Option<At<f64>>,
 }
 
 /// The style a test file is for: `x.tests.toml` → `x.npr`.
@@ -384,6 +390,18 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
     }
     p.may_be_blank = fields.boolean("may_be_blank", report).map(|b| b.value);
     p.sweep = fields.boolean("sweep", report).map(|b| b.value);
+    if let Some(f) = fields.number("flicker", report) {
+        if (0.0..=1.0).contains(&f.value) {
+            p.flicker = Some(f);
+        } else {
+            report.bad_scene(
+                f.span,
+                format!("`flicker` must be from 0 to 1, not {}", f.value),
+                "outside 0..1",
+                "`flicker` bounds the mean change of a channel (0..1) from one frame to the next",
+            );
+        }
+    }
     p
 }
 
@@ -569,6 +587,16 @@ fn merge(
         },
         Some(WhenDecl::Frames(start, end)) => When::Range { start, end },
     };
+    let flicker = own.flicker.or_else(|| defaults.flicker.clone());
+    if let (Some(f), When::At { .. }) = (&flicker, when) {
+        report.bad_scene(
+            f.span,
+            format!("test `{}` bounds flicker but renders one frame", name.value),
+            "flicker is measured between frames",
+            "give the test a range, e.g. `frames = \"0..12\"`, with a still camera",
+        );
+        return None;
+    }
     let flip = own.flip.or_else(|| defaults.flip.clone());
     let per_pixel = own.per_pixel.or(defaults.per_pixel);
     let golden = match golden {
@@ -609,6 +637,7 @@ fn merge(
         golden,
         may_be_blank: own.may_be_blank.or(defaults.may_be_blank).unwrap_or(false),
         sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
+        flicker,
         name,
     })
 }

@@ -206,6 +206,19 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         .with_primary(test.eye.span, "eye 1 of a mono camera")
         .with_help("give the scene's [camera] an `ipd` to make it stereo, or test eye 0")]));
     }
+    if let (Some(bound), true) = (&test.flicker, scene.camera.keys().len() > 1) {
+        return Err(Stop::Invalid(vec![Diagnostic::error(
+            codes::BAD_TEST_FILE,
+            format!(
+                "test `{}` bounds flicker, but its scene's camera moves",
+                test.name.value
+            ),
+        )
+        .with_primary(bound.span, "measured with a still camera")
+        .with_help(
+            "flicker is the change a still view should not have: test it on a scene without `[[camera.keys]]`",
+        )]));
+    }
     let opts = CompileOptions {
         scene: Some(scene.summary(&scene_path.display().to_string())),
         paths: Some(policy),
@@ -265,6 +278,9 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         failures.extend(determinism_failures(&first_run.outputs, &second_run.outputs));
         if !test.may_be_blank {
             failures.extend(blank_failures(&first_run.outputs));
+        }
+        if let Some(bound) = &test.flicker {
+            failures.extend(flicker_failures(&first_run.outputs, bound.value));
         }
         let last = first_run.outputs.last().map(|(_, img)| img.to_rgba8());
         let (golden_failures, blessed) = match (&test.golden, last) {
@@ -486,6 +502,26 @@ pub(super) fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
         })
         .take(1)
         .collect()
+}
+
+/// The largest change between consecutive frames, if over `bound`.
+fn flicker_failures(outputs: &[(u32, TargetImage)], bound: f64) -> Vec<Failure> {
+    let images: Vec<(u32, image::RgbaImage)> = outputs.iter().map(|(f, img)| (*f, img.to_rgba8())).collect();
+    let worst = images
+        .windows(2)
+        .map(|pair| (pair[1].0, checks::frame_change(&pair[0].1, &pair[1].1)))
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    match worst {
+        Some((frame, change)) if change > bound => vec![Failure {
+            check: "flicker",
+            message: format!(
+                "frame {frame} changes from the one before by a mean of {change:.5} per channel (allowed {bound})"
+            ),
+            files: Vec::new(),
+            reproduce: None,
+        }],
+        _ => Vec::new(),
+    }
 }
 
 /// Compare with the golden, or write it with `--bless` when every other

@@ -299,3 +299,38 @@ fn bad_input_gets_its_code_and_exit_1() {
         assert_eq!(codes(&o), BTreeSet::from(["E0502".to_string()]), "{args:?}");
     }
 }
+
+/// A colour that brightens over a second: each frame at 24 fps changes the
+/// ball's pixels by 1/24 of a level range.
+const FADING_STYLE: &str = "style \"Fading\"\nparam a: float = 0.0 in 0..1 animate { 0s: 0.0, 1s: 1.0 }\npass p: render(scene) {\n  out c: rgba8unorm = vec4(a, a, a, 1.0)\n  clear: #336699\n}\noutput p.c\n";
+
+#[test]
+fn flicker_is_bounded_over_frames_of_a_still_camera() {
+    let tests = "[defaults]\nscene = \"scene.toml\"\nsize = \"32x32\"\nframes = \"0..4\"\n\n[[test]]\nname = \"calm\"\nflicker = 0.5\n\n[[test]]\nname = \"strict\"\nflicker = 0.001\n";
+    let dir = project("flicker", &[("fade", FADING_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "fade.npr", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = json_report(&o);
+    let found = failures(&report, "flicker");
+    assert_eq!(found.len(), 1, "{report}");
+    let message = found[0]["message"].as_str().expect("message");
+    assert!(message.contains("allowed 0.001"), "{message}");
+    assert_eq!(report["summary"]["passed"], 1, "`calm` passes");
+
+    // One frame, or a moving camera: bad input.
+    let one_frame = "[[test]]\nname = \"one\"\nscene = \"scene.toml\"\nflicker = 0.1\n";
+    let moving_scene = format!("{SCENE}\n[[camera.keys]]\ntime = 0.0\nposition = [0.0, 0.0, 3.0]\n\n[[camera.keys]]\ntime = 1.0\nposition = [1.0, 0.0, 3.0]\n");
+    let moving = "[[test]]\nname = \"moving\"\nscene = \"moving.toml\"\nframes = \"0..3\"\nflicker = 0.1\n";
+    for (case, tests) in [("flicker_one_frame", one_frame), ("flicker_moving", moving)] {
+        let dir = project(case, &[("fade", FADING_STYLE, tests)]);
+        std::fs::write(dir.join("moving.toml"), &moving_scene).expect("scene");
+        let o = npr_in(&dir, &["test", "fade.npr", "--message-format", "json"]);
+        assert_eq!(o.status.code(), Some(1), "{case}");
+        assert_eq!(codes(&o), BTreeSet::from(["E0407".to_string()]), "{case}");
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains("\"file\":\"fade.tests.toml\""),
+            "{case}: {}",
+            String::from_utf8_lossy(&o.stdout)
+        );
+    }
+}
