@@ -14,6 +14,7 @@
 //! flip = { mean = 0.01, p99 = 0.3 }
 //! sweep = true        # also sweep every parameter's range on this scene
 //! # frames = "0..12" and flicker = 0.02: the mean change between frames
+//! budget = 40         # the frame at most 40× a passthrough, timed in the run
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
@@ -65,6 +66,9 @@ pub struct TestDecl {
     /// absolute change of the output between consecutive frames (channels
     /// in 0..1) stays at or under this.
     pub flicker: Option<At<f64>>,
+    /// `budget = 40`: the frame costs at most this many times a
+    /// passthrough measured in the same run (`budget.rs`).
+    pub budget: Option<At<f64>>,
 }
 
 /// Which frame (or frames) a test renders.
@@ -126,6 +130,7 @@ struct Partial {
     may_be_blank: Option<bool>,
     sweep: Option<bool>,
     flicker: Option<At<f64>>,
+    budget: Option<At<f64>>,
 }
 
 /// The style a test file is for: `x.tests.toml` → `x.npr`.
@@ -402,6 +407,18 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
             );
         }
     }
+    if let Some(b) = fields.number("budget", report) {
+        if b.value > 0.0 && b.value.is_finite() {
+            p.budget = Some(b);
+        } else {
+            report.bad_scene(
+                b.span,
+                format!("`budget` must be above 0, not {}", b.value),
+                "not a ratio",
+                "`budget = 40`: the frame costs at most 40 times a passthrough pass",
+            );
+        }
+    }
     p
 }
 
@@ -638,6 +655,7 @@ fn merge(
         may_be_blank: own.may_be_blank.or(defaults.may_be_blank).unwrap_or(false),
         sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
         flicker,
+        budget: own.budget.or_else(|| defaults.budget.clone()),
         name,
     })
 }

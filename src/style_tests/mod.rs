@@ -6,13 +6,15 @@
 //! - `select.rs`: test files under the paths given, `--filter`, `--shard`;
 //! - `run.rs`: one test compiled, rendered and checked;
 //! - `checks.rs`: the checks on its images (finite, not blank,
-//!   deterministic, golden);
+//!   deterministic, flicker, golden);
+//! - `budget.rs`: a frame's cost as a ratio to a passthrough;
 //! - `report.rs`: the lines, the summary, JSON and JUnit XML;
 //! - `sweep/`: stability sweeps over every parameter's range, on the
 //!   style's scenes and the hard scenes npr ships (`--sweep`, `sweep = true`).
 //!
 //! The command itself is `commands/test.rs`.
 
+pub mod budget;
 pub mod checks;
 pub mod declare;
 pub mod report;

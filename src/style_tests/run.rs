@@ -288,11 +288,38 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
             _ => (Vec::new(), None),
         };
         failures.extend(golden_failures);
+        let mut note = None;
+        if let (Some(bound), Some(last)) = (&test.budget, frames.iter().rev().find(|f| f.write)) {
+            let spec = FrameSpec {
+                width: test.size.0,
+                height: test.size.1,
+                time_s: last.time_s,
+                frame: last.frame,
+                eye: test.eye.value,
+            };
+            let cost = super::budget::measure(gpu, &program, &scene, &spec)?;
+            let said = format!(
+                "the frame costs {:.2}× a passthrough ({:.3} ms against {:.3} ms, fastest of {})",
+                cost.ratio(),
+                cost.style_ms,
+                cost.passthrough_ms,
+                super::budget::FRAMES
+            );
+            if cost.ratio() > bound.value {
+                failures.push(Failure {
+                    check: "budget",
+                    message: format!("{said}; the budget is {}×", bound.value),
+                    files: Vec::new(),
+                    reproduce: None,
+                });
+            }
+            note = Some(said);
+        }
         Ok(Checked {
             failures,
             warnings,
             blessed,
-            note: None,
+            note,
         })
     })();
     let mut checked = gpu

@@ -334,3 +334,47 @@ fn flicker_is_bounded_over_frames_of_a_still_camera() {
         );
     }
 }
+
+/// A budget is a ratio to a passthrough timed in the same run: no style
+/// that draws the scene costs a hundredth of drawing it once, and none of
+/// these costs a thousand times it.
+#[test]
+fn a_frame_budget_is_a_ratio_to_a_passthrough_in_the_same_run() {
+    let tests = "[defaults]\nscene = \"scene.toml\"\nsize = \"64x64\"\n\n[[test]]\nname = \"roomy\"\nbudget = 1000\n\n[[test]]\nname = \"impossible\"\nbudget = 0.01\n";
+    let dir = project("budget", &[("ball", SPHERE_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = json_report(&o);
+    let found = failures(&report, "budget");
+    assert_eq!(found.len(), 1, "{report}");
+    let message = found[0]["message"].as_str().expect("message");
+    assert!(
+        message.contains("× a passthrough") && message.ends_with("the budget is 0.01×"),
+        "{message}"
+    );
+    let roomy = report["tests"]
+        .as_array()
+        .expect("tests")
+        .iter()
+        .find(|t| t["name"] == "roomy")
+        .expect("roomy");
+    assert_eq!(roomy["status"], "passed");
+    assert!(roomy["note"]
+        .as_str()
+        .expect("the ratio, said")
+        .starts_with("the frame costs"));
+
+    let dir = project(
+        "budget_zero",
+        &[(
+            "ball",
+            SPHERE_STYLE,
+            "[[test]]\nname = \"b\"\nscene = \"scene.toml\"\nbudget = 0\n",
+        )],
+    );
+    let o = npr_in(&dir, &["test", "ball.npr", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0407".to_string()]))
+    );
+}
