@@ -236,6 +236,14 @@ pub struct TestArgs {
     /// that reproduces it.
     #[arg(long)]
     pub sweep: bool,
+    /// Instead of checking, measure the tests that declare `variants`: each
+    /// variant's frame cost (a ratio to a passthrough) against its FLIP
+    /// difference from the test's reference variant, as a table.
+    #[arg(long, conflicts_with_all = ["bless", "sweep"])]
+    pub bench: bool,
+    /// With --bench, also draw the table as an SVG speed-against-error plot.
+    #[arg(long, value_name = "PATH.svg", requires = "bench")]
+    pub plot: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]

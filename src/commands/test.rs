@@ -6,6 +6,7 @@
 
 use crate::cli::{TestArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{cannot_write, headless_gpu, Printer};
+use crate::style_tests::bench;
 use crate::style_tests::declare::{self, TestDecl, TestFile};
 use crate::style_tests::report::{self, ReportFormat, RunReport};
 use crate::style_tests::run::{self, Settings, Status};
@@ -94,6 +95,9 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
             return printer.fail(cannot_write(&hard_dir, e));
         }
     }
+    if args.bench {
+        return bench(&args, &jobs, &selected, printer);
+    }
     let gpu = if selected.is_empty() {
         None
     } else {
@@ -173,4 +177,50 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     } else {
         EXIT_OK
     }
+}
+
+/// `--bench`: measure the selected tests that declare variants; print the
+/// table (and draw it with `--plot`). Exit 1 on bad input, 2 on npr's.
+fn bench(args: &TestArgs, jobs: &[Job], selected: &[usize], printer: &Printer) -> i32 {
+    if let Some(plot) = &args.plot {
+        if let Err(d) = crate::bench::plot::check_path(plot) {
+            return printer.fail(d);
+        }
+    }
+    let tests: Vec<(&TestFile, &TestDecl)> = selected
+        .iter()
+        .filter_map(|&i| match jobs[i] {
+            Job::Test(f, t) if !t.variants.is_empty() => Some((f, t)),
+            _ => None,
+        })
+        .collect();
+    if tests.is_empty() {
+        return printer.fail(
+            Diagnostic::error(codes::BAD_ARGUMENT_VALUE, "--bench: no selected test declares `variants`")
+                .with_help("give a test `variants = { fast = { .. }, exact = { .. } }` (and `reference = \"exact\"`) in its `.tests.toml`"),
+        );
+    }
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    let mut rows = Vec::new();
+    for (file, test) in tests {
+        eprintln!("measuring {} ({} variants)", run::id(file, test), test.variants.len());
+        match bench::measure(file, test, &gpu) {
+            Ok(r) => rows.extend(r),
+            Err(stopped) => {
+                printer.diagnostics(&stopped.diagnostics, &stopped.sources);
+                return if stopped.internal { EXIT_INTERNAL } else { EXIT_USER };
+            }
+        }
+    }
+    print!("{}", bench::table(&rows));
+    if let Some(plot) = &args.plot {
+        let subtitle = format!("{}, one run", gpu.adapter_info.name);
+        if let Err(code) = crate::bench::plot::write(&bench::figure(&rows, &subtitle), plot, printer) {
+            return code;
+        }
+    }
+    EXIT_OK
 }

@@ -15,6 +15,8 @@
 //! sweep = true        # also sweep every parameter's range on this scene
 //! # frames = "0..12" and flicker = 0.02: the mean change between frames
 //! budget = 40         # the frame at most 40× a passthrough, timed in the run
+//! variants = { fast = { samples = 4 }, exact = { samples = 64 } }
+//! reference = "exact" # `npr test --bench`: each variant's cost against its FLIP
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
@@ -69,6 +71,108 @@ pub struct TestDecl {
     /// `budget = 40`: the frame costs at most this many times a
     /// passthrough measured in the same run (`budget.rs`).
     pub budget: Option<At<f64>>,
+    /// `variants = { fast = { samples = 4 }, exact = { samples = 64 } }`:
+    /// parameter sets over the test's own, compared by `npr test --bench`.
+    pub variants: Vec<Variant>,
+    /// Which variant the others' FLIP is against (`reference = "exact"`;
+    /// the first by default): an index into `variants`.
+    pub reference: usize,
+}
+
+/// One named parameter set of a test, over the test's `set`.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    pub name: At<String>,
+    pub sets: Vec<(At<String>, At<String>)>,
+}
+
+/// A set table's entries as `--set` texts (`set = { .. }`, a variant's table).
+fn set_entries(mut set: Fields, report: &mut Report) -> Vec<(At<String>, At<String>)> {
+    let mut sets = Vec::new();
+    for (name, value) in set.entries(report) {
+        if let Some(text) = set_text(value.get_ref()) {
+            sets.push((
+                name,
+                At {
+                    value: text,
+                    span: report.span(value.span()),
+                },
+            ));
+        } else {
+            report.bad_scene(
+                report.span(value.span()),
+                format!("`{}` cannot be {}", name.value, describe(value.get_ref())),
+                "not a parameter value",
+                "write the value as `--set` takes it: a number, `true`, a string (`\"2px\"`, `\"#3080ff\"`, `\"cubic\"`) or an array of numbers",
+            );
+        }
+    }
+    set.finish(report);
+    sets
+}
+
+/// `variants` and `reference`, in a `[[test]]`.
+fn variants(fields: &mut Fields, report: &mut Report) -> (Vec<Variant>, usize) {
+    let reference = fields.string("reference", report);
+    let Some(mut table) = fields.table("variants", "`variants`", report) else {
+        if let Some(r) = reference {
+            report.bad_scene(
+                r.span,
+                "`reference` names a variant, but the test has no `variants`",
+                "no variants",
+                "add `variants = { fast = { .. }, exact = { .. } }`",
+            );
+        }
+        return (Vec::new(), 0);
+    };
+    let header = table.header();
+    let mut found = Vec::new();
+    for (name, value) in table.entries(report) {
+        match value.get_ref() {
+            DeValue::Table(t) => {
+                let span = report.span(value.span());
+                let sets = set_entries(Fields::new(t, span, format!("variant `{}`", name.value)), report);
+                found.push(Variant { name, sets });
+            }
+            other => report.bad_scene(
+                report.span(value.span()),
+                format!(
+                    "variant `{}` must be a table of parameter values, not {}",
+                    name.value,
+                    describe(other)
+                ),
+                "expected a table",
+                "write e.g. `variants = { fast = { samples = 4 }, exact = { samples = 64 } }`",
+            ),
+        }
+    }
+    table.finish(report);
+    if found.len() < 2 {
+        report.bad_scene(
+            header,
+            "`variants` compares parameter sets: give at least two",
+            "fewer than two variants",
+            "write e.g. `variants = { fast = { samples = 4 }, exact = { samples = 64 } }`",
+        );
+        return (Vec::new(), 0);
+    }
+    let index = match reference {
+        None => 0,
+        Some(r) => match found.iter().position(|v| v.name.value == r.value) {
+            Some(i) => i,
+            None => {
+                let names: Vec<&str> = found.iter().map(|v| v.name.value.as_str()).collect();
+                report.bad_scene(
+                    r.span,
+                    format!("`{}` is not one of the test's variants", r.value),
+                    "no such variant",
+                    format!("the variants are {}", names.join(", ")),
+                );
+                0
+            }
+        },
+    };
+    (found, index)
 }
 
 /// Which frame (or frames) a test renders.
@@ -251,6 +355,7 @@ fn parse(text: &str, file: FileId, dir: &Path, report: &mut Report) -> Vec<TestD
             fields.set_context(format!("test `{}`", n.value));
         }
         let golden = fields.string("golden", report);
+        let (variants, reference) = variants(&mut fields, report);
         let own = partial_fields(&mut fields, dir, report);
         let header = fields.header();
         fields.finish(report);
@@ -264,7 +369,9 @@ fn parse(text: &str, file: FileId, dir: &Path, report: &mut Report) -> Vec<TestD
             );
             continue;
         }
-        if let Some(t) = merge(name, own, &defaults, golden, dir, header, report) {
+        if let Some(mut t) = merge(name, own, &defaults, golden, dir, header, report) {
+            t.variants = variants;
+            t.reference = reference;
             tests.push(t);
         }
     }
@@ -366,26 +473,8 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
             ),
         }
     }
-    if let Some(mut set) = fields.table("set", "`set`", report) {
-        for (name, value) in set.entries(report) {
-            if let Some(text) = set_text(value.get_ref()) {
-                p.sets.push((
-                    name,
-                    At {
-                        value: text,
-                        span: report.span(value.span()),
-                    },
-                ));
-            } else {
-                report.bad_scene(
-                    report.span(value.span()),
-                    format!("`set.{}` cannot be {}", name.value, describe(value.get_ref())),
-                    "not a parameter value",
-                    "write the value as `--set` takes it: a number, `true`, a string (`\"2px\"`, `\"#3080ff\"`, `\"cubic\"`) or an array of numbers",
-                );
-            }
-        }
-        set.finish(report);
+    if let Some(set) = fields.table("set", "`set`", report) {
+        p.sets = set_entries(set, report);
     }
     if let Some(flip) = fields.table("flip", "`flip`", report) {
         p.flip = flip_bound(flip, report);
@@ -656,6 +745,8 @@ fn merge(
         sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
         flicker,
         budget: own.budget.or_else(|| defaults.budget.clone()),
+        variants: Vec::new(),
+        reference: 0,
         name,
     })
 }

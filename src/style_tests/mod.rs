@@ -8,12 +8,14 @@
 //! - `checks.rs`: the checks on its images (finite, not blank,
 //!   deterministic, flicker, golden);
 //! - `budget.rs`: a frame's cost as a ratio to a passthrough;
+//! - `bench.rs`: `--bench`, each variant's cost against its FLIP;
 //! - `report.rs`: the lines, the summary, JSON and JUnit XML;
 //! - `sweep/`: stability sweeps over every parameter's range, on the
 //!   style's scenes and the hard scenes npr ships (`--sweep`, `sweep = true`).
 //!
 //! The command itself is `commands/test.rs`.
 
+pub mod bench;
 pub mod budget;
 pub mod checks;
 pub mod declare;

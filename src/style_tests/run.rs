@@ -11,6 +11,7 @@ use crate::cli::PathArgs;
 use compiler::ir::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{codes, Diagnostic, SourceMap, Span};
+use runner::scene::toml_fields::At;
 use runner::schedule::{FrameRequest, ScheduledFrame};
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
 use std::path::{Path, PathBuf};
@@ -225,7 +226,7 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         ..Default::default()
     };
     let opts = CompileOptions {
-        settings: param_settings(test, sources),
+        settings: param_settings(&test.sets, sources),
         ..opts
     };
     let compiled = compile(&file.style, sources, &opts)?;
@@ -357,9 +358,8 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Resu
 /// The test's `set` values as settings the compiler types as it types
 /// `npr render --set` (`compiler::front::param_settings`), each error
 /// pointing at the value in the test file.
-fn param_settings(test: &TestDecl, sources: &SourceMap) -> Vec<ParamSetting> {
-    test.sets
-        .iter()
+pub(super) fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) -> Vec<ParamSetting> {
+    sets.iter()
         .map(|(name, value)| {
             // A TOML string's span holds its quotes; messages quote the text inside.
             let mut value_span = value.span;

@@ -378,3 +378,46 @@ fn a_frame_budget_is_a_ratio_to_a_passthrough_in_the_same_run() {
         (Some(1), BTreeSet::from(["E0407".to_string()]))
     );
 }
+
+/// `--bench`: each variant's cost against its FLIP from the reference
+/// variant, as a table and an SVG. The reference differs from itself by 0
+/// and the other variant (the normal shown at another strength) by more.
+#[test]
+fn bench_tables_each_variant_against_the_reference() {
+    let tests = "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nsize = \"48x48\"\nvariants = { dim = { amount = 0.1 }, full = { amount = 0.9 } }\nreference = \"full\"\n";
+    let dir = project("bench", &[("ball", SPHERE_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--plot", "variants.svg"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout).into_owned();
+    let cells = |variant: &str| -> Vec<String> {
+        let line = table
+            .lines()
+            .find(|l| l.starts_with(&format!("| {variant}")))
+            .unwrap_or_else(|| panic!("no row for {variant}:\n{table}"));
+        line.split('|').map(|c| c.trim().to_string()).collect()
+    };
+    let full = cells("full (reference)");
+    assert_eq!((full[5].as_str(), full[6].as_str()), ("0.0000", "0.0000"), "{table}");
+    let dim = cells("dim");
+    let flip_mean: f64 = dim[5].parse().expect("a number");
+    assert!(flip_mean > 0.01, "{table}");
+    let ratio: f64 = dim[2].parse().expect("a number");
+    assert!(ratio > 0.0 && ratio.is_finite(), "{table}");
+    let svg = std::fs::read_to_string(dir.join("variants.svg")).expect("the plot");
+    assert!(svg.starts_with("<svg") && svg.contains("ball.npr::ball"));
+
+    // A reference that is no variant; --bench where no test has variants.
+    let bad = "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nvariants = { a = { amount = 0.1 }, b = { amount = 0.2 } }\nreference = \"c\"\n";
+    let dir = project("bench_bad", &[("ball", SPHERE_STYLE, bad)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0407".to_string()]))
+    );
+    let dir = project("bench_none", &[("ball", SPHERE_STYLE, GOLDEN_TEST)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0502".to_string()]))
+    );
+}

@@ -200,7 +200,8 @@ pub(super) const ALL: &[Explanation] = &[
         meaning: "`npr test` reads a style's tests from `<style>.tests.toml` beside it: an optional \
             `[defaults]` table and one `[[test]]` table per test, with `name`, `scene`, `size`, \
             `time`, `frame` or `frames`, `eye`, `set`, `golden` with its `flip` or `per_pixel` \
-            tolerance, `may_be_blank`, `sweep`, `flicker` and `budget`. This code is a file that is not \
+            tolerance, `may_be_blank`, `sweep`, `flicker`, `budget`, and `variants` with their \
+            `reference`. This code is a file that is not \
             TOML, a field npr does not know, one missing or of the wrong type, a value outside its \
             domain, two tests of one name, a scene that does not exist, or `flicker` on a single \
             frame or a moving camera; the label points into the test file.",
