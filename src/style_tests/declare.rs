@@ -272,6 +272,17 @@ pub fn read(path: &Path) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
         Ok(read) => read,
         Err(d) => return Err((vec![d], sources)),
     };
+    check(path, file, &text, sources)
+}
+
+/// [`read`] of a text already in memory (the language server's buffer).
+pub fn read_text(path: &Path, text: &str) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
+    let mut sources = SourceMap::new();
+    let file = sources.add(path.display().to_string(), text.to_string());
+    check(path, file, text, sources)
+}
+
+fn check(path: &Path, file: FileId, text: &str, sources: SourceMap) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
     let style = style_of(path).unwrap_or_else(|| path.with_extension("npr"));
     let mut report = Report {
         file,
@@ -291,7 +302,7 @@ pub fn read(path: &Path) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
             "name the test file after its style: `toon.tests.toml` tests `toon.npr`",
         );
     }
-    let tests = parse(&text, file, path.parent().unwrap_or(Path::new(".")), &mut report);
+    let tests = parse(text, file, path.parent().unwrap_or(Path::new(".")), &mut report);
     if report.has_errors() {
         let mut diagnostics = report.diagnostics;
         diagnostics.sort_by_key(|d| d.primary_span().map_or(0, |s| s.start));

@@ -358,7 +358,7 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Resu
 /// The test's `set` values as settings the compiler types as it types
 /// `npr render --set` (`compiler::front::param_settings`), each error
 /// pointing at the value in the test file.
-pub(super) fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) -> Vec<ParamSetting> {
+pub fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) -> Vec<ParamSetting> {
     sets.iter()
         .map(|(name, value)| {
             // A TOML string's span holds its quotes; messages quote the text inside.
