@@ -11,6 +11,7 @@ use crate::style_tests::declare::{self, TestDecl, TestFile};
 use crate::style_tests::report::{self, ReportFormat, RunReport};
 use crate::style_tests::run::{self, Settings, Status};
 use crate::style_tests::select;
+use crate::style_tests::sweep;
 use crate::style_tests::sweep::cases::{self, Case};
 use diag::{codes, Diagnostic};
 use std::time::Instant;
@@ -72,7 +73,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
         .iter()
         .map(|j| match j {
             Job::Test(f, t) => run::id(f, t),
-            Job::Sweep(style, _) => run::sweep_id(style),
+            Job::Sweep(style, _) => sweep::sweep_id(style),
         })
         .collect();
     if let Some(filter) = &args.filter {
@@ -124,7 +125,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
             bar.set_message(ids[i].clone());
             let result = match &jobs[i] {
                 Job::Test(file, test) => run::run(file, test, &settings),
-                Job::Sweep(style, cases) => run::run_sweep(style, cases, &settings),
+                Job::Sweep(style, cases) => sweep::run_sweep(style, cases, &settings),
             };
             let fresh: Vec<Diagnostic> = result
                 .diagnostics

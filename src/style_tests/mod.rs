@@ -2,7 +2,7 @@
 //! and run the way `npr render` renders, so a style author tests a style
 //! without writing Rust (and npr tests its own examples the same way).
 //!
-//! - `declare.rs`: the test file, read with spanned diagnostics (E0407);
+//! - `declare/`: the test file, read with spanned diagnostics (E0407);
 //! - `select.rs`: test files under the paths given, `--filter`, `--shard`;
 //! - `run.rs`: one test compiled, rendered and checked;
 //! - `checks.rs`: the checks on its images (finite, not blank,

@@ -135,60 +135,6 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
     }
 }
 
-/// The `--sweep` of `style` over `cases`, as one outcome named `@sweep`.
-pub fn run_sweep(style: &Path, cases: &[super::sweep::cases::Case], settings: &Settings) -> Run {
-    let started = Instant::now();
-    let (status, failures, diagnostics, note, sources) = match super::sweep::sweep(style, cases, settings) {
-        Ok(r) if r.failures.is_empty() => (
-            Status::Passed,
-            Vec::new(),
-            Vec::new(),
-            Some(r.summary),
-            SourceMap::new(),
-        ),
-        Ok(r) => (
-            Status::Failed,
-            r.failures,
-            Vec::new(),
-            Some(r.summary),
-            SourceMap::new(),
-        ),
-        Err(s) => {
-            let internal = s.diagnostics.iter().any(|d| d.code == codes::INTERNAL);
-            let status = if internal { Status::Internal } else { Status::Invalid };
-            (status, Vec::new(), s.diagnostics, None, s.sources)
-        }
-    };
-    let messages = diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
-        .collect();
-    Run {
-        outcome: Outcome {
-            id: sweep_id(style),
-            style: style.to_path_buf(),
-            name: SWEEP_NAME.into(),
-            status,
-            seconds: started.elapsed().as_secs_f64(),
-            failures,
-            messages,
-            blessed: None,
-            note,
-        },
-        diagnostics,
-        sources,
-    }
-}
-
-/// The name of a style's sweep: not a test name (`@` is not allowed in
-/// one), so it never meets a declared test's id.
-pub const SWEEP_NAME: &str = "@sweep";
-
-pub fn sweep_id(style: &Path) -> String {
-    format!("{}::{SWEEP_NAME}", style.display())
-}
-
 fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut SourceMap) -> Result<Checked, Stop> {
     let gpu = settings.gpu;
     let scene_path = &test.scene.value;

@@ -17,17 +17,19 @@ pub mod cases;
 pub mod points;
 
 use super::checks;
-use super::run::{self, Failure, Frames, Settings};
+use super::run::{self, Failure, Frames, Outcome, Run, Settings, Status};
 use crate::cli::PathArgs;
 use abi::manifest::{ParamBinding, ParamManifest};
 use cases::Case;
 use compiler::front::param_values::{type_value, ParamShape, ValueKind};
 use compiler::ir::SettingOrigin;
 use compiler::{CompileError, CompileOptions};
+use diag::codes;
 use diag::{Diagnostic, SourceMap};
 use points::Combination;
 use runner::scene::Scene;
 use std::path::Path;
+use std::time::Instant;
 
 /// What a sweep found, and what it covered.
 pub struct SweepResult {
@@ -242,6 +244,60 @@ fn options(style: &Path, case: &Case, scene: &Scene, settings: Vec<compiler::ir:
         schedule: compiler::schedule::Schedule::Naive,
         ..Default::default()
     }
+}
+
+/// The `--sweep` of `style` over `cases`, as one outcome named `@sweep`.
+pub fn run_sweep(style: &Path, cases: &[Case], settings: &Settings) -> Run {
+    let started = Instant::now();
+    let (status, failures, diagnostics, note, sources) = match sweep(style, cases, settings) {
+        Ok(r) if r.failures.is_empty() => (
+            Status::Passed,
+            Vec::new(),
+            Vec::new(),
+            Some(r.summary),
+            SourceMap::new(),
+        ),
+        Ok(r) => (
+            Status::Failed,
+            r.failures,
+            Vec::new(),
+            Some(r.summary),
+            SourceMap::new(),
+        ),
+        Err(s) => {
+            let internal = s.diagnostics.iter().any(|d| d.code == codes::INTERNAL);
+            let status = if internal { Status::Internal } else { Status::Invalid };
+            (status, Vec::new(), s.diagnostics, None, s.sources)
+        }
+    };
+    let messages = diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
+        .collect();
+    Run {
+        outcome: Outcome {
+            id: sweep_id(style),
+            style: style.to_path_buf(),
+            name: SWEEP_NAME.into(),
+            status,
+            seconds: started.elapsed().as_secs_f64(),
+            failures,
+            messages,
+            blessed: None,
+            note,
+        },
+        diagnostics,
+        sources,
+    }
+}
+
+/// The name of a style's sweep: not a test name (`@` is not allowed in
+/// one), so it never meets a declared test's id.
+pub const SWEEP_NAME: &str = "@sweep";
+
+pub fn sweep_id(style: &Path) -> String {
+    format!("{}::{SWEEP_NAME}", style.display())
 }
 
 /// Compile `style` with `combination` as `npr render --set` does, render
