@@ -251,6 +251,22 @@ pub struct TestArgs {
     /// Run only the tests whose id (`style.npr::name`) contains SUBSTR.
     #[arg(long, value_name = "SUBSTR")]
     pub filter: Option<String>,
+    /// Also sweep each style's parameters across their declared ranges on
+    /// its tests' scenes and on the hard scenes npr ships (a style without
+    /// tests on the hard scenes alone): one more test per style,
+    /// `style.npr::@sweep`, reporting each combination that puts NaN or Inf
+    /// in a target, blanks the image or fails, with an `npr render` line
+    /// that reproduces it.
+    #[arg(long)]
+    pub sweep: bool,
+    /// Instead of checking, measure the tests that declare `variants`: each
+    /// variant's frame cost (a ratio to a passthrough) against its FLIP
+    /// difference from the test's reference variant, as a table.
+    #[arg(long, conflicts_with_all = ["bless", "sweep"])]
+    pub bench: bool,
+    /// With --bench, also draw the table as an SVG speed-against-error plot.
+    #[arg(long, value_name = "PATH.svg", requires = "bench")]
+    pub plot: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]

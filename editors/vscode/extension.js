@@ -1,5 +1,6 @@
 // The npr VS Code extension: starts `npr lsp` (the `npr.path` setting) over
-// stdio for .npr files. Highlighting comes from syntaxes/npr.tmLanguage.json.
+// stdio for .npr files and styles' test files (`*.tests.toml`, diagnostics
+// only). Highlighting comes from syntaxes/npr.tmLanguage.json.
 "use strict";
 
 const vscode = require("vscode");
@@ -11,7 +12,11 @@ function activate(context) {
   const command = vscode.workspace.getConfiguration("npr").get("path") || "npr";
   const serverOptions = { command, args: ["lsp"], transport: TransportKind.stdio };
   const clientOptions = {
-    documentSelector: [{ scheme: "file", language: "npr" }, { scheme: "untitled", language: "npr" }],
+    documentSelector: [
+      { scheme: "file", language: "npr" },
+      { scheme: "untitled", language: "npr" },
+      { scheme: "file", pattern: "**/*.tests.toml" },
+    ],
   };
   client = new LanguageClient("npr", "npr language server", serverOptions, clientOptions);
   context.subscriptions.push({ dispose: () => client && client.stop() });

@@ -1,17 +1,26 @@
 //! `npr test PATH...`: find the test files, read them all (any mistake in
 //! one is reported with the others and stops the run before rendering),
-//! select by `--filter` and `--shard`, run each test with a progress bar,
-//! and report. Exit 0 when every test passes, 1 when one fails or has bad
+//! add a sweep per style with `--sweep`, select by `--filter` and
+//! `--shard`, run each test with a progress bar, and report. Exit 0 when every test passes, 1 when one fails or has bad
 //! input, 2 when npr itself failed.
 
 use crate::cli::{TestArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{cannot_write, headless_gpu, Printer};
+use crate::style_tests::bench;
 use crate::style_tests::declare::{self, TestDecl, TestFile};
 use crate::style_tests::report::{self, ReportFormat, RunReport};
 use crate::style_tests::run::{self, Settings, Status};
 use crate::style_tests::select;
+use crate::style_tests::sweep;
+use crate::style_tests::sweep::cases::{self, Case};
 use diag::{codes, Diagnostic};
 use std::time::Instant;
+
+/// One line of the run: a declared test, or a style's sweep over its cases.
+enum Job<'a> {
+    Test(&'a TestFile, &'a TestDecl),
+    Sweep(&'a std::path::Path, Vec<Case>),
+}
 
 pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     let started = Instant::now();
@@ -37,8 +46,36 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     if bad_input {
         return EXIT_USER;
     }
-    let tests: Vec<(&TestFile, &TestDecl)> = files.iter().flat_map(|f| f.tests.iter().map(move |t| (f, t))).collect();
-    let ids: Vec<String> = tests.iter().map(|(f, t)| run::id(f, t)).collect();
+    let mut jobs: Vec<Job> = files
+        .iter()
+        .flat_map(|f| f.tests.iter().map(move |t| Job::Test(f, t)))
+        .collect();
+    let hard_dir = args.out.join("hard_scenes");
+    if args.sweep {
+        let mut styles: Vec<&std::path::Path> = files.iter().map(|f| f.style.as_path()).collect();
+        styles.extend(found.named_untested.iter().map(|p| p.as_path()));
+        for style in styles {
+            let mut cases: Vec<Case> = Vec::new();
+            for test in files.iter().filter(|f| f.style == style).flat_map(|f| &f.tests) {
+                let case = Case::of_test_small(test);
+                if !cases
+                    .iter()
+                    .any(|c| (&c.scene, c.size, c.request, c.eye) == (&case.scene, case.size, case.request, case.eye))
+                {
+                    cases.push(case);
+                }
+            }
+            cases.extend(cases::hard_cases(&hard_dir));
+            jobs.push(Job::Sweep(style, cases));
+        }
+    }
+    let ids: Vec<String> = jobs
+        .iter()
+        .map(|j| match j {
+            Job::Test(f, t) => run::id(f, t),
+            Job::Sweep(style, _) => sweep::sweep_id(style),
+        })
+        .collect();
     if let Some(filter) = &args.filter {
         if !ids.iter().any(|id| id.contains(filter.as_str())) {
             return printer.fail(
@@ -47,13 +84,21 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
                     format!("--filter {filter}: no test's id contains it"),
                 )
                 .with_help(format!(
-                    "the ids are `style.npr::name`; there are {} test(s)",
+                    "the ids are `style.npr::name` (and `style.npr::@sweep` with --sweep); there are {} test(s)",
                     ids.len()
                 )),
             );
         }
     }
     let selected = select::select(&ids, args.filter.as_deref(), shard);
+    if selected.iter().any(|&i| matches!(jobs[i], Job::Sweep(..))) {
+        if let Err(e) = cases::write_hard_scenes(&hard_dir) {
+            return printer.fail(cannot_write(&hard_dir, e));
+        }
+    }
+    if args.bench {
+        return bench(&args, &jobs, &selected, printer);
+    }
     let gpu = if selected.is_empty() {
         None
     } else {
@@ -77,9 +122,11 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
             bless: args.bless,
         };
         for &i in &selected {
-            let (file, test) = tests[i];
             bar.set_message(ids[i].clone());
-            let result = run::run(file, test, &settings);
+            let result = match &jobs[i] {
+                Job::Test(file, test) => run::run(file, test, &settings),
+                Job::Sweep(style, cases) => sweep::run_sweep(style, cases, &settings),
+            };
             let fresh: Vec<Diagnostic> = result
                 .diagnostics
                 .iter()
@@ -106,7 +153,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
         outcomes: &outcomes,
         seconds: started.elapsed().as_secs_f64(),
         untested: &found.untested,
-        not_selected: tests.len() - selected.len(),
+        not_selected: jobs.len() - selected.len(),
     };
     let text = match args.format {
         ReportFormat::Human => report::human(&run_report),
@@ -131,4 +178,50 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     } else {
         EXIT_OK
     }
+}
+
+/// `--bench`: measure the selected tests that declare variants; print the
+/// table (and draw it with `--plot`). Exit 1 on bad input, 2 on npr's.
+fn bench(args: &TestArgs, jobs: &[Job], selected: &[usize], printer: &Printer) -> i32 {
+    if let Some(plot) = &args.plot {
+        if let Err(d) = crate::bench::plot::check_path(plot) {
+            return printer.fail(d);
+        }
+    }
+    let tests: Vec<(&TestFile, &TestDecl)> = selected
+        .iter()
+        .filter_map(|&i| match jobs[i] {
+            Job::Test(f, t) if !t.variants.is_empty() => Some((f, t)),
+            _ => None,
+        })
+        .collect();
+    if tests.is_empty() {
+        return printer.fail(
+            Diagnostic::error(codes::BAD_ARGUMENT_VALUE, "--bench: no selected test declares `variants`")
+                .with_help("give a test `variants = { fast = { .. }, exact = { .. } }` (and `reference = \"exact\"`) in its `.tests.toml`"),
+        );
+    }
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    let mut rows = Vec::new();
+    for (file, test) in tests {
+        eprintln!("measuring {} ({} variants)", run::id(file, test), test.variants.len());
+        match bench::measure(file, test, &gpu) {
+            Ok(r) => rows.extend(r),
+            Err(stopped) => {
+                printer.diagnostics(&stopped.diagnostics, &stopped.sources);
+                return if stopped.internal { EXIT_INTERNAL } else { EXIT_USER };
+            }
+        }
+    }
+    print!("{}", bench::table(&rows));
+    if let Some(plot) = &args.plot {
+        let subtitle = format!("{}, one run", gpu.adapter_info.name);
+        if let Err(code) = crate::bench::plot::write(&bench::figure(&rows, &subtitle), plot, printer) {
+            return code;
+        }
+    }
+    EXIT_OK
 }

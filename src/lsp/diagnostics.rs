@@ -40,7 +40,7 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     found.iter().map(|d| convert(d, &sources, &root)).collect()
 }
 
-fn convert(d: &diag::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
+pub(super) fn convert(d: &diag::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
     let mut message = d.message.clone();
     let mut range = Range::default();
     let mut related = Vec::new();

@@ -1,6 +1,7 @@
 //! `npr lsp`: a language server over stdio (JSON-RPC framed by
 //! `lsp-server`). Diagnostics on open and change, hover, completion, go to
-//! definition and document symbols for `.npr` documents.
+//! definition and document symbols for `.npr` documents; diagnostics for a
+//! style's `.tests.toml` (`test_file.rs`).
 //!
 //! The server never exits on bad input: a malformed message gets a
 //! JSON-RPC parse error, an unknown method "method not found", bad params
@@ -17,6 +18,7 @@ mod policy;
 mod position;
 mod symbol;
 mod symbols;
+mod test_file;
 mod tokens;
 mod transport;
 mod uri;
@@ -30,11 +32,13 @@ use position::LineIndex;
 use std::collections::HashMap;
 use std::path::PathBuf;
 
-/// An open `.npr` document.
+/// An open `.npr` document, or a style's `.tests.toml`.
 struct Document {
     uri: Uri,
     path: PathBuf,
     text: String,
+    /// A test file: diagnostics only (no hover, completion or symbols).
+    tests: bool,
 }
 
 #[derive(Default)]
@@ -173,25 +177,34 @@ impl Server {
     /// working directory).
     fn open(&mut self, uri: Uri, language: &str, text: String) {
         let path = uri::to_path(&uri);
+        let tests = path.as_deref().is_some_and(test_file::is_test_file);
         let is_npr = language == "npr" || path.as_ref().is_some_and(|p| p.extension().is_some_and(|e| e == "npr"));
-        if !is_npr {
+        if !is_npr && !tests {
             return;
         }
         let path = path.unwrap_or_else(|| std::env::current_dir().unwrap_or_default().join("untitled.npr"));
         let key = uri.as_str().to_string();
-        self.documents.insert(key.clone(), Document { uri, path, text });
+        self.documents.insert(key.clone(), Document { uri, path, text, tests });
         self.publish(&key);
     }
 
     fn publish(&self, key: &str) {
         if let Some(doc) = self.documents.get(key) {
-            publish_diagnostics(doc.uri.clone(), diagnostics::check(&doc.path, &doc.text));
+            let found = if doc.tests {
+                test_file::check(&doc.path, &doc.text)
+            } else {
+                diagnostics::check(&doc.path, &doc.text)
+            };
+            publish_diagnostics(doc.uri.clone(), found);
         }
     }
 
     /// The document, its analysis and the byte offset of a position in it.
     fn at(&self, pos: &TextDocumentPositionParams) -> Option<(&Document, Analysis, usize)> {
-        let doc = self.documents.get(pos.text_document.uri.as_str())?;
+        let doc = self
+            .documents
+            .get(pos.text_document.uri.as_str())
+            .filter(|d| !d.tests)?;
         let offset = LineIndex::new(&doc.text).offset(pos.position);
         Some((doc, Analysis::new(&doc.path, &doc.text), offset))
     }
@@ -223,7 +236,7 @@ impl Server {
     }
 
     fn symbols(&self, uri: &Uri) -> Option<DocumentSymbolResponse> {
-        let doc = self.documents.get(uri.as_str())?;
+        let doc = self.documents.get(uri.as_str()).filter(|d| !d.tests)?;
         let a = Analysis::new(&doc.path, &doc.text);
         Some(DocumentSymbolResponse::Nested(symbols::outline(&a)))
     }

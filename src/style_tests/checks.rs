@@ -51,6 +51,18 @@ pub fn first_difference(a: &[u8], b: &[u8]) -> Option<usize> {
     a.iter().zip(b).position(|(x, y)| x != y)
 }
 
+/// The mean absolute change of a channel (0..1) between two frames of the
+/// same size: what `flicker` bounds over a still camera.
+pub fn frame_change(a: &image::RgbaImage, b: &image::RgbaImage) -> f64 {
+    let total: u64 = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| u64::from(x.abs_diff(*y)))
+        .sum();
+    total as f64 / (255.0 * a.as_raw().len().max(1) as f64)
+}
+
 /// The output compared with its golden under each declared bound.
 #[derive(Debug, Clone)]
 pub struct GoldenVerdict {
@@ -146,6 +158,16 @@ mod tests {
         assert_eq!(single_colour(&img), Some([9, 9, 9, 255]));
         img.put_pixel(3, 3, image::Rgba([9, 9, 10, 255]));
         assert_eq!(single_colour(&img), None);
+    }
+
+    #[test]
+    fn frame_change_is_the_mean_channel_difference() {
+        let a = image::RgbaImage::from_pixel(2, 2, image::Rgba([0, 0, 0, 255]));
+        let mut b = a.clone();
+        b.put_pixel(0, 0, image::Rgba([255, 255, 255, 255]));
+        // 3 channels of 16 moved by 1.0.
+        assert!((frame_change(&a, &b) - 3.0 / 16.0).abs() < 1e-12);
+        assert_eq!(frame_change(&a, &a), 0.0);
     }
 
     #[test]

@@ -49,10 +49,16 @@ pub fn line(o: &Outcome) -> String {
     if let Some(golden) = &o.blessed {
         let _ = write!(s, ", blessed {}", golden.display());
     }
+    if let Some(note) = &o.note {
+        let _ = write!(s, ", {note}");
+    }
     for f in &o.failures {
         let _ = write!(s, "\n        {}: {}", f.check, f.message);
         for file in &f.files {
             let _ = write!(s, "\n          wrote {}", file.display());
+        }
+        if let Some(line) = &f.reproduce {
+            let _ = write!(s, "\n          reproduce: {line}");
         }
     }
     s
@@ -90,11 +96,13 @@ pub fn human(r: &RunReport) -> String {
             .collect();
         let _ = writeln!(s, "slowest: {}", named.join(", "));
     }
+    // The diagnostics were printed in full as each test ended: the recap
+    // names each by its first line only, so none is read twice.
     for t in o.iter().filter(|t| t.status != Status::Passed) {
         let _ = writeln!(s, "{}", line(t));
         for m in &t.messages {
-            for l in m.lines() {
-                let _ = writeln!(s, "        {l}");
+            if let Some(headline) = m.lines().find(|l| !l.trim().is_empty()) {
+                let _ = writeln!(s, "        {}", headline.trim());
             }
         }
     }
@@ -124,7 +132,9 @@ pub fn json(r: &RunReport) -> String {
                     "check": f.check,
                     "message": f.message,
                     "files": f.files.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
+                    "reproduce": f.reproduce,
                 })).collect::<Vec<_>>(),
+                "note": o.note,
                 "diagnostics": o.messages,
                 "blessed": o.blessed.as_ref().map(|p| p.display().to_string()),
             })
@@ -208,6 +218,9 @@ pub fn junit(r: &RunReport) -> String {
                         let mut body = f.message.clone();
                         for file in &f.files {
                             let _ = write!(body, "\nwrote {}", file.display());
+                        }
+                        if let Some(line) = &f.reproduce {
+                            let _ = write!(body, "\nreproduce: {line}");
                         }
                         let _ = writeln!(
                             s,

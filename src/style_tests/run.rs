@@ -11,6 +11,7 @@ use crate::cli::PathArgs;
 use compiler::ir::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{codes, Diagnostic, SourceMap, Span};
+use runner::scene::toml_fields::At;
 use runner::schedule::{FrameRequest, ScheduledFrame};
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
 use std::path::{Path, PathBuf};
@@ -36,6 +37,8 @@ pub struct Failure {
     pub message: String,
     /// The images written to look at it (actual, diff, FLIP map).
     pub files: Vec<PathBuf>,
+    /// A sweep's finding: the one `npr render` command line that shows it.
+    pub reproduce: Option<String>,
 }
 
 /// What one test did.
@@ -52,6 +55,8 @@ pub struct Outcome {
     pub messages: Vec<String>,
     /// The golden written by `--bless`.
     pub blessed: Option<PathBuf>,
+    /// What a sweep covered, for its line.
+    pub note: Option<String>,
 }
 
 /// What every test of a run shares.
@@ -90,6 +95,7 @@ struct Checked {
     failures: Vec<Failure>,
     warnings: Vec<Diagnostic>,
     blessed: Option<PathBuf>,
+    note: Option<String>,
 }
 
 pub fn id(file: &TestFile, test: &TestDecl) -> String {
@@ -101,11 +107,11 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
     let started = Instant::now();
     let mut sources = file.sources.clone();
     let result = execute(file, test, settings, &mut sources);
-    let (status, failures, diagnostics, blessed) = match result {
-        Ok(c) if c.failures.is_empty() => (Status::Passed, Vec::new(), c.warnings, c.blessed),
-        Ok(c) => (Status::Failed, c.failures, c.warnings, c.blessed),
-        Err(Stop::Invalid(d)) => (Status::Invalid, Vec::new(), d, None),
-        Err(Stop::Internal(d)) => (Status::Internal, Vec::new(), d, None),
+    let (status, failures, diagnostics, blessed, note) = match result {
+        Ok(c) if c.failures.is_empty() => (Status::Passed, Vec::new(), c.warnings, c.blessed, c.note),
+        Ok(c) => (Status::Failed, c.failures, c.warnings, c.blessed, c.note),
+        Err(Stop::Invalid(d)) => (Status::Invalid, Vec::new(), d, None, None),
+        Err(Stop::Internal(d)) => (Status::Internal, Vec::new(), d, None, None),
     };
     let messages = diagnostics
         .iter()
@@ -122,6 +128,7 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
             failures,
             messages,
             blessed,
+            note,
         },
         diagnostics,
         sources,
@@ -146,13 +153,26 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         .with_primary(test.eye.span, "eye 1 of a mono camera")
         .with_help("give the scene's [camera] an `ipd` to make it stereo, or test eye 0")]));
     }
+    if let (Some(bound), true) = (&test.flicker, scene.camera.keys().len() > 1) {
+        return Err(Stop::Invalid(vec![Diagnostic::error(
+            codes::BAD_TEST_FILE,
+            format!(
+                "test `{}` bounds flicker, but its scene's camera moves",
+                test.name.value
+            ),
+        )
+        .with_primary(bound.span, "measured with a still camera")
+        .with_help(
+            "flicker is the change a still view should not have: test it on a scene without `[[camera.keys]]`",
+        )]));
+    }
     let opts = CompileOptions {
         scene: Some(scene.summary(&scene_path.display().to_string())),
         paths: Some(policy),
         ..Default::default()
     };
     let opts = CompileOptions {
-        settings: param_settings(test, sources),
+        settings: param_settings(&test.sets, sources),
         ..opts
     };
     let compiled = compile(&file.style, sources, &opts)?;
@@ -172,7 +192,11 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
     crate::args::check_frame_count(count as usize)
         .map_err(|d| Stop::Invalid(vec![d.with_primary(test.name.span, "this test")]))?;
     let frames = runner::schedule::schedule(request, test.fps, path_dependent);
-    let frame = Frames { test, frames: &frames };
+    let frame = Frames {
+        size: test.size,
+        eye: test.eye.value,
+        frames: &frames,
+    };
 
     let checked = (|| -> Result<Checked, RunError> {
         let first_run = frame.render(gpu, &program, &scene, true)?;
@@ -202,22 +226,72 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         if !test.may_be_blank {
             failures.extend(blank_failures(&first_run.outputs));
         }
+        if let Some(bound) = &test.flicker {
+            failures.extend(flicker_failures(&first_run.outputs, bound.value));
+        }
         let last = first_run.outputs.last().map(|(_, img)| img.to_rgba8());
         let (golden_failures, blessed) = match (&test.golden, last) {
             (Some(golden), Some(actual)) => golden_check(file, test, golden, &actual, failures.is_empty(), settings)?,
             _ => (Vec::new(), None),
         };
         failures.extend(golden_failures);
+        let mut note = None;
+        if let (Some(bound), Some(last)) = (&test.budget, frames.iter().rev().find(|f| f.write)) {
+            let spec = FrameSpec {
+                width: test.size.0,
+                height: test.size.1,
+                time_s: last.time_s,
+                frame: last.frame,
+                eye: test.eye.value,
+            };
+            let cost = super::budget::measure(gpu, &program, &scene, &spec)?;
+            let said = format!(
+                "the frame costs {:.2}× a passthrough ({:.3} ms against {:.3} ms, fastest of {})",
+                cost.ratio(),
+                cost.style_ms,
+                cost.passthrough_ms,
+                super::budget::FRAMES
+            );
+            if cost.ratio() > bound.value {
+                failures.push(Failure {
+                    check: "budget",
+                    message: format!("{said}; the budget is {}×", bound.value),
+                    files: Vec::new(),
+                    reproduce: None,
+                });
+            }
+            note = Some(said);
+        }
         Ok(Checked {
             failures,
             warnings,
             blessed,
+            note,
         })
     })();
-    Ok(gpu
+    let mut checked = gpu
         .watch
         .check(checked)
-        .map_err(|e| e.at_texture_spans(&compiled.texture_spans))?)
+        .map_err(|e| e.at_texture_spans(&compiled.texture_spans))?;
+    if test.sweep {
+        let case = super::sweep::cases::Case::of_test(test);
+        match super::sweep::sweep(&file.style, std::slice::from_ref(&case), settings) {
+            Ok(r) => {
+                checked.failures.extend(r.failures);
+                checked.note = Some(r.summary);
+            }
+            // Its spans point into the sweep's own sources: the messages alone.
+            Err(s) => {
+                return Err(Stop::Invalid(
+                    s.diagnostics
+                        .iter()
+                        .map(|d| Diagnostic::error(d.code, d.message.clone()))
+                        .collect(),
+                ))
+            }
+        }
+    }
+    Ok(checked)
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, Stop> {
@@ -230,9 +304,8 @@ fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Resu
 /// The test's `set` values as settings the compiler types as it types
 /// `npr render --set` (`compiler::front::param_settings`), each error
 /// pointing at the value in the test file.
-fn param_settings(test: &TestDecl, sources: &SourceMap) -> Vec<ParamSetting> {
-    test.sets
-        .iter()
+pub fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) -> Vec<ParamSetting> {
+    sets.iter()
         .map(|(name, value)| {
             // A TOML string's span holds its quotes; messages quote the text inside.
             let mut value_span = value.span;
@@ -256,30 +329,32 @@ fn param_settings(test: &TestDecl, sources: &SourceMap) -> Vec<ParamSetting> {
 }
 
 /// A target found holding NaN or ±Inf in one frame.
-struct FoundNonFinite {
-    frame: u32,
-    target: usize,
-    found: checks::NonFinite,
+pub(super) struct FoundNonFinite {
+    pub frame: u32,
+    pub target: usize,
+    pub found: checks::NonFinite,
 }
 
 /// The frames of one render of a test.
-struct Rendered {
+pub(super) struct Rendered {
     /// Per written frame, its number and its output.
-    outputs: Vec<(u32, TargetImage)>,
+    pub outputs: Vec<(u32, TargetImage)>,
     /// Per target, the first frame it was non-finite in.
-    non_finite: Vec<FoundNonFinite>,
+    pub non_finite: Vec<FoundNonFinite>,
 }
 
-struct Frames<'a> {
-    test: &'a TestDecl,
-    frames: &'a [ScheduledFrame],
+/// What to render: the size, the eye, the frames.
+pub(super) struct Frames<'a> {
+    pub size: (u32, u32),
+    pub eye: u32,
+    pub frames: &'a [ScheduledFrame],
 }
 
 impl Frames<'_> {
     /// Render the frames with a new renderer, as `npr render` does; with
     /// `read_targets`, read every target of each written frame back as
     /// floats (a target a later pass reuses by a partial re-render).
-    fn render(
+    pub(super) fn render(
         &self,
         gpu: &Gpu,
         program: &StyleProgram,
@@ -287,7 +362,18 @@ impl Frames<'_> {
         read_targets: bool,
     ) -> Result<Rendered, RunError> {
         let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-        let (width, height) = self.test.size;
+        self.render_with(&mut r, scene, read_targets)
+    }
+
+    /// [`Frames::render`] with a renderer made before (a sweep's, whose
+    /// uniform parameters it sets between renders).
+    pub(super) fn render_with(
+        &self,
+        r: &mut Renderer,
+        scene: &runner::scene::Scene,
+        read_targets: bool,
+    ) -> Result<Rendered, RunError> {
+        let (width, height) = self.size;
         let mut rendered = Rendered {
             outputs: Vec::new(),
             non_finite: Vec::new(),
@@ -298,7 +384,7 @@ impl Frames<'_> {
                 height,
                 time_s: f.time_s,
                 frame: f.frame,
-                eye: self.test.eye.value,
+                eye: self.eye,
             };
             r.render(scene, &spec)?;
             if !f.write {
@@ -308,7 +394,7 @@ impl Frames<'_> {
             // overwrite what shares the output's texture.
             rendered.outputs.push((f.frame, r.read_output()?));
             if read_targets {
-                let targets = crate::commands::dump::read_all_targets(&mut r, scene, &spec)?;
+                let targets = crate::commands::dump::read_all_targets(r, scene, &spec)?;
                 for (index, image) in targets.iter().enumerate() {
                     let seen = rendered.non_finite.iter().any(|n| n.target == index);
                     if let Some(found) = checks::non_finite(image).filter(|_| !seen) {
@@ -325,7 +411,7 @@ impl Frames<'_> {
     }
 }
 
-fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
+pub(super) fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
     found
         .iter()
         .map(|n| {
@@ -348,6 +434,7 @@ fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<
                     n.found.first_value
                 ),
                 files: Vec::new(),
+                reproduce: None,
             }
         })
         .collect()
@@ -365,13 +452,14 @@ fn determinism_failures(first: &[(u32, TargetImage)], second: &[(u32, TargetImag
                 check: "deterministic",
                 message: format!("frame {frame}: a second render differs from the first, first at pixel ({x}, {y})"),
                 files: Vec::new(),
+                reproduce: None,
             })
         })
         .take(1)
         .collect()
 }
 
-fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
+pub(super) fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
     outputs
         .iter()
         .filter_map(|(frame, img)| {
@@ -382,10 +470,31 @@ fn blank_failures(outputs: &[(u32, TargetImage)]) -> Vec<Failure> {
                     "frame {frame}: the output is one colour, #{r:02x}{g:02x}{b:02x}{a:02x}; say `may_be_blank = true` if it may be"
                 ),
                 files: Vec::new(),
+                reproduce: None,
             })
         })
         .take(1)
         .collect()
+}
+
+/// The largest change between consecutive frames, if over `bound`.
+fn flicker_failures(outputs: &[(u32, TargetImage)], bound: f64) -> Vec<Failure> {
+    let images: Vec<(u32, image::RgbaImage)> = outputs.iter().map(|(f, img)| (*f, img.to_rgba8())).collect();
+    let worst = images
+        .windows(2)
+        .map(|pair| (pair[1].0, checks::frame_change(&pair[0].1, &pair[1].1)))
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    match worst {
+        Some((frame, change)) if change > bound => vec![Failure {
+            check: "flicker",
+            message: format!(
+                "frame {frame} changes from the one before by a mean of {change:.5} per channel (allowed {bound})"
+            ),
+            files: Vec::new(),
+            reproduce: None,
+        }],
+        _ => Vec::new(),
+    }
 }
 
 /// Compare with the golden, or write it with `--bless` when every other
@@ -472,6 +581,7 @@ fn golden_check(
             check: "golden",
             message: format!("differs from {}: {}", path.display(), verdict.lines.join("; ")),
             files: images.into_iter().map(|(p, _)| p).collect(),
+            reproduce: None,
         }],
         None,
     ))

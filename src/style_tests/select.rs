@@ -14,6 +14,10 @@ use std::path::{Path, PathBuf};
 pub struct Found {
     pub test_files: Vec<PathBuf>,
     pub untested: Vec<PathBuf>,
+    /// The untested styles named on the command line (not found in a
+    /// directory, where libraries and art-map filters are too): what
+    /// `--sweep` sweeps besides the styles with tests.
+    pub named_untested: Vec<PathBuf>,
 }
 
 /// Walk `paths`: a directory for every `*.tests.toml` in it (and every
@@ -32,6 +36,7 @@ pub fn find(paths: &[PathBuf]) -> Result<Found, Diagnostic> {
                 found.test_files.push(tests);
             } else {
                 found.untested.push(path.clone());
+                found.named_untested.push(path.clone());
             }
         } else if path.exists() {
             return Err(bad_path(
@@ -46,6 +51,8 @@ pub fn find(paths: &[PathBuf]) -> Result<Found, Diagnostic> {
     found.test_files.dedup();
     found.untested.sort();
     found.untested.dedup();
+    found.named_untested.sort();
+    found.named_untested.dedup();
     Ok(found)
 }
 

@@ -545,3 +545,57 @@ fn requests_before_initialize_are_refused_not_fatal() {
     let status = client.child.wait().expect("the server exits");
     assert_eq!(status.code(), Some(1));
 }
+
+/// A style's `.tests.toml`: the diagnostics `npr test` gives, at their
+/// places in the buffer: E0407 for the file's own mistakes, and the
+/// parameter values typed against the style (E0101, E0203). No hover or
+/// symbols are offered for it.
+#[test]
+fn a_test_file_gets_the_diagnostics_npr_test_gives() {
+    let dir = scratch("a_test_file_gets_the_diagnostics_npr_test_gives");
+    std::fs::write(
+        dir.join("scene.toml"),
+        "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n",
+    )
+    .expect("scene");
+    let (mut client, doc) = started(&dir);
+    assert!(client.diagnostics(&doc).is_empty());
+    let tests_doc = uri(&dir.join("main.tests.toml"));
+    let good = "[[test]]\nname = \"café\"\nscene = \"scene.toml\"\nset = { bands = 5 }\n";
+    let good = good.replace("café", "cafe");
+    open(&mut client, &tests_doc, "toml", &good);
+    assert_eq!(client.diagnostics(&tests_doc), Vec::<Value>::new(), "a good test file");
+
+    // A misspelt key and a missing scene: E0407 at each.
+    let bad = "[[test]]\nname = \"a\"\nsceen = \"scene.toml\"\n\n[[test]]\nname = \"b\"\nscene = \"nowhere.toml\"\n";
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": tests_doc, "version": 2}, "contentChanges": [{"text": bad}]}),
+    );
+    let diags = client.diagnostics(&tests_doc);
+    let codes: Vec<&str> = diags.iter().map(|d| d["code"].as_str().expect("code")).collect();
+    assert!(codes.iter().all(|c| *c == "E0407") && codes.len() >= 2, "{diags:?}");
+    assert!(
+        diags
+            .iter()
+            .any(|d| d["range"]["start"] == pos(bad, "\"nowhere.toml\"", 0, 0)),
+        "{diags:?}"
+    );
+    // Values typed against the style: an unknown parameter in `set` and an
+    // out-of-range one in a variant, each at its place.
+    let typed = "[[test]]\nname = \"a\"\nscene = \"scene.toml\"\nset = { bnads = 5 }\nvariants = { one = { bands = 1 }, many = { bands = 80 } }\n";
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": tests_doc, "version": 3}, "contentChanges": [{"text": typed}]}),
+    );
+    let diags = client.diagnostics(&tests_doc);
+    let found: Vec<(&str, Value)> = diags
+        .iter()
+        .map(|d| (d["code"].as_str().expect("code"), d["range"]["start"].clone()))
+        .collect();
+    assert!(found.contains(&("E0101", pos(typed, "bnads", 0, 0))), "{diags:?}");
+    assert!(found.contains(&("E0203", pos(typed, "80", 0, 0))), "{diags:?}");
+    // No hover on a test file.
+    let hover = client.request("textDocument/hover", at(&tests_doc, typed, "bands", 0, 0));
+    assert_eq!(hover, Value::Null);
+}

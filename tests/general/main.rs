@@ -29,6 +29,7 @@ mod set_params;
 mod studio_browser;
 mod studio_camera;
 mod studio_server;
+mod style_sweeps;
 mod style_tests;
 mod style_tests_examples;
 mod vscode_extension;

@@ -299,3 +299,125 @@ fn bad_input_gets_its_code_and_exit_1() {
         assert_eq!(codes(&o), BTreeSet::from(["E0502".to_string()]), "{args:?}");
     }
 }
+
+/// A colour that brightens over a second: each frame at 24 fps changes the
+/// ball's pixels by 1/24 of a level range.
+const FADING_STYLE: &str = "style \"Fading\"\nparam a: float = 0.0 in 0..1 animate { 0s: 0.0, 1s: 1.0 }\npass p: render(scene) {\n  out c: rgba8unorm = vec4(a, a, a, 1.0)\n  clear: #336699\n}\noutput p.c\n";
+
+#[test]
+fn flicker_is_bounded_over_frames_of_a_still_camera() {
+    let tests = "[defaults]\nscene = \"scene.toml\"\nsize = \"32x32\"\nframes = \"0..4\"\n\n[[test]]\nname = \"calm\"\nflicker = 0.5\n\n[[test]]\nname = \"strict\"\nflicker = 0.001\n";
+    let dir = project("flicker", &[("fade", FADING_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "fade.npr", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = json_report(&o);
+    let found = failures(&report, "flicker");
+    assert_eq!(found.len(), 1, "{report}");
+    let message = found[0]["message"].as_str().expect("message");
+    assert!(message.contains("allowed 0.001"), "{message}");
+    assert_eq!(report["summary"]["passed"], 1, "`calm` passes");
+
+    // One frame, or a moving camera: bad input.
+    let one_frame = "[[test]]\nname = \"one\"\nscene = \"scene.toml\"\nflicker = 0.1\n";
+    let moving_scene = format!("{SCENE}\n[[camera.keys]]\ntime = 0.0\nposition = [0.0, 0.0, 3.0]\n\n[[camera.keys]]\ntime = 1.0\nposition = [1.0, 0.0, 3.0]\n");
+    let moving = "[[test]]\nname = \"moving\"\nscene = \"moving.toml\"\nframes = \"0..3\"\nflicker = 0.1\n";
+    for (case, tests) in [("flicker_one_frame", one_frame), ("flicker_moving", moving)] {
+        let dir = project(case, &[("fade", FADING_STYLE, tests)]);
+        std::fs::write(dir.join("moving.toml"), &moving_scene).expect("scene");
+        let o = npr_in(&dir, &["test", "fade.npr", "--message-format", "json"]);
+        assert_eq!(o.status.code(), Some(1), "{case}");
+        assert_eq!(codes(&o), BTreeSet::from(["E0407".to_string()]), "{case}");
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains("\"file\":\"fade.tests.toml\""),
+            "{case}: {}",
+            String::from_utf8_lossy(&o.stdout)
+        );
+    }
+}
+
+/// A budget is a ratio to a passthrough timed in the same run: no style
+/// that draws the scene costs a hundredth of drawing it once, and none of
+/// these costs a thousand times it.
+#[test]
+fn a_frame_budget_is_a_ratio_to_a_passthrough_in_the_same_run() {
+    let tests = "[defaults]\nscene = \"scene.toml\"\nsize = \"64x64\"\n\n[[test]]\nname = \"roomy\"\nbudget = 1000\n\n[[test]]\nname = \"impossible\"\nbudget = 0.01\n";
+    let dir = project("budget", &[("ball", SPHERE_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = json_report(&o);
+    let found = failures(&report, "budget");
+    assert_eq!(found.len(), 1, "{report}");
+    let message = found[0]["message"].as_str().expect("message");
+    assert!(
+        message.contains("× a passthrough") && message.ends_with("the budget is 0.01×"),
+        "{message}"
+    );
+    let roomy = report["tests"]
+        .as_array()
+        .expect("tests")
+        .iter()
+        .find(|t| t["name"] == "roomy")
+        .expect("roomy");
+    assert_eq!(roomy["status"], "passed");
+    assert!(roomy["note"]
+        .as_str()
+        .expect("the ratio, said")
+        .starts_with("the frame costs"));
+
+    let dir = project(
+        "budget_zero",
+        &[(
+            "ball",
+            SPHERE_STYLE,
+            "[[test]]\nname = \"b\"\nscene = \"scene.toml\"\nbudget = 0\n",
+        )],
+    );
+    let o = npr_in(&dir, &["test", "ball.npr", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0407".to_string()]))
+    );
+}
+
+/// `--bench`: each variant's cost against its FLIP from the reference
+/// variant, as a table and an SVG. The reference differs from itself by 0
+/// and the other variant (the normal shown at another strength) by more.
+#[test]
+fn bench_tables_each_variant_against_the_reference() {
+    let tests = "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nsize = \"48x48\"\nvariants = { dim = { amount = 0.1 }, full = { amount = 0.9 } }\nreference = \"full\"\n";
+    let dir = project("bench", &[("ball", SPHERE_STYLE, tests)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--plot", "variants.svg"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout).into_owned();
+    let cells = |variant: &str| -> Vec<String> {
+        let line = table
+            .lines()
+            .find(|l| l.starts_with(&format!("| {variant}")))
+            .unwrap_or_else(|| panic!("no row for {variant}:\n{table}"));
+        line.split('|').map(|c| c.trim().to_string()).collect()
+    };
+    let full = cells("full (reference)");
+    assert_eq!((full[5].as_str(), full[6].as_str()), ("0.0000", "0.0000"), "{table}");
+    let dim = cells("dim");
+    let flip_mean: f64 = dim[5].parse().expect("a number");
+    assert!(flip_mean > 0.01, "{table}");
+    let ratio: f64 = dim[2].parse().expect("a number");
+    assert!(ratio > 0.0 && ratio.is_finite(), "{table}");
+    let svg = std::fs::read_to_string(dir.join("variants.svg")).expect("the plot");
+    assert!(svg.starts_with("<svg") && svg.contains("ball.npr::ball"));
+
+    // A reference that is no variant; --bench where no test has variants.
+    let bad = "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nvariants = { a = { amount = 0.1 }, b = { amount = 0.2 } }\nreference = \"c\"\n";
+    let dir = project("bench_bad", &[("ball", SPHERE_STYLE, bad)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0407".to_string()]))
+    );
+    let dir = project("bench_none", &[("ball", SPHERE_STYLE, GOLDEN_TEST)]);
+    let o = npr_in(&dir, &["test", "ball.npr", "--bench", "--message-format", "json"]);
+    assert_eq!(
+        (o.status.code(), codes(&o)),
+        (Some(1), BTreeSet::from(["E0502".to_string()]))
+    );
+}

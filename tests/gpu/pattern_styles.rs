@@ -1,12 +1,12 @@
 //! The pattern styles built on the dynamic 2D pattern tracker of
 //! `examples/lib/dynamic_pattern.npr` (Breslav et al. 2007): halftone,
 //! hatching, stipple and painterly strokes, each drawn in every object's
-//! tracked pattern frame with the §3.4 LOD transition. Per style: goldens of frames
-//! 0, 12 and 24 of `examples/scenes/cows.toml` (rendered in order: the
-//! styles are path-dependent), and a frame rendered alone (replayed) that
-//! equals the same frame of a sequence. On `examples/scenes/patched_cow.toml`
-//! (§3.6, patches blended over their n-rings): hatching, halftone and stipple
-//! goldens. Mid-way through the §3.4 LOD band: hatching (the copies alpha
+//! tracked pattern frame with the §3.4 LOD transition. Per style: a frame
+//! rendered alone (replayed) that equals the same frame of a sequence; so
+//! the goldens of frames 0, 12 and 24 on `examples/scenes/cows.toml` and
+//! (§3.6, patches blended over their n-rings) `patched_cow.toml` are
+//! sidecar tests, `examples/<style>.tests.toml`, each frame replayed by
+//! `npr test`. Mid-way through the §3.4 LOD band: hatching (the copies alpha
 //! blended) and halftone (the screens blended), at a frame whose cumulative
 //! zooms the test reads back from the tracker. Also: the painterly stroke
 //! texture is what its documented `npr texgen` command writes.
@@ -15,44 +15,6 @@ use runner::{FrameSpec, Renderer};
 
 use crate::common;
 use common::{gpu, root};
-
-/// Render `examples/<style>.npr` on the cows at 128×96, frames 0..=24 in
-/// order (as `--frames 0..25` does), and compare frames 0, 12 and 24 with
-/// `examples/golden/<style>_cows_{00,12,24}.png` (`NPR_UPDATE_GOLDENS=1`
-/// rewrites them).
-fn matches_its_goldens(style: &str) {
-    matches_its_goldens_on(style, "cows");
-}
-
-/// [`matches_its_goldens`] on `examples/scenes/<scene>.toml`, with goldens
-/// `examples/golden/<style>_<scene>_{00,12,24}.png`.
-fn matches_its_goldens_on(style: &str, scene_name: &str) {
-    let mut sources = diag::SourceMap::new();
-    let program = compiler::compile_file(
-        &root().join(format!("examples/{style}.npr")),
-        &mut sources,
-        &Default::default(),
-    )
-    .unwrap_or_else(|e| panic!("{e:?}"))
-    .program();
-    let scene = runner::scene::load_scene(&root().join(format!("examples/scenes/{scene_name}.toml")), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-    // Path-dependent: every frame in order, as `--frames 0..25` renders them.
-    for frame in 0u32..=24 {
-        let spec = FrameSpec::animated(128, 96, frame, FrameSpec::DEFAULT_FPS, 0);
-        r.render(&scene, &spec).expect("frame");
-        if frame % 12 != 0 {
-            continue;
-        }
-        let img = r.read_output().expect("read").to_rgba8();
-        assert_golden(
-            &img,
-            &format!("{style}_{scene_name}_{frame:02}"),
-            &format!("{style} frame {frame}"),
-        );
-    }
-}
 
 /// Frame 6 of `examples/<style>.npr` rendered alone (which replays frames
 /// 0..6) equals frame 6 of a sequence, and differs from frame 0.
@@ -68,18 +30,8 @@ fn a_frame_alone_equals_the_sequence(style: &str) {
 }
 
 #[test]
-fn the_halftone_example_matches_its_goldens() {
-    matches_its_goldens("halftone");
-}
-
-#[test]
 fn a_halftone_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
     a_frame_alone_equals_the_sequence("halftone");
-}
-
-#[test]
-fn the_hatching_example_matches_its_goldens() {
-    matches_its_goldens("hatching");
 }
 
 #[test]
@@ -88,18 +40,8 @@ fn a_hatching_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
 }
 
 #[test]
-fn the_stipple_example_matches_its_goldens() {
-    matches_its_goldens("stipple");
-}
-
-#[test]
 fn a_stipple_frame_rendered_alone_equals_the_same_frame_of_a_sequence() {
     a_frame_alone_equals_the_sequence("stipple");
-}
-
-#[test]
-fn the_painterly_example_matches_its_goldens() {
-    matches_its_goldens("painterly");
 }
 
 #[test]
@@ -144,13 +86,6 @@ fn the_painterly_stroke_texture_is_what_texgen_writes() {
         fresh == shipped,
         "examples/textures/pattern_strokes.png differs from what texgen writes"
     );
-}
-
-/// §3.6: the cow in 6 patches turning in place, each patch hatched in its
-/// own tracked frame (`examples/scenes/patched_cow.toml`).
-#[test]
-fn hatching_on_the_patched_turning_cow_matches_its_goldens() {
-    matches_its_goldens_on("hatching", "patched_cow");
 }
 
 /// The slot of per-object value `name` of compute pass `pass`.
@@ -257,16 +192,4 @@ fn hatching_in_the_lod_band_matches_its_golden() {
 #[test]
 fn halftone_in_the_lod_band_matches_its_golden() {
     mid_transition_matches_its_golden("halftone");
-}
-
-/// §3.6: the halftone's screens blended across the patches of the turning cow.
-#[test]
-fn halftone_on_the_patched_turning_cow_matches_its_goldens() {
-    matches_its_goldens_on("halftone", "patched_cow");
-}
-
-/// §3.6: the stipple dots blended across the patches of the turning cow.
-#[test]
-fn stipple_on_the_patched_turning_cow_matches_its_goldens() {
-    matches_its_goldens_on("stipple", "patched_cow");
 }

@@ -200,9 +200,11 @@ pub(super) const ALL: &[Explanation] = &[
         meaning: "`npr test` reads a style's tests from `<style>.tests.toml` beside it: an optional \
             `[defaults]` table and one `[[test]]` table per test, with `name`, `scene`, `size`, \
             `time`, `frame` or `frames`, `eye`, `set`, `golden` with its `flip` or `per_pixel` \
-            tolerance, and `may_be_blank`. This code is a file that is not TOML, a field npr does \
-            not know, one missing or of the wrong type, a value outside its domain, two tests of \
-            one name, or a scene that does not exist; the label points into the test file.",
+            tolerance, `may_be_blank`, `sweep`, `flicker`, `budget`, and `variants` with their \
+            `reference`. This code is a file that is not \
+            TOML, a field npr does not know, one missing or of the wrong type, a value outside its \
+            domain, two tests of one name, a scene that does not exist, or `flicker` on a single \
+            frame or a moving camera; the label points into the test file.",
         wrong: Example {
             style: GREY,
             files: &[

@@ -12,18 +12,27 @@
 //! set = { bands = 5 }
 //! golden = "golden/toon_spot.png"
 //! flip = { mean = 0.01, p99 = 0.3 }
+//! sweep = true        # also sweep every parameter's range on this scene
+//! # frames = "0..12" and flicker = 0.02: the mean change between frames
+//! budget = 40         # the frame at most 40× a passthrough, timed in the run
+//! variants = { fast = { samples = 4 }, exact = { samples = 64 } }
+//! reference = "exact" # `npr test --bench`: each variant's cost against its FLIP
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
 //! helpers (`runner::scene::toml_fields`), so every problem in it is an
 //! E0407 that points at the key or value, all of them reported at once.
 //! `set` values are kept as the text `--set` would take: they are typed
-//! against the compiled style's parameters when the test runs.
+//! against the compiled style's parameters when the test runs. The values
+//! inside fields (`set`, `variants`, `flip`, `per_pixel`) are `values.rs`.
+
+mod values;
 
 use diag::{codes, Diagnostic, FileId, SourceMap, Span};
-use runner::scene::toml_fields::{describe, At, Fields, Report};
+use runner::scene::toml_fields::{At, Fields, Report};
 use std::path::{Path, PathBuf};
-use toml::de::{DeTable, DeValue};
+use toml::de::DeTable;
+use values::{flip_bound, per_pixel_bound, set_entries, variants};
 
 /// The file name suffix that makes a TOML file a style's tests.
 pub const SUFFIX: &str = ".tests.toml";
@@ -56,6 +65,29 @@ pub struct TestDecl {
     pub sets: Vec<(At<String>, At<String>)>,
     pub golden: Option<Golden>,
     pub may_be_blank: bool,
+    /// `sweep = true`: also sweep every parameter's range on this test's
+    /// scene, size and frames (`sweep/`).
+    pub sweep: bool,
+    /// `flicker = 0.02`: over `frames`, with a still camera, the mean
+    /// absolute change of the output between consecutive frames (channels
+    /// in 0..1) stays at or under this.
+    pub flicker: Option<At<f64>>,
+    /// `budget = 40`: the frame costs at most this many times a
+    /// passthrough measured in the same run (`budget.rs`).
+    pub budget: Option<At<f64>>,
+    /// `variants = { fast = { samples = 4 }, exact = { samples = 64 } }`:
+    /// parameter sets over the test's own, compared by `npr test --bench`.
+    pub variants: Vec<Variant>,
+    /// Which variant the others' FLIP is against (`reference = "exact"`;
+    /// the first by default): an index into `variants`.
+    pub reference: usize,
+}
+
+/// One named parameter set of a test, over the test's `set`.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    pub name: At<String>,
+    pub sets: Vec<(At<String>, At<String>)>,
 }
 
 /// Which frame (or frames) a test renders.
@@ -115,6 +147,9 @@ struct Partial {
     flip: Option<FlipBound>,
     per_pixel: Option<PerPixelBound>,
     may_be_blank: Option<bool>,
+    sweep: Option<bool>,
+    flicker: Option<At<f64>>,
+    budget: Option<At<f64>>,
 }
 
 /// The style a test file is for: `x.tests.toml` → `x.npr`.
@@ -152,6 +187,17 @@ pub fn read(path: &Path) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
         Ok(read) => read,
         Err(d) => return Err((vec![d], sources)),
     };
+    check(path, file, &text, sources)
+}
+
+/// [`read`] of a text already in memory (the language server's buffer).
+pub fn read_text(path: &Path, text: &str) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
+    let mut sources = SourceMap::new();
+    let file = sources.add(path.display().to_string(), text.to_string());
+    check(path, file, text, sources)
+}
+
+fn check(path: &Path, file: FileId, text: &str, sources: SourceMap) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
     let style = style_of(path).unwrap_or_else(|| path.with_extension("npr"));
     let mut report = Report {
         file,
@@ -171,7 +217,7 @@ pub fn read(path: &Path) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
             "name the test file after its style: `toon.tests.toml` tests `toon.npr`",
         );
     }
-    let tests = parse(&text, file, path.parent().unwrap_or(Path::new(".")), &mut report);
+    let tests = parse(text, file, path.parent().unwrap_or(Path::new(".")), &mut report);
     if report.has_errors() {
         let mut diagnostics = report.diagnostics;
         diagnostics.sort_by_key(|d| d.primary_span().map_or(0, |s| s.start));
@@ -235,6 +281,7 @@ fn parse(text: &str, file: FileId, dir: &Path, report: &mut Report) -> Vec<TestD
             fields.set_context(format!("test `{}`", n.value));
         }
         let golden = fields.string("golden", report);
+        let (variants, reference) = variants(&mut fields, report);
         let own = partial_fields(&mut fields, dir, report);
         let header = fields.header();
         fields.finish(report);
@@ -248,7 +295,9 @@ fn parse(text: &str, file: FileId, dir: &Path, report: &mut Report) -> Vec<TestD
             );
             continue;
         }
-        if let Some(t) = merge(name, own, &defaults, golden, dir, header, report) {
+        if let Some(mut t) = merge(name, own, &defaults, golden, dir, header, report) {
+            t.variants = variants;
+            t.reference = reference;
             tests.push(t);
         }
     }
@@ -350,26 +399,8 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
             ),
         }
     }
-    if let Some(mut set) = fields.table("set", "`set`", report) {
-        for (name, value) in set.entries(report) {
-            if let Some(text) = set_text(value.get_ref()) {
-                p.sets.push((
-                    name,
-                    At {
-                        value: text,
-                        span: report.span(value.span()),
-                    },
-                ));
-            } else {
-                report.bad_scene(
-                    report.span(value.span()),
-                    format!("`set.{}` cannot be {}", name.value, describe(value.get_ref())),
-                    "not a parameter value",
-                    "write the value as `--set` takes it: a number, `true`, a string (`\"2px\"`, `\"#3080ff\"`, `\"cubic\"`) or an array of numbers",
-                );
-            }
-        }
-        set.finish(report);
+    if let Some(set) = fields.table("set", "`set`", report) {
+        p.sets = set_entries(set, report);
     }
     if let Some(flip) = fields.table("flip", "`flip`", report) {
         p.flip = flip_bound(flip, report);
@@ -378,6 +409,31 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
         p.per_pixel = per_pixel_bound(per_pixel, report);
     }
     p.may_be_blank = fields.boolean("may_be_blank", report).map(|b| b.value);
+    p.sweep = fields.boolean("sweep", report).map(|b| b.value);
+    if let Some(f) = fields.number("flicker", report) {
+        if (0.0..=1.0).contains(&f.value) {
+            p.flicker = Some(f);
+        } else {
+            report.bad_scene(
+                f.span,
+                format!("`flicker` must be from 0 to 1, not {}", f.value),
+                "outside 0..1",
+                "`flicker` bounds the mean change of a channel (0..1) from one frame to the next",
+            );
+        }
+    }
+    if let Some(b) = fields.number("budget", report) {
+        if b.value > 0.0 && b.value.is_finite() {
+            p.budget = Some(b);
+        } else {
+            report.bad_scene(
+                b.span,
+                format!("`budget` must be above 0, not {}", b.value),
+                "not a ratio",
+                "`budget = 40`: the frame costs at most 40 times a passthrough pass",
+            );
+        }
+    }
     p
 }
 
@@ -442,99 +498,6 @@ fn when(fields: &mut Fields, report: &mut Report) -> Option<WhenDecl> {
     }
 }
 
-/// A TOML value as the text `--set` takes.
-fn set_text(value: &DeValue) -> Option<String> {
-    match value {
-        DeValue::String(s) => Some(s.to_string()),
-        DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix()).ok().map(|n| n.to_string()),
-        DeValue::Float(f) => Some(f.as_str().to_string()),
-        DeValue::Boolean(b) => Some(b.to_string()),
-        DeValue::Array(items) => {
-            let parts: Option<Vec<String>> = items
-                .iter()
-                .map(|item| match item.get_ref() {
-                    DeValue::Integer(_) | DeValue::Float(_) => set_text(item.get_ref()),
-                    _ => None,
-                })
-                .collect();
-            parts.map(|p| p.join(", "))
-        }
-        DeValue::Datetime(_) | DeValue::Table(_) => None,
-    }
-}
-
-/// A share or error bound: a number from 0 to 1.
-fn unit_interval(fields: &mut Fields, key: &'static str, report: &mut Report) -> Option<f64> {
-    let n = fields.number(key, report)?;
-    if (0.0..=1.0).contains(&n.value) {
-        Some(n.value)
-    } else {
-        report.bad_scene(
-            n.span,
-            format!("`{key}` must be from 0 to 1, not {}", n.value),
-            "outside 0..1",
-            "FLIP errors and pixel shares are from 0 to 1",
-        );
-        None
-    }
-}
-
-fn flip_bound(mut fields: Fields, report: &mut Report) -> Option<FlipBound> {
-    let header = fields.header();
-    let mean = unit_interval(&mut fields, "mean", report);
-    let percentiles: Vec<(f64, f64)> = PERCENTILES
-        .iter()
-        .filter_map(|(key, pct)| unit_interval(&mut fields, key, report).map(|b| (*pct, b)))
-        .collect();
-    fields.finish(report);
-    if mean.is_none() && percentiles.is_empty() {
-        report.bad_scene(
-            header,
-            "`flip` bounds nothing",
-            "no `mean` or percentile",
-            "write e.g. `flip = { mean = 0.01, p99 = 0.3 }`",
-        );
-        return None;
-    }
-    Some(FlipBound { mean, percentiles })
-}
-
-fn per_pixel_bound(mut fields: Fields, report: &mut Report) -> Option<PerPixelBound> {
-    let max = fields.integer("max", report);
-    let outliers = unit_interval(&mut fields, "outliers", report);
-    let header = fields.header();
-    fields.finish(report);
-    let max = match max {
-        Some(m) if (0..=255).contains(&m.value) => m.value as u8,
-        Some(m) => {
-            report.bad_scene(
-                m.span,
-                format!("`max` must be from 0 to 255, not {}", m.value),
-                "outside 0..255",
-                "`max` is a difference in 8-bit levels",
-            );
-            return None;
-        }
-        None => {
-            fields_missing(header, "per_pixel", "max", "max = 2", report);
-            return None;
-        }
-    };
-    Some(PerPixelBound {
-        max,
-        outliers: outliers.unwrap_or(0.0),
-    })
-}
-
-fn fields_missing(header: Span, table: &str, key: &str, example: &str, report: &mut Report) {
-    report.bad_scene(
-        header,
-        format!("`{table}` has no `{key}`"),
-        format!("`{key}` is required here"),
-        format!("add `{example}`"),
-    );
-}
-
 /// A test's own fields over the defaults; `None` when something required is missing.
 fn merge(
     name: At<String>,
@@ -563,6 +526,16 @@ fn merge(
         },
         Some(WhenDecl::Frames(start, end)) => When::Range { start, end },
     };
+    let flicker = own.flicker.or_else(|| defaults.flicker.clone());
+    if let (Some(f), When::At { .. }) = (&flicker, when) {
+        report.bad_scene(
+            f.span,
+            format!("test `{}` bounds flicker but renders one frame", name.value),
+            "flicker is measured between frames",
+            "give the test a range, e.g. `frames = \"0..12\"`, with a still camera",
+        );
+        return None;
+    }
     let flip = own.flip.or_else(|| defaults.flip.clone());
     let per_pixel = own.per_pixel.or(defaults.per_pixel);
     let golden = match golden {
@@ -602,6 +575,11 @@ fn merge(
         sets,
         golden,
         may_be_blank: own.may_be_blank.or(defaults.may_be_blank).unwrap_or(false),
+        sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
+        flicker,
+        budget: own.budget.or_else(|| defaults.budget.clone()),
+        variants: Vec::new(),
+        reference: 0,
         name,
     })
 }
