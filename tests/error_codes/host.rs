@@ -123,9 +123,10 @@ fn e0602_a_texture_view_of_the_wrong_format() {
 
 #[test]
 fn set_param_mistakes_are_the_codes_of_set() {
-    let text = style(&format!(
-        "param bands: int = 3 in 1..8\nparam width: px = 2px in 0px..16px\n{SIMPLE_PASS}"
-    ));
+    let text = style(
+        "param bands: int = 3 in 1..8\nparam width: px = 2px in 0px..16px\n\
+         pass p: render(scene) {\n  out color: rgba8unorm = vec4(toon(lambert(normal, light.dir), steps: bands), width / 16px, 0.0, 1.0)\n}\noutput p.color\n",
+    );
     let mut rt = runtime(&text);
     rt.set_param("bands", "5").expect("a good value");
     rt.set_param("width", "50%").expect("a % of the height");

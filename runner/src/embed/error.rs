@@ -11,7 +11,7 @@ use diag::{codes, Diagnostic};
 #[non_exhaustive]
 pub enum EmbedError {
     /// A mesh handle that was removed, or that another runtime gave out (E0601).
-    #[error("mesh handle {0:?} does not name a mesh of this runtime (removed, or from another runtime)")]
+    #[error("mesh handle #{} (generation {}) does not name a mesh of this runtime: it was removed, or another runtime gave it out", .0.index, .0.generation)]
     UnknownMesh(MeshHandle),
     /// A style parameter that does not exist, or a value of the wrong type,
     /// unit or outside its declared range: the codes `--set` gives (E0101,
@@ -43,14 +43,11 @@ impl EmbedError {
     /// render with `diag::diagnostic::render` or log.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
         match self {
-            EmbedError::UnknownMesh(h) => {
-                vec![
-                    Diagnostic::error(codes::UNKNOWN_MESH, self.to_string()).with_help(format!(
-                        "register the mesh with `StyleRuntime::add_mesh` and use the handle it returns; \
-                     handle #{} (generation {}) was removed or never given out by this runtime",
-                        h.index, h.generation
-                    )),
-                ]
+            EmbedError::UnknownMesh(_) => {
+                vec![Diagnostic::error(codes::UNKNOWN_MESH, self.to_string()).with_help(
+                    "register the mesh with `StyleRuntime::add_mesh`, use the handle it returns, and \
+                         remove it only after the last frame that draws it",
+                )]
             }
             EmbedError::Param(d) | EmbedError::Target(d) => vec![d.clone()],
             EmbedError::Run(e) => e.diagnostics(),

@@ -79,7 +79,14 @@ impl StyleRuntime {
             return Err(EmbedError::Param(
                 Diagnostic::error(
                     codes::BAD_ARGUMENT_VALUE,
-                    format!("set_param(\"{name}\"): `{name}` was folded into the style's shaders when it was compiled"),
+                    format!(
+                        "set_param(\"{name}\"): `{name}` cannot change at run time: {}",
+                        if param.binding == ParamBinding::Removed {
+                            "nothing the style's output depends on reads it"
+                        } else {
+                            "it was folded into the style's shaders when the style was compiled"
+                        }
+                    ),
                 )
                 .with_help(
                     "compile the style with `keep_params` (`CompileOptions::keep_params`, \

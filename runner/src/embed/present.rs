@@ -63,9 +63,11 @@ fn check_view(view: &wgpu::TextureView, what: &str) -> Result<(u32, u32, wgpu::T
     }
     if format.is_srgb() {
         return Err(target_error(
-            format!("the {what} view's format {format:?} is sRGB, which would re-encode the style's output"),
-            "view the texture in its non-sRGB twin (format.remove_srgb_suffix(), listed in the \
-             texture's or surface configuration's view_formats); the style's output is already display-ready",
+            format!(
+                "the {what} view's texture has the sRGB format {format:?}, which would re-encode the style's output"
+            ),
+            "the style's output is display-ready: make the texture (or configure the surface) with the \
+             non-sRGB twin, format.remove_srgb_suffix()",
         ));
     }
     let colour_float = matches!(
