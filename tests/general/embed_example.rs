@@ -41,7 +41,11 @@ fn mean(stdout: &str, what: &str) -> f64 {
 }
 
 fn run(command: &mut Command, what: &str) -> f64 {
-    let out = command.output().unwrap_or_else(|e| panic!("{what}: {e}"));
+    // Mesa's window-system probing wants a runtime directory.
+    let out = command
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
