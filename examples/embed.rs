@@ -192,16 +192,18 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
-        let result = match event {
-            WindowEvent::CloseRequested => Ok(event_loop.exit()),
-            WindowEvent::Resized(size) => Ok(if let Some((_, surface, config, host)) = &mut self.window {
-                (config.width, config.height) = (size.width.max(1), size.height.max(1));
-                surface.configure(&host.device, config);
-            }),
-            WindowEvent::RedrawRequested => self.redraw(event_loop),
-            _ => Ok(()),
-        };
-        if let Err(e) = result {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                if let Some((_, surface, config, host)) = &mut self.window {
+                    (config.width, config.height) = (size.width.max(1), size.height.max(1));
+                    surface.configure(&host.device, config);
+                }
+            }
+            _ => {}
+        }
+        let redraw = matches!(event, WindowEvent::RedrawRequested);
+        if let Err(e) = if redraw { self.redraw(event_loop) } else { Ok(()) } {
             self.error = Some(e);
             event_loop.exit();
         }

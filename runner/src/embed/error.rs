@@ -17,11 +17,11 @@ pub enum EmbedError {
     /// unit or outside its declared range: the codes `--set` gives (E0101,
     /// E0201, E0202, E0203, E0502).
     #[error("{}", .0.message)]
-    Param(Diagnostic),
+    Param(Box<Diagnostic>),
     /// A texture view the runtime cannot render into: the wrong format,
     /// size or usage (E0602).
     #[error("{}", .0.message)]
-    Target(Diagnostic),
+    Target(Box<Diagnostic>),
     /// What the runner reports: a device lacking a feature or limit the
     /// style needs (E0510), objects the style cannot draw (E0403, E0405),
     /// out of memory (E0508), a lost device (E0509), a bug (E9001).
@@ -49,7 +49,7 @@ impl EmbedError {
                          remove it only after the last frame that draws it",
                 )]
             }
-            EmbedError::Param(d) | EmbedError::Target(d) => vec![d.clone()],
+            EmbedError::Param(d) | EmbedError::Target(d) => vec![(**d).clone()],
             EmbedError::Run(e) => e.diagnostics(),
         }
     }

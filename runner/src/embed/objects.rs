@@ -99,8 +99,8 @@ impl HostScene {
             self.mesh_revision = meshes.revision;
         }
         set_camera(&mut self.scene.camera, frame.camera);
-        self.scene.light = frame.lights.key.clone();
-        self.scene.more_lights = frame.lights.more.clone();
+        self.scene.light = frame.lights.key;
+        self.scene.more_lights = frame.lights.more;
         Ok(!same)
     }
 }

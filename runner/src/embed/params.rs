@@ -64,19 +64,19 @@ impl StyleRuntime {
     pub fn set_param(&mut self, name: &str, value: &str) -> Result<(), EmbedError> {
         let params = &self.program.manifest.params;
         let Some(index) = params.iter().position(|p| p.name == name) else {
-            return Err(EmbedError::Param(unknown_param(name, params)));
+            return Err(EmbedError::Param(Box::new(unknown_param(name, params))));
         };
         let param = &params[index];
         let shape = ParamShape::of_manifest(param);
         let typed =
             type_value(&shape, &read_literal(value.trim()), value.trim(), &SettingOrigin::Host).map_err(|r| {
-                EmbedError::Param(
+                EmbedError::Param(Box::new(
                     Diagnostic::error(r.code, format!("{}: {}", SettingOrigin::Host.subject(name), r.message))
                         .with_help(format!("{} ({})", r.help, r.label)),
-                )
+                ))
             })?;
         if !settable(param) {
-            return Err(EmbedError::Param(
+            return Err(EmbedError::Param(Box::new(
                 Diagnostic::error(
                     codes::BAD_ARGUMENT_VALUE,
                     format!(
@@ -92,7 +92,7 @@ impl StyleRuntime {
                     "compile the style with `keep_params` (`CompileOptions::keep_params`, \
                      `npr compile --keep-params`) to change its parameters at run time",
                 ),
-            ));
+            )));
         }
         for manifest in
             std::iter::once(&mut self.program.manifest).chain(self.renderer.as_mut().map(|r| &mut r.manifest))

@@ -38,7 +38,9 @@ pub(super) struct CheckedTarget<'a> {
 }
 
 fn target_error(message: String, help: &str) -> EmbedError {
-    EmbedError::Target(Diagnostic::error(codes::BAD_RENDER_TARGET, message).with_help(help.to_string()))
+    EmbedError::Target(Box::new(
+        Diagnostic::error(codes::BAD_RENDER_TARGET, message).with_help(help.to_string()),
+    ))
 }
 
 /// The size and format of one view, or why it cannot be drawn into.
