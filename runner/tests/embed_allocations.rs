@@ -228,3 +228,67 @@ fn a_history_style_allocates_nothing_per_frame() {
 fn age_of_sail_allocates_nothing_per_frame() {
     check("age_of_sail.npr", &[], Some(("breakup", 1)), Some(("warp_px", "6px")));
 }
+
+/// A TOML scene is the same structure: its objects become instances
+/// (shared meshes registered once), and the runtime renders it as
+/// `Renderer` does, pixel for pixel.
+#[test]
+fn a_toml_scene_renders_through_the_runtime_as_through_the_renderer() {
+    let program = compile("toon.npr");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/spheres.toml");
+    let scene = runner::scene::load_scene(&path, &mut diag::SourceMap::new()).expect("scene");
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program.clone()).expect("runtime");
+    let instances = runtime.add_scene(&scene);
+    assert_eq!(instances.len(), scene.objects.len());
+    let lights = Lights {
+        key: scene.light,
+        more: scene.more_lights,
+    };
+    let frame = Frame {
+        camera: &scene.camera,
+        objects: &instances,
+        lights: &lights,
+        time_s: 0.0,
+        frame_index: 0,
+        eye: 0,
+    };
+    let texture = gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: 64,
+            height: 48,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    runtime
+        .render(
+            &mut encoder,
+            &frame,
+            Target::View(&texture.create_view(&Default::default())),
+        )
+        .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
+    gpu().queue.submit([encoder.finish()]);
+    let presented = runner::readback::read_texture(
+        &gpu().device,
+        &gpu().queue,
+        &texture,
+        64,
+        48,
+        abi::Format::Rgba8unorm,
+        "host",
+    )
+    .expect("read back");
+    let direct = runner::render_frame(gpu(), &program, &scene, &runner::FrameSpec::still(64, 48, 0)).expect("render");
+    assert_eq!(direct.format, abi::Format::Rgba8unorm);
+    assert_eq!(
+        presented.bytes, direct.bytes,
+        "the host's view differs from npr render's output"
+    );
+}

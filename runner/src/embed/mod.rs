@@ -216,6 +216,40 @@ impl StyleRuntime {
         self.meshes.get(handle)
     }
 
+    /// A scene read from TOML (`scene::load_scene`) as the host's
+    /// objects: each distinct mesh registered once, one [`Instance`] per
+    /// object (its model at load, tags, per-object params, shadow flag), in
+    /// order, so `instances[i]` is `scene.objects[i]`. What a TOML scene
+    /// has beyond an instance is the host's to animate: a spinning object's
+    /// transform is `scene.objects[i].model_at(t)`. Not carried (yet): the
+    /// ocean's time-varying vertices (its mesh stays as at t = 0),
+    /// blended patches and per-object images (the style's defaults).
+    pub fn add_scene(&mut self, scene: &Scene) -> Vec<Instance> {
+        let mut registered: Vec<(*const Mesh, MeshHandle)> = Vec::new();
+        scene
+            .objects
+            .iter()
+            .map(|o| {
+                let key = Arc::as_ptr(&o.mesh);
+                let mesh = match registered.iter().find(|(k, _)| *k == key) {
+                    Some((_, h)) => *h,
+                    None => {
+                        let h = self.add_shared_mesh(o.mesh.clone());
+                        registered.push((key, h));
+                        h
+                    }
+                };
+                Instance {
+                    mesh,
+                    transform: o.model,
+                    tags: o.tags.clone(),
+                    params: o.params.clone(),
+                    casts_shadows: o.casts_shadows,
+                }
+            })
+            .collect()
+    }
+
     /// Times the GPU resources of the scene were (re)built: once at the
     /// first frame, and again when the style or the set of objects' meshes,
     /// tags or shadow flags changed.
