@@ -565,6 +565,22 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 60)]
         frames: u32,
     },
+    /// CPU time per frame of a host driving a style (`runner::embed`:
+    /// prepare and encode) for several object counts, against an independent
+    /// minimal wgpu program recording the same number of passes, in one run.
+    Host {
+        #[arg(long, default_value = "examples/age_of_sail.npr")]
+        style: PathBuf,
+        /// Object counts, comma-separated.
+        #[arg(long, default_value = "1,10,100,1000", value_delimiter = ',')]
+        objects: Vec<usize>,
+        /// Square image size.
+        #[arg(long, default_value_t = 256)]
+        size: u32,
+        /// Timed frames per count (the median is reported).
+        #[arg(long, default_value_t = 50)]
+        frames: u32,
+    },
     /// Runner overhead per frame against an independent hand-written wgpu
     /// program drawing the same WGSL passes with its own pipelines, bind
     /// groups, buffers and textures. Both images are compared first (equal

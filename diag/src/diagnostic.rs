@@ -336,6 +336,14 @@ pub mod codes {
     pub const CHECKPOINT_MISMATCH: &str = "E0512";
     /// A checkpoint file that is not one, or is truncated or corrupted.
     pub const BAD_CHECKPOINT: &str = "E0513";
+    /// A host application (the embedding API, `runner::embed`) used a mesh
+    /// handle that was removed or that another runtime gave out.
+    pub const UNKNOWN_MESH: &str = "E0601";
+    /// A host application gave a texture view the runtime cannot render
+    /// into: an sRGB, depth or integer format, no `RENDER_ATTACHMENT`
+    /// usage, not one 2D layer and mip, a size outside the limits, or
+    /// views that do not fit the style's eyes.
+    pub const BAD_RENDER_TARGET: &str = "E0602";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -411,5 +419,7 @@ pub mod codes {
         (NO_VIDEO_ENCODER, "the video encoder (ffmpeg) is missing"),
         (CHECKPOINT_MISMATCH, "checkpoint made for another render"),
         (BAD_CHECKPOINT, "checkpoint truncated, corrupted or not one"),
+        (UNKNOWN_MESH, "a host used a mesh handle that was removed"),
+        (BAD_RENDER_TARGET, "a host's texture view the style cannot render into"),
     ];
 }

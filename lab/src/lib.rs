@@ -10,6 +10,8 @@
 //!   (`npr bench passes`, `npr studio`).
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
+//! - [`bench_host`]: `npr bench host`, a host's CPU time per frame through
+//!   `runner::embed` against a minimal wgpu program.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`fit`]: least-squares line and log–log power law of a cost against a size.
 //! - [`bench_lines`]: `npr bench lines`, lines passes' cost against edges and against LSA contours.
@@ -26,6 +28,7 @@
 pub mod bench;
 pub mod bench_artmaps;
 pub mod bench_contours;
+pub mod bench_host;
 pub mod bench_lines;
 pub mod bench_ops;
 pub mod bench_overhead;

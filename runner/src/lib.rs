@@ -5,6 +5,8 @@
 //! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
 //!   executor per pass kind).
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
+//! - [`embed`]: [`embed::StyleRuntime`], the runtime a host application drives.
+//! - [`gpu_count`]: every GPU object the runner creates, counted.
 //! - [`pass_timer`]: each pass's GPU time in a frame, from timestamp queries.
 //!
 //! The runner depends on neither the compiler, the stdlib nor the parser
@@ -13,11 +15,10 @@
 //! block). Golden comparison, contour ground truth and benchmarks live in the
 //! `lab` crate.
 //!
-//! Embedding in your own wgpu application: get a [`StyleProgram`] from
-//! `compiler::compile_file(..)?.program()` or [`StyleProgram::load_dir`]
-//! (a directory written by `npr compile -o DIR`), load a [`scene::Scene`], then
-//! `Renderer::new(&device, &queue, &program, &scene)` and call
-//! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
+//! Embedding in your own wgpu application: [`embed::StyleRuntime`], which
+//! the host drives frame by frame with its own meshes, camera, command
+//! encoder and texture views (see the module's docs and
+//! `examples/embed.rs`).
 
 pub mod animation;
 pub mod artmap;
@@ -25,8 +26,10 @@ pub mod artmap_cache;
 pub mod checkpoint;
 pub mod device;
 pub mod device_needs;
+pub mod embed;
 pub mod exec;
 pub mod exr_layers;
+pub mod gpu_count;
 pub mod gpu_error;
 pub mod half_rounding;
 pub mod lines;

@@ -4,6 +4,7 @@
 mod artmaps;
 mod compile;
 mod gpu;
+mod host;
 mod http_client;
 mod lines;
 mod patterns;
@@ -117,6 +118,12 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             ),
             _ => printer.fail(Diagnostic::error(codes::USAGE, "--values takes two values, `A,B`")),
         },
+        BenchCommand::Host {
+            style,
+            objects,
+            size,
+            frames,
+        } => host::run(&style, &objects, size, frames, printer),
         BenchCommand::Overhead {
             style,
             scene,

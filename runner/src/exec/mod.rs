@@ -24,6 +24,7 @@
 //! - `prepare_lines.rs`: each frame's strips of the `lines` passes;
 //! - `state.rs`: what outlives a frame, saved and restored (checkpoints).
 
+use crate::gpu_count::Create;
 mod bind;
 mod common;
 mod compute_pass;
@@ -59,9 +60,11 @@ use pass::PassExec;
 /// The largest image (`--size`): `diag::limits`, where every limit is listed.
 pub use diag::limits::MAX_OUTPUT_SIZE;
 
-pub struct Renderer<'d> {
-    device: &'d wgpu::Device,
-    queue: &'d wgpu::Queue,
+pub struct Renderer {
+    /// Clones of the caller's handles (wgpu's are reference-counted), so a
+    /// renderer borrows nothing and can live in a `'static` host (a Bevy resource).
+    device: wgpu::Device,
+    queue: wgpu::Queue,
     pub manifest: Manifest,
     /// One executor per manifest pass, in manifest order.
     passes: Vec<PassExec>,
@@ -96,17 +99,26 @@ pub struct Renderer<'d> {
     /// `previous_view_proj` (the current ones on the first frame).
     motion: frame::Motion,
     artmap_builds: Vec<crate::artmap::ArtmapBuild>,
+    /// Changes whenever the textures a frame writes are made anew (a new
+    /// renderer, a new size): what holders of views into them compare.
+    generation: u64,
 }
 
-impl<'d> Renderer<'d> {
+/// A number no renderer's resources had before ([`Renderer::resources_generation`]).
+fn next_generation() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
+
+impl Renderer {
     /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
     /// come back as `RunError::User`.
     pub fn new(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         if program.manifest.validate_filter().is_ok() {
             return Err(RunError::User(vec![diag::Diagnostic::error(
                 diag::codes::BAD_FILTER,
@@ -125,11 +137,11 @@ impl<'d> Renderer<'d> {
     /// A renderer of an art-map's filter style, whose `filter_input()` is
     /// `level`; it renders on [`Scene::empty`] at the level's size.
     pub fn new_filter(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         level: &crate::artmap::Level,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         program
             .manifest
             .validate_filter()
@@ -143,7 +155,7 @@ impl<'d> Renderer<'d> {
     /// filtering on lavapipe), the size-dependent resources are rebuilt at
     /// the next frame, since their bind groups hold the old texture.
     pub fn set_filter_input(&mut self, level: &crate::artmap::Level) -> Result<(), RunError> {
-        for (i, texture) in textures::filter_inputs(self.device, self.queue, &self.manifest, level)? {
+        for (i, texture) in textures::filter_inputs(&self.device, &self.queue, &self.manifest, level)? {
             self.textures[i] = texture;
         }
         self.sized = None;
@@ -157,12 +169,12 @@ impl<'d> Renderer<'d> {
     }
 
     fn build(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         // Every index the executors use is checked once here, whether the
         // program came from `load_dir` or was built in memory by an embedder.
         program
@@ -197,15 +209,15 @@ impl<'d> Renderer<'d> {
 
     /// [`Renderer::build`] after its checks, inside its error scopes.
     fn build_in_scopes(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();
         let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
-        let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
+        let linear_clamp = device.make_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
@@ -216,7 +228,7 @@ impl<'d> Renderer<'d> {
         // Bad per-object params are reported here too, not only at the first frame.
         objects::object_blocks(&manifest, scene, object_stride, &[], &[])?;
         let object_count = scene.objects.len().max(1) as u64;
-        let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
             size: object_stride * object_count,
             // STORAGE: compute passes read every object's block at once.
@@ -268,7 +280,7 @@ impl<'d> Renderer<'d> {
         let eyes = if manifest.is_stereo() { 2 } else { 1 };
         let frame_buffers = (0..eyes)
             .map(|e| {
-                device.create_buffer(&wgpu::BufferDescriptor {
+                device.make_buffer(&wgpu::BufferDescriptor {
                     label: Some(&format!("npr frame, eye slot {e}")),
                     size: FRAME_UNIFORM_SIZE,
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -276,7 +288,7 @@ impl<'d> Renderer<'d> {
                 })
             })
             .collect();
-        let style_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        let style_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr style params"),
             size: manifest.style_uniform_size.max(16),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -284,8 +296,8 @@ impl<'d> Renderer<'d> {
         });
         let (scene_bounds, caster_bounds) = objects::light_bounds(&manifest, scene);
         Ok(Renderer {
-            device,
-            queue,
+            device: device.clone(),
+            queue: queue.clone(),
             passes,
             object_group,
             textures,
@@ -305,6 +317,7 @@ impl<'d> Renderer<'d> {
             values,
             motion: frame::Motion::default(),
             artmap_builds,
+            generation: next_generation(),
         })
     }
 
@@ -312,7 +325,7 @@ impl<'d> Renderer<'d> {
     pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         self.prepare(scene, spec)?;
         crate::gpu_error::scoped(
-            self.device,
+            &self.device,
             || format!("rendering a {}x{} frame", spec.width, spec.height),
             || {
                 let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -390,7 +403,7 @@ impl<'d> Renderer<'d> {
                 0
             };
         }
-        meshes::update_time_varying(self.queue, &mut self.meshes, scene, spec.time_s)?;
+        meshes::update_time_varying(&self.queue, &mut self.meshes, scene, spec.time_s)?;
         // Spinning objects turn with the frame's time (`spin`).
         let posed = scene.posed(spec.time_s);
         self.write_uniforms(&posed, spec)?;
@@ -413,7 +426,7 @@ impl<'d> Renderer<'d> {
             .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
         self.prepare_frame(scene, spec, false)?;
         crate::gpu_error::scoped(
-            self.device,
+            &self.device,
             || format!("rendering a {}x{} partial frame", spec.width, spec.height),
             || {
                 let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -468,8 +481,8 @@ impl<'d> Renderer<'d> {
             .ok_or_else(|| RunError::Internal(format!("no target #{target}")))?;
         let (w, h) = scaled_size(sized.width, sized.height, t.scale);
         readback::read_texture(
-            self.device,
-            self.queue,
+            &self.device,
+            &self.queue,
             sized
                 .physical
                 .texture(sized.output_slot, self.parity(), t.physical, false),
@@ -493,7 +506,7 @@ impl<'d> Renderer<'d> {
         let buffers = self.values[pi]
             .as_ref()
             .ok_or_else(|| RunError::Internal(format!("pass `{pass}` is not a compute pass")))?;
-        let bytes = readback::read_buffer(self.device, self.queue, buffers.copy(self.parity(), false))?;
+        let bytes = readback::read_buffer(&self.device, &self.queue, buffers.copy(self.parity(), false))?;
         let vec4s: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         Ok(vec4s
             .chunks(buffers.slots as usize)
@@ -506,6 +519,41 @@ impl<'d> Renderer<'d> {
     /// it writes (0 before any frame).
     fn parity(&self) -> usize {
         (self.frames_begun.saturating_sub(1) % 2) as usize
+    }
+
+    /// The frame's parity as [`Renderer::output_texture`] reads it.
+    pub fn parity_now(&self) -> usize {
+        self.parity()
+    }
+
+    /// Changes whenever the renderer's textures are made anew (at a new
+    /// size): views of [`Renderer::output_texture`] made before are stale.
+    pub fn resources_generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Eye slots a frame renders: 2 for a stereo style, else 1.
+    pub fn eye_slots(&self) -> usize {
+        self.frame_buffers.len()
+    }
+
+    /// The texture holding the output of eye slot `slot` in frames of
+    /// `parity` (see [`Renderer::parity_now`]; a style with history
+    /// textures alternates two); `None` before the first frame.
+    pub fn output_texture(&self, slot: usize, parity: usize) -> Option<&wgpu::Texture> {
+        let sized = self.sized.as_ref()?;
+        let physical = self.manifest.targets.get(self.manifest.output)?.physical;
+        (slot < sized.physical.slots.len() && parity < 2).then(|| sized.physical.texture(slot, parity, physical, false))
+    }
+
+    /// How many parities frames alternate between: 2 for a style with
+    /// history textures, else 1.
+    pub fn parities(&self) -> usize {
+        if self.manifest.is_path_dependent() {
+            2
+        } else {
+            1
+        }
     }
 
     /// Frames begun since the renderer was built or its textures were

@@ -1,0 +1,60 @@
+//! `npr bench host`: the command around `lab::bench_host` (the style
+//! compiled with its params kept, as a host runs it; the device; the table).
+
+use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use crate::printer::{compile, headless_gpu, Printer};
+use compiler::CompileOptions;
+use diag::{codes, Diagnostic, SourceMap};
+use std::path::Path;
+
+pub fn run(style: &Path, objects: &[usize], size: u32, frames: u32, printer: &Printer) -> i32 {
+    if let Some(bad) = objects.iter().find(|n| !(1..=10_000).contains(*n)) {
+        return printer.fail(Diagnostic::error(
+            codes::BAD_ARGUMENT_VALUE,
+            format!("--objects {bad}: this benchmark draws 1..=10000 objects"),
+        ));
+    }
+    if frames == 0 {
+        return printer.fail(Diagnostic::error(
+            codes::BAD_ARGUMENT_VALUE,
+            "--frames 0: time at least one frame",
+        ));
+    }
+    if let Err(code) = printer.check(crate::args::check_size((size, size))) {
+        return code;
+    }
+    let mut sources = SourceMap::new();
+    let options = CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    let program = match compile(style, &mut sources, &options, printer) {
+        Ok(c) => c.program(),
+        Err(code) => return code,
+    };
+    let gpu = match headless_gpu(printer) {
+        Ok(g) => g,
+        Err(code) => return code,
+    };
+    match lab::bench_host::rows(&gpu, &program, objects, size, frames) {
+        Ok(rows) => {
+            println!(
+                "device: {}, {size}x{size}, {}: median CPU time per frame of {frames}, GPU excluded",
+                gpu.describe(),
+                style.display()
+            );
+            print!("{}", lab::bench_host::table(&rows));
+            EXIT_OK
+        }
+        Err(e) if e.is_user_error() => {
+            for d in e.diagnostics() {
+                printer.fail(d);
+            }
+            1
+        }
+        Err(e) => {
+            printer.fail(Diagnostic::error(codes::INTERNAL, e.to_string()));
+            EXIT_INTERNAL
+        }
+    }
+}
