@@ -328,6 +328,14 @@ pub mod codes {
     /// The device (or its adapter) lacks a WebGPU feature, or a limit above
     /// the default, that a pass of the style needs (`Manifest::device_needs`).
     pub const DEVICE_LACKS_NEED: &str = "E0510";
+    /// A host application (the embedding API, `runner::embed`) used a mesh
+    /// handle that was removed or that another runtime gave out.
+    pub const UNKNOWN_MESH: &str = "E0601";
+    /// A host application gave a texture view the runtime cannot render
+    /// into: an sRGB, depth or integer format, no `RENDER_ATTACHMENT`
+    /// usage, not one 2D layer and mip, a size outside the limits, or
+    /// views that do not fit the style's eyes.
+    pub const BAD_RENDER_TARGET: &str = "E0602";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -400,5 +408,7 @@ pub mod codes {
         (GPU_OUT_OF_MEMORY, "the GPU ran out of memory"),
         (DEVICE_LOST, "the GPU device was lost"),
         (DEVICE_LACKS_NEED, "the device lacks a feature or limit the style needs"),
+        (UNKNOWN_MESH, "a host used a mesh handle that was removed"),
+        (BAD_RENDER_TARGET, "a host's texture view the style cannot render into"),
     ];
 }

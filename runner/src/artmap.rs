@@ -187,7 +187,7 @@ pub struct FilterRunner<'d> {
     device: &'d wgpu::Device,
     queue: &'d wgpu::Queue,
     program: &'d abi::StyleProgram,
-    renderer: Option<Renderer<'d>>,
+    renderer: Option<Renderer>,
 }
 
 impl<'d> FilterRunner<'d> {

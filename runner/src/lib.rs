@@ -13,17 +13,17 @@
 //! block). Golden comparison, contour ground truth and benchmarks live in the
 //! `lab` crate.
 //!
-//! Embedding in your own wgpu application: get a [`StyleProgram`] from
-//! `compiler::compile_file(..)?.program()` or [`StyleProgram::load_dir`]
-//! (a directory written by `npr compile -o DIR`), load a [`scene::Scene`], then
-//! `Renderer::new(&device, &queue, &program, &scene)` and call
-//! [`Renderer::render`] (or [`Renderer::encode`] into your own encoder).
+//! Embedding in your own wgpu application: [`embed::StyleRuntime`], which
+//! the host drives frame by frame with its own meshes, camera, command
+//! encoder and texture views (see the module's docs and
+//! `examples/embed.rs`).
 
 pub mod animation;
 pub mod artmap;
 pub mod artmap_cache;
 pub mod device;
 pub mod device_needs;
+pub mod embed;
 pub mod exec;
 pub mod gpu_error;
 pub mod half_rounding;

@@ -70,7 +70,7 @@ pub struct View {
 /// A build that rendered, with the renderer made for it.
 struct Session<'g> {
     built: Built,
-    renderer: Renderer<'g>,
+    renderer: Renderer,
     timer: Option<runner::pass_timer::PassTimer>,
 }
 

@@ -5,13 +5,15 @@
 //!
 //! The explanations are data, one file per code range (`syntax.rs` E00xx,
 //! `names.rs` E01xx, `types.rs` E02xx, `passes.rs` E03xx and W03xx,
-//! `files.rs` E04xx and W04xx, `command_line.rs` E05xx). Each example is a
+//! `files.rs` E04xx and W04xx, `command_line.rs` E05xx,
+//! `host.rs` E06xx). Each example is a
 //! set of files and `npr` command lines, so `tests/general/explain.rs` runs every
 //! pair through the `npr` binary: the wrong one must give exactly its code,
 //! the fixed one none.
 
 mod command_line;
 mod files;
+mod host;
 mod names;
 mod passes;
 mod syntax;
@@ -151,6 +153,7 @@ pub fn all() -> impl Iterator<Item = &'static Explanation> {
         .chain(passes::ALL)
         .chain(files::ALL)
         .chain(command_line::ALL)
+        .chain(host::ALL)
 }
 
 /// The explanation of `code` (any letter case).

@@ -181,7 +181,7 @@ pub(super) fn pass_object_groups(
     Ok(Some((layout, groups)))
 }
 
-impl Renderer<'_> {
+impl Renderer {
     /// Group 0 of pass `pi` in eye `slot` for frames of `parity`, over
     /// `physical` (every slot's physical textures): an `other_eye` target is
     /// bound to the other slot's texture, a `previous` one to the copy this

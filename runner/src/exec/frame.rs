@@ -78,7 +78,7 @@ impl Motion {
     }
 }
 
-impl Renderer<'_> {
+impl Renderer {
     /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame` in WGSL).
     pub(super) fn frame_block(
         &self,

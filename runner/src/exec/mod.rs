@@ -56,9 +56,11 @@ use pass::PassExec;
 /// The largest image (`--size`): `diag::limits`, where every limit is listed.
 pub use diag::limits::MAX_OUTPUT_SIZE;
 
-pub struct Renderer<'d> {
-    device: &'d wgpu::Device,
-    queue: &'d wgpu::Queue,
+pub struct Renderer {
+    /// Clones of the caller's handles (wgpu's are reference-counted), so a
+    /// renderer borrows nothing and can live in a `'static` host (a Bevy resource).
+    device: wgpu::Device,
+    queue: wgpu::Queue,
     pub manifest: Manifest,
     /// One executor per manifest pass, in manifest order.
     passes: Vec<PassExec>,
@@ -93,17 +95,26 @@ pub struct Renderer<'d> {
     /// `previous_view_proj` (the current ones on the first frame).
     motion: frame::Motion,
     artmap_builds: Vec<crate::artmap::ArtmapBuild>,
+    /// Changes whenever the textures a frame writes are made anew (a new
+    /// renderer, a new size): what holders of views into them compare.
+    generation: u64,
 }
 
-impl<'d> Renderer<'d> {
+/// A number no renderer's resources had before ([`Renderer::resources_generation`]).
+fn next_generation() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
+
+impl Renderer {
     /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
     /// come back as `RunError::User`.
     pub fn new(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         if program.manifest.validate_filter().is_ok() {
             return Err(RunError::User(vec![diag::Diagnostic::error(
                 diag::codes::BAD_FILTER,
@@ -122,11 +133,11 @@ impl<'d> Renderer<'d> {
     /// A renderer of an art-map's filter style, whose `filter_input()` is
     /// `level`; it renders on [`Scene::empty`] at the level's size.
     pub fn new_filter(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         level: &crate::artmap::Level,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         program
             .manifest
             .validate_filter()
@@ -140,7 +151,7 @@ impl<'d> Renderer<'d> {
     /// filtering on lavapipe), the size-dependent resources are rebuilt at
     /// the next frame, since their bind groups hold the old texture.
     pub fn set_filter_input(&mut self, level: &crate::artmap::Level) -> Result<(), RunError> {
-        for (i, texture) in textures::filter_inputs(self.device, self.queue, &self.manifest, level)? {
+        for (i, texture) in textures::filter_inputs(&self.device, &self.queue, &self.manifest, level)? {
             self.textures[i] = texture;
         }
         self.sized = None;
@@ -154,12 +165,12 @@ impl<'d> Renderer<'d> {
     }
 
     fn build(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         // Every index the executors use is checked once here, whether the
         // program came from `load_dir` or was built in memory by an embedder.
         program
@@ -194,12 +205,12 @@ impl<'d> Renderer<'d> {
 
     /// [`Renderer::build`] after its checks, inside its error scopes.
     fn build_in_scopes(
-        device: &'d wgpu::Device,
-        queue: &'d wgpu::Queue,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
-    ) -> Result<Renderer<'d>, RunError> {
+    ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();
         let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
         let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -281,8 +292,8 @@ impl<'d> Renderer<'d> {
         });
         let (scene_bounds, caster_bounds) = objects::light_bounds(&manifest, scene);
         Ok(Renderer {
-            device,
-            queue,
+            device: device.clone(),
+            queue: queue.clone(),
             passes,
             object_group,
             textures,
@@ -302,6 +313,7 @@ impl<'d> Renderer<'d> {
             values,
             motion: frame::Motion::default(),
             artmap_builds,
+            generation: next_generation(),
         })
     }
 
@@ -309,7 +321,7 @@ impl<'d> Renderer<'d> {
     pub fn render(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         self.prepare(scene, spec)?;
         crate::gpu_error::scoped(
-            self.device,
+            &self.device,
             || format!("rendering a {}x{} frame", spec.width, spec.height),
             || {
                 let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -387,7 +399,7 @@ impl<'d> Renderer<'d> {
                 0
             };
         }
-        meshes::update_time_varying(self.queue, &mut self.meshes, scene, spec.time_s)?;
+        meshes::update_time_varying(&self.queue, &mut self.meshes, scene, spec.time_s)?;
         // Spinning objects turn with the frame's time (`spin`).
         let posed = scene.posed(spec.time_s);
         self.write_uniforms(&posed, spec)?;
@@ -410,7 +422,7 @@ impl<'d> Renderer<'d> {
             .ok_or_else(|| RunError::Internal(format!("no pass writes target #{target}")))?;
         self.prepare_frame(scene, spec, false)?;
         crate::gpu_error::scoped(
-            self.device,
+            &self.device,
             || format!("rendering a {}x{} partial frame", spec.width, spec.height),
             || {
                 let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -465,8 +477,8 @@ impl<'d> Renderer<'d> {
             .ok_or_else(|| RunError::Internal(format!("no target #{target}")))?;
         let (w, h) = scaled_size(sized.width, sized.height, t.scale);
         readback::read_texture(
-            self.device,
-            self.queue,
+            &self.device,
+            &self.queue,
             sized
                 .physical
                 .texture(sized.output_slot, self.parity(), t.physical, false),
@@ -490,7 +502,7 @@ impl<'d> Renderer<'d> {
         let buffers = self.values[pi]
             .as_ref()
             .ok_or_else(|| RunError::Internal(format!("pass `{pass}` is not a compute pass")))?;
-        let bytes = readback::read_buffer(self.device, self.queue, buffers.copy(self.parity(), false))?;
+        let bytes = readback::read_buffer(&self.device, &self.queue, buffers.copy(self.parity(), false))?;
         let vec4s: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         Ok(vec4s
             .chunks(buffers.slots as usize)
@@ -503,6 +515,30 @@ impl<'d> Renderer<'d> {
     /// it writes (0 before any frame).
     fn parity(&self) -> usize {
         (self.frames_begun.saturating_sub(1) % 2) as usize
+    }
+
+    /// The frame's parity as [`Renderer::output_texture`] reads it.
+    pub fn parity_now(&self) -> usize {
+        self.parity()
+    }
+
+    /// Changes whenever the renderer's textures are made anew (at a new
+    /// size): views of [`Renderer::output_texture`] made before are stale.
+    pub fn resources_generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Eye slots a frame renders: 2 for a stereo style, else 1.
+    pub fn eye_slots(&self) -> usize {
+        self.frame_buffers.len()
+    }
+
+    /// The texture holding the output of eye slot `slot` in the current
+    /// frame (after [`Renderer::prepare`]); `None` before the first frame.
+    pub fn output_texture(&self, slot: usize) -> Option<&wgpu::Texture> {
+        let sized = self.sized.as_ref()?;
+        let physical = self.manifest.targets.get(self.manifest.output)?.physical;
+        (slot < sized.physical.slots.len()).then(|| sized.physical.texture(slot, self.parity(), physical, false))
     }
 
     /// Frames begun since the renderer was built or its textures were

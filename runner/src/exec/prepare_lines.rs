@@ -6,7 +6,7 @@ use super::lines_pass::{LinesEye, LinesFrame};
 use super::pass::PassExec;
 use crate::RunError;
 
-impl super::Renderer<'_> {
+impl super::Renderer {
     /// Per lines pass (by name): how many times its strips were built since
     /// the renderer was made (each eye slot counts).
     pub fn lines_rebuilds(&self) -> Vec<(String, u64)> {
@@ -65,7 +65,7 @@ impl super::Renderer<'_> {
                 continue;
             };
             for eye in &eyes {
-                lines.prepare(self.device, self.queue, &frame, eye, self.manifest.passes[pi].scale)?;
+                lines.prepare(&self.device, &self.queue, &frame, eye, self.manifest.passes[pi].scale)?;
             }
         }
         Ok(())

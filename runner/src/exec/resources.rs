@@ -115,7 +115,7 @@ pub(super) struct SizedPass {
     pub tiled_outputs: Option<super::tiled_pass::TiledOutputs>,
 }
 
-impl Renderer<'_> {
+impl Renderer {
     /// Make the size-dependent resources for `width`×`height` unless they
     /// exist; out of memory (E0508) leaves the renderer without any, so a
     /// later call at a smaller size starts afresh.
@@ -142,13 +142,15 @@ impl Renderer<'_> {
         }
         // Free the old size's textures before making the new ones.
         self.sized = None;
-        let device = self.device;
+        let device = self.device.clone();
         crate::gpu_error::scoped(
-            device,
+            &device,
             || format!("making the targets of a {width}x{height} image"),
             || self.make_sized(width, height),
         )
-        .inspect_err(|_| self.sized = None)
+        .inspect_err(|_| self.sized = None)?;
+        self.generation = super::next_generation();
+        Ok(())
     }
 
     fn make_sized(&mut self, width: u32, height: u32) -> Result<(), crate::RunError> {
@@ -177,7 +179,7 @@ impl Renderer<'_> {
                     let color_views: Vec<wgpu::TextureView> = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
                     let depth_texture = |label: &str| {
                         texture_2d(
-                            self.device,
+                            &self.device,
                             label,
                             (w, h),
                             wgpu::TextureFormat::Depth32Float,
@@ -219,11 +221,11 @@ impl Renderer<'_> {
                                     pass.name
                                 ))
                             })?;
-                            self.passes[pi].tested_depth_group(self.device, &texture.create_view(&Default::default()))
+                            self.passes[pi].tested_depth_group(&self.device, &texture.create_view(&Default::default()))
                         }
                         _ => None,
                     };
-                    let tiled_outputs = self.passes[pi].tiled_outputs(self.device, &color_views, (w, h));
+                    let tiled_outputs = self.passes[pi].tiled_outputs(&self.device, &color_views, (w, h));
                     slot_passes.push(SizedPass {
                         tiled_outputs,
                         color_views,
@@ -242,8 +244,8 @@ impl Renderer<'_> {
         // New textures hold no history: the next frame is frame 0 again,
         // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
-        super::values::reset(self.queue, &self.values);
-        super::values::write_pixel_dispatch(self.queue, &self.manifest, &self.values, width, height);
+        super::values::reset(&self.queue, &self.values);
+        super::values::write_pixel_dispatch(&self.queue, &self.manifest, &self.values, width, height);
         self.motion = super::frame::Motion::default();
         self.sized = Some(SizedResources {
             width,
@@ -284,7 +286,7 @@ impl Renderer<'_> {
             crate::gpu_error::TARGET_USAGE
         };
         texture_2d(
-            self.device,
+            &self.device,
             &format!("npr physical #{index}"),
             scaled_size(width, height, p.scale),
             wgpu_format(p.format),

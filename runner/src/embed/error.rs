@@ -1,0 +1,59 @@
+//! [`EmbedError`]: what a host application did wrong, or what went wrong
+//! on the GPU, as values with a diagnostic code (never a panic).
+
+use super::MeshHandle;
+use crate::RunError;
+use diag::{codes, Diagnostic};
+
+/// Why a call of the embedding API failed. Every variant has a code
+/// ([`EmbedError::code`]) from `diag::codes`, explained by `npr explain`.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum EmbedError {
+    /// A mesh handle that was removed, or that another runtime gave out (E0601).
+    #[error("mesh handle {0:?} does not name a mesh of this runtime (removed, or from another runtime)")]
+    UnknownMesh(MeshHandle),
+    /// A style parameter that does not exist, or a value of the wrong type,
+    /// unit or outside its declared range: the codes `--set` gives (E0101,
+    /// E0201, E0202, E0203, E0502).
+    #[error("{}", .0.message)]
+    Param(Diagnostic),
+    /// A texture view the runtime cannot render into: the wrong format,
+    /// size or usage (E0602).
+    #[error("{}", .0.message)]
+    Target(Diagnostic),
+    /// What the runner reports: a device lacking a feature or limit the
+    /// style needs (E0510), objects the style cannot draw (E0403, E0405),
+    /// out of memory (E0508), a lost device (E0509), a bug (E9001).
+    #[error(transparent)]
+    Run(#[from] RunError),
+}
+
+impl EmbedError {
+    /// The diagnostic code of the (first) error.
+    pub fn code(&self) -> &'static str {
+        match self {
+            EmbedError::UnknownMesh(_) => codes::UNKNOWN_MESH,
+            EmbedError::Param(d) | EmbedError::Target(d) => d.code,
+            EmbedError::Run(e) => e.diagnostics().first().map_or(codes::INTERNAL, |d| d.code),
+        }
+    }
+
+    /// As diagnostics (no spans: a host's call has no source text), to
+    /// render with `diag::diagnostic::render` or log.
+    pub fn diagnostics(&self) -> Vec<Diagnostic> {
+        match self {
+            EmbedError::UnknownMesh(h) => {
+                vec![
+                    Diagnostic::error(codes::UNKNOWN_MESH, self.to_string()).with_help(format!(
+                        "register the mesh with `StyleRuntime::add_mesh` and use the handle it returns; \
+                     handle #{} (generation {}) was removed or never given out by this runtime",
+                        h.index, h.generation
+                    )),
+                ]
+            }
+            EmbedError::Param(d) | EmbedError::Target(d) => vec![d.clone()],
+            EmbedError::Run(e) => e.diagnostics(),
+        }
+    }
+}

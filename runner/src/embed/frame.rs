@@ -1,0 +1,100 @@
+//! What a host gives every frame: a [`Frame`] (camera, objects, lights,
+//! time) and a [`Target`] (the texture views to render into).
+
+use super::MeshHandle;
+use crate::scene::{Camera, Light};
+use glam::Mat4;
+use std::collections::BTreeMap;
+
+/// One object of the host's scene this frame: a registered mesh placed by
+/// `transform`. A scene built in code is made of these; a TOML scene's
+/// objects are the same (`StyleRuntime::instances_of_scene`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instance {
+    pub mesh: MeshHandle,
+    /// Object-to-world.
+    pub transform: Mat4,
+    /// For `render(scene, tag: ...)`, `lines(tag)` and `compute(objects, tag)` passes.
+    pub tags: Vec<String>,
+    /// Values of the style's `object param`s: 1 component for a number or
+    /// boolean (1 or 0), N for a vector, 4 for a colour (linear 0..1, as
+    /// the style's colour literals). An object that leaves a param out gets
+    /// its declared default.
+    pub params: BTreeMap<String, Vec<f64>>,
+    /// Whether `view(light)` passes (shadow maps) draw it.
+    pub casts_shadows: bool,
+}
+
+impl Instance {
+    /// `mesh` at `transform`, no tags, no per-object params, casting shadows.
+    pub fn new(mesh: MeshHandle, transform: Mat4) -> Instance {
+        Instance {
+            mesh,
+            transform,
+            tags: Vec::new(),
+            params: BTreeMap::new(),
+            casts_shadows: true,
+        }
+    }
+
+    /// With `tag` added.
+    pub fn with_tag(mut self, tag: &str) -> Instance {
+        self.tags.push(tag.to_string());
+        self
+    }
+
+    /// With the per-object param `name` set to `value`.
+    pub fn with_param(mut self, name: &str, value: &[f64]) -> Instance {
+        self.params.insert(name.to_string(), value.to_vec());
+        self
+    }
+}
+
+/// The directional lights: `light` is the key light (`light.dir` …),
+/// `more` are `light2` … `light4` (absent ones are zero in the style).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Lights {
+    pub key: Light,
+    pub more: [Option<Light>; 3],
+}
+
+/// Everything that changes from frame to frame.
+#[derive(Debug, Clone, Copy)]
+pub struct Frame<'a> {
+    /// A camera with `ipd_m` is a stereo pair: a stereo style renders both
+    /// eyes. Keyframes, if any, are played at `time_s`.
+    pub camera: &'a Camera,
+    /// Every object drawn this frame. Objects may come and go between
+    /// frames; a frame whose objects have the same meshes, tags and
+    /// shadow flags as the previous one (in the same order) allocates
+    /// nothing on the GPU.
+    pub objects: &'a [Instance],
+    pub lights: &'a Lights,
+    /// Seconds: the style's `time`, its keyframed params, the camera's keys.
+    pub time_s: f64,
+    /// The style's `frame` (a counter the host advances).
+    pub frame_index: u32,
+    /// Which eye a mono style renders with a stereo camera (0 left, 1 right).
+    pub eye: u32,
+}
+
+/// Where the style's output goes: texture views of the host (a swapchain
+/// image's view, an offscreen texture), which the runtime draws into at
+/// their size. Each view's texture must be 2D with one mip level and one
+/// layer, have `RENDER_ATTACHMENT` usage and a colour format that is not
+/// sRGB (the style's output is written as is, like `npr render`'s PNG;
+/// make the view with the non-sRGB twin of an sRGB surface format, listed
+/// in the surface configuration's `view_formats`).
+#[derive(Debug, Clone, Copy)]
+pub enum Target<'a> {
+    /// The output of a mono style, or of the frame's `eye` of a stereo one.
+    View(&'a wgpu::TextureView),
+    /// Both eyes of a stereo style, each into its own view (same size).
+    Eyes {
+        left: &'a wgpu::TextureView,
+        right: &'a wgpu::TextureView,
+    },
+    /// Both eyes of a stereo style side by side, each in one half of the
+    /// view (its width must be even).
+    SideBySide(&'a wgpu::TextureView),
+}

@@ -1,0 +1,261 @@
+//! Embedding a style in a host application: a [`StyleRuntime`] the host
+//! drives frame by frame, on the host's own wgpu device, inside the host's
+//! own command encoder, into the host's own texture views.
+//!
+//! The host
+//! 1. makes a runtime from a compiled style ([`StyleProgram`]: from
+//!    `compiler::compile_file(..)?.program()`, or [`StyleProgram::load_dir`]
+//!    of a directory `npr compile -o DIR` wrote) on its device and queue;
+//!    a device lacking a feature or limit the style needs is refused here
+//!    (E0510), before any frame;
+//! 2. registers its meshes once ([`StyleRuntime::add_mesh`] gives a
+//!    [`MeshHandle`]);
+//! 3. every frame, gives a [`Frame`] (the camera, or a stereo pair; the
+//!    objects as [`Instance`]s: mesh handle, transform, tags, per-object
+//!    params; the [`Lights`]; the time) and a [`Target`] (its texture view,
+//!    e.g. the swapchain image's) to [`StyleRuntime::render`], which records
+//!    the style's passes and one present pass into the host's encoder. The
+//!    host submits the encoder (and presents) itself.
+//!
+//! Style parameters are set by name at run time with
+//! [`StyleRuntime::set_param`], typed and range-checked by the rule
+//! `npr render --set` uses (`abi::param_value`), from the manifest's
+//! parameter metadata. A style compiled without `keep_params` has its
+//! parameters folded into its shaders; only those in the manifest can
+//! change ([`StyleRuntime::params`]).
+//!
+//! **What a frame costs.** The first frame (and the first after the size,
+//! the style, or the set of objects' meshes, tags or shadow flags changes)
+//! builds the GPU resources; every other frame writes uniform buffers and
+//! records commands, and creates no buffer, texture, bind group or
+//! pipeline (`runner/tests/embed_allocations.rs` counts them).
+//!
+//! **Mistakes are values.** A removed mesh handle (E0601), an unknown
+//! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
+//! of the wrong format or size (E0602): every call returns an
+//! [`EmbedError`] with a code, and leaves the runtime as it was.
+//!
+//! - `meshes.rs`: the generational mesh table;
+//! - `frame.rs`: [`Frame`], [`Instance`], [`Lights`], [`Target`];
+//! - `objects.rs`: the host's instances as the renderer's scene;
+//! - `params.rs`: setting style parameters by name;
+//! - `present.rs`: target checks and the present pass;
+//! - `error.rs`: [`EmbedError`].
+//!
+//! # Example
+//!
+//! A 32×32 frame of a flat-shaded sphere, rendered into an offscreen
+//! texture and read back (a window's surface view works the same way; see
+//! `examples/embed.rs`):
+//!
+//! ```
+//! use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
+//! use runner::scene::{primitives::Primitive, Camera};
+//!
+//! // A compiled style (from `npr compile -o DIR`, or `compiler::compile_file`).
+//! let program = runner::StyleProgram::load_dir(std::path::Path::new(concat!(
+//!     env!("CARGO_MANIFEST_DIR"),
+//!     "/tests/data/embed_flat"
+//! )))?;
+//! let gpu = runner::Gpu::new()?;
+//! let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, program)?;
+//! runtime.set_param("tint", "#ff0000")?;
+//!
+//! let sphere = runtime.add_mesh(Primitive::sphere(1.0, 32, 16).build());
+//! let objects = [Instance::new(sphere, glam::Mat4::IDENTITY)];
+//! let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 4.0), glam::Vec3::ZERO);
+//! let lights = Lights::default();
+//! let frame = Frame { camera: &camera, objects: &objects, lights: &lights, time_s: 0.0, frame_index: 0, eye: 0 };
+//!
+//! let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+//!     label: None,
+//!     size: wgpu::Extent3d { width: 32, height: 32, depth_or_array_layers: 1 },
+//!     mip_level_count: 1,
+//!     sample_count: 1,
+//!     dimension: wgpu::TextureDimension::D2,
+//!     format: wgpu::TextureFormat::Rgba8Unorm,
+//!     usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+//!     view_formats: &[],
+//! });
+//! let view = texture.create_view(&Default::default());
+//! let mut encoder = gpu.device.create_command_encoder(&Default::default());
+//! runtime.render(&mut encoder, &frame, Target::View(&view))?;
+//! gpu.queue.submit([encoder.finish()]);
+//!
+//! let image = runner::readback::read_texture(&gpu.device, &gpu.queue, &texture, 32, 32, abi::Format::Rgba8unorm, "out")?;
+//! let pixel = |x: u32, y: u32| image.rgba8_pixel(x, y);
+//! assert_eq!(pixel(0, 0), [0, 0, 0, 255]); // the background: no object there
+//! let centre = pixel(16, 16); // the sphere, lit, in the red tint
+//! assert!(centre[0] > 100 && centre[1] < 10 && centre[2] < 10, "{centre:?}");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod error;
+mod frame;
+mod meshes;
+mod objects;
+mod params;
+mod present;
+
+pub use error::EmbedError;
+pub use frame::{Frame, Instance, Lights, Target};
+pub use meshes::MeshHandle;
+pub use params::ParamInfo;
+
+use crate::scene::{Mesh, Scene};
+use crate::{FrameSpec, Renderer, StyleProgram};
+use std::sync::Arc;
+
+/// A compiled style running on a host's device: owned (it holds clones of
+/// the device and queue, which wgpu reference-counts), so it can live as
+/// long as the host wants, in a `'static` resource or across threads.
+///
+/// Style-level resources (pipelines, the style's textures, the frame and
+/// style uniform buffers) are built at the first frame and kept;
+/// size-level ones (targets, their bind groups) when the target's size
+/// changes; scene-level ones (mesh buffers, the object buffer, per-object
+/// bind groups, compute passes' buffers, line caches) when the set of
+/// meshes or objects changes.
+pub struct StyleRuntime {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    /// The style, with the parameter values [`StyleRuntime::set_param`] gave.
+    program: StyleProgram,
+    meshes: meshes::MeshTable,
+    /// The host's objects as the renderer's scene.
+    scene: objects::HostScene,
+    renderer: Option<Renderer>,
+    presenter: present::Presenter,
+    /// Times the renderer was (re)built: what a host or test can watch.
+    builds: u64,
+}
+
+impl StyleRuntime {
+    /// A runtime of `program` on `device`. Refuses (E0510) a device that
+    /// lacks a feature or limit the style needs, naming it and its pass,
+    /// and a program whose manifest and shaders disagree (E9001).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, program: StyleProgram) -> Result<StyleRuntime, EmbedError> {
+        program
+            .validate()
+            .map_err(|e| crate::RunError::Internal(format!("the compiled style is inconsistent: {e}")))?;
+        let lacking = crate::device_needs::unmet(&program.manifest, device.features(), &device.limits(), "this device");
+        if !lacking.is_empty() {
+            return Err(crate::RunError::User(lacking).into());
+        }
+        if program.manifest.validate_filter().is_ok() {
+            return Err(crate::RunError::User(vec![diag::Diagnostic::error(
+                diag::codes::BAD_FILTER,
+                format!(
+                    "style \"{}\" is an art-map filter: it runs on a texture level, not on a scene",
+                    program.manifest.style
+                ),
+            )])
+            .into());
+        }
+        static RUNTIMES: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+        let id = RUNTIMES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(StyleRuntime {
+            presenter: present::Presenter::new(device),
+            device: device.clone(),
+            queue: queue.clone(),
+            program,
+            meshes: meshes::MeshTable::new(id),
+            scene: objects::HostScene::default(),
+            renderer: None,
+            builds: 0,
+        })
+    }
+
+    /// The style's manifest (passes, targets, parameters, device needs).
+    pub fn manifest(&self) -> &abi::manifest::Manifest {
+        &self.program.manifest
+    }
+
+    /// Register a mesh; instances name it by the handle. Its GPU buffers
+    /// are made once, at the first frame that draws it.
+    pub fn add_mesh(&mut self, mesh: Mesh) -> MeshHandle {
+        self.meshes.add(Arc::new(mesh))
+    }
+
+    /// [`StyleRuntime::add_mesh`] of a mesh the host shares (no copy).
+    pub fn add_shared_mesh(&mut self, mesh: Arc<Mesh>) -> MeshHandle {
+        self.meshes.add(mesh)
+    }
+
+    /// Forget a mesh: its handle is refused from now on (E0601), and its
+    /// GPU buffers are freed once no frame draws it.
+    pub fn remove_mesh(&mut self, handle: MeshHandle) -> Result<(), EmbedError> {
+        self.meshes.remove(handle).map(|_| ())
+    }
+
+    /// The mesh a handle names (E0601 for a removed one).
+    pub fn mesh(&self, handle: MeshHandle) -> Result<&Arc<Mesh>, EmbedError> {
+        self.meshes.get(handle)
+    }
+
+    /// Times the GPU resources of the scene were (re)built: once at the
+    /// first frame, and again when the style or the set of objects' meshes,
+    /// tags or shadow flags changed.
+    pub fn builds(&self) -> u64 {
+        self.builds
+    }
+
+    /// Record one frame into `encoder`: the style's passes, then the
+    /// output drawn into `target`'s views at their size. Nothing is
+    /// submitted; the host submits `encoder`. On an error nothing was
+    /// recorded.
+    pub fn render(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &Frame,
+        target: Target,
+    ) -> Result<(), EmbedError> {
+        let eye_slots = if self.program.manifest.is_stereo() { 2 } else { 1 };
+        let checked = present::check_target(&target, eye_slots, frame.eye)?;
+        if self.scene.sync(frame, &self.meshes)? {
+            // Other meshes, tags or shadow flags: the scene-level resources are made anew.
+            self.renderer = None;
+        }
+        let renderer = match &mut self.renderer {
+            Some(r) => r,
+            slot => {
+                let built = Renderer::new(&self.device, &self.queue, &self.program, self.scene.scene())?;
+                self.builds += 1;
+                slot.insert(built)
+            }
+        };
+        let spec = FrameSpec {
+            width: checked.width,
+            height: checked.height,
+            time_s: frame.time_s,
+            frame: frame.frame_index,
+            eye: frame.eye,
+        };
+        renderer.prepare(self.scene.scene(), &spec)?;
+        renderer.encode(encoder);
+        self.presenter.encode(&self.device, encoder, renderer, &checked)
+    }
+
+    /// Read back a target of the last frame (after the host submitted it):
+    /// for tests and tools; blocks until the GPU is done.
+    pub fn read_target(&self, name: &str) -> Result<crate::TargetImage, EmbedError> {
+        let renderer = self
+            .renderer
+            .as_ref()
+            .ok_or_else(|| crate::RunError::Internal("read before the first frame".into()))?;
+        let index = self
+            .program
+            .manifest
+            .targets
+            .iter()
+            .position(|t| t.name == name)
+            .ok_or_else(|| crate::RunError::Internal(format!("the style has no target `{name}`")))?;
+        Ok(renderer.read_target(index)?)
+    }
+
+    /// The scene as the renderer sees it (the host's instances, posed by
+    /// the last frame).
+    pub fn scene(&self) -> &Scene {
+        self.scene.scene()
+    }
+}

@@ -1,0 +1,111 @@
+//! The host's [`Instance`]s as the renderer's [`Scene`]: one scene object
+//! per instance, updated in place each frame (transform, params, camera,
+//! lights), and rebuilt only when the objects' structure changes (their
+//! meshes, tags or shadow flags, or their number).
+
+use super::meshes::MeshTable;
+use super::{EmbedError, Frame, Instance, MeshHandle};
+use crate::scene::{Camera, Object, Scene};
+use std::collections::BTreeMap;
+
+/// What the renderer's GPU resources depend on, per object.
+#[derive(Debug, Clone, PartialEq)]
+struct Shape {
+    mesh: MeshHandle,
+    tags: Vec<String>,
+    casts_shadows: bool,
+}
+
+impl Shape {
+    fn of(instance: &Instance) -> Shape {
+        Shape {
+            mesh: instance.mesh,
+            tags: instance.tags.clone(),
+            casts_shadows: instance.casts_shadows,
+        }
+    }
+
+    fn matches(&self, instance: &Instance) -> bool {
+        self.mesh == instance.mesh && self.tags == instance.tags && self.casts_shadows == instance.casts_shadows
+    }
+}
+
+/// The scene the runtime's renderer draws.
+pub(super) struct HostScene {
+    scene: Scene,
+    /// Per object of `scene`, what it was built from.
+    shapes: Vec<Shape>,
+    /// The mesh table's revision the scene was built at: a removed mesh
+    /// must be refused even when the instances did not change.
+    mesh_revision: u64,
+}
+
+impl Default for HostScene {
+    fn default() -> HostScene {
+        HostScene {
+            scene: Scene::empty(),
+            shapes: Vec::new(),
+            mesh_revision: u64::MAX,
+        }
+    }
+}
+
+fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Object, EmbedError> {
+    Ok(Object {
+        name: format!("object {index}"),
+        mesh: meshes.get(instance.mesh)?.clone(),
+        model: instance.transform,
+        tags: instance.tags.clone(),
+        params: instance.params.clone(),
+        param_spans: BTreeMap::new(),
+        textures: BTreeMap::new(),
+        mesh_span: diag::Span::default(),
+        time_varying: None,
+        casts_shadows: instance.casts_shadows,
+        spin: glam::Vec3::ZERO,
+        blend: None,
+        patch: None,
+    })
+}
+
+impl HostScene {
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Bring the scene to `frame`; true when its structure changed (the
+    /// renderer's scene-level resources must be made anew). On an error
+    /// (a removed mesh) the scene is left as it was.
+    pub fn sync(&mut self, frame: &Frame, meshes: &MeshTable) -> Result<bool, EmbedError> {
+        let same = self.mesh_revision == meshes.revision
+            && self.shapes.len() == frame.objects.len()
+            && self.shapes.iter().zip(frame.objects).all(|(s, i)| s.matches(i));
+        if same {
+            for (o, i) in self.scene.objects.iter_mut().zip(frame.objects) {
+                o.model = i.transform;
+                if o.params != i.params {
+                    o.params.clone_from(&i.params);
+                }
+            }
+        } else {
+            let objects = frame
+                .objects
+                .iter()
+                .enumerate()
+                .map(|(k, i)| object(k, i, meshes))
+                .collect::<Result<Vec<_>, _>>()?;
+            self.scene.objects = objects;
+            self.shapes = frame.objects.iter().map(Shape::of).collect();
+            self.mesh_revision = meshes.revision;
+        }
+        set_camera(&mut self.scene.camera, frame.camera);
+        self.scene.light = frame.lights.key.clone();
+        self.scene.more_lights = frame.lights.more.clone();
+        Ok(!same)
+    }
+}
+
+/// `camera` as `from`, reusing its key list's allocation.
+fn set_camera(camera: &mut Camera, from: &Camera) {
+    camera.clone_from(from);
+}

@@ -1,0 +1,294 @@
+//! Presenting the style's output in the host's texture views: the checks
+//! of a [`Target`] (E0602) and one fullscreen draw per view that copies
+//! the output target's texels as they are (`textureLoad`, no filtering,
+//! no colour conversion), so the host sees what `npr render` writes.
+//! Pipelines are made once per view format, bind groups once per output
+//! texture (they change only with the size or the style).
+
+use super::{EmbedError, Target};
+use diag::{codes, Diagnostic};
+use std::collections::HashMap;
+
+/// Copies a texel: in side-by-side targets the right eye's fragments are
+/// `x ≥ eye width`, so `x mod width` finds the texel in both halves.
+const PRESENT_WGSL: &str = "
+@group(0) @binding(0) var source: texture_2d<f32>;
+
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let size = vec2<i32>(textureDimensions(source));
+    let texel = vec2<i32>(p.xy) % size;
+    return textureLoad(source, texel, 0);
+}
+";
+
+/// A checked target: the per-eye size, and the views with the eye each shows.
+pub(super) struct CheckedTarget<'a> {
+    pub width: u32,
+    pub height: u32,
+    /// (view, format, the eye slots drawn into it, left to right: one, or two side by side).
+    pub views: Vec<(&'a wgpu::TextureView, wgpu::TextureFormat, Vec<usize>)>,
+}
+
+fn target_error(message: String, help: &str) -> EmbedError {
+    EmbedError::Target(Diagnostic::error(codes::BAD_RENDER_TARGET, message).with_help(help.to_string()))
+}
+
+/// The size and format of one view, or why it cannot be drawn into.
+fn check_view(view: &wgpu::TextureView, what: &str) -> Result<(u32, u32, wgpu::TextureFormat), EmbedError> {
+    let texture = view.texture();
+    let format = texture.format();
+    let size = texture.size();
+    if texture.dimension() != wgpu::TextureDimension::D2
+        || size.depth_or_array_layers != 1
+        || texture.mip_level_count() != 1
+    {
+        return Err(target_error(
+            format!("the {what} view's texture is not a 2D texture of one layer and one mip level"),
+            "render into a plain 2D texture (a surface texture, or one made with mip_level_count 1)",
+        ));
+    }
+    if !texture.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+        return Err(target_error(
+            format!("the {what} view's texture lacks RENDER_ATTACHMENT usage"),
+            "create the texture with wgpu::TextureUsages::RENDER_ATTACHMENT",
+        ));
+    }
+    if format.is_srgb() {
+        return Err(target_error(
+            format!("the {what} view's format {format:?} is sRGB, which would re-encode the style's output"),
+            "view the texture in its non-sRGB twin (format.remove_srgb_suffix(), listed in the \
+             texture's or surface configuration's view_formats); the style's output is already display-ready",
+        ));
+    }
+    let colour_float = matches!(
+        format.sample_type(None, None),
+        Some(wgpu::TextureSampleType::Float { .. })
+    ) && !format.is_depth_stencil_format();
+    if !colour_float {
+        return Err(target_error(
+            format!("the {what} view's format {format:?} is not a colour format with float or normalized channels"),
+            "render into e.g. Rgba8Unorm, Bgra8Unorm or Rgba16Float",
+        ));
+    }
+    if size.width == 0
+        || size.height == 0
+        || size.width > crate::MAX_OUTPUT_SIZE
+        || size.height > crate::MAX_OUTPUT_SIZE
+    {
+        return Err(target_error(
+            format!(
+                "the {what} view is {}x{}, outside 1..={} on a side",
+                size.width,
+                size.height,
+                crate::MAX_OUTPUT_SIZE
+            ),
+            "render into a smaller texture (docs/LIMITS.md)",
+        ));
+    }
+    Ok((size.width, size.height, format))
+}
+
+/// Check `target` against a style with `eye_slots` eye slots (1 mono, 2
+/// stereo); a single view of a stereo style shows `eye`.
+pub(super) fn check_target<'a>(
+    target: &Target<'a>,
+    eye_slots: usize,
+    eye: u32,
+) -> Result<CheckedTarget<'a>, EmbedError> {
+    let stereo_only = |kind: &str| {
+        target_error(
+            format!("a {kind} target needs a stereo style; this style renders one eye"),
+            "give Target::View, or compile a stereo style (one that reads `other_eye(...)` or runs per eye)",
+        )
+    };
+    match *target {
+        Target::View(view) => {
+            let (width, height, format) = check_view(view, "target")?;
+            Ok(CheckedTarget {
+                width,
+                height,
+                views: vec![(view, format, vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }])],
+            })
+        }
+        Target::Eyes { left, right } => {
+            if eye_slots != 2 {
+                return Err(stereo_only("two-eye"));
+            }
+            let (w, h, lf) = check_view(left, "left eye's")?;
+            let (w2, h2, rf) = check_view(right, "right eye's")?;
+            if (w, h) != (w2, h2) {
+                return Err(target_error(
+                    format!("the left eye's view is {w}x{h} and the right eye's {w2}x{h2}"),
+                    "give both eyes views of the same size",
+                ));
+            }
+            Ok(CheckedTarget {
+                width: w,
+                height: h,
+                views: vec![(left, lf, vec![0]), (right, rf, vec![1])],
+            })
+        }
+        Target::SideBySide(view) => {
+            if eye_slots != 2 {
+                return Err(stereo_only("side-by-side"));
+            }
+            let (w, h, format) = check_view(view, "side-by-side")?;
+            if w % 2 != 0 {
+                return Err(target_error(
+                    format!("the side-by-side view is {w} wide; its two halves must be equal"),
+                    "give the view an even width",
+                ));
+            }
+            Ok(CheckedTarget {
+                width: w / 2,
+                height: h,
+                views: vec![(view, format, vec![0, 1])],
+            })
+        }
+    }
+}
+
+/// The present pipelines (per view format) and bind groups (per output texture).
+pub(super) struct Presenter {
+    module: wgpu::ShaderModule,
+    layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    pipelines: HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>,
+    /// Per output texture (eye slot, frame parity), made for the renderer's
+    /// resources of `generation`.
+    groups: HashMap<(usize, usize), wgpu::BindGroup>,
+    generation: u64,
+}
+
+impl Presenter {
+    pub fn new(device: &wgpu::Device) -> Presenter {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("npr present"),
+            source: wgpu::ShaderSource::Wgsl(PRESENT_WGSL.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("npr present"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    // Unfilterable: textureLoad reads every float format, rgba32float included.
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("npr present"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        Presenter {
+            module,
+            layout,
+            pipeline_layout,
+            pipelines: HashMap::new(),
+            groups: HashMap::new(),
+            generation: u64::MAX,
+        }
+    }
+
+    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
+        let (module, layout) = (&self.module, &self.pipeline_layout);
+        self.pipelines.entry(format).or_insert_with(|| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("npr present"),
+                layout: Some(layout),
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })
+    }
+
+    /// Record the draws of `target`: each view gets the output of its eyes.
+    pub fn encode(
+        &mut self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        renderer: &crate::Renderer,
+        target: &CheckedTarget,
+    ) -> Result<(), EmbedError> {
+        if renderer.resources_generation() != self.generation {
+            self.groups.clear();
+            self.generation = renderer.resources_generation();
+        }
+        for (view, format, eyes) in &target.views {
+            // Made before the pass borrows the encoder.
+            self.pipeline(device, *format);
+            for &slot in eyes {
+                let key = (slot, renderer.parity_now());
+                if !self.groups.contains_key(&key) {
+                    let texture = renderer
+                        .output_texture(slot)
+                        .ok_or_else(|| crate::RunError::Internal("present before prepare".into()))?;
+                    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("npr present"),
+                        layout: &self.layout,
+                        entries: &[wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(&texture.create_view(&Default::default())),
+                        }],
+                    });
+                    self.groups.insert(key, group);
+                }
+            }
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("npr present"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipelines[format]);
+            for (k, &slot) in eyes.iter().enumerate() {
+                let x = (k as u32 * target.width) as f32;
+                pass.set_viewport(x, 0.0, target.width as f32, target.height as f32, 0.0, 1.0);
+                pass.set_bind_group(0, &self.groups[&(slot, renderer.parity_now())], &[]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+        Ok(())
+    }
+}
