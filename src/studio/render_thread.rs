@@ -68,7 +68,7 @@ pub struct View {
 }
 
 /// A build that rendered, with the renderer made for it.
-struct Session<'g> {
+struct Session {
     built: Built,
     renderer: Renderer,
     timer: Option<runner::pass_timer::PassTimer>,
@@ -334,7 +334,7 @@ impl Studio {
         &mut self,
         work: Pending,
         gpu: &'g Gpu,
-        session: &mut Option<Session<'g>>,
+        session: &mut Option<Session>,
         watcher: Option<&mut FileWatcher>,
     ) {
         if work == Pending::Panic {
@@ -365,7 +365,7 @@ impl Studio {
     }
 
     /// Build and make a renderer; the files to watch.
-    fn rebuild<'g>(&mut self, gpu: &'g Gpu, session: &mut Option<Session<'g>>) -> Vec<PathBuf> {
+    fn rebuild<'g>(&mut self, gpu: &'g Gpu, session: &mut Option<Session>) -> Vec<PathBuf> {
         let controls: Vec<String> = self
             .controls
             .iter()
@@ -409,7 +409,7 @@ impl Studio {
         files
     }
 
-    fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session<'g>) {
+    fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session) {
         let start = Instant::now();
         match gpu.watch.check(render_frame(gpu, s, &self.view)) {
             Ok((images, pass_ms)) => {
@@ -458,7 +458,7 @@ impl Studio {
 /// the last frame when the adapter has timestamps.
 fn render_frame<'g>(
     gpu: &'g Gpu,
-    s: &mut Session<'g>,
+    s: &mut Session,
     view: &View,
 ) -> Result<(Vec<runner::TargetImage>, Option<Vec<f64>>), RunError> {
     let path_dependent = s.renderer.manifest.is_path_dependent();
