@@ -17,6 +17,7 @@ mod studio;
 mod style_tests;
 mod texture_check;
 mod usage;
+mod view;
 mod watch;
 
 fn main() {
