@@ -29,6 +29,7 @@ mod studio_camera;
 mod studio_server;
 mod style_tests;
 mod style_tests_examples;
+mod view;
 mod vscode_extension;
 mod watch;
 mod webgpu_portability;

@@ -1,0 +1,122 @@
+//! A virtual X display for the tests of `npr view`: Xvfb started on a
+//! free display number (and stopped with the test), and a screenshot of
+//! a process's window taken through the X server (`GetImage`, as `xwd`
+//! does), not read back from npr's own textures.
+//!
+//! A missing Xvfb fails the test with the package to install.
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+use x11rb::connection::Connection;
+use x11rb::protocol::xproto::{AtomEnum, ConnectionExt, ImageFormat, Window};
+use x11rb::rust_connection::RustConnection;
+
+pub struct Xvfb {
+    child: Child,
+    /// `:N`, for `DISPLAY`.
+    pub display: String,
+}
+
+impl Xvfb {
+    /// Xvfb on the first free display from :90 (a 24-bit screen of 1024×768).
+    pub fn start() -> Xvfb {
+        let found = Command::new("Xvfb")
+            .arg("-help")
+            .stderr(Stdio::null())
+            .stdout(Stdio::null())
+            .status();
+        assert!(
+            found.is_ok(),
+            "the npr view tests need Xvfb, a virtual X display: install it with \
+             `sudo apt-get install -y xvfb x11-utils` (or ./setup.sh --tests)"
+        );
+        for n in 90..190 {
+            let socket = format!("/tmp/.X11-unix/X{n}");
+            if Path::new(&socket).exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+                continue;
+            }
+            let display = format!(":{n}");
+            let mut child = Command::new("Xvfb")
+                .args([&display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .expect("start Xvfb");
+            let deadline = Instant::now() + Duration::from_secs(20);
+            while Instant::now() < deadline {
+                if let Ok(Some(_)) = child.try_wait() {
+                    break; // another Xvfb took the number first: try the next
+                }
+                if RustConnection::connect(Some(&display)).is_ok() {
+                    return Xvfb { child, display };
+                }
+                std::thread::sleep(Duration::from_millis(50));
+            }
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+        panic!("could not start Xvfb on any display from :90 to :189");
+    }
+
+    /// The pixels of the top-level window of process `pid` (its
+    /// `_NET_WM_PID`), `width`×`height` from its top left corner.
+    pub fn screenshot(&self, pid: u32, width: u32, height: u32) -> image::RgbaImage {
+        let (conn, screen) = RustConnection::connect(Some(&self.display)).expect("connect to Xvfb");
+        let root = conn.setup().roots[screen].clone();
+        let window = window_of(&conn, root.root, pid)
+            .unwrap_or_else(|| panic!("no window of process {pid} on {}", self.display));
+        let reply = conn
+            .get_image(ImageFormat::Z_PIXMAP, window, 0, 0, width as u16, height as u16, !0)
+            .expect("GetImage request")
+            .reply()
+            .expect("GetImage reply");
+        let visual = root
+            .allowed_depths
+            .iter()
+            .flat_map(|d| d.visuals.iter())
+            .find(|v| v.visual_id == reply.visual || v.visual_id == root.root_visual)
+            .expect("the window's visual");
+        let bytes_per_pixel = reply.data.len() / (width as usize * height as usize);
+        assert_eq!(bytes_per_pixel, 4, "expected a 32-bit-per-pixel image (24-bit screen)");
+        let channel = |pixel: u32, mask: u32| ((pixel & mask) >> mask.trailing_zeros()) as u8;
+        image::RgbaImage::from_fn(width, height, |x, y| {
+            let i = 4 * (y as usize * width as usize + x as usize);
+            let pixel = u32::from_le_bytes([reply.data[i], reply.data[i + 1], reply.data[i + 2], reply.data[i + 3]]);
+            image::Rgba([
+                channel(pixel, visual.red_mask),
+                channel(pixel, visual.green_mask),
+                channel(pixel, visual.blue_mask),
+                255,
+            ])
+        })
+    }
+}
+
+/// The window under `parent` (depth first) whose `_NET_WM_PID` is `pid`.
+fn window_of(conn: &RustConnection, parent: Window, pid: u32) -> Option<Window> {
+    let atom = conn.intern_atom(false, b"_NET_WM_PID").ok()?.reply().ok()?.atom;
+    let tree = conn.query_tree(parent).ok()?.reply().ok()?;
+    for w in tree.children {
+        let prop = conn
+            .get_property(false, w, atom, AtomEnum::CARDINAL, 0, 1)
+            .ok()?
+            .reply()
+            .ok()?;
+        if prop.value32().and_then(|mut v| v.next()) == Some(pid) {
+            return Some(w);
+        }
+        if let Some(found) = window_of(conn, w, pid) {
+            return Some(found);
+        }
+    }
+    None
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        // Our own child, by its handle.
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
