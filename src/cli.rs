@@ -571,6 +571,10 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 60)]
         frames: u32,
+        /// Compile with parameters kept as uniforms, as `npr view` and the
+        /// studio do (so its frame time compares with theirs).
+        #[arg(long)]
+        keep_params: bool,
     },
     /// Runner overhead per frame against an independent hand-written wgpu
     /// program drawing the same WGSL passes with its own pipelines, bind

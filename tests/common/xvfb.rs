@@ -3,13 +3,15 @@
 //! a process's window taken through the X server (`GetImage`, as `xwd`
 //! does), not read back from npr's own textures.
 //!
+//! Input is typed and dragged through XTEST, as a user's would arrive.
 //! A missing Xvfb fails the test with the package to install.
 
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 use x11rb::connection::Connection;
-use x11rb::protocol::xproto::{AtomEnum, ConnectionExt, ImageFormat, Window};
+use x11rb::protocol::xproto::{AtomEnum, ConnectionExt, ImageFormat, InputFocus, Window};
+use x11rb::protocol::xtest::ConnectionExt as _;
 use x11rb::rust_connection::RustConnection;
 
 pub struct Xvfb {
@@ -90,6 +92,75 @@ impl Xvfb {
                 255,
             ])
         })
+    }
+}
+
+/// XTEST's event types (`xproto`'s event numbers).
+const KEY_PRESS: u8 = 2;
+const KEY_RELEASE: u8 = 3;
+const BUTTON_PRESS: u8 = 4;
+const BUTTON_RELEASE: u8 = 5;
+const MOTION: u8 = 6;
+
+impl Xvfb {
+    fn input(&self, pid: u32, events: &[(u8, u8, i16, i16)]) {
+        let (conn, screen) = RustConnection::connect(Some(&self.display)).expect("connect to Xvfb");
+        let root = conn.setup().roots[screen].root;
+        let window = window_of(&conn, root, pid).unwrap_or_else(|| panic!("no window of process {pid}"));
+        // Window coordinates to the root's.
+        let at = conn
+            .translate_coordinates(window, root, 0, 0)
+            .expect("translate")
+            .reply()
+            .expect("translate reply");
+        // No window manager gives the window the keyboard focus: give it.
+        conn.set_input_focus(InputFocus::PARENT, window, x11rb::CURRENT_TIME)
+            .expect("focus")
+            .check()
+            .expect("focus the window");
+        for &(kind, detail, x, y) in events {
+            conn.xtest_fake_input(kind, detail, 0, root, at.dst_x + x, at.dst_y + y, 0)
+                .expect("fake input");
+            // A round trip: the event is processed before the next one.
+            conn.get_input_focus().expect("sync").reply().expect("sync reply");
+            std::thread::sleep(Duration::from_millis(30));
+        }
+    }
+
+    /// Hold the key of X keysym `keysym` (e.g. `0x77` for w) down for
+    /// `hold`, with the pointer and the focus on the window of `pid`.
+    pub fn key(&self, pid: u32, keysym: u32, hold: Duration) {
+        let (conn, _) = RustConnection::connect(Some(&self.display)).expect("connect to Xvfb");
+        let setup = conn.setup();
+        let (min, max) = (setup.min_keycode, setup.max_keycode);
+        let map = conn
+            .get_keyboard_mapping(min, max - min + 1)
+            .expect("keyboard mapping")
+            .reply()
+            .expect("keyboard mapping reply");
+        let per = map.keysyms_per_keycode as usize;
+        let index = map
+            .keysyms
+            .iter()
+            .position(|k| *k == keysym)
+            .unwrap_or_else(|| panic!("no key types keysym {keysym:#x}"));
+        let code = min + (index / per) as u8;
+        self.input(pid, &[(MOTION, 0, 10, 10), (KEY_PRESS, code, 10, 10)]);
+        std::thread::sleep(hold);
+        self.input(pid, &[(KEY_RELEASE, code, 10, 10)]);
+    }
+
+    /// Drag with mouse button `button` (1 left, 3 right) from `from` to
+    /// `to` in the window of `pid`, in a few moves.
+    pub fn drag(&self, pid: u32, button: u8, from: (i16, i16), to: (i16, i16)) {
+        let mut events = vec![(MOTION, 0, from.0, from.1), (BUTTON_PRESS, button, from.0, from.1)];
+        for k in 1..=4 {
+            let x = from.0 + (to.0 - from.0) * k / 4;
+            let y = from.1 + (to.1 - from.1) * k / 4;
+            events.push((MOTION, 0, x, y));
+        }
+        events.push((BUTTON_RELEASE, button, to.0, to.1));
+        self.input(pid, &events);
     }
 }
 

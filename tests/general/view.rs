@@ -1,8 +1,10 @@
 //! `npr view` in a real window under Xvfb (on whatever Vulkan driver the
 //! machine has: lavapipe in CI): a screenshot of the window, taken through
 //! the X server, against `npr render --keep-params` of the same style,
-//! scene, time and (scene) camera; and hot reload: a save changes the
-//! window, a broken save prints its diagnostic and keeps the last frame.
+//! scene, time and (scene) camera; input typed and dragged through XTEST
+//! (fly, orbit, pan, back to the scene camera); and hot reload: a save
+//! changes the window, a broken save prints its diagnostic and keeps the
+//! last frame.
 //!
 //! Bound: every channel within 1/255 of `npr render`'s PNG, with no
 //! outliers allowed. Both run the same compiled style on the same driver,
@@ -189,4 +191,54 @@ fn without_a_display_it_says_how_to_get_one() {
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("error[E0505]: npr view cannot open a window"), "{err}");
     assert!(err.contains("apt-get install -y xvfb"), "{err}");
+}
+
+/// How many pixels of `a` and `b` differ by more than the bound.
+fn changed(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    lab::harness::per_pixel(a, b, MAX_ABS).1
+}
+
+#[test]
+fn keys_and_drags_move_the_camera_and_c_brings_back_the_scene_camera() {
+    let dir = scratch("view", "camera_input");
+    let x = Xvfb::start();
+    let (style, scene) = (Path::new("examples/toon.npr"), "examples/scenes/orbit.toml");
+    let mut v = view(&x, style, scene);
+    v.wait_for("view: build 1 shown");
+    let pid = v.child.id();
+    let reference = render(style, scene, &dir.join("render.png"));
+    assert_matches(&screenshot_after_frames(&x, &v, SIZE), &reference, &dir, "start");
+    let enough = (SIZE * SIZE / 20) as usize;
+
+    // W held: the fly camera moves forward.
+    x.key(pid, u32::from(b'w'), std::time::Duration::from_millis(300));
+    let flown = screenshot_after_frames(&x, &v, SIZE);
+    assert!(
+        changed(&flown, &reference) > enough,
+        "flying forward left the image as it was"
+    );
+    x.key(pid, u32::from(b'c'), std::time::Duration::from_millis(50));
+    assert_matches(
+        &screenshot_after_frames(&x, &v, SIZE),
+        &reference,
+        &dir,
+        "back_from_fly",
+    );
+
+    // A left drag orbits; a right drag pans.
+    for button in [1, 3] {
+        x.drag(pid, button, (100, 128), (180, 150));
+        let moved = screenshot_after_frames(&x, &v, SIZE);
+        assert!(
+            changed(&moved, &reference) > enough,
+            "a drag with button {button} left the image as it was"
+        );
+        x.key(pid, u32::from(b'c'), std::time::Duration::from_millis(50));
+        assert_matches(
+            &screenshot_after_frames(&x, &v, SIZE),
+            &reference,
+            &dir,
+            &format!("back_from_drag{button}"),
+        );
+    }
 }
