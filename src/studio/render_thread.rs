@@ -330,13 +330,7 @@ impl Studio {
         }
     }
 
-    fn work<'g>(
-        &mut self,
-        work: Pending,
-        gpu: &'g Gpu,
-        session: &mut Option<Session>,
-        watcher: Option<&mut FileWatcher>,
-    ) {
+    fn work(&mut self, work: Pending, gpu: &Gpu, session: &mut Option<Session>, watcher: Option<&mut FileWatcher>) {
         if work == Pending::Panic {
             panic!("forced by POST /debug/panic (NPR_STUDIO_DEBUG=1)");
         }
@@ -365,7 +359,7 @@ impl Studio {
     }
 
     /// Build and make a renderer; the files to watch.
-    fn rebuild<'g>(&mut self, gpu: &'g Gpu, session: &mut Option<Session>) -> Vec<PathBuf> {
+    fn rebuild(&mut self, gpu: &Gpu, session: &mut Option<Session>) -> Vec<PathBuf> {
         let controls: Vec<String> = self
             .controls
             .iter()
@@ -409,7 +403,7 @@ impl Studio {
         files
     }
 
-    fn render<'g>(&mut self, gpu: &'g Gpu, s: &mut Session) {
+    fn render(&mut self, gpu: &Gpu, s: &mut Session) {
         let start = Instant::now();
         match gpu.watch.check(render_frame(gpu, s, &self.view)) {
             Ok((images, pass_ms)) => {
@@ -456,8 +450,8 @@ impl Studio {
 /// Render the view's frame (replaying history for a path-dependent style
 /// with a fresh renderer) and read every target; the per-pass GPU times of
 /// the last frame when the adapter has timestamps.
-fn render_frame<'g>(
-    gpu: &'g Gpu,
+fn render_frame(
+    gpu: &Gpu,
     s: &mut Session,
     view: &View,
 ) -> Result<(Vec<runner::TargetImage>, Option<Vec<f64>>), RunError> {

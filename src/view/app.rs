@@ -494,7 +494,7 @@ impl ApplicationHandler<ViewEvent> for App<'_> {
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(code) = event.physical_key {
                     if let Some(action) = keys::action(code) {
-                        if !(event.repeat && !matches!(action, Action::StepParam(_) | Action::StepTime(_))) {
+                        if !event.repeat || matches!(action, Action::StepParam(_) | Action::StepTime(_)) {
                             self.key(action, event.state == ElementState::Pressed, event_loop);
                         }
                     }

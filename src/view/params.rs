@@ -144,7 +144,7 @@ impl Stepper {
         let mut set = Vec::new();
         for p in &mut self.params {
             if let Some(old) = before.params.iter().find(|o| o.name == p.name && o.kind == p.kind) {
-                let changed = before.changed.iter().any(|n| *n == p.name);
+                let changed = before.changed.contains(&p.name);
                 if changed {
                     p.value = old.value;
                     set.push((p.name.clone(), p.literal()));
