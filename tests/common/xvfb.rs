@@ -6,9 +6,8 @@
 //! Input is typed and dragged through XTEST, as a user's would arrive.
 //! A missing Xvfb fails the test with the package to install.
 
-use std::path::Path;
 use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use x11rb::connection::Connection;
 use x11rb::protocol::xproto::{AtomEnum, ConnectionExt, ImageFormat, InputFocus, Window};
 use x11rb::protocol::xtest::ConnectionExt as _;
@@ -21,7 +20,8 @@ pub struct Xvfb {
 }
 
 impl Xvfb {
-    /// Xvfb on the first free display from :90 (a 24-bit screen of 1024×768).
+    /// Xvfb on a display number it picks itself (`-displayfd`: no race
+    /// between tests starting at once), a 24-bit screen of 1024×768.
     pub fn start() -> Xvfb {
         let found = Command::new("Xvfb")
             .arg("-help")
@@ -33,32 +33,30 @@ impl Xvfb {
             "the npr view tests need Xvfb, a virtual X display: install it with \
              `sudo apt-get install -y xvfb x11-utils` (or ./setup.sh --tests)"
         );
-        for n in 90..190 {
-            let socket = format!("/tmp/.X11-unix/X{n}");
-            if Path::new(&socket).exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
-            }
-            let display = format!(":{n}");
-            let mut child = Command::new("Xvfb")
-                .args([&display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-                .expect("start Xvfb");
-            let deadline = Instant::now() + Duration::from_secs(20);
-            while Instant::now() < deadline {
-                if let Ok(Some(_)) = child.try_wait() {
-                    break; // another Xvfb took the number first: try the next
-                }
-                if RustConnection::connect(Some(&display)).is_ok() {
-                    return Xvfb { child, display };
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
+        let mut child = Command::new("Xvfb")
+            .args(["-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start Xvfb");
+        // Xvfb writes the display's number once it accepts connections.
+        let out = child.stdout.take().expect("Xvfb's stdout");
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(out), &mut line);
+            let _ = tx.send(line);
+        });
+        let line = rx.recv_timeout(Duration::from_secs(30)).unwrap_or_default();
+        let Ok(n) = line.trim().parse::<u32>() else {
             let _ = child.kill();
             let _ = child.wait();
+            panic!("Xvfb did not report a display number (it printed {line:?})");
+        };
+        Xvfb {
+            child,
+            display: format!(":{n}"),
         }
-        panic!("could not start Xvfb on any display from :90 to :189");
     }
 
     /// The pixels of the top-level window of process `pid` (its
@@ -92,6 +90,29 @@ impl Xvfb {
                 255,
             ])
         })
+    }
+}
+
+impl Xvfb {
+    /// The title of the window of `pid` (its `_NET_WM_NAME`, UTF-8).
+    pub fn title(&self, pid: u32) -> String {
+        let (conn, screen) = RustConnection::connect(Some(&self.display)).expect("connect to Xvfb");
+        let root = conn.setup().roots[screen].root;
+        let window = window_of(&conn, root, pid).unwrap_or_else(|| panic!("no window of process {pid}"));
+        let atom = |name: &[u8]| {
+            conn.intern_atom(false, name)
+                .expect("atom")
+                .reply()
+                .expect("atom reply")
+                .atom
+        };
+        let (name, utf8) = (atom(b"_NET_WM_NAME"), atom(b"UTF8_STRING"));
+        let reply = conn
+            .get_property(false, window, name, utf8, 0, 1024)
+            .expect("title")
+            .reply()
+            .expect("title reply");
+        String::from_utf8_lossy(&reply.value).into_owned()
     }
 }
 

@@ -92,6 +92,16 @@ fn the_window_shows_what_npr_render_writes() {
     let shot = screenshot_after_frames(&x, &v, SIZE);
     let reference = render(style, scene, &dir.join("render.png"));
     assert_matches(&shot, &reference, &dir, "toon_orbit");
+    // The frame time is in the title, with the time and the camera.
+    let title = x.title(v.child.id());
+    let shown = |s: &str| title.contains(s);
+    assert!(
+        shown("npr view — examples/toon.npr — ")
+            && shown(" ms (")
+            && shown("t = 1.00 s (paused)")
+            && shown("scene camera"),
+        "{title}"
+    );
 }
 
 #[test]
@@ -241,4 +251,12 @@ fn keys_and_drags_move_the_camera_and_c_brings_back_the_scene_camera() {
             &format!("back_from_drag{button}"),
         );
     }
+
+    // Space runs the time: the scene's camera swings round.
+    x.key(pid, u32::from(b' '), std::time::Duration::from_millis(50));
+    let running = screenshot_after_frames(&x, &v, SIZE);
+    assert!(
+        changed(&running, &reference) > enough,
+        "running time left the image as it was"
+    );
 }
