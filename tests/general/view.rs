@@ -260,3 +260,30 @@ fn keys_and_drags_move_the_camera_and_c_brings_back_the_scene_camera() {
         "running time left the image as it was"
     );
 }
+
+#[test]
+#[ignore = "needs runner::embed::StyleRuntime::set_param, which issue32-embed has not implemented yet ('set_param typing to follow'): run with --ignored once it is merged"]
+fn the_parameter_keys_step_a_parameter_as_set_would() {
+    let dir = scratch("view", "param_keys");
+    let x = Xvfb::start();
+    let (style, scene) = (Path::new("examples/toon.npr"), "examples/scenes/orbit.toml");
+    let mut v = view(&x, style, scene);
+    v.wait_for("view: build 1 shown");
+    let pid = v.child.id();
+    // `bands` is the first parameter: `=` steps it from 3 to 4.
+    x.key(pid, u32::from(b'='), std::time::Duration::from_millis(50));
+    v.wait_for("view: bands = 4");
+    let shot = screenshot_after_frames(&x, &v, SIZE);
+    let out = dir.join("bands4.png");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args(["render", style.to_str().expect("utf-8"), "--scene", scene])
+        .args(["--size", &format!("{SIZE}x{SIZE}"), "--time", "1", "--keep-params"])
+        .args(["--set", "bands=4", "-o"])
+        .arg(&out)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("npr render");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_matches(&shot, &image::open(&out).expect("bands=4").to_rgba8(), &dir, "bands4");
+}
