@@ -37,7 +37,9 @@ pub enum ViewEvent {
 fn no_window(e: String) -> Diagnostic {
     Diagnostic::error(codes::NO_DEVICE, format!("npr view cannot open a window: {e}")).with_help(
         "run it under a display (X11 or Wayland: DISPLAY or WAYLAND_DISPLAY set); without one, \
-         `xvfb-run npr view ...` gives a virtual X display (Debian: `apt-get install -y xvfb`)",
+         `xvfb-run npr view ...` gives a virtual X display (Debian: `apt-get install -y xvfb`); \
+         X11 also needs libX11, libxkbcommon-x11 and libXcursor (Debian: `apt-get install -y \
+         libx11-xcb1 libxkbcommon-x11-0 libxcursor1`)",
     )
 }
 
@@ -57,9 +59,13 @@ pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
         paths: args.paths,
         schedule: args.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
     };
-    let event_loop = match winit::event_loop::EventLoop::<ViewEvent>::with_user_event().build() {
-        Ok(l) => l,
-        Err(e) => return printer.fail(no_window(e.to_string())),
+    // winit loads the display's libraries (libX11, libxkbcommon-x11, ...)
+    // here, and panics where one is missing: a diagnostic too.
+    let event_loop = match diag::panics::catch(|| winit::event_loop::EventLoop::<ViewEvent>::with_user_event().build())
+    {
+        Ok(Ok(l)) => l,
+        Ok(Err(e)) => return printer.fail(no_window(e.to_string())),
+        Err(panic) => return printer.fail(no_window(panic)),
     };
     let proxy = event_loop.create_proxy();
     let watcher = match FileWatcher::new(move |files| {
