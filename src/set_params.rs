@@ -13,7 +13,6 @@
 //! pointing into the `--set` argument itself.
 
 use crate::printer::Printer;
-use compiler::ir::Literal;
 use compiler::ir::{ParamSetting, SettingOrigin};
 use compiler::{CompileError, CompileOptions, Compiled};
 use diag::{SourceMap, Span};
@@ -73,90 +72,16 @@ pub fn settings(sets: &[String], sources: &mut SourceMap) -> Vec<ParamSetting> {
         .collect()
 }
 
-/// `text` (one `--set` value, trimmed) as the literal it writes, whatever
-/// the parameter: which literals a parameter takes is the compiler's to say.
-pub fn read_literal(text: &str) -> Literal {
-    match text {
-        "true" => return Literal::Bool(true),
-        "false" => return Literal::Bool(false),
-        _ => {}
-    }
-    if text.starts_with('#') {
-        return parse_colour(text).map_or(Literal::Unreadable, Literal::Colour);
-    }
-    if let Some((lo, hi)) = text.split_once("..") {
-        return match (split_number(lo.trim()), split_number(hi.trim())) {
-            (Some((a, "", _)), Some((b, "", _))) => Literal::Range(a, b),
-            _ => Literal::Unreadable,
-        };
-    }
-    if text.contains(',') {
-        // A vector: plain numbers only (no vector parameter has a unit).
-        let parts: Option<Vec<(f64, bool)>> = text
-            .split(',')
-            .map(|s| match split_number(s.trim()) {
-                Some((v, "", whole)) => Some((v, whole)),
-                _ => None,
-            })
-            .collect();
-        return parts.map_or(Literal::Unreadable, |parts| Literal::Numbers {
-            whole: parts.iter().all(|(_, whole)| *whole),
-            values: parts.into_iter().map(|(v, _)| v).collect(),
-            suffix: String::new(),
-        });
-    }
-    if let Some((v, suffix, whole)) = split_number(text) {
-        return Literal::number(v, suffix, whole);
-    }
-    let is_name = text.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-        && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    if is_name {
-        Literal::Name(text.to_string())
-    } else {
-        Literal::Unreadable
-    }
-}
-
-/// A number with an optional unit suffix, as the language writes it: the
-/// longest prefix that reads as a finite number, the rest as the suffix, and
-/// whether the number was written as a whole number.
-fn split_number(text: &str) -> Option<(f64, &str, bool)> {
-    // Rust also reads `inf` and `nan`; the language has neither.
-    if !text.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '.' | '-' | '+')) {
-        return None;
-    }
-    (1..=text.len())
-        .rev()
-        .filter(|&i| text.is_char_boundary(i))
-        .find_map(|i| {
-            let (digits, suffix) = text.split_at(i);
-            let value: f64 = digits.parse().ok()?;
-            value
-                .is_finite()
-                .then(|| (value, suffix.trim(), !digits.contains(['.', 'e', 'E'])))
-        })
-}
-
-/// `#rrggbb` or `#rrggbbaa` as four components in 0..1.
-fn parse_colour(text: &str) -> Option<[f64; 4]> {
-    let hex = text.strip_prefix('#')?;
-    if !(hex.len() == 6 || hex.len() == 8) || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
-        return None;
-    }
-    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok().map(|b| b as f64 / 255.0);
-    Some([
-        byte(0)?,
-        byte(2)?,
-        byte(4)?,
-        if hex.len() == 8 { byte(6)? } else { 1.0 },
-    ])
-}
+/// `text` (one `--set` value, trimmed) as the literal it writes: the
+/// ABI's reader, which a host's `StyleRuntime::set_param` uses too.
+pub use abi::param_literal::read_literal;
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use abi::manifest::{ParamBinding, ParamManifest};
     use compiler::front::param_values::{format_literal, type_value, ParamShape};
+    use compiler::ir::Literal;
     use compiler::mid::overrides::ParamOverride;
     use diag::codes;
 

@@ -12,6 +12,10 @@
 //! - [`lines`]: a `lines` pass's edges, shape settings and strip vertex.
 //! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
 //! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
+//! - [`param_literal`], [`param_value`]: a parameter's value as written
+//!   (`--set` text), and the one rule typing it against a parameter
+//!   (type, unit, range), which `--set` and a host's `set_param` share;
+//!   [`Unit`], the dimensions of quantities.
 //! - [`program`]: a compiled style as the runner takes it ([`StyleProgram`]),
 //!   with [`StyleProgram::load_dir`], which validates every index of a
 //!   manifest read from disk.
@@ -28,8 +32,11 @@ pub mod lines;
 pub mod manifest;
 pub mod noise;
 pub mod object;
+pub mod param_literal;
+pub mod param_value;
 pub mod program;
 pub mod scene;
+mod unit;
 pub mod validate;
 
 pub use artmap::{ArtmapSpec, FilterProgram, RipmapAtlas};
@@ -41,3 +48,4 @@ pub use noise::NoiseSpec;
 pub use object::{ObjectHead, OBJECT_HEAD_WGSL};
 pub use program::{LoadError, StyleProgram};
 pub use scene::SceneSummary;
+pub use unit::Unit;

@@ -18,6 +18,7 @@
 //! built ([`check_target_formats`]): a user-facing limit (E0404) with an
 //! install hint, not a validation error.
 
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::Format;
 use std::sync::{Arc, Mutex};
@@ -125,7 +126,7 @@ pub fn check_target_formats(
         }
         checked.push(*format);
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let _probe = device.create_texture(&wgpu::TextureDescriptor {
+        let _probe = device.make_texture(&wgpu::TextureDescriptor {
             label: Some("npr format probe"),
             size: wgpu::Extent3d {
                 width: 1,

@@ -12,9 +12,9 @@
 //! device whose stores match neither cannot run a schedule that repeats
 //! them: a user error (E0404) that says to compile with `--schedule naive`.
 
+use crate::gpu_count::{Create, CreateView};
 use crate::RunError;
 use abi::formats::{Format, HalfRounding};
-use wgpu::util::DeviceExt;
 
 /// Probe values, each an exact f32 (four per texel).
 const PROBES: [f32; 20] = [
@@ -95,16 +95,16 @@ fn render_probes(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<f32>,
         device,
         || "measuring the device's 16-bit float rounding".to_string(),
         || {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            let module = device.make_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("npr half rounding probe"),
                 source: wgpu::ShaderSource::Wgsl(SHADER.into()),
             });
-            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            let buffer = device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("npr half rounding probes"),
                 contents: bytemuck::cast_slice(&PROBES),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            let pipeline = device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("npr half rounding probe"),
                 layout: None,
                 vertex: wgpu::VertexState {
@@ -125,7 +125,7 @@ fn render_probes(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<f32>,
                 multiview_mask: None,
                 cache: None,
             });
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("npr half rounding probes"),
                 layout: &pipeline.get_bind_group_layout(0),
                 entries: &[wgpu::BindGroupEntry {
@@ -133,7 +133,7 @@ fn render_probes(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<f32>,
                     resource: buffer.as_entire_binding(),
                 }],
             });
-            let texture = device.create_texture(&wgpu::TextureDescriptor {
+            let texture = device.make_texture(&wgpu::TextureDescriptor {
                 label: Some("npr half rounding probe"),
                 size: wgpu::Extent3d {
                     width,
@@ -147,7 +147,7 @@ fn render_probes(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<f32>,
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
                 view_formats: &[],
             });
-            let view = texture.create_view(&Default::default());
+            let view = texture.make_view(&Default::default());
             let mut encoder = device.create_command_encoder(&Default::default());
             {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

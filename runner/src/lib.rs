@@ -5,6 +5,8 @@
 //! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
 //!   executor per pass kind).
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
+//! - [`embed`]: [`embed::StyleRuntime`], the runtime a host application drives.
+//! - [`gpu_count`]: every GPU object the runner creates, counted.
 //! - [`pass_timer`]: each pass's GPU time in a frame, from timestamp queries.
 //!
 //! The runner depends on neither the compiler, the stdlib nor the parser
@@ -25,6 +27,7 @@ pub mod device;
 pub mod device_needs;
 pub mod embed;
 pub mod exec;
+pub mod gpu_count;
 pub mod gpu_error;
 pub mod half_rounding;
 pub mod lines;

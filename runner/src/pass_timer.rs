@@ -4,6 +4,7 @@
 //! `npr bench passes` takes the median over frames; `npr studio` shows the
 //! times of the frame it displays.
 
+use crate::gpu_count::Create;
 use crate::{FrameSpec, Gpu, Renderer, RunError};
 
 pub struct PassTimer {
@@ -27,13 +28,13 @@ impl PassTimer {
             count: slots,
         });
         let bytes = slots as u64 * 8;
-        let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        let resolve = gpu.device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr timestamps"),
             size: bytes,
             usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        let readback = gpu.device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr timestamps readback"),
             size: bytes,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,

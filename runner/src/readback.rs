@@ -1,5 +1,6 @@
 //! Copy a GPU texture back to memory, and convert texels to floats.
 
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::Format;
 
@@ -158,7 +159,7 @@ fn read_band(
     (padded, unpadded): (u32, u32),
     bytes: &mut Vec<u8>,
 ) -> Result<(), RunError> {
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+    let buffer = device.make_buffer(&wgpu::BufferDescriptor {
         label: Some("npr readback"),
         size: padded as u64 * rows as u64,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -237,7 +238,7 @@ pub fn read_buffer(device: &wgpu::Device, queue: &wgpu::Queue, source: &wgpu::Bu
 }
 
 fn read_whole_buffer(device: &wgpu::Device, queue: &wgpu::Queue, source: &wgpu::Buffer) -> Result<Vec<u8>, RunError> {
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+    let buffer = device.make_buffer(&wgpu::BufferDescriptor {
         label: Some("npr buffer readback"),
         size: source.size(),
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,

@@ -3,6 +3,7 @@
 //! its sampler.
 
 use crate::artmap::{ArtmapBuild, Level};
+use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
@@ -136,10 +137,10 @@ pub fn load_object_textures(
 }
 
 fn placeholder(device: &wgpu::Device) -> GpuTexture {
-    let texture = device.create_texture(&desc(1, 1, 1, wgpu::TextureFormat::Rgba8Unorm));
+    let texture = device.make_texture(&desc(1, 1, 1, wgpu::TextureFormat::Rgba8Unorm));
     GpuTexture {
         texture,
-        sampler: device.create_sampler(&Default::default()),
+        sampler: device.make_sampler(&Default::default()),
     }
 }
 
@@ -290,7 +291,7 @@ fn load_one(
     } else {
         wgpu::TextureFormat::Rgba8Unorm
     };
-    let texture = device.create_texture(&desc(levels[0].width, levels[0].height, levels.len() as u32, format));
+    let texture = device.make_texture(&desc(levels[0].width, levels[0].height, levels.len() as u32, format));
     for (mip, level) in levels.iter().enumerate() {
         let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
         let (bytes, bpp): (Vec<u8>, u32) = if half_float {
@@ -340,7 +341,7 @@ fn load_one(
     } else {
         wgpu::FilterMode::Nearest
     };
-    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+    let sampler = device.make_sampler(&wgpu::SamplerDescriptor {
         label: Some(&t.name),
         address_mode_u: address,
         address_mode_v: address,

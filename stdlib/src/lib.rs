@@ -69,33 +69,9 @@ impl Ty {
     }
 }
 
-/// The physical dimension of a quantity, in its canonical unit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-pub enum Unit {
-    /// A plain number.
-    None,
-    /// Screen pixels (a `%` of the image height converts to px at run time).
-    Px,
-    /// Metres (`mm` converts at compile time).
-    Meters,
-    Seconds,
-    Hertz,
-    /// Angles: written in `deg`, passed in radians.
-    Radians,
-}
-
-impl Unit {
-    pub fn name(self) -> &'static str {
-        match self {
-            Unit::None => "a plain number",
-            Unit::Px => "px",
-            Unit::Meters => "m",
-            Unit::Seconds => "s",
-            Unit::Hertz => "Hz",
-            Unit::Radians => "deg",
-        }
-    }
-}
+/// The physical dimension of a quantity: defined in the ABI, where the
+/// typing of parameter values (`abi::param_value`) needs it.
+pub use abi::Unit;
 
 /// What a parameter gets when the call omits it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 mod command_line;
 mod files;
+mod host;
 mod lines;
 mod param_settings;
 mod passes;
@@ -120,6 +121,7 @@ fn every_code_has_a_case() {
         include_str!("lines.rs"),
         include_str!("command_line.rs"),
         include_str!("param_settings.rs"),
+        include_str!("host.rs"),
     ]
     .concat()
     .chars()
@@ -130,7 +132,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        7 + usize::from(here.join("snapshots").exists()),
+        8 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in diag::codes::ALL {

@@ -11,6 +11,7 @@ mod cli;
 mod cli_usage;
 mod crate_boundaries;
 mod determinism;
+mod embed_example;
 mod examples_compile;
 mod explain;
 mod fuzz_compiler;

@@ -13,7 +13,7 @@
 //! each diagnostic pointing at the setting. `mid::overrides::apply` then
 //! writes the values in as defaults.
 
-use crate::front::param_values::{type_value, ParamShape};
+use crate::front::param_values::{shape_of_ir, type_value};
 use crate::ir::{Ir, ParamSetting, SettingOrigin};
 use crate::mid::overrides::ParamOverride;
 use diag::diagnostic::did_you_mean;
@@ -35,7 +35,7 @@ pub fn type_settings(
             continue;
         };
         let text = sources.snippet(s.value_span).trim();
-        match type_value(&ParamShape::of_ir(ir, param), &s.value, text, &s.origin) {
+        match type_value(&shape_of_ir(ir, param), &s.value, text, &s.origin) {
             Ok(o) => {
                 // A later `--set` of the same name wins, as in most CLIs
                 // (a filter's argument cannot repeat: resolve refuses it).
@@ -75,7 +75,7 @@ fn unknown_name(ir: &Ir, s: &ParamSetting) -> Diagnostic {
     match did_you_mean(name, settable.iter().copied()) {
         Some(close) => d.with_help(format!("did you mean `{close}`?")),
         None if settable.is_empty() => d.with_help(match s.origin {
-            SettingOrigin::CommandLine | SettingOrigin::TestFile => {
+            SettingOrigin::CommandLine | SettingOrigin::TestFile | SettingOrigin::Host => {
                 "this style declares no parameter that --set can change"
             }
             SettingOrigin::FilterArgument { .. } => "this filter declares no parameter that an argument can set",
@@ -87,7 +87,7 @@ fn unknown_name(ir: &Ir, s: &ParamSetting) -> Diagnostic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::front::param_values::ValueKind;
+    use crate::front::param_values::{ParamShape, ValueKind};
     use crate::ir::Literal;
     use diag::Span;
 

@@ -12,16 +12,8 @@
 use crate::ir::{Const, ExprKind, Ir, Ty};
 use crate::InternalError;
 
-/// One parameter's new default, in canonical units (px, m, s, Hz, radians;
-/// an enum's variant index; a colour's four components).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParamOverride {
-    pub name: String,
-    pub value: Vec<f64>,
-    /// The value is a `%` of the image height (`value[0]` in percent),
-    /// resolved by the runner per frame like a `%` default.
-    pub percent_of_height: bool,
-}
+/// One parameter's new default: the ABI's, which typing a value gives.
+pub use abi::param_value::ParamOverride;
 
 /// Replace the defaults of the overridden parameters. An animated parameter
 /// loses its keyframes: a set value is a constant.

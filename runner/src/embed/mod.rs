@@ -44,24 +44,32 @@
 //!
 //! # Example
 //!
-//! A 32×32 frame of a flat-shaded sphere, rendered into an offscreen
-//! texture and read back (a window's surface view works the same way; see
+//! A 32×32 frame of a lit sphere, rendered into an offscreen texture and
+//! read back (a window's surface view works the same way; see
 //! `examples/embed.rs`):
 //!
 //! ```
 //! use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-//! use runner::scene::{primitives::Primitive, Camera};
+//! use runner::scene::{primitives, Camera};
 //!
-//! // A compiled style (from `npr compile -o DIR`, or `compiler::compile_file`).
-//! let program = runner::StyleProgram::load_dir(std::path::Path::new(concat!(
-//!     env!("CARGO_MANIFEST_DIR"),
-//!     "/tests/data/embed_flat"
-//! )))?;
-//! let gpu = runner::Gpu::new()?;
-//! let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, program)?;
+//! // A compiled style: `compiler::compile_file`, or `StyleProgram::load_dir`
+//! // of what `npr compile -o DIR` wrote. `keep_params` keeps `tint` settable.
+//! let style = "style \"Lit\"\nparam tint: color = #ffffff\n\
+//!              pass p: render(scene) {\n  out c: rgba8unorm = vec4(tint.rgb * lambert(normal, light.dir), 1.0)\n}\n\
+//!              output p.c\n";
+//! let options = compiler::CompileOptions { keep_params: true, ..Default::default() };
+//! let mut sources = diag::SourceMap::new();
+//! let compiled = compiler::compile_source("lit.npr", style, std::path::Path::new("."), &mut sources, &options)
+//!     .map_err(|e| format!("{e:?}"))?;
+//!
+//! let gpu = runner::Gpu::headless()?;
+//! let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
 //! runtime.set_param("tint", "#ff0000")?;
+//! // Mistakes are values with a code, as `--set` reports them:
+//! assert_eq!(runtime.set_param("tnit", "#ff0000").unwrap_err().code(), "E0101");
+//! assert_eq!(runtime.set_param("tint", "0.5").unwrap_err().code(), "E0201");
 //!
-//! let sphere = runtime.add_mesh(Primitive::sphere(1.0, 32, 16).build());
+//! let sphere = runtime.add_mesh(primitives::sphere(1.0, 32, 16));
 //! let objects = [Instance::new(sphere, glam::Mat4::IDENTITY)];
 //! let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 4.0), glam::Vec3::ZERO);
 //! let lights = Lights::default();
@@ -83,10 +91,9 @@
 //! gpu.queue.submit([encoder.finish()]);
 //!
 //! let image = runner::readback::read_texture(&gpu.device, &gpu.queue, &texture, 32, 32, abi::Format::Rgba8unorm, "out")?;
-//! let pixel = |x: u32, y: u32| image.rgba8_pixel(x, y);
-//! assert_eq!(pixel(0, 0), [0, 0, 0, 255]); // the background: no object there
-//! let centre = pixel(16, 16); // the sphere, lit, in the red tint
-//! assert!(centre[0] > 100 && centre[1] < 10 && centre[2] < 10, "{centre:?}");
+//! assert_eq!(image.texel(0, 0), [0.0, 0.0, 0.0, 0.0]); // the corner: the pass's clear, no object
+//! let centre = image.texel(16, 16); // the sphere, lit from the default light, in red
+//! assert!(centre[0] > 0.3 && centre[1] == 0.0 && centre[2] == 0.0, "{centre:?}");
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -164,6 +171,22 @@ impl StyleRuntime {
             renderer: None,
             builds: 0,
         })
+    }
+
+    /// What a host's device must have for `program`: the WebGPU features
+    /// and `base` with the limits raised that its passes need (the
+    /// manifest's `device_needs`). Ask the adapter for these in
+    /// `wgpu::DeviceDescriptor`; [`StyleRuntime::new`] refuses a device
+    /// without them (E0510).
+    pub fn device_needs(program: &StyleProgram, base: wgpu::Limits) -> (wgpu::Features, wgpu::Limits) {
+        let features = program
+            .manifest
+            .required_features()
+            .into_iter()
+            .fold(wgpu::Features::empty(), |f, need| {
+                f | crate::device_needs::wgpu_feature(need)
+            });
+        (features, crate::device_needs::requested_limits(&program.manifest, base))
     }
 
     /// The style's manifest (passes, targets, parameters, device needs).

@@ -1,8 +1,13 @@
-//! Style parameters set by name at run time ([`super::StyleRuntime::set_param`]),
-//! typed and range-checked from the manifest's parameter metadata by the
-//! rule `--set` uses (`abi::param_value`).
+//! Style parameters set by name at run time ([`StyleRuntime::set_param`]),
+//! read and typed from the manifest's parameter metadata by the rule
+//! `--set` uses (`abi::param_literal::read_literal`, then
+//! `abi::param_value::type_value`): one definition, in the ABI.
 
 use super::{EmbedError, StyleRuntime};
+use abi::manifest::{ParamBinding, ParamManifest};
+use abi::param_literal::{did_you_mean, read_literal, SettingOrigin};
+use abi::param_value::{format_literal, type_value, ParamShape};
+use diag::{codes, Diagnostic};
 
 /// A parameter the host can set: what [`StyleRuntime::params`] lists.
 #[derive(Debug, Clone, PartialEq)]
@@ -12,35 +17,102 @@ pub struct ParamInfo {
     pub ty: String,
     /// The declared `in lo..hi`, in canonical units (px, m, s, Hz, radians).
     pub range: Option<(f64, f64)>,
-    /// The current value, written as `--set` takes it.
+    /// The current value, written as [`StyleRuntime::set_param`] takes it.
     pub value: String,
 }
 
+/// Whether a host can change `p` at run time: a slot of the style's
+/// uniform block (a folded one is a constant in the shaders).
+fn settable(p: &ParamManifest) -> bool {
+    p.binding == ParamBinding::Uniform
+}
+
+fn value_text(p: &ParamManifest) -> String {
+    if p.default_percent_of_height {
+        return format!("{}%", p.default.first().copied().unwrap_or(0.0));
+    }
+    format_literal(&ParamShape::of_manifest(p), &p.default).unwrap_or_default()
+}
+
 impl StyleRuntime {
-    /// The style's parameters a host can set (not per-object ones), with
-    /// their current values.
+    /// The style's parameters a host can set at run time (those with a
+    /// slot in the style's uniform block: animated ones, or every one of
+    /// a style compiled with `keep_params`), with their current values.
     pub fn params(&self) -> Vec<ParamInfo> {
         self.program
             .manifest
             .params
             .iter()
-            .filter(|p| p.binding != abi::manifest::ParamBinding::PerObject)
+            .filter(|p| settable(p))
             .map(|p| ParamInfo {
                 name: p.name.clone(),
                 ty: p.ty.clone(),
                 range: p.range,
-                value: format!("{:?}", p.default),
+                value: value_text(p),
             })
             .collect()
     }
 
     /// Set style parameter `name` to `value`, written as `--set` takes it
     /// (`5`, `2px`, `50%`, `30deg`, `#ff8800`, `true`, `cubic`,
-    /// `0.2..0.6`, `1, 0.5`). From the next frame on. An unknown name is
-    /// E0101 (with "did you mean"), a value of the wrong type E0201, unit
-    /// E0202, outside the declared range E0203, a per-object param E0502.
+    /// `0.2..0.6`, `1, 0.5`), from the next frame on; an animated
+    /// parameter becomes this constant. An unknown name is E0101 (with
+    /// "did you mean"), a value of the wrong type E0201, of the wrong unit
+    /// E0202, outside the declared range E0203; a per-object parameter, or
+    /// one the compiler folded into the shaders, E0502. On an error
+    /// nothing changes.
     pub fn set_param(&mut self, name: &str, value: &str) -> Result<(), EmbedError> {
-        let _ = (name, value);
-        Err(crate::RunError::Internal("set_param: not yet implemented".into()).into())
+        let params = &self.program.manifest.params;
+        let Some(index) = params.iter().position(|p| p.name == name) else {
+            return Err(EmbedError::Param(unknown_param(name, params)));
+        };
+        let param = &params[index];
+        let shape = ParamShape::of_manifest(param);
+        let typed =
+            type_value(&shape, &read_literal(value.trim()), value.trim(), &SettingOrigin::Host).map_err(|r| {
+                EmbedError::Param(
+                    Diagnostic::error(r.code, format!("{}: {}", SettingOrigin::Host.subject(name), r.message))
+                        .with_help(format!("{} ({})", r.help, r.label)),
+                )
+            })?;
+        if !settable(param) {
+            return Err(EmbedError::Param(
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT_VALUE,
+                    format!("set_param(\"{name}\"): `{name}` was folded into the style's shaders when it was compiled"),
+                )
+                .with_help(
+                    "compile the style with `keep_params` (`CompileOptions::keep_params`, \
+                     `npr compile --keep-params`) to change its parameters at run time",
+                ),
+            ));
+        }
+        for manifest in
+            std::iter::once(&mut self.program.manifest).chain(self.renderer.as_mut().map(|r| &mut r.manifest))
+        {
+            let p = &mut manifest.params[index];
+            p.default = typed.value.clone();
+            p.default_percent_of_height = typed.percent_of_height;
+            // A set value is a constant, as `--set` makes it (`mid::overrides`).
+            p.keyframes.clear();
+        }
+        Ok(())
+    }
+}
+
+/// E0101 for a name the style has no settable parameter of.
+fn unknown_param(name: &str, params: &[ParamManifest]) -> Diagnostic {
+    let names: Vec<&str> = params.iter().filter(|p| settable(p)).map(|p| p.name.as_str()).collect();
+    let d = Diagnostic::error(
+        codes::UNKNOWN_NAME,
+        format!("set_param(\"{name}\"): the style has no parameter `{name}` that can change at run time"),
+    );
+    match did_you_mean(name, names.iter().copied()) {
+        Some(close) => d.with_help(format!("did you mean `{close}`?")),
+        None if names.is_empty() => d.with_help(
+            "this style has no run-time parameters: compile it with `keep_params` to keep them \
+             in a uniform block",
+        ),
+        None => d.with_help(format!("its parameters are: {}", names.join(", "))),
     }
 }

@@ -6,6 +6,7 @@
 //! texture (they change only with the size or the style).
 
 use super::{EmbedError, Target};
+use crate::gpu_count::{Create, CreateView};
 use diag::{codes, Diagnostic};
 use std::collections::HashMap;
 
@@ -169,11 +170,11 @@ pub(super) struct Presenter {
 
 impl Presenter {
     pub fn new(device: &wgpu::Device) -> Presenter {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        let module = device.make_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("npr present"),
             source: wgpu::ShaderSource::Wgsl(PRESENT_WGSL.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("npr present"),
             entries: &[wgpu::BindGroupLayoutEntry {
                 binding: 0,
@@ -187,7 +188,7 @@ impl Presenter {
                 count: None,
             }],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let pipeline_layout = device.make_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("npr present"),
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
@@ -202,10 +203,10 @@ impl Presenter {
         }
     }
 
-    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
+    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat) {
         let (module, layout) = (&self.module, &self.pipeline_layout);
         self.pipelines.entry(format).or_insert_with(|| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("npr present"),
                 layout: Some(layout),
                 vertex: wgpu::VertexState {
@@ -230,7 +231,7 @@ impl Presenter {
                 multiview_mask: None,
                 cache: None,
             })
-        })
+        });
     }
 
     /// Record the draws of `target`: each view gets the output of its eyes.
@@ -242,29 +243,40 @@ impl Presenter {
         target: &CheckedTarget,
     ) -> Result<(), EmbedError> {
         if renderer.resources_generation() != self.generation {
+            // Every eye slot and parity at once, so that no later frame makes one.
             self.groups.clear();
-            self.generation = renderer.resources_generation();
-        }
-        for (view, format, eyes) in &target.views {
-            // Made before the pass borrows the encoder.
-            self.pipeline(device, *format);
-            for &slot in eyes {
-                let key = (slot, renderer.parity_now());
-                if !self.groups.contains_key(&key) {
+            for slot in 0..renderer.eye_slots() {
+                for parity in 0..renderer.parities() {
                     let texture = renderer
-                        .output_texture(slot)
+                        .output_texture(slot, parity)
                         .ok_or_else(|| crate::RunError::Internal("present before prepare".into()))?;
-                    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    let view = texture.make_view(&Default::default());
+                    let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("npr present"),
                         layout: &self.layout,
                         entries: &[wgpu::BindGroupEntry {
                             binding: 0,
-                            resource: wgpu::BindingResource::TextureView(&texture.create_view(&Default::default())),
+                            resource: wgpu::BindingResource::TextureView(&view),
                         }],
                     });
-                    self.groups.insert(key, group);
+                    self.groups.insert((slot, parity), group);
                 }
             }
+            self.generation = renderer.resources_generation();
+        }
+        let parity = renderer.parity_now() % renderer.parities();
+        for (view, format, eyes) in &target.views {
+            // Made before the pass borrows the encoder.
+            self.pipeline(device, *format);
+            let pipeline = &self.pipelines[format];
+            let groups: Vec<&wgpu::BindGroup> = eyes
+                .iter()
+                .map(|&slot| {
+                    self.groups
+                        .get(&(slot, parity))
+                        .ok_or_else(|| crate::RunError::Internal(format!("no output of eye slot {slot}")))
+                })
+                .collect::<Result<_, _>>()?;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("npr present"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -281,11 +293,11 @@ impl Presenter {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.pipelines[format]);
-            for (k, &slot) in eyes.iter().enumerate() {
+            pass.set_pipeline(pipeline);
+            for (k, group) in groups.into_iter().enumerate() {
                 let x = (k as u32 * target.width) as f32;
                 pass.set_viewport(x, 0.0, target.width as f32, target.height as f32, 0.0, 1.0);
-                pass.set_bind_group(0, &self.groups[&(slot, renderer.parity_now())], &[]);
+                pass.set_bind_group(0, group, &[]);
                 pass.draw(0..3, 0..1);
             }
         }

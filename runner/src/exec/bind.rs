@@ -6,6 +6,7 @@
 //! per object (the object's bound image, or the declared default).
 
 use super::Renderer;
+use crate::gpu_count::{Create, CreateView};
 use crate::scene::Scene;
 use crate::textures::{GpuTexture, ObjectTextures};
 use crate::RunError;
@@ -68,7 +69,7 @@ pub(super) fn layout_entry(b: &Binding) -> wgpu::BindGroupLayoutEntry {
 /// Group 0 layout of a pass: its manifest bindings.
 pub(super) fn group0_layout(device: &wgpu::Device, pass: &PassManifest) -> wgpu::BindGroupLayout {
     let entries: Vec<wgpu::BindGroupLayoutEntry> = pass.bindings.iter().map(layout_entry).collect();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+    device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(&pass.name),
         entries: &entries,
     })
@@ -80,11 +81,11 @@ pub(super) fn shared_object_group(
     buffer: &wgpu::Buffer,
     object_uniform_size: u64,
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+    let layout = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("npr object"),
         entries: &[object_uniform_entry(object_uniform_size)],
     });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+    let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("npr object"),
         layout: &layout,
         entries: &[wgpu::BindGroupEntry {
@@ -127,7 +128,7 @@ pub(super) fn pass_object_groups(
     }
     let mut entries = vec![object_uniform_entry(objects.uniform_size)];
     entries.extend(pass.object_bindings.iter().map(layout_entry));
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+    let layout = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(&pass.name),
         entries: &entries,
     });
@@ -144,7 +145,7 @@ pub(super) fn pass_object_groups(
             .object_bindings
             .iter()
             .map(|b| match b.resource {
-                Resource::Texture { texture } => Some(gpu(texture).texture.create_view(&Default::default())),
+                Resource::Texture { texture } => Some(gpu(texture).texture.make_view(&Default::default())),
                 _ => None,
             })
             .collect();
@@ -172,7 +173,7 @@ pub(super) fn pass_object_groups(
                 resource,
             });
         }
-        groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+        groups.push(device.make_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("{} / {}", pass.name, o.name)),
             layout: &layout,
             entries: &entries,
@@ -207,11 +208,11 @@ impl Renderer {
                         TargetCopy::OtherEye => physical.texture((slot + 1) % slots, parity, index, false),
                         TargetCopy::Previous => physical.texture(slot, parity, index, true),
                     };
-                    Some((b.binding, texture.create_view(&Default::default())))
+                    Some((b.binding, texture.make_view(&Default::default())))
                 }
                 Resource::Texture { texture } => Some((
                     b.binding,
-                    self.textures[*texture].texture.create_view(&Default::default()),
+                    self.textures[*texture].texture.make_view(&Default::default()),
                 )),
                 _ => None,
             })
@@ -241,7 +242,7 @@ impl Renderer {
                 })
             })
             .collect();
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        self.device.make_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&pass.name),
             layout: self.passes[pi].layout0(),
             entries: &entries,

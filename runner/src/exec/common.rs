@@ -8,6 +8,7 @@
 
 use super::meshes::GpuMesh;
 use super::resources::{wgpu_format, SizedPass};
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::formats::HalfRounding;
 use abi::manifest::*;
@@ -148,19 +149,19 @@ impl PassShader<'_> {
         entries: &[&str],
     ) -> Vec<wgpu::ComputePipeline> {
         let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().copied().map(Some).collect();
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let layout = device.make_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&pass.name),
             bind_group_layouts: &bind_group_layouts,
             immediate_size: 0,
         });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        let module = device.make_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&pass.shader),
             source: wgpu::ShaderSource::Wgsl(self.wgsl.into()),
         });
         entries
             .iter()
             .map(|entry| {
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                device.make_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some(&format!("{} {entry}", pass.name)),
                     layout: Some(&layout),
                     module: &module,
@@ -211,13 +212,13 @@ pub(super) fn render_pipeline(
         .raster_entries()
         .ok_or_else(|| RunError::Internal(format!("pass `{}` has no vertex and fragment entry points", pass.name)))?;
     let layouts: Vec<Option<&wgpu::BindGroupLayout>> = group_layouts.iter().map(|l| Some(*l)).collect();
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+    let layout = device.make_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&pass.name),
         bind_group_layouts: &layouts,
         immediate_size: 0,
     });
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+    let module = device.make_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&pass.shader),
         source: wgpu::ShaderSource::Wgsl(shader.wgsl.into()),
     });
@@ -234,7 +235,7 @@ pub(super) fn render_pipeline(
             })
         })
         .collect();
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+    let pipeline = device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(&pass.name),
         layout: Some(&layout),
         vertex: wgpu::VertexState {

@@ -17,6 +17,7 @@ use super::common::{EncodeContext, Timestamps};
 use super::meshes::{attribute_format, GpuMesh};
 use super::resources::SizedPass;
 use super::values::PassBuffers;
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::manifest::*;
 
@@ -64,7 +65,7 @@ fn group(
             resource: b.as_entire_binding(),
         })
         .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
+    device.make_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
         entries: &entries,
@@ -140,7 +141,7 @@ impl ComputePassExec {
         let entries1: Vec<wgpu::BindGroupLayoutEntry> = (0..group1_buffers.len())
             .map(|i| storage_entry(i as u32, true))
             .collect();
-        let layout1 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout1 = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} objects", pass.name)),
             entries: &entries1,
         });
@@ -163,7 +164,7 @@ impl ComputePassExec {
         } else if *history {
             entries2.push(storage_entry(1, true));
         }
-        let layout2 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout2 = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} buffers", pass.name)),
             entries: &entries2,
         });

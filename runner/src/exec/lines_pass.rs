@@ -12,6 +12,7 @@
 use super::bind;
 use super::common::{self, Timestamps};
 use super::resources::SizedPass;
+use crate::gpu_count::Create;
 use crate::lines::cache::{EdgeSelection, LinesCache};
 use crate::lines::draw::{vertices, DepthBias};
 use crate::lines::objects::line_objects;
@@ -115,7 +116,7 @@ impl LinesPassExec {
             DepthMode::Keep => return Err(RunError::Internal(format!("lines pass `{}` keeps a depth", pass.name))),
         };
         let depth_layout = depth_test.map(|_| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some(&format!("{} kept depth", pass.name)),
                 entries: &[wgpu::BindGroupLayoutEntry {
                     binding: 0,
@@ -150,7 +151,7 @@ impl LinesPassExec {
     /// Group 1 over the tested pass's kept depth (with a depth test).
     pub fn tested_depth_group(&self, device: &wgpu::Device, kept: &wgpu::TextureView) -> Option<wgpu::BindGroup> {
         let layout = self.depth_layout.as_ref()?;
-        Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+        Some(device.make_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("{} kept depth", self.name)),
             layout,
             entries: &[wgpu::BindGroupEntry {
@@ -219,12 +220,14 @@ impl LinesPassExec {
             g.vertices.size() >= vertex_bytes.len() as u64 && g.indices.size() >= index_bytes.len() as u64
         });
         if !fits {
-            // Grown to the next power of two, so a slowly changing view does
-            // not reallocate every frame.
+            // Grown to the next power of two of twice what this frame needs,
+            // so a changing view (more silhouettes, longer wavy strips)
+            // seldom reallocates: the one GPU allocation a frame after the
+            // first may make (`runner::embed` docs).
             let buffer = |label: &str, bytes: usize, usage: wgpu::BufferUsages| {
-                device.create_buffer(&wgpu::BufferDescriptor {
+                device.make_buffer(&wgpu::BufferDescriptor {
                     label: Some(label),
-                    size: (bytes.max(16) as u64).next_power_of_two(),
+                    size: (2 * bytes.max(16) as u64).next_power_of_two(),
                     usage: usage | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 })

@@ -5,11 +5,11 @@
 //! mesh also gets a weight buffer (all 1), and each blended patch a second
 //! mesh: its faces and n-ring with its weights, which such passes draw.
 
+use crate::gpu_count::Create;
 use crate::scene::{Mesh, Scene};
 use crate::RunError;
 use abi::manifest::Attribute;
 use std::collections::BTreeMap;
-use wgpu::util::DeviceExt;
 
 /// The vertex format and byte stride of attribute `a` in its vertex buffer
 /// (one buffer per attribute, tightly packed f32s).
@@ -78,7 +78,7 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) 
 
 /// A vertex buffer holding `data` (16 zero bytes when empty: wgpu refuses empty buffers).
 fn vertex_buffer(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
         contents: if data.is_empty() { &[0u8; 16] } else { data },
         usage: wgpu::BufferUsages::VERTEX,
@@ -88,7 +88,7 @@ fn vertex_buffer(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffe
 pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
     let mut buffers = BTreeMap::new();
     let mk = |label: &str, data: &[u8]| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: if data.is_empty() { &[0u8; 16] } else { data },
             // COPY_DST: time-varying primitives are rewritten per frame;
@@ -110,7 +110,7 @@ pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
     if let Some(t) = &mesh.tangents {
         buffers.insert(Attribute::Tangent, mk("tangents", bytemuck::cast_slice(t)));
     }
-    let index = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    let index = device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("indices"),
         contents: if mesh.indices.is_empty() {
             &[0u8; 16]

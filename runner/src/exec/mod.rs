@@ -23,6 +23,7 @@
 //! - `common.rs`: what the executors share (they import it, never `pass.rs`);
 //! - `prepare_lines.rs`: each frame's strips of the `lines` passes.
 
+use crate::gpu_count::Create;
 mod bind;
 mod common;
 mod compute_pass;
@@ -213,7 +214,7 @@ impl Renderer {
     ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();
         let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
-        let linear_clamp = device.create_sampler(&wgpu::SamplerDescriptor {
+        let linear_clamp = device.make_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
@@ -224,7 +225,7 @@ impl Renderer {
         // Bad per-object params are reported here too, not only at the first frame.
         objects::object_blocks(&manifest, scene, object_stride, &[], &[])?;
         let object_count = scene.objects.len().max(1) as u64;
-        let object_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
             size: object_stride * object_count,
             // STORAGE: compute passes read every object's block at once.
@@ -276,7 +277,7 @@ impl Renderer {
         let eyes = if manifest.is_stereo() { 2 } else { 1 };
         let frame_buffers = (0..eyes)
             .map(|e| {
-                device.create_buffer(&wgpu::BufferDescriptor {
+                device.make_buffer(&wgpu::BufferDescriptor {
                     label: Some(&format!("npr frame, eye slot {e}")),
                     size: FRAME_UNIFORM_SIZE,
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -284,7 +285,7 @@ impl Renderer {
                 })
             })
             .collect();
-        let style_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        let style_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr style params"),
             size: manifest.style_uniform_size.max(16),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -533,12 +534,23 @@ impl Renderer {
         self.frame_buffers.len()
     }
 
-    /// The texture holding the output of eye slot `slot` in the current
-    /// frame (after [`Renderer::prepare`]); `None` before the first frame.
-    pub fn output_texture(&self, slot: usize) -> Option<&wgpu::Texture> {
+    /// The texture holding the output of eye slot `slot` in frames of
+    /// `parity` (see [`Renderer::parity_now`]; a style with history
+    /// textures alternates two); `None` before the first frame.
+    pub fn output_texture(&self, slot: usize, parity: usize) -> Option<&wgpu::Texture> {
         let sized = self.sized.as_ref()?;
         let physical = self.manifest.targets.get(self.manifest.output)?.physical;
-        (slot < sized.physical.slots.len()).then(|| sized.physical.texture(slot, self.parity(), physical, false))
+        (slot < sized.physical.slots.len() && parity < 2).then(|| sized.physical.texture(slot, parity, physical, false))
+    }
+
+    /// How many parities frames alternate between: 2 for a style with
+    /// history textures, else 1.
+    pub fn parities(&self) -> usize {
+        if self.manifest.is_path_dependent() {
+            2
+        } else {
+            1
+        }
     }
 
     /// Frames begun since the renderer was built or its textures were

@@ -14,6 +14,7 @@
 //! resized.
 
 use super::Renderer;
+use crate::gpu_count::{Create, CreateView};
 use abi::manifest::{DepthMode, PassKindManifest};
 use abi::Format;
 use std::collections::BTreeMap;
@@ -32,7 +33,7 @@ pub(super) fn texture_2d(
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
 ) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
+    device.make_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
             width,
@@ -174,7 +175,7 @@ impl Renderer {
                     let view_of_target = |t: usize| {
                         physical
                             .texture(slot, parity, self.manifest.targets[t].physical, false)
-                            .create_view(&Default::default())
+                            .make_view(&Default::default())
                     };
                     let color_views: Vec<wgpu::TextureView> = pass.outputs.iter().map(|t| view_of_target(*t)).collect();
                     let depth_texture = |label: &str| {
@@ -206,7 +207,7 @@ impl Renderer {
                             }),
                             None => depth.entry((w, h)).or_insert_with(|| depth_texture("npr depth")),
                         }
-                        .create_view(&Default::default())
+                        .make_view(&Default::default())
                     });
                     // A lines pass's test reads the kept depth as a texture
                     // (group 1), made above for the earlier keeping pass.
@@ -221,7 +222,7 @@ impl Renderer {
                                     pass.name
                                 ))
                             })?;
-                            self.passes[pi].tested_depth_group(&self.device, &texture.create_view(&Default::default()))
+                            self.passes[pi].tested_depth_group(&self.device, &texture.make_view(&Default::default()))
                         }
                         _ => None,
                     };

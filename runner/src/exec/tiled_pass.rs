@@ -7,6 +7,7 @@
 use super::bind;
 use super::common::{PassShader, Timestamps};
 use super::resources::{wgpu_format, SizedPass};
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::manifest::*;
 
@@ -47,7 +48,7 @@ impl TiledPassExec {
                 count: None,
             })
             .collect();
-        let layout1 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout1 = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} outputs", pass.name)),
             entries: &entries,
         });
@@ -87,7 +88,7 @@ impl TiledPassExec {
                 resource: wgpu::BindingResource::TextureView(v),
             })
             .collect();
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("{} outputs", self.name)),
             layout: &self.layout1,
             entries: &entries,

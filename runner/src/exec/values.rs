@@ -13,11 +13,11 @@
 //! history resets (a new size), so state restarts from its first value.
 
 use super::meshes::{attribute_format, GpuMesh};
+use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::RunError;
 use abi::manifest::*;
 use std::collections::BTreeMap;
-use wgpu::util::DeviceExt;
 
 /// Most objects one compute pass runs over (one object-stage workgroup each,
 /// in one dispatch dimension).
@@ -122,7 +122,7 @@ pub(super) fn create(
         };
         let slots = values.len() as u32 + u32::from(*history);
         let value_buffer = |copy: usize| {
-            device.create_buffer(&wgpu::BufferDescriptor {
+            device.make_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr values of `{}` #{copy}", p.name)),
                 size: objects * slots as u64 * 16,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
@@ -187,13 +187,13 @@ pub(super) fn create(
             if sample_words.is_empty() {
                 sample_words.resize(SAMPLE_WORDS as usize, 0);
             }
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("npr samples of `{}`'s members", p.name)),
                 contents: bytemuck::cast_slice(&sample_words),
                 usage: wgpu::BufferUsages::STORAGE,
             })
         });
-        let member_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let member_buffer = device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("npr members of `{}`", p.name)),
             contents: if table.is_empty() {
                 &[0u8; 16]
@@ -218,7 +218,7 @@ pub(super) fn create(
                 }
                 pooled.insert(
                     *a,
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(&format!("npr `{}` of `{}`'s members", a.name(), p.name)),
                         contents: &bytes,
                         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
@@ -236,13 +236,13 @@ pub(super) fn create(
         let (partials, dispatch) = if pixels_of.is_some() {
             // The most workgroups any size gets (the budget bounds them).
             let most = pixel_workgroups((u32::MAX, u32::MAX), objects, reduced) as u64;
-            let partials = device.create_buffer(&wgpu::BufferDescriptor {
+            let partials = device.make_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr partials of `{}`", p.name)),
                 size: most * objects * reduced * 16,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
-            let dispatch = device.create_buffer(&wgpu::BufferDescriptor {
+            let dispatch = device.make_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr dispatch of `{}`", p.name)),
                 size: 16,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -250,13 +250,13 @@ pub(super) fn create(
             });
             (Some(partials), Some(dispatch))
         } else if domain.on_meshes() {
-            let partials = device.create_buffer(&wgpu::BufferDescriptor {
+            let partials = device.make_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("npr partials of `{}`", p.name)),
                 size: first_workgroup.max(1) * values.len().max(1) as u64 * 16,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
-            let dispatch = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            let dispatch = device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("npr dispatch of `{}`", p.name)),
                 contents: bytemuck::cast_slice(&[first_workgroup as u32, members.len() as u32, 0, 0]),
                 usage: wgpu::BufferUsages::UNIFORM,

@@ -1,0 +1,230 @@
+//! After the first frame, a frame of a `StyleRuntime` creates no GPU object
+//! (buffer, texture, view, sampler, bind group, layout, pipeline, shader)
+//! unless the size, the style or the set of objects changes: counted by
+//! `runner::gpu_count`, through which the runner makes every one (its
+//! `clippy.toml` refuses the uncounted wgpu calls). The frames move the
+//! objects and the camera, change per-object and style params and advance
+//! the time; then an object is added (a rebuild, allowed) and the frames
+//! after it are counted again, then the size changes. Over examples with a
+//! render and image passes, a compute pass, a lines pass, a history
+//! (previous-frame) target and Age of Sail's seven passes.
+
+#![allow(clippy::disallowed_methods)]
+
+use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use runner::gpu_count::created_on_this_thread;
+use runner::scene::{primitives, Camera};
+use runner::Gpu;
+use std::path::Path;
+use std::sync::OnceLock;
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| {
+        Gpu::headless().unwrap_or_else(|e| {
+            panic!("runner tests need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
+        })
+    })
+}
+
+fn compile(example: &str) -> runner::StyleProgram {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(example);
+    let mut sources = diag::SourceMap::new();
+    let options = compiler::CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    match compiler::compile_file(&path, &mut sources, &options) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
+fn target(width: u32, height: u32) -> wgpu::Texture {
+    gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("host target"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Bgra8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    })
+}
+
+/// A per-object param the frames change, and its components.
+type Param = Option<(&'static str, usize)>;
+
+/// The host's objects at frame `k`: they move, and a per-object param changes.
+fn objects(meshes: &[MeshHandle], k: u32, tags: &[&str], param: Param) -> Vec<Instance> {
+    meshes
+        .iter()
+        .enumerate()
+        .map(|(i, &mesh)| {
+            let x = i as f32 * 1.5 - 0.75 + 0.05 * k as f32;
+            let mut o = Instance::new(
+                mesh,
+                glam::Mat4::from_translation(glam::Vec3::new(x, 0.0, 0.0))
+                    * glam::Mat4::from_rotation_y(0.1 * k as f32),
+            );
+            for t in tags {
+                o = o.with_tag(t);
+            }
+            if let Some((p, components)) = param {
+                o = o.with_param(p, &vec![0.5 + 0.05 * f64::from(k); components]);
+            }
+            o
+        })
+        .collect()
+}
+
+/// Render frame `k` of `instances` at `view`'s size, submit, and wait.
+fn frame(runtime: &mut StyleRuntime, instances: &[Instance], k: u32, view: &wgpu::TextureView) {
+    let camera = Camera::looking_at(
+        glam::Vec3::new(0.2 * (k as f32 * 0.1).sin(), 1.0, 4.0),
+        glam::Vec3::ZERO,
+    );
+    let lights = Lights::default();
+    let frame = Frame {
+        camera: &camera,
+        objects: instances,
+        lights: &lights,
+        time_s: f64::from(k) / 24.0,
+        frame_index: k,
+        eye: 0,
+    };
+    let device = &gpu().device;
+    let mut encoder = device.create_command_encoder(&Default::default());
+    runtime
+        .render(&mut encoder, &frame, Target::View(view))
+        .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
+    gpu().queue.submit([encoder.finish()]);
+    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+}
+
+/// Frames `from..to` create nothing once frame `from - 1` was rendered.
+fn steady(
+    runtime: &mut StyleRuntime,
+    meshes: &[MeshHandle],
+    tags: &[&str],
+    param: Param,
+    frames: std::ops::Range<u32>,
+    view: &wgpu::TextureView,
+    what: &str,
+) {
+    let before = created_on_this_thread();
+    let builds = runtime.builds();
+    for k in frames {
+        frame(runtime, &objects(meshes, k, tags, param), k, view);
+    }
+    let after = created_on_this_thread();
+    assert_eq!(
+        after, before,
+        "{what}: frames created GPU objects: {before:?} → {after:?}"
+    );
+    assert_eq!(runtime.builds(), builds, "{what}: frames rebuilt the scene");
+}
+
+/// The whole sequence for one example.
+fn check(example: &str, tags: &[&str], object_param: Param, style_param: Option<(&str, &str)>) {
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile(example)).expect("runtime");
+    let sphere = runtime.add_mesh(primitives::sphere(0.6, 24, 12));
+    let cube = runtime.add_mesh(primitives::cube(0.8));
+    let texture = target(64, 48);
+    let view = texture.create_view(&Default::default());
+    let mut meshes = vec![sphere, cube];
+    frame(&mut runtime, &objects(&meshes, 0, tags, object_param), 0, &view);
+    let first = created_on_this_thread();
+    assert!(
+        first.pipelines > 0,
+        "{example}: the first frame built no pipeline: {first:?}"
+    );
+    steady(&mut runtime, &meshes, tags, object_param, 1..6, &view, example);
+    if let Some((name, value)) = style_param {
+        runtime
+            .set_param(name, value)
+            .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
+        steady(
+            &mut runtime,
+            &meshes,
+            tags,
+            object_param,
+            6..8,
+            &view,
+            &format!("{example} after set_param"),
+        );
+    }
+    // A third object: scene-level resources are made anew, then steady again.
+    meshes.push(sphere);
+    frame(&mut runtime, &objects(&meshes, 8, tags, object_param), 8, &view);
+    steady(
+        &mut runtime,
+        &meshes,
+        tags,
+        object_param,
+        9..12,
+        &view,
+        &format!("{example} with an object added"),
+    );
+    // And removed again.
+    meshes.pop();
+    frame(&mut runtime, &objects(&meshes, 12, tags, object_param), 12, &view);
+    steady(
+        &mut runtime,
+        &meshes,
+        tags,
+        object_param,
+        13..15,
+        &view,
+        &format!("{example} with the object removed"),
+    );
+    // A new size: the targets are made anew, then steady again.
+    let bigger = target(80, 60);
+    let bigger_view = bigger.create_view(&Default::default());
+    frame(
+        &mut runtime,
+        &objects(&meshes, 15, tags, object_param),
+        15,
+        &bigger_view,
+    );
+    steady(
+        &mut runtime,
+        &meshes,
+        tags,
+        object_param,
+        16..19,
+        &bigger_view,
+        &format!("{example} at a new size"),
+    );
+}
+
+#[test]
+fn toon_frames_allocate_nothing() {
+    check("toon.npr", &[], Some(("tint", 4)), Some(("bands", "5")));
+}
+
+#[test]
+fn a_compute_style_allocates_nothing_per_frame() {
+    check("object_centroids.npr", &[], None, None);
+}
+
+#[test]
+fn a_lines_style_allocates_nothing_per_frame() {
+    check("wavy_lines.npr", &[], None, None);
+}
+
+#[test]
+fn a_history_style_allocates_nothing_per_frame() {
+    check("afterimage.npr", &[], None, Some(("persistence", "0.5")));
+}
+
+#[test]
+fn age_of_sail_allocates_nothing_per_frame() {
+    check("age_of_sail.npr", &[], Some(("breakup", 1)), Some(("warp_px", "6px")));
+}

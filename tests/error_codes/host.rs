@@ -1,0 +1,152 @@
+//! The host codes (E06xx) and the parameter codes a host's
+//! `StyleRuntime::set_param` gives: mistakes of an application embedding a
+//! style (`runner::embed`), as error values, rendered.
+
+use super::{check, check_case, style, SIMPLE_PASS};
+use compiler::CompileOptions;
+use diag::SourceMap;
+use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use runner::scene::{primitives, Camera};
+use std::path::Path;
+use std::sync::OnceLock;
+
+fn gpu() -> &'static runner::Gpu {
+    static GPU: OnceLock<runner::Gpu> = OnceLock::new();
+    GPU.get_or_init(|| {
+        runner::Gpu::headless().unwrap_or_else(|e| {
+            panic!("these cases need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
+        })
+    })
+}
+
+/// A runtime of `text`, compiled with its params kept.
+fn runtime(text: &str) -> StyleRuntime {
+    let mut sources = SourceMap::new();
+    let options = CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    let compiled = compiler::compile_source("case.npr", text, Path::new("."), &mut sources, &options)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    StyleRuntime::new(&gpu().device, &gpu().queue, compiled.program()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn rendered(e: EmbedError) -> (Vec<diag::Diagnostic>, String) {
+    let d = e.diagnostics();
+    let r = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    (d, r)
+}
+
+fn texture(format: wgpu::TextureFormat) -> wgpu::Texture {
+    gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: 16,
+            height: 16,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    })
+}
+
+/// Render one frame of `objects` into `view`.
+fn render(runtime: &mut StyleRuntime, objects: &[Instance], view: &wgpu::TextureView) -> Result<(), EmbedError> {
+    let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+    let lights = Lights::default();
+    let frame = Frame {
+        camera: &camera,
+        objects,
+        lights: &lights,
+        time_s: 0.0,
+        frame_index: 0,
+        eye: 0,
+    };
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    let result = runtime.render(&mut encoder, &frame, Target::View(view));
+    gpu().queue.submit([encoder.finish()]);
+    result
+}
+
+#[test]
+fn e0601_a_mesh_used_after_it_was_removed() {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let ball = rt.add_mesh(primitives::sphere(0.5, 8, 4));
+    rt.remove_mesh(ball).expect("remove");
+    // A new mesh may take the slot: the old handle still names nothing.
+    let _cube = rt.add_mesh(primitives::cube(1.0));
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let e = render(
+        &mut rt,
+        &[Instance::new(ball, glam::Mat4::IDENTITY)],
+        &target.create_view(&Default::default()),
+    )
+    .expect_err("a removed mesh");
+    assert!(matches!(e, EmbedError::UnknownMesh(_)), "{e:?}");
+    check("E0601", rendered(e));
+}
+
+#[test]
+fn e0602_a_texture_view_of_the_wrong_format() {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let ball = rt.add_mesh(primitives::sphere(0.5, 8, 4));
+    let objects = [Instance::new(ball, glam::Mat4::IDENTITY)];
+    let srgb = texture(wgpu::TextureFormat::Rgba8UnormSrgb);
+    let e = render(&mut rt, &objects, &srgb.create_view(&Default::default())).expect_err("an sRGB view");
+    check("E0602", rendered(e));
+    let depth = texture(wgpu::TextureFormat::Depth32Float);
+    let e = render(&mut rt, &objects, &depth.create_view(&Default::default())).expect_err("a depth view");
+    check_case("E0602", "E0602_depth", rendered(e));
+    // A mono style has no second eye for a side-by-side view.
+    let plain = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let view = plain.create_view(&Default::default());
+    let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+    let lights = Lights::default();
+    let frame = Frame {
+        camera: &camera,
+        objects: &objects,
+        lights: &lights,
+        time_s: 0.0,
+        frame_index: 0,
+        eye: 0,
+    };
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    let e = rt
+        .render(&mut encoder, &frame, Target::SideBySide(&view))
+        .expect_err("side by side of a mono style");
+    check_case("E0602", "E0602_side_by_side", rendered(e));
+}
+
+#[test]
+fn set_param_mistakes_are_the_codes_of_set() {
+    let text = style(&format!(
+        "param bands: int = 3 in 1..8\nparam width: px = 2px in 0px..16px\n{SIMPLE_PASS}"
+    ));
+    let mut rt = runtime(&text);
+    rt.set_param("bands", "5").expect("a good value");
+    rt.set_param("width", "50%").expect("a % of the height");
+    check_case(
+        "E0101",
+        "E0101_set_param",
+        rendered(rt.set_param("bnads", "5").expect_err("no such param")),
+    );
+    check_case(
+        "E0201",
+        "E0201_set_param",
+        rendered(rt.set_param("bands", "2.5").expect_err("not an int")),
+    );
+    check_case(
+        "E0202",
+        "E0202_set_param",
+        rendered(rt.set_param("width", "2m").expect_err("not px")),
+    );
+    check_case(
+        "E0203",
+        "E0203_set_param",
+        rendered(rt.set_param("bands", "9").expect_err("out of range")),
+    );
+}
