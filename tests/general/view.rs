@@ -262,7 +262,6 @@ fn keys_and_drags_move_the_camera_and_c_brings_back_the_scene_camera() {
 }
 
 #[test]
-#[ignore = "needs runner::embed::StyleRuntime::set_param, which issue32-embed has not implemented yet ('set_param typing to follow'): run with --ignored once it is merged"]
 fn the_parameter_keys_step_a_parameter_as_set_would() {
     let dir = scratch("view", "param_keys");
     let x = Xvfb::start();
