@@ -78,8 +78,8 @@ impl Loaded {
             })
             .collect();
         let lights = Lights {
-            key: scene.light.clone(),
-            more: scene.more_lights.clone(),
+            key: scene.light,
+            more: scene.more_lights,
         };
         Ok(Loaded {
             runtime,
