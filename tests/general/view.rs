@@ -2,7 +2,8 @@
 //! machine has: lavapipe in CI): a screenshot of the window, taken through
 //! the X server, against `npr render --keep-params` of the same style,
 //! scene, time and (scene) camera; input typed and dragged through XTEST
-//! (fly, orbit, pan, back to the scene camera); and hot reload: a save
+//! (fly, orbit, pan, back to the scene camera, time running; a parameter
+//! stepped as `--set` would set it); and hot reload: a save
 //! changes the window, a broken save prints its diagnostic and keeps the
 //! last frame.
 //!
