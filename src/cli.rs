@@ -53,6 +53,13 @@ pub enum Command {
         #[arg(short, long)]
         out: PathBuf,
     },
+    /// A live window: the style on the scene at the display's rate, with
+    /// orbit and fly cameras, time running or paused, stereo eyes side by
+    /// side, the frame time in the title, and a rebuild on every save (a
+    /// bad save prints diagnostics and keeps the last good frame). Needs a
+    /// display (X11 or Wayland).
+    #[command(after_help = crate::view::keys::help())]
+    View(ViewArgs),
     /// Live authoring in the browser: a local web server with the rendered
     /// image, controls for the parameters, every pass, diagnostics in place
     /// and timings, re-rendered on every save. See docs/STUDIO.md.
@@ -371,6 +378,45 @@ pub struct LiveArgs {
     pub set: Vec<String>,
 }
 
+/// `npr view`: the style and scene it watches, and what a test or a
+/// benchmark pins (size, time, a fixed number of frames).
+#[derive(clap::Args, Debug)]
+pub struct ViewArgs {
+    pub style: PathBuf,
+    #[command(flatten)]
+    pub paths: PathArgs,
+    /// Scene file (TOML).
+    #[arg(long)]
+    pub scene: PathBuf,
+    /// Size of the image of each eye, WIDTHxHEIGHT: the window's inner
+    /// size (twice as wide for a stereo style, eyes side by side). The
+    /// window can be resized.
+    #[arg(long, default_value = "512x512", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// The style's time at start, in seconds.
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f64,
+    /// Start with time paused (space runs it).
+    #[arg(long)]
+    pub paused: bool,
+    /// Frames a second of the style's `frame` counter and of one-frame time steps.
+    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
+    pub fps: f64,
+    /// Render N frames, print their mean frame time and exit (a benchmark).
+    #[arg(long, value_name = "N")]
+    pub frames: Option<u32>,
+    /// Present as fast as frames render instead of at the display's rate
+    /// (for measuring; the image may tear).
+    #[arg(long)]
+    pub no_vsync: bool,
+    /// How the passes run (default: auto).
+    #[arg(long, value_enum)]
+    pub schedule: Option<ScheduleArg>,
+    /// Set a parameter, typed like a default in the style (see `npr render --help`). Repeatable.
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
+    pub set: Vec<String>,
+}
+
 #[derive(Subcommand, Debug)]
 pub enum BenchCommand {
     /// Compile time of our front end and code generation against naga's own
@@ -564,6 +610,10 @@ pub enum BenchCommand {
         size: (u32, u32),
         #[arg(long, default_value_t = 60)]
         frames: u32,
+        /// Compile with parameters kept as uniforms, as `npr view` and the
+        /// studio do (so its frame time compares with theirs).
+        #[arg(long)]
+        keep_params: bool,
     },
     /// CPU time per frame of a host driving a style (`runner::embed`:
     /// prepare and encode) for several object counts, against an independent

@@ -19,6 +19,7 @@ mod style_tests;
 mod texture_check;
 mod usage;
 mod video;
+mod view;
 mod watch;
 
 fn main() {

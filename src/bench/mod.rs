@@ -136,9 +136,14 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             scene,
             size,
             frames,
+            keep_params,
         } => {
             let mut sources = SourceMap::new();
-            let c = match compile(&style, &mut sources, &CompileOptions::default(), printer) {
+            let opts = CompileOptions {
+                keep_params,
+                ..Default::default()
+            };
+            let c = match compile(&style, &mut sources, &opts, printer) {
                 Ok(c) => c,
                 Err(code) => return code,
             };

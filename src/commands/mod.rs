@@ -50,6 +50,7 @@ pub fn run(cli: Cli) -> i32 {
             },
             &printer,
         ),
+        Command::View(args) => crate::view::run(args, &printer),
         Command::Studio { live, host, port } => crate::studio::run(
             crate::studio::StudioArgs {
                 inputs: Inputs {

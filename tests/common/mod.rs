@@ -14,6 +14,7 @@ pub mod lines;
 pub mod live;
 pub mod lsa;
 pub mod patch_strip;
+pub mod xvfb;
 
 use runner::Gpu;
 use std::path::Path;

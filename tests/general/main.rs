@@ -33,6 +33,7 @@ mod studio_server;
 mod style_sweeps;
 mod style_tests;
 mod style_tests_examples;
+mod view;
 mod vscode_extension;
 mod watch;
 mod webgpu_portability;

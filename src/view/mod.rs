@@ -1,0 +1,90 @@
+//! `npr view`: a style on a scene in a live window, driven through the
+//! runner's embedding API (`runner::embed::StyleRuntime`), rebuilt on every
+//! save through `npr watch`'s builder and file watcher (`live/`).
+//!
+//! - `app.rs`: the winit application: input, rebuilds, frames;
+//! - `surface.rs`: the window's surface and device;
+//! - `style.rs`: a build as a `StyleRuntime` with the scene's meshes, and
+//!   one frame of it;
+//! - `camera.rs`: orbit and fly cameras (pure math, tested in f64);
+//! - `clock.rs`: the style's time and the frame times;
+//! - `params.rs`: stepping a parameter from the keyboard;
+//! - `keys.rs`: the key bindings and their help.
+
+mod app;
+pub mod camera;
+mod clock;
+pub mod keys;
+mod params;
+mod style;
+mod surface;
+
+use crate::cli::{ViewArgs, EXIT_USER};
+use crate::live::build::Inputs;
+use crate::live::watcher::FileWatcher;
+use crate::printer::Printer;
+use diag::{codes, Diagnostic};
+use std::path::PathBuf;
+
+/// What reaches the window's event loop from other threads.
+#[derive(Debug)]
+pub enum ViewEvent {
+    /// Watched files changed (the watcher's thread).
+    Changed(Vec<PathBuf>),
+}
+
+/// No window can be opened: no display, or the display refused it.
+fn no_window(e: String) -> Diagnostic {
+    Diagnostic::error(codes::NO_DEVICE, format!("npr view cannot open a window: {e}")).with_help(
+        "run it under a display (X11 or Wayland: DISPLAY or WAYLAND_DISPLAY set); without one, \
+         `xvfb-run npr view ...` gives a virtual X display (Debian: `apt-get install -y xvfb`); \
+         X11 also needs libX11, libxkbcommon-x11 and libXcursor (Debian: `apt-get install -y \
+         libx11-xcb1 libxkbcommon-x11-0 libxcursor1`)",
+    )
+}
+
+pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
+    if let Err(code) = printer
+        .check(crate::args::check_size(args.size))
+        .and_then(|()| printer.check(crate::args::check_time(args.time, args.fps)))
+    {
+        return code;
+    }
+    let inputs = Inputs {
+        style: args.style,
+        scene: args.scene,
+        sets: args.set,
+        // Parameters stay uniforms, so the keys step them without a recompile.
+        keep_params: true,
+        paths: args.paths,
+        schedule: args.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
+    };
+    // winit loads the display's libraries (libX11, libxkbcommon-x11, ...)
+    // here, and panics where one is missing: a diagnostic too.
+    let event_loop = match diag::panics::catch(|| winit::event_loop::EventLoop::<ViewEvent>::with_user_event().build())
+    {
+        Ok(Ok(l)) => l,
+        Ok(Err(e)) => return printer.fail(no_window(e.to_string())),
+        Err(panic) => return printer.fail(no_window(panic)),
+    };
+    let proxy = event_loop.create_proxy();
+    let watcher = match FileWatcher::new(move |files| {
+        // The loop is gone only when the window closed.
+        let _ = proxy.send_event(ViewEvent::Changed(files));
+    }) {
+        Ok(w) => w,
+        Err(e) => return printer.fail(crate::watch::cannot_watch(e)),
+    };
+    eprintln!("{}", keys::help());
+    let clock = clock::Clock {
+        time_s: args.time,
+        paused: args.paused,
+        fps: args.fps,
+    };
+    let mut app = app::App::new(printer, inputs, args.size, !args.no_vsync, args.frames, clock, watcher);
+    if let Err(e) = event_loop.run_app(&mut app) {
+        printer.diagnostics(&[no_window(e.to_string())], &diag::SourceMap::new());
+        return EXIT_USER;
+    }
+    app.exit
+}

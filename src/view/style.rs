@@ -1,0 +1,163 @@
+//! The style `npr view` shows, driven through the runner's embedding API
+//! (`runner::embed`): a `StyleRuntime` on the window's device, the scene's
+//! meshes registered once, and each frame the scene's objects as
+//! `Instance`s (posed at the frame's time: `spin`), the view's camera, the
+//! scene's lights and the time, rendered into the surface's image.
+//!
+//! A build comes from `live::build`, the same one `npr watch` and `npr
+//! studio` make, compiled with `keep_params` so that the parameter keys
+//! change uniforms without a recompile.
+
+use crate::live::build::Built;
+use diag::{Diagnostic, SourceMap};
+use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use runner::scene::{Camera, Scene};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+pub struct Loaded {
+    pub runtime: StyleRuntime,
+    pub scene: Scene,
+    /// Per scene object, its mesh's handle in the runtime.
+    handles: Vec<runner::embed::MeshHandle>,
+    lights: Lights,
+    pub stereo: bool,
+    pub sources: SourceMap,
+    /// The build's texture spans, where render-time texture errors point.
+    texture_spans: Vec<diag::Span>,
+}
+
+/// What a scene object needs that an `Instance` cannot carry: a note for
+/// each (the object is drawn without it).
+fn unsupported(scene: &Scene) -> Vec<String> {
+    let mut notes = Vec::new();
+    for o in &scene.objects {
+        if !o.textures.is_empty() {
+            notes.push(format!("object `{}`: per-object images are not drawn", o.name));
+        }
+        if o.time_varying.is_some() {
+            notes.push(format!(
+                "object `{}`: its time-varying geometry is shown at t = 0",
+                o.name
+            ));
+        }
+        if o.blend.is_some() {
+            notes.push(format!("object `{}`: patch blending is not drawn", o.name));
+        }
+    }
+    notes
+}
+
+impl Loaded {
+    /// A runtime for `built` on `device`, with the scene's meshes registered.
+    pub fn new(built: Built, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Loaded, Failure> {
+        let Built {
+            compiled,
+            scene,
+            sources,
+            ..
+        } = built;
+        let program = compiled.program();
+        let stereo = program.manifest.is_stereo();
+        let mut runtime = match StyleRuntime::new(device, queue, program) {
+            Ok(r) => r,
+            Err(e) => return Err(Failure::new(e, &compiled.texture_spans, sources)),
+        };
+        for note in unsupported(&scene) {
+            eprintln!("note: npr view (through runner::embed): {note}");
+        }
+        // Objects naming the same file or primitive share one mesh.
+        let mut by_mesh: HashMap<*const runner::scene::Mesh, runner::embed::MeshHandle> = HashMap::new();
+        let handles = scene
+            .objects
+            .iter()
+            .map(|o| {
+                *by_mesh
+                    .entry(Arc::as_ptr(&o.mesh))
+                    .or_insert_with(|| runtime.add_shared_mesh(o.mesh.clone()))
+            })
+            .collect();
+        let lights = Lights {
+            key: scene.light,
+            more: scene.more_lights,
+        };
+        Ok(Loaded {
+            runtime,
+            scene,
+            handles,
+            lights,
+            stereo,
+            sources,
+            texture_spans: compiled.texture_spans,
+        })
+    }
+
+    /// The scene's objects at `time_s` (spinning ones turned).
+    fn instances(&self, time_s: f64) -> Vec<Instance> {
+        let posed = self.scene.posed(time_s);
+        posed
+            .objects
+            .iter()
+            .zip(&self.handles)
+            .map(|(o, handle)| Instance {
+                mesh: *handle,
+                transform: o.model,
+                tags: o.tags.clone(),
+                params: o.params.clone(),
+                casts_shadows: o.casts_shadows,
+            })
+            .collect()
+    }
+
+    /// Record a frame with `camera` at `time_s` into `view` (both eyes side
+    /// by side for a stereo style).
+    pub fn render(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        camera: &Camera,
+        time_s: f64,
+        frame_index: u32,
+    ) -> Result<(), Failure> {
+        let objects = self.instances(time_s);
+        let frame = Frame {
+            camera,
+            objects: &objects,
+            lights: &self.lights,
+            time_s,
+            frame_index,
+            eye: 0,
+        };
+        let target = if self.stereo {
+            Target::SideBySide(view)
+        } else {
+            Target::View(view)
+        };
+        self.runtime
+            .render(encoder, &frame, target)
+            .map_err(|e| Failure::new(e, &self.texture_spans, self.sources.clone()))
+    }
+
+    /// Set a style parameter by name, as `--set` writes its value.
+    pub fn set_param(&mut self, name: &str, literal: &str) -> Result<(), Failure> {
+        self.runtime
+            .set_param(name, literal)
+            .map_err(|e| Failure::new(e, &self.texture_spans, self.sources.clone()))
+    }
+}
+
+/// Why a build could not be shown: diagnostics and the files they point into.
+pub struct Failure {
+    pub diagnostics: Vec<Diagnostic>,
+    pub sources: SourceMap,
+}
+
+impl Failure {
+    fn new(e: EmbedError, texture_spans: &[diag::Span], sources: SourceMap) -> Failure {
+        let diagnostics = match e {
+            EmbedError::Run(run) => run.at_texture_spans(texture_spans).diagnostics(),
+            other => other.diagnostics(),
+        };
+        Failure { diagnostics, sources }
+    }
+}
