@@ -68,7 +68,7 @@ fn to_mats((models, view_projs): &FrameTransforms) -> (Vec<glam::Mat4>, Vec<glam
     )
 }
 
-impl Renderer<'_> {
+impl Renderer {
     /// The state the next frame depends on (read back from the GPU), after
     /// at least one frame; `RunError::Internal` before any.
     pub fn save_state(&self) -> Result<RendererState, RunError> {
@@ -82,7 +82,7 @@ impl Renderer<'_> {
                 let p = &self.manifest.physical[index];
                 let (w, h) = scaled_size(sized.width, sized.height, p.scale);
                 for (copy, texture) in [(0, &sized.physical.slots[slot][index]), (1, &second[&index])] {
-                    let img = readback::read_texture(self.device, self.queue, texture, w, h, p.format, "history")?;
+                    let img = readback::read_texture(&self.device, &self.queue, texture, w, h, p.format, "history")?;
                     blocks.push(StateBlock {
                         kind: StateKind::Texture,
                         owner: slot as u32,
@@ -100,7 +100,7 @@ impl Renderer<'_> {
                     owner: pass as u32,
                     index: 0,
                     copy: copy as u32,
-                    bytes: readback::read_buffer(self.device, self.queue, buffer)?,
+                    bytes: readback::read_buffer(&self.device, &self.queue, buffer)?,
                 });
             }
         }

@@ -333,14 +333,14 @@ fn probe(
 /// One case compiled once with every parameter kept as a uniform, and
 /// its renderer (made again per render for a style that reads earlier
 /// frames, whose history must start empty).
-struct Uniforms<'g> {
+struct Uniforms {
     compiled: Result<(abi::StyleProgram, bool), String>,
-    renderer: Option<runner::Renderer<'g>>,
+    renderer: Option<runner::Renderer>,
     case: Case,
 }
 
-impl<'g> Uniforms<'g> {
-    fn new(style: &Path, case: &Case, scene: &Scene, base: &SourceMap) -> Uniforms<'g> {
+impl Uniforms {
+    fn new(style: &Path, case: &Case, scene: &Scene, base: &SourceMap) -> Uniforms {
         let mut sources = base.clone();
         let opts = CompileOptions {
             keep_params: true,
@@ -367,7 +367,7 @@ impl<'g> Uniforms<'g> {
         combination: &Combination,
         shapes: &[ParamShape],
         scene: &Scene,
-        settings: &Settings<'g>,
+        settings: &Settings<'_>,
     ) -> Probe {
         let (program, path_dependent) = match &self.compiled {
             Ok(c) => c,
