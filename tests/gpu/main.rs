@@ -11,6 +11,7 @@ mod artmaps;
 mod artmaps_hard_cases;
 mod bench_overhead;
 mod blend_depth;
+mod colour_alpha;
 mod compute;
 mod compute_pixels;
 mod compute_samples;
