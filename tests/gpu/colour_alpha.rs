@@ -1,4 +1,4 @@
-//! Arithmetic on colours keeps their coverage (docs/decisions/0033-colour-alpha.md):
+//! Arithmetic on colours keeps their coverage (docs/decisions/0034-colours-keep-their-coverage.md):
 //! each rule evaluated on the GPU with the colours kept live
 //! (`--keep-params`, nothing folded), against the rule written out in f64.
 

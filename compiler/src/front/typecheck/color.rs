@@ -1,4 +1,4 @@
-//! Arithmetic on colours keeps their coverage (docs/decisions/0033-colour-alpha.md).
+//! Arithmetic on colours keeps their coverage (docs/decisions/0034-colours-keep-their-coverage.md).
 //!
 //! A colour is a straight-alpha `vec4`: light in `.rgb`, coverage in `.a`.
 //! As in compositing tools (Nuke's Grade and Multiply act on `rgb` by
