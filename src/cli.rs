@@ -101,6 +101,7 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct CheckArgs {
+    /// The style (.npr) to check.
     pub style: PathBuf,
     /// Check as `npr render` will for this scene: its directory counts for
     /// the default root of the paths policy (docs/PATHS.md).
@@ -116,6 +117,7 @@ pub struct CheckArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct CompileArgs {
+    /// The style (.npr) to compile.
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,
@@ -163,8 +165,10 @@ pub struct RenderArgs {
     /// Scene file (TOML).
     #[arg(long)]
     pub scene: PathBuf,
-    /// Output image (.png or .exr). With --frames, `{frame}` in the name is
-    /// replaced by the frame number (otherwise `_NNNN` is appended).
+    /// Output image (.png or .exr); without it, `<style>.png` in the current
+    /// directory (none with --dump-passes alone). With --frames, `{frame}`
+    /// in the name is replaced by the frame number (otherwise `_NNNN` is
+    /// appended).
     #[arg(short, long)]
     pub out: Option<PathBuf>,
     /// Output size, WIDTHxHEIGHT.
@@ -182,6 +186,8 @@ pub struct RenderArgs {
     /// writing them.
     #[arg(long, value_parser = parse_frames)]
     pub frames: Option<(u32, u32)>,
+    /// Frames per second: the times of --frames, and of the frames a
+    /// style that reads `previous(...)` replays.
     #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
@@ -195,6 +201,8 @@ pub struct RenderArgs {
     /// How the passes run (default: auto; naive with --dump-passes).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,
+    /// Keep parameters as uniforms instead of folding them into the shaders
+    /// (the image is the same; what `npr studio` does to tweak them live).
     #[arg(long)]
     pub keep_params: bool,
     /// Set a parameter, typed like a default in the style: `--set bands=5`,
@@ -238,8 +246,10 @@ pub struct TexgenArgs {
     /// Width and height in texels.
     #[arg(long, default_value_t = 256)]
     pub size: u32,
+    /// Octaves of noise summed, each at twice the previous frequency.
     #[arg(long, default_value_t = 4)]
     pub octaves: u32,
+    /// The generator's seed: another seed, another noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Channels with independent noise (1: grey, 2: a warp-vector field in r, g).
@@ -306,6 +316,7 @@ pub struct PathArgs {
 /// and the frame they render.
 #[derive(clap::Args, Debug)]
 pub struct LiveArgs {
+    /// The style (.npr), rebuilt on every save.
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,
@@ -318,6 +329,8 @@ pub struct LiveArgs {
     /// Time in seconds (for animated parameters and cameras).
     #[arg(long, default_value_t = 0.0)]
     pub time: f64,
+    /// Frames per second: the times of --frames, and of the frames a
+    /// style that reads `previous(...)` replays.
     #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
@@ -340,7 +353,9 @@ pub enum BenchCommand {
     /// `--cold` instead times whole `npr compile` processes (wall clock, as a
     /// user runs them) and naga's share of each.
     Compile {
+        /// Styles (.npr) to measure.
         styles: Vec<PathBuf>,
+        /// Timed compilations per style.
         #[arg(long, default_value_t = 50)]
         iterations: u32,
         /// Spawn a fresh `npr compile` process per run and time its wall clock.
@@ -362,6 +377,7 @@ pub enum BenchCommand {
         /// Image size of the sampling table.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -382,6 +398,7 @@ pub enum BenchCommand {
         /// Square image size.
         #[arg(long, default_value_t = 256)]
         size: u32,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -391,10 +408,13 @@ pub enum BenchCommand {
     },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
+        /// Scene file (TOML).
         #[arg(long, default_value = "examples/scenes/spheres.toml")]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -412,6 +432,7 @@ pub enum BenchCommand {
         /// Square image sizes, comma-separated.
         #[arg(long, default_value = "128,256,512", value_delimiter = ',')]
         sizes: Vec<u32>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -429,6 +450,7 @@ pub enum BenchCommand {
         /// Object counts the elements are split over, comma-separated.
         #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
@@ -442,6 +464,7 @@ pub enum BenchCommand {
         /// Object counts (spheres in a grid over the screen), comma-separated.
         #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
@@ -455,6 +478,7 @@ pub enum BenchCommand {
         /// Object counts (spheres in a grid), comma-separated.
         #[arg(long, default_value = "1,10", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -465,23 +489,32 @@ pub enum BenchCommand {
     /// Whole styles' frame time against a baseline style on one scene, in one run
     /// (each style's frames in order, so path-dependent styles are measured as they render).
     Styles {
+        /// Styles (.npr) to measure.
         styles: Vec<PathBuf>,
+        /// The style every other is compared with.
         #[arg(long, default_value = "examples/toon.npr")]
         baseline: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
     },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 30)]
         frames: u32,
         /// Schedules to compile the style under, comma-separated (e.g.
@@ -494,9 +527,12 @@ pub enum BenchCommand {
     /// new image and save → new image against `npr render`'s own frame
     /// time in the same run, and the studio's memory across edits.
     Studio {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "512x512", value_parser = parse_size)]
         size: (u32, u32),
         /// Frames of the `npr render` reference.
@@ -518,11 +554,15 @@ pub enum BenchCommand {
     /// submitted with no uniform writes. Not an independent comparison; that
     /// is `npr bench overhead`.
     Frame {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 60)]
         frames: u32,
     },
@@ -531,10 +571,13 @@ pub enum BenchCommand {
     /// groups, buffers and textures. Both images are compared first (equal
     /// within 1/255, or it stops); then frames of the two alternate in one run.
     Overhead {
+        /// The style (.npr) to measure.
         #[arg(long, default_value = "examples/rounded_shadows.npr")]
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long, default_value = "examples/scenes/spot.toml")]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
         /// Timed rounds (one frame of each per round).
@@ -544,4 +587,46 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 5)]
         warmup: u32,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// `path arg` for every argument of `cmd` and its subcommands, at any
+    /// depth, whose `--help` shows no text.
+    fn without_help(cmd: &clap::Command, path: &str, out: &mut Vec<String>) {
+        if cmd.get_about().is_none() && cmd.get_long_about().is_none() && !path.is_empty() {
+            out.push(format!("npr{path} (the command itself)"));
+        }
+        for a in cmd.get_arguments() {
+            let id = a.get_id().as_str();
+            if a.is_hide_set() || matches!(id, "help" | "version") {
+                continue;
+            }
+            let text = a
+                .get_long_help()
+                .or(a.get_help())
+                .map(|t| t.to_string())
+                .unwrap_or_default();
+            if text.trim().is_empty() {
+                out.push(format!("npr{path} <{id}>"));
+            }
+        }
+        for s in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+            without_help(s, &format!("{path} {}", s.get_name()), out);
+        }
+    }
+
+    #[test]
+    fn every_argument_of_every_subcommand_has_help_text() {
+        let mut missing = Vec::new();
+        without_help(&Cli::command(), "", &mut missing);
+        assert!(
+            missing.is_empty(),
+            "no help text in `--help` for:\n{}",
+            missing.join("\n")
+        );
+    }
 }

@@ -143,6 +143,19 @@ pub fn encode_png(img: &TargetImage) -> std::io::Result<Vec<u8>> {
 
 /// Write a target: `.png` (8-bit for unorm targets, 16-bit for float targets)
 /// or `.exr` (32-bit float, values unclamped).
+/// The image extensions [`write_target`] writes (no extension is PNG).
+pub const IMAGE_EXTENSIONS: &[&str] = &["png", "exr"];
+
+/// Whether [`write_target`] can write `path`: an error naming the
+/// extension when it cannot, before anything is rendered.
+pub fn check_image_extension(path: &Path) -> Result<(), String> {
+    match path.extension().map(|e| e.to_string_lossy().to_lowercase()) {
+        None => Ok(()),
+        Some(e) if IMAGE_EXTENSIONS.contains(&e.as_str()) => Ok(()),
+        Some(e) => Err(e),
+    }
+}
+
 pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
     let ext = path
         .extension()

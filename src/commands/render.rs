@@ -29,6 +29,20 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         paths,
     } = args;
     let mut sources = SourceMap::new();
+    let out = match out {
+        Some(o) => Some(o),
+        None if dump_passes.is_none() => {
+            let o = default_output(style.as_deref(), compiled.as_deref());
+            eprintln!("note: no `-o` given: writing {} in the current directory", o.display());
+            Some(o)
+        }
+        None => None,
+    };
+    if let Some(o) = &out {
+        if let Err(ext) = runner::output::check_image_extension(o) {
+            return printer.fail(crate::printer::unsupported_image(o, &ext));
+        }
+    }
     if let Err(code) = printer
         .check(crate::args::check_size(size))
         .and_then(|()| printer.check(crate::args::check_time(time, fps)))
@@ -148,6 +162,18 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
             }
         }
     }
+}
+
+/// `<style>.png` (or `<compiled dir>.png`) in the current directory: what
+/// `npr render` writes when `-o` is not given.
+fn default_output(style: Option<&Path>, compiled: Option<&Path>) -> PathBuf {
+    let stem = style
+        .and_then(|s| s.file_stem())
+        .or_else(|| compiled.and_then(|d| d.file_name()))
+        .map(|s| s.to_string_lossy().into_owned())
+        .filter(|s| !s.is_empty() && s != "." && s != "..")
+        .unwrap_or_else(|| "render".into());
+    PathBuf::from(format!("{stem}.png"))
 }
 
 fn frame_path(out: &Path, frame: u32) -> PathBuf {

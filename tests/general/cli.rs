@@ -222,6 +222,30 @@ fn render_writes_png_and_exr_and_dumps_passes() {
 }
 
 #[test]
+fn render_without_an_output_writes_the_styles_png_here_and_says_so() {
+    let dir = scratch("no-out");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .arg("render")
+        .arg(root.join("examples/toon.npr"))
+        .arg("--scene")
+        .arg(root.join("examples/scenes/spheres.toml"))
+        .args(["--size", "32x32"])
+        .current_dir(&dir)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run npr");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("no `-o` given: writing toon.png in the current directory"),
+        "{err}"
+    );
+    let img = image::open(dir.join("toon.png")).expect("toon.png written in the current directory");
+    assert_eq!((img.width(), img.height()), (32, 32));
+}
+
+#[test]
 fn frames_render_an_animation() {
     let dir = scratch("frames");
     let out = dir.join("f_{frame}.png");
