@@ -398,7 +398,7 @@ impl Studio {
         match renderer {
             Ok(renderer) => {
                 self.params = state::params_json(&built.compiled.manifest.params, &self.typed_controls());
-                self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
+                self.diagnostics = state::diagnostics_json(&built.warnings(), &built.sources, "compile");
                 let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
                 *session = Some(Session { built, renderer, timer });
             }

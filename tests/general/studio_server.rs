@@ -236,3 +236,49 @@ fn a_texture_is_watched_and_an_unreadable_one_is_reported_while_serving() {
     assert_eq!(output_png(&addr, &back), first_png);
     drop(studio);
 }
+
+#[test]
+fn the_studio_shows_the_warnings_npr_render_prints() {
+    let dir = common::live::scratch("studio", "warnings");
+    let style = dir.join("plain.npr");
+    // Reads no per-object param, while spot.toml binds `tint`: W0401.
+    std::fs::write(
+        &style,
+        "style \"Plain\"\nparam base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * vec4(lambert(normal, light.dir))\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let rendered = common::cli::npr(&[
+        "render",
+        style.to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "32x32",
+        "-o",
+        dir.join("plain.png").to_str().expect("utf-8"),
+    ]);
+    let printed = common::cli::stderr(&rendered);
+    assert_eq!(rendered.status.code(), Some(0), "{printed}");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let s = events.until("a frame", |s| !s["frame"].is_null());
+    let shown: Vec<(String, String)> = s["diagnostics"]
+        .as_array()
+        .expect("diagnostics")
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or("").to_string(),
+                d["message"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect();
+    let codes: Vec<&str> = shown.iter().map(|(c, _)| c.as_str()).collect();
+    assert_eq!(codes, ["W0201", "W0401"], "{shown:?}");
+    for (code, message) in &shown {
+        assert!(
+            printed.contains(&format!("warning[{code}]: {message}")),
+            "the studio shows {code} `{message}`, npr render printed:\n{printed}"
+        );
+    }
+}
