@@ -89,12 +89,14 @@ pub enum Command {
         #[arg(short, long)]
         out: PathBuf,
         /// The examples directory the operators' demos render from (their
-        /// scenes, textures and `use`d files).
+        /// scenes, textures and `use`d files); outside the repository, the
+        /// copy built into npr.
         #[arg(long, default_value = "examples")]
         examples: PathBuf,
         /// The file with the committed `npr bench ops` table, whose rows
-        /// are shown as the operators' speed against error.
-        #[arg(long, default_value = "docs/PERFORMANCE.md")]
+        /// are shown as the operators' speed against error; outside the
+        /// repository, the copy built into npr.
+        #[arg(long, default_value = crate::commands::doc::DEFAULT_PERFORMANCE)]
         performance: PathBuf,
     },
 }
@@ -368,8 +370,8 @@ pub enum BenchCommand {
     /// Art-maps and rip-maps (Klein et al. 2000 §4.2): build time per filter,
     /// source size and level (cache bypassed), and the frame time of reading
     /// a plain mipped image, an art-map, `sample_biased` and `sample_ripmap`
-    /// against a pass that reads no texture, on examples/scenes/gallery.toml.
-    /// Run from the repository root.
+    /// against a pass that reads no texture, on examples/scenes/gallery.toml
+    /// (the copy built into npr outside the repository).
     Artmaps {
         /// Square source sizes, comma-separated.
         #[arg(long, default_value = "256,512,1024", value_delimiter = ',')]

@@ -3,7 +3,7 @@
 
 mod check;
 mod compile;
-mod doc;
+pub(crate) mod doc;
 pub(crate) mod dump;
 mod explain;
 pub(crate) mod render;

@@ -681,3 +681,48 @@ fn render_compiled_runs_a_compiled_dir_and_rejects_a_bad_one() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("manifest.json"), "{}", stderr(&o));
 }
+
+/// An installed npr outside the repository: `npr doc` writes the committed
+/// reference, and the benchmarks whose defaults name `examples/` run, from
+/// the files built into the binary.
+#[test]
+fn doc_and_bench_work_from_any_directory() {
+    let dir = scratch("elsewhere");
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+            .args(args)
+            .current_dir(&dir)
+            .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+            .output()
+            .expect("run npr");
+        assert_eq!(o.status.code(), Some(0), "npr {args:?}: {}", stderr(&o));
+    };
+    run(&["doc", "-o", "ref"]);
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/reference");
+    for entry in std::fs::read_dir(&committed).expect("docs/reference") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "md" || e == "html" || e == "css") {
+            let name = path.file_name().expect("name");
+            let written = std::fs::read_to_string(dir.join("ref").join(name)).expect("written page");
+            assert!(
+                written == std::fs::read_to_string(&path).expect("committed page"),
+                "{} differs from the one npr doc wrote outside the repository",
+                path.display()
+            );
+        }
+    }
+    run(&["bench", "ops", "--size", "16x16", "--frames", "1"]);
+    run(&["bench", "overhead", "--size", "16x16", "--frames", "2", "--warmup", "1"]);
+    run(&["bench", "artmaps", "--sizes", "16", "--size", "16x16", "--frames", "1"]);
+    run(&[
+        "bench",
+        "styles",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "16x16",
+        "--frames",
+        "1",
+    ]);
+}
