@@ -282,3 +282,45 @@ fn the_studio_shows_the_warnings_npr_render_prints() {
         );
     }
 }
+
+#[test]
+fn frames_are_read_by_target_name_and_the_last_few_stay_readable() {
+    let dir = common::live::scratch("studio", "ring");
+    let style = dir.join("toon.npr");
+    std::fs::copy("examples/toon.npr", &style).expect("copy");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a frame", |s| !s["frame"].is_null());
+    let id = frame_id(&first);
+    let by_index = http::get(&addr, &format!("/frame/{id}/0.png"));
+    let by_name = http::get(&addr, &format!("/frame/{id}/shade.color.png"));
+    assert_eq!(by_name.status, 200, "{}", by_name.text());
+    assert_eq!(by_name.body, by_index.body, "the name and the index are one target");
+    let unknown = http::get(&addr, &format!("/frame/{id}/shade.colour.png"));
+    assert_eq!(unknown.status, 404);
+    assert!(
+        unknown.text().contains("its targets are shade.color"),
+        "{}",
+        unknown.text()
+    );
+    // Newer frames: the first stays readable while it is among the last 4.
+    let mut last = id;
+    for (i, bands) in ["2", "3", "4", "5", "6"].into_iter().enumerate() {
+        assert_eq!(
+            http::post(&addr, "/param", &json!({"name": "bands", "literal": bands})).status,
+            202
+        );
+        let s = events.until("a newer frame", |s| {
+            frame_id(s) > last && param(s, "bands")["literal"] == bands
+        });
+        last = frame_id(&s);
+        let old = http::get(&addr, &format!("/frame/{id}/shade.color.png"));
+        if i < 3 {
+            assert_eq!(old.status, 200, "after {} newer frame(s): {}", i + 1, old.text());
+            assert_eq!(old.body, by_index.body, "frame {id} is still its own image");
+        } else {
+            assert_eq!(old.status, 404, "after {} newer frames", i + 1);
+            assert!(old.text().contains("no longer kept"), "{}", old.text());
+        }
+    }
+}
