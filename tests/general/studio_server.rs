@@ -324,3 +324,30 @@ fn frames_are_read_by_target_name_and_the_last_few_stay_readable() {
         }
     }
 }
+
+#[test]
+fn units_stay_as_written_on_the_page_and_in_the_file() {
+    let dir = common::live::scratch("studio", "units");
+    let style = dir.join("outline.npr");
+    std::fs::write(
+        &style,
+        "style \"Units\"\nparam reach: m = 50mm in 0m..1m\npass p: render(scene) {\n  vertex { inflate: 2px }\n  out c: rgba8unorm = #808080 * step(reach, depth)\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a frame", |s| !s["frame"].is_null());
+    assert_eq!(param(&first, "reach")["literal"], "50mm", "{}", param(&first, "reach"));
+    assert_eq!(
+        http::post(&addr, "/param", &json!({"name": "reach", "literal": "20mm"})).status,
+        202
+    );
+    let moved = events.until("reach = 20mm", |s| param(s, "reach")["overridden"] == true);
+    assert_eq!(param(&moved, "reach")["literal"], "20mm");
+    assert_eq!(http::post(&addr, "/param/write", &json!({"name": "reach"})).status, 202);
+    events.until("the file's new value", |s| {
+        param(s, "reach")["overridden"] == false && param(s, "reach")["literal"] == "20mm"
+    });
+    let text = std::fs::read_to_string(&style).expect("read back");
+    assert!(text.contains("param reach: m = 20mm in 0m..1m"), "{text}");
+}
