@@ -249,6 +249,9 @@ pub mod codes {
     pub const PASS_CYCLE: &str = "E0301";
     /// A per-object value (`reduce`, `out` or `state` of a compute pass) of a type it cannot have.
     pub const BAD_VALUE_TYPE: &str = "E0205";
+    /// A gradient with no stops, stops out of order, a position outside
+    /// 0..1, or a stop that is not `stop(position, colour)`.
+    pub const BAD_GRADIENT: &str = "E0206";
     /// Warning: a colour combined with a plain `vec4` whose alpha scales or
     /// shifts the colour's coverage (`c * vec4(k)`): an opaque colour may
     /// come out transparent (`compiler/src/front/typecheck/color.rs`).
@@ -364,6 +367,10 @@ pub mod codes {
         (OUT_OF_RANGE, "value outside its declared range"),
         (NOT_CONSTANT, "expression must be constant"),
         (COLOR_ALPHA_CHANGED, "colour arithmetic that changes alpha (warning)"),
+        (
+            BAD_GRADIENT,
+            "bad gradient: no stops, unsorted, or a position outside 0..1",
+        ),
         (PASS_CYCLE, "dependency cycle between passes"),
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),

@@ -106,5 +106,11 @@ pub const RECIPES: &[Recipe] = &[
     },
 ];
 
+/// What a `gradient` param is and how `ramp` reads it.
+pub const GRADIENTS: &str = "`param g: gradient = gradient(stop(position, colour), ...)` declares a colour ramp: stops at positions from 0 to 1, in order, each a colour literal; two stops at one position make a hard edge, and `mode: constant` gives bands (each stop's colour from its position on) instead of blends. `ramp(g, t)` is the colour at `t`: the first stop's colour below it, the last's past it, and between two stops their mix (Blender's Color Ramp, Unity's Gradient). A gradient is a constant folded into the shader (E0206 for no stops, stops out of order, a position outside 0..1); it has at most 16 stops. Not yet: `--set`, `--keep-params` (a uniform) and the studio's editor for it (docs/decisions/0035).";
+
+/// A style that uses a gradient (also `examples/toon_ramp.npr`).
+pub const GRADIENT_EXAMPLE: &str = "style \"Ramp\"\nparam shading: gradient = gradient(stop(0.0, #2a1f4a), stop(0.5, #8a4a5a), stop(0.5, #e07a3a), stop(1.0, #fff0d0))\nparam bands: gradient = gradient(stop(0.0, #202020), stop(0.4, #808080), stop(0.8, #f0f0f0), mode: constant)\n\npass p: render(scene) {\n  let light_term = half_lambert(normal, light.dir)\n  out color: rgba8unorm = ramp(shading, light_term) * ramp(bands, light_term)\n  clear: #ffffff\n}\n\noutput p.color\n";
+
 /// The colour section's examples: a style that uses each rule.
 pub const COLOUR_EXAMPLE: &str = "style \"Colours\"\nparam base: color = #e07a3a\nparam shade: color = #3a2a5a\n\npass p: render(scene) {\n  let lit = lambert(normal, light.dir)\n  // Opaque where `base` is: the number scales the light only.\n  let dark_side = base * lit\n  // Light added where either colour covers; alpha stays 1.\n  let glow = dark_side + shade * 0.2\n  // Tint: two colours multiplied per component.\n  out color: rgba8unorm = glow * #ffeedd\n  clear: #ffffff\n}\n\noutput p.color\n";

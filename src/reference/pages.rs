@@ -51,7 +51,7 @@ pub fn all(figures: &super::figures::Figures) -> Vec<Page> {
 fn index() -> String {
     format!(
         "# npr reference\n\n{GENERATED}\n\n\
-         - [Colours, textures and how do I](guide.md): what a colour is and what arithmetic does to its alpha, every texture source and what its texels hold, and recipes: thicker lines, a paper texture, a shadow, the previous frame.\n\
+         - [Colours, textures and how do I](guide.md): what a colour is and what arithmetic does to its alpha, colour ramps (`gradient`, `ramp`), every texture source and what its texels hold, and recipes: thicker lines, a paper texture, a shadow, the previous frame.\n\
          - [Operators](operators.md): the {} stdlib operators, their parameters (type, unit, default, range), sources and specializations.\n\
          - [Builtins](builtins.md): the {} values the runtime provides (`uv`, `normal`, `light.dir`, ...).\n\
          - [Pass kinds](passes.md): `render`, `image`, `compute` and `lines` passes, and every pass setting (`clear`, `depth`, `blend`, ...).\n\
@@ -158,7 +158,7 @@ fn guide() -> String {
     for (written, means) in COLOUR_RULES {
         out.push_str(&format!("| {written} | {means} |\n"));
     }
-    out.push_str(&format!("\n```npr\n{COLOUR_EXAMPLE}```\n\n## Texture sources\n\n`texture name = source {{ option: value }}`; a texture read as a value is sampled at `uv` in render passes and at `screen_uv` in image and lines passes, and can be passed to operators.\n\n| source | settings | each texel |\n|---|---|---|\n"));
+    out.push_str(&format!("\n```npr\n{COLOUR_EXAMPLE}```\n\n## Colour ramps (`gradient`)\n\n{GRADIENTS}\n\n```npr\n{GRADIENT_EXAMPLE}```\n\n## Texture sources\n\n`texture name = source {{ option: value }}`; a texture read as a value is sampled at `uv` in render passes and at `screen_uv` in image and lines passes, and can be passed to operators.\n\n| source | settings | each texel |\n|---|---|---|\n"));
     for (source, settings, texel) in TEXTURE_SOURCES {
         out.push_str(&format!("| `{source}` | {settings} | {texel} |\n"));
     }

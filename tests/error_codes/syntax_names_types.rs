@@ -138,6 +138,32 @@ fn a_colour_times_a_number_keeps_its_alpha_and_warns_nothing() {
 }
 
 #[test]
+fn e0206_a_gradient_with_no_stops() {
+    let text = style("param g: gradient = gradient()\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check("E0206", compile_errors(&text, &scratch("e0206")));
+}
+
+#[test]
+fn e0206_a_gradient_whose_stops_are_out_of_order() {
+    let text = style("param g: gradient = gradient(stop(0.6, #000000), stop(0.2, #ffffff))\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check_case(
+        "E0206",
+        "E0206_unsorted",
+        compile_errors(&text, &scratch("e0206-unsorted")),
+    );
+}
+
+#[test]
+fn e0206_a_stop_outside_0_to_1() {
+    let text = style("param g: gradient = gradient(stop(0.0, #000000), stop(1.5, #ffffff))\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check_case(
+        "E0206",
+        "E0206_position",
+        compile_errors(&text, &scratch("e0206-position")),
+    );
+}
+
+#[test]
 fn e0203_default_out_of_range() {
     let text = style(&format!("param bands: int = 12 in 1..8\n{SIMPLE_PASS}"));
     check("E0203", compile_errors(&text, &scratch("e0203")));

@@ -213,6 +213,7 @@ fn every_style_the_guide_shows_compiles_cleanly() {
         .expect("docs/reference/guide.md");
     for heading in [
         "## Colours and alpha",
+        "## Colour ramps (`gradient`)",
         "## Texture sources",
         "### Thicker ink lines",
         "### A paper texture",
@@ -250,5 +251,5 @@ fn every_style_the_guide_shows_compiles_cleanly() {
         assert!(o.status.success() && clean, "{text}\n{stderr}");
         styles += 1;
     }
-    assert_eq!(styles, 5, "the colour example and four recipes");
+    assert_eq!(styles, 6, "the colour and gradient examples and four recipes");
 }

@@ -29,6 +29,8 @@ const EXPECTED: &[&str] = &[
     "sobel_outline.npr::spot",
     "toon.npr::spheres",
     "toon.npr::spot",
+    "toon_ramp.npr::spheres",
+    "toon_ramp.npr::spot",
     "wavy_lines.npr::cube",
     "wavy_lines.npr::fandisk",
     "wavy_lines.npr::teapot",

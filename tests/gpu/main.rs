@@ -19,6 +19,7 @@ mod device_needs;
 mod dynamic_patterns;
 mod golden_images;
 mod gpu_errors;
+mod gradient_ramp;
 mod halftone_tone;
 mod history;
 mod lines_classify;

@@ -22,6 +22,7 @@ use stdlib::Unit;
 mod calls;
 mod compute;
 mod expr;
+pub mod gradient;
 mod kind_args;
 mod lines;
 mod params;
@@ -59,6 +60,7 @@ pub fn resolve(
         draws_objects: false,
         in_vertex: false,
         internal: None,
+        gradients: Vec::new(),
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -77,6 +79,8 @@ enum Symbol {
     Param(ParamId),
     Texture(TextureId),
     Pass(PassId),
+    /// A `gradient` param: an index into `Resolver::gradients`.
+    Gradient(usize),
 }
 
 struct Resolver<'d> {
@@ -109,6 +113,9 @@ struct Resolver<'d> {
     in_vertex: bool,
     /// The first impossible state met (a bug in npr, not in the style).
     internal: Option<InternalError>,
+    /// The declared gradients (`gradient.rs`): constants, read by `ramp`;
+    /// `None` for one whose declaration was refused.
+    gradients: Vec<Option<gradient::Gradient>>,
 }
 
 impl Resolver<'_> {
@@ -135,6 +142,13 @@ impl Resolver<'_> {
     fn declare_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
         for (item, dir) in items {
             match item {
+                Item::Param(p) if gradient::is_gradient_type(&p.ty) => {
+                    // Declared even when bad (its error reported), so its
+                    // `ramp`s do not cascade into unknown names.
+                    let g = self.gradient_decl(p);
+                    self.declare(&p.name, Symbol::Gradient(self.gradients.len()));
+                    self.gradients.push(g);
+                }
                 Item::Param(p) if is_texture_type(&p.ty) => {
                     // `object param t: texture = image(...)` is a texture, not a
                     // uniform slot: it lives with the declared textures, flagged
@@ -212,7 +226,7 @@ impl Resolver<'_> {
         let mut output_seen: Option<Span> = None;
         for (item, _) in items {
             match item {
-                Item::Param(p) if is_texture_type(&p.ty) => {}
+                Item::Param(p) if is_texture_type(&p.ty) || gradient::is_gradient_type(&p.ty) => {}
                 Item::Param(p) => {
                     // Params past MAX_PARAMS were refused and have no id.
                     if (param_index as usize) < self.ir.params.len() {
