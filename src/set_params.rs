@@ -1,7 +1,8 @@
 //! `--set name=value`: a parameter's value given on the command line (or by
 //! a studio control), read here into a [`Literal`] the way the language
 //! writes a default: `5`, `2px`, `50%`, `50mm`, `30deg`, `#ff8800`, `cubic`,
-//! `true`, `0.2..0.6`, `1, 0.5` (a vector).
+//! `true`, `0.2..0.6`, `1, 0.5` (a vector), `0:#000000, 1:#ffffff` (a
+//! gradient's stops).
 //!
 //! Each argument is added to the [`SourceMap`] as a file named `--set`, and
 //! the settings go to the compiler, which types them against the style's
@@ -83,6 +84,20 @@ pub fn read_literal(text: &str) -> Literal {
     }
     if text.starts_with('#') {
         return parse_colour(text).map_or(Literal::Unreadable, Literal::Colour);
+    }
+    if text.contains(':') {
+        // A gradient's stops: `position:#colour`, comma-separated.
+        let stops: Option<Vec<(f64, [f64; 4])>> = text
+            .split(',')
+            .map(|stop| {
+                let (p, c) = stop.split_once(':')?;
+                match split_number(p.trim()) {
+                    Some((v, "", _)) => Some((v, parse_colour(c.trim())?)),
+                    _ => None,
+                }
+            })
+            .collect();
+        return stops.map_or(Literal::Unreadable, Literal::Stops);
     }
     if let Some((lo, hi)) = text.split_once("..") {
         return match (split_number(lo.trim()), split_number(hi.trim())) {

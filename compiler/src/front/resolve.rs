@@ -44,6 +44,20 @@ pub fn resolve(
     paths: Option<&diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
+    resolve_with_settings(loaded, scene, paths, &[], diags).map(|(ir, _)| ir)
+}
+
+/// [`resolve`], with the settings of `gradient` params (`--set g="0:#000,
+/// 1:#fff"`) applied to their stops here, since a gradient is a constant of
+/// the resolver (`resolve/gradient.rs`); also the names of the settings it
+/// took, which the typing of the others after typecheck leaves out.
+pub fn resolve_with_settings(
+    loaded: &Loaded,
+    scene: Option<&crate::SceneSummary>,
+    paths: Option<&diag::paths::PathPolicy>,
+    settings: &[ParamSetting],
+    diags: &mut Vec<Diagnostic>,
+) -> Result<(Ir, Vec<String>), InternalError> {
     let mut r = Resolver {
         ir: Ir::default(),
         diags,
@@ -61,6 +75,8 @@ pub fn resolve(
         in_vertex: false,
         internal: None,
         gradients: Vec::new(),
+        gradient_settings: settings,
+        gradients_set: Vec::new(),
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -70,7 +86,7 @@ pub fn resolve(
     r.resolve_all(&loaded.items, loaded.root.style.as_ref().map(|h| h.span));
     match r.internal {
         Some(e) => Err(e),
-        None => Ok(r.ir),
+        None => Ok((r.ir, r.gradients_set)),
     }
 }
 
@@ -116,6 +132,10 @@ struct Resolver<'d> {
     /// The declared gradients (`gradient.rs`): constants, read by `ramp`;
     /// `None` for one whose declaration was refused.
     gradients: Vec<Option<gradient::Gradient>>,
+    /// The caller's settings; those naming a gradient are applied here.
+    gradient_settings: &'d [ParamSetting],
+    /// The names of the gradients a setting set.
+    gradients_set: Vec<String>,
 }
 
 impl Resolver<'_> {
@@ -145,7 +165,7 @@ impl Resolver<'_> {
                 Item::Param(p) if gradient::is_gradient_type(&p.ty) => {
                     // Declared even when bad (its error reported), so its
                     // `ramp`s do not cascade into unknown names.
-                    let g = self.gradient_decl(p);
+                    let g = self.gradient_decl(p).and_then(|g| self.set_gradient(&p.name.name, g));
                     self.declare(&p.name, Symbol::Gradient(self.gradients.len()));
                     self.gradients.push(g);
                 }

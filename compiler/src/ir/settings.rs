@@ -28,6 +28,9 @@ pub enum Literal {
     Name(String),
     /// `lo..hi`.
     Range(f64, f64),
+    /// `0:#000000, 0.5:#ff8800, 1:#ffffff`: a gradient's stops (position,
+    /// colour), as written; only a `gradient` param takes it.
+    Stops(Vec<(f64, [f64; 4])>),
     /// Text that reads as none of these (`#12`, `1..x`): only `--set` text
     /// can be this, and every parameter refuses it.
     Unreadable,

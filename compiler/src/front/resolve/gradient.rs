@@ -135,6 +135,58 @@ impl Resolver<'_> {
         })
     }
 
+    /// `g` with its stops replaced by the last setting of `name`, if any
+    /// (`--set g="0:#000000, 1:#ffffff"`); `None` with E0206 at the
+    /// setting's value when it is no list of sorted stops in 0..1.
+    pub(super) fn set_gradient(&mut self, name: &str, g: Gradient) -> Option<Gradient> {
+        let Some(s) = self.gradient_settings.iter().rev().find(|s| s.name == name) else {
+            return Some(g);
+        };
+        self.gradients_set.push(name.to_string());
+        let span = s.value_span;
+        let form = "write the stops as `position:#colour`, comma-separated, positions from 0 to 1 in order: `--set g=\"0:#000000, 0.5:#ff8800, 1:#ffffff\"`";
+        let Literal::Stops(stops) = &s.value else {
+            self.bad_gradient(
+                span,
+                &format!("`{name}` is a gradient: its value is a list of stops"),
+                "not `position:#colour, ...`",
+                form,
+            );
+            return None;
+        };
+        if stops.is_empty() || stops.len() > MAX_STOPS {
+            self.bad_gradient(
+                span,
+                &format!("a gradient of {} stops", stops.len()),
+                &format!("a gradient has 1 to {MAX_STOPS} stops"),
+                form,
+            );
+            return None;
+        }
+        if let Some((p, _)) = stops.iter().find(|(p, _)| !(0.0..=1.0).contains(p)) {
+            self.bad_gradient(
+                span,
+                "a stop's position is outside 0..1",
+                &format!("{p} is outside 0..1"),
+                form,
+            );
+            return None;
+        }
+        if stops.windows(2).any(|w| w[1].0 < w[0].0) {
+            self.bad_gradient(
+                span,
+                "a gradient's stops are out of order",
+                "positions must not decrease",
+                form,
+            );
+            return None;
+        }
+        Some(Gradient {
+            stops: stops.clone(),
+            constant: g.constant,
+        })
+    }
+
     /// `stop(position, colour)`: a position in 0..1 and a colour literal.
     fn stop(&mut self, stop: &ast::Call) -> Option<(f64, [f64; 4])> {
         let [pos, colour] = stop.args.as_slice() else {
