@@ -29,13 +29,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         paths,
     } = args;
     let mut sources = SourceMap::new();
+    // Without `-o`, `<style>.png` here; said once it is written, so that
+    // an earlier error is not preceded by a note about a file never made.
+    let defaulted = out.is_none() && dump_passes.is_none();
     let out = match out {
         Some(o) => Some(o),
-        None if dump_passes.is_none() => {
-            let o = default_output(style.as_deref(), compiled.as_deref());
-            eprintln!("note: no `-o` given: writing {} in the current directory", o.display());
-            Some(o)
-        }
+        None if defaulted => Some(default_output(style.as_deref(), compiled.as_deref())),
         None => None,
     };
     if let Some(o) = &out {
@@ -152,7 +151,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         dump_passes.as_deref(),
     );
     match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
-        Ok(()) => EXIT_OK,
+        Ok(()) => {
+            if let (true, Some(o)) = (defaulted, &out) {
+                eprintln!("note: no `-o` given: wrote {} in the current directory", o.display());
+            }
+            EXIT_OK
+        }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);
             if e.is_user_error() {

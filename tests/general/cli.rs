@@ -238,7 +238,8 @@ fn render_without_an_output_writes_the_styles_png_here_and_says_so() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(0), "{err}");
     assert!(
-        err.contains("no `-o` given: writing toon.png in the current directory"),
+        err.contains("wrote toon.png (32x32")
+            && err.contains("note: no `-o` given: wrote toon.png in the current directory"),
         "{err}"
     );
     let img = image::open(dir.join("toon.png")).expect("toon.png written in the current directory");
