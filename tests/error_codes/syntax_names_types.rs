@@ -164,6 +164,19 @@ fn e0206_a_stop_outside_0_to_1() {
 }
 
 #[test]
+fn e0203_an_operator_argument_out_of_range_names_the_range() {
+    let text = style(
+        "pass p: render(scene) {\n  out c: r8unorm = toon(lambert(normal, light.dir), steps: 40)\n}\noutput p.c\n",
+    );
+    let (d, r) = compile_errors(&text, &scratch("e0203-operator"));
+    assert!(
+        r.contains("help: `steps` takes a value in 1..16 (number of bands)"),
+        "{r}"
+    );
+    check_case("E0203", "E0203_operator_argument", (d, r));
+}
+
+#[test]
 fn e0203_default_out_of_range() {
     let text = style(&format!("param bands: int = 12 in 1..8\n{SIMPLE_PASS}"));
     check("E0203", compile_errors(&text, &scratch("e0203")));
