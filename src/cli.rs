@@ -96,18 +96,21 @@ pub enum Command {
         #[arg(short, long)]
         out: PathBuf,
         /// The examples directory the operators' demos render from (their
-        /// scenes, textures and `use`d files).
+        /// scenes, textures and `use`d files); outside the repository, the
+        /// copy built into npr.
         #[arg(long, default_value = "examples")]
         examples: PathBuf,
         /// The file with the committed `npr bench ops` table, whose rows
-        /// are shown as the operators' speed against error.
-        #[arg(long, default_value = "docs/PERFORMANCE.md")]
+        /// are shown as the operators' speed against error; outside the
+        /// repository, the copy built into npr.
+        #[arg(long, default_value = crate::commands::doc::DEFAULT_PERFORMANCE)]
         performance: PathBuf,
     },
 }
 
 #[derive(clap::Args, Debug)]
 pub struct CheckArgs {
+    /// The style (.npr) to check.
     pub style: PathBuf,
     /// Check as `npr render` will for this scene: its directory counts for
     /// the default root of the paths policy (docs/PATHS.md).
@@ -123,6 +126,7 @@ pub struct CheckArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct CompileArgs {
+    /// The style (.npr) to compile.
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,
@@ -170,9 +174,10 @@ pub struct RenderArgs {
     /// Scene file (TOML).
     #[arg(long)]
     pub scene: PathBuf,
-    /// Output image (.png or .exr). With --frames, `{frame}` in the name is
-    /// replaced by the frame number (otherwise `_NNNN` is appended); a
-    /// .mp4, .webm or .gif is one video of the frames.
+    /// Output image (.png or .exr); without it, `<style>.png` in the current
+    /// directory (none with --dump-passes alone). With --frames, `{frame}`
+    /// in the name is replaced by the frame number (otherwise `_NNNN` is
+    /// appended); a .mp4, .webm or .gif is one video of the frames.
     #[arg(short, long)]
     pub out: Option<PathBuf>,
     /// Output size, WIDTHxHEIGHT.
@@ -196,6 +201,8 @@ pub struct RenderArgs {
     /// arrays).
     #[arg(long, value_name = "I/N", requires = "frames")]
     pub chunk: Option<String>,
+    /// Frames per second: the times of --frames, and of the frames a
+    /// style that reads `previous(...)` replays.
     #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
@@ -225,6 +232,8 @@ pub struct RenderArgs {
     /// How the passes run (default: auto; naive with --dump-passes).
     #[arg(long, value_enum, conflicts_with = "compiled")]
     pub schedule: Option<ScheduleArg>,
+    /// Keep parameters as uniforms instead of folding them into the shaders
+    /// (the image is the same; what `npr studio` does to tweak them live).
     #[arg(long)]
     pub keep_params: bool,
     /// Set a parameter, typed like a default in the style: `--set bands=5`,
@@ -284,8 +293,10 @@ pub struct TexgenArgs {
     /// Width and height in texels.
     #[arg(long, default_value_t = 256)]
     pub size: u32,
+    /// Octaves of noise summed, each at twice the previous frequency.
     #[arg(long, default_value_t = 4)]
     pub octaves: u32,
+    /// The generator's seed: another seed, another noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Channels with independent noise (1: grey, 2: a warp-vector field in r, g).
@@ -352,6 +363,7 @@ pub struct PathArgs {
 /// and the frame they render.
 #[derive(clap::Args, Debug)]
 pub struct LiveArgs {
+    /// The style (.npr), rebuilt on every save.
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,
@@ -364,6 +376,8 @@ pub struct LiveArgs {
     /// Time in seconds (for animated parameters and cameras).
     #[arg(long, default_value_t = 0.0)]
     pub time: f64,
+    /// Frames per second: the times of --frames, and of the frames a
+    /// style that reads `previous(...)` replays.
     #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
@@ -425,7 +439,9 @@ pub enum BenchCommand {
     /// `--cold` instead times whole `npr compile` processes (wall clock, as a
     /// user runs them) and naga's share of each.
     Compile {
+        /// Styles (.npr) to measure.
         styles: Vec<PathBuf>,
+        /// Timed compilations per style.
         #[arg(long, default_value_t = 50)]
         iterations: u32,
         /// Spawn a fresh `npr compile` process per run and time its wall clock.
@@ -438,8 +454,8 @@ pub enum BenchCommand {
     /// Art-maps and rip-maps (Klein et al. 2000 §4.2): build time per filter,
     /// source size and level (cache bypassed), and the frame time of reading
     /// a plain mipped image, an art-map, `sample_biased` and `sample_ripmap`
-    /// against a pass that reads no texture, on examples/scenes/gallery.toml.
-    /// Run from the repository root.
+    /// against a pass that reads no texture, on examples/scenes/gallery.toml
+    /// (the copy built into npr outside the repository).
     Artmaps {
         /// Square source sizes, comma-separated.
         #[arg(long, default_value = "256,512,1024", value_delimiter = ',')]
@@ -447,6 +463,7 @@ pub enum BenchCommand {
         /// Image size of the sampling table.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -467,6 +484,7 @@ pub enum BenchCommand {
         /// Square image size.
         #[arg(long, default_value_t = 256)]
         size: u32,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -476,10 +494,13 @@ pub enum BenchCommand {
     },
     /// Operator cost against a plain texture-sample pass, per variant, in one run.
     Ops {
+        /// Scene file (TOML).
         #[arg(long, default_value = "examples/scenes/spheres.toml")]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -497,6 +518,7 @@ pub enum BenchCommand {
         /// Square image sizes, comma-separated.
         #[arg(long, default_value = "128,256,512", value_delimiter = ',')]
         sizes: Vec<u32>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -514,6 +536,7 @@ pub enum BenchCommand {
         /// Object counts the elements are split over, comma-separated.
         #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
@@ -527,6 +550,7 @@ pub enum BenchCommand {
         /// Object counts (spheres in a grid over the screen), comma-separated.
         #[arg(long, default_value = "1,10,100", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
     },
@@ -540,6 +564,7 @@ pub enum BenchCommand {
         /// Object counts (spheres in a grid), comma-separated.
         #[arg(long, default_value = "1,10", value_delimiter = ',')]
         objects: Vec<usize>,
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 10)]
         frames: u32,
         /// Also draw the figures into this SVG file (speed against error;
@@ -550,23 +575,32 @@ pub enum BenchCommand {
     /// Whole styles' frame time against a baseline style on one scene, in one run
     /// (each style's frames in order, so path-dependent styles are measured as they render).
     Styles {
+        /// Styles (.npr) to measure.
         styles: Vec<PathBuf>,
+        /// The style every other is compared with.
         #[arg(long, default_value = "examples/toon.npr")]
         baseline: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 20)]
         frames: u32,
     },
     /// GPU time of each pass of a style (timestamp queries), as a share of the frame.
     Passes {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 30)]
         frames: u32,
         /// Schedules to compile the style under, comma-separated (e.g.
@@ -579,9 +613,12 @@ pub enum BenchCommand {
     /// new image and save → new image against `npr render`'s own frame
     /// time in the same run, and the studio's memory across edits.
     Studio {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "512x512", value_parser = parse_size)]
         size: (u32, u32),
         /// Frames of the `npr render` reference.
@@ -603,11 +640,15 @@ pub enum BenchCommand {
     /// submitted with no uniform writes. Not an independent comparison; that
     /// is `npr bench overhead`.
     Frame {
+        /// The style (.npr) to measure.
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long)]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
+        /// Timed frames per measurement.
         #[arg(long, default_value_t = 60)]
         frames: u32,
         /// Compile with parameters kept as uniforms, as `npr view` and the
@@ -636,10 +677,13 @@ pub enum BenchCommand {
     /// groups, buffers and textures. Both images are compared first (equal
     /// within 1/255, or it stops); then frames of the two alternate in one run.
     Overhead {
+        /// The style (.npr) to measure.
         #[arg(long, default_value = "examples/rounded_shadows.npr")]
         style: PathBuf,
+        /// Scene file (TOML).
         #[arg(long, default_value = "examples/scenes/spot.toml")]
         scene: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "256x256", value_parser = parse_size)]
         size: (u32, u32),
         /// Timed rounds (one frame of each per round).
@@ -649,4 +693,46 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 5)]
         warmup: u32,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// `path arg` for every argument of `cmd` and its subcommands, at any
+    /// depth, whose `--help` shows no text.
+    fn without_help(cmd: &clap::Command, path: &str, out: &mut Vec<String>) {
+        if cmd.get_about().is_none() && cmd.get_long_about().is_none() && !path.is_empty() {
+            out.push(format!("npr{path} (the command itself)"));
+        }
+        for a in cmd.get_arguments() {
+            let id = a.get_id().as_str();
+            if a.is_hide_set() || matches!(id, "help" | "version") {
+                continue;
+            }
+            let text = a
+                .get_long_help()
+                .or(a.get_help())
+                .map(|t| t.to_string())
+                .unwrap_or_default();
+            if text.trim().is_empty() {
+                out.push(format!("npr{path} <{id}>"));
+            }
+        }
+        for s in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+            without_help(s, &format!("{path} {}", s.get_name()), out);
+        }
+    }
+
+    #[test]
+    fn every_argument_of_every_subcommand_has_help_text() {
+        let mut missing = Vec::new();
+        without_help(&Cli::command(), "", &mut missing);
+        assert!(
+            missing.is_empty(),
+            "no help text in `--help` for:\n{}",
+            missing.join("\n")
+        );
+    }
 }

@@ -4,6 +4,7 @@
 
 mod args;
 mod bench;
+mod bundled;
 mod cli;
 mod commands;
 mod describe;

@@ -1,7 +1,8 @@
 //! `--set name=value`: a parameter's value given on the command line (or by
 //! a studio control), read here into a [`Literal`] the way the language
 //! writes a default: `5`, `2px`, `50%`, `50mm`, `30deg`, `#ff8800`, `cubic`,
-//! `true`, `0.2..0.6`, `1, 0.5` (a vector).
+//! `true`, `0.2..0.6`, `1, 0.5` (a vector), `0:#000000, 1:#ffffff` (a
+//! gradient's stops).
 //!
 //! Each argument is added to the [`SourceMap`] as a file named `--set`, and
 //! the settings go to the compiler, which types them against the style's

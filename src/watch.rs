@@ -83,7 +83,7 @@ fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut 
             return files;
         }
     };
-    printer.diagnostics(&built.compiled.warnings, &built.sources);
+    printer.diagnostics(&built.warnings(), &built.sources);
     let files = build::dependencies(&args.inputs, &built.sources, Some(&built));
     *last_good = files.clone();
     if let Err(d) = crate::args::check_eye(args.eye, built.scene.camera.is_stereo()) {

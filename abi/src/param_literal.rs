@@ -29,6 +29,9 @@ pub enum Literal {
     Name(String),
     /// `lo..hi`.
     Range(f64, f64),
+    /// `0:#000000, 0.5:#ff8800, 1:#ffffff`: a gradient's stops (position,
+    /// colour), as written; only a `gradient` param takes it.
+    Stops(Vec<(f64, [f64; 4])>),
     /// Text that reads as none of these (`#12`, `1..x`): only `--set` text
     /// can be this, and every parameter refuses it.
     Unreadable,
@@ -126,6 +129,20 @@ pub fn read_literal(text: &str) -> Literal {
     }
     if text.starts_with('#') {
         return parse_colour(text).map_or(Literal::Unreadable, Literal::Colour);
+    }
+    if text.contains(':') {
+        // A gradient's stops: `position:#colour`, comma-separated.
+        let stops: Option<Vec<(f64, [f64; 4])>> = text
+            .split(',')
+            .map(|stop| {
+                let (p, c) = stop.split_once(':')?;
+                match split_number(p.trim()) {
+                    Some((v, "", _)) => Some((v, parse_colour(c.trim())?)),
+                    _ => None,
+                }
+            })
+            .collect();
+        return stops.map_or(Literal::Unreadable, Literal::Stops);
     }
     if let Some((lo, hi)) = text.split_once("..") {
         return match (split_number(lo.trim()), split_number(hi.trim())) {

@@ -81,8 +81,14 @@ pub fn run(
         );
     }
     let root_file = loaded.root_file;
-    let mut ir = crate::front::resolve::resolve(&loaded, opts.scene.as_ref(), opts.paths.as_ref(), &mut diags)
-        .map_err(CompileError::Internal)?;
+    let (mut ir, gradients_set) = crate::front::resolve::resolve_with_settings(
+        &loaded,
+        opts.scene.as_ref(),
+        opts.paths.as_ref(),
+        &opts.settings,
+        &mut diags,
+    )
+    .map_err(CompileError::Internal)?;
     if loaded.is_filter || crate::front::filter_checks::reads_a_level(&ir) {
         crate::front::filter_checks::check(&ir, loaded.root.style.as_ref().map(|h| h.span), &mut diags);
     }
@@ -94,8 +100,14 @@ pub fn run(
     fail_if_errors(&diags)?;
     // The style's own warnings are not repeated beside a refused setting:
     // the setting is what the caller gets wrong.
-    let overrides =
-        crate::front::param_settings::type_settings(&ir, &opts.settings, sources).map_err(CompileError::User)?;
+    // A gradient's setting was applied by the resolver.
+    let settings: Vec<crate::ir::ParamSetting> = opts
+        .settings
+        .iter()
+        .filter(|s| !gradients_set.contains(&s.name))
+        .cloned()
+        .collect();
+    let overrides = crate::front::param_settings::type_settings(&ir, &settings, sources).map_err(CompileError::User)?;
     crate::mid::overrides::apply(&mut ir, &overrides).map_err(CompileError::Internal)?;
     let filters = compile_filters(&ir, loaded.filters, sources)?;
     let graph = crate::mid::dag::build(&ir, &mut diags);

@@ -249,6 +249,13 @@ pub mod codes {
     pub const PASS_CYCLE: &str = "E0301";
     /// A per-object value (`reduce`, `out` or `state` of a compute pass) of a type it cannot have.
     pub const BAD_VALUE_TYPE: &str = "E0205";
+    /// A gradient with no stops, stops out of order, a position outside
+    /// 0..1, or a stop that is not `stop(position, colour)`.
+    pub const BAD_GRADIENT: &str = "E0206";
+    /// Warning: a colour combined with a plain `vec4` whose alpha scales or
+    /// shifts the colour's coverage (`c * vec4(k)`): an opaque colour may
+    /// come out transparent (`compiler/src/front/typecheck/color.rs`).
+    pub const COLOR_ALPHA_CHANGED: &str = "W0201";
     /// A value written into a target of an incompatible format.
     pub const FORMAT_MISMATCH: &str = "E0302";
     /// No `output`, or an output that names no target.
@@ -375,6 +382,11 @@ pub mod codes {
         (UNIT_MISMATCH, "unit mismatch"),
         (OUT_OF_RANGE, "value outside its declared range"),
         (NOT_CONSTANT, "expression must be constant"),
+        (COLOR_ALPHA_CHANGED, "colour arithmetic that changes alpha (warning)"),
+        (
+            BAD_GRADIENT,
+            "bad gradient: no stops, unsorted, or a position outside 0..1",
+        ),
         (PASS_CYCLE, "dependency cycle between passes"),
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),

@@ -143,6 +143,9 @@ pub fn encode_png(img: &TargetImage) -> std::io::Result<Vec<u8>> {
 
 /// Write a target: `.png` (8-bit for unorm targets, 16-bit for float targets)
 /// or `.exr` (32-bit float, values unclamped).
+/// The image extensions [`write_target`] writes (no extension is PNG).
+pub const IMAGE_EXTENSIONS: &[&str] = &["png", "exr"];
+
 pub fn write_target(img: &TargetImage, path: &Path) -> std::io::Result<()> {
     let ext = path
         .extension()

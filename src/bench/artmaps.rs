@@ -10,8 +10,7 @@ use diag::{codes, Diagnostic, SourceMap};
 use lab::bench_artmaps as bench;
 use std::path::Path;
 
-/// The filter styles shipped in `examples/filters/`, relative to the
-/// working directory as the other benchmarks' default scenes are.
+/// The filter styles shipped in `examples/filters/`.
 const FILTERS: [&str; 3] = ["hatching", "watercolor", "ink_blot"];
 
 pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
@@ -21,10 +20,15 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, pr
             format!("source size {bad} is outside 1..=4096 (a rip-map's atlas is twice the source)"),
         ));
     }
+    // `examples/` here, or the copy built into npr (`crate::bundled`).
+    let examples = match crate::bundled::resolve(Path::new("examples")) {
+        Ok(e) => e,
+        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+    };
     let mut sources = SourceMap::new();
     let mut filters = Vec::new();
     for name in FILTERS {
-        let path = Path::new("examples/filters").join(format!("{name}.npr"));
+        let path = examples.join("filters").join(format!("{name}.npr"));
         match compile(&path, &mut sources, &CompileOptions::default(), printer) {
             Ok(c) => filters.push((name.to_string(), c.program())),
             Err(code) => return code,
@@ -35,7 +39,7 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, pr
         match compile_builtin_in(
             "bench_artmaps.npr",
             &bench::sample_style(v),
-            Path::new("examples"),
+            &examples,
             &mut sources,
             printer,
         ) {
@@ -43,7 +47,7 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, pr
             Err(code) => return code,
         }
     }
-    let scene = match load_scene(Path::new("examples/scenes/gallery.toml"), &mut sources, printer) {
+    let scene = match load_scene(&examples.join("scenes/gallery.toml"), &mut sources, printer) {
         Ok(s) => s,
         Err(code) => return code,
     };

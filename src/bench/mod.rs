@@ -19,7 +19,111 @@ use diag::{codes, Diagnostic, SourceMap};
 use runner::{Gpu, StyleProgram};
 use std::path::Path;
 
+/// `cmd` with each style and scene under `examples/` that is not here
+/// read from the bundled copy (`crate::bundled`), so that every benchmark
+/// runs from any directory.
+fn bundled_paths(cmd: BenchCommand) -> std::io::Result<BenchCommand> {
+    use crate::bundled::resolve;
+    let all = |v: Vec<std::path::PathBuf>| v.iter().map(|p| resolve(p)).collect::<std::io::Result<Vec<_>>>();
+    Ok(match cmd {
+        BenchCommand::Compile {
+            styles,
+            iterations,
+            cold,
+            runs,
+        } => BenchCommand::Compile {
+            styles: all(styles)?,
+            iterations,
+            cold,
+            runs,
+        },
+        BenchCommand::Ops {
+            scene,
+            size,
+            frames,
+            plot,
+        } => BenchCommand::Ops {
+            scene: resolve(&scene)?,
+            size,
+            frames,
+            plot,
+        },
+        BenchCommand::Styles {
+            styles,
+            baseline,
+            scene,
+            size,
+            frames,
+        } => BenchCommand::Styles {
+            styles: all(styles)?,
+            baseline: resolve(&baseline)?,
+            scene: resolve(&scene)?,
+            size,
+            frames,
+        },
+        BenchCommand::Passes {
+            style,
+            scene,
+            size,
+            frames,
+            schedule,
+        } => BenchCommand::Passes {
+            style: resolve(&style)?,
+            scene: resolve(&scene)?,
+            size,
+            frames,
+            schedule,
+        },
+        BenchCommand::Studio {
+            style,
+            scene,
+            size,
+            frames,
+            edits,
+            param,
+            values,
+        } => BenchCommand::Studio {
+            style: resolve(&style)?,
+            scene: resolve(&scene)?,
+            size,
+            frames,
+            edits,
+            param,
+            values,
+        },
+        BenchCommand::Frame {
+            style,
+            scene,
+            size,
+            frames,
+        } => BenchCommand::Frame {
+            style: resolve(&style)?,
+            scene: resolve(&scene)?,
+            size,
+            frames,
+        },
+        BenchCommand::Overhead {
+            style,
+            scene,
+            size,
+            frames,
+            warmup,
+        } => BenchCommand::Overhead {
+            style: resolve(&style)?,
+            scene: resolve(&scene)?,
+            size,
+            frames,
+            warmup,
+        },
+        other => other,
+    })
+}
+
 pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
+    let cmd = match bundled_paths(cmd) {
+        Ok(c) => c,
+        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+    };
     // A bad `--plot` path is refused before minutes of measuring.
     if let Some(path) = cmd.plot() {
         if let Err(code) = printer.check(plot::check_path(path)) {

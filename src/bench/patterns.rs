@@ -63,9 +63,12 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
     };
     // Sliding (§4, Fig. 4): px per frame between the pattern's and the
     // surface's motion, per placement and tracker variant.
-    // Relative to the working directory, as the other benchmarks' default scenes.
-    let scenes_dir = Path::new("examples/scenes");
-    match lab::sliding::run(&gpu, compile, scenes_dir, |m| eprintln!("{m}")) {
+    // `examples/scenes` here, or the copy built into npr (`crate::bundled`).
+    let scenes_dir = match crate::bundled::resolve(Path::new("examples/scenes")) {
+        Ok(d) => d,
+        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+    };
+    match lab::sliding::run(&gpu, compile, &scenes_dir, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!(
                 "sliding, px/frame over covered pixels ({}×{}, {} frames at 24 fps; % of screen-fixed):",

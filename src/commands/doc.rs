@@ -8,8 +8,24 @@ use crate::cli::EXIT_OK;
 use crate::printer::{cannot_write, Printer};
 use std::path::Path;
 
+/// `--performance`'s default; when it is not here, the copy built into npr.
+pub const DEFAULT_PERFORMANCE: &str = "docs/PERFORMANCE.md";
+
 pub fn run(out: &Path, examples: &Path, performance: &Path, printer: &Printer) -> i32 {
-    let figures = match std::fs::read_to_string(performance)
+    // The repository's files where npr runs in it; else those built into
+    // npr (`crate::bundled`), so an installed npr writes its reference.
+    let examples = match crate::bundled::resolve(examples) {
+        Ok(e) => e,
+        Err(e) => return printer.fail(cannot_write(&std::env::temp_dir(), e)),
+    };
+    let examples = examples.as_path();
+    let performance_text = match std::fs::read_to_string(performance) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound && performance == Path::new(DEFAULT_PERFORMANCE) => {
+            Ok(crate::bundled::PERFORMANCE_MD.to_string())
+        }
+        other => other,
+    };
+    let figures = match performance_text
         .map_err(|e| e.to_string())
         .and_then(|text| crate::reference::figures::Figures::parse(&text))
     {

@@ -7,7 +7,12 @@ use crate::printer::Printer;
 use diag::{codes, Diagnostic};
 
 pub fn run(code: &str, printer: &Printer) -> i32 {
-    match dsl::explain::lookup(code) {
+    let numbered = dsl::explain::by_number(code);
+    let found = dsl::explain::lookup(code).or_else(|| match numbered.as_slice() {
+        [one] => dsl::explain::lookup(one),
+        _ => None,
+    });
+    match found {
         Some(e) => {
             print!("{}", dsl::explain::render(e));
             EXIT_OK
@@ -16,13 +21,30 @@ pub fn run(code: &str, printer: &Printer) -> i32 {
     }
 }
 
-/// E0502: `code` is no code of npr's; the help names the nearest ones.
+/// E0502: `code` is no code of npr's; the help names the codes whose
+/// titles share its words, or else those of its number, or else the
+/// nearest in number and spelling.
 fn unknown_code(code: &str) -> Diagnostic {
-    let near: Vec<String> = dsl::explain::nearest(code, 3)
-        .into_iter()
-        .map(|c| format!("{c} ({})", dsl::explain::summary(c).unwrap_or("")))
-        .collect();
-    Diagnostic::error(codes::BAD_ARGUMENT_VALUE, format!("`{code}` is not an npr error code"))
-        .with_help(format!("the nearest codes are {}", near.join(", ")))
-        .with_note("docs/ERRORS.md lists every code")
+    let listed = |codes: Vec<&str>| -> String {
+        codes
+            .into_iter()
+            .map(|c| format!("{c} ({})", dsl::explain::summary(c).unwrap_or("")))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let words = dsl::explain::by_words(code, 4);
+    let numbered = dsl::explain::by_number(code);
+    let help = if !words.is_empty() {
+        format!("codes about `{}`: {}", code.trim(), listed(words))
+    } else if !numbered.is_empty() {
+        format!("codes numbered {}: {}", code.trim(), listed(numbered))
+    } else {
+        format!("the nearest codes are {}", listed(dsl::explain::nearest(code, 3)))
+    };
+    Diagnostic::error(
+        codes::BAD_ARGUMENT_VALUE,
+        format!("`{code}` is not an npr error code"),
+    )
+    .with_help(help)
+    .with_note("`npr explain` takes a code (E0202), its number (202) or words of its title (unit); docs/ERRORS.md lists every code")
 }

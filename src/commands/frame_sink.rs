@@ -3,8 +3,9 @@
 //! layer of one EXR per frame (`--layers`), or one video of the sequence
 //! (`.mp4`, `.webm`, `.gif`; `video.rs`).
 //!
-//! [`check`] refuses a bad combination before anything is compiled or
-//! rendered (E0502), and a video whose encoder is missing (E0505), so a
+//! [`check`] refuses a bad combination (E0502) or an extension npr does not
+//! write (E0503) before anything is compiled or rendered, and a video
+//! whose encoder is missing (E0511), so a
 //! long render never fails at its end for an output it could not write.
 
 use crate::cli::EXIT_USER;
@@ -58,11 +59,7 @@ pub(crate) fn check(out: &Path, layers: bool, sequence: bool) -> Result<OutputKi
         )
         .with_help("give -o NAME.exr")),
         ("png" | "exr" | "", false) => Ok(OutputKind::Image),
-        (other, false) => Err(Diagnostic::error(
-            codes::BAD_ARGUMENT_VALUE,
-            format!("-o {}: npr does not write `.{other}` files", out.display()),
-        )
-        .with_help("write .png or .exr images, or a .mp4, .webm or .gif video with --frames")),
+        (other, false) => Err(crate::printer::unsupported_image(out, other)),
     }
 }
 

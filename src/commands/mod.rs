@@ -4,7 +4,7 @@
 mod check;
 mod checkpoints;
 mod compile;
-mod doc;
+pub(crate) mod doc;
 pub(crate) mod dump;
 mod explain;
 pub(crate) mod frame_sink;

@@ -11,7 +11,7 @@ use compiler::CompileOptions;
 use diag::{codes, Diagnostic, SourceMap};
 use runner::schedule::FrameRequest;
 use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     let RenderArgs {
@@ -41,6 +41,15 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
             printer.diagnostics(&[d], &sources);
             return EXIT_USER;
         }
+    };
+    // Without `-o`, `<style>.png` here (`.exr` with --layers); said once it
+    // is written, so that an earlier error is not preceded by a note about
+    // a file never made.
+    let defaulted = out.is_none() && dump_passes.is_none();
+    let out = match out {
+        Some(o) => Some(o),
+        None if defaulted => Some(default_output(style.as_deref(), compiled.as_deref(), layers)),
+        None => None,
     };
     // A bad output (or a missing video encoder) is found before anything runs.
     let out_kind = match frame_sink::check_or_exit(out.as_deref(), layers, frames.is_some(), printer) {
@@ -157,7 +166,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         checkpoints.as_deref().map(|dir| (dir, checkpoint_every)),
     );
     match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
-        Ok(()) => EXIT_OK,
+        Ok(()) => {
+            if let (true, Some(o)) = (defaulted, &out) {
+                eprintln!("note: no `-o` given: wrote {} in the current directory", o.display());
+            }
+            EXIT_OK
+        }
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);
             if e.is_user_error() {
@@ -167,6 +181,18 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
             }
         }
     }
+}
+
+/// `<style>.png` (or `<compiled dir>.png`; `.exr` for --layers) in the
+/// current directory: what `npr render` writes when `-o` is not given.
+fn default_output(style: Option<&Path>, compiled: Option<&Path>, layers: bool) -> PathBuf {
+    let stem = style
+        .and_then(|s| s.file_stem())
+        .or_else(|| compiled.and_then(|d| d.file_name()))
+        .map(|s| s.to_string_lossy().into_owned())
+        .filter(|s| !s.is_empty() && s != "." && s != "..")
+        .unwrap_or_else(|| "render".into());
+    PathBuf::from(format!("{stem}.{}", if layers { "exr" } else { "png" }))
 }
 
 #[allow(clippy::too_many_arguments)]

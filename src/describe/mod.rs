@@ -5,6 +5,7 @@
 //! shows them on hover, so both say the same thing.
 
 pub mod builtins;
+pub mod guide;
 pub mod language;
 
 use stdlib::{Default, Operator, Param, Ty, Unit};

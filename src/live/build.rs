@@ -35,6 +35,16 @@ pub struct Built {
     pub compile_ms: f64,
 }
 
+impl Built {
+    /// Every warning of this build, as `npr render` prints them: the
+    /// compiler's, then the scene's bindings the style does not read (W0401).
+    pub fn warnings(&self) -> Vec<Diagnostic> {
+        let mut all = self.compiled.warnings.clone();
+        all.extend(runner::scene_warnings(&self.compiled.manifest, &self.scene));
+        all
+    }
+}
+
 pub struct Failed {
     pub diagnostics: Vec<Diagnostic>,
     pub sources: SourceMap,

@@ -16,6 +16,11 @@ pub fn all(figures: &super::figures::Figures) -> Vec<Page> {
             markdown: index(),
         },
         Page {
+            stem: "guide",
+            title: "Colours, textures and how do I",
+            markdown: guide(),
+        },
+        Page {
             stem: "operators",
             title: "Operators",
             markdown: operators(figures),
@@ -46,10 +51,11 @@ pub fn all(figures: &super::figures::Figures) -> Vec<Page> {
 fn index() -> String {
     format!(
         "# npr reference\n\n{GENERATED}\n\n\
+         - [Colours, textures and how do I](guide.md): what a colour is and what arithmetic does to its alpha, colour ramps (`gradient`, `ramp`), every texture source and what its texels hold, and recipes: thicker lines, a paper texture, a shadow, the previous frame.\n\
          - [Operators](operators.md): the {} stdlib operators, their parameters (type, unit, default, range), sources and specializations.\n\
          - [Builtins](builtins.md): the {} values the runtime provides (`uv`, `normal`, `light.dir`, ...).\n\
-         - [Pass kinds](passes.md): `render`, `image`, `compute` and `lines` passes.\n\
-         - [Units and formats](units.md): the units checked at compile time and the target formats.\n\
+         - [Pass kinds](passes.md): `render`, `image`, `compute` and `lines` passes, and every pass setting (`clear`, `depth`, `blend`, ...).\n\
+         - [Units and formats](units.md): the units checked at compile time, how to convert between them, and the target formats.\n\
          - [Error codes](errors.md): every error and warning code, explained with a wrong and a fixed example (`npr explain CODE`).\n\n\
          Each operator's section shows a small image rendered by the runner from a style that calls it (`img/`), and its speed against error where `npr bench ops` measures it (the committed table of docs/PERFORMANCE.md).\n",
         stdlib::all().len(),
@@ -137,6 +143,36 @@ fn passes() -> String {
     for (kind, what) in describe::language::PASS_KINDS {
         out.push_str(&format!("| `{kind}` | {what} |\n"));
     }
+    out.push_str("\n## Pass settings\n\nWritten in the pass's body (`clear`, `depth`, `schedule`, the lines settings), after an output (`{ blend: ... }`) or after the kind (`scale`, `view`).\n\n| setting | passes | what it does |\n|---|---|---|\n");
+    for (setting, kinds, what) in describe::guide::PASS_SETTINGS {
+        out.push_str(&format!("| `{setting}` | {kinds} | {what} |\n"));
+    }
+    out
+}
+
+fn guide() -> String {
+    use describe::guide::*;
+    let mut out = format!(
+        "# Colours, textures and how do I\n\n{GENERATED}\n\n## Colours and alpha\n\n{WHAT_IS_A_COLOUR}\n\nA number applied to a colour changes its light, not its coverage, as in compositing tools (docs/decisions/0039):\n\n| written | means |\n|---|---|\n"
+    );
+    for (written, means) in COLOUR_RULES {
+        out.push_str(&format!("| {written} | {means} |\n"));
+    }
+    out.push_str(&format!("\n```npr\n{COLOUR_EXAMPLE}```\n\n## Colour ramps (`gradient`)\n\n{GRADIENTS}\n\n```npr\n{GRADIENT_EXAMPLE}```\n\n## Texture sources\n\n`texture name = source {{ option: value }}`; a texture read as a value is sampled at `uv` in render passes and at `screen_uv` in image and lines passes, and can be passed to operators.\n\n| source | settings | each texel |\n|---|---|---|\n"));
+    for (source, settings, texel) in TEXTURE_SOURCES {
+        out.push_str(&format!("| `{source}` | {settings} | {texel} |\n"));
+    }
+    out.push_str("\n| option | values |\n|---|---|\n");
+    for (option, values) in TEXTURE_OPTIONS {
+        out.push_str(&format!("| `{option}` | {values} |\n"));
+    }
+    out.push_str("\n## How do I\n\n");
+    for r in RECIPES {
+        out.push_str(&format!(
+            "### {}\n\n{}\n\n```npr\n{}```\n\n",
+            r.question, r.answer, r.style
+        ));
+    }
     out
 }
 
@@ -144,6 +180,10 @@ fn units() -> String {
     let mut out = format!("# Units and formats\n\n{GENERATED}\n\n## Units\n\nChecked at compile time: quantities of different units cannot be added or compared (E0202).\n\n| suffix | measures |\n|---|---|\n");
     for (suffix, what) in describe::language::UNITS {
         out.push_str(&format!("| `{suffix}` | {what} |\n"));
+    }
+    out.push_str("\n## Converting between units\n\n| from → to | how |\n|---|---|\n");
+    for (what, how) in describe::guide::UNIT_CONVERSIONS {
+        out.push_str(&format!("| {what} | {how} |\n"));
     }
     out.push_str("\n## Target formats\n\nWritten after `out name:`.\n\n| format | properties |\n|---|---|\n");
     for (name, f) in describe::language::formats() {

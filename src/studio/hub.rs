@@ -1,6 +1,6 @@
 //! The studio's shared state between the render thread and the HTTP
-//! threads: the latest state (as JSON, what the page shows), the current
-//! frame's images, and the event-stream subscribers.
+//! threads: the latest state (as JSON, what the page shows), the last
+//! [`FRAME_RING`] frames' images, and the event-stream subscribers.
 //!
 //! The render thread publishes; every publish pushes one `state` event to
 //! every subscriber. A subscriber gets the current state as soon as it
@@ -11,8 +11,15 @@ use serde_json::Value;
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
-/// One rendered frame's targets, served at `/frame/{id}/{index}.png` and
-/// `.f32`. The texels are kept as read back, and each file is encoded the
+/// How many of the latest frames stay readable at `/frame/{id}/...`: a
+/// page (or a script) told of frame `id` can still fetch its targets after
+/// a few newer frames, as when a slider moves while its thumbnails load.
+/// Four frames of targets stay small next to the renderer's own textures;
+/// the studio benchmark's memory across edits measures the whole.
+pub const FRAME_RING: usize = 4;
+
+/// One rendered frame's targets, served at `/frame/{id}/{target}.png` and
+/// `.f32`, the target by name (`shade.color`) or index. The texels are kept as read back, and each file is encoded the
 /// first time it is asked for (then kept with the frame): encoding every
 /// target of every frame before publishing it cost more than rendering it
 /// (docs/PERFORMANCE.md), and the page asks only for the thumbnails and the
@@ -41,6 +48,20 @@ impl FrameImages {
             })
             .collect();
         FrameImages { id, targets }
+    }
+
+    /// The index of the target named `name` (`shade.color`), or `name`
+    /// read as an index.
+    pub fn target_index(&self, name: &str) -> Option<usize> {
+        self.targets
+            .iter()
+            .position(|t| t.image.name == name)
+            .or_else(|| name.parse::<usize>().ok().filter(|i| *i < self.targets.len()))
+    }
+
+    /// The names of the targets, in index order.
+    pub fn target_names(&self) -> Vec<&str> {
+        self.targets.iter().map(|t| t.image.name.as_str()).collect()
     }
 
     /// Target `index` as PNG (encoded on first use; a second request waits
@@ -72,7 +93,8 @@ struct Inner {
     /// The state the page renders; `seq` increases with every publish.
     state: Value,
     seq: u64,
-    frame: Option<Arc<FrameImages>>,
+    /// The latest frames, oldest first, at most [`FRAME_RING`].
+    frames: std::collections::VecDeque<Arc<FrameImages>>,
     subscribers: Vec<Sender<String>>,
 }
 
@@ -95,7 +117,10 @@ impl Hub {
         inner.seq += 1;
         state["seq"] = inner.seq.into();
         if let Some(f) = frame {
-            inner.frame = Some(Arc::new(f));
+            if inner.frames.len() == FRAME_RING {
+                inner.frames.pop_front();
+            }
+            inner.frames.push_back(Arc::new(f));
         }
         let event = sse_event("state", &state.to_string());
         inner.state = state;
@@ -106,8 +131,15 @@ impl Hub {
         self.lock().state.clone()
     }
 
-    pub fn frame(&self) -> Option<Arc<FrameImages>> {
-        self.lock().frame.clone()
+    /// Frame `id`, if it is one of the last [`FRAME_RING`]; else the ids kept.
+    pub fn frame_by_id(&self, id: u64) -> Result<Arc<FrameImages>, Vec<u64>> {
+        let inner = self.lock();
+        inner
+            .frames
+            .iter()
+            .find(|f| f.id == id)
+            .cloned()
+            .ok_or_else(|| inner.frames.iter().map(|f| f.id).collect())
     }
 
     /// A new subscriber: the current state first, then every publish.

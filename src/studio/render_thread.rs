@@ -263,6 +263,18 @@ impl Studio {
         self.controls.iter().map(|c| c.typed.clone()).collect()
     }
 
+    /// Each value as the page shows it where it is written with a unit:
+    /// the file's default as written (`50mm`), then a control's as typed.
+    fn written_literals(&self) -> std::collections::BTreeMap<String, String> {
+        let mut written = std::fs::read_to_string(&self.inputs.style)
+            .map(|text| super::write_back::unit_defaults_as_written(&text))
+            .unwrap_or_default();
+        for c in &self.controls {
+            written.insert(c.typed.name.clone(), c.literal.clone());
+        }
+        written
+    }
+
     fn set_param(&mut self, name: &str, literal: &str) -> Option<Pending> {
         let Some(param) = self.manifest_param(name) else {
             self.param_error = json!({ "name": name, "message": format!("the style has no parameter `{name}`") });
@@ -312,11 +324,20 @@ impl Studio {
             return;
         };
         let Some(param) = self.manifest_param(name) else { return };
-        let literal = if o.percent_of_height {
-            Some(format!("{}%", o.value[0]))
-        } else {
-            format_literal(&ParamShape::of_manifest(&param), &o.value)
-        };
+        // The value as it was typed (`20mm` stays `20mm` in the file), which
+        // typed against this parameter; else formatted from its value.
+        let typed = self
+            .controls
+            .iter()
+            .find(|c| c.typed.name == name)
+            .map(|c| c.literal.clone());
+        let literal = typed.or_else(|| {
+            if o.percent_of_height {
+                Some(format!("{}%", o.value[0]))
+            } else {
+                format_literal(&ParamShape::of_manifest(&param), &o.value)
+            }
+        });
         let Some(literal) = literal else { return };
         match super::write_back::rewrite_default(&self.inputs.style, name, &literal) {
             Ok(()) => {
@@ -347,8 +368,9 @@ impl Studio {
                 }
             }
             let typed = self.typed_controls();
+            let written = self.written_literals();
             if let Some(p) = &mut self.params.as_array_mut() {
-                state::set_values(p, &typed);
+                state::set_values(p, &typed, &written);
             }
         }
         if let Some(s) = session.as_mut() {
@@ -391,8 +413,12 @@ impl Studio {
             .map_err(|e| e.at_texture_spans(&built.compiled.texture_spans));
         match renderer {
             Ok(renderer) => {
-                self.params = state::params_json(&built.compiled.manifest.params, &self.typed_controls());
-                self.diagnostics = state::diagnostics_json(&built.compiled.warnings, &built.sources, "compile");
+                self.params = state::params_json(
+                    &built.compiled.manifest.params,
+                    &self.typed_controls(),
+                    &self.written_literals(),
+                );
+                self.diagnostics = state::diagnostics_json(&built.warnings(), &built.sources, "compile");
                 let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
                 *session = Some(Session { built, renderer, timer });
             }

@@ -8,7 +8,7 @@
 //! | `GET /` , `/studio.js`, `/studio.css` | the page |
 //! | `GET /events` | server-sent events: one `state` event per publish, the current state first |
 //! | `GET /state` | the current state as JSON |
-//! | `GET /frame/{id}/{target}.png` | a target of frame `id` as `npr render` writes it |
+//! | `GET /frame/{id}/{target}.png` | a target (by name, `shade.color`, or index) of frame `id`, one of the last few, as `npr render` writes it |
 //! | `GET /frame/{id}/{target}.f32` | its RGBA texels as little-endian f32 (exposure, readout) |
 //! | `POST /param` `{"name", "literal"}` | set a control (typed like `--set`) |
 //! | `POST /param/reset`, `/param/write` `{"name"}` | back to the file's value; write the value into the file |
@@ -135,22 +135,48 @@ fn read_json(request: &mut Request) -> Result<Value, String> {
     serde_json::from_str(&body).map_err(|e| format!("the request is not JSON: {e}"))
 }
 
-/// `/frame/{id}/{target}.png` or `.f32` of the current frame.
+/// `/frame/{id}/{target}.png` or `.f32`: a target by name or index, of one
+/// of the last [`super::hub::FRAME_RING`] frames.
 fn frame(request: Request, hub: &Hub, rest: &str) {
     let parsed = rest.split_once('/').and_then(|(id, file)| {
-        let (target, ext) = file.split_once('.')?;
-        Some((id.parse::<u64>().ok()?, target.parse::<usize>().ok()?, ext.to_string()))
+        let (target, ext) = file.rsplit_once('.')?;
+        Some((id.parse::<u64>().ok()?, target.to_string(), ext.to_string()))
     });
     let Some((id, target, ext)) = parsed else {
-        return text(request, 404, "expected /frame/{id}/{target}.png or .f32");
+        return text(
+            request,
+            404,
+            &format!("`/frame/{rest}` is no frame image: ask for /frame/{{id}}/{{target}}.png or .f32, the target by name (`shade.color`) or index"),
+        );
     };
-    let Some(frame) = hub.frame().filter(|f| f.id == id) else {
-        // Only the latest frame is kept; the page asks for the one it was told of.
-        return text(request, 404, &format!("frame {id} is not the current frame"));
+    let frame = match hub.frame_by_id(id) {
+        Ok(f) => f,
+        Err(kept) => {
+            let kept: Vec<String> = kept.iter().map(u64::to_string).collect();
+            return text(
+                request,
+                404,
+                &format!(
+                    "frame {id} is no longer kept: the studio keeps the last {} frames ({})",
+                    super::hub::FRAME_RING,
+                    kept.join(", ")
+                ),
+            );
+        }
+    };
+    let Some(index) = frame.target_index(&target) else {
+        return text(
+            request,
+            404,
+            &format!(
+                "frame {id} has no target `{target}`: its targets are {}",
+                frame.target_names().join(", ")
+            ),
+        );
     };
     let bytes = match ext.as_str() {
-        "png" => frame.png(target).map(|b| b.map(|b| (b, "image/png"))),
-        "f32" => frame.f32(target).map(|b| Ok((b, "application/octet-stream"))),
+        "png" => frame.png(index).map(|b| b.map(|b| (b, "image/png"))),
+        "f32" => frame.f32(index).map(|b| Ok((b, "application/octet-stream"))),
         _ => None,
     };
     match bytes {
@@ -158,9 +184,13 @@ fn frame(request: Request, hub: &Hub, rest: &str) {
         Some(Err(e)) => text(
             request,
             500,
-            &format!("cannot encode target {target} of frame {id}: {e}"),
+            &format!("cannot encode target `{target}` of frame {id}: {e}"),
         ),
-        None => text(request, 404, &format!("frame {id} has no target {target}.{ext}")),
+        None => text(
+            request,
+            404,
+            &format!("`.{ext}` is not served: ask for `{target}.png` or `{target}.f32`"),
+        ),
     }
 }
 

@@ -30,17 +30,21 @@ pub struct ParamState {
     pub unused: bool,
 }
 
+/// What each parameter shows as written, by name, where it differs from
+/// the value formatted in its canonical unit (`50mm`, not `0.05m`).
+pub type Written = std::collections::BTreeMap<String, String>;
+
 /// The controls of every parameter that is not per object.
-pub fn params_json(params: &[ParamManifest], overrides: &[ParamOverride]) -> Value {
+pub fn params_json(params: &[ParamManifest], overrides: &[ParamOverride], written: &Written) -> Value {
     let list: Vec<ParamState> = params
         .iter()
         .filter(|p| p.binding != ParamBinding::PerObject)
-        .map(|p| param_state(p, overrides))
+        .map(|p| param_state(p, overrides, written))
         .collect();
     serde_json::to_value(list).unwrap_or(Value::Null)
 }
 
-fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
+fn param_state(p: &ParamManifest, overrides: &[ParamOverride], written: &Written) -> ParamState {
     let shape = ParamShape::of_manifest(p);
     let kind = shape.kind;
     let control = match kind {
@@ -62,6 +66,7 @@ fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
     };
     let set = overrides.iter().find(|o| o.name == p.name);
     let literal = match set {
+        _ if written.contains_key(&p.name) => written[&p.name].clone(),
         Some(o) if o.percent_of_height => format!("{}%", o.value[0]),
         Some(o) => format_literal(&shape, &o.value).unwrap_or_default(),
         None if p.default_percent_of_height => format!("{}%", p.default.first().copied().unwrap_or(0.0)),
@@ -85,13 +90,13 @@ fn param_state(p: &ParamManifest, overrides: &[ParamOverride]) -> ParamState {
 }
 
 /// Bring the controls' values up to date after a slider moved (no rebuild).
-pub fn set_values(params: &mut [Value], overrides: &[ParamOverride]) {
+pub fn set_values(params: &mut [Value], overrides: &[ParamOverride], written: &Written) {
     for v in params.iter_mut() {
         let Ok(mut p) = serde_json::from_value::<ParamState>(v.clone()) else {
             continue;
         };
         if overrides.iter().any(|o| o.name == p.manifest.name) {
-            p = param_state(&p.manifest, overrides);
+            p = param_state(&p.manifest, overrides, written);
             *v = serde_json::to_value(p).unwrap_or(Value::Null);
         }
     }

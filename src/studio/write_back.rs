@@ -34,9 +34,39 @@ pub fn replace_default(text: &str, name: &str, literal: &str) -> Result<String, 
     Ok(out)
 }
 
+/// Each parameter whose default is a number written with a unit (`50mm`,
+/// `2px`, `45deg`): its default's text as written, by name. The studio
+/// shows these as written, not converted to the canonical unit.
+pub fn unit_defaults_as_written(text: &str) -> std::collections::BTreeMap<String, String> {
+    let mut sources = diag::SourceMap::new();
+    let file = sources.add("style", text.to_string());
+    let (ast, _) = dsl::parse(file, text);
+    ast.items
+        .iter()
+        .filter_map(|item| match item {
+            dsl::ast::Item::Param(p) => match &p.default.kind {
+                dsl::ast::ExprKind::Number { unit: Some(_), .. } => {
+                    Some((p.name.name.clone(), text[p.default.span.range()].to_string()))
+                }
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
-    use super::replace_default;
+    use super::{replace_default, unit_defaults_as_written};
+
+    #[test]
+    fn unit_defaults_are_read_as_written() {
+        let text = "style \"S\"\nparam reach: m = 50mm in 0m..1m\nparam w: px = 2px\nparam k: float = 0.5\n";
+        let written = unit_defaults_as_written(text);
+        assert_eq!(written.get("reach").map(String::as_str), Some("50mm"));
+        assert_eq!(written.get("w").map(String::as_str), Some("2px"));
+        assert!(!written.contains_key("k"), "a plain number formats as written already");
+    }
 
     #[test]
     fn only_the_default_changes() {

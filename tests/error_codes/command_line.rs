@@ -65,6 +65,26 @@ fn e0503_compile_onto_an_existing_file() {
 }
 
 #[test]
+fn e0503_an_image_extension_npr_does_not_write() {
+    let dir = scratch("e0503-ext");
+    let file = dir.join("a.jpg");
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "-o",
+            file.to_str().expect("utf-8 path"),
+        ],
+        &dir,
+    );
+    assert!(r.contains("name the output .png or .exr"), "{r}");
+    assert!(!file.exists(), "nothing is written");
+    check_case("E0503", "E0503_extension", (d, r));
+}
+
+#[test]
 fn e0504_bad_compiled_directory() {
     let dir = scratch("e0504");
     let (d, r) = cli_errors(

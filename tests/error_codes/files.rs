@@ -96,6 +96,26 @@ fn w0401_a_scene_binding_the_style_does_not_read() {
 }
 
 #[test]
+fn w0401_bindings_for_another_style_are_one_line() {
+    let dir = scratch("w0401-elsewhere");
+    let text = style("pass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n");
+    let mut sources = SourceMap::new();
+    let compiled =
+        compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default()).expect("compiles");
+    std::fs::write(
+        dir.join("scene.toml"),
+        one_sphere_scene("params = { tint = \"#ff0000\", wobble = 2.0 }"),
+    )
+    .expect("write scene");
+    let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
+    let diags = runner::scene_warnings(&compiled.manifest, &scene);
+    let rendered = diag::diagnostic::render(&diags, &sources, false);
+    assert_eq!(diags.len(), 1, "{rendered}");
+    assert_eq!(rendered.trim_end().lines().count(), 1, "{rendered}");
+    check_case("W0401", "W0401_elsewhere", (diags, rendered));
+}
+
+#[test]
 fn w0402_a_render_pass_over_a_tag_no_object_has() {
     let text = style(
         "pass ground: render(gorund) {\n  out c: rgba8unorm = #808080\n}\npass final: image(ground) {\n  out color: rgba8unorm = ground.c\n}\noutput final.color\n",

@@ -166,3 +166,21 @@ fn a_set_and_a_filter_argument_get_the_same_diagnostic_for_the_same_mistake() {
         assert_eq!(a.help.as_deref(), s["help"].as_str(), "{set} / {arg}");
     }
 }
+
+#[test]
+fn e0206_a_set_gradient_out_of_order_or_malformed() {
+    let dir = scratch("e0206-set");
+    let (d, r) = cli_errors(
+        &[
+            "check",
+            "examples/toon_ramp.npr",
+            "--set",
+            "shading=0.5:#000000, 0.2:#ffffff",
+        ],
+        &dir,
+    );
+    assert!(r.contains("--set:1:9"), "{r}");
+    check_case("E0206", "E0206_set_unsorted", (d, r));
+    let (d, r) = cli_errors(&["check", "examples/toon_ramp.npr", "--set", "shading=0:#00, 1"], &dir);
+    check_case("E0206", "E0206_set_malformed", (d, r));
+}

@@ -111,6 +111,72 @@ fn e0202_unit_mismatch_px_plus_m() {
 }
 
 #[test]
+fn w0201_a_colour_times_a_splat_vector_scales_its_alpha() {
+    let text = style("param base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * vec4(lambert(normal, light.dir))\n}\noutput p.c\n");
+    check("W0201", compile_warnings(&text));
+}
+
+#[test]
+fn a_colour_times_a_number_keeps_its_alpha_and_warns_nothing() {
+    let text = style("param base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * lambert(normal, light.dir) + vec4(0.1, 0.1, 0.1, 0.0)\n}\noutput p.c\n");
+    let mut sources = SourceMap::new();
+    let compiled = compiler::compile_source(
+        "case.npr",
+        &text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .expect("compiles");
+    assert!(compiled.warnings.is_empty(), "{:?}", compiled.warnings);
+    let wgsl = compiled.shader("p.wgsl").expect("the pass's shader");
+    // The light is scaled, the coverage (the colour's alpha, 1 here) kept.
+    assert!(
+        wgsl.contains("vec4<f32>((vec3<f32>(0.8784314f, 0.47843137f, 0.22745098f) * npr_lambert(npr_unit(in.normal_world), frame.light_dir.xyz)), 1.0f)"),
+        "{wgsl}"
+    );
+}
+
+#[test]
+fn e0206_a_gradient_with_no_stops() {
+    let text = style("param g: gradient = gradient()\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check("E0206", compile_errors(&text, &scratch("e0206")));
+}
+
+#[test]
+fn e0206_a_gradient_whose_stops_are_out_of_order() {
+    let text = style("param g: gradient = gradient(stop(0.6, #000000), stop(0.2, #ffffff))\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check_case(
+        "E0206",
+        "E0206_unsorted",
+        compile_errors(&text, &scratch("e0206-unsorted")),
+    );
+}
+
+#[test]
+fn e0206_a_stop_outside_0_to_1() {
+    let text = style("param g: gradient = gradient(stop(0.0, #000000), stop(1.5, #ffffff))\npass p: image() {\n  out c: rgba8unorm = ramp(g, screen_uv.x)\n}\noutput p.c\n");
+    check_case(
+        "E0206",
+        "E0206_position",
+        compile_errors(&text, &scratch("e0206-position")),
+    );
+}
+
+#[test]
+fn e0203_an_operator_argument_out_of_range_names_the_range() {
+    let text = style(
+        "pass p: render(scene) {\n  out c: r8unorm = toon(lambert(normal, light.dir), steps: 40)\n}\noutput p.c\n",
+    );
+    let (d, r) = compile_errors(&text, &scratch("e0203-operator"));
+    assert!(
+        r.contains("help: `steps` takes a value in 1..16 (number of bands)"),
+        "{r}"
+    );
+    check_case("E0203", "E0203_operator_argument", (d, r));
+}
+
+#[test]
 fn e0203_default_out_of_range() {
     let text = style(&format!("param bands: int = 12 in 1..8\n{SIMPLE_PASS}"));
     check("E0203", compile_errors(&text, &scratch("e0203")));

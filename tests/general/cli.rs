@@ -222,6 +222,31 @@ fn render_writes_png_and_exr_and_dumps_passes() {
 }
 
 #[test]
+fn render_without_an_output_writes_the_styles_png_here_and_says_so() {
+    let dir = scratch("no-out");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .arg("render")
+        .arg(root.join("examples/toon.npr"))
+        .arg("--scene")
+        .arg(root.join("examples/scenes/spheres.toml"))
+        .args(["--size", "32x32"])
+        .current_dir(&dir)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run npr");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("wrote toon.png (32x32")
+            && err.contains("note: no `-o` given: wrote toon.png in the current directory"),
+        "{err}"
+    );
+    let img = image::open(dir.join("toon.png")).expect("toon.png written in the current directory");
+    assert_eq!((img.width(), img.height()), (32, 32));
+}
+
+#[test]
 fn frames_render_an_animation() {
     let dir = scratch("frames");
     let out = dir.join("f_{frame}.png");
@@ -656,4 +681,49 @@ fn render_compiled_runs_a_compiled_dir_and_rejects_a_bad_one() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("manifest.json"), "{}", stderr(&o));
+}
+
+/// An installed npr outside the repository: `npr doc` writes the committed
+/// reference, and the benchmarks whose defaults name `examples/` run, from
+/// the files built into the binary.
+#[test]
+fn doc_and_bench_work_from_any_directory() {
+    let dir = scratch("elsewhere");
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+            .args(args)
+            .current_dir(&dir)
+            .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+            .output()
+            .expect("run npr");
+        assert_eq!(o.status.code(), Some(0), "npr {args:?}: {}", stderr(&o));
+    };
+    run(&["doc", "-o", "ref"]);
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/reference");
+    for entry in std::fs::read_dir(&committed).expect("docs/reference") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "md" || e == "html" || e == "css") {
+            let name = path.file_name().expect("name");
+            let written = std::fs::read_to_string(dir.join("ref").join(name)).expect("written page");
+            assert!(
+                written == std::fs::read_to_string(&path).expect("committed page"),
+                "{} differs from the one npr doc wrote outside the repository",
+                path.display()
+            );
+        }
+    }
+    run(&["bench", "ops", "--size", "16x16", "--frames", "1"]);
+    run(&["bench", "overhead", "--size", "16x16", "--frames", "2", "--warmup", "1"]);
+    run(&["bench", "artmaps", "--sizes", "16", "--size", "16x16", "--frames", "1"]);
+    run(&[
+        "bench",
+        "styles",
+        "examples/toon.npr",
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "16x16",
+        "--frames",
+        "1",
+    ]);
 }

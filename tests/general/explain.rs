@@ -243,3 +243,24 @@ fn an_unknown_code_gives_e0502_with_the_nearest_codes() {
     assert_eq!(codes_printed(&o), BTreeSet::from(["E0502".to_string()]));
     assert!(String::from_utf8_lossy(&o.stdout).contains("E0202 (unit mismatch)"));
 }
+
+#[test]
+fn explain_finds_a_code_by_its_number_or_by_words_of_its_title() {
+    let o = npr(Path::new("."), &["explain", "202"]).output().expect("run npr");
+    assert!(o.status.success(), "{}", describe(&["explain", "202"], &o));
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("E0202: unit mismatch\n"));
+    for (words, want) in [
+        ("units", "E0202 (unit mismatch)"),
+        ("cannot write", "E0503 (cannot write an output)"),
+        ("colour alpha", "W0201 (colour arithmetic that changes alpha (warning))"),
+    ] {
+        let o = npr(Path::new("."), &["explain", words]).output().expect("run npr");
+        assert_eq!(o.status.code(), Some(1));
+        // `--message-format json`: the diagnostic is on stdout.
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(
+            stdout.contains(&format!("codes about `{words}`: {want}")),
+            "{words}: {stdout}"
+        );
+    }
+}

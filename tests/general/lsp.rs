@@ -599,3 +599,26 @@ fn a_test_file_gets_the_diagnostics_npr_test_gives() {
     let hover = client.request("textDocument/hover", at(&tests_doc, typed, "bands", 0, 0));
     assert_eq!(hover, Value::Null);
 }
+
+#[test]
+fn hover_shows_a_gradient_and_ramp() {
+    let dir = scratch("hover_shows_a_gradient_and_ramp");
+    let (mut client, _) = started(&dir);
+    let text = "style \"Ramp\"\n/// Shadow to light.\nparam shading: gradient = gradient(stop(0.0, #2a1f4a), stop(1.0, #fff0d0))\n\
+                pass p: render(scene) {\n  out c: rgba8unorm = ramp(shading, lambert(normal, light.dir))\n}\noutput p.c\n";
+    let doc = uri(&dir.join("ramp.npr"));
+    open(&mut client, &doc, "npr", text);
+    assert_eq!(
+        client.diagnostics(&doc),
+        Vec::<Value>::new(),
+        "a gradient compiles cleanly"
+    );
+    let g = hover_text(&mut client, at(&doc, text, "shading,", 0, 1));
+    assert!(
+        g.contains("param shading: gradient = gradient(stop(0.0, #2a1f4a), stop(1.0, #fff0d0))")
+            && g.contains("Shadow to light."),
+        "{g}"
+    );
+    let ramp = hover_text(&mut client, at(&doc, text, "ramp(", 0, 1));
+    assert!(ramp.contains("gradient"), "{ramp}");
+}

@@ -134,3 +134,51 @@ fn a_set_without_a_value_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr.contains("E0501") && stderr.contains("NAME=VALUE"), "{stderr}");
 }
+
+/// `--set g="p:#colour, ..."` gives the shaders of the same stops written
+/// in the file.
+#[test]
+fn a_set_gradient_is_the_gradient_written_in_the_file() {
+    let dir = crate::common::cli::scratch("set-params", "gradient");
+    let original = std::fs::read_to_string("examples/toon_ramp.npr").expect("toon_ramp.npr");
+    let decl = original
+        .lines()
+        .find(|l| l.starts_with("param shading: gradient"))
+        .expect("the gradient's line");
+    let edited = original.replace(
+        decl,
+        "param shading: gradient = gradient(stop(0.0, #102030), stop(0.5, #ff8800), stop(1.0, #ffffff))",
+    );
+    std::fs::write(dir.join("edited.npr"), edited).expect("write");
+    let compile = |style: &str, out: &str, set: Option<&str>| {
+        let mut args = vec!["compile", style, "-o", out];
+        if let Some(s) = set {
+            args.extend(["--set", s]);
+        }
+        let o = crate::common::cli::npr(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", crate::common::cli::stderr(&o));
+        std::fs::read_to_string(std::path::Path::new(out).join("shade.wgsl")).expect("shade.wgsl")
+    };
+    let set = compile(
+        "examples/toon_ramp.npr",
+        dir.join("set").to_str().expect("utf-8"),
+        Some("shading=0:#102030, 0.5:#ff8800, 1:#ffffff"),
+    );
+    let written = compile(
+        dir.join("edited.npr").to_str().expect("utf-8"),
+        dir.join("written").to_str().expect("utf-8"),
+        None,
+    );
+    // Comments name the file each line came from.
+    let body = |w: &str| {
+        w.lines()
+            .filter(|l| !l.trim_start().starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(body(&set), body(&written));
+    assert!(
+        set.contains("vec4<f32>(1.0f, 0.53333336f, 0.0f, 1.0f)"),
+        "the set stop's colour: {set}"
+    );
+}

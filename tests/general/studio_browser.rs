@@ -210,7 +210,7 @@ fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switche
         b.wait_until(
             "the fixed frame",
             &format!(
-                "!document.querySelector('#diagnostics .diag') && Number(document.body.dataset.shownFrame) > {before}"
+                "!document.querySelector('#diagnostics .diag.error') && Number(document.body.dataset.shownFrame) > {before}"
             ),
         );
         // The slider's value survives the save.

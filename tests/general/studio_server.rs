@@ -236,3 +236,118 @@ fn a_texture_is_watched_and_an_unreadable_one_is_reported_while_serving() {
     assert_eq!(output_png(&addr, &back), first_png);
     drop(studio);
 }
+
+#[test]
+fn the_studio_shows_the_warnings_npr_render_prints() {
+    let dir = common::live::scratch("studio", "warnings");
+    let style = dir.join("plain.npr");
+    // Reads no per-object param, while spot.toml binds `tint`: W0401.
+    std::fs::write(
+        &style,
+        "style \"Plain\"\nparam base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * vec4(lambert(normal, light.dir))\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let rendered = common::cli::npr(&[
+        "render",
+        style.to_str().expect("utf-8"),
+        "--scene",
+        "examples/scenes/spot.toml",
+        "--size",
+        "32x32",
+        "-o",
+        dir.join("plain.png").to_str().expect("utf-8"),
+    ]);
+    let printed = common::cli::stderr(&rendered);
+    assert_eq!(rendered.status.code(), Some(0), "{printed}");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let s = events.until("a frame", |s| !s["frame"].is_null());
+    let shown: Vec<(String, String)> = s["diagnostics"]
+        .as_array()
+        .expect("diagnostics")
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or("").to_string(),
+                d["message"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect();
+    let codes: Vec<&str> = shown.iter().map(|(c, _)| c.as_str()).collect();
+    assert_eq!(codes, ["W0201", "W0401"], "{shown:?}");
+    for (code, message) in &shown {
+        assert!(
+            printed.contains(&format!("warning[{code}]: {message}")),
+            "the studio shows {code} `{message}`, npr render printed:\n{printed}"
+        );
+    }
+}
+
+#[test]
+fn frames_are_read_by_target_name_and_the_last_few_stay_readable() {
+    let dir = common::live::scratch("studio", "ring");
+    let style = dir.join("toon.npr");
+    std::fs::copy("examples/toon.npr", &style).expect("copy");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a frame", |s| !s["frame"].is_null());
+    let id = frame_id(&first);
+    let by_index = http::get(&addr, &format!("/frame/{id}/0.png"));
+    let by_name = http::get(&addr, &format!("/frame/{id}/shade.color.png"));
+    assert_eq!(by_name.status, 200, "{}", by_name.text());
+    assert_eq!(by_name.body, by_index.body, "the name and the index are one target");
+    let unknown = http::get(&addr, &format!("/frame/{id}/shade.colour.png"));
+    assert_eq!(unknown.status, 404);
+    assert!(
+        unknown.text().contains("its targets are shade.color"),
+        "{}",
+        unknown.text()
+    );
+    // Newer frames: the first stays readable while it is among the last 4.
+    let mut last = id;
+    for (i, bands) in ["2", "3", "4", "5", "6"].into_iter().enumerate() {
+        assert_eq!(
+            http::post(&addr, "/param", &json!({"name": "bands", "literal": bands})).status,
+            202
+        );
+        let s = events.until("a newer frame", |s| {
+            frame_id(s) > last && param(s, "bands")["literal"] == bands
+        });
+        last = frame_id(&s);
+        let old = http::get(&addr, &format!("/frame/{id}/shade.color.png"));
+        if i < 3 {
+            assert_eq!(old.status, 200, "after {} newer frame(s): {}", i + 1, old.text());
+            assert_eq!(old.body, by_index.body, "frame {id} is still its own image");
+        } else {
+            assert_eq!(old.status, 404, "after {} newer frames", i + 1);
+            assert!(old.text().contains("no longer kept"), "{}", old.text());
+        }
+    }
+}
+
+#[test]
+fn units_stay_as_written_on_the_page_and_in_the_file() {
+    let dir = common::live::scratch("studio", "units");
+    let style = dir.join("outline.npr");
+    std::fs::write(
+        &style,
+        "style \"Units\"\nparam reach: m = 50mm in 0m..1m\npass p: render(scene) {\n  vertex { inflate: 2px }\n  out c: rgba8unorm = #808080 * step(reach, depth)\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a frame", |s| !s["frame"].is_null());
+    assert_eq!(param(&first, "reach")["literal"], "50mm", "{}", param(&first, "reach"));
+    assert_eq!(
+        http::post(&addr, "/param", &json!({"name": "reach", "literal": "20mm"})).status,
+        202
+    );
+    let moved = events.until("reach = 20mm", |s| param(s, "reach")["overridden"] == true);
+    assert_eq!(param(&moved, "reach")["literal"], "20mm");
+    assert_eq!(http::post(&addr, "/param/write", &json!({"name": "reach"})).status, 202);
+    events.until("the file's new value", |s| {
+        param(s, "reach")["overridden"] == false && param(s, "reach")["literal"] == "20mm"
+    });
+    let text = std::fs::read_to_string(&style).expect("read back");
+    assert!(text.contains("param reach: m = 20mm in 0m..1m"), "{text}");
+}

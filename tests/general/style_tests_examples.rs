@@ -55,6 +55,8 @@ const EXPECTED: &[&str] = &[
     "stipple.npr::patched_cow_24",
     "toon.npr::spheres",
     "toon.npr::spot",
+    "toon_ramp.npr::spheres",
+    "toon_ramp.npr::spot",
     "wavy_lines.npr::cube",
     "wavy_lines.npr::fandisk",
     "wavy_lines.npr::teapot",

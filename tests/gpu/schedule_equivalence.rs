@@ -55,6 +55,7 @@ const EXAMPLES: &[(&str, &str)] = &[
     ("sobel_outline", "spheres"),
     ("stipple", "cows"),
     ("toon", "spot"),
+    ("toon_ramp", "spot"),
     ("wavy_lines", "fandisk"),
 ];
 

@@ -22,6 +22,7 @@ use stdlib::Unit;
 mod calls;
 mod compute;
 mod expr;
+pub mod gradient;
 mod kind_args;
 mod lines;
 mod params;
@@ -43,6 +44,20 @@ pub fn resolve(
     paths: Option<&diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
+    resolve_with_settings(loaded, scene, paths, &[], diags).map(|(ir, _)| ir)
+}
+
+/// [`resolve`], with the settings of `gradient` params (`--set g="0:#000,
+/// 1:#fff"`) applied to their stops here, since a gradient is a constant of
+/// the resolver (`resolve/gradient.rs`); also the names of the settings it
+/// took, which the typing of the others after typecheck leaves out.
+pub fn resolve_with_settings(
+    loaded: &Loaded,
+    scene: Option<&crate::SceneSummary>,
+    paths: Option<&diag::paths::PathPolicy>,
+    settings: &[ParamSetting],
+    diags: &mut Vec<Diagnostic>,
+) -> Result<(Ir, Vec<String>), InternalError> {
     let mut r = Resolver {
         ir: Ir::default(),
         diags,
@@ -59,6 +74,9 @@ pub fn resolve(
         draws_objects: false,
         in_vertex: false,
         internal: None,
+        gradients: Vec::new(),
+        gradient_settings: settings,
+        gradients_set: Vec::new(),
     };
     r.ir.style_name = match &loaded.root.style {
         Some(h) => h.name.clone(),
@@ -68,7 +86,7 @@ pub fn resolve(
     r.resolve_all(&loaded.items, loaded.root.style.as_ref().map(|h| h.span));
     match r.internal {
         Some(e) => Err(e),
-        None => Ok(r.ir),
+        None => Ok((r.ir, r.gradients_set)),
     }
 }
 
@@ -77,6 +95,8 @@ enum Symbol {
     Param(ParamId),
     Texture(TextureId),
     Pass(PassId),
+    /// A `gradient` param: an index into `Resolver::gradients`.
+    Gradient(usize),
 }
 
 struct Resolver<'d> {
@@ -109,6 +129,13 @@ struct Resolver<'d> {
     in_vertex: bool,
     /// The first impossible state met (a bug in npr, not in the style).
     internal: Option<InternalError>,
+    /// The declared gradients (`gradient.rs`): constants, read by `ramp`;
+    /// `None` for one whose declaration was refused.
+    gradients: Vec<Option<gradient::Gradient>>,
+    /// The caller's settings; those naming a gradient are applied here.
+    gradient_settings: &'d [ParamSetting],
+    /// The names of the gradients a setting set.
+    gradients_set: Vec<String>,
 }
 
 impl Resolver<'_> {
@@ -135,6 +162,13 @@ impl Resolver<'_> {
     fn declare_all(&mut self, items: &[(Item, std::path::PathBuf)]) {
         for (item, dir) in items {
             match item {
+                Item::Param(p) if gradient::is_gradient_type(&p.ty) => {
+                    // Declared even when bad (its error reported), so its
+                    // `ramp`s do not cascade into unknown names.
+                    let g = self.gradient_decl(p).and_then(|g| self.set_gradient(&p.name.name, g));
+                    self.declare(&p.name, Symbol::Gradient(self.gradients.len()));
+                    self.gradients.push(g);
+                }
                 Item::Param(p) if is_texture_type(&p.ty) => {
                     // `object param t: texture = image(...)` is a texture, not a
                     // uniform slot: it lives with the declared textures, flagged
@@ -212,7 +246,7 @@ impl Resolver<'_> {
         let mut output_seen: Option<Span> = None;
         for (item, _) in items {
             match item {
-                Item::Param(p) if is_texture_type(&p.ty) => {}
+                Item::Param(p) if is_texture_type(&p.ty) || gradient::is_gradient_type(&p.ty) => {}
                 Item::Param(p) => {
                     // Params past MAX_PARAMS were refused and have no id.
                     if (param_index as usize) < self.ir.params.len() {

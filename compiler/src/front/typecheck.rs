@@ -21,16 +21,22 @@ use stdlib::Unit;
 
 mod arith;
 mod calls;
+mod color;
 mod compute;
 mod decls;
 mod defaults;
 mod lines;
 
 pub fn typecheck(ir: &mut Ir, diags: &mut Vec<Diagnostic>) {
-    let mut tc = Checker { ir, diags };
+    let mut tc = Checker {
+        ir,
+        diags,
+        colors: Default::default(),
+    };
     let n = tc.ir.exprs.len();
     for i in 0..n {
         tc.node(ExprId(i as u32));
+        tc.note_color(ExprId(i as u32));
     }
     tc.params();
     tc.passes();
@@ -39,6 +45,9 @@ pub fn typecheck(ir: &mut Ir, diags: &mut Vec<Diagnostic>) {
 struct Checker<'a> {
     ir: &'a mut Ir,
     diags: &'a mut Vec<Diagnostic>,
+    /// Nodes built from colours that stay colours (`color.rs`); leaves
+    /// are recognised by their kind.
+    colors: std::collections::HashSet<ExprId>,
 }
 
 /// Type of a node when used as a value: handles read as their texel.

@@ -187,6 +187,63 @@ pub fn nearest(code: &str, n: usize) -> Vec<&'static str> {
     scored.into_iter().take(n).map(|s| s.3).collect()
 }
 
+/// Codes whose one-line title shares words with `query` (`unit`,
+/// `cannot write`, `misspelt` near `misspelled`), most shared words first;
+/// a word matches a title word it equals or nearly spells (Jaro-Winkler
+/// 0.88 or more, so `colour` finds `color` and `units` finds `unit`).
+pub fn by_words(query: &str, n: usize) -> Vec<&'static str> {
+    let words: Vec<String> = query
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| w.chars().count() >= 3 && !w.chars().any(|c| c.is_ascii_digit()))
+        .map(str::to_lowercase)
+        .collect();
+    if words.is_empty() {
+        return Vec::new();
+    }
+    let mut scored: Vec<(usize, f64, &'static str)> = diag::codes::ALL
+        .iter()
+        .filter_map(|(code, title)| {
+            let title_words: Vec<String> = title
+                .split(|c: char| !c.is_alphanumeric())
+                .filter(|w| !w.is_empty())
+                .map(str::to_lowercase)
+                .collect();
+            let best: Vec<f64> = words
+                .iter()
+                .map(|w| {
+                    title_words
+                        .iter()
+                        .map(|t| strsim::jaro_winkler(w, t))
+                        .fold(0.0, f64::max)
+                })
+                .collect();
+            let hits = best.iter().filter(|s| **s >= 0.88).count();
+            (hits > 0).then(|| (hits, best.iter().sum::<f64>(), *code))
+        })
+        .collect();
+    scored.sort_by(|a, b| b.0.cmp(&a.0).then(b.1.total_cmp(&a.1)));
+    scored.into_iter().take(n).map(|s| s.2).collect()
+}
+
+/// A code written as its number alone (`202`, `0401`): the codes of that
+/// number, E before W.
+pub fn by_number(query: &str) -> Vec<&'static str> {
+    let q = query.trim();
+    if q.is_empty() || !q.chars().all(|c| c.is_ascii_digit()) {
+        return Vec::new();
+    }
+    let Ok(n) = q.parse::<u32>() else {
+        return Vec::new();
+    };
+    ["E", "W"]
+        .iter()
+        .filter_map(|l| {
+            let code = format!("{l}{n:04}");
+            diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(c, _)| *c)
+        })
+        .collect()
+}
+
 /// The explanation as text for a terminal.
 pub fn render(e: &Explanation) -> String {
     let mut out = format!("{}: {}\n\n", e.code, summary(e.code).unwrap_or(""));

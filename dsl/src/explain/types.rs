@@ -68,6 +68,40 @@ pub(super) const ALL: &[Explanation] = &[
         },
     },
     Explanation {
+        code: "E0206",
+        meaning: "A `gradient` param is a colour ramp: `gradient(stop(position, colour), ...)` \
+            with at least one stop, positions from 0 to 1 written in order (two stops may share \
+            a position: a hard edge), each colour a literal, and `mode: constant` for bands \
+            instead of blends. `ramp(g, t)` reads its colour at `t`.",
+        wrong: Example {
+            style: "style \"Case\"\nparam g: gradient = gradient(stop(0.6, #2a1f4a), stop(0.2, #ffe0b0))\npass p: render(scene) {\n  out c: rgba8unorm = ramp(g, lambert(normal, light.dir))\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\nparam g: gradient = gradient(stop(0.2, #2a1f4a), stop(0.6, #ffe0b0))\npass p: render(scene) {\n  out c: rgba8unorm = ramp(g, lambert(normal, light.dir))\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "W0201",
+        meaning: "A colour is light (`.rgb`) and coverage (`.a`, straight alpha). A number \
+            applied to a colour changes its light and keeps its coverage, as in compositing \
+            tools: `base * lambert(normal, light.dir)` darkens `base` and stays opaque, and two \
+            colours added or subtracted keep the larger alpha. A plain `vec4(...)` is not a \
+            colour: a colour times `vec4(k)` multiplies the alpha by `k` too, so the dark side \
+            of an opaque object comes out transparent in the PNG. Multiply by the number \
+            itself, or write the vector's alpha as 1 (0 when adding). The language reference's \
+            \"Colours and alpha\" lists every rule.",
+        wrong: Example {
+            style: "style \"Case\"\nparam base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * vec4(lambert(normal, light.dir))\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\nparam base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * lambert(normal, light.dir)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
         code: "E0205",
         meaning: "A compute pass makes per-object values: `reduce` (a sum over the object's \
             vertices, samples or pixels), `out` and `state`. They are stored as floats in a \

@@ -3,8 +3,10 @@
 //!
 //! They are warnings, not errors, because one scene may serve several
 //! styles; but a binding that is silently dropped is how a misspelling
-//! goes unnoticed, so each one is named with "did you mean" where a
-//! per-object param of the style is close. A param the style declares but
+//! goes unnoticed, so each one near a per-object param of the style is
+//! shown at its place with "did you mean", as is a style-wide param bound
+//! per object. Names the style has nothing near (a binding for another
+//! style of the same scene) are listed together in one line. A param the style declares but
 //! does not use (`ParamBinding::Removed`) is not reported: the binding is
 //! right, the style just does not need it here.
 
@@ -30,6 +32,9 @@ pub fn scene_warnings(manifest: &Manifest, scene: &Scene) -> Vec<Diagnostic> {
         )
         .collect();
     let mut diags = Vec::new();
+    // Names this style has nothing near: most likely meant for another
+    // style that shares the scene, so one line for them all.
+    let mut elsewhere: std::collections::BTreeMap<&str, Vec<&str>> = Default::default();
     for o in &scene.objects {
         let bound = o
             .params
@@ -50,15 +55,31 @@ pub fn scene_warnings(manifest: &Manifest, scene: &Scene) -> Vec<Diagnostic> {
             if o.textures.contains_key(name) && (declared.is_some() || is_style_texture) {
                 continue;
             }
-            diags.push(unread(
-                manifest,
-                &o.name,
-                name,
-                span,
-                declared.is_some() || is_style_texture,
-                &per_object,
-            ));
+            let style_wide = declared.is_some() || is_style_texture;
+            if !style_wide && did_you_mean(name, per_object.iter().copied()).is_none() {
+                elsewhere.entry(name.as_str()).or_default().push(&o.name);
+                continue;
+            }
+            diags.push(unread(manifest, &o.name, name, span, style_wide, &per_object));
         }
+    }
+    if !elsewhere.is_empty() {
+        let list: Vec<String> = elsewhere
+            .iter()
+            .map(|(name, objects)| {
+                let on: Vec<String> = objects.iter().map(|o| format!("`{o}`")).collect();
+                format!("`{name}` (on {})", on.join(", "))
+            })
+            .collect();
+        diags.push(Diagnostic::warning(
+            codes::UNUSED_BINDING,
+            format!(
+                "style \"{}\" does not read the scene's per-object {}, so {} ignored",
+                manifest.style,
+                list.join(", "),
+                if list.len() == 1 { "it is" } else { "they are" }
+            ),
+        ));
     }
     diags
 }

@@ -83,6 +83,9 @@ impl Resolver<'_> {
         if name == "scene_has" {
             return self.scene_has(call);
         }
+        if name == "ramp" {
+            return self.ramp(call);
+        }
         if let Some(copy) = target_copy_call(name) {
             return self.target_copy(call, name, copy);
         }

@@ -147,6 +147,19 @@ impl Resolver<'_> {
                     .ir
                     .add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span);
             }
+            Some((Symbol::Gradient(_), _)) => {
+                let d = Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`{}` is a gradient, not a value", id.name),
+                )
+                .with_primary(span, "a gradient")
+                .with_help(format!(
+                    "read its colour at a position from 0 to 1 with `ramp({}, t)`",
+                    id.name
+                ));
+                self.error(d);
+                return self.ir.add(ExprKind::Error, span);
+            }
             Some((Symbol::Pass(p), _)) => {
                 let outs = self.pass_outputs[p.0 as usize].clone();
                 let d = Diagnostic::error(codes::TYPE_MISMATCH, format!("`{}` is a pass, not a value", id.name))

@@ -101,6 +101,9 @@ impl Checker<'_> {
                     BinOp::Mul => self.mul_unit(l, r, span),
                     _ => self.div_unit(l, r, span),
                 };
+                if ty == Ty::Vec4 && self.color_binary(id, op, l, r, unit) {
+                    return;
+                }
                 self.ir.expr_mut(id).kind = ExprKind::Binary { op, lhs: l, rhs: r };
                 self.set(id, ty, unit);
             }

@@ -201,6 +201,9 @@ impl Checker<'_> {
             };
             out.push(a2);
         }
+        if op.returns == stdlib::Ty::Color {
+            self.colors.insert(id);
+        }
         let ty = match op.returns {
             stdlib::Ty::Float => Ty::Float,
             stdlib::Ty::Int | stdlib::Ty::Enum(_) => Ty::Int,
@@ -294,7 +297,11 @@ impl Checker<'_> {
                         format!("`{}` of `{}` is out of range", p.name, op.name),
                     )
                     .with_primary(self.span(a), format!("{v} is outside {lo}..{hi}"))
-                    .with_help(p.doc.to_string()),
+                    .with_help(format!(
+                        "`{}` takes a value in {lo}..{hi} ({})",
+                        p.name,
+                        p.doc.trim_end_matches('.')
+                    )),
                 );
                 return None;
             }
