@@ -660,6 +660,7 @@ pub enum BenchCommand {
     /// prepare and encode) for several object counts, against an independent
     /// minimal wgpu program recording the same number of passes, in one run.
     Host {
+        /// The style (.npr) the host drives.
         #[arg(long, default_value = "examples/age_of_sail.npr")]
         style: PathBuf,
         /// Object counts, comma-separated.

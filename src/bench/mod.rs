@@ -96,11 +96,13 @@ fn bundled_paths(cmd: BenchCommand) -> std::io::Result<BenchCommand> {
             scene,
             size,
             frames,
+            keep_params,
         } => BenchCommand::Frame {
             style: resolve(&style)?,
             scene: resolve(&scene)?,
             size,
             frames,
+            keep_params,
         },
         BenchCommand::Overhead {
             style,
@@ -114,6 +116,17 @@ fn bundled_paths(cmd: BenchCommand) -> std::io::Result<BenchCommand> {
             size,
             frames,
             warmup,
+        },
+        BenchCommand::Host {
+            style,
+            objects,
+            size,
+            frames,
+        } => BenchCommand::Host {
+            style: resolve(&style)?,
+            objects,
+            size,
+            frames,
         },
         other => other,
     })
