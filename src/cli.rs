@@ -396,6 +396,7 @@ pub struct LiveArgs {
 /// benchmark pins (size, time, a fixed number of frames).
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
+    /// The style (.npr) to show; saving it reloads the window.
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,

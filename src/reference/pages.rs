@@ -217,6 +217,13 @@ fn errors() -> String {
 }
 
 fn example_markdown(ex: &dsl::explain::Example, out: &mut String) {
+    if let Some(code) = ex.host_rust {
+        out.push_str(&format!("```rust\n// the host application\n{code}```\n\n"));
+        if let Some(why) = ex.not_runnable {
+            out.push_str(&format!("(Not run by the tests here: {why}.)\n\n"));
+        }
+        return;
+    }
     if !ex.style.is_empty() {
         out.push_str(&format!("```npr\n// {}", dsl::explain::STYLE_FILE));
         if ex.encoding == dsl::explain::Encoding::Latin1 {

@@ -259,8 +259,11 @@ fn e0511_a_video_without_ffmpeg() {
     check("E0511", (d, r));
 }
 
-/// `npr render afterimage on spot` at `size` for `frames`, with checkpoints in `ck`.
+/// `npr render afterimage on spot` at `size` for `frames`, with checkpoints
+/// in `ck` and the frames beside it (not in the repository, where a render
+/// without `-o` would write them).
 fn afterimage_chunk(size: &str, frames: &str, ck: &Path) -> Vec<String> {
+    let out = ck.with_file_name("f_{frame}.png");
     [
         "render",
         "examples/afterimage.npr",
@@ -272,6 +275,8 @@ fn afterimage_chunk(size: &str, frames: &str, ck: &Path) -> Vec<String> {
         frames,
         "--checkpoints",
         ck.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
     ]
     .map(String::from)
     .to_vec()

@@ -1,11 +1,9 @@
 //! Explanations of the host codes (E06xx): mistakes of an application that
 //! embeds a style with `runner::embed::StyleRuntime`. They come from Rust
-//! calls, not from `npr` commands, so the examples show the style a host
-//! loads and say where the host's mistake is tested.
+//! calls, not from `npr` commands, so the examples are the host's code,
+//! and each says where the mistake is tested.
 
 use super::{Example, Explanation, EXAMPLE};
-
-const GREY: &str = "style \"Case\"\npass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n";
 
 pub(super) const ALL: &[Explanation] = &[
     Explanation {
@@ -16,33 +14,61 @@ pub(super) const ALL: &[Explanation] = &[
             Register the mesh with `add_mesh` and use the handle it returns for as long as \
             instances draw it; remove it only after the last frame that draws it.",
         wrong: Example {
-            style: GREY,
-            not_runnable: Some(
-                "a host's Rust call, not an `npr` command: tests/error_codes/host.rs removes a mesh \
-                 and renders an instance of it",
+            host_rust: Some(
+                "let sphere = runtime.add_mesh(primitives::sphere(1.0, 32, 16));\n\
+                 runtime.remove_mesh(sphere)?;\n\
+                 let objects = [Instance::new(sphere, Mat4::IDENTITY)];\n\
+                 let frame = Frame { camera: &camera, objects: &objects, lights: &lights, time_s: 0.0, frame_index: 0, eye: 0 };\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0601\n",
             ),
+            not_runnable: Some("tests/error_codes/host.rs removes a mesh and renders an instance of it"),
             ..EXAMPLE
         },
-        fixed: Example { style: GREY, ..EXAMPLE },
+        fixed: Example {
+            host_rust: Some(
+                "let sphere = runtime.add_mesh(primitives::sphere(1.0, 32, 16));\n\
+                 let objects = [Instance::new(sphere, Mat4::IDENTITY)];\n\
+                 let frame = Frame { camera: &camera, objects: &objects, lights: &lights, time_s: 0.0, frame_index: 0, eye: 0 };\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n\
+                 // ...after the last frame that draws the sphere:\n\
+                 runtime.remove_mesh(sphere)?;\n",
+            ),
+            not_runnable: Some("runner/src/embed/mod.rs's example renders a registered mesh"),
+            ..EXAMPLE
+        },
     },
     Explanation {
         code: "E0602",
         meaning: "A host application gave `StyleRuntime::render` a texture view it cannot draw \
             the style's output into. The view's texture must be 2D with one layer and one mip \
             level, have `RENDER_ATTACHMENT` usage, a colour format with float or normalized \
-            channels that is not sRGB (the style's output is written as `npr render` writes \
-            its PNG; view an sRGB surface through its non-sRGB twin, listed in `view_formats`), \
-            and a size from 1 to the largest image on a side. `Target::Eyes` and \
-            `Target::SideBySide` need a stereo style; the two eyes' views must be the same \
-            size, and a side-by-side view an even width.",
+            channels that is not sRGB (the style's output is display-ready, written as `npr \
+            render` writes its PNG, and an sRGB texture would encode it again; the texture's \
+            format is checked, since wgpu does not tell a view's, so configure a window's \
+            surface with a non-sRGB format), and a size from 1 to the largest image on a side. \
+            `Target::Eyes` and `Target::SideBySide` need a stereo style; the two eyes' views \
+            must be the same size, and a side-by-side view an even width.",
         wrong: Example {
-            style: GREY,
-            not_runnable: Some(
-                "a host's Rust call, not an `npr` command: tests/error_codes/host.rs renders into \
-                 an sRGB view",
+            host_rust: Some(
+                "// The surface's preferred format, here Bgra8UnormSrgb:\n\
+                 config.format = caps.formats[0];\n\
+                 surface.configure(&device, &config);\n\
+                 let view = surface.get_current_texture()?.texture.create_view(&Default::default());\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0602\n",
             ),
+            not_runnable: Some("tests/error_codes/host.rs renders into an sRGB view"),
             ..EXAMPLE
         },
-        fixed: Example { style: GREY, ..EXAMPLE },
+        fixed: Example {
+            host_rust: Some(
+                "// A format without sRGB encoding (Bgra8Unorm, Rgba8Unorm, ...):\n\
+                 config.format = caps.formats.iter().copied().find(|f| !f.is_srgb()).ok_or(\"no linear format\")?;\n\
+                 surface.configure(&device, &config);\n\
+                 let view = surface.get_current_texture()?.texture.create_view(&Default::default());\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("examples/embed.rs renders into a window's surface this way"),
+            ..EXAMPLE
+        },
     },
 ];

@@ -61,6 +61,10 @@ pub struct Example {
     /// Why this example cannot be run on a machine where it is tested;
     /// `tests/general/explain.rs` lists these and runs everything else.
     pub not_runnable: Option<&'static str>,
+    /// A host application's Rust code, shown instead of the style and the
+    /// commands: the mistake is in a call of `runner::embed`, not in a
+    /// file `npr` reads (the host codes, E06xx).
+    pub host_rust: Option<&'static str>,
 }
 
 /// The default of every field but `style`.
@@ -72,6 +76,7 @@ pub const EXAMPLE: Example = Example {
     commands: &[],
     serves: false,
     not_runnable: None,
+    host_rust: None,
 };
 
 /// The command list of an example with no commands.
@@ -115,6 +120,16 @@ impl Example {
     }
 
     fn write_text(&self, out: &mut String) {
+        if let Some(code) = self.host_rust {
+            out.push_str("    // the host application (Rust)\n");
+            for line in code.lines() {
+                out.push_str(&format!("    {line}\n"));
+            }
+            if let Some(why) = self.not_runnable {
+                out.push_str(&format!("    (not run by `npr explain`'s tests: {why})\n"));
+            }
+            return;
+        }
         if !self.style.is_empty() {
             out.push_str(&format!("    // {STYLE_FILE}"));
             if self.encoding == Encoding::Latin1 {
