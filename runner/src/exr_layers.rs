@@ -7,8 +7,9 @@
 //! `R`, `R G` or `R G B A`. Float targets keep their precision exactly: a
 //! 16-bit float target is stored as EXR half, a 32-bit one as float, the
 //! texture's bits unchanged. An 8-bit target is stored as float `v / 255`,
-//! the value a shader read of it gives (for an sRGB target, the encoded
-//! value, as the single-image `.exr` output writes it). Compression is
+//! the value a shader read of it gives (for an sRGB target, its colour
+//! decoded to linear light, as an EXR holds and as the single-image `.exr`
+//! output writes it). Compression is
 //! lossless (`Encoding::FAST_LOSSLESS`), and the file is written atomically.
 
 use crate::readback::TargetImage;
@@ -42,7 +43,10 @@ fn channel_samples(img: &TargetImage, c: usize) -> FlatSamples {
             FlatSamples::F32(samples.map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect())
         }
         Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => {
-            FlatSamples::F32(samples.map(|b| f32::from(b[0]) / 255.0).collect())
+            // As a shader reads it: an sRGB target's colour decoded to
+            // linear, since an EXR holds linear light.
+            let srgb = img.format == Format::Rgba8unormSrgb;
+            FlatSamples::F32(samples.map(|b| crate::srgb::unorm8_as_read(b[0], c, srgb)).collect())
         }
     }
 }

@@ -38,6 +38,7 @@ pub mod pass_timer;
 pub mod readback;
 pub mod scene;
 pub mod schedule;
+pub mod srgb;
 pub mod texgen;
 pub mod texture_file;
 pub mod textures;

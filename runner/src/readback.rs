@@ -15,7 +15,9 @@ pub struct TargetImage {
 }
 
 impl TargetImage {
-    /// Texel (x, y) as RGBA floats; missing channels are 0 (alpha 1).
+    /// Texel (x, y) as RGBA floats, the values a shader reads from the
+    /// target (an sRGB target's colour decoded to linear); missing channels
+    /// are 0 (alpha 1).
     pub fn texel(&self, x: u32, y: u32) -> [f32; 4] {
         let bpp = self.format.bytes_per_pixel() as usize;
         let i = (y as usize * self.width as usize + x as usize) * bpp;
@@ -24,7 +26,9 @@ impl TargetImage {
         let mut out = [0.0, 0.0, 0.0, 1.0];
         for (c, slot) in out.iter_mut().enumerate().take(channels) {
             *slot = match self.format {
-                Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => b[c] as f32 / 255.0,
+                Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => {
+                    crate::srgb::unorm8_as_read(b[c], c, self.format == Format::Rgba8unormSrgb)
+                }
                 Format::R16float | Format::Rg16float | Format::Rgba16float => {
                     half::f16::from_bits(u16::from_le_bytes([b[2 * c], b[2 * c + 1]])).to_f32()
                 }
@@ -42,27 +46,28 @@ impl TargetImage {
     pub fn to_rgba_f32(&self) -> Vec<[f32; 4]> {
         match self.format {
             Format::R8unorm | Format::Rg8unorm | Format::Rgba8unorm | Format::Rgba8unormSrgb => {
-                self.decode(1, |b| b[0] as f32 / 255.0)
+                let srgb = self.format == Format::Rgba8unormSrgb;
+                self.decode(1, |c, b| crate::srgb::unorm8_as_read(b[0], c, srgb))
             }
-            Format::R16float | Format::Rg16float | Format::Rgba16float => {
-                self.decode(2, |b| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32())
-            }
+            Format::R16float | Format::Rg16float | Format::Rgba16float => self.decode(2, |_, b| {
+                half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32()
+            }),
             Format::R32float | Format::Rg32float | Format::Rgba32float => {
-                self.decode(4, |b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                self.decode(4, |_, b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             }
         }
     }
 
     /// Texels with `size`-byte channels decoded by `channel`; missing
     /// channels 0, alpha 1 (as [`TargetImage::texel`]).
-    fn decode(&self, size: usize, channel: impl Fn(&[u8]) -> f32) -> Vec<[f32; 4]> {
+    fn decode(&self, size: usize, channel: impl Fn(usize, &[u8]) -> f32) -> Vec<[f32; 4]> {
         let channels = self.format.channels() as usize;
         self.bytes
             .chunks_exact(self.format.bytes_per_pixel() as usize)
             .map(|px| {
                 let mut out = [0.0, 0.0, 0.0, 1.0];
                 for (c, slot) in out.iter_mut().enumerate().take(channels) {
-                    *slot = channel(&px[c * size..]);
+                    *slot = channel(c, &px[c * size..]);
                 }
                 out
             })

@@ -161,22 +161,6 @@ fn desc(w: u32, h: u32, mips: u32, format: wgpu::TextureFormat) -> wgpu::Texture
     }
 }
 
-fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-fn linear_to_srgb(c: f32) -> f32 {
-    if c <= 0.003_130_8 {
-        c * 12.92
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
-}
-
 /// Halve an RGBA float image with a 2×2 box filter (odd edges clamp).
 pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u32, u32) {
     let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
@@ -221,7 +205,7 @@ fn decode_image(t: &TextureManifest, path: &str, resolved: &str, srgb: bool) -> 
     if srgb {
         for p in &mut pixels {
             for c in &mut p[..3] {
-                *c = srgb_to_linear(*c);
+                *c = crate::srgb::srgb_to_linear(*c);
             }
         }
     }
@@ -301,7 +285,7 @@ fn load_one(
                 .collect();
             (bytemuck::cast_slice(&halves).to_vec(), 8)
         } else {
-            let enc = |c: f32| if srgb { linear_to_srgb(c) } else { c };
+            let enc = |c: f32| if srgb { crate::srgb::linear_to_srgb(c) } else { c };
             (
                 px.iter()
                     .flat_map(|p| {

@@ -47,8 +47,13 @@ fn image(format: Format, width: u32, height: u32) -> TargetImage {
     }
 }
 
-/// `to_rgba8` as it was written before, texel by texel.
+/// `to_rgba8` as it was written before, texel by texel. An sRGB target's
+/// RGBA8 is its stored (encoded) bytes, as its PNG holds them, while its
+/// texels are decoded: the bytes are the definition there.
 fn rgba8_per_texel(t: &TargetImage) -> Vec<u8> {
+    if t.format == Format::Rgba8unormSrgb {
+        return t.bytes.clone();
+    }
     let mut out = Vec::new();
     for y in 0..t.height {
         for x in 0..t.width {
@@ -100,4 +105,57 @@ fn png_decodes_to_the_same_pixels_at_8_and_16_bits() {
         .flat_map(|p| p.map(|c| (if c.is_finite() { c } else { 0.0 }.clamp(0.0, 1.0) * 65535.0).round() as u16))
         .collect();
     assert_eq!(decoded.into_raw(), expected);
+}
+
+/// The sRGB EOTF in f64 (IEC 61966-2-1).
+fn srgb_decode(v: f64) -> f64 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[test]
+fn an_srgb_target_reads_back_linear_and_its_exr_holds_linear_light() {
+    // Every byte value in every channel.
+    let bytes: Vec<u8> = (0..=255u8).flat_map(|b| [b, 255 - b, b, b]).collect();
+    let t = TargetImage {
+        name: "shade".into(),
+        width: 16,
+        height: 16,
+        format: Format::Rgba8unormSrgb,
+        bytes,
+    };
+    let texels = t.to_rgba_f32();
+    for (i, texel) in texels.iter().enumerate() {
+        let stored = &t.bytes[i * 4..i * 4 + 4];
+        for c in 0..3 {
+            let want = srgb_decode(f64::from(stored[c]) / 255.0);
+            assert!(
+                (f64::from(texel[c]) - want).abs() < 1e-6,
+                "texel {i} channel {c}: {} vs {want}",
+                texel[c]
+            );
+        }
+        assert_eq!(texel[3], f32::from(stored[3]) / 255.0, "alpha is not encoded");
+    }
+    // The PNG keeps the encoded bytes (a PNG is sRGB)...
+    assert_eq!(t.to_rgba8().into_raw(), t.bytes);
+    // ...and an EXR, single or layered, holds the linear values.
+    let dir = std::env::temp_dir().join("npr-readback-srgb");
+    std::fs::create_dir_all(&dir).expect("scratch");
+    let single = dir.join("single.exr");
+    runner::output::write_target(&t, &single).expect("write exr");
+    let read = image::open(&single).expect("read exr").to_rgba32f();
+    for (got, want) in read.pixels().zip(&texels) {
+        assert_eq!(got.0, *want);
+    }
+    let layered = runner::exr_layers::encode_layers(std::slice::from_ref(&t)).expect("layers");
+    let read = image::load_from_memory(&layered)
+        .expect("read layered exr")
+        .to_rgba32f();
+    for (got, want) in read.pixels().zip(&texels) {
+        assert_eq!(&got.0[..3], &want[..3]);
+    }
 }
