@@ -188,15 +188,15 @@ mod tests {
 
     #[test]
     fn the_ramp_mixes_within_a_segment_and_steps_at_a_hard_edge() {
-        let stops = vec![(0.2, [0.0; 4]), (0.6, [1.0; 4]), (0.6, [0.5; 4])];
+        let stops = vec![(0.25, [0.0; 4]), (0.75, [1.0; 4]), (0.75, [0.5; 4])];
         assert_eq!(ramp(&stops, false, 0.0), [0.0; 4]);
-        assert_eq!(ramp(&stops, false, 0.4), [0.5; 4]);
-        assert_eq!(ramp(&stops, false, 0.6), [0.5; 4]);
+        assert_eq!(ramp(&stops, false, 0.5), [0.5; 4]);
+        assert_eq!(ramp(&stops, false, 0.75), [0.5; 4]);
         assert_eq!(ramp(&stops, true, 0.5), [0.0; 4]);
         assert_eq!(
             declaration_text(&stops[..2], true),
-            "gradient(stop(0.2, #000000), stop(0.6, #ffffff), mode: constant)"
+            "gradient(stop(0.25, #000000), stop(0.75, #ffffff), mode: constant)"
         );
-        assert_eq!(stops_text(&stops[..2]), "0.2:#000000, 0.6:#ffffff");
+        assert_eq!(stops_text(&stops[..2]), "0.25:#000000, 0.75:#ffffff");
     }
 }
