@@ -195,8 +195,8 @@ mod tests {
         assert_eq!(ramp(&stops, true, 0.5), [0.0; 4]);
         assert_eq!(
             declaration_text(&stops[..2], true),
-            "gradient(stop(0.25, #000000), stop(0.75, #ffffff), mode: constant)"
+            "gradient(stop(0.25, #00000000), stop(0.75, #ffffff), mode: constant)"
         );
-        assert_eq!(stops_text(&stops[..2]), "0.25:#000000, 0.75:#ffffff");
+        assert_eq!(stops_text(&stops[..2]), "0.25:#00000000, 0.75:#ffffff");
     }
 }
