@@ -2,7 +2,7 @@
 //! and `ramp(g, t)`: a colour ramp, as Blender's Color Ramp and Unity's
 //! Gradients are (docs/decisions/0040-a-gradient-is-a-constant-ramp.md).
 //!
-//! A gradient is a constant: its stops are read here from the declaration
+//! A gradient is a constant unless kept live: its stops are read here from the declaration
 //! (E0206 for no stops, unsorted stops, a position outside 0..1, a stop
 //! that is not `stop(position, colour)`), and each `ramp(g, t)` becomes
 //! nodes of the IR that the specializer folds with the stops:
@@ -14,6 +14,11 @@
 //!   the first stop it is `c0`, past the last `c_last`.
 //! - constant: `r = c0`, then `r = mix(r, c_i, step(p_i, t))`: each stop's
 //!   colour from its position on.
+//!
+//! Under `keep_params` a gradient is also an IR param (`ParamTy::Gradient`,
+//! the `abi::gradient` slots) and `ramp(g, t)` is `Intrinsic::Ramp(g)` of
+//! `t`, which the emitter writes as `npr_ramp`, the same rule as a loop
+//! over the uniform's stops.
 
 use super::*;
 use dsl::ast::BinOp;
