@@ -177,6 +177,36 @@ mod tests {
     }
 
     #[test]
+    fn a_value_types_into_the_slots_in_the_declared_mode_or_is_e0206() {
+        use crate::param_literal::{read_literal, SettingOrigin};
+        use crate::param_value::{format_literal, type_value, ParamShape, ValueKind};
+        let declared = vec![(0.0, [0.0, 0.0, 0.0, 1.0]), (1.0, [1.0; 4])];
+        let shape = ParamShape {
+            name: "g".into(),
+            ty: GRADIENT_TYPE.into(),
+            kind: ValueKind::of(GRADIENT_TYPE),
+            components: 4,
+            range: None,
+            variants: Vec::new(),
+            per_object: false,
+            default: pack(&declared, true),
+            default_percent_of_height: false,
+        };
+        let typed = |text: &str| type_value(&shape, &read_literal(text), text, &SettingOrigin::Host);
+        let text = "0:#ff0000, 0.5:#00ff0080, 1:#0000ff";
+        let v = typed(text).expect("stops").value;
+        let (stops, constant) = unpack(&v).expect("slots");
+        assert!(constant, "the declared mode stays");
+        assert_eq!(stops[1], (0.5, [0.0, 1.0, 0.0, 128.0 / 255.0]));
+        assert_eq!(format_literal(&shape, &v).as_deref(), Some(text), "written back as typed");
+        for bad in ["0.8:#000000, 0.2:#ffffff", "0:#000000, 1.5:#ffffff", "#ff0000", "0:#zz0000", "3"] {
+            let r = typed(bad).expect_err(bad);
+            assert_eq!(r.code, "E0206", "{bad}: {r:?}");
+            assert!(r.help.contains("position:#colour"), "{bad}: {r:?}");
+        }
+    }
+
+    #[test]
     fn bad_stops_are_named() {
         assert!(check_stops(&[]).unwrap().contains("0 stops"));
         assert!(check_stops(&[(1.5, [0.0; 4])]).unwrap().contains("outside 0..1"));
