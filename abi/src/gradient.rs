@@ -198,8 +198,18 @@ mod tests {
         let (stops, constant) = unpack(&v).expect("slots");
         assert!(constant, "the declared mode stays");
         assert_eq!(stops[1], (0.5, [0.0, 1.0, 0.0, 128.0 / 255.0]));
-        assert_eq!(format_literal(&shape, &v).as_deref(), Some(text), "written back as typed");
-        for bad in ["0.8:#000000, 0.2:#ffffff", "0:#000000, 1.5:#ffffff", "#ff0000", "0:#zz0000", "3"] {
+        assert_eq!(
+            format_literal(&shape, &v).as_deref(),
+            Some(text),
+            "written back as typed"
+        );
+        for bad in [
+            "0.8:#000000, 0.2:#ffffff",
+            "0:#000000, 1.5:#ffffff",
+            "#ff0000",
+            "0:#zz0000",
+            "3",
+        ] {
             let r = typed(bad).expect_err(bad);
             assert_eq!(r.code, "E0206", "{bad}: {r:?}");
             assert!(r.help.contains("position:#colour"), "{bad}: {r:?}");
