@@ -116,9 +116,9 @@ fn centroids_on_a_grazing_plane_count_only_the_vertices_in_front() {
         cpu[0].0
     );
     assert_eq!(screen[0][count][0] as f64, cpu[0].0, "vertices counted");
-    for k in 0..2 {
+    for (k, got) in extent[0][centroid].iter().take(2).enumerate() {
         let want = cpu[0].1[k] / cpu[0].0;
-        let got = extent[0][centroid][k] as f64;
+        let got = *got as f64;
         assert!(
             (got - want).abs() <= 1e-4 * want.abs().max(size as f64),
             "centroid[{k}] {got} vs {want} px"

@@ -190,3 +190,26 @@ fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
         );
     }
 }
+
+/// A manifest is untrusted until validated: a live gradient's slots are
+/// counted in the style block's size, its offset must leave room for all
+/// 21, and its value must be their 84 components.
+#[test]
+fn a_live_gradient_manifest_is_validated_slot_by_slot() {
+    let program = compile(&style(false), true);
+    let good = &program.manifest;
+    good.validate().expect("the compiled manifest is valid");
+    let index = good.params.iter().position(|p| p.name == "g").expect("g");
+    let mut short = good.clone();
+    short.params[index].default.truncate(80);
+    let err = short.validate().expect_err("a short value").to_string();
+    assert!(err.contains(&format!("params[{index}].default")), "{err}");
+    let mut one_slot = good.clone();
+    one_slot.style_uniform_size = 16;
+    let err = one_slot.validate().expect_err("a block of one slot").to_string();
+    assert!(err.contains("style_uniform_size"), "{err}");
+    let mut late = good.clone();
+    late.params[index].offset = Some(16);
+    let err = late.validate().expect_err("slots past the block").to_string();
+    assert!(err.contains(&format!("params[{index}].offset")), "{err}");
+}
