@@ -111,11 +111,18 @@ fn all_cases() -> Vec<Case> {
             let c = compile_example(&path, schedule, false);
             cases_of(&format!("{name} --schedule {}", schedule.name()), None, &c, &mut out);
         }
-        // A gradient kept live is other WGSL (`npr_ramp` over a uniform
+        // A gradient kept live is other WGSL (`npr_ramp_<g>` over a uniform
         // array): the examples that declare one, also with --keep-params.
         if std::fs::read_to_string(&path).is_ok_and(|t| t.contains(": gradient")) {
-            let c = compile_example(&path, Schedule::default(), true);
-            cases_of(&format!("{name} --keep-params"), None, &c, &mut out);
+            for schedule in Schedule::ALL {
+                let c = compile_example(&path, schedule, true);
+                cases_of(
+                    &format!("{name} --keep-params --schedule {}", schedule.name()),
+                    None,
+                    &c,
+                    &mut out,
+                );
+            }
         }
     }
     let first = common::fuzz::first_case();

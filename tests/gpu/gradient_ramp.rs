@@ -2,7 +2,7 @@
 //! out in f64 (compiler/src/front/resolve/gradient.rs): linear stops, two
 //! stops at one position (a hard edge), and `mode: constant`; folded into
 //! the shader and kept live (`--keep-params`: a uniform read by
-//! `npr_ramp`), and live stops set at run time as a host sets them.
+//! `npr_ramp_g`), and live stops set at run time as a host sets them.
 
 use super::common::{artmaps, gpu};
 use abi::param_literal::{read_literal, SettingOrigin};
@@ -54,11 +54,16 @@ fn style(constant: bool) -> String {
 }
 
 fn compile(text: &str, keep_params: bool) -> runner::StyleProgram {
+    compile_scheduled(text, keep_params, compiler::ir::Schedule::default())
+}
+
+fn compile_scheduled(text: &str, keep_params: bool, schedule: compiler::ir::Schedule) -> runner::StyleProgram {
     // The style reads no file: the repository root is its directory.
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut sources = diag::SourceMap::new();
     let opts = compiler::CompileOptions {
         keep_params,
+        schedule,
         ..Default::default()
     };
     match compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
@@ -152,7 +157,7 @@ fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
         );
         let shader = program.shaders.values().map(String::as_str).collect::<String>();
         assert!(
-            shader.contains("npr_ramp(params.p_g"),
+            shader.contains("npr_ramp_g(") && shader.contains("params.p_g["),
             "the live ramp reads the uniform"
         );
         let mut r = Renderer::new(&g.device, &g.queue, &program, &scene).expect("renderer");
@@ -212,4 +217,31 @@ fn a_live_gradient_manifest_is_validated_slot_by_slot() {
     late.params[index].offset = Some(16);
     let err = late.validate().expect_err("slots past the block").to_string();
     assert!(err.contains(&format!("params[{index}].offset")), "{err}");
+}
+
+/// Every schedule emits the live ramp (a tiled image pass copies it into
+/// its compute module): each gives the folded row within 1e-6.
+#[test]
+fn a_live_gradient_is_the_same_under_every_schedule() {
+    let scene = scene();
+    let g = gpu();
+    let folded = {
+        let program = compile(&style(false), false);
+        let mut r = Renderer::new(&g.device, &g.queue, &program, &scene).expect("renderer");
+        row(&mut r, &scene)
+    };
+    for schedule in compiler::ir::Schedule::ALL {
+        let program = compile_scheduled(&style(false), true, schedule);
+        let mut r = Renderer::new(&g.device, &g.queue, &program, &scene).expect("renderer");
+        let live = row(&mut r, &scene);
+        for (x, (a, b)) in live.iter().zip(&folded).enumerate() {
+            for k in 0..4 {
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-6,
+                    "--schedule {}, texel {x}, channel {k}: live {a:?} vs folded {b:?}",
+                    schedule.name()
+                );
+            }
+        }
+    }
 }

@@ -158,7 +158,7 @@ impl Emitter<'_> {
                         Intrinsic::ProjectOtherEye => format!("npr_project(frame.other_view_proj, {})", a[0]),
                         Intrinsic::ProjectPrevious => format!("npr_project(frame.previous_view_proj, {})", a[0]),
                         Intrinsic::Ramp(g) => {
-                            format!("npr_ramp(params.p_{}, {})", self.ir.params[g.0 as usize].name, a[0])
+                            format!("npr_ramp_{}({})", self.ir.params[g.0 as usize].name, a[0])
                         }
                         other => format!("{}({})", other.name(), a.join(", ")),
                     }

@@ -20,8 +20,8 @@ pub(super) struct Uses {
     pub project: bool,
     /// A style-uniform parameter (the `Params` block).
     pub style_params: bool,
-    /// `ramp` of a live gradient (`helpers::RAMP_HELPER`).
-    pub ramp: bool,
+    /// The live gradients `ramp` reads (`helpers::ramp_helper`).
+    pub ramps: BTreeSet<ParamId>,
     /// `50%`: needs `frame.resolution`.
     pub percent: bool,
     /// Stdlib operators called directly (their dependencies come later).
@@ -81,7 +81,7 @@ impl Uses {
         self.textures.extend(other.textures);
         self.project |= other.project;
         self.style_params |= other.style_params;
-        self.ramp |= other.ramp;
+        self.ramps.extend(other.ramps);
         self.percent |= other.percent;
         self.operators.extend(other.operators);
         self.linear_sampler |= other.linear_sampler;
@@ -140,11 +140,11 @@ impl Emitter<'_> {
                     u.style_params = true;
                 }
                 ExprKind::Call {
-                    callee: Callee::Intrinsic(Intrinsic::Ramp(_)),
+                    callee: Callee::Intrinsic(Intrinsic::Ramp(g)),
                     ..
                 } => {
                     u.style_params = true;
-                    u.ramp = true;
+                    u.ramps.insert(*g);
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
                 ExprKind::Select { cond, .. } if self.needs_runtime_condition(*id, *cond) => {

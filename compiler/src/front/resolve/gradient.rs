@@ -17,7 +17,7 @@
 //!
 //! Under `keep_params` a gradient is also an IR param (`ParamTy::Gradient`,
 //! the `abi::gradient` slots) and `ramp(g, t)` is `Intrinsic::Ramp(g)` of
-//! `t`, which the emitter writes as `npr_ramp`, the same rule as a loop
+//! `t`, which the emitter writes as `npr_ramp_<g>`, the same rule as a loop
 //! over the uniform's stops.
 
 use super::*;
@@ -286,7 +286,7 @@ impl Resolver<'_> {
                         Some((Symbol::Gradient(i), _)) => {
                             let i = *i;
                             if let (Some(param), Some(_)) = (self.gradient_params[i], &self.gradients[i]) {
-                                // Kept live: the uniform's stops, read by `npr_ramp`.
+                                // Kept live: the uniform's stops, read by `npr_ramp_<g>`.
                                 let t = self.expr(&t.value);
                                 return self.ir.add(
                                     ExprKind::Call {
