@@ -9,6 +9,7 @@
 //!   generated, so the two cannot drift apart.
 //! - [`object`]: the fixed head of the per-object uniform block
 //!   ([`ObjectHead`]) and its WGSL members ([`OBJECT_HEAD_WGSL`]), the same way.
+//! - [`gradient`]: the slots of a `gradient` parameter kept live.
 //! - [`lines`]: a `lines` pass's edges, shape settings and strip vertex.
 //! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
 //! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
@@ -27,6 +28,7 @@ pub mod artmap;
 mod block;
 pub mod formats;
 pub mod frame;
+pub mod gradient;
 pub mod halftone;
 pub mod lines;
 pub mod manifest;

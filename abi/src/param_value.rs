@@ -52,6 +52,9 @@ pub enum ValueKind {
     Unit(Unit),
     /// vec2..vec4 of plain numbers.
     Vector,
+    /// A colour ramp kept live: its slots ([`crate::gradient`]), typed
+    /// from stops (`0:#000000, 1:#ffffff`).
+    Gradient,
     /// A type no single value sets (nothing the compiler declares today;
     /// an unknown type in a manifest from elsewhere).
     Unsupported,
@@ -68,6 +71,7 @@ impl ValueKind {
             "color" => ValueKind::Colour,
             "range" => ValueKind::Range,
             "vec2" | "vec3" | "vec4" => ValueKind::Vector,
+            crate::gradient::GRADIENT_TYPE => ValueKind::Gradient,
             t if t.starts_with("enum(") => ValueKind::Enum,
             t => match unit_of_suffix(t) {
                 Some(u) if u != Unit::None => ValueKind::Unit(u),
@@ -146,6 +150,7 @@ pub mod codes {
     pub const TYPE_MISMATCH: &str = "E0201";
     pub const UNIT_MISMATCH: &str = "E0202";
     pub const OUT_OF_RANGE: &str = "E0203";
+    pub const BAD_GRADIENT: &str = "E0206";
 }
 
 /// Why a value was refused: a code, the message, the label under the value, a hint.
@@ -271,6 +276,7 @@ pub fn type_value(
             }
         }
         (ValueKind::Vector, _) => return Err(type_error(p, text, &origin.expected_vector(p.components))),
+        (ValueKind::Gradient, literal) => gradient_value(p, literal, text, origin)?,
     };
     check_range(p, &value)?;
     Ok(ParamOverride {
@@ -278,6 +284,37 @@ pub fn type_value(
         value,
         percent_of_height: false,
     })
+}
+
+/// The slots of a gradient set to `literal`'s stops, in the declared mode
+/// (the default's); E0206 for text that is no list of sorted stops in 0..1.
+fn gradient_value(p: &ParamShape, literal: &Literal, text: &str, origin: &SettingOrigin) -> Result<Vec<f64>, Refusal> {
+    use crate::gradient;
+    let help = format!(
+        "write the stops as `position:#colour`, comma-separated, positions from 0 to 1 in order: `{}`",
+        origin.example(&p.name, "0:#000000, 0.5:#ff8800, 1:#ffffff")
+    );
+    let Literal::Stops(stops) = literal else {
+        return Err(refuse(
+            codes::BAD_GRADIENT,
+            format!(
+                "`{text}` is not a value of `{}`: a gradient's value is a list of stops",
+                p.name
+            ),
+            "not `position:#colour, ...`",
+            help,
+        ));
+    };
+    if let Some(why) = gradient::check_stops(stops) {
+        return Err(refuse(
+            codes::BAD_GRADIENT,
+            format!("`{text}` is no gradient"),
+            why,
+            help,
+        ));
+    }
+    let constant = gradient::unpack(&p.default).is_some_and(|(_, constant)| constant);
+    Ok(gradient::pack(stops, constant))
 }
 
 /// The range check of a typed value: the declared `in lo..hi` of a number,
@@ -378,6 +415,7 @@ pub fn format_literal(p: &ParamShape, value: &[f64]) -> Option<String> {
         }
         ValueKind::Range => format!("{}..{}", fmt_num(first), fmt_num(*value.get(1)?)),
         ValueKind::Vector => value.iter().map(|v| fmt_num(*v)).collect::<Vec<_>>().join(", "),
+        ValueKind::Gradient => crate::gradient::stops_text(&crate::gradient::unpack(value)?.0),
         ValueKind::Unsupported => return None,
     })
 }

@@ -199,12 +199,17 @@ impl Manifest {
             .iter()
             .any(|p| matches!(p.kind, PassKindManifest::Render { .. }));
         let count = |b: ParamBinding| self.params.iter().filter(|p| p.binding == b).count() as u64;
-        let style_size = 16 * count(ParamBinding::Uniform);
+        let style_size: u64 = self
+            .params
+            .iter()
+            .filter(|p| p.binding == ParamBinding::Uniform)
+            .map(|p| 16 * crate::gradient::slots_of(&p.ty) as u64)
+            .sum();
         if self.style_uniform_size != style_size {
             return bad(
                 "style_uniform_size",
                 format!(
-                    "{} bytes, but the style block holds one 16-byte slot per uniform param ({style_size} bytes)",
+                    "{} bytes, but the style block holds one 16-byte slot per uniform param, a gradient's 21 ({style_size} bytes)",
                     self.style_uniform_size
                 ),
             );
@@ -249,12 +254,26 @@ impl Manifest {
                     format!("param `{}` is bound but has no offset", p.name),
                 );
             };
-            if offset < start || offset % 16 != 0 || offset.saturating_add(16) > size {
+            // A gradient takes several slots (`crate::gradient`), every other param one.
+            let slots = crate::gradient::slots_of(&p.ty);
+            let bytes = 16 * slots as u64;
+            if offset < start || offset % 16 != 0 || offset.saturating_add(bytes) > size {
                 return bad(
                     format!("{field}.offset"),
                     format!(
-                        "param `{}`: offset {offset} is not a 16-byte slot in {start}..{size} of its block",
+                        "param `{}`: offset {offset} is not the start of {slots} 16-byte slot(s) in {start}..{size} of its block",
                         p.name
+                    ),
+                );
+            }
+            if slots > 1 && (p.binding != ParamBinding::Uniform || p.default.len() != slots * 4) {
+                return bad(
+                    format!("{field}.default"),
+                    format!(
+                        "param `{}` is a {}: a style-block value of {} components",
+                        p.name,
+                        p.ty,
+                        slots * 4
                     ),
                 );
             }

@@ -10,4 +10,5 @@ fn refusal_codes_are_diags() {
     assert_eq!(abi_codes::TYPE_MISMATCH, codes::TYPE_MISMATCH);
     assert_eq!(abi_codes::UNIT_MISMATCH, codes::UNIT_MISMATCH);
     assert_eq!(abi_codes::OUT_OF_RANGE, codes::OUT_OF_RANGE);
+    assert_eq!(abi_codes::BAD_GRADIENT, codes::BAD_GRADIENT);
 }

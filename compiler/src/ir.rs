@@ -280,6 +280,11 @@ pub enum ParamTy {
     Color,
     Enum(Vec<String>),
     Range(Ty),
+    /// A `gradient` kept live (`--keep-params`): its default is the
+    /// [`abi::gradient`] slots' components (a `Const::Vec` of 84), read
+    /// only by `Intrinsic::Ramp`. A folded gradient is no IR param
+    /// (`front/resolve/gradient.rs`).
+    Gradient,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -313,6 +318,7 @@ impl Param {
             ParamTy::Enum(v) => format!("enum({})", v.join("|")),
             ParamTy::Range(_) => "range".into(),
             ParamTy::Color => "color".into(),
+            ParamTy::Gradient => abi::gradient::GRADIENT_TYPE.into(),
             ParamTy::Value(t) => match self.unit {
                 Unit::None => t.describe().into(),
                 u => u.name().into(),

@@ -86,6 +86,7 @@ pub fn run(
         opts.scene.as_ref(),
         opts.paths.as_ref(),
         &opts.settings,
+        opts.keep_params,
         &mut diags,
     )
     .map_err(CompileError::Internal)?;

@@ -1,6 +1,7 @@
 //! Parameter values at run time: keyframe interpolation for animated
 //! parameters, and the byte layout of the style and per-object uniform
-//! blocks (one `vec4<f32>` slot per parameter, see the manifest).
+//! blocks (one `vec4<f32>` slot per parameter, a gradient's several: see
+//! the manifest and `abi::gradient`).
 
 use crate::scene::Object;
 use abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
@@ -66,10 +67,14 @@ pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
         }
         let Some(off) = p.offset else { continue };
         let v = percent(p, value_at(p, time_s), height);
-        let bytes: [u8; 16] = bytemuck::cast(slot(&v));
-        let off = off as usize;
-        if off + 16 <= out.len() {
-            out[off..off + 16].copy_from_slice(&bytes);
+        // One vec4 per slot; a gradient has several (`abi::gradient`).
+        let slots = abi::gradient::slots_of(&p.ty);
+        for k in 0..slots {
+            let bytes: [u8; 16] = bytemuck::cast(slot(v.get(k * 4..).unwrap_or(&[])));
+            let off = off as usize + k * 16;
+            if off + 16 <= out.len() {
+                out[off..off + 16].copy_from_slice(&bytes);
+            }
         }
     }
     out

@@ -85,6 +85,7 @@ pub fn intrinsic_doc(i: compiler::ir::Intrinsic) -> String {
         Project => "`project(p)`: a world point → (screen u, screen v, NDC depth) in this eye.".into(),
         ProjectOtherEye => "`project_other_eye(p)`: the same in the other eye of a stereo frame.".into(),
         ProjectPrevious => "`project_previous(p)`: the same with the previous frame's camera.".into(),
+        Ramp(_) => "`ramp(g, t)` of a gradient kept live (`--keep-params`): its colour at `t`, read from the style uniform block.".into(),
     }
 }
 

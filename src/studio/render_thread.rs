@@ -331,7 +331,14 @@ impl Studio {
             .iter()
             .find(|c| c.typed.name == name)
             .map(|c| c.literal.clone());
-        let literal = typed.or_else(|| {
+        let literal = if param.ty == abi::gradient::GRADIENT_TYPE {
+            // A file writes a gradient as the language does,
+            // `gradient(stop(0.0, #000000), ...)`, not as `--set` text.
+            abi::gradient::unpack(&o.value).map(|(stops, constant)| abi::gradient::declaration_text(&stops, constant))
+        } else {
+            typed
+        };
+        let literal = literal.or_else(|| {
             if o.percent_of_height {
                 Some(format!("{}%", o.value[0]))
             } else {

@@ -15,7 +15,9 @@ use serde_json::Value;
 pub struct ParamState {
     #[serde(flatten)]
     pub manifest: ParamManifest,
-    /// `float`, `int`, `bool`, `enum`, `color`, `range`, `unit`, `vector`, or `none` (no control).
+    /// `float`, `int`, `bool`, `enum`, `color`, `range`, `unit`, `vector`,
+    /// `gradient` (a ramp strip; `manifest.default` holds its `abi::gradient`
+    /// slots), or `none` (no control).
     pub control: String,
     /// The unit suffix a slider's number is written with (`px`, `deg`, ...), or "".
     pub suffix: String,
@@ -56,6 +58,7 @@ fn param_state(p: &ParamManifest, overrides: &[ParamOverride], written: &Written
         ValueKind::Range => "range",
         ValueKind::Vector => "vector",
         ValueKind::Unit(_) => "unit",
+        ValueKind::Gradient => "gradient",
         ValueKind::Unsupported => "none",
     };
     let range_written = p.range.map(|(lo, hi)| (kind.to_written(lo), kind.to_written(hi)));

@@ -67,7 +67,8 @@ function renderControls(params, paramError) {
     const row = document.querySelector(`.param[data-name="${p.name}"]`);
     if (!row) continue;
     const input = row.querySelector(".input");
-    if (input && document.activeElement !== input) setInput(input, p);
+    if (p.control === "gradient") updateGradient(input, p);
+    else if (input && document.activeElement !== input) setInput(input, p);
     row.querySelector(".value").textContent = p.literal;
     const err = paramError && paramError.name === p.name ? paramError.message + (paramError.help ? " (" + paramError.help + ")" : "") : "";
     row.querySelector(".error").textContent = err;
@@ -87,12 +88,125 @@ function literalOf(input, p) {
   return input.value;
 }
 
+// ---- gradient: a ramp strip with stops to add, move (drag or type) and recolour.
+// Its value is `--set` text, `0:#000000, 0.5:#ff8800, 1:#ffffff`; the server
+// types it (E0206 for bad stops) and re-renders through the kept uniform.
+
+function parseStops(text) {
+  return text.split(",").map((s) => {
+    const [pos, colour] = s.trim().split(":");
+    return { pos: parseFloat(pos), colour: colour.trim() };
+  });
+}
+
+function stopsText(stops) { return stops.map((s) => `${+s.pos.toFixed(4)}:${s.colour}`).join(", "); }
+
+// `#rrggbb[aa]` as CSS `rgba(...)`, so a transparent stop shows as one.
+function cssColour(c) {
+  const n = (i) => parseInt(c.slice(i, i + 2), 16);
+  const a = c.length > 7 ? n(7) / 255 : 1;
+  return `rgba(${n(1)}, ${n(3)}, ${n(5)}, ${a})`;
+}
+
+function rampCss(stops, constant) {
+  const parts = [];
+  stops.forEach((s, i) => {
+    parts.push(`${cssColour(s.colour)} ${s.pos * 100}%`);
+    // Constant mode: each colour holds until the next stop.
+    if (constant && i + 1 < stops.length) parts.push(`${cssColour(s.colour)} ${stops[i + 1].pos * 100}%`);
+  });
+  return `linear-gradient(to right, ${parts.join(", ")})`;
+}
+
+function buildGradient(p) {
+  const g = el("div", { class: "input gradient" });
+  g.stops = parseStops(p.literal);
+  g.selected = 0;
+  g.constant = (p.default || [])[1] > 0.5;
+  const strip = el("div", { class: "strip" });
+  const pos = el("input", { type: "number", class: "stop-pos", min: 0, max: 1, step: 0.01, title: "the selected stop's position, 0 to 1" });
+  const colour = el("input", { type: "color", class: "stop-colour", title: "the selected stop's colour" });
+  const send = () => post("/param", { name: p.name, literal: stopsText(g.stops) });
+  // Keep the moved stop selected when the order changes.
+  const reorder = () => {
+    const moved = g.stops[g.selected];
+    g.stops.sort((a, b) => a.pos - b.pos);
+    g.selected = g.stops.indexOf(moved);
+  };
+  pos.addEventListener("change", () => {
+    g.stops[g.selected].pos = Math.min(1, Math.max(0, parseFloat(pos.value) || 0));
+    reorder(); drawGradient(g); send();
+  });
+  colour.addEventListener("input", () => {
+    const old = g.stops[g.selected].colour;
+    g.stops[g.selected].colour = colour.value + old.slice(7);  // keep the stop's alpha
+    drawGradient(g); send();
+  });
+  const add = el("button", { class: "add-stop", title: "add a stop halfway to the next one", onclick: () => {
+    const i = g.selected, s = g.stops;
+    const [a, b] = i + 1 < s.length ? [s[i], s[i + 1]] : [s[i - 1] || s[i], s[i]];
+    g.stops.splice(s.indexOf(b), 0, { pos: (a.pos + b.pos) / 2, colour: s[i].colour });
+    g.selected = g.stops.indexOf(g.stops.find((x) => x.pos === (a.pos + b.pos) / 2));
+    drawGradient(g); send();
+  } }, "add stop");
+  const remove = el("button", { class: "remove-stop", title: "remove the selected stop", onclick: () => {
+    if (g.stops.length < 2) return;
+    g.stops.splice(g.selected, 1);
+    g.selected = Math.min(g.selected, g.stops.length - 1);
+    drawGradient(g); send();
+  } }, "remove");
+  // Drag a stop along the strip; sent when released.
+  strip.addEventListener("pointerdown", (e) => {
+    const handle = e.target.closest(".stop");
+    if (!handle) return;
+    g.selected = Number(handle.dataset.i);
+    g.dragging = true;
+    g.moved = false;
+    strip.setPointerCapture(e.pointerId);
+    drawGradient(g);
+  });
+  strip.addEventListener("pointermove", (e) => {
+    if (!g.dragging) return;
+    const r = strip.getBoundingClientRect();
+    g.stops[g.selected].pos = Math.min(1, Math.max(0, (e.clientX - r.left) / r.width));
+    g.moved = true;
+    reorder(); drawGradient(g);
+  });
+  // A click only selects; a drag sends the moved stop.
+  strip.addEventListener("pointerup", () => { if (g.dragging) { g.dragging = false; if (g.moved) send(); } });
+  g.append(strip, el("div", { class: "stop-row" }, "stop ", pos, colour, add, remove));
+  drawGradient(g);
+  return g;
+}
+
+function drawGradient(g) {
+  const strip = g.querySelector(".strip");
+  strip.style.background = rampCss(g.stops, g.constant);
+  strip.replaceChildren(...g.stops.map((s, i) => el("div", {
+    class: "stop" + (i === g.selected ? " selected" : ""), "data-i": i,
+    style: `left: ${s.pos * 100}%; background: ${cssColour(s.colour)}`, title: `${s.pos}: ${s.colour}`,
+  })));
+  const pos = g.querySelector(".stop-pos"), colour = g.querySelector(".stop-colour");
+  if (document.activeElement !== pos) pos.value = g.stops[g.selected].pos;
+  colour.value = g.stops[g.selected].colour.slice(0, 7);
+}
+
+// The server's value (a reset, a file change) unless the user is editing it.
+function updateGradient(g, p) {
+  if (!g || g.dragging || g.contains(document.activeElement)) return;
+  if (stopsText(g.stops) === stopsText(parseStops(p.literal))) return;
+  g.stops = parseStops(p.literal);
+  g.selected = Math.min(g.selected, g.stops.length - 1);
+  drawGradient(g);
+}
+
 function buildControl(p) {
   let input;
   const send = () => post("/param", { name: p.name, literal: literalOf(input, p) });
   if (p.control === "bool") input = el("input", { type: "checkbox", class: "input", onchange: send });
   else if (p.control === "enum") input = el("select", { class: "input", onchange: send }, ...p.enum_variants.map((v) => el("option", { value: v }, v)));
   else if (p.control === "color") input = el("input", { type: "color", class: "input", oninput: send });
+  else if (p.control === "gradient") input = buildGradient(p);
   else if (p.range_written && (p.control === "float" || p.control === "int" || p.control === "unit"))
     input = el("input", { type: "range", class: "input", min: p.range_written[0], max: p.range_written[1], step: p.step, oninput: send });
   else if (p.control === "float" || p.control === "int" || p.control === "unit")

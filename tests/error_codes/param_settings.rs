@@ -183,4 +183,22 @@ fn e0206_a_set_gradient_out_of_order_or_malformed() {
     check_case("E0206", "E0206_set_unsorted", (d, r));
     let (d, r) = cli_errors(&["check", "examples/toon_ramp.npr", "--set", "shading=0:#00, 1"], &dir);
     check_case("E0206", "E0206_set_malformed", (d, r));
+    // Kept live (a uniform, `--keep-params`), the same text is refused the same way.
+    let out = dir.join("never.png");
+    let (d, r) = cli_errors(
+        &[
+            "render",
+            "examples/toon_ramp.npr",
+            "--scene",
+            "examples/scenes/spot.toml",
+            "--keep-params",
+            "--set",
+            "shading=0.5:#000000, 0.2:#ffffff",
+            "-o",
+            out.to_str().expect("utf-8"),
+        ],
+        &dir,
+    );
+    check_case("E0206", "E0206_set_unsorted", (d, r));
+    assert!(!out.exists(), "a refused value renders nothing");
 }

@@ -303,3 +303,179 @@ fn the_page_shows_the_image_follows_a_slider_shows_and_clears_errors_and_switche
         assert_close(&b.canvas(), &before, "the scene camera after reset");
     });
 }
+
+/// The page's value of the `shading` gradient (`--set` text).
+const SHADING: &str = "state.params.find((p) => p.name === 'shading').literal";
+
+impl Page {
+    /// Wait for a frame after `before` that shows `shading` other than
+    /// `old`, and return that value.
+    fn next_shading(&mut self, what: &str, before: u64, old: &str) -> String {
+        self.wait_until(
+            what,
+            &format!(
+                "Number(document.body.dataset.shownFrame) > {before} && Number(document.body.dataset.shownFrame) === state.frame.id \
+                 && {SHADING} !== {old:?}"
+            ),
+        );
+        self.eval(SHADING).as_str().expect("literal").to_string()
+    }
+
+    /// The centre of the `i`th stop handle and the strip's left edge and width, in page pixels.
+    fn stop_geometry(&mut self, i: usize) -> (f64, f64, f64, f64) {
+        let v = self.eval(&format!(
+            "(() => {{ const g = document.querySelector('.param[data-name=shading] .gradient'); \
+             const h = g.querySelector('.stop[data-i=\"{i}\"]').getBoundingClientRect(); \
+             const s = g.querySelector('.strip').getBoundingClientRect(); \
+             return [h.left + h.width / 2, h.top + h.height / 2, s.left, s.width]; }})()"
+        ));
+        let n = |k: usize| v[k].as_f64().expect("number");
+        (n(0), n(1), n(2), n(3))
+    }
+
+    fn mouse(&mut self, kind: &str, x: f64, y: f64) {
+        self.call(
+            "Input.dispatchMouseEvent",
+            json!({"type": kind, "x": x, "y": y, "button": "left", "buttons": 1, "clickCount": 1}),
+        );
+    }
+}
+
+/// The gradient editor of `examples/toon_ramp.npr` (kept live, a uniform):
+/// recolour a stop, drag one along the strip, add one; each re-renders to
+/// what `npr render --keep-params --set shading=...` of the page's value
+/// renders (within 1/255), and `write` puts the stops into the file as the
+/// language writes them, which renders the same image with no `--set`.
+#[test]
+fn the_page_edits_a_gradient_and_writes_its_stops_into_the_file() {
+    let dir = common::live::scratch("studio-browser", "gradient");
+    let style = dir.join("toon_ramp.npr");
+    let original = std::fs::read_to_string("examples/toon_ramp.npr").expect("style");
+    std::fs::write(&style, &original).expect("copy");
+    let (_studio, addr) = start_studio(&style);
+    let mut b = Page::launch(&dir.join("profile"), dir.clone());
+    b.call("Page.enable", json!({}));
+    b.call("Page.navigate", json!({"url": format!("http://{addr}/")}));
+    let set = |literal: &str| format!("shading={literal}");
+
+    let (mut image, mut literal) = (Vec::new(), String::new());
+    b.step("g1_strip", |b| {
+        b.wait_until(
+            "the gradient's six stops and a frame",
+            "document.querySelectorAll('.param[data-name=shading] .gradient .stop').length === 6 \
+             && document.body.dataset.shownFrame",
+        );
+        literal = b.eval(SHADING).as_str().expect("literal").to_string();
+        assert_eq!(
+            literal,
+            "0:#2a1f4a, 0.35:#5a3a6a, 0.5:#8a4a5a, 0.5:#e07a3a, 0.85:#f2b36a, 1:#fff0d0"
+        );
+        image = b.canvas();
+        assert_close(&image, &reference(&style, &[], &dir.join("g0.png")), "the first frame");
+    });
+
+    // Each edit: a new frame, other than the last, equal to `--set` of the page's value.
+    let mut check = |b: &mut Page, name: &str, new: &str| {
+        let now = b.canvas();
+        assert_ne!(now, image, "{name} changes the image");
+        assert_close(
+            &now,
+            &reference(&style, &[&set(new)], &dir.join(format!("{name}.png"))),
+            name,
+        );
+        image = now;
+    };
+
+    b.step("g2_recolour", |b| {
+        let before = b.shown_frame();
+        let (x, y, _, _) = b.stop_geometry(0);
+        b.mouse("mousePressed", x, y);
+        b.mouse("mouseReleased", x, y);
+        b.eval(
+            "(() => { const c = document.querySelector('.param[data-name=shading] .stop-colour'); \
+             c.value = '#00ff00'; c.dispatchEvent(new Event('input')); })()",
+        );
+        let new = b.next_shading("the recoloured stop's frame", before, &literal);
+        assert_eq!(new, literal.replacen("#2a1f4a", "#00ff00", 1));
+        check(b, "recoloured", &new);
+        literal = new;
+    });
+
+    b.step("g3_move", |b| {
+        let before = b.shown_frame();
+        // Drag the stop at 0.35 to 0.2 of the strip's width.
+        let (x, y, left, width) = b.stop_geometry(1);
+        let to = left + 0.2 * width;
+        b.mouse("mousePressed", x, y);
+        b.mouse("mouseMoved", (x + to) / 2.0, y);
+        b.mouse("mouseMoved", to, y);
+        b.mouse("mouseReleased", to, y);
+        let new = b.next_shading("the moved stop's frame", before, &literal);
+        let moved: f64 = new
+            .split(", ")
+            .nth(1)
+            .and_then(|s| s.split(':').next())
+            .expect("a stop")
+            .parse()
+            .expect("a position");
+        assert!((moved - 0.2).abs() < 0.01, "the stop moved to {moved}, not 0.2: {new}");
+        check(b, "moved", &new);
+        literal = new;
+    });
+
+    b.step("g4_add", |b| {
+        let before = b.shown_frame();
+        b.eval("document.querySelector('.param[data-name=shading] .add-stop').click()");
+        let new = b.next_shading("the added stop's frame", before, &literal);
+        assert_eq!(new.split(", ").count(), 7, "a seventh stop: {new}");
+        check(b, "added", &new);
+        literal = new;
+    });
+
+    b.step("g5_bad", |b| {
+        // A value out of order is refused with its code, and the image stays.
+        let frame = b.shown_frame();
+        let bad = http::post(
+            &addr,
+            "/param",
+            &json!({"name": "shading", "literal": "0.8:#000000, 0.2:#ffffff"}),
+        );
+        assert!(bad.status < 500, "{}", bad.status);
+        b.wait_until(
+            "the refusal",
+            "document.querySelector('.param[data-name=shading] .error').textContent.includes('E0206')",
+        );
+        assert_eq!(b.shown_frame(), frame, "a refused value renders nothing");
+    });
+
+    b.step("g6_write", |b| {
+        let before = b.shown_frame();
+        b.eval("document.querySelector('.param[data-name=shading] button[title^=\"write\"]').click()");
+        let abi::param_literal::Literal::Stops(stops) = abi::param_literal::read_literal(&literal) else {
+            panic!("the page's value is no stops: {literal}")
+        };
+        let declared = abi::gradient::declaration_text(&stops, false);
+        let start = original.find("gradient(stop").expect("the default");
+        let end = start + original[start..].find('\n').expect("end of line");
+        let expected = format!("{}{declared}{}", &original[..start], &original[end..]);
+        let deadline = Instant::now() + common::live::HANG;
+        while std::fs::read_to_string(&style).ok().as_deref() != Some(expected.as_str()) {
+            assert!(
+                Instant::now() < deadline,
+                "the file never had the stops; it has:\n{}",
+                std::fs::read_to_string(&style).unwrap_or_default()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        b.wait_until(
+            "the written file's frame",
+            &format!(
+                "!document.querySelector('#diagnostics .diag.error') && Number(document.body.dataset.shownFrame) > {before} \
+                 && Number(document.body.dataset.shownFrame) === state.frame.id && !state.params.find((p) => p.name === 'shading').overridden"
+            ),
+        );
+        assert_eq!(b.eval(SHADING).as_str(), Some(literal.as_str()), "the file's value is the page's");
+        assert_close(&b.canvas(), &reference(&style, &[], &dir.join("written.png")), "the written file");
+        assert_close(&b.canvas(), &image, "the written file renders the edited image");
+    });
+}

@@ -69,10 +69,11 @@ fn example_files() -> Vec<PathBuf> {
     files
 }
 
-fn compile_example(path: &Path, schedule: Schedule) -> Compiled {
+fn compile_example(path: &Path, schedule: Schedule, keep_params: bool) -> Compiled {
     let mut sources = diag::SourceMap::new();
     let opts = CompileOptions {
         schedule,
+        keep_params,
         paths: Some(diag::paths::PathPolicy::new(&diag::paths::PathPolicy::default_root(&[path]), &[]).expect("root")),
         ..Default::default()
     };
@@ -107,8 +108,21 @@ fn all_cases() -> Vec<Case> {
     for path in example_files() {
         let name = path.strip_prefix(root).unwrap_or(&path).display().to_string();
         for schedule in Schedule::ALL {
-            let c = compile_example(&path, schedule);
+            let c = compile_example(&path, schedule, false);
             cases_of(&format!("{name} --schedule {}", schedule.name()), None, &c, &mut out);
+        }
+        // A gradient kept live is other WGSL (`npr_ramp_<g>` over a uniform
+        // array): the examples that declare one, also with --keep-params.
+        if std::fs::read_to_string(&path).is_ok_and(|t| t.contains(": gradient")) {
+            for schedule in Schedule::ALL {
+                let c = compile_example(&path, schedule, true);
+                cases_of(
+                    &format!("{name} --keep-params --schedule {}", schedule.name()),
+                    None,
+                    &c,
+                    &mut out,
+                );
+            }
         }
     }
     let first = common::fuzz::first_case();

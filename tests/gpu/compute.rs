@@ -2,7 +2,8 @@
 //! sums, per-object state across frames (first value, updates, resets,
 //! partial re-renders, time jumps), the previous frame's transforms, tags
 //! (the object-centroids example's goldens are sidecar tests,
-//! `examples/object_centroids.tests.toml`).
+//! `examples/object_centroids.tests.toml`; its grazing hard scene is a
+//! test here).
 
 use glam::{DMat4, DVec3, DVec4};
 use runner::scene::Scene;
@@ -45,19 +46,22 @@ fn spec(size: u32, frame: u32) -> FrameSpec {
     FrameSpec::animated(size, size, frame, FrameSpec::DEFAULT_FPS, 0)
 }
 
-/// `npr_project` in f64: world point → screen uv (y down), or far off
-/// screen behind the eye.
-fn project(view_proj: DMat4, p: DVec3) -> (f64, f64) {
+/// `npr_project` in f64: world point → (screen u, v (y down), NDC depth),
+/// or `None` behind the eye (where `npr_project` puts it far off screen).
+fn project(view_proj: DMat4, p: DVec3) -> Option<(f64, f64, f64)> {
     let c = view_proj * DVec4::new(p.x, p.y, p.z, 1.0);
     if c.w <= 1e-8 {
-        return (-1e9, -1e9);
+        return None;
     }
-    (c.x / c.w * 0.5 + 0.5, 0.5 - c.y / c.w * 0.5)
+    Some((c.x / c.w * 0.5 + 0.5, 0.5 - c.y / c.w * 0.5, c.z / c.w))
 }
 
 /// Per object: (count, Σpx, min px, max px) of its projected vertices, in f64.
 type Reduced = (f64, [f64; 2], [f64; 2], [f64; 2]);
 
+/// The example's reduction in f64: the vertices between the near and far
+/// planes (NDC depth in 0..1, as `examples/object_centroids.npr` counts
+/// them), projected to pixels.
 fn cpu_reduction(scene: &Scene, size: u32, time_s: f64) -> Vec<Reduced> {
     let pose = scene.camera.pose(time_s);
     // The camera matrices are the runner's (f32, widened); everything after
@@ -71,7 +75,9 @@ fn cpu_reduction(scene: &Scene, size: u32, time_s: f64) -> Vec<Reduced> {
             let mut r: Reduced = (0.0, [0.0; 2], [f64::MAX; 2], [f64::MIN; 2]);
             for p in &o.mesh.positions {
                 let w = model.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
-                let (u, v) = project(view_proj, w);
+                let Some((u, v, _)) = project(view_proj, w).filter(|(_, _, z)| (0.0..1.0).contains(z)) else {
+                    continue;
+                };
                 let px = [u * size as f64, v * size as f64];
                 r.0 += 1.0;
                 for (k, x) in px.iter().enumerate() {
@@ -83,6 +89,46 @@ fn cpu_reduction(scene: &Scene, size: u32, time_s: f64) -> Vec<Reduced> {
             r
         })
         .collect()
+}
+
+/// Issue 34's sweep found the example blank on a ground plane seen at a
+/// grazing angle (`scenes/hard/grazing.toml`): half the plane's vertices
+/// are behind the eye, and counted at `npr_project`'s far-off-screen
+/// point they dragged the centroid a billion pixels away. The reduction
+/// counts only the vertices in front (between near and far), so the
+/// centroid is theirs, in f64 within 1e-4 of its size, and the image has
+/// dots: more than the two colours of paper and background.
+#[test]
+fn centroids_on_a_grazing_plane_count_only_the_vertices_in_front() {
+    let program = example("examples/object_centroids.npr");
+    let scene = scene("examples/scenes/hard/grazing.toml");
+    let size = 64;
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    r.render(&scene, &spec(size, 0)).expect("frame");
+    let (count, centroid) = (slot(&program, "screen", "count"), slot(&program, "extent", "centroid"));
+    let screen = r.read_object_values("screen").expect("screen values");
+    let extent = r.read_object_values("extent").expect("extent values");
+    let cpu = cpu_reduction(&scene, size, spec(size, 0).time_s);
+    let all = scene.objects[0].mesh.positions.len() as f64;
+    assert!(
+        cpu[0].0 > 0.0 && cpu[0].0 < all,
+        "the hard scene has vertices behind the eye and in front: {} of {all} in front",
+        cpu[0].0
+    );
+    assert_eq!(screen[0][count][0] as f64, cpu[0].0, "vertices counted");
+    for (k, got) in extent[0][centroid].iter().take(2).enumerate() {
+        let want = cpu[0].1[k] / cpu[0].0;
+        let got = *got as f64;
+        assert!(
+            (got - want).abs() <= 1e-4 * want.abs().max(size as f64),
+            "centroid[{k}] {got} vs {want} px"
+        );
+    }
+    let img = r.read_output().expect("read");
+    let mut colours: Vec<[u8; 4]> = img.bytes.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 2, "the plane shows dots, not one colour: {colours:?}");
 }
 
 /// The example's reductions (`screen`) and derived values (`extent`) equal
@@ -280,8 +326,10 @@ output shade.c
     let mut want = [0.0f64; 2];
     for p in &scene.objects[ground].mesh.positions {
         let p = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);
-        let a = project(now, scene.objects[ground].model.as_dmat4().transform_point3(p));
-        let b = project(then, before.as_dmat4().transform_point3(p));
+        // Behind the eye `npr_project` gives (-1e9, -1e9), as here.
+        let uv = |vp, w| project(vp, w).map_or((-1e9, -1e9), |(u, v, _)| (u, v));
+        let a = uv(now, scene.objects[ground].model.as_dmat4().transform_point3(p));
+        let b = uv(then, before.as_dmat4().transform_point3(p));
         want[0] += a.0 - b.0;
         want[1] += a.1 - b.1;
     }

@@ -178,7 +178,8 @@ pub fn allocate(
         match b {
             ParamBinding::Uniform => {
                 alloc.param_offsets.insert(id, style_slots * 16);
-                style_slots += 1;
+                // A gradient's slots are contiguous (`abi::gradient`).
+                style_slots += abi::gradient::slots_of(&ir.params[i].declared_type()) as u64;
             }
             ParamBinding::PerObject => {
                 alloc.param_offsets.insert(id, OBJECT_PARAMS_OFFSET + object_slots * 16);

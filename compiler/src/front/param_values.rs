@@ -22,7 +22,11 @@ pub fn shape_of_ir(ir: &Ir, p: &Param) -> ParamShape {
         name: p.name.clone(),
         kind: ValueKind::of(&ty),
         ty,
-        components: p.value_ty.components().unwrap_or(1),
+        components: if p.ty == ParamTy::Gradient {
+            4
+        } else {
+            p.value_ty.components().unwrap_or(1)
+        },
         range: p.range,
         variants: match &p.ty {
             ParamTy::Enum(v) => v.clone(),

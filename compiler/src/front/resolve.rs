@@ -44,18 +44,21 @@ pub fn resolve(
     paths: Option<&diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
-    resolve_with_settings(loaded, scene, paths, &[], diags).map(|(ir, _)| ir)
+    resolve_with_settings(loaded, scene, paths, &[], false, diags).map(|(ir, _)| ir)
 }
 
 /// [`resolve`], with the settings of `gradient` params (`--set g="0:#000,
 /// 1:#fff"`) applied to their stops here, since a gradient is a constant of
 /// the resolver (`resolve/gradient.rs`); also the names of the settings it
-/// took, which the typing of the others after typecheck leaves out.
+/// took, which the typing of the others after typecheck leaves out. With
+/// `keep_params` (`CompileOptions::keep_params`) a gradient is also a
+/// parameter of the IR, a uniform its `ramp`s read (`ParamTy::Gradient`).
 pub fn resolve_with_settings(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
     paths: Option<&diag::paths::PathPolicy>,
     settings: &[ParamSetting],
+    keep_params: bool,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<(Ir, Vec<String>), InternalError> {
     let mut r = Resolver {
@@ -75,6 +78,8 @@ pub fn resolve_with_settings(
         in_vertex: false,
         internal: None,
         gradients: Vec::new(),
+        gradient_params: Vec::new(),
+        keep_params,
         gradient_settings: settings,
         gradients_set: Vec::new(),
     };
@@ -132,6 +137,9 @@ struct Resolver<'d> {
     /// The declared gradients (`gradient.rs`): constants, read by `ramp`;
     /// `None` for one whose declaration was refused.
     gradients: Vec<Option<gradient::Gradient>>,
+    /// Each gradient's IR param when it is kept live (`keep_params`).
+    gradient_params: Vec<Option<ParamId>>,
+    keep_params: bool,
     /// The caller's settings; those naming a gradient are applied here.
     gradient_settings: &'d [ParamSetting],
     /// The names of the gradients a setting set.
@@ -167,6 +175,11 @@ impl Resolver<'_> {
                     // `ramp`s do not cascade into unknown names.
                     let g = self.gradient_decl(p).and_then(|g| self.set_gradient(&p.name.name, g));
                     self.declare(&p.name, Symbol::Gradient(self.gradients.len()));
+                    let live = match &g {
+                        Some(g) if self.keep_params => self.live_gradient(p, g),
+                        _ => None,
+                    };
+                    self.gradient_params.push(live);
                     self.gradients.push(g);
                 }
                 Item::Param(p) if is_texture_type(&p.ty) => {
@@ -242,11 +255,19 @@ impl Resolver<'_> {
 
     fn resolve_all(&mut self, items: &[(Item, std::path::PathBuf)], header: Option<Span>) {
         let mut param_index = 0;
+        let mut gradient_index = 0;
         let mut pass_index = 0;
         let mut output_seen: Option<Span> = None;
         for (item, _) in items {
             match item {
-                Item::Param(p) if is_texture_type(&p.ty) || gradient::is_gradient_type(&p.ty) => {}
+                Item::Param(p) if is_texture_type(&p.ty) => {}
+                Item::Param(p) if gradient::is_gradient_type(&p.ty) => {
+                    // A gradient kept live took the next param id in `declare_all`.
+                    if self.gradient_params.get(gradient_index).is_some_and(Option::is_some) {
+                        param_index += 1;
+                    }
+                    gradient_index += 1;
+                }
                 Item::Param(p) => {
                     // Params past MAX_PARAMS were refused and have no id.
                     if (param_index as usize) < self.ir.params.len() {

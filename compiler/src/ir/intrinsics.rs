@@ -26,6 +26,11 @@ pub enum Intrinsic {
     ProjectOtherEye,
     /// `project_previous(p)`: the same with the previous frame's camera.
     ProjectPrevious,
+    /// `ramp(g, t)` of a gradient kept live: the colour of gradient param
+    /// `g` (slots of the style block) at `t`, the one argument. Made by the
+    /// resolver only (a folded gradient's `ramp` is a chain of `mix`), so
+    /// not in [`Intrinsic::TABLE`].
+    Ramp(ParamId),
 }
 
 impl Intrinsic {
@@ -95,6 +100,7 @@ impl Intrinsic {
             Intrinsic::Project => "project",
             Intrinsic::ProjectOtherEye => "project_other_eye",
             Intrinsic::ProjectPrevious => "project_previous",
+            Intrinsic::Ramp(_) => "ramp",
         }
     }
 }

@@ -150,6 +150,8 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
                 },
                 // Projections depend on the camera: never constants.
                 Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious => None,
+                // A live gradient's stops are a uniform: never constants.
+                Intrinsic::Ramp(_) => None,
             }
         }
         // naga evaluates both arms of a constant `select`; each arm's own

@@ -91,7 +91,11 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
                             live.history.insert(target);
                         }
                     }
-                    ExprKind::Param(p) => {
+                    ExprKind::Param(p)
+                    | ExprKind::Call {
+                        callee: Callee::Intrinsic(Intrinsic::Ramp(p)),
+                        ..
+                    } => {
                         live.params.insert(p);
                     }
                     ExprKind::Texture(t) => {

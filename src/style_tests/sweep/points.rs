@@ -83,7 +83,8 @@ pub fn axis(p: &ParamShape) -> Option<Axis> {
                 })
                 .collect()
         }
-        ValueKind::Unsupported => return None,
+        // A gradient's stops are a style's design, not a range to sweep.
+        ValueKind::Gradient | ValueKind::Unsupported => return None,
     };
     let mut seen = Vec::new();
     values.retain(|v| {

@@ -184,11 +184,20 @@ impl Emitter<'_> {
         }
     }
 
-    /// One `p_<name>: vec4<f32>` field per parameter bound as `which`.
+    /// One `p_<name>: vec4<f32>` field per parameter bound as `which`; a
+    /// gradient's slots as one array (`abi::gradient`).
     fn param_fields(&self, text: &mut String, which: ParamBinding) {
         for (i, b) in self.bindings.iter().enumerate() {
             if *b == which {
-                let _ = writeln!(text, "    p_{}: vec4<f32>,", self.ir.params[i].name);
+                let p = &self.ir.params[i];
+                match abi::gradient::slots_of(&p.declared_type()) {
+                    1 => {
+                        let _ = writeln!(text, "    p_{}: vec4<f32>,", p.name);
+                    }
+                    n => {
+                        let _ = writeln!(text, "    p_{}: array<vec4<f32>, {n}>,", p.name);
+                    }
+                }
             }
         }
     }

@@ -157,6 +157,9 @@ impl Emitter<'_> {
                         Intrinsic::Project => format!("npr_project(frame.view_proj, {})", a[0]),
                         Intrinsic::ProjectOtherEye => format!("npr_project(frame.other_view_proj, {})", a[0]),
                         Intrinsic::ProjectPrevious => format!("npr_project(frame.previous_view_proj, {})", a[0]),
+                        Intrinsic::Ramp(g) => {
+                            format!("npr_ramp_{}({})", self.ir.params[g.0 as usize].name, a[0])
+                        }
                         other => format!("{}({})", other.name(), a.join(", ")),
                     }
                 }

@@ -1,5 +1,5 @@
 //! WGSL text every pass kind may include: the helper functions the emitter calls (`npr_load`, `npr_project`,
-//! `npr_project_dir`, `npr_unit`; the `Frame` block is `abi::FRAME_WGSL`). Constants only; which module includes
+//! `npr_project_dir`, `npr_unit`, `npr_ramp_*`; the `Frame` block is `abi::FRAME_WGSL`). Constants only; which module includes
 //! which is decided in `mod.rs` and the per-kind files.
 
 /// `project(p)` and `project_other_eye(p)`.
@@ -50,6 +50,43 @@ fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2
 }
 
 ";
+
+/// `ramp(g, t)` of gradient param `name` kept live: the folded chain's
+/// rule (`front/resolve/gradient.rs`, `abi::gradient::ramp`) as a loop
+/// over the param's slots of the style block, in the layout
+/// `abi::gradient` defines. One function per gradient, reading
+/// `params.p_<name>` by a dynamic index into the uniform (valid WGSL for
+/// naga and Tint), rather than taking the array: an array value is copied
+/// per call, and its type's comma would not split as a parameter list
+/// (`tiled/library.rs`).
+pub(super) fn ramp_helper(name: &str) -> String {
+    use abi::gradient::{COLOUR_SLOT, MAX_STOPS, POSITION_SLOT};
+    format!(
+        "// Gradient `{name}` at t: slot 0 (count, constant), colours from slot {COLOUR_SLOT}, positions from
+// slot {POSITION_SLOT} four to a slot. r = c0, then per next stop r = mix(r, c_i, f), as the folded ramp.
+fn npr_ramp_{name}(t: f32) -> vec4<f32> {{
+    let n = i32(params.p_{name}[0].x);
+    let constant = params.p_{name}[0].y > 0.5;
+    var r = params.p_{name}[{COLOUR_SLOT}];
+    for (var i = 1; i < {MAX_STOPS}; i = i + 1) {{
+        if (i >= n) {{
+            break;
+        }}
+        let p0 = params.p_{name}[{POSITION_SLOT} + (i - 1) / 4][(i - 1) % 4];
+        let p1 = params.p_{name}[{POSITION_SLOT} + i / 4][i % 4];
+        var f: f32;
+        if (constant || p1 == p0) {{
+            f = step(p1, t);
+        }} else {{
+            f = saturate((t - p0) / (p1 - p0));
+        }}
+        r = mix(r, params.p_{name}[{COLOUR_SLOT} + i], f);
+    }}
+    return r;
+}}
+"
+    )
+}
 
 /// Normalisation that never makes NaN: render passes' builtins use it.
 pub(super) const UNIT_HELPER: &str = "// Unit vector, or zero for a zero input (never NaN).
@@ -140,6 +177,7 @@ pub(super) fn library_texts() -> Vec<String> {
     .map(String::from)
     .to_vec();
     texts.push(round_f16_helper());
+    texts.push(ramp_helper("g"));
     texts.extend(abi::Format::ALL.iter().map(|(_, f)| stored_helper(*f)));
     texts
 }

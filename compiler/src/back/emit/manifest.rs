@@ -134,7 +134,12 @@ pub fn build(
                 doc: p.doc.clone(),
                 ty: p.declared_type(),
                 unit: p.unit.name().to_string(),
-                components: p.value_ty.components().unwrap_or(1),
+                // A gradient's value is its slots, four components each.
+                components: if p.ty == ParamTy::Gradient {
+                    4
+                } else {
+                    p.value_ty.components().unwrap_or(1)
+                },
                 default,
                 default_percent_of_height: percent,
                 range: p.range,

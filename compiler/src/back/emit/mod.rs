@@ -278,6 +278,10 @@ impl Emitter<'_> {
             w.push_str(PROJECT_HELPER);
             w.push('\n');
         }
+        for g in &uses.ramps {
+            w.push_str(&helpers::ramp_helper(&self.ir.params[g.0 as usize].name));
+            w.push('\n');
+        }
         if !uses.runtime_conditions.is_empty() {
             w.push_str(helpers::RUNTIME_BOOL_HELPER);
             w.push('\n');

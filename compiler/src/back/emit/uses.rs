@@ -20,6 +20,8 @@ pub(super) struct Uses {
     pub project: bool,
     /// A style-uniform parameter (the `Params` block).
     pub style_params: bool,
+    /// The live gradients `ramp` reads (`helpers::ramp_helper`).
+    pub ramps: BTreeSet<ParamId>,
     /// `50%`: needs `frame.resolution`.
     pub percent: bool,
     /// Stdlib operators called directly (their dependencies come later).
@@ -79,6 +81,7 @@ impl Uses {
         self.textures.extend(other.textures);
         self.project |= other.project;
         self.style_params |= other.style_params;
+        self.ramps.extend(other.ramps);
         self.percent |= other.percent;
         self.operators.extend(other.operators);
         self.linear_sampler |= other.linear_sampler;
@@ -135,6 +138,13 @@ impl Emitter<'_> {
                 }
                 ExprKind::Param(p) if self.bindings[p.0 as usize] == ParamBinding::Uniform => {
                     u.style_params = true;
+                }
+                ExprKind::Call {
+                    callee: Callee::Intrinsic(Intrinsic::Ramp(g)),
+                    ..
+                } => {
+                    u.style_params = true;
+                    u.ramps.insert(*g);
                 }
                 ExprKind::PercentOfHeight(_) => u.percent = true,
                 ExprKind::Select { cond, .. } if self.needs_runtime_condition(*id, *cond) => {

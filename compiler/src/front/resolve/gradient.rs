@@ -2,7 +2,7 @@
 //! and `ramp(g, t)`: a colour ramp, as Blender's Color Ramp and Unity's
 //! Gradients are (docs/decisions/0040-a-gradient-is-a-constant-ramp.md).
 //!
-//! A gradient is a constant: its stops are read here from the declaration
+//! A gradient is a constant unless kept live: its stops are read here from the declaration
 //! (E0206 for no stops, unsorted stops, a position outside 0..1, a stop
 //! that is not `stop(position, colour)`), and each `ramp(g, t)` becomes
 //! nodes of the IR that the specializer folds with the stops:
@@ -14,6 +14,11 @@
 //!   the first stop it is `c0`, past the last `c_last`.
 //! - constant: `r = c0`, then `r = mix(r, c_i, step(p_i, t))`: each stop's
 //!   colour from its position on.
+//!
+//! Under `keep_params` a gradient is also an IR param (`ParamTy::Gradient`,
+//! the `abi::gradient` slots) and `ramp(g, t)` is `Intrinsic::Ramp(g)` of
+//! `t`, which the emitter writes as `npr_ramp_<g>`, the same rule as a loop
+//! over the uniform's stops.
 
 use super::*;
 use dsl::ast::BinOp;
@@ -187,6 +192,45 @@ impl Resolver<'_> {
         })
     }
 
+    /// Under `keep_params`: `g` as a parameter of the IR, a uniform of
+    /// [`abi::gradient`]'s slots whose default is its stops packed, so
+    /// `--set`, the studio and a host's `set_param` change it without a
+    /// recompile. `None` (with E0404) past the parameter limit.
+    pub(super) fn live_gradient(&mut self, p: &ast::ParamDecl, g: &Gradient) -> Option<ParamId> {
+        if self.ir.params.len() == MAX_PARAMS {
+            self.error(
+                Diagnostic::error(codes::LIMIT_EXCEEDED, "too many parameters")
+                    .with_primary(p.name.span, format!("parameter number {}", MAX_PARAMS + 1))
+                    .with_help(format!("a style may have at most {MAX_PARAMS} parameters")),
+            );
+            return None;
+        }
+        let slots = abi::gradient::pack(&g.stops, g.constant);
+        let default = self.ir.add_typed(
+            ExprKind::Const(Const::Vec(slots)),
+            Ty::Unknown,
+            Unit::None,
+            p.default.span,
+        );
+        let id = ParamId(self.ir.params.len() as u32);
+        self.ir.params.push(Param {
+            name: p.name.name.clone(),
+            doc: p.doc.clone(),
+            ty: ParamTy::Gradient,
+            // No value type: only `ramp` reads it (`Intrinsic::Ramp`).
+            value_ty: Ty::Unknown,
+            unit: Unit::None,
+            per_object: false,
+            default,
+            range: None,
+            keys: Vec::new(),
+            interpolation: "linear".into(),
+            span: p.span,
+            name_span: p.name.span,
+        });
+        Some(id)
+    }
+
     /// `stop(position, colour)`: a position in 0..1 and a colour literal.
     fn stop(&mut self, stop: &ast::Call) -> Option<(f64, [f64; 4])> {
         let [pos, colour] = stop.args.as_slice() else {
@@ -239,7 +283,21 @@ impl Resolver<'_> {
             [g, t] if g.name.is_none() && t.name.is_none() => {
                 match &g.value.kind {
                     ast::ExprKind::Name(n) => match self.names.get(&n.name) {
-                        Some((Symbol::Gradient(i), _)) => self.gradients[*i].clone().map(|g| (g, t)),
+                        Some((Symbol::Gradient(i), _)) => {
+                            let i = *i;
+                            if let (Some(param), Some(_)) = (self.gradient_params[i], &self.gradients[i]) {
+                                // Kept live: the uniform's stops, read by `npr_ramp_<g>`.
+                                let t = self.expr(&t.value);
+                                return self.ir.add(
+                                    ExprKind::Call {
+                                        callee: Callee::Intrinsic(Intrinsic::Ramp(param)),
+                                        args: vec![t],
+                                    },
+                                    span,
+                                );
+                            }
+                            self.gradients[i].clone().map(|g| (g, t))
+                        }
                         _ => {
                             self.error(
                             Diagnostic::error(codes::TYPE_MISMATCH, format!("`{}` is not a gradient", n.name))

@@ -17,7 +17,8 @@ impl Checker<'_> {
             | Intrinsic::Normalize
             | Intrinsic::Project
             | Intrinsic::ProjectOtherEye
-            | Intrinsic::ProjectPrevious => Some(1),
+            | Intrinsic::ProjectPrevious
+            | Intrinsic::Ramp(_) => Some(1),
             Intrinsic::Map2(_) | Intrinsic::Dot | Intrinsic::Distance | Intrinsic::Cross => Some(2),
             Intrinsic::Map3(_) => Some(3),
         };
@@ -157,6 +158,14 @@ impl Checker<'_> {
                 } else {
                     (vec![a], t, Unit::None)
                 }
+            }
+            // A live gradient's colour at `t`: a colour, as the folded chain of `mix` is.
+            Intrinsic::Ramp(_) => {
+                let t = self.promote_int(args[0]);
+                if self.vt(t) != Ty::Float {
+                    return self.type_error(t, "a number from 0 to 1", None);
+                }
+                (vec![t], Ty::Vec4, Unit::None)
             }
             Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious => {
                 if self.vt(args[0]) != Ty::Vec3 {

@@ -71,6 +71,11 @@ impl Checker<'_> {
                 callee: Callee::Intrinsic(Intrinsic::Map("saturate" | "abs")),
                 args,
             } => self.is_color(args[0]),
+            // A live gradient's colour, as its folded `mix` chain of colour constants is.
+            ExprKind::Call {
+                callee: Callee::Intrinsic(Intrinsic::Ramp(_)),
+                ..
+            } => true,
             _ => false,
         };
         if derived {
