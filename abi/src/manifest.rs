@@ -22,8 +22,9 @@ pub mod layout;
 pub use compute::*;
 pub use device::*;
 
-/// Bumped whenever the layout of the manifest or of the fixed uniform blocks changes.
-pub const MANIFEST_VERSION: u32 = 7;
+/// Bumped whenever the layout of the manifest or of the fixed uniform blocks
+/// changes (8: a `gradient` param kept live fills 21 slots).
+pub const MANIFEST_VERSION: u32 = 8;
 
 /// The side of a [`PassKindManifest::TiledImage`] workgroup, in pixels.
 pub const TILE_SIZE: u32 = 16;
