@@ -175,7 +175,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub scene: PathBuf,
     /// Output image (.png or .exr); without it, `<style>.png` in the current
-    /// directory (none with --dump-passes alone). With --frames, `{frame}`
+    /// directory (none with --dump-passes or --checkpoints alone). With --frames, `{frame}`
     /// in the name is replaced by the frame number (otherwise `_NNNN` is
     /// appended); a .mp4, .webm or .gif is one video of the frames.
     #[arg(short, long)]

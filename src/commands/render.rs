@@ -44,8 +44,9 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     };
     // Without `-o`, `<style>.png` here (`.exr` with --layers); said once it
     // is written, so that an earlier error is not preceded by a note about
-    // a file never made.
-    let defaulted = out.is_none() && dump_passes.is_none();
+    // a file never made. With --dump-passes or --checkpoints alone, what
+    // is asked for is those (a farm's first pass writes only checkpoints).
+    let defaulted = out.is_none() && dump_passes.is_none() && checkpoints.is_none();
     let out = match out {
         Some(o) => Some(o),
         None if defaulted => Some(default_output(style.as_deref(), compiled.as_deref(), layers)),

@@ -33,6 +33,7 @@ const EXPECTED: &[&str] = &[
     "lsa_contours.npr::spheres",
     "lsa_contours.npr::spot",
     "lsa_stereo.npr::sphere_on_plane",
+    "lsa_stereo.npr::sphere_on_plane_right_eye",
     "metatexture.npr::spot",
     "object_centroids.npr::orbit_00",
     "object_centroids.npr::orbit_12",

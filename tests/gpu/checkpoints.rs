@@ -167,3 +167,43 @@ fn a_restored_state_continues_the_sequence_where_a_fresh_renderer_does_not() {
         );
     }
 }
+
+/// A farm's first pass (`--checkpoints` with `--checkpoint-every`, no `-o`)
+/// writes the checkpoints and no image: `npr render` without `-o` writes
+/// `<style>.png` only when nothing else was asked for.
+#[test]
+fn a_checkpoint_pass_without_an_output_writes_no_images() {
+    let dir = scratch("checkpoints", "pass_without_output");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
+        .args([
+            "render",
+            root().join("examples/afterimage.npr").to_str().expect("utf-8"),
+        ])
+        .args([
+            "--scene",
+            root().join("examples/scenes/orbit.toml").to_str().expect("utf-8"),
+        ])
+        .args([
+            "--size",
+            "24x16",
+            "--frames",
+            "0-3",
+            "--checkpoints",
+            "ck",
+            "--checkpoint-every",
+            "2",
+        ])
+        .current_dir(&dir)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run npr");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut written: Vec<String> = std::fs::read_dir(&dir)
+        .expect("scratch")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    written.sort();
+    assert_eq!(written, ["ck"], "only the checkpoint directory is written");
+    let checkpoints = std::fs::read_dir(dir.join("ck")).expect("checkpoints").count();
+    assert!(checkpoints >= 2, "checkpoints at frames 2 and 4: {checkpoints}");
+}
