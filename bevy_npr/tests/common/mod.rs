@@ -237,6 +237,19 @@ pub const MAX_FAR: f64 = 0.01;
 pub const MEAN: f64 = 0.5;
 
 pub fn assert_close(name: &str, actual: &image::RgbaImage, expected: &image::RgbaImage) {
+    // A flat reference would make the comparison say little.
+    let first = expected.get_pixel(0, 0).0;
+    let differing = expected.pixels().filter(|p| p.0 != first).count();
+    assert!(
+        differing > (SIZE * SIZE / 20) as usize,
+        "{name}: npr render's image is nearly flat ({differing} pixels differ from the corner)"
+    );
+    if std::env::var_os("BEVY_NPR_KEEP_IMAGES").is_some() {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr_images");
+        std::fs::create_dir_all(&dir).expect("image folder");
+        actual.save(dir.join(format!("{name}.actual.png"))).expect("write image");
+        expected.save(dir.join(format!("{name}.expected.png"))).expect("write image");
+    }
     let mut far = 0usize;
     let mut sum = 0u64;
     let mut diff = image::RgbaImage::new(actual.width(), actual.height());
