@@ -215,6 +215,19 @@ fn two_cameras_one_hdr_draw_lsa_contours_and_toon_on_spheres() {
     let toon_camera = spawn_camera(&mut app, &scene, toon_handle, &toon_image);
     wait_for_style(&mut app, lsa_camera, "LSA contours");
     wait_for_style(&mut app, toon_camera, "Toon");
+    // The two view targets: linear light in a float texture, and in an sRGB one.
+    for (camera, format) in [
+        (lsa_camera, TextureFormat::Rgba16Float),
+        (toon_camera, TextureFormat::Rgba8UnormSrgb),
+    ] {
+        let render = render_entity(&mut app, camera);
+        let target = app
+            .sub_app(bevy::render::RenderApp)
+            .world()
+            .get::<bevy::render::view::ViewTarget>(render)
+            .map(|t| t.main_texture_format());
+        assert_eq!(target, Some(format));
+    }
     assert_close(
         "lsa_contours_spheres_hdr",
         &read_image(&app, &lsa_image),

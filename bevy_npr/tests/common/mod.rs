@@ -247,8 +247,12 @@ pub fn assert_close(name: &str, actual: &image::RgbaImage, expected: &image::Rgb
     if std::env::var_os("BEVY_NPR_KEEP_IMAGES").is_some() {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr_images");
         std::fs::create_dir_all(&dir).expect("image folder");
-        actual.save(dir.join(format!("{name}.actual.png"))).expect("write image");
-        expected.save(dir.join(format!("{name}.expected.png"))).expect("write image");
+        actual
+            .save(dir.join(format!("{name}.actual.png")))
+            .expect("write image");
+        expected
+            .save(dir.join(format!("{name}.expected.png")))
+            .expect("write image");
     }
     let mut far = 0usize;
     let mut sum = 0u64;
