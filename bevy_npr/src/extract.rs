@@ -85,6 +85,25 @@ fn npr_light(light: &NprLight, transform: &GlobalTransform) -> runner::scene::Li
     }
 }
 
+/// What a camera drawn by a style is extracted from.
+type NprCameraData = (
+    Entity,
+    &'static RenderEntity,
+    &'static NprStyle,
+    &'static NprParams,
+    &'static GlobalTransform,
+    &'static Projection,
+);
+
+/// What a mesh entity is extracted from.
+type MeshEntityData = (
+    Entity,
+    &'static Mesh3d,
+    &'static GlobalTransform,
+    &'static InheritedVisibility,
+    Option<&'static NprObject>,
+);
+
 /// Frames extracted so far.
 #[derive(Default)]
 pub(crate) struct FrameCounter(u32);
@@ -92,25 +111,8 @@ pub(crate) struct FrameCounter(u32);
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn extract_npr(
     mut commands: Commands,
-    cameras: Extract<
-        Query<(
-            Entity,
-            &RenderEntity,
-            &NprStyle,
-            &NprParams,
-            &GlobalTransform,
-            &Projection,
-        )>,
-    >,
-    objects: Extract<
-        Query<(
-            Entity,
-            &Mesh3d,
-            &GlobalTransform,
-            &InheritedVisibility,
-            Option<&NprObject>,
-        )>,
-    >,
+    cameras: Extract<Query<NprCameraData>>,
+    objects: Extract<Query<MeshEntityData>>,
     lights: Extract<Query<(Entity, &NprLight, &GlobalTransform)>>,
     styles: Extract<Res<Assets<NprStyleAsset>>>,
     meshes: Extract<Res<NprMeshes>>,

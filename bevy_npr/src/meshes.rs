@@ -43,7 +43,7 @@ pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<runner::scene::Mesh, String> 
         None => (0..positions.len() as u32).collect(),
     };
     // Checked before normals and tangents are derived from the indices.
-    if indices.is_empty() || indices.len() % 3 != 0 {
+    if indices.is_empty() || !indices.len().is_multiple_of(3) {
         return Err(format!(
             "it has {} indices, not a positive multiple of 3",
             indices.len()
