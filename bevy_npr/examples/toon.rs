@@ -5,10 +5,11 @@
 //! through `NprParams`.
 //!
 //! `cargo run -p bevy_npr --example toon [-- --frames N]`: `--frames N`
-//! quits after N frames (the log says which style drew the camera;
-//! bevy_npr/tests/example.rs runs it under Xvfb).
+//! takes a screenshot at frame N, prints its corner colour and number of
+//! colours, and quits (bevy_npr/tests/example.rs runs it under Xvfb).
 
 use bevy::prelude::*;
+use bevy::render::view::window::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::WindowResolution;
 use bevy_npr::{NprLight, NprObject, NprParams, NprPlugin, NprStyle};
 
@@ -89,10 +90,39 @@ fn pulse_rim(time: Res<Time>, mut params: Query<&mut NprParams>) {
     }
 }
 
-fn quit_after(limit: Res<FrameLimit>, mut frames: Local<u32>, mut exit: MessageWriter<AppExit>) {
+/// With `--frames N`: at frame N, a screenshot of the window; its corner
+/// colour and number of colours are printed (the style's clear colour and
+/// its bands, not Bevy's clear colour), then the app quits.
+fn quit_after(
+    mut commands: Commands,
+    limit: Res<FrameLimit>,
+    mut frames: Local<u32>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    let Some(limit) = limit.0 else { return };
     *frames += 1;
-    if limit.0.is_some_and(|n| *frames >= n) {
-        println!("drew {} frames", *frames);
-        exit.write(AppExit::Success);
+    if *frames == limit {
+        commands.spawn(Screenshot::primary_window()).observe(
+            |captured: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+                let image = &captured.image;
+                let bytes = image.data.as_deref().unwrap_or_default();
+                let pixels: Vec<[u8; 4]> = bytes.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]).collect();
+                let colours: std::collections::BTreeSet<[u8; 4]> = pixels.iter().copied().collect();
+                let corner = pixels.first().copied().unwrap_or_default();
+                println!(
+                    "screenshot {}x{} {:?}: corner {:?}, {} colours",
+                    image.width(),
+                    image.height(),
+                    image.texture_descriptor.format,
+                    corner,
+                    colours.len()
+                );
+                exit.write(AppExit::Success);
+            },
+        );
+    }
+    if *frames > limit + 300 {
+        eprintln!("no screenshot 300 frames after frame {limit}");
+        exit.write(AppExit::error());
     }
 }
