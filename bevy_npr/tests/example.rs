@@ -12,7 +12,9 @@ fn example() -> PathBuf {
     let exe = std::env::current_exe().expect("test binary path");
     // target/<profile>/deps/example-… → target/<profile>/examples/toon
     let dir = exe.parent().and_then(|d| d.parent()).expect("target dir");
-    let path = dir.join("examples").join(format!("toon{}", std::env::consts::EXE_SUFFIX));
+    let path = dir
+        .join("examples")
+        .join(format!("toon{}", std::env::consts::EXE_SUFFIX));
     if !path.exists() {
         let status = Command::new(env!("CARGO"))
             .args(["build", "-p", "bevy_npr", "--example", "toon"])
@@ -44,7 +46,11 @@ fn the_toon_example_draws_its_window_with_the_style() {
         .expect("run the example under xvfb-run");
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "the example failed ({}):\n{stdout}\n{stderr}", out.status);
+    assert!(
+        out.status.success(),
+        "the example failed ({}):\n{stdout}\n{stderr}",
+        out.status
+    );
     let log = format!("{stdout}\n{stderr}");
     assert!(
         log.contains("drawn with the style \"Toon\""),

@@ -9,6 +9,8 @@
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
+// What a host's encoding does to a linear value.
+use runner::srgb::linear_to_srgb;
 use runner::Gpu;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -75,15 +77,6 @@ fn read(texture: &wgpu::Texture, format: abi::Format) -> Vec<[f32; 4]> {
     runner::readback::read_texture(&gpu().device, &gpu().queue, texture, SIZE, SIZE, format, "host")
         .unwrap_or_else(|e| panic!("{e}"))
         .to_rgba_f32()
-}
-
-/// The sRGB OETF: what a host's encoding does to a linear value.
-fn encode(linear: f32) -> f32 {
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 /// The plain view's bytes: what `npr render` writes.
@@ -166,7 +159,7 @@ fn a_float_view_holds_linear_light_the_host_encodes() {
     .expect("a float linear view");
     let encoded: Vec<[f32; 4]> = read(&float, abi::Format::Rgba16float)
         .into_iter()
-        .map(|p| [encode(p[0]), encode(p[1]), encode(p[2]), p[3]])
+        .map(|p| [linear_to_srgb(p[0]), linear_to_srgb(p[1]), linear_to_srgb(p[2]), p[3]])
         .collect();
     // f16 keeps 11 significant bits: the round trip is within one 8-bit step.
     let w = worst(&expected, &encoded);
