@@ -239,3 +239,44 @@ fn two_cameras_one_hdr_draw_lsa_contours_and_toon_on_spheres() {
         &npr_render(&toon, &scene),
     );
 }
+
+#[test]
+fn a_resized_target_is_drawn_at_its_new_size() {
+    use bevy::prelude::*;
+    use bevy::render::render_resource::Extent3d;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("resize");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let camera = spawn_scene(&mut app, &scene, handle, &image);
+    wait_for_style(&mut app, camera, "Toon");
+    let builds = runtime_of(&mut app, camera).map(|r| r.1);
+
+    // Taller than wide: the aspect changes too.
+    let size = (96, 160);
+    app.world_mut()
+        .resource_mut::<Assets<Image>>()
+        .get_mut(&image)
+        .expect("the target image")
+        .resize(Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        });
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(
+        runtime_of(&mut app, camera).map(|r| r.1),
+        builds,
+        "a new size keeps the scene's resources"
+    );
+    assert_close(
+        "resized",
+        &read_image_sized(&app, &image, size),
+        &npr_render_sized(&style, &scene, size),
+    );
+}

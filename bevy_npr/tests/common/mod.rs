@@ -178,6 +178,11 @@ pub fn logged_codes(app: &App) -> Vec<&'static str> {
 
 /// The bytes of `image` (RGBA8, as stored: sRGB-encoded for an sRGB image).
 pub fn read_image(app: &App, image: &Handle<Image>) -> image::RgbaImage {
+    read_image_sized(app, image, (SIZE, SIZE))
+}
+
+/// [`read_image`] of an image of `size`.
+pub fn read_image_sized(app: &App, image: &Handle<Image>, size: (u32, u32)) -> image::RgbaImage {
     let world = app.sub_app(RenderApp).world();
     let gpu = world
         .resource::<RenderAssets<GpuImage>>()
@@ -189,8 +194,8 @@ pub fn read_image(app: &App, image: &Handle<Image>) -> image::RgbaImage {
         device.wgpu_device(),
         queue,
         &gpu.texture,
-        SIZE,
-        SIZE,
+        size.0,
+        size.1,
         abi::Format::Rgba8unorm,
         "bevy target",
     )
@@ -218,9 +223,14 @@ pub fn load_scene(name: &str) -> runner::scene::Scene {
 /// What `npr render STYLE --scene SCENE --size 128x128 --time 0` writes:
 /// the renderer it drives, on a headless device of its own.
 pub fn npr_render(style: &Path, scene: &runner::scene::Scene) -> image::RgbaImage {
+    npr_render_sized(style, scene, (SIZE, SIZE))
+}
+
+/// [`npr_render`] at `size`.
+pub fn npr_render_sized(style: &Path, scene: &runner::scene::Scene, size: (u32, u32)) -> image::RgbaImage {
     let gpu = runner::Gpu::headless()
         .unwrap_or_else(|e| panic!("no GPU adapter (install Mesa's lavapipe: ./setup.sh --tests): {e}"));
-    let spec = runner::FrameSpec::still(SIZE, SIZE, 0);
+    let spec = runner::FrameSpec::still(size.0, size.1, 0);
     runner::render_frame(&gpu, &compile(style), scene, &spec)
         .unwrap_or_else(|e| panic!("npr render: {e:?}"))
         .to_rgba8()
@@ -241,7 +251,7 @@ pub fn assert_close(name: &str, actual: &image::RgbaImage, expected: &image::Rgb
     let first = expected.get_pixel(0, 0).0;
     let differing = expected.pixels().filter(|p| p.0 != first).count();
     assert!(
-        differing > (SIZE * SIZE / 20) as usize,
+        differing > (expected.width() * expected.height() / 20) as usize,
         "{name}: npr render's image is nearly flat ({differing} pixels differ from the corner)"
     );
     if std::env::var_os("BEVY_NPR_KEEP_IMAGES").is_some() {
