@@ -49,6 +49,7 @@ pub use render::NprRuntimes;
 use bevy::asset::io::file::FileAssetReader;
 use bevy::core_pipeline::{upscaling::upscaling, Core3d, Core3dSystems};
 use bevy::prelude::*;
+use bevy::render::view::{DebandDither, Tonemapping};
 use bevy::render::{ExtractSchedule, RenderApp};
 
 /// Adds the `.npr` asset, the components and the render system. Add it
@@ -68,7 +69,8 @@ impl Plugin for NprPlugin {
             .register_type::<NprObject>()
             .register_type::<NprLight>()
             .init_resource::<meshes::NprMeshes>()
-            .add_systems(PostUpdate, meshes::convert_meshes);
+            .add_systems(PostUpdate, meshes::convert_meshes)
+            .add_observer(no_tonemapping);
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("NprPlugin: this app has no render app (add DefaultPlugins first): npr styles will not draw");
             return;
@@ -82,4 +84,14 @@ impl Plugin for NprPlugin {
                 render::draw_npr.after(Core3dSystems::PostProcess).before(upscaling),
             );
     }
+}
+
+/// A camera drawn by a style gets `Tonemapping::None` and no debanding:
+/// the style replaces its image after Bevy's tonemapping pass, which would
+/// be work thrown away (and Bevy's default, TonyMcMapface, needs a feature
+/// this crate leaves off to keep the build small).
+fn no_tonemapping(event: On<Add<NprStyle>>, mut commands: Commands) {
+    commands
+        .entity(event.entity)
+        .insert((Tonemapping::None, DebandDither::Disabled));
 }
