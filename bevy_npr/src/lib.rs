@@ -28,7 +28,8 @@
 //! - `meshes.rs`: Bevy meshes as npr's, converted once per asset;
 //! - `extract.rs`: what the render world copies each frame;
 //! - `render.rs`: the `Core3d` system that drives a runtime per camera;
-//! - `report.rs`: diagnostics in Bevy's log, once per camera.
+//! - `report.rs`: diagnostics in Bevy's log, once per camera;
+//! - `scene.rs`: npr's TOML scenes as Bevy entities.
 //!
 //! Hot reload needs Bevy's `file_watcher` feature (this crate enables it)
 //! and `AssetPlugin { watch_for_changes_override: Some(true), .. }` (or
@@ -40,11 +41,13 @@ mod extract;
 mod meshes;
 mod render;
 mod report;
+mod scene;
 
 pub use asset::{NprLoadError, NprStyleAsset, NprStyleLoader};
 pub use components::{NprLight, NprObject, NprParams, NprStyle, NprValue};
 pub use meshes::{bevy_mesh, npr_mesh};
 pub use render::NprRuntimes;
+pub use scene::{npr_scene_camera, spawn_npr_scene};
 
 use bevy::asset::io::file::FileAssetReader;
 use bevy::core_pipeline::{upscaling::upscaling, Core3d, Core3dSystems};

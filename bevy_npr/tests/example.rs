@@ -58,8 +58,15 @@ fn the_toon_example_draws_its_window_with_the_style() {
     );
     // Bevy's own errors (wgpu's probing of EGL, which the Vulkan adapter
     // does not need, is not one of them).
-    let bevy_errors: Vec<&str> = log.lines().filter(|l| l.contains("ERROR") && l.contains("bevy")).collect();
-    assert!(bevy_errors.is_empty(), "Bevy logged errors:\n{}", bevy_errors.join("\n"));
+    let bevy_errors: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("ERROR") && l.contains("bevy"))
+        .collect();
+    assert!(
+        bevy_errors.is_empty(),
+        "Bevy logged errors:\n{}",
+        bevy_errors.join("\n")
+    );
     let line = stdout
         .lines()
         .find(|l| l.starts_with("screenshot 640x480"))

@@ -16,7 +16,7 @@ use bevy::render::texture::GpuImage;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
-use bevy_npr::{bevy_mesh, NprLight, NprObject, NprPlugin, NprRuntimes, NprStyle};
+use bevy_npr::{npr_scene_camera, spawn_npr_scene, NprPlugin, NprRuntimes, NprStyle};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -76,42 +76,15 @@ pub fn target_image(app: &mut App, format: TextureFormat) -> Handle<Image> {
     app.world_mut().resource_mut::<Assets<Image>>().add(image)
 }
 
-fn vec3(v: glam::Vec3) -> Vec3 {
-    Vec3::from_array(v.to_array())
-}
-
-/// `scene` (an npr scene file, loaded by npr) as Bevy entities: each
-/// object a `Mesh3d` of its mesh at its transform with its tags and
-/// params; the camera with `style`, rendering into `image`; the light.
-/// Returns the camera entity.
+/// `scene` (an npr scene file, loaded by npr) as Bevy entities, and its
+/// camera with `style`, rendering into `image`. Returns the camera.
 pub fn spawn_scene(
     app: &mut App,
     scene: &runner::scene::Scene,
     style: Handle<bevy_npr::NprStyleAsset>,
     image: &Handle<Image>,
 ) -> Entity {
-    let world = app.world_mut();
-    for object in &scene.objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(bevy_mesh(&object.mesh));
-        let model = Mat4::from_cols_array(&object.model.to_cols_array());
-        world.spawn((
-            Mesh3d(mesh),
-            Transform::from_matrix(model),
-            NprObject {
-                tags: object.tags.clone(),
-                params: object.params.clone(),
-                casts_shadows: object.casts_shadows,
-            },
-        ));
-    }
-    let light = scene.light;
-    world.spawn((
-        NprLight {
-            color: Color::srgb(light.color[0], light.color[1], light.color[2]),
-            intensity: light.intensity,
-        },
-        Transform::default().looking_to(-vec3(light.direction), Vec3::Y),
-    ));
+    spawn_npr_scene(app.world_mut(), scene);
     spawn_camera(app, scene, style, image)
 }
 
@@ -122,19 +95,10 @@ pub fn spawn_camera(
     style: Handle<bevy_npr::NprStyleAsset>,
     image: &Handle<Image>,
 ) -> Entity {
-    let pose = scene.camera.pose(0.0);
     app.world_mut()
         .spawn((
-            Camera3d::default(),
+            npr_scene_camera(scene),
             RenderTarget::Image(image.clone().into()),
-            Msaa::Off,
-            Transform::from_translation(vec3(pose.eye)).looking_at(vec3(pose.target), vec3(pose.up)),
-            Projection::Perspective(PerspectiveProjection {
-                fov: pose.fov_y_rad,
-                near: pose.near,
-                far: pose.far,
-                ..Default::default()
-            }),
             NprStyle(style),
         ))
         .id()
