@@ -31,9 +31,9 @@
 //! - `report.rs`: diagnostics in Bevy's log, once per camera;
 //! - `scene.rs`: npr's TOML scenes as Bevy entities.
 //!
-//! Hot reload needs Bevy's `file_watcher` feature (this crate enables it)
-//! and `AssetPlugin { watch_for_changes_override: Some(true), .. }` (or
-//! the `BEVY_ASSET_ROOT`-relative `assets/` folder in a `cargo run`).
+//! Hot reload is Bevy's `file_watcher` feature, which this crate enables:
+//! the asset folder is watched unless `AssetPlugin`'s
+//! `watch_for_changes_override` is `Some(false)`.
 
 mod asset;
 mod components;
