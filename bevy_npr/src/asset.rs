@@ -2,7 +2,7 @@
 //! npr's compiler (its parameters kept as uniforms, so [`crate::NprParams`]
 //! can change every one) into an [`NprStyleAsset`]. A style that does not
 //! compile is logged as npr prints it (`error[E0001]: ...`, then
-//! `--> file:line:col` and the source line) and the load fails; on a hot
+//! `file:line:col` and the source line) and the load fails; on a hot
 //! reload Bevy then keeps the asset it had, so a broken save keeps the
 //! last style that compiled.
 
@@ -39,12 +39,14 @@ impl NprStyleAsset {
     }
 }
 
-/// Why a `.npr` asset did not load: the codes of its diagnostics (each
-/// already logged in full, with its place in the file).
+/// Why a `.npr` asset did not load: the codes of its diagnostics, and
+/// their text as logged (npr's rendering: code, message, `file:line:col`,
+/// the source line).
 #[derive(Debug)]
 pub struct NprLoadError {
     pub path: PathBuf,
     pub codes: Vec<&'static str>,
+    pub rendered: String,
 }
 
 impl std::fmt::Display for NprLoadError {
@@ -79,10 +81,12 @@ impl NprStyleLoader {
         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
         let mut sources = diag::SourceMap::new();
         let fail = |diags: &[diag::Diagnostic], sources: &diag::SourceMap| {
-            error!("{}", diag::diagnostic::render(diags, sources, false));
+            let rendered = diag::diagnostic::render(diags, sources, false);
+            error!("{rendered}");
             NprLoadError {
                 path: file.clone(),
                 codes: diags.iter().map(|d| d.code).collect(),
+                rendered,
             }
         };
         let text = match diag::text::add_utf8(&mut sources, &name, bytes) {
@@ -129,10 +133,12 @@ impl AssetLoader for NprStyleLoader {
                 diag::codes::BAD_USE,
                 format!("cannot read the style {}: {e}", path.display()),
             );
-            error!("{}", diag::diagnostic::render(&[d], &diag::SourceMap::new(), false));
+            let rendered = diag::diagnostic::render(&[d], &diag::SourceMap::new(), false);
+            error!("{rendered}");
             return Err(NprLoadError {
                 path,
                 codes: vec![diag::codes::BAD_USE],
+                rendered,
             });
         }
         self.compile(&path, bytes)
