@@ -31,24 +31,39 @@ fn wait_for_style(app: &mut bevy::app::App, camera: bevy::prelude::Entity, name:
     app.update();
 }
 
-fn toon_on(scene_name: &str, format: TextureFormat, test: &str) {
+#[test]
+fn toon_on_spot_equals_npr_render_and_follows_its_params() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
-    let dir = asset_dir(test);
+    let dir = asset_dir("toon_spot");
     let style = copy_style(&dir, "toon.npr");
-    let scene = load_scene(scene_name);
+    let scene = load_scene("spot.toml");
     let expected = npr_render(&style, &scene);
 
     let mut app = app(&dir);
-    let image = target_image(&mut app, format);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
     let handle = app.world().resource::<AssetServer>().load("toon.npr");
     let camera = spawn_scene(&mut app, &scene, handle, &image);
     wait_for_style(&mut app, camera, "Toon");
-    assert_close(test, &read_image(&app, &image), &expected);
-}
+    assert_close("toon_spot", &read_image(&app, &image), &expected);
 
-#[test]
-fn toon_on_spot_equals_npr_render() {
-    toon_on("spot.toml", TextureFormat::Rgba8UnormSrgb, "toon_spot");
+    // Params changed at run time through the reflected component draw what
+    // `npr render` draws of the style with those defaults.
+    app.world_mut()
+        .entity_mut(camera)
+        .insert(bevy_npr::NprParams::default().with("bands", 2).with("base", "#3a7ae0"));
+    for _ in 0..2 {
+        app.update();
+    }
+    let text = std::fs::read_to_string(&style).expect("read the style");
+    let set = dir.join("toon_set.npr");
+    std::fs::write(
+        &set,
+        text.replace("param bands: int = 3", "param bands: int = 2")
+            .replace("param base: color = #e07a3a", "param base: color = #3a7ae0"),
+    )
+    .expect("write the style with other defaults");
+    assert_close("toon_spot_params", &read_image(&app, &image), &npr_render(&set, &scene));
+    assert!(logged_codes(&app).is_empty(), "{:?}", logged_codes(&app));
 }
 
 #[test]
