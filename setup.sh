@@ -53,6 +53,14 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
+# rust-toolchain.toml pins the Rust release (Bevy 0.20, which bevy_npr
+# builds on, needs 1.97.1); rustup installs it once, with clippy and rustfmt.
+if command -v rustup >/dev/null 2>&1; then
+  toolchain=$(sed -n 's/^channel = "\(.*\)"/\1/p' rust-toolchain.toml)
+  rustup toolchain install --no-self-update --profile minimal \
+    --component clippy --component rustfmt "$toolchain" >/dev/null
+fi
+
 if ! have_vulkan_icd; then
   echo "setup: no Vulkan driver found; installing Mesa's software driver (apt: mesa-vulkan-drivers)"
   apt_install mesa-vulkan-drivers libvulkan1

@@ -349,7 +349,8 @@ fn patch_weights_in_a_compute_pass_are_rejected_naming_the_field() {
         .iter()
         .enumerate()
         .find_map(|(i, p)| {
-            Some((i, p["kind"]["attributes"].as_array()?.len())).filter(|_| p["kind"]["kind"] == "compute")
+            let count = p["kind"]["attributes"].as_array()?.len();
+            (p["kind"]["kind"] == "compute").then_some((i, count))
         })
         .expect("a compute pass with attributes");
     let mut m = manifest.clone();

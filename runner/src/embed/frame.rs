@@ -81,10 +81,14 @@ pub struct Frame<'a> {
 /// Where the style's output goes: texture views of the host (a swapchain
 /// image's view, an offscreen texture), which the runtime draws into at
 /// their size. Each view's texture must be 2D with one mip level and one
-/// layer, have `RENDER_ATTACHMENT` usage and a colour format that is not
-/// sRGB (the style's output is written as is, like `npr render`'s PNG;
-/// make the view with the non-sRGB twin of an sRGB surface format, listed
-/// in the surface configuration's `view_formats`).
+/// layer, have `RENDER_ATTACHMENT` usage and a colour format with float or
+/// normalized channels. [`Target::View`], [`Target::Eyes`] and
+/// [`Target::SideBySide`] get the style's output as is, like `npr
+/// render`'s PNG, so their textures must not be sRGB (make the view with
+/// the non-sRGB twin of an sRGB surface format, listed in the surface
+/// configuration's `view_formats`); [`Target::LinearView`] is for a host
+/// that keeps linear light in its textures (an sRGB view, Bevy's view
+/// targets).
 #[derive(Debug, Clone, Copy)]
 pub enum Target<'a> {
     /// The output of a mono style, or of the frame's `eye` of a stereo one.
@@ -97,4 +101,17 @@ pub enum Target<'a> {
     /// Both eyes of a stereo style side by side, each in one half of the
     /// view (its width must be even).
     SideBySide(&'a wgpu::TextureView),
+    /// The output of a mono style (or of the frame's `eye`), into a view
+    /// whose host reads its texels as linear light: an sRGB view, whose
+    /// hardware encoding turns them back into the output's values, or a
+    /// float or unorm texture that the host encodes for display later
+    /// (Bevy's view targets, HDR or not). The present pass decodes the
+    /// output with the sRGB transfer function (alpha as is), so the host's
+    /// display shows what `npr render` writes. `format` is the view's
+    /// format, which wgpu cannot tell from a view: its texture's format or
+    /// that format's sRGB twin (listed in the texture's `view_formats`).
+    LinearView {
+        view: &'a wgpu::TextureView,
+        format: wgpu::TextureFormat,
+    },
 }

@@ -15,7 +15,11 @@
 //!    params; the [`Lights`]; the time) and a [`Target`] (its texture view,
 //!    e.g. the swapchain image's) to [`StyleRuntime::render`], which records
 //!    the style's passes and one present pass into the host's encoder. The
-//!    host submits the encoder (and presents) itself.
+//!    host submits the encoder (and presents) itself. A host that keeps
+//!    linear light in its textures (an sRGB view, Bevy's view targets)
+//!    gives [`Target::LinearView`] with the view's format: the present pass
+//!    decodes the output, so the host's encoding shows what `npr render`
+//!    writes.
 //!
 //! Style parameters are set by name at run time with
 //! [`StyleRuntime::set_param`], typed and range-checked by the rule

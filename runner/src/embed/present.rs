@@ -1,9 +1,11 @@
 //! Presenting the style's output in the host's texture views: the checks
 //! of a [`Target`] (E0602) and one fullscreen draw per view that copies
-//! the output target's texels as they are (`textureLoad`, no filtering,
-//! no colour conversion), so the host sees what `npr render` writes.
-//! Pipelines are made once per view format, bind groups once per output
-//! texture (they change only with the size or the style).
+//! the output target's texels (`textureLoad`, no filtering) as they are,
+//! so the host sees what `npr render` writes, or, for a
+//! [`Target::LinearView`], decoded to linear light with the sRGB transfer
+//! function, so that the host's own encoding gives them back. Pipelines
+//! are made once per view format and encoding, bind groups once per
+//! output texture (they change only with the size or the style).
 
 use super::{EmbedError, Target};
 use crate::gpu_count::{Create, CreateView};
@@ -27,14 +29,39 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     let texel = vec2<i32>(p.xy) % size;
     return textureLoad(source, texel, 0);
 }
+
+// The sRGB EOTF (IEC 61966-2-1), the inverse of what an sRGB view's
+// store does: a linear-light host encodes these back to the output's values.
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        return c / 12.92;
+    }
+    return pow((c + 0.055) / 1.055, 2.4);
+}
+
+@fragment
+fn fs_linear(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let size = vec2<i32>(textureDimensions(source));
+    let c = textureLoad(source, vec2<i32>(p.xy) % size, 0);
+    return vec4<f32>(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b), c.a);
+}
 ";
+
+/// One view a checked target draws into.
+pub(super) struct PresentView<'a> {
+    pub view: &'a wgpu::TextureView,
+    pub format: wgpu::TextureFormat,
+    /// The eye slots drawn into it, left to right: one, or two side by side.
+    pub eyes: Vec<usize>,
+    /// Whether the host reads it as linear light ([`Target::LinearView`]).
+    pub linear: bool,
+}
 
 /// A checked target: the per-eye size, and the views with the eye each shows.
 pub(super) struct CheckedTarget<'a> {
     pub width: u32,
     pub height: u32,
-    /// (view, format, the eye slots drawn into it, left to right: one, or two side by side).
-    pub views: Vec<(&'a wgpu::TextureView, wgpu::TextureFormat, Vec<usize>)>,
+    pub views: Vec<PresentView<'a>>,
 }
 
 fn target_error(message: String, help: &str) -> EmbedError {
@@ -44,9 +71,24 @@ fn target_error(message: String, help: &str) -> EmbedError {
 }
 
 /// The size and format of one view, or why it cannot be drawn into.
-fn check_view(view: &wgpu::TextureView, what: &str) -> Result<(u32, u32, wgpu::TextureFormat), EmbedError> {
+/// `stated`: the format the host says the view has ([`Target::LinearView`]),
+/// which makes an sRGB format fine: the host reads the view as linear light.
+fn check_view(
+    view: &wgpu::TextureView,
+    what: &str,
+    stated: Option<wgpu::TextureFormat>,
+) -> Result<(u32, u32, wgpu::TextureFormat), EmbedError> {
     let texture = view.texture();
-    let format = texture.format();
+    let format = stated.unwrap_or(texture.format());
+    if format.remove_srgb_suffix() != texture.format().remove_srgb_suffix() {
+        return Err(target_error(
+            format!(
+                "the {what} view is said to have the format {format:?}, but its texture's format is {:?}",
+                texture.format()
+            ),
+            "state the format the view was made with: its texture's format, or that format's sRGB twin",
+        ));
+    }
     let size = texture.size();
     if texture.dimension() != wgpu::TextureDimension::D2
         || size.depth_or_array_layers != 1
@@ -63,7 +105,7 @@ fn check_view(view: &wgpu::TextureView, what: &str) -> Result<(u32, u32, wgpu::T
             "create the texture with wgpu::TextureUsages::RENDER_ATTACHMENT",
         ));
     }
-    if format.is_srgb() {
+    if format.is_srgb() && stated.is_none() {
         return Err(target_error(
             format!(
                 "the {what} view's texture has the sRGB format {format:?}, which would re-encode the style's output"
@@ -115,19 +157,37 @@ pub(super) fn check_target<'a>(
     };
     match *target {
         Target::View(view) => {
-            let (width, height, format) = check_view(view, "target")?;
+            let (width, height, format) = check_view(view, "target", None)?;
             Ok(CheckedTarget {
                 width,
                 height,
-                views: vec![(view, format, vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }])],
+                views: vec![PresentView {
+                    view,
+                    format,
+                    eyes: vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }],
+                    linear: false,
+                }],
+            })
+        }
+        Target::LinearView { view, format } => {
+            let (width, height, format) = check_view(view, "target", Some(format))?;
+            Ok(CheckedTarget {
+                width,
+                height,
+                views: vec![PresentView {
+                    view,
+                    format,
+                    eyes: vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }],
+                    linear: true,
+                }],
             })
         }
         Target::Eyes { left, right } => {
             if eye_slots != 2 {
                 return Err(stereo_only("two-eye"));
             }
-            let (w, h, lf) = check_view(left, "left eye's")?;
-            let (w2, h2, rf) = check_view(right, "right eye's")?;
+            let (w, h, lf) = check_view(left, "left eye's", None)?;
+            let (w2, h2, rf) = check_view(right, "right eye's", None)?;
             if (w, h) != (w2, h2) {
                 return Err(target_error(
                     format!("the left eye's view is {w}x{h} and the right eye's {w2}x{h2}"),
@@ -137,14 +197,27 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width: w,
                 height: h,
-                views: vec![(left, lf, vec![0]), (right, rf, vec![1])],
+                views: vec![
+                    PresentView {
+                        view: left,
+                        format: lf,
+                        eyes: vec![0],
+                        linear: false,
+                    },
+                    PresentView {
+                        view: right,
+                        format: rf,
+                        eyes: vec![1],
+                        linear: false,
+                    },
+                ],
             })
         }
         Target::SideBySide(view) => {
             if eye_slots != 2 {
                 return Err(stereo_only("side-by-side"));
             }
-            let (w, h, format) = check_view(view, "side-by-side")?;
+            let (w, h, format) = check_view(view, "side-by-side", None)?;
             if w % 2 != 0 {
                 return Err(target_error(
                     format!("the side-by-side view is {w} wide; its two halves must be equal"),
@@ -154,18 +227,24 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width: w / 2,
                 height: h,
-                views: vec![(view, format, vec![0, 1])],
+                views: vec![PresentView {
+                    view,
+                    format,
+                    eyes: vec![0, 1],
+                    linear: false,
+                }],
             })
         }
     }
 }
 
-/// The present pipelines (per view format) and bind groups (per output texture).
+/// The present pipelines (per view format and encoding) and bind groups (per output texture).
 pub(super) struct Presenter {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    pipelines: HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>,
+    /// Per (view format, decoded to linear light).
+    pipelines: HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>,
     /// Per output texture (eye slot, frame parity), made for the renderer's
     /// resources of `generation`.
     groups: HashMap<(usize, usize), wgpu::BindGroup>,
@@ -207,9 +286,9 @@ impl Presenter {
         }
     }
 
-    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat) {
+    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat, linear: bool) {
         let (module, layout) = (&self.module, &self.pipeline_layout);
-        self.pipelines.entry(format).or_insert_with(|| {
+        self.pipelines.entry((format, linear)).or_insert_with(|| {
             device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("npr present"),
                 layout: Some(layout),
@@ -224,7 +303,7 @@ impl Presenter {
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module,
-                    entry_point: Some("fs"),
+                    entry_point: Some(if linear { "fs_linear" } else { "fs" }),
                     compilation_options: Default::default(),
                     targets: &[Some(wgpu::ColorTargetState {
                         format,
@@ -269,10 +348,16 @@ impl Presenter {
             self.generation = renderer.resources_generation();
         }
         let parity = renderer.parity_now() % renderer.parities();
-        for (view, format, eyes) in &target.views {
+        for PresentView {
+            view,
+            format,
+            eyes,
+            linear,
+        } in &target.views
+        {
             // Made before the pass borrows the encoder.
-            self.pipeline(device, *format);
-            let pipeline = &self.pipelines[format];
+            self.pipeline(device, *format, *linear);
+            let pipeline = &self.pipelines[&(*format, *linear)];
             let groups: Vec<&wgpu::BindGroup> = eyes
                 .iter()
                 .map(|&slot| {

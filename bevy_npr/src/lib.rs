@@ -1,0 +1,100 @@
+//! npr styles in Bevy: a `.npr` file is an asset (compiled by npr's
+//! compiler, reloaded when the file changes), and a camera with
+//! [`NprStyle`] is drawn by that style's passes, run by npr's runner inside
+//! Bevy's renderer, on Bevy's own device, into the camera's image.
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_npr::{NprObject, NprPlugin, NprStyle};
+//!
+//! App::new()
+//!     .add_plugins((DefaultPlugins, NprPlugin))
+//!     .add_systems(Startup, |mut commands: Commands, assets: Res<AssetServer>, mut meshes: ResMut<Assets<Mesh>>| {
+//!         commands.spawn((
+//!             Camera3d::default(),
+//!             Transform::from_xyz(0.0, 1.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
+//!             NprStyle(assets.load("toon.npr")),
+//!         ));
+//!         commands.spawn((
+//!             Mesh3d(meshes.add(Sphere::new(1.0))),
+//!             NprObject::tagged("caster").with("tint", Color::srgb(1.0, 0.6, 0.4)),
+//!         ));
+//!     })
+//!     .run();
+//! ```
+//!
+//! - `asset.rs`: [`NprStyleAsset`] and its loader (compilation, diagnostics);
+//! - `components.rs`: [`NprStyle`], [`NprParams`], [`NprObject`], [`NprLight`];
+//! - `meshes.rs`: Bevy meshes as npr's, converted once per asset;
+//! - `extract.rs`: what the render world copies each frame;
+//! - `render.rs`: the `Core3d` system that drives a runtime per camera;
+//! - `report.rs`: diagnostics in Bevy's log, once per camera;
+//! - `scene.rs`: npr's TOML scenes as Bevy entities.
+//!
+//! Hot reload is Bevy's `file_watcher` feature, which this crate enables:
+//! the asset folder is watched unless `AssetPlugin`'s
+//! `watch_for_changes_override` is `Some(false)`.
+
+mod asset;
+mod components;
+mod extract;
+mod meshes;
+mod render;
+mod report;
+mod scene;
+
+pub use asset::{NprLoadError, NprStyleAsset, NprStyleLoader};
+pub use components::{NprLight, NprObject, NprParams, NprStyle, NprValue};
+pub use meshes::{bevy_mesh, npr_mesh};
+pub use render::NprRuntimes;
+pub use scene::{npr_scene_camera, spawn_npr_scene};
+
+use bevy::asset::io::file::FileAssetReader;
+use bevy::core_pipeline::{upscaling::upscaling, Core3d, Core3dSystems};
+use bevy::prelude::*;
+use bevy::render::view::{DebandDither, Tonemapping};
+use bevy::render::{ExtractSchedule, RenderApp};
+
+/// Adds the `.npr` asset, the components and the render system. Add it
+/// after Bevy's `DefaultPlugins` (it reads the `AssetPlugin`'s folder).
+pub struct NprPlugin;
+
+impl Plugin for NprPlugin {
+    fn build(&self, app: &mut App) {
+        let folder = app
+            .get_added_plugins::<AssetPlugin>()
+            .first()
+            .map_or_else(|| "assets".to_string(), |p| p.file_path.clone());
+        let root = FileAssetReader::get_base_path().join(folder);
+        app.init_asset::<NprStyleAsset>()
+            .register_asset_loader(NprStyleLoader { root })
+            .register_type::<NprParams>()
+            .register_type::<NprObject>()
+            .register_type::<NprLight>()
+            .init_resource::<meshes::NprMeshes>()
+            .add_systems(PostUpdate, meshes::convert_meshes)
+            .add_observer(no_tonemapping);
+        let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
+            warn!("NprPlugin: this app has no render app (add DefaultPlugins first): npr styles will not draw");
+            return;
+        };
+        render_app
+            .init_resource::<extract::ExtractedNprScene>()
+            .init_resource::<NprRuntimes>()
+            .add_systems(ExtractSchedule, extract::extract_npr)
+            .add_systems(
+                Core3d,
+                render::draw_npr.after(Core3dSystems::PostProcess).before(upscaling),
+            );
+    }
+}
+
+/// A camera drawn by a style gets `Tonemapping::None` and no debanding:
+/// the style replaces its image after Bevy's tonemapping pass, which would
+/// be work thrown away (and Bevy's default, TonyMcMapface, needs a feature
+/// this crate leaves off to keep the build small).
+fn no_tonemapping(event: On<Add<NprStyle>>, mut commands: Commands) {
+    commands
+        .entity(event.entity)
+        .insert((Tonemapping::None, DebandDither::Disabled));
+}

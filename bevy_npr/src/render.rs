@@ -1,0 +1,299 @@
+//! Drawing a camera with its style, in Bevy's render world: a system in
+//! the `Core3d` schedule, after the post-processing passes (tonemapping
+//! included) and before upscaling, that drives one
+//! [`runner::embed::StyleRuntime`] per camera on Bevy's `RenderDevice` and
+//! `RenderQueue`, in the command encoder of Bevy's render context, into
+//! the camera's main texture (its view target). Bevy's 3D view targets
+//! hold linear light (an sRGB view when not HDR, `Rgba16Float` when HDR),
+//! so the output is presented as a [`Target::LinearView`]: after Bevy's
+//! upscaling to the window or image, the pixels are what `npr render`
+//! writes.
+//!
+//! Nothing here panics on bad input: each problem (a style the device
+//! cannot run, a parameter value, a per-object param of the wrong type, a
+//! tag no object has, a target the style cannot write) is logged once per
+//! camera with its code, and the camera keeps its last good style or is
+//! left as Bevy drew it.
+
+use crate::extract::{ExtractedNprCamera, ExtractedNprScene};
+use crate::meshes::Converted;
+use crate::report::Reports;
+use abi::manifest::{ParamBinding, PassKindManifest};
+use bevy::camera::CompositingSpace;
+use bevy::mesh::Mesh;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery};
+use bevy::render::view::{ResolvedCompositingSpace, ViewTarget};
+use diag::{codes, Diagnostic};
+use runner::embed::{Frame, Instance, MeshHandle, StyleRuntime, Target};
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// One camera's runtime and what it was given.
+struct CameraRuntime {
+    runtime: StyleRuntime,
+    /// The style asset's revision it runs.
+    revision: u64,
+    /// Bevy mesh → the npr mesh registered (compared by pointer) and its handle.
+    meshes: HashMap<AssetId<Mesh>, (Arc<runner::scene::Mesh>, MeshHandle)>,
+    /// The parameter values given to the runtime so far.
+    params: BTreeMap<String, String>,
+    instances: Vec<Instance>,
+}
+
+/// The runtimes of the cameras drawn by a style, by render entity, and the
+/// diagnostics already logged.
+#[derive(Resource, Default)]
+pub struct NprRuntimes {
+    cameras: HashMap<Entity, CameraRuntime>,
+    reports: Reports,
+}
+
+impl NprRuntimes {
+    /// Drop the runtime of a camera that is no longer drawn by a style.
+    pub(crate) fn forget(&mut self, camera: Entity) {
+        self.cameras.remove(&camera);
+        self.reports.forget(camera);
+    }
+
+    /// How many times the runtime of the camera with render entity
+    /// `camera` built its GPU resources (a test's window on hot reload and
+    /// resizing); `None` when it has no runtime.
+    pub fn builds(&self, camera: Entity) -> Option<u64> {
+        self.cameras.get(&camera).map(|c| c.runtime.builds())
+    }
+
+    /// The name of the style the camera's runtime runs.
+    pub fn style_name(&self, camera: Entity) -> Option<&str> {
+        self.cameras.get(&camera).map(|c| c.runtime.manifest().style.as_str())
+    }
+
+    /// The codes of every diagnostic logged so far (tests check them).
+    pub fn logged_codes(&self) -> Vec<&'static str> {
+        self.reports.codes()
+    }
+}
+
+/// The `Core3d` system: draws the current view with its style.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_npr(
+    view: ViewQuery<(
+        Entity,
+        &ViewTarget,
+        &ExtractedNprCamera,
+        Option<&ResolvedCompositingSpace>,
+    )>,
+    scene: Res<ExtractedNprScene>,
+    mut runtimes: ResMut<NprRuntimes>,
+    device: Res<RenderDevice>,
+    queue: Res<RenderQueue>,
+    mut ctx: RenderContext,
+) {
+    let (entity, view_target, camera, space) = view.into_inner();
+    let Some(style) = scene.styles.get(&camera.style) else {
+        // Not loaded yet, or it never compiled (logged by the loader).
+        return;
+    };
+    let NprRuntimes { cameras, reports } = &mut *runtimes;
+    let at = |what: String| format!("camera {}: {what}", camera.main);
+
+    // A new style (first load or hot reload) gets a new runtime; one the
+    // device cannot run keeps the last.
+    if cameras.get(&entity).is_none_or(|c| c.revision != style.revision()) {
+        match StyleRuntime::new(device.wgpu_device(), &queue, (**style.program()).clone()) {
+            Ok(runtime) => {
+                info!("{}", at(format!("drawn with the style \"{}\"", style.name())));
+                reports.forget(entity);
+                cameras.insert(
+                    entity,
+                    CameraRuntime {
+                        runtime,
+                        revision: style.revision(),
+                        meshes: HashMap::default(),
+                        params: BTreeMap::new(),
+                        instances: Vec::new(),
+                    },
+                );
+            }
+            Err(e) => {
+                reports.log(entity, &prefixed(&camera.main, e.diagnostics()));
+                let Some(kept) = cameras.get_mut(&entity) else { return };
+                // Not retried every frame: the same style would fail again.
+                kept.revision = style.revision();
+            }
+        }
+    }
+    let Some(state) = cameras.get_mut(&entity) else { return };
+
+    let npr_camera = match &camera.camera {
+        Ok(c) => c,
+        Err(why) => {
+            let d = Diagnostic::error(codes::BAD_SCENE, at(format!("npr cannot draw it: {why}")))
+                .with_help("give the camera a perspective projection");
+            reports.log(entity, &[d]);
+            return;
+        }
+    };
+
+    for (name, value) in &camera.params {
+        if state.params.get(name) != Some(value) {
+            if let Err(e) = state.runtime.set_param(name, value) {
+                reports.log(entity, &prefixed(&camera.main, e.diagnostics()));
+            }
+            state.params.insert(name.clone(), value.clone());
+        }
+    }
+
+    let problems = instances(state, &scene);
+    reports.log(entity, &prefixed(&camera.main, problems));
+    reports.log(
+        entity,
+        &prefixed(&camera.main, absent_tags(&state.runtime, &state.instances)),
+    );
+
+    let format = view_target.main_texture_format();
+    let view = view_target.main_texture_view();
+    let target = match ResolvedCompositingSpace::space(space) {
+        None | Some(CompositingSpace::Linear) => Target::LinearView { view, format },
+        // A 2D-style stack that composites in sRGB keeps encoded values.
+        Some(CompositingSpace::Srgb) => Target::View(view),
+        Some(CompositingSpace::Oklab) => {
+            let d = Diagnostic::error(
+                codes::BAD_RENDER_TARGET,
+                at("its view target composites in Oklab, which npr's output (sRGB) cannot be written as".into()),
+            )
+            .with_help("use CompositingSpace::Linear (the default of 3D cameras) on a camera drawn by npr");
+            reports.log(entity, &[d]);
+            return;
+        }
+    };
+    let frame = Frame {
+        camera: npr_camera,
+        objects: &state.instances,
+        lights: &scene.lights,
+        time_s: scene.time_s,
+        frame_index: scene.frame,
+        eye: 0,
+    };
+    if let Err(e) = state.runtime.render(ctx.command_encoder(), &frame, target) {
+        reports.log(entity, &prefixed(&camera.main, e.diagnostics()));
+    }
+}
+
+/// `diags` with the camera named, for the log.
+fn prefixed(camera: &Entity, diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    diags
+        .into_iter()
+        .map(|mut d| {
+            d.message = format!("camera {camera}: {}", d.message);
+            d
+        })
+        .collect()
+}
+
+/// Fill `state.instances` with the scene's objects (registering their
+/// meshes once); per-object params the style does not have, or of the
+/// wrong size, are left out (the object gets the default) and returned as
+/// diagnostics.
+fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagnostic> {
+    let mut problems = Vec::new();
+    state.instances.clear();
+    let per_object: Vec<(String, u32, String)> = state
+        .runtime
+        .manifest()
+        .params
+        .iter()
+        .filter(|p| p.binding == ParamBinding::PerObject)
+        .map(|p| (p.name.clone(), p.components, p.ty.clone()))
+        .collect();
+    for object in &scene.objects {
+        let Some(Converted::Mesh(mesh)) = scene.meshes.get(&object.mesh) else {
+            // Not converted yet (next frame), or unusable (logged once when converted).
+            continue;
+        };
+        let handle = match state.meshes.get(&object.mesh) {
+            Some((registered, handle)) if Arc::ptr_eq(registered, mesh) => *handle,
+            old => {
+                if let Some((_, stale)) = old {
+                    // The asset changed: its old npr mesh goes.
+                    let _ = state.runtime.remove_mesh(*stale);
+                }
+                let handle = state.runtime.add_shared_mesh(mesh.clone());
+                state.meshes.insert(object.mesh, (mesh.clone(), handle));
+                handle
+            }
+        };
+        let mut instance = Instance::new(handle, object.transform);
+        if let Some(o) = &object.object {
+            instance.tags.clone_from(&o.tags);
+            instance.casts_shadows = o.casts_shadows;
+            for (name, value) in &o.params {
+                match per_object.iter().find(|(n, _, _)| n == name) {
+                    None => problems.push(
+                        Diagnostic::warning(
+                            codes::UNUSED_BINDING,
+                            format!(
+                                "entity {}: NprObject sets `{name}`, which is not an `object param` of the style",
+                                object.entity
+                            ),
+                        )
+                        .with_help(match per_object.is_empty() {
+                            true => "the style has no object params".to_string(),
+                            false => format!(
+                                "its object params are: {}",
+                                per_object.iter().map(|p| p.0.as_str()).collect::<Vec<_>>().join(", ")
+                            ),
+                        }),
+                    ),
+                    Some((_, n, ty)) if value.len() != *n as usize && !(*n == 4 && value.len() == 3) => problems.push(
+                        Diagnostic::error(
+                            codes::BAD_SCENE,
+                            format!(
+                                "entity {}: NprObject gives `{name}` {} component(s), but it is a `{ty}` of {n}",
+                                object.entity,
+                                value.len()
+                            ),
+                        )
+                        .with_help("the object is drawn with the param's default; give a value of its type"),
+                    ),
+                    Some(_) => {
+                        instance.params.insert(name.clone(), value.clone());
+                    }
+                }
+            }
+        }
+        state.instances.push(instance);
+    }
+    problems
+}
+
+/// W0402 for each tag a pass of the style draws that no object has.
+fn absent_tags(runtime: &StyleRuntime, instances: &[Instance]) -> Vec<Diagnostic> {
+    let mut diags = Vec::new();
+    for pass in &runtime.manifest().passes {
+        let tag = match &pass.kind {
+            PassKindManifest::Render { tag, .. }
+            | PassKindManifest::Compute { tag, .. }
+            | PassKindManifest::Lines { tag, .. } => tag.as_ref(),
+            _ => None,
+        };
+        if let Some(tag) = tag {
+            if !instances.iter().any(|i| i.tags.contains(tag)) {
+                diags.push(
+                    Diagnostic::warning(
+                        codes::ABSENT_TAG,
+                        format!(
+                            "pass `{}` draws objects tagged `{tag}`, and no entity has that tag",
+                            pass.name
+                        ),
+                    )
+                    .with_help(format!(
+                        "add NprObject::tagged(\"{tag}\") to the entities it should draw"
+                    )),
+                );
+            }
+        }
+    }
+    diags
+}

@@ -1,0 +1,297 @@
+//! bevy_npr in a real Bevy app, headless on lavapipe: a camera with
+//! `NprStyle` renders into an image, which is read back and compared with
+//! `npr render` of the same style on the same scene (npr's scene file,
+//! spawned as Bevy entities); a style edited on disk while the app runs is
+//! picked up, and a broken save keeps the last good style; bad input is a
+//! logged code, never a panic.
+
+mod common;
+
+use bevy::asset::{AssetServer, LoadState};
+use bevy::render::render_resource::TextureFormat;
+use common::*;
+use std::time::Duration;
+
+/// Long enough for lavapipe to compile the pipelines on a busy machine.
+const PATIENCE: Duration = Duration::from_secs(120);
+
+/// Copies `example` (a style of examples/) into the test's asset folder.
+fn copy_style(dir: &std::path::Path, example: &str) -> std::path::PathBuf {
+    let to = dir.join(example);
+    std::fs::copy(repo().join("examples").join(example), &to).expect("copy the style");
+    to
+}
+
+/// Updates until the camera has drawn a frame with the style `name`.
+fn wait_for_style(app: &mut bevy::app::App, camera: bevy::prelude::Entity, name: &str) {
+    update_until(app, &format!("the camera to draw with \"{name}\""), PATIENCE, |app| {
+        runtime_of(app, camera).is_some_and(|(n, builds)| n == name && builds > 0)
+    });
+    // One more frame: the image of the frame just recorded is complete.
+    app.update();
+}
+
+#[test]
+fn toon_on_spot_equals_npr_render_and_follows_its_params() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("toon_spot");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let expected = npr_render(&style, &scene);
+
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let camera = spawn_scene(&mut app, &scene, handle, &image);
+    wait_for_style(&mut app, camera, "Toon");
+    assert_close("toon_spot", &read_image(&app, &image), &expected);
+
+    // Params changed at run time through the reflected component draw what
+    // `npr render` draws of the style with those defaults.
+    app.world_mut()
+        .entity_mut(camera)
+        .insert(bevy_npr::NprParams::default().with("bands", 2).with("base", "#3a7ae0"));
+    for _ in 0..2 {
+        app.update();
+    }
+    let text = std::fs::read_to_string(&style).expect("read the style");
+    let set = dir.join("toon_set.npr");
+    std::fs::write(
+        &set,
+        text.replace("param bands: int = 3", "param bands: int = 2")
+            .replace("param base: color = #e07a3a", "param base: color = #3a7ae0"),
+    )
+    .expect("write the style with other defaults");
+    assert_close("toon_spot_params", &read_image(&app, &image), &npr_render(&set, &scene));
+    assert!(logged_codes(&app).is_empty(), "{:?}", logged_codes(&app));
+}
+
+#[test]
+fn an_edited_style_is_picked_up_and_a_broken_save_keeps_it() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("hot_reload");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
+    wait_for_style(&mut app, camera, "Toon");
+    let before = read_image(&app, &image);
+
+    // A new colour and a new name, saved while the app runs.
+    let text = std::fs::read_to_string(&style).expect("read the style");
+    let edited = text
+        .replace("style \"Toon\"", "style \"Toon edited\"")
+        .replace("param base: color = #e07a3a", "param base: color = #3a7ae0");
+    assert_ne!(text, edited, "the edit must change the style");
+    std::fs::write(&style, &edited).expect("save the edit");
+    wait_for_style(&mut app, camera, "Toon edited");
+    let after = read_image(&app, &image);
+    assert_ne!(before, after, "the edited style draws another image");
+    assert_close("hot_reload_edited", &after, &npr_render(&style, &scene));
+
+    // A save that does not compile: the load fails, the camera keeps the edit.
+    std::fs::write(&style, edited.replace("output shade.color", "output shade.colour +")).expect("save");
+    update_until(&mut app, "the broken save to fail to load", PATIENCE, |app| {
+        matches!(
+            app.world().resource::<AssetServer>().load_state(&handle),
+            LoadState::Failed(_)
+        )
+    });
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(
+        runtime_of(&mut app, camera).map(|r| r.0),
+        Some("Toon edited".to_string())
+    );
+    assert_close("hot_reload_broken", &read_image(&app, &image), &after);
+}
+
+/// A style with a tagged pass and an object param, for the bad-input cases.
+const TAGGED: &str = "style \"Tagged\"\n\
+object param tint: color = #ffffff\n\
+pass shade: render(hero) {\n  out color: rgba8unorm = vec4(tint.rgb * lambert(normal, light.dir), 1.0)\n  clear: #102030\n}\n\
+output shade.color\n";
+
+#[test]
+fn bad_input_is_a_logged_code_and_the_app_keeps_running() {
+    use bevy::prelude::*;
+    use bevy_npr::{NprObject, NprStyle};
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("bad_input");
+    std::fs::write(dir.join("tagged.npr"), TAGGED).expect("write style");
+    std::fs::write(
+        dir.join("broken.npr"),
+        "style \"Broken\"\npass p: render(scene) {\n  out c: rgba8unorm = \n}\n",
+    )
+    .expect("write style");
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+
+    // A style that does not compile: the load fails (logged by the
+    // loader with its code and place), the camera stays as Bevy draws it.
+    let broken_image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let broken = app.world().resource::<AssetServer>().load("broken.npr");
+    let broken_camera = spawn_scene(&mut app, &scene, broken.clone(), &broken_image);
+    // The good style on a second camera, over the same entities: a tag
+    // no entity has (the scene's object is tagged "caster"), then bad params.
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let tagged = app.world().resource::<AssetServer>().load("tagged.npr");
+    let camera = app
+        .world_mut()
+        .spawn((
+            Camera3d::default(),
+            bevy::camera::RenderTarget::Image(image.clone().into()),
+            Msaa::Off,
+            Transform::from_xyz(2.3, 0.9, -2.5).looking_at(Vec3::ZERO, Vec3::Y),
+            NprStyle(tagged),
+        ))
+        .id();
+    wait_for_style(&mut app, camera, "Tagged");
+    update_until(&mut app, "the broken style to fail", PATIENCE, |app| {
+        matches!(
+            app.world().resource::<AssetServer>().load_state(&broken),
+            LoadState::Failed(_)
+        )
+    });
+    app.update();
+    assert_eq!(
+        runtime_of(&mut app, broken_camera),
+        None,
+        "no runtime for a style that never compiled"
+    );
+    assert!(
+        logged_codes(&app).contains(&"W0402"),
+        "the absent tag: {:?}",
+        logged_codes(&app)
+    );
+    // The tagged pass draws nothing: the style's clear colour, everywhere.
+    let cleared = read_image(&app, &image);
+    assert!(
+        cleared.pixels().all(|p| p.0 == cleared.get_pixel(0, 0).0),
+        "nothing tagged `hero` is drawn"
+    );
+
+    // An entity tagged `hero` with a tint of the wrong size and a param the style lacks.
+    let mesh = app
+        .world_mut()
+        .resource_mut::<Assets<Mesh>>()
+        .add(Sphere::new(0.6).mesh().uv(32, 16));
+    app.world_mut().spawn((
+        Mesh3d(mesh),
+        Transform::default(),
+        NprObject::tagged("hero")
+            .with("tint", Vec2::new(1.0, 0.0))
+            .with("tnit", Color::srgb(1.0, 0.0, 0.0)),
+    ));
+    update_until(&mut app, "the hero to be drawn", PATIENCE, |app| {
+        let image = read_image(app, &image);
+        image.pixels().any(|p| p.0 != cleared.get_pixel(0, 0).0)
+    });
+    let codes = logged_codes(&app);
+    assert!(codes.contains(&"E0405"), "the tint of the wrong size: {codes:?}");
+    assert!(codes.contains(&"W0401"), "the param the style lacks: {codes:?}");
+    // The hero is drawn with the default tint (white): grey, not red.
+    let drawn = read_image(&app, &image);
+    let centre = drawn.get_pixel(SIZE / 2, SIZE / 2).0;
+    assert!(
+        centre[0] > 20 && centre[0].abs_diff(centre[1]) <= 2,
+        "a grey sphere: {centre:?}"
+    );
+
+    // A parameter value the style refuses: E0101 (no such name), still running.
+    app.world_mut()
+        .entity_mut(camera)
+        .insert(bevy_npr::NprParams::default().with("nosuch", 1));
+    for _ in 0..3 {
+        app.update();
+    }
+    assert!(logged_codes(&app).contains(&"E0101"), "{:?}", logged_codes(&app));
+    assert_eq!(runtime_of(&mut app, camera).map(|r| r.0), Some("Tagged".to_string()));
+}
+
+#[test]
+fn two_cameras_one_hdr_draw_lsa_contours_and_toon_on_spheres() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("two_cameras");
+    let lsa = copy_style(&dir, "lsa_contours.npr");
+    let toon = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spheres.toml");
+    let mut app = app(&dir);
+    let lsa_image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let toon_image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let lsa_handle = app.world().resource::<AssetServer>().load("lsa_contours.npr");
+    let toon_handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let lsa_camera = spawn_scene(&mut app, &scene, lsa_handle, &lsa_image);
+    // HDR: Bevy's view target is Rgba16Float, encoded by its upscaling pass.
+    app.world_mut().entity_mut(lsa_camera).insert(bevy::camera::Hdr);
+    let toon_camera = spawn_camera(&mut app, &scene, toon_handle, &toon_image);
+    wait_for_style(&mut app, lsa_camera, "LSA contours");
+    wait_for_style(&mut app, toon_camera, "Toon");
+    // The two view targets: linear light in a float texture, and in an sRGB one.
+    for (camera, format) in [
+        (lsa_camera, TextureFormat::Rgba16Float),
+        (toon_camera, TextureFormat::Rgba8UnormSrgb),
+    ] {
+        let render = render_entity(&mut app, camera);
+        let target = app
+            .sub_app(bevy::render::RenderApp)
+            .world()
+            .get::<bevy::render::view::ViewTarget>(render)
+            .map(|t| t.main_texture_format());
+        assert_eq!(target, Some(format));
+    }
+    assert_close(
+        "lsa_contours_spheres_hdr",
+        &read_image(&app, &lsa_image),
+        &npr_render(&lsa, &scene),
+    );
+    assert_close(
+        "toon_spheres",
+        &read_image(&app, &toon_image),
+        &npr_render(&toon, &scene),
+    );
+}
+
+#[test]
+fn a_resized_target_is_drawn_at_its_new_size() {
+    use bevy::prelude::*;
+    use bevy::render::render_resource::Extent3d;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("resize");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let camera = spawn_scene(&mut app, &scene, handle, &image);
+    wait_for_style(&mut app, camera, "Toon");
+    let builds = runtime_of(&mut app, camera).map(|r| r.1);
+
+    // Taller than wide: the aspect changes too.
+    let size = (96, 160);
+    app.world_mut()
+        .resource_mut::<Assets<Image>>()
+        .get_mut(&image)
+        .expect("the target image")
+        .resize(Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        });
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(
+        runtime_of(&mut app, camera).map(|r| r.1),
+        builds,
+        "a new size keeps the scene's resources"
+    );
+    assert_close(
+        "resized",
+        &read_image_sized(&app, &image, size),
+        &npr_render_sized(&style, &scene, size),
+    );
+}
