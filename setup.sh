@@ -84,7 +84,9 @@ if [ "$want_tests" -eq 1 ]; then
   command -v xdpyinfo >/dev/null 2>&1 || missing+=(x11-utils)
   # winit loads these X11 libraries at run time (dlopen), so nothing fails
   # to link without them; the window does not open.
-  local_lib() { ldconfig -p | grep -q "$1"; }
+  # `grep -q` would stop reading at the first match and make ldconfig die of
+  # SIGPIPE, which pipefail turns into "missing" (an apt run every time).
+  local_lib() { ldconfig -p | grep -F "$1" >/dev/null; }
   local_lib libxkbcommon-x11.so.0 || missing+=(libxkbcommon-x11-0)
   local_lib libX11-xcb.so.1 || missing+=(libx11-xcb1)
   local_lib libXcursor.so.1 || missing+=(libxcursor1)
