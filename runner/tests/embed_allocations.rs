@@ -234,8 +234,22 @@ fn age_of_sail_allocates_nothing_per_frame() {
 /// `Renderer` does, pixel for pixel.
 #[test]
 fn a_toml_scene_renders_through_the_runtime_as_through_the_renderer() {
-    let program = compile("toon.npr");
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/spheres.toml");
+    toml_scene_through_the_runtime("toon.npr", "spheres.toml");
+}
+
+/// Age of Sail on its scene: every object binds its own painted `lit_map`
+/// and `shadow_map`, which instances carry (without them the runtime drew
+/// the style's default images, unlike `npr render`).
+#[test]
+fn per_object_images_render_through_the_runtime_as_through_the_renderer() {
+    toml_scene_through_the_runtime("age_of_sail.npr", "age_of_sail.toml");
+}
+
+fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
+    let program = compile(style);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/scenes")
+        .join(scene_file);
     let scene = runner::scene::load_scene(&path, &mut diag::SourceMap::new()).expect("scene");
     let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program.clone()).expect("runtime");
     let instances = runtime.add_scene(&scene);

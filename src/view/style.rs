@@ -105,6 +105,7 @@ impl Loaded {
                 tags: o.tags.clone(),
                 params: o.params.clone(),
                 casts_shadows: o.casts_shadows,
+                images: o.textures.clone(),
             })
             .collect()
     }

@@ -2,13 +2,13 @@
 //! time) and a [`Target`] (the texture views to render into).
 
 use super::MeshHandle;
-use crate::scene::{Camera, Light};
+use crate::scene::{Camera, Light, TextureBinding};
 use glam::Mat4;
 use std::collections::BTreeMap;
 
 /// One object of the host's scene this frame: a registered mesh placed by
 /// `transform`. A scene built in code is made of these; a TOML scene's
-/// objects are the same (`StyleRuntime::instances_of_scene`).
+/// objects are the same (`StyleRuntime::add_scene`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Instance {
     pub mesh: MeshHandle,
@@ -23,6 +23,11 @@ pub struct Instance {
     pub params: BTreeMap<String, Vec<f64>>,
     /// Whether `view(light)` passes (shadow maps) draw it.
     pub casts_shadows: bool,
+    /// Its own images for the style's per-object `texture` params (Age of
+    /// Sail's `lit_map`, `shadow_map`), as a scene's `params` binds them;
+    /// a param left out gets the image the style declares. Images are
+    /// scene-level resources: changing them rebuilds the scene's resources.
+    pub images: BTreeMap<String, TextureBinding>,
 }
 
 impl Instance {
@@ -34,6 +39,7 @@ impl Instance {
             tags: Vec::new(),
             params: BTreeMap::new(),
             casts_shadows: true,
+            images: BTreeMap::new(),
         }
     }
 
@@ -46,6 +52,22 @@ impl Instance {
     /// With the per-object param `name` set to `value`.
     pub fn with_param(mut self, name: &str, value: &[f64]) -> Instance {
         self.params.insert(name.to_string(), value.to_vec());
+        self
+    }
+
+    /// With the per-object texture param `name` bound to the image file
+    /// at `path` (PNG or EXR; its colour space the param's default image's).
+    pub fn with_image(mut self, name: &str, path: impl Into<std::path::PathBuf>) -> Instance {
+        let resolved = path.into();
+        self.images.insert(
+            name.to_string(),
+            TextureBinding {
+                path: resolved.display().to_string(),
+                resolved,
+                srgb: None,
+                span: diag::Span::default(),
+            },
+        );
         self
     }
 }
@@ -65,8 +87,8 @@ pub struct Frame<'a> {
     /// eyes. Keyframes, if any, are played at `time_s`.
     pub camera: &'a Camera,
     /// Every object drawn this frame. Objects may come and go between
-    /// frames; a frame whose objects have the same meshes, tags and
-    /// shadow flags as the previous one (in the same order) allocates
+    /// frames; a frame whose objects have the same meshes, tags,
+    /// images and shadow flags as the previous one (in the same order) allocates
     /// nothing on the GPU.
     pub objects: &'a [Instance],
     pub lights: &'a Lights,

@@ -29,7 +29,7 @@
 //! change ([`StyleRuntime::params`]).
 //!
 //! **What a frame costs.** The first frame (and the first after the size,
-//! the style, or the set of objects' meshes, tags or shadow flags changes)
+//! the style, or the set of objects' meshes, tags, images or shadow flags changes)
 //! builds the GPU resources; every other frame writes uniform buffers and
 //! records commands, and creates no buffer, texture, bind group or
 //! pipeline (`runner/tests/embed_allocations.rs` counts them).
@@ -225,9 +225,9 @@ impl StyleRuntime {
     /// object (its model at load, tags, per-object params, shadow flag), in
     /// order, so `instances[i]` is `scene.objects[i]`. What a TOML scene
     /// has beyond an instance is the host's to animate: a spinning object's
-    /// transform is `scene.objects[i].model_at(t)`. Not carried (yet): the
-    /// ocean's time-varying vertices (its mesh stays as at t = 0),
-    /// blended patches and per-object images (the style's defaults).
+    /// transform is `scene.objects[i].model_at(t)`. Per-object images are
+    /// carried. Not carried (yet): the ocean's time-varying vertices (its
+    /// mesh stays as at t = 0) and blended patches.
     pub fn add_scene(&mut self, scene: &Scene) -> Vec<Instance> {
         let mut registered: Vec<(*const Mesh, MeshHandle)> = Vec::new();
         scene
@@ -249,6 +249,7 @@ impl StyleRuntime {
                     tags: o.tags.clone(),
                     params: o.params.clone(),
                     casts_shadows: o.casts_shadows,
+                    images: o.textures.clone(),
                 }
             })
             .collect()
@@ -256,7 +257,7 @@ impl StyleRuntime {
 
     /// Times the GPU resources of the scene were (re)built: once at the
     /// first frame, and again when the style or the set of objects' meshes,
-    /// tags or shadow flags changed.
+    /// tags, images or shadow flags changed.
     pub fn builds(&self) -> u64 {
         self.builds
     }
@@ -274,7 +275,7 @@ impl StyleRuntime {
         let eye_slots = if self.program.manifest.is_stereo() { 2 } else { 1 };
         let checked = present::check_target(&target, eye_slots, frame.eye)?;
         if self.scene.sync(frame, &self.meshes)? {
-            // Other meshes, tags or shadow flags: the scene-level resources are made anew.
+            // Other meshes, tags, images or shadow flags: the scene-level resources are made anew.
             self.renderer = None;
         }
         let renderer = match &mut self.renderer {

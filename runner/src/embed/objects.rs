@@ -1,11 +1,11 @@
 //! The host's [`Instance`]s as the renderer's [`Scene`]: one scene object
 //! per instance, updated in place each frame (transform, params, camera,
 //! lights), and rebuilt only when the objects' structure changes (their
-//! meshes, tags or shadow flags, or their number).
+//! meshes, tags, images or shadow flags, or their number).
 
 use super::meshes::MeshTable;
 use super::{EmbedError, Frame, Instance, MeshHandle};
-use crate::scene::{Camera, Object, Scene};
+use crate::scene::{Camera, Object, Scene, TextureBinding};
 use std::collections::BTreeMap;
 
 /// What the renderer's GPU resources depend on, per object.
@@ -14,6 +14,7 @@ struct Shape {
     mesh: MeshHandle,
     tags: Vec<String>,
     casts_shadows: bool,
+    images: BTreeMap<String, TextureBinding>,
 }
 
 impl Shape {
@@ -22,11 +23,15 @@ impl Shape {
             mesh: instance.mesh,
             tags: instance.tags.clone(),
             casts_shadows: instance.casts_shadows,
+            images: instance.images.clone(),
         }
     }
 
     fn matches(&self, instance: &Instance) -> bool {
-        self.mesh == instance.mesh && self.tags == instance.tags && self.casts_shadows == instance.casts_shadows
+        self.mesh == instance.mesh
+            && self.tags == instance.tags
+            && self.casts_shadows == instance.casts_shadows
+            && self.images == instance.images
     }
 }
 
@@ -58,7 +63,7 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         tags: instance.tags.clone(),
         params: instance.params.clone(),
         param_spans: BTreeMap::new(),
-        textures: BTreeMap::new(),
+        textures: instance.images.clone(),
         mesh_span: diag::Span::default(),
         time_varying: None,
         casts_shadows: instance.casts_shadows,
