@@ -282,9 +282,9 @@ fn afterimage_chunk(size: &str, frames: &str, ck: &Path) -> Vec<String> {
     .to_vec()
 }
 
-#[test]
-fn e0512_a_checkpoint_of_another_size() {
-    let dir = scratch("e0512");
+/// The checkpoints of a first chunk (frames 0-2 at 16x16) in `dir/ck`,
+/// which the next chunk starts from.
+fn first_chunk_checkpoints(dir: &Path) -> std::path::PathBuf {
     let ck = dir.join("ck");
     let _ = std::fs::remove_dir_all(&ck);
     let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
@@ -293,6 +293,13 @@ fn e0512_a_checkpoint_of_another_size() {
         .output()
         .expect("run npr");
     assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    ck
+}
+
+#[test]
+fn e0512_a_checkpoint_of_another_size() {
+    let dir = scratch("e0512");
+    let ck = first_chunk_checkpoints(&dir);
     let args = afterimage_chunk("24x16", "3-5", &ck);
     let (d, r) = cli_errors(&args.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
     assert!(r.contains("16x16") && r.contains("24x16"), "{r}");
@@ -302,14 +309,7 @@ fn e0512_a_checkpoint_of_another_size() {
 #[test]
 fn e0513_a_truncated_checkpoint() {
     let dir = scratch("e0513");
-    let ck = dir.join("ck");
-    let _ = std::fs::remove_dir_all(&ck);
-    let made = std::process::Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(afterimage_chunk("16x16", "0-2", &ck))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run npr");
-    assert!(made.status.success(), "{}", String::from_utf8_lossy(&made.stderr));
+    let ck = first_chunk_checkpoints(&dir);
     let file = ck.join("frame_000003.nprstate");
     let bytes = std::fs::read(&file).expect("checkpoint written");
     std::fs::write(&file, &bytes[..bytes.len() / 2]).expect("truncate");
