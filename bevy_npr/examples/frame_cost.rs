@@ -1,19 +1,35 @@
-//! The cost of a frame: a headless Bevy app whose camera is drawn by an
-//! npr style (bevy_npr), the same app with the camera drawn by Bevy alone
-//! (no style: Bevy's own frame, which draws nothing here, as the scene's
-//! entities have no material), and `npr render`'s renderer on its own
-//! device, for the same style, scene and size. Each frame's wall time
-//! includes waiting for the GPU (lavapipe: the CPU) to finish it; the
-//! medians of `--frames` frames after a warm-up are printed.
+//! The cost of a frame, in one run with the frames interleaved (one frame
+//! of each in turn, so that the machine's load falls on all alike):
+//! - a headless Bevy app whose camera is drawn by an npr style (bevy_npr);
+//! - the same app with the camera drawn by Bevy alone (no style: Bevy's
+//!   own frame, which draws nothing here, as the entities have no material);
+//! - with `--features bench-standard-material`, the same app with each
+//!   mesh given Bevy's default material (`StandardMaterial::default()`) and
+//!   a `DirectionalLight` where the style's light is: Bevy drawing the
+//!   scene itself;
+//! - `npr render`'s renderer on its own device, for the same style and scene.
 //!
-//! `cargo run -p bevy_npr --example frame_cost -- [STYLE] [SCENE] [--frames N] [--size WxH]`
+//! Every camera has the same post-processing (none: bevy_npr turns Bevy's
+//! tonemapping off on its cameras, the others get `Tonemapping::None`),
+//! no MSAA, one size. Each frame is timed in two parts: the update (CPU:
+//! Bevy's schedules, extraction, encoding, submission; for the renderer,
+//! its `render`) and the wait for the device to finish it (on lavapipe the
+//! "GPU" is the CPU too). Medians of `--frames` frames after a warm-up
+//! that lasts until every pipeline is compiled; each app's image is then
+//! read back and checked to show the scene (not a flat clear).
+//!
+//! `cargo run -p bevy_npr --example frame_cost [--features bench-standard-material] -- [STYLE] [SCENE] [--frames N] [--size WxH]`
 //! (defaults: examples/toon.npr, examples/scenes/spot.toml, 60, 256x256).
 
 use bevy::camera::RenderTarget;
+use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::image::Image;
 use bevy::prelude::*;
-use bevy::render::render_resource::TextureFormat;
-use bevy::render::renderer::RenderDevice;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{PipelineCache, TextureFormat, TextureUsages};
+use bevy::render::renderer::{RenderDevice, RenderQueue};
+use bevy::render::sync_world::RenderEntity;
+use bevy::render::texture::GpuImage;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
@@ -56,118 +72,242 @@ fn options() -> Options {
     o
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+fn median(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
 }
 
-/// A headless app (no window, no pipelined rendering, the clock stopped).
-fn app(assets: &Path) -> App {
-    let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .build()
-            .disable::<bevy::winit::WinitPlugin>()
-            .disable::<bevy::render::pipelined_rendering::PipelinedRenderingPlugin>()
-            .disable::<bevy::log::LogPlugin>()
-            .set(AssetPlugin {
-                file_path: assets.display().to_string(),
-                ..Default::default()
-            })
-            .set(WindowPlugin {
-                primary_window: None,
-                exit_condition: ExitCondition::DontExit,
-                ..Default::default()
-            }),
-    )
-    .add_plugins(NprPlugin)
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
-    app.finish();
-    app.cleanup();
-    app
+/// How a Bevy app's camera is drawn.
+#[derive(Clone, Copy, PartialEq)]
+enum Drawn {
+    ByStyle,
+    ByBevyAlone,
+    #[cfg_attr(not(feature = "bench-standard-material"), allow(dead_code))]
+    ByStandardMaterial,
 }
 
-/// Median ms of a Bevy frame (update and GPU work), with or without the style.
-fn bevy_frames(o: &Options, scene: &runner::scene::Scene, with_style: bool) -> f64 {
-    let dir = o
-        .style
-        .parent()
-        .expect("the style's folder")
-        .canonicalize()
-        .expect("style folder");
-    let mut app = app(&dir);
-    let image = Image::new_target_texture(o.size.0, o.size.1, TextureFormat::Rgba8UnormSrgb, None);
-    let image = app.world_mut().resource_mut::<Assets<Image>>().add(image);
-    spawn_npr_scene(app.world_mut(), scene);
-    let camera = app
-        .world_mut()
-        .spawn((npr_scene_camera(scene), RenderTarget::Image(image.into())))
-        .id();
-    if with_style {
-        let file = o.style.file_name().expect("style file").to_string_lossy().into_owned();
-        let style = app.world().resource::<AssetServer>().load(file);
-        app.world_mut().entity_mut(camera).insert(NprStyle(style));
+/// One frame's milliseconds: the update (CPU) and the wait for the device.
+#[derive(Default)]
+struct Times {
+    update: Vec<f64>,
+    wait: Vec<f64>,
+}
+
+impl Times {
+    fn push(&mut self, update: f64, wait: f64) {
+        self.update.push(update);
+        self.wait.push(wait);
     }
-    let render_camera = app
-        .world()
-        .get::<bevy::render::sync_world::RenderEntity>(camera)
-        .map(|r| r.id());
-    let wait = |app: &App| {
-        let device = app.sub_app(RenderApp).world().resource::<RenderDevice>();
+
+    /// Medians of (update, wait, whole frame).
+    fn medians(&self) -> (f64, f64, f64) {
+        let whole: Vec<f64> = self.update.iter().zip(&self.wait).map(|(u, w)| u + w).collect();
+        (median(&self.update), median(&self.wait), median(&whole))
+    }
+}
+
+/// A headless Bevy app (no window, no pipelined rendering, the clock
+/// stopped) with `scene` drawn into an image as `drawn` says.
+struct BevyRun {
+    app: App,
+    camera: Entity,
+    image: Handle<Image>,
+    times: Times,
+}
+
+impl BevyRun {
+    fn new(o: &Options, scene: &runner::scene::Scene, drawn: Drawn) -> BevyRun {
+        let dir = o.style.parent().expect("the style's folder").canonicalize().expect("style folder");
+        let mut app = App::new();
+        app.add_plugins(
+            DefaultPlugins
+                .build()
+                .disable::<bevy::winit::WinitPlugin>()
+                .disable::<bevy::render::pipelined_rendering::PipelinedRenderingPlugin>()
+                .disable::<bevy::log::LogPlugin>()
+                .set(AssetPlugin {
+                    file_path: dir.display().to_string(),
+                    ..Default::default()
+                })
+                .set(WindowPlugin {
+                    primary_window: None,
+                    exit_condition: ExitCondition::DontExit,
+                    ..Default::default()
+                }),
+        )
+        .add_plugins(NprPlugin)
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
+        app.finish();
+        app.cleanup();
+        let mut image = Image::new_target_texture(o.size.0, o.size.1, TextureFormat::Rgba8UnormSrgb, None);
+        image.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let image = app.world_mut().resource_mut::<Assets<Image>>().add(image);
+        spawn_npr_scene(app.world_mut(), scene);
+        let camera = app
+            .world_mut()
+            .spawn((
+                npr_scene_camera(scene),
+                RenderTarget::Image(image.clone().into()),
+                Tonemapping::None,
+            ))
+            .id();
+        match drawn {
+            Drawn::ByStyle => {
+                let file = o.style.file_name().expect("style file").to_string_lossy().into_owned();
+                let style = app.world().resource::<AssetServer>().load(file);
+                app.world_mut().entity_mut(camera).insert(NprStyle(style));
+            }
+            Drawn::ByBevyAlone => {}
+            Drawn::ByStandardMaterial => standard_material::give(app.world_mut()),
+        }
+        let mut run = BevyRun {
+            app,
+            camera,
+            image,
+            times: Times::default(),
+        };
+        run.warm_up(drawn);
+        run
+    }
+
+    /// Update until the style's runtime is built (a styled camera) and no
+    /// pipeline has been waiting for compilation for 10 frames; at least 30 frames.
+    fn warm_up(&mut self, drawn: Drawn) {
+        let started = Instant::now();
+        let (mut frames, mut settled) = (0, 0);
+        loop {
+            self.frame();
+            frames += 1;
+            let render_world = self.app.sub_app(RenderApp).world();
+            let waiting = render_world.resource::<PipelineCache>().waiting_pipelines().count();
+            settled = if waiting == 0 { settled + 1 } else { 0 };
+            let built = match drawn {
+                Drawn::ByStyle => {
+                    let render = self.app.world().get::<RenderEntity>(self.camera).map(|r| r.id());
+                    let runtimes = render_world.resource::<NprRuntimes>();
+                    render.and_then(|r| runtimes.builds(r)).is_some_and(|b| b > 0)
+                }
+                _ => true,
+            };
+            if built && settled >= 10 && frames >= 30 {
+                break;
+            }
+            assert!(
+                started.elapsed() < Duration::from_secs(300),
+                "the app did not settle in 300 s (style loaded: {built}, pipelines waiting: {waiting})"
+            );
+        }
+        self.times = Times::default();
+    }
+
+    /// One timed frame.
+    fn frame(&mut self) {
+        let t = Instant::now();
+        self.app.update();
+        let update = t.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        let device = self.app.sub_app(RenderApp).world().resource::<RenderDevice>();
         device
             .wgpu_device()
             .poll(wgpu::PollType::wait_indefinitely())
             .expect("wait for the GPU");
-    };
-    // Warm-up: the style loads and the runtime builds (or 30 frames without one).
-    let started = Instant::now();
-    let mut warm = 0;
-    loop {
-        app.update();
-        wait(&app);
-        warm += 1;
-        let render = render_camera.or_else(|| {
-            app.world()
-                .get::<bevy::render::sync_world::RenderEntity>(camera)
-                .map(|r| r.id())
-        });
-        let built = render.and_then(|r| app.sub_app(RenderApp).world().resource::<NprRuntimes>().builds(r));
-        if (!with_style || built.is_some_and(|b| b > 0)) && warm >= 30 {
-            break;
-        }
-        assert!(started.elapsed() < Duration::from_secs(300), "the style did not load");
+        self.times.push(update, t.elapsed().as_secs_f64() * 1e3);
     }
-    let mut times = Vec::new();
-    for _ in 0..o.frames {
-        let t = Instant::now();
-        app.update();
-        wait(&app);
-        times.push(t.elapsed().as_secs_f64() * 1e3);
+
+    /// The camera's image, as stored (sRGB-encoded bytes).
+    fn image(&self, size: (u32, u32)) -> image::RgbaImage {
+        let world = self.app.sub_app(RenderApp).world();
+        let gpu = world.resource::<RenderAssets<GpuImage>>().get(self.image.id()).expect("the image is on the GPU");
+        let device = world.resource::<RenderDevice>();
+        let queue = world.resource::<RenderQueue>();
+        runner::readback::read_texture(
+            device.wgpu_device(),
+            queue,
+            &gpu.texture,
+            size.0,
+            size.1,
+            abi::Format::Rgba8unorm,
+            "frame_cost",
+        )
+        .unwrap_or_else(|e| panic!("reading the image back: {e}"))
+        .to_rgba8()
     }
-    median(times)
 }
 
-/// Median ms of a frame of `npr render`'s renderer (render and GPU work).
-fn npr_frames(o: &Options, scene: &runner::scene::Scene) -> f64 {
-    let gpu = runner::Gpu::headless().expect("a GPU adapter");
-    let mut sources = diag::SourceMap::new();
-    let program = match compiler::compile_file(&o.style, &mut sources, &Default::default()) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    };
-    let mut renderer = runner::Renderer::new(&gpu.device, &gpu.queue, &program, scene).expect("renderer");
-    let spec = runner::FrameSpec::still(o.size.0, o.size.1, 0);
-    let mut times = Vec::new();
-    for k in 0..o.frames + 30 {
-        let t = Instant::now();
-        renderer.render(scene, &spec).expect("frame");
-        runner::readback::wait_idle(&gpu.device).expect("wait");
-        if k >= 30 {
-            times.push(t.elapsed().as_secs_f64() * 1e3);
+/// Bevy's default material on every mesh, and Bevy's light at the style's.
+#[cfg(feature = "bench-standard-material")]
+mod standard_material {
+    use bevy::prelude::*;
+
+    pub fn give(world: &mut World) {
+        let material = world.resource_mut::<Assets<StandardMaterial>>().add(StandardMaterial::default());
+        let meshes: Vec<Entity> = world.query_filtered::<Entity, With<Mesh3d>>().iter(world).collect();
+        for entity in meshes {
+            world.entity_mut(entity).insert(MeshMaterial3d(material.clone()));
+        }
+        let lights: Vec<Entity> = world.query_filtered::<Entity, With<bevy_npr::NprLight>>().iter(world).collect();
+        for entity in lights {
+            world.entity_mut(entity).insert(DirectionalLight::default());
         }
     }
-    median(times)
+}
+
+#[cfg(not(feature = "bench-standard-material"))]
+mod standard_material {
+    pub fn give(_: &mut bevy::prelude::World) {
+        unreachable!("built without bench-standard-material")
+    }
+}
+
+/// `npr render`'s renderer on a headless device of its own.
+struct NprRun {
+    gpu: runner::Gpu,
+    renderer: runner::Renderer,
+    spec: runner::FrameSpec,
+    times: Times,
+}
+
+impl NprRun {
+    fn new(o: &Options, scene: &runner::scene::Scene) -> NprRun {
+        let gpu = runner::Gpu::headless().expect("a GPU adapter (./setup.sh --tests installs lavapipe)");
+        let mut sources = diag::SourceMap::new();
+        let program = match compiler::compile_file(&o.style, &mut sources, &Default::default()) {
+            Ok(c) => c.program(),
+            Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+            Err(e) => panic!("{e:?}"),
+        };
+        let renderer = runner::Renderer::new(&gpu.device, &gpu.queue, &program, scene).expect("renderer");
+        let spec = runner::FrameSpec::still(o.size.0, o.size.1, 0);
+        let mut run = NprRun {
+            gpu,
+            renderer,
+            spec,
+            times: Times::default(),
+        };
+        for _ in 0..30 {
+            run.frame(scene);
+        }
+        run.times = Times::default();
+        run
+    }
+
+    fn frame(&mut self, scene: &runner::scene::Scene) {
+        let t = Instant::now();
+        self.renderer.render(scene, &self.spec).expect("frame");
+        let update = t.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        runner::readback::wait_idle(&self.gpu.device).expect("wait");
+        self.times.push(update, t.elapsed().as_secs_f64() * 1e3);
+    }
+}
+
+/// Fails when `image` is nearly one colour: the app did not draw the scene.
+fn check_drawn(name: &str, image: &image::RgbaImage) {
+    let first = image.get_pixel(0, 0).0;
+    let differing = image.pixels().filter(|p| p.0 != first).count();
+    let share = differing as f64 / (image.width() * image.height()) as f64;
+    assert!(share > 0.05, "{name}: only {:.1}% of the image differs from its corner: the scene was not drawn", share * 100.0);
 }
 
 fn main() {
@@ -175,19 +315,57 @@ fn main() {
     let mut sources = diag::SourceMap::new();
     let scene = runner::scene::load_scene(&o.scene, &mut sources)
         .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let styled = bevy_frames(&o, &scene, true);
-    let plain = bevy_frames(&o, &scene, false);
-    let npr = npr_frames(&o, &scene);
+    let mut runs = vec![
+        ("Bevy + bevy_npr", BevyRun::new(&o, &scene, Drawn::ByStyle)),
+        ("Bevy alone (no material)", BevyRun::new(&o, &scene, Drawn::ByBevyAlone)),
+    ];
+    if cfg!(feature = "bench-standard-material") {
+        runs.push(("Bevy, StandardMaterial", BevyRun::new(&o, &scene, Drawn::ByStandardMaterial)));
+    }
+    let mut npr = NprRun::new(&o, &scene);
+    // Interleaved: each round draws one frame of each, starting with another each round.
+    for round in 0..o.frames {
+        let n = runs.len() + 1;
+        for k in 0..n {
+            match (round + k) % n {
+                i if i < runs.len() => runs[i].1.frame(),
+                _ => npr.frame(&scene),
+            }
+        }
+    }
+    check_drawn("Bevy + bevy_npr", &runs[0].1.image(o.size));
+    for (name, run) in runs.iter().skip(2) {
+        check_drawn(name, &run.image(o.size));
+    }
+
     println!(
-        "{} on {}, {}x{}, median of {} frames (ms, GPU work included):",
+        "{} on {}, {}x{}, median of {} interleaved frames (ms):",
         o.style.display(),
         o.scene.display(),
         o.size.0,
         o.size.1,
         o.frames
     );
-    println!("  Bevy + bevy_npr        {styled:8.3}");
-    println!("  Bevy alone (no style)  {plain:8.3}");
-    println!("  bevy_npr's share       {:8.3}", styled - plain);
-    println!("  npr render's renderer  {npr:8.3}");
+    println!("  {:<28} {:>8} {:>8} {:>8}", "", "update", "wait", "frame");
+    let mut frame_ms = Vec::new();
+    for (name, run) in &runs {
+        let (u, w, f) = run.times.medians();
+        println!("  {name:<28} {u:8.3} {w:8.3} {f:8.3}");
+        frame_ms.push(f);
+    }
+    let (u, w, f) = npr.times.medians();
+    println!("  {:<28} {u:8.3} {w:8.3} {f:8.3}", "npr render's renderer");
+    let share = frame_ms[0] - frame_ms[1];
+    println!("  bevy_npr's share (npr - alone)        {share:8.3}");
+    println!("  share / npr render's frame            {:8.2}", share / f);
+    match frame_ms.get(2) {
+        Some(standard) => {
+            println!("  Bevy + bevy_npr / StandardMaterial    {:8.2}", frame_ms[0] / standard);
+            println!(
+                "  share / StandardMaterial's share      {:8.2}",
+                share / (standard - frame_ms[1])
+            );
+        }
+        None => println!("  (StandardMaterial: run with --features bench-standard-material)"),
+    }
 }

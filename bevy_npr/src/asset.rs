@@ -5,6 +5,12 @@
 //! `file:line:col` and the source line) and the load fails; on a hot
 //! reload Bevy then keeps the asset it had, so a broken save keeps the
 //! last style that compiled.
+//!
+//! The files a style reads besides its own (`use`d modules, filter styles,
+//! `image("...")` files) are read again through Bevy's `LoadContext`, which
+//! makes them the asset's loader dependencies: with hot reload on, editing
+//! one reloads the style. Files outside the asset folder cannot be asset
+//! paths; they are logged once per load and not watched.
 
 use bevy::asset::io::Reader;
 use bevy::asset::{AssetLoader, LoadContext};
@@ -20,6 +26,8 @@ use std::sync::Arc;
 pub struct NprStyleAsset {
     program: Arc<runner::StyleProgram>,
     revision: u64,
+    /// The files besides the style's own that it read (absolute paths).
+    read: Vec<PathBuf>,
 }
 
 impl NprStyleAsset {
@@ -31,6 +39,14 @@ impl NprStyleAsset {
     /// Distinct for every successful load of any style.
     pub fn revision(&self) -> u64 {
         self.revision
+    }
+
+    /// The files the style read besides its own, as absolute paths: its
+    /// `use`d modules and filter styles (every file of the compilation)
+    /// and the images its `image("...")`s name. The loader makes those
+    /// inside the asset folder dependencies of the asset.
+    pub fn files_read(&self) -> &[PathBuf] {
+        &self.read
     }
 
     /// The style's name (its `style "..."` line).
@@ -104,13 +120,73 @@ impl NprStyleLoader {
                 if !compiled.warnings.is_empty() {
                     warn!("{}", diag::diagnostic::render(&compiled.warnings, &sources, false));
                 }
+                let program = compiled.program();
+                let read = files_read(&file, &sources, &program);
                 Ok(NprStyleAsset {
-                    program: Arc::new(compiled.program()),
+                    program: Arc::new(program),
                     revision: REVISIONS.fetch_add(1, Ordering::Relaxed),
+                    read,
                 })
             }
             Err(compiler::CompileError::User(diags)) => Err(fail(&diags, &sources)),
             Err(compiler::CompileError::Internal(e)) => Err(fail(&[e.to_diagnostic()], &sources)),
+        }
+    }
+}
+
+/// Every file of the compilation but the style's own (`sources` holds each
+/// file by the path it was read from) and every `image("...")` file.
+fn files_read(style: &Path, sources: &diag::SourceMap, program: &runner::StyleProgram) -> Vec<PathBuf> {
+    let own = canonical(style);
+    let mut read: Vec<PathBuf> = sources
+        .files()
+        .iter()
+        .map(|f| canonical(Path::new(&f.name)))
+        .chain(program.manifest.textures.iter().filter_map(|t| match &t.source {
+            abi::manifest::TextureSourceManifest::Image { resolved, .. } => Some(canonical(Path::new(resolved))),
+            _ => None,
+        }))
+        .filter(|p| *p != own && p.is_absolute())
+        .collect();
+    read.sort();
+    read.dedup();
+    read
+}
+
+fn canonical(path: &Path) -> PathBuf {
+    path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
+}
+
+impl NprStyleLoader {
+    /// Read each file the style read through `load_context`, so that Bevy
+    /// records it as a dependency and reloads the style when it changes.
+    async fn depend_on_files_read(&self, asset: &NprStyleAsset, load_context: &mut LoadContext<'_>) {
+        let root = canonical(&self.root);
+        for file in asset.files_read() {
+            let Ok(relative) = file.strip_prefix(&root) else {
+                info!(
+                    "the style {} reads {}, outside the asset folder {}: editing it does not reload the style",
+                    load_context.path(),
+                    file.display(),
+                    root.display()
+                );
+                continue;
+            };
+            // Asset paths are written with `/` on every platform.
+            let asset_path = relative
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy())
+                .collect::<Vec<_>>()
+                .join("/");
+            if let Err(e) = load_context.read_asset_bytes(asset_path).await {
+                // The compiler read it a moment ago; a file gone since is
+                // only not watched (the runtime reports a missing image).
+                warn!(
+                    "the style {} reads {}, which Bevy cannot read ({e}): editing it does not reload the style",
+                    load_context.path(),
+                    file.display()
+                );
+            }
         }
     }
 }
@@ -141,7 +217,9 @@ impl AssetLoader for NprStyleLoader {
                 rendered,
             });
         }
-        self.compile(&path, bytes)
+        let asset = self.compile(&path, bytes)?;
+        self.depend_on_files_read(&asset, load_context).await;
+        Ok(asset)
     }
 
     fn extensions(&self) -> &[&str] {

@@ -5,7 +5,7 @@
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology, VertexAttributeValues};
-use bevy::platform::collections::HashMap;
+use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use std::sync::Arc;
 
@@ -94,12 +94,18 @@ pub(crate) struct NprMeshes {
     pub revision: u64,
 }
 
-/// Converts the meshes of `Mesh3d` entities that are new or changed.
+/// Converts the meshes of `Mesh3d` entities that are new or changed, and
+/// forgets those that no entity has any more (despawned, or given
+/// another mesh) or whose asset is gone: the render world then removes
+/// them from each camera's runtime, so a game that spawns and despawns
+/// meshes does not grow the runtimes' mesh tables. A mesh that comes back
+/// is converted again.
 pub(crate) fn convert_meshes(
     mut events: MessageReader<AssetEvent<Mesh>>,
     assets: Res<Assets<Mesh>>,
     drawn: Query<&Mesh3d>,
     mut cache: ResMut<NprMeshes>,
+    mut in_use: Local<HashSet<AssetId<Mesh>>>,
 ) {
     for event in events.read() {
         if let AssetEvent::Modified { id } | AssetEvent::Removed { id } | AssetEvent::Unused { id } = event {
@@ -107,6 +113,13 @@ pub(crate) fn convert_meshes(
                 cache.revision += 1;
             }
         }
+    }
+    in_use.clear();
+    in_use.extend(drawn.iter().map(|m| m.0.id()));
+    let before = cache.meshes.len();
+    cache.meshes.retain(|id, _| in_use.contains(id));
+    if cache.meshes.len() != before {
+        cache.revision += 1;
     }
     for Mesh3d(handle) in &drawn {
         let id = handle.id();

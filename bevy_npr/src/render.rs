@@ -40,6 +40,8 @@ struct CameraRuntime {
     /// The parameter values given to the runtime so far.
     params: BTreeMap<String, String>,
     instances: Vec<Instance>,
+    /// The revision of the scene's mesh map when `meshes` was last pruned.
+    mesh_revision: u64,
 }
 
 /// The runtimes of the cameras drawn by a style, by render entity, and the
@@ -62,6 +64,13 @@ impl NprRuntimes {
     /// resizing); `None` when it has no runtime.
     pub fn builds(&self, camera: Entity) -> Option<u64> {
         self.cameras.get(&camera).map(|c| c.runtime.builds())
+    }
+
+    /// How many meshes the camera's runtime has registered: those of the
+    /// entities drawn since Bevy last forgot a mesh (no entity has it any
+    /// more, or its asset is gone), not one per mesh ever drawn.
+    pub fn mesh_count(&self, camera: Entity) -> Option<usize> {
+        self.cameras.get(&camera).map(|c| c.runtime.mesh_count())
     }
 
     /// The name of the style the camera's runtime runs.
@@ -99,8 +108,12 @@ pub(crate) fn draw_npr(
     let at = |what: String| format!("camera {}: {what}", camera.main);
 
     // A new style (first load or hot reload) gets a new runtime; one the
-    // device cannot run keeps the last.
-    if cameras.get(&entity).is_none_or(|c| c.revision != style.revision()) {
+    // device cannot run keeps the last. So does a removed `NprParams` key
+    // of an animated parameter: `set_param` cannot give its keyframes back.
+    let restarts = cameras.get(&entity).is_none_or(|c| {
+        c.revision != style.revision() || !unset_params(c, camera, style.program()).1.is_empty()
+    });
+    if restarts {
         match StyleRuntime::new(device.wgpu_device(), &queue, (**style.program()).clone()) {
             Ok(runtime) => {
                 info!("{}", at(format!("drawn with the style \"{}\"", style.name())));
@@ -113,6 +126,7 @@ pub(crate) fn draw_npr(
                         meshes: HashMap::default(),
                         params: BTreeMap::new(),
                         instances: Vec::new(),
+                        mesh_revision: 0,
                     },
                 );
             }
@@ -121,6 +135,8 @@ pub(crate) fn draw_npr(
                 let Some(kept) = cameras.get_mut(&entity) else { return };
                 // Not retried every frame: the same style would fail again.
                 kept.revision = style.revision();
+                // An animated parameter whose key was removed keeps its set value.
+                kept.params.retain(|name, _| camera.params.contains_key(name));
             }
         }
     }
@@ -136,6 +152,17 @@ pub(crate) fn draw_npr(
         }
     };
 
+    // A key removed from `NprParams`: the parameter gets the style's default back.
+    for name in unset_params(state, camera, style.program()).0 {
+        let result = match default_value(style.program(), &name) {
+            Some(text) => state.runtime.set_param(&name, &text).map_err(|e| e.diagnostics()),
+            None => Ok(()),
+        };
+        if let Err(diags) = result {
+            reports.log(entity, &prefixed(&camera.main, diags));
+        }
+        state.params.remove(&name);
+    }
     for (name, value) in &camera.params {
         if state.params.get(name) != Some(value) {
             if let Err(e) = state.runtime.set_param(name, value) {
@@ -181,6 +208,39 @@ pub(crate) fn draw_npr(
     }
 }
 
+/// The parameters given to the runtime whose keys `NprParams` no longer
+/// has: (those with a constant default, those that are animated).
+fn unset_params(
+    state: &CameraRuntime,
+    camera: &ExtractedNprCamera,
+    program: &runner::StyleProgram,
+) -> (Vec<String>, Vec<String>) {
+    state
+        .params
+        .keys()
+        .filter(|name| !camera.params.contains_key(*name))
+        .cloned()
+        .partition(|name| {
+            program
+                .manifest
+                .params
+                .iter()
+                .find(|p| &p.name == name)
+                .is_none_or(|p| p.keyframes.is_empty())
+        })
+}
+
+/// The style's own value of the parameter `name`, written as `set_param`
+/// takes it; `None` for a name the style does not have (its `set_param`
+/// was refused and logged, so nothing is to undo).
+fn default_value(program: &runner::StyleProgram, name: &str) -> Option<String> {
+    let p = program.manifest.params.iter().find(|p| p.name == name)?;
+    if p.default_percent_of_height {
+        return Some(format!("{}%", p.default.first().copied().unwrap_or(0.0)));
+    }
+    abi::param_value::format_literal(&abi::param_value::ParamShape::of_manifest(p), &p.default)
+}
+
 /// `diags` with the camera named, for the log.
 fn prefixed(camera: &Entity, diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
     diags
@@ -199,6 +259,19 @@ fn prefixed(camera: &Entity, diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
 fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagnostic> {
     let mut problems = Vec::new();
     state.instances.clear();
+    if state.mesh_revision != scene.mesh_revision {
+        // Meshes Bevy forgot (no entity has them, or the asset is gone) or
+        // changed leave the runtime; those drawn again are registered again.
+        let runtime = &mut state.runtime;
+        state.meshes.retain(|id, (registered, handle)| {
+            let kept = matches!(scene.meshes.get(id), Some(Converted::Mesh(m)) if Arc::ptr_eq(m, registered));
+            if !kept {
+                let _ = runtime.remove_mesh(*handle);
+            }
+            kept
+        });
+        state.mesh_revision = scene.mesh_revision;
+    }
     let per_object: Vec<(String, u32, String)> = state
         .runtime
         .manifest()

@@ -2,7 +2,9 @@
 //! `NprStyle` renders into an image, which is read back and compared with
 //! `npr render` of the same style on the same scene (npr's scene file,
 //! spawned as Bevy entities); a style edited on disk while the app runs is
-//! picked up, and a broken save keeps the last good style; bad input is a
+//! picked up, and a broken save keeps the last good style, as is a file the
+//! style `use`s; a parameter removed from `NprParams` returns to the
+//! style's value; despawned meshes leave the runtime; bad input is a
 //! logged code, never a panic.
 
 mod common;
@@ -32,7 +34,7 @@ fn wait_for_style(app: &mut bevy::app::App, camera: bevy::prelude::Entity, name:
 }
 
 #[test]
-fn toon_on_spot_equals_npr_render_and_follows_its_params() {
+fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = asset_dir("toon_spot");
     let style = copy_style(&dir, "toon.npr");
@@ -63,6 +65,24 @@ fn toon_on_spot_equals_npr_render_and_follows_its_params() {
     )
     .expect("write the style with other defaults");
     assert_close("toon_spot_params", &read_image(&app, &image), &npr_render(&set, &scene));
+
+    // Keys removed from NprParams return to the style's values: `base` to
+    // its constant, `rim` (set here to 0.9) to its animation (0.1 at 0 s).
+    let params = |app: &mut bevy::app::App, p: bevy_npr::NprParams| {
+        app.world_mut().entity_mut(camera).insert(p);
+        for _ in 0..2 {
+            app.update();
+        }
+    };
+    let set_params = bevy_npr::NprParams::default().with("bands", 2).with("base", "#3a7ae0");
+    params(&mut app, set_params.clone().with("rim", 0.9));
+    let bright_rim = read_image(&app, &image);
+    params(&mut app, bevy_npr::NprParams::default().with("bands", 2));
+    let only_bands = dir.join("toon_bands.npr");
+    std::fs::write(&only_bands, text.replace("param bands: int = 3", "param bands: int = 2")).expect("write");
+    let reset = read_image(&app, &image);
+    assert_ne!(bright_rim, reset, "removing `base` and `rim` changes the image");
+    assert_close("toon_spot_params_removed", &reset, &npr_render(&only_bands, &scene));
     assert!(logged_codes(&app).is_empty(), "{:?}", logged_codes(&app));
 }
 
@@ -294,4 +314,107 @@ fn a_resized_target_is_drawn_at_its_new_size() {
         &read_image_sized(&app, &image, size),
         &npr_render_sized(&style, &scene, size),
     );
+}
+
+#[test]
+fn an_edited_file_that_the_style_uses_is_picked_up() {
+    use bevy::prelude::*;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("used_file");
+    // Toon with its `base` colour declared in a file it `use`s.
+    let toon = std::fs::read_to_string(repo().join("examples/toon.npr")).expect("read toon.npr");
+    let main = toon.replace("param base: color = #e07a3a\n", "").replace(
+        "style \"Toon\"\n",
+        "style \"Toon\"\nuse \"lib/palette.npr\"\n",
+    );
+    assert!(main.contains("use \"lib/palette.npr\"") && !main.contains("param base"));
+    let style = dir.join("main.npr");
+    std::fs::write(&style, main).expect("write the style");
+    std::fs::create_dir_all(dir.join("lib")).expect("lib folder");
+    let palette = dir.join("lib/palette.npr");
+    std::fs::write(&palette, "style \"Palette\"\nparam base: color = #e07a3a\n").expect("write the palette");
+
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle: Handle<bevy_npr::NprStyleAsset> = app.world().resource::<AssetServer>().load("main.npr");
+    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
+    wait_for_style(&mut app, camera, "Toon");
+    let style_asset = |app: &App| app.world().resource::<Assets<bevy_npr::NprStyleAsset>>().get(&handle).cloned();
+    let loaded = style_asset(&app).expect("the style is loaded");
+    assert_eq!(
+        loaded.files_read(),
+        [palette.canonicalize().expect("the palette's path")],
+        "the style read its palette"
+    );
+    let before = read_image(&app, &image);
+    assert_close("used_file_before", &before, &npr_render(&style, &scene));
+
+    std::fs::write(&palette, "style \"Palette\"\nparam base: color = #3a7ae0\n").expect("edit the palette");
+    update_until(&mut app, "the style to reload after its palette changed", PATIENCE, |app| {
+        style_asset(app).is_some_and(|s| s.revision() != loaded.revision())
+    });
+    // The render world draws the new revision from the next frame on.
+    for _ in 0..3 {
+        app.update();
+    }
+    let after = read_image(&app, &image);
+    assert_ne!(before, after, "the edited palette draws another image");
+    assert_close("used_file_after", &after, &npr_render(&style, &scene));
+}
+
+#[test]
+fn despawned_meshes_leave_the_runtime() {
+    use bevy::prelude::*;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("mesh_churn");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle = app.world().resource::<AssetServer>().load("toon.npr");
+    let camera = spawn_scene(&mut app, &scene, handle, &image);
+    wait_for_style(&mut app, camera, "Toon");
+    let render = render_entity(&mut app, camera);
+    let mesh_count = |app: &App| {
+        app.sub_app(bevy::render::RenderApp)
+            .world()
+            .resource::<bevy_npr::NprRuntimes>()
+            .mesh_count(render)
+            .expect("the camera has a runtime")
+    };
+    let objects = scene.objects.len();
+    assert_eq!(mesh_count(&app), objects, "one mesh per object of the scene");
+
+    let despawn_meshes = |app: &mut App| {
+        let world = app.world_mut();
+        let entities: Vec<Entity> = world.query_filtered::<Entity, With<Mesh3d>>().iter(world).collect();
+        for entity in entities {
+            world.despawn(entity);
+        }
+    };
+    // Despawned and spawned again, with new mesh assets each time: the
+    // old ones leave the runtime.
+    for round in 0..5 {
+        despawn_meshes(&mut app);
+        bevy_npr::spawn_npr_scene(app.world_mut(), &scene);
+        for _ in 0..3 {
+            app.update();
+        }
+        assert_eq!(mesh_count(&app), objects, "round {round}: the runtime holds the drawn meshes only");
+    }
+    assert_close("mesh_churn", &read_image(&app, &image), &npr_render(&style, &scene));
+
+    // Despawned while the app keeps the mesh assets alive: no entity draws
+    // them, so they leave the runtime all the same.
+    let kept: Vec<Handle<Mesh>> = {
+        let world = app.world_mut();
+        world.query::<&Mesh3d>().iter(world).map(|m| m.0.clone()).collect()
+    };
+    despawn_meshes(&mut app);
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(kept.len(), objects);
+    assert_eq!(mesh_count(&app), 0, "no entity draws a mesh any more");
 }

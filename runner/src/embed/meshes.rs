@@ -70,6 +70,11 @@ impl MeshTable {
             .ok_or(EmbedError::UnknownMesh(handle))
     }
 
+    /// How many meshes are registered (not removed).
+    pub fn len(&self) -> usize {
+        self.slots.iter().filter(|s| s.mesh.is_some()).count()
+    }
+
     pub fn get(&self, handle: MeshHandle) -> Result<&Arc<Mesh>, EmbedError> {
         if handle.runtime != self.runtime {
             return Err(EmbedError::UnknownMesh(handle));

@@ -215,6 +215,12 @@ impl StyleRuntime {
         self.meshes.remove(handle).map(|_| ())
     }
 
+    /// How many meshes are registered now (added and not removed): a host
+    /// checks that it removes the meshes it no longer draws.
+    pub fn mesh_count(&self) -> usize {
+        self.meshes.len()
+    }
+
     /// The mesh a handle names (E0601 for a removed one).
     pub fn mesh(&self, handle: MeshHandle) -> Result<&Arc<Mesh>, EmbedError> {
         self.meshes.get(handle)
