@@ -16,19 +16,20 @@
 //! its `render`) and the wait for the device to finish it (on lavapipe the
 //! "GPU" is the CPU too). Medians of `--frames` frames after a warm-up
 //! that lasts until every pipeline is compiled; each app's image is then
-//! read back and checked to show the scene (not a flat clear).
+//! read back and checked to show the scene (over 1% of it not the
+//! corner's colour).
 //!
 //! `cargo run -p bevy_npr --example frame_cost [--features bench-standard-material] -- [STYLE] [SCENE] [--frames N] [--size WxH]`
 //! (defaults: examples/toon.npr, examples/scenes/spot.toml, 60, 256x256).
 
 use bevy::camera::RenderTarget;
-use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::image::Image;
 use bevy::prelude::*;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{PipelineCache, TextureFormat, TextureUsages};
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::sync_world::RenderEntity;
+use bevy::render::view::Tonemapping;
 use bevy::render::texture::GpuImage;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
@@ -83,7 +84,6 @@ fn median(v: &[f64]) -> f64 {
 enum Drawn {
     ByStyle,
     ByBevyAlone,
-    #[cfg_attr(not(feature = "bench-standard-material"), allow(dead_code))]
     ByStandardMaterial,
 }
 
@@ -302,12 +302,13 @@ impl NprRun {
     }
 }
 
-/// Fails when `image` is nearly one colour: the app did not draw the scene.
+/// Fails when `image` is nearly one colour: the app did not draw the
+/// scene. (A line style on a white page colours a few percent of it.)
 fn check_drawn(name: &str, image: &image::RgbaImage) {
     let first = image.get_pixel(0, 0).0;
     let differing = image.pixels().filter(|p| p.0 != first).count();
     let share = differing as f64 / (image.width() * image.height()) as f64;
-    assert!(share > 0.05, "{name}: only {:.1}% of the image differs from its corner: the scene was not drawn", share * 100.0);
+    assert!(share > 0.01, "{name}: only {:.1}% of the image differs from its corner: the scene was not drawn", share * 100.0);
 }
 
 fn main() {
