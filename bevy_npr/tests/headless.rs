@@ -67,22 +67,35 @@ fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     assert_close("toon_spot_params", &read_image(&app, &image), &npr_render(&set, &scene));
 
     // Keys removed from NprParams return to the style's values: `base` to
-    // its constant, `rim` (set here to 0.9) to its animation (0.1 at 0 s).
+    // its constant, `rim` (set here to 0.9) to its animation (0.1 at 0 s),
+    // one at a time (removing `rim` rebuilds the runtime, which would reset
+    // `base` too).
     let params = |app: &mut bevy::app::App, p: bevy_npr::NprParams| {
         app.world_mut().entity_mut(camera).insert(p);
         for _ in 0..2 {
             app.update();
         }
     };
-    let set_params = bevy_npr::NprParams::default().with("bands", 2).with("base", "#3a7ae0");
-    params(&mut app, set_params.clone().with("rim", 0.9));
-    let bright_rim = read_image(&app, &image);
-    params(&mut app, bevy_npr::NprParams::default().with("bands", 2));
+    let bands = bevy_npr::NprParams::default().with("bands", 2);
+    params(&mut app, bands.clone().with("base", "#3a7ae0").with("rim", 0.9));
+    let blue = read_image(&app, &image);
+    let with_bands = text.replace("param bands: int = 3", "param bands: int = 2");
+    let bright_rim = dir.join("toon_bright_rim.npr");
+    let rim = "param rim: float = 0.3 in 0..1 animate { 0s: 0.1, 4s: 0.5 }";
+    assert!(text.contains(rim), "toon.npr's rim is animated");
+    std::fs::write(&bright_rim, with_bands.replace(rim, "param rim: float = 0.9 in 0..1")).expect("write");
+    // `base` back to its constant (set again from the style's value) ...
+    params(&mut app, bands.clone().with("rim", 0.9));
+    let base_removed = read_image(&app, &image);
+    assert_ne!(blue, base_removed, "removing `base` changes the image");
+    assert_close("toon_spot_base_removed", &base_removed, &npr_render(&bright_rim, &scene));
+    // ... and `rim` back to its animation (0.1 at 0 s: the runtime is rebuilt).
+    params(&mut app, bands);
     let only_bands = dir.join("toon_bands.npr");
-    std::fs::write(&only_bands, text.replace("param bands: int = 3", "param bands: int = 2")).expect("write");
-    let reset = read_image(&app, &image);
-    assert_ne!(bright_rim, reset, "removing `base` and `rim` changes the image");
-    assert_close("toon_spot_params_removed", &reset, &npr_render(&only_bands, &scene));
+    std::fs::write(&only_bands, &with_bands).expect("write");
+    let rim_removed = read_image(&app, &image);
+    assert_ne!(base_removed, rim_removed, "removing `rim` changes the image");
+    assert_close("toon_spot_rim_removed", &rim_removed, &npr_render(&only_bands, &scene));
     assert!(logged_codes(&app).is_empty(), "{:?}", logged_codes(&app));
 }
 
