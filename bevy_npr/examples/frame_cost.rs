@@ -29,8 +29,8 @@ use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{PipelineCache, TextureFormat, TextureUsages};
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::sync_world::RenderEntity;
-use bevy::render::view::Tonemapping;
 use bevy::render::texture::GpuImage;
+use bevy::render::view::Tonemapping;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
@@ -118,7 +118,12 @@ struct BevyRun {
 
 impl BevyRun {
     fn new(o: &Options, scene: &runner::scene::Scene, drawn: Drawn) -> BevyRun {
-        let dir = o.style.parent().expect("the style's folder").canonicalize().expect("style folder");
+        let dir = o
+            .style
+            .parent()
+            .expect("the style's folder")
+            .canonicalize()
+            .expect("style folder");
         let mut app = App::new();
         app.add_plugins(
             DefaultPlugins
@@ -218,7 +223,10 @@ impl BevyRun {
     /// The camera's image, as stored (sRGB-encoded bytes).
     fn image(&self, size: (u32, u32)) -> image::RgbaImage {
         let world = self.app.sub_app(RenderApp).world();
-        let gpu = world.resource::<RenderAssets<GpuImage>>().get(self.image.id()).expect("the image is on the GPU");
+        let gpu = world
+            .resource::<RenderAssets<GpuImage>>()
+            .get(self.image.id())
+            .expect("the image is on the GPU");
         let device = world.resource::<RenderDevice>();
         let queue = world.resource::<RenderQueue>();
         runner::readback::read_texture(
@@ -241,12 +249,17 @@ mod standard_material {
     use bevy::prelude::*;
 
     pub fn give(world: &mut World) {
-        let material = world.resource_mut::<Assets<StandardMaterial>>().add(StandardMaterial::default());
+        let material = world
+            .resource_mut::<Assets<StandardMaterial>>()
+            .add(StandardMaterial::default());
         let meshes: Vec<Entity> = world.query_filtered::<Entity, With<Mesh3d>>().iter(world).collect();
         for entity in meshes {
             world.entity_mut(entity).insert(MeshMaterial3d(material.clone()));
         }
-        let lights: Vec<Entity> = world.query_filtered::<Entity, With<bevy_npr::NprLight>>().iter(world).collect();
+        let lights: Vec<Entity> = world
+            .query_filtered::<Entity, With<bevy_npr::NprLight>>()
+            .iter(world)
+            .collect();
         for entity in lights {
             world.entity_mut(entity).insert(DirectionalLight::default());
         }
@@ -308,7 +321,11 @@ fn check_drawn(name: &str, image: &image::RgbaImage) {
     let first = image.get_pixel(0, 0).0;
     let differing = image.pixels().filter(|p| p.0 != first).count();
     let share = differing as f64 / (image.width() * image.height()) as f64;
-    assert!(share > 0.01, "{name}: only {:.1}% of the image differs from its corner: the scene was not drawn", share * 100.0);
+    assert!(
+        share > 0.01,
+        "{name}: only {:.1}% of the image differs from its corner: the scene was not drawn",
+        share * 100.0
+    );
 }
 
 fn main() {
@@ -321,7 +338,10 @@ fn main() {
         ("Bevy alone (no material)", BevyRun::new(&o, &scene, Drawn::ByBevyAlone)),
     ];
     if cfg!(feature = "bench-standard-material") {
-        runs.push(("Bevy, StandardMaterial", BevyRun::new(&o, &scene, Drawn::ByStandardMaterial)));
+        runs.push((
+            "Bevy, StandardMaterial",
+            BevyRun::new(&o, &scene, Drawn::ByStandardMaterial),
+        ));
     }
     let mut npr = NprRun::new(&o, &scene);
     // Interleaved: each round draws one frame of each, starting with another each round.

@@ -110,9 +110,9 @@ pub(crate) fn draw_npr(
     // A new style (first load or hot reload) gets a new runtime; one the
     // device cannot run keeps the last. So does a removed `NprParams` key
     // of an animated parameter: `set_param` cannot give its keyframes back.
-    let restarts = cameras.get(&entity).is_none_or(|c| {
-        c.revision != style.revision() || !unset_params(c, camera, style.program()).1.is_empty()
-    });
+    let restarts = cameras
+        .get(&entity)
+        .is_none_or(|c| c.revision != style.revision() || !unset_params(c, camera, style.program()).1.is_empty());
     if restarts {
         match StyleRuntime::new(device.wgpu_device(), &queue, (**style.program()).clone()) {
             Ok(runtime) => {
