@@ -79,12 +79,12 @@ fn median(v: &[f64]) -> f64 {
     v[v.len() / 2]
 }
 
-/// How a Bevy app's camera is drawn.
+/// What draws a Bevy app's camera: the style, Bevy with no material, Bevy with `StandardMaterial`.
 #[derive(Clone, Copy, PartialEq)]
 enum Drawn {
-    ByStyle,
-    ByBevyAlone,
-    ByStandardMaterial,
+    Style,
+    BevyAlone,
+    StandardMaterial,
 }
 
 /// One frame's milliseconds: the update (CPU) and the wait for the device.
@@ -158,13 +158,13 @@ impl BevyRun {
             ))
             .id();
         match drawn {
-            Drawn::ByStyle => {
+            Drawn::Style => {
                 let file = o.style.file_name().expect("style file").to_string_lossy().into_owned();
                 let style = app.world().resource::<AssetServer>().load(file);
                 app.world_mut().entity_mut(camera).insert(NprStyle(style));
             }
-            Drawn::ByBevyAlone => {}
-            Drawn::ByStandardMaterial => standard_material::give(app.world_mut()),
+            Drawn::BevyAlone => {}
+            Drawn::StandardMaterial => standard_material::give(app.world_mut()),
         }
         let mut run = BevyRun {
             app,
@@ -188,7 +188,7 @@ impl BevyRun {
             let waiting = render_world.resource::<PipelineCache>().waiting_pipelines().count();
             settled = if waiting == 0 { settled + 1 } else { 0 };
             let built = match drawn {
-                Drawn::ByStyle => {
+                Drawn::Style => {
                     let render = self.app.world().get::<RenderEntity>(self.camera).map(|r| r.id());
                     let runtimes = render_world.resource::<NprRuntimes>();
                     render.and_then(|r| runtimes.builds(r)).is_some_and(|b| b > 0)
@@ -334,13 +334,13 @@ fn main() {
     let scene = runner::scene::load_scene(&o.scene, &mut sources)
         .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
     let mut runs = vec![
-        ("Bevy + bevy_npr", BevyRun::new(&o, &scene, Drawn::ByStyle)),
-        ("Bevy alone (no material)", BevyRun::new(&o, &scene, Drawn::ByBevyAlone)),
+        ("Bevy + bevy_npr", BevyRun::new(&o, &scene, Drawn::Style)),
+        ("Bevy alone (no material)", BevyRun::new(&o, &scene, Drawn::BevyAlone)),
     ];
     if cfg!(feature = "bench-standard-material") {
         runs.push((
             "Bevy, StandardMaterial",
-            BevyRun::new(&o, &scene, Drawn::ByStandardMaterial),
+            BevyRun::new(&o, &scene, Drawn::StandardMaterial),
         ));
     }
     let mut npr = NprRun::new(&o, &scene);
