@@ -33,7 +33,12 @@
 //!
 //! Hot reload is Bevy's `file_watcher` feature, which this crate enables:
 //! the asset folder is watched unless `AssetPlugin`'s
-//! `watch_for_changes_override` is `Some(false)`.
+//! `watch_for_changes_override` is `Some(false)`. The files a style
+//! `use`s and the images it reads are its dependencies: editing one
+//! reloads the style too (inside the asset folder).
+//!
+//! The crate's feature `bench-standard-material` only serves the
+//! `frame_cost` example (Bevy's `bevy_pbr`, to time `StandardMaterial`).
 
 mod asset;
 mod components;
