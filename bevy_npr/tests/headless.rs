@@ -3,9 +3,9 @@
 //! `npr render` of the same style on the same scene (npr's scene file,
 //! spawned as Bevy entities); a style edited on disk while the app runs is
 //! picked up, and a broken save keeps the last good style, as is a file the
-//! style `use`s; a parameter removed from `NprParams` returns to the
-//! style's value; despawned meshes leave the runtime; bad input is a
-//! logged code, never a panic.
+//! style `use`s or an image it reads; a parameter removed from `NprParams`
+//! returns to the style's value; despawned meshes leave the runtime; bad
+//! input is a logged code, never a panic.
 
 mod common;
 
@@ -445,4 +445,57 @@ fn despawned_meshes_leave_the_runtime() {
     }
     assert_eq!(kept.len(), objects);
     assert_eq!(mesh_count(&app), 0, "no entity draws a mesh any more");
+}
+
+#[test]
+fn an_edited_image_that_the_style_reads_is_picked_up() {
+    use bevy::prelude::*;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("image_file");
+    let paper = dir.join("paper.png");
+    let write_paper = |rgb: [u8; 3]| {
+        image::RgbImage::from_pixel(4, 4, image::Rgb(rgb))
+            .save(&paper)
+            .expect("write the image");
+    };
+    write_paper([200, 60, 40]);
+    let style = dir.join("textured.npr");
+    std::fs::write(
+        &style,
+        "style \"Textured\"\ntexture paper = image(\"paper.png\", srgb)\n\
+         pass shade: render(scene) {\n  out color: rgba8unorm = sample(paper, uv) * half_lambert(normal, light.dir)\n  clear: #202020\n}\n\
+         output shade.color\n",
+    )
+    .expect("write the style");
+
+    let scene = load_scene("spot.toml");
+    let mut app = app(&dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let handle: Handle<bevy_npr::NprStyleAsset> = app.world().resource::<AssetServer>().load("textured.npr");
+    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
+    wait_for_style(&mut app, camera, "Textured");
+    let style_asset = |app: &App| {
+        app.world()
+            .resource::<Assets<bevy_npr::NprStyleAsset>>()
+            .get(&handle)
+            .cloned()
+    };
+    let loaded = style_asset(&app).expect("the style is loaded");
+    assert_eq!(loaded.files_read(), [paper.canonicalize().expect("the image's path")]);
+    let before = read_image(&app, &image);
+    assert_close("image_file_before", &before, &npr_render(&style, &scene));
+
+    write_paper([40, 120, 220]);
+    update_until(
+        &mut app,
+        "the style to reload after its image changed",
+        PATIENCE,
+        |app| style_asset(app).is_some_and(|s| s.revision() != loaded.revision()),
+    );
+    for _ in 0..3 {
+        app.update();
+    }
+    let after = read_image(&app, &image);
+    assert!(before != after, "the edited image draws another image");
+    assert_close("image_file_after", &after, &npr_render(&style, &scene));
 }
