@@ -14,8 +14,6 @@ use crate::live::build::Built;
 use diag::{Diagnostic, SourceMap};
 use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{Camera, Scene};
-use std::collections::HashMap;
-use std::sync::Arc;
 
 pub struct Loaded {
     pub runtime: StyleRuntime,
