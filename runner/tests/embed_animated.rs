@@ -3,7 +3,11 @@
 //! for byte, at several times: the ocean's vertices follow the frame's time
 //! (not its mesh at t = 0), and a patched object's patches are drawn over
 //! their n-rings with their blending weights by the passes that read
-//! `patch.weight` (not each patch's own faces at weight 1).
+//! `patch.weight` (not each patch's own faces at weight 1), and are one
+//! surface for `lines` passes (their seams are no edges). A host that
+//! divides the cow in code (`StyleRuntime::add_patches`) draws the same.
+//! Each comparison fails without what the runtime carries (checked by
+//! leaving it out when this was written).
 //!
 //! The reference is one `Renderer` (what `npr render` drives) rendering the
 //! same frames in the same order as the runtime: the patched scene's style
@@ -16,6 +20,8 @@
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::readback::TargetImage;
+use runner::scene::patches::PatchSpec;
+use runner::scene::{primitives, Scene};
 use runner::{FrameSpec, Gpu, Renderer};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -52,7 +58,7 @@ fn compile(style: &str) -> runner::StyleProgram {
     }
 }
 
-fn load(scene: &str) -> runner::scene::Scene {
+fn load(scene: &str) -> Scene {
     let mut sources = diag::SourceMap::new();
     runner::scene::load_scene(&examples().join("scenes").join(scene), &mut sources)
         .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
@@ -76,12 +82,16 @@ fn host_texture() -> wgpu::Texture {
     })
 }
 
+/// How the host makes its instances of the scene: `add_scene`, or in code.
+type Host = fn(&mut StyleRuntime, &Scene) -> Vec<Instance>;
+
 /// Per time of [`TIMES`]: (the runtime's frame, the renderer's).
-fn render_both(style: &str, scene_file: &str) -> Vec<(TargetImage, TargetImage)> {
+fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, TargetImage)> {
     let program = compile(style);
     let scene = load(scene_file);
     let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program.clone()).expect("runtime");
-    let mut instances: Vec<Instance> = runtime.add_scene(&scene);
+    let mut instances: Vec<Instance> = host(&mut runtime, &scene);
+    assert_eq!(instances.len(), scene.objects.len(), "one instance per scene object");
     let mut renderer = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     let lights = Lights {
         key: scene.light,
@@ -201,7 +211,7 @@ fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
 /// from each other, so the comparison is of a moving sea.
 #[test]
 fn the_ocean_moves_through_the_runtime_as_through_the_renderer() {
-    let frames = render_both("ocean.npr", "ocean.toml");
+    let frames = render_both("ocean.npr", "ocean.toml", |r, s| r.add_scene(s));
     assert_equal(&frames, "ocean");
     for (k, pair) in frames.windows(2).enumerate() {
         let changed = pair[0]
@@ -230,6 +240,67 @@ fn blended_patches_render_through_the_runtime_as_through_the_renderer() {
         scene.objects.iter().all(|o| o.blend.is_some()),
         "patched_cow.toml should blend its patches"
     );
-    let frames = render_both("hatching.npr", "patched_cow.toml");
+    let frames = render_both("hatching.npr", "patched_cow.toml", |r, s| r.add_scene(s));
     assert_equal(&frames, "patched_cow");
+}
+
+/// The patched cow under a `lines` pass: its patches are one surface
+/// (their seams are no edges) through the runtime as through the renderer.
+#[test]
+fn a_patched_surface_draws_its_lines_through_the_runtime_as_through_the_renderer() {
+    let frames = render_both("wavy_lines.npr", "patched_cow.toml", |r, s| r.add_scene(s));
+    assert_equal(&frames, "patched_cow_lines");
+}
+
+/// A host that builds the patched cow in code, from the cow's mesh with
+/// `add_patches` (6 patches by k-means, blended over 2 rings), draws what
+/// the scene's `patches = 6`, `blend_rings = 2` draws.
+#[test]
+fn patches_a_host_makes_in_code_render_as_the_scenes() {
+    let frames = render_both("hatching.npr", "patched_cow.toml", |runtime, scene| {
+        let whole = scene.objects[0].patch.as_ref().expect("a patch").whole.clone();
+        let handles = runtime
+            .add_patches(whole, PatchSpec::Split(6), 2)
+            .expect("divide the cow");
+        handles
+            .into_iter()
+            .zip(&scene.objects)
+            .map(|(handle, object)| Instance::new(handle, object.model))
+            .collect()
+    });
+    assert_equal(&frames, "patched_cow_in_code");
+}
+
+/// A division `add_patches` cannot make is refused with E0405, as a
+/// scene's `patches` is.
+#[test]
+fn patches_that_cannot_be_made_are_refused_with_a_code() {
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("toon.npr")).expect("runtime");
+    let cube = std::sync::Arc::new(primitives::cube(1.0));
+    let refused = |r: Result<Vec<_>, runner::embed::EmbedError>| r.expect_err("refused").code();
+    // A cube has 12 triangles and no parts.
+    assert_eq!(
+        refused(runtime.add_patches(cube.clone(), PatchSpec::Split(13), 1)),
+        "E0405"
+    );
+    assert_eq!(refused(runtime.add_patches(cube.clone(), PatchSpec::Parts, 1)), "E0405");
+    assert_eq!(
+        refused(runtime.add_patches(cube.clone(), PatchSpec::Split(1), 1)),
+        "E0405"
+    );
+    assert_eq!(
+        refused(runtime.add_patches(cube.clone(), PatchSpec::Split(65), 1)),
+        "E0405"
+    );
+    assert_eq!(
+        refused(runtime.add_patches(cube.clone(), PatchSpec::Split(2), 17)),
+        "E0405"
+    );
+    let halves = runtime.add_patches(cube, PatchSpec::Split(2), 0).expect("two halves");
+    assert_eq!(halves.len(), 2);
+    let triangles: usize = halves
+        .iter()
+        .map(|&h| runtime.mesh(h).expect("registered").triangle_count())
+        .sum();
+    assert_eq!(triangles, 12, "the halves share the cube's triangles");
 }
