@@ -228,6 +228,30 @@ impl StyleRuntime {
     /// indices never change, so a frame allocates nothing on the GPU), as
     /// `npr render` draws a scene's ocean. [`StyleRuntime::mesh`] gives its
     /// geometry at t = 0.
+    ///
+    /// ```
+    /// use runner::embed::{Instance, StyleRuntime};
+    /// use runner::scene::{ocean::Ocean, patches::PatchSpec, primitives, Primitive};
+    ///
+    /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
+    /// let mut sources = diag::SourceMap::new();
+    /// let compiled = compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    ///     .map_err(|e| format!("{e:?}"))?;
+    /// let gpu = runner::Gpu::headless()?;
+    /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
+    ///
+    /// // A small sea: every frame draws its waves at the frame's `time_s`.
+    /// let sea = runtime.add_primitive(Primitive::Ocean(Ocean { cells: 16, tiles: 3, modes: 8, ..Ocean::default() }));
+    /// // A sphere in 4 patches blended over 1 ring: one instance per patch, one transform.
+    /// let ball = std::sync::Arc::new(primitives::sphere(1.0, 32, 16));
+    /// let patches = runtime.add_patches(ball, PatchSpec::Split(4), 1)?;
+    /// let lifted = glam::Mat4::from_translation(glam::Vec3::Y * 2.0);
+    /// let mut objects = vec![Instance::new(sea, glam::Mat4::IDENTITY)];
+    /// objects.extend(patches.iter().map(|&p| Instance::new(p, lifted)));
+    /// assert_eq!(objects.len(), 5);
+    /// // `objects` go in each `Frame` as any instances do.
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn add_primitive(&mut self, primitive: Primitive) -> MeshHandle {
         let extras = MeshExtras {
             time_varying: primitive.is_time_varying().then_some(primitive),
