@@ -7,7 +7,8 @@
 //! surface for `lines` passes (their seams are no edges). A host that
 //! divides the cow in code (`StyleRuntime::add_patches`) draws the same.
 //! Each comparison fails without what the runtime carries (checked by
-//! leaving it out when this was written).
+//! leaving it out when this was written). The runtime's frames after the
+//! first create no GPU object (`runner::gpu_count`).
 //!
 //! The reference is one `Renderer` (what `npr render` drives) rendering the
 //! same frames in the same order as the runtime: the patched scene's style
@@ -114,9 +115,17 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
             eye: 0,
         };
         let mut encoder = gpu().device.create_command_encoder(&Default::default());
+        let before = runner::gpu_count::created_on_this_thread();
         runtime
             .render(&mut encoder, &frame, Target::View(&view))
             .unwrap_or_else(|e| panic!("{scene_file} at {time_s} s: {:?}", e.diagnostics()));
+        let after = runner::gpu_count::created_on_this_thread();
+        // After the first frame the ocean's vertices and the patches'
+        // uniforms are written in place: the frame creates no GPU object.
+        assert!(
+            k == 0 || after == before,
+            "{scene_file} at {time_s} s: the frame created GPU objects: {before:?} → {after:?}"
+        );
         gpu().queue.submit([encoder.finish()]);
         let hosted = runner::readback::read_texture(
             &gpu().device,
