@@ -48,6 +48,7 @@
 //! - `frame.rs`: [`Frame`], [`Instance`], [`Lights`], [`Target`];
 //! - `objects.rs`: the host's instances as the renderer's scene;
 //! - `params.rs`: setting style parameters by name;
+//! - `patched.rs`: a host's mesh divided into blended patches;
 //! - `present.rs`: target checks and the present pass;
 //! - `error.rs`: [`EmbedError`].
 //!
@@ -111,6 +112,7 @@ mod frame;
 mod meshes;
 mod objects;
 mod params;
+mod patched;
 mod present;
 
 pub use error::EmbedError;
@@ -118,8 +120,8 @@ pub use frame::{Frame, Instance, Lights, Target};
 pub use meshes::MeshHandle;
 pub use params::ParamInfo;
 
-use crate::scene::patches::{self, PatchSpec};
-use crate::scene::{patch_blend, Mesh, Primitive, Scene};
+use crate::scene::patches::PatchSpec;
+use crate::scene::{Mesh, Primitive, Scene};
 use crate::{FrameSpec, Renderer, StyleProgram};
 use meshes::MeshExtras;
 use std::sync::Arc;
@@ -273,78 +275,20 @@ impl StyleRuntime {
     ///
     /// A mesh that cannot be divided so (`PatchSpec::Parts` of a mesh with
     /// one part; more patches than triangles), a count outside
-    /// 2..=[`patches::MAX_PATCHES`] or rings over
-    /// [`patch_blend::MAX_BLEND_RINGS`] is refused (E0405), registering
-    /// nothing.
+    /// 2..=[`MAX_PATCHES`](crate::scene::patches::MAX_PATCHES) or rings over
+    /// [`MAX_BLEND_RINGS`](crate::scene::patch_blend::MAX_BLEND_RINGS) is
+    /// refused (E0405), registering nothing.
     pub fn add_patches(
         &mut self,
         mesh: Arc<Mesh>,
         spec: PatchSpec,
         blend_rings: u32,
     ) -> Result<Vec<MeshHandle>, EmbedError> {
-        let refuse = |message: String, help: &str| {
-            EmbedError::from(crate::RunError::User(vec![diag::Diagnostic::error(
-                diag::codes::BAD_SCENE,
-                message,
-            )
-            .with_help(help.to_string())]))
-        };
-        if let PatchSpec::Split(n) = spec {
-            if !(2..=patches::MAX_PATCHES).contains(&n) {
-                return Err(refuse(
-                    format!("a mesh is divided into 2..={} patches, not {n}", patches::MAX_PATCHES),
-                    "ask for fewer patches",
-                ));
-            }
-        }
-        if blend_rings > patch_blend::MAX_BLEND_RINGS {
-            return Err(refuse(
-                format!(
-                    "patches blend over 0..={} rings of faces, not {blend_rings}",
-                    patch_blend::MAX_BLEND_RINGS
-                ),
-                "ask for fewer rings (0: hard seams)",
-            ));
-        }
-        let Some((labels, count)) = patches::assign(&mesh, spec) else {
-            return Err(refuse(
-                format!(
-                    "the mesh `{}` ({} triangles) cannot be divided into {}",
-                    mesh.source,
-                    mesh.triangle_count(),
-                    match spec {
-                        PatchSpec::Parts => "its parts: it has one".to_string(),
-                        PatchSpec::Split(n) => format!("{n} patches"),
-                    }
-                ),
-                "split a mesh of one part by count (`PatchSpec::Split`), into fewer patches than it has triangles",
-            ));
-        };
-        let mut blends = if blend_rings > 0 {
-            patch_blend::blends(&mesh, &labels, count, blend_rings)
-                .into_iter()
-                .map(|b| Some(Arc::new(b)))
-                .collect()
-        } else {
-            vec![None; count as usize]
-        };
+        let pieces = patched::divide(&mesh, spec, blend_rings, self.patch_sets + 1)?;
         self.patch_sets += 1;
-        let source = format!("patched mesh #{}", self.patch_sets);
-        Ok((0..count)
-            .map(|index| {
-                let extras = MeshExtras {
-                    time_varying: None,
-                    blend: blends[index as usize].take(),
-                    patch: Some(patches::PatchOf {
-                        source: source.clone(),
-                        whole: mesh.clone(),
-                        index,
-                        count,
-                    }),
-                };
-                self.meshes
-                    .add(Arc::new(patches::patch_mesh(&mesh, &labels, index)), extras)
-            })
+        Ok(pieces
+            .into_iter()
+            .map(|(piece, extras)| self.meshes.add(piece, extras))
             .collect())
     }
 
