@@ -22,6 +22,7 @@ static LIB: Dir = include_dir!("$CARGO_MANIFEST_DIR/examples/lib");
 const STYLES: &[(&str, &str)] = &[
     ("toon.npr", include_str!("../examples/toon.npr")),
     ("rounded_shadows.npr", include_str!("../examples/rounded_shadows.npr")),
+    ("age_of_sail.npr", include_str!("../examples/age_of_sail.npr")),
 ];
 
 /// docs/PERFORMANCE.md as built: the committed `npr bench ops` table
@@ -93,5 +94,38 @@ fn collect<'a>(dir: &'a Dir<'a>, prefix: &Path, out: &mut Vec<(PathBuf, &'a [u8]
     }
     for d in dir.dirs() {
         collect(d, &prefix.join(d.path().file_name().unwrap_or_default()), out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// Every file a benchmark reads by default is in the bundled copy, so
+    /// `npr bench <any>` runs outside the repository (`bench host`'s
+    /// `age_of_sail.npr` once was not).
+    #[test]
+    fn every_default_file_of_npr_bench_is_bundled() {
+        let cli = crate::cli::Cli::command();
+        let bench = cli.find_subcommand("bench").expect("npr has a bench command");
+        let dir = super::examples_dir().expect("the bundled examples can be written");
+        let mut checked = Vec::new();
+        for command in bench.get_subcommands() {
+            for default in command.get_arguments().flat_map(|a| a.get_default_values()) {
+                let default = default.to_string_lossy();
+                if let Some(rest) = default.strip_prefix("examples/") {
+                    assert!(
+                        dir.join(rest).is_file(),
+                        "`npr bench {}` reads {default} by default, which is not bundled (src/bundled.rs)",
+                        command.get_name()
+                    );
+                    checked.push(default.into_owned());
+                }
+            }
+        }
+        assert!(
+            checked.iter().any(|p| p.ends_with("age_of_sail.npr")) && checked.len() >= 5,
+            "the defaults were not found: {checked:?}"
+        );
     }
 }

@@ -7,13 +7,15 @@
 //! the time; then an object is added (a rebuild, allowed) and the frames
 //! after it are counted again, then the size changes. Over examples with a
 //! render and image passes, a compute pass, a lines pass, a history
-//! (previous-frame) target and Age of Sail's seven passes.
+//! (previous-frame) target and Age of Sail's seven passes; and the animated
+//! ocean, whose vertex buffers every frame rewrites in place.
 
 #![allow(clippy::disallowed_methods)]
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
-use runner::scene::{primitives, Camera};
+use runner::scene::ocean::Ocean;
+use runner::scene::{primitives, Camera, Primitive};
 use runner::Gpu;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -227,6 +229,37 @@ fn a_history_style_allocates_nothing_per_frame() {
 #[test]
 fn age_of_sail_allocates_nothing_per_frame() {
     check("age_of_sail.npr", &[], Some(("breakup", 1)), Some(("warp_px", "6px")));
+}
+
+/// A host's own animated ocean (`add_primitive`, Age of Sail §6.1): each
+/// frame rebuilds its vertices at the frame's time and writes them over
+/// its vertex buffers in place, creating nothing.
+#[test]
+fn an_animated_ocean_allocates_nothing_per_frame() {
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("ocean.npr")).expect("runtime");
+    let ocean = Ocean {
+        cells: 16,
+        tiles: 3,
+        modes: 8,
+        ring: 400.0,
+        ..Ocean::default()
+    };
+    let sea = runtime.add_primitive(Primitive::Ocean(ocean));
+    let instances = [Instance::new(sea, glam::Mat4::IDENTITY)];
+    let texture = target(64, 48);
+    let view = texture.create_view(&Default::default());
+    frame(&mut runtime, &instances, 0, &view);
+    let before = created_on_this_thread();
+    assert!(before.pipelines > 0, "the first frame built no pipeline: {before:?}");
+    for k in 1..8 {
+        frame(&mut runtime, &instances, k, &view);
+    }
+    let after = created_on_this_thread();
+    assert_eq!(
+        after, before,
+        "the ocean's frames created GPU objects: {before:?} → {after:?}"
+    );
+    assert_eq!(runtime.builds(), 1, "the ocean's frames rebuilt the scene");
 }
 
 /// A TOML scene is the same structure: its objects become instances

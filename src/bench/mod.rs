@@ -22,114 +22,11 @@ use std::path::Path;
 /// `cmd` with each style and scene under `examples/` that is not here
 /// read from the bundled copy (`crate::bundled`), so that every benchmark
 /// runs from any directory.
-fn bundled_paths(cmd: BenchCommand) -> std::io::Result<BenchCommand> {
-    use crate::bundled::resolve;
-    let all = |v: Vec<std::path::PathBuf>| v.iter().map(|p| resolve(p)).collect::<std::io::Result<Vec<_>>>();
-    Ok(match cmd {
-        BenchCommand::Compile {
-            styles,
-            iterations,
-            cold,
-            runs,
-        } => BenchCommand::Compile {
-            styles: all(styles)?,
-            iterations,
-            cold,
-            runs,
-        },
-        BenchCommand::Ops {
-            scene,
-            size,
-            frames,
-            plot,
-        } => BenchCommand::Ops {
-            scene: resolve(&scene)?,
-            size,
-            frames,
-            plot,
-        },
-        BenchCommand::Styles {
-            styles,
-            baseline,
-            scene,
-            size,
-            frames,
-        } => BenchCommand::Styles {
-            styles: all(styles)?,
-            baseline: resolve(&baseline)?,
-            scene: resolve(&scene)?,
-            size,
-            frames,
-        },
-        BenchCommand::Passes {
-            style,
-            scene,
-            size,
-            frames,
-            schedule,
-        } => BenchCommand::Passes {
-            style: resolve(&style)?,
-            scene: resolve(&scene)?,
-            size,
-            frames,
-            schedule,
-        },
-        BenchCommand::Studio {
-            style,
-            scene,
-            size,
-            frames,
-            edits,
-            param,
-            values,
-        } => BenchCommand::Studio {
-            style: resolve(&style)?,
-            scene: resolve(&scene)?,
-            size,
-            frames,
-            edits,
-            param,
-            values,
-        },
-        BenchCommand::Frame {
-            style,
-            scene,
-            size,
-            frames,
-            keep_params,
-        } => BenchCommand::Frame {
-            style: resolve(&style)?,
-            scene: resolve(&scene)?,
-            size,
-            frames,
-            keep_params,
-        },
-        BenchCommand::Overhead {
-            style,
-            scene,
-            size,
-            frames,
-            warmup,
-        } => BenchCommand::Overhead {
-            style: resolve(&style)?,
-            scene: resolve(&scene)?,
-            size,
-            frames,
-            warmup,
-        },
-        BenchCommand::Host {
-            style,
-            objects,
-            size,
-            frames,
-        } => BenchCommand::Host {
-            style: resolve(&style)?,
-            objects,
-            size,
-            frames,
-        },
-        other => other,
-    })
+fn bundled_paths(mut cmd: BenchCommand) -> std::io::Result<BenchCommand> {
+    for path in cmd.input_paths_mut() {
+        *path = crate::bundled::resolve(path)?;
+    }
+    Ok(cmd)
 }
 
 pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
@@ -288,6 +185,26 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
 }
 
 impl BenchCommand {
+    /// The style and scene files the benchmark reads.
+    fn input_paths_mut(&mut self) -> Vec<&mut std::path::PathBuf> {
+        match self {
+            BenchCommand::Compile { styles, .. } => styles.iter_mut().collect(),
+            BenchCommand::Styles {
+                styles,
+                baseline,
+                scene,
+                ..
+            } => styles.iter_mut().chain([baseline, scene]).collect(),
+            BenchCommand::Ops { scene, .. } => vec![scene],
+            BenchCommand::Passes { style, scene, .. }
+            | BenchCommand::Studio { style, scene, .. }
+            | BenchCommand::Frame { style, scene, .. }
+            | BenchCommand::Overhead { style, scene, .. } => vec![style, scene],
+            BenchCommand::Host { style, .. } => vec![style],
+            _ => Vec::new(),
+        }
+    }
+
     /// The `--plot` file of the benchmarks that draw one.
     fn plot(&self) -> Option<&Path> {
         match self {

@@ -1,8 +1,10 @@
 //! The style `npr view` shows, driven through the runner's embedding API
 //! (`runner::embed`): a `StyleRuntime` on the window's device, the scene's
-//! meshes registered once, and each frame the scene's objects as
-//! `Instance`s (posed at the frame's time: `spin`), the view's camera, the
-//! scene's lights and the time, rendered into the surface's image.
+//! meshes registered once (`StyleRuntime::add_scene`, with the ocean's
+//! animated vertices and blended patches), and each frame the scene's
+//! objects as `Instance`s (posed at the frame's time: `spin`), the view's
+//! camera, the scene's lights and the time, rendered into the surface's
+//! image.
 //!
 //! A build comes from `live::build`, the same one `npr watch` and `npr
 //! studio` make, compiled with `keep_params` so that the parameter keys
@@ -12,40 +14,18 @@ use crate::live::build::Built;
 use diag::{Diagnostic, SourceMap};
 use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{Camera, Scene};
-use std::collections::HashMap;
-use std::sync::Arc;
 
 pub struct Loaded {
     pub runtime: StyleRuntime,
     pub scene: Scene,
-    /// Per scene object, its mesh's handle in the runtime.
-    handles: Vec<runner::embed::MeshHandle>,
+    /// Per scene object, its instance (`add_scene`); each frame turns the
+    /// spinning ones to the frame's time.
+    instances: Vec<Instance>,
     lights: Lights,
     pub stereo: bool,
     pub sources: SourceMap,
     /// The build's texture spans, where render-time texture errors point.
     texture_spans: Vec<diag::Span>,
-}
-
-/// What a scene object needs that an `Instance` cannot carry: a note for
-/// each (the object is drawn without it).
-fn unsupported(scene: &Scene) -> Vec<String> {
-    let mut notes = Vec::new();
-    for o in &scene.objects {
-        if !o.textures.is_empty() {
-            notes.push(format!("object `{}`: per-object images are not drawn", o.name));
-        }
-        if o.time_varying.is_some() {
-            notes.push(format!(
-                "object `{}`: its time-varying geometry is shown at t = 0",
-                o.name
-            ));
-        }
-        if o.blend.is_some() {
-            notes.push(format!("object `{}`: patch blending is not drawn", o.name));
-        }
-    }
-    notes
 }
 
 impl Loaded {
@@ -63,20 +43,9 @@ impl Loaded {
             Ok(r) => r,
             Err(e) => return Err(Failure::new(e, &compiled.texture_spans, sources)),
         };
-        for note in unsupported(&scene) {
-            eprintln!("note: npr view (through runner::embed): {note}");
-        }
-        // Objects naming the same file or primitive share one mesh.
-        let mut by_mesh: HashMap<*const runner::scene::Mesh, runner::embed::MeshHandle> = HashMap::new();
-        let handles = scene
-            .objects
-            .iter()
-            .map(|o| {
-                *by_mesh
-                    .entry(Arc::as_ptr(&o.mesh))
-                    .or_insert_with(|| runtime.add_shared_mesh(o.mesh.clone()))
-            })
-            .collect();
+        // The ocean's vertices, blended patches and per-object images come
+        // with the meshes and instances `add_scene` registers.
+        let instances = runtime.add_scene(&scene);
         let lights = Lights {
             key: scene.light,
             more: scene.more_lights,
@@ -84,7 +53,7 @@ impl Loaded {
         Ok(Loaded {
             runtime,
             scene,
-            handles,
+            instances,
             lights,
             stereo,
             sources,
@@ -92,22 +61,11 @@ impl Loaded {
         })
     }
 
-    /// The scene's objects at `time_s` (spinning ones turned).
-    fn instances(&self, time_s: f64) -> Vec<Instance> {
-        let posed = self.scene.posed(time_s);
-        posed
-            .objects
-            .iter()
-            .zip(&self.handles)
-            .map(|(o, handle)| Instance {
-                mesh: *handle,
-                transform: o.model,
-                tags: o.tags.clone(),
-                params: o.params.clone(),
-                casts_shadows: o.casts_shadows,
-                images: o.textures.clone(),
-            })
-            .collect()
+    /// Pose the instances at `time_s` (spinning objects turned).
+    fn pose(&mut self, time_s: f64) {
+        for (instance, object) in self.instances.iter_mut().zip(&self.scene.objects) {
+            instance.transform = object.model_at(time_s);
+        }
     }
 
     /// Record a frame with `camera` at `time_s` into `view` (both eyes side
@@ -120,10 +78,10 @@ impl Loaded {
         time_s: f64,
         frame_index: u32,
     ) -> Result<(), Failure> {
-        let objects = self.instances(time_s);
+        self.pose(time_s);
         let frame = Frame {
             camera,
-            objects: &objects,
+            objects: &self.instances,
             lights: &self.lights,
             time_s,
             frame_index,

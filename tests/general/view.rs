@@ -3,7 +3,8 @@
 //! the X server, against `npr render --keep-params` of the same style,
 //! scene, time and (scene) camera; input typed and dragged through XTEST
 //! (fly, orbit, pan, back to the scene camera, time running; a parameter
-//! stepped as `--set` would set it); and hot reload: a save
+//! stepped as `--set` would set it); the animated ocean at the view's
+//! time; and hot reload: a save
 //! changes the window, a broken save prints its diagnostic and keeps the
 //! last frame.
 //!
@@ -103,6 +104,21 @@ fn the_window_shows_what_npr_render_writes() {
             && shown("scene camera"),
         "{title}"
     );
+}
+
+/// The ocean of Age of Sail §6.1 comes through `StyleRuntime::add_scene`
+/// with its animated vertices: the window shows its waves at t = 1 s, as
+/// `npr render --time 1` draws them (it showed the mesh at t = 0 before).
+#[test]
+fn the_window_shows_the_ocean_at_the_frames_time() {
+    let dir = scratch("view", "ocean");
+    let x = Xvfb::start();
+    let (style, scene) = (Path::new("examples/ocean.npr"), "examples/scenes/ocean.toml");
+    let mut v = view(&x, style, scene);
+    v.wait_for("view: build 1 shown");
+    let shot = screenshot_after_frames(&x, &v, SIZE);
+    let reference = render(style, scene, &dir.join("render.png"));
+    assert_matches(&shot, &reference, &dir, "ocean");
 }
 
 #[test]

@@ -8,7 +8,10 @@ use std::collections::BTreeMap;
 
 /// One object of the host's scene this frame: a registered mesh placed by
 /// `transform`. A scene built in code is made of these; a TOML scene's
-/// objects are the same (`StyleRuntime::add_scene`).
+/// objects are the same (`StyleRuntime::add_scene`). What the mesh draws
+/// beyond its vertices comes with its handle: an animated primitive's
+/// vertices at the frame's time (`StyleRuntime::add_primitive`, the
+/// ocean), a patch's blended n-ring (`StyleRuntime::add_patches`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Instance {
     pub mesh: MeshHandle,

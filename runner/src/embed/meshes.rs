@@ -1,9 +1,14 @@
 //! The meshes a host registers once ([`MeshHandle`]s): a generational
 //! table, so a handle used after its mesh was removed is an error
-//! (E0601), never another mesh.
+//! (E0601), never another mesh. A mesh may come with what the renderer
+//! draws beyond its vertices ([`MeshExtras`]): the time-varying primitive
+//! it is the geometry of (the ocean), or the patch of a patched surface it
+//! is (with its blended n-ring).
 
 use super::EmbedError;
-use crate::scene::Mesh;
+use crate::scene::patch_blend::PatchBlend;
+use crate::scene::patches::PatchOf;
+use crate::scene::{Mesh, Primitive};
 use std::sync::Arc;
 
 /// A mesh registered with [`super::StyleRuntime::add_mesh`]. Copy it into
@@ -18,10 +23,30 @@ pub struct MeshHandle {
     pub(super) runtime: u32,
 }
 
+/// What a registered mesh carries besides its vertices, as a scene's
+/// [`crate::scene::Object`] does: every instance of the mesh gets it.
+#[derive(Debug, Clone, Default)]
+pub(super) struct MeshExtras {
+    /// The primitive whose geometry at t = 0 the mesh is, rebuilt at each
+    /// frame's time (`Object::time_varying`).
+    pub time_varying: Option<Primitive>,
+    /// The patch's faces and n-ring with its weights (`Object::blend`).
+    pub blend: Option<Arc<PatchBlend>>,
+    /// Which patch of which surface the mesh is (`Object::patch`).
+    pub patch: Option<PatchOf>,
+}
+
+/// A registered mesh and its extras.
+#[derive(Debug, Clone)]
+pub(super) struct Entry {
+    pub mesh: Arc<Mesh>,
+    pub extras: MeshExtras,
+}
+
 /// One slot of the table: the mesh it holds (if any) and its generation.
 #[derive(Default)]
 struct Slot {
-    mesh: Option<Arc<Mesh>>,
+    entry: Option<Entry>,
     generation: u32,
 }
 
@@ -42,9 +67,9 @@ impl MeshTable {
         }
     }
 
-    pub fn add(&mut self, mesh: Arc<Mesh>) -> MeshHandle {
+    pub fn add(&mut self, mesh: Arc<Mesh>, extras: MeshExtras) -> MeshHandle {
         self.revision += 1;
-        let index = match self.slots.iter().position(|s| s.mesh.is_none()) {
+        let index = match self.slots.iter().position(|s| s.entry.is_none()) {
             Some(free) => free,
             None => {
                 self.slots.push(Slot::default());
@@ -53,7 +78,7 @@ impl MeshTable {
         };
         let slot = &mut self.slots[index];
         slot.generation += 1;
-        slot.mesh = Some(mesh);
+        slot.entry = Some(Entry { mesh, extras });
         MeshHandle {
             index: index as u32,
             generation: slot.generation,
@@ -61,11 +86,11 @@ impl MeshTable {
         }
     }
 
-    pub fn remove(&mut self, handle: MeshHandle) -> Result<Arc<Mesh>, EmbedError> {
-        self.get(handle)?;
+    pub fn remove(&mut self, handle: MeshHandle) -> Result<Entry, EmbedError> {
+        self.entry(handle)?;
         self.revision += 1;
         self.slots[handle.index as usize]
-            .mesh
+            .entry
             .take()
             .ok_or(EmbedError::UnknownMesh(handle))
     }
@@ -76,14 +101,19 @@ impl MeshTable {
     }
 
     pub fn get(&self, handle: MeshHandle) -> Result<&Arc<Mesh>, EmbedError> {
+        self.entry(handle).map(|e| &e.mesh)
+    }
+
+    /// The mesh `handle` names, with its extras.
+    pub fn entry(&self, handle: MeshHandle) -> Result<&Entry, EmbedError> {
         if handle.runtime != self.runtime {
             return Err(EmbedError::UnknownMesh(handle));
         }
         match self.slots.get(handle.index as usize) {
             Some(Slot {
-                mesh: Some(mesh),
+                entry: Some(entry),
                 generation,
-            }) if *generation == handle.generation => Ok(mesh),
+            }) if *generation == handle.generation => Ok(entry),
             _ => Err(EmbedError::UnknownMesh(handle)),
         }
     }

@@ -9,7 +9,10 @@
 //!    a device lacking a feature or limit the style needs is refused here
 //!    (E0510), before any frame;
 //! 2. registers its meshes once ([`StyleRuntime::add_mesh`] gives a
-//!    [`MeshHandle`]);
+//!    [`MeshHandle`]; [`StyleRuntime::add_primitive`] a primitive's, whose
+//!    vertices follow the frame's time when it is animated, as the ocean's
+//!    are; [`StyleRuntime::add_patches`] one per patch of a mesh divided
+//!    into blended patches; [`StyleRuntime::add_scene`] a TOML scene's);
 //! 3. every frame, gives a [`Frame`] (the camera, or a stereo pair; the
 //!    objects as [`Instance`]s: mesh handle, transform, tags, per-object
 //!    params; the [`Lights`]; the time) and a [`Target`] (its texture view,
@@ -30,19 +33,22 @@
 //!
 //! **What a frame costs.** The first frame (and the first after the size,
 //! the style, or the set of objects' meshes, tags, images or shadow flags changes)
-//! builds the GPU resources; every other frame writes uniform buffers and
-//! records commands, and creates no buffer, texture, bind group or
-//! pipeline (`runner/tests/embed_allocations.rs` counts them).
+//! builds the GPU resources; every other frame writes uniform buffers (and
+//! an animated primitive's vertex buffers, in place) and records commands,
+//! and creates no buffer, texture, bind group or pipeline
+//! (`runner/tests/embed_allocations.rs` counts them).
 //!
 //! **Mistakes are values.** A removed mesh handle (E0601), an unknown
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
 //! of the wrong format or size (E0602): every call returns an
 //! [`EmbedError`] with a code, and leaves the runtime as it was.
 //!
-//! - `meshes.rs`: the generational mesh table;
+//! - `meshes.rs`: the generational mesh table (with what a mesh draws
+//!   beyond its vertices: an animated primitive, a blended patch);
 //! - `frame.rs`: [`Frame`], [`Instance`], [`Lights`], [`Target`];
 //! - `objects.rs`: the host's instances as the renderer's scene;
 //! - `params.rs`: setting style parameters by name;
+//! - `patched.rs`: a host's mesh divided into blended patches;
 //! - `present.rs`: target checks and the present pass;
 //! - `error.rs`: [`EmbedError`].
 //!
@@ -106,6 +112,7 @@ mod frame;
 mod meshes;
 mod objects;
 mod params;
+mod patched;
 mod present;
 
 pub use error::EmbedError;
@@ -113,8 +120,10 @@ pub use frame::{Frame, Instance, Lights, Target};
 pub use meshes::MeshHandle;
 pub use params::ParamInfo;
 
-use crate::scene::{Mesh, Scene};
+use crate::scene::patches::PatchSpec;
+use crate::scene::{Mesh, Primitive, Scene};
 use crate::{FrameSpec, Renderer, StyleProgram};
+use meshes::MeshExtras;
 use std::sync::Arc;
 
 /// A compiled style running on a host's device: owned (it holds clones of
@@ -139,6 +148,9 @@ pub struct StyleRuntime {
     presenter: present::Presenter,
     /// Times the renderer was (re)built: what a host or test can watch.
     builds: u64,
+    /// Meshes divided by [`StyleRuntime::add_patches`] so far: names each
+    /// division, whose patches `lines` passes join into one surface.
+    patch_sets: u64,
 }
 
 impl StyleRuntime {
@@ -174,6 +186,7 @@ impl StyleRuntime {
             scene: objects::HostScene::default(),
             renderer: None,
             builds: 0,
+            patch_sets: 0,
         })
     }
 
@@ -201,12 +214,82 @@ impl StyleRuntime {
     /// Register a mesh; instances name it by the handle. Its GPU buffers
     /// are made once, at the first frame that draws it.
     pub fn add_mesh(&mut self, mesh: Mesh) -> MeshHandle {
-        self.meshes.add(Arc::new(mesh))
+        self.meshes.add(Arc::new(mesh), MeshExtras::default())
     }
 
     /// [`StyleRuntime::add_mesh`] of a mesh the host shares (no copy).
     pub fn add_shared_mesh(&mut self, mesh: Arc<Mesh>) -> MeshHandle {
-        self.meshes.add(mesh)
+        self.meshes.add(mesh, MeshExtras::default())
+    }
+
+    /// Register a primitive's geometry ([`Primitive::build`]). A
+    /// time-varying one (the ocean of Age of Sail §6.1,
+    /// [`Primitive::is_time_varying`]) is animated: every instance of the
+    /// handle has its vertices at the frame's `time_s`, rebuilt on the CPU
+    /// and written over its GPU buffers in place (its vertex count and
+    /// indices never change, so a frame allocates nothing on the GPU), as
+    /// `npr render` draws a scene's ocean. [`StyleRuntime::mesh`] gives its
+    /// geometry at t = 0.
+    ///
+    /// ```
+    /// use runner::embed::{Instance, StyleRuntime};
+    /// use runner::scene::{ocean::Ocean, patches::PatchSpec, primitives, Primitive};
+    ///
+    /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
+    /// let mut sources = diag::SourceMap::new();
+    /// let compiled = compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    ///     .map_err(|e| format!("{e:?}"))?;
+    /// let gpu = runner::Gpu::headless()?;
+    /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
+    ///
+    /// // A small sea: every frame draws its waves at the frame's `time_s`.
+    /// let sea = runtime.add_primitive(Primitive::Ocean(Ocean { cells: 16, tiles: 3, modes: 8, ..Ocean::default() }));
+    /// // A sphere in 4 patches blended over 1 ring: one instance per patch, one transform.
+    /// let ball = std::sync::Arc::new(primitives::sphere(1.0, 32, 16));
+    /// let patches = runtime.add_patches(ball, PatchSpec::Split(4), 1)?;
+    /// let lifted = glam::Mat4::from_translation(glam::Vec3::Y * 2.0);
+    /// let mut objects = vec![Instance::new(sea, glam::Mat4::IDENTITY)];
+    /// objects.extend(patches.iter().map(|&p| Instance::new(p, lifted)));
+    /// assert_eq!(objects.len(), 5);
+    /// // `objects` go in each `Frame` as any instances do.
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_primitive(&mut self, primitive: Primitive) -> MeshHandle {
+        let extras = MeshExtras {
+            time_varying: primitive.is_time_varying().then_some(primitive),
+            ..MeshExtras::default()
+        };
+        self.meshes.add(Arc::new(primitive.build()), extras)
+    }
+
+    /// Register `mesh` divided into patches (Breslav et al. 2007 §3.6), as
+    /// a scene's `patches = ...` and `blend_rings = n` divide an object:
+    /// one handle per patch, in order. Draw the patched surface as one
+    /// instance of each handle, all with the same transform (and, as a
+    /// scene's patches have, the same tags and params): each patch then
+    /// gets its own samples and 2D similarity in the style's per-object
+    /// passes; render passes that read `patch.weight` draw each patch over
+    /// the `blend_rings` rings of faces around it with its blending weights,
+    /// where the patches' patterns cross-fade (0: hard seams); and `lines`
+    /// passes find feature edges on the whole mesh, so a seam is no edge.
+    ///
+    /// A mesh that cannot be divided so (`PatchSpec::Parts` of a mesh with
+    /// one part; more patches than triangles), a count outside
+    /// 2..=[`MAX_PATCHES`](crate::scene::patches::MAX_PATCHES) or rings over
+    /// [`MAX_BLEND_RINGS`](crate::scene::patch_blend::MAX_BLEND_RINGS) is
+    /// refused (E0405), registering nothing.
+    pub fn add_patches(
+        &mut self,
+        mesh: Arc<Mesh>,
+        spec: PatchSpec,
+        blend_rings: u32,
+    ) -> Result<Vec<MeshHandle>, EmbedError> {
+        let pieces = patched::divide(&mesh, spec, blend_rings, self.patch_sets + 1)?;
+        self.patch_sets += 1;
+        Ok(pieces
+            .into_iter()
+            .map(|(piece, extras)| self.meshes.add(piece, extras))
+            .collect())
     }
 
     /// Forget a mesh: its handle is refused from now on (E0601), and its
@@ -228,13 +311,18 @@ impl StyleRuntime {
 
     /// A scene read from TOML (`scene::load_scene`) as the host's
     /// objects: each distinct mesh registered once, one [`Instance`] per
-    /// object (its model at load, tags, per-object params, shadow flag), in
-    /// order, so `instances[i]` is `scene.objects[i]`. What a TOML scene
-    /// has beyond an instance is the host's to animate: a spinning object's
-    /// transform is `scene.objects[i].model_at(t)`. Per-object images are
-    /// carried. Not carried (yet): the ocean's time-varying vertices (its
-    /// mesh stays as at t = 0) and blended patches.
+    /// object (its model at load, tags, per-object params, images, shadow
+    /// flag), in order, so `instances[i]` is `scene.objects[i]`. Meshes
+    /// come with what the scene's objects draw beyond their vertices, as
+    /// [`StyleRuntime::add_primitive`] and [`StyleRuntime::add_patches`]
+    /// register them: the ocean's vertices follow the frame's time, and a
+    /// patched object's patches blend over their n-rings and are one
+    /// surface for `lines` passes. What a TOML scene has beyond an instance
+    /// is the host's to animate: a spinning object's transform is
+    /// `scene.objects[i].model_at(t)`.
     pub fn add_scene(&mut self, scene: &Scene) -> Vec<Instance> {
+        // Objects naming the same file or primitive share one mesh (and
+        // then its extras: the same primitive; a patch is never shared).
         let mut registered: Vec<(*const Mesh, MeshHandle)> = Vec::new();
         scene
             .objects
@@ -244,7 +332,12 @@ impl StyleRuntime {
                 let mesh = match registered.iter().find(|(k, _)| *k == key) {
                     Some((_, h)) => *h,
                     None => {
-                        let h = self.add_shared_mesh(o.mesh.clone());
+                        let extras = MeshExtras {
+                            time_varying: o.time_varying,
+                            blend: o.blend.clone(),
+                            patch: o.patch.clone(),
+                        };
+                        let h = self.meshes.add(o.mesh.clone(), extras);
                         registered.push((key, h));
                         h
                     }

@@ -56,20 +56,21 @@ impl Default for HostScene {
 }
 
 fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Object, EmbedError> {
+    let entry = meshes.entry(instance.mesh)?;
     Ok(Object {
         name: format!("object {index}"),
-        mesh: meshes.get(instance.mesh)?.clone(),
+        mesh: entry.mesh.clone(),
         model: instance.transform,
         tags: instance.tags.clone(),
         params: instance.params.clone(),
         param_spans: BTreeMap::new(),
         textures: instance.images.clone(),
         mesh_span: diag::Span::default(),
-        time_varying: None,
+        time_varying: entry.extras.time_varying,
         casts_shadows: instance.casts_shadows,
         spin: glam::Vec3::ZERO,
-        blend: None,
-        patch: None,
+        blend: entry.extras.blend.clone(),
+        patch: entry.extras.patch.clone(),
     })
 }
 
