@@ -97,7 +97,7 @@ impl MeshTable {
 
     /// How many meshes are registered (not removed).
     pub fn len(&self) -> usize {
-        self.slots.iter().filter(|s| s.mesh.is_some()).count()
+        self.slots.iter().filter(|s| s.entry.is_some()).count()
     }
 
     pub fn get(&self, handle: MeshHandle) -> Result<&Arc<Mesh>, EmbedError> {
