@@ -11,7 +11,8 @@
 //! and records the passes.
 //!
 //! - `frame.rs`: [`FrameSpec`] and the per-frame uniform writing;
-//! - `objects.rs`: object uniform blocks and the light camera's bounds;
+//! - `objects.rs`: object uniform blocks;
+//! - `light_bounds.rs`: the world bounds the light camera is fitted to;
 //! - `upload.rs`: the frame's uniforms in one write, copied into their buffers;
 //! - `resources.rs`: size-dependent textures and views;
 //! - `bind.rs`: bind group layouts and bind groups;
@@ -31,6 +32,7 @@ mod common;
 mod compute_pass;
 mod frame;
 mod image_pass;
+mod light_bounds;
 mod lines_pass;
 mod meshes;
 mod objects;
@@ -88,7 +90,7 @@ pub struct Renderer {
     vertex_counts: Vec<usize>,
     /// World-space bounds of the scene (the light camera's depth range) and
     /// of what `view(light)` passes draw (the shadow casters: its x, y extent).
-    light_bounds: objects::LightBounds,
+    light_bounds: light_bounds::LightBounds,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
@@ -297,7 +299,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let light_bounds = objects::LightBounds::new(&manifest, scene);
+        let light_bounds = light_bounds::LightBounds::new(&manifest, scene);
         let upload = upload::Upload::new(
             device,
             FRAME_UNIFORM_SIZE as usize,
