@@ -189,13 +189,8 @@ impl Renderer {
             *p = *previous;
         }
         self.light_bounds.update(scene);
-        for slot in 0..slots {
-            let frame = self.frame_block(
-                scene,
-                spec,
-                self.eye_of_slot(spec, slot as u32),
-                previous_view_projs[slot],
-            );
+        for (slot, previous) in previous_view_projs.iter().enumerate().take(slots) {
+            let frame = self.frame_block(scene, spec, self.eye_of_slot(spec, slot as u32), *previous);
             self.upload.frame_mut(slot).copy_from_slice(bytemuck::bytes_of(&frame));
         }
         animation::write_style_params(&self.manifest, spec.time_s, spec.height, self.upload.style_mut());
