@@ -364,7 +364,9 @@ impl Renderer {
     }
 
     /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
-    /// records the passes into your own command encoder.
+    /// records the passes into your own command encoder, after the copies
+    /// that bring this frame's uniforms into their buffers (they are
+    /// uploaded in one write, `upload.rs`): encode after every prepare.
     ///
     /// `scene` must have the objects the renderer was built for (same meshes,
     /// tags and bound images, in the same order); their transforms and
