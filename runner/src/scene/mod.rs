@@ -315,7 +315,7 @@ impl Scene {
     /// World-space bounding box of the objects `keep` accepts: the union
     /// of their [`Object::world_bounds`], in object order (a renderer that
     /// keeps each object's box between frames folds them the same way, so
-    /// its union is this one, bit for bit).
+    /// its union equals this one).
     pub fn bounds_of(&self, keep: impl Fn(&Object) -> bool) -> (glam::Vec3, glam::Vec3) {
         self.objects
             .iter()
