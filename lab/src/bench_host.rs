@@ -6,7 +6,8 @@
 //! passes: per render pass of the style one pass drawing every object (its
 //! uniform block at a dynamic offset, its vertex and index buffers), per
 //! other pass and the present pass one fullscreen triangle, and uploads
-//! every object's block each frame. Frames of the two alternate in one
+//! every object's block each frame. npr's objects carry the tags the
+//! style's render passes select, so its render passes draw every object too. Frames of the two alternate in one
 //! run; each side's time is the median of its frames, GPU work excluded
 //! (the queue is drained between frames, outside the timing).
 
@@ -281,6 +282,16 @@ pub fn rows(
         .iter()
         .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::Render { .. }))
         .count();
+    let mut pass_tags: Vec<&String> = program
+        .manifest
+        .passes
+        .iter()
+        .filter_map(|p| match &p.kind {
+            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
+            _ => None,
+        })
+        .collect();
+    pass_tags.dedup();
     // The style's other passes and the present pass: one fullscreen triangle each.
     let passes = (render_passes, program.manifest.passes.len() - render_passes + 1);
     let target = device.create_texture(&wgpu::TextureDescriptor {
@@ -312,7 +323,16 @@ pub fn rows(
         let mut minimal = Minimal::new(device, n, size, &mesh);
         let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
         let lights = Lights::default();
-        let mut instances: Vec<Instance> = (0..n).map(|i| Instance::new(handle, model(i, n, 0))).collect();
+        // Every object carries every tag a render pass of the style selects
+        // (Age of Sail's `depth: render(caster)`), so each render pass draws
+        // every object, as the minimal program's do: the same draws on both sides.
+        let mut instances: Vec<Instance> = (0..n)
+            .map(|i| {
+                pass_tags
+                    .iter()
+                    .fold(Instance::new(handle, model(i, n, 0)), |o, t| o.with_tag(t))
+            })
+            .collect();
         let mut models: Vec<glam::Mat4> = vec![glam::Mat4::IDENTITY; n];
         let (mut npr, mut own) = (Vec::new(), Vec::new());
         for k in 0..frames + 3 {

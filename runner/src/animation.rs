@@ -61,12 +61,27 @@ pub fn scalar_at(m: &Manifest, name: &str, time_s: f64, height: u32) -> Option<f
 /// The style uniform block at `time_s`.
 pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
     let mut out = vec![0u8; m.style_uniform_size as usize];
+    write_style_params(m, time_s, height, &mut out);
+    out
+}
+
+/// [`style_param_bytes`] written over `out` (zeroed first), which a
+/// renderer keeps from frame to frame; a parameter without keyframes is
+/// read in place (only keyframed and height-relative ones are computed).
+pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]) {
+    out.fill(0);
     for p in &m.params {
         if p.binding != ParamBinding::Uniform {
             continue;
         }
         let Some(off) = p.offset else { continue };
-        let v = percent(p, value_at(p, time_s), height);
+        let computed;
+        let v: &[f64] = if p.keyframes.is_empty() && !p.default_percent_of_height {
+            &p.default
+        } else {
+            computed = percent(p, value_at(p, time_s), height);
+            &computed
+        };
         // One vec4 per slot; a gradient has several (`abi::gradient`).
         let slots = abi::gradient::slots_of(&p.ty);
         for k in 0..slots {
@@ -77,27 +92,35 @@ pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
             }
         }
     }
-    out
 }
 
 /// The per-object parameter slots (after the two matrices) for one object.
 /// A binding with the wrong number of components is reported (E0405).
 pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>) -> Vec<u8> {
-    let size = m.object_uniform_size.saturating_sub(OBJECT_PARAMS_OFFSET) as usize;
-    let mut out = vec![0u8; size];
+    let mut out = vec![0u8; m.object_uniform_size.saturating_sub(OBJECT_PARAMS_OFFSET) as usize];
+    write_object_params(m, o, &mut out, diags);
+    out
+}
+
+/// [`object_param_bytes`] written over `out` (zeroed first), which a
+/// renderer keeps from frame to frame: a frame allocates nothing for them.
+pub fn write_object_params(m: &Manifest, o: &Object, out: &mut [u8], diags: &mut Vec<Diagnostic>) {
+    out.fill(0);
     for p in &m.params {
         if p.binding != ParamBinding::PerObject {
             continue;
         }
         let Some(off) = p.offset else { continue };
-        let mut v = p.default.clone();
+        let rgba: [f64; 4];
+        let mut v: &[f64] = &p.default;
         if let Some(bound) = o.params.get(&p.name) {
             let n = p.components as usize;
             // A colour may be given as rgb; alpha defaults to 1.
             if bound.len() == n || (n == 4 && bound.len() == 3) {
-                v = bound.clone();
+                v = bound;
                 if v.len() == 3 && n == 4 {
-                    v.push(1.0);
+                    rgba = [bound[0], bound[1], bound[2], 1.0];
+                    v = &rgba;
                 }
                 if let Some((lo, hi)) = p.range {
                     if let Some(bad) = v.iter().find(|x| **x < lo || **x > hi) {
@@ -131,11 +154,10 @@ pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>)
         }
         let start = (off - OBJECT_PARAMS_OFFSET) as usize;
         if start + 16 <= out.len() {
-            let bytes: [u8; 16] = bytemuck::cast(slot(&v));
+            let bytes: [u8; 16] = bytemuck::cast(slot(v));
             out[start..start + 16].copy_from_slice(&bytes);
         }
     }
-    out
 }
 
 #[cfg(test)]

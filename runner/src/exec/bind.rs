@@ -133,10 +133,20 @@ pub(super) fn pass_object_groups(
         entries: &entries,
     });
     // One group 1 per object: the object's bound image where it binds one,
-    // the declared default otherwise.
+    // the declared default otherwise. Objects binding the same images share
+    // one group (the block is chosen by the dynamic offset), which wgpu
+    // records faster than as many distinct groups.
     let object_size = wgpu::BufferSize::new(objects.uniform_size.max(16));
-    let mut groups = Vec::new();
+    let mut groups: Vec<wgpu::BindGroup> = Vec::new();
+    let mut made: std::collections::HashMap<&std::collections::BTreeMap<usize, usize>, usize> =
+        std::collections::HashMap::new();
     for (oi, o) in objects.scene.objects.iter().enumerate() {
+        let bound = &objects.object_textures.bound[oi];
+        if let Some(first) = made.get(bound) {
+            groups.push(groups[*first].clone());
+            continue;
+        }
+        made.insert(bound, oi);
         let gpu = |texture: usize| match objects.object_textures.bound[oi].get(&texture) {
             Some(i) => &objects.object_textures.images[*i],
             None => &objects.textures[texture],

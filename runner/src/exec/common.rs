@@ -63,6 +63,10 @@ pub(super) fn clear_color(pass: &PassManifest) -> wgpu::Color {
 
 /// Begin a render pass over `sized`'s colour views (cleared to `clear`) and
 /// the depth attachment `depth` with its load and store operations, if any.
+/// The most colour attachments a pass has: the compiler refuses a pass
+/// writing more targets (`diag::limits`).
+const MAX_COLOR_ATTACHMENTS: usize = diag::limits::MAX_TARGETS_PER_PASS;
+
 pub(super) fn begin_render_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
@@ -71,24 +75,22 @@ pub(super) fn begin_render_pass<'e>(
     depth: Option<(&wgpu::TextureView, wgpu::Operations<f32>)>,
     timestamps: Option<&Timestamps>,
 ) -> wgpu::RenderPass<'e> {
-    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = sized
-        .color_views
-        .iter()
-        .map(|v| {
-            Some(wgpu::RenderPassColorAttachment {
-                view: v,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        })
-        .collect();
+    // On the stack: a frame records a dozen passes and allocates nothing for them.
+    let mut attachments: [Option<wgpu::RenderPassColorAttachment>; MAX_COLOR_ATTACHMENTS] = Default::default();
+    for (slot, view) in attachments.iter_mut().zip(&sized.color_views) {
+        *slot = Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(clear),
+                store: wgpu::StoreOp::Store,
+            },
+        });
+    }
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
-        color_attachments: &attachments,
+        color_attachments: &attachments[..sized.color_views.len().min(MAX_COLOR_ATTACHMENTS)],
         depth_stencil_attachment: depth.map(|(view, ops)| wgpu::RenderPassDepthStencilAttachment {
             view,
             depth_ops: Some(ops),

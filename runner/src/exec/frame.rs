@@ -60,21 +60,36 @@ pub(super) struct Motion {
     pub(super) this: Option<(Vec<Mat4>, Vec<Mat4>)>,
     /// The previous frame's.
     pub(super) previous: Option<(Vec<Mat4>, Vec<Mat4>)>,
+    /// The frame's before the previous one, whose vectors the next
+    /// [`Motion::record`] refills: a frame allocates none.
+    pub(super) spare: Option<(Vec<Mat4>, Vec<Mat4>)>,
 }
 
 impl Motion {
     /// A new frame begins: the current frame's becomes the previous one's.
     pub fn begin(&mut self) {
         if let Some(this) = self.this.take() {
-            self.previous = Some(this);
+            self.spare = self.previous.replace(this);
         }
     }
 
-    /// Record the current frame's, and give the previous frame's (the
-    /// current ones on the first frame).
-    fn record(&mut self, models: Vec<Mat4>, view_projs: Vec<Mat4>) -> (Vec<Mat4>, Vec<Mat4>) {
-        self.this = Some((models.clone(), view_projs.clone()));
-        self.previous.clone().unwrap_or((models, view_projs))
+    /// Record the current frame's (again, for a partial re-render of it).
+    fn record(&mut self, scene: &Scene, view_projs: &[Mat4]) {
+        let (mut models, mut projs) = self.this.take().or_else(|| self.spare.take()).unwrap_or_default();
+        models.clear();
+        models.extend(scene.objects.iter().map(|o| o.model));
+        projs.clear();
+        projs.extend_from_slice(view_projs);
+        self.this = Some((models, projs));
+    }
+
+    /// The previous frame's models and view-projections (the current
+    /// ones on the first frame; empty before any was recorded).
+    fn previous(&self) -> (&[Mat4], &[Mat4]) {
+        self.previous
+            .as_ref()
+            .or(self.this.as_ref())
+            .map_or((&[], &[]), |(models, projs)| (models.as_slice(), projs.as_slice()))
     }
 }
 
@@ -95,8 +110,11 @@ impl Renderer {
         let cam = pose.position(eye);
         let l = scene.light.direction.normalize_or_zero();
         let c = scene.light.color;
-        let light_view_proj =
-            crate::scene::light_view_proj(scene.light.direction, self.caster_bounds, self.scene_bounds);
+        let light_view_proj = crate::scene::light_view_proj(
+            scene.light.direction,
+            self.light_bounds.casters,
+            self.light_bounds.scene,
+        );
         let other_view_proj = proj * pose.view(1 - eye.min(1));
         let (left, right, forward) = (pose.position(0), pose.position(1), pose.forward());
         let (more_light_dir, more_light_color) = scene.more_light_frame();
@@ -144,47 +162,40 @@ impl Renderer {
         pose.projection(spec.width as f32 / spec.height as f32) * pose.view(eye)
     }
 
-    /// Write the per-frame, style and object uniforms for `spec`. Everything
+    /// Write the per-frame, style and object uniforms for `spec` (into the
+    /// staging buffer, in one write: `upload.rs`). Everything
     /// here is read from `scene` again each frame: the camera and light, and
     /// every object's transform and per-object params (bad params are
     /// `RunError::User`, and nothing is written then). Only the uniform
     /// buffers are written; meshes and bind groups stay as built.
     pub(super) fn write_uniforms(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
-        let slots = self.frame_buffers.len() as u32;
-        let view_projs: Vec<Mat4> = (0..slots)
-            .map(|s| self.view_proj(scene, spec, self.eye_of_slot(spec, s)))
-            .collect();
-        let models: Vec<Mat4> = scene.objects.iter().map(|o| o.model).collect();
-        let (previous_models, previous_view_projs) = self.motion.record(models, view_projs);
-        let vertex_counts: Vec<usize> = self.meshes.iter().map(|m| m.vertex_count).collect();
-        let objects = objects::object_blocks(
+        let slots = self.frame_buffers.len();
+        // At most two eye slots (stereo): no allocation for them.
+        let mut view_projs = [Mat4::IDENTITY; 2];
+        for (s, vp) in view_projs.iter_mut().enumerate().take(slots) {
+            *vp = self.view_proj(scene, spec, self.eye_of_slot(spec, s as u32));
+        }
+        self.motion.record(scene, &view_projs[..slots]);
+        let (previous_models, previous_projs) = self.motion.previous();
+        objects::write_object_blocks(
             &self.manifest,
             scene,
             self.object_stride,
-            &previous_models,
-            &vertex_counts,
+            (previous_models, &self.vertex_counts),
+            self.upload.objects_mut(),
         )?;
-        if objects::moved(&self.bounds_models, scene) {
-            (self.scene_bounds, self.caster_bounds) = objects::light_bounds(&self.manifest, scene);
-            self.bounds_models = scene.objects.iter().map(|o| o.model).collect();
+        let mut previous_view_projs = view_projs;
+        for (p, previous) in previous_view_projs.iter_mut().zip(previous_projs) {
+            *p = *previous;
         }
-        for slot in 0..slots {
-            let frame = self.frame_block(
-                scene,
-                spec,
-                self.eye_of_slot(spec, slot),
-                previous_view_projs[slot as usize],
-            );
-            self.queue
-                .write_buffer(&self.frame_buffers[slot as usize], 0, bytemuck::bytes_of(&frame));
+        self.light_bounds.update(scene);
+        for (slot, previous) in previous_view_projs.iter().enumerate().take(slots) {
+            let frame = self.frame_block(scene, spec, self.eye_of_slot(spec, slot as u32), *previous);
+            self.upload.frame_mut(slot).copy_from_slice(bytemuck::bytes_of(&frame));
         }
-        let style = animation::style_param_bytes(&self.manifest, spec.time_s, spec.height);
-        if !style.is_empty() {
-            self.queue.write_buffer(&self.style_buffer, 0, &style);
-        }
-        if !objects.is_empty() {
-            self.queue.write_buffer(&self.object_buffer, 0, &objects);
-        }
+        animation::write_style_params(&self.manifest, spec.time_s, spec.height, self.upload.style_mut());
+        // One write; `encode` copies the blocks into their buffers.
+        self.upload.write(&self.queue);
         Ok(())
     }
 }

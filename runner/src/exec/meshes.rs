@@ -35,6 +35,18 @@ pub(super) struct GpuMesh {
 }
 
 impl GpuMesh {
+    /// Another handle on the same buffers (wgpu's handles are shared).
+    fn share(&self) -> GpuMesh {
+        GpuMesh {
+            buffers: self.buffers.clone(),
+            index: self.index.clone(),
+            index_count: self.index_count,
+            vertex_count: self.vertex_count,
+            built_for_s: self.built_for_s,
+            blend: self.blend.as_ref().map(|b| Box::new(b.share())),
+        }
+    }
+
     /// The mesh a render pass draws for this object: a blended patch's faces
     /// and n-ring when the pass reads `patch.weight`, else the object's own.
     pub fn drawn_by(&self, attributes: &[Attribute]) -> &GpuMesh {
@@ -49,10 +61,19 @@ impl GpuMesh {
 /// With `weights` (a render pass reads `patch.weight`), a weight buffer for
 /// each (1 at every vertex) and each blended patch's mesh with its weights.
 pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) -> Vec<GpuMesh> {
+    // Objects of one still mesh (a host's instances of one `add_mesh`) share
+    // its buffers: uploaded once, and the passes bind the same buffers for
+    // each, which wgpu records faster than as many distinct ones.
+    let mut shared: Vec<(*const Mesh, GpuMesh)> = Vec::new();
     scene
         .objects
         .iter()
         .map(|o| {
+            let still = o.time_varying.is_none() && o.blend.is_none();
+            let key = std::sync::Arc::as_ptr(&o.mesh);
+            if let Some((_, gpu)) = shared.iter().find(|(k, _)| still && *k == key) {
+                return gpu.share();
+            }
             let mut gpu = upload_mesh(device, &o.mesh);
             // `Object::mesh` is a time-varying primitive's geometry at t = 0.
             gpu.built_for_s = o.time_varying.map(|_| 0.0);
@@ -70,6 +91,9 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) 
                     );
                     gpu.blend = Some(Box::new(patch));
                 }
+            }
+            if still {
+                shared.push((key, gpu.share()));
             }
             gpu
         })

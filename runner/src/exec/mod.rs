@@ -11,7 +11,9 @@
 //! and records the passes.
 //!
 //! - `frame.rs`: [`FrameSpec`] and the per-frame uniform writing;
-//! - `objects.rs`: object uniform blocks and the light camera's bounds;
+//! - `objects.rs`: object uniform blocks;
+//! - `light_bounds.rs`: the world bounds the light camera is fitted to;
+//! - `upload.rs`: the frame's uniforms in one write, copied into their buffers;
 //! - `resources.rs`: size-dependent textures and views;
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
@@ -30,6 +32,7 @@ mod common;
 mod compute_pass;
 mod frame;
 mod image_pass;
+mod light_bounds;
 mod lines_pass;
 mod meshes;
 mod objects;
@@ -41,6 +44,7 @@ mod scene_check;
 mod scene_warnings;
 mod state;
 mod tiled_pass;
+mod upload;
 mod values;
 
 pub use frame::FrameSpec;
@@ -54,7 +58,6 @@ use crate::textures::{self, GpuTexture};
 use crate::{readback, RunError};
 use abi::manifest::*;
 use common::{EncodeContext, Timestamps};
-use glam::Mat4;
 use pass::PassExec;
 
 /// The largest image (`--size`): `diag::limits`, where every limit is listed.
@@ -79,14 +82,15 @@ pub struct Renderer {
     /// Every object's block, `object_stride` apart; written every frame.
     object_buffer: wgpu::Buffer,
     object_stride: u64,
+    /// The frame's uniforms (frame, style and object blocks), written in
+    /// one upload and copied into the buffers above.
+    upload: upload::Upload,
     object_tags: Vec<Vec<String>>,
-    /// The object transforms `scene_bounds` and `caster_bounds` are for.
-    bounds_models: Vec<Mat4>,
-    /// World-space bounds of the scene, for the light camera's depth range.
-    scene_bounds: (glam::Vec3, glam::Vec3),
-    /// Bounds of what `view(light)` passes draw (the shadow casters): the
-    /// light camera's x, y extent.
-    caster_bounds: (glam::Vec3, glam::Vec3),
+    /// Per object, its mesh's vertex count (the block's `ids.z`).
+    vertex_counts: Vec<usize>,
+    /// World-space bounds of the scene (the light camera's depth range) and
+    /// of what `view(light)` passes draw (the shadow casters: its x, y extent).
+    light_bounds: light_bounds::LightBounds,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
@@ -226,7 +230,8 @@ impl Renderer {
         let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
         let object_stride = object_stride(manifest.object_uniform_size);
         // Bad per-object params are reported here too, not only at the first frame.
-        objects::object_blocks(&manifest, scene, object_stride, &[], &[])?;
+        let mut object_bytes = vec![0; (object_stride as usize) * scene.objects.len()];
+        objects::write_object_blocks(&manifest, scene, object_stride, (&[], &[]), &mut object_bytes)?;
         let object_count = scene.objects.len().max(1) as u64;
         let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
@@ -294,7 +299,15 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (scene_bounds, caster_bounds) = objects::light_bounds(&manifest, scene);
+        let light_bounds = light_bounds::LightBounds::new(&manifest, scene);
+        let upload = upload::Upload::new(
+            device,
+            FRAME_UNIFORM_SIZE as usize,
+            eyes,
+            manifest.style_uniform_size as usize,
+            object_bytes.len(),
+        );
+        let vertex_counts = meshes.iter().map(|m| m.vertex_count).collect();
         Ok(Renderer {
             device: device.clone(),
             queue: queue.clone(),
@@ -307,10 +320,10 @@ impl Renderer {
             style_buffer,
             object_buffer,
             object_stride,
+            upload,
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
-            bounds_models: scene.objects.iter().map(|o| o.model).collect(),
-            scene_bounds,
-            caster_bounds,
+            vertex_counts,
+            light_bounds,
             manifest,
             sized: None,
             frames_begun: 0,
@@ -351,7 +364,9 @@ impl Renderer {
     }
 
     /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
-    /// records the passes into your own command encoder.
+    /// records the passes into your own command encoder, after the copies
+    /// that bring this frame's uniforms into their buffers (they are
+    /// uploaded in one write, `upload.rs`): encode after every prepare.
     ///
     /// `scene` must have the objects the renderer was built for (same meshes,
     /// tags and bound images, in the same order); their transforms and
@@ -443,6 +458,9 @@ impl Renderer {
     /// Record the first `count` passes, each by its kind's executor.
     fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
         let Some(sized) = self.sized.as_ref() else { return };
+        // The uniforms `prepare` wrote, into their buffers before any pass reads them.
+        self.upload
+            .encode_copies(encoder, &self.frame_buffers, &self.style_buffer, &self.object_buffer);
         let ctx = EncodeContext {
             meshes: &self.meshes,
             object_tags: &self.object_tags,

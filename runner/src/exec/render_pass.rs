@@ -146,6 +146,9 @@ impl RenderPassExec {
         let mut rp = common::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
         rp.set_pipeline(&self.pipeline);
         rp.set_bind_group(0, &sized.group0, &[]);
+        // The index buffer of the mesh whose buffers the pass holds: objects
+        // of one mesh share its buffers (`meshes.rs`), bound once for a run of them.
+        let mut bound: Option<&wgpu::Buffer> = None;
         for (oi, mesh) in ctx.meshes.iter().enumerate() {
             if let Some(tag) = &self.tag {
                 if !ctx.object_tags[oi].iter().any(|t| t == tag) {
@@ -156,12 +159,15 @@ impl RenderPassExec {
             let mesh = mesh.drawn_by(&self.attributes);
             let group = self.object_groups.get(oi).unwrap_or(ctx.object_group);
             rp.set_bind_group(1, group, &[(oi as u64 * ctx.object_stride) as u32]);
-            for (slot, a) in self.attributes.iter().enumerate() {
-                if let Some(buf) = mesh.buffers.get(a) {
-                    rp.set_vertex_buffer(slot as u32, buf.slice(..));
+            if bound != Some(&mesh.index) {
+                for (slot, a) in self.attributes.iter().enumerate() {
+                    if let Some(buf) = mesh.buffers.get(a) {
+                        rp.set_vertex_buffer(slot as u32, buf.slice(..));
+                    }
                 }
+                rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
+                bound = Some(&mesh.index);
             }
-            rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
             rp.draw_indexed(0..mesh.index_count, 0, 0..1);
         }
     }

@@ -202,6 +202,7 @@ impl Renderer {
         self.motion = Motion {
             this: state.motion[0].as_ref().map(to_mats),
             previous: state.motion[1].as_ref().map(to_mats),
+            spare: None,
         };
         self.queue.submit([]);
         Ok(())

@@ -236,6 +236,39 @@ impl Object {
     }
 }
 
+/// The box of nothing: (+∞, −∞), which [`union_bounds`] leaves unchanged.
+pub const EMPTY_BOUNDS: (glam::Vec3, glam::Vec3) = (glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY);
+
+/// The smallest box holding boxes `a` and `b` (each (min, max)).
+pub fn union_bounds(a: (glam::Vec3, glam::Vec3), b: (glam::Vec3, glam::Vec3)) -> (glam::Vec3, glam::Vec3) {
+    (a.0.min(b.0), a.1.max(b.1))
+}
+
+impl Object {
+    /// World-space bounding box (min, max) of this object's vertices under
+    /// `model`; vertices that land on a non-finite point are left out;
+    /// [`EMPTY_BOUNDS`] when none is left.
+    ///
+    /// Every vertex is transformed (an exact box needs them all: a turned
+    /// sphere's extreme vertices are any of them), four lanes at a time:
+    /// the same products and sums as [`glam::Mat4::transform_point3`], so
+    /// the same points, and this is a light camera's cost per moved object
+    /// each frame (docs/PERFORMANCE.md, "host path").
+    pub fn world_bounds(&self) -> (glam::Vec3, glam::Vec3) {
+        let m = &self.model;
+        let (mut lo, mut hi) = (glam::Vec4::INFINITY, glam::Vec4::NEG_INFINITY);
+        for p in &self.mesh.positions {
+            let w = m.w_axis + (m.z_axis * p[2] + (m.y_axis * p[1] + m.x_axis * p[0]));
+            // x, y and z finite (the fourth lane is not a coordinate).
+            if w.is_finite_mask().bitmask() & 0b111 == 0b111 {
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+        }
+        (lo.truncate(), hi.truncate())
+    }
+}
+
 impl Scene {
     /// No objects, a still camera and the default light: what an art-map's
     /// filter runs on (its passes are image passes only).
@@ -279,20 +312,16 @@ impl Scene {
         self.bounds_of(|_| true)
     }
 
-    /// World-space bounding box of the objects `keep` accepts.
+    /// World-space bounding box of the objects `keep` accepts: the union
+    /// of their [`Object::world_bounds`], in object order (a renderer that
+    /// keeps each object's box between frames folds them the same way, so
+    /// its union equals this one).
     pub fn bounds_of(&self, keep: impl Fn(&Object) -> bool) -> (glam::Vec3, glam::Vec3) {
-        let mut lo = glam::Vec3::splat(f32::INFINITY);
-        let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
-        for o in self.objects.iter().filter(|o| keep(o)) {
-            for p in &o.mesh.positions {
-                let w = o.model.transform_point3(glam::Vec3::from(*p));
-                if w.is_finite() {
-                    lo = lo.min(w);
-                    hi = hi.max(w);
-                }
-            }
-        }
-        (lo, hi)
+        self.objects
+            .iter()
+            .filter(|o| keep(o))
+            .map(Object::world_bounds)
+            .fold(EMPTY_BOUNDS, union_bounds)
     }
 
     pub fn triangle_count(&self) -> usize {
