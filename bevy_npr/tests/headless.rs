@@ -24,13 +24,59 @@ fn copy_style(dir: &std::path::Path, example: &str) -> std::path::PathBuf {
     to
 }
 
-/// Updates until the camera has drawn a frame with the style `name`.
+/// Updates until the camera has drawn a frame with the style `name` and
+/// Bevy's own pipelines are compiled: Bevy compiles them in the background
+/// and skips a node whose pipeline is not ready, so until its upscaling
+/// pipeline is, nothing (not even its clear) reaches the camera's image,
+/// however long npr's runtime has been drawing (seen: more than 9 frames
+/// on a busy machine).
 fn wait_for_style(app: &mut bevy::app::App, camera: bevy::prelude::Entity, name: &str) {
     update_until(app, &format!("the camera to draw with \"{name}\""), PATIENCE, |app| {
-        runtime_of(app, camera).is_some_and(|(n, builds)| n == name && builds > 0)
+        let pipelines_ready = app
+            .sub_app(bevy::render::RenderApp)
+            .world()
+            .resource::<bevy::render::render_resource::PipelineCache>()
+            .waiting_pipelines()
+            .next()
+            .is_none();
+        pipelines_ready && runtime_of(app, camera).is_some_and(|(n, builds)| n == name && builds > 0)
     });
     // One more frame: the image of the frame just recorded is complete.
     app.update();
+}
+
+/// An app in `dir` whose camera draws the style file `file` (named
+/// `name`) on `scene` into an sRGB image, after its first frame with it.
+struct Drawing {
+    app: bevy::app::App,
+    image: bevy::asset::Handle<bevy::image::Image>,
+    style: bevy::asset::Handle<bevy_npr::NprStyleAsset>,
+    camera: bevy::prelude::Entity,
+}
+
+fn draw(dir: &std::path::Path, file: &str, name: &str, scene: &runner::scene::Scene) -> Drawing {
+    let mut app = app(dir);
+    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
+    let style = app.world().resource::<AssetServer>().load(file.to_string());
+    let camera = spawn_scene(&mut app, scene, style.clone(), &image);
+    wait_for_style(&mut app, camera, name);
+    Drawing {
+        app,
+        image,
+        style,
+        camera,
+    }
+}
+
+/// The loaded style asset `handle` names.
+fn style_asset(
+    app: &bevy::app::App,
+    handle: &bevy::asset::Handle<bevy_npr::NprStyleAsset>,
+) -> Option<bevy_npr::NprStyleAsset> {
+    app.world()
+        .resource::<bevy::asset::Assets<bevy_npr::NprStyleAsset>>()
+        .get(handle)
+        .cloned()
 }
 
 #[test]
@@ -41,11 +87,12 @@ fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     let scene = load_scene("spot.toml");
     let expected = npr_render(&style, &scene);
 
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle = app.world().resource::<AssetServer>().load("toon.npr");
-    let camera = spawn_scene(&mut app, &scene, handle, &image);
-    wait_for_style(&mut app, camera, "Toon");
+    let Drawing {
+        mut app,
+        image,
+        style: _,
+        camera,
+    } = draw(&dir, "toon.npr", "Toon", &scene);
     assert_close("toon_spot", &read_image(&app, &image), &expected);
 
     // Params changed at run time through the reflected component draw what
@@ -109,11 +156,12 @@ fn an_edited_style_is_picked_up_and_a_broken_save_keeps_it() {
     let dir = asset_dir("hot_reload");
     let style = copy_style(&dir, "toon.npr");
     let scene = load_scene("spot.toml");
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle = app.world().resource::<AssetServer>().load("toon.npr");
-    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
-    wait_for_style(&mut app, camera, "Toon");
+    let Drawing {
+        mut app,
+        image,
+        style: handle,
+        camera,
+    } = draw(&dir, "toon.npr", "Toon", &scene);
     let before = read_image(&app, &image);
 
     // A new colour and a new name, saved while the app runs.
@@ -300,11 +348,12 @@ fn a_resized_target_is_drawn_at_its_new_size() {
     let dir = asset_dir("resize");
     let style = copy_style(&dir, "toon.npr");
     let scene = load_scene("spot.toml");
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle = app.world().resource::<AssetServer>().load("toon.npr");
-    let camera = spawn_scene(&mut app, &scene, handle, &image);
-    wait_for_style(&mut app, camera, "Toon");
+    let Drawing {
+        mut app,
+        image,
+        style: _,
+        camera,
+    } = draw(&dir, "toon.npr", "Toon", &scene);
     let builds = runtime_of(&mut app, camera).map(|r| r.1);
 
     // Taller than wide: the aspect changes too.
@@ -335,7 +384,6 @@ fn a_resized_target_is_drawn_at_its_new_size() {
 
 #[test]
 fn an_edited_file_that_the_style_uses_is_picked_up() {
-    use bevy::prelude::*;
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = asset_dir("used_file");
     // Toon with its `base` colour declared in a file it `use`s.
@@ -351,18 +399,13 @@ fn an_edited_file_that_the_style_uses_is_picked_up() {
     std::fs::write(&palette, "style \"Palette\"\nparam base: color = #e07a3a\n").expect("write the palette");
 
     let scene = load_scene("spot.toml");
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle: Handle<bevy_npr::NprStyleAsset> = app.world().resource::<AssetServer>().load("main.npr");
-    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
-    wait_for_style(&mut app, camera, "Toon");
-    let style_asset = |app: &App| {
-        app.world()
-            .resource::<Assets<bevy_npr::NprStyleAsset>>()
-            .get(&handle)
-            .cloned()
-    };
-    let loaded = style_asset(&app).expect("the style is loaded");
+    let Drawing {
+        mut app,
+        image,
+        style: handle,
+        camera: _,
+    } = draw(&dir, "main.npr", "Toon", &scene);
+    let loaded = style_asset(&app, &handle).expect("the style is loaded");
     assert_eq!(
         loaded.files_read(),
         [palette.canonicalize().expect("the palette's path")],
@@ -376,7 +419,7 @@ fn an_edited_file_that_the_style_uses_is_picked_up() {
         &mut app,
         "the style to reload after its palette changed",
         PATIENCE,
-        |app| style_asset(app).is_some_and(|s| s.revision() != loaded.revision()),
+        |app| style_asset(app, &handle).is_some_and(|s| s.revision() != loaded.revision()),
     );
     // The render world draws the new revision from the next frame on.
     for _ in 0..3 {
@@ -394,11 +437,12 @@ fn despawned_meshes_leave_the_runtime() {
     let dir = asset_dir("mesh_churn");
     let style = copy_style(&dir, "toon.npr");
     let scene = load_scene("spot.toml");
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle = app.world().resource::<AssetServer>().load("toon.npr");
-    let camera = spawn_scene(&mut app, &scene, handle, &image);
-    wait_for_style(&mut app, camera, "Toon");
+    let Drawing {
+        mut app,
+        image,
+        style: _,
+        camera,
+    } = draw(&dir, "toon.npr", "Toon", &scene);
     let render = render_entity(&mut app, camera);
     let mesh_count = |app: &App| {
         app.sub_app(bevy::render::RenderApp)
@@ -449,7 +493,6 @@ fn despawned_meshes_leave_the_runtime() {
 
 #[test]
 fn an_edited_image_that_the_style_reads_is_picked_up() {
-    use bevy::prelude::*;
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = asset_dir("image_file");
     let paper = dir.join("paper.png");
@@ -469,18 +512,13 @@ fn an_edited_image_that_the_style_reads_is_picked_up() {
     .expect("write the style");
 
     let scene = load_scene("spot.toml");
-    let mut app = app(&dir);
-    let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
-    let handle: Handle<bevy_npr::NprStyleAsset> = app.world().resource::<AssetServer>().load("textured.npr");
-    let camera = spawn_scene(&mut app, &scene, handle.clone(), &image);
-    wait_for_style(&mut app, camera, "Textured");
-    let style_asset = |app: &App| {
-        app.world()
-            .resource::<Assets<bevy_npr::NprStyleAsset>>()
-            .get(&handle)
-            .cloned()
-    };
-    let loaded = style_asset(&app).expect("the style is loaded");
+    let Drawing {
+        mut app,
+        image,
+        style: handle,
+        camera: _,
+    } = draw(&dir, "textured.npr", "Textured", &scene);
+    let loaded = style_asset(&app, &handle).expect("the style is loaded");
     assert_eq!(loaded.files_read(), [paper.canonicalize().expect("the image's path")]);
     let before = read_image(&app, &image);
     assert_close("image_file_before", &before, &npr_render(&style, &scene));
@@ -490,7 +528,7 @@ fn an_edited_image_that_the_style_reads_is_picked_up() {
         &mut app,
         "the style to reload after its image changed",
         PATIENCE,
-        |app| style_asset(app).is_some_and(|s| s.revision() != loaded.revision()),
+        |app| style_asset(app, &handle).is_some_and(|s| s.revision() != loaded.revision()),
     );
     for _ in 0..3 {
         app.update();
