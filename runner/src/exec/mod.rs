@@ -81,6 +81,8 @@ pub struct Renderer {
     /// Its layout, which the pipelines were made with (style-level: kept
     /// across [`Renderer::set_scene`]).
     object_layout: wgpu::BindGroupLayout,
+    /// The per-object images the scene binds, by what they were read from.
+    object_images: std::collections::HashMap<textures::ObjectImageKey, GpuTexture>,
     textures: Vec<GpuTexture>,
     linear_clamp: wgpu::Sampler,
     meshes: Vec<meshes::GpuMesh>,
@@ -284,6 +286,7 @@ impl Renderer {
             object_stride,
             passes: &passes,
             eyes,
+            object_images: &Default::default(),
         };
         let scene_gpu::SceneGpu {
             object_buffer,
@@ -295,6 +298,7 @@ impl Renderer {
             upload,
             object_tags,
             vertex_counts,
+            object_images,
         } = scene_gpu::SceneGpu::make(device, queue, &style, scene)?;
         for (exec, part) in passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
@@ -305,6 +309,7 @@ impl Renderer {
             passes,
             object_group,
             object_layout,
+            object_images,
             textures,
             linear_clamp,
             meshes,

@@ -10,9 +10,10 @@ use super::pass::{PassExec, PassScene};
 use super::{light_bounds, meshes, objects, upload, values, Renderer};
 use crate::gpu_count::Create;
 use crate::scene::Scene;
-use crate::textures::{self, GpuTexture};
+use crate::textures::{self, GpuTexture, ObjectImageKey};
 use crate::RunError;
 use abi::manifest::*;
+use std::collections::HashMap;
 
 /// Everything a renderer holds for one scene's objects.
 pub(super) struct SceneGpu {
@@ -26,6 +27,8 @@ pub(super) struct SceneGpu {
     pub upload: upload::Upload,
     pub object_tags: Vec<Vec<String>>,
     pub vertex_counts: Vec<usize>,
+    /// The per-object images this scene binds, kept for the next one.
+    pub object_images: HashMap<ObjectImageKey, GpuTexture>,
 }
 
 /// What of the style a scene is bound with.
@@ -37,6 +40,8 @@ pub(super) struct StyleParts<'a> {
     pub object_stride: u64,
     pub passes: &'a [PassExec],
     pub eyes: usize,
+    /// The per-object images the previous scene bound (none at a build).
+    pub object_images: &'a HashMap<ObjectImageKey, GpuTexture>,
 }
 
 impl SceneGpu {
@@ -51,7 +56,7 @@ impl SceneGpu {
         scene: &Scene,
     ) -> Result<SceneGpu, RunError> {
         let manifest = style.manifest;
-        let object_textures = textures::load_object_textures(device, queue, manifest, scene)?;
+        let object_textures = textures::load_object_textures(device, queue, manifest, scene, style.object_images)?;
         let mut object_bytes = vec![0; (style.object_stride as usize) * scene.objects.len()];
         objects::write_object_blocks(manifest, scene, style.object_stride, (&[], &[]), &mut object_bytes)?;
         let object_count = scene.objects.len().max(1) as u64;
@@ -108,6 +113,7 @@ impl SceneGpu {
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
             vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
             meshes,
+            object_images: object_textures.keys.into_iter().zip(object_textures.images).collect(),
         })
     }
 }
@@ -116,7 +122,8 @@ impl Renderer {
     /// Render `scene`'s objects from now on: other meshes, tags, bound
     /// images or shadow flags than the renderer was built or last set
     /// with (a game spawning or despawning an object). Only the
-    /// scene-level resources are made anew ([`SceneGpu`]); the shader
+    /// scene-level resources are made anew ([`SceneGpu`]; per-object images
+    /// the previous objects bound too are kept); the shader
     /// modules, pipelines and their layouts, the style's textures and
     /// art-maps, the sampler and the frame and style buffers stay. The
     /// size-level resources (targets, their views and groups) are made
@@ -144,6 +151,7 @@ impl Renderer {
                     object_stride: self.object_stride,
                     passes: &self.passes,
                     eyes: self.frame_buffers.len(),
+                    object_images: &self.object_images,
                 };
                 SceneGpu::make(&self.device, &self.queue, &style, scene)
             },
@@ -158,6 +166,7 @@ impl Renderer {
             upload,
             object_tags,
             vertex_counts,
+            object_images,
         } = made;
         for (exec, part) in self.passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
@@ -170,6 +179,7 @@ impl Renderer {
         self.upload = upload;
         self.object_tags = object_tags;
         self.vertex_counts = vertex_counts;
+        self.object_images = object_images;
         // Group 0 binds compute passes' values, and the history restarts
         // with the objects: the size-level resources are made at the next frame.
         self.sized = None;
