@@ -10,6 +10,7 @@
 //! style's render passes select, so its render passes draw every object too. Frames of the two alternate in one
 //! run; each side's time is the median of its frames, GPU work excluded
 //! (the queue is drained between frames, outside the timing).
+//! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
@@ -393,4 +394,109 @@ pub fn table(rows: &[HostRow]) -> String {
         ));
     }
     t
+}
+
+/// What a scene change costs a host (issue 32: a game spawning an object):
+/// median CPU µs of a frame right after one object is added to `objects`
+/// (`StyleRuntime::render`, which makes the scene-level resources anew),
+/// of a steady frame, and of a new runtime's first frame of the same
+/// objects: what the frame after an addition cost when a scene change
+/// built the renderer anew (before `Renderer::set_scene`).
+pub struct SpawnRow {
+    pub objects: usize,
+    pub spawn_us: f64,
+    pub steady_us: f64,
+    pub new_runtime_us: f64,
+}
+
+/// [`SpawnRow`] over `spawns` additions (each removed again, untimed).
+pub fn spawn_row(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    objects: usize,
+    size: u32,
+    spawns: u32,
+) -> Result<SpawnRow, RunError> {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let mesh = primitives::sphere(1.0, 16, 8);
+    let target = device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let view = target.create_view(&Default::default());
+    let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
+    let lights = Lights::default();
+    // As in `rows`: every object carries the tags the render passes select.
+    let tags: Vec<&String> = program
+        .manifest
+        .passes
+        .iter()
+        .filter_map(|p| match &p.kind {
+            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
+            _ => None,
+        })
+        .collect();
+    // One timed frame of `count` objects: µs of `render`, GPU work drained after.
+    let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
+        let instances: Vec<Instance> = (0..count)
+            .map(|i| {
+                tags.iter()
+                    .fold(Instance::new(handle, model(i, count, k)), |o, t| o.with_tag(t))
+            })
+            .collect();
+        let frame = Frame {
+            camera: &camera,
+            objects: &instances,
+            lights: &lights,
+            time_s: f64::from(k) / 60.0,
+            frame_index: k,
+            eye: 0,
+        };
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let start = Instant::now();
+        runtime
+            .render(&mut encoder, &frame, Target::View(&view))
+            .map_err(|e| RunError::User(e.diagnostics()))?;
+        let us = start.elapsed().as_secs_f64() * 1e6;
+        queue.submit([encoder.finish()]);
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RunError::Internal(e.to_string()))?;
+        Ok(us)
+    };
+    let new_runtime = || -> Result<(StyleRuntime, runner::embed::MeshHandle), RunError> {
+        let mut runtime =
+            StyleRuntime::new(device, queue, program.clone()).map_err(|e| RunError::User(e.diagnostics()))?;
+        let handle = runtime.add_mesh(mesh.clone());
+        Ok((runtime, handle))
+    };
+    let (mut runtime, handle) = new_runtime()?;
+    for k in 0..3 {
+        timed(&mut runtime, handle, objects, k)?;
+    }
+    let (mut spawn, mut steady, mut fresh) = (Vec::new(), Vec::new(), Vec::new());
+    for s in 0..spawns {
+        let k = 3 + 3 * s;
+        spawn.push(timed(&mut runtime, handle, objects + 1, k)?);
+        timed(&mut runtime, handle, objects, k + 1)?;
+        steady.push(timed(&mut runtime, handle, objects, k + 2)?);
+        let (mut other, other_handle) = new_runtime()?;
+        fresh.push(timed(&mut other, other_handle, objects + 1, k)?);
+    }
+    Ok(SpawnRow {
+        objects,
+        spawn_us: median(spawn),
+        steady_us: median(steady),
+        new_runtime_us: median(fresh),
+    })
 }

@@ -11,6 +11,7 @@ use abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
 use diag::Diagnostic;
 use std::collections::{BTreeMap, HashMap};
 
+#[derive(Clone)]
 pub struct GpuTexture {
     pub texture: wgpu::Texture,
     pub sampler: wgpu::Sampler,
@@ -71,24 +72,34 @@ pub(crate) fn filter_inputs(
 /// (param, file, colour space) and shared between objects naming the same file.
 pub struct ObjectTextures {
     pub images: Vec<GpuTexture>,
+    /// What each of `images` was loaded from: (manifest texture index,
+    /// resolved path, sRGB), the key a later scene finds it by.
+    pub keys: Vec<ObjectImageKey>,
     /// Per object: manifest texture index → index into `images`. A param the
     /// object does not bind is absent: it draws with the declared default.
     pub bound: Vec<BTreeMap<usize, usize>>,
 }
 
+/// A per-object image: (manifest texture index, resolved path, sRGB).
+pub type ObjectImageKey = (usize, std::path::PathBuf, bool);
+
 /// Loads every object's image bindings (checked against the style by
 /// `exec::check_scene`). The sampler options are the param's declaration's.
+/// An image in `loaded` (what the renderer's previous scene bound) is
+/// taken from there, not read and uploaded again.
 pub fn load_object_textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     m: &Manifest,
     scene: &Scene,
+    loaded: &HashMap<ObjectImageKey, GpuTexture>,
 ) -> Result<ObjectTextures, RunError> {
     let mut out = ObjectTextures {
         images: Vec::new(),
+        keys: Vec::new(),
         bound: Vec::new(),
     };
-    let mut cache: HashMap<(usize, std::path::PathBuf, bool), usize> = HashMap::new();
+    let mut cache: HashMap<ObjectImageKey, usize> = HashMap::new();
     let mut diags = Vec::new();
     for o in &scene.objects {
         let mut bound = BTreeMap::new();
@@ -109,6 +120,13 @@ pub fn load_object_textures(
                 bound.insert(index, *i);
                 continue;
             }
+            if let Some(kept) = loaded.get(&key) {
+                cache.insert(key.clone(), out.images.len());
+                bound.insert(index, out.images.len());
+                out.images.push(kept.clone());
+                out.keys.push(key);
+                continue;
+            }
             let mut decl = m.textures[index].clone();
             decl.source = TextureSourceManifest::Image {
                 path: b.path.clone(),
@@ -117,9 +135,10 @@ pub fn load_object_textures(
             };
             match load_one(device, queue, &decl, None, &mut Vec::new()) {
                 Ok(g) => {
-                    cache.insert(key, out.images.len());
+                    cache.insert(key.clone(), out.images.len());
                     bound.insert(index, out.images.len());
                     out.images.push(g);
+                    out.keys.push(key);
                 }
                 // Point at the binding in the scene, not at the style.
                 Err(d) => diags.push(

@@ -4,7 +4,8 @@
 //! `runner::gpu_count`, through which the runner makes every one (its
 //! `clippy.toml` refuses the uncounted wgpu calls). The frames move the
 //! objects and the camera, change per-object and style params and advance
-//! the time; then an object is added (a rebuild, allowed) and the frames
+//! the time; then an object is added (the scene-level resources made
+//! anew, allowed; `embed_scene_change.rs` counts that frame) and the frames
 //! after it are counted again, then the size changes. Over examples with a
 //! render and image passes, a compute pass, a lines pass, a history
 //! (previous-frame) target and Age of Sail's seven passes; and the animated

@@ -1,5 +1,6 @@
 //! `npr bench host`: the command around `lab::bench_host` (the style
-//! compiled with its params kept, as a host runs it; the device; the table).
+//! compiled with its params kept, as a host runs it; the device; the table;
+//! then the time of a frame right after the host adds an object).
 
 use crate::cli::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, Printer};
@@ -44,7 +45,23 @@ pub fn run(style: &Path, objects: &[usize], size: u32, frames: u32, printer: &Pr
                 style.display()
             );
             print!("{}", lab::bench_host::table(&rows));
-            EXIT_OK
+            // Issue 32: a frame right after the host adds an object.
+            let spawns = frames.min(10);
+            match lab::bench_host::spawn_row(&gpu, &program, 10, size, spawns) {
+                Ok(r) => {
+                    println!(
+                        "a frame after adding an 11th object: {:.0} µs (median of {spawns}); a steady frame {:.0} µs; \
+                         a new runtime's first frame of the 11 (what the addition cost when a scene change built \
+                         the renderer anew) {:.0} µs",
+                        r.spawn_us, r.steady_us, r.new_runtime_us
+                    );
+                    EXIT_OK
+                }
+                Err(e) => {
+                    printer.fail(Diagnostic::error(codes::INTERNAL, e.to_string()));
+                    EXIT_INTERNAL
+                }
+            }
         }
         Err(e) if e.is_user_error() => {
             for d in e.diagnostics() {

@@ -31,12 +31,18 @@
 //! parameters folded into its shaders; only those in the manifest can
 //! change ([`StyleRuntime::params`]).
 //!
-//! **What a frame costs.** The first frame (and the first after the size,
-//! the style, or the set of objects' meshes, tags, images or shadow flags changes)
-//! builds the GPU resources; every other frame writes uniform buffers (and
-//! an animated primitive's vertex buffers, in place) and records commands,
-//! and creates no buffer, texture, bind group or pipeline
-//! (`runner/tests/embed_allocations.rs` counts them).
+//! **What a frame costs.** The first frame builds the GPU resources: the
+//! style's (shader modules, pipelines, the style's textures and art-maps),
+//! the size's (targets, their views and bind groups) and the scene's (mesh
+//! and object buffers, per-object bind groups, compute passes' buffers).
+//! A frame after the set of objects' meshes, tags, images or shadow flags
+//! changed (an object spawned or despawned) makes the scene's and the
+//! size's again, never the style's: no shader module, pipeline or style
+//! texture ([`Renderer::set_scene`]; the history restarts, as at a new
+//! size). A frame at a new size makes the size's. Every other frame writes
+//! uniform buffers (and an animated primitive's vertex buffers, in place)
+//! and records commands, and creates no buffer, texture, bind group or
+//! pipeline (`runner/tests/embed_allocations.rs` counts them).
 //!
 //! **Mistakes are values.** A removed mesh handle (E0601), an unknown
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
@@ -130,12 +136,15 @@ use std::sync::Arc;
 /// the device and queue, which wgpu reference-counts), so it can live as
 /// long as the host wants, in a `'static` resource or across threads.
 ///
-/// Style-level resources (pipelines, the style's textures, the frame and
-/// style uniform buffers) are built at the first frame and kept;
+/// Style-level resources (shader modules, pipelines and their layouts, the
+/// style's textures and art-maps, the sampler, the frame and style uniform
+/// buffers) are built at the first frame and kept for the runtime's life;
 /// size-level ones (targets, their bind groups) when the target's size
 /// changes; scene-level ones (mesh buffers, the object buffer, per-object
-/// bind groups, compute passes' buffers, line caches) when the set of
-/// meshes or objects changes.
+/// bind groups, compute passes' buffers, line caches, light bounds) when
+/// the set of objects' meshes, tags, images or shadow flags changes, which
+/// also makes the size-level ones again and restarts the history (the
+/// frame after the change is what a new runtime renders of those objects).
 pub struct StyleRuntime {
     device: wgpu::Device,
     queue: wgpu::Queue,
@@ -146,8 +155,12 @@ pub struct StyleRuntime {
     scene: objects::HostScene,
     renderer: Option<Renderer>,
     presenter: present::Presenter,
-    /// Times the renderer was (re)built: what a host or test can watch.
+    /// Times the renderer was built (the style's resources made): what a
+    /// host or test can watch.
     builds: u64,
+    /// Times a built renderer was given other objects
+    /// ([`Renderer::set_scene`]: the scene-level resources made anew).
+    scene_changes: u64,
     /// Meshes divided by [`StyleRuntime::add_patches`] so far: names each
     /// division, whose patches `lines` passes join into one surface.
     patch_sets: u64,
@@ -186,6 +199,7 @@ impl StyleRuntime {
             scene: objects::HostScene::default(),
             renderer: None,
             builds: 0,
+            scene_changes: 0,
             patch_sets: 0,
         })
     }
@@ -354,11 +368,18 @@ impl StyleRuntime {
             .collect()
     }
 
-    /// Times the GPU resources of the scene were (re)built: once at the
-    /// first frame, and again when the style or the set of objects' meshes,
-    /// tags, images or shadow flags changed.
+    /// Times the renderer was built, with every GPU resource of the style
+    /// (pipelines, textures, art-maps): once, at the first frame (again
+    /// only after a refused scene).
     pub fn builds(&self) -> u64 {
         self.builds
+    }
+
+    /// Times the set of objects' meshes, tags, images or shadow flags
+    /// changed after the first frame, each making only the scene-level
+    /// resources anew ([`Renderer::set_scene`]).
+    pub fn scene_changes(&self) -> u64 {
+        self.scene_changes
     }
 
     /// Record one frame into `encoder`: the style's passes, then the
@@ -374,8 +395,18 @@ impl StyleRuntime {
         let eye_slots = if self.program.manifest.is_stereo() { 2 } else { 1 };
         let checked = present::check_target(&target, eye_slots, frame.eye)?;
         if self.scene.sync(frame, &self.meshes)? {
-            // Other meshes, tags, images or shadow flags: the scene-level resources are made anew.
-            self.renderer = None;
+            // Other meshes, tags, images or shadow flags: only the
+            // scene-level resources are made anew; the style's stay.
+            if let Some(renderer) = &mut self.renderer {
+                if let Err(e) = renderer.set_scene(self.scene.scene()) {
+                    // The renderer still holds the old objects, which the
+                    // next frame's sync no longer compares against: a
+                    // refused scene builds afresh once it is fixed.
+                    self.renderer = None;
+                    return Err(e.into());
+                }
+                self.scene_changes += 1;
+            }
         }
         let renderer = match &mut self.renderer {
             Some(r) => r,

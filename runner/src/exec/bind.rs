@@ -75,19 +75,26 @@ pub(super) fn group0_layout(device: &wgpu::Device, pass: &PassManifest) -> wgpu:
     })
 }
 
-/// The shared group 1: layout and group over the whole object buffer.
-pub(super) fn shared_object_group(
-    device: &wgpu::Device,
-    buffer: &wgpu::Buffer,
-    object_uniform_size: u64,
-) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let layout = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+/// The shared group 1's layout: the object block at a dynamic offset. It
+/// depends only on the style, so it lives as long as the pipelines made
+/// with it, across scene changes.
+pub(super) fn shared_object_layout(device: &wgpu::Device, object_uniform_size: u64) -> wgpu::BindGroupLayout {
+    device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("npr object"),
         entries: &[object_uniform_entry(object_uniform_size)],
-    });
-    let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
+    })
+}
+
+/// The shared group 1 over the whole object buffer (made anew with the buffer).
+pub(super) fn shared_object_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buffer: &wgpu::Buffer,
+    object_uniform_size: u64,
+) -> wgpu::BindGroup {
+    device.make_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("npr object"),
-        layout: &layout,
+        layout,
         entries: &[wgpu::BindGroupEntry {
             binding: 0,
             resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
@@ -96,8 +103,7 @@ pub(super) fn shared_object_group(
                 size: wgpu::BufferSize::new(object_uniform_size.max(16)),
             }),
         }],
-    });
-    (layout, group)
+    })
 }
 
 /// What group 1 of a render pass binds: the object buffer, and the images
@@ -107,31 +113,43 @@ pub(super) struct ObjectResources<'a> {
     pub buffer: &'a wgpu::Buffer,
     /// `Manifest::object_uniform_size`.
     pub uniform_size: u64,
-    /// The shared group 1 layout (passes without object bindings).
-    pub shared_layout: &'a wgpu::BindGroupLayout,
     /// The style's textures (the declared defaults).
     pub textures: &'a [GpuTexture],
     pub object_textures: &'a ObjectTextures,
 }
 
-/// A pass reading per-object textures gets its own group 1 layout (the
-/// shared dynamic-offset uniform at binding 0, then its textures) and one
-/// group per object; `None` for a pass that reads none (it uses the shared
-/// group).
+/// A pass reading per-object textures gets its own group 1 layout: the
+/// shared dynamic-offset uniform at binding 0, then its textures. It
+/// depends only on the pass (its `object_bindings`), never on which images
+/// the objects bind, so the pipeline made with it serves every scene.
+/// `None` for a pass that reads none (it uses the shared layout).
+pub(super) fn pass_object_layout(
+    device: &wgpu::Device,
+    pass: &PassManifest,
+    object_uniform_size: u64,
+) -> Option<wgpu::BindGroupLayout> {
+    if pass.object_bindings.is_empty() {
+        return None;
+    }
+    let mut entries = vec![object_uniform_entry(object_uniform_size)];
+    entries.extend(pass.object_bindings.iter().map(layout_entry));
+    Some(device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(&pass.name),
+        entries: &entries,
+    }))
+}
+
+/// One group 1 per object of a pass with its own `layout`
+/// ([`pass_object_layout`]); empty for a pass without one.
 pub(super) fn pass_object_groups(
     device: &wgpu::Device,
     pass: &PassManifest,
+    layout: Option<&wgpu::BindGroupLayout>,
     objects: &ObjectResources,
-) -> Result<Option<(wgpu::BindGroupLayout, Vec<wgpu::BindGroup>)>, RunError> {
-    if pass.object_bindings.is_empty() {
-        return Ok(None);
-    }
-    let mut entries = vec![object_uniform_entry(objects.uniform_size)];
-    entries.extend(pass.object_bindings.iter().map(layout_entry));
-    let layout = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(&pass.name),
-        entries: &entries,
-    });
+) -> Result<Vec<wgpu::BindGroup>, RunError> {
+    let Some(layout) = layout else {
+        return Ok(Vec::new());
+    };
     // One group 1 per object: the object's bound image where it binds one,
     // the declared default otherwise. Objects binding the same images share
     // one group (the block is chosen by the dynamic offset), which wgpu
@@ -185,11 +203,11 @@ pub(super) fn pass_object_groups(
         }
         groups.push(device.make_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("{} / {}", pass.name, o.name)),
-            layout: &layout,
+            layout,
             entries: &entries,
         }));
     }
-    Ok(Some((layout, groups)))
+    Ok(groups)
 }
 
 impl Renderer {

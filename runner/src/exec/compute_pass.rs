@@ -27,7 +27,20 @@ pub(super) struct ComputePassExec {
     elements: Option<wgpu::ComputePipeline>,
     objects: wgpu::ComputePipeline,
     pub(super) layout0: wgpu::BindGroupLayout,
-    group1: wgpu::BindGroup,
+    /// Groups 1 and 2's layouts: their entries follow from the pass alone
+    /// (its attributes, domain and state), so the pipelines made with them
+    /// serve every scene.
+    layout1: wgpu::BindGroupLayout,
+    layout2: wgpu::BindGroupLayout,
+    /// What the scene gives the pass ([`ComputePassExec::bind_scene`]).
+    scene: ComputeScene,
+}
+
+/// A compute pass's groups over one scene's buffers (`values.rs`) and its
+/// dispatch sizes: made anew when the objects change, the pipelines kept.
+#[derive(Default)]
+pub(super) struct ComputeScene {
+    group1: Option<wgpu::BindGroup>,
     /// Group 2 per frame parity (one when the pass keeps no state).
     own_groups: Vec<wgpu::BindGroup>,
     member_count: u32,
@@ -73,14 +86,14 @@ fn group(
 }
 
 impl ComputePassExec {
+    /// The pass's layouts and pipelines (no scene: [`ComputePassExec::bind_scene`]).
     pub fn build(
         device: &wgpu::Device,
         pass: &PassManifest,
         shader: super::common::PassShader,
-        object_buffer: &wgpu::Buffer,
-        buffers: &PassBuffers,
     ) -> Result<ComputePassExec, RunError> {
         let PassKindManifest::Compute {
+            domain,
             attributes,
             history,
             elements_entry,
@@ -93,9 +106,10 @@ impl ComputePassExec {
                 pass.name
             )));
         };
-        let storage = 2
-            + attributes.len()
-            + usize::from(buffers.samples.is_some())
+        // Group 1: the objects, the members, the members' attributes, the
+        // samples (a pass over samples: `values::create` makes them).
+        let group1_len = 2 + attributes.len() + usize::from(*domain == ComputeDomain::Samples);
+        let storage = group1_len
             + if elements_entry.is_some() || *history { 2 } else { 1 }
             + pass
                 .bindings
@@ -110,42 +124,18 @@ impl ComputePassExec {
                 pass.name
             )));
         }
-        let mut group1_buffers = vec![object_buffer, &buffers.members];
-        for a in attributes {
-            group1_buffers.push(buffers.attributes.get(a).ok_or_else(|| {
-                RunError::Internal(format!(
-                    "pass `{}` has no `{}` buffer of its members",
-                    pass.name,
-                    a.name()
-                ))
-            })?);
-        }
-        // Passes over vertices and over pixels: an element stage, with
-        // partials and a dispatch uniform.
-        if let Some(samples) = &buffers.samples {
-            group1_buffers.push(samples);
-        }
         let over_vertices = elements_entry.is_some();
-        if over_vertices && (buffers.partials.is_none() || buffers.dispatch.is_none()) {
-            return Err(RunError::Internal(format!(
-                "pass `{}` has no partials buffer",
-                pass.name
-            )));
-        }
         // Everything wgpu creates below is checked in this validation scope
         // (a manifest from disk may disagree with its WGSL); nothing returns
         // before it is popped.
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layout0 = bind::group0_layout(device, pass);
-        // Group 1: the objects, the members, the members' attributes, the samples.
-        let entries1: Vec<wgpu::BindGroupLayoutEntry> = (0..group1_buffers.len())
-            .map(|i| storage_entry(i as u32, true))
-            .collect();
+        let entries1: Vec<wgpu::BindGroupLayoutEntry> =
+            (0..group1_len).map(|i| storage_entry(i as u32, true)).collect();
         let layout1 = device.make_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} objects", pass.name)),
             entries: &entries1,
         });
-        let group1 = group(device, &format!("{} objects", pass.name), &layout1, &group1_buffers);
         // Group 2: this frame's values, then the partials and the dispatch
         // uniform (over vertices) or the previous frame's values (state).
         let mut entries2 = vec![storage_entry(0, false)];
@@ -168,22 +158,6 @@ impl ComputePassExec {
             label: Some(&format!("{} buffers", pass.name)),
             entries: &entries2,
         });
-        let parities = if *history { 2 } else { 1 };
-        let mut own_groups = Vec::new();
-        for parity in 0..parities {
-            let this = buffers.copy(parity, false);
-            let own: Vec<&wgpu::Buffer> = match (&buffers.partials, &buffers.dispatch) {
-                (Some(partials), Some(dispatch)) if over_vertices => vec![this, partials, dispatch],
-                _ if *history => vec![this, buffers.copy(parity, true)],
-                _ => vec![this],
-            };
-            own_groups.push(group(
-                device,
-                &format!("{} buffers, parity {parity}", pass.name),
-                &layout2,
-                &own,
-            ));
-        }
         // The objects' entry point first, then the elements' (over vertices).
         let entries: Vec<&str> = std::iter::once(objects_entry.as_str())
             .chain(elements_entry.as_deref())
@@ -199,6 +173,89 @@ impl ComputePassExec {
         let (Some(objects_pipeline), elements) = (pipelines.next(), pipelines.next()) else {
             return Err(RunError::Internal(format!("pass `{}` built no pipeline", pass.name)));
         };
+        Ok(ComputePassExec {
+            name: pass.name.clone(),
+            elements,
+            objects: objects_pipeline,
+            layout0,
+            layout1,
+            layout2,
+            scene: ComputeScene::default(),
+        })
+    }
+
+    /// The pass's groups 1 and 2 over one scene's `object_buffer` and
+    /// `buffers`, made with the layouts its pipelines were built with.
+    pub fn bind_scene(
+        &self,
+        device: &wgpu::Device,
+        pass: &PassManifest,
+        object_buffer: &wgpu::Buffer,
+        buffers: &PassBuffers,
+    ) -> Result<ComputeScene, RunError> {
+        let PassKindManifest::Compute {
+            attributes,
+            history,
+            elements_entry,
+            ..
+        } = &pass.kind
+        else {
+            return Err(RunError::Internal(format!(
+                "pass `{}` is not a compute pass",
+                pass.name
+            )));
+        };
+        let mut group1_buffers = vec![object_buffer, &buffers.members];
+        for a in attributes {
+            group1_buffers.push(buffers.attributes.get(a).ok_or_else(|| {
+                RunError::Internal(format!(
+                    "pass `{}` has no `{}` buffer of its members",
+                    pass.name,
+                    a.name()
+                ))
+            })?);
+        }
+        // Passes over vertices and over pixels: an element stage, with
+        // partials and a dispatch uniform.
+        if let Some(samples) = &buffers.samples {
+            group1_buffers.push(samples);
+        }
+        let over_vertices = elements_entry.is_some();
+        if over_vertices && (buffers.partials.is_none() || buffers.dispatch.is_none()) {
+            return Err(RunError::Internal(format!(
+                "pass `{}` has no partials buffer",
+                pass.name
+            )));
+        }
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let group1 = group(
+            device,
+            &format!("{} objects", pass.name),
+            &self.layout1,
+            &group1_buffers,
+        );
+        let parities = if *history { 2 } else { 1 };
+        let mut own_groups = Vec::new();
+        for parity in 0..parities {
+            let this = buffers.copy(parity, false);
+            let own: Vec<&wgpu::Buffer> = match (&buffers.partials, &buffers.dispatch) {
+                (Some(partials), Some(dispatch)) if over_vertices => vec![this, partials, dispatch],
+                _ if *history => vec![this, buffers.copy(parity, true)],
+                _ => vec![this],
+            };
+            own_groups.push(group(
+                device,
+                &format!("{} buffers, parity {parity}", pass.name),
+                &self.layout2,
+                &own,
+            ));
+        }
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(RunError::Internal(format!(
+                "the groups of compute pass `{}` rejected by wgpu: {err}",
+                pass.name
+            )));
+        }
         let mut time_varying = Vec::new();
         for (o, first) in &buffers.time_varying {
             for (a, pooled) in &buffers.attributes {
@@ -206,18 +263,19 @@ impl ComputePassExec {
                 time_varying.push((*o, *a, pooled.clone(), first * bytes, bytes));
             }
         }
-        Ok(ComputePassExec {
-            name: pass.name.clone(),
-            elements,
-            objects: objects_pipeline,
-            layout0,
-            group1,
+        Ok(ComputeScene {
+            group1: Some(group1),
             own_groups,
             member_count: buffers.member_count,
             element_workgroups: buffers.element_workgroups,
             over_pixels: buffers.pixels_of.is_some(),
             time_varying,
         })
+    }
+
+    /// Take the groups [`ComputePassExec::bind_scene`] made.
+    pub fn set_scene(&mut self, scene: ComputeScene) {
+        self.scene = scene;
     }
 
     pub fn encode(
@@ -233,33 +291,42 @@ impl ComputePassExec {
             timestamp_writes: timestamps.map(Timestamps::compute_pass),
         });
         cp.set_bind_group(0, &sized.group0, &[]);
-        cp.set_bind_group(1, &self.group1, &[]);
-        cp.set_bind_group(2, &self.own_groups[ctx.parity % self.own_groups.len()], &[]);
-        if self.member_count == 0 {
+        // `bind_scene` made the groups before any frame (`Renderer::build`).
+        let (Some(group1), Some(own)) = (
+            &self.scene.group1,
+            self.scene
+                .own_groups
+                .get(ctx.parity % self.scene.own_groups.len().max(1)),
+        ) else {
+            return;
+        };
+        cp.set_bind_group(1, group1, &[]);
+        cp.set_bind_group(2, own, &[]);
+        if self.scene.member_count == 0 {
             return;
         }
         match &self.elements {
-            Some(elements) if self.over_pixels => {
+            Some(elements) if self.scene.over_pixels => {
                 // `sized.pixel_workgroups` is what the dispatch uniform says
                 // (both from `PassBuffers::pixel_workgroups` at this size).
                 cp.set_pipeline(elements);
                 cp.dispatch_workgroups(sized.pixel_workgroups, 1, 1);
                 cp.set_pipeline(&self.objects);
-                cp.dispatch_workgroups(self.member_count, 1, 1);
+                cp.dispatch_workgroups(self.scene.member_count, 1, 1);
             }
             Some(elements) => {
-                let n = self.element_workgroups;
+                let n = self.scene.element_workgroups;
                 if n > 0 {
                     cp.set_pipeline(elements);
                     // The shader numbers workgroups `x + y × 65535`.
                     cp.dispatch_workgroups(n.min(65535), n.div_ceil(65535), 1);
                 }
                 cp.set_pipeline(&self.objects);
-                cp.dispatch_workgroups(self.member_count, 1, 1);
+                cp.dispatch_workgroups(self.scene.member_count, 1, 1);
             }
             None => {
                 cp.set_pipeline(&self.objects);
-                cp.dispatch_workgroups(self.member_count.div_ceil(OBJECT_WORKGROUP), 1, 1);
+                cp.dispatch_workgroups(self.scene.member_count.div_ceil(OBJECT_WORKGROUP), 1, 1);
             }
         }
     }
@@ -267,7 +334,7 @@ impl ComputePassExec {
     /// Time-varying members' vertices were rewritten in their vertex
     /// buffers this frame: copy them into the pass's attribute buffers.
     fn copy_time_varying(&self, encoder: &mut wgpu::CommandEncoder, meshes: &[GpuMesh]) {
-        for (o, a, pooled, offset, bytes) in &self.time_varying {
+        for (o, a, pooled, offset, bytes) in &self.scene.time_varying {
             if let Some(source) = meshes[*o].buffers.get(a) {
                 encoder.copy_buffer_to_buffer(source, 0, pooled, *offset, meshes[*o].vertex_count as u64 * bytes);
             }

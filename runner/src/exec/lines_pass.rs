@@ -148,6 +148,14 @@ impl LinesPassExec {
         })
     }
 
+    /// A new scene: the cached strips and edge meshes go (as a new
+    /// renderer's would; the cache is keyed by content, so this bounds its
+    /// memory rather than its correctness); the pipeline and the slots'
+    /// buffers (grown, never shrunk) stay.
+    pub fn set_scene(&mut self) {
+        self.cache = LinesCache::default();
+    }
+
     /// Group 1 over the tested pass's kept depth (with a depth test).
     pub fn tested_depth_group(&self, device: &wgpu::Device, kept: &wgpu::TextureView) -> Option<wgpu::BindGroup> {
         let layout = self.depth_layout.as_ref()?;

@@ -4,7 +4,9 @@
 //! A [`Renderer`] borrows a device and queue, so it works in someone else's
 //! wgpu application as well as headless. It builds one executor per pass
 //! ([`pass::PassExec`], pipelines built once and cached for the renderer's
-//! life), uploads the scene's meshes once, allocates the physical textures
+//! life: they depend on the style and the device, never on the scene),
+//! uploads the scene's meshes once (again only when
+//! [`Renderer::set_scene`] gives it other objects), allocates the physical textures
 //! of the manifest (aliased targets share one) and re-allocates only when
 //! the output size changes. Each frame writes only uniforms (camera, style
 //! params, object transforms and params, all read from the `Scene` given)
@@ -18,6 +20,8 @@
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
+//! - `scene_gpu.rs`: the scene-level resources, made apart from the
+//!   style's ([`Renderer::set_scene`]);
 //! - `values.rs`: compute passes' buffers (per-object values, partials);
 //! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, dispatching
 //!   to the executors `render_pass.rs`, `image_pass.rs`, `tiled_pass.rs`,
@@ -41,6 +45,7 @@ mod prepare_lines;
 mod render_pass;
 mod resources;
 mod scene_check;
+mod scene_gpu;
 mod scene_warnings;
 mod state;
 mod tiled_pass;
@@ -73,6 +78,11 @@ pub struct Renderer {
     passes: Vec<PassExec>,
     /// Group 1 of passes that read no per-object texture.
     object_group: wgpu::BindGroup,
+    /// Its layout, which the pipelines were made with (style-level: kept
+    /// across [`Renderer::set_scene`]).
+    object_layout: wgpu::BindGroupLayout,
+    /// The per-object images the scene binds, by what they were read from.
+    object_images: std::collections::HashMap<textures::ObjectImageKey, GpuTexture>,
     textures: Vec<GpuTexture>,
     linear_clamp: wgpu::Sampler,
     meshes: Vec<meshes::GpuMesh>,
@@ -116,7 +126,8 @@ fn next_generation() -> u64 {
 
 impl Renderer {
     /// Build pipelines and upload the scene. Diagnostics (E0403, E0401, E0404)
-    /// come back as `RunError::User`.
+    /// come back as `RunError::User`. Other objects later:
+    /// [`Renderer::set_scene`], which keeps the pipelines and textures.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -227,38 +238,8 @@ impl Renderer {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        let object_textures = textures::load_object_textures(device, queue, &manifest, scene)?;
         let object_stride = object_stride(manifest.object_uniform_size);
-        // Bad per-object params are reported here too, not only at the first frame.
-        let mut object_bytes = vec![0; (object_stride as usize) * scene.objects.len()];
-        objects::write_object_blocks(&manifest, scene, object_stride, (&[], &[]), &mut object_bytes)?;
-        let object_count = scene.objects.len().max(1) as u64;
-        let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
-            label: Some("npr objects"),
-            size: object_stride * object_count,
-            // STORAGE: compute passes read every object's block at once.
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let (object_layout, object_group) =
-            bind::shared_object_group(device, &object_buffer, manifest.object_uniform_size);
-        let object_resources = bind::ObjectResources {
-            scene,
-            buffer: &object_buffer,
-            uniform_size: manifest.object_uniform_size,
-            shared_layout: &object_layout,
-            textures: &textures,
-            object_textures: &object_textures,
-        };
-        let meshes = meshes::upload_scene(
-            device,
-            scene,
-            manifest.passes.iter().any(|p| {
-                matches!(&p.kind, PassKindManifest::Render { attributes, .. } if attributes.contains(&Attribute::PatchWeight))
-            }),
-        );
-        let values = values::create(device, &manifest, scene, &meshes)?;
-        values::reset(queue, &values);
+        let object_layout = bind::shared_object_layout(device, manifest.object_uniform_size);
         // Measured once, and only when a fused pass repeats a 16-bit store.
         let half_rounding = if manifest.passes.iter().any(|p| p.device_half_rounding) {
             Some(crate::half_rounding::measure(device, queue)?)
@@ -271,14 +252,12 @@ impl Renderer {
                 .shaders
                 .get(&pass.shader)
                 .ok_or_else(|| RunError::Internal(format!("no shader `{}` for pass `{}`", pass.shader, pass.name)))?;
-            let pi = passes.len();
             passes.push(PassExec::build(
                 device,
                 &manifest,
                 pass,
                 wgsl,
-                &object_resources,
-                values[pi].as_ref(),
+                &object_layout,
                 half_rounding,
             )?);
         }
@@ -299,20 +278,38 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let light_bounds = light_bounds::LightBounds::new(&manifest, scene);
-        let upload = upload::Upload::new(
-            device,
-            FRAME_UNIFORM_SIZE as usize,
+        // The scene's part, made as `set_scene` makes another's.
+        let style = scene_gpu::StyleParts {
+            manifest: &manifest,
+            textures: &textures,
+            object_layout: &object_layout,
+            object_stride,
+            passes: &passes,
             eyes,
-            manifest.style_uniform_size as usize,
-            object_bytes.len(),
-        );
-        let vertex_counts = meshes.iter().map(|m| m.vertex_count).collect();
+            object_images: &Default::default(),
+        };
+        let scene_gpu::SceneGpu {
+            object_buffer,
+            object_group,
+            meshes,
+            values,
+            pass_scenes,
+            light_bounds,
+            upload,
+            object_tags,
+            vertex_counts,
+            object_images,
+        } = scene_gpu::SceneGpu::make(device, queue, &style, scene)?;
+        for (exec, part) in passes.iter_mut().zip(pass_scenes) {
+            exec.set_scene(part);
+        }
         Ok(Renderer {
             device: device.clone(),
             queue: queue.clone(),
             passes,
             object_group,
+            object_layout,
+            object_images,
             textures,
             linear_clamp,
             meshes,
@@ -321,7 +318,7 @@ impl Renderer {
             object_buffer,
             object_stride,
             upload,
-            object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            object_tags,
             vertex_counts,
             light_bounds,
             manifest,
@@ -368,8 +365,9 @@ impl Renderer {
     /// that bring this frame's uniforms into their buffers (they are
     /// uploaded in one write, `upload.rs`): encode after every prepare.
     ///
-    /// `scene` must have the objects the renderer was built for (same meshes,
-    /// tags and bound images, in the same order); their transforms and
+    /// `scene` must have the objects the renderer was built (or last
+    /// [`Renderer::set_scene`]) for (same meshes, tags and bound images,
+    /// in the same order); their transforms and
     /// per-object params are read again here, so objects may move and
     /// change params between frames.
     pub fn prepare(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
@@ -403,7 +401,7 @@ impl Renderer {
                 ),
             )
             .with_help(
-                "only objects' transforms and params may change between frames; build a new Renderer for other objects",
+                "only objects' transforms and params may change between frames; give other objects with Renderer::set_scene",
             )]));
         }
         self.ensure_size(spec.width, spec.height)?;

@@ -1,12 +1,15 @@
 //! One executor per manifest pass, by pass kind: [`PassExec`] is built once
 //! from the pass's `PassKindManifest` (its pipeline and layouts live as long
-//! as the renderer) and records the pass for one eye slot with `encode`. A
+//! as the renderer: they depend on the style and the device only), is given
+//! each scene's part ([`PassExec::bind_scene`], [`PassExec::set_scene`]:
+//! per-object groups, compute buffers' groups, line caches) and records the
+//! pass for one eye slot with `encode`. A
 //! new pass kind is a variant here and one file with its executor; what the
 //! executors share is in `common.rs`, which they import instead of this.
 
 use super::bind::ObjectResources;
 use super::common::{pipeline_constants, EncodeContext, PassShader, Timestamps};
-use super::compute_pass::ComputePassExec;
+use super::compute_pass::{ComputePassExec, ComputeScene};
 use super::image_pass::ImagePassExec;
 use super::lines_pass::LinesPassExec;
 use super::render_pass::RenderPassExec;
@@ -30,14 +33,27 @@ pub(super) enum PassExec {
     Lines(Box<LinesPassExec>),
 }
 
+/// What one scene gives a pass ([`PassExec::bind_scene`]): made for every
+/// pass before any is given its own, so a scene that fails leaves the
+/// passes as they were.
+pub(super) enum PassScene {
+    Render(Vec<wgpu::BindGroup>),
+    Compute(ComputeScene),
+    /// Image and tiled passes read no scene; a lines pass reads it per frame.
+    Other,
+}
+
 impl PassExec {
+    /// The pass's layouts and pipelines, which depend on the style and the
+    /// device only (a render pass's group 1 layout on its per-object
+    /// texture bindings, never on the images objects bind): the scene's
+    /// part comes from [`PassExec::bind_scene`].
     pub fn build(
         device: &wgpu::Device,
         manifest: &Manifest,
         pass: &PassManifest,
         wgsl: &str,
-        objects: &ObjectResources,
-        buffers: Option<&super::values::PassBuffers>,
+        shared_object_layout: &wgpu::BindGroupLayout,
         half_rounding: Option<HalfRounding>,
     ) -> Result<PassExec, RunError> {
         let constants = pipeline_constants(pass, half_rounding)?;
@@ -55,21 +71,48 @@ impl PassExec {
                 shader,
                 (tag.as_ref(), attributes),
                 depth,
-                objects,
+                shared_object_layout,
             )?),
             PassKindManifest::Image { .. } => PassExec::Image(ImagePassExec::build(device, manifest, pass, shader)?),
             PassKindManifest::TiledImage { .. } => {
                 PassExec::Tiled(TiledPassExec::build(device, manifest, pass, shader)?)
             }
-            PassKindManifest::Compute { .. } => {
-                let buffers = buffers
-                    .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
-                PassExec::Compute(ComputePassExec::build(device, pass, shader, objects.buffer, buffers)?)
-            }
+            PassKindManifest::Compute { .. } => PassExec::Compute(ComputePassExec::build(device, pass, shader)?),
             PassKindManifest::Lines { .. } => {
                 PassExec::Lines(Box::new(LinesPassExec::build(device, manifest, pass, shader)?))
             }
         })
+    }
+
+    /// The pass's part of a scene: `objects` and, for a compute pass, its
+    /// `buffers` (`values.rs`), bound with the layouts of its pipelines.
+    pub fn bind_scene(
+        &self,
+        device: &wgpu::Device,
+        pass: &PassManifest,
+        objects: &ObjectResources,
+        buffers: Option<&super::values::PassBuffers>,
+    ) -> Result<PassScene, RunError> {
+        Ok(match self {
+            PassExec::Render(p) => PassScene::Render(p.bind_scene(device, pass, objects)?),
+            PassExec::Compute(p) => {
+                let buffers = buffers
+                    .ok_or_else(|| RunError::Internal(format!("compute pass `{}` has no buffers", pass.name)))?;
+                PassScene::Compute(p.bind_scene(device, pass, objects.buffer, buffers)?)
+            }
+            PassExec::Image(_) | PassExec::Tiled(_) | PassExec::Lines(_) => PassScene::Other,
+        })
+    }
+
+    /// Take the part [`PassExec::bind_scene`] made (a lines pass forgets
+    /// its cached strips).
+    pub fn set_scene(&mut self, scene: PassScene) {
+        match (self, scene) {
+            (PassExec::Render(p), PassScene::Render(groups)) => p.set_scene(groups),
+            (PassExec::Compute(p), PassScene::Compute(scene)) => p.set_scene(scene),
+            (PassExec::Lines(p), _) => p.set_scene(),
+            _ => {}
+        }
     }
 
     /// The layout of the pass's group 0 (built per size in `bind.rs`).

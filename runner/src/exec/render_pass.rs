@@ -24,9 +24,14 @@ pub(super) struct RenderPassExec {
     /// What happens to the depth attachment at the beginning and end of the pass.
     depth_ops: wgpu::Operations<f32>,
     pub(super) layout0: wgpu::BindGroupLayout,
+    /// The pass's own group 1 layout when it reads per-object textures
+    /// (`bind::pass_object_layout`): the pipeline's, kept for the groups of
+    /// every scene.
+    object_layout: Option<wgpu::BindGroupLayout>,
     /// Per object: group 1 with the object's uniforms and its per-object
     /// textures; empty when the pass reads no such texture (it uses the
-    /// shared group, `EncodeContext::object_group`).
+    /// shared group, `EncodeContext::object_group`). The scene's part,
+    /// made by [`RenderPassExec::bind_scene`].
     object_groups: Vec<wgpu::BindGroup>,
 }
 
@@ -86,11 +91,10 @@ impl RenderPassExec {
         shader: common::PassShader,
         (tag, attributes): (Option<&String>, &[Attribute]),
         depth_mode: &DepthMode,
-        objects: &ObjectResources,
+        shared_object_layout: &wgpu::BindGroupLayout,
     ) -> Result<RenderPassExec, RunError> {
         let layout0 = bind::group0_layout(device, pass);
-        let own = bind::pass_object_groups(device, pass, objects)?;
-        let object_layout = own.as_ref().map_or(objects.shared_layout, |(layout, _)| layout);
+        let own_layout = bind::pass_object_layout(device, pass, manifest.object_uniform_size);
         let vertex_attrs: Vec<[wgpu::VertexAttribute; 1]> = attributes
             .iter()
             .enumerate()
@@ -119,7 +123,7 @@ impl RenderPassExec {
             manifest,
             pass,
             shader,
-            &[&layout0, object_layout],
+            &[&layout0, own_layout.as_ref().unwrap_or(shared_object_layout)],
             &buffers,
             Some(depth),
         )?;
@@ -131,8 +135,25 @@ impl RenderPassExec {
             pipeline,
             depth_ops,
             layout0,
-            object_groups: own.map(|(_, groups)| groups).unwrap_or_default(),
+            object_layout: own_layout,
+            object_groups: Vec::new(),
         })
+    }
+
+    /// The pass's group 1 per object of `objects`' scene, made with the
+    /// layout its pipeline was built with (a scene change keeps the pipeline).
+    pub fn bind_scene(
+        &self,
+        device: &wgpu::Device,
+        pass: &PassManifest,
+        objects: &ObjectResources,
+    ) -> Result<Vec<wgpu::BindGroup>, RunError> {
+        bind::pass_object_groups(device, pass, self.object_layout.as_ref(), objects)
+    }
+
+    /// Take the groups [`RenderPassExec::bind_scene`] made.
+    pub fn set_scene(&mut self, object_groups: Vec<wgpu::BindGroup>) {
+        self.object_groups = object_groups;
     }
 
     pub fn encode(

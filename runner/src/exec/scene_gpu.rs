@@ -1,0 +1,190 @@
+//! A renderer's scene-level GPU resources, made apart from the style's so a
+//! new set of objects keeps the pipelines: the mesh buffers, the object
+//! buffer and its shared group 1, the objects' images and per-object
+//! groups, compute passes' buffers and groups, the light bounds and the
+//! frame's upload. [`Renderer::set_scene`] gives a built renderer other
+//! objects; `Renderer::build` makes its first scene the same way.
+
+use super::bind::{self, ObjectResources};
+use super::pass::{PassExec, PassScene};
+use super::{light_bounds, meshes, objects, upload, values, Renderer};
+use crate::gpu_count::Create;
+use crate::scene::Scene;
+use crate::textures::{self, GpuTexture, ObjectImageKey};
+use crate::RunError;
+use abi::manifest::*;
+use std::collections::HashMap;
+
+/// Everything a renderer holds for one scene's objects.
+pub(super) struct SceneGpu {
+    pub object_buffer: wgpu::Buffer,
+    pub object_group: wgpu::BindGroup,
+    pub meshes: Vec<meshes::GpuMesh>,
+    pub values: Vec<Option<values::PassBuffers>>,
+    /// Per manifest pass, its part ([`PassExec::bind_scene`]).
+    pub pass_scenes: Vec<PassScene>,
+    pub light_bounds: light_bounds::LightBounds,
+    pub upload: upload::Upload,
+    pub object_tags: Vec<Vec<String>>,
+    pub vertex_counts: Vec<usize>,
+    /// The per-object images this scene binds, kept for the next one.
+    pub object_images: HashMap<ObjectImageKey, GpuTexture>,
+}
+
+/// What of the style a scene is bound with.
+pub(super) struct StyleParts<'a> {
+    pub manifest: &'a Manifest,
+    pub textures: &'a [GpuTexture],
+    /// The shared group 1 layout the pipelines were made with.
+    pub object_layout: &'a wgpu::BindGroupLayout,
+    pub object_stride: u64,
+    pub passes: &'a [PassExec],
+    pub eyes: usize,
+    /// The per-object images the previous scene bound (none at a build).
+    pub object_images: &'a HashMap<ObjectImageKey, GpuTexture>,
+}
+
+impl SceneGpu {
+    /// `scene`'s resources for a style's passes. Bad per-object params and
+    /// images are reported here (as `RunError::User`/`Textures`), before
+    /// any frame; nothing of the renderer changes until the caller installs
+    /// the result.
+    pub fn make(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        style: &StyleParts,
+        scene: &Scene,
+    ) -> Result<SceneGpu, RunError> {
+        let manifest = style.manifest;
+        let object_textures = textures::load_object_textures(device, queue, manifest, scene, style.object_images)?;
+        let mut object_bytes = vec![0; (style.object_stride as usize) * scene.objects.len()];
+        objects::write_object_blocks(manifest, scene, style.object_stride, (&[], &[]), &mut object_bytes)?;
+        let object_count = scene.objects.len().max(1) as u64;
+        let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
+            label: Some("npr objects"),
+            size: style.object_stride * object_count,
+            // STORAGE: compute passes read every object's block at once.
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let object_group = bind::shared_object_group(
+            device,
+            style.object_layout,
+            &object_buffer,
+            manifest.object_uniform_size,
+        );
+        let object_resources = ObjectResources {
+            scene,
+            buffer: &object_buffer,
+            uniform_size: manifest.object_uniform_size,
+            textures: style.textures,
+            object_textures: &object_textures,
+        };
+        let meshes = meshes::upload_scene(
+            device,
+            scene,
+            manifest.passes.iter().any(|p| {
+                matches!(&p.kind, PassKindManifest::Render { attributes, .. } if attributes.contains(&Attribute::PatchWeight))
+            }),
+        );
+        let values = values::create(device, manifest, scene, &meshes)?;
+        values::reset(queue, &values);
+        let pass_scenes = style
+            .passes
+            .iter()
+            .zip(&manifest.passes)
+            .zip(&values)
+            .map(|((exec, pass), buffers)| exec.bind_scene(device, pass, &object_resources, buffers.as_ref()))
+            .collect::<Result<Vec<_>, RunError>>()?;
+        let upload = upload::Upload::new(
+            device,
+            FRAME_UNIFORM_SIZE as usize,
+            style.eyes,
+            manifest.style_uniform_size as usize,
+            object_bytes.len(),
+        );
+        Ok(SceneGpu {
+            object_group,
+            object_buffer,
+            values,
+            pass_scenes,
+            light_bounds: light_bounds::LightBounds::new(manifest, scene),
+            upload,
+            object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
+            meshes,
+            object_images: object_textures.keys.into_iter().zip(object_textures.images).collect(),
+        })
+    }
+}
+
+impl Renderer {
+    /// Render `scene`'s objects from now on: other meshes, tags, bound
+    /// images or shadow flags than the renderer was built or last set
+    /// with (a game spawning or despawning an object). Only the
+    /// scene-level resources are made anew ([`SceneGpu`]; per-object images
+    /// the previous objects bound too are kept); the shader
+    /// modules, pipelines and their layouts, the style's textures and
+    /// art-maps, the sampler and the frame and style buffers stay. The
+    /// size-level resources (targets, their views and groups) are made
+    /// again at the next frame, as at a new size, so the history restarts:
+    /// the next frame is frame 0 (`previous(...)` reads zero, compute
+    /// state its first values, `previous_model` the current one), and
+    /// renders what a new renderer of `scene` renders, byte for byte.
+    ///
+    /// A scene the style refuses (E0403, E0405, a bad per-object param or
+    /// image) is an error that leaves the renderer as it was.
+    pub fn set_scene(&mut self, scene: &Scene) -> Result<(), RunError> {
+        let diags = super::check_scene(&self.manifest, scene);
+        if !diags.is_empty() {
+            return Err(RunError::User(diags));
+        }
+        let device = self.device.clone();
+        let made = crate::gpu_error::scoped(
+            &device,
+            || "making the scene's GPU resources (meshes, objects, compute buffers)".to_string(),
+            || {
+                let style = StyleParts {
+                    manifest: &self.manifest,
+                    textures: &self.textures,
+                    object_layout: &self.object_layout,
+                    object_stride: self.object_stride,
+                    passes: &self.passes,
+                    eyes: self.frame_buffers.len(),
+                    object_images: &self.object_images,
+                };
+                SceneGpu::make(&self.device, &self.queue, &style, scene)
+            },
+        )?;
+        let SceneGpu {
+            object_buffer,
+            object_group,
+            meshes,
+            values,
+            pass_scenes,
+            light_bounds,
+            upload,
+            object_tags,
+            vertex_counts,
+            object_images,
+        } = made;
+        for (exec, part) in self.passes.iter_mut().zip(pass_scenes) {
+            exec.set_scene(part);
+        }
+        self.object_buffer = object_buffer;
+        self.object_group = object_group;
+        self.meshes = meshes;
+        self.values = values;
+        self.light_bounds = light_bounds;
+        self.upload = upload;
+        self.object_tags = object_tags;
+        self.vertex_counts = vertex_counts;
+        self.object_images = object_images;
+        // Group 0 binds compute passes' values, and the history restarts
+        // with the objects: the size-level resources are made at the next frame.
+        self.sized = None;
+        self.frames_begun = 0;
+        self.motion = super::frame::Motion::default();
+        Ok(())
+    }
+}

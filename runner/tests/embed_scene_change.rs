@@ -1,0 +1,332 @@
+//! A scene change (issue 32: "objects can be added and removed between
+//! frames") keeps the style's GPU resources: after frames of two objects,
+//! adding an object of a registered mesh, adding one of a newly registered
+//! mesh, removing one and changing a tag each make, in the frame that
+//! follows, no shader module, pipeline, layout or sampler, and no texture
+//! beyond the targets a resize to the same size makes (so no style texture,
+//! art-map or per-object image again), counted by `runner::gpu_count`. And
+//! that frame, and the one after it, equal byte for byte the first two
+//! frames of a new runtime given the same objects: a scene change restarts
+//! the history (`Renderer::set_scene`), so this holds for a style with
+//! history textures and for compute state too. Over Age of Sail (per-object
+//! images, tagged shadow casters), an art-map style with a lines pass, a
+//! compute style and a history style.
+
+#![allow(clippy::disallowed_methods)]
+
+use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use runner::gpu_count::{created_on_this_thread, GpuCreations};
+use runner::scene::{primitives, Camera, Mesh};
+use runner::Gpu;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+const SIZE: (u32, u32) = (64, 48);
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| {
+        Gpu::headless().unwrap_or_else(|e| {
+            panic!("runner tests need a GPU adapter (Mesa's lavapipe: ./setup.sh --tests installs it): {e}")
+        })
+    })
+}
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
+}
+
+fn compile(example: &str) -> runner::StyleProgram {
+    let mut sources = diag::SourceMap::new();
+    let options = compiler::CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    match compiler::compile_file(&examples().join(example), &mut sources, &options) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
+/// The meshes a test draws, registered in this order by every runtime.
+fn meshes() -> Vec<Mesh> {
+    vec![
+        primitives::sphere(0.6, 24, 12),
+        primitives::cube(0.8),
+        primitives::torus(0.5, 0.2, 24, 12),
+    ]
+}
+
+/// One object of the host's scene: which of [`meshes`], its tags, and
+/// the per-object image it binds (param, file under examples/).
+#[derive(Clone)]
+struct Object {
+    mesh: usize,
+    tags: Vec<&'static str>,
+    image: Option<(&'static str, &'static str)>,
+}
+
+/// The objects as instances of `handles` at frame `k` (they move).
+fn instances(handles: &[MeshHandle], objects: &[Object], k: u32) -> Vec<Instance> {
+    objects
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            let x = i as f32 * 1.2 - 1.2 + 0.05 * k as f32;
+            let mut instance = Instance::new(
+                handles[o.mesh],
+                glam::Mat4::from_translation(glam::Vec3::new(x, 0.0, 0.0))
+                    * glam::Mat4::from_rotation_y(0.1 * k as f32),
+            );
+            for t in &o.tags {
+                instance = instance.with_tag(t);
+            }
+            if let Some((param, file)) = o.image {
+                instance = instance.with_image(param, examples().join(file));
+            }
+            instance
+        })
+        .collect()
+}
+
+struct Host {
+    runtime: StyleRuntime,
+    handles: Vec<MeshHandle>,
+    target: wgpu::Texture,
+    other_size: wgpu::Texture,
+}
+
+fn texture(width: u32, height: u32) -> wgpu::Texture {
+    gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("host target"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    })
+}
+
+impl Host {
+    /// A runtime of `example` with the first `registered` of [`meshes`].
+    fn new(example: &str, registered: usize) -> Host {
+        let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile(example)).expect("runtime");
+        let handles = meshes()
+            .into_iter()
+            .take(registered)
+            .map(|m| runtime.add_mesh(m))
+            .collect();
+        Host {
+            runtime,
+            handles,
+            target: texture(SIZE.0, SIZE.1),
+            other_size: texture(SIZE.0 + 16, SIZE.1 + 12),
+        }
+    }
+
+    /// Render frame `k` of `objects` (at the other size with `resized`),
+    /// submit and wait; what it created on the GPU.
+    fn frame(&mut self, objects: &[Object], k: u32, resized: bool) -> GpuCreations {
+        let camera = Camera::looking_at(glam::Vec3::new(0.3, 1.2, 4.0), glam::Vec3::ZERO);
+        let lights = Lights::default();
+        let instances = instances(&self.handles, objects, k);
+        let frame = Frame {
+            camera: &camera,
+            objects: &instances,
+            lights: &lights,
+            time_s: f64::from(k) / 24.0,
+            frame_index: k,
+            eye: 0,
+        };
+        let view = if resized { &self.other_size } else { &self.target }.create_view(&Default::default());
+        let before = created_on_this_thread();
+        let mut encoder = gpu().device.create_command_encoder(&Default::default());
+        self.runtime
+            .render(&mut encoder, &frame, Target::View(&view))
+            .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
+        let after = created_on_this_thread();
+        gpu().queue.submit([encoder.finish()]);
+        gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+        minus(after, before)
+    }
+
+    fn output(&self) -> runner::TargetImage {
+        let manifest = self.runtime.manifest();
+        let name = manifest.targets[manifest.output].name.clone();
+        self.runtime.read_target(&name).expect("read the output")
+    }
+}
+
+fn minus(a: GpuCreations, b: GpuCreations) -> GpuCreations {
+    GpuCreations {
+        buffers: a.buffers - b.buffers,
+        textures: a.textures - b.textures,
+        texture_views: a.texture_views - b.texture_views,
+        samplers: a.samplers - b.samplers,
+        bind_groups: a.bind_groups - b.bind_groups,
+        layouts: a.layouts - b.layouts,
+        pipelines: a.pipelines - b.pipelines,
+        shader_modules: a.shader_modules - b.shader_modules,
+    }
+}
+
+/// Writes both images on a mismatch; returns where.
+fn write_failure(name: &str, changed: &runner::TargetImage, fresh: &runner::TargetImage) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("embed-scene-change");
+    std::fs::create_dir_all(&dir).expect("output folder");
+    for (which, image) in [("changed", changed), ("fresh", fresh)] {
+        let path = dir.join(format!("{name}.{which}.png"));
+        runner::output::write_target(image, &path).expect("write the image");
+    }
+    dir
+}
+
+/// The whole sequence for one example: `change_tag` is the tag the fourth
+/// change gives the first object; `image` the per-object image the second
+/// object binds, if the style has such a param.
+fn check(
+    example: &str,
+    base_tags: &[&'static str],
+    change_tag: &'static str,
+    image: Option<(&'static str, &'static str)>,
+) {
+    let mut host = Host::new(example, 2);
+    let mut objects = vec![
+        Object {
+            mesh: 0,
+            tags: base_tags.to_vec(),
+            image: None,
+        },
+        Object {
+            mesh: 1,
+            tags: base_tags.to_vec(),
+            image,
+        },
+    ];
+    let first = host.frame(&objects, 0, false);
+    assert!(
+        first.pipelines > 0 && first.shader_modules > 0,
+        "{example}: the first frame built nothing: {first:?}"
+    );
+    host.frame(&objects, 1, true);
+    // Back at the test's size: what a frame making only the size-level
+    // resources (targets, depth, their views and groups) creates.
+    let resize = host.frame(&objects, 2, false);
+    assert_eq!(
+        (resize.pipelines, resize.shader_modules, resize.layouts),
+        (0, 0, 0),
+        "{example}: a resize made pipelines: {resize:?}"
+    );
+    host.frame(&objects, 3, false);
+
+    let mut k = 4;
+    for change in [
+        "an object of a registered mesh added",
+        "an object of a new mesh added",
+        "an object removed",
+        "a tag changed",
+    ] {
+        match change {
+            "an object of a registered mesh added" => objects.push(Object {
+                mesh: 0,
+                tags: base_tags.to_vec(),
+                image: None,
+            }),
+            "an object of a new mesh added" => {
+                let handle = host.runtime.add_mesh(meshes().swap_remove(2));
+                host.handles.push(handle);
+                objects.push(Object {
+                    mesh: 2,
+                    tags: base_tags.to_vec(),
+                    image: None,
+                });
+            }
+            "an object removed" => {
+                objects.remove(0);
+            }
+            _ => objects[0].tags.push(change_tag),
+        }
+        let what = format!("{example}, {change}");
+        let changes_before = host.runtime.scene_changes();
+        let made = host.frame(&objects, k, false);
+        assert_eq!(
+            host.runtime.scene_changes(),
+            changes_before + 1,
+            "{what}: no scene change seen"
+        );
+        assert_eq!(host.runtime.builds(), 1, "{what}: the runtime built the style again");
+        assert_eq!(
+            (made.shader_modules, made.pipelines, made.layouts, made.samplers),
+            (0, 0, 0, 0),
+            "{what}: the frame made style-level objects (shader modules, pipelines, layouts, samplers): {made:?}"
+        );
+        assert_eq!(
+            made.textures, resize.textures,
+            "{what}: the frame made textures beyond the targets a resize makes (a style texture, \
+             an art-map or a per-object image again): {made:?}, a resize {resize:?}"
+        );
+        // The same objects in a new runtime: its first two frames.
+        let mut fresh = Host::new(example, 3);
+        for step in 0..2 {
+            if step == 1 {
+                host.frame(&objects, k + 1, false);
+            }
+            let fresh_made = fresh.frame(&objects, k + step, false);
+            if step == 0 {
+                // What the change frame did not make again, a new runtime does.
+                let style_textures = !fresh.runtime.manifest().textures.is_empty();
+                assert!(
+                    fresh_made.pipelines > 0 && (!style_textures || fresh_made.textures > made.textures),
+                    "{what}: a new runtime's first frame made no more than the change's: {fresh_made:?}"
+                );
+            }
+            let (changed, new) = (host.output(), fresh.output());
+            if changed.bytes != new.bytes {
+                let name = format!(
+                    "{}-{}-{step}",
+                    example.trim_end_matches(".npr"),
+                    change.replace(' ', "-")
+                );
+                let dir = write_failure(&name, &changed, &new);
+                panic!(
+                    "{what}: frame {} after the change differs from a new runtime's frame {step} (images in {})",
+                    step,
+                    dir.display()
+                );
+            }
+        }
+        k += 2;
+    }
+}
+
+#[test]
+fn age_of_sail_keeps_its_pipelines_and_images_across_scene_changes() {
+    check(
+        "age_of_sail.npr",
+        &[],
+        "caster",
+        Some(("lit_map", "textures/paint_spot_lit.png")),
+    );
+}
+
+#[test]
+fn an_artmap_style_keeps_its_artmaps_across_scene_changes() {
+    check("artmap_gallery.npr", &[], "pillar", None);
+}
+
+#[test]
+fn a_compute_style_keeps_its_pipelines_across_scene_changes() {
+    check("object_centroids.npr", &[], "extra", None);
+}
+
+#[test]
+fn a_history_style_restarts_its_history_on_a_scene_change() {
+    check("afterimage.npr", &[], "extra", None);
+}
