@@ -1,7 +1,9 @@
 //! What a frame is ([`FrameSpec`]) and the uniforms written for it each
 //! frame: the `Frame` block per eye slot (camera, light, light camera, other
 //! eye), the style parameter block (keyframes at the frame's time) and the
-//! object blocks (see `objects.rs`).
+//! object blocks (see `objects.rs`). The camera's matrices
+//! ([`CameraMatrices`]) and the light camera (`light_bounds.rs`) are kept
+//! while what they are made from stays the same.
 
 use super::{objects, Renderer};
 use crate::scene::CameraPose;
