@@ -161,6 +161,9 @@ pub struct StyleRuntime {
     /// Times a built renderer was given other objects
     /// ([`Renderer::set_scene`]: the scene-level resources made anew).
     scene_changes: u64,
+    /// 2 for a stereo style, else 1 (`Manifest::is_stereo` scans every
+    /// binding of every pass: asked once, not every frame).
+    eye_slots: usize,
     /// Meshes divided by [`StyleRuntime::add_patches`] so far: names each
     /// division, whose patches `lines` passes join into one surface.
     patch_sets: u64,
@@ -191,6 +194,7 @@ impl StyleRuntime {
         static RUNTIMES: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
         let id = RUNTIMES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         Ok(StyleRuntime {
+            eye_slots: if program.manifest.is_stereo() { 2 } else { 1 },
             presenter: present::Presenter::new(device),
             device: device.clone(),
             queue: queue.clone(),
@@ -392,8 +396,7 @@ impl StyleRuntime {
         frame: &Frame,
         target: Target,
     ) -> Result<(), EmbedError> {
-        let eye_slots = if self.program.manifest.is_stereo() { 2 } else { 1 };
-        let checked = present::check_target(&target, eye_slots, frame.eye)?;
+        let checked = present::check_target(&target, self.eye_slots, frame.eye)?;
         if self.scene.sync(frame, &self.meshes)? {
             // Other meshes, tags, images or shadow flags: only the
             // scene-level resources are made anew; the style's stay.

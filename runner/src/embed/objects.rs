@@ -111,7 +111,11 @@ impl HostScene {
     }
 }
 
-/// `camera` as `from`, reusing its key list's allocation.
+/// `camera` as `from`. A host's camera is mostly the same as the last
+/// frame's, and `Camera`'s (derived) `clone_from` allocates its key list
+/// anew: compared first, cloned only when it changed.
 fn set_camera(camera: &mut Camera, from: &Camera) {
-    camera.clone_from(from);
+    if camera != from {
+        camera.clone_from(from);
+    }
 }

@@ -10,7 +10,6 @@
 use super::{EmbedError, Target};
 use crate::gpu_count::{Create, CreateView};
 use diag::{codes, Diagnostic};
-use std::collections::HashMap;
 
 /// Copies a texel: in side-by-side targets the right eye's fragments are
 /// `x ≥ eye width`, so `x mod width` finds the texel in both halves.
@@ -52,16 +51,26 @@ pub(super) struct PresentView<'a> {
     pub view: &'a wgpu::TextureView,
     pub format: wgpu::TextureFormat,
     /// The eye slots drawn into it, left to right: one, or two side by side.
-    pub eyes: Vec<usize>,
+    pub eyes: &'static [usize],
     /// Whether the host reads it as linear light ([`Target::LinearView`]).
     pub linear: bool,
 }
 
-/// A checked target: the per-eye size, and the views with the eye each shows.
+/// A checked target: the per-eye size, and the views (one or two) with
+/// the eye each shows. Nothing in it is allocated: a frame checks its target.
 pub(super) struct CheckedTarget<'a> {
     pub width: u32,
     pub height: u32,
-    pub views: Vec<PresentView<'a>>,
+    pub views: [Option<PresentView<'a>>; 2],
+}
+
+/// The one eye slot a single view shows: the frame's eye of a stereo style.
+fn single_eye(eye_slots: usize, eye: u32) -> &'static [usize] {
+    if eye_slots == 2 && eye >= 1 {
+        &[1]
+    } else {
+        &[0]
+    }
 }
 
 fn target_error(message: String, help: &str) -> EmbedError {
@@ -161,12 +170,15 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width,
                 height,
-                views: vec![PresentView {
-                    view,
-                    format,
-                    eyes: vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }],
-                    linear: false,
-                }],
+                views: [
+                    Some(PresentView {
+                        view,
+                        format,
+                        eyes: single_eye(eye_slots, eye),
+                        linear: false,
+                    }),
+                    None,
+                ],
             })
         }
         Target::LinearView { view, format } => {
@@ -174,12 +186,15 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width,
                 height,
-                views: vec![PresentView {
-                    view,
-                    format,
-                    eyes: vec![if eye_slots == 2 { eye.min(1) as usize } else { 0 }],
-                    linear: true,
-                }],
+                views: [
+                    Some(PresentView {
+                        view,
+                        format,
+                        eyes: single_eye(eye_slots, eye),
+                        linear: true,
+                    }),
+                    None,
+                ],
             })
         }
         Target::Eyes { left, right } => {
@@ -197,19 +212,19 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width: w,
                 height: h,
-                views: vec![
-                    PresentView {
+                views: [
+                    Some(PresentView {
                         view: left,
                         format: lf,
-                        eyes: vec![0],
+                        eyes: &[0],
                         linear: false,
-                    },
-                    PresentView {
+                    }),
+                    Some(PresentView {
                         view: right,
                         format: rf,
-                        eyes: vec![1],
+                        eyes: &[1],
                         linear: false,
-                    },
+                    }),
                 ],
             })
         }
@@ -227,12 +242,15 @@ pub(super) fn check_target<'a>(
             Ok(CheckedTarget {
                 width: w / 2,
                 height: h,
-                views: vec![PresentView {
-                    view,
-                    format,
-                    eyes: vec![0, 1],
-                    linear: false,
-                }],
+                views: [
+                    Some(PresentView {
+                        view,
+                        format,
+                        eyes: &[0, 1],
+                        linear: false,
+                    }),
+                    None,
+                ],
             })
         }
     }
@@ -243,11 +261,12 @@ pub(super) struct Presenter {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    /// Per (view format, decoded to linear light).
-    pipelines: HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>,
-    /// Per output texture (eye slot, frame parity), made for the renderer's
-    /// resources of `generation`.
-    groups: HashMap<(usize, usize), wgpu::BindGroup>,
+    /// Per (view format, decoded to linear light): a host uses one or two,
+    /// found by a scan, not a hash, every frame.
+    pipelines: Vec<((wgpu::TextureFormat, bool), wgpu::RenderPipeline)>,
+    /// Per output texture, `[eye slot][frame parity]`, made for the
+    /// renderer's resources of `generation`.
+    groups: Vec<Vec<wgpu::BindGroup>>,
     generation: u64,
 }
 
@@ -280,41 +299,46 @@ impl Presenter {
             module,
             layout,
             pipeline_layout,
-            pipelines: HashMap::new(),
-            groups: HashMap::new(),
+            pipelines: Vec::new(),
+            groups: Vec::new(),
             generation: u64::MAX,
         }
     }
 
-    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat, linear: bool) {
+    /// The pipeline for views of `format` (decoded to linear light or not),
+    /// made at its first use.
+    fn pipeline(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat, linear: bool) -> usize {
+        if let Some(k) = self.pipelines.iter().position(|(key, _)| *key == (format, linear)) {
+            return k;
+        }
         let (module, layout) = (&self.module, &self.pipeline_layout);
-        self.pipelines.entry((format, linear)).or_insert_with(|| {
-            device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("npr present"),
-                layout: Some(layout),
-                vertex: wgpu::VertexState {
-                    module,
-                    entry_point: Some("vs"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module,
-                    entry_point: Some(if linear { "fs_linear" } else { "fs" }),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+        let pipeline = device.make_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("npr present"),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some(if linear { "fs_linear" } else { "fs" }),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
         });
+        self.pipelines.push(((format, linear), pipeline));
+        self.pipelines.len() - 1
     }
 
     /// Record the draws of `target`: each view gets the output of its eyes.
@@ -329,43 +353,47 @@ impl Presenter {
             // Every eye slot and parity at once, so that no later frame makes one.
             self.groups.clear();
             for slot in 0..renderer.eye_slots() {
+                let mut per_parity = Vec::new();
                 for parity in 0..renderer.parities() {
                     let texture = renderer
                         .output_texture(slot, parity)
                         .ok_or_else(|| crate::RunError::Internal("present before prepare".into()))?;
                     let view = texture.make_view(&Default::default());
-                    let group = device.make_bind_group(&wgpu::BindGroupDescriptor {
+                    per_parity.push(device.make_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("npr present"),
                         layout: &self.layout,
                         entries: &[wgpu::BindGroupEntry {
                             binding: 0,
                             resource: wgpu::BindingResource::TextureView(&view),
                         }],
-                    });
-                    self.groups.insert((slot, parity), group);
+                    }));
                 }
+                self.groups.push(per_parity);
             }
             self.generation = renderer.resources_generation();
         }
         let parity = renderer.parity_now() % renderer.parities();
+        let group = |slot: usize| self.groups.get(slot).and_then(|g| g.get(parity));
+        // Checked before any pass is recorded.
+        if let Some(slot) = target
+            .views
+            .iter()
+            .flatten()
+            .flat_map(|v| v.eyes)
+            .find(|&&s| group(s).is_none())
+        {
+            return Err(crate::RunError::Internal(format!("no output of eye slot {slot}")).into());
+        }
         for PresentView {
             view,
             format,
             eyes,
             linear,
-        } in &target.views
+        } in target.views.iter().flatten()
         {
             // Made before the pass borrows the encoder.
-            self.pipeline(device, *format, *linear);
-            let pipeline = &self.pipelines[&(*format, *linear)];
-            let groups: Vec<&wgpu::BindGroup> = eyes
-                .iter()
-                .map(|&slot| {
-                    self.groups
-                        .get(&(slot, parity))
-                        .ok_or_else(|| crate::RunError::Internal(format!("no output of eye slot {slot}")))
-                })
-                .collect::<Result<_, _>>()?;
+            let pipeline = self.pipeline(device, *format, *linear);
+            let pipeline = &self.pipelines[pipeline].1;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("npr present"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -383,7 +411,10 @@ impl Presenter {
                 multiview_mask: None,
             });
             pass.set_pipeline(pipeline);
-            for (k, group) in groups.into_iter().enumerate() {
+            for (k, &slot) in eyes.iter().enumerate() {
+                let Some(group) = self.groups.get(slot).and_then(|g| g.get(parity)) else {
+                    continue;
+                };
                 let x = (k as u32 * target.width) as f32;
                 pass.set_viewport(x, 0.0, target.width as f32, target.height as f32, 0.0, 1.0);
                 pass.set_bind_group(0, group, &[]);

@@ -1,13 +1,16 @@
 //! What a frame is ([`FrameSpec`]) and the uniforms written for it each
 //! frame: the `Frame` block per eye slot (camera, light, light camera, other
 //! eye), the style parameter block (keyframes at the frame's time) and the
-//! object blocks (see `objects.rs`).
+//! object blocks (see `objects.rs`). The camera's matrices
+//! ([`CameraMatrices`]) and the light camera (`light_bounds.rs`) are kept
+//! while what they are made from stays the same.
 
 use super::{objects, Renderer};
+use crate::scene::CameraPose;
 use crate::scene::Scene;
 use crate::{animation, RunError};
 use abi::FrameBlock;
-use glam::Mat4;
+use glam::{Mat4, Vec3};
 
 /// Where and when to render.
 #[derive(Debug, Clone, Copy)]
@@ -93,30 +96,101 @@ impl Motion {
     }
 }
 
+/// The camera's matrices for a frame's blocks, kept while the camera's
+/// pose and the image's size stay the same: a host's still camera (most
+/// frames) costs a pose and a comparison, not the look-at and perspective
+/// matrices of both eyes again (docs/PERFORMANCE.md, "host path"). What is
+/// kept is what [`CameraPose`]'s functions give, so the blocks' bytes are
+/// the same as when they were computed every frame.
+#[derive(Debug, Default)]
+pub(super) struct CameraMatrices {
+    /// The bits of the pose and the size these were made for (bits, so
+    /// that −0 and 0, which may give different matrices, differ, and a
+    /// NaN pose is made anew every frame).
+    key: Option<[u32; 16]>,
+    proj: Mat4,
+    center_view_proj: Mat4,
+    forward: Vec3,
+    /// Per eye (0 left or mono, 1 right): view, `proj × view`, position.
+    eyes: [(Mat4, Mat4, Vec3); 2],
+    near: f32,
+    far: f32,
+}
+
+fn pose_key(pose: &CameraPose, width: u32, height: u32) -> [u32; 16] {
+    let v = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+    let [e0, e1, e2] = v(pose.eye);
+    let [t0, t1, t2] = v(pose.target);
+    let [u0, u1, u2] = v(pose.up);
+    [
+        e0,
+        e1,
+        e2,
+        t0,
+        t1,
+        t2,
+        u0,
+        u1,
+        u2,
+        pose.fov_y_rad.to_bits(),
+        pose.near.to_bits(),
+        pose.far.to_bits(),
+        u32::from(pose.ipd_m.is_some()),
+        pose.ipd_m.map_or(0, f32::to_bits),
+        width,
+        height,
+    ]
+}
+
+impl CameraMatrices {
+    /// Bring the matrices to `scene`'s camera at `spec`'s time and size.
+    fn update(&mut self, scene: &Scene, spec: &FrameSpec) {
+        let pose = scene.camera.pose(spec.time_s);
+        let key = pose_key(&pose, spec.width, spec.height);
+        if self.key == Some(key) {
+            return;
+        }
+        let proj = pose.projection(spec.width as f32 / spec.height as f32);
+        // Eye indices past 1 are the right eye (`CameraPose::view`'s rule).
+        let eye = |e: u32| {
+            let view = pose.view(e);
+            (view, proj * view, pose.position(e))
+        };
+        *self = CameraMatrices {
+            key: Some(key),
+            proj,
+            center_view_proj: proj * pose.center_view(),
+            forward: pose.forward(),
+            eyes: [eye(0), eye(1)],
+            near: pose.near,
+            far: pose.far,
+        };
+    }
+
+    /// Eye `eye`'s view, view-projection and position.
+    fn eye(&self, eye: u32) -> &(Mat4, Mat4, Vec3) {
+        &self.eyes[eye.min(1) as usize]
+    }
+}
+
 impl Renderer {
-    /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame` in WGSL).
-    pub(super) fn frame_block(
+    /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame`
+    /// in WGSL), from the camera's matrices ([`CameraMatrices::update`]d for
+    /// `spec`) and the light camera.
+    fn frame_block(
         &self,
         scene: &Scene,
         spec: &FrameSpec,
         eye: u32,
-        previous_view_proj: Mat4,
+        (previous_view_proj, light_view_proj): (Mat4, Mat4),
     ) -> FrameBlock {
-        let pose = scene.camera.pose(spec.time_s);
-        let aspect = spec.width as f32 / spec.height as f32;
-        let view = pose.view(eye);
-        let proj = pose.projection(aspect);
-        let view_proj = proj * view;
-        let cam = pose.position(eye);
+        let camera = &self.camera;
+        let (view, view_proj, cam) = *camera.eye(eye);
+        let proj = camera.proj;
         let l = scene.light.direction.normalize_or_zero();
         let c = scene.light.color;
-        let light_view_proj = crate::scene::light_view_proj(
-            scene.light.direction,
-            self.light_bounds.casters,
-            self.light_bounds.scene,
-        );
-        let other_view_proj = proj * pose.view(1 - eye.min(1));
-        let (left, right, forward) = (pose.position(0), pose.position(1), pose.forward());
+        let other_view_proj = camera.eye(1 - eye.min(1)).1;
+        let (left, right, forward) = (camera.eyes[0].2, camera.eyes[1].2, camera.forward);
         let (more_light_dir, more_light_color) = scene.more_light_frame();
         FrameBlock {
             view: view.to_cols_array_2d(),
@@ -129,13 +203,13 @@ impl Renderer {
             time: spec.time_s as f32,
             frame_index: spec.frame as f32,
             eye: eye as f32,
-            near: pose.near,
-            far: pose.far,
+            near: camera.near,
+            far: camera.far,
             _pad: 0.0,
             light_view_proj: light_view_proj.to_cols_array_2d(),
             other_view_proj: other_view_proj.to_cols_array_2d(),
             // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.
-            center_view_proj: (proj * pose.center_view()).to_cols_array_2d(),
+            center_view_proj: camera.center_view_proj.to_cols_array_2d(),
             focal: [proj.x_axis.x, proj.y_axis.y, 0.0, 0.0],
             eye_left: [left.x, left.y, left.z, 1.0],
             eye_right: [right.x, right.y, right.z, 1.0],
@@ -170,10 +244,11 @@ impl Renderer {
     /// buffers are written; meshes and bind groups stay as built.
     pub(super) fn write_uniforms(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         let slots = self.frame_buffers.len();
+        self.camera.update(scene, spec);
         // At most two eye slots (stereo): no allocation for them.
         let mut view_projs = [Mat4::IDENTITY; 2];
         for (s, vp) in view_projs.iter_mut().enumerate().take(slots) {
-            *vp = self.view_proj(scene, spec, self.eye_of_slot(spec, s as u32));
+            *vp = self.camera.eye(self.eye_of_slot(spec, s as u32)).1;
         }
         self.motion.record(scene, &view_projs[..slots]);
         let (previous_models, previous_projs) = self.motion.previous();
@@ -189,8 +264,10 @@ impl Renderer {
             *p = *previous;
         }
         self.light_bounds.update(scene);
+        let light_view_proj = self.light_bounds.light_view_proj(scene.light.direction);
         for (slot, previous) in previous_view_projs.iter().enumerate().take(slots) {
-            let frame = self.frame_block(scene, spec, self.eye_of_slot(spec, slot as u32), *previous);
+            let eye = self.eye_of_slot(spec, slot as u32);
+            let frame = self.frame_block(scene, spec, eye, (*previous, light_view_proj));
             self.upload.frame_mut(slot).copy_from_slice(bytemuck::bytes_of(&frame));
         }
         animation::write_style_params(&self.manifest, spec.time_s, spec.height, self.upload.style_mut());

@@ -33,6 +33,9 @@ pub(super) struct LightBounds {
     pub casters: (Vec3, Vec3),
     /// Per mesh and linear part: the box of the vertices' linear images.
     linear: HashMap<LinearKey, LinearBox>,
+    /// The last light camera and the bits of the light direction it was
+    /// made for, kept while neither it nor the boxes change.
+    light_camera: Option<([u32; 3], Mat4)>,
 }
 
 /// A mesh (by address; the entry holds it, so the address stays its own)
@@ -86,6 +89,7 @@ impl LightBounds {
             scene: EMPTY_BOUNDS,
             casters: EMPTY_BOUNDS,
             linear: HashMap::new(),
+            light_camera: None,
         };
         for (b, o) in bounds.boxes.iter_mut().zip(&scene.objects) {
             b.bounds = object_box(&mut bounds.linear, o);
@@ -117,8 +121,24 @@ impl LightBounds {
         }
     }
 
+    /// The light camera for `direction` (`scene::light_view_proj` of the
+    /// casters' and the scene's boxes), made anew only when the direction
+    /// or the boxes changed since the last call: equal inputs, equal matrix.
+    pub fn light_view_proj(&mut self, direction: Vec3) -> Mat4 {
+        let bits = [direction.x.to_bits(), direction.y.to_bits(), direction.z.to_bits()];
+        match self.light_camera {
+            Some((kept, matrix)) if kept == bits => matrix,
+            _ => {
+                let matrix = crate::scene::light_view_proj(direction, self.casters, self.scene);
+                self.light_camera = Some((bits, matrix));
+                matrix
+            }
+        }
+    }
+
     /// The scene's and the casters' boxes from the objects' boxes.
     fn unite(&mut self) {
+        self.light_camera = None;
         let boxes = || self.boxes.iter().map(|b| b.bounds);
         self.scene = boxes().fold(EMPTY_BOUNDS, union_bounds);
         let drawn = boxes()

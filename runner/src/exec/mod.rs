@@ -112,6 +112,8 @@ pub struct Renderer {
     /// begun last and of the one before it: `previous_model` and
     /// `previous_view_proj` (the current ones on the first frame).
     motion: frame::Motion,
+    /// The camera's matrices of the last frame, kept while its pose and the size stay.
+    camera: frame::CameraMatrices,
     artmap_builds: Vec<crate::artmap::ArtmapBuild>,
     /// Changes whenever the textures a frame writes are made anew (a new
     /// renderer, a new size): what holders of views into them compare.
@@ -326,6 +328,7 @@ impl Renderer {
             frames_begun: 0,
             values,
             motion: frame::Motion::default(),
+            camera: frame::CameraMatrices::default(),
             artmap_builds,
             generation: next_generation(),
         })
