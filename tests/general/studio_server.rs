@@ -351,3 +351,37 @@ fn units_stay_as_written_on_the_page_and_in_the_file() {
     let text = std::fs::read_to_string(&style).expect("read back");
     assert!(text.contains("param reach: m = 20mm in 0m..1m"), "{text}");
 }
+
+#[test]
+fn a_path_dependent_style_replays_from_frame_0_after_a_control_moves() {
+    // Afterimage mixes in its previous frame: a frame rendered on top of the
+    // last one without restarting the history would differ from
+    // `npr render`, which starts every frame's replay at frame 0.
+    let dir = common::live::scratch("studio", "path_dependent");
+    let style = dir.join("afterimage.npr");
+    std::fs::copy("examples/afterimage.npr", &style).expect("copy");
+    let (studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a first frame", |s| frame_id(s) > 0);
+    assert!(errors(&first).is_empty(), "{}", first["diagnostics"]);
+    assert_eq!(
+        output_png(&addr, &first),
+        common::live::reference_render(&style, &[], &dir.join("ref.png"))
+    );
+    for (k, persistence) in ["0.5", "0.9"].into_iter().enumerate() {
+        http::post(&addr, "/param", &json!({"name": "persistence", "literal": persistence}));
+        let moved = events.until("the moved control's frame", |s| {
+            frame_id(s) > frame_id(&first) + k as u64 && param(s, "persistence")["literal"] == persistence
+        });
+        assert_eq!(
+            output_png(&addr, &moved),
+            common::live::reference_render(
+                &style,
+                &[&format!("persistence={persistence}")],
+                &dir.join(format!("ref{k}.png"))
+            ),
+            "persistence = {persistence}: the studio's frame is not npr render's"
+        );
+    }
+    drop(studio);
+}
