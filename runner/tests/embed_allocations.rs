@@ -13,22 +13,14 @@
 
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::{gpu, host_target};
+
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
 use runner::scene::ocean::Ocean;
 use runner::scene::{primitives, Camera, Primitive};
-use runner::Gpu;
 use std::path::Path;
-use std::sync::OnceLock;
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
-        })
-    })
-}
 
 fn compile(example: &str) -> runner::StyleProgram {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(example);
@@ -45,20 +37,7 @@ fn compile(example: &str) -> runner::StyleProgram {
 }
 
 fn target(width: u32, height: u32) -> wgpu::Texture {
-    gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("host target"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Bgra8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    })
+    host_target(width, height, wgpu::TextureFormat::Bgra8Unorm, &[])
 }
 
 /// A per-object param the frames change, and its components.
@@ -300,20 +279,7 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
         frame_index: 0,
         eye: 0,
     };
-    let texture = gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: 64,
-            height: 48,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let texture = host_target(64, 48, wgpu::TextureFormat::Rgba8Unorm, &[]);
     let mut encoder = gpu().device.create_command_encoder(&Default::default());
     runtime
         .render(

@@ -19,28 +19,21 @@
 
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::{gpu, host_target};
+
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::readback::TargetImage;
 use runner::scene::patches::PatchSpec;
 use runner::scene::{primitives, Scene};
-use runner::{FrameSpec, Gpu, Renderer};
+use runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 72;
 
 /// The times the frames are rendered at, in order (frame indices 0, 1, 2).
 const TIMES: [f64; 3] = [0.0, 1.5, 3.0];
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: `./setup.sh --tests`, or apt-get install mesa-vulkan-drivers): {e}")
-        })
-    })
-}
 
 fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
@@ -67,20 +60,7 @@ fn load(scene: &str) -> Scene {
 
 /// The host's offscreen texture the runtime presents into.
 fn host_texture() -> wgpu::Texture {
-    gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("host target"),
-        size: wgpu::Extent3d {
-            width: WIDTH,
-            height: HEIGHT,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+    host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[])
 }
 
 /// How the host makes its instances of the scene: `add_scene`, or in code.

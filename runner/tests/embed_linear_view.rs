@@ -7,24 +7,16 @@
 
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::{gpu, host_target};
+
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
 // What a host's encoding does to a linear value.
 use runner::srgb::linear_to_srgb;
-use runner::Gpu;
 use std::path::Path;
-use std::sync::OnceLock;
 
 const SIZE: u32 = 32;
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
-        })
-    })
-}
 
 fn runtime() -> StyleRuntime {
     let style = "style \"Lit\"\n\
@@ -37,20 +29,7 @@ fn runtime() -> StyleRuntime {
 }
 
 fn texture(format: wgpu::TextureFormat, view_formats: &[wgpu::TextureFormat]) -> wgpu::Texture {
-    gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("host target"),
-        size: wgpu::Extent3d {
-            width: SIZE,
-            height: SIZE,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats,
-    })
+    host_target(SIZE, SIZE, format, view_formats)
 }
 
 /// Render the sphere into `target`.

@@ -14,23 +14,15 @@
 
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::{gpu, host_target};
+
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::{created_on_this_thread, GpuCreations};
 use runner::scene::{primitives, Camera, Mesh};
-use runner::Gpu;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 const SIZE: (u32, u32) = (64, 48);
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: ./setup.sh --tests installs it): {e}")
-        })
-    })
-}
 
 fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
@@ -98,20 +90,7 @@ struct Host {
 }
 
 fn texture(width: u32, height: u32) -> wgpu::Texture {
-    gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("host target"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    })
+    host_target(width, height, wgpu::TextureFormat::Rgba8Unorm, &[])
 }
 
 impl Host {

@@ -8,22 +8,14 @@
 
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::{gpu, host_target};
+
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
-use runner::Gpu;
 use std::path::Path;
-use std::sync::OnceLock;
 
 const SIZE: u32 = 32;
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
-        })
-    })
-}
 
 /// A stereo style (it reads `other_eye(...)`): a lit sphere, a quarter of
 /// the other eye's image mixed in.
@@ -40,20 +32,7 @@ fn runtime() -> StyleRuntime {
 }
 
 fn texture(width: u32) -> wgpu::Texture {
-    gpu().device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("host target"),
-        size: wgpu::Extent3d {
-            width,
-            height: SIZE,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+    host_target(width, SIZE, wgpu::TextureFormat::Rgba8Unorm, &[])
 }
 
 /// Render the sphere (off centre, so the eyes see it at different places)
