@@ -79,6 +79,25 @@ fn style_asset(
         .cloned()
 }
 
+/// After an edit on disk of a file `handle`'s style reads: updates until
+/// the asset's revision is past `revision`, then three frames (the render
+/// world draws a new revision from the next frame on); the camera's image.
+fn image_after_reload(
+    app: &mut bevy::app::App,
+    handle: &bevy::asset::Handle<bevy_npr::NprStyleAsset>,
+    revision: u64,
+    image: &bevy::asset::Handle<bevy::image::Image>,
+    what: &str,
+) -> image::RgbaImage {
+    update_until(app, what, PATIENCE, |app| {
+        style_asset(app, handle).is_some_and(|s| s.revision() != revision)
+    });
+    for _ in 0..3 {
+        app.update();
+    }
+    read_image(app, image)
+}
+
 #[test]
 fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
@@ -415,17 +434,13 @@ fn an_edited_file_that_the_style_uses_is_picked_up() {
     assert_close("used_file_before", &before, &npr_render(&style, &scene));
 
     std::fs::write(&palette, "style \"Palette\"\nparam base: color = #3a7ae0\n").expect("edit the palette");
-    update_until(
+    let after = image_after_reload(
         &mut app,
+        &handle,
+        loaded.revision(),
+        &image,
         "the style to reload after its palette changed",
-        PATIENCE,
-        |app| style_asset(app, &handle).is_some_and(|s| s.revision() != loaded.revision()),
     );
-    // The render world draws the new revision from the next frame on.
-    for _ in 0..3 {
-        app.update();
-    }
-    let after = read_image(&app, &image);
     assert!(before != after, "the edited palette draws another image");
     assert_close("used_file_after", &after, &npr_render(&style, &scene));
 }
@@ -524,16 +539,13 @@ fn an_edited_image_that_the_style_reads_is_picked_up() {
     assert_close("image_file_before", &before, &npr_render(&style, &scene));
 
     write_paper([40, 120, 220]);
-    update_until(
+    let after = image_after_reload(
         &mut app,
+        &handle,
+        loaded.revision(),
+        &image,
         "the style to reload after its image changed",
-        PATIENCE,
-        |app| style_asset(app, &handle).is_some_and(|s| s.revision() != loaded.revision()),
     );
-    for _ in 0..3 {
-        app.update();
-    }
-    let after = read_image(&app, &image);
     assert!(before != after, "the edited image draws another image");
     assert_close("image_file_after", &after, &npr_render(&style, &scene));
 }
