@@ -58,16 +58,10 @@ pub fn scalar_at(m: &Manifest, name: &str, time_s: f64, height: u32) -> Option<f
     percent(p, value_at(p, time_s), height).first().copied()
 }
 
-/// The style uniform block at `time_s`.
-pub fn style_param_bytes(m: &Manifest, time_s: f64, height: u32) -> Vec<u8> {
-    let mut out = vec![0u8; m.style_uniform_size as usize];
-    write_style_params(m, time_s, height, &mut out);
-    out
-}
-
-/// [`style_param_bytes`] written over `out` (zeroed first), which a
-/// renderer keeps from frame to frame; a parameter without keyframes is
-/// read in place (only keyframed and height-relative ones are computed).
+/// The style uniform block at `time_s`, written over `out` (zeroed
+/// first), which a renderer keeps from frame to frame; a parameter without
+/// keyframes is read in place (only keyframed and height-relative ones are
+/// computed).
 pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]) {
     out.fill(0);
     for p in &m.params {
@@ -94,16 +88,10 @@ pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]
     }
 }
 
-/// The per-object parameter slots (after the two matrices) for one object.
-/// A binding with the wrong number of components is reported (E0405).
-pub fn object_param_bytes(m: &Manifest, o: &Object, diags: &mut Vec<Diagnostic>) -> Vec<u8> {
-    let mut out = vec![0u8; m.object_uniform_size.saturating_sub(OBJECT_PARAMS_OFFSET) as usize];
-    write_object_params(m, o, &mut out, diags);
-    out
-}
-
-/// [`object_param_bytes`] written over `out` (zeroed first), which a
-/// renderer keeps from frame to frame: a frame allocates nothing for them.
+/// The per-object parameter slots (after the two matrices) for one object,
+/// written over `out` (zeroed first), which a renderer keeps from frame to
+/// frame: a frame allocates nothing for them. A binding with the wrong
+/// number of components is reported (E0405).
 pub fn write_object_params(m: &Manifest, o: &Object, out: &mut [u8], diags: &mut Vec<Diagnostic>) {
     out.fill(0);
     for p in &m.params {

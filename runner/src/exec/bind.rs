@@ -260,9 +260,10 @@ impl Renderer {
                     }
                     Resource::LinearClampSampler => wgpu::BindingResource::Sampler(&self.linear_clamp),
                     // This frame's values of an earlier compute pass (validated: a compute pass).
-                    Resource::ObjectValues { pass } => {
-                        self.values[*pass].as_ref()?.copy(parity, false).as_entire_binding()
-                    }
+                    Resource::ObjectValues { pass } => self.scene_gpu.values[*pass]
+                        .as_ref()?
+                        .copy(parity, false)
+                        .as_entire_binding(),
                 };
                 Some(wgpu::BindGroupEntry {
                     binding: b.binding,

@@ -256,23 +256,31 @@ impl Renderer {
             &self.manifest,
             scene,
             self.object_stride,
-            (previous_models, &self.vertex_counts),
-            self.upload.objects_mut(),
+            (previous_models, &self.scene_gpu.vertex_counts),
+            self.scene_gpu.upload.objects_mut(),
         )?;
         let mut previous_view_projs = view_projs;
         for (p, previous) in previous_view_projs.iter_mut().zip(previous_projs) {
             *p = *previous;
         }
-        self.light_bounds.update(scene);
-        let light_view_proj = self.light_bounds.light_view_proj(scene.light.direction);
+        self.scene_gpu.light_bounds.update(scene);
+        let light_view_proj = self.scene_gpu.light_bounds.light_view_proj(scene.light.direction);
         for (slot, previous) in previous_view_projs.iter().enumerate().take(slots) {
             let eye = self.eye_of_slot(spec, slot as u32);
             let frame = self.frame_block(scene, spec, eye, (*previous, light_view_proj));
-            self.upload.frame_mut(slot).copy_from_slice(bytemuck::bytes_of(&frame));
+            self.scene_gpu
+                .upload
+                .frame_mut(slot)
+                .copy_from_slice(bytemuck::bytes_of(&frame));
         }
-        animation::write_style_params(&self.manifest, spec.time_s, spec.height, self.upload.style_mut());
+        animation::write_style_params(
+            &self.manifest,
+            spec.time_s,
+            spec.height,
+            self.scene_gpu.upload.style_mut(),
+        );
         // One write; `encode` copies the blocks into their buffers.
-        self.upload.write(&self.queue);
+        self.scene_gpu.upload.write(&self.queue);
         Ok(())
     }
 }

@@ -76,38 +76,24 @@ pub struct Renderer {
     pub manifest: Manifest,
     /// One executor per manifest pass, in manifest order.
     passes: Vec<PassExec>,
-    /// Group 1 of passes that read no per-object texture.
-    object_group: wgpu::BindGroup,
+    /// The scene-level resources (meshes, object blocks and groups,
+    /// compute buffers, light bounds, the frame's upload), made anew by
+    /// [`Renderer::set_scene`]; the rest of the renderer is the style's.
+    scene_gpu: scene_gpu::SceneGpu,
     /// Its layout, which the pipelines were made with (style-level: kept
     /// across [`Renderer::set_scene`]).
     object_layout: wgpu::BindGroupLayout,
-    /// The per-object images the scene binds, by what they were read from.
-    object_images: std::collections::HashMap<textures::ObjectImageKey, GpuTexture>,
     textures: Vec<GpuTexture>,
     linear_clamp: wgpu::Sampler,
-    meshes: Vec<meshes::GpuMesh>,
     /// One per eye rendered in a frame (two for stereo styles).
     frame_buffers: Vec<wgpu::Buffer>,
     style_buffer: wgpu::Buffer,
-    /// Every object's block, `object_stride` apart; written every frame.
-    object_buffer: wgpu::Buffer,
     object_stride: u64,
-    /// The frame's uniforms (frame, style and object blocks), written in
-    /// one upload and copied into the buffers above.
-    upload: upload::Upload,
-    object_tags: Vec<Vec<String>>,
-    /// Per object, its mesh's vertex count (the block's `ids.z`).
-    vertex_counts: Vec<usize>,
-    /// World-space bounds of the scene (the light camera's depth range) and
-    /// of what `view(light)` passes draw (the shadow casters: its x, y extent).
-    light_bounds: light_bounds::LightBounds,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
     /// styles with history textures.
     frames_begun: u64,
-    /// Per manifest pass: a compute pass's buffers.
-    values: Vec<Option<values::PassBuffers>>,
     /// Object transforms and view-projections per eye slot of the frame
     /// begun last and of the one before it: `previous_model` and
     /// `previous_view_proj` (the current ones on the first frame).
@@ -290,18 +276,7 @@ impl Renderer {
             eyes,
             object_images: &Default::default(),
         };
-        let scene_gpu::SceneGpu {
-            object_buffer,
-            object_group,
-            meshes,
-            values,
-            pass_scenes,
-            light_bounds,
-            upload,
-            object_tags,
-            vertex_counts,
-            object_images,
-        } = scene_gpu::SceneGpu::make(device, queue, &style, scene)?;
+        let (scene_gpu, pass_scenes) = scene_gpu::SceneGpu::make(device, queue, &style, scene)?;
         for (exec, part) in passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
@@ -309,24 +284,16 @@ impl Renderer {
             device: device.clone(),
             queue: queue.clone(),
             passes,
-            object_group,
+            scene_gpu,
             object_layout,
-            object_images,
             textures,
             linear_clamp,
-            meshes,
             frame_buffers,
             style_buffer,
-            object_buffer,
             object_stride,
-            upload,
-            object_tags,
-            vertex_counts,
-            light_bounds,
             manifest,
             sized: None,
             frames_begun: 0,
-            values,
             motion: frame::Motion::default(),
             camera: frame::CameraMatrices::default(),
             artmap_builds,
@@ -394,13 +361,13 @@ impl Renderer {
                 spec.eye
             )));
         }
-        if scene.objects.len() != self.meshes.len() {
+        if scene.objects.len() != self.scene_gpu.meshes.len() {
             return Err(RunError::User(vec![diag::Diagnostic::error(
                 diag::codes::BAD_SCENE,
                 format!(
                     "the scene has {} object(s), the renderer was built for {}",
                     scene.objects.len(),
-                    self.meshes.len()
+                    self.scene_gpu.meshes.len()
                 ),
             )
             .with_help(
@@ -419,7 +386,7 @@ impl Renderer {
                 0
             };
         }
-        meshes::update_time_varying(&self.queue, &mut self.meshes, scene, spec.time_s)?;
+        meshes::update_time_varying(&self.queue, &mut self.scene_gpu.meshes, scene, spec.time_s)?;
         // Spinning objects turn with the frame's time (`spin`).
         let posed = scene.posed(spec.time_s);
         self.write_uniforms(&posed, spec)?;
@@ -460,12 +427,16 @@ impl Renderer {
     fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
         let Some(sized) = self.sized.as_ref() else { return };
         // The uniforms `prepare` wrote, into their buffers before any pass reads them.
-        self.upload
-            .encode_copies(encoder, &self.frame_buffers, &self.style_buffer, &self.object_buffer);
+        self.scene_gpu.upload.encode_copies(
+            encoder,
+            &self.frame_buffers,
+            &self.style_buffer,
+            &self.scene_gpu.object_buffer,
+        );
         let ctx = EncodeContext {
-            meshes: &self.meshes,
-            object_tags: &self.object_tags,
-            object_group: &self.object_group,
+            meshes: &self.scene_gpu.meshes,
+            object_tags: &self.scene_gpu.object_tags,
+            object_group: &self.scene_gpu.object_group,
             object_stride: self.object_stride,
             parity: self.parity(),
         };
@@ -522,14 +493,14 @@ impl Renderer {
             .iter()
             .position(|p| p.name == pass)
             .ok_or_else(|| RunError::Internal(format!("no pass `{pass}`")))?;
-        let buffers = self.values[pi]
+        let buffers = self.scene_gpu.values[pi]
             .as_ref()
             .ok_or_else(|| RunError::Internal(format!("pass `{pass}` is not a compute pass")))?;
         let bytes = readback::read_buffer(&self.device, &self.queue, buffers.copy(self.parity(), false))?;
         let vec4s: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         Ok(vec4s
             .chunks(buffers.slots as usize)
-            .take(self.meshes.len())
+            .take(self.scene_gpu.meshes.len())
             .map(|c| c.to_vec())
             .collect())
     }

@@ -233,7 +233,7 @@ impl Renderer {
                         depth_view,
                         tested_depth,
                         group0: self.group0(pi, slot, parity, &physical),
-                        pixel_workgroups: self.values[pi]
+                        pixel_workgroups: self.scene_gpu.values[pi]
                             .as_ref()
                             .map_or(0, |b| b.pixel_workgroups(&self.manifest, width, height)),
                     });
@@ -245,8 +245,8 @@ impl Renderer {
         // New textures hold no history: the next frame is frame 0 again,
         // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
-        super::values::reset(&self.queue, &self.values);
-        super::values::write_pixel_dispatch(&self.queue, &self.manifest, &self.values, width, height);
+        super::values::reset(&self.queue, &self.scene_gpu.values);
+        super::values::write_pixel_dispatch(&self.queue, &self.manifest, &self.scene_gpu.values, width, height);
         self.motion = super::frame::Motion::default();
         self.sized = Some(SizedResources {
             width,

@@ -17,15 +17,19 @@ use std::collections::HashMap;
 
 /// Everything a renderer holds for one scene's objects.
 pub(super) struct SceneGpu {
+    /// Every object's block, `object_stride` apart; written every frame.
     pub object_buffer: wgpu::Buffer,
+    /// Group 1 of passes that read no per-object texture.
     pub object_group: wgpu::BindGroup,
     pub meshes: Vec<meshes::GpuMesh>,
+    /// Per manifest pass: a compute pass's buffers.
     pub values: Vec<Option<values::PassBuffers>>,
-    /// Per manifest pass, its part ([`PassExec::bind_scene`]).
-    pub pass_scenes: Vec<PassScene>,
     pub light_bounds: light_bounds::LightBounds,
+    /// The frame's uniforms (frame, style and object blocks), written in
+    /// one upload and copied into their buffers.
     pub upload: upload::Upload,
     pub object_tags: Vec<Vec<String>>,
+    /// Per object, its mesh's vertex count (the block's `ids.z`).
     pub vertex_counts: Vec<usize>,
     /// The per-object images this scene binds, kept for the next one.
     pub object_images: HashMap<ObjectImageKey, GpuTexture>,
@@ -45,7 +49,8 @@ pub(super) struct StyleParts<'a> {
 }
 
 impl SceneGpu {
-    /// `scene`'s resources for a style's passes. Bad per-object params and
+    /// `scene`'s resources for a style's passes, and each pass's part
+    /// ([`PassExec::bind_scene`], in manifest order). Bad per-object params and
     /// images are reported here (as `RunError::User`/`Textures`), before
     /// any frame; nothing of the renderer changes until the caller installs
     /// the result.
@@ -54,7 +59,7 @@ impl SceneGpu {
         queue: &wgpu::Queue,
         style: &StyleParts,
         scene: &Scene,
-    ) -> Result<SceneGpu, RunError> {
+    ) -> Result<(SceneGpu, Vec<PassScene>), RunError> {
         let manifest = style.manifest;
         let object_textures = textures::load_object_textures(device, queue, manifest, scene, style.object_images)?;
         let mut object_bytes = vec![0; (style.object_stride as usize) * scene.objects.len()];
@@ -103,18 +108,18 @@ impl SceneGpu {
             manifest.style_uniform_size as usize,
             object_bytes.len(),
         );
-        Ok(SceneGpu {
+        let made = SceneGpu {
             object_group,
             object_buffer,
             values,
-            pass_scenes,
             light_bounds: light_bounds::LightBounds::new(manifest, scene),
             upload,
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
             vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
             meshes,
             object_images: object_textures.keys.into_iter().zip(object_textures.images).collect(),
-        })
+        };
+        Ok((made, pass_scenes))
     }
 }
 
@@ -140,7 +145,7 @@ impl Renderer {
             return Err(RunError::User(diags));
         }
         let device = self.device.clone();
-        let made = crate::gpu_error::scoped(
+        let (made, pass_scenes) = crate::gpu_error::scoped(
             &device,
             || "making the scene's GPU resources (meshes, objects, compute buffers)".to_string(),
             || {
@@ -151,35 +156,15 @@ impl Renderer {
                     object_stride: self.object_stride,
                     passes: &self.passes,
                     eyes: self.frame_buffers.len(),
-                    object_images: &self.object_images,
+                    object_images: &self.scene_gpu.object_images,
                 };
                 SceneGpu::make(&self.device, &self.queue, &style, scene)
             },
         )?;
-        let SceneGpu {
-            object_buffer,
-            object_group,
-            meshes,
-            values,
-            pass_scenes,
-            light_bounds,
-            upload,
-            object_tags,
-            vertex_counts,
-            object_images,
-        } = made;
         for (exec, part) in self.passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
-        self.object_buffer = object_buffer;
-        self.object_group = object_group;
-        self.meshes = meshes;
-        self.values = values;
-        self.light_bounds = light_bounds;
-        self.upload = upload;
-        self.object_tags = object_tags;
-        self.vertex_counts = vertex_counts;
-        self.object_images = object_images;
+        self.scene_gpu = made;
         // Group 0 binds compute passes' values, and the history restarts
         // with the objects: the size-level resources are made at the next frame.
         self.sized = None;

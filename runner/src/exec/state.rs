@@ -93,7 +93,7 @@ impl Renderer {
                 }
             }
         }
-        for (pass, buffers) in self.values.iter().enumerate() {
+        for (pass, buffers) in self.scene_gpu.values.iter().enumerate() {
             for (copy, buffer) in buffers.iter().flat_map(|b| b.copies.iter().enumerate()) {
                 blocks.push(StateBlock {
                     kind: StateKind::Buffer,
@@ -132,7 +132,7 @@ impl Renderer {
             .ok_or_else(|| RunError::Internal("no textures".into()))?;
         let wrong = |what: String| RunError::Internal(format!("the saved state does not fit this renderer: {what}"));
         let expected_textures: usize = sized.physical.second.iter().map(|s| 2 * s.len()).sum();
-        let expected_buffers: usize = self.values.iter().flatten().map(|b| b.copies.len()).sum();
+        let expected_buffers: usize = self.scene_gpu.values.iter().flatten().map(|b| b.copies.len()).sum();
         let count = |k: StateKind| state.blocks.iter().filter(|b| b.kind == k).count();
         if count(StateKind::Texture) != expected_textures || count(StateKind::Buffer) != expected_buffers {
             return Err(wrong(format!(
@@ -182,6 +182,7 @@ impl Renderer {
                 }
                 StateKind::Buffer => {
                     let buffer = self
+                        .scene_gpu
                         .values
                         .get(block.owner as usize)
                         .and_then(|b| b.as_ref())
