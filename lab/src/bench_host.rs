@@ -262,6 +262,42 @@ fn model(i: usize, n: usize, k: u32) -> glam::Mat4 {
         * glam::Mat4::from_scale(glam::Vec3::splat(spacing * 0.4))
 }
 
+/// The tags the style's render passes select, each once: every object of
+/// the bench carries them, so every render pass draws every object.
+fn render_pass_tags(program: &StyleProgram) -> Vec<&String> {
+    let mut tags: Vec<&String> = program
+        .manifest
+        .passes
+        .iter()
+        .filter_map(|p| match &p.kind {
+            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
+            _ => None,
+        })
+        .collect();
+    tags.dedup();
+    tags
+}
+
+/// A view of the `size`² texture a host renders into.
+fn host_target(device: &wgpu::Device, size: u32) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -283,33 +319,10 @@ pub fn rows(
         .iter()
         .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::Render { .. }))
         .count();
-    let mut pass_tags: Vec<&String> = program
-        .manifest
-        .passes
-        .iter()
-        .filter_map(|p| match &p.kind {
-            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
-            _ => None,
-        })
-        .collect();
-    pass_tags.dedup();
+    let pass_tags = render_pass_tags(program);
     // The style's other passes and the present pass: one fullscreen triangle each.
     let passes = (render_passes, program.manifest.passes.len() - render_passes + 1);
-    let target = device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
-    let view = target.create_view(&Default::default());
+    let view = host_target(device, size);
     let wait = || {
         device
             .poll(wgpu::PollType::wait_indefinitely())
@@ -419,33 +432,11 @@ pub fn spawn_row(
 ) -> Result<SpawnRow, RunError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
     let mesh = primitives::sphere(1.0, 16, 8);
-    let target = device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
-    let view = target.create_view(&Default::default());
+    let view = host_target(device, size);
     let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
     let lights = Lights::default();
     // As in `rows`: every object carries the tags the render passes select.
-    let tags: Vec<&String> = program
-        .manifest
-        .passes
-        .iter()
-        .filter_map(|p| match &p.kind {
-            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
-            _ => None,
-        })
-        .collect();
+    let tags = render_pass_tags(program);
     // One timed frame of `count` objects: µs of `render`, GPU work drained after.
     let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
         let instances: Vec<Instance> = (0..count)
