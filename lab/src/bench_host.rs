@@ -8,20 +8,27 @@
 //! other pass and the present pass one fullscreen triangle, and uploads
 //! every object's block each frame. npr's objects carry the tags the
 //! style's render passes select, so its render passes draw every object too. Frames of the two alternate in one
-//! run; each side's time is the median of its frames, GPU work excluded
-//! (the queue is drained between frames, outside the timing).
+//! run; each side's time is the median of its frames' CPU time on the
+//! calling thread (`thread_cpu.rs`: a wall clock would also count the time
+//! the thread waited for a core), GPU work excluded (the queue is drained
+//! between frames, outside the timing).
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
 use runner::{Gpu, RunError, StyleProgram};
-use std::time::Instant;
+use crate::thread_cpu;
 
 /// One row: objects, npr's and the minimal program's median CPU µs per frame.
 pub struct HostRow {
     pub objects: usize,
+    /// Medians over the timed frames.
     pub npr_us: f64,
     pub minimal_us: f64,
+    /// The median over frames of npr's time / the minimal program's in
+    /// the same frame (the two run back to back, so a change of load
+    /// during the run moves both): steadier than the ratio of medians.
+    pub pair_ratio: f64,
 }
 
 const WGSL: &str = "
@@ -365,26 +372,22 @@ pub fn rows(
                 eye: 0,
             };
             let mut encoder = device.create_command_encoder(&Default::default());
-            let start = Instant::now();
-            runtime
-                .render(&mut encoder, &frame, Target::View(&view))
-                .map_err(|e| RunError::User(e.diagnostics()))?;
-            let npr_s = start.elapsed().as_secs_f64();
+            let (npr_us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, &frame, Target::View(&view)));
+            rendered.map_err(|e| RunError::User(e.diagnostics()))?;
             queue.submit([encoder.finish()]);
             wait()?;
             let mut encoder = device.create_command_encoder(&Default::default());
-            let start = Instant::now();
-            minimal.frame(queue, &mut encoder, &models, passes);
-            let own_s = start.elapsed().as_secs_f64();
+            let (own_us, ()) = thread_cpu::time_us(|| minimal.frame(queue, &mut encoder, &models, passes));
             queue.submit([encoder.finish()]);
             wait()?;
             if k >= 3 {
-                npr.push(npr_s * 1e6);
-                own.push(own_s * 1e6);
+                npr.push(npr_us);
+                own.push(own_us);
             }
         }
         rows.push(HostRow {
             objects: n,
+            pair_ratio: median(npr.iter().zip(&own).map(|(n, o)| n / o).collect()),
             npr_us: median(npr),
             minimal_us: median(own),
         });
@@ -395,15 +398,17 @@ pub fn rows(
 /// The table: objects, npr's µs, the minimal program's µs, their ratio.
 pub fn table(rows: &[HostRow]) -> String {
     let mut t = String::from(
-        "| objects | npr host path (µs/frame) | minimal wgpu (µs/frame) | ratio |\n|---:|---:|---:|---:|\n",
+        "| objects | npr host path (µs/frame) | minimal wgpu (µs/frame) | ratio of medians | ratio per frame (median) |\n\
+         |---:|---:|---:|---:|---:|\n",
     );
     for r in rows {
         t.push_str(&format!(
-            "| {} | {:.0} | {:.0} | {:.2} |\n",
+            "| {} | {:.0} | {:.0} | {:.2} | {:.2} |\n",
             r.objects,
             r.npr_us,
             r.minimal_us,
-            r.npr_us / r.minimal_us
+            r.npr_us / r.minimal_us,
+            r.pair_ratio
         ));
     }
     t
@@ -454,11 +459,8 @@ pub fn spawn_row(
             eye: 0,
         };
         let mut encoder = device.create_command_encoder(&Default::default());
-        let start = Instant::now();
-        runtime
-            .render(&mut encoder, &frame, Target::View(&view))
-            .map_err(|e| RunError::User(e.diagnostics()))?;
-        let us = start.elapsed().as_secs_f64() * 1e6;
+        let (us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, &frame, Target::View(&view)));
+        rendered.map_err(|e| RunError::User(e.diagnostics()))?;
         queue.submit([encoder.finish()]);
         device
             .poll(wgpu::PollType::wait_indefinitely())

@@ -42,3 +42,4 @@ pub mod harness;
 pub mod patterns_f64;
 pub mod silhouettes_gpu;
 pub mod sliding;
+pub mod thread_cpu;

@@ -88,6 +88,9 @@ pub struct Renderer {
     /// One per eye rendered in a frame (two for stereo styles).
     frame_buffers: Vec<wgpu::Buffer>,
     style_buffer: wgpu::Buffer,
+    /// How many parities frames alternate between ([`Renderer::parities`]),
+    /// known at build: the host path asks every frame.
+    parities: usize,
     object_stride: u64,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
@@ -290,6 +293,7 @@ impl Renderer {
             linear_clamp,
             frame_buffers,
             style_buffer,
+            parities: if manifest.is_path_dependent() { 2 } else { 1 },
             object_stride,
             manifest,
             sized: None,
@@ -539,11 +543,7 @@ impl Renderer {
     /// How many parities frames alternate between: 2 for a style with
     /// history textures, else 1.
     pub fn parities(&self) -> usize {
-        if self.manifest.is_path_dependent() {
-            2
-        } else {
-            1
-        }
+        self.parities
     }
 
     /// Frames begun since the renderer was built or its textures were

@@ -160,7 +160,7 @@ impl Renderer {
             slots: (0..slots).map(|_| self.create_physical(width, height)).collect(),
             second: (0..slots).map(|_| self.create_history_copies(width, height)).collect(),
         };
-        let parities = if self.manifest.is_path_dependent() { 2 } else { 1 };
+        let parities = self.parities;
         let mut depth: BTreeMap<(u32, u32), wgpu::Texture> = BTreeMap::new();
         // Kept depths by (eye slot, keeping pass); every parity shares them,
         // as each frame clears and rewrites them before any test reads them.
