@@ -95,6 +95,20 @@ impl MeshTable {
             .ok_or(EmbedError::UnknownMesh(handle))
     }
 
+    /// Put `mesh` in `handle`'s place (a deformed copy: same topology),
+    /// keeping its extras. Not a change of the set of meshes: `revision`
+    /// stays, so the scene is not made anew.
+    pub fn replace(&mut self, handle: MeshHandle, mesh: Arc<Mesh>) -> Result<(), EmbedError> {
+        self.entry(handle)?;
+        match &mut self.slots[handle.index as usize].entry {
+            Some(entry) => {
+                entry.mesh = mesh;
+                Ok(())
+            }
+            None => Err(EmbedError::UnknownMesh(handle)),
+        }
+    }
+
     /// How many meshes are registered (not removed).
     pub fn len(&self) -> usize {
         self.slots.iter().filter(|s| s.entry.is_some()).count()

@@ -111,6 +111,19 @@ impl HostScene {
     }
 }
 
+impl HostScene {
+    /// Every object of `handle` draws `mesh` from now on (a deformed copy
+    /// of its mesh, `StyleRuntime::update_mesh`): the scene's structure is
+    /// the same, and the renderer writes the new vertices in place.
+    pub fn replace_mesh(&mut self, handle: MeshHandle, mesh: &std::sync::Arc<crate::scene::Mesh>) {
+        for (object, shape) in self.scene.objects.iter_mut().zip(&self.shapes) {
+            if shape.mesh == handle {
+                object.mesh = mesh.clone();
+            }
+        }
+    }
+}
+
 /// `camera` as `from`. A host's camera is mostly the same as the last
 /// frame's, and `Camera`'s (derived) `clone_from` allocates its key list
 /// anew: compared first, cloned only when it changed.
