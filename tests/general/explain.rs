@@ -25,6 +25,8 @@ const NOT_RUNNABLE: &[(&str, &str)] = &[
     ("E0601", "fixed"),
     ("E0602", "wrong"),
     ("E0602", "fixed"),
+    ("E0603", "wrong"),
+    ("E0603", "fixed"),
 ];
 
 fn npr(dir: &Path, args: &[&str]) -> Command {
