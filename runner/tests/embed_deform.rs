@@ -292,6 +292,14 @@ fn write_failure(name: &str, hosted: &TargetImage, reference: &TargetImage) -> P
 /// Every frame equals its reference byte for byte, and the images move
 /// (a deformation the frames did not show would prove nothing).
 fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
+    assert_frames_equal(frames, name);
+    let last = &frames.last().expect("frames").1;
+    let changed = frames[0].1.bytes.chunks(4).zip(last.bytes.chunks(4)).filter(|(a, b)| a != b).count();
+    assert!(changed > 50, "{name}: the deformation barely shows ({changed} pixels changed)");
+}
+
+/// Every frame equals its reference byte for byte.
+fn assert_frames_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
     let mut failures = Vec::new();
     for (k, (hosted, reference)) in frames.iter().enumerate() {
         if hosted.bytes != reference.bytes {
@@ -315,9 +323,6 @@ fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
         "{name}: the deformed mesh's frames differ from the reference:\n{}",
         failures.join("\n")
     );
-    let last = &frames.last().expect("frames").1;
-    let changed = frames[0].1.bytes.chunks(4).zip(last.bytes.chunks(4)).filter(|(a, b)| a != b).count();
-    assert!(changed > 50, "{name}: the deformation barely shows ({changed} pixels changed)");
 }
 
 /// A style with history (`previous(...)`): the deformed frames go on from
@@ -510,4 +515,124 @@ fn frames_after_update_mesh_create_no_gpu_object() {
         assert_eq!(after, first, "{style}: deformed frames created GPU objects: {first:?} → {after:?}");
         assert_no_rebuild(&runtime, style);
     }
+}
+
+/// A mesh whose vertices change every frame is a new content for a
+/// `lines` pass's cache each frame: the edge meshes no eye draws any more
+/// are dropped, so the cache stays bounded (it grew by one per frame).
+#[test]
+fn a_deforming_mesh_does_not_pile_up_edge_meshes() {
+    use runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
+    use runner::lines::strip::LineStyle;
+    let rest = primitives::sphere(0.8, 16, 8);
+    let mut cache = LinesCache::default();
+    let style = LineStyle {
+        width_px: 2.0,
+        amplitude_px: 0.0,
+        wavelength_px: 16.0,
+        phase: 0.0,
+        taper: 0.0,
+    };
+    let selection = EdgeSelection {
+        silhouettes: true,
+        crease_deg: Some(40.0),
+    };
+    let view_proj = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO)
+        .pose(0.0)
+        .projection(1.0)
+        .as_dmat4()
+        * Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO).pose(0.0).view(0).as_dmat4();
+    for frame in 0..60 {
+        let mut mesh = rest.clone();
+        for p in &mut mesh.positions {
+            p[0] *= 1.0 + 0.01 * frame as f32;
+        }
+        let objects = [LineObject {
+            mesh: &mesh,
+            model: glam::DMat4::IDENTITY,
+        }];
+        cache.strips(
+            0,
+            &objects,
+            glam::DVec3::new(0.0, 0.0, 4.0),
+            view_proj,
+            glam::DVec2::new(64.0, 64.0),
+            &style,
+            selection,
+        );
+    }
+    assert_eq!(cache.mesh_builds, 60, "each deformed mesh is a new edge mesh");
+    assert!(
+        cache.edge_meshes() <= 10,
+        "the cache kept {} edge meshes of one deforming mesh",
+        cache.edge_meshes()
+    );
+}
+
+/// `Renderer` (what `npr render` and the runtime drive) takes an object's
+/// deformed copy of its mesh in place, and refuses (E0405, the renderer
+/// left as it was) one that does not fit its buffers or objects sharing
+/// one mesh's buffers given different meshes.
+#[test]
+fn the_renderer_refuses_a_mesh_that_does_not_fit() {
+    let program = compile("toon.npr");
+    let rest = Arc::new(primitives::sphere(0.6, 16, 8));
+    let mut scene = Scene::empty();
+    scene.camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO);
+    let left = Mat4::from_translation(Vec3::new(-0.7, 0.0, 0.0));
+    let right = Mat4::from_translation(Vec3::new(0.7, 0.0, 0.0));
+    scene.objects = vec![
+        object("left", rest.clone(), left, &[], None),
+        object("right", rest.clone(), right, &[], None),
+    ];
+    let mut renderer = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    renderer.render(&scene, &spec((0, 0.0))).expect("frame 0");
+    let still = renderer.read_output().expect("output");
+
+    let squashed = Arc::new(Mesh::from_parts(
+        squash(&rest.positions, 3),
+        None,
+        rest.uvs.clone(),
+        None,
+        rest.indices.clone(),
+        "squashed".into(),
+    ));
+    let refused = |renderer: &mut Renderer, scene: &Scene, what: &str| {
+        let e = renderer.render(scene, &spec((1, 0.0))).expect_err(what);
+        assert_eq!(e.diagnostics()[0].code, "E0405", "{what}: {e:?}");
+    };
+    // One of two objects sharing the sphere's buffers: the other would
+    // draw the squashed vertices too.
+    let mut apart = scene.clone();
+    apart.objects[0].mesh = squashed.clone();
+    refused(&mut renderer, &apart, "objects of one mesh given different meshes");
+    // Another vertex count.
+    let mut other = scene.clone();
+    let finer = Arc::new(primitives::sphere(0.6, 24, 12));
+    other.objects[0].mesh = finer.clone();
+    other.objects[1].mesh = finer;
+    refused(&mut renderer, &other, "another vertex count");
+    // Other triangles.
+    let mut flipped = (*squashed).clone();
+    flipped.indices.swap(0, 1);
+    let flipped = Arc::new(flipped);
+    let mut turned = scene.clone();
+    turned.objects[0].mesh = flipped.clone();
+    turned.objects[1].mesh = flipped;
+    refused(&mut renderer, &turned, "other triangles");
+    // Nothing changed: the still sphere renders as before.
+    renderer.render(&scene, &spec((0, 0.0))).expect("the still sphere");
+    assert_eq!(renderer.read_output().expect("output").bytes, still.bytes, "a refused mesh changed the renderer");
+
+    // Both objects given the squashed copy: written in place, as a renderer
+    // built with it draws.
+    let mut deformed = scene.clone();
+    deformed.objects[0].mesh = squashed.clone();
+    deformed.objects[1].mesh = squashed;
+    renderer.render(&deformed, &spec((0, 0.0))).expect("the deformed copy");
+    let mut fresh = Renderer::new(&gpu().device, &gpu().queue, &program, &deformed).expect("renderer");
+    fresh.render(&deformed, &spec((0, 0.0))).expect("fresh");
+    let (hosted, reference) = (renderer.read_output().expect("output"), fresh.read_output().expect("output"));
+    assert_ne!(hosted.bytes, still.bytes, "the squash does not show");
+    assert_frames_equal(&[(hosted, reference)], "renderer_squash");
 }

@@ -77,6 +77,13 @@ pub struct LinesCache {
     pub mesh_builds: u64,
 }
 
+impl LinesCache {
+    /// How many edge meshes the cache holds now (bounded: see `strips`).
+    pub fn edge_meshes(&self) -> usize {
+        self.meshes.len()
+    }
+}
+
 fn mesh_hash(mesh: &Mesh) -> blake3::Hash {
     let mut hasher = blake3::Hasher::new();
     hasher.update(bytemuck::cast_slice(&mesh.positions));
