@@ -91,7 +91,13 @@ fn object(name: &str, mesh: Arc<Mesh>, model: Mat4, tags: &[&str], time_varying:
 }
 
 /// Frame `k` of the runtime presented into `texture`, submitted.
-fn render(runtime: &mut StyleRuntime, scene: &Scene, objects: &[Instance], (k, time_s): (usize, f64), texture: &wgpu::Texture) {
+fn render(
+    runtime: &mut StyleRuntime,
+    scene: &Scene,
+    objects: &[Instance],
+    (k, time_s): (usize, f64),
+    texture: &wgpu::Texture,
+) {
     let lights = Lights {
         key: scene.light,
         more: scene.more_lights,
@@ -106,14 +112,24 @@ fn render(runtime: &mut StyleRuntime, scene: &Scene, objects: &[Instance], (k, t
     };
     let mut encoder = gpu().device.create_command_encoder(&Default::default());
     runtime
-        .render(&mut encoder, &frame, Target::View(&texture.create_view(&Default::default())))
+        .render(
+            &mut encoder,
+            &frame,
+            Target::View(&texture.create_view(&Default::default())),
+        )
         .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
     gpu().queue.submit([encoder.finish()]);
 }
 
 /// [`render`], checking that a frame after the first creates no GPU
 /// object, and the host's texture read back.
-fn present(runtime: &mut StyleRuntime, scene: &Scene, objects: &[Instance], (k, time_s): (usize, f64), texture: &wgpu::Texture) -> TargetImage {
+fn present(
+    runtime: &mut StyleRuntime,
+    scene: &Scene,
+    objects: &[Instance],
+    (k, time_s): (usize, f64),
+    texture: &wgpu::Texture,
+) -> TargetImage {
     let before = created_on_this_thread();
     render(runtime, scene, objects, (k, time_s), texture);
     let after = created_on_this_thread();
@@ -294,8 +310,17 @@ fn write_failure(name: &str, hosted: &TargetImage, reference: &TargetImage) -> P
 fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
     assert_frames_equal(frames, name);
     let last = &frames.last().expect("frames").1;
-    let changed = frames[0].1.bytes.chunks(4).zip(last.bytes.chunks(4)).filter(|(a, b)| a != b).count();
-    assert!(changed > 50, "{name}: the deformation barely shows ({changed} pixels changed)");
+    let changed = frames[0]
+        .1
+        .bytes
+        .chunks(4)
+        .zip(last.bytes.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 50,
+        "{name}: the deformation barely shows ({changed} pixels changed)"
+    );
 }
 
 /// Every frame equals its reference byte for byte.
@@ -303,7 +328,12 @@ fn assert_frames_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
     let mut failures = Vec::new();
     for (k, (hosted, reference)) in frames.iter().enumerate() {
         if hosted.bytes != reference.bytes {
-            let max = hosted.bytes.iter().zip(&reference.bytes).map(|(a, b)| a.abs_diff(*b)).max();
+            let max = hosted
+                .bytes
+                .iter()
+                .zip(&reference.bytes)
+                .map(|(a, b)| a.abs_diff(*b))
+                .max();
             let pixels = hosted
                 .bytes
                 .chunks(4)
@@ -477,11 +507,16 @@ fn bad_updates_are_coded_errors_that_change_nothing() {
     // A good update is taken, with normals and tangents made from it.
     let bare_before = runtime.mesh(bare).expect("bare").clone();
     let stretched: Vec<[f32; 3]> = positions.iter().map(|p| [p[0] * 2.0, p[1], p[2]]).collect();
-    runtime.update_mesh(bare, Deformed::positions(&stretched)).expect("a good update");
+    runtime
+        .update_mesh(bare, Deformed::positions(&stretched))
+        .expect("a good update");
     let after = runtime.mesh(bare).expect("bare");
     assert_eq!(after.positions, stretched);
     assert_eq!(after.indices, bare_before.indices);
-    assert_ne!(after.normals, bare_before.normals, "the normals follow the new positions");
+    assert_ne!(
+        after.normals, bare_before.normals,
+        "the normals follow the new positions"
+    );
 }
 
 /// Frames after `update_mesh` create no GPU object (buffer, texture, bind
@@ -490,7 +525,13 @@ fn bad_updates_are_coded_errors_that_change_nothing() {
 /// with two instances of the deformed mesh and a still one.
 #[test]
 fn frames_after_update_mesh_create_no_gpu_object() {
-    for style in ["toon.npr", "object_centroids.npr", "wavy_lines.npr", "afterimage.npr", "age_of_sail.npr"] {
+    for style in [
+        "toon.npr",
+        "object_centroids.npr",
+        "wavy_lines.npr",
+        "afterimage.npr",
+        "age_of_sail.npr",
+    ] {
         let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile(style)).expect("runtime");
         let rest = primitives::sphere(0.6, 24, 12);
         let ball: MeshHandle = runtime.add_mesh(rest.clone());
@@ -507,12 +548,17 @@ fn frames_after_update_mesh_create_no_gpu_object() {
         let first = created_on_this_thread();
         for k in 1..TIMES.len() {
             let positions = squash(&rest.positions, k);
-            runtime.update_mesh(ball, Deformed::positions(&positions)).expect("update");
+            runtime
+                .update_mesh(ball, Deformed::positions(&positions))
+                .expect("update");
             render(&mut runtime, &scene, &objects, (k, TIMES[k]), &texture);
         }
         gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         let after = created_on_this_thread();
-        assert_eq!(after, first, "{style}: deformed frames created GPU objects: {first:?} → {after:?}");
+        assert_eq!(
+            after, first,
+            "{style}: deformed frames created GPU objects: {first:?} → {after:?}"
+        );
         assert_no_rebuild(&runtime, style);
     }
 }
@@ -541,7 +587,10 @@ fn a_deforming_mesh_does_not_pile_up_edge_meshes() {
         .pose(0.0)
         .projection(1.0)
         .as_dmat4()
-        * Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO).pose(0.0).view(0).as_dmat4();
+        * Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO)
+            .pose(0.0)
+            .view(0)
+            .as_dmat4();
     for frame in 0..60 {
         let mut mesh = rest.clone();
         for p in &mut mesh.positions {
@@ -622,7 +671,11 @@ fn the_renderer_refuses_a_mesh_that_does_not_fit() {
     refused(&mut renderer, &turned, "other triangles");
     // Nothing changed: the still sphere renders as before.
     renderer.render(&scene, &spec((0, 0.0))).expect("the still sphere");
-    assert_eq!(renderer.read_output().expect("output").bytes, still.bytes, "a refused mesh changed the renderer");
+    assert_eq!(
+        renderer.read_output().expect("output").bytes,
+        still.bytes,
+        "a refused mesh changed the renderer"
+    );
 
     // Both objects given the squashed copy: written in place, as a renderer
     // built with it draws.
@@ -632,7 +685,10 @@ fn the_renderer_refuses_a_mesh_that_does_not_fit() {
     renderer.render(&deformed, &spec((0, 0.0))).expect("the deformed copy");
     let mut fresh = Renderer::new(&gpu().device, &gpu().queue, &program, &deformed).expect("renderer");
     fresh.render(&deformed, &spec((0, 0.0))).expect("fresh");
-    let (hosted, reference) = (renderer.read_output().expect("output"), fresh.read_output().expect("output"));
+    let (hosted, reference) = (
+        renderer.read_output().expect("output"),
+        fresh.read_output().expect("output"),
+    );
     assert_ne!(hosted.bytes, still.bytes, "the squash does not show");
     assert_frames_equal(&[(hosted, reference)], "renderer_squash");
 }

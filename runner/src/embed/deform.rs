@@ -92,7 +92,10 @@ pub(super) fn deformed_mesh(handle: MeshHandle, entry: &Entry, vertices: &Deform
     ];
     for (what, len) in lengths {
         if let Some(len) = len.filter(|&len| len != count) {
-            return Err(refuse(format!("{len} {what} for {name}, which has {count} vertices"), help));
+            return Err(refuse(
+                format!("{len} {what} for {name}, which has {count} vertices"),
+                help,
+            ));
         }
     }
     if vertices.tangents.is_some() && mesh.tangents.is_none() {

@@ -343,5 +343,7 @@ fn shared_apart(first: &str, other: &str) -> RunError {
         diag::codes::BAD_SCENE,
         format!("objects `{first}` and `{other}` drew one mesh and were given different ones"),
     )
-    .with_help("give every object of a deformed mesh the same new mesh, or other meshes with Renderer::set_scene")])
+    .with_help(
+        "give every object of a deformed mesh the same new mesh, or other meshes with Renderer::set_scene",
+    )])
 }
