@@ -191,9 +191,9 @@ fn ocean_frames(style: &str) -> Vec<(TargetImage, TargetImage)> {
     let objects = [Instance::new(water, Mat4::IDENTITY), Instance::new(water, far)];
     let texture = host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[]);
     let mut frames = Vec::new();
-    for k in 0..TIMES.len() {
+    for (k, &time_s) in TIMES.iter().enumerate() {
         if k > 0 {
-            let waves = sea.build_at(TIMES[k]);
+            let waves = sea.build_at(time_s);
             let tangents = waves.tangents.as_deref().expect("the ocean has tangents");
             runtime
                 .update_mesh(
@@ -204,18 +204,18 @@ fn ocean_frames(style: &str) -> Vec<(TargetImage, TargetImage)> {
                 )
                 .unwrap_or_else(|e| panic!("update at frame {k}: {:?}", e.diagnostics()));
         }
-        let hosted = present(&mut runtime, &scene, &objects, (k, TIMES[k]), &texture);
-        renderer.render(&scene, &spec((k, TIMES[k]))).expect("render");
+        let hosted = present(&mut runtime, &scene, &objects, (k, time_s), &texture);
+        renderer.render(&scene, &spec((k, time_s))).expect("render");
         frames.push((hosted, renderer.read_output().expect("read back the output")));
     }
     assert_no_rebuild(&runtime, style);
     frames
 }
 
-/// The host's deformation of the sphere at frame `k`: squashed, bulging
+/// The host's deformation of the sphere at `time_s`: squashed, bulging
 /// and sheared, so its bounds (and the light camera fitted to them) change.
-fn squash(rest: &[[f32; 3]], k: usize) -> Vec<[f32; 3]> {
-    let t = TIMES[k] as f32;
+fn squash(rest: &[[f32; 3]], time_s: f64) -> Vec<[f32; 3]> {
+    let t = time_s as f32;
     rest.iter()
         .map(|&[x, y, z]| {
             let bulge = 1.0 + 0.3 * (3.0 * y + 2.0 * t).sin() * (t * 0.8).min(1.0);
@@ -247,8 +247,8 @@ fn squashed_frames(style: &str, frozen_clock: bool) -> Vec<(TargetImage, TargetI
     ];
     let texture = host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[]);
     let mut frames = Vec::new();
-    for k in 0..TIMES.len() {
-        let positions = squash(&rest.positions, k);
+    for (k, &time_s) in TIMES.iter().enumerate() {
+        let positions = squash(&rest.positions, time_s);
         if k > 0 {
             runtime
                 .update_mesh(ball, Deformed::positions(&positions))
@@ -270,7 +270,7 @@ fn squashed_frames(style: &str, frozen_clock: bool) -> Vec<(TargetImage, TargetI
             object("ball", Arc::new(deformed), lifted, &["caster"], None),
             object("ground", ground.clone(), Mat4::IDENTITY, &[], None),
         ];
-        let at = (k, if frozen_clock { 0.0 } else { TIMES[k] });
+        let at = (k, if frozen_clock { 0.0 } else { time_s });
         let hosted = present(&mut runtime, &scene, &objects, at, &texture);
         let mut fresh = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
         fresh.render(&scene, &spec(at)).expect("render");
@@ -546,12 +546,12 @@ fn frames_after_update_mesh_create_no_gpu_object() {
         let texture = host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[]);
         render(&mut runtime, &scene, &objects, (0, 0.0), &texture);
         let first = created_on_this_thread();
-        for k in 1..TIMES.len() {
-            let positions = squash(&rest.positions, k);
+        for (k, &time_s) in TIMES.iter().enumerate().skip(1) {
+            let positions = squash(&rest.positions, time_s);
             runtime
                 .update_mesh(ball, Deformed::positions(&positions))
                 .expect("update");
-            render(&mut runtime, &scene, &objects, (k, TIMES[k]), &texture);
+            render(&mut runtime, &scene, &objects, (k, time_s), &texture);
         }
         gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         let after = created_on_this_thread();
@@ -639,7 +639,7 @@ fn the_renderer_refuses_a_mesh_that_does_not_fit() {
     let still = renderer.read_output().expect("output");
 
     let squashed = Arc::new(Mesh::from_parts(
-        squash(&rest.positions, 3),
+        squash(&rest.positions, TIMES[3]),
         None,
         rest.uvs.clone(),
         None,
