@@ -692,3 +692,51 @@ fn the_renderer_refuses_a_mesh_that_does_not_fit() {
     assert_ne!(hosted.bytes, still.bytes, "the squash does not show");
     assert_frames_equal(&[(hosted, reference)], "renderer_squash");
 }
+
+/// Two handles of one shared mesh (`add_shared_mesh` of one `Arc` twice)
+/// are one mesh, drawn from the same GPU buffers: deforming one deforms
+/// both, as a renderer given the deformed mesh for both draws.
+#[test]
+fn handles_of_one_shared_mesh_deform_together() {
+    let program = compile("toon.npr");
+    let rest = Arc::new(primitives::sphere(0.6, 16, 8));
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program.clone()).expect("runtime");
+    let first = runtime.add_shared_mesh(rest.clone());
+    let second = runtime.add_shared_mesh(rest.clone());
+    let left = Mat4::from_translation(Vec3::new(-0.7, 0.0, 0.0));
+    let right = Mat4::from_translation(Vec3::new(0.7, 0.0, 0.0));
+    let objects = [Instance::new(first, left), Instance::new(second, right)];
+    let mut scene = Scene::empty();
+    scene.camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO);
+    let texture = host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[]);
+    present(&mut runtime, &scene, &objects, (0, 0.0), &texture);
+    let positions = squash(&rest.positions, TIMES[3]);
+    runtime
+        .update_mesh(first, Deformed::positions(&positions))
+        .expect("update");
+    assert!(
+        Arc::ptr_eq(
+            runtime.mesh(first).expect("first"),
+            runtime.mesh(second).expect("second")
+        ),
+        "the two handles of one mesh were deformed apart"
+    );
+    assert_eq!(runtime.mesh(second).expect("second").positions, positions);
+    let hosted = present(&mut runtime, &scene, &objects, (1, 0.0), &texture);
+    assert_no_rebuild(&runtime, "shared mesh");
+    let squashed = Arc::new(Mesh::from_parts(
+        positions,
+        None,
+        rest.uvs.clone(),
+        None,
+        rest.indices.clone(),
+        "squashed".into(),
+    ));
+    scene.objects = vec![
+        object("left", squashed.clone(), left, &[], None),
+        object("right", squashed, right, &[], None),
+    ];
+    let mut fresh = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    fresh.render(&scene, &spec((1, 0.0))).expect("render");
+    assert_frames_equal(&[(hosted, fresh.read_output().expect("output"))], "shared_squash");
+}

@@ -95,17 +95,15 @@ impl MeshTable {
             .ok_or(EmbedError::UnknownMesh(handle))
     }
 
-    /// Put `mesh` in `handle`'s place (a deformed copy: same topology),
-    /// keeping its extras. Not a change of the set of meshes: `revision`
+    /// Put `new` in the place of `old` (a deformed copy: same topology) in
+    /// every entry holding it (handles of one shared mesh are one mesh),
+    /// keeping their extras. Not a change of the set of meshes: `revision`
     /// stays, so the scene is not made anew.
-    pub fn replace(&mut self, handle: MeshHandle, mesh: Arc<Mesh>) -> Result<(), EmbedError> {
-        self.entry(handle)?;
-        match &mut self.slots[handle.index as usize].entry {
-            Some(entry) => {
-                entry.mesh = mesh;
-                Ok(())
+    pub fn replace(&mut self, old: &Arc<Mesh>, new: &Arc<Mesh>) {
+        for entry in self.slots.iter_mut().filter_map(|s| s.entry.as_mut()) {
+            if Arc::ptr_eq(&entry.mesh, old) {
+                entry.mesh = new.clone();
             }
-            None => Err(EmbedError::UnknownMesh(handle)),
         }
     }
 

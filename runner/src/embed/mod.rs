@@ -343,7 +343,9 @@ impl StyleRuntime {
     /// mesh read without them; given ones are written as given. The CPU
     /// keeps a copy of the deformed mesh (the lines and the light bounds
     /// read it), made anew at each call. Several calls before a frame: the
-    /// last one is drawn.
+    /// last one is drawn. Handles of one shared mesh
+    /// ([`StyleRuntime::add_shared_mesh`] of one `Arc` twice) are one mesh,
+    /// drawn from the same GPU buffers: deforming one deforms them all.
     ///
     /// Refused, leaving the mesh as it was: a removed handle (E0601);
     /// another number of positions, normals or tangents than the mesh has
@@ -377,9 +379,12 @@ impl StyleRuntime {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn update_mesh(&mut self, handle: MeshHandle, vertices: Deformed) -> Result<(), EmbedError> {
-        let mesh = Arc::new(deform::deformed_mesh(handle, self.meshes.entry(handle)?, &vertices)?);
-        self.scene.replace_mesh(handle, &mesh);
-        self.meshes.replace(handle, mesh)
+        let entry = self.meshes.entry(handle)?;
+        let deformed = Arc::new(deform::deformed_mesh(handle, entry, &vertices)?);
+        let old = entry.mesh.clone();
+        self.scene.replace_mesh(&old, &deformed);
+        self.meshes.replace(&old, &deformed);
+        Ok(())
     }
 
     /// How many meshes are registered now (added and not removed): a host

@@ -5,8 +5,9 @@
 
 use super::meshes::MeshTable;
 use super::{EmbedError, Frame, Instance, MeshHandle};
-use crate::scene::{Camera, Object, Scene, TextureBinding};
+use crate::scene::{Camera, Mesh, Object, Scene, TextureBinding};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// What the renderer's GPU resources depend on, per object.
 #[derive(Debug, Clone, PartialEq)]
@@ -112,13 +113,13 @@ impl HostScene {
 }
 
 impl HostScene {
-    /// Every object of `handle` draws `mesh` from now on (a deformed copy
-    /// of its mesh, `StyleRuntime::update_mesh`): the scene's structure is
-    /// the same, and the renderer writes the new vertices in place.
-    pub fn replace_mesh(&mut self, handle: MeshHandle, mesh: &std::sync::Arc<crate::scene::Mesh>) {
-        for (object, shape) in self.scene.objects.iter_mut().zip(&self.shapes) {
-            if shape.mesh == handle {
-                object.mesh = mesh.clone();
+    /// Every object drawing `old` draws `new` from now on (a deformed copy
+    /// of it, `StyleRuntime::update_mesh`): the scene's structure is the
+    /// same, and the renderer writes the new vertices in place.
+    pub fn replace_mesh(&mut self, old: &Arc<Mesh>, new: &Arc<Mesh>) {
+        for object in &mut self.scene.objects {
+            if Arc::ptr_eq(&object.mesh, old) {
+                object.mesh = new.clone();
             }
         }
     }

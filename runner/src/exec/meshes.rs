@@ -230,11 +230,12 @@ pub(super) fn update_time_varying(
 /// objects sharing buffers (instances of one still mesh) is written once.
 /// Nothing is written, and the error says why, when the new mesh does not
 /// fit the buffers (another vertex count, other indices, an attribute
-/// added or dropped), when the object is a time-varying primitive or a
-/// blended patch (whose vertices are derived from its mesh), or when
-/// objects sharing buffers were given different meshes: each of those is
-/// a new scene (`Renderer::set_scene`). A frame without a deformed mesh
-/// costs one pointer comparison per object.
+/// added or dropped) or when objects sharing buffers were given different
+/// meshes: each of those is a new scene (`Renderer::set_scene`). A
+/// time-varying primitive's or a blended patch's mesh is not read (their
+/// vertices are made from the primitive and the patch division, as
+/// before). A frame without a deformed mesh costs one pointer comparison
+/// per object.
 pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene: &Scene) -> Result<(), RunError> {
     let deformed = |i: usize| !Arc::ptr_eq(&meshes[i].source, &scene.objects[i].mesh);
     if !(0..meshes.len().min(scene.objects.len())).any(deformed) {
@@ -244,7 +245,9 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     // the first deformed object's index and its new mesh.
     let mut moves: Vec<(*const Mesh, usize)> = Vec::new();
     for (i, (object, gpu)) in scene.objects.iter().zip(meshes.iter()).enumerate() {
-        if Arc::ptr_eq(&gpu.source, &object.mesh) {
+        // An animated primitive's and a blended patch's vertices are made
+        // from the primitive and the division, not read from their mesh.
+        if Arc::ptr_eq(&gpu.source, &object.mesh) || !shares_buffers(object) {
             continue;
         }
         fits(object, gpu)?;
@@ -312,11 +315,6 @@ fn fits(object: &crate::scene::Object, gpu: &GpuMesh) -> Result<(), RunError> {
              indices, same attributes); give other meshes with Renderer::set_scene",
         )])
     };
-    if object.time_varying.is_some() || gpu.blend.is_some() || object.blend.is_some() {
-        return Err(refuse(
-            "it is an animated primitive or a blended patch, whose vertices are derived from its mesh".into(),
-        ));
-    }
     let (new, old) = (&object.mesh, &gpu.source);
     if new.vertex_count() != old.vertex_count() {
         return Err(refuse(format!(
