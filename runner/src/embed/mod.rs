@@ -334,7 +334,8 @@ impl StyleRuntime {
     /// pipeline is made) and the history goes on (`previous(...)`, compute
     /// passes' state), as an animated primitive's vertices do. Everything
     /// made from the vertices follows: every pass's vertex buffers, the
-    /// copies compute passes over vertices read, the edges and strips of
+    /// copies compute passes over vertices read (a `samples` pass's samples
+    /// stay on their triangles, so they ride on the surface), the edges and strips of
     /// `lines` passes, and the bounds the light camera of shadow passes is
     /// fitted to.
     ///
