@@ -1,7 +1,8 @@
 //! A host application that drives an npr style itself: a winit window and
 //! a wgpu surface of its own, a style compiled with the `compiler` crate, a
 //! scene built in code (no TOML, no files but the style), an object and the
-//! camera animated, and npr's output drawn into the swapchain image inside
+//! camera animated, the object's own mesh deformed (it squashes as it lands:
+//! `StyleRuntime::update_mesh`), and npr's output drawn into the swapchain image inside
 //! the host's own command encoder (`runner::embed`).
 //!
 //! `cargo run --example embed [-- STYLE.npr] [--frames N] [--headless]`:
@@ -9,7 +10,7 @@
 //! output; `--headless` renders into an offscreen texture, no window
 //! (tests/general/embed_example.rs runs both, the window under Xvfb).
 
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use runner::embed::{Deformed, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
 use std::sync::Arc;
 use winit::application::ApplicationHandler;
@@ -23,6 +24,8 @@ struct Host {
     queue: wgpu::Queue,
     runtime: StyleRuntime,
     ball: MeshHandle,
+    /// The ball's vertices at rest, which the host squashes each frame.
+    rest: Vec<[f32; 3]>,
     ground: MeshHandle,
     frame: u32,
     frames: Option<u32>,
@@ -50,13 +53,16 @@ impl Host {
             ..Default::default()
         }))?;
         let mut runtime = StyleRuntime::new(&device, &queue, program).map_err(|e| format!("{:?}", e.diagnostics()))?;
-        let ball = runtime.add_mesh(primitives::sphere(0.5, 48, 24));
+        let sphere = primitives::sphere(0.5, 48, 24);
+        let rest = sphere.positions.clone();
+        let ball = runtime.add_mesh(sphere);
         let ground = runtime.add_mesh(primitives::plane(6.0, 1));
         Ok(Host {
             device,
             queue,
             runtime,
             ball,
+            rest,
             ground,
             frame: 0,
             frames: None,
@@ -66,6 +72,20 @@ impl Host {
     /// One frame into `view`: the ball bounces, the camera orbits.
     fn render(&mut self, view: &wgpu::TextureView) -> Result<(), Box<dyn std::error::Error>> {
         let t = self.frame as f32 / 60.0;
+        let height = (t * 3.0).sin().abs();
+        // The host's own deformation: squashed near the ground, its volume
+        // kept. New vertices, same triangles: written over the mesh's GPU
+        // buffers in place, no scene change (the runtime makes the normals).
+        let squash = 1.0 - 0.3 * (1.0 - height).powi(4);
+        let widen = 1.0 / squash.sqrt();
+        let squashed: Vec<[f32; 3]> = self
+            .rest
+            .iter()
+            .map(|p| [p[0] * widen, p[1] * squash, p[2] * widen])
+            .collect();
+        self.runtime
+            .update_mesh(self.ball, Deformed::positions(&squashed))
+            .map_err(|e| format!("{:?}", e.diagnostics()))?;
         let objects = [
             Instance::new(
                 self.ground,
@@ -73,7 +93,8 @@ impl Host {
             ),
             Instance::new(
                 self.ball,
-                glam::Mat4::from_translation(glam::Vec3::new(0.0, (t * 3.0).sin().abs(), 0.0)),
+                // Its bottom stays where the round ball's would be.
+                glam::Mat4::from_translation(glam::Vec3::new(0.0, height - 0.5 * (1.0 - squash), 0.0)),
             ),
         ];
         let eye = glam::Vec3::new(3.0 * (t * 0.5).sin(), 1.5, 3.0 * (t * 0.5).cos());

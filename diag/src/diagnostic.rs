@@ -351,6 +351,11 @@ pub mod codes {
     /// usage, not one 2D layer and mip, a size outside the limits, or
     /// views that do not fit the style's eyes.
     pub const BAD_RENDER_TARGET: &str = "E0602";
+    /// A host application gave `StyleRuntime::update_mesh` vertices that do
+    /// not fit the mesh: another vertex count, non-finite numbers, tangents
+    /// for a mesh without UVs, or a mesh whose vertices the runtime derives
+    /// itself (an animated primitive, a patch of a patched surface).
+    pub const BAD_MESH_UPDATE: &str = "E0603";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -433,5 +438,6 @@ pub mod codes {
         (BAD_CHECKPOINT, "checkpoint truncated, corrupted or not one"),
         (UNKNOWN_MESH, "a host used a mesh handle that was removed"),
         (BAD_RENDER_TARGET, "a host's texture view the style cannot render into"),
+        (BAD_MESH_UPDATE, "a host's deformed vertices do not fit the mesh"),
     ];
 }

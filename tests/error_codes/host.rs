@@ -5,7 +5,7 @@
 use super::{check, check_case, style, SIMPLE_PASS};
 use compiler::CompileOptions;
 use diag::SourceMap;
-use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
 use std::path::Path;
 use std::sync::OnceLock;
@@ -119,6 +119,19 @@ fn e0602_a_texture_view_of_the_wrong_format() {
         .render(&mut encoder, &frame, Target::SideBySide(&view))
         .expect_err("side by side of a mono style");
     check_case("E0602", "E0602_side_by_side", rendered(e));
+}
+
+#[test]
+fn e0603_deformed_vertices_that_do_not_fit_the_mesh() {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let ball = rt.add_mesh(primitives::sphere(0.5, 8, 4));
+    let positions = rt.mesh(ball).expect("the mesh").positions.clone();
+    // One vertex short: another mesh, not a deformation of this one.
+    let e = rt
+        .update_mesh(ball, Deformed::positions(&positions[1..]))
+        .expect_err("too few positions");
+    assert!(matches!(e, EmbedError::MeshUpdate(_)), "{e:?}");
+    check("E0603", rendered(e));
 }
 
 #[test]

@@ -71,4 +71,38 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0603",
+        meaning: "A host application gave `StyleRuntime::update_mesh` vertices that cannot be \
+            written over the registered mesh. A deformation (skinning on the CPU, cloth, a \
+            morph) moves the mesh's vertices and keeps its triangles: it must give one \
+            position (and, if it gives them, one normal and one tangent) per vertex of the \
+            mesh, in its order, every number finite, and tangents only for a mesh that has \
+            them (one with UVs). The handle of an animated primitive (`add_primitive`, whose \
+            vertices the runtime makes at each frame's time) or of a patch (`add_patches`, \
+            whose n-ring and blending weights are made from the whole mesh) cannot be \
+            deformed. A mesh with other vertices or triangles is another mesh: register it \
+            with `add_mesh` and draw its handle, a scene change that restarts the history.",
+        wrong: Example {
+            host_rust: Some(
+                "let ball = runtime.add_mesh(primitives::sphere(1.0, 32, 16));\n\
+                 // The host's mesh at a finer level of detail: more vertices.\n\
+                 let finer = primitives::sphere(1.0, 64, 32);\n\
+                 runtime.update_mesh(ball, Deformed::positions(&finer.positions))?; // E0603\n",
+            ),
+            not_runnable: Some("runner/tests/embed_deform.rs gives too few and too many positions, and non-finite ones"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let ball = runtime.add_mesh(primitives::sphere(1.0, 32, 16));\n\
+                 // The host's skinning: one new position per vertex of the mesh.\n\
+                 let rest = runtime.mesh(ball)?.positions.clone();\n\
+                 let squashed: Vec<[f32; 3]> = rest.iter().map(|p| [p[0], p[1] * 0.5, p[2]]).collect();\n\
+                 runtime.update_mesh(ball, Deformed::positions(&squashed))?;\n",
+            ),
+            not_runnable: Some("runner/src/embed/mod.rs's example of update_mesh deforms a registered mesh"),
+            ..EXAMPLE
+        },
+    },
 ];

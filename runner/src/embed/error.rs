@@ -22,6 +22,12 @@ pub enum EmbedError {
     /// size or usage (E0602).
     #[error("{}", .0.message)]
     Target(Box<Diagnostic>),
+    /// Vertices [`super::StyleRuntime::update_mesh`] cannot write over the
+    /// mesh: another vertex count, a non-finite number, tangents for a mesh
+    /// without UVs, or a mesh whose vertices the runtime derives itself (an
+    /// animated primitive, a patch) (E0603).
+    #[error("{}", .0.message)]
+    MeshUpdate(Box<Diagnostic>),
     /// What the runner reports: a device lacking a feature or limit the
     /// style needs (E0510), objects the style cannot draw (E0403, E0405),
     /// out of memory (E0508), a lost device (E0509), a bug (E9001).
@@ -34,7 +40,7 @@ impl EmbedError {
     pub fn code(&self) -> &'static str {
         match self {
             EmbedError::UnknownMesh(_) => codes::UNKNOWN_MESH,
-            EmbedError::Param(d) | EmbedError::Target(d) => d.code,
+            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) => d.code,
             EmbedError::Run(e) => e.diagnostics().first().map_or(codes::INTERNAL, |d| d.code),
         }
     }
@@ -49,7 +55,7 @@ impl EmbedError {
                          remove it only after the last frame that draws it",
                 )]
             }
-            EmbedError::Param(d) | EmbedError::Target(d) => vec![(**d).clone()],
+            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) => vec![(**d).clone()],
             EmbedError::Run(e) => e.diagnostics(),
         }
     }

@@ -95,6 +95,18 @@ impl MeshTable {
             .ok_or(EmbedError::UnknownMesh(handle))
     }
 
+    /// Put `new` in the place of `old` (a deformed copy: same topology) in
+    /// every entry holding it (handles of one shared mesh are one mesh),
+    /// keeping their extras. Not a change of the set of meshes: `revision`
+    /// stays, so the scene is not made anew.
+    pub fn replace(&mut self, old: &Arc<Mesh>, new: &Arc<Mesh>) {
+        for entry in self.slots.iter_mut().filter_map(|s| s.entry.as_mut()) {
+            if Arc::ptr_eq(&entry.mesh, old) {
+                entry.mesh = new.clone();
+            }
+        }
+    }
+
     /// How many meshes are registered (not removed).
     pub fn len(&self) -> usize {
         self.slots.iter().filter(|s| s.entry.is_some()).count()

@@ -12,7 +12,9 @@
 //!    [`MeshHandle`]; [`StyleRuntime::add_primitive`] a primitive's, whose
 //!    vertices follow the frame's time when it is animated, as the ocean's
 //!    are; [`StyleRuntime::add_patches`] one per patch of a mesh divided
-//!    into blended patches; [`StyleRuntime::add_scene`] a TOML scene's);
+//!    into blended patches; [`StyleRuntime::add_scene`] a TOML scene's),
+//!    and deforms its own meshes when it likes ([`StyleRuntime::update_mesh`]:
+//!    new vertices, same triangles);
 //! 3. every frame, gives a [`Frame`] (the camera, or a stereo pair; the
 //!    objects as [`Instance`]s: mesh handle, transform, tags, per-object
 //!    params; the [`Lights`]; the time) and a [`Target`] (its texture view,
@@ -40,13 +42,18 @@
 //! size's again, never the style's: no shader module, pipeline or style
 //! texture ([`Renderer::set_scene`]; the history restarts, as at a new
 //! size). A frame at a new size makes the size's. Every other frame writes
-//! uniform buffers (and an animated primitive's vertex buffers, in place)
-//! and records commands, and creates no buffer, texture, bind group or
-//! pipeline (`runner/tests/embed_allocations.rs` counts them).
+//! uniform buffers (and, in place, an animated primitive's vertex buffers
+//! and those of a mesh the host deformed since the last frame, with the
+//! copies compute passes over vertices read) and records commands, and
+//! creates no buffer, texture, bind group or pipeline
+//! (`runner/tests/embed_allocations.rs` and `embed_deform.rs` count them).
+//! A deformed mesh also costs the CPU what is made from its vertices: a
+//! `lines` pass's edges and strips, the light camera's bounds.
 //!
 //! **Mistakes are values.** A removed mesh handle (E0601), an unknown
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
-//! of the wrong format or size (E0602): every call returns an
+//! of the wrong format or size (E0602), deformed vertices that do not fit
+//! their mesh (E0603): every call returns an
 //! [`EmbedError`] with a code, and leaves the runtime as it was.
 //!
 //! - `meshes.rs`: the generational mesh table (with what a mesh draws
@@ -55,6 +62,7 @@
 //! - `objects.rs`: the host's instances as the renderer's scene;
 //! - `params.rs`: setting style parameters by name;
 //! - `patched.rs`: a host's mesh divided into blended patches;
+//! - `deform.rs`: a host's deformed vertices ([`Deformed`]), checked;
 //! - `present.rs`: target checks and the present pass;
 //! - `error.rs`: [`EmbedError`].
 //!
@@ -113,6 +121,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod deform;
 mod error;
 mod frame;
 mod meshes;
@@ -121,6 +130,7 @@ mod params;
 mod patched;
 mod present;
 
+pub use deform::Deformed;
 pub use error::EmbedError;
 pub use frame::{Frame, Instance, Lights, Target};
 pub use meshes::MeshHandle;
@@ -314,6 +324,68 @@ impl StyleRuntime {
     /// GPU buffers are freed once no frame draws it.
     pub fn remove_mesh(&mut self, handle: MeshHandle) -> Result<(), EmbedError> {
         self.meshes.remove(handle).map(|_| ())
+    }
+
+    /// Deform a registered mesh: its vertices are `vertices` from the next
+    /// frame on, for every instance of `handle` (skinning on the CPU, cloth,
+    /// a morph, a sculpting tool). Its triangles and UVs stay, so this is
+    /// not a change of the scene: the next frame writes the new vertices
+    /// over the mesh's GPU buffers in place (no buffer, bind group or
+    /// pipeline is made) and the history goes on (`previous(...)`, compute
+    /// passes' state), as an animated primitive's vertices do. Everything
+    /// made from the vertices follows: every pass's vertex buffers, the
+    /// copies compute passes over vertices read (a `samples` pass's samples
+    /// stay on their triangles, so they ride on the surface), the edges and strips of
+    /// `lines` passes, and the bounds the light camera of shadow passes is
+    /// fitted to.
+    ///
+    /// Normals and tangents left out ([`Deformed::positions`]) are made from
+    /// the new positions (smooth normals; tangents from the UVs), as for a
+    /// mesh read without them; given ones are written as given. The CPU
+    /// keeps a copy of the deformed mesh (the lines and the light bounds
+    /// read it), made anew at each call. Several calls before a frame: the
+    /// last one is drawn. Handles of one shared mesh
+    /// ([`StyleRuntime::add_shared_mesh`] of one `Arc` twice) are one mesh,
+    /// drawn from the same GPU buffers: deforming one deforms them all.
+    ///
+    /// Refused, leaving the mesh as it was: a removed handle (E0601);
+    /// another number of positions, normals or tangents than the mesh has
+    /// vertices, a number that is not finite, tangents for a mesh without
+    /// them, or an animated primitive's or a patch's handle, whose vertices
+    /// the runtime makes itself (E0603). A mesh of other vertices or
+    /// triangles is another mesh: [`StyleRuntime::add_mesh`] it and draw its
+    /// handle (a scene change, which restarts the history).
+    ///
+    /// ```
+    /// use runner::embed::{Deformed, StyleRuntime};
+    /// use runner::scene::primitives;
+    ///
+    /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
+    /// let mut sources = diag::SourceMap::new();
+    /// let compiled = compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    ///     .map_err(|e| format!("{e:?}"))?;
+    /// let gpu = runner::Gpu::headless()?;
+    /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
+    /// let ball = runtime.add_mesh(primitives::sphere(1.0, 16, 8));
+    ///
+    /// // Each frame: the host's own deformation (here a squash), then render.
+    /// let rest = runtime.mesh(ball)?.positions.clone();
+    /// let squashed: Vec<[f32; 3]> = rest.iter().map(|p| [p[0] * 1.2, p[1] * 0.7, p[2] * 1.2]).collect();
+    /// runtime.update_mesh(ball, Deformed::positions(&squashed))?;
+    /// assert_eq!(runtime.mesh(ball)?.positions, squashed);
+    ///
+    /// // Another vertex count is another mesh, not a deformation:
+    /// let e = runtime.update_mesh(ball, Deformed::positions(&squashed[1..])).unwrap_err();
+    /// assert_eq!(e.code(), "E0603");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn update_mesh(&mut self, handle: MeshHandle, vertices: Deformed) -> Result<(), EmbedError> {
+        let entry = self.meshes.entry(handle)?;
+        let deformed = Arc::new(deform::deformed_mesh(handle, entry, &vertices)?);
+        let old = entry.mesh.clone();
+        self.scene.replace_mesh(&old, &deformed);
+        self.meshes.replace(&old, &deformed);
+        Ok(())
     }
 
     /// How many meshes are registered now (added and not removed): a host

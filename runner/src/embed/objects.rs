@@ -5,8 +5,9 @@
 
 use super::meshes::MeshTable;
 use super::{EmbedError, Frame, Instance, MeshHandle};
-use crate::scene::{Camera, Object, Scene, TextureBinding};
+use crate::scene::{Camera, Mesh, Object, Scene, TextureBinding};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// What the renderer's GPU resources depend on, per object.
 #[derive(Debug, Clone, PartialEq)]
@@ -108,6 +109,19 @@ impl HostScene {
         self.scene.light = frame.lights.key;
         self.scene.more_lights = frame.lights.more;
         Ok(!same)
+    }
+}
+
+impl HostScene {
+    /// Every object drawing `old` draws `new` from now on (a deformed copy
+    /// of it, `StyleRuntime::update_mesh`): the scene's structure is the
+    /// same, and the renderer writes the new vertices in place.
+    pub fn replace_mesh(&mut self, old: &Arc<Mesh>, new: &Arc<Mesh>) {
+        for object in &mut self.scene.objects {
+            if Arc::ptr_eq(&object.mesh, old) {
+                object.mesh = new.clone();
+            }
+        }
     }
 }
 

@@ -20,6 +20,7 @@ use super::values::PassBuffers;
 use crate::gpu_count::Create;
 use crate::RunError;
 use abi::manifest::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 pub(super) struct ComputePassExec {
     name: String,
@@ -47,8 +48,22 @@ pub(super) struct ComputeScene {
     element_workgroups: u32,
     /// A pass over pixels (its element workgroups depend on the size).
     over_pixels: bool,
-    /// Copies of time-varying members' vertices: (object, attribute buffer, offset, bytes per vertex).
-    time_varying: Vec<(usize, Attribute, wgpu::Buffer, u64, u64)>,
+    /// Every member's vertices per attribute, copied again when they changed.
+    member_copies: Vec<MemberCopy>,
+}
+
+/// A member's vertices of one attribute in the pass's attribute buffer,
+/// copied again from the object's vertex buffer whenever that buffer was
+/// rewritten (`GpuMesh::vertex_revision`: a time-varying primitive at a new
+/// time, a host's deformed mesh); a still member is never copied.
+struct MemberCopy {
+    object: usize,
+    attribute: Attribute,
+    pooled: wgpu::Buffer,
+    offset: u64,
+    bytes_per_vertex: u64,
+    /// The revision the pooled vertices are of (atomic: `encode` takes `&self`).
+    copied: AtomicU64,
 }
 
 fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -256,11 +271,18 @@ impl ComputePassExec {
                 pass.name
             )));
         }
-        let mut time_varying = Vec::new();
-        for (o, first) in &buffers.time_varying {
+        let mut member_copies = Vec::new();
+        for &(object, first, revision) in &buffers.member_vertices {
             for (a, pooled) in &buffers.attributes {
-                let bytes = attribute_format(*a).1;
-                time_varying.push((*o, *a, pooled.clone(), first * bytes, bytes));
+                let bytes_per_vertex = attribute_format(*a).1;
+                member_copies.push(MemberCopy {
+                    object,
+                    attribute: *a,
+                    pooled: pooled.clone(),
+                    offset: first * bytes_per_vertex,
+                    bytes_per_vertex,
+                    copied: AtomicU64::new(revision),
+                });
             }
         }
         Ok(ComputeScene {
@@ -269,7 +291,7 @@ impl ComputePassExec {
             member_count: buffers.member_count,
             element_workgroups: buffers.element_workgroups,
             over_pixels: buffers.pixels_of.is_some(),
-            time_varying,
+            member_copies,
         })
     }
 
@@ -285,7 +307,7 @@ impl ComputePassExec {
         ctx: &EncodeContext,
         timestamps: Option<&Timestamps>,
     ) {
-        self.copy_time_varying(encoder, ctx.meshes);
+        self.copy_changed_members(encoder, ctx.meshes);
         let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(&self.name),
             timestamp_writes: timestamps.map(Timestamps::compute_pass),
@@ -331,13 +353,20 @@ impl ComputePassExec {
         }
     }
 
-    /// Time-varying members' vertices were rewritten in their vertex
-    /// buffers this frame: copy them into the pass's attribute buffers.
-    fn copy_time_varying(&self, encoder: &mut wgpu::CommandEncoder, meshes: &[GpuMesh]) {
-        for (o, a, pooled, offset, bytes) in &self.scene.time_varying {
-            if let Some(source) = meshes[*o].buffers.get(a) {
-                encoder.copy_buffer_to_buffer(source, 0, pooled, *offset, meshes[*o].vertex_count as u64 * bytes);
+    /// Members whose vertex buffers were rewritten since the pass last
+    /// copied them (a time-varying primitive, a deformed mesh): copy them
+    /// into the pass's attribute buffers.
+    fn copy_changed_members(&self, encoder: &mut wgpu::CommandEncoder, meshes: &[GpuMesh]) {
+        for m in &self.scene.member_copies {
+            let Some(mesh) = meshes.get(m.object) else { continue };
+            if m.copied.load(Ordering::Relaxed) == mesh.vertex_revision {
+                continue;
             }
+            if let Some(source) = mesh.buffers.get(&m.attribute) {
+                let bytes = mesh.vertex_count as u64 * m.bytes_per_vertex;
+                encoder.copy_buffer_to_buffer(source, 0, &m.pooled, m.offset, bytes);
+            }
+            m.copied.store(mesh.vertex_revision, Ordering::Relaxed);
         }
     }
 }

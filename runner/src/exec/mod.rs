@@ -343,7 +343,9 @@ impl Renderer {
     /// [`Renderer::set_scene`]) for (same meshes, tags and bound images,
     /// in the same order); their transforms and
     /// per-object params are read again here, so objects may move and
-    /// change params between frames.
+    /// change params between frames, and an object's mesh may be another
+    /// of the same vertex count, indices and attributes (a deformed copy),
+    /// whose vertices are written over the buffers in place.
     pub fn prepare(&mut self, scene: &Scene, spec: &FrameSpec) -> Result<(), RunError> {
         self.prepare_frame(scene, spec, true)
     }
@@ -378,6 +380,8 @@ impl Renderer {
                 "only objects' transforms and params may change between frames; give other objects with Renderer::set_scene",
             )]));
         }
+        // A deformed mesh (same topology) is written in place, or refused before anything changed.
+        meshes::update_deformed(&self.queue, &mut self.scene_gpu.meshes, scene)?;
         self.ensure_size(spec.width, spec.height)?;
         if begin || self.frames_begun == 0 {
             self.frames_begun += 1;

@@ -36,9 +36,11 @@ pub(super) struct PassBuffers {
     pub element_workgroups: u32,
     /// The members' vertices per attribute (passes over vertices).
     pub attributes: BTreeMap<Attribute, wgpu::Buffer>,
-    /// Members whose vertices change every frame: (object, first vertex),
-    /// copied from the object's vertex buffers before the pass runs.
-    pub time_varying: Vec<(usize, u64)>,
+    /// Every member's (object, first vertex, the object's
+    /// `GpuMesh::vertex_revision` its vertices here are of): a member whose
+    /// vertices change (a time-varying primitive, a deformed mesh) is copied
+    /// again from the object's vertex buffers before the pass runs.
+    pub member_vertices: Vec<(usize, u64, u64)>,
     /// Per element workgroup, one partial per value (passes over vertices).
     pub partials: Option<wgpu::Buffer>,
     /// Passes over vertices: `vec4<u32>`(element workgroups, members, 0, 0).
@@ -203,7 +205,7 @@ pub(super) fn create(
             usage: wgpu::BufferUsages::STORAGE,
         });
         let mut pooled = BTreeMap::new();
-        let mut time_varying = Vec::new();
+        let mut member_vertices = Vec::new();
         if domain.on_meshes() {
             for a in attributes {
                 let mut bytes = Vec::with_capacity((first_vertex * attribute_format(*a).1) as usize);
@@ -225,11 +227,10 @@ pub(super) fn create(
                     }),
                 );
             }
-            time_varying = table
+            member_vertices = table
                 .iter()
                 .zip(&vertex_starts)
-                .filter(|(m, _)| meshes[m[0] as usize].built_for_s.is_some())
-                .map(|(m, first)| (m[0] as usize, *first))
+                .map(|(m, first)| (m[0] as usize, *first, meshes[m[0] as usize].vertex_revision))
                 .collect();
         }
         let reduced = values.len().max(1) as u64;
@@ -272,7 +273,7 @@ pub(super) fn create(
             member_count: members.len() as u32,
             element_workgroups: first_workgroup as u32,
             attributes: pooled,
-            time_varying,
+            member_vertices,
             partials,
             dispatch,
             pixels_of,

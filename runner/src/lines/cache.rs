@@ -77,6 +77,13 @@ pub struct LinesCache {
     pub mesh_builds: u64,
 }
 
+impl LinesCache {
+    /// How many edge meshes the cache holds now (bounded: see `strips`).
+    pub fn edge_meshes(&self) -> usize {
+        self.meshes.len()
+    }
+}
+
 fn mesh_hash(mesh: &Mesh) -> blake3::Hash {
     let mut hasher = blake3::Hasher::new();
     hasher.update(bytemuck::cast_slice(&mesh.positions));
@@ -177,6 +184,15 @@ impl LinesCache {
             let strips = strip::build(&polylines, view_proj, size, style);
             self.rebuilds += 1;
             self.eyes.insert(eye_index, (key, strips));
+            // A mesh whose vertices change (the ocean, a host's deforming
+            // mesh) is a new content every frame: edge meshes no eye draws
+            // now go once they outnumber the drawn ones, so the cache stays
+            // bounded.
+            if self.meshes.len() > 2 * hashes.len() + 8 {
+                let eyes = &self.eyes;
+                self.meshes
+                    .retain(|hash, _| eyes.values().any(|(key, _)| key.meshes.contains(hash)));
+            }
         }
         &self.eyes[&eye_index].1
     }

@@ -120,7 +120,7 @@
 
 mod attributes;
 mod camera;
-mod geometry;
+pub(crate) mod geometry;
 mod gltf_file;
 mod light;
 mod mesh;
