@@ -14,10 +14,10 @@
 //! between frames, outside the timing).
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
+use crate::thread_cpu;
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
 use runner::{Gpu, RunError, StyleProgram};
-use crate::thread_cpu;
 
 /// One row: objects, npr's and the minimal program's median CPU µs per frame.
 pub struct HostRow {

@@ -23,7 +23,8 @@ pub fn time_us<T>(f: impl FnOnce() -> T) -> (f64, T) {
 mod tests {
     #[test]
     fn busy_work_takes_cpu_time_and_sleep_does_not() {
-        let (busy, sum) = super::time_us(|| (0..20_000_000u64).fold(0u64, |a, i| a.wrapping_add(std::hint::black_box(i) * i)));
+        let (busy, sum) =
+            super::time_us(|| (0..20_000_000u64).fold(0u64, |a, i| a.wrapping_add(std::hint::black_box(i) * i)));
         assert!(sum > 0);
         assert!(busy > 1000.0, "20M multiply-adds took {busy} µs of CPU");
         let (slept, ()) = super::time_us(|| std::thread::sleep(std::time::Duration::from_millis(50)));
