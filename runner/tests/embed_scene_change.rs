@@ -174,7 +174,12 @@ const AWAY: glam::Vec3 = glam::Vec3::new(1000.0, 0.0, 0.0);
 /// The reference's instances: every object of `all` (in its order, meshes
 /// of `handles`), each as `placed` (the host's instances of `objects`)
 /// places it, or away when it is not in `objects`.
-fn reference_instances(handles: &[MeshHandle], all: &[Object], objects: &[Object], placed: &[Instance]) -> Vec<Instance> {
+fn reference_instances(
+    handles: &[MeshHandle],
+    all: &[Object],
+    objects: &[Object],
+    placed: &[Instance],
+) -> Vec<Instance> {
     all.iter()
         .map(|u| match objects.iter().position(|o| o.key == u.key) {
             // Its own tags, which never change: the reference's scene
@@ -221,7 +226,12 @@ fn check(
     // Every object the test will show, in the order they first come: a
     // style with history is compared with a runtime that holds them all
     // from frame 0 (those not in the scene out of the view).
-    let all = vec![object(0, 0, None), object(1, 1, image), object(2, 0, None), object(3, 2, None)];
+    let all = vec![
+        object(0, 0, None),
+        object(1, 1, image),
+        object(2, 0, None),
+        object(3, 2, None),
+    ];
     let mut reference = history.then(|| Host::new(example, 3));
     let frame = |host: &mut Host, reference: &mut Option<Host>, objects: &[Object], k: u32, resized: bool| {
         let placed = instances(&host.handles, objects, k);
@@ -246,9 +256,13 @@ fn check(
         "{example}: a resize made pipelines: {resize:?}"
     );
     assert!(resize.textures > 0, "{example}: a resize made no target: {resize:?}");
+    // Five frames before the first change, two between the others: the
+    // changes come after an odd number of frames, where a parity
+    // started over would show.
     frame(&mut host, &mut reference, &objects, 3, false);
+    frame(&mut host, &mut reference, &objects, 4, false);
 
-    let mut k = 4;
+    let mut k = 5;
     for change in [
         "an object of a registered mesh added",
         "an object of a new mesh added",
@@ -277,7 +291,13 @@ fn check(
         );
         assert_eq!(host.runtime.builds(), 1, "{what}: the runtime built the style again");
         assert_eq!(
-            (made.shader_modules, made.pipelines, made.layouts, made.samplers, made.textures),
+            (
+                made.shader_modules,
+                made.pipelines,
+                made.layouts,
+                made.samplers,
+                made.textures
+            ),
             (0, 0, 0, 0, 0),
             "{what}: the frame made style-level objects (shader modules, pipelines, layouts, samplers) \
              or textures (a style texture, an art-map, a per-object image or a target again): {made:?}"

@@ -177,10 +177,7 @@ impl Renderer {
         }
         let continuing = continuity::continuing(&self.scene_gpu.object_names, scene);
         let rows = continuity::value_rows(&self.scene_gpu.values, &made.values, &continuing);
-        self.carried_rows
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .extend(rows);
+        self.carried_rows.lock().unwrap_or_else(|e| e.into_inner()).extend(rows);
         self.scene_gpu = made;
         self.motion.remap(&continuing);
         // Group 0 binds compute passes' values: those are made again over
