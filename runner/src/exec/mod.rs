@@ -560,8 +560,9 @@ impl Renderer {
         self.parities
     }
 
-    /// Frames begun since the renderer was built or its textures were
-    /// resized (the history they hold is that long).
+    /// Frames begun since the renderer was built, its textures were
+    /// resized or [`Renderer::restart_history`] (the history they hold is
+    /// that long; a scene change keeps counting).
     pub fn frames_begun(&self) -> u64 {
         self.frames_begun
     }
