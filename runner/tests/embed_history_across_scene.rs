@@ -14,7 +14,7 @@
 //! follows objects by [`Instance::id`] through a spawn that reorders the
 //! list and a despawn that shifts it, and that a new object starts from
 //! its first value, and a motion style that `position.previous` does too.
-//! A new size still starts the history over.
+//! A new size, and `restart_history`, still start the history over.
 
 #![allow(clippy::disallowed_methods)]
 
@@ -272,6 +272,26 @@ fn a_new_size_still_starts_the_history_over() {
     let instances = fresh.instances(&[A, B], &[], 4, true);
     fresh.frame(&instances, 4, true);
     assert_same("afterimage, the frame at a new size", &run.output(), &fresh.output());
+}
+
+#[test]
+fn restart_history_starts_it_over() {
+    let mut run = Run::new(example("halftone.npr"));
+    for k in 0..5 {
+        let instances = run.instances(&[A, B], &[], k, true);
+        run.frame(&instances, k, false);
+    }
+    run.runtime.restart_history();
+    let instances = run.instances(&[A, B], &[], 5, true);
+    run.frame(&instances, 5, false);
+    let mut fresh = Run::new(example("halftone.npr"));
+    let instances = fresh.instances(&[A, B], &[], 5, true);
+    fresh.frame(&instances, 5, false);
+    assert_same(
+        "halftone, the frame after restart_history",
+        &run.output(),
+        &fresh.output(),
+    );
 }
 
 /// A style whose output's red channel is each object's frame count: its

@@ -462,6 +462,16 @@ impl StyleRuntime {
         self.scene_changes
     }
 
+    /// Start the style's history over at the next frame, as a new runtime
+    /// starts it (`previous(...)` reads zero, compute state its first
+    /// values): for a cut to another shot. Objects coming and going keep
+    /// the history; a new size starts it over too.
+    pub fn restart_history(&mut self) {
+        if let Some(renderer) = &mut self.renderer {
+            renderer.restart_history();
+        }
+    }
+
     /// Record one frame into `encoder`: the style's passes, then the
     /// output drawn into `target`'s views at their size. Nothing is
     /// submitted; the host submits `encoder`. On an error nothing was

@@ -3,7 +3,7 @@
 //! name, [`continuing`]), their compute state (their rows of every
 //! compute pass's value buffers, copied by [`RowCopy`]s the next frame's
 //! encoder records before its passes), their transforms of the last frames
-//! (`previous_model`, [`Motion::remap`]) and the group 0s that bind compute
+//! (`previous_model`, [`Motion::remap`]) and group 0, which binds compute
 //! passes' values ([`Renderer::rebind_scene_values`]). The screen-space
 //! history (the history textures and the frame parity) is simply kept.
 
@@ -11,7 +11,6 @@ use super::frame::Motion;
 use super::values::PassBuffers;
 use super::Renderer;
 use crate::scene::Scene;
-use abi::manifest::Resource;
 use glam::Mat4;
 use std::collections::HashMap;
 
@@ -112,22 +111,17 @@ impl Motion {
 }
 
 impl Renderer {
-    /// After a scene change at an unchanged size: the group 0s that bind a
-    /// compute pass's values are made again over the new value buffers
-    /// (the targets they bind are kept), and passes over pixels get their
-    /// element workgroups for the new number of objects.
+    /// After a scene change at an unchanged size: every group 0 is made
+    /// again over the kept targets, since group 0 binds buffers the scene
+    /// makes (a compute pass's values, `Resource::ObjectValues`; and
+    /// whatever uniform buffer `SceneGpu` holds), and passes over pixels
+    /// get their element workgroups for the new number of objects.
     pub(super) fn rebind_scene_values(&mut self) {
         let Some(mut sized) = self.sized.take() else { return };
         for (parity, parity_passes) in sized.passes.iter_mut().enumerate() {
             for (slot, slot_passes) in parity_passes.iter_mut().enumerate() {
                 for (pi, pass) in slot_passes.iter_mut().enumerate() {
-                    let binds_values = self.manifest.passes[pi]
-                        .bindings
-                        .iter()
-                        .any(|b| matches!(b.resource, Resource::ObjectValues { .. }));
-                    if binds_values {
-                        pass.group0 = self.group0(pi, slot, parity, &sized.physical);
-                    }
+                    pass.group0 = self.group0(pi, slot, parity, &sized.physical);
                     pass.pixel_workgroups = self.scene_gpu.values[pi]
                         .as_ref()
                         .map_or(0, |b| b.pixel_workgroups(&self.manifest, sized.width, sized.height));

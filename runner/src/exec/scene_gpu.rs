@@ -180,8 +180,8 @@ impl Renderer {
         self.carried_rows.lock().unwrap_or_else(|e| e.into_inner()).extend(rows);
         self.scene_gpu = made;
         self.motion.remap(&continuing);
-        // Group 0 binds compute passes' values: those are made again over
-        // the new buffers, the targets kept.
+        // Group 0 binds compute passes' values: the groups are made again
+        // over the new buffers, the targets kept.
         self.rebind_scene_values();
         Ok(())
     }
