@@ -298,7 +298,7 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
             }
         };
         // The entity is who the object is from frame to frame: a despawn or
-        // spawn elsewhere in the list keeps its state (docs/decisions/0045).
+        // spawn elsewhere in the list keeps its state (docs/decisions/0046).
         let mut instance = Instance::new(handle, object.transform).with_id(object.entity.to_bits());
         if let Some(o) = &object.object {
             instance.tags.clone_from(&o.tags);

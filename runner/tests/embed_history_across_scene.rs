@@ -1,4 +1,4 @@
-//! A scene change keeps the history (issue 32, docs/decisions/0045): a game
+//! A scene change keeps the history (issue 32, docs/decisions/0046): a game
 //! that spawns or despawns an object must not wipe every trail on screen.
 //!
 //! The reference each check compares with is independent of the scene

@@ -8,7 +8,7 @@
 //! frame, and the one after it, are what they must be: for a style without
 //! history, the first two frames of a new runtime given the same objects,
 //! byte for byte; for a style with history textures, which a scene change
-//! keeps (docs/decisions/0045), the frames of a runtime that never changed
+//! keeps (docs/decisions/0046), the frames of a runtime that never changed
 //! its scene, holding every object from frame 0 and keeping those not in
 //! the scene out of the view, byte for byte (and not a new runtime's: the
 //! trails stay). Over Age of Sail (per-object images, tagged shadow

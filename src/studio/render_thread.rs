@@ -494,7 +494,7 @@ fn render_frame(
         // `restart_history` restarts it (history, compute state, previous
         // transforms) and keeps the pipelines and style textures, which a
         // new renderer would make again for every slider move
-        // (docs/decisions/0044, 0045).
+        // (docs/decisions/0044, 0046).
         s.renderer.restart_history();
     }
     let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);

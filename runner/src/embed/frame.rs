@@ -34,7 +34,7 @@ pub struct Instance {
     /// Who this object is from frame to frame (a game's entity id), so a
     /// frame whose objects came or went keeps this one's compute state and
     /// previous transform wherever it is in the list
-    /// (docs/decisions/0045). Without one, an object continues the
+    /// (docs/decisions/0046). Without one, an object continues the
     /// previous frame's object at its position in the list that had none.
     pub id: Option<u64>,
 }

@@ -1,4 +1,4 @@
-//! What a scene change at the same size carries over (docs/decisions/0045):
+//! What a scene change at the same size carries over (docs/decisions/0046):
 //! which objects of the new scene continue objects of the old one (by
 //! name, [`continuing`]), their compute state (their rows of every
 //! compute pass's value buffers, copied by [`RowCopy`]s the next frame's

@@ -137,7 +137,7 @@ impl Renderer {
     /// art-maps, the sampler, the frame and style buffers, and the targets
     /// stay.
     ///
-    /// **The history goes on** (docs/decisions/0045): the history
+    /// **The history goes on** (docs/decisions/0046): the history
     /// textures keep their contents and the frame parity its course, so
     /// `previous(...)` reads the last frame (a trail behind the other
     /// objects survives a spawn). An object of `scene` continues the
