@@ -297,7 +297,9 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
                 handle
             }
         };
-        let mut instance = Instance::new(handle, object.transform);
+        // The entity is who the object is from frame to frame: a despawn or
+        // spawn elsewhere in the list keeps its state (docs/decisions/0046).
+        let mut instance = Instance::new(handle, object.transform).with_id(object.entity.to_bits());
         if let Some(o) = &object.object {
             instance.tags.clone_from(&o.tags);
             instance.casts_shadows = o.casts_shadows;

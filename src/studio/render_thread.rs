@@ -491,11 +491,11 @@ fn render_frame(
     let path_dependent = s.renderer.manifest.is_path_dependent();
     if path_dependent && s.renderer.frames_begun() > 0 {
         // History must start from frame 0 again, as `npr render` starts:
-        // `set_scene` restarts it (history, compute state, previous
+        // `restart_history` restarts it (history, compute state, previous
         // transforms) and keeps the pipelines and style textures, which a
         // new renderer would make again for every slider move
-        // (docs/decisions/0044).
-        s.renderer.set_scene(&s.built.scene)?;
+        // (docs/decisions/0044, 0046).
+        s.renderer.restart_history();
     }
     let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
     // The page's orbit camera replaces the scene's for every frame.

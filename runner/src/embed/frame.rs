@@ -31,6 +31,12 @@ pub struct Instance {
     /// a param left out gets the image the style declares. Images are
     /// scene-level resources: changing them rebuilds the scene's resources.
     pub images: BTreeMap<String, TextureBinding>,
+    /// Who this object is from frame to frame (a game's entity id), so a
+    /// frame whose objects came or went keeps this one's compute state and
+    /// previous transform wherever it is in the list
+    /// (docs/decisions/0046). Without one, an object continues the
+    /// previous frame's object at its position in the list that had none.
+    pub id: Option<u64>,
 }
 
 impl Instance {
@@ -43,7 +49,14 @@ impl Instance {
             params: BTreeMap::new(),
             casts_shadows: true,
             images: BTreeMap::new(),
+            id: None,
         }
+    }
+
+    /// With the identity `id` ([`Instance::id`]).
+    pub fn with_id(mut self, id: u64) -> Instance {
+        self.id = Some(id);
+        self
     }
 
     /// With `tag` added.

@@ -38,10 +38,13 @@
 //! the size's (targets, their views and bind groups) and the scene's (mesh
 //! and object buffers, per-object bind groups, compute passes' buffers).
 //! A frame after the set of objects' meshes, tags, images or shadow flags
-//! changed (an object spawned or despawned) makes the scene's and the
-//! size's again, never the style's: no shader module, pipeline or style
-//! texture ([`Renderer::set_scene`]; the history restarts, as at a new
-//! size). A frame at a new size makes the size's. Every other frame writes
+//! changed (an object spawned or despawned) makes the scene's again,
+//! never the style's or the size's: no shader module, pipeline, style
+//! texture or target ([`Renderer::set_scene`]). The history goes on: a
+//! style's `previous(...)` reads the last frame (trails stay), and objects
+//! that stay keep their compute state and previous transform (an
+//! [`Instance::id`] says which they are). A frame at a new size makes the
+//! size's, and starts the history over. Every other frame writes
 //! uniform buffers (and, in place, an animated primitive's vertex buffers
 //! and those of a mesh the host deformed since the last frame, with the
 //! copies compute passes over vertices read) and records commands, and
@@ -152,9 +155,9 @@ use std::sync::Arc;
 /// size-level ones (targets, their bind groups) when the target's size
 /// changes; scene-level ones (mesh buffers, the object buffer, per-object
 /// bind groups, compute passes' buffers, line caches, light bounds) when
-/// the set of objects' meshes, tags, images or shadow flags changes, which
-/// also makes the size-level ones again and restarts the history (the
-/// frame after the change is what a new runtime renders of those objects).
+/// the set of objects' meshes, tags, images, shadow flags or ids changes.
+/// The history goes on across such a change (trails stay; objects that
+/// stay keep their compute state) and starts over at a new size.
 pub struct StyleRuntime {
     device: wgpu::Device,
     queue: wgpu::Queue,
@@ -439,6 +442,7 @@ impl StyleRuntime {
                     params: o.params.clone(),
                     casts_shadows: o.casts_shadows,
                     images: o.textures.clone(),
+                    id: None,
                 }
             })
             .collect()
@@ -456,6 +460,16 @@ impl StyleRuntime {
     /// resources anew ([`Renderer::set_scene`]).
     pub fn scene_changes(&self) -> u64 {
         self.scene_changes
+    }
+
+    /// Start the style's history over at the next frame, as a new runtime
+    /// starts it (`previous(...)` reads zero, compute state its first
+    /// values): for a cut to another shot. Objects coming and going keep
+    /// the history; a new size starts it over too.
+    pub fn restart_history(&mut self) {
+        if let Some(renderer) = &mut self.renderer {
+            renderer.restart_history();
+        }
     }
 
     /// Record one frame into `encoder`: the style's passes, then the

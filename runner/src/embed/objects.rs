@@ -1,7 +1,10 @@
 //! The host's [`Instance`]s as the renderer's [`Scene`]: one scene object
 //! per instance, updated in place each frame (transform, params, camera,
 //! lights), and rebuilt only when the objects' structure changes (their
-//! meshes, tags, images or shadow flags, or their number).
+//! meshes, tags, images, shadow flags or ids, or their number). An object
+//! is named by its [`Instance::id`] (`entity 7`) or, without one, by its
+//! position (`object 2`): the renderer's scene change carries an object's
+//! state over to the new object of the same name.
 
 use super::meshes::MeshTable;
 use super::{EmbedError, Frame, Instance, MeshHandle};
@@ -16,6 +19,9 @@ struct Shape {
     tags: Vec<String>,
     casts_shadows: bool,
     images: BTreeMap<String, TextureBinding>,
+    /// Who it is: ids that change (an entity despawned and another spawned
+    /// in the same frame) are a scene change, which remaps its state.
+    id: Option<u64>,
 }
 
 impl Shape {
@@ -25,6 +31,7 @@ impl Shape {
             tags: instance.tags.clone(),
             casts_shadows: instance.casts_shadows,
             images: instance.images.clone(),
+            id: instance.id,
         }
     }
 
@@ -33,6 +40,7 @@ impl Shape {
             && self.tags == instance.tags
             && self.casts_shadows == instance.casts_shadows
             && self.images == instance.images
+            && self.id == instance.id
     }
 }
 
@@ -59,7 +67,11 @@ impl Default for HostScene {
 fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Object, EmbedError> {
     let entry = meshes.entry(instance.mesh)?;
     Ok(Object {
-        name: format!("object {index}"),
+        // The renderer's identity of an object from one scene to the next.
+        name: match instance.id {
+            Some(id) => format!("entity {id}"),
+            None => format!("object {index}"),
+        },
         mesh: entry.mesh.clone(),
         model: instance.transform,
         tags: instance.tags.clone(),

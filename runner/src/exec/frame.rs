@@ -66,6 +66,9 @@ pub(super) struct Motion {
     /// The frame's before the previous one, whose vectors the next
     /// [`Motion::record`] refills: a frame allocates none.
     pub(super) spare: Option<(Vec<Mat4>, Vec<Mat4>)>,
+    /// Objects a scene change added (`continuity.rs`): at their first
+    /// frame, their previous transform is their current one.
+    pub(super) new_objects: Vec<usize>,
 }
 
 impl Motion {
@@ -83,6 +86,15 @@ impl Motion {
         models.extend(scene.objects.iter().map(|o| o.model));
         projs.clear();
         projs.extend_from_slice(view_projs);
+        if let Some((previous, _)) = self.previous.as_mut() {
+            for &j in &self.new_objects {
+                if let (Some(p), Some(m)) = (previous.get_mut(j), models.get(j)) {
+                    *p = *m;
+                }
+            }
+        }
+        // Past their first frame, added objects have a previous one.
+        self.new_objects.clear();
         self.this = Some((models, projs));
     }
 

@@ -22,6 +22,8 @@
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
 //! - `scene_gpu.rs`: the scene-level resources, made apart from the
 //!   style's ([`Renderer::set_scene`]);
+//! - `continuity.rs`: what a scene change carries over (continuing
+//!   objects, their compute state and transforms; [`Renderer::restart_history`]);
 //! - `values.rs`: compute passes' buffers (per-object values, partials);
 //! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, dispatching
 //!   to the executors `render_pass.rs`, `image_pass.rs`, `tiled_pass.rs`,
@@ -34,6 +36,7 @@ use crate::gpu_count::Create;
 mod bind;
 mod common;
 mod compute_pass;
+mod continuity;
 mod frame;
 mod image_pass;
 mod light_bounds;
@@ -104,6 +107,9 @@ pub struct Renderer {
     /// The camera's matrices of the last frame, kept while its pose and the size stay.
     camera: frame::CameraMatrices,
     artmap_builds: Vec<crate::artmap::ArtmapBuild>,
+    /// Value rows of continuing objects that a scene change carries into
+    /// the new value buffers, recorded by the next encode (`continuity.rs`).
+    carried_rows: std::sync::Mutex<Vec<continuity::RowCopy>>,
     /// Changes whenever the textures a frame writes are made anew (a new
     /// renderer, a new size): what holders of views into them compare.
     generation: u64,
@@ -301,6 +307,7 @@ impl Renderer {
             motion: frame::Motion::default(),
             camera: frame::CameraMatrices::default(),
             artmap_builds,
+            carried_rows: Default::default(),
             generation: next_generation(),
         })
     }
@@ -434,6 +441,8 @@ impl Renderer {
     /// Record the first `count` passes, each by its kind's executor.
     fn encode_passes(&self, encoder: &mut wgpu::CommandEncoder, count: usize, queries: Option<&wgpu::QuerySet>) {
         let Some(sized) = self.sized.as_ref() else { return };
+        // Continuing objects' state, into the buffers a scene change made.
+        self.record_carried_rows(encoder);
         // The uniforms `prepare` wrote, into their buffers before any pass reads them.
         self.scene_gpu.upload.encode_copies(
             encoder,
@@ -504,6 +513,7 @@ impl Renderer {
         let buffers = self.scene_gpu.values[pi]
             .as_ref()
             .ok_or_else(|| RunError::Internal(format!("pass `{pass}` is not a compute pass")))?;
+        self.submit_carried_rows();
         let bytes = readback::read_buffer(&self.device, &self.queue, buffers.copy(self.parity(), false))?;
         let vec4s: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         Ok(vec4s
@@ -550,8 +560,9 @@ impl Renderer {
         self.parities
     }
 
-    /// Frames begun since the renderer was built or its textures were
-    /// resized (the history they hold is that long).
+    /// Frames begun since the renderer was built, its textures were
+    /// resized or [`Renderer::restart_history`] (the history they hold is
+    /// that long; a scene change keeps counting).
     pub fn frames_begun(&self) -> u64 {
         self.frames_begun
     }

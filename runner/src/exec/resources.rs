@@ -246,6 +246,8 @@ impl Renderer {
         // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
         super::values::reset(&self.queue, &self.scene_gpu.values);
+        // Rows a scene change left to copy would bring old state back.
+        self.carried_rows.lock().unwrap_or_else(|e| e.into_inner()).clear();
         super::values::write_pixel_dispatch(&self.queue, &self.manifest, &self.scene_gpu.values, width, height);
         self.motion = super::frame::Motion::default();
         self.sized = Some(SizedResources {

@@ -7,7 +7,7 @@
 
 use super::bind::{self, ObjectResources};
 use super::pass::{PassExec, PassScene};
-use super::{light_bounds, meshes, objects, upload, values, Renderer};
+use super::{continuity, light_bounds, meshes, objects, upload, values, Renderer};
 use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture, ObjectImageKey};
@@ -29,6 +29,9 @@ pub(super) struct SceneGpu {
     /// one upload and copied into their buffers.
     pub upload: upload::Upload,
     pub object_tags: Vec<Vec<String>>,
+    /// Per object, its name: which object of the next scene continues it
+    /// (`continuity.rs`).
+    pub object_names: Vec<String>,
     /// Per object, its mesh's vertex count (the block's `ids.z`).
     pub vertex_counts: Vec<usize>,
     /// The per-object images this scene binds, kept for the next one.
@@ -115,6 +118,7 @@ impl SceneGpu {
             light_bounds: light_bounds::LightBounds::new(manifest, scene),
             upload,
             object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
+            object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
             vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
             meshes,
             object_images: object_textures.keys.into_iter().zip(object_textures.images).collect(),
@@ -130,12 +134,19 @@ impl Renderer {
     /// scene-level resources are made anew ([`SceneGpu`]; per-object images
     /// the previous objects bound too are kept); the shader
     /// modules, pipelines and their layouts, the style's textures and
-    /// art-maps, the sampler and the frame and style buffers stay. The
-    /// size-level resources (targets, their views and groups) are made
-    /// again at the next frame, as at a new size, so the history restarts:
-    /// the next frame is frame 0 (`previous(...)` reads zero, compute
-    /// state its first values, `previous_model` the current one), and
-    /// renders what a new renderer of `scene` renders, byte for byte.
+    /// art-maps, the sampler, the frame and style buffers, and the targets
+    /// stay.
+    ///
+    /// **The history goes on** (docs/decisions/0046): the history
+    /// textures keep their contents and the frame parity its course, so
+    /// `previous(...)` reads the last frame (a trail behind the other
+    /// objects survives a spawn). An object of `scene` continues the
+    /// previous scene's object of the same name (the k-th of a name the
+    /// k-th): it keeps its compute state and its `previous_model`. An
+    /// object with a name the previous scene did not have is new: its
+    /// compute state starts from its first values and its
+    /// `previous_model` is its model at its first frame. To start the
+    /// history over instead, call [`Renderer::restart_history`] too.
     ///
     /// A scene the style refuses (E0403, E0405, a bad per-object param or
     /// image) is an error that leaves the renderer as it was.
@@ -164,12 +175,14 @@ impl Renderer {
         for (exec, part) in self.passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
+        let continuing = continuity::continuing(&self.scene_gpu.object_names, scene);
+        let rows = continuity::value_rows(&self.scene_gpu.values, &made.values, &continuing);
+        self.carried_rows.lock().unwrap_or_else(|e| e.into_inner()).extend(rows);
         self.scene_gpu = made;
-        // Group 0 binds compute passes' values, and the history restarts
-        // with the objects: the size-level resources are made at the next frame.
-        self.sized = None;
-        self.frames_begun = 0;
-        self.motion = super::frame::Motion::default();
+        self.motion.remap(&continuing);
+        // Group 0 binds compute passes' values: the groups are made again
+        // over the new buffers, the targets kept.
+        self.rebind_scene_values();
         Ok(())
     }
 }

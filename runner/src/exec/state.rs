@@ -76,6 +76,8 @@ impl Renderer {
             .sized
             .as_ref()
             .ok_or_else(|| RunError::Internal("save_state before any frame".into()))?;
+        // Values a scene change carries over are in their buffers first.
+        self.submit_carried_rows();
         let mut blocks = Vec::new();
         for (slot, second) in sized.physical.second.iter().enumerate() {
             for &index in second.keys() {
@@ -123,7 +125,8 @@ impl Renderer {
     /// identity check (`crate::checkpoint`) refuses those first.
     pub fn restore_state(&mut self, state: &RendererState) -> Result<(), RunError> {
         // Fresh textures at the state's size (this also resets what the
-        // state does not hold to its frame-0 value).
+        // state does not hold to its frame-0 value, and drops the value
+        // rows a scene change left to copy: the state replaces them).
         self.sized = None;
         self.ensure_size(state.width, state.height)?;
         let sized = self
@@ -204,6 +207,7 @@ impl Renderer {
             this: state.motion[0].as_ref().map(to_mats),
             previous: state.motion[1].as_ref().map(to_mats),
             spare: None,
+            new_objects: Vec::new(),
         };
         self.queue.submit([]);
         Ok(())

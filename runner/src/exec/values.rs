@@ -8,9 +8,11 @@
 //! workgroup) and its dispatch uniform; for a pass over pixels, partials
 //! per element workgroup per object (`abi::manifest::pixel_workgroups` of
 //! them, which depends on the ID target's size: the dispatch uniform is
-//! rewritten on every new size). Built once with the renderer (the
-//! objects are fixed); the value buffers are zeroed again whenever the
-//! history resets (a new size), so state restarts from its first value.
+//! rewritten on every new size). Made with each scene; the value buffers
+//! are zeroed again whenever the history resets (a new size,
+//! `restart_history`), so state restarts from its first value, and a
+//! scene change copies continuing objects' rows into them
+//! (`continuity.rs`).
 
 use super::meshes::{attribute_format, GpuMesh};
 use crate::gpu_count::Create;
