@@ -14,27 +14,13 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{compile, gpu, host_target};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
 use runner::scene::ocean::Ocean;
 use runner::scene::{primitives, Camera, Primitive};
 use std::path::Path;
-
-fn compile(example: &str) -> runner::StyleProgram {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(example);
-    let mut sources = diag::SourceMap::new();
-    let options = compiler::CompileOptions {
-        keep_params: true,
-        ..Default::default()
-    };
-    match compiler::compile_file(&path, &mut sources, &options) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
-}
 
 fn target(width: u32, height: u32) -> wgpu::Texture {
     host_target(width, height, wgpu::TextureFormat::Bgra8Unorm, &[])

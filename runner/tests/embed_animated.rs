@@ -20,37 +20,19 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{compile, examples, gpu, host_target, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::readback::TargetImage;
 use runner::scene::patches::PatchSpec;
 use runner::scene::{primitives, Scene};
 use runner::{FrameSpec, Renderer};
-use std::path::{Path, PathBuf};
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 72;
 
 /// The times the frames are rendered at, in order (frame indices 0, 1, 2).
 const TIMES: [f64; 3] = [0.0, 1.5, 3.0];
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
-}
-
-fn compile(style: &str) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let options = compiler::CompileOptions {
-        keep_params: true,
-        ..Default::default()
-    };
-    match compiler::compile_file(&examples().join(style), &mut sources, &options) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
-}
 
 fn load(scene: &str) -> Scene {
     let mut sources = diag::SourceMap::new();
@@ -138,31 +120,6 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
     frames
 }
 
-/// Writes the runtime's image, the renderer's and their difference; returns the folder.
-fn write_failure(name: &str, hosted: &TargetImage, direct: &TargetImage) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("embed-animated");
-    std::fs::create_dir_all(&dir).expect("output folder");
-    let diff = TargetImage {
-        name: "diff".into(),
-        width: hosted.width,
-        height: hosted.height,
-        format: abi::Format::Rgba8unorm,
-        bytes: hosted
-            .bytes
-            .chunks(4)
-            .zip(direct.bytes.chunks(4))
-            .flat_map(|(a, b)| {
-                let d = |c: usize| a[c].abs_diff(b[c]).saturating_mul(8);
-                [d(0), d(1), d(2).max(d(3)), 255]
-            })
-            .collect(),
-    };
-    for (suffix, image) in [("actual", hosted), ("expected", direct), ("diff", &diff)] {
-        runner::output::write_target(image, &dir.join(format!("{name}_{suffix}.png"))).expect("write image");
-    }
-    dir
-}
-
 /// Every frame of the runtime equals the renderer's, byte for byte.
 fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
     let mut failures = Vec::new();
@@ -181,7 +138,7 @@ fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
                 .filter(|(a, b)| a != b)
                 .count();
             let at = format!("{name}_t{time_s}");
-            let dir = write_failure(&at, hosted, direct);
+            let dir = write_mismatch("embed-animated", &at, hosted, direct);
             failures.push(format!(
                 "at {time_s} s: {pixels} pixels differ, by up to {max:?}/255 (images: {}/{at}_*.png)",
                 dir.display()

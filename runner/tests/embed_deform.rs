@@ -32,7 +32,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{compile, gpu, host_target, write_mismatch};
 
 use glam::{Mat4, Vec3};
 use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
@@ -43,7 +43,7 @@ use runner::scene::patches::PatchSpec;
 use runner::scene::{primitives, Camera, Mesh, Object, Primitive, Scene};
 use runner::{FrameSpec, Renderer};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+
 use std::sync::Arc;
 
 const WIDTH: u32 = 96;
@@ -51,20 +51,6 @@ const HEIGHT: u32 = 72;
 
 /// The frames' times, in order (frame indices 0, 1, ...).
 const TIMES: [f64; 4] = [0.0, 0.5, 1.25, 2.0];
-
-fn compile(example: &str) -> runner::StyleProgram {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(example);
-    let mut sources = diag::SourceMap::new();
-    let options = compiler::CompileOptions {
-        keep_params: true,
-        ..Default::default()
-    };
-    match compiler::compile_file(&path, &mut sources, &options) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
-}
 
 /// A small sea (the allocation test's): quick on a software rasterizer.
 fn ocean() -> Primitive {
@@ -285,31 +271,6 @@ fn squashed_frames(style: &str, frozen_clock: bool) -> Vec<(TargetImage, TargetI
     frames
 }
 
-/// Writes the runtime's image, the reference's and their difference; returns the folder.
-fn write_failure(name: &str, hosted: &TargetImage, reference: &TargetImage) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("embed-deform");
-    std::fs::create_dir_all(&dir).expect("output folder");
-    let diff = TargetImage {
-        name: "diff".into(),
-        width: hosted.width,
-        height: hosted.height,
-        format: abi::Format::Rgba8unorm,
-        bytes: hosted
-            .bytes
-            .chunks(4)
-            .zip(reference.bytes.chunks(4))
-            .flat_map(|(a, b)| {
-                let d = |c: usize| a[c].abs_diff(b[c]).saturating_mul(8);
-                [d(0), d(1), d(2).max(d(3)), 255]
-            })
-            .collect(),
-    };
-    for (suffix, image) in [("actual", hosted), ("expected", reference), ("diff", &diff)] {
-        runner::output::write_target(image, &dir.join(format!("{name}_{suffix}.png"))).expect("write image");
-    }
-    dir
-}
-
 /// Every frame equals its reference byte for byte, and the images move
 /// (a deformation the frames did not show would prove nothing).
 fn assert_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
@@ -346,7 +307,7 @@ fn assert_frames_equal(frames: &[(TargetImage, TargetImage)], name: &str) {
                 .filter(|(a, b)| a != b)
                 .count();
             let at = format!("{name}_frame{k}");
-            let dir = write_failure(&at, hosted, reference);
+            let dir = write_mismatch("embed-deform", &at, hosted, reference);
             failures.push(format!(
                 "frame {k}: {pixels} pixels differ, by up to {max:?}/255 (images: {}/{at}_*.png)",
                 dir.display()

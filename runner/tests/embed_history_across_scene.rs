@@ -19,21 +19,17 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{examples, gpu, host_target, write_mismatch};
 
 use glam::{Mat4, Vec3};
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const SIZE: (u32, u32) = (64, 48);
 /// Where an object that is not in the scene waits in the reference: far
 /// to the side of the view.
 const AWAY: Vec3 = Vec3::new(1000.0, 0.0, 0.0);
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
-}
 
 fn compiled(
     result: Result<compiler::Compiled, compiler::CompileError>,
@@ -168,12 +164,8 @@ fn assert_same(what: &str, changed: &runner::TargetImage, reference: &runner::Ta
     if changed.bytes == reference.bytes {
         return;
     }
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("embed-history-across-scene");
-    std::fs::create_dir_all(&dir).expect("output folder");
     let name = what.replace([' ', ','], "-");
-    for (which, image) in [("changed", changed), ("reference", reference)] {
-        runner::output::write_target(image, &dir.join(format!("{name}.{which}.png"))).expect("write the image");
-    }
+    let dir = write_mismatch("embed-history-across-scene", &name, changed, reference);
     let differing = changed
         .bytes
         .iter()

@@ -19,31 +19,13 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{compile, examples, gpu, host_target, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::{created_on_this_thread, GpuCreations};
 use runner::scene::{primitives, Camera, Mesh};
-use std::path::{Path, PathBuf};
 
 const SIZE: (u32, u32) = (64, 48);
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
-}
-
-fn compile(example: &str) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let options = compiler::CompileOptions {
-        keep_params: true,
-        ..Default::default()
-    };
-    match compiler::compile_file(&examples().join(example), &mut sources, &options) {
-        Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(e) => panic!("{e:?}"),
-    }
-}
 
 /// The meshes a test draws, registered in this order by every runtime.
 fn meshes() -> Vec<Mesh> {
@@ -194,17 +176,6 @@ fn reference_instances(
         .collect()
 }
 
-/// Writes both images on a mismatch; returns where.
-fn write_failure(name: &str, changed: &runner::TargetImage, expected: &runner::TargetImage) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("embed-scene-change");
-    std::fs::create_dir_all(&dir).expect("output folder");
-    for (which, image) in [("changed", changed), ("expected", expected)] {
-        let path = dir.join(format!("{name}.{which}.png"));
-        runner::output::write_target(image, &path).expect("write the image");
-    }
-    dir
-}
-
 /// The whole sequence for one example: `change_tag` is the tag the fourth
 /// change gives the first object; `image` the per-object image the second
 /// object binds, if the style has such a param.
@@ -338,7 +309,7 @@ fn check(
                 None => (fresh.output(), "a new runtime's"),
             };
             if changed.bytes != expected.bytes {
-                let dir = write_failure(&name, &changed, &expected);
+                let dir = write_mismatch("embed-scene-change", &name, &changed, &expected);
                 panic!(
                     "{what}: frame {step} after the change differs from {against} (images in {})",
                     dir.display()

@@ -204,19 +204,7 @@ pub(super) fn update_time_varying(
                 mesh.vertex_count()
             )));
         }
-        let write = |attribute: Attribute, bytes: &[u8]| {
-            if let Some(buffer) = gpu.buffers.get(&attribute) {
-                queue.write_buffer(buffer, 0, bytes);
-            }
-        };
-        write(Attribute::Position, bytemuck::cast_slice(&mesh.positions));
-        write(Attribute::Normal, bytemuck::cast_slice(&mesh.normals));
-        if let Some(uvs) = &mesh.uvs {
-            write(Attribute::Uv, bytemuck::cast_slice(uvs));
-        }
-        if let Some(tangents) = &mesh.tangents {
-            write(Attribute::Tangent, bytemuck::cast_slice(tangents));
-        }
+        write_vertices(queue, gpu, &mesh);
         gpu.built_for_s = Some(time_s);
         gpu.vertex_revision += 1;
     }
@@ -272,21 +260,7 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     for &(old, first) in &moves {
         let mesh = &scene.objects[first].mesh;
         let gpu = &meshes[first];
-        let write = |attribute: Attribute, bytes: &[u8]| {
-            if let Some(buffer) = gpu.buffers.get(&attribute) {
-                if !bytes.is_empty() {
-                    queue.write_buffer(buffer, 0, bytes);
-                }
-            }
-        };
-        write(Attribute::Position, bytemuck::cast_slice(&mesh.positions));
-        write(Attribute::Normal, bytemuck::cast_slice(&mesh.normals));
-        if let Some(uvs) = &mesh.uvs {
-            write(Attribute::Uv, bytemuck::cast_slice(uvs));
-        }
-        if let Some(tangents) = &mesh.tangents {
-            write(Attribute::Tangent, bytemuck::cast_slice(tangents));
-        }
+        write_vertices(queue, gpu, mesh);
         for (object, gpu) in scene.objects.iter().zip(meshes.iter_mut()) {
             if Arc::as_ptr(&gpu.source) == old && shares_buffers(object) {
                 gpu.source = mesh.clone();
@@ -295,6 +269,26 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
         }
     }
     Ok(())
+}
+
+/// Writes `mesh`'s vertex attributes over `gpu`'s buffers, in place (the
+/// buffers `gpu` has: a pass reading no tangents made none).
+fn write_vertices(queue: &wgpu::Queue, gpu: &GpuMesh, mesh: &Mesh) {
+    let write = |attribute: Attribute, bytes: &[u8]| {
+        if let Some(buffer) = gpu.buffers.get(&attribute) {
+            if !bytes.is_empty() {
+                queue.write_buffer(buffer, 0, bytes);
+            }
+        }
+    };
+    write(Attribute::Position, bytemuck::cast_slice(&mesh.positions));
+    write(Attribute::Normal, bytemuck::cast_slice(&mesh.normals));
+    if let Some(uvs) = &mesh.uvs {
+        write(Attribute::Uv, bytemuck::cast_slice(uvs));
+    }
+    if let Some(tangents) = &mesh.tangents {
+        write(Attribute::Tangent, bytemuck::cast_slice(tangents));
+    }
 }
 
 /// Whether `upload_scene` shares the object's buffers with the other

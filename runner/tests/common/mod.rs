@@ -1,7 +1,12 @@
 //! What the embedding tests (`embed_*.rs`) share: one headless device per
-//! test binary, and the offscreen texture a host would render into.
+//! test binary, the offscreen texture a host would render into, the
+//! examples compiled as a host would, and the images a mismatch leaves.
 
-use runner::Gpu;
+// Each test binary compiles this module and uses a part of it.
+#![allow(dead_code)]
+
+use runner::{Gpu, TargetImage};
+use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The device, made once per test binary; a machine without an adapter
@@ -37,4 +42,52 @@ pub fn host_target(
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats,
     })
+}
+
+/// The repository's `examples/` folder.
+pub fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
+}
+
+/// Compiles `examples/{example}` with its params kept as uniforms (a host
+/// sets them at run time); a compile error fails the test with the
+/// rendered diagnostic.
+pub fn compile(example: &str) -> runner::StyleProgram {
+    let mut sources = diag::SourceMap::new();
+    let options = compiler::CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    match compiler::compile_file(&examples().join(example), &mut sources, &options) {
+        Ok(c) => c.program(),
+        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(e) => panic!("{e:?}"),
+    }
+}
+
+/// Writes `actual`, `expected` and their difference (×8, alpha folded into
+/// blue) as `{name}_actual.png`, `{name}_expected.png`, `{name}_diff.png`
+/// under the test's temporary `folder`; returns the folder.
+pub fn write_mismatch(folder: &str, name: &str, actual: &TargetImage, expected: &TargetImage) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(folder);
+    std::fs::create_dir_all(&dir).expect("output folder");
+    let diff = TargetImage {
+        name: "diff".into(),
+        width: actual.width,
+        height: actual.height,
+        format: abi::Format::Rgba8unorm,
+        bytes: actual
+            .bytes
+            .chunks(4)
+            .zip(expected.bytes.chunks(4))
+            .flat_map(|(a, b)| {
+                let d = |c: usize| a[c].abs_diff(b[c]).saturating_mul(8);
+                [d(0), d(1), d(2).max(d(3)), 255]
+            })
+            .collect(),
+    };
+    for (suffix, image) in [("actual", actual), ("expected", expected), ("diff", &diff)] {
+        runner::output::write_target(image, &dir.join(format!("{name}_{suffix}.png"))).expect("write image");
+    }
+    dir
 }
