@@ -88,16 +88,32 @@ pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]
     }
 }
 
+/// The indices in `m.params` of the per-object parameters that have a
+/// slot: what [`write_object_params`] writes, found once per renderer (a
+/// frame then reads only those parameters, not every one of the style's).
+pub fn object_param_indices(m: &Manifest) -> Vec<usize> {
+    m.params
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.binding == ParamBinding::PerObject && p.offset.is_some())
+        .map(|(i, _)| i)
+        .collect()
+}
+
 /// The per-object parameter slots (after the two matrices) for one object,
 /// written over `out` (zeroed first), which a renderer keeps from frame to
-/// frame: a frame allocates nothing for them. A binding with the wrong
-/// number of components is reported (E0405).
-pub fn write_object_params(m: &Manifest, o: &Object, out: &mut [u8], diags: &mut Vec<Diagnostic>) {
+/// frame: a frame allocates nothing for them. `indices` are
+/// [`object_param_indices`] of the manifest `params` belong to. A binding
+/// with the wrong number of components is reported (E0405).
+pub fn write_object_params(
+    params: &[ParamManifest],
+    indices: &[usize],
+    o: &Object,
+    out: &mut [u8],
+    diags: &mut Vec<Diagnostic>,
+) {
     out.fill(0);
-    for p in &m.params {
-        if p.binding != ParamBinding::PerObject {
-            continue;
-        }
+    for p in indices.iter().filter_map(|&i| params.get(i)) {
         let Some(off) = p.offset else { continue };
         let rgba: [f64; 4];
         let mut v: &[f64] = &p.default;

@@ -265,7 +265,7 @@ impl Renderer {
         self.motion.record(scene, &view_projs[..slots]);
         let (previous_models, previous_projs) = self.motion.previous();
         objects::write_object_blocks(
-            &self.manifest,
+            (&self.manifest, &self.object_params),
             scene,
             self.object_stride,
             (previous_models, &self.scene_gpu.vertex_counts),

@@ -95,6 +95,11 @@ pub struct Renderer {
     /// known at build: the host path asks every frame.
     parities: usize,
     object_stride: u64,
+    /// [`crate::animation::object_param_indices`] of the manifest, found at
+    /// build: the params each object block writes.
+    object_params: Vec<usize>,
+    /// Whether a pass draws lines (a frame without one skips their preparation).
+    has_lines: bool,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
@@ -289,6 +294,7 @@ impl Renderer {
         for (exec, part) in passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
+        let has_lines = passes.iter().any(|p| matches!(p, PassExec::Lines(_)));
         Ok(Renderer {
             device: device.clone(),
             queue: queue.clone(),
@@ -301,6 +307,8 @@ impl Renderer {
             style_buffer,
             parities: if manifest.is_path_dependent() { 2 } else { 1 },
             object_stride,
+            object_params: crate::animation::object_param_indices(&manifest),
+            has_lines,
             manifest,
             sized: None,
             frames_begun: 0,

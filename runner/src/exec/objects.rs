@@ -19,7 +19,7 @@ use glam::Mat4;
 /// slots. Bindings with the wrong number of components or out of range
 /// (E0405, E0401) come back as `RunError::User`.
 pub(super) fn write_object_blocks(
-    manifest: &Manifest,
+    (manifest, object_params): (&Manifest, &[usize]),
     scene: &Scene,
     stride: u64,
     (previous_models, vertex_counts): (&[Mat4], &[usize]),
@@ -49,7 +49,13 @@ pub(super) fn write_object_blocks(
             ],
         };
         block[..params_at].copy_from_slice(bytemuck::bytes_of(&head));
-        animation::write_object_params(manifest, o, &mut block[params_at..params_end], &mut diags);
+        animation::write_object_params(
+            &manifest.params,
+            object_params,
+            o,
+            &mut block[params_at..params_end],
+            &mut diags,
+        );
     }
     if !diags.is_empty() {
         return Err(RunError::User(diags));

@@ -27,7 +27,7 @@ impl super::Renderer {
         scene: &crate::scene::Scene,
         spec: &super::FrameSpec,
     ) -> Result<(), RunError> {
-        if !self.passes.iter().any(|p| matches!(p, PassExec::Lines(_))) {
+        if !self.has_lines {
             return Ok(());
         }
         let meshes: Vec<std::sync::Arc<crate::scene::Mesh>> = scene

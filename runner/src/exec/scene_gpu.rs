@@ -66,7 +66,14 @@ impl SceneGpu {
         let manifest = style.manifest;
         let object_textures = textures::load_object_textures(device, queue, manifest, scene, style.object_images)?;
         let mut object_bytes = vec![0; (style.object_stride as usize) * scene.objects.len()];
-        objects::write_object_blocks(manifest, scene, style.object_stride, (&[], &[]), &mut object_bytes)?;
+        let object_params = crate::animation::object_param_indices(manifest);
+        objects::write_object_blocks(
+            (manifest, &object_params),
+            scene,
+            style.object_stride,
+            (&[], &[]),
+            &mut object_bytes,
+        )?;
         let object_count = scene.objects.len().max(1) as u64;
         let object_buffer = device.make_buffer(&wgpu::BufferDescriptor {
             label: Some("npr objects"),
