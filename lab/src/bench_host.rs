@@ -15,8 +15,8 @@
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
 use crate::thread_cpu;
-use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use runner::scene::{primitives, Camera, Mesh};
 use runner::{Gpu, RunError, StyleProgram};
 
 /// One row: objects, npr's and the minimal program's median CPU µs per frame.
@@ -285,6 +285,51 @@ fn render_pass_tags(program: &StyleProgram) -> Vec<&String> {
     tags
 }
 
+/// A runtime of `program` with `mesh` registered, and the mesh's handle.
+fn runtime_with(program: &StyleProgram, gpu: &Gpu, mesh: &Mesh) -> Result<(StyleRuntime, MeshHandle), RunError> {
+    let mut runtime =
+        StyleRuntime::new(&gpu.device, &gpu.queue, program.clone()).map_err(|e| RunError::User(e.diagnostics()))?;
+    let handle = runtime.add_mesh(mesh.clone());
+    Ok((runtime, handle))
+}
+
+/// `count` objects of `handle` at frame `k`, each carrying every tag of
+/// `tags` ([`render_pass_tags`]: Age of Sail's `depth: render(caster)`), so
+/// each render pass draws every object, as the minimal program's do: the
+/// same draws on both sides.
+fn tagged_instances(handle: MeshHandle, count: usize, k: u32, tags: &[&String]) -> Vec<Instance> {
+    (0..count)
+        .map(|i| {
+            tags.iter()
+                .fold(Instance::new(handle, model(i, count, k)), |o, t| o.with_tag(t))
+        })
+        .collect()
+}
+
+/// The calling thread's CPU µs of one `StyleRuntime::render` of `frame`
+/// into `view`; the frame is then submitted and the GPU drained, untimed.
+fn timed_render(
+    gpu: &Gpu,
+    runtime: &mut StyleRuntime,
+    frame: &Frame,
+    view: &wgpu::TextureView,
+) -> Result<f64, RunError> {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let (us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, frame, Target::View(view)));
+    rendered.map_err(|e| RunError::User(e.diagnostics()))?;
+    gpu.queue.submit([encoder.finish()]);
+    drain(&gpu.device)?;
+    Ok(us)
+}
+
+/// Wait until the GPU has done what was submitted.
+fn drain(device: &wgpu::Device) -> Result<(), RunError> {
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| RunError::Internal(e.to_string()))
+}
+
 /// A view of the `size`² texture a host renders into.
 fn host_target(device: &wgpu::Device, size: u32) -> wgpu::TextureView {
     device
@@ -330,30 +375,13 @@ pub fn rows(
     // The style's other passes and the present pass: one fullscreen triangle each.
     let passes = (render_passes, program.manifest.passes.len() - render_passes + 1);
     let view = host_target(device, size);
-    let wait = || {
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RunError::Internal(e.to_string()))
-    };
     let mut rows = Vec::new();
     for &n in counts {
-        let mut runtime =
-            StyleRuntime::new(device, queue, program.clone()).map_err(|e| RunError::User(e.diagnostics()))?;
-        let handle = runtime.add_mesh(mesh.clone());
+        let (mut runtime, handle) = runtime_with(program, gpu, &mesh)?;
         let mut minimal = Minimal::new(device, n, size, &mesh);
         let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
         let lights = Lights::default();
-        // Every object carries every tag a render pass of the style selects
-        // (Age of Sail's `depth: render(caster)`), so each render pass draws
-        // every object, as the minimal program's do: the same draws on both sides.
-        let mut instances: Vec<Instance> = (0..n)
-            .map(|i| {
-                pass_tags
-                    .iter()
-                    .fold(Instance::new(handle, model(i, n, 0)), |o, t| o.with_tag(t))
-            })
-            .collect();
+        let mut instances = tagged_instances(handle, n, 0, &pass_tags);
         let mut models: Vec<glam::Mat4> = vec![glam::Mat4::IDENTITY; n];
         let (mut npr, mut own) = (Vec::new(), Vec::new());
         for k in 0..frames + 3 {
@@ -371,15 +399,11 @@ pub fn rows(
                 frame_index: k,
                 eye: 0,
             };
-            let mut encoder = device.create_command_encoder(&Default::default());
-            let (npr_us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, &frame, Target::View(&view)));
-            rendered.map_err(|e| RunError::User(e.diagnostics()))?;
-            queue.submit([encoder.finish()]);
-            wait()?;
+            let npr_us = timed_render(gpu, &mut runtime, &frame, &view)?;
             let mut encoder = device.create_command_encoder(&Default::default());
             let (own_us, ()) = thread_cpu::time_us(|| minimal.frame(queue, &mut encoder, &models, passes));
             queue.submit([encoder.finish()]);
-            wait()?;
+            drain(device)?;
             if k >= 3 {
                 npr.push(npr_us);
                 own.push(own_us);
@@ -435,21 +459,15 @@ pub fn spawn_row(
     size: u32,
     spawns: u32,
 ) -> Result<SpawnRow, RunError> {
-    let (device, queue) = (&gpu.device, &gpu.queue);
     let mesh = primitives::sphere(1.0, 16, 8);
-    let view = host_target(device, size);
+    let view = host_target(&gpu.device, size);
     let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
     let lights = Lights::default();
     // As in `rows`: every object carries the tags the render passes select.
     let tags = render_pass_tags(program);
     // One timed frame of `count` objects: µs of `render`, GPU work drained after.
     let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
-        let instances: Vec<Instance> = (0..count)
-            .map(|i| {
-                tags.iter()
-                    .fold(Instance::new(handle, model(i, count, k)), |o, t| o.with_tag(t))
-            })
-            .collect();
+        let instances = tagged_instances(handle, count, k, &tags);
         let frame = Frame {
             camera: &camera,
             objects: &instances,
@@ -458,21 +476,9 @@ pub fn spawn_row(
             frame_index: k,
             eye: 0,
         };
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let (us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, &frame, Target::View(&view)));
-        rendered.map_err(|e| RunError::User(e.diagnostics()))?;
-        queue.submit([encoder.finish()]);
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RunError::Internal(e.to_string()))?;
-        Ok(us)
+        timed_render(gpu, runtime, &frame, &view)
     };
-    let new_runtime = || -> Result<(StyleRuntime, runner::embed::MeshHandle), RunError> {
-        let mut runtime =
-            StyleRuntime::new(device, queue, program.clone()).map_err(|e| RunError::User(e.diagnostics()))?;
-        let handle = runtime.add_mesh(mesh.clone());
-        Ok((runtime, handle))
-    };
+    let new_runtime = || runtime_with(program, gpu, &mesh);
     let (mut runtime, handle) = new_runtime()?;
     for k in 0..3 {
         timed(&mut runtime, handle, objects, k)?;

@@ -14,7 +14,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, gpu, host_target};
+use common::{compile, gpu, host_target, render_frame};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
@@ -67,13 +67,8 @@ fn frame(runtime: &mut StyleRuntime, instances: &[Instance], k: u32, view: &wgpu
         frame_index: k,
         eye: 0,
     };
-    let device = &gpu().device;
-    let mut encoder = device.create_command_encoder(&Default::default());
-    runtime
-        .render(&mut encoder, &frame, Target::View(view))
-        .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
-    gpu().queue.submit([encoder.finish()]);
-    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+    render_frame(runtime, &frame, Target::View(view)).unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
+    gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
 }
 
 /// Frames `from..to` create nothing once frame `from - 1` was rendered.
@@ -266,15 +261,12 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
         eye: 0,
     };
     let texture = host_target(64, 48, wgpu::TextureFormat::Rgba8Unorm, &[]);
-    let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    runtime
-        .render(
-            &mut encoder,
-            &frame,
-            Target::View(&texture.create_view(&Default::default())),
-        )
-        .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
-    gpu().queue.submit([encoder.finish()]);
+    render_frame(
+        &mut runtime,
+        &frame,
+        Target::View(&texture.create_view(&Default::default())),
+    )
+    .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
     let presented = runner::readback::read_texture(
         &gpu().device,
         &gpu().queue,

@@ -20,7 +20,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, examples, gpu, host_target, write_mismatch};
+use common::{compile, examples, gpu, host_target, render_frame, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::readback::TargetImage;
@@ -76,10 +76,8 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
             frame_index: k as u32,
             eye: 0,
         };
-        let mut encoder = gpu().device.create_command_encoder(&Default::default());
         let before = runner::gpu_count::created_on_this_thread();
-        runtime
-            .render(&mut encoder, &frame, Target::View(&view))
+        render_frame(&mut runtime, &frame, Target::View(&view))
             .unwrap_or_else(|e| panic!("{scene_file} at {time_s} s: {:?}", e.diagnostics()));
         let after = runner::gpu_count::created_on_this_thread();
         // After the first frame the ocean's vertices and the patches'
@@ -88,7 +86,6 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
             k == 0 || after == before,
             "{scene_file} at {time_s} s: the frame created GPU objects: {before:?} → {after:?}"
         );
-        gpu().queue.submit([encoder.finish()]);
         let hosted = runner::readback::read_texture(
             &gpu().device,
             &gpu().queue,

@@ -32,7 +32,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, gpu, host_target, write_mismatch};
+use common::{compile, gpu, host_target, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};
 use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
@@ -101,15 +101,8 @@ fn render(
         frame_index: k as u32,
         eye: 0,
     };
-    let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    runtime
-        .render(
-            &mut encoder,
-            &frame,
-            Target::View(&texture.create_view(&Default::default())),
-        )
+    render_frame(runtime, &frame, Target::View(&texture.create_view(&Default::default())))
         .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
-    gpu().queue.submit([encoder.finish()]);
 }
 
 /// [`render`], checking that a frame after the first creates no GPU

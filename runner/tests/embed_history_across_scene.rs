@@ -19,7 +19,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{examples, gpu, host_target, write_mismatch};
+use common::{examples, gpu, host_target, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
@@ -144,11 +144,8 @@ impl Run {
             eye: 0,
         };
         let view = if resized { &self.other_size } else { &self.target }.create_view(&Default::default());
-        let mut encoder = gpu().device.create_command_encoder(&Default::default());
-        self.runtime
-            .render(&mut encoder, &frame, Target::View(&view))
+        render_frame(&mut self.runtime, &frame, Target::View(&view))
             .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
-        gpu().queue.submit([encoder.finish()]);
         gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
     }
 

@@ -8,7 +8,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{gpu, host_target, render_frame};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
@@ -46,10 +46,7 @@ fn render(runtime: &mut StyleRuntime, target: Target) -> Result<(), runner::embe
         frame_index: 0,
         eye: 0,
     };
-    let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    let result = runtime.render(&mut encoder, &frame, target);
-    gpu().queue.submit([encoder.finish()]);
-    result
+    render_frame(runtime, &frame, target)
 }
 
 fn read(texture: &wgpu::Texture, format: abi::Format) -> Vec<[f32; 4]> {

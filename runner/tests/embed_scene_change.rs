@@ -19,7 +19,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, examples, gpu, host_target, write_mismatch};
+use common::{compile, examples, gpu, host_target, render_frame, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::{created_on_this_thread, GpuCreations};
@@ -119,12 +119,9 @@ impl Host {
         };
         let view = if resized { &self.other_size } else { &self.target }.create_view(&Default::default());
         let before = created_on_this_thread();
-        let mut encoder = gpu().device.create_command_encoder(&Default::default());
-        self.runtime
-            .render(&mut encoder, &frame, Target::View(&view))
+        render_frame(&mut self.runtime, &frame, Target::View(&view))
             .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
         let after = created_on_this_thread();
-        gpu().queue.submit([encoder.finish()]);
         gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         minus(after, before)
     }

@@ -9,7 +9,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target};
+use common::{gpu, host_target, render_frame};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
@@ -57,11 +57,7 @@ fn render(target: Target, eye: u32) {
             frame_index,
             eye,
         };
-        let mut encoder = gpu().device.create_command_encoder(&Default::default());
-        runtime
-            .render(&mut encoder, &frame, target)
-            .unwrap_or_else(|e| panic!("{e}"));
-        gpu().queue.submit([encoder.finish()]);
+        render_frame(&mut runtime, &frame, target).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 

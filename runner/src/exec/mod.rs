@@ -280,12 +280,14 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let object_params = crate::animation::object_param_indices(&manifest);
         // The scene's part, made as `set_scene` makes another's.
         let style = scene_gpu::StyleParts {
             manifest: &manifest,
             textures: &textures,
             object_layout: &object_layout,
             object_stride,
+            object_params: &object_params,
             passes: &passes,
             eyes,
             object_images: &Default::default(),
@@ -307,7 +309,7 @@ impl Renderer {
             style_buffer,
             parities: if manifest.is_path_dependent() { 2 } else { 1 },
             object_stride,
-            object_params: crate::animation::object_param_indices(&manifest),
+            object_params,
             has_lines,
             manifest,
             sized: None,

@@ -45,6 +45,8 @@ pub(super) struct StyleParts<'a> {
     /// The shared group 1 layout the pipelines were made with.
     pub object_layout: &'a wgpu::BindGroupLayout,
     pub object_stride: u64,
+    /// [`crate::animation::object_param_indices`] of the manifest.
+    pub object_params: &'a [usize],
     pub passes: &'a [PassExec],
     pub eyes: usize,
     /// The per-object images the previous scene bound (none at a build).
@@ -66,9 +68,8 @@ impl SceneGpu {
         let manifest = style.manifest;
         let object_textures = textures::load_object_textures(device, queue, manifest, scene, style.object_images)?;
         let mut object_bytes = vec![0; (style.object_stride as usize) * scene.objects.len()];
-        let object_params = crate::animation::object_param_indices(manifest);
         objects::write_object_blocks(
-            (manifest, &object_params),
+            (manifest, style.object_params),
             scene,
             style.object_stride,
             (&[], &[]),
@@ -172,6 +173,7 @@ impl Renderer {
                     textures: &self.textures,
                     object_layout: &self.object_layout,
                     object_stride: self.object_stride,
+                    object_params: &self.object_params,
                     passes: &self.passes,
                     eyes: self.frame_buffers.len(),
                     object_images: &self.scene_gpu.object_images,

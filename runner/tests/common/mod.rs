@@ -5,6 +5,7 @@
 // Each test binary compiles this module and uses a part of it.
 #![allow(dead_code)]
 
+use runner::embed::{EmbedError, Frame, StyleRuntime, Target};
 use runner::{Gpu, TargetImage};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -42,6 +43,16 @@ pub fn host_target(
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats,
     })
+}
+
+/// `runtime` renders `frame` into `target` in an encoder of its own, which
+/// is submitted whatever the answer (as a host's loop submits its frame);
+/// the runtime's answer comes back. The GPU work is not waited for.
+pub fn render_frame(runtime: &mut StyleRuntime, frame: &Frame, target: Target) -> Result<(), EmbedError> {
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    let result = runtime.render(&mut encoder, frame, target);
+    gpu().queue.submit([encoder.finish()]);
+    result
 }
 
 /// The repository's `examples/` folder.
