@@ -504,6 +504,7 @@ fn frames_after_update_mesh_create_no_gpu_object() {
         scene.camera = Camera::looking_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO);
         let texture = host_target(WIDTH, HEIGHT, wgpu::TextureFormat::Rgba8Unorm, &[]);
         render(&mut runtime, &scene, &objects, (0, 0.0), &texture);
+        gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         let first = created_on_this_thread();
         for (k, &time_s) in TIMES.iter().enumerate().skip(1) {
             let positions = squash(&rest.positions, time_s);
@@ -511,8 +512,11 @@ fn frames_after_update_mesh_create_no_gpu_object() {
                 .update_mesh(ball, Deformed::positions(&positions))
                 .expect("update");
             render(&mut runtime, &scene, &objects, (k, time_s), &texture);
+            // The host waits for each frame (a swapchain paces it): the
+            // uniforms' staging buffer is back for the next one. Frames in
+            // flight are the staging ring's: embed_frames_in_flight.rs.
+            gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         }
-        gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
         let after = created_on_this_thread();
         assert_eq!(
             after, first,

@@ -18,7 +18,6 @@ use abi::manifest::*;
 /// without per-object textures.
 pub(super) struct EncodeContext<'a> {
     pub meshes: &'a [GpuMesh],
-    pub object_tags: &'a [Vec<String>],
     pub object_group: &'a wgpu::BindGroup,
     /// Bytes between two objects' blocks (the dynamic offset step).
     pub object_stride: u64,

@@ -249,7 +249,7 @@ impl Renderer {
     }
 
     /// Write the per-frame, style and object uniforms for `spec` (into the
-    /// staging buffer, in one write: `upload.rs`). Everything
+    /// blocks `encode` uploads: `upload.rs`). Everything
     /// here is read from `scene` again each frame: the camera and light, and
     /// every object's transform and per-object params (bad params are
     /// `RunError::User`, and nothing is written then). Only the uniform
@@ -291,8 +291,7 @@ impl Renderer {
             spec.height,
             self.scene_gpu.upload.style_mut(),
         );
-        // One write; `encode` copies the blocks into their buffers.
-        self.scene_gpu.upload.write(&self.queue);
+        // `encode` puts the blocks into a staging buffer and copies them into their buffers.
         Ok(())
     }
 }

@@ -15,7 +15,7 @@
 //! - `frame.rs`: [`FrameSpec`] and the per-frame uniform writing;
 //! - `objects.rs`: object uniform blocks;
 //! - `light_bounds.rs`: the world bounds the light camera is fitted to;
-//! - `upload.rs`: the frame's uniforms in one write, copied into their buffers;
+//! - `upload.rs`: the frame's uniforms through a reused staging buffer, copied into their buffers;
 //! - `resources.rs`: size-dependent textures and views;
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
@@ -353,8 +353,8 @@ impl Renderer {
 
     /// Size the targets and write the uniforms for `spec`; then [`Renderer::encode`]
     /// records the passes into your own command encoder, after the copies
-    /// that bring this frame's uniforms into their buffers (they are
-    /// uploaded in one write, `upload.rs`): encode after every prepare.
+    /// that bring this frame's uniforms into their buffers (they go
+    /// through a staging buffer, `upload.rs`): encode after every prepare.
     ///
     /// `scene` must have the objects the renderer was built (or last
     /// [`Renderer::set_scene`]) for (same meshes, tags and bound images,
@@ -462,7 +462,6 @@ impl Renderer {
         );
         let ctx = EncodeContext {
             meshes: &self.scene_gpu.meshes,
-            object_tags: &self.scene_gpu.object_tags,
             object_group: &self.scene_gpu.object_group,
             object_stride: self.object_stride,
             parity: self.parity(),

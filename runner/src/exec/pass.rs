@@ -12,7 +12,7 @@ use super::common::{pipeline_constants, EncodeContext, PassShader, Timestamps};
 use super::compute_pass::{ComputePassExec, ComputeScene};
 use super::image_pass::ImagePassExec;
 use super::lines_pass::LinesPassExec;
-use super::render_pass::RenderPassExec;
+use super::render_pass::{RenderPassExec, RenderScene};
 use super::resources::SizedPass;
 use super::tiled_pass::{TiledOutputs, TiledPassExec};
 use crate::RunError;
@@ -37,7 +37,7 @@ pub(super) enum PassExec {
 /// pass before any is given its own, so a scene that fails leaves the
 /// passes as they were.
 pub(super) enum PassScene {
-    Render(Vec<wgpu::BindGroup>),
+    Render(RenderScene),
     Compute(ComputeScene),
     /// Image and tiled passes read no scene; a lines pass reads it per frame.
     Other,
@@ -108,7 +108,7 @@ impl PassExec {
     /// its cached strips).
     pub fn set_scene(&mut self, scene: PassScene) {
         match (self, scene) {
-            (PassExec::Render(p), PassScene::Render(groups)) => p.set_scene(groups),
+            (PassExec::Render(p), PassScene::Render(scene)) => p.set_scene(scene),
             (PassExec::Compute(p), PassScene::Compute(scene)) => p.set_scene(scene),
             (PassExec::Lines(p), _) => p.set_scene(),
             _ => {}

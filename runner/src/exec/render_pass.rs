@@ -1,5 +1,5 @@
-//! The executor of `render(tag)` passes: draws every object (with the tag)
-//! of the scene with its own vertex buffers, one object block per draw at a
+//! The executor of `render(tag)` passes: draws every object (with the tag;
+//! which ones is found once per scene, [`RenderScene`]) with its own vertex buffers, one object block per draw at a
 //! dynamic offset into group 1, into the pass's targets and a depth buffer:
 //! its own, cleared per pass (stored with `depth: keep`), or with `depth:
 //! test(other)` the one `other` kept, loaded and tested, never written. A
@@ -28,11 +28,20 @@ pub(super) struct RenderPassExec {
     /// (`bind::pass_object_layout`): the pipeline's, kept for the groups of
     /// every scene.
     object_layout: Option<wgpu::BindGroupLayout>,
+    /// The scene's part, made by [`RenderPassExec::bind_scene`].
+    scene: RenderScene,
+}
+
+/// What one scene gives a render pass.
+#[derive(Default)]
+pub(super) struct RenderScene {
     /// Per object: group 1 with the object's uniforms and its per-object
     /// textures; empty when the pass reads no such texture (it uses the
-    /// shared group, `EncodeContext::object_group`). The scene's part,
-    /// made by [`RenderPassExec::bind_scene`].
+    /// shared group, `EncodeContext::object_group`).
     object_groups: Vec<wgpu::BindGroup>,
+    /// The objects the pass draws (those with its tag), in scene order:
+    /// found once per scene rather than by comparing tags every frame.
+    drawn: Vec<usize>,
 }
 
 /// The pipeline's depth state and the attachment's operations of a depth
@@ -136,24 +145,36 @@ impl RenderPassExec {
             depth_ops,
             layout0,
             object_layout: own_layout,
-            object_groups: Vec::new(),
+            scene: RenderScene::default(),
         })
     }
 
     /// The pass's group 1 per object of `objects`' scene, made with the
-    /// layout its pipeline was built with (a scene change keeps the pipeline).
+    /// layout its pipeline was built with (a scene change keeps the
+    /// pipeline), and the objects it draws.
     pub fn bind_scene(
         &self,
         device: &wgpu::Device,
         pass: &PassManifest,
         objects: &ObjectResources,
-    ) -> Result<Vec<wgpu::BindGroup>, RunError> {
-        bind::pass_object_groups(device, pass, self.object_layout.as_ref(), objects)
+    ) -> Result<RenderScene, RunError> {
+        let drawn = objects
+            .scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| self.tag.as_ref().is_none_or(|tag| o.tags.contains(tag)))
+            .map(|(i, _)| i)
+            .collect();
+        Ok(RenderScene {
+            object_groups: bind::pass_object_groups(device, pass, self.object_layout.as_ref(), objects)?,
+            drawn,
+        })
     }
 
-    /// Take the groups [`RenderPassExec::bind_scene`] made.
-    pub fn set_scene(&mut self, object_groups: Vec<wgpu::BindGroup>) {
-        self.object_groups = object_groups;
+    /// Take the part [`RenderPassExec::bind_scene`] made.
+    pub fn set_scene(&mut self, scene: RenderScene) {
+        self.scene = scene;
     }
 
     pub fn encode(
@@ -170,15 +191,11 @@ impl RenderPassExec {
         // The index buffer of the mesh whose buffers the pass holds: objects
         // of one mesh share its buffers (`meshes.rs`), bound once for a run of them.
         let mut bound: Option<&wgpu::Buffer> = None;
-        for (oi, mesh) in ctx.meshes.iter().enumerate() {
-            if let Some(tag) = &self.tag {
-                if !ctx.object_tags[oi].iter().any(|t| t == tag) {
-                    continue;
-                }
-            }
+        for &oi in &self.scene.drawn {
+            let Some(mesh) = ctx.meshes.get(oi) else { continue };
             // §3.6: a pass reading `patch.weight` draws a blended patch over its n-ring.
             let mesh = mesh.drawn_by(&self.attributes);
-            let group = self.object_groups.get(oi).unwrap_or(ctx.object_group);
+            let group = self.scene.object_groups.get(oi).unwrap_or(ctx.object_group);
             rp.set_bind_group(1, group, &[(oi as u64 * ctx.object_stride) as u32]);
             if bound != Some(&mesh.index) {
                 for (slot, a) in self.attributes.iter().enumerate() {

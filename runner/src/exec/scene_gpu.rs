@@ -25,10 +25,9 @@ pub(super) struct SceneGpu {
     /// Per manifest pass: a compute pass's buffers.
     pub values: Vec<Option<values::PassBuffers>>,
     pub light_bounds: light_bounds::LightBounds,
-    /// The frame's uniforms (frame, style and object blocks), written in
-    /// one upload and copied into their buffers.
+    /// The frame's uniforms (frame, style and object blocks), copied into
+    /// their buffers from a reused staging buffer.
     pub upload: upload::Upload,
-    pub object_tags: Vec<Vec<String>>,
     /// Per object, its name: which object of the next scene continues it
     /// (`continuity.rs`).
     pub object_names: Vec<String>,
@@ -125,7 +124,6 @@ impl SceneGpu {
             values,
             light_bounds: light_bounds::LightBounds::new(manifest, scene),
             upload,
-            object_tags: scene.objects.iter().map(|o| o.tags.clone()).collect(),
             object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
             vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
             meshes,

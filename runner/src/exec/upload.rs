@@ -1,24 +1,90 @@
-//! A frame's uniforms go to the GPU in one `Queue::write_buffer`: the
-//! `Frame` block of each eye slot, the style parameter block and every
-//! object's block are laid out in one staging buffer, written once, and
-//! copied into their uniform buffers by commands recorded ahead of the
-//! passes (`Renderer::encode`).
+//! A frame's uniforms go to the GPU through one mapped staging buffer:
+//! the `Frame` block of each eye slot, the style parameter block and every
+//! object's block are laid out in `Upload::bytes` by `prepare`, and
+//! `encode` copies those bytes into a staging buffer that is already
+//! mapped, then records copies from it into the uniform buffers ahead of
+//! the passes (decision 0047).
 //!
-//! Why: wgpu makes a staging buffer for every `write_buffer` call (a
-//! memory allocation in the driver's allocator, whose cost grows with the
-//! device's other allocations: about 20 µs at 100 objects on lavapipe),
-//! while a copy command costs about a microsecond. A frame writing three
-//! blocks separately spent a fifth of its CPU time there (docs/PERFORMANCE.md,
-//! "host path"). The copies are in the encoder, after the queue's write
-//! (wgpu performs a submit's queue writes before its command buffers), so
-//! the passes read what the frame wrote, as they did before.
+//! Why: `Queue::write_buffer` makes a staging buffer for every call (a
+//! buffer, memory from the driver's allocator, a map), which was the
+//! largest single item of a host's frame after the passes themselves
+//! (docs/PERFORMANCE.md, "A host's frame"). Here the staging buffers are
+//! reused: each goes back to the ring, mapped again, once the GPU has
+//! copied from it (`CommandEncoder::map_buffer_on_submit`; wgpu calls back
+//! on a later submit or poll). The ring holds as many buffers as frames
+//! are in flight, usually one or two, and makes one only when none is back
+//! yet (counted by `gpu_count`, like every buffer the runner makes). It is
+//! wgpu's `util::StagingBelt` reduced to one fixed-size block per frame,
+//! written here so that its buffers are counted.
+//!
+//! Because the copies read a staging buffer of their own, two frames
+//! recorded into one encoder each read their own uniforms.
 
 use crate::gpu_count::Create;
+use std::sync::{mpsc, Mutex};
+
+/// Staging buffers of one size, mapped for writing and ready, or on their
+/// way back from the GPU.
+struct StagingRing {
+    device: wgpu::Device,
+    size: u64,
+    ready: Vec<wgpu::Buffer>,
+    /// Where a buffer's map callback sends it once the GPU copied from it.
+    returned: mpsc::Receiver<wgpu::Buffer>,
+    send_back: mpsc::Sender<wgpu::Buffer>,
+}
+
+impl StagingRing {
+    /// A mapped buffer: one that came back, or a new one.
+    fn take(&mut self) -> wgpu::Buffer {
+        self.ready.extend(self.returned.try_iter());
+        self.ready.pop().unwrap_or_else(|| {
+            self.device.make_buffer(&wgpu::BufferDescriptor {
+                label: Some("npr uniforms staging"),
+                size: self.size,
+                usage: wgpu::BufferUsages::MAP_WRITE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: true,
+            })
+        })
+    }
+
+    /// A staging buffer holding `bytes`, unmapped for the copies. A buffer
+    /// that cannot be written (its map failed) is dropped for a new one;
+    /// `None` only if a new one cannot be written either (the device is
+    /// lost, which wgpu reports through its own error handler).
+    fn staged(&mut self, bytes: &[u8]) -> Option<wgpu::Buffer> {
+        for _ in 0..2 {
+            let buffer = self.take();
+            let written = buffer
+                .slice(..bytes.len() as u64)
+                .get_mapped_range_mut()
+                .map(|mut view| view.copy_from_slice(bytes));
+            if written.is_ok() {
+                buffer.unmap();
+                return Some(buffer);
+            }
+        }
+        None
+    }
+
+    /// Map `buffer` again once `encoder`'s commands ran, and take it back then.
+    fn give_back_after(&self, encoder: &wgpu::CommandEncoder, buffer: wgpu::Buffer) {
+        let send_back = self.send_back.clone();
+        let mapped = buffer.clone();
+        encoder.map_buffer_on_submit(&buffer, wgpu::MapMode::Write, .., move |result| {
+            // A failed map (device lost) drops the buffer: the ring makes another.
+            if result.is_ok() {
+                let _ = send_back.send(mapped);
+            }
+        });
+    }
+}
 
 /// Where each block lies in the staging bytes.
 pub(super) struct Upload {
-    staging: wgpu::Buffer,
-    /// The staging buffer's contents, rewritten in place every frame.
+    /// `encode` takes `&self` (a host may encode from shared references).
+    staging: Mutex<StagingRing>,
+    /// The blocks as `prepare` wrote them, rewritten in place every frame.
     bytes: Vec<u8>,
     frame_size: usize,
     slots: usize,
@@ -45,12 +111,14 @@ impl Upload {
         objects_size: usize,
     ) -> Upload {
         let len = aligned(frame_size) * slots + aligned(style_size) + aligned(objects_size);
+        let (send_back, returned) = mpsc::channel();
         Upload {
-            staging: device.make_buffer(&wgpu::BufferDescriptor {
-                label: Some("npr uniforms staging"),
+            staging: Mutex::new(StagingRing {
+                device: device.clone(),
                 size: len.max(ALIGN) as u64,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
+                ready: Vec::new(),
+                returned,
+                send_back,
             }),
             bytes: vec![0; len],
             frame_size,
@@ -86,15 +154,9 @@ impl Upload {
         &mut self.bytes[at..at + self.objects_size]
     }
 
-    /// The frame's one write (into the staging buffer).
-    pub fn write(&self, queue: &wgpu::Queue) {
-        if !self.bytes.is_empty() {
-            queue.write_buffer(&self.staging, 0, &self.bytes);
-        }
-    }
-
-    /// Record the copies into the uniform buffers: each eye slot's frame
-    /// block, the style block, the object blocks.
+    /// Put the blocks into a staging buffer and record the copies into the
+    /// uniform buffers: each eye slot's frame block, the style block, the
+    /// object blocks.
     pub fn encode_copies(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -102,21 +164,25 @@ impl Upload {
         style: &wgpu::Buffer,
         objects: &wgpu::Buffer,
     ) {
+        if self.bytes.is_empty() {
+            return;
+        }
+        // A poisoned lock: a panic between `take` and `give_back_after`
+        // lost at most one buffer, and the ring makes another.
+        let mut ring = self.staging.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let Some(staging) = ring.staged(&self.bytes) else {
+            return;
+        };
         for (slot, buffer) in frame_buffers.iter().enumerate().take(self.slots) {
             let at = (aligned(self.frame_size) * slot) as u64;
-            encoder.copy_buffer_to_buffer(&self.staging, at, buffer, 0, self.frame_size as u64);
+            encoder.copy_buffer_to_buffer(&staging, at, buffer, 0, self.frame_size as u64);
         }
         if self.style_size > 0 {
-            encoder.copy_buffer_to_buffer(&self.staging, self.style_at() as u64, style, 0, self.style_size as u64);
+            encoder.copy_buffer_to_buffer(&staging, self.style_at() as u64, style, 0, self.style_size as u64);
         }
         if self.objects_size > 0 {
-            encoder.copy_buffer_to_buffer(
-                &self.staging,
-                self.objects_at() as u64,
-                objects,
-                0,
-                self.objects_size as u64,
-            );
+            encoder.copy_buffer_to_buffer(&staging, self.objects_at() as u64, objects, 0, self.objects_size as u64);
         }
+        ring.give_back_after(encoder, staging);
     }
 }
