@@ -7,18 +7,19 @@ use crate::scene::Object;
 use abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
 use diag::{codes, Diagnostic};
 
-/// Value of a parameter at `time_s` (keyframes, or the default).
-pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {
+/// Where `time_s` falls among `p`'s keyframes: the values before and
+/// after it and the eased weight `u` of the second (0 at a key, before the
+/// first and after the last; the default when there are no keyframes).
+fn keyframe_pair(p: &ParamManifest, time_s: f64) -> (&[f64], &[f64], f64) {
     let keys = &p.keyframes;
-    if keys.is_empty() {
-        return p.default.clone();
+    let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
+        return (&p.default, &p.default, 0.0);
+    };
+    if time_s <= first.0 {
+        return (&first.1, &first.1, 0.0);
     }
-    if time_s <= keys[0].0 {
-        return keys[0].1.clone();
-    }
-    let last = &keys[keys.len() - 1];
     if time_s >= last.0 {
-        return last.1.clone();
+        return (&last.1, &last.1, 0.0);
     }
     let i = keys.iter().rposition(|(t, _)| *t <= time_s).unwrap_or(0);
     let (t0, v0) = &keys[i];
@@ -31,7 +32,25 @@ pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {
         "smooth" => u = u * u * (3.0 - 2.0 * u),
         _ => {}
     }
-    v0.iter().zip(v1).map(|(a, b)| a + (b - a) * u).collect()
+    (v0, v1, u)
+}
+
+/// Component `j` of the value between `v0` and `v1` at weight `u`: `v0`'s
+/// own at a key (so −0 and non-finite values pass unchanged), else
+/// `a + (b − a)·u`; `None` past the value's components.
+fn interpolated((v0, v1, u): (&[f64], &[f64], f64), j: usize) -> Option<f64> {
+    let a = *v0.get(j)?;
+    if u == 0.0 && std::ptr::eq(v0, v1) {
+        return Some(a);
+    }
+    let b = *v1.get(j)?;
+    Some(a + (b - a) * u)
+}
+
+/// Value of a parameter at `time_s` (keyframes, or the default).
+pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {
+    let pair = keyframe_pair(p, time_s);
+    (0..).map_while(|j| interpolated(pair, j)).collect()
 }
 
 fn slot(values: &[f64]) -> [f32; 4] {
@@ -69,17 +88,28 @@ pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]
             continue;
         }
         let Some(off) = p.offset else { continue };
-        let computed;
-        let v: &[f64] = if p.keyframes.is_empty() && !p.default_percent_of_height {
-            &p.default
-        } else {
-            computed = percent(p, value_at(p, time_s), height);
-            &computed
+        // Computed in place, component by component: a frame allocates nothing here.
+        let pair = keyframe_pair(p, time_s);
+        let component = |j: usize| {
+            interpolated(pair, j).map(|x| {
+                if p.default_percent_of_height {
+                    x / 100.0 * height as f64
+                } else {
+                    x
+                }
+            })
         };
         // One vec4 per slot; a gradient has several (`abi::gradient`).
         let slots = abi::gradient::slots_of(&p.ty);
         for k in 0..slots {
-            let bytes: [u8; 16] = bytemuck::cast(slot(v.get(k * 4..).unwrap_or(&[])));
+            let mut slot = [0.0f32; 4];
+            for (i, s) in slot.iter_mut().enumerate() {
+                match component(k * 4 + i) {
+                    Some(x) => *s = x as f32,
+                    None => break,
+                }
+            }
+            let bytes: [u8; 16] = bytemuck::cast(slot);
             let off = off as usize + k * 16;
             if off + 16 <= out.len() {
                 out[off..off + 16].copy_from_slice(&bytes);
