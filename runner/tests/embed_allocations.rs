@@ -14,7 +14,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, gpu, host_target, render_frame};
+use common::{compile, gpu, host_target, read_host, render_frame};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
@@ -267,16 +267,7 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
         Target::View(&texture.create_view(&Default::default())),
     )
     .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
-    let presented = runner::readback::read_texture(
-        &gpu().device,
-        &gpu().queue,
-        &texture,
-        64,
-        48,
-        abi::Format::Rgba8unorm,
-        "host",
-    )
-    .expect("read back");
+    let presented = read_host(&texture);
     let direct = runner::render_frame(gpu(), &program, &scene, &runner::FrameSpec::still(64, 48, 0)).expect("render");
     assert_eq!(direct.format, abi::Format::Rgba8unorm);
     assert_eq!(

@@ -20,7 +20,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, examples, gpu, host_target, render_frame, write_mismatch};
+use common::{compile, examples, gpu, host_target, read_host, render_frame, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::readback::TargetImage;
@@ -86,16 +86,7 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
             k == 0 || after == before,
             "{scene_file} at {time_s} s: the frame created GPU objects: {before:?} → {after:?}"
         );
-        let hosted = runner::readback::read_texture(
-            &gpu().device,
-            &gpu().queue,
-            &texture,
-            WIDTH,
-            HEIGHT,
-            abi::Format::Rgba8unorm,
-            "host",
-        )
-        .expect("read back the host's texture");
+        let hosted = read_host(&texture);
 
         let spec = FrameSpec {
             width: WIDTH,

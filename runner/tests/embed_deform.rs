@@ -32,7 +32,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, gpu, host_target, render_frame, write_mismatch};
+use common::{compile, gpu, host_target, read_host, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};
 use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
@@ -121,16 +121,7 @@ fn present(
         k == 0 || after == before,
         "frame {k} after update_mesh created GPU objects: {before:?} → {after:?}"
     );
-    runner::readback::read_texture(
-        &gpu().device,
-        &gpu().queue,
-        texture,
-        WIDTH,
-        HEIGHT,
-        abi::Format::Rgba8unorm,
-        "host",
-    )
-    .expect("read back the host's texture")
+    read_host(texture)
 }
 
 fn spec((k, time_s): (usize, f64)) -> FrameSpec {

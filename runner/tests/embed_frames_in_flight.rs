@@ -11,12 +11,11 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{compile, gpu, host_target, render_frame, write_mismatch};
+use common::{compile, gpu, host_target, read_host, write_mismatch};
 
 use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
 use runner::gpu_count::created_on_this_thread;
 use runner::scene::{primitives, Camera};
-use runner::TargetImage;
 
 const WIDTH: u32 = 64;
 const HEIGHT: u32 = 48;
@@ -72,21 +71,16 @@ fn record(
         .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
 }
 
-fn wait() {
-    gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+/// Frame `k` in an encoder of its own, submitted and waited for.
+fn submit_and_wait(runtime: &mut StyleRuntime, meshes: (MeshHandle, MeshHandle), k: u32, texture: &wgpu::Texture) {
+    let mut encoder = gpu().device.create_command_encoder(&Default::default());
+    record(runtime, meshes, k, &mut encoder, texture);
+    gpu().queue.submit([encoder.finish()]);
+    wait();
 }
 
-fn read(texture: &wgpu::Texture) -> TargetImage {
-    runner::readback::read_texture(
-        &gpu().device,
-        &gpu().queue,
-        texture,
-        WIDTH,
-        HEIGHT,
-        abi::Format::Rgba8unorm,
-        "host",
-    )
-    .expect("read back the host's texture")
+fn wait() {
+    gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
 }
 
 fn target() -> wgpu::Texture {
@@ -100,11 +94,7 @@ fn target() -> wgpu::Texture {
 #[test]
 fn frames_recorded_into_one_encoder_each_render_their_own_uniforms() {
     let (mut batched, sphere, cube) = runtime();
-    let first = target();
-    let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    record(&mut batched, (sphere, cube), 0, &mut encoder, &first);
-    gpu().queue.submit([encoder.finish()]);
-    wait();
+    submit_and_wait(&mut batched, (sphere, cube), 0, &target());
     let textures = [target(), target(), target()];
     let mut encoder = gpu().device.create_command_encoder(&Default::default());
     for (k, texture) in (1..).zip(&textures) {
@@ -117,14 +107,11 @@ fn frames_recorded_into_one_encoder_each_render_their_own_uniforms() {
     let mut images = Vec::new();
     for k in 0..4 {
         let texture = target();
-        let mut encoder = gpu().device.create_command_encoder(&Default::default());
-        record(&mut one_by_one, (sphere, cube), k, &mut encoder, &texture);
-        gpu().queue.submit([encoder.finish()]);
-        wait();
-        images.push(read(&texture));
+        submit_and_wait(&mut one_by_one, (sphere, cube), k, &texture);
+        images.push(read_host(&texture));
     }
     for (k, texture) in (1..).zip(&textures) {
-        let (actual, expected) = (read(texture), &images[k]);
+        let (actual, expected) = (read_host(texture), &images[k]);
         if actual.bytes != expected.bytes {
             let at = write_mismatch("frames_in_flight", &format!("frame{k}"), &actual, expected);
             panic!(
@@ -145,10 +132,7 @@ fn frames_recorded_into_one_encoder_each_render_their_own_uniforms() {
 fn the_staging_ring_grows_to_the_frames_in_flight_and_no_further() {
     let (mut runtime, sphere, cube) = runtime();
     let texture = target();
-    let mut encoder = gpu().device.create_command_encoder(&Default::default());
-    record(&mut runtime, (sphere, cube), 0, &mut encoder, &texture);
-    gpu().queue.submit([encoder.finish()]);
-    wait();
+    submit_and_wait(&mut runtime, (sphere, cube), 0, &texture);
     let three_frames = |runtime: &mut StyleRuntime, from: u32| {
         let before = created_on_this_thread();
         let mut encoder = gpu().device.create_command_encoder(&Default::default());
@@ -172,22 +156,7 @@ fn the_staging_ring_grows_to_the_frames_in_flight_and_no_further() {
     );
     let before = created_on_this_thread();
     for k in 7..12 {
-        let (objects, camera, lights) = (objects(sphere, cube, k), camera(k), Lights::default());
-        let frame = Frame {
-            camera: &camera,
-            objects: &objects,
-            lights: &lights,
-            time_s: f64::from(k) / 24.0,
-            frame_index: k,
-            eye: 0,
-        };
-        render_frame(
-            &mut runtime,
-            &frame,
-            Target::View(&texture.create_view(&Default::default())),
-        )
-        .unwrap_or_else(|e| panic!("frame {k}: {:?}", e.diagnostics()));
-        wait();
+        submit_and_wait(&mut runtime, (sphere, cube), k, &texture);
     }
     assert_eq!(
         created_on_this_thread(),

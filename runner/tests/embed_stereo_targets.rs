@@ -9,7 +9,7 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::{gpu, host_target, render_frame};
+use common::{gpu, host_target, read_host, render_frame};
 
 use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
 use runner::scene::{primitives, Camera};
@@ -61,19 +61,9 @@ fn render(target: Target, eye: u32) {
     }
 }
 
-/// The texels of `texture` (`width` × SIZE), row by row.
-fn read(texture: &wgpu::Texture, width: u32) -> Vec<[f32; 4]> {
-    runner::readback::read_texture(
-        &gpu().device,
-        &gpu().queue,
-        texture,
-        width,
-        SIZE,
-        abi::Format::Rgba8unorm,
-        "host",
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
-    .to_rgba_f32()
+/// The texels of `texture`, row by row.
+fn read(texture: &wgpu::Texture) -> Vec<[f32; 4]> {
+    read_host(texture).to_rgba_f32()
 }
 
 /// Columns `from..from + SIZE` of a `width`-wide image.
@@ -94,7 +84,7 @@ fn eyes_side_by_side_and_single_views_show_the_same_eyes() {
         },
         0,
     );
-    let (left, right) = (read(&left, SIZE), read(&right, SIZE));
+    let (left, right) = (read(&left), read(&right));
     let differing = left.iter().zip(&right).filter(|(a, b)| a != b).count();
     assert!(
         differing > 20,
@@ -103,7 +93,7 @@ fn eyes_side_by_side_and_single_views_show_the_same_eyes() {
 
     let both = texture(2 * SIZE);
     render(Target::SideBySide(&both.create_view(&Default::default())), 0);
-    let both = read(&both, 2 * SIZE);
+    let both = read(&both);
     assert!(columns(&both, 2 * SIZE, 0) == left, "the left half is not the left eye");
     assert!(
         columns(&both, 2 * SIZE, SIZE) == right,
@@ -113,9 +103,6 @@ fn eyes_side_by_side_and_single_views_show_the_same_eyes() {
     for (eye, expected) in [(0, &left), (1, &right)] {
         let single = texture(SIZE);
         render(Target::View(&single.create_view(&Default::default())), eye);
-        assert!(
-            read(&single, SIZE) == *expected,
-            "a single view of eye {eye} is not that eye"
-        );
+        assert!(read(&single) == *expected, "a single view of eye {eye} is not that eye");
     }
 }

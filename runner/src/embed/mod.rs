@@ -49,7 +49,12 @@
 //! and those of a mesh the host deformed since the last frame, with the
 //! copies compute passes over vertices read) and records commands, and
 //! creates no buffer, texture, bind group or pipeline
-//! (`runner/tests/embed_allocations.rs` and `embed_deform.rs` count them).
+//! (`runner/tests/embed_allocations.rs` and `embed_deform.rs` count them),
+//! except a staging buffer for the uniforms while none of the earlier
+//! frames' is back from the GPU: the runtime keeps one per frame in
+//! flight and reuses them (decision 0047), so several frames may be
+//! recorded before a submit, each with its own uniforms
+//! (`embed_frames_in_flight.rs`).
 //! A deformed mesh also costs the CPU what is made from its vertices: a
 //! `lines` pass's edges and strips, the light camera's bounds.
 //!

@@ -45,6 +45,20 @@ pub fn host_target(
     })
 }
 
+/// The host's Rgba8Unorm `texture`, read back at its size (waits for the GPU).
+pub fn read_host(texture: &wgpu::Texture) -> TargetImage {
+    runner::readback::read_texture(
+        &gpu().device,
+        &gpu().queue,
+        texture,
+        texture.width(),
+        texture.height(),
+        abi::Format::Rgba8unorm,
+        "host",
+    )
+    .unwrap_or_else(|e| panic!("read back the host's texture: {e}"))
+}
+
 /// `runtime` renders `frame` into `target` in an encoder of its own, which
 /// is submitted whatever the answer (as a host's loop submits its frame);
 /// the runtime's answer comes back. The GPU work is not waited for.
