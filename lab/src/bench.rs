@@ -193,7 +193,7 @@ pub fn pass_times_interleaved(
     Ok(timed
         .into_iter()
         .map(|(_, r, per_pass)| {
-            r.manifest
+            r.manifest()
                 .passes
                 .iter()
                 .zip(per_pass)

@@ -84,36 +84,62 @@ pub fn scalar_at(m: &Manifest, name: &str, time_s: f64, height: u32) -> Option<f
 pub fn write_style_params(m: &Manifest, time_s: f64, height: u32, out: &mut [u8]) {
     out.fill(0);
     for p in &m.params {
-        if p.binding != ParamBinding::Uniform {
-            continue;
+        write_style_param(p, time_s, height, out);
+    }
+}
+
+/// The uniform parameters of `m` whose value changes with the time (they
+/// have keyframes): what a frame writes again over a style block that
+/// [`write_style_params`] wrote for the same parameters and height.
+pub fn animated_style_param_indices(m: &Manifest) -> Vec<usize> {
+    m.params
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.binding == ParamBinding::Uniform && p.offset.is_some() && !p.keyframes.is_empty())
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Parameters `indices` of `m` at `time_s`, written over their slots of
+/// the style block `out` (the other slots as they were).
+pub fn write_style_params_at(m: &Manifest, indices: &[usize], time_s: f64, height: u32, out: &mut [u8]) {
+    for p in indices.iter().filter_map(|&i| m.params.get(i)) {
+        write_style_param(p, time_s, height, out);
+    }
+}
+
+/// `p`'s slots of the style block at `time_s` (nothing for a parameter
+/// that is not in the block).
+fn write_style_param(p: &ParamManifest, time_s: f64, height: u32, out: &mut [u8]) {
+    if p.binding != ParamBinding::Uniform {
+        return;
+    }
+    let Some(off) = p.offset else { return };
+    // Computed in place, component by component: a frame allocates nothing here.
+    let pair = keyframe_pair(p, time_s);
+    let component = |j: usize| {
+        interpolated(pair, j).map(|x| {
+            if p.default_percent_of_height {
+                x / 100.0 * height as f64
+            } else {
+                x
+            }
+        })
+    };
+    // One vec4 per slot; a gradient has several (`abi::gradient`).
+    let slots = abi::gradient::slots_of(&p.ty);
+    for k in 0..slots {
+        let mut slot = [0.0f32; 4];
+        for (i, s) in slot.iter_mut().enumerate() {
+            match component(k * 4 + i) {
+                Some(x) => *s = x as f32,
+                None => break,
+            }
         }
-        let Some(off) = p.offset else { continue };
-        // Computed in place, component by component: a frame allocates nothing here.
-        let pair = keyframe_pair(p, time_s);
-        let component = |j: usize| {
-            interpolated(pair, j).map(|x| {
-                if p.default_percent_of_height {
-                    x / 100.0 * height as f64
-                } else {
-                    x
-                }
-            })
-        };
-        // One vec4 per slot; a gradient has several (`abi::gradient`).
-        let slots = abi::gradient::slots_of(&p.ty);
-        for k in 0..slots {
-            let mut slot = [0.0f32; 4];
-            for (i, s) in slot.iter_mut().enumerate() {
-                match component(k * 4 + i) {
-                    Some(x) => *s = x as f32,
-                    None => break,
-                }
-            }
-            let bytes: [u8; 16] = bytemuck::cast(slot);
-            let off = off as usize + k * 16;
-            if off + 16 <= out.len() {
-                out[off..off + 16].copy_from_slice(&bytes);
-            }
+        let bytes: [u8; 16] = bytemuck::cast(slot);
+        let off = off as usize + k * 16;
+        if off + 16 <= out.len() {
+            out[off..off + 16].copy_from_slice(&bytes);
         }
     }
 }

@@ -34,7 +34,7 @@ pub(crate) fn read_all_targets(
     scene: &runner::scene::Scene,
     spec: &FrameSpec,
 ) -> Result<Vec<runner::TargetImage>, RunError> {
-    let count = r.manifest.targets.len();
+    let count = r.manifest().targets.len();
     // Read every survivor of the full frame first: a partial re-render
     // overwrites the textures that aliased targets share with them.
     let mut images: Vec<Option<runner::TargetImage>> = Vec::with_capacity(count);

@@ -369,7 +369,7 @@ impl Studio {
             }
         } else if let Some(s) = session.as_mut() {
             for c in &self.controls {
-                if let Some(p) = s.renderer.manifest.params.iter_mut().find(|p| p.name == c.typed.name) {
+                if let Some(p) = s.renderer.params_mut().iter_mut().find(|p| p.name == c.typed.name) {
                     p.default = c.typed.value.clone();
                     p.keyframes.clear();
                 }
@@ -426,7 +426,7 @@ impl Studio {
                     &self.written_literals(),
                 );
                 self.diagnostics = state::diagnostics_json(&built.warnings(), &built.sources, "compile");
-                let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest.passes.len());
+                let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest().passes.len());
                 *session = Some(Session { built, renderer, timer });
             }
             Err(e) => {
@@ -442,7 +442,7 @@ impl Studio {
             Ok((images, pass_ms)) => {
                 let render_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.frame_id += 1;
-                let manifest = &s.renderer.manifest;
+                let manifest = s.renderer.manifest();
                 let targets: Vec<Value> = images
                     .iter()
                     .enumerate()
@@ -488,7 +488,7 @@ fn render_frame(
     s: &mut Session,
     view: &View,
 ) -> Result<(Vec<runner::TargetImage>, Option<Vec<f64>>), RunError> {
-    let path_dependent = s.renderer.manifest.is_path_dependent();
+    let path_dependent = s.renderer.manifest().is_path_dependent();
     if path_dependent && s.renderer.frames_begun() > 0 {
         // History must start from frame 0 again, as `npr render` starts:
         // `restart_history` restarts it (history, compute state, previous

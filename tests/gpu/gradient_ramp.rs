@@ -178,13 +178,13 @@ fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
 
         let text = "0:#ff0000, 0.25:#00ff0080, 0.5:#0000ff, 0.5:#ffffff, 1:#000000";
         let typed = type_value(
-            &ParamShape::of_manifest(&r.manifest.params[index]),
+            &ParamShape::of_manifest(&r.manifest().params[index]),
             &read_literal(text),
             text,
             &SettingOrigin::Host,
         )
         .expect("stops type as a gradient value");
-        r.manifest.params[index].default = typed.value.clone();
+        r.params_mut()[index].default = typed.value.clone();
         let (stops, kept_mode) = abi::gradient::unpack(&typed.value).expect("packed stops");
         assert_eq!(kept_mode, constant, "new stops keep the declared mode");
         let set = row(&mut r, &scene);

@@ -96,7 +96,7 @@ fn layers_hold_every_target_bit_for_bit() {
     let mut r = runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     let spec = runner::FrameSpec::animated(40, 30, 0, runner::FrameSpec::DEFAULT_FPS, 0);
     r.render(&scene, &spec).expect("frame");
-    let count = r.manifest.targets.len();
+    let count = r.manifest().targets.len();
     let survivors: Vec<bool> = (0..count).map(|t| r.target_survives_frame(t)).collect();
     assert!(
         survivors.contains(&false),

@@ -94,10 +94,10 @@ impl StyleRuntime {
                 ),
             )));
         }
-        for manifest in
-            std::iter::once(&mut self.program.manifest).chain(self.renderer.as_mut().map(|r| &mut r.manifest))
+        for params in
+            std::iter::once(&mut self.program.manifest.params).chain(self.renderer.as_mut().map(|r| r.params_mut()))
         {
-            let p = &mut manifest.params[index];
+            let p = &mut params[index];
             p.default = typed.value.clone();
             p.default_percent_of_height = typed.percent_of_height;
             // A set value is a constant, as `--set` makes it (`mid::overrides`).

@@ -285,12 +285,22 @@ impl Renderer {
                 .frame_mut(slot)
                 .copy_from_slice(bytemuck::bytes_of(&frame));
         }
-        animation::write_style_params(
-            &self.manifest,
-            spec.time_s,
-            spec.height,
-            self.scene_gpu.upload.style_mut(),
-        );
+        // The whole style block when the parameters or the height changed
+        // since it was last written whole; otherwise only the animated ones.
+        let upload = &mut self.scene_gpu.upload;
+        if upload.style_current(spec.height) {
+            animation::write_style_params_at(
+                &self.manifest,
+                &self.animated_style_params,
+                spec.time_s,
+                spec.height,
+                upload.style_mut(),
+            );
+        } else {
+            animation::write_style_params(&self.manifest, spec.time_s, spec.height, upload.style_mut());
+            self.animated_style_params = animation::animated_style_param_indices(&self.manifest);
+            upload.style_written(spec.height);
+        }
         // `encode` puts the blocks into a staging buffer and copies them into their buffers.
         Ok(())
     }

@@ -76,7 +76,10 @@ pub struct Renderer {
     /// renderer borrows nothing and can live in a `'static` host (a Bevy resource).
     device: wgpu::Device,
     queue: wgpu::Queue,
-    pub manifest: Manifest,
+    /// Read through [`Renderer::manifest`]; its parameters change only
+    /// through [`Renderer::params_mut`], which has the style block made
+    /// anew (`frame.rs` writes only the animated parameters otherwise).
+    manifest: Manifest,
     /// One executor per manifest pass, in manifest order.
     passes: Vec<PassExec>,
     /// The scene-level resources (meshes, object blocks and groups,
@@ -98,6 +101,9 @@ pub struct Renderer {
     /// [`crate::animation::object_param_indices`] of the manifest, found at
     /// build: the params each object block writes.
     object_params: Vec<usize>,
+    /// [`crate::animation::animated_style_param_indices`], found whenever
+    /// the whole style block is written: the params a frame writes again.
+    animated_style_params: Vec<usize>,
     /// Whether a pass draws lines (a frame without one skips their preparation).
     has_lines: bool,
     sized: Option<resources::SizedResources>,
@@ -310,6 +316,7 @@ impl Renderer {
             parities: if manifest.is_path_dependent() { 2 } else { 1 },
             object_stride,
             object_params,
+            animated_style_params: Vec::new(),
             has_lines,
             manifest,
             sized: None,
@@ -561,6 +568,19 @@ impl Renderer {
         let sized = self.sized.as_ref()?;
         let physical = self.manifest.targets.get(self.manifest.output)?.physical;
         (slot < sized.physical.slots.len() && parity < 2).then(|| sized.physical.texture(slot, parity, physical, false))
+    }
+
+    /// The style's manifest as the renderer runs it (parameters as last set).
+    pub fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    /// The style's parameters, to change their values (`--set`, a sweep, a
+    /// host's `set_param`): the next frame writes the whole style block
+    /// again.
+    pub fn params_mut(&mut self) -> &mut Vec<ParamManifest> {
+        self.scene_gpu.upload.style_changed();
+        &mut self.manifest.params
     }
 
     /// How many parities frames alternate between: 2 for a style with

@@ -84,8 +84,12 @@ impl StagingRing {
 pub(super) struct Upload {
     /// `encode` takes `&self` (a host may encode from shared references).
     staging: Mutex<StagingRing>,
-    /// The blocks as `prepare` wrote them, rewritten in place every frame.
+    /// The blocks as `prepare` wrote them, rewritten in place every frame
+    /// (the style block's static parameters only when they changed).
     bytes: Vec<u8>,
+    /// The image height the whole style block was last written for;
+    /// `None` until it is, and after the style's parameters changed.
+    style_written_for: Option<u32>,
     frame_size: usize,
     slots: usize,
     style_size: usize,
@@ -121,6 +125,7 @@ impl Upload {
                 send_back,
             }),
             bytes: vec![0; len],
+            style_written_for: None,
             frame_size,
             slots,
             style_size,
@@ -146,6 +151,23 @@ impl Upload {
     pub fn style_mut(&mut self) -> &mut [u8] {
         let at = self.style_at();
         &mut self.bytes[at..at + self.style_size]
+    }
+
+    /// Whether the style block holds every parameter as of the last
+    /// [`Upload::style_written`] for `height` (then a frame rewrites only
+    /// the animated ones).
+    pub fn style_current(&self, height: u32) -> bool {
+        self.style_written_for == Some(height)
+    }
+
+    /// The whole style block was written for `height`.
+    pub fn style_written(&mut self, height: u32) {
+        self.style_written_for = Some(height);
+    }
+
+    /// The style's parameters changed: the next frame writes the whole block.
+    pub fn style_changed(&mut self) {
+        self.style_written_for = None;
     }
 
     /// Every object's block, `stride` apart.

@@ -386,7 +386,7 @@ impl Uniforms {
         let Some(r) = self.renderer.as_mut() else {
             return Probe::Error("no renderer".into());
         };
-        let defaults = r.manifest.params.clone();
+        let defaults = r.manifest().params.clone();
         for (name, text) in combination {
             let Some(shape) = shapes.iter().find(|s| &s.name == name) else {
                 continue;
@@ -394,13 +394,13 @@ impl Uniforms {
             let literal = crate::set_params::read_literal(text);
             match type_value(shape, &literal, text, &SettingOrigin::CommandLine) {
                 Ok(o) => {
-                    if let Some(p) = r.manifest.params.iter_mut().find(|p| &p.name == name) {
+                    if let Some(p) = r.params_mut().iter_mut().find(|p| &p.name == name) {
                         p.default = o.value;
                         p.keyframes.clear();
                     }
                 }
                 Err(refusal) => {
-                    r.manifest.params = defaults;
+                    *r.params_mut() = defaults;
                     return Probe::Error(format!("{}: {}", refusal.code, refusal.message));
                 }
             }
@@ -412,7 +412,7 @@ impl Uniforms {
             frames: &frames,
         };
         let rendered = gpu.watch.check(frames.render_with(r, scene, true));
-        r.manifest.params = defaults;
+        *r.params_mut() = defaults;
         observe(program, rendered)
     }
 }
