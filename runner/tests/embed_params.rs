@@ -6,6 +6,8 @@
 //! runtime that had the value set before its first frame (byte for byte)
 //! and with the frame before the change (which must differ).
 
+#![allow(clippy::disallowed_methods)]
+
 mod common;
 use common::{compile, gpu, host_target, read_host, render_frame, write_mismatch};
 
