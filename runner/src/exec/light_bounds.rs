@@ -16,7 +16,7 @@
 use crate::scene::{union_bounds, Mesh, Object, Scene, EMPTY_BOUNDS};
 use abi::manifest::*;
 use glam::{Mat4, Vec3, Vec4};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
 /// World bounds for the light camera of a frame: per object its box and
@@ -32,7 +32,8 @@ pub(super) struct LightBounds {
     /// The shadow casters' box (the scene's when no object is drawn).
     pub casters: (Vec3, Vec3),
     /// Per mesh and linear part: the box of the vertices' linear images.
-    linear: HashMap<LinearKey, LinearBox>,
+    /// (Hashed with rustc-hash: every object looks its key up every frame.)
+    linear: FxHashMap<LinearKey, LinearBox>,
     /// The last light camera and the bits of the light direction it was
     /// made for, kept while neither it nor the boxes change.
     light_camera: Option<([u32; 3], Mat4)>,
@@ -88,7 +89,7 @@ impl LightBounds {
                 .collect(),
             scene: EMPTY_BOUNDS,
             casters: EMPTY_BOUNDS,
-            linear: HashMap::new(),
+            linear: FxHashMap::default(),
             light_camera: None,
         };
         for (b, o) in bounds.boxes.iter_mut().zip(&scene.objects) {
@@ -152,7 +153,7 @@ impl LightBounds {
 
 /// `o`'s world box: `w + ` its linear box, or vertex by vertex where a
 /// linear image or a world coordinate is not finite.
-fn object_box(linear: &mut HashMap<LinearKey, LinearBox>, o: &Object) -> (Vec3, Vec3) {
+fn object_box(linear: &mut FxHashMap<LinearKey, LinearBox>, o: &Object) -> (Vec3, Vec3) {
     let m = &o.model;
     let mut bits = [0u32; 12];
     for (b, v) in bits.iter_mut().zip(m.to_cols_array()) {
