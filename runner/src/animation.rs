@@ -212,11 +212,33 @@ pub fn write_object_params(
                 diags.push(d);
             }
         }
-        let start = (off - OBJECT_PARAMS_OFFSET) as usize;
-        if start + 16 <= out.len() {
-            let bytes: [u8; 16] = bytemuck::cast(slot(v));
-            out[start..start + 16].copy_from_slice(&bytes);
+        put_object_slot(off, v, out);
+    }
+}
+
+/// The per-object parameter slots of an object that binds none: every
+/// slot's default, the bytes [`write_object_params`] writes for it, over
+/// `len` bytes (an object block's params region). Made once per renderer:
+/// a frame copies them for each such object instead of looking up each
+/// parameter (docs/PERFORMANCE.md, "A host's frame").
+pub fn object_param_defaults(params: &[ParamManifest], indices: &[usize], len: usize) -> Vec<u8> {
+    let mut out = vec![0; len];
+    for p in indices.iter().filter_map(|&i| params.get(i)) {
+        if let Some(off) = p.offset {
+            put_object_slot(off, &p.default, &mut out);
         }
+    }
+    out
+}
+
+/// `values` as the vec4 slot at block offset `offset` of an object's
+/// params region `out` (which starts at `OBJECT_PARAMS_OFFSET`); a slot
+/// past the region's end is left out.
+fn put_object_slot(offset: u64, values: &[f64], out: &mut [u8]) {
+    let start = (offset - OBJECT_PARAMS_OFFSET) as usize;
+    if start + 16 <= out.len() {
+        let bytes: [u8; 16] = bytemuck::cast(slot(values));
+        out[start..start + 16].copy_from_slice(&bytes);
     }
 }
 

@@ -94,19 +94,14 @@ impl HostScene {
 
     /// Bring the scene to `frame`; true when its structure changed (the
     /// renderer's scene-level resources must be made anew). On an error
-    /// (a removed mesh) the scene is left as it was.
+    /// (a removed mesh) the scene keeps its objects (those before the
+    /// first changed one may have taken this frame's transform and params,
+    /// which the renderer has not seen: the next frame sets them again).
     pub fn sync(&mut self, frame: &Frame, meshes: &MeshTable) -> Result<bool, EmbedError> {
         let same = self.mesh_revision == meshes.revision
             && self.shapes.len() == frame.objects.len()
-            && self.shapes.iter().zip(frame.objects).all(|(s, i)| s.matches(i));
-        if same {
-            for (o, i) in self.scene.objects.iter_mut().zip(frame.objects) {
-                o.model = i.transform;
-                if o.params != i.params {
-                    o.params.clone_from(&i.params);
-                }
-            }
-        } else {
+            && self.move_objects(frame.objects);
+        if !same {
             let objects = frame
                 .objects
                 .iter()
@@ -125,6 +120,24 @@ impl HostScene {
 }
 
 impl HostScene {
+    /// Give each object its instance's transform and params while the
+    /// instances keep the shapes the scene was built from; false at the
+    /// first that does not (the scene is then built anew). One pass over
+    /// the objects, which a host's frame walks several times
+    /// (docs/PERFORMANCE.md, "A host's frame").
+    fn move_objects(&mut self, instances: &[Instance]) -> bool {
+        for ((o, shape), i) in self.scene.objects.iter_mut().zip(&self.shapes).zip(instances) {
+            if !shape.matches(i) {
+                return false;
+            }
+            o.model = i.transform;
+            if o.params != i.params {
+                o.params.clone_from(&i.params);
+            }
+        }
+        true
+    }
+
     /// Every object drawing `old` draws `new` from now on (a deformed copy
     /// of it, `StyleRuntime::update_mesh`): the scene's structure is the
     /// same, and the renderer writes the new vertices in place.

@@ -32,8 +32,7 @@ pub(super) struct LightBounds {
     /// The shadow casters' box (the scene's when no object is drawn).
     pub casters: (Vec3, Vec3),
     /// Per mesh and linear part: the box of the vertices' linear images.
-    /// (Hashed with rustc-hash: every object looks its key up every frame.)
-    linear: FxHashMap<LinearKey, LinearBox>,
+    linear: LinearBoxes,
     /// The last light camera and the bits of the light direction it was
     /// made for, kept while neither it nor the boxes change.
     light_camera: Option<([u32; 3], Mat4)>,
@@ -42,6 +41,50 @@ pub(super) struct LightBounds {
 /// A mesh (by address; the entry holds it, so the address stays its own)
 /// and the bits of a model's first three columns.
 type LinearKey = (usize, [u32; 12]);
+
+/// The linear boxes by mesh and linear part, hashed with rustc-hash
+/// (every moved object looks its key up every frame), and the last key
+/// looked up with its box: objects in a row that share both (a crowd
+/// turning together, objects that are only moved) skip the hash.
+#[derive(Default)]
+struct LinearBoxes {
+    map: FxHashMap<LinearKey, LinearBox>,
+    /// Valid while `map` holds its key (whose entry keeps the mesh's
+    /// address its own): [`LinearBoxes::clear`] forgets it too.
+    last: Option<(LinearKey, Option<(Vec4, Vec4)>)>,
+}
+
+impl LinearBoxes {
+    /// The box of `mesh`'s vertices' images under `m`'s linear part
+    /// ([`linear_box`]), computed once per key.
+    fn get(&mut self, mesh: &Arc<Mesh>, m: &Mat4) -> Option<(Vec4, Vec4)> {
+        let mut bits = [0u32; 12];
+        for (b, v) in bits.iter_mut().zip(m.to_cols_array()) {
+            *b = v.to_bits();
+        }
+        let key = (Arc::as_ptr(mesh) as usize, bits);
+        if let Some((last, bounds)) = self.last {
+            if last == key {
+                return bounds;
+            }
+        }
+        let bounds = self
+            .map
+            .entry(key)
+            .or_insert_with(|| LinearBox {
+                _mesh: mesh.clone(),
+                bounds: linear_box(mesh, m),
+            })
+            .bounds;
+        self.last = Some((key, bounds));
+        bounds
+    }
+
+    fn clear(&mut self) {
+        self.map.clear();
+        self.last = None;
+    }
+}
 
 struct LinearBox {
     _mesh: Arc<Mesh>,
@@ -89,7 +132,7 @@ impl LightBounds {
                 .collect(),
             scene: EMPTY_BOUNDS,
             casters: EMPTY_BOUNDS,
-            linear: FxHashMap::default(),
+            linear: LinearBoxes::default(),
             light_camera: None,
         };
         for (b, o) in bounds.boxes.iter_mut().zip(&scene.objects) {
@@ -103,7 +146,7 @@ impl LightBounds {
     /// for, posed for this frame): only moved objects' boxes are made anew.
     pub fn update(&mut self, scene: &Scene) {
         // Linear parts of past frames: kept while they are few.
-        if self.linear.len() > 2 * self.boxes.len() + 16 {
+        if self.linear.map.len() > 2 * self.boxes.len() + 16 {
             self.linear.clear();
         }
         let mut changed = false;
@@ -153,19 +196,9 @@ impl LightBounds {
 
 /// `o`'s world box: `w + ` its linear box, or vertex by vertex where a
 /// linear image or a world coordinate is not finite.
-fn object_box(linear: &mut FxHashMap<LinearKey, LinearBox>, o: &Object) -> (Vec3, Vec3) {
+fn object_box(linear: &mut LinearBoxes, o: &Object) -> (Vec3, Vec3) {
     let m = &o.model;
-    let mut bits = [0u32; 12];
-    for (b, v) in bits.iter_mut().zip(m.to_cols_array()) {
-        *b = v.to_bits();
-    }
-    let entry = linear
-        .entry((Arc::as_ptr(&o.mesh) as usize, bits))
-        .or_insert_with(|| LinearBox {
-            _mesh: o.mesh.clone(),
-            bounds: linear_box(&o.mesh, m),
-        });
-    if let Some((lo, hi)) = entry.bounds {
+    if let Some((lo, hi)) = linear.get(&o.mesh, m) {
         // `w_axis + a`, the last sum of `Object::world_bounds`.
         let (lo, hi) = ((m.w_axis + lo).truncate(), (m.w_axis + hi).truncate());
         // Every world coordinate lies between these: all finite, none was left out.
@@ -310,6 +343,14 @@ mod tests {
             scene.objects[0].mesh = cube.clone();
             kept.update(&scene);
             check(&kept, &scene, "a mesh swapped");
+            // Every object turned alike (in a row, the same linear part:
+            // the same mesh, objects 0 and 1, or another, 1 and 2).
+            let alike = Mat4::from_rotation_z(0.3) * Mat4::from_scale(Vec3::new(1.0, 0.5, 2.0));
+            for (i, o) in scene.objects.iter_mut().enumerate() {
+                o.model = Mat4::from_translation(Vec3::new(i as f32, -1.0, 0.25 * i as f32)) * alike;
+            }
+            kept.update(&scene);
+            check(&kept, &scene, "all turned alike");
             // Some world coordinates overflow: those vertices are left out.
             scene.objects[1].model =
                 Mat4::from_translation(Vec3::new(3.0e38, 0.0, 0.0)) * Mat4::from_scale(Vec3::splat(1.0e38));

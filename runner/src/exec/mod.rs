@@ -98,9 +98,8 @@ pub struct Renderer {
     /// known at build: the host path asks every frame.
     parities: usize,
     object_stride: u64,
-    /// [`crate::animation::object_param_indices`] of the manifest, found at
-    /// build: the params each object block writes.
-    object_params: Vec<usize>,
+    /// The params each object block writes and their defaults, found at build.
+    object_params: objects::ObjectParams,
     /// [`crate::animation::animated_style_param_indices`], found whenever
     /// the whole style block is written: the params a frame writes again.
     animated_style_params: Vec<usize>,
@@ -286,7 +285,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let object_params = crate::animation::object_param_indices(&manifest);
+        let object_params = objects::ObjectParams::new(&manifest, object_stride);
         // The scene's part, made as `set_scene` makes another's.
         let style = scene_gpu::StyleParts {
             manifest: &manifest,

@@ -44,8 +44,8 @@ pub(super) struct StyleParts<'a> {
     /// The shared group 1 layout the pipelines were made with.
     pub object_layout: &'a wgpu::BindGroupLayout,
     pub object_stride: u64,
-    /// [`crate::animation::object_param_indices`] of the manifest.
-    pub object_params: &'a [usize],
+    /// The params each object block writes and their defaults.
+    pub object_params: &'a objects::ObjectParams,
     pub passes: &'a [PassExec],
     pub eyes: usize,
     /// The per-object images the previous scene bound (none at a build).
