@@ -277,6 +277,67 @@ mod tests {
         assert!((value_at(&e, 0.25)[0] - 0.15625).abs() < 1e-12);
     }
 
+    /// The bytes copied for an object that binds no param are the ones
+    /// `write_object_params` writes for it: every slot's default (scalars,
+    /// vectors, colours), nothing for a param without a slot, nothing past
+    /// the region's end, zero between.
+    #[test]
+    fn object_defaults_are_what_an_object_without_bindings_is_written() {
+        let object_param = |name: &str, components: u32, default: Vec<f64>, slot: Option<u64>| ParamManifest {
+            name: name.into(),
+            components,
+            default,
+            range: None,
+            binding: ParamBinding::PerObject,
+            offset: slot.map(|k| OBJECT_PARAMS_OFFSET + 16 * k),
+            ..param(vec![], "linear")
+        };
+        let params = vec![
+            param(vec![], "linear"),
+            object_param("breakup", 1, vec![0.75], Some(0)),
+            object_param("tint", 4, vec![0.1, 0.2, 0.3, 1.0], Some(3)),
+            object_param("offset", 3, vec![-1.0, 2.5, 1e-3], Some(1)),
+            object_param("lit_map", 4, vec![], None),
+            object_param("far", 2, vec![3.0, 4.0], Some(7)),
+        ];
+        let indices = [1, 2, 3, 4, 5];
+        // Slots 0 to 3; slot 7 lies past the region, slot 2 is padding.
+        let len = 16 * 4;
+        let defaults = object_param_defaults(&params, &indices, len);
+        let object = crate::scene::Object {
+            name: "o".into(),
+            mesh: std::sync::Arc::new(crate::scene::primitives::cube(1.0)),
+            model: glam::Mat4::IDENTITY,
+            tags: vec![],
+            params: Default::default(),
+            param_spans: Default::default(),
+            textures: Default::default(),
+            mesh_span: diag::Span::default(),
+            time_varying: None,
+            casts_shadows: true,
+            spin: glam::Vec3::ZERO,
+            blend: None,
+            patch: None,
+        };
+        let mut written = vec![0xab; len];
+        let mut diags = Vec::new();
+        write_object_params(&params, &indices, &object, &mut written, &mut diags);
+        assert!(diags.is_empty());
+        assert_eq!(defaults, written);
+        let floats: Vec<f32> = defaults
+            .chunks_exact(4)
+            .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        #[rustfmt::skip]
+        let expected = [
+            0.75, 0.0, 0.0, 0.0,
+            -1.0, 2.5, 1e-3, 0.0,
+            0.0, 0.0, 0.0, 0.0,
+            0.1, 0.2, 0.3, 1.0,
+        ];
+        assert_eq!(floats, expected);
+    }
+
     #[test]
     fn no_keyframes_gives_default() {
         assert_eq!(value_at(&param(vec![], "linear"), 3.0), vec![0.2]);
