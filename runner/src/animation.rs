@@ -53,19 +53,22 @@ pub fn value_at(p: &ParamManifest, time_s: f64) -> Vec<f64> {
     (0..).map_while(|j| interpolated(pair, j)).collect()
 }
 
-fn slot(values: &[f64]) -> [f32; 4] {
+/// Up to four values as one vec4 slot (the missing components zero).
+fn slot(values: impl IntoIterator<Item = f64>) -> [f32; 4] {
     let mut s = [0.0f32; 4];
-    for (i, v) in values.iter().take(4).enumerate() {
-        s[i] = *v as f32;
+    for (s, v) in s.iter_mut().zip(values) {
+        *s = v as f32;
     }
     s
 }
 
-fn percent(p: &ParamManifest, v: Vec<f64>, height: u32) -> Vec<f64> {
+/// Component `x` of `p` as the shaders see it: a `%` of the image
+/// `height` in pixels.
+fn of_height(p: &ParamManifest, x: f64, height: u32) -> f64 {
     if p.default_percent_of_height {
-        v.into_iter().map(|x| x / 100.0 * height as f64).collect()
+        x / 100.0 * height as f64
     } else {
-        v
+        x
     }
 }
 
@@ -74,7 +77,7 @@ fn percent(p: &ParamManifest, v: Vec<f64>, height: u32) -> Vec<f64> {
 /// no such parameter. What a `lines` pass's settings read on the CPU.
 pub fn scalar_at(m: &Manifest, name: &str, time_s: f64, height: u32) -> Option<f64> {
     let p = m.params.iter().find(|p| p.name == name)?;
-    percent(p, value_at(p, time_s), height).first().copied()
+    interpolated(keyframe_pair(p, time_s), 0).map(|x| of_height(p, x, height))
 }
 
 /// The style uniform block at `time_s`, written over `out` (zeroed
@@ -117,26 +120,11 @@ fn write_style_param(p: &ParamManifest, time_s: f64, height: u32, out: &mut [u8]
     let Some(off) = p.offset else { return };
     // Computed in place, component by component: a frame allocates nothing here.
     let pair = keyframe_pair(p, time_s);
-    let component = |j: usize| {
-        interpolated(pair, j).map(|x| {
-            if p.default_percent_of_height {
-                x / 100.0 * height as f64
-            } else {
-                x
-            }
-        })
-    };
     // One vec4 per slot; a gradient has several (`abi::gradient`).
     let slots = abi::gradient::slots_of(&p.ty);
     for k in 0..slots {
-        let mut slot = [0.0f32; 4];
-        for (i, s) in slot.iter_mut().enumerate() {
-            match component(k * 4 + i) {
-                Some(x) => *s = x as f32,
-                None => break,
-            }
-        }
-        let bytes: [u8; 16] = bytemuck::cast(slot);
+        let components = (k * 4..).map_while(|j| interpolated(pair, j));
+        let bytes: [u8; 16] = bytemuck::cast(slot(components.map(|x| of_height(p, x, height))));
         let off = off as usize + k * 16;
         if off + 16 <= out.len() {
             out[off..off + 16].copy_from_slice(&bytes);
@@ -237,7 +225,7 @@ pub fn object_param_defaults(params: &[ParamManifest], indices: &[usize], len: u
 fn put_object_slot(offset: u64, values: &[f64], out: &mut [u8]) {
     let start = (offset - OBJECT_PARAMS_OFFSET) as usize;
     if start + 16 <= out.len() {
-        let bytes: [u8; 16] = bytemuck::cast(slot(values));
+        let bytes: [u8; 16] = bytemuck::cast(slot(values.iter().copied()));
         out[start..start + 16].copy_from_slice(&bytes);
     }
 }
@@ -304,21 +292,8 @@ mod tests {
         // Slots 0 to 3; slot 7 lies past the region, slot 2 is padding.
         let len = 16 * 4;
         let defaults = object_param_defaults(&params, &indices, len);
-        let object = crate::scene::Object {
-            name: "o".into(),
-            mesh: std::sync::Arc::new(crate::scene::primitives::cube(1.0)),
-            model: glam::Mat4::IDENTITY,
-            tags: vec![],
-            params: Default::default(),
-            param_spans: Default::default(),
-            textures: Default::default(),
-            mesh_span: diag::Span::default(),
-            time_varying: None,
-            casts_shadows: true,
-            spin: glam::Vec3::ZERO,
-            blend: None,
-            patch: None,
-        };
+        let cube = std::sync::Arc::new(crate::scene::primitives::cube(1.0));
+        let object = Object::plain("o", &cube, glam::Mat4::IDENTITY, &[]);
         let mut written = vec![0xab; len];
         let mut diags = Vec::new();
         write_object_params(&params, &indices, &object, &mut written, &mut diags);

@@ -229,25 +229,6 @@ fn linear_box(mesh: &Mesh, m: &Mat4) -> Option<(Vec4, Vec4)> {
 mod tests {
     use super::*;
     use crate::scene::{primitives, Camera};
-    use std::collections::BTreeMap;
-
-    fn object(name: &str, mesh: &Arc<Mesh>, model: Mat4, tags: &[&str]) -> Object {
-        Object {
-            name: name.into(),
-            mesh: mesh.clone(),
-            model,
-            tags: tags.iter().map(|t| t.to_string()).collect(),
-            params: BTreeMap::new(),
-            param_spans: BTreeMap::new(),
-            textures: BTreeMap::new(),
-            mesh_span: diag::Span::default(),
-            time_varying: None,
-            casts_shadows: true,
-            spin: Vec3::ZERO,
-            blend: None,
-            patch: None,
-        }
-    }
 
     /// A manifest with one light-view pass drawing `tag`.
     fn manifest(tag: Option<&str>) -> Manifest {
@@ -308,7 +289,7 @@ mod tests {
                 let mesh = if i % 2 == 0 { &sphere } else { &cube };
                 let tags: &[&str] = if i % 3 == 0 { &["caster"] } else { &[] };
                 let model = Mat4::from_translation(Vec3::new(i as f32 * 1.7 - 3.0, 0.3 * i as f32, -0.5));
-                scene.objects.push(object(&format!("o{i}"), mesh, model, tags));
+                scene.objects.push(Object::plain(&format!("o{i}"), mesh, model, tags));
             }
             let mut kept = LightBounds::new(&manifest, &scene);
             let check = |kept: &LightBounds, scene: &Scene, when: &str| {

@@ -163,7 +163,7 @@ impl RenderPassExec {
             .objects
             .iter()
             .enumerate()
-            .filter(|(_, o)| self.tag.as_ref().is_none_or(|tag| o.tags.contains(tag)))
+            .filter(|(_, o)| self.tag.as_ref().is_none_or(|tag| o.has_tag(tag)))
             .map(|(i, _)| i)
             .collect();
         Ok(RenderScene {

@@ -218,6 +218,29 @@ pub struct TextureBinding {
     pub span: Span,
 }
 
+#[cfg(test)]
+impl Object {
+    /// `mesh` at `model` with `tags`, casting shadows, nothing else bound:
+    /// the object unit tests build.
+    pub(crate) fn plain(name: &str, mesh: &Arc<Mesh>, model: glam::Mat4, tags: &[&str]) -> Object {
+        Object {
+            name: name.into(),
+            mesh: mesh.clone(),
+            model,
+            tags: tags.iter().map(|t| t.to_string()).collect(),
+            params: BTreeMap::new(),
+            param_spans: BTreeMap::new(),
+            textures: BTreeMap::new(),
+            mesh_span: Span::default(),
+            time_varying: None,
+            casts_shadows: true,
+            spin: glam::Vec3::ZERO,
+            blend: None,
+            patch: None,
+        }
+    }
+}
+
 impl Object {
     pub fn has_tag(&self, tag: &str) -> bool {
         self.tags.iter().any(|t| t == tag)
