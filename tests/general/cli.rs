@@ -317,6 +317,38 @@ fn lsa_styles_render_an_analytic_scene_from_the_cli() {
 }
 
 #[test]
+fn bench_host_times_npr_against_both_baselines() {
+    // A smoke run at a tiny size: the table's shape and that all three
+    // programs ran (a wgpu validation error in a baseline aborts the run),
+    // not timings.
+    let o = npr(&["bench", "host", "--objects", "1,3", "--frames", "1", "--size", "16"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for objects in ["1", "3"] {
+        let row = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("| {objects} |")))
+            .unwrap_or_else(|| panic!("no row for {objects} objects:\n{stdout}"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).filter(|c| !c.is_empty()).collect();
+        assert_eq!(cells.len(), 6, "{row}");
+        // npr's, the minimal program's and the pass-shaped program's µs.
+        for us in &cells[1..4] {
+            assert!(us.parse::<f64>().is_ok_and(|v| v > 0.0), "{row}");
+        }
+        // Each ratio is `a (b)`: of the medians, and the median per frame.
+        for ratio in &cells[4..6] {
+            let (of_medians, per_frame) = ratio.split_once(' ').unwrap_or_else(|| panic!("{row}"));
+            assert!(of_medians.parse::<f64>().is_ok_and(|v| v > 0.0), "{row}");
+            assert!(
+                per_frame.trim_matches(['(', ')']).parse::<f64>().is_ok_and(|v| v > 0.0),
+                "{row}"
+            );
+        }
+    }
+    assert!(stdout.contains("a frame after adding an 11th object"), "{stdout}");
+}
+
+#[test]
 fn bench_contours_reports_every_variant_with_accuracy() {
     // A smoke run at tiny sizes: the tables' shape, not their timings.
     let o = npr(&["bench", "contours", "--sizes", "16,24", "--frames", "1"]);

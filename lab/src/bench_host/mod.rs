@@ -1,0 +1,314 @@
+//! `npr bench host`: the CPU time of a host's frame through
+//! `runner::embed::StyleRuntime::render` (prepare: uniforms, objects,
+//! camera; encode: every pass and the present pass into the host's
+//! encoder) for 1 to 1000 objects, against two independent wgpu programs
+//! written with no npr code that record the same number of passes and
+//! draw the same objects: `minimal.rs`, one target per pass, and
+//! `pass_shaped.rs`, each pass with the style's pass's attachments,
+//! vertex buffers and a pipeline of its own. npr's objects carry the tags
+//! the style's render passes select, so its render passes draw every
+//! object too. The three take turns in each frame, the one that goes first
+//! rotating; each side's time is the median of its frames' CPU time on
+//! the calling thread (`thread_cpu.rs`: a wall clock would also count the
+//! time the thread waited for a core), GPU work excluded (the queue is
+//! drained after each, outside the timing).
+//! [`spawn_row`]: the frame right after the host adds an object (issue 32).
+
+use crate::thread_cpu;
+use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use runner::scene::{primitives, Camera, Mesh};
+use runner::{Gpu, RunError, StyleProgram};
+
+/// One row: objects, and the median CPU µs per frame of npr and of each baseline.
+pub struct HostRow {
+    pub objects: usize,
+    /// Medians over the timed frames.
+    pub npr_us: f64,
+    pub minimal_us: f64,
+    pub pass_shaped_us: f64,
+    /// The median over frames of npr's time / each baseline's in the same
+    /// frame (they run back to back, so a change of load during the run
+    /// moves both): steadier than the ratio of medians.
+    pub pair_ratio_minimal: f64,
+    pub pair_ratio_pass_shaped: f64,
+}
+
+mod minimal;
+mod pass_shaped;
+
+use minimal::Minimal;
+use pass_shaped::PassShaped;
+
+/// Object `i` of `n` at frame `k`: a grid, turning.
+fn model(i: usize, n: usize, k: u32) -> glam::Mat4 {
+    let side = (n as f64).sqrt().ceil().max(1.0) as usize;
+    let (x, z) = ((i % side) as f32, (i / side) as f32);
+    let spacing = 4.0 / side as f32;
+    glam::Mat4::from_translation(glam::Vec3::new(
+        (x - side as f32 / 2.0) * spacing,
+        0.0,
+        (z - side as f32 / 2.0) * spacing,
+    )) * glam::Mat4::from_rotation_y(0.05 * k as f32)
+        * glam::Mat4::from_scale(glam::Vec3::splat(spacing * 0.4))
+}
+
+/// The tags the style's render passes select, each once: every object of
+/// the bench carries them, so every render pass draws every object.
+fn render_pass_tags(program: &StyleProgram) -> Vec<&String> {
+    let mut tags: Vec<&String> = program
+        .manifest
+        .passes
+        .iter()
+        .filter_map(|p| match &p.kind {
+            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
+            _ => None,
+        })
+        .collect();
+    tags.dedup();
+    tags
+}
+
+/// A runtime of `program` with `mesh` registered, and the mesh's handle.
+fn runtime_with(program: &StyleProgram, gpu: &Gpu, mesh: &Mesh) -> Result<(StyleRuntime, MeshHandle), RunError> {
+    let mut runtime =
+        StyleRuntime::new(&gpu.device, &gpu.queue, program.clone()).map_err(|e| RunError::User(e.diagnostics()))?;
+    let handle = runtime.add_mesh(mesh.clone());
+    Ok((runtime, handle))
+}
+
+/// `count` objects of `handle` at frame `k`, each carrying every tag of
+/// `tags` ([`render_pass_tags`]: Age of Sail's `depth: render(caster)`), so
+/// each render pass draws every object, as the minimal program's do: the
+/// same draws on both sides.
+fn tagged_instances(handle: MeshHandle, count: usize, k: u32, tags: &[&String]) -> Vec<Instance> {
+    (0..count)
+        .map(|i| {
+            tags.iter()
+                .fold(Instance::new(handle, model(i, count, k)), |o, t| o.with_tag(t))
+        })
+        .collect()
+}
+
+/// The calling thread's CPU µs of one `StyleRuntime::render` of `frame`
+/// into `view`; the frame is then submitted and the GPU drained, untimed.
+fn timed_render(
+    gpu: &Gpu,
+    runtime: &mut StyleRuntime,
+    frame: &Frame,
+    view: &wgpu::TextureView,
+) -> Result<f64, RunError> {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let (us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, frame, Target::View(view)));
+    rendered.map_err(|e| RunError::User(e.diagnostics()))?;
+    gpu.queue.submit([encoder.finish()]);
+    drain(&gpu.device)?;
+    Ok(us)
+}
+
+/// The calling thread's CPU µs of a baseline's frame recorded by `record`
+/// into a new encoder; the frame is then submitted and the GPU drained, untimed.
+fn timed_baseline(gpu: &Gpu, record: impl FnOnce(&mut wgpu::CommandEncoder)) -> Result<f64, RunError> {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let (us, ()) = thread_cpu::time_us(|| record(&mut encoder));
+    gpu.queue.submit([encoder.finish()]);
+    drain(&gpu.device)?;
+    Ok(us)
+}
+
+/// Wait until the GPU has done what was submitted.
+fn drain(device: &wgpu::Device) -> Result<(), RunError> {
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| RunError::Internal(e.to_string()))
+}
+
+/// A view of the `size`² texture a host renders into.
+fn host_target(device: &wgpu::Device, size: u32) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The rows for `counts` objects, `frames` timed frames each (after 3 untimed).
+pub fn rows(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    counts: &[usize],
+    size: u32,
+    frames: u32,
+) -> Result<Vec<HostRow>, RunError> {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let mesh = primitives::sphere(1.0, 16, 8);
+    let render_passes = program
+        .manifest
+        .passes
+        .iter()
+        .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::Render { .. }))
+        .count();
+    let pass_tags = render_pass_tags(program);
+    // The style's other passes and the present pass: one fullscreen triangle each.
+    let passes = (render_passes, program.manifest.passes.len() - render_passes + 1);
+    let view = host_target(device, size);
+    let eye = glam::Vec3::new(0.0, 3.0, 5.0);
+    let camera = Camera::looking_at(eye, glam::Vec3::ZERO);
+    // The pass-shaped program's frame block: a camera at npr's, made with glam.
+    let view_proj =
+        glam::Mat4::perspective_rh(0.8, 1.0, 0.1, 100.0) * glam::Mat4::look_at_rh(eye, glam::Vec3::ZERO, glam::Vec3::Y);
+    let mut rows = Vec::new();
+    for &n in counts {
+        let (mut runtime, handle) = runtime_with(program, gpu, &mesh)?;
+        let mut minimal = Minimal::new(device, n, size, &mesh);
+        let mut pass_shaped = PassShaped::new(device, &program.manifest, n, size, &mesh);
+        let lights = Lights::default();
+        let mut instances = tagged_instances(handle, n, 0, &pass_tags);
+        let mut models: Vec<glam::Mat4> = vec![glam::Mat4::IDENTITY; n];
+        let mut times: [Vec<f64>; 3] = Default::default();
+        for k in 0..frames + 3 {
+            for (i, o) in instances.iter_mut().enumerate() {
+                o.transform = model(i, n, k);
+            }
+            for (i, m) in models.iter_mut().enumerate() {
+                *m = model(i, n, k);
+            }
+            let frame = Frame {
+                camera: &camera,
+                objects: &instances,
+                lights: &lights,
+                time_s: f64::from(k) / 60.0,
+                frame_index: k,
+                eye: 0,
+            };
+            // npr, the minimal program, the pass-shaped one; the first rotates per frame.
+            let mut frame_times = [0.0; 3];
+            for turn in 0..3 {
+                let side = (turn + k as usize) % 3;
+                frame_times[side] = match side {
+                    0 => timed_render(gpu, &mut runtime, &frame, &view)?,
+                    1 => timed_baseline(gpu, |e| minimal.frame(queue, e, &models, passes))?,
+                    _ => timed_baseline(gpu, |e| pass_shaped.frame(queue, e, view_proj, &models))?,
+                };
+            }
+            if k >= 3 {
+                for (t, us) in times.iter_mut().zip(frame_times) {
+                    t.push(us);
+                }
+            }
+        }
+        let [npr, own, shaped] = times;
+        let pair = |other: &[f64]| median(npr.iter().zip(other).map(|(n, o)| n / o).collect());
+        rows.push(HostRow {
+            objects: n,
+            pair_ratio_minimal: pair(&own),
+            pair_ratio_pass_shaped: pair(&shaped),
+            npr_us: median(npr),
+            minimal_us: median(own),
+            pass_shaped_us: median(shaped),
+        });
+    }
+    Ok(rows)
+}
+
+/// The table: objects, the three sides' µs, npr's ratio to each baseline.
+pub fn table(rows: &[HostRow]) -> String {
+    let mut t = String::from(
+        "| objects | npr host path (µs/frame) | minimal wgpu, one target per pass (µs/frame) | \
+         pass-shaped wgpu (µs/frame) | npr / minimal: ratio of medians (per frame) | \
+         npr / pass-shaped: ratio of medians (per frame) |\n\
+         |---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        t.push_str(&format!(
+            "| {} | {:.0} | {:.0} | {:.0} | {:.2} ({:.2}) | {:.2} ({:.2}) |\n",
+            r.objects,
+            r.npr_us,
+            r.minimal_us,
+            r.pass_shaped_us,
+            r.npr_us / r.minimal_us,
+            r.pair_ratio_minimal,
+            r.npr_us / r.pass_shaped_us,
+            r.pair_ratio_pass_shaped,
+        ));
+    }
+    t
+}
+
+/// What a scene change costs a host (issue 32: a game spawning an object):
+/// median CPU µs of a frame right after one object is added to `objects`
+/// (`StyleRuntime::render`, which makes the scene-level resources anew),
+/// of a steady frame, and of a new runtime's first frame of the same
+/// objects: what the frame after an addition cost when a scene change
+/// built the renderer anew (before `Renderer::set_scene`).
+pub struct SpawnRow {
+    pub objects: usize,
+    pub spawn_us: f64,
+    pub steady_us: f64,
+    pub new_runtime_us: f64,
+}
+
+/// [`SpawnRow`] over `spawns` additions (each removed again, untimed).
+pub fn spawn_row(
+    gpu: &Gpu,
+    program: &StyleProgram,
+    objects: usize,
+    size: u32,
+    spawns: u32,
+) -> Result<SpawnRow, RunError> {
+    let mesh = primitives::sphere(1.0, 16, 8);
+    let view = host_target(&gpu.device, size);
+    let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
+    let lights = Lights::default();
+    // As in `rows`: every object carries the tags the render passes select.
+    let tags = render_pass_tags(program);
+    // One timed frame of `count` objects: µs of `render`, GPU work drained after.
+    let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
+        let instances = tagged_instances(handle, count, k, &tags);
+        let frame = Frame {
+            camera: &camera,
+            objects: &instances,
+            lights: &lights,
+            time_s: f64::from(k) / 60.0,
+            frame_index: k,
+            eye: 0,
+        };
+        timed_render(gpu, runtime, &frame, &view)
+    };
+    let new_runtime = || runtime_with(program, gpu, &mesh);
+    let (mut runtime, handle) = new_runtime()?;
+    for k in 0..3 {
+        timed(&mut runtime, handle, objects, k)?;
+    }
+    let (mut spawn, mut steady, mut fresh) = (Vec::new(), Vec::new(), Vec::new());
+    for s in 0..spawns {
+        let k = 3 + 3 * s;
+        spawn.push(timed(&mut runtime, handle, objects + 1, k)?);
+        timed(&mut runtime, handle, objects, k + 1)?;
+        steady.push(timed(&mut runtime, handle, objects, k + 2)?);
+        let (mut other, other_handle) = new_runtime()?;
+        fresh.push(timed(&mut other, other_handle, objects + 1, k)?);
+    }
+    Ok(SpawnRow {
+        objects,
+        spawn_us: median(spawn),
+        steady_us: median(steady),
+        new_runtime_us: median(fresh),
+    })
+}

@@ -1,0 +1,335 @@
+//! The pass-shaped baseline of `npr bench host`: an independent wgpu
+//! program, written with no npr code, that records per pass of the style a
+//! pass of the same shape, read from the manifest as data: the pass's
+//! colour attachments in their formats at the pass's scale, a depth
+//! attachment for a render pass, one vertex buffer per attribute a render
+//! pass reads, and a pipeline of its own per pass (as a program drawing
+//! the same targets must have); then the present pass into one target.
+//! A render pass binds a frame block once and each object's block at a
+//! dynamic offset, binds the mesh's buffers once (every object shares the
+//! mesh) and draws every object; any other pass draws a fullscreen
+//! triangle. One `write_buffer` per frame uploads the frame block and
+//! every object's. Its shaders do nothing a style does: what it measures
+//! is the API work a frame of these passes costs on the CPU at least, so
+//! npr's time over it is npr's own work (uniforms, scene, its recording).
+//! `minimal.rs` is the same with one target per pass.
+
+use abi::formats::Format;
+use abi::manifest::{Manifest, PassKindManifest};
+
+/// Bytes between blocks (wgpu's minimum uniform offset alignment): the
+/// frame block at 0, object `i`'s at `STRIDE * (1 + i)`.
+const STRIDE: u64 = 256;
+
+/// WebGPU's default `maxColorAttachments`.
+const MAX_COLORS: usize = 8;
+
+/// The shader of a pass with `outputs` colour outputs: the object's model
+/// times the frame's matrix, or a fullscreen triangle; a constant colour.
+fn wgsl(outputs: usize) -> String {
+    let fields: String = (0..outputs)
+        .map(|i| format!("@location({i}) c{i}: vec4<f32>, "))
+        .collect();
+    let writes: String = (0..outputs).map(|i| format!("o.c{i} = vec4<f32>(0.5); ")).collect();
+    format!(
+        "struct Block {{ m: mat4x4<f32> }}
+@group(0) @binding(0) var<uniform> frame: Block;
+@group(1) @binding(0) var<uniform> object: Block;
+@vertex fn vs_object(@location(0) p: vec3<f32>) -> @builtin(position) vec4<f32> {{
+    return frame.m * object.m * vec4<f32>(p, 1.0);
+}}
+@vertex fn vs_full(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {{
+    return frame.m * vec4<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, 1.0 - f32(i & 2u) * 2.0, 0.0, 1.0);
+}}
+struct Out {{ {fields}}}
+@fragment fn fs() -> Out {{ var o: Out; {writes}return o; }}
+"
+    )
+}
+
+/// The wgpu format of a target format: every one a style can write.
+fn texture_format(format: Format) -> wgpu::TextureFormat {
+    use wgpu::TextureFormat as T;
+    match format {
+        Format::R8unorm => T::R8Unorm,
+        Format::Rg8unorm => T::Rg8Unorm,
+        Format::Rgba8unorm => T::Rgba8Unorm,
+        Format::Rgba8unormSrgb => T::Rgba8UnormSrgb,
+        Format::R16float => T::R16Float,
+        Format::Rg16float => T::Rg16Float,
+        Format::Rgba16float => T::Rgba16Float,
+        Format::R32float => T::R32Float,
+        Format::Rg32float => T::Rg32Float,
+        Format::Rgba32float => T::Rgba32Float,
+    }
+}
+
+/// One pass: its pipeline, colour targets and, for a render pass, its
+/// depth buffer and vertex buffer count.
+struct Pass {
+    pipeline: wgpu::RenderPipeline,
+    colors: Vec<wgpu::TextureView>,
+    depth: Option<wgpu::TextureView>,
+    /// `Some(n)`: a render pass reading `n` vertex attributes.
+    vertex_buffers: Option<usize>,
+}
+
+pub(super) struct PassShaped {
+    passes: Vec<Pass>,
+    frame_group: wgpu::BindGroup,
+    object_group: wgpu::BindGroup,
+    blocks_buffer: wgpu::Buffer,
+    /// One copy of the mesh's positions per vertex buffer slot (a style
+    /// reads each attribute from its own buffer).
+    vertex: Vec<wgpu::Buffer>,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    blocks: Vec<u8>,
+}
+
+fn texture(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+fn uniform_layout(device: &wgpu::Device, dynamic: bool) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: None,
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: dynamic,
+                min_binding_size: wgpu::BufferSize::new(64),
+            },
+            count: None,
+        }],
+    })
+}
+
+fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(64),
+            }),
+        }],
+    })
+}
+
+impl PassShaped {
+    pub(super) fn new(
+        device: &wgpu::Device,
+        manifest: &Manifest,
+        objects: usize,
+        size: u32,
+        mesh: &runner::scene::Mesh,
+    ) -> PassShaped {
+        use wgpu::util::DeviceExt;
+        let frame_layout = uniform_layout(device, false);
+        let object_layout = uniform_layout(device, true);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: None,
+            bind_group_layouts: &[Some(&frame_layout), Some(&object_layout)],
+            immediate_size: 0,
+        });
+        let side = |scale: f64| ((f64::from(size) * scale).round() as u32).max(1);
+        // (formats, side, vertex buffers) per pass, then the present pass.
+        let mut shapes: Vec<(Vec<wgpu::TextureFormat>, u32, Option<usize>)> = manifest
+            .passes
+            .iter()
+            .map(|p| {
+                let formats = p
+                    .outputs
+                    .iter()
+                    .map(|&t| texture_format(manifest.targets[t].format))
+                    .collect();
+                let vertex_buffers = match &p.kind {
+                    PassKindManifest::Render { attributes, .. } => Some(attributes.len().max(1)),
+                    _ => None,
+                };
+                (formats, side(p.scale), vertex_buffers)
+            })
+            .collect();
+        shapes.push((vec![wgpu::TextureFormat::Rgba8Unorm], size, None));
+        let most_buffers = shapes.iter().filter_map(|s| s.2).max().unwrap_or(1);
+        let attributes: Vec<[wgpu::VertexAttribute; 1]> = (0..most_buffers)
+            .map(|slot| {
+                [wgpu::VertexAttribute {
+                    format: wgpu::VertexFormat::Float32x3,
+                    offset: 0,
+                    shader_location: slot as u32,
+                }]
+            })
+            .collect();
+        let passes = shapes
+            .into_iter()
+            .map(|(formats, side, vertex_buffers)| {
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: None,
+                    source: wgpu::ShaderSource::Wgsl(wgsl(formats.len()).into()),
+                });
+                let buffers: Vec<Option<wgpu::VertexBufferLayout>> = attributes[..vertex_buffers.unwrap_or(0)]
+                    .iter()
+                    .map(|a| {
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: 12,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: a,
+                        })
+                    })
+                    .collect();
+                let targets: Vec<Option<wgpu::ColorTargetState>> = formats.iter().map(|&f| Some(f.into())).collect();
+                let depth = vertex_buffers.map(|_| wgpu::DepthStencilState {
+                    format: wgpu::TextureFormat::Depth32Float,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                });
+                let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: None,
+                    layout: Some(&pipeline_layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some(if vertex_buffers.is_some() {
+                            "vs_object"
+                        } else {
+                            "vs_full"
+                        }),
+                        compilation_options: Default::default(),
+                        buffers: &buffers,
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: depth,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs"),
+                        compilation_options: Default::default(),
+                        targets: &targets,
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                });
+                Pass {
+                    pipeline,
+                    colors: formats.iter().map(|&f| texture(device, f, side)).collect(),
+                    depth: vertex_buffers.map(|_| texture(device, wgpu::TextureFormat::Depth32Float, side)),
+                    vertex_buffers,
+                }
+            })
+            .collect();
+        let blocks_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: STRIDE * (1 + objects) as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        PassShaped {
+            passes,
+            frame_group: uniform_group(device, &frame_layout, &blocks_buffer),
+            object_group: uniform_group(device, &object_layout, &blocks_buffer),
+            vertex: (0..most_buffers)
+                .map(|_| {
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: None,
+                        contents: bytemuck::cast_slice(&mesh.positions),
+                        usage: wgpu::BufferUsages::VERTEX,
+                    })
+                })
+                .collect(),
+            indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents: bytemuck::cast_slice(&mesh.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+            index_count: mesh.indices.len() as u32,
+            blocks_buffer,
+            blocks: vec![0; (STRIDE as usize) * (1 + objects)],
+        }
+    }
+
+    /// Upload the frame's and every object's block and record the passes.
+    pub(super) fn frame(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view_proj: glam::Mat4,
+        models: &[glam::Mat4],
+    ) {
+        self.blocks[..64].copy_from_slice(bytemuck::bytes_of(&view_proj.to_cols_array()));
+        for (i, m) in models.iter().enumerate() {
+            let at = (1 + i) * STRIDE as usize;
+            self.blocks[at..at + 64].copy_from_slice(bytemuck::bytes_of(&m.to_cols_array()));
+        }
+        queue.write_buffer(&self.blocks_buffer, 0, &self.blocks);
+        for p in &self.passes {
+            // On the stack, as a program that knows its passes writes them.
+            let colors: [Option<wgpu::RenderPassColorAttachment>; MAX_COLORS] = std::array::from_fn(|i| {
+                p.colors.get(i).map(|view| wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })
+            });
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: None,
+                color_attachments: &colors[..p.colors.len()],
+                depth_stencil_attachment: p.depth.as_ref().map(|view| wgpu::RenderPassDepthStencilAttachment {
+                    view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&p.pipeline);
+            pass.set_bind_group(0, &self.frame_group, &[]);
+            match p.vertex_buffers {
+                Some(buffers) => {
+                    for (slot, buffer) in self.vertex[..buffers].iter().enumerate() {
+                        pass.set_vertex_buffer(slot as u32, buffer.slice(..));
+                    }
+                    pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    for i in 0..models.len() {
+                        pass.set_bind_group(1, &self.object_group, &[((1 + i) as u64 * STRIDE) as u32]);
+                        pass.draw_indexed(0..self.index_count, 0, 0..1);
+                    }
+                }
+                None => {
+                    pass.set_bind_group(1, &self.object_group, &[STRIDE as u32]);
+                    pass.draw(0..3, 0..1);
+                }
+            }
+        }
+    }
+}
