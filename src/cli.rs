@@ -667,12 +667,19 @@ pub enum BenchCommand {
         /// Object counts, comma-separated.
         #[arg(long, default_value = "1,10,100,1000", value_delimiter = ',')]
         objects: Vec<usize>,
-        /// Square image size.
-        #[arg(long, default_value_t = 256)]
+        /// Square image size. Small by default: only the GPU's work
+        /// depends on it, and that is not timed; on a software rasterizer
+        /// it runs on the CPU and a large image evicts the caches between
+        /// frames, which no GPU does.
+        #[arg(long, default_value_t = 16)]
         size: u32,
         /// Timed frames per count (the median is reported).
         #[arg(long, default_value_t = 50)]
         frames: u32,
+        /// Frames each program runs in a row before the next one's turn
+        /// (1: they alternate frame by frame).
+        #[arg(long, default_value_t = lab::bench_host::DEFAULT_BLOCK)]
+        block: u32,
     },
     /// Runner overhead per frame against an independent hand-written wgpu
     /// program drawing the same WGSL passes with its own pipelines, bind

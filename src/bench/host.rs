@@ -8,7 +8,7 @@ use compiler::CompileOptions;
 use diag::{codes, Diagnostic, SourceMap};
 use std::path::Path;
 
-pub fn run(style: &Path, objects: &[usize], size: u32, frames: u32, printer: &Printer) -> i32 {
+pub fn run(style: &Path, objects: &[usize], size: u32, (frames, block): (u32, u32), printer: &Printer) -> i32 {
     if let Some(bad) = objects.iter().find(|n| !(1..=10_000).contains(*n)) {
         return printer.fail(Diagnostic::error(
             codes::BAD_ARGUMENT_VALUE,
@@ -19,6 +19,12 @@ pub fn run(style: &Path, objects: &[usize], size: u32, frames: u32, printer: &Pr
         return printer.fail(Diagnostic::error(
             codes::BAD_ARGUMENT_VALUE,
             "--frames 0: time at least one frame",
+        ));
+    }
+    if block == 0 {
+        return printer.fail(Diagnostic::error(
+            codes::BAD_ARGUMENT_VALUE,
+            "--block 0: each program runs at least one frame per turn",
         ));
     }
     if let Err(code) = printer.check(crate::args::check_size((size, size))) {
@@ -37,10 +43,10 @@ pub fn run(style: &Path, objects: &[usize], size: u32, frames: u32, printer: &Pr
         Ok(g) => g,
         Err(code) => return code,
     };
-    match lab::bench_host::rows(&gpu, &program, objects, size, frames) {
+    match lab::bench_host::rows(&gpu, &program, objects, size, (frames, block)) {
         Ok(rows) => {
             println!(
-                "device: {}, {size}x{size}, {}: median CPU time per frame of {frames}, GPU excluded",
+                "device: {}, {size}x{size}, {}: median CPU time per frame of {frames}, in blocks of {block}, GPU excluded",
                 gpu.describe(),
                 style.display()
             );

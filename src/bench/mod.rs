@@ -137,7 +137,8 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
             objects,
             size,
             frames,
-        } => host::run(&style, &objects, size, frames, printer),
+            block,
+        } => host::run(&style, &objects, size, (frames, block), printer),
         BenchCommand::Overhead {
             style,
             scene,

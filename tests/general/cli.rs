@@ -346,6 +346,13 @@ fn bench_host_times_npr_against_both_baselines() {
         }
     }
     assert!(stdout.contains("a frame after adding an 11th object"), "{stdout}");
+    let o = npr(&["bench", "host", "--objects", "1", "--block", "0"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--block 0: each program runs at least one frame per turn"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

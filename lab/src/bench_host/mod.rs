@@ -7,9 +7,9 @@
 //! `pass_shaped.rs`, each pass with the style's pass's attachments,
 //! vertex buffers and a pipeline of its own. npr's objects carry the tags
 //! the style's render passes select, so its render passes draw every
-//! object too. The three take turns in each frame, the one that goes first
-//! rotating; each side's time is the median of its frames' CPU time on
-//! the calling thread (`thread_cpu.rs`: a wall clock would also count the
+//! object too. The three take turns, a block of frames each
+//! ([`DEFAULT_BLOCK`]), the one that goes first rotating; each side's time
+//! is the median of its frames' CPU time on the calling thread (`thread_cpu.rs`: a wall clock would also count the
 //! time the thread waited for a core), GPU work excluded (the queue is
 //! drained after each, outside the timing).
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
@@ -26,12 +26,20 @@ pub struct HostRow {
     pub npr_us: f64,
     pub minimal_us: f64,
     pub pass_shaped_us: f64,
-    /// The median over frames of npr's time / each baseline's in the same
-    /// frame (they run back to back, so a change of load during the run
-    /// moves both): steadier than the ratio of medians.
+    /// The median over `k` of npr's frame `k`'s time / each baseline's
+    /// frame `k`'s (in the same round of blocks, so a change of load during
+    /// the run moves both): steadier than the ratio of medians.
     pub pair_ratio_minimal: f64,
     pub pair_ratio_pass_shaped: f64,
 }
+
+/// Frames each side runs in a row before the next side's turn: as in an
+/// application, whose renderer's frame follows its own last frame (with
+/// the GPU's work in between), so each side's caches and allocator hold
+/// what its own frames left. With `1` the sides alternate frame by frame
+/// and each side's frame follows the other programs' (measured both ways
+/// in docs/PERFORMANCE.md, "Fifth round").
+pub const DEFAULT_BLOCK: u32 = 10;
 
 mod minimal;
 mod pass_shaped;
@@ -148,14 +156,16 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// The rows for `counts` objects, `frames` timed frames each (after 3 untimed).
+/// The rows for `counts` objects, `frames` timed frames of each side
+/// (after 3 untimed), in blocks of `block` frames ([`DEFAULT_BLOCK`]).
 pub fn rows(
     gpu: &Gpu,
     program: &StyleProgram,
     counts: &[usize],
     size: u32,
-    frames: u32,
+    (frames, block): (u32, u32),
 ) -> Result<Vec<HostRow>, RunError> {
+    let block = block.max(1);
     let (device, queue) = (&gpu.device, &gpu.queue);
     let mesh = primitives::sphere(1.0, 16, 8);
     let render_passes = program
@@ -182,34 +192,49 @@ pub fn rows(
         let mut instances = tagged_instances(handle, n, 0, &pass_tags);
         let mut models: Vec<glam::Mat4> = vec![glam::Mat4::IDENTITY; n];
         let mut times: [Vec<f64>; 3] = Default::default();
-        for k in 0..frames + 3 {
-            for (i, o) in instances.iter_mut().enumerate() {
-                o.transform = model(i, n, k);
-            }
-            for (i, m) in models.iter_mut().enumerate() {
-                *m = model(i, n, k);
-            }
-            let frame = Frame {
-                camera: &camera,
-                objects: &instances,
-                lights: &lights,
-                time_s: f64::from(k) / 60.0,
-                frame_index: k,
-                eye: 0,
-            };
-            // npr, the minimal program, the pass-shaped one; the first rotates per frame.
-            let mut frame_times = [0.0; 3];
+        // Each side's own frame count: its frame `k` poses the objects as the others' frame `k`.
+        let mut next = [0u32; 3];
+        let rounds = (frames + 3).div_ceil(block);
+        for round in 0..rounds {
+            // npr, the minimal program, the pass-shaped one: a block of
+            // frames each, the first of the three rotating per round.
             for turn in 0..3 {
-                let side = (turn + k as usize) % 3;
-                frame_times[side] = match side {
-                    0 => timed_render(gpu, &mut runtime, &frame, &view)?,
-                    1 => timed_baseline(gpu, |e| minimal.frame(queue, e, &models, passes))?,
-                    _ => timed_baseline(gpu, |e| pass_shaped.frame(queue, e, view_proj, &models))?,
-                };
-            }
-            if k >= 3 {
-                for (t, us) in times.iter_mut().zip(frame_times) {
-                    t.push(us);
+                let side = (turn + round as usize) % 3;
+                for _ in 0..block {
+                    let k = next[side];
+                    if k >= frames + 3 {
+                        break;
+                    }
+                    next[side] += 1;
+                    let us = match side {
+                        0 => {
+                            for (i, o) in instances.iter_mut().enumerate() {
+                                o.transform = model(i, n, k);
+                            }
+                            let frame = Frame {
+                                camera: &camera,
+                                objects: &instances,
+                                lights: &lights,
+                                time_s: f64::from(k) / 60.0,
+                                frame_index: k,
+                                eye: 0,
+                            };
+                            timed_render(gpu, &mut runtime, &frame, &view)?
+                        }
+                        _ => {
+                            for (i, m) in models.iter_mut().enumerate() {
+                                *m = model(i, n, k);
+                            }
+                            if side == 1 {
+                                timed_baseline(gpu, |e| minimal.frame(queue, e, &models, passes))?
+                            } else {
+                                timed_baseline(gpu, |e| pass_shaped.frame(queue, e, view_proj, &models))?
+                            }
+                        }
+                    };
+                    if k >= 3 {
+                        times[side].push(us);
+                    }
                 }
             }
         }
