@@ -566,3 +566,17 @@ pub struct ParamManifest {
     /// Byte offset of the slot in its uniform block (style or object), when bound.
     pub offset: Option<u64>,
 }
+
+impl ParamManifest {
+    /// Make the parameter the constant `value` at run time (a host's
+    /// `set_param`, a sweep's combination, the studio's controls): its
+    /// default becomes the value, in `%` of the height when it was typed
+    /// so, and its keyframes go, as `--set` makes a constant at compile
+    /// time (`mid::overrides`). The one place these three fields change
+    /// together.
+    pub fn set_constant(&mut self, value: &crate::param_value::ParamOverride) {
+        self.default.clone_from(&value.value);
+        self.default_percent_of_height = value.percent_of_height;
+        self.keyframes.clear();
+    }
+}

@@ -370,8 +370,7 @@ impl Studio {
         } else if let Some(s) = session.as_mut() {
             for c in &self.controls {
                 if let Some(p) = s.renderer.params_mut().iter_mut().find(|p| p.name == c.typed.name) {
-                    p.default = c.typed.value.clone();
-                    p.keyframes.clear();
+                    p.set_constant(&c.typed);
                 }
             }
             let typed = self.typed_controls();

@@ -97,11 +97,7 @@ impl StyleRuntime {
         for params in
             std::iter::once(&mut self.program.manifest.params).chain(self.renderer.as_mut().map(|r| r.params_mut()))
         {
-            let p = &mut params[index];
-            p.default = typed.value.clone();
-            p.default_percent_of_height = typed.percent_of_height;
-            // A set value is a constant, as `--set` makes it (`mid::overrides`).
-            p.keyframes.clear();
+            params[index].set_constant(&typed);
         }
         Ok(())
     }

@@ -395,8 +395,7 @@ impl Uniforms {
             match type_value(shape, &literal, text, &SettingOrigin::CommandLine) {
                 Ok(o) => {
                     if let Some(p) = r.params_mut().iter_mut().find(|p| &p.name == name) {
-                        p.default = o.value;
-                        p.keyframes.clear();
+                        p.set_constant(&o);
                     }
                 }
                 Err(refusal) => {
