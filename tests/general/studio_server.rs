@@ -353,6 +353,33 @@ fn units_stay_as_written_on_the_page_and_in_the_file() {
 }
 
 #[test]
+fn a_px_parameter_set_in_percent_of_the_height_renders_as_npr_render_sets_it() {
+    // A kept uniform moves in place (no recompile); the value typed in `%`
+    // must reach the renderer as `%` of the height, not as that many px.
+    let dir = common::live::scratch("studio", "percent");
+    let style = dir.join("percent.npr");
+    std::fs::write(
+        &style,
+        "style \"Percent\"\nparam w: px = 1px in 0px..50px\npass p: render(scene) {\n  vertex { inflate: w }\n  out c: rgba8unorm = #808080\n}\noutput p.c\n",
+    )
+    .expect("write");
+    let (_studio, addr) = start(&style);
+    let mut events = Events::open(&addr);
+    let first = events.until("a frame", |s| !s["frame"].is_null());
+    assert_eq!(
+        http::post(&addr, "/param", &json!({"name": "w", "literal": "10%"})).status,
+        202
+    );
+    let moved = events.until("w = 10%", |s| {
+        frame_id(s) > frame_id(&first) && param(s, "w")["literal"] == "10%"
+    });
+    let percent = common::live::reference_render(&style, &["w=10%"], &dir.join("ref_percent.png"));
+    let pixels = common::live::reference_render(&style, &["w=10px"], &dir.join("ref_px.png"));
+    assert_ne!(percent, pixels, "the test's style must tell 10% of 64 px from 10 px");
+    assert_eq!(output_png(&addr, &moved), percent);
+}
+
+#[test]
 fn a_path_dependent_style_replays_from_frame_0_after_a_control_moves() {
     // Afterimage mixes in its previous frame: a frame rendered on top of the
     // last one without restarting the history would differ from
