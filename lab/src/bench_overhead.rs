@@ -18,7 +18,7 @@
 //! writes, recording, submit), which is where the runner's own work is.
 
 pub mod baseline;
-mod setup;
+pub(crate) mod setup;
 mod support;
 mod uniforms;
 

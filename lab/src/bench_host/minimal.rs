@@ -6,6 +6,8 @@
 //! one fullscreen triangle, and uploads every object's block each frame.
 //! `pass_shaped.rs` is the baseline with the style's passes' shapes.
 
+use super::{cleared, discarded_depth, target_view, uniform_group, uniform_layout};
+
 const WGSL: &str = "
 struct Object { model: mat4x4<f32> }
 @group(0) @binding(0) var<uniform> object: Object;
@@ -42,19 +44,7 @@ impl Minimal {
             label: None,
             source: wgpu::ShaderSource::Wgsl(WGSL.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: None,
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: true,
-                    min_binding_size: wgpu::BufferSize::new(64),
-                },
-                count: None,
-            }],
-        });
+        let layout = uniform_layout(device, true);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
             bind_group_layouts: &[Some(&layout)],
@@ -105,36 +95,7 @@ impl Minimal {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &buffer,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(64),
-                }),
-            }],
-        });
-        let texture = |format, usage| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: None,
-                    size: wgpu::Extent3d {
-                        width: size,
-                        height: size,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
-        };
+        let group = uniform_group(device, &layout, &buffer);
         Minimal {
             object_pipeline: pipeline("vs_object", &[Some(vertex)], true),
             full_pipeline: pipeline("vs_full", &[], false),
@@ -151,11 +112,8 @@ impl Minimal {
                 usage: wgpu::BufferUsages::INDEX,
             }),
             index_count: mesh.indices.len() as u32,
-            depth: texture(
-                wgpu::TextureFormat::Depth32Float,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            ),
-            color: texture(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::RENDER_ATTACHMENT),
+            depth: target_view(device, wgpu::TextureFormat::Depth32Float, size),
+            color: target_view(device, wgpu::TextureFormat::Rgba8Unorm, size),
             blocks: vec![0; STRIDE as usize * objects.max(1)],
         }
     }
@@ -178,23 +136,8 @@ impl Minimal {
         for _ in 0..object_passes {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.color,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &[Some(cleared(&self.color))],
+                depth_stencil_attachment: Some(discarded_depth(&self.depth)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
@@ -210,15 +153,7 @@ impl Minimal {
         for _ in 0..fullscreen_passes {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.color,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                color_attachments: &[Some(cleared(&self.color))],
                 depth_stencil_attachment: None,
                 timestamp_writes: None,
                 occlusion_query_set: None,

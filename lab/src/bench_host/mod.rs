@@ -131,24 +131,97 @@ fn drain(device: &wgpu::Device) -> Result<(), RunError> {
         .map_err(|e| RunError::Internal(e.to_string()))
 }
 
-/// A view of the `size`² texture a host renders into.
-fn host_target(device: &wgpu::Device, size: u32) -> wgpu::TextureView {
+/// A view of a `side`² texture of `format` that passes render into: the
+/// host's target, and the baselines' targets and depth buffers.
+fn target_view(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::TextureView {
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: None,
             size: wgpu::Extent3d {
-                width: size,
-                height: size,
+                width: side,
+                height: side,
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
+            format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         })
         .create_view(&Default::default())
+}
+
+/// A baseline render pass's depth attachment: cleared to 1, discarded.
+fn discarded_depth(view: &wgpu::TextureView) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(1.0),
+            store: wgpu::StoreOp::Discard,
+        }),
+        stencil_ops: None,
+    }
+}
+
+/// Frame `k` (at 60 frames a second) of `objects` for npr, eye 0.
+fn frame_at<'a>(camera: &'a Camera, objects: &'a [Instance], lights: &'a Lights, k: u32) -> Frame<'a> {
+    Frame {
+        camera,
+        objects,
+        lights,
+        time_s: f64::from(k) / 60.0,
+        frame_index: k,
+        eye: 0,
+    }
+}
+
+/// A group layout of one 64-byte uniform block for the vertex stage, at a
+/// dynamic offset or not.
+fn uniform_layout(device: &wgpu::Device, dynamic: bool) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: None,
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: dynamic,
+                min_binding_size: wgpu::BufferSize::new(64),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// The group of `layout` reading the 64 bytes at `buffer`'s start (a
+/// dynamic offset moves it).
+fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(64),
+            }),
+        }],
+    })
+}
+
+/// A baseline pass's colour attachment: cleared, stored.
+fn cleared(view: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+            store: wgpu::StoreOp::Store,
+        },
+    }
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -177,7 +250,7 @@ pub fn rows(
     let pass_tags = render_pass_tags(program);
     // The style's other passes and the present pass: one fullscreen triangle each.
     let passes = (render_passes, program.manifest.passes.len() - render_passes + 1);
-    let view = host_target(device, size);
+    let view = target_view(device, wgpu::TextureFormat::Rgba8Unorm, size);
     let eye = glam::Vec3::new(0.0, 3.0, 5.0);
     let camera = Camera::looking_at(eye, glam::Vec3::ZERO);
     // The pass-shaped program's frame block: a camera at npr's, made with glam.
@@ -211,15 +284,7 @@ pub fn rows(
                             for (i, o) in instances.iter_mut().enumerate() {
                                 o.transform = model(i, n, k);
                             }
-                            let frame = Frame {
-                                camera: &camera,
-                                objects: &instances,
-                                lights: &lights,
-                                time_s: f64::from(k) / 60.0,
-                                frame_index: k,
-                                eye: 0,
-                            };
-                            timed_render(gpu, &mut runtime, &frame, &view)?
+                            timed_render(gpu, &mut runtime, &frame_at(&camera, &instances, &lights, k), &view)?
                         }
                         _ => {
                             for (i, m) in models.iter_mut().enumerate() {
@@ -298,7 +363,7 @@ pub fn spawn_row(
     spawns: u32,
 ) -> Result<SpawnRow, RunError> {
     let mesh = primitives::sphere(1.0, 16, 8);
-    let view = host_target(&gpu.device, size);
+    let view = target_view(&gpu.device, wgpu::TextureFormat::Rgba8Unorm, size);
     let camera = Camera::looking_at(glam::Vec3::new(0.0, 3.0, 5.0), glam::Vec3::ZERO);
     let lights = Lights::default();
     // As in `rows`: every object carries the tags the render passes select.
@@ -306,15 +371,7 @@ pub fn spawn_row(
     // One timed frame of `count` objects: µs of `render`, GPU work drained after.
     let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
         let instances = tagged_instances(handle, count, k, &tags);
-        let frame = Frame {
-            camera: &camera,
-            objects: &instances,
-            lights: &lights,
-            time_s: f64::from(k) / 60.0,
-            frame_index: k,
-            eye: 0,
-        };
-        timed_render(gpu, runtime, &frame, &view)
+        timed_render(gpu, runtime, &frame_at(&camera, &instances, &lights, k), &view)
     };
     let new_runtime = || runtime_with(program, gpu, &mesh);
     let (mut runtime, handle) = new_runtime()?;

@@ -14,7 +14,8 @@
 //! npr's time over it is npr's own work (uniforms, scene, its recording).
 //! `minimal.rs` is the same with one target per pass.
 
-use abi::formats::Format;
+use super::{cleared, discarded_depth, target_view, uniform_group, uniform_layout};
+use crate::bench_overhead::setup::{scaled, texture_format};
 use abi::manifest::{Manifest, PassKindManifest};
 
 /// Bytes between blocks (wgpu's minimum uniform offset alignment): the
@@ -47,23 +48,6 @@ struct Out {{ {fields}}}
     )
 }
 
-/// The wgpu format of a target format: every one a style can write.
-fn texture_format(format: Format) -> wgpu::TextureFormat {
-    use wgpu::TextureFormat as T;
-    match format {
-        Format::R8unorm => T::R8Unorm,
-        Format::Rg8unorm => T::Rg8Unorm,
-        Format::Rgba8unorm => T::Rgba8Unorm,
-        Format::Rgba8unormSrgb => T::Rgba8UnormSrgb,
-        Format::R16float => T::R16Float,
-        Format::Rg16float => T::Rg16Float,
-        Format::Rgba16float => T::Rgba16Float,
-        Format::R32float => T::R32Float,
-        Format::Rg32float => T::Rg32Float,
-        Format::Rgba32float => T::Rgba32Float,
-    }
-}
-
 /// One pass: its pipeline, colour targets and, for a render pass, its
 /// depth buffer and vertex buffer count.
 struct Pass {
@@ -87,56 +71,6 @@ pub(super) struct PassShaped {
     blocks: Vec<u8>,
 }
 
-fn texture(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: side,
-                height: side,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
-}
-
-fn uniform_layout(device: &wgpu::Device, dynamic: bool) -> wgpu::BindGroupLayout {
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: None,
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: dynamic,
-                min_binding_size: wgpu::BufferSize::new(64),
-            },
-            count: None,
-        }],
-    })
-}
-
-fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(64),
-            }),
-        }],
-    })
-}
-
 impl PassShaped {
     pub(super) fn new(
         device: &wgpu::Device,
@@ -153,7 +87,7 @@ impl PassShaped {
             bind_group_layouts: &[Some(&frame_layout), Some(&object_layout)],
             immediate_size: 0,
         });
-        let side = |scale: f64| ((f64::from(size) * scale).round() as u32).max(1);
+        let side = |scale: f64| scaled((size, size), scale).0;
         // (formats, side, vertex buffers) per pass, then the present pass.
         let mut shapes: Vec<(Vec<wgpu::TextureFormat>, u32, Option<usize>)> = manifest
             .passes
@@ -234,8 +168,8 @@ impl PassShaped {
                 });
                 Pass {
                     pipeline,
-                    colors: formats.iter().map(|&f| texture(device, f, side)).collect(),
-                    depth: vertex_buffers.map(|_| texture(device, wgpu::TextureFormat::Depth32Float, side)),
+                    colors: formats.iter().map(|&f| target_view(device, f, side)).collect(),
+                    depth: vertex_buffers.map(|_| target_view(device, wgpu::TextureFormat::Depth32Float, side)),
                     vertex_buffers,
                 }
             })
@@ -286,28 +220,12 @@ impl PassShaped {
         queue.write_buffer(&self.blocks_buffer, 0, &self.blocks);
         for p in &self.passes {
             // On the stack, as a program that knows its passes writes them.
-            let colors: [Option<wgpu::RenderPassColorAttachment>; MAX_COLORS] = std::array::from_fn(|i| {
-                p.colors.get(i).map(|view| wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            });
+            let colors: [Option<wgpu::RenderPassColorAttachment>; MAX_COLORS] =
+                std::array::from_fn(|i| p.colors.get(i).map(cleared));
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
                 color_attachments: &colors[..p.colors.len()],
-                depth_stencil_attachment: p.depth.as_ref().map(|view| wgpu::RenderPassDepthStencilAttachment {
-                    view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
+                depth_stencil_attachment: p.depth.as_ref().map(discarded_depth),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
