@@ -346,6 +346,18 @@ fn bench_host_times_npr_against_both_baselines() {
         }
     }
     assert!(stdout.contains("a frame after adding an 11th object"), "{stdout}");
+    // A style with compute passes: the pass-shaped program dispatches for them.
+    let o = npr(&[
+        "bench",
+        "host",
+        "--style",
+        "examples/object_centroids.npr",
+        "--objects",
+        "2",
+        "--frames",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let o = npr(&["bench", "host", "--objects", "1", "--block", "0"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(

@@ -303,6 +303,9 @@ pub fn rows(
                 }
             }
         }
+        // An error wgpu reported outside every scope (a baseline's, which
+        // has none) fails the bench instead of timing a broken frame.
+        gpu.watch.check(Ok(()))?;
         let [npr, own, shaped] = times;
         let pair = |other: &[f64]| median(npr.iter().zip(other).map(|(n, o)| n / o).collect());
         rows.push(HostRow {

@@ -7,8 +7,8 @@
 //! the same targets must have); then the present pass into one target.
 //! A render pass binds a frame block once and each object's block at a
 //! dynamic offset, binds the mesh's buffers once (every object shares the
-//! mesh) and draws every object; any other pass draws a fullscreen
-//! triangle. One `write_buffer` per frame uploads the frame block and
+//! mesh) and draws every object; a compute pass is one dispatch of an
+//! empty shader; any other pass draws a fullscreen triangle. One `write_buffer` per frame uploads the frame block and
 //! every object's. Its shaders do nothing a style does: what it measures
 //! is the API work a frame of these passes costs on the CPU at least, so
 //! npr's time over it is npr's own work (uniforms, scene, its recording).
@@ -48,14 +48,22 @@ struct Out {{ {fields}}}
     )
 }
 
-/// One pass: its pipeline, colour targets and, for a render pass, its
-/// depth buffer and vertex buffer count.
-struct Pass {
+/// A pass that draws: its pipeline, colour targets and, for a render
+/// pass, its depth buffer and vertex buffer count.
+struct Draw {
     pipeline: wgpu::RenderPipeline,
     colors: Vec<wgpu::TextureView>,
     depth: Option<wgpu::TextureView>,
     /// `Some(n)`: a render pass reading `n` vertex attributes.
     vertex_buffers: Option<usize>,
+}
+
+/// What the program records for one pass of the style.
+enum Pass {
+    Draw(Draw),
+    /// A compute pass of the style (it writes no target): one dispatch of
+    /// an empty shader.
+    Dispatch(wgpu::ComputePipeline),
 }
 
 pub(super) struct PassShaped {
@@ -88,11 +96,15 @@ impl PassShaped {
             immediate_size: 0,
         });
         let side = |scale: f64| scaled((size, size), scale).0;
-        // (formats, side, vertex buffers) per pass, then the present pass.
-        let mut shapes: Vec<(Vec<wgpu::TextureFormat>, u32, Option<usize>)> = manifest
+        // (formats, side, vertex buffers) per pass that draws, `None` for a
+        // compute pass; then the present pass.
+        let mut shapes: Vec<Option<(Vec<wgpu::TextureFormat>, u32, Option<usize>)>> = manifest
             .passes
             .iter()
             .map(|p| {
+                if matches!(p.kind, PassKindManifest::Compute { .. }) {
+                    return None;
+                }
                 let formats = p
                     .outputs
                     .iter()
@@ -102,11 +114,15 @@ impl PassShaped {
                     PassKindManifest::Render { attributes, .. } => Some(attributes.len().max(1)),
                     _ => None,
                 };
-                (formats, side(p.scale), vertex_buffers)
+                Some((formats, side(p.scale), vertex_buffers))
             })
             .collect();
-        shapes.push((vec![wgpu::TextureFormat::Rgba8Unorm], size, None));
-        let most_buffers = shapes.iter().filter_map(|s| s.2).max().unwrap_or(1);
+        shapes.push(Some((vec![wgpu::TextureFormat::Rgba8Unorm], size, None)));
+        let most_buffers = shapes.iter().flatten().filter_map(|s| s.2).max().unwrap_or(1);
+        let compute_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: None,
+            source: wgpu::ShaderSource::Wgsl("@compute @workgroup_size(1) fn cs() {}".into()),
+        });
         let attributes: Vec<[wgpu::VertexAttribute; 1]> = (0..most_buffers)
             .map(|slot| {
                 [wgpu::VertexAttribute {
@@ -118,7 +134,17 @@ impl PassShaped {
             .collect();
         let passes = shapes
             .into_iter()
-            .map(|(formats, side, vertex_buffers)| {
+            .map(|shape| {
+                let Some((formats, side, vertex_buffers)) = shape else {
+                    return Pass::Dispatch(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: None,
+                        layout: None,
+                        module: &compute_module,
+                        entry_point: Some("cs"),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    }));
+                };
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: None,
                     source: wgpu::ShaderSource::Wgsl(wgsl(formats.len()).into()),
@@ -166,12 +192,12 @@ impl PassShaped {
                     multiview_mask: None,
                     cache: None,
                 });
-                Pass {
+                Pass::Draw(Draw {
                     pipeline,
                     colors: formats.iter().map(|&f| target_view(device, f, side)).collect(),
                     depth: vertex_buffers.map(|_| target_view(device, wgpu::TextureFormat::Depth32Float, side)),
                     vertex_buffers,
-                }
+                })
             })
             .collect();
         let blocks_buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -218,7 +244,16 @@ impl PassShaped {
             self.blocks[at..at + 64].copy_from_slice(bytemuck::bytes_of(&m.to_cols_array()));
         }
         queue.write_buffer(&self.blocks_buffer, 0, &self.blocks);
-        for p in &self.passes {
+        for pass in &self.passes {
+            let p = match pass {
+                Pass::Draw(draw) => draw,
+                Pass::Dispatch(pipeline) => {
+                    let mut pass = encoder.begin_compute_pass(&Default::default());
+                    pass.set_pipeline(pipeline);
+                    pass.dispatch_workgroups(1, 1, 1);
+                    continue;
+                }
+            };
             // On the stack, as a program that knows its passes writes them.
             let colors: [Option<wgpu::RenderPassColorAttachment>; MAX_COLORS] =
                 std::array::from_fn(|i| p.colors.get(i).map(cleared));
