@@ -58,6 +58,10 @@ struct Draw {
     vertex_buffers: Option<usize>,
 }
 
+/// A drawing pass's colour formats, side and vertex buffer count
+/// (`Some` for a render pass).
+type DrawShape = (Vec<wgpu::TextureFormat>, u32, Option<usize>);
+
 /// What the program records for one pass of the style.
 enum Pass {
     Draw(Draw),
@@ -98,7 +102,7 @@ impl PassShaped {
         let side = |scale: f64| scaled((size, size), scale).0;
         // (formats, side, vertex buffers) per pass that draws, `None` for a
         // compute pass; then the present pass.
-        let mut shapes: Vec<Option<(Vec<wgpu::TextureFormat>, u32, Option<usize>)>> = manifest
+        let mut shapes: Vec<Option<DrawShape>> = manifest
             .passes
             .iter()
             .map(|p| {
