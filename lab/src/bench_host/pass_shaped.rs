@@ -8,8 +8,9 @@
 //! A render pass binds a frame block once and each object's block at a
 //! dynamic offset, binds the mesh's buffers once (every object shares the
 //! mesh) and draws every object; a compute pass is one dispatch of an
-//! empty shader; any other pass draws a fullscreen triangle. One `write_buffer` per frame uploads the frame block and
-//! every object's. Its shaders do nothing a style does: what it measures
+//! empty shader; any other pass draws a fullscreen triangle. One
+//! `write_buffer` per frame uploads the frame block and every object's.
+//! Its shaders do nothing a style does: what it measures
 //! is the API work a frame of these passes costs on the CPU at least, so
 //! npr's time over it is npr's own work (uniforms, scene, its recording).
 //! `minimal.rs` is the same with one target per pass.
