@@ -9,9 +9,10 @@
 //! the style's render passes select, so its render passes draw every
 //! object too. The three take turns, a block of frames each
 //! ([`DEFAULT_BLOCK`]), the one that goes first rotating; each side's time
-//! is the median of its frames' CPU time on the calling thread (`thread_cpu.rs`: a wall clock would also count the
-//! time the thread waited for a core), GPU work excluded (the queue is
-//! drained after each, outside the timing).
+//! is the median of its frames' CPU time on the calling thread
+//! (`thread_cpu.rs`: a wall clock would also count the time the thread
+//! waited for a core), GPU work excluded (the queue is drained after each
+//! frame, outside the timing).
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
 use crate::thread_cpu;
