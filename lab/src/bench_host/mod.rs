@@ -98,38 +98,35 @@ fn tagged_instances(handle: MeshHandle, count: usize, k: u32, tags: &[&String]) 
         .collect()
 }
 
-/// The calling thread's CPU µs of one `StyleRuntime::render` of `frame`
-/// into `view`; the frame is then submitted and the GPU drained, untimed.
+/// The calling thread's CPU µs of `record` into a new encoder; the frame
+/// is then submitted and the GPU drained, untimed. An error wgpu reported
+/// outside every scope (the baselines have none, and the device records
+/// such errors instead of panicking) fails the bench here rather than
+/// timing a broken frame.
+fn timed(gpu: &Gpu, record: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<(), RunError>) -> Result<f64, RunError> {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let (us, recorded) = thread_cpu::time_us(|| record(&mut encoder));
+    recorded?;
+    gpu.queue.submit([encoder.finish()]);
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RunError::Internal(e.to_string()))?;
+    gpu.watch.check(Ok(()))?;
+    Ok(us)
+}
+
+/// [`timed`] of one `StyleRuntime::render` of `frame` into `view`.
 fn timed_render(
     gpu: &Gpu,
     runtime: &mut StyleRuntime,
     frame: &Frame,
     view: &wgpu::TextureView,
 ) -> Result<f64, RunError> {
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let (us, rendered) = thread_cpu::time_us(|| runtime.render(&mut encoder, frame, Target::View(view)));
-    rendered.map_err(|e| RunError::User(e.diagnostics()))?;
-    gpu.queue.submit([encoder.finish()]);
-    drain(&gpu.device)?;
-    Ok(us)
-}
-
-/// The calling thread's CPU µs of a baseline's frame recorded by `record`
-/// into a new encoder; the frame is then submitted and the GPU drained, untimed.
-fn timed_baseline(gpu: &Gpu, record: impl FnOnce(&mut wgpu::CommandEncoder)) -> Result<f64, RunError> {
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let (us, ()) = thread_cpu::time_us(|| record(&mut encoder));
-    gpu.queue.submit([encoder.finish()]);
-    drain(&gpu.device)?;
-    Ok(us)
-}
-
-/// Wait until the GPU has done what was submitted.
-fn drain(device: &wgpu::Device) -> Result<(), RunError> {
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map(|_| ())
-        .map_err(|e| RunError::Internal(e.to_string()))
+    timed(gpu, |encoder| {
+        runtime
+            .render(encoder, frame, Target::View(view))
+            .map_err(|e| RunError::User(e.diagnostics()))
+    })
 }
 
 /// A view of a `side`² texture of `format` that passes render into: the
@@ -254,9 +251,10 @@ pub fn rows(
     let view = target_view(device, wgpu::TextureFormat::Rgba8Unorm, size);
     let eye = glam::Vec3::new(0.0, 3.0, 5.0);
     let camera = Camera::looking_at(eye, glam::Vec3::ZERO);
-    // The pass-shaped program's frame block: a camera at npr's, made with glam.
-    let view_proj =
-        glam::Mat4::perspective_rh(0.8, 1.0, 0.1, 100.0) * glam::Mat4::look_at_rh(eye, glam::Vec3::ZERO, glam::Vec3::Y);
+    // The pass-shaped program's frame block: npr's camera (`Camera::looking_at`:
+    // 40° high, near 0.1, far 100), made with glam.
+    let view_proj = glam::Mat4::perspective_rh(40f32.to_radians(), 1.0, 0.1, 100.0)
+        * glam::Mat4::look_at_rh(eye, glam::Vec3::ZERO, glam::Vec3::Y);
     let mut rows = Vec::new();
     for &n in counts {
         let (mut runtime, handle) = runtime_with(program, gpu, &mesh)?;
@@ -291,11 +289,14 @@ pub fn rows(
                             for (i, m) in models.iter_mut().enumerate() {
                                 *m = model(i, n, k);
                             }
-                            if side == 1 {
-                                timed_baseline(gpu, |e| minimal.frame(queue, e, &models, passes))?
-                            } else {
-                                timed_baseline(gpu, |e| pass_shaped.frame(queue, e, view_proj, &models))?
-                            }
+                            timed(gpu, |e| {
+                                if side == 1 {
+                                    minimal.frame(queue, e, &models, passes);
+                                } else {
+                                    pass_shaped.frame(queue, e, view_proj, &models);
+                                }
+                                Ok(())
+                            })?
                         }
                     };
                     if k >= 3 {
@@ -304,9 +305,6 @@ pub fn rows(
                 }
             }
         }
-        // An error wgpu reported outside every scope (a baseline's, which
-        // has none) fails the bench instead of timing a broken frame.
-        gpu.watch.check(Ok(()))?;
         let [npr, own, shaped] = times;
         let pair = |other: &[f64]| median(npr.iter().zip(other).map(|(n, o)| n / o).collect());
         rows.push(HostRow {
@@ -373,23 +371,23 @@ pub fn spawn_row(
     // As in `rows`: every object carries the tags the render passes select.
     let tags = render_pass_tags(program);
     // One timed frame of `count` objects: µs of `render`, GPU work drained after.
-    let timed = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
+    let timed_frame = |runtime: &mut StyleRuntime, handle, count: usize, k: u32| -> Result<f64, RunError> {
         let instances = tagged_instances(handle, count, k, &tags);
         timed_render(gpu, runtime, &frame_at(&camera, &instances, &lights, k), &view)
     };
     let new_runtime = || runtime_with(program, gpu, &mesh);
     let (mut runtime, handle) = new_runtime()?;
     for k in 0..3 {
-        timed(&mut runtime, handle, objects, k)?;
+        timed_frame(&mut runtime, handle, objects, k)?;
     }
     let (mut spawn, mut steady, mut fresh) = (Vec::new(), Vec::new(), Vec::new());
     for s in 0..spawns {
         let k = 3 + 3 * s;
-        spawn.push(timed(&mut runtime, handle, objects + 1, k)?);
-        timed(&mut runtime, handle, objects, k + 1)?;
-        steady.push(timed(&mut runtime, handle, objects, k + 2)?);
+        spawn.push(timed_frame(&mut runtime, handle, objects + 1, k)?);
+        timed_frame(&mut runtime, handle, objects, k + 1)?;
+        steady.push(timed_frame(&mut runtime, handle, objects, k + 2)?);
         let (mut other, other_handle) = new_runtime()?;
-        fresh.push(timed(&mut other, other_handle, objects + 1, k)?);
+        fresh.push(timed_frame(&mut other, other_handle, objects + 1, k)?);
     }
     Ok(SpawnRow {
         objects,
