@@ -27,6 +27,8 @@ pub struct GpuCreations {
     /// Render and compute pipelines.
     pub pipelines: u64,
     pub shader_modules: u64,
+    /// Render bundles (a render pass's recorded draws).
+    pub render_bundles: u64,
 }
 
 impl GpuCreations {
@@ -39,6 +41,7 @@ impl GpuCreations {
             + self.layouts
             + self.pipelines
             + self.shader_modules
+            + self.render_bundles
     }
 }
 
@@ -71,6 +74,8 @@ pub(crate) trait Create {
     fn make_render_pipeline(&self, desc: &wgpu::RenderPipelineDescriptor) -> wgpu::RenderPipeline;
     fn make_compute_pipeline(&self, desc: &wgpu::ComputePipelineDescriptor) -> wgpu::ComputePipeline;
     fn make_shader_module(&self, desc: wgpu::ShaderModuleDescriptor) -> wgpu::ShaderModule;
+    /// Counts the bundle the encoder will finish.
+    fn make_render_bundle_encoder(&self, desc: &wgpu::RenderBundleEncoderDescriptor) -> wgpu::RenderBundleEncoder<'_>;
 }
 
 impl Create for wgpu::Device {
@@ -114,6 +119,10 @@ impl Create for wgpu::Device {
     fn make_shader_module(&self, desc: wgpu::ShaderModuleDescriptor) -> wgpu::ShaderModule {
         count(|n| n.shader_modules += 1);
         self.create_shader_module(desc)
+    }
+    fn make_render_bundle_encoder(&self, desc: &wgpu::RenderBundleEncoderDescriptor) -> wgpu::RenderBundleEncoder<'_> {
+        count(|n| n.render_bundles += 1);
+        self.create_render_bundle_encoder(desc)
     }
 }
 

@@ -143,6 +143,7 @@ fn minus(a: GpuCreations, b: GpuCreations) -> GpuCreations {
         layouts: a.layouts - b.layouts,
         pipelines: a.pipelines - b.pipelines,
         shader_modules: a.shader_modules - b.shader_modules,
+        render_bundles: a.render_bundles - b.render_bundles,
     }
 }
 

@@ -1,7 +1,9 @@
 //! `npr bench host`: the CPU time of a host's frame through
 //! `runner::embed::StyleRuntime::render` (prepare: uniforms, objects,
 //! camera; encode: every pass and the present pass into the host's
-//! encoder) for 1 to 1000 objects, against two independent wgpu programs
+//! encoder) and the host's `CommandEncoder::finish` (where wgpu 30
+//! validates the recorded commands and records them for the driver) for
+//! 1 to 1000 objects, against two independent wgpu programs
 //! written with no npr code that record the same number of passes and
 //! draw the same objects: `minimal.rs`, one target per pass, and
 //! `pass_shaped.rs`, each pass with the style's pass's attachments,
@@ -98,16 +100,19 @@ fn tagged_instances(handle: MeshHandle, count: usize, k: u32, tags: &[&String]) 
         .collect()
 }
 
-/// The calling thread's CPU µs of `record` into a new encoder; the frame
-/// is then submitted and the GPU drained, untimed. An error wgpu reported
+/// The calling thread's CPU µs of `record` into a new encoder and of
+/// finishing it: wgpu 30 defers its validation, resource tracking and the
+/// driver's command recording from the pass calls to `finish`, which the
+/// host calls every frame, so the frame's CPU cost is only known with it
+/// (docs/PERFORMANCE.md, "Sixth round"). The frame is then submitted and
+/// the GPU drained, untimed. An error wgpu reported
 /// outside every scope (the baselines have none, and the device records
 /// such errors instead of panicking) fails the bench here rather than
 /// timing a broken frame.
 fn timed(gpu: &Gpu, record: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<(), RunError>) -> Result<f64, RunError> {
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let (us, recorded) = thread_cpu::time_us(|| record(&mut encoder));
-    recorded?;
-    gpu.queue.submit([encoder.finish()]);
+    let (us, recorded) = thread_cpu::time_us(|| record(&mut encoder).map(|()| encoder.finish()));
+    gpu.queue.submit([recorded?]);
     gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|e| RunError::Internal(e.to_string()))?;

@@ -122,6 +122,8 @@ impl Renderer {
             for (slot, slot_passes) in parity_passes.iter_mut().enumerate() {
                 for (pi, pass) in slot_passes.iter_mut().enumerate() {
                     pass.group0 = self.group0(pi, slot, parity, &sized.physical);
+                    // Its draws bind the old group 0 and the old scene's objects.
+                    pass.draws = None;
                     pass.pixel_workgroups = self.scene_gpu.values[pi]
                         .as_ref()
                         .map_or(0, |b| b.pixel_workgroups(&self.manifest, sized.width, sized.height));

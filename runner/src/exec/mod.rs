@@ -417,11 +417,34 @@ impl Renderer {
                 0
             };
         }
+        self.record_render_draws();
         meshes::update_time_varying(&self.queue, &mut self.scene_gpu.meshes, scene, spec.time_s)?;
         // Spinning objects turn with the frame's time (`spin`).
         let posed = scene.posed(spec.time_s);
         self.write_uniforms(&posed, spec)?;
         self.prepare_lines(&posed, spec)
+    }
+
+    /// Record the draws of every render pass that has none for the current
+    /// size and scene (after a resize or a scene change; a steady frame
+    /// records nothing here).
+    fn record_render_draws(&mut self) {
+        let Some(sized) = self.sized.as_mut() else { return };
+        for (parity, parity_passes) in sized.passes.iter_mut().enumerate() {
+            let ctx = EncodeContext {
+                meshes: &self.scene_gpu.meshes,
+                object_group: &self.scene_gpu.object_group,
+                object_stride: self.object_stride,
+                parity,
+            };
+            for slot_passes in parity_passes.iter_mut() {
+                for (exec, sized_pass) in self.passes.iter().zip(slot_passes.iter_mut()) {
+                    if sized_pass.draws.is_none() {
+                        sized_pass.draws = exec.record_draws(&self.device, sized_pass, &ctx);
+                    }
+                }
+            }
+        }
     }
 
     /// Run the frame only up to (and including) the pass that writes `target`,

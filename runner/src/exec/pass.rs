@@ -158,6 +158,21 @@ impl PassExec {
         }
     }
 
+    /// A render pass's draws for `sized` and the current scene, recorded
+    /// once for the frames that follow (`render_pass.rs`); `None` for
+    /// other kinds, which record theirs every frame.
+    pub fn record_draws(
+        &self,
+        device: &wgpu::Device,
+        sized: &SizedPass,
+        ctx: &EncodeContext,
+    ) -> Option<wgpu::RenderBundle> {
+        match self {
+            PassExec::Render(p) => Some(p.record_draws(device, sized, ctx)),
+            _ => None,
+        }
+    }
+
     /// Record the pass for eye slot `slot`.
     pub fn encode(
         &self,

@@ -5,11 +5,19 @@
 //! test(other)` the one `other` kept, loaded and tested, never written. A
 //! pass that reads `patch.weight` draws each blended patch over its faces
 //! and n-ring (Breslav et al. 2007 §3.6), every other pass its own faces.
+//!
+//! The draws are the same every frame until the size or the scene changes
+//! (only the buffers' contents move): they are recorded once into a render
+//! bundle ([`RenderPassExec::record_draws`], kept in the `SizedPass`) that
+//! each frame's pass executes. wgpu validates and tracks a bundle's
+//! commands when it is made, so a frame's pass costs one command instead
+//! of five per object (docs/PERFORMANCE.md, "Render bundles").
 
 use super::bind::{self, ObjectResources};
 use super::common::{self, EncodeContext, Timestamps};
 use super::meshes::attribute_format;
 use super::resources::SizedPass;
+use crate::gpu_count::Create;
 use crate::RunError;
 use abi::manifest::*;
 
@@ -20,6 +28,9 @@ pub(super) struct RenderPassExec {
     tag: Option<String>,
     /// Vertex attributes in location order (one buffer each).
     attributes: Vec<Attribute>,
+    /// The formats of the pass's outputs, as its pipeline was made for
+    /// (a bundle states the attachments it draws into).
+    color_formats: Vec<Option<wgpu::TextureFormat>>,
     pipeline: wgpu::RenderPipeline,
     /// What happens to the depth attachment at the beginning and end of the pass.
     depth_ops: wgpu::Operations<f32>,
@@ -141,6 +152,11 @@ impl RenderPassExec {
             clear: common::clear_color(pass),
             tag: tag.cloned(),
             attributes: attributes.to_vec(),
+            color_formats: pass
+                .outputs
+                .iter()
+                .map(|t| Some(super::resources::wgpu_format(manifest.targets[*t].format)))
+                .collect(),
             pipeline,
             depth_ops,
             layout0,
@@ -177,6 +193,58 @@ impl RenderPassExec {
         self.scene = scene;
     }
 
+    /// The pass's draws for `sized` and the current scene, as a render
+    /// bundle that [`RenderPassExec::encode`] executes every frame until
+    /// the size or the scene changes.
+    pub fn record_draws(&self, device: &wgpu::Device, sized: &SizedPass, ctx: &EncodeContext) -> wgpu::RenderBundle {
+        let mut bundle = device.make_render_bundle_encoder(&wgpu::RenderBundleEncoderDescriptor {
+            label: Some(&self.name),
+            color_formats: &self.color_formats,
+            // The pass's depth attachment is written or loaded and stored
+            // (`depth_state`), never read-only.
+            depth_stencil: sized.depth_view.as_ref().map(|_| wgpu::RenderBundleDepthStencil {
+                format: wgpu::TextureFormat::Depth32Float,
+                depth_read_only: false,
+                stencil_read_only: true,
+            }),
+            sample_count: 1,
+            multiview: None,
+        });
+        self.draw(&mut bundle, sized, ctx);
+        bundle.finish(&wgpu::RenderBundleDescriptor {
+            label: Some(&self.name),
+        })
+    }
+
+    /// Set the pipeline and groups and draw every object the pass draws.
+    fn draw<'a>(&'a self, rp: &mut impl wgpu::util::RenderEncoder<'a>, sized: &'a SizedPass, ctx: &EncodeContext<'a>) {
+        rp.set_pipeline(&self.pipeline);
+        rp.set_bind_group(0, Some(&sized.group0), &[]);
+        // The index buffer of the mesh whose buffers the pass holds: objects
+        // of one mesh share its buffers (`meshes.rs`), bound once for a run of them.
+        let mut bound: Option<&wgpu::Buffer> = None;
+        for &oi in &self.scene.drawn {
+            let Some(mesh) = ctx.meshes.get(oi) else { continue };
+            // §3.6: a pass reading `patch.weight` draws a blended patch over its n-ring.
+            let mesh = mesh.drawn_by(&self.attributes);
+            let group = self.scene.object_groups.get(oi).unwrap_or(ctx.object_group);
+            rp.set_bind_group(1, Some(group), &[(oi as u64 * ctx.object_stride) as u32]);
+            if bound != Some(&mesh.index) {
+                for (slot, a) in self.attributes.iter().enumerate() {
+                    if let Some(buf) = mesh.buffers.get(a) {
+                        rp.set_vertex_buffer(slot as u32, Some(buf.slice(..)));
+                    }
+                }
+                rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
+                bound = Some(&mesh.index);
+            }
+            rp.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+    }
+
+    /// Begin the pass and execute its recorded draws; a pass encoded
+    /// without them (`Renderer::encode` called with no `prepare` after a
+    /// scene change) records the same draws into the pass itself.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -186,27 +254,9 @@ impl RenderPassExec {
     ) {
         let depth = sized.depth_view.as_ref().map(|v| (v, self.depth_ops));
         let mut rp = common::begin_render_pass(encoder, &self.name, self.clear, sized, depth, timestamps);
-        rp.set_pipeline(&self.pipeline);
-        rp.set_bind_group(0, &sized.group0, &[]);
-        // The index buffer of the mesh whose buffers the pass holds: objects
-        // of one mesh share its buffers (`meshes.rs`), bound once for a run of them.
-        let mut bound: Option<&wgpu::Buffer> = None;
-        for &oi in &self.scene.drawn {
-            let Some(mesh) = ctx.meshes.get(oi) else { continue };
-            // §3.6: a pass reading `patch.weight` draws a blended patch over its n-ring.
-            let mesh = mesh.drawn_by(&self.attributes);
-            let group = self.scene.object_groups.get(oi).unwrap_or(ctx.object_group);
-            rp.set_bind_group(1, group, &[(oi as u64 * ctx.object_stride) as u32]);
-            if bound != Some(&mesh.index) {
-                for (slot, a) in self.attributes.iter().enumerate() {
-                    if let Some(buf) = mesh.buffers.get(a) {
-                        rp.set_vertex_buffer(slot as u32, buf.slice(..));
-                    }
-                }
-                rp.set_index_buffer(mesh.index.slice(..), wgpu::IndexFormat::Uint32);
-                bound = Some(&mesh.index);
-            }
-            rp.draw_indexed(0..mesh.index_count, 0, 0..1);
+        match &sized.draws {
+            Some(draws) => rp.execute_bundles([draws]),
+            None => self.draw(&mut rp, sized, ctx),
         }
     }
 }

@@ -114,6 +114,10 @@ pub(super) struct SizedPass {
     pub pixel_workgroups: u32,
     /// A tiled image pass: its outputs as storage textures, and its grid.
     pub tiled_outputs: Option<super::tiled_pass::TiledOutputs>,
+    /// A render pass's draws for this size and scene, recorded once by
+    /// `Renderer::prepare` (`render_pass.rs`); `None` until then and
+    /// after the scene changed.
+    pub draws: Option<wgpu::RenderBundle>,
 }
 
 impl Renderer {
@@ -236,6 +240,7 @@ impl Renderer {
                         pixel_workgroups: self.scene_gpu.values[pi]
                             .as_ref()
                             .map_or(0, |b| b.pixel_workgroups(&self.manifest, width, height)),
+                        draws: None,
                     });
                 }
                 parity_passes.push(slot_passes);
