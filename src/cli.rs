@@ -658,8 +658,10 @@ pub enum BenchCommand {
         keep_params: bool,
     },
     /// CPU time per frame of a host driving a style (`runner::embed`:
-    /// prepare and encode) for several object counts, against an independent
-    /// minimal wgpu program recording the same number of passes, in one run.
+    /// prepare and encode, and the host's `CommandEncoder::finish`, where
+    /// wgpu does the work the pass calls defer) for several object counts,
+    /// against two independent wgpu programs recording the same number of
+    /// passes (minimal, and shaped as the style's), in one run.
     Host {
         /// The style (.npr) the host drives.
         #[arg(long, default_value = "examples/age_of_sail.npr")]
