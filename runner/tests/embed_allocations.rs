@@ -1,5 +1,6 @@
 //! After the first frame, a frame of a `StyleRuntime` creates no GPU object
-//! (buffer, texture, view, sampler, bind group, layout, pipeline, shader)
+//! (buffer, texture, view, sampler, bind group, layout, pipeline, shader,
+//! render bundle)
 //! unless the size, the style or the set of objects changes: counted by
 //! `runner::gpu_count`, through which the runner makes every one (its
 //! `clippy.toml` refuses the uncounted wgpu calls). The frames move the

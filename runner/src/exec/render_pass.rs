@@ -9,9 +9,10 @@
 //! The draws are the same every frame until the size or the scene changes
 //! (only the buffers' contents move): they are recorded once into a render
 //! bundle ([`RenderPassExec::record_draws`], kept in the `SizedPass`) that
-//! each frame's pass executes. wgpu validates and tracks a bundle's
-//! commands when it is made, so a frame's pass costs one command instead
-//! of five per object (docs/PERFORMANCE.md, "Render bundles").
+//! each frame's pass executes. wgpu validates a bundle's commands when it
+//! is made, so a frame's pass records one command instead of two per
+//! object, and `finish` replays them without validating them again
+//! (decision 0048; docs/PERFORMANCE.md, "Sixth round").
 
 use super::bind::{self, ObjectResources};
 use super::common::{self, EncodeContext, Timestamps};
