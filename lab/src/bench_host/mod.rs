@@ -7,7 +7,8 @@
 //! written with no npr code that record the same number of passes and
 //! draw the same objects: `minimal.rs`, one target per pass, and
 //! `pass_shaped.rs`, each pass with the style's pass's attachments,
-//! vertex buffers and a pipeline of its own. npr's objects carry the tags
+//! vertex buffers, bindings (the targets it reads, textures, samplers)
+//! and a pipeline of its own. npr's objects carry the tags
 //! the style's render passes select, so its render passes draw every
 //! object too. The three take turns, a block of frames each
 //! ([`DEFAULT_BLOCK`]), the one that goes first rotating; each side's time

@@ -1,23 +1,31 @@
 //! The pass-shaped baseline of `npr bench host`: an independent wgpu
 //! program, written with no npr code, that records per pass of the style a
 //! pass of the same shape, read from the manifest as data: the pass's
-//! colour attachments in their formats at the pass's scale, a depth
-//! attachment for a render pass, one vertex buffer per attribute a render
-//! pass reads, and a pipeline of its own per pass (as a program drawing
-//! the same targets must have); then the present pass into one target.
-//! A render pass binds a frame block once and each object's block at a
-//! dynamic offset, binds the mesh's buffers once (every object shares the
-//! mesh) and draws every object; a compute pass is one dispatch of an
-//! empty shader; any other pass draws a fullscreen triangle. One
+//! colour attachments (one texture per logical target of the style, in its
+//! format at its scale, so a pass that reads an earlier pass's target
+//! samples the texture that pass drew), a depth attachment for a render
+//! pass, one vertex buffer per attribute a render pass reads, a pipeline of
+//! its own per pass (as a program drawing the same targets must have), and
+//! the pass's group 0 as the manifest lists it: the frame and style
+//! blocks, the targets it reads (a `previous(...)` or `other_eye(...)`
+//! read from a second texture of the target's shape), the style's
+//! textures (a small texture each) and samplers. A render pass that reads
+//! per-object textures binds a group 1 per object with them, as the style
+//! does; every other draw binds one group 1 with the object's block at a
+//! dynamic offset. Then the present pass samples the output into one
+//! target. A render pass binds the mesh's buffers once (every object
+//! shares the mesh) and draws every object; a compute pass is one dispatch
+//! of an empty shader; any other pass draws a fullscreen triangle. One
 //! `write_buffer` per frame uploads the frame block and every object's.
-//! Its shaders do nothing a style does: what it measures
-//! is the API work a frame of these passes costs on the CPU at least, so
-//! npr's time over it is npr's own work (uniforms, scene, its recording).
-//! `minimal.rs` is the same with one target per pass.
+//! Its shaders do nothing a style does and read only the frame and object
+//! blocks: what it measures is the API work a frame of these passes, with
+//! these bindings, costs on the CPU at least, so npr's time over it is
+//! npr's own work (uniforms, scene, its recording). `minimal.rs` is the
+//! same with one target per pass and nothing bound but the blocks.
 
 use super::{cleared, discarded_depth, target_view, uniform_group, uniform_layout};
 use crate::bench_overhead::setup::{scaled, texture_format};
-use abi::manifest::{Manifest, PassKindManifest};
+use abi::manifest::{Binding, Manifest, PassKindManifest, PassManifest, Resource, TargetCopy};
 
 /// Bytes between blocks (wgpu's minimum uniform offset alignment): the
 /// frame block at 0, object `i`'s at `STRIDE * (1 + i)`.
@@ -27,21 +35,29 @@ const STRIDE: u64 = 256;
 const MAX_COLORS: usize = 8;
 
 /// The shader of a pass with `outputs` colour outputs: the object's model
-/// times the frame's matrix, or a fullscreen triangle; a constant colour.
-fn wgsl(outputs: usize) -> String {
+/// times the frame's matrix (the frame block at group 0's `frame_binding`,
+/// the identity where the pass binds none), or a fullscreen triangle; a
+/// constant colour.
+fn wgsl(outputs: usize, frame_binding: Option<u32>) -> String {
     let fields: String = (0..outputs)
         .map(|i| format!("@location({i}) c{i}: vec4<f32>, "))
         .collect();
     let writes: String = (0..outputs).map(|i| format!("o.c{i} = vec4<f32>(0.5); ")).collect();
+    let frame = match frame_binding {
+        Some(b) => format!(
+            "@group(0) @binding({b}) var<uniform> frame: Block;\nfn frame_m() -> mat4x4<f32> {{ return frame.m; }}"
+        ),
+        None => "fn frame_m() -> mat4x4<f32> { return mat4x4<f32>(); }".to_string(),
+    };
     format!(
         "struct Block {{ m: mat4x4<f32> }}
-@group(0) @binding(0) var<uniform> frame: Block;
+{frame}
 @group(1) @binding(0) var<uniform> object: Block;
 @vertex fn vs_object(@location(0) p: vec3<f32>) -> @builtin(position) vec4<f32> {{
-    return frame.m * object.m * vec4<f32>(p, 1.0);
+    return frame_m() * object.m * vec4<f32>(p, 1.0);
 }}
 @vertex fn vs_full(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {{
-    return frame.m * vec4<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, 1.0 - f32(i & 2u) * 2.0, 0.0, 1.0);
+    return frame_m() * vec4<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, 1.0 - f32(i & 2u) * 2.0, 0.0, 1.0);
 }}
 struct Out {{ {fields}}}
 @fragment fn fs() -> Out {{ var o: Out; {writes}return o; }}
@@ -49,19 +65,19 @@ struct Out {{ {fields}}}
     )
 }
 
-/// A pass that draws: its pipeline, colour targets and, for a render
-/// pass, its depth buffer and vertex buffer count.
+/// A pass that draws: its pipeline, colour targets, groups and, for a
+/// render pass, its depth buffer and vertex buffer count.
 struct Draw {
     pipeline: wgpu::RenderPipeline,
     colors: Vec<wgpu::TextureView>,
     depth: Option<wgpu::TextureView>,
     /// `Some(n)`: a render pass reading `n` vertex attributes.
     vertex_buffers: Option<usize>,
+    group0: wgpu::BindGroup,
+    /// Per object, for a render pass reading per-object textures; empty
+    /// otherwise (the shared group 1).
+    object_groups: Vec<wgpu::BindGroup>,
 }
-
-/// A drawing pass's colour formats, side and vertex buffer count
-/// (`Some` for a render pass).
-type DrawShape = (Vec<wgpu::TextureFormat>, u32, Option<usize>);
 
 /// What the program records for one pass of the style.
 enum Pass {
@@ -71,9 +87,271 @@ enum Pass {
     Dispatch(wgpu::ComputePipeline),
 }
 
+/// What the passes bind besides the blocks: one texture per logical
+/// target (and a second one for `previous(...)` and `other_eye(...)`
+/// reads), a small texture for each of the style's textures, a sampler,
+/// the style block and a storage buffer for compute passes' values.
+struct Bound {
+    targets: Vec<wgpu::Texture>,
+    copies: Vec<wgpu::Texture>,
+    small: wgpu::Texture,
+    sampler: wgpu::Sampler,
+    style: wgpu::Buffer,
+    values: wgpu::Buffer,
+    blocks: wgpu::Buffer,
+}
+
+/// A texture the passes draw into and sample.
+fn sampled_target(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: side,
+            height: side,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    })
+}
+
+fn view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&Default::default())
+}
+
+/// The layout entry of a binding of the manifest, of the type the
+/// manifest states for its resource.
+fn layout_entry(b: &Binding) -> wgpu::BindGroupLayoutEntry {
+    let texture = |filterable| wgpu::BindingType::Texture {
+        sample_type: wgpu::TextureSampleType::Float { filterable },
+        view_dimension: wgpu::TextureViewDimension::D2,
+        multisampled: false,
+    };
+    let buffer = |ty| wgpu::BindingType::Buffer {
+        ty,
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    wgpu::BindGroupLayoutEntry {
+        binding: b.binding,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        ty: match &b.resource {
+            Resource::FrameUniforms | Resource::StyleUniforms => buffer(wgpu::BufferBindingType::Uniform),
+            Resource::Target { filterable, .. } => texture(*filterable),
+            Resource::Texture { .. } => texture(true),
+            Resource::TextureSampler { .. } | Resource::LinearClampSampler => {
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
+            }
+            Resource::ObjectValues { .. } => buffer(wgpu::BufferBindingType::Storage { read_only: true }),
+        },
+        count: None,
+    }
+}
+
+impl Bound {
+    /// The views of the textures `bindings` read, in their order (`None`
+    /// for a buffer or sampler): made first, so that the entries can
+    /// borrow them.
+    fn views(&self, bindings: &[Binding]) -> Vec<Option<wgpu::TextureView>> {
+        bindings
+            .iter()
+            .map(|b| match &b.resource {
+                Resource::Target { target, copy, .. } => Some(view(match copy {
+                    TargetCopy::This => &self.targets[*target],
+                    TargetCopy::OtherEye | TargetCopy::Previous => &self.copies[*target],
+                })),
+                Resource::Texture { .. } => Some(view(&self.small)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The resource of a binding of the manifest (`view` from [`Bound::views`]).
+    fn resource<'a>(&'a self, b: &Binding, view: Option<&'a wgpu::TextureView>) -> wgpu::BindingResource<'a> {
+        let buffer = |buffer| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: None,
+            })
+        };
+        match (&b.resource, view) {
+            // The frame block's slot of the blocks buffer (the whole buffer
+            // passes a uniform binding's size limit at 1,000 objects).
+            (Resource::FrameUniforms, _) => wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &self.blocks,
+                offset: 0,
+                size: wgpu::BufferSize::new(STRIDE),
+            }),
+            (Resource::StyleUniforms, _) => buffer(&self.style),
+            (Resource::ObjectValues { .. }, _) => buffer(&self.values),
+            (Resource::TextureSampler { .. } | Resource::LinearClampSampler, _) => {
+                wgpu::BindingResource::Sampler(&self.sampler)
+            }
+            (_, Some(view)) => wgpu::BindingResource::TextureView(view),
+            (_, None) => unreachable!("`views` makes a view for every texture binding"),
+        }
+    }
+
+    /// A group of `layout` binding `bindings`, after `first` (group 1's
+    /// object block) when given.
+    fn group(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        bindings: &[Binding],
+        first: Option<wgpu::BindGroupEntry>,
+    ) -> wgpu::BindGroup {
+        let views = self.views(bindings);
+        let entries: Vec<wgpu::BindGroupEntry> = first
+            .into_iter()
+            .chain(bindings.iter().zip(&views).map(|(b, v)| wgpu::BindGroupEntry {
+                binding: b.binding,
+                resource: self.resource(b, v.as_ref()),
+            }))
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout,
+            entries: &entries,
+        })
+    }
+}
+
+/// What every drawing pass is built from.
+struct Builder<'a> {
+    device: &'a wgpu::Device,
+    bound: &'a Bound,
+    shared_object_layout: &'a wgpu::BindGroupLayout,
+    /// One position attribute per vertex buffer slot.
+    attributes: &'a [[wgpu::VertexAttribute; 1]],
+    objects: usize,
+}
+
+impl Builder<'_> {
+    /// A pass drawing into `colors` (of `formats`, `side`²) with
+    /// `vertex_buffers` for a render pass, binding `bindings` in group 0
+    /// and, with `object_bindings`, a group 1 per object.
+    fn draw(
+        &self,
+        (colors, formats, side): (Vec<wgpu::TextureView>, Vec<wgpu::TextureFormat>, u32),
+        vertex_buffers: Option<usize>,
+        (bindings, object_bindings): (&[Binding], &[Binding]),
+    ) -> Pass {
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings.iter().map(layout_entry).collect();
+        let layout0 = self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: None,
+            entries: &entries,
+        });
+        // A pass reading per-object textures: its own group 1 layout
+        // (the object block, then its textures), one group per object.
+        let own_object_layout = (!object_bindings.is_empty()).then(|| {
+            let mut entries = vec![wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(64),
+                },
+                count: None,
+            }];
+            entries.extend(object_bindings.iter().map(layout_entry));
+            self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: None,
+                entries: &entries,
+            })
+        });
+        let object_layout = own_object_layout.as_ref().unwrap_or(self.shared_object_layout);
+        let object_groups = match &own_object_layout {
+            Some(layout) => (0..self.objects)
+                .map(|_| {
+                    let block = wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: &self.bound.blocks,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(64),
+                        }),
+                    };
+                    self.bound.group(self.device, layout, object_bindings, Some(block))
+                })
+                .collect(),
+            None => Vec::new(),
+        };
+        let pipeline_layout = self.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: None,
+            bind_group_layouts: &[Some(&layout0), Some(object_layout)],
+            immediate_size: 0,
+        });
+        let frame_binding = bindings
+            .iter()
+            .find(|b| matches!(b.resource, Resource::FrameUniforms))
+            .map(|b| b.binding);
+        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: None,
+            source: wgpu::ShaderSource::Wgsl(wgsl(formats.len(), frame_binding).into()),
+        });
+        let buffers: Vec<Option<wgpu::VertexBufferLayout>> = self.attributes[..vertex_buffers.unwrap_or(0)]
+            .iter()
+            .map(|a| {
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: a,
+                })
+            })
+            .collect();
+        let targets: Vec<Option<wgpu::ColorTargetState>> = formats.iter().map(|&f| Some(f.into())).collect();
+        let depth = vertex_buffers.map(|_| wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        });
+        let pipeline = self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: None,
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some(if vertex_buffers.is_some() {
+                    "vs_object"
+                } else {
+                    "vs_full"
+                }),
+                compilation_options: Default::default(),
+                buffers: &buffers,
+            },
+            primitive: Default::default(),
+            depth_stencil: depth,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Pass::Draw(Draw {
+            pipeline,
+            colors,
+            depth: vertex_buffers.map(|_| target_view(self.device, wgpu::TextureFormat::Depth32Float, side)),
+            vertex_buffers,
+            group0: self.bound.group(self.device, &layout0, bindings, None),
+            object_groups,
+        })
+    }
+}
+
 pub(super) struct PassShaped {
     passes: Vec<Pass>,
-    frame_group: wgpu::BindGroup,
     object_group: wgpu::BindGroup,
     blocks_buffer: wgpu::Buffer,
     /// One copy of the mesh's positions per vertex buffer slot (a style
@@ -82,6 +360,24 @@ pub(super) struct PassShaped {
     indices: wgpu::Buffer,
     index_count: u32,
     blocks: Vec<u8>,
+}
+
+/// The present pass's bindings: the frame block and the style's output.
+fn present_bindings(manifest: &Manifest) -> Vec<Binding> {
+    vec![
+        Binding {
+            binding: 0,
+            resource: Resource::FrameUniforms,
+        },
+        Binding {
+            binding: 1,
+            resource: Resource::Target {
+                target: manifest.output,
+                filterable: false,
+                copy: TargetCopy::This,
+            },
+        },
+    ]
 }
 
 impl PassShaped {
@@ -93,41 +389,50 @@ impl PassShaped {
         mesh: &runner::scene::Mesh,
     ) -> PassShaped {
         use wgpu::util::DeviceExt;
-        let frame_layout = uniform_layout(device, false);
-        let object_layout = uniform_layout(device, true);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: None,
-            bind_group_layouts: &[Some(&frame_layout), Some(&object_layout)],
-            immediate_size: 0,
-        });
         let side = |scale: f64| scaled((size, size), scale).0;
-        // (formats, side, vertex buffers) per pass that draws, `None` for a
-        // compute pass; then the present pass.
-        let mut shapes: Vec<Option<DrawShape>> = manifest
-            .passes
-            .iter()
-            .map(|p| {
-                if matches!(p.kind, PassKindManifest::Compute { .. }) {
-                    return None;
-                }
-                let formats = p
-                    .outputs
-                    .iter()
-                    .map(|&t| texture_format(manifest.targets[t].format))
-                    .collect();
-                let vertex_buffers = match &p.kind {
-                    PassKindManifest::Render { attributes, .. } => Some(attributes.len().max(1)),
-                    _ => None,
-                };
-                Some((formats, side(p.scale), vertex_buffers))
+        let target =
+            |t: &abi::manifest::TargetManifest| sampled_target(device, texture_format(t.format), side(t.scale));
+        let blocks_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: STRIDE * (1 + objects) as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let buffer = |size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: None,
+                size: size.max(16).next_multiple_of(16),
+                usage,
+                mapped_at_creation: false,
             })
-            .collect();
-        shapes.push(Some((vec![wgpu::TextureFormat::Rgba8Unorm], size, None)));
-        let most_buffers = shapes.iter().flatten().filter_map(|s| s.2).max().unwrap_or(1);
+        };
+        let bound = Bound {
+            targets: manifest.targets.iter().map(target).collect(),
+            copies: manifest.targets.iter().map(target).collect(),
+            small: sampled_target(device, wgpu::TextureFormat::Rgba8Unorm, 4),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
+            style: buffer(manifest.style_uniform_size, wgpu::BufferUsages::UNIFORM),
+            values: buffer(16 * objects as u64, wgpu::BufferUsages::STORAGE),
+            blocks: blocks_buffer.clone(),
+        };
+        let shared_object_layout = uniform_layout(device, true);
         let compute_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: None,
             source: wgpu::ShaderSource::Wgsl("@compute @workgroup_size(1) fn cs() {}".into()),
         });
+        let most_buffers = manifest
+            .passes
+            .iter()
+            .filter_map(|p| match &p.kind {
+                PassKindManifest::Render { attributes, .. } => Some(attributes.len().max(1)),
+                _ => None,
+            })
+            .max()
+            .unwrap_or(1);
         let attributes: Vec<[wgpu::VertexAttribute; 1]> = (0..most_buffers)
             .map(|slot| {
                 [wgpu::VertexAttribute {
@@ -137,10 +442,18 @@ impl PassShaped {
                 }]
             })
             .collect();
-        let passes = shapes
-            .into_iter()
-            .map(|shape| {
-                let Some((formats, side, vertex_buffers)) = shape else {
+        let builder = Builder {
+            device,
+            bound: &bound,
+            shared_object_layout: &shared_object_layout,
+            attributes: &attributes,
+            objects,
+        };
+        let mut passes: Vec<Pass> = manifest
+            .passes
+            .iter()
+            .map(|p: &PassManifest| {
+                if matches!(p.kind, PassKindManifest::Compute { .. }) {
                     return Pass::Dispatch(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                         label: None,
                         layout: None,
@@ -149,72 +462,33 @@ impl PassShaped {
                         compilation_options: Default::default(),
                         cache: None,
                     }));
+                }
+                let vertex_buffers = match &p.kind {
+                    PassKindManifest::Render { attributes, .. } => Some(attributes.len().max(1)),
+                    _ => None,
                 };
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: None,
-                    source: wgpu::ShaderSource::Wgsl(wgsl(formats.len()).into()),
-                });
-                let buffers: Vec<Option<wgpu::VertexBufferLayout>> = attributes[..vertex_buffers.unwrap_or(0)]
+                let colors = p.outputs.iter().map(|&t| view(&bound.targets[t])).collect();
+                let formats = p
+                    .outputs
                     .iter()
-                    .map(|a| {
-                        Some(wgpu::VertexBufferLayout {
-                            array_stride: 12,
-                            step_mode: wgpu::VertexStepMode::Vertex,
-                            attributes: a,
-                        })
-                    })
+                    .map(|&t| texture_format(manifest.targets[t].format))
                     .collect();
-                let targets: Vec<Option<wgpu::ColorTargetState>> = formats.iter().map(|&f| Some(f.into())).collect();
-                let depth = vertex_buffers.map(|_| wgpu::DepthStencilState {
-                    format: wgpu::TextureFormat::Depth32Float,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                });
-                let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: None,
-                    layout: Some(&pipeline_layout),
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some(if vertex_buffers.is_some() {
-                            "vs_object"
-                        } else {
-                            "vs_full"
-                        }),
-                        compilation_options: Default::default(),
-                        buffers: &buffers,
-                    },
-                    primitive: Default::default(),
-                    depth_stencil: depth,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("fs"),
-                        compilation_options: Default::default(),
-                        targets: &targets,
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                });
-                Pass::Draw(Draw {
-                    pipeline,
-                    colors: formats.iter().map(|&f| target_view(device, f, side)).collect(),
-                    depth: vertex_buffers.map(|_| target_view(device, wgpu::TextureFormat::Depth32Float, side)),
+                builder.draw(
+                    (colors, formats, side(p.scale)),
                     vertex_buffers,
-                })
+                    (&p.bindings, &p.object_bindings),
+                )
             })
             .collect();
-        let blocks_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: STRIDE * (1 + objects) as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let presented = sampled_target(device, wgpu::TextureFormat::Rgba8Unorm, size);
+        passes.push(builder.draw(
+            (vec![view(&presented)], vec![wgpu::TextureFormat::Rgba8Unorm], size),
+            None,
+            (&present_bindings(manifest), &[]),
+        ));
         PassShaped {
             passes,
-            frame_group: uniform_group(device, &frame_layout, &blocks_buffer),
-            object_group: uniform_group(device, &object_layout, &blocks_buffer),
+            object_group: uniform_group(device, &shared_object_layout, &blocks_buffer),
             vertex: (0..most_buffers)
                 .map(|_| {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -271,7 +545,7 @@ impl PassShaped {
                 multiview_mask: None,
             });
             pass.set_pipeline(&p.pipeline);
-            pass.set_bind_group(0, &self.frame_group, &[]);
+            pass.set_bind_group(0, &p.group0, &[]);
             match p.vertex_buffers {
                 Some(buffers) => {
                     for (slot, buffer) in self.vertex[..buffers].iter().enumerate() {
@@ -279,7 +553,8 @@ impl PassShaped {
                     }
                     pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
                     for i in 0..models.len() {
-                        pass.set_bind_group(1, &self.object_group, &[((1 + i) as u64 * STRIDE) as u32]);
+                        let group = p.object_groups.get(i).unwrap_or(&self.object_group);
+                        pass.set_bind_group(1, group, &[((1 + i) as u64 * STRIDE) as u32]);
                         pass.draw_indexed(0..self.index_count, 0, 0..1);
                     }
                 }
