@@ -101,22 +101,9 @@ struct Bound {
     blocks: wgpu::Buffer,
 }
 
-/// A texture the passes draw into and sample.
+/// A texture the passes draw into and sample (`bench_overhead`'s).
 fn sampled_target(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: side,
-            height: side,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    })
+    crate::bench_overhead::setup::texture(device, "pass-shaped target", (side, side), format)
 }
 
 fn view(texture: &wgpu::Texture) -> wgpu::TextureView {
