@@ -180,38 +180,48 @@ fn frame_at<'a>(camera: &'a Camera, objects: &'a [Instance], lights: &'a Lights,
     }
 }
 
-/// A group layout of one 64-byte uniform block for the vertex stage, at a
+/// Binding 0: one 64-byte uniform block for the vertex stage, at a
 /// dynamic offset or not.
+fn block_entry(dynamic: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 0,
+        visibility: wgpu::ShaderStages::VERTEX,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: dynamic,
+            min_binding_size: wgpu::BufferSize::new(64),
+        },
+        count: None,
+    }
+}
+
+/// Binding 0 reading the 64 bytes at `buffer`'s start (a dynamic offset
+/// moves it).
+fn block_binding(buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding: 0,
+        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset: 0,
+            size: wgpu::BufferSize::new(64),
+        }),
+    }
+}
+
+/// A group layout of one 64-byte uniform block ([`block_entry`]).
 fn uniform_layout(device: &wgpu::Device, dynamic: bool) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: None,
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: dynamic,
-                min_binding_size: wgpu::BufferSize::new(64),
-            },
-            count: None,
-        }],
+        entries: &[block_entry(dynamic)],
     })
 }
 
-/// The group of `layout` reading the 64 bytes at `buffer`'s start (a
-/// dynamic offset moves it).
+/// The group of `layout` reading the 64 bytes at `buffer`'s start ([`block_binding`]).
 fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(64),
-            }),
-        }],
+        entries: &[block_binding(buffer)],
     })
 }
 

@@ -23,7 +23,7 @@
 //! npr's own work (uniforms, scene, its recording). `minimal.rs` is the
 //! same with one target per pass and nothing bound but the blocks.
 
-use super::{cleared, discarded_depth, target_view, uniform_group, uniform_layout};
+use super::{block_binding, block_entry, cleared, discarded_depth, target_view, uniform_group, uniform_layout};
 use crate::bench_overhead::setup::{scaled, texture_format};
 use abi::manifest::{Binding, Manifest, PassKindManifest, PassManifest, Resource, TargetCopy};
 
@@ -237,16 +237,7 @@ impl Builder<'_> {
         // A pass reading per-object textures: its own group 1 layout
         // (the object block, then its textures), one group per object.
         let own_object_layout = (!object_bindings.is_empty()).then(|| {
-            let mut entries = vec![wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: true,
-                    min_binding_size: wgpu::BufferSize::new(64),
-                },
-                count: None,
-            }];
+            let mut entries = vec![block_entry(true)];
             entries.extend(object_bindings.iter().map(layout_entry));
             self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: None,
@@ -257,14 +248,7 @@ impl Builder<'_> {
         let object_groups = match &own_object_layout {
             Some(layout) => (0..self.objects)
                 .map(|_| {
-                    let block = wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                            buffer: &self.bound.blocks,
-                            offset: 0,
-                            size: wgpu::BufferSize::new(64),
-                        }),
-                    };
+                    let block = block_binding(&self.bound.blocks);
                     self.bound.group(self.device, layout, object_bindings, Some(block))
                 })
                 .collect(),
