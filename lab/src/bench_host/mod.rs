@@ -4,7 +4,7 @@
 //! encoder) and the host's `CommandEncoder::finish` (where wgpu 30
 //! validates the recorded commands and records them for the driver) for
 //! 1 to 1000 objects, against two independent wgpu programs
-//! written with no npr code that record the same number of passes and
+//! whose frames run no npr code, that record the same number of passes and
 //! draw the same objects: `minimal.rs`, one target per pass, and
 //! `pass_shaped.rs`, each pass with the style's pass's attachments,
 //! vertex buffers, bindings (the targets it reads, textures, samplers)
@@ -275,7 +275,7 @@ pub fn rows(
     for &n in counts {
         let (mut runtime, handle) = runtime_with(program, gpu, &mesh)?;
         let mut minimal = Minimal::new(device, n, size, &mesh);
-        let mut pass_shaped = PassShaped::new(device, &program.manifest, n, size, &mesh);
+        let mut pass_shaped = PassShaped::new(device, &program.manifest, n, size, &mesh)?;
         let lights = Lights::default();
         let mut instances = tagged_instances(handle, n, 0, &pass_tags);
         let mut models: Vec<glam::Mat4> = vec![glam::Mat4::IDENTITY; n];

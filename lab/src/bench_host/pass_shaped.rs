@@ -1,7 +1,8 @@
 //! The pass-shaped baseline of `npr bench host`: an independent wgpu
-//! program, written with no npr code, that records per pass of the style a
-//! pass of the same shape, read from the manifest as data: the pass's
-//! colour attachments (one texture per logical target of the style, in its
+//! program whose frame runs no npr code (it reads the manifest, and the
+//! style's image headers for their sizes, when it is made), that records
+//! per pass of the style a pass of the same shape: the pass's colour
+//! attachments (one texture per logical target of the style, in its
 //! format at its scale, so a pass that reads an earlier pass's target
 //! samples the texture that pass drew), a depth attachment for a render
 //! pass, one vertex buffer per attribute a render pass reads, a pipeline of
@@ -9,14 +10,16 @@
 //! the pass's group 0 as the manifest lists it: the frame and style
 //! blocks, the targets it reads (a `previous(...)` or `other_eye(...)`
 //! read from a second texture of the target's shape), the style's
-//! textures (a small texture each) and samplers. A render pass that reads
-//! per-object textures binds a group 1 per object with them, as the style
-//! does; every other draw binds one group 1 with the object's block at a
-//! dynamic offset. Then the present pass samples the output into one
-//! target. A render pass binds the mesh's buffers once (every object
-//! shares the mesh) and draws every object; a compute pass is one dispatch
-//! of an empty shader; any other pass draws a fullscreen triangle. One
-//! `write_buffer` per frame uploads the frame block and every object's.
+//! textures (one each, of the image's size, with the mip chain the style
+//! asks for: wgpu tracks every level a view covers) and their samplers.
+//! A render pass that reads per-object textures binds a group 1 per
+//! object with them, as the style does; every other draw binds one group
+//! 1 with the object's block at a dynamic offset. Then the present pass
+//! samples the output into one target. A render pass binds the mesh's
+//! buffers once (every object shares the mesh) and draws every object; a
+//! compute pass is one dispatch of an empty shader; any other pass draws
+//! a fullscreen triangle. One `write_buffer` per frame uploads the frame
+//! block and every object's.
 //! Its shaders do nothing a style does and read only the frame and object
 //! blocks: what it measures is the API work a frame of these passes, with
 //! these bindings, costs on the CPU at least, so npr's time over it is
@@ -26,6 +29,7 @@
 use super::{block_binding, block_entry, cleared, discarded_depth, target_view, uniform_group, uniform_layout};
 use crate::bench_overhead::setup::{scaled, texture_format};
 use abi::manifest::{Binding, Manifest, PassKindManifest, PassManifest, Resource, TargetCopy};
+use runner::RunError;
 
 /// Bytes between blocks (wgpu's minimum uniform offset alignment): the
 /// frame block at 0, object `i`'s at `STRIDE * (1 + i)`.
@@ -89,12 +93,15 @@ enum Pass {
 
 /// What the passes bind besides the blocks: one texture per logical
 /// target (and a second one for `previous(...)` and `other_eye(...)`
-/// reads), a small texture for each of the style's textures, a sampler,
-/// the style block and a storage buffer for compute passes' values.
+/// reads), a texture and a sampler for each of the style's textures, the
+/// clamp sampler of target reads, the style block and a storage buffer for compute passes' values.
 struct Bound {
     targets: Vec<wgpu::Texture>,
     copies: Vec<wgpu::Texture>,
-    small: wgpu::Texture,
+    /// Per declared texture of the style, in the manifest's order.
+    textures: Vec<wgpu::Texture>,
+    samplers: Vec<wgpu::Sampler>,
+    /// The bilinear clamp sampler of `sample()` reads of targets.
     sampler: wgpu::Sampler,
     style: wgpu::Buffer,
     values: wgpu::Buffer,
@@ -104,6 +111,49 @@ struct Bound {
 /// A texture the passes draw into and sample (`bench_overhead`'s).
 fn sampled_target(device: &wgpu::Device, format: wgpu::TextureFormat, side: u32) -> wgpu::Texture {
     crate::bench_overhead::setup::texture(device, "pass-shaped target", (side, side), format)
+}
+
+/// A bilinear sampler.
+fn linear_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    })
+}
+
+/// A declared texture of the style as a program drawing the same look
+/// would hold it: the image's size (a generated texture's own; 64² where
+/// the size is made at load), with a full mip chain where the style asks
+/// for mips (wgpu tracks the state of every level a bound view covers).
+/// Its texels are never written: no shader of this program reads them.
+fn style_texture(device: &wgpu::Device, t: &abi::manifest::TextureManifest) -> Result<wgpu::Texture, RunError> {
+    use abi::manifest::TextureSourceManifest as Source;
+    let (width, height) = match &t.source {
+        Source::Image { path, resolved, .. } => runner::texture_file::probe(std::path::Path::new(resolved))
+            .map_err(|e| RunError::User(vec![e.to_diagnostic(&t.name, path)]))?,
+        Source::Noise(noise) => (noise.size, noise.size),
+        _ => (64, 64),
+    };
+    let mip_level_count = if t.mips {
+        32 - width.max(height).leading_zeros()
+    } else {
+        1
+    };
+    Ok(device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("pass-shaped style texture"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    }))
 }
 
 fn view(texture: &wgpu::Texture) -> wgpu::TextureView {
@@ -151,7 +201,7 @@ impl Bound {
                     TargetCopy::This => &self.targets[*target],
                     TargetCopy::OtherEye | TargetCopy::Previous => &self.copies[*target],
                 })),
-                Resource::Texture { .. } => Some(view(&self.small)),
+                Resource::Texture { texture } => Some(view(&self.textures[*texture])),
                 _ => None,
             })
             .collect()
@@ -176,9 +226,8 @@ impl Bound {
             }),
             (Resource::StyleUniforms, _) => buffer(&self.style),
             (Resource::ObjectValues { .. }, _) => buffer(&self.values),
-            (Resource::TextureSampler { .. } | Resource::LinearClampSampler, _) => {
-                wgpu::BindingResource::Sampler(&self.sampler)
-            }
+            (Resource::TextureSampler { texture }, _) => wgpu::BindingResource::Sampler(&self.samplers[*texture]),
+            (Resource::LinearClampSampler, _) => wgpu::BindingResource::Sampler(&self.sampler),
             (_, Some(view)) => wgpu::BindingResource::TextureView(view),
             (_, None) => unreachable!("`views` makes a view for every texture binding"),
         }
@@ -358,7 +407,7 @@ impl PassShaped {
         objects: usize,
         size: u32,
         mesh: &runner::scene::Mesh,
-    ) -> PassShaped {
+    ) -> Result<PassShaped, RunError> {
         use wgpu::util::DeviceExt;
         let side = |scale: f64| scaled((size, size), scale).0;
         let target =
@@ -380,12 +429,13 @@ impl PassShaped {
         let bound = Bound {
             targets: manifest.targets.iter().map(target).collect(),
             copies: manifest.targets.iter().map(target).collect(),
-            small: sampled_target(device, wgpu::TextureFormat::Rgba8Unorm, 4),
-            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                ..Default::default()
-            }),
+            textures: manifest
+                .textures
+                .iter()
+                .map(|t| style_texture(device, t))
+                .collect::<Result<_, _>>()?,
+            samplers: manifest.textures.iter().map(|_| linear_sampler(device)).collect(),
+            sampler: linear_sampler(device),
             style: buffer(manifest.style_uniform_size, wgpu::BufferUsages::UNIFORM),
             values: buffer(16 * objects as u64, wgpu::BufferUsages::STORAGE),
             blocks: blocks_buffer.clone(),
@@ -457,7 +507,7 @@ impl PassShaped {
             None,
             (&present_bindings(manifest), &[]),
         ));
-        PassShaped {
+        Ok(PassShaped {
             passes,
             object_group: uniform_group(device, &shared_object_layout, &blocks_buffer),
             vertex: (0..most_buffers)
@@ -477,7 +527,7 @@ impl PassShaped {
             index_count: mesh.indices.len() as u32,
             blocks_buffer,
             blocks: vec![0; (STRIDE as usize) * (1 + objects)],
-        }
+        })
     }
 
     /// Upload the frame's and every object's block and record the passes.
