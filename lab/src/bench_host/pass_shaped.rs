@@ -123,22 +123,35 @@ fn linear_sampler(device: &wgpu::Device) -> wgpu::Sampler {
 }
 
 /// A declared texture of the style as a program drawing the same look
-/// would hold it: the image's size (a generated texture's own; 64² where
-/// the size is made at load), with a full mip chain where the style asks
-/// for mips (wgpu tracks the state of every level a bound view covers).
+/// would hold it: the image's size (a generated noise's own), with a full
+/// mip chain where the style asks for mips and an art-map's levels (wgpu
+/// tracks the state of every level a bound view covers); 64², one level,
+/// where the size is made at load (a rip-map's atlas, a halftone table).
 /// Its texels are never written: no shader of this program reads them.
 fn style_texture(device: &wgpu::Device, t: &abi::manifest::TextureManifest) -> Result<wgpu::Texture, RunError> {
     use abi::manifest::TextureSourceManifest as Source;
-    let (width, height) = match &t.source {
-        Source::Image { path, resolved, .. } => runner::texture_file::probe(std::path::Path::new(resolved))
-            .map_err(|e| RunError::User(vec![e.to_diagnostic(&t.name, path)]))?,
-        Source::Noise(noise) => (noise.size, noise.size),
-        _ => (64, 64),
+    let probe = |path: &str, resolved: &str| {
+        runner::texture_file::probe(std::path::Path::new(resolved))
+            .map_err(|e| RunError::User(vec![e.to_diagnostic(&t.name, path)]))
     };
-    let mip_level_count = if t.mips {
-        32 - width.max(height).leading_zeros()
-    } else {
-        1
+    let full_chain = |(width, height): (u32, u32)| 32 - width.max(height).leading_zeros();
+    let ((width, height), mip_level_count) = match &t.source {
+        Source::Image { path, resolved, .. } => {
+            let size = probe(path, resolved)?;
+            (size, if t.mips { full_chain(size) } else { 1 })
+        }
+        Source::Noise(noise) => {
+            let size = (noise.size, noise.size);
+            (size, if t.mips { full_chain(size) } else { 1 })
+        }
+        // An art-map's levels are its texture's mip chain (`levels`, or
+        // the whole chain); a rip-map's are packed into one atlas level,
+        // whose size is made at load.
+        Source::Artmap(art) if !art.rip => {
+            let size = probe(&art.path, &art.resolved)?;
+            (size, art.levels.unwrap_or(full_chain(size)).min(full_chain(size)))
+        }
+        _ => ((64, 64), 1),
     };
     Ok(device.create_texture(&wgpu::TextureDescriptor {
         label: Some("pass-shaped style texture"),
