@@ -94,7 +94,8 @@ enum Pass {
 /// What the passes bind besides the blocks: one texture per logical
 /// target (and a second one for `previous(...)` and `other_eye(...)`
 /// reads), a texture and a sampler for each of the style's textures, the
-/// clamp sampler of target reads, the style block and a storage buffer for compute passes' values.
+/// clamp sampler of target reads, the style block and a storage buffer
+/// for compute passes' values.
 struct Bound {
     targets: Vec<wgpu::Texture>,
     copies: Vec<wgpu::Texture>,
@@ -134,7 +135,8 @@ fn style_texture(device: &wgpu::Device, t: &abi::manifest::TextureManifest) -> R
         runner::texture_file::probe(std::path::Path::new(resolved))
             .map_err(|e| RunError::User(vec![e.to_diagnostic(&t.name, path)]))
     };
-    let full_chain = |(width, height): (u32, u32)| 32 - width.max(height).leading_zeros();
+    // Levels to 1×1 along the longer side (abi's one definition of a chain's length).
+    let full_chain = |(width, height): (u32, u32)| abi::RipmapAtlas::levels(width.max(height));
     let ((width, height), mip_level_count) = match &t.source {
         Source::Image { path, resolved, .. } => {
             let size = probe(path, resolved)?;
