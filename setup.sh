@@ -53,7 +53,7 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
-# rust-toolchain.toml pins the Rust release (Bevy 0.20, which bevy_npr
+# rust-toolchain.toml pins the Rust release (Bevy 0.20, which bevy_mod_npr
 # builds on, needs 1.97.1); rustup installs it once, with clippy and rustfmt.
 if command -v rustup >/dev/null 2>&1; then
   toolchain=$(sed -n 's/^channel = "\(.*\)"/\1/p' rust-toolchain.toml)

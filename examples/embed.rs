@@ -3,15 +3,15 @@
 //! scene built in code (no TOML, no files but the style), an object and the
 //! camera animated, the object's own mesh deformed (it squashes as it lands:
 //! `StyleRuntime::update_mesh`), and npr's output drawn into the swapchain image inside
-//! the host's own command encoder (`runner::embed`).
+//! the host's own command encoder (`npr_runner::embed`).
 //!
 //! `cargo run --example embed [-- STYLE.npr] [--frames N] [--headless]`:
 //! `--frames N` quits after N frames and prints the mean of the style's
 //! output; `--headless` renders into an offscreen texture, no window
 //! (tests/general/embed_example.rs runs both, the window under Xvfb).
 
-use runner::embed::{Deformed, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use npr_runner::embed::{Deformed, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
 use std::sync::Arc;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
@@ -34,14 +34,14 @@ struct Host {
 impl Host {
     /// Compile the style and register the meshes once.
     fn new(adapter: &wgpu::Adapter, style: &str) -> Result<Host, Box<dyn std::error::Error>> {
-        let mut sources = diag::SourceMap::new();
-        let options = compiler::CompileOptions {
+        let mut sources = npr_diag::SourceMap::new();
+        let options = npr_compiler::CompileOptions {
             keep_params: true,
             ..Default::default()
         };
-        let program = compiler::compile_file(std::path::Path::new(style), &mut sources, &options)
+        let program = npr_compiler::compile_file(std::path::Path::new(style), &mut sources, &options)
             .map_err(|e| match e {
-                compiler::CompileError::User(d) => diag::diagnostic::render(&d, &sources, false),
+                npr_compiler::CompileError::User(d) => npr_diag::diagnostic::render(&d, &sources, false),
                 other => format!("{other:?}"),
             })?
             .program();

@@ -1,15 +1,15 @@
 //! Checks of command-line values that clap's types cannot express: an fps
 //! above 0, a finite time, an eye the scene has, frame counts and sizes under
-//! `diag::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
+//! `npr_diag::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
 //! code (E0502 for a value outside its domain, E0404 for a limit), which the
 //! CLI prints and exits 1 with, before any work starts.
 //!
 //! The syntax of `--size WxH` and `--frames A..B` is checked by clap's value
 //! parsers here too; what they refuse is a usage error (E0501, `usage.rs`).
 
-use diag::codes;
-use diag::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
-use diag::Diagnostic;
+use npr_diag::codes;
+use npr_diag::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
+use npr_diag::Diagnostic;
 
 /// `--size WIDTHxHEIGHT`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -102,7 +102,7 @@ pub fn check_eye(eye: u32, stereo_camera: bool) -> Result<(), Diagnostic> {
 
 /// `npr texgen`'s numeric arguments (`paint` maps use only the size).
 pub fn check_texgen(size: u32, channels: u32, octaves: u32, frequency: u32, paint: bool) -> Result<(), Diagnostic> {
-    let max = abi::NoiseSpec::MAX_SIZE;
+    let max = npr_abi::NoiseSpec::MAX_SIZE;
     if !(1..=max).contains(&size) {
         return Err(bad_value(
             format!("--size {size}: a generated texture is 1 to {max} texels wide"),
@@ -112,7 +112,7 @@ pub fn check_texgen(size: u32, channels: u32, octaves: u32, frequency: u32, pain
     if paint {
         return Ok(());
     }
-    let max_octaves = abi::NoiseSpec::MAX_OCTAVES;
+    let max_octaves = npr_abi::NoiseSpec::MAX_OCTAVES;
     if !(1..=4).contains(&channels) {
         return Err(bad_value(
             format!("--channels {channels}: noise has 1 to 4 channels"),
@@ -156,7 +156,7 @@ pub enum TexgenKind {
 
 /// `npr texgen --kind paint --color "#rrggbb"`.
 pub fn paint_color(color: Option<&str>) -> Result<[f64; 3], Diagnostic> {
-    let parsed = color.and_then(runner::texgen::parse_hex);
+    let parsed = color.and_then(npr_runner::texgen::parse_hex);
     parsed.ok_or_else(|| match color {
         None => bad_value(
             "`--kind paint` needs `--color \"#rrggbb\"`".into(),

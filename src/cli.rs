@@ -203,7 +203,7 @@ pub struct RenderArgs {
     pub chunk: Option<String>,
     /// Frames per second: the times of --frames, and of the frames a
     /// style that reads `previous(...)` replays.
-    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
+    #[arg(long, default_value_t = npr_runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
@@ -314,7 +314,7 @@ pub struct TexgenArgs {
     pub color: Option<String>,
 }
 
-/// `--schedule`: how the compiler runs the declared passes (`compiler::schedule`),
+/// `--schedule`: how the compiler runs the declared passes (`npr_compiler::schedule`),
 /// except the image passes whose `schedule: naive | tiled` setting forces theirs.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScheduleArg {
@@ -333,13 +333,13 @@ pub enum ScheduleArg {
     Recompute,
 }
 
-impl From<ScheduleArg> for compiler::schedule::Schedule {
+impl From<ScheduleArg> for npr_compiler::schedule::Schedule {
     fn from(s: ScheduleArg) -> Self {
         match s {
-            ScheduleArg::Naive => compiler::schedule::Schedule::Naive,
-            ScheduleArg::Auto => compiler::schedule::Schedule::Auto,
-            ScheduleArg::Tiled => compiler::schedule::Schedule::Tiled,
-            ScheduleArg::Recompute => compiler::schedule::Schedule::Recompute,
+            ScheduleArg::Naive => npr_compiler::schedule::Schedule::Naive,
+            ScheduleArg::Auto => npr_compiler::schedule::Schedule::Auto,
+            ScheduleArg::Tiled => npr_compiler::schedule::Schedule::Tiled,
+            ScheduleArg::Recompute => npr_compiler::schedule::Schedule::Recompute,
         }
     }
 }
@@ -378,7 +378,7 @@ pub struct LiveArgs {
     pub time: f64,
     /// Frames per second: the times of --frames, and of the frames a
     /// style that reads `previous(...)` replays.
-    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
+    #[arg(long, default_value_t = npr_runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Which eye to render for stereo cameras (0 = left, 1 = right).
     #[arg(long, default_value_t = 0)]
@@ -415,7 +415,7 @@ pub struct ViewArgs {
     #[arg(long)]
     pub paused: bool,
     /// Frames a second of the style's `frame` counter and of one-frame time steps.
-    #[arg(long, default_value_t = runner::FrameSpec::DEFAULT_FPS)]
+    #[arg(long, default_value_t = npr_runner::FrameSpec::DEFAULT_FPS)]
     pub fps: f64,
     /// Render N frames, print their mean frame time and exit (a benchmark).
     #[arg(long, value_name = "N")]
@@ -657,7 +657,7 @@ pub enum BenchCommand {
         #[arg(long)]
         keep_params: bool,
     },
-    /// CPU time per frame of a host driving a style (`runner::embed`:
+    /// CPU time per frame of a host driving a style (`npr_runner::embed`:
     /// prepare and encode, and the host's `CommandEncoder::finish`, where
     /// wgpu does the work the pass calls defer) for several object counts,
     /// against two independent wgpu programs recording the same number of
@@ -680,7 +680,7 @@ pub enum BenchCommand {
         frames: u32,
         /// Frames each program runs in a row before the next one's turn
         /// (1: they alternate frame by frame).
-        #[arg(long, default_value_t = lab::bench_host::DEFAULT_BLOCK)]
+        #[arg(long, default_value_t = npr_lab::bench_host::DEFAULT_BLOCK)]
         block: u32,
     },
     /// Runner overhead per frame against an independent hand-written wgpu

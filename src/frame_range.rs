@@ -11,7 +11,7 @@
 //! flag, as `--set` does, so a bad range is an E0502 pointing into the
 //! argument itself (`10-5`: at the end that comes first).
 
-use diag::{codes, Diagnostic, SourceMap, Span};
+use npr_diag::{codes, Diagnostic, SourceMap, Span};
 
 /// A half-open frame range `start..end`, never empty.
 pub type Frames = (u32, u32);

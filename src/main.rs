@@ -26,7 +26,7 @@ mod watch;
 fn main() {
     // A panic npr expects (naga's, a mesh reader's) is reported as a
     // diagnostic; Rust's own panic line above it would only confuse.
-    diag::panics::install_quiet_hook();
+    npr_diag::panics::install_quiet_hook();
     let code = match usage::parse() {
         Ok(args) => commands::run(args),
         Err(code) => code,

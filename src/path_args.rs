@@ -1,9 +1,9 @@
 //! `--root` and `--allow-path` made into the paths policy
-//! (`diag::paths::PathPolicy`, docs/PATHS.md) for a style and its scene.
+//! (`npr_diag::paths::PathPolicy`, docs/PATHS.md) for a style and its scene.
 
 use crate::cli::PathArgs;
-use diag::paths::PathPolicy;
-use diag::Diagnostic;
+use npr_diag::paths::PathPolicy;
+use npr_diag::Diagnostic;
 use std::path::Path;
 
 impl PathArgs {

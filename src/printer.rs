@@ -3,9 +3,9 @@
 //! into an exit code once their diagnostics are printed.
 
 use crate::cli::{MessageFormat, EXIT_INTERNAL, EXIT_USER};
-use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap};
-use runner::Gpu;
+use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::Gpu;
 use std::io::IsTerminal;
 use std::path::Path;
 
@@ -30,8 +30,8 @@ impl Printer {
             return;
         }
         match self.format {
-            MessageFormat::Json => print!("{}", diag::diagnostic::render_json(diags, sources)),
-            MessageFormat::Human => eprint!("{}", diag::diagnostic::render(diags, sources, self.color)),
+            MessageFormat::Json => print!("{}", npr_diag::diagnostic::render_json(diags, sources)),
+            MessageFormat::Human => eprint!("{}", npr_diag::diagnostic::render(diags, sources, self.color)),
         }
     }
 
@@ -71,7 +71,7 @@ pub(crate) fn cannot_write(path: &Path, e: impl std::fmt::Display) -> Diagnostic
 
 /// E0503 for an output image whose extension npr cannot write.
 pub(crate) fn unsupported_image(path: &Path, ext: &str) -> Diagnostic {
-    let list = runner::output::IMAGE_EXTENSIONS
+    let list = npr_runner::output::IMAGE_EXTENSIONS
         .iter()
         .map(|e| format!(".{e}"))
         .collect::<Vec<_>>()
@@ -91,7 +91,7 @@ pub(crate) fn compile(
     opts: &CompileOptions,
     printer: &Printer,
 ) -> Result<Compiled, i32> {
-    report_compile(compiler::compile_file(style, sources, opts), sources, printer)
+    report_compile(npr_compiler::compile_file(style, sources, opts), sources, printer)
 }
 
 /// Print a failed compile's diagnostics (and the rejected WGSL of an
@@ -126,7 +126,7 @@ pub(crate) fn headless_gpu(printer: &Printer) -> Result<Gpu, i32> {
 /// A headless GPU with exactly what `manifest` needs beyond WebGPU's
 /// defaults, or the exit code after saying why there is none (E0510 for
 /// each need the adapter lacks, with its pass).
-pub(crate) fn style_gpu(manifest: &abi::Manifest, printer: &Printer) -> Result<Gpu, i32> {
+pub(crate) fn style_gpu(manifest: &npr_abi::Manifest, printer: &Printer) -> Result<Gpu, i32> {
     Gpu::for_style(manifest).map_err(|e| {
         printer.diagnostics(&e.diagnostics(), &SourceMap::new());
         EXIT_USER
@@ -134,18 +134,22 @@ pub(crate) fn style_gpu(manifest: &abi::Manifest, printer: &Printer) -> Result<G
 }
 
 /// Load a scene, or print its diagnostics and give the user-error exit code.
-pub(crate) fn load_scene(path: &Path, sources: &mut SourceMap, printer: &Printer) -> Result<runner::scene::Scene, i32> {
+pub(crate) fn load_scene(
+    path: &Path,
+    sources: &mut SourceMap,
+    printer: &Printer,
+) -> Result<npr_runner::scene::Scene, i32> {
     load_scene_in(path, sources, None, printer)
 }
 
-/// [`load_scene`] under a paths policy (`diag::paths`).
+/// [`load_scene`] under a paths policy (`npr_diag::paths`).
 pub(crate) fn load_scene_in(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&diag::paths::PathPolicy>,
+    paths: Option<&npr_diag::paths::PathPolicy>,
     printer: &Printer,
-) -> Result<runner::scene::Scene, i32> {
-    runner::scene::load_scene_in(path, sources, paths).map_err(|d| {
+) -> Result<npr_runner::scene::Scene, i32> {
+    npr_runner::scene::load_scene_in(path, sources, paths).map_err(|d| {
         printer.diagnostics(&d, sources);
         EXIT_USER
     })
@@ -155,9 +159,9 @@ pub(crate) fn load_scene_in(
 pub(crate) fn load_scene_summary(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&diag::paths::PathPolicy>,
-) -> Result<abi::SceneSummary, Vec<Diagnostic>> {
-    runner::scene::load_scene_in(path, sources, paths).map(|s| s.summary(&path.display().to_string()))
+    paths: Option<&npr_diag::paths::PathPolicy>,
+) -> Result<npr_abi::SceneSummary, Vec<Diagnostic>> {
+    npr_runner::scene::load_scene_in(path, sources, paths).map(|s| s.summary(&path.display().to_string()))
 }
 
 /// The options `npr check` and `npr compile` share: the paths policy for
@@ -187,8 +191,8 @@ pub(crate) fn check_options(
 
 /// Say how each art-map was made: filtered now (and whether it reached the
 /// disk cache) or read from a cache.
-pub(crate) fn artmap_notes(builds: &[runner::artmap::ArtmapBuild]) {
-    use runner::artmap_cache::Origin;
+pub(crate) fn artmap_notes(builds: &[npr_runner::artmap::ArtmapBuild]) {
+    use npr_runner::artmap_cache::Origin;
     for b in builds {
         let how = match b.origin {
             Origin::Built { on_disk: true } => "filtered and cached",

@@ -6,7 +6,7 @@
 //!
 //! Each argument is added to the [`SourceMap`] as a file named `--set`, and
 //! the settings go to the compiler, which types them against the style's
-//! params after typecheck in its one compile (`compiler::front::
+//! params after typecheck in its one compile (`npr_compiler::front::
 //! param_settings`, the same function that types a filter's arguments):
 //! an unknown name with "did you mean" (E0101), a value of the wrong type
 //! (E0201) or unit (E0202), outside the declared range (E0203), and a
@@ -14,9 +14,9 @@
 //! pointing into the `--set` argument itself.
 
 use crate::printer::Printer;
-use compiler::ir::{ParamSetting, SettingOrigin};
-use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{SourceMap, Span};
+use npr_compiler::ir::{ParamSetting, SettingOrigin};
+use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::{SourceMap, Span};
 use std::path::Path;
 
 /// Compile `style` once, with `sets` (`name=value`, in order: a later one
@@ -31,7 +31,7 @@ pub fn compile_with_sets(
         settings: settings(sets, sources),
         ..opts.clone()
     };
-    compiler::compile_file(style, sources, &opts)
+    npr_compiler::compile_file(style, sources, &opts)
 }
 
 /// [`compile_with_sets`] for the one-shot commands: diagnostics printed, the
@@ -75,16 +75,16 @@ pub fn settings(sets: &[String], sources: &mut SourceMap) -> Vec<ParamSetting> {
 
 /// `text` (one `--set` value, trimmed) as the literal it writes: the
 /// ABI's reader, which a host's `StyleRuntime::set_param` uses too.
-pub use abi::param_literal::read_literal;
+pub use npr_abi::param_literal::read_literal;
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use abi::manifest::{ParamBinding, ParamManifest};
-    use compiler::front::param_values::{format_literal, type_value, ParamShape};
-    use compiler::ir::Literal;
-    use compiler::mid::overrides::ParamOverride;
-    use diag::codes;
+    use npr_abi::manifest::{ParamBinding, ParamManifest};
+    use npr_compiler::front::param_values::{format_literal, type_value, ParamShape};
+    use npr_compiler::ir::Literal;
+    use npr_compiler::mid::overrides::ParamOverride;
+    use npr_diag::codes;
 
     fn param(ty: &str, unit: &str, default: Vec<f64>, range: Option<(f64, f64)>) -> ParamShape {
         ParamShape::of_manifest(&ParamManifest {

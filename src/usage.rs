@@ -7,7 +7,7 @@
 
 use crate::cli::{Cli, EXIT_OK, EXIT_USER};
 use clap::Parser;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 /// The parsed command line, or the exit code after printing why there is none.
 pub fn parse() -> Result<Cli, i32> {
@@ -29,7 +29,10 @@ where
         }
         let d = diagnostic(&e);
         if wants_json(&args) {
-            print!("{}", diag::diagnostic::render_json(&[d], &diag::SourceMap::new()));
+            print!(
+                "{}",
+                npr_diag::diagnostic::render_json(&[d], &npr_diag::SourceMap::new())
+            );
         } else {
             eprint!("{}", rendered(&e));
         }

@@ -25,7 +25,7 @@
 //! temporary. A missing `ffmpeg` (or one without the encoder) is E0511,
 //! found by [`check_encoder`] before anything renders.
 
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -223,7 +223,7 @@ impl VideoWriter {
     }
 
     /// Encode the next frame (the style's output).
-    pub fn push(&mut self, img: &runner::TargetImage) -> std::io::Result<()> {
+    pub fn push(&mut self, img: &npr_runner::TargetImage) -> std::io::Result<()> {
         if (img.width, img.height) != self.size {
             return Err(std::io::Error::other(format!(
                 "a {}x{} frame in a {}x{} video",

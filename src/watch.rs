@@ -10,7 +10,7 @@ use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::printer::Printer;
-use diag::{codes, Diagnostic, SourceMap};
+use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::PathBuf;
 use std::sync::mpsc;
 
@@ -72,7 +72,7 @@ pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
 }
 
 /// One build and render; the files to watch next.
-fn once(args: &WatchArgs, gpu: &runner::Gpu, printer: &Printer, last_good: &mut Vec<PathBuf>) -> Vec<PathBuf> {
+fn once(args: &WatchArgs, gpu: &npr_runner::Gpu, printer: &Printer, last_good: &mut Vec<PathBuf>) -> Vec<PathBuf> {
     let built = match build::build(&args.inputs, &[]) {
         Ok(b) => b,
         Err(failed) => {

@@ -115,7 +115,7 @@ impl Format {
 
     /// What storing a value in a target of this format and loading it back
     /// does to each channel: the rounding a fused pass must repeat so that it
-    /// computes what the separate passes did (`compiler::schedule`).
+    /// computes what the separate passes did (`npr_compiler::schedule`).
     pub fn storage(self) -> Storage {
         use Format::*;
         match self {
@@ -161,7 +161,7 @@ impl Storage {
 /// specification leaves it to the implementation (round to nearest even, or
 /// toward zero); Mesa's lavapipe truncates, so a fused pass that rounded to
 /// nearest would differ from the stored target by one binary16 step. The
-/// runner measures it once per renderer (`runner::half_rounding`) and gives
+/// runner measures it once per renderer (`npr_runner::half_rounding`) and gives
 /// it to every shader that repeats the rounding as the pipeline-overridable
 /// constant [`HALF_ROUNDING_OVERRIDE`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -133,7 +133,7 @@ pub const LINE_VERTEX_ATTRIBUTES: [(u64, u32); 2] = [(0, 4), (16, 4)];
 /// its vertex shader, as group 1, binding 0 (there is no object group):
 /// visibility is decided at the undisplaced edge point, not per fragment,
 /// because the strip's own fragments lie off the edge, where the surface
-/// inside a silhouette bulges towards the eye (see `runner::lines::draw`).
+/// inside a silhouette bulges towards the eye (see `npr_runner::lines::draw`).
 pub const LINE_DEPTH_WGSL: &str = "@group(1) @binding(0) var kept_depth: texture_depth_2d;\n";
 
 #[cfg(test)]

@@ -214,7 +214,7 @@ fn parse_colour(text: &str) -> Option<[f64; 4]> {
 
 /// The candidate closest to `name` when one is close enough (Jaro-Winkler
 /// above 0.8), for "did you mean" in refusals: the rule
-/// `diag::diagnostic::did_you_mean` applies to every other name.
+/// `npr_diag::diagnostic::did_you_mean` applies to every other name.
 pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     candidates
         .into_iter()

@@ -7,9 +7,9 @@
 //! rewriting a default in the file, the help of a refusal).
 //!
 //! The parameter is seen through a [`ParamShape`], made from the IR after
-//! typecheck (`compiler::front::param_values::shape_of_ir`, in the one
+//! typecheck (`npr_compiler::front::param_values::shape_of_ir`, in the one
 //! compile) or from a manifest entry (the studio, and a host's
-//! `runner::embed::StyleRuntime::set_param`, typing a value against the
+//! `npr_runner::embed::StyleRuntime::set_param`, typing a value against the
 //! running style without compiling). This is the one definition of the
 //! rule; the compiler and the runner both call it.
 
@@ -142,7 +142,7 @@ pub struct ParamOverride {
     pub percent_of_height: bool,
 }
 
-/// The diagnostic codes of refusals, as `diag::codes` defines them (the
+/// The diagnostic codes of refusals, as `npr_diag::codes` defines them (the
 /// ABI depends on no other npr crate; `abi/tests/refusal_codes.rs` holds
 /// these equal to diag's).
 pub mod codes {

@@ -1,5 +1,5 @@
 //! A compiled style as the runner sees it: the manifest plus WGSL per pass,
-//! either straight from the compiler (`compiler::Compiled::program`) or read
+//! either straight from the compiler (`npr_compiler::Compiled::program`) or read
 //! back from `npr compile -o DIR` ([`StyleProgram::load_dir`], validated).
 
 use crate::manifest::Manifest;

@@ -2,8 +2,8 @@
 //! byte: naga's layouter (WGSL's uniform layout rules) puts every member at
 //! the offset `offset_of!` gives, and the struct sizes are equal.
 
-use abi::frame::{FrameBlock, FRAME_FIELDS};
-use abi::FRAME_WGSL;
+use npr_abi::frame::{FrameBlock, FRAME_FIELDS};
+use npr_abi::FRAME_WGSL;
 
 #[test]
 fn frame_layout_matches_naga() {
@@ -33,7 +33,7 @@ fn frame_layout_matches_naga() {
     }
     assert_eq!(*span as usize, core::mem::size_of::<FrameBlock>());
     assert_eq!(layouter[handle].size as usize, core::mem::size_of::<FrameBlock>());
-    assert_eq!(abi::FRAME_UNIFORM_SIZE as usize, core::mem::size_of::<FrameBlock>());
+    assert_eq!(npr_abi::FRAME_UNIFORM_SIZE as usize, core::mem::size_of::<FrameBlock>());
     // Spot checks of `offset_of!` itself, against the fields by name.
     assert_eq!(core::mem::offset_of!(FrameBlock, resolution), 240);
     assert_eq!(core::mem::offset_of!(FrameBlock, light_view_proj), 272);

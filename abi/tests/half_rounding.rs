@@ -3,8 +3,8 @@
 //! nearest even is `f16::from_f32`; toward zero is the binary16 next to it
 //! on zero's side whenever `from_f32` rounded away from zero.
 
-use abi::formats::HalfRounding;
 use half::f16;
+use npr_abi::formats::HalfRounding;
 
 fn toward_zero(x: f32) -> f32 {
     let h = f16::from_f32(x);

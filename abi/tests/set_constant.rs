@@ -1,8 +1,8 @@
 //! `ParamManifest::set_constant`: what a run-time setting of a parameter
 //! (a host's `set_param`, a sweep, the studio) leaves in the manifest.
 
-use abi::manifest::{ParamBinding, ParamManifest};
-use abi::param_value::ParamOverride;
+use npr_abi::manifest::{ParamBinding, ParamManifest};
+use npr_abi::param_value::ParamOverride;
 
 /// An animated length parameter whose default was written in `%`.
 fn animated_length() -> ParamManifest {

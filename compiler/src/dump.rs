@@ -68,7 +68,7 @@ pub fn dump(ir: &Ir) -> String {
         }
         for o in &p.outputs {
             let blend = match o.blend {
-                abi::manifest::Blend::Replace => String::new(),
+                npr_abi::manifest::Blend::Replace => String::new(),
                 b => format!(" blend={}", b.name()),
             };
             let _ = writeln!(s, "  out {} : {} = e{}{blend}", o.name, o.format.name(), o.value.0);

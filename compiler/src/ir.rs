@@ -6,9 +6,9 @@
 //! after its operands, so iterating the arena in order visits operands first
 //! (the typechecker relies on this).
 
-use diag::Span;
+use npr_diag::Span;
+use npr_stdlib::Unit;
 use serde::Serialize;
-use stdlib::Unit;
 
 mod builtins;
 mod intrinsics;
@@ -142,7 +142,7 @@ impl Const {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Callee {
     Intrinsic(Intrinsic),
-    /// A stdlib operator, by index into `stdlib::all()`.
+    /// A stdlib operator, by index into `npr_stdlib::all()`.
     Operator(u32),
 }
 
@@ -159,7 +159,7 @@ pub enum Conversion {
     /// The value a target of this format would hold after storing it: what a
     /// fused pass reads where the separate pass read the target
     /// (`schedule::fuse`). Never for a 32-bit float or sRGB format.
-    Stored(abi::Format),
+    Stored(npr_abi::Format),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -195,11 +195,11 @@ pub enum ExprKind {
         components: Vec<u8>,
     },
     Unary {
-        op: dsl::ast::UnOp,
+        op: npr_dsl::ast::UnOp,
         operand: ExprId,
     },
     Binary {
-        op: dsl::ast::BinOp,
+        op: npr_dsl::ast::BinOp,
         lhs: ExprId,
         rhs: ExprId,
     },
@@ -222,7 +222,7 @@ pub enum ExprKind {
 }
 
 /// Which copy of a target a read sees: the manifest's definition, shared.
-pub use abi::manifest::TargetCopy;
+pub use npr_abi::manifest::TargetCopy;
 
 impl ExprKind {
     /// The target this node reads within this frame, for either eye:
@@ -281,7 +281,7 @@ pub enum ParamTy {
     Enum(Vec<String>),
     Range(Ty),
     /// A `gradient` kept live (`--keep-params`): its default is the
-    /// [`abi::gradient`] slots' components (a `Const::Vec` of 84), read
+    /// [`npr_abi::gradient`] slots' components (a `Const::Vec` of 84), read
     /// only by `Intrinsic::Ramp`. A folded gradient is no IR param
     /// (`front/resolve/gradient.rs`).
     Gradient,
@@ -318,7 +318,7 @@ impl Param {
             ParamTy::Enum(v) => format!("enum({})", v.join("|")),
             ParamTy::Range(_) => "range".into(),
             ParamTy::Color => "color".into(),
-            ParamTy::Gradient => abi::gradient::GRADIENT_TYPE.into(),
+            ParamTy::Gradient => npr_abi::gradient::GRADIENT_TYPE.into(),
             ParamTy::Value(t) => match self.unit {
                 Unit::None => t.describe().into(),
                 u => u.name().into(),
@@ -334,8 +334,8 @@ pub enum TextureSource {
         resolved: String,
         srgb: bool,
     },
-    Noise(abi::NoiseSpec),
-    HalftoneTable(abi::HalftoneTableSpec),
+    Noise(npr_abi::NoiseSpec),
+    HalftoneTable(npr_abi::HalftoneTableSpec),
     /// `artmap(image("…"), filter: "…", levels: …)` (Klein et al. 2000
     /// §4.2): `filter` is the filter's key in `Loaded::filters`, and
     /// `filter_name` the path as written.

@@ -1,11 +1,11 @@
 //! The npr compiler: `.npr` source to validated WGSL plus a manifest.
 //!
 //! See [`pipeline`] for the order of the stages. User errors come back as
-//! [`diag::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
+//! [`npr_diag::Diagnostic`]s ([`CompileError::User`]); a bug in the compiler, such
 //! as emitted WGSL that naga rejects, is a separate [`InternalError`].
 //!
 //! What it produces is defined in the `abi` crate (the manifest types, the
-//! frame block, [`abi::StyleProgram`] via [`Compiled::program`]); the compiler
+//! frame block, [`npr_abi::StyleProgram`] via [`Compiled::program`]); the compiler
 //! does not depend on the runner, nor the runner on it.
 
 pub mod back;
@@ -17,8 +17,8 @@ pub mod pipeline;
 pub mod report;
 pub mod schedule;
 
-use abi::SceneSummary;
-use diag::{Diagnostic, SourceMap, Span};
+use npr_abi::SceneSummary;
+use npr_diag::{Diagnostic, SourceMap, Span};
 use std::path::Path;
 
 #[derive(Debug, Clone, Default)]
@@ -38,8 +38,8 @@ pub struct CompileOptions {
     pub settings: Vec<ir::ParamSetting>,
     /// Which files the style may read (`use`, `image("…")`): `None` reads
     /// any path (library use); the `npr` commands always give one
-    /// (`diag::paths`, docs/PATHS.md).
-    pub paths: Option<diag::paths::PathPolicy>,
+    /// (`npr_diag::paths`, docs/PATHS.md).
+    pub paths: Option<npr_diag::paths::PathPolicy>,
     /// How the passes run (`--schedule`): `Auto` fuses pointwise image
     /// chains; `Naive` keeps every declared pass and target.
     pub schedule: schedule::Schedule,
@@ -54,7 +54,7 @@ pub struct CompileOptions {
 
 #[derive(Debug, Clone)]
 pub struct Compiled {
-    pub manifest: abi::Manifest,
+    pub manifest: npr_abi::Manifest,
     /// (file name, WGSL) per live pass, in execution order.
     pub shaders: Vec<(String, String)>,
     pub report: report::Report,
@@ -72,8 +72,8 @@ impl Compiled {
     }
 
     /// The manifest and shaders as the runner takes them.
-    pub fn program(&self) -> abi::StyleProgram {
-        abi::StyleProgram {
+    pub fn program(&self) -> npr_abi::StyleProgram {
+        npr_abi::StyleProgram {
             manifest: self.manifest.clone(),
             shaders: self.shaders.iter().cloned().collect(),
         }
@@ -94,7 +94,7 @@ impl InternalError {
     /// As a diagnostic pointing at the `.npr` source (code E9001).
     pub fn to_diagnostic(&self) -> Diagnostic {
         let mut d = Diagnostic::error(
-            diag::codes::INTERNAL,
+            npr_diag::codes::INTERNAL,
             format!("internal compiler error: {}", self.message),
         )
         .with_note(self.detail.clone())

@@ -10,8 +10,8 @@ use crate::front::load::Loaded;
 use crate::ir::Ir;
 use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
-use abi::manifest::ParamBinding;
-use diag::{Diagnostic, SourceMap};
+use npr_abi::manifest::ParamBinding;
+use npr_diag::{Diagnostic, SourceMap};
 use std::time::Instant;
 
 struct Stages<'o> {
@@ -42,7 +42,7 @@ fn fail_if_errors(diags: &[Diagnostic]) -> Result<(), CompileError> {
 /// The parser's limit errors: a file too large, nested too deeply, or an
 /// expression too deep.
 fn is_parse_limit(d: &Diagnostic) -> bool {
-    use diag::codes::{EXPRESSION_TOO_DEEP, LIMIT_EXCEEDED, NESTED_TOO_DEEP};
+    use npr_diag::codes::{EXPRESSION_TOO_DEEP, LIMIT_EXCEEDED, NESTED_TOO_DEEP};
     d.is_error() && [LIMIT_EXCEEDED, NESTED_TOO_DEEP, EXPRESSION_TOO_DEEP].contains(&d.code)
 }
 
@@ -76,7 +76,7 @@ pub fn run(
     }
     if loaded.root.style.is_none() && !diags.iter().any(Diagnostic::is_error) {
         diags.push(
-            Diagnostic::error(diag::codes::STYLE_HEADER, "missing `style` header")
+            Diagnostic::error(npr_diag::codes::STYLE_HEADER, "missing `style` header")
                 .with_help("start the file with `style \"Name\"`"),
         );
     }
@@ -244,7 +244,7 @@ fn compile_filters(
     ir: &crate::ir::Ir,
     loaded: std::collections::BTreeMap<String, Loaded>,
     sources: &SourceMap,
-) -> Result<std::collections::BTreeMap<String, abi::FilterProgram>, CompileError> {
+) -> Result<std::collections::BTreeMap<String, npr_abi::FilterProgram>, CompileError> {
     let mut out = std::collections::BTreeMap::new();
     for t in &ir.textures {
         let crate::ir::TextureSource::Artmap {
@@ -270,7 +270,7 @@ fn compile_filters(
         };
         // Point from each of the filter's errors back at the art-map, unless
         // it already points into it (a refused argument).
-        let in_art_map = |s: diag::Span| s.file == t.span.file && t.span.start <= s.start && s.end <= t.span.end;
+        let in_art_map = |s: npr_diag::Span| s.file == t.span.file && t.span.start <= s.start && s.end <= t.span.end;
         let from_filter = |e: CompileError| match e {
             CompileError::User(diags) => CompileError::User(
                 diags
@@ -290,7 +290,7 @@ fn compile_filters(
         let c = run(filter_loaded.clone(), sources, filter_file, &opts, Vec::new()).map_err(from_filter)?;
         out.insert(
             filter.clone(),
-            abi::FilterProgram {
+            npr_abi::FilterProgram {
                 path: filter_name.clone(),
                 manifest: Box::new(c.manifest),
                 shaders: c.shaders.into_iter().collect(),
@@ -303,7 +303,7 @@ fn compile_filters(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use abi::manifest::TextureSourceManifest;
+    use npr_abi::manifest::TextureSourceManifest;
     use std::path::Path;
 
     /// Compile `text` in `examples/` (its textures and filters), and count

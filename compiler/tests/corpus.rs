@@ -5,9 +5,9 @@
 //! A file whose first comment lines contain `scene tags = a, b` is compiled
 //! for a scene whose objects carry exactly those tags (`scene_has`).
 
-use abi::SceneSummary;
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_abi::SceneSummary;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -53,12 +53,12 @@ fn snapshot_text(path: &Path) -> String {
         ..CompileOptions::default()
     };
     let mut sources = SourceMap::new();
-    let compiled = match compiler::compile_file(path, &mut sources, &options) {
+    let compiled = match npr_compiler::compile_file(path, &mut sources, &options) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => {
-            panic!("{name}:\n{}", diag::diagnostic::render(&d, &sources, false))
+        Err(npr_compiler::CompileError::User(d)) => {
+            panic!("{name}:\n{}", npr_diag::diagnostic::render(&d, &sources, false))
         }
-        Err(compiler::CompileError::Internal(e)) => panic!("{name}: {e}\n{}", e.wgsl.clone().unwrap_or_default()),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{name}: {e}\n{}", e.wgsl.clone().unwrap_or_default()),
     };
     let mut manifest = compiled.manifest.clone();
     // Absolute paths differ between machines.

@@ -7,10 +7,10 @@
 //! `compile_source`; that the images equal the naive schedule's is
 //! `tests/gpu/schedule_equivalence.rs`.
 
-use abi::manifest::{PassKindManifest, Resource};
-use compiler::schedule::Schedule;
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_abi::manifest::{PassKindManifest, Resource};
+use npr_compiler::schedule::Schedule;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::Path;
 
 /// A G-buffer, a Sobel pass read around the pixel by one reader, and a
@@ -37,21 +37,21 @@ pass ink: image(edges, shared, glow) {
 output ink.c
 "#;
 
-fn compile_style(text: &str, schedule: Schedule) -> Result<compiler::Compiled, compiler::CompileError> {
+fn compile_style(text: &str, schedule: Schedule) -> Result<npr_compiler::Compiled, npr_compiler::CompileError> {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         schedule,
         ..Default::default()
     };
-    compiler::compile_source("recompute.npr", text, Path::new("."), &mut sources, &opts)
+    npr_compiler::compile_source("recompute.npr", text, Path::new("."), &mut sources, &opts)
 }
 
-fn compile(text: &str, schedule: Schedule) -> compiler::Compiled {
+fn compile(text: &str, schedule: Schedule) -> npr_compiler::Compiled {
     compile_style(text, schedule).unwrap_or_else(|e| panic!("{e:?}"))
 }
 
 /// The report's schedule lines for recomputation and tiling.
-fn schedule_lines(c: &compiler::Compiled) -> String {
+fn schedule_lines(c: &npr_compiler::Compiled) -> String {
     c.report
         .entries
         .iter()

@@ -5,10 +5,10 @@
 //! images equal the naive schedule's is `tests/gpu/schedule_equivalence.rs`;
 //! E0311 (a forced `tiled` the tiler refuses) is in `tests/error_codes/`.
 
-use abi::manifest::PassKindManifest;
-use compiler::schedule::Schedule;
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_abi::manifest::PassKindManifest;
+use npr_compiler::schedule::Schedule;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::Path;
 
 /// A G-buffer and five image passes. Unforced, `auto` would fuse `tone`
@@ -40,19 +40,19 @@ pass final: image(mix) {
 output final.c
 "#;
 
-fn compile(text: &str, schedule: Schedule) -> compiler::Compiled {
+fn compile(text: &str, schedule: Schedule) -> npr_compiler::Compiled {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         schedule,
         ..Default::default()
     };
-    compiler::compile_source("settings.npr", text, Path::new("."), &mut sources, &opts)
+    npr_compiler::compile_source("settings.npr", text, Path::new("."), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{e:?}"))
 }
 
 /// The report's schedule lines (every image pass: `schedule` or `fused`,
 /// then `tiled` / `not tiled`).
-fn schedule_lines(c: &compiler::Compiled) -> String {
+fn schedule_lines(c: &npr_compiler::Compiled) -> String {
     c.report
         .entries
         .iter()
@@ -63,7 +63,7 @@ fn schedule_lines(c: &compiler::Compiled) -> String {
 }
 
 /// The passes the manifest runs, each with whether it is tiled.
-fn passes(c: &compiler::Compiled) -> Vec<(String, bool)> {
+fn passes(c: &npr_compiler::Compiled) -> Vec<(String, bool)> {
     c.program()
         .manifest
         .passes
@@ -199,7 +199,7 @@ fn a_forced_pass_in_a_used_file_is_reported_with_its_file() {
         "style \"main\"\nuse \"lib.npr\"\npass final: image(soft) {\n  out c: rgba8unorm = soft.c\n}\noutput final.c\n";
     std::fs::write(dir.join("main.npr"), text).expect("main");
     let mut sources = SourceMap::new();
-    let c = compiler::compile_file(&dir.join("main.npr"), &mut sources, &CompileOptions::default())
+    let c = npr_compiler::compile_file(&dir.join("main.npr"), &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let lines = schedule_lines(&c);
     assert!(

@@ -3,8 +3,8 @@
 //! the reads share a `let` (`let e = g.e` then `e.x`, `e.y`) or are separate
 //! expressions (`g.d.x + g.d.y`).
 
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::Path;
 
 const STYLE: &str = r#"style "shared reads"
@@ -24,7 +24,7 @@ output ink.c
 #[test]
 fn each_target_is_loaded_once_per_pass() {
     let mut sources = SourceMap::new();
-    let c = compiler::compile_source(
+    let c = npr_compiler::compile_source(
         "shared.npr",
         STYLE,
         Path::new("."),

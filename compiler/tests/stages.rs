@@ -3,23 +3,23 @@
 //! chain), allocate (aliasing by lifetime, format and scale) and the
 //! internal errors of impossible states.
 
-use abi::manifest::ParamBinding;
-use compiler::back::allocate::{allocate, Allocation};
-use compiler::ir::*;
-use compiler::mid::dag::PassGraph;
-use compiler::mid::prune::{prune, Live};
-use compiler::report::Report;
-use diag::SourceMap;
+use npr_abi::manifest::ParamBinding;
+use npr_compiler::back::allocate::{allocate, Allocation};
+use npr_compiler::ir::*;
+use npr_compiler::mid::dag::PassGraph;
+use npr_compiler::mid::prune::{prune, Live};
+use npr_compiler::report::Report;
+use npr_diag::SourceMap;
 use std::path::Path;
 
 /// Load, resolve, typecheck and build the DAG of `text`, which must be valid.
 fn front(text: &str) -> (Ir, PassGraph) {
     let mut sources = SourceMap::new();
     let mut diags = Vec::new();
-    let loaded = compiler::front::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
-    let mut ir = compiler::front::resolve::resolve(&loaded, None, None, &mut diags).expect("no internal error");
-    compiler::front::typecheck::typecheck(&mut ir, &mut diags);
-    let graph = compiler::mid::dag::build(&ir, &mut diags);
+    let loaded = npr_compiler::front::load::load_source("t.npr", text, Path::new("."), &mut sources, None, &mut diags);
+    let mut ir = npr_compiler::front::resolve::resolve(&loaded, None, None, &mut diags).expect("no internal error");
+    npr_compiler::front::typecheck::typecheck(&mut ir, &mut diags);
+    let graph = npr_compiler::mid::dag::build(&ir, &mut diags);
     let errors: Vec<String> = diags
         .iter()
         .filter(|d| d.is_error())
@@ -169,8 +169,8 @@ fn specialized(text: &str, keep_params: bool) -> (Ir, Vec<ParamBinding>, Live, R
     let (mut ir, graph) = front(text);
     let live = prune(&ir, &graph, &mut Report::default());
     let mut report = Report::default();
-    let bindings = compiler::mid::specialize::specialize(&mut ir, &live, keep_params, &mut report);
-    let graph = compiler::mid::dag::build(&ir, &mut Vec::new());
+    let bindings = npr_compiler::mid::specialize::specialize(&mut ir, &live, keep_params, &mut report);
+    let graph = npr_compiler::mid::dag::build(&ir, &mut Vec::new());
     let live = prune(&ir, &graph, &mut report);
     (ir, bindings, live, report)
 }
@@ -223,7 +223,7 @@ output err.e
     else {
         panic!("not an operator call: {:?}", ir.expr(out).kind);
     };
-    assert_eq!(stdlib::all()[i as usize].name, "lsa_curv");
+    assert_eq!(npr_stdlib::all()[i as usize].name, "lsa_curv");
     let special = entries(&report, "special");
     assert_eq!(special.len(), 2, "two steps: {special:?}");
     assert!(special[0].1.contains("calls `lsa_curv_aa` instead"), "{special:?}");
@@ -363,7 +363,7 @@ fn a_live_target_without_a_reader_is_an_internal_error() {
     live.targets.insert(TargetRef { pass: a, output: 1 });
     let err = allocate(&ir, &live, &[], &mut Report::default()).expect_err("internal error");
     assert!(err.message.contains("`a.stray` has no reader"), "{}", err.message);
-    assert_eq!(err.to_diagnostic().code, diag::codes::INTERNAL);
+    assert_eq!(err.to_diagnostic().code, npr_diag::codes::INTERNAL);
 }
 
 #[test]
@@ -374,7 +374,7 @@ fn an_output_without_a_target_is_an_internal_error() {
     // An impossible state: the allocator always gives the output a target.
     let out = ir.output.expect("output");
     alloc.targets.retain(|(t, _)| *t != out);
-    let err = compiler::back::emit::manifest::build(
+    let err = npr_compiler::back::emit::manifest::build(
         &ir,
         &live,
         &alloc,
@@ -387,7 +387,7 @@ fn an_output_without_a_target_is_an_internal_error() {
     .expect_err("internal error");
     assert!(err.message.contains("output"), "{}", err.message);
     assert!(err.detail.contains("`d.c`"), "{}", err.detail);
-    assert_eq!(err.to_diagnostic().code, diag::codes::INTERNAL);
+    assert_eq!(err.to_diagnostic().code, npr_diag::codes::INTERNAL);
 }
 
 // ---------------------------------------------------------------- compute
@@ -432,7 +432,7 @@ fn prune_keeps_the_values_a_live_pass_reads_and_the_states_they_read() {
             "{what} not reported: {removed:?}"
         );
     }
-    let warnings = compiler::mid::prune::unread_compute_passes(&ir, &live);
+    let warnings = npr_compiler::mid::prune::unread_compute_passes(&ir, &live);
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(warnings[0].message.contains("`spare`"));
 }

@@ -5,9 +5,9 @@
 //! here passed naga's validation inside `compile_source`; that the images
 //! equal the naive schedule's is `tests/gpu/schedule_equivalence.rs`.
 
-use compiler::schedule::Schedule;
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_compiler::schedule::Schedule;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::Path;
 
 /// One G-buffer and five image passes, each a case of the tiling rule.
@@ -40,22 +40,22 @@ pass final: image(edges, narrow, wide, point) {
 output final.c
 "#;
 
-fn compile(schedule: Schedule) -> compiler::Compiled {
+fn compile(schedule: Schedule) -> npr_compiler::Compiled {
     compile_text("tiling.npr", STYLE, schedule)
 }
 
 /// Style `text`, named `name`, compiled under `schedule`.
-fn compile_text(name: &str, text: &str, schedule: Schedule) -> compiler::Compiled {
+fn compile_text(name: &str, text: &str, schedule: Schedule) -> npr_compiler::Compiled {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         schedule,
         ..Default::default()
     };
-    compiler::compile_source(name, text, Path::new("."), &mut sources, &opts).unwrap_or_else(|e| panic!("{e:?}"))
+    npr_compiler::compile_source(name, text, Path::new("."), &mut sources, &opts).unwrap_or_else(|e| panic!("{e:?}"))
 }
 
 /// The report's tiling lines, one per image pass.
-fn tiling_lines(c: &compiler::Compiled) -> String {
+fn tiling_lines(c: &npr_compiler::Compiled) -> String {
     c.report
         .entries
         .iter()
@@ -92,7 +92,7 @@ fn tiled_schedule_says_which_passes_tile_and_why_not() {
         .map(|p| {
             (
                 p.name.clone(),
-                matches!(p.kind, abi::manifest::PassKindManifest::TiledImage { .. }),
+                matches!(p.kind, npr_abi::manifest::PassKindManifest::TiledImage { .. }),
             )
         })
         .collect();
@@ -176,7 +176,7 @@ fn auto_tiles_nothing_and_reports_what_tiled_would() {
         .manifest
         .passes
         .iter()
-        .all(|p| !matches!(p.kind, abi::manifest::PassKindManifest::TiledImage { .. })));
+        .all(|p| !matches!(p.kind, npr_abi::manifest::PassKindManifest::TiledImage { .. })));
 }
 
 /// A texture read as a value is sampled with `textureSample`, which a

@@ -343,7 +343,7 @@ pub mod codes {
     pub const CHECKPOINT_MISMATCH: &str = "E0512";
     /// A checkpoint file that is not one, or is truncated or corrupted.
     pub const BAD_CHECKPOINT: &str = "E0513";
-    /// A host application (the embedding API, `runner::embed`) used a mesh
+    /// A host application (the embedding API, `npr_runner::embed`) used a mesh
     /// handle that was removed or that another runtime gave out.
     pub const UNKNOWN_MESH: &str = "E0601";
     /// A host application gave a texture view the runtime cannot render

@@ -139,7 +139,7 @@ pub fn markdown_table() -> String {
     let mut s = String::from("| limit | value | code | constant |\n|---|---:|---|---|\n");
     for l in ALL {
         s.push_str(&format!(
-            "| {} | {} {} | {} | `diag::limits::{}` |\n",
+            "| {} | {} {} | {} | `npr_diag::limits::{}` |\n",
             l.what, l.value, l.unit, l.code, l.name
         ));
     }

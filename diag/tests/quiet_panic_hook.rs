@@ -1,4 +1,4 @@
-//! `diag::panics::install_quiet_hook` (its own test binary: the hook is
+//! `npr_diag::panics::install_quiet_hook` (its own test binary: the hook is
 //! process-wide): a panic inside `panics::catch` reaches no hook, and any
 //! other panic reaches the hook that was there before, on every thread.
 
@@ -17,10 +17,10 @@ fn only_unexpected_panics_reach_the_previous_hook() {
             .unwrap_or_default();
         SEEN.lock().expect("lock").push(message);
     }));
-    diag::panics::install_quiet_hook();
-    diag::panics::install_quiet_hook(); // once: not wrapped twice
+    npr_diag::panics::install_quiet_hook();
+    npr_diag::panics::install_quiet_hook(); // once: not wrapped twice
 
-    let caught: Result<(), String> = diag::panics::catch(|| panic!("naga-like"));
+    let caught: Result<(), String> = npr_diag::panics::catch(|| panic!("naga-like"));
     assert_eq!(caught, Err("naga-like".to_string()));
     assert!(SEEN.lock().expect("lock").is_empty(), "an expected panic printed");
 

@@ -5,7 +5,7 @@
 //! Nothing here depends on pest: the parser converts pest pairs into these
 //! types, and the rest of the workspace only ever sees these.
 
-use diag::span::Span;
+use npr_diag::span::Span;
 use serde::Serialize;
 
 /// A name with the span where it was written.

@@ -11,7 +11,7 @@ mod nesting;
 mod parser;
 mod syntax_error;
 
-use diag::{Diagnostic, FileId};
+use npr_diag::{Diagnostic, FileId};
 
 /// Parse one `.npr` source file. Spans refer to `file`.
 ///

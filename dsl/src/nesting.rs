@@ -14,8 +14,8 @@
 //! comes is closed by the bracket around it. Where the text is malformed the
 //! count can only be too high, never too low.
 
-use diag::limits::MAX_NESTING;
-use diag::{codes, Diagnostic, FileId, Span};
+use npr_diag::limits::MAX_NESTING;
+use npr_diag::{codes, Diagnostic, FileId, Span};
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Level {

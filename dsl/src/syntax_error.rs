@@ -12,7 +12,7 @@
 //! goes after the last token, not on the next line).
 
 use crate::parser::Rule;
-use diag::{codes, Diagnostic, FileId, Span};
+use npr_diag::{codes, Diagnostic, FileId, Span};
 use pest::error::{Error, ErrorVariant, InputLocation};
 
 /// The grammar's keywords (rule `keyword`), which cannot be names.

@@ -1,6 +1,6 @@
-//! `docs/ERRORS.md` holds the table of `diag::codes::ALL`, verbatim between
+//! `docs/ERRORS.md` holds the table of `npr_diag::codes::ALL`, verbatim between
 //! its `<!-- codes -->` markers, so every code the tools print is listed.
-//! `UPDATE_ERRORS_DOC=1 cargo test -p dsl --test error_docs` rewrites it.
+//! `UPDATE_ERRORS_DOC=1 cargo test -p npr-dsl --test error_docs` rewrites it.
 
 use std::path::Path;
 
@@ -11,7 +11,7 @@ fn the_docs_table_is_the_code_table() {
     let (start, end) = ("<!-- codes -->\n", "<!-- /codes -->");
     let from = doc.find(start).expect("start marker") + start.len();
     let to = doc.find(end).expect("end marker");
-    let table = diag::codes::markdown_table();
+    let table = npr_diag::codes::markdown_table();
     if std::env::var_os("UPDATE_ERRORS_DOC").is_some() {
         let updated = format!("{}{table}{}", &doc[..from], &doc[to..]);
         std::fs::write(&path, updated).expect("write docs/ERRORS.md");
@@ -20,6 +20,6 @@ fn the_docs_table_is_the_code_table() {
     assert_eq!(
         &doc[from..to],
         table,
-        "docs/ERRORS.md differs from diag::codes::ALL; run with UPDATE_ERRORS_DOC=1"
+        "docs/ERRORS.md differs from npr_diag::codes::ALL; run with UPDATE_ERRORS_DOC=1"
     );
 }

@@ -1,6 +1,6 @@
-//! `docs/LIMITS.md` holds the table of `diag::limits::ALL`, verbatim between
+//! `docs/LIMITS.md` holds the table of `npr_diag::limits::ALL`, verbatim between
 //! its `<!-- limits -->` markers, so the documented limits are the enforced
-//! ones. `UPDATE_LIMITS_DOC=1 cargo test -p dsl --test limits` rewrites it.
+//! ones. `UPDATE_LIMITS_DOC=1 cargo test -p npr-dsl --test limits` rewrites it.
 
 use std::path::Path;
 
@@ -11,7 +11,7 @@ fn the_docs_table_is_the_limits_module() {
     let (start, end) = ("<!-- limits -->\n", "<!-- /limits -->");
     let from = doc.find(start).expect("start marker") + start.len();
     let to = doc.find(end).expect("end marker");
-    let table = diag::limits::markdown_table();
+    let table = npr_diag::limits::markdown_table();
     if std::env::var_os("UPDATE_LIMITS_DOC").is_some() {
         let updated = format!("{}{table}{}", &doc[..from], &doc[to..]);
         std::fs::write(&path, updated).expect("write docs/LIMITS.md");
@@ -20,16 +20,16 @@ fn the_docs_table_is_the_limits_module() {
     assert_eq!(
         &doc[from..to],
         table,
-        "docs/LIMITS.md differs from diag::limits::ALL; run with UPDATE_LIMITS_DOC=1"
+        "docs/LIMITS.md differs from npr_diag::limits::ALL; run with UPDATE_LIMITS_DOC=1"
     );
 }
 
 #[test]
 fn every_limit_has_a_known_code() {
-    for l in diag::limits::ALL {
+    for l in npr_diag::limits::ALL {
         assert!(
-            diag::codes::ALL.iter().any(|(c, _)| *c == l.code),
-            "{} has code {}, which is not in diag::codes::ALL",
+            npr_diag::codes::ALL.iter().any(|(c, _)| *c == l.code),
+            "{} has code {}, which is not in npr_diag::codes::ALL",
             l.name,
             l.code
         );

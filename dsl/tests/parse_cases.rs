@@ -2,13 +2,13 @@
 //! diagnostics (AST snapshot), every `cases/err/*.npr` reports at least one
 //! error (rendered-diagnostics snapshot).
 
-use diag::{FileId, SourceMap};
+use npr_diag::{FileId, SourceMap};
 
 #[test]
 fn ok_cases_parse_cleanly() {
     insta::glob!("cases/ok/*.npr", |path| {
         let text = std::fs::read_to_string(path).expect("read case");
-        let (ast, diags) = dsl::parse(FileId(0), &text);
+        let (ast, diags) = npr_dsl::parse(FileId(0), &text);
         assert!(diags.is_empty(), "{}: {diags:?}", path.display());
         assert!(ast.style.is_some());
         insta::assert_debug_snapshot!(ast);
@@ -25,14 +25,14 @@ fn err_cases_report_errors() {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let file = sources.add(name, text.clone());
-        let (_, diags) = dsl::parse(file, &text);
+        let (_, diags) = npr_dsl::parse(file, &text);
         assert!(diags.iter().any(|d| d.is_error()), "{}: no error", path.display());
         for d in &diags {
             for l in &d.labels {
                 assert!(l.span.end as usize <= text.len());
             }
         }
-        insta::assert_snapshot!(diag::diagnostic::render(&diags, &sources, false));
+        insta::assert_snapshot!(npr_diag::diagnostic::render(&diags, &sources, false));
     });
 }
 
@@ -58,8 +58,8 @@ fn no_syntax_message_says_expected_x_found_x() {
                 continue;
             }
             let broken = format!("{}{}", &text[..i], &text[i + c.len_utf8()..]);
-            let (_, diags) = dsl::parse(FileId(0), &broken);
-            for d in diags.iter().filter(|d| d.code == diag::codes::SYNTAX) {
+            let (_, diags) = npr_dsl::parse(FileId(0), &broken);
+            for d in diags.iter().filter(|d| d.code == npr_diag::codes::SYNTAX) {
                 assert!(
                     contradiction(&d.message).is_none(),
                     "{}: removing {c:?} at {i}: {}",
@@ -86,7 +86,7 @@ fn the_old_contradictions_are_gone() {
         ),
         ("style \"S\"\nparam a: float 1.0\n", "expected `=`, found `1.0`"),
     ] {
-        let (_, diags) = dsl::parse(FileId(0), text);
+        let (_, diags) = npr_dsl::parse(FileId(0), text);
         assert_eq!(diags.len(), 1, "{diags:?}");
         assert_eq!(diags[0].message, want);
     }
@@ -97,13 +97,13 @@ fn spans_end_where_their_construct_ends() {
     // A declaration whose last part is optional (`in lo..hi`) stops at its
     // last token, not at the comment and blank lines pest skipped after it.
     let text = "style \"S\"\nparam a: float = 1.0   // note\n\n/* block */\nparam b: float = 2.0 in 0..4\n\n";
-    let (ast, diags) = dsl::parse(FileId(0), text);
+    let (ast, diags) = npr_dsl::parse(FileId(0), text);
     assert!(diags.is_empty(), "{diags:?}");
     let spans: Vec<&str> = ast
         .items
         .iter()
         .map(|i| match i {
-            dsl::ast::Item::Param(p) => &text[p.span.range()],
+            npr_dsl::ast::Item::Param(p) => &text[p.span.range()],
             other => panic!("{other:?}"),
         })
         .collect();

@@ -1,10 +1,10 @@
 //! Frame-time measurements for `npr bench frame` and `npr bench passes`
-//! (benchmarks, never tests; per-pass timestamps are `runner::pass_timer`).
+//! (benchmarks, never tests; per-pass timestamps are `npr_runner::pass_timer`).
 //!
 //! Ratios are taken in one run with interleaved samples, so machine load
 //! affects both sides alike.
 
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 pub struct FrameOverhead {
@@ -33,7 +33,7 @@ impl FrameOverhead {
 
 /// Block until the GPU has finished everything submitted.
 pub fn wait_idle(gpu: &Gpu) -> Result<(), RunError> {
-    runner::readback::wait_idle(&gpu.device)
+    npr_runner::readback::wait_idle(&gpu.device)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -44,11 +44,11 @@ fn median(mut v: Vec<f64>) -> f64 {
 pub fn frame_overhead(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<FrameOverhead, RunError> {
-    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
     let spec = |frame: u32| FrameSpec::animated(width, height, frame, FrameSpec::DEFAULT_FPS, 0);
     // Warm up: pipelines compiled, textures allocated.
@@ -81,11 +81,11 @@ pub fn frame_overhead(
 pub fn frame_time(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<f64, RunError> {
-    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let wait = || wait_idle(gpu);
     let spec = FrameSpec::still(width, height, 0);
     r.render(scene, &spec)?;
@@ -106,7 +106,7 @@ pub fn frame_time(
 pub fn time_interleaved(
     gpu: &Gpu,
     programs: &[&StyleProgram],
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<f64>, RunError> {
@@ -114,7 +114,7 @@ pub fn time_interleaved(
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for p in programs {
-        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+        let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
         r.render(scene, &spec)?;
         wait()?;
         renderers.push(r);
@@ -147,7 +147,7 @@ pub struct PassTime {
 pub fn pass_times(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     frames: u32,
 ) -> Result<Vec<PassTime>, RunError> {
@@ -162,7 +162,7 @@ pub fn pass_times(
 pub fn pass_times_interleaved(
     gpu: &Gpu,
     programs: &[StyleProgram],
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     (width, height): (u32, u32),
     frames: u32,
 ) -> Result<Vec<Vec<PassTime>>, RunError> {
@@ -170,13 +170,13 @@ pub fn pass_times_interleaved(
     let mut timed = Vec::new();
     for program in programs {
         let passes = program.manifest.passes.len();
-        let timer = runner::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
+        let timer = npr_runner::pass_timer::PassTimer::new(gpu, passes).ok_or_else(|| {
             RunError::Limit(format!(
                 "{} has no timestamp queries: per-pass times cannot be measured",
                 gpu.describe()
             ))
         })?;
-        let r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+        let r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
         timed.push((timer, r, vec![Vec::new(); passes]));
     }
     for frame in 0..=frames.max(1) {

@@ -9,8 +9,8 @@
 //!   `sample_ripmap`, against a pass that samples nothing.
 
 use crate::bench::{time_interleaved, wait_idle};
-use runner::artmap::{mip_chain, ripmap_atlas, FilterRunner, Level};
-use runner::{Gpu, RunError, StyleProgram};
+use npr_runner::artmap::{mip_chain, ripmap_atlas, FilterRunner, Level};
+use npr_runner::{Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// One filter on one square source size.
@@ -80,7 +80,7 @@ pub fn build_rows(
                 wait_idle(gpu)?;
                 level_ms.push(t.elapsed().as_secs_f64() * 1e3);
             }
-            let rip_levels = abi::RipmapAtlas {
+            let rip_levels = npr_abi::RipmapAtlas {
                 width: size,
                 height: size,
             }
@@ -192,7 +192,7 @@ pub struct SampleRow {
 pub fn sample_rows(
     gpu: &Gpu,
     programs: &[StyleProgram],
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     frames: u32,
 ) -> Result<Vec<SampleRow>, RunError> {

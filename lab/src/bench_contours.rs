@@ -30,7 +30,7 @@
 
 use crate::bench::wait_idle;
 use crate::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 
 /// The shared G-buffer. `vpos` and `oct` are the packed LSA layout (view
 /// positions in rgba16float, octahedral view normals in rg16float, 12 bytes
@@ -180,7 +180,7 @@ pub struct Row {
 fn min_frame_times(
     gpu: &Gpu,
     programs: &[(String, StyleProgram, bool)],
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     sizes: &[u32],
     frames: u32,
 ) -> Result<Vec<Vec<f64>>, RunError> {
@@ -190,7 +190,7 @@ fn min_frame_times(
         let spec = FrameSpec::still(size, size, 0);
         let mut row = Vec::new();
         for (_, p, _) in programs {
-            let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
+            let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, p, scene)?;
             r.render(scene, &spec)?;
             wait()?;
             row.push(r);
@@ -214,10 +214,10 @@ fn min_frame_times(
 /// The timing scene: a coarse sphere before a plane that covers every
 /// pixel. Screen-space cost depends on how many pixels, not on what they
 /// show; coarse meshes keep the (CPU-rasterized) G-buffer cheap next to it.
-pub fn timing_scene(sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, RunError> {
+pub fn timing_scene(sources: &mut npr_diag::SourceMap) -> Result<npr_runner::scene::Scene, RunError> {
     let text = "[camera]\nposition = [0.0, 0.3, 4.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"plane\", size = 40.0 }\nrotate = [90.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"sphere\", radius = 0.7, segments = 32, rings = 16 }\ntranslate = [0.2, 0.0, 0.9]\n";
     let file = sources.add("timing.toml", text);
-    runner::scene::parse_scene(text, file, std::path::Path::new(".")).map_err(RunError::User)
+    npr_runner::scene::parse_scene(text, file, std::path::Path::new(".")).map_err(RunError::User)
 }
 
 /// Measures every variant at every size (square images).
@@ -229,7 +229,7 @@ pub fn run(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<Row>, RunError> {
     let scenes = builtin_scenes();
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let loaded: Vec<_> = scenes
         .iter()
         .map(|s| s.scene(&mut sources).map_err(RunError::User))
@@ -248,7 +248,7 @@ pub fn run(
                 progress(&format!("accuracy of {name} at {size}x{size}"));
                 let (mut min_p, mut min_r, mut planes_r) = (1.0f64, 1.0f64, 1.0f64);
                 for (s, scene) in scenes.iter().zip(&loaded) {
-                    let img = runner::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
+                    let img = npr_runner::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
                     let a: Accuracy = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
                     if s.name == "parallel_planes" {
                         planes_r = a.recall;

@@ -20,7 +20,7 @@
 
 use crate::bench::{time_interleaved, wait_idle};
 use crate::contours::{accuracy, builtin_scenes, ink_mask};
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// A fill that keeps its depth, then a lines pass with `settings`, ink over white.
@@ -56,21 +56,21 @@ pub struct EdgeRow {
     pub frame_reused_s: f64,
 }
 
-fn sphere_scene(segments: u32, sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, RunError> {
+fn sphere_scene(segments: u32, sources: &mut npr_diag::SourceMap) -> Result<npr_runner::scene::Scene, RunError> {
     let text = format!(
         "[camera]\nposition = [0.0, 0.4, 3.5]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"sphere\", radius = 1.0, segments = {segments}, rings = {} }}\n",
         (segments / 2).max(2)
     );
     let file = sources.add(format!("sphere{segments}.toml"), text.clone());
-    runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
+    npr_runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
 }
 
 /// The fastest of `frames` (prepare seconds, frame seconds) with `turn` set
 /// to whether the object turns every frame.
 fn timed_frames(
     gpu: &Gpu,
-    renderer: &mut runner::Renderer,
-    scene: &mut runner::scene::Scene,
+    renderer: &mut npr_runner::Renderer,
+    scene: &mut npr_runner::scene::Scene,
     size: u32,
     turn: bool,
     frames: u32,
@@ -105,13 +105,13 @@ pub fn edge_rows(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<EdgeRow>, RunError> {
     let mut rows = Vec::new();
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     for &n in segments {
         progress(&format!("lines on a sphere of {n} segments"));
         let mut scene = sphere_scene(n, &mut sources)?;
         let mesh = scene.objects[0].mesh.clone();
-        let edges = runner::lines::edges::EdgeMesh::new(&mesh);
-        let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, silhouettes, &scene)?;
+        let edges = npr_runner::lines::edges::EdgeMesh::new(&mesh);
+        let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, silhouettes, &scene)?;
         r.render(&scene, &FrameSpec::still(size, size, 0))?;
         wait_idle(gpu)?;
         // Interleaved rounds, so load on the machine touches both alike.
@@ -220,12 +220,12 @@ pub fn classify_rows(
     frames: u32,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<ClassifyRow>, RunError> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let mut rows = Vec::new();
     for &n in segments {
         progress(&format!("silhouette classification, sphere of {n} segments"));
         let scene = sphere_scene(n, &mut sources)?;
-        let edges = runner::lines::edges::EdgeMesh::new(&scene.objects[0].mesh);
+        let edges = npr_runner::lines::edges::EdgeMesh::new(&scene.objects[0].mesh);
         let t = Instant::now();
         let gpu_classes = crate::silhouettes_gpu::GpuSilhouettes::new(gpu, &edges)?;
         wait_idle(gpu)?;
@@ -317,7 +317,7 @@ pub fn method_rows(
     frames: u32,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<MethodRow>, RunError> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let timing = crate::bench_contours::timing_scene(&mut sources)?;
     progress(&format!("timing the methods at {size}x{size}"));
     let mut programs: Vec<&StyleProgram> = methods.bases.clone();
@@ -333,7 +333,7 @@ pub fn method_rows(
         progress(&format!("accuracy of {name}"));
         let (mut min_p, mut min_r) = (1.0f64, 1.0f64);
         for (s, scene) in scenes.iter().zip(&loaded) {
-            let img = runner::render_frame(gpu, program, scene, &FrameSpec::still(size, size, 0))?;
+            let img = npr_runner::render_frame(gpu, program, scene, &FrameSpec::still(size, size, 0))?;
             let a = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
             min_p = min_p.min(a.precision);
             min_r = min_r.min(a.recall);

@@ -1,6 +1,6 @@
 //! `npr bench ops`: each MetaTexture variant's cost against a plain texture
 //! sample pass at the same resolution, next to its error from
-//! `stdlib::metrics` (a benchmark, never a test).
+//! `npr_stdlib::metrics` (a benchmark, never a test).
 //!
 //! Cost: one style per variant, the same render pass over the scene with
 //! only the texture read changed, so the ratio isolates the operator. Frames
@@ -8,13 +8,13 @@
 //! change of machine load hits every variant alike; the fastest frame is
 //! reported (the least disturbed by other work on a shared CPU).
 //!
-//! Error, on the analytic ground plane of `stdlib::metrics` (1–1000 m,
+//! Error, on the analytic ground plane of `npr_stdlib::metrics` (1–1000 m,
 //! elevations 90°–2°, azimuths 0°/35°, w = 32 px): scale = mean
 //! |log₂(screen-space period / target)| of the blend-weighted taps; anisotropy
 //! = mean |angle between the texture's screen-space axes − 90°|; contrast =
 //! |σ_M/σ_T − 1| measured with the f64 reference on a white-noise example.
 
-use stdlib::metrics::{self, Variant};
+use npr_stdlib::metrics::{self, Variant};
 
 /// One variant: the name, `let`s before the read, the read expression, and
 /// the metrics model (`None`: not modelled on the plane).

@@ -23,7 +23,7 @@ mod support;
 mod uniforms;
 
 use crate::bench::wait_idle;
-use runner::{FrameSpec, Gpu, RunError, StyleProgram, TargetImage};
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram, TargetImage};
 use std::time::Instant;
 
 /// The largest per-channel difference between the two images that counts as
@@ -129,9 +129,9 @@ fn spec((width, height): (u32, u32), frame: u32) -> FrameSpec {
 /// Draw frame `frame` with both and compare the outputs; over
 /// [`SAME_IMAGE`] is [`OverheadError::Mismatch`].
 fn compare(
-    runner: &mut runner::Renderer,
+    runner: &mut npr_runner::Renderer,
     baseline: &mut baseline::Baseline,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     frame: u32,
 ) -> Result<ImageDiff, OverheadError> {
@@ -153,11 +153,11 @@ fn compare(
 pub fn same_image(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     frames: &[u32],
 ) -> Result<ImageDiff, OverheadError> {
-    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let mut b = baseline::Baseline::new(&gpu.device, &gpu.queue, program, scene, size)?;
     let mut worst: Option<ImageDiff> = None;
     for &f in frames {
@@ -293,12 +293,12 @@ impl Overhead {
 pub fn overhead(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     frames: u32,
     warmup: u32,
 ) -> Result<Overhead, OverheadError> {
-    let mut r = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let mut b = baseline::Baseline::new(&gpu.device, &gpu.queue, program, scene, size)?;
     let diff = compare(&mut r, &mut b, scene, size, 0)?;
     let wait = || wait_idle(gpu);

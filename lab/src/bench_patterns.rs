@@ -14,8 +14,8 @@ use crate::bench::wait_idle;
 use crate::bench_reduce::median;
 use crate::patterns_f64::{ids_f64, solve, View};
 use glam::{DVec2, Mat4, Vec3};
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// The tracker, as the examples `use` it.
@@ -69,9 +69,9 @@ pub fn scene(objects: usize) -> Result<Scene, RunError> {
             -2.0 + step * ((o / n) as f64 + 0.5)
         );
     }
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("patterns-bench.toml", text.clone());
-    runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
+    npr_runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
 }
 
 /// One measured configuration.
@@ -122,10 +122,10 @@ pub fn run(
             let started = Instant::now();
             let mut scene = scene(m)?;
             let bases: Vec<Mat4> = scene.objects.iter().map(|o| o.model).collect();
-            let mut with = runner::Renderer::new(&gpu.device, &gpu.queue, &program, &scene)?;
-            let mut without = runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
+            let mut with = npr_runner::Renderer::new(&gpu.device, &gpu.queue, &program, &scene)?;
+            let mut without = npr_runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
             let mut frame = 0u32;
-            let render = |r: &mut runner::Renderer, scene: &mut Scene, k: u32| -> Result<(), RunError> {
+            let render = |r: &mut npr_runner::Renderer, scene: &mut Scene, k: u32| -> Result<(), RunError> {
                 for (o, object) in scene.objects.iter_mut().enumerate() {
                     object.model = model(bases[o], o, k);
                 }
@@ -162,10 +162,10 @@ pub fn run(
             // to 100× slower than it is.
             let drawn_samples: Vec<_> = (0..scene.objects.len())
                 .map(|o| {
-                    runner::scene::samples::stratified(
+                    npr_runner::scene::samples::stratified(
                         &scene.objects[o].mesh,
                         n as usize,
-                        runner::scene::samples::object_seed(1, o),
+                        npr_runner::scene::samples::object_seed(1, o),
                     )
                 })
                 .collect();
@@ -221,7 +221,7 @@ pub fn run(
 }
 
 /// Every object's `pattern.u`.
-fn frame_u(r: &runner::Renderer) -> Result<Vec<DVec2>, RunError> {
+fn frame_u(r: &npr_runner::Renderer) -> Result<Vec<DVec2>, RunError> {
     Ok(r.read_object_values("pattern")?
         .iter()
         .map(|v| DVec2::new(v[1][0] as f64, v[1][1] as f64))

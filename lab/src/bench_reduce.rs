@@ -15,8 +15,8 @@
 
 use crate::bench::wait_idle;
 use glam::{DVec3, DVec4};
-use runner::scene::{Mesh, Scene};
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::scene::{Mesh, Scene};
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -87,9 +87,9 @@ fn point(i: u64) -> [f32; 3] {
 
 /// `elements` points split evenly over `objects` objects without triangles.
 pub fn scene(elements: usize, objects: usize) -> Result<Scene, RunError> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("reduce-bench.toml", SCENE.to_string());
-    let mut scene = runner::scene::parse_scene(SCENE, file, std::path::Path::new(".")).map_err(RunError::User)?;
+    let mut scene = npr_runner::scene::parse_scene(SCENE, file, std::path::Path::new(".")).map_err(RunError::User)?;
     let template = scene
         .objects
         .pop()
@@ -251,7 +251,7 @@ pub(crate) fn timed(f: impl FnOnce() -> Result<(), RunError>) -> Result<f64, Run
 /// four interleaved round robin for `frames` rounds.
 pub(crate) fn against_copy(
     gpu: &Gpu,
-    (with, without): (&mut runner::Renderer, &mut runner::Renderer),
+    (with, without): (&mut npr_runner::Renderer, &mut npr_runner::Renderer),
     (scene, spec): (&Scene, &FrameSpec),
     copy: &CopyKernel,
     frames: u32,
@@ -294,8 +294,8 @@ pub fn run(
             let started = Instant::now();
             let scene = scene(e, o)?;
             let spec = FrameSpec::still(SIZE, SIZE, 0);
-            let mut with = runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
-            let mut without = runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
+            let mut with = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
+            let mut without = npr_runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
             let copy = CopyKernel::new(gpu, 3 * (e / o) * o);
             let (reduce_ms, copy_ms) = against_copy(gpu, (&mut with, &mut without), (&scene, &spec), &copy, frames)?;
             // Accuracy: one frame's sums against f64.

@@ -15,8 +15,8 @@
 //! (wall clock: lavapipe's timestamps do not bracket compute work).
 
 use crate::bench_reduce::{against_copy, CopyKernel};
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// The benchmarked style.
@@ -63,9 +63,9 @@ pub fn scene(objects: usize) -> Result<Scene, RunError> {
             -2.0 + step * (j as f64 + 0.5)
         );
     }
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("pixels-bench.toml", text.clone());
-    runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
+    npr_runner::scene::parse_scene(&text, file, std::path::Path::new(".")).map_err(RunError::User)
 }
 
 /// One measured configuration.
@@ -89,7 +89,7 @@ pub struct Row {
 
 /// Per object (count, Σx, Σy) from the read-back ID image, in f64; and the
 /// most distinct objects in a tile.
-fn cpu_reduction(ids: &runner::readback::TargetImage, objects: usize) -> (Vec<(f64, f64, f64)>, usize) {
+fn cpu_reduction(ids: &npr_runner::readback::TargetImage, objects: usize) -> (Vec<(f64, f64, f64)>, usize) {
     let mut sums = vec![(0.0, 0.0, 0.0); objects];
     let mut tiles: std::collections::BTreeMap<(u32, u32), std::collections::BTreeSet<usize>> = Default::default();
     for y in 0..ids.height {
@@ -129,8 +129,8 @@ pub fn run(
             let started = Instant::now();
             let scene = scene(o)?;
             let spec = FrameSpec::still(size, size, 0);
-            let mut with = runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
-            let mut without = runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
+            let mut with = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, &scene)?;
+            let mut without = npr_runner::Renderer::new(&gpu.device, &gpu.queue, null, &scene)?;
             let copy = CopyKernel::new(gpu, (size * size) as usize);
             let (reduce_ms, copy_ms) = against_copy(gpu, (&mut with, &mut without), (&scene, &spec), &copy, frames)?;
             let values = with.read_object_values("cover")?;

@@ -7,8 +7,8 @@
 
 use crate::bench::wait_idle;
 use crate::bench_reduce::median;
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// One style's median frame time and its ratio to the baseline's.
@@ -29,16 +29,16 @@ pub fn run(
     size: (u32, u32),
     (frames, warmup): (u32, u32),
 ) -> Result<Vec<Row>, RunError> {
-    let mut base = runner::Renderer::new(&gpu.device, &gpu.queue, baseline, scene)?;
+    let mut base = npr_runner::Renderer::new(&gpu.device, &gpu.queue, baseline, scene)?;
     let mut renderers = styles
         .iter()
-        .map(|(_, p)| runner::Renderer::new(&gpu.device, &gpu.queue, p, scene))
+        .map(|(_, p)| npr_runner::Renderer::new(&gpu.device, &gpu.queue, p, scene))
         .collect::<Result<Vec<_>, _>>()?;
     let mut times = vec![Vec::new(); styles.len()];
     let mut base_times = Vec::new();
     for k in 0..warmup + frames {
         let spec = FrameSpec::animated(size.0, size.1, k, FrameSpec::DEFAULT_FPS, 0);
-        let timed = |r: &mut runner::Renderer| -> Result<f64, RunError> {
+        let timed = |r: &mut npr_runner::Renderer| -> Result<f64, RunError> {
             let t = Instant::now();
             r.render(scene, &spec)?;
             wait_idle(gpu)?;

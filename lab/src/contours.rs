@@ -312,7 +312,7 @@ impl AnalyticScene {
     pub fn to_toml(&self) -> String {
         let v = |a: [f64; 3]| format!("[{:?}, {:?}, {:?}]", a[0], a[1], a[2]);
         let mut s = format!(
-            "# Analytic contour scene `{}`, written by lab::contours::AnalyticScene::to_toml\n# (ground truth: the same scene ray-cast in f64). Do not edit by hand.\n[camera]\nposition = {}\ntarget = {}\nfov = {:?}\nnear = 0.1\nfar = 100.0\n\n[light]\ndirection = [0.5, 1.0, 0.7]\n",
+            "# Analytic contour scene `{}`, written by npr_lab::contours::AnalyticScene::to_toml\n# (ground truth: the same scene ray-cast in f64). Do not edit by hand.\n[camera]\nposition = {}\ntarget = {}\nfov = {:?}\nnear = 0.1\nfar = 100.0\n\n[light]\ndirection = [0.5, 1.0, 0.7]\n",
             self.name,
             v(self.eye),
             v(self.target),
@@ -340,10 +340,13 @@ impl AnalyticScene {
     }
 
     /// The scene for the runner (parsed from [`AnalyticScene::to_toml`]).
-    pub fn scene(&self, sources: &mut diag::SourceMap) -> Result<runner::scene::Scene, Vec<diag::Diagnostic>> {
+    pub fn scene(
+        &self,
+        sources: &mut npr_diag::SourceMap,
+    ) -> Result<npr_runner::scene::Scene, Vec<npr_diag::Diagnostic>> {
         let text = self.to_toml();
         let file = sources.add(format!("{}.toml", self.name), text.clone());
-        runner::scene::parse_scene(&text, file, std::path::Path::new("."))
+        npr_runner::scene::parse_scene(&text, file, std::path::Path::new("."))
     }
 
     /// The exact feature pixels of a `width`×`height` render.
@@ -518,7 +521,7 @@ pub fn accuracy(predicted: &Mask, truth: &Mask, tolerance: u32) -> Accuracy {
 
 /// The line pixels of a rendered ink-on-paper image: red below `level`
 /// (the example styles mix a light paper with a dark ink by the line value).
-pub fn ink_mask(image: &runner::TargetImage, level: f32) -> Mask {
+pub fn ink_mask(image: &npr_runner::TargetImage, level: f32) -> Mask {
     Mask::from_fn(image.width, image.height, |x, y| image.texel(x, y)[0] < level)
 }
 

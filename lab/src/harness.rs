@@ -38,7 +38,7 @@ pub fn compare_with_golden_file(actual: &image::RgbaImage, golden: &Path, tol: T
     let expected = match image::open(golden) {
         Ok(img) if !update => img.to_rgba8(),
         _ if update => {
-            let ok = runner::output::write_png8(actual, golden).is_ok();
+            let ok = npr_runner::output::write_png8(actual, golden).is_ok();
             return Comparison {
                 passed: ok,
                 max_abs: 0,
@@ -207,12 +207,12 @@ fn write_failure(
         .unwrap_or_else(|| "image".into());
     let actual_path = dir.join(format!("{stem}.actual.png"));
     let diff_path = dir.join(format!("{stem}.diff.png"));
-    runner::output::write_png8(actual, &actual_path).ok()?;
+    npr_runner::output::write_png8(actual, &actual_path).ok()?;
     let diff = match expected {
         Some(e) => diff_image(actual, e),
         None => actual.clone(),
     };
-    runner::output::write_png8(&diff, &diff_path).ok()?;
+    npr_runner::output::write_png8(&diff, &diff_path).ok()?;
     Some((actual_path, diff_path))
 }
 

@@ -11,7 +11,7 @@
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an
 //!   independent hand-written wgpu program drawing the same WGSL passes.
 //! - [`bench_host`]: `npr bench host`, a host's CPU time per frame through
-//!   `runner::embed` against a minimal wgpu program.
+//!   `npr_runner::embed` against a minimal wgpu program.
 //! - [`bench_contours`]: `npr bench contours`, contour methods' cost and accuracy.
 //! - [`fit`]: least-squares line and log–log power law of a cost against a size.
 //! - [`bench_lines`]: `npr bench lines`, lines passes' cost against edges and against LSA contours.

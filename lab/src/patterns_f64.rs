@@ -2,13 +2,13 @@
 //! (Breslav et al. 2007 §3.1–3.2) in f64 on the CPU, for the tests and
 //! `npr bench patterns`: the same stratified samples, projected with the
 //! same camera, weighted from read-back ID images with the same window and
-//! tangent-disc areas, and solved with `stdlib::reference::similarity`.
+//! tangent-disc areas, and solved with `npr_stdlib::reference::similarity`.
 
 use glam::{DMat4, DVec2, DVec3};
-use runner::readback::TargetImage;
-use runner::scene::samples::Samples;
-use runner::scene::Mesh;
-use stdlib::reference::{id_share, similarity, ImageF64};
+use npr_runner::readback::TargetImage;
+use npr_runner::scene::samples::Samples;
+use npr_runner::scene::Mesh;
+use npr_stdlib::reference::{id_share, similarity, ImageF64};
 
 /// The r channel of a read-back ID image, in f64.
 pub fn ids_f64(t: &TargetImage) -> ImageF64 {
@@ -17,7 +17,7 @@ pub fn ids_f64(t: &TargetImage) -> ImageF64 {
 
 /// A per-vertex attribute (positions, normals) at sample `s`, in f64: the
 /// barycentric mix of its triangle's three values.
-pub fn at_sample(attribute: &[[f32; 3]], s: &runner::scene::samples::Sample) -> DVec3 {
+pub fn at_sample(attribute: &[[f32; 3]], s: &npr_runner::scene::samples::Sample) -> DVec3 {
     let w = [1.0 - s.b1 as f64 - s.b2 as f64, s.b1 as f64, s.b2 as f64];
     s.triangle
         .iter()

@@ -13,8 +13,8 @@
 //! and ⌈edges / 32⌉ words come back.
 
 use glam::DVec3;
-use runner::lines::edges::EdgeMesh;
-use runner::{Gpu, RunError};
+use npr_runner::lines::edges::EdgeMesh;
+use npr_runner::{Gpu, RunError};
 
 const SHADER: &str = include_str!("silhouettes_gpu/classify.wgsl");
 const WORKGROUP: u32 = 64;

@@ -19,8 +19,8 @@
 //! Means are over covered pixels and frames 1….
 
 use crate::bench::wait_idle;
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, RunError, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
 /// Keeps last frame's pattern frame per object, and draws each pixel's
@@ -166,15 +166,15 @@ pub struct Sliding {
 
 /// Parses a motion's scene; relative mesh paths resolve against `base`.
 pub fn scene(text: &str, base: &std::path::Path) -> Result<Scene, RunError> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("sliding.toml", text.to_string());
-    runner::scene::parse_scene(text, file, base).map_err(RunError::User)
+    npr_runner::scene::parse_scene(text, file, base).map_err(RunError::User)
 }
 
 /// Renders [`FRAMES`] + 1 frames of `scene` with `program` (a [`style`])
 /// and averages the sliding images of frames 1…[`FRAMES`].
 pub fn measure(gpu: &Gpu, program: &StyleProgram, scene: &Scene) -> Result<Sliding, RunError> {
-    let mut renderer = runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut renderer = npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
     let (mut tracked, mut fixed, mut covered) = (0.0f64, 0.0f64, 0.0f64);
     let mut times = Vec::new();
     for k in 0..=FRAMES {

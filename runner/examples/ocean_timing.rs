@@ -3,9 +3,9 @@
 //! against summing sines directly (`Spectrum::sample`, the f64 reference),
 //! and the whole mesh (`ocean_mesh`). Prints milliseconds per call.
 //!
-//! `cargo run -p runner --example ocean_timing`
+//! `cargo run -p npr-runner --example ocean_timing`
 
-use runner::scene::ocean::{ocean_mesh, Ocean, Spectrum};
+use npr_runner::scene::ocean::{ocean_mesh, Ocean, Spectrum};
 use std::time::Instant;
 
 fn millis_per_call(calls: u32, mut f: impl FnMut(u32)) -> f64 {

@@ -1,11 +1,11 @@
 //! Parameter values at run time: keyframe interpolation for animated
 //! parameters, and the byte layout of the style and per-object uniform
 //! blocks (one `vec4<f32>` slot per parameter, a gradient's several: see
-//! the manifest and `abi::gradient`).
+//! the manifest and `npr_abi::gradient`).
 
 use crate::scene::Object;
-use abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
-use diag::{codes, Diagnostic};
+use npr_abi::manifest::{Manifest, ParamBinding, ParamManifest, OBJECT_PARAMS_OFFSET};
+use npr_diag::{codes, Diagnostic};
 
 /// Where `time_s` falls among `p`'s keyframes: the values before and
 /// after it and the eased weight `u` of the second (0 at a key, before the
@@ -120,8 +120,8 @@ fn write_style_param(p: &ParamManifest, time_s: f64, height: u32, out: &mut [u8]
     let Some(off) = p.offset else { return };
     // Computed in place, component by component: a frame allocates nothing here.
     let pair = keyframe_pair(p, time_s);
-    // One vec4 per slot; a gradient has several (`abi::gradient`).
-    let slots = abi::gradient::slots_of(&p.ty);
+    // One vec4 per slot; a gradient has several (`npr_abi::gradient`).
+    let slots = npr_abi::gradient::slots_of(&p.ty);
     for k in 0..slots {
         let components = (k * 4..).map_while(|j| interpolated(pair, j));
         let bytes: [u8; 16] = bytemuck::cast(slot(components.map(|x| of_height(p, x, height))));

@@ -10,7 +10,7 @@
 
 use crate::artmap_cache::{self, Origin};
 use crate::{FrameSpec, Renderer, RunError};
-use abi::ArtmapSpec;
+use npr_abi::ArtmapSpec;
 use std::sync::Arc;
 
 /// One level: linear RGBA texels, row by row.
@@ -75,21 +75,21 @@ pub fn halve_axis(level: &Level, axis: usize) -> Level {
 
 /// A rip-map (§4.2, Fig. 7–8): every level (i, j) of the source halved i
 /// times along x and j times along y, each filtered (`frame` = i + 16 j),
-/// packed into one atlas as [`abi::RipmapAtlas`] lays it out.
+/// packed into one atlas as [`npr_abi::RipmapAtlas`] lays it out.
 pub fn ripmap_atlas(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    program: &abi::StyleProgram,
+    program: &npr_abi::StyleProgram,
     base: Level,
 ) -> Result<Level, RunError> {
-    let layout = abi::RipmapAtlas {
+    let layout = npr_abi::RipmapAtlas {
         width: base.width,
         height: base.height,
     };
     let (aw, ah) = layout.atlas_size();
     if aw > crate::textures::MAX_TEXTURE_SIZE || ah > crate::textures::MAX_TEXTURE_SIZE {
-        return Err(RunError::User(vec![diag::Diagnostic::error(
-            diag::codes::LIMIT_EXCEEDED,
+        return Err(RunError::User(vec![npr_diag::Diagnostic::error(
+            npr_diag::codes::LIMIT_EXCEEDED,
             format!(
                 "a rip-map of a {}x{} image needs a {aw}x{ah} atlas, over the {} texel limit",
                 base.width,
@@ -103,8 +103,8 @@ pub fn ripmap_atlas(
     }
     let mut atlas = vec![[0.0f32; 4]; (aw * ah) as usize];
     let mut runner = FilterRunner::new(device, queue, program);
-    let columns = abi::RipmapAtlas::levels(base.width);
-    let rows = abi::RipmapAtlas::levels(base.height);
+    let columns = npr_abi::RipmapAtlas::levels(base.width);
+    let rows = npr_abi::RipmapAtlas::levels(base.height);
     let mut row_start = base;
     for j in 0..rows {
         let mut level = row_start.clone();
@@ -144,7 +144,7 @@ pub fn build(
 ) -> Result<(Arc<Vec<Level>>, ArtmapBuild), RunError> {
     let start = std::time::Instant::now();
     let count = if spec.rip {
-        abi::RipmapAtlas {
+        npr_abi::RipmapAtlas {
             width: base.width,
             height: base.height,
         }
@@ -186,12 +186,16 @@ pub fn build(
 pub struct FilterRunner<'d> {
     device: &'d wgpu::Device,
     queue: &'d wgpu::Queue,
-    program: &'d abi::StyleProgram,
+    program: &'d npr_abi::StyleProgram,
     renderer: Option<Renderer>,
 }
 
 impl<'d> FilterRunner<'d> {
-    pub fn new(device: &'d wgpu::Device, queue: &'d wgpu::Queue, program: &'d abi::StyleProgram) -> FilterRunner<'d> {
+    pub fn new(
+        device: &'d wgpu::Device,
+        queue: &'d wgpu::Queue,
+        program: &'d npr_abi::StyleProgram,
+    ) -> FilterRunner<'d> {
         FilterRunner {
             device,
             queue,
@@ -221,7 +225,7 @@ impl<'d> FilterRunner<'d> {
 pub fn filter_level(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    program: &abi::StyleProgram,
+    program: &npr_abi::StyleProgram,
     level: &Level,
     index: u32,
 ) -> Result<Level, RunError> {
@@ -242,8 +246,8 @@ fn filtered_output(r: &mut Renderer, level: &Level, index: u32) -> Result<Level,
     )?;
     let out = r.read_output()?;
     if (out.width, out.height) != (level.width, level.height) {
-        return Err(RunError::User(vec![diag::Diagnostic::error(
-            diag::codes::BAD_FILTER,
+        return Err(RunError::User(vec![npr_diag::Diagnostic::error(
+            npr_diag::codes::BAD_FILTER,
             format!(
                 "the filter's output is {}x{}, not the level's {}x{}",
                 out.width, out.height, level.width, level.height

@@ -152,7 +152,7 @@ fn decode(bytes: &[u8]) -> Option<Vec<Level>> {
         return None;
     }
     let count = u32_at(take(4)?);
-    if count == 0 || count > abi::ArtmapSpec::MAX_LEVELS {
+    if count == 0 || count > npr_abi::ArtmapSpec::MAX_LEVELS {
         // A rip-map is one atlas level; a mip chain at most MAX_LEVELS.
         return None;
     }

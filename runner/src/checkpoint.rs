@@ -14,7 +14,7 @@
 
 use crate::exec::{RendererState, StateBlock, StateKind};
 use crate::scene::Scene;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -86,9 +86,9 @@ pub fn scene_hash(scene: &Scene) -> String {
     let mut s = scene.clone();
     for o in &mut s.objects {
         o.param_spans.clear();
-        o.mesh_span = diag::Span::default();
+        o.mesh_span = npr_diag::Span::default();
         for t in o.textures.values_mut() {
-            t.span = diag::Span::default();
+            t.span = npr_diag::Span::default();
             t.resolved = std::path::PathBuf::new();
         }
     }

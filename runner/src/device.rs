@@ -32,13 +32,13 @@ pub enum DeviceError {
     },
     /// The adapter lacks a feature or limit the style needs (E0510 each).
     #[error("{}", .0.iter().map(|d| d.message.clone()).collect::<Vec<_>>().join("; "))]
-    LacksNeeds(Vec<diag::Diagnostic>),
+    LacksNeeds(Vec<npr_diag::Diagnostic>),
 }
 
 impl DeviceError {
     /// As diagnostics: E0510 per need the adapter lacks; otherwise one
     /// with its code (E0505), the install hint as its help.
-    pub fn diagnostics(&self) -> Vec<diag::Diagnostic> {
+    pub fn diagnostics(&self) -> Vec<npr_diag::Diagnostic> {
         match self {
             DeviceError::LacksNeeds(d) => d.clone(),
             _ => vec![self.to_diagnostic()],
@@ -46,20 +46,23 @@ impl DeviceError {
     }
 
     /// As one diagnostic: [`DeviceError::diagnostics`]' first.
-    pub fn to_diagnostic(&self) -> diag::Diagnostic {
+    pub fn to_diagnostic(&self) -> npr_diag::Diagnostic {
         match self {
             DeviceError::LacksNeeds(d) => d
                 .first()
                 .cloned()
-                .unwrap_or_else(|| diag::Diagnostic::error(diag::codes::DEVICE_LACKS_NEED, self.to_string())),
-            DeviceError::NoAdapter => {
-                diag::Diagnostic::error(diag::codes::NO_DEVICE, "no GPU adapter found (tried Vulkan, then GL)")
-                    .with_help(
-                        "on Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install -y \
+                .unwrap_or_else(|| npr_diag::Diagnostic::error(npr_diag::codes::DEVICE_LACKS_NEED, self.to_string())),
+            DeviceError::NoAdapter => npr_diag::Diagnostic::error(
+                npr_diag::codes::NO_DEVICE,
+                "no GPU adapter found (tried Vulkan, then GL)",
+            )
+            .with_help(
+                "on Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install -y \
                  mesa-vulkan-drivers` (or run ./setup.sh), then check with `vulkaninfo --summary`",
-                    )
+            ),
+            DeviceError::RequestDevice { .. } => {
+                npr_diag::Diagnostic::error(npr_diag::codes::NO_DEVICE, self.to_string())
             }
-            DeviceError::RequestDevice { .. } => diag::Diagnostic::error(diag::codes::NO_DEVICE, self.to_string()),
         }
     }
 }
@@ -88,7 +91,7 @@ impl Gpu {
     /// A headless device with exactly what `manifest` needs beyond WebGPU's
     /// defaults (its `device_needs`), preferring Vulkan, then GL. An
     /// adapter without a need is E0510, naming it and its pass.
-    pub fn for_style(manifest: &abi::Manifest) -> Result<Gpu, DeviceError> {
+    pub fn for_style(manifest: &npr_abi::Manifest) -> Result<Gpu, DeviceError> {
         Self::create(|adapter| {
             let info = adapter.get_info();
             let lacking = crate::device_needs::unmet(

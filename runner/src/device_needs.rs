@@ -4,7 +4,7 @@
 //! that refuses a device or adapter without one (E0510) before any
 //! pipeline is built, naming the need and the pass that has it.
 
-use abi::manifest::{DeviceNeed, Feature, Limit, Manifest};
+use npr_abi::manifest::{DeviceNeed, Feature, Limit, Manifest};
 
 /// wgpu's flag for a WebGPU feature.
 pub fn wgpu_feature(feature: Feature) -> wgpu::Features {
@@ -84,7 +84,7 @@ pub fn unmet(
     features: wgpu::Features,
     limits: &wgpu::Limits,
     what: &str,
-) -> Vec<diag::Diagnostic> {
+) -> Vec<npr_diag::Diagnostic> {
     manifest
         .every_device_need()
         .into_iter()
@@ -99,8 +99,8 @@ pub fn unmet(
                 }
             }?;
             Some(
-                diag::Diagnostic::error(
-                    diag::codes::DEVICE_LACKS_NEED,
+                npr_diag::Diagnostic::error(
+                    npr_diag::codes::DEVICE_LACKS_NEED,
                     format!(
                         "pass `{}`{} needs {}; {what} {why}",
                         need.pass(),
@@ -119,7 +119,7 @@ pub fn unmet(
 /// What to do about a need the device does not meet.
 fn help(need: &DeviceNeed) -> String {
     let ask = "a host that creates its own device must request the manifest's `device_needs` \
-               (`runner::Gpu::for_style` does)";
+               (`npr_runner::Gpu::for_style` does)";
     match need {
         DeviceNeed::Feature { .. } => format!("run it on an adapter with the feature; {ask}"),
         DeviceNeed::Limit { limit, .. } => format!(

@@ -13,8 +13,8 @@
 //! lossless (`Encoding::FAST_LOSSLESS`), and the file is written atomically.
 
 use crate::readback::TargetImage;
-use abi::Format;
 use exr::prelude::*;
+use npr_abi::Format;
 use std::path::Path;
 
 /// The channel names of a format with `channels` channels.

@@ -7,7 +7,7 @@
 //! - out of memory is [`RunError::OutOfMemory`] (E0508, exit 1) with a hint;
 //! - a validation or internal error is [`RunError::Internal`] (E9001): the
 //!   compiler's WGSL is validated by naga and its manifest by
-//!   `abi::validate`, so wgpu refusing them is a bug in npr;
+//!   `npr_abi::validate`, so wgpu refusing them is a bug in npr;
 //! - a lost device (a driver reset, `Device::destroy`) is not reported
 //!   through scopes at all (wgpu drops those errors and signals the loss to
 //!   the device-lost callback), so [`DeviceWatch`], which `Gpu::headless`
@@ -20,7 +20,7 @@
 
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::Format;
+use npr_abi::Format;
 use std::sync::{Arc, Mutex};
 
 /// Run `work` inside out-of-memory, validation and internal error scopes;
@@ -117,7 +117,7 @@ pub fn check_target_formats(
     device: &wgpu::Device,
     targets: &[(String, Format)],
     usage: wgpu::TextureUsages,
-) -> Vec<diag::Diagnostic> {
+) -> Vec<npr_diag::Diagnostic> {
     let mut checked: Vec<Format> = Vec::new();
     let mut out = Vec::new();
     for (name, format) in targets {
@@ -142,8 +142,8 @@ pub fn check_target_formats(
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
             out.push(
-                diag::Diagnostic::error(
-                    diag::codes::LIMIT_EXCEEDED,
+                npr_diag::Diagnostic::error(
+                    npr_diag::codes::LIMIT_EXCEEDED,
                     format!(
                         "this GPU adapter cannot render to `{}` targets (target `{name}`)",
                         format.name()

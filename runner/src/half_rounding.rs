@@ -1,5 +1,5 @@
 //! Measures how the device rounds an f32 stored into a 16-bit float target
-//! (`abi::formats::HalfRounding`). Vulkan leaves it to the implementation:
+//! (`npr_abi::formats::HalfRounding`). Vulkan leaves it to the implementation:
 //! to nearest even or toward zero (lavapipe truncates). A pass fused by the
 //! compiler's `auto` schedule repeats the rounding of the target it skipped,
 //! so it must round as this device's stores do, or it would differ from the
@@ -14,7 +14,7 @@
 
 use crate::gpu_count::{Create, CreateView};
 use crate::RunError;
-use abi::formats::{Format, HalfRounding};
+use npr_abi::formats::{Format, HalfRounding};
 
 /// Probe values, each an exact f32 (four per texel).
 const PROBES: [f32; 20] = [
@@ -64,8 +64,8 @@ pub fn measure(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HalfRoundin
             .zip(&stored)
             .map(|(x, s)| format!("{x:e} → {s:e}"))
             .collect();
-        RunError::User(vec![diag::Diagnostic::error(
-            diag::codes::LIMIT_EXCEEDED,
+        RunError::User(vec![npr_diag::Diagnostic::error(
+            npr_diag::codes::LIMIT_EXCEEDED,
             format!(
                 "this GPU rounds values stored into 16-bit float targets neither to nearest nor toward zero ({}), \
                  so a pass fused into its reader cannot repeat the store",

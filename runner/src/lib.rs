@@ -43,15 +43,15 @@ pub mod texgen;
 pub mod texture_file;
 pub mod textures;
 
-pub use abi::StyleProgram;
 pub use device::{DeviceError, Gpu};
 pub use exec::{
     check_scene, check_texture_bindings, scaled_size, scene_warnings, wgpu_format, FrameSpec, Renderer, MAX_OUTPUT_SIZE,
 };
 pub use gpu_error::DeviceWatch;
+pub use npr_abi::StyleProgram;
 pub use readback::TargetImage;
 
-use diag::Diagnostic;
+use npr_diag::Diagnostic;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -85,32 +85,32 @@ impl RunError {
         match self {
             RunError::User(d) => d.clone(),
             RunError::Textures(d) => d.iter().map(|(_, d)| d.clone()).collect(),
-            RunError::Limit(m) => vec![Diagnostic::error(diag::codes::LIMIT_EXCEEDED, m.clone())
+            RunError::Limit(m) => vec![Diagnostic::error(npr_diag::codes::LIMIT_EXCEEDED, m.clone())
                 .with_help(format!(
                     "the largest image is {0}x{0} (docs/LIMITS.md), and a GPU adapter may allow less",
                     MAX_OUTPUT_SIZE
                 ))],
             RunError::Device(e) => e.diagnostics(),
-            RunError::OutOfMemory(m) => vec![Diagnostic::error(diag::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
+            RunError::OutOfMemory(m) => vec![Diagnostic::error(npr_diag::codes::GPU_OUT_OF_MEMORY, m.clone()).with_help(
                 "render at a smaller --size, give wide targets a narrower format (rgba16float instead of \
                  rgba32float) or a smaller `scale`, or use a GPU with more memory",
             )],
             RunError::DeviceLost(m) => vec![Diagnostic::error(
-                diag::codes::DEVICE_LOST,
+                npr_diag::codes::DEVICE_LOST,
                 format!("the GPU device was lost: {m}"),
             )
             .with_help("the driver reset or the GPU went away; run the command again (`npr studio` makes a new device by itself)")],
             RunError::Internal(m) => {
-                vec![Diagnostic::error(diag::codes::INTERNAL, m.clone())
+                vec![Diagnostic::error(npr_diag::codes::INTERNAL, m.clone())
                     .with_help("this is a bug in npr; please report it")]
             }
         }
     }
 
     /// Texture errors pointed at `spans[index]` (the style's `image("…")`
-    /// per manifest texture, `compiler::Compiled::texture_spans`); other
+    /// per manifest texture, `npr_compiler::Compiled::texture_spans`); other
     /// errors unchanged.
-    pub fn at_texture_spans(self, spans: &[diag::Span]) -> RunError {
+    pub fn at_texture_spans(self, spans: &[npr_diag::Span]) -> RunError {
         match self {
             RunError::Textures(d) => RunError::User(
                 d.into_iter()

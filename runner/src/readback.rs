@@ -2,7 +2,7 @@
 
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::Format;
+use npr_abi::Format;
 
 /// A target read back from the GPU, rows tightly packed.
 #[derive(Debug, Clone)]

@@ -26,7 +26,7 @@ pub struct ScheduledFrame {
 }
 
 /// How many frames [`schedule`] renders for `request`, without making the
-/// list: a caller checks it against `diag::limits::MAX_FRAMES` first, since
+/// list: a caller checks it against `npr_diag::limits::MAX_FRAMES` first, since
 /// `--time 1e9` of a path-dependent style would otherwise allocate and
 /// replay billions of frames.
 pub fn frame_count(request: FrameRequest, fps: f64, path_dependent: bool) -> u64 {

@@ -15,7 +15,7 @@ pub struct NoiseImage {
 }
 
 /// The noise parameters are the ABI's (a manifest's `noise` texture source).
-pub use abi::NoiseSpec;
+pub use npr_abi::NoiseSpec;
 
 pub fn generate(spec: &NoiseSpec) -> NoiseImage {
     let size = spec.size.max(1);

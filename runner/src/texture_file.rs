@@ -6,10 +6,10 @@
 //! Both go through [`header`], the one definition of what a readable
 //! texture file is; [`TextureFileError::to_diagnostic`] is the one wording.
 
-use abi::manifest::{Manifest, TextureSourceManifest};
-use diag::limits::MAX_TEXTURE_SIZE;
-use diag::{codes, Diagnostic};
 use image::ImageReader;
+use npr_abi::manifest::{Manifest, TextureSourceManifest};
+use npr_diag::limits::MAX_TEXTURE_SIZE;
+use npr_diag::{codes, Diagnostic};
 use std::io::BufReader;
 use std::path::Path;
 

@@ -7,8 +7,8 @@ use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
-use abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
-use diag::Diagnostic;
+use npr_abi::manifest::{Manifest, TextureManifest, TextureSourceManifest};
+use npr_diag::Diagnostic;
 use std::collections::{BTreeMap, HashMap};
 
 #[derive(Clone)]
@@ -18,9 +18,9 @@ pub struct GpuTexture {
 }
 
 /// Largest texture file npr loads (the wgpu 2D limit on lavapipe and most
-/// GPUs), from `diag::limits`, where every limit is listed; checked by
+/// GPUs), from `npr_diag::limits`, where every limit is listed; checked by
 /// `texture_file` from the file's header.
-pub use diag::limits::MAX_TEXTURE_SIZE;
+pub use npr_diag::limits::MAX_TEXTURE_SIZE;
 
 /// Every declared texture of `m`, and what building its art-maps did.
 /// `input` is the level a filter style runs on (its `filter_input()`).
@@ -204,8 +204,8 @@ pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u3
 /// The texels of a `halftone_table(...)`, built for the edge as the shader
 /// will read it back from the half-float texture (so that table and shader
 /// use the same edge to the bit), in the red channel.
-fn halftone_table_texels(spec: &abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u32, u32) {
-    use abi::halftone::table::{HalftoneTable, ROWS, TONES};
+fn halftone_table_texels(spec: &npr_abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u32, u32) {
+    use npr_abi::halftone::table::{HalftoneTable, ROWS, TONES};
     let edge = half::f16::from_f32(spec.edge).to_f64();
     let table = HalftoneTable::build(edge, spec.corrected);
     let texels = table.texels().into_iter().map(|t| [t, 0.0, 0.0, 1.0]).collect();
@@ -264,7 +264,7 @@ fn load_one(
             let (levels, build) = crate::artmap::build(device, queue, &t.name, spec, &bytes, base).map_err(|e| {
                 let first = e.diagnostics().into_iter().next().unwrap_or_else(|| {
                     Diagnostic::error(
-                        diag::codes::INTERNAL,
+                        npr_diag::codes::INTERNAL,
                         format!("art-map `{}` failed with no diagnostic", t.name),
                     )
                 });
@@ -280,7 +280,7 @@ fn load_one(
         TextureSourceManifest::FilterInput => {
             let level = input.ok_or_else(|| {
                 Diagnostic::error(
-                    diag::codes::INTERNAL,
+                    npr_diag::codes::INTERNAL,
                     format!("texture `{}` is a filter's input, but no level was given", t.name),
                 )
             })?;

@@ -2,7 +2,7 @@
 //! (buffer, texture, view, sampler, bind group, layout, pipeline, shader,
 //! render bundle)
 //! unless the size, the style or the set of objects changes: counted by
-//! `runner::gpu_count`, through which the runner makes every one (its
+//! `npr_runner::gpu_count`, through which the runner makes every one (its
 //! `clippy.toml` refuses the uncounted wgpu calls). The frames move the
 //! objects and the camera, change per-object and style params and advance
 //! the time; then an object is added (the scene-level resources made
@@ -17,10 +17,10 @@
 mod common;
 use common::{compile, gpu, host_target, read_host, render_frame};
 
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::gpu_count::created_on_this_thread;
-use runner::scene::ocean::Ocean;
-use runner::scene::{primitives, Camera, Primitive};
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::gpu_count::created_on_this_thread;
+use npr_runner::scene::ocean::Ocean;
+use npr_runner::scene::{primitives, Camera, Primitive};
 use std::path::Path;
 
 fn target(width: u32, height: u32) -> wgpu::Texture {
@@ -245,7 +245,7 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../examples/scenes")
         .join(scene_file);
-    let scene = runner::scene::load_scene(&path, &mut diag::SourceMap::new()).expect("scene");
+    let scene = npr_runner::scene::load_scene(&path, &mut npr_diag::SourceMap::new()).expect("scene");
     let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program.clone()).expect("runtime");
     let instances = runtime.add_scene(&scene);
     assert_eq!(instances.len(), scene.objects.len());
@@ -269,8 +269,9 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
     )
     .unwrap_or_else(|e| panic!("{:?}", e.diagnostics()));
     let presented = read_host(&texture);
-    let direct = runner::render_frame(gpu(), &program, &scene, &runner::FrameSpec::still(64, 48, 0)).expect("render");
-    assert_eq!(direct.format, abi::Format::Rgba8unorm);
+    let direct =
+        npr_runner::render_frame(gpu(), &program, &scene, &npr_runner::FrameSpec::still(64, 48, 0)).expect("render");
+    assert_eq!(direct.format, npr_abi::Format::Rgba8unorm);
     assert_eq!(
         presented.bytes, direct.bytes,
         "the host's view differs from npr render's output"

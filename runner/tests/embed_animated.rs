@@ -8,7 +8,7 @@
 //! divides the cow in code (`StyleRuntime::add_patches`) draws the same.
 //! Each comparison fails without what the runtime carries (checked by
 //! leaving it out when this was written). The runtime's frames after the
-//! first create no GPU object (`runner::gpu_count`).
+//! first create no GPU object (`npr_runner::gpu_count`).
 //!
 //! The reference is one `Renderer` (what `npr render` drives) rendering the
 //! same frames in the same order as the runtime: the patched scene's style
@@ -22,11 +22,11 @@
 mod common;
 use common::{compile, examples, gpu, host_target, read_host, render_frame, write_mismatch};
 
-use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-use runner::readback::TargetImage;
-use runner::scene::patches::PatchSpec;
-use runner::scene::{primitives, Scene};
-use runner::{FrameSpec, Renderer};
+use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::readback::TargetImage;
+use npr_runner::scene::patches::PatchSpec;
+use npr_runner::scene::{primitives, Scene};
+use npr_runner::{FrameSpec, Renderer};
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 72;
@@ -35,9 +35,9 @@ const HEIGHT: u32 = 72;
 const TIMES: [f64; 3] = [0.0, 1.5, 3.0];
 
 fn load(scene: &str) -> Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&examples().join("scenes").join(scene), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&examples().join("scenes").join(scene), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The host's offscreen texture the runtime presents into.
@@ -76,10 +76,10 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
             frame_index: k as u32,
             eye: 0,
         };
-        let before = runner::gpu_count::created_on_this_thread();
+        let before = npr_runner::gpu_count::created_on_this_thread();
         render_frame(&mut runtime, &frame, Target::View(&view))
             .unwrap_or_else(|e| panic!("{scene_file} at {time_s} s: {:?}", e.diagnostics()));
-        let after = runner::gpu_count::created_on_this_thread();
+        let after = npr_runner::gpu_count::created_on_this_thread();
         // After the first frame the ocean's vertices and the patches'
         // uniforms are written in place: the frame creates no GPU object.
         assert!(
@@ -97,7 +97,7 @@ fn render_both(style: &str, scene_file: &str, host: Host) -> Vec<(TargetImage, T
         };
         renderer.render(&scene, &spec).expect("render");
         let direct = renderer.read_output().expect("read back the output");
-        assert_eq!(direct.format, abi::Format::Rgba8unorm, "{style}: the output format");
+        assert_eq!(direct.format, npr_abi::Format::Rgba8unorm, "{style}: the output format");
         frames.push((hosted, direct));
     }
     assert_eq!(
@@ -211,7 +211,7 @@ fn patches_a_host_makes_in_code_render_as_the_scenes() {
 fn patches_that_cannot_be_made_are_refused_with_a_code() {
     let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("toon.npr")).expect("runtime");
     let cube = std::sync::Arc::new(primitives::cube(1.0));
-    let refused = |r: Result<Vec<_>, runner::embed::EmbedError>| r.expect_err("refused").code();
+    let refused = |r: Result<Vec<_>, npr_runner::embed::EmbedError>| r.expect_err("refused").code();
     // A cube has 12 triangles and no parts.
     assert_eq!(
         refused(runtime.add_patches(cube.clone(), PatchSpec::Split(13), 1)),

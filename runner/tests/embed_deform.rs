@@ -21,7 +21,7 @@
 //! shaders). On a difference the runtime's image, the reference's and
 //! their difference (×8) are written under
 //! `$CARGO_TARGET_TMPDIR/embed-deform/`. The frames after the first create
-//! no GPU object (`runner::gpu_count`) and no scene change; bad updates
+//! no GPU object (`npr_runner::gpu_count`) and no scene change; bad updates
 //! are coded errors (E0601, E0603) that leave the mesh as it was.
 //!
 //! One file past ~600 lines on purpose: every test drives the same frame
@@ -35,13 +35,13 @@ mod common;
 use common::{compile, gpu, host_target, read_host, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};
-use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::gpu_count::created_on_this_thread;
-use runner::readback::TargetImage;
-use runner::scene::ocean::Ocean;
-use runner::scene::patches::PatchSpec;
-use runner::scene::{primitives, Camera, Mesh, Object, Primitive, Scene};
-use runner::{FrameSpec, Renderer};
+use npr_runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::gpu_count::created_on_this_thread;
+use npr_runner::readback::TargetImage;
+use npr_runner::scene::ocean::Ocean;
+use npr_runner::scene::patches::PatchSpec;
+use npr_runner::scene::{primitives, Camera, Mesh, Object, Primitive, Scene};
+use npr_runner::{FrameSpec, Renderer};
 use std::collections::BTreeMap;
 
 use std::sync::Arc;
@@ -72,7 +72,7 @@ fn object(name: &str, mesh: Arc<Mesh>, model: Mat4, tags: &[&str], time_varying:
         params: BTreeMap::new(),
         param_spans: BTreeMap::new(),
         textures: BTreeMap::new(),
-        mesh_span: diag::Span::default(),
+        mesh_span: npr_diag::Span::default(),
         time_varying,
         casts_shadows: true,
         spin: Vec3::ZERO,
@@ -347,7 +347,7 @@ fn lines_follow_the_deformed_sphere() {
 fn expect_code(result: Result<(), EmbedError>, code: &str, what: &str) -> EmbedError {
     let e = result.expect_err(what);
     assert_eq!(e.code(), code, "{what}: {e}");
-    let rendered = diag::diagnostic::render(&e.diagnostics(), &diag::SourceMap::new(), false);
+    let rendered = npr_diag::diagnostic::render(&e.diagnostics(), &npr_diag::SourceMap::new(), false);
     assert!(rendered.contains(&format!("error[{code}]")), "{what}: {rendered}");
     e
 }
@@ -522,8 +522,8 @@ fn frames_after_update_mesh_create_no_gpu_object() {
 /// are dropped, so the cache stays bounded (it grew by one per frame).
 #[test]
 fn a_deforming_mesh_does_not_pile_up_edge_meshes() {
-    use runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
-    use runner::lines::strip::LineStyle;
+    use npr_runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
+    use npr_runner::lines::strip::LineStyle;
     let rest = primitives::sphere(0.8, 16, 8);
     let mut cache = LinesCache::default();
     let style = LineStyle {

@@ -13,9 +13,9 @@
 mod common;
 use common::{compile, gpu, host_target, read_host, write_mismatch};
 
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::gpu_count::created_on_this_thread;
-use runner::scene::{primitives, Camera};
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::gpu_count::created_on_this_thread;
+use npr_runner::scene::{primitives, Camera};
 
 const WIDTH: u32 = 64;
 const HEIGHT: u32 = 48;

@@ -22,8 +22,8 @@ mod common;
 use common::{examples, gpu, host_target, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
 use std::path::Path;
 
 const SIZE: (u32, u32) = (64, 48);
@@ -32,19 +32,19 @@ const SIZE: (u32, u32) = (64, 48);
 const AWAY: Vec3 = Vec3::new(1000.0, 0.0, 0.0);
 
 fn compiled(
-    result: Result<compiler::Compiled, compiler::CompileError>,
-    sources: &diag::SourceMap,
-) -> runner::StyleProgram {
+    result: Result<npr_compiler::Compiled, npr_compiler::CompileError>,
+    sources: &npr_diag::SourceMap,
+) -> npr_runner::StyleProgram {
     match result {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
 
-fn example(name: &str) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let result = compiler::compile_file(&examples().join(name), &mut sources, &Default::default());
+fn example(name: &str) -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    let result = npr_compiler::compile_file(&examples().join(name), &mut sources, &Default::default());
     compiled(result, &sources)
 }
 
@@ -91,7 +91,7 @@ struct Run {
 }
 
 impl Run {
-    fn new(program: runner::StyleProgram) -> Run {
+    fn new(program: npr_runner::StyleProgram) -> Run {
         let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, program).expect("runtime");
         let handles = [
             primitives::sphere(0.45, 24, 12),
@@ -149,7 +149,7 @@ impl Run {
         gpu().device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
     }
 
-    fn output(&self) -> runner::TargetImage {
+    fn output(&self) -> npr_runner::TargetImage {
         let manifest = self.runtime.manifest();
         let name = manifest.targets[manifest.output].name.clone();
         self.runtime.read_target(&name).expect("read the output")
@@ -157,7 +157,7 @@ impl Run {
 }
 
 /// Panics, with both images written, unless `changed` equals `reference` byte for byte.
-fn assert_same(what: &str, changed: &runner::TargetImage, reference: &runner::TargetImage) {
+fn assert_same(what: &str, changed: &npr_runner::TargetImage, reference: &npr_runner::TargetImage) {
     if changed.bytes == reference.bytes {
         return;
     }
@@ -288,9 +288,9 @@ const COUNTER: &str = "style \"Counter\"\n\
     pass shade: render(scene) {\n  out c: rgba8unorm = vec4(count.n / 255.0, 0.0, 0.0, 1.0)\n  clear: #000000\n}\n\
     output shade.c\n";
 
-fn counter() -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let result = compiler::compile_source(
+fn counter() -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    let result = npr_compiler::compile_source(
         "counter.npr",
         COUNTER,
         Path::new("."),
@@ -301,7 +301,7 @@ fn counter() -> runner::StyleProgram {
 }
 
 /// The red value on screen at the origin of an object placed by `model`.
-fn red_at(image: &runner::TargetImage, model: Mat4) -> u8 {
+fn red_at(image: &npr_runner::TargetImage, model: Mat4) -> u8 {
     let pose = camera().pose(0.0);
     let clip = pose.projection(SIZE.0 as f32 / SIZE.1 as f32) * pose.view(0) * model.w_axis;
     let (x, y) = (clip.x / clip.w, clip.y / clip.w);
@@ -354,8 +354,8 @@ fn sliding(o: &Object, k: u32) -> Mat4 {
 
 #[test]
 fn previous_transforms_follow_objects_by_id() {
-    let mut sources = diag::SourceMap::new();
-    let result = compiler::compile_source("motion.npr", MOTION, Path::new("."), &mut sources, &Default::default());
+    let mut sources = npr_diag::SourceMap::new();
+    let result = npr_compiler::compile_source("motion.npr", MOTION, Path::new("."), &mut sources, &Default::default());
     let mut run = Run::new(compiled(result, &sources));
     let scenes: [&[Object]; 4] = [&[A, B], &[A, B], &[C, A, B], &[C, B]];
     for (k, objects) in scenes.iter().enumerate() {

@@ -10,10 +10,10 @@
 mod common;
 use common::{gpu, host_target, render_frame};
 
-use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
 // What a host's encoding does to a linear value.
-use runner::srgb::linear_to_srgb;
+use npr_runner::srgb::linear_to_srgb;
 use std::path::Path;
 
 const SIZE: u32 = 32;
@@ -22,8 +22,8 @@ fn runtime() -> StyleRuntime {
     let style = "style \"Lit\"\n\
                  pass p: render(scene) {\n  out c: rgba8unorm = vec4(vec3(lambert(normal, light.dir)) * vec3(1.0, 0.6, 0.3), 1.0)\n  clear: #204060\n}\n\
                  output p.c\n";
-    let mut sources = diag::SourceMap::new();
-    let compiled = compiler::compile_source("lit.npr", style, Path::new("."), &mut sources, &Default::default())
+    let mut sources = npr_diag::SourceMap::new();
+    let compiled = npr_compiler::compile_source("lit.npr", style, Path::new("."), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     StyleRuntime::new(&gpu().device, &gpu().queue, compiled.program()).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -33,7 +33,7 @@ fn texture(format: wgpu::TextureFormat, view_formats: &[wgpu::TextureFormat]) ->
 }
 
 /// Render the sphere into `target`.
-fn render(runtime: &mut StyleRuntime, target: Target) -> Result<(), runner::embed::EmbedError> {
+fn render(runtime: &mut StyleRuntime, target: Target) -> Result<(), npr_runner::embed::EmbedError> {
     let sphere = runtime.add_mesh(primitives::sphere(1.0, 32, 16));
     let objects = [Instance::new(sphere, glam::Mat4::IDENTITY)];
     let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 4.0), glam::Vec3::ZERO);
@@ -49,8 +49,8 @@ fn render(runtime: &mut StyleRuntime, target: Target) -> Result<(), runner::embe
     render_frame(runtime, &frame, target)
 }
 
-fn read(texture: &wgpu::Texture, format: abi::Format) -> Vec<[f32; 4]> {
-    runner::readback::read_texture(&gpu().device, &gpu().queue, texture, SIZE, SIZE, format, "host")
+fn read(texture: &wgpu::Texture, format: npr_abi::Format) -> Vec<[f32; 4]> {
+    npr_runner::readback::read_texture(&gpu().device, &gpu().queue, texture, SIZE, SIZE, format, "host")
         .unwrap_or_else(|e| panic!("{e}"))
         .to_rgba_f32()
 }
@@ -59,7 +59,7 @@ fn read(texture: &wgpu::Texture, format: abi::Format) -> Vec<[f32; 4]> {
 fn reference() -> Vec<[f32; 4]> {
     let plain = texture(wgpu::TextureFormat::Rgba8Unorm, &[]);
     render(&mut runtime(), Target::View(&plain.create_view(&Default::default()))).expect("plain view");
-    read(&plain, abi::Format::Rgba8unorm)
+    read(&plain, npr_abi::Format::Rgba8unorm)
 }
 
 /// The largest difference of any channel, in 8-bit steps.
@@ -95,7 +95,7 @@ fn an_srgb_view_shows_what_a_plain_view_does() {
     )
     .expect("an sRGB view as a linear view");
     // The copy reads the stored (encoded) bytes.
-    let got = read(&srgb, abi::Format::Rgba8unorm);
+    let got = read(&srgb, npr_abi::Format::Rgba8unorm);
     let w = worst(&expected, &got);
     assert!(
         w <= 1.0,
@@ -116,7 +116,7 @@ fn an_srgb_view_shows_what_a_plain_view_does() {
         },
     )
     .expect("the sRGB view of a plain texture");
-    let w = worst(&expected, &read(&plain, abi::Format::Rgba8unorm));
+    let w = worst(&expected, &read(&plain, npr_abi::Format::Rgba8unorm));
     assert!(w <= 1.0, "the sRGB view of a plain texture differs by {w} steps");
 }
 
@@ -133,7 +133,7 @@ fn a_float_view_holds_linear_light_the_host_encodes() {
         },
     )
     .expect("a float linear view");
-    let encoded: Vec<[f32; 4]> = read(&float, abi::Format::Rgba16float)
+    let encoded: Vec<[f32; 4]> = read(&float, npr_abi::Format::Rgba16float)
         .into_iter()
         .map(|p| [linear_to_srgb(p[0]), linear_to_srgb(p[1]), linear_to_srgb(p[2]), p[3]])
         .collect();

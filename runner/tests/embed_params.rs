@@ -11,9 +11,9 @@
 mod common;
 use common::{compile, gpu, host_target, read_host, render_frame, write_mismatch};
 
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
-use runner::TargetImage;
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
+use npr_runner::TargetImage;
 
 /// Frame at `time_s` of `runtime`: `sphere` and the default light. The
 /// same objects every time, so that no scene change rewrites the blocks.

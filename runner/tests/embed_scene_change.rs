@@ -4,7 +4,7 @@
 //! mesh, removing one and changing a tag each make, in the frame that
 //! follows, no shader module, pipeline, layout or sampler, and no texture
 //! (no style texture, art-map or per-object image again, and no target:
-//! the size did not change), counted by `runner::gpu_count`. And that
+//! the size did not change), counted by `npr_runner::gpu_count`. And that
 //! frame, and the one after it, are what they must be: for a style without
 //! history, the first two frames of a new runtime given the same objects,
 //! byte for byte; for a style with history textures, which a scene change
@@ -21,9 +21,9 @@
 mod common;
 use common::{compile, examples, gpu, host_target, render_frame, write_mismatch};
 
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::gpu_count::{created_on_this_thread, GpuCreations};
-use runner::scene::{primitives, Camera, Mesh};
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::gpu_count::{created_on_this_thread, GpuCreations};
+use npr_runner::scene::{primitives, Camera, Mesh};
 
 const SIZE: (u32, u32) = (64, 48);
 
@@ -126,7 +126,7 @@ impl Host {
         minus(after, before)
     }
 
-    fn output(&self) -> runner::TargetImage {
+    fn output(&self) -> npr_runner::TargetImage {
         let manifest = self.runtime.manifest();
         let name = manifest.targets[manifest.output].name.clone();
         self.runtime.read_target(&name).expect("read the output")

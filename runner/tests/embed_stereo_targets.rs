@@ -11,8 +11,8 @@
 mod common;
 use common::{gpu, host_target, read_host, render_frame};
 
-use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
 use std::path::Path;
 
 const SIZE: u32 = 32;
@@ -24,8 +24,8 @@ fn runtime() -> StyleRuntime {
                  pass p: render(scene) {\n  out c: rgba8unorm = vec4(vec3(lambert(normal, light.dir)) * vec3(1.0, 0.6, 0.3), 1.0)\n  clear: #204060\n}\n\
                  pass q: image(p) {\n  out c: rgba8unorm = p.c * 0.75 + other_eye(p.c) * 0.25\n}\n\
                  output q.c\n";
-    let mut sources = diag::SourceMap::new();
-    let compiled = compiler::compile_source("eyes.npr", style, Path::new("."), &mut sources, &Default::default())
+    let mut sources = npr_diag::SourceMap::new();
+    let compiled = npr_compiler::compile_source("eyes.npr", style, Path::new("."), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     assert!(compiled.program().manifest.is_stereo(), "the style must be stereo");
     StyleRuntime::new(&gpu().device, &gpu().queue, compiled.program()).unwrap_or_else(|e| panic!("{e}"))

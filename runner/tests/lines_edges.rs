@@ -3,9 +3,9 @@
 //! against the analytic circle, and degenerate input.
 
 use glam::DVec3;
-use runner::lines::edges::*;
-use runner::scene::primitives::{cube, cylinder, sphere};
-use runner::scene::Mesh;
+use npr_runner::lines::edges::*;
+use npr_runner::scene::primitives::{cube, cylinder, sphere};
+use npr_runner::scene::Mesh;
 use std::collections::HashMap;
 
 /// Vertex degrees of the graph made by `edges`.
@@ -210,7 +210,7 @@ fn degenerate_faces_and_zero_length_edges_are_dropped() {
 #[test]
 fn fandisk_creases_agree_with_a_brute_force_search_and_chain_every_edge_once() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models/fandisk.obj");
-    let source = runner::scene::load_mesh_file(&path).expect("fandisk.obj loads");
+    let source = npr_runner::scene::load_mesh_file(&path).expect("fandisk.obj loads");
     let started = std::time::Instant::now();
     let mesh = EdgeMesh::new(&source);
     let creases = mesh.creases(40.0);

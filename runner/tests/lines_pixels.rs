@@ -8,9 +8,9 @@
 //! viewer"). Hidden-edge removal is the GPU depth test's, not tested here.
 
 use glam::{DMat4, DVec2, DVec3};
-use runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
-use runner::lines::strip::{self, LineStyle, Strips};
-use runner::scene::primitives::{cube, sphere};
+use npr_runner::lines::cache::{EdgeSelection, LineObject, LinesCache};
+use npr_runner::lines::strip::{self, LineStyle, Strips};
+use npr_runner::scene::primitives::{cube, sphere};
 use std::f64::consts::TAU;
 
 const SIZE: usize = 256;
@@ -212,7 +212,7 @@ fn strips_are_rebuilt_only_when_the_view_or_the_mesh_changes() {
         silhouettes: true,
         crease_deg: Some(40.0),
     };
-    let draw = |cache: &mut LinesCache, mesh: &runner::scene::Mesh, eye: DVec3, eye_index: u32| {
+    let draw = |cache: &mut LinesCache, mesh: &npr_runner::scene::Mesh, eye: DVec3, eye_index: u32| {
         let objects = [LineObject {
             mesh,
             model: DMat4::IDENTITY,

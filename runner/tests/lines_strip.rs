@@ -3,7 +3,7 @@
 //! chain, taper, near-plane clipping, and the end-on and zero-length cases.
 
 use glam::{DMat4, DVec2, DVec3};
-use runner::lines::strip::*;
+use npr_runner::lines::strip::*;
 use std::f64::consts::{PI, TAU};
 
 const SIZE: DVec2 = DVec2::new(512.0, 512.0);

@@ -5,8 +5,8 @@
 //! compensation restores the example's standard deviation: the printed
 //! factor c, or the variance-preserving 1/√c? (1/√c; see the numbers below.)
 
-use runner::texgen::{generate, NoiseSpec};
-use stdlib::reference::{self as r, ImageF64, MetaSettings};
+use npr_runner::texgen::{generate, NoiseSpec};
+use npr_stdlib::reference::{self as r, ImageF64, MetaSettings};
 
 fn grain() -> ImageF64 {
     let img = generate(&NoiseSpec {

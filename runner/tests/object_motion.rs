@@ -4,10 +4,10 @@
 //! camera to the moved shadow casters. A renderer reused across the change
 //! draws what a fresh renderer built for the changed scene draws.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, Renderer, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, Renderer, StyleProgram};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -63,7 +63,7 @@ params = { tint = "#c0ffa0" }
 
 fn program() -> StyleProgram {
     let mut sources = SourceMap::new();
-    match compiler::compile_source(
+    match npr_compiler::compile_source(
         "moving.npr",
         STYLE,
         Path::new("."),
@@ -71,8 +71,8 @@ fn program() -> StyleProgram {
         &CompileOptions::default(),
     ) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
@@ -88,8 +88,8 @@ fn load() -> Scene {
     let path = dir.join("scene.toml");
     std::fs::write(&path, SCENE).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn draw(r: &mut Renderer, scene: &Scene) -> Vec<u8> {

@@ -1,11 +1,11 @@
 //! The example colour maps (`examples/textures/ocean_*.png`, and the Age of
 //! Sail per-object paint maps `paint_*.png`) are exactly what the generators
-//! in `runner::texgen` make, and have the properties the styles rely on.
+//! in `npr_runner::texgen` make, and have the properties the styles rely on.
 //!
 //! Regenerate after changing a generator with
-//! `NPR_UPDATE_TEXTURES=1 cargo test -p runner --test ocean_textures`.
+//! `NPR_UPDATE_TEXTURES=1 cargo test -p npr-runner --test ocean_textures`.
 
-use runner::texgen::{bathic_map, foam_strokes, paint_map, parse_hex, sky_map, Rgba8Image};
+use npr_runner::texgen::{bathic_map, foam_strokes, paint_map, parse_hex, sky_map, Rgba8Image};
 use std::path::{Path, PathBuf};
 
 fn texture_path(name: &str) -> PathBuf {
@@ -34,7 +34,7 @@ fn check_file(name: &str, generated: &Rgba8Image) {
         image::Rgba(generated.pixels[(y * generated.width + x) as usize])
     });
     if std::env::var_os("NPR_UPDATE_TEXTURES").is_some() {
-        runner::output::write_png8(&image, &path).expect("write texture");
+        npr_runner::output::write_png8(&image, &path).expect("write texture");
     }
     let on_disk = image::open(&path)
         .unwrap_or_else(|e| panic!("{}: {e} (regenerate with NPR_UPDATE_TEXTURES=1)", path.display()))

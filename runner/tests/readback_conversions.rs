@@ -5,8 +5,8 @@
 //! run once per image instead of once per texel (the studio converts every
 //! frame it serves); these pin that they still give the same values.
 
-use abi::Format;
-use runner::TargetImage;
+use npr_abi::Format;
+use npr_runner::TargetImage;
 
 /// Deterministic bytes covering every byte value, with a few f16 and f32
 /// special values (NaN, ±infinity, negatives, values above 1) spliced in.
@@ -89,13 +89,13 @@ fn whole_image_conversions_equal_the_per_texel_definition_for_every_format() {
 #[test]
 fn png_decodes_to_the_same_pixels_at_8_and_16_bits() {
     let unorm = image(Format::Rgba8unorm, 9, 4);
-    let png = runner::output::encode_png(&unorm).expect("encode 8-bit");
+    let png = npr_runner::output::encode_png(&unorm).expect("encode 8-bit");
     let decoded = image::load_from_memory(&png).expect("decode 8-bit");
     assert!(matches!(decoded, image::DynamicImage::ImageRgba8(_)));
     assert_eq!(decoded.to_rgba8().into_raw(), unorm.to_rgba8().into_raw());
 
     let float = image(Format::Rgba16float, 9, 4);
-    let png = runner::output::encode_png(&float).expect("encode 16-bit");
+    let png = npr_runner::output::encode_png(&float).expect("encode 16-bit");
     let image::DynamicImage::ImageRgba16(decoded) = image::load_from_memory(&png).expect("decode 16-bit") else {
         panic!("a float target is a 16-bit RGBA PNG");
     };
@@ -146,12 +146,12 @@ fn an_srgb_target_reads_back_linear_and_its_exr_holds_linear_light() {
     let dir = std::env::temp_dir().join("npr-readback-srgb");
     std::fs::create_dir_all(&dir).expect("scratch");
     let single = dir.join("single.exr");
-    runner::output::write_target(&t, &single).expect("write exr");
+    npr_runner::output::write_target(&t, &single).expect("write exr");
     let read = image::open(&single).expect("read exr").to_rgba32f();
     for (got, want) in read.pixels().zip(&texels) {
         assert_eq!(got.0, *want);
     }
-    let layered = runner::exr_layers::encode_layers(std::slice::from_ref(&t)).expect("layers");
+    let layered = npr_runner::exr_layers::encode_layers(std::slice::from_ref(&t)).expect("layers");
     let read = image::load_from_memory(&layered)
         .expect("read layered exr")
         .to_rgba32f();

@@ -16,8 +16,8 @@
 mod common;
 use common::{compile, examples, gpu, write_mismatch};
 
-use runner::gpu_count::created_on_this_thread;
-use runner::{FrameSpec, Renderer};
+use npr_runner::gpu_count::created_on_this_thread;
+use npr_runner::{FrameSpec, Renderer};
 
 /// Bundles `render` recorded.
 fn bundles_recorded(render: impl FnOnce()) -> u64 {
@@ -32,7 +32,7 @@ fn bundles_recorded(render: impl FnOnce()) -> u64 {
 fn draws_follow_the_scene(style: &str, scene_file: &str, restart: bool) {
     let program = compile(&format!("{style}.npr"));
     let path = examples().join("scenes").join(scene_file);
-    let scene = runner::scene::load_scene(&path, &mut diag::SourceMap::new()).expect("scene");
+    let scene = npr_runner::scene::load_scene(&path, &mut npr_diag::SourceMap::new()).expect("scene");
     assert!(scene.objects.len() > 1, "{scene_file}: the test removes an object");
     let mut renderer = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     let spec = |frame| FrameSpec::animated(72, 56, frame, FrameSpec::DEFAULT_FPS, 0);

@@ -2,11 +2,11 @@
 //! separation, and keyframe interpolation.
 
 use glam::{Vec3, Vec4Swizzles};
-use runner::scene::{parse_scene, Camera, CameraPose, Scene};
+use npr_runner::scene::{parse_scene, Camera, CameraPose, Scene};
 use std::path::Path;
 
 fn scene(text: &str) -> Scene {
-    match parse_scene(text, diag::FileId(0), Path::new(".")) {
+    match parse_scene(text, npr_diag::FileId(0), Path::new(".")) {
         Ok(scene) => scene,
         Err(diagnostics) => panic!("scene did not parse: {diagnostics:#?}"),
     }

@@ -2,8 +2,8 @@
 //! span points in the TOML, and the help. Also: several errors are reported
 //! at once, and no input panics.
 
-use diag::{codes, Diagnostic, FileId, SourceMap};
-use runner::scene::{load_scene, parse_scene, MAX_SEGMENTS, MAX_TRIANGLES};
+use npr_diag::{codes, Diagnostic, FileId, SourceMap};
+use npr_runner::scene::{load_scene, parse_scene, MAX_SEGMENTS, MAX_TRIANGLES};
 use std::path::{Path, PathBuf};
 
 const CAMERA: &str = "[camera]\nposition = [0.0, 0.5, 3.0]\ntarget = [0.0, 0.0, 0.0]\n";
@@ -17,7 +17,7 @@ fn errors_in(text: &str, base_dir: &Path) -> (Vec<Diagnostic>, SourceMap) {
         Ok(_) => panic!("expected errors for:\n{text}"),
         Err(diagnostics) => {
             // Rendering must work for every diagnostic (spans in range).
-            let rendered = diag::diagnostic::render(&diagnostics, &sources, false);
+            let rendered = npr_diag::diagnostic::render(&diagnostics, &sources, false);
             assert!(!rendered.is_empty());
             (diagnostics, sources)
         }

@@ -3,7 +3,7 @@
 //! with generated assets.
 
 use glam::{Mat4, Vec3};
-use runner::scene::{load_scene, parse_scene, Attribute, Mesh, Scene};
+use npr_runner::scene::{load_scene, parse_scene, Attribute, Mesh, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -17,15 +17,15 @@ fn models_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models")
 }
 
-fn load_spot_cow() -> (Scene, diag::SourceMap) {
-    let mut sources = diag::SourceMap::new();
+fn load_spot_cow() -> (Scene, npr_diag::SourceMap) {
+    let mut sources = npr_diag::SourceMap::new();
     match load_scene(&data_dir().join("scene_spot_cow.toml"), &mut sources) {
         Ok(scene) => (scene, sources),
-        Err(diagnostics) => panic!("{}", diag::diagnostic::render(&diagnostics, &sources, false)),
+        Err(diagnostics) => panic!("{}", npr_diag::diagnostic::render(&diagnostics, &sources, false)),
     }
 }
 
-fn object<'s>(scene: &'s Scene, name: &str) -> &'s runner::scene::Object {
+fn object<'s>(scene: &'s Scene, name: &str) -> &'s npr_runner::scene::Object {
     scene
         .objects
         .iter()
@@ -130,14 +130,14 @@ fn check_attributes_flags_only_the_cow() {
     let diagnostics = scene.check_attributes(&[Attribute::Uv], "the style `hatching` reads `uv`");
     assert_eq!(diagnostics.len(), 1, "{diagnostics:#?}");
     let diagnostic = &diagnostics[0];
-    assert_eq!(diagnostic.code, diag::codes::MISSING_ATTRIBUTE);
+    assert_eq!(diagnostic.code, npr_diag::codes::MISSING_ATTRIBUTE);
     let span = diagnostic.primary_span().expect("points at the mesh");
     assert_eq!(sources.snippet(span), "\"../../../examples/models/cow.obj\"");
     assert!(diagnostic.message.contains("the style `hatching` reads `uv`") && diagnostic.message.contains("`cow`"));
     let help = diagnostic.help.as_deref().unwrap_or_default();
     assert!(help.contains("spot.obj has UVs; cow.obj does not"), "{help}");
     assert!(help.contains("use a primitive"), "{help}");
-    let rendered = diag::diagnostic::render(&diagnostics, &sources, false);
+    let rendered = npr_diag::diagnostic::render(&diagnostics, &sources, false);
     assert!(rendered.contains("E0403") && rendered.contains("cow.obj"), "{rendered}");
 
     // Tangents come with UVs, so the same object lacks them.
@@ -196,7 +196,7 @@ fn objects_sharing_a_file_share_one_mesh() {
     let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\
                 [[object]]\nmesh = \"cow.obj\"\n[[object]]\nmesh = \"cow.obj\"\ntranslate = [1.0, 0.0, 0.0]\n\
                 [[object]]\nprimitive = { kind = \"cube\" }\n[[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\n";
-    let scene = parse_scene(text, diag::FileId(0), &models).expect("valid scene");
+    let scene = parse_scene(text, npr_diag::FileId(0), &models).expect("valid scene");
     assert!(Arc::ptr_eq(&scene.objects[0].mesh, &scene.objects[1].mesh));
     assert!(Arc::ptr_eq(&scene.objects[2].mesh, &scene.objects[3].mesh));
     // Derived names are made unique.
@@ -209,7 +209,7 @@ fn rotation_applies_y_then_x_then_z() {
     let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\
                 [[object]]\nprimitive = { kind = \"cube\" }\nrotate = [90.0, 90.0, 0.0]\n\
                 [[object]]\nprimitive = { kind = \"cube\" }\nrotate = [0.0, 90.0, 90.0]\n";
-    let scene = parse_scene(text, diag::FileId(0), Path::new(".")).expect("valid scene");
+    let scene = parse_scene(text, npr_diag::FileId(0), Path::new(".")).expect("valid scene");
     // Y first: +Z → +X, then X leaves +X alone. (X first would give -Y.)
     let turned = scene.objects[0].model.transform_vector3(Vec3::Z);
     assert!((turned - Vec3::X).length() < 1e-6, "{turned:?}");
@@ -382,7 +382,7 @@ fn load_single_mesh(dir: &Path, file: &str, bytes: &[u8]) -> Arc<Mesh> {
     std::fs::write(dir.join(file), bytes).expect("write asset");
     let text =
         format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n");
-    match parse_scene(&text, diag::FileId(0), dir) {
+    match parse_scene(&text, npr_diag::FileId(0), dir) {
         Ok(scene) => Arc::clone(&scene.objects[0].mesh),
         Err(diagnostics) => panic!("{diagnostics:#?}"),
     }
@@ -470,14 +470,14 @@ fn base64_encoder_matches_rfc_4648_vectors() {
 }
 
 /// Loads `file` expecting one E0402 on its `mesh` string.
-fn mesh_error(dir: &Path, file: &str, bytes: &[u8]) -> diag::Diagnostic {
+fn mesh_error(dir: &Path, file: &str, bytes: &[u8]) -> npr_diag::Diagnostic {
     std::fs::write(dir.join(file), bytes).expect("write asset");
     let text =
         format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nmesh = \"{file}\"\n");
-    let diagnostics = parse_scene(&text, diag::FileId(0), dir).expect_err("a broken asset");
+    let diagnostics = parse_scene(&text, npr_diag::FileId(0), dir).expect_err("a broken asset");
     assert_eq!(diagnostics.len(), 1, "{diagnostics:#?}");
     let diagnostic = diagnostics.into_iter().next().expect("one");
-    assert_eq!(diagnostic.code, diag::codes::UNREADABLE_MESH, "{diagnostic:#?}");
+    assert_eq!(diagnostic.code, npr_diag::codes::UNREADABLE_MESH, "{diagnostic:#?}");
     let span = diagnostic.primary_span().expect("span");
     assert_eq!(&text[span.range()], format!("\"{file}\""));
     diagnostic
@@ -525,14 +525,14 @@ fn fandisk_creases_get_split_normals() {
     // examples/scenes/fandisk.toml: `crease_angle = 30` on a mesh without normals.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/fandisk.toml");
     let text = std::fs::read_to_string(&path).expect("fandisk scene");
-    let mut sources = diag::SourceMap::new();
-    let creased =
-        load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let mut sources = npr_diag::SourceMap::new();
+    let creased = load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let smooth_text = text.replace("crease_angle = 30.0", "");
     assert_ne!(smooth_text, text);
     let file = sources.add("fandisk_smooth.toml", smooth_text.clone());
     let smooth = parse_scene(&smooth_text, file, path.parent().expect("dir"))
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let (c, s) = (&creased.objects[0].mesh, &smooth.objects[0].mesh);
     assert_sound_attributes(c);
     // Same triangles; vertices on creases duplicated.
@@ -563,18 +563,18 @@ fn crease_angle_is_checked() {
         ("\"sharp\"", "crease_angle"),
     ] {
         let text = format!("[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"cube\" }}\ncrease_angle = {value}\n");
-        let mut sources = diag::SourceMap::new();
+        let mut sources = npr_diag::SourceMap::new();
         let file = sources.add("crease.toml", text.clone());
         let Err(diagnostics) = parse_scene(&text, file, Path::new(".")) else {
             panic!("crease_angle = {value} was accepted");
         };
-        let rendered = diag::diagnostic::render(&diagnostics, &sources, false);
+        let rendered = npr_diag::diagnostic::render(&diagnostics, &sources, false);
         assert!(rendered.contains(message), "{value}: {rendered}");
     }
     // On a cube (90° edges) any angle below 90° gives each face its own
     // normal: 24 vertices, as the primitive already has.
     let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = { kind = \"cube\" }\ncrease_angle = 45.0\n";
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("crease.toml", text.to_string());
     let scene = parse_scene(text, file, Path::new(".")).expect("valid");
     assert!(worst_corner_deviation(&scene.objects[0].mesh) < 0.01);

@@ -4,10 +4,10 @@
 //! horizon, normals equal to finite differences of the surface, finite for
 //! extreme parameters; and its scene fields with their errors.
 
-use diag::{codes, SourceMap};
 use glam::{DVec2, DVec3, Vec3};
-use runner::scene::ocean::{ocean_mesh, Ocean, Spectrum};
-use runner::scene::{parse_scene, Primitive};
+use npr_diag::{codes, SourceMap};
+use npr_runner::scene::ocean::{ocean_mesh, Ocean, Spectrum};
+use npr_runner::scene::{parse_scene, Primitive};
 use std::path::Path;
 
 /// A smaller grid than the paper's (same tile width and period) so the
@@ -382,7 +382,7 @@ fn extreme_parameters_give_finite_geometry() {
 
 // ---- the scene fields ----
 
-fn scene_with(primitive: &str) -> Result<runner::scene::Scene, (Vec<diag::Diagnostic>, SourceMap)> {
+fn scene_with(primitive: &str) -> Result<npr_runner::scene::Scene, (Vec<npr_diag::Diagnostic>, SourceMap)> {
     let text = format!(
         "[camera]\nposition = [0.0, 5.0, 20.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nprimitive = {primitive}\n"
     );
@@ -398,7 +398,7 @@ fn an_ocean_scene_object_is_time_varying_with_its_fields() {
          wind_speed = 7.0, wind_direction = [1.0, 1.0], choppiness = 0.0, seed = 9, drift = [0, -1], \
          horizon = 40.0, horizon_drop = 0.2, ring = 100.0 }",
     )
-    .unwrap_or_else(|(d, s)| panic!("{}", diag::diagnostic::render(&d, &s, false)));
+    .unwrap_or_else(|(d, s)| panic!("{}", npr_diag::diagnostic::render(&d, &s, false)));
     let object = &scene.objects[0];
     assert_eq!(object.name, "ocean");
     let Some(Primitive::Ocean(ocean)) = object.time_varying else {
@@ -427,16 +427,16 @@ fn an_ocean_scene_object_is_time_varying_with_its_fields() {
     // The grid, and the ring's quads around.
     assert_eq!(
         object.mesh.triangle_count(),
-        2 * 48 * 48 + 2 * runner::scene::ocean::RING_SEGMENTS as usize
+        2 * 48 * 48 + 2 * npr_runner::scene::ocean::RING_SEGMENTS as usize
     );
     // Defaults are the paper's grid.
     let scene = scene_with("{ kind = \"ocean\" }")
-        .unwrap_or_else(|(d, s)| panic!("{}", diag::diagnostic::render(&d, &s, false)));
+        .unwrap_or_else(|(d, s)| panic!("{}", npr_diag::diagnostic::render(&d, &s, false)));
     assert_eq!(scene.objects[0].time_varying, Some(Primitive::Ocean(Ocean::default())));
     assert_eq!(scene.objects[0].mesh.positions.len(), 401 * 401);
     // Static primitives are not.
     let sphere = scene_with("{ kind = \"sphere\" }")
-        .unwrap_or_else(|(d, s)| panic!("{}", diag::diagnostic::render(&d, &s, false)));
+        .unwrap_or_else(|(d, s)| panic!("{}", npr_diag::diagnostic::render(&d, &s, false)));
     assert_eq!(sphere.objects[0].time_varying, None);
 }
 
@@ -451,7 +451,7 @@ fn ocean_error(primitive: &str, code: &str, spanned: &str) -> String {
         diagnostics.len(),
         1,
         "{}",
-        diag::diagnostic::render(&diagnostics, &sources, false)
+        npr_diag::diagnostic::render(&diagnostics, &sources, false)
     );
     let d = &diagnostics[0];
     assert_eq!(d.code, code, "{d:#?}");

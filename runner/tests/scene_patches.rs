@@ -5,7 +5,7 @@
 //! `blend_rings = n` gives each patch its faces and n-ring with its §3.6
 //! weights (what passes reading `patch.weight` draw); 0 none.
 
-use runner::scene::{parse_scene, Scene};
+use npr_runner::scene::{parse_scene, Scene};
 use std::path::{Path, PathBuf};
 
 fn scenes_dir() -> PathBuf {
@@ -13,14 +13,14 @@ fn scenes_dir() -> PathBuf {
 }
 
 fn parse(text: &str, dir: &Path) -> Result<Scene, String> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("patches.toml", text.to_string());
-    parse_scene(text, file, dir).map_err(|d| diag::diagnostic::render(&d, &sources, false))
+    parse_scene(text, file, dir).map_err(|d| npr_diag::diagnostic::render(&d, &sources, false))
 }
 
 const CAMERA: &str = "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n";
 
-fn area(mesh: &runner::scene::Mesh) -> f64 {
+fn area(mesh: &npr_runner::scene::Mesh) -> f64 {
     mesh.indices
         .chunks_exact(3)
         .map(|t| {

@@ -2,8 +2,8 @@
 //! frames, winding, index ranges and triangle counts.
 
 use glam::Vec3;
-use runner::scene::primitives::{self, Primitive};
-use runner::scene::Mesh;
+use npr_runner::scene::primitives::{self, Primitive};
+use npr_runner::scene::Mesh;
 
 const TOLERANCE: f32 = 1e-5;
 

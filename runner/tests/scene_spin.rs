@@ -3,7 +3,7 @@
 //! nothing spinning is posed without a copy.
 
 use glam::{Mat4, Vec3};
-use runner::scene::parse_scene;
+use npr_runner::scene::parse_scene;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -14,7 +14,7 @@ fn a_spinning_object_turns_about_its_own_origin() {
     let text = format!(
         "{CAMERA}[[object]]\nprimitive = {{ kind = \"cube\" }}\ntranslate = [2.0, 0.0, 0.0]\nspin = [0.0, 45.0, 0.0]\n"
     );
-    let scene = parse_scene(&text, diag::FileId(0), Path::new(".")).expect("scene");
+    let scene = parse_scene(&text, npr_diag::FileId(0), Path::new(".")).expect("scene");
     let o = &scene.objects[0];
     assert_eq!(o.model_at(0.0), o.model);
     // 2 s at 45°/s: a quarter turn about +Y, in place at x = 2.
@@ -30,7 +30,7 @@ fn a_spinning_object_turns_about_its_own_origin() {
 #[test]
 fn a_still_scene_is_posed_as_it_is() {
     let text = format!("{CAMERA}[[object]]\nprimitive = {{ kind = \"cube\" }}\n");
-    let scene = parse_scene(&text, diag::FileId(0), Path::new(".")).expect("scene");
+    let scene = parse_scene(&text, npr_diag::FileId(0), Path::new(".")).expect("scene");
     assert!(matches!(scene.posed(3.0), Cow::Borrowed(_)));
     assert_eq!(scene.objects[0].model_at(3.0), Mat4::IDENTITY);
 }

@@ -5,10 +5,10 @@
 //! in both stereo eyes (so both eyes pick the same MetaTexture levels) and
 //! equals `tangent.screen` in mono; `camera.focal` is (P₀₀, P₁₁).
 
-use compiler::CompileOptions;
-use diag::SourceMap;
 use glam::{DMat4, DVec3, DVec4};
-use runner::{FrameSpec, Gpu};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Gpu};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -20,7 +20,7 @@ fn gpu() -> &'static Gpu {
 const SIZE: u32 = 64;
 
 /// `name` keeps the files of tests running in parallel apart.
-fn scene(name: &str, ipd: Option<f64>) -> runner::scene::Scene {
+fn scene(name: &str, ipd: Option<f64>) -> npr_runner::scene::Scene {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("screen-frame");
     std::fs::create_dir_all(&dir).expect("scratch");
     let ipd = ipd.map(|d| format!("ipd = {d}\n")).unwrap_or_default();
@@ -31,23 +31,24 @@ fn scene(name: &str, ipd: Option<f64>) -> runner::scene::Scene {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// Render `value` (a vec4 expression) into an rgba32float target for `eye`.
-fn render(value: &str, scene: &runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> {
+fn render(value: &str, scene: &npr_runner::scene::Scene, eye: u32) -> Vec<[f32; 4]> {
     let text = format!(
         "style \"t\"\npass p: render(scene) {{\n  out o: rgba32float = {value}\n  clear: #000000\n}}\noutput p.o\n"
     );
     let mut sources = SourceMap::new();
-    let c = match compiler::compile_source("t.npr", &text, Path::new("."), &mut sources, &CompileOptions::default()) {
+    let c = match npr_compiler::compile_source("t.npr", &text, Path::new("."), &mut sources, &CompileOptions::default())
+    {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, eye);
-    let img = runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img = npr_runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 
@@ -65,7 +66,7 @@ fn jacobian(vp: DMat4, p: DVec3, dir: DVec3) -> [f64; 2] {
     [(b[0] - a[0]) / (2.0 * h), (b[1] - a[1]) / (2.0 * h)]
 }
 
-fn matrices(scene: &runner::scene::Scene, eye: u32) -> (DMat4, DMat4) {
+fn matrices(scene: &npr_runner::scene::Scene, eye: u32) -> (DMat4, DMat4) {
     let pose = scene.camera.pose(0.0);
     let proj = pose.projection(1.0).as_dmat4();
     (proj * pose.view(eye).as_dmat4(), proj * pose.center_view().as_dmat4())
@@ -187,7 +188,7 @@ fn camera_focal_is_the_projection_diagonal() {
 /// 8 px strength, into an rg32float-precision target.
 const WARP_FIELD: &str = "style \"roll\"\ntexture n = noise(size: 64, octaves: 3, seed: 5, channels: 2, kind: gradient) { wrap: repeat, filter: linear, mips: off }\npass p: render(scene) {\n  let g = uv_gradients(density: vec2(0.5, 0.5))\n  let m = metatexture_grad(n, uv, g.xy, g.zw, width: 24px * radial_alpha())\n  out o: rgba32float = vec4(roll_compensate(m.xy * 2.0 - 1.0, g.xy) * 8.0, m.xy * 2.0 - 1.0)\n  clear: #00000000\n}\noutput p.o\n";
 
-fn roll_scene(name: &str, up: [f64; 3]) -> runner::scene::Scene {
+fn roll_scene(name: &str, up: [f64; 3]) -> npr_runner::scene::Scene {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("screen-frame");
     std::fs::create_dir_all(&dir).expect("scratch");
     let text = format!(
@@ -197,13 +198,13 @@ fn roll_scene(name: &str, up: [f64; 3]) -> runner::scene::Scene {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
-fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
+fn render_style(text: &str, scene: &npr_runner::scene::Scene) -> Vec<[f32; 4]> {
     let mut sources = SourceMap::new();
-    let c = match compiler::compile_source(
+    let c = match npr_compiler::compile_source(
         "roll.npr",
         text,
         Path::new("."),
@@ -211,11 +212,11 @@ fn render_style(text: &str, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
         &CompileOptions::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     };
     let spec = FrameSpec::still(SIZE, SIZE, 0);
-    let img = runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+    let img = npr_runner::render_frame(gpu(), &c.program(), scene, &spec).unwrap_or_else(|e| panic!("{e}"));
     (0..SIZE * SIZE).map(|i| img.texel(i % SIZE, i / SIZE)).collect()
 }
 

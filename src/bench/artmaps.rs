@@ -1,13 +1,13 @@
-//! `npr bench artmaps`: the command around `lab::bench_artmaps` (the
+//! `npr bench artmaps`: the command around `npr_lab::bench_artmaps` (the
 //! shipped filters compiled, the sampling variants compiled against
 //! `examples/`, the device, the two tables).
 
 use super::{compile_builtin_in, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
-use compiler::CompileOptions;
-use diag::{codes, Diagnostic, SourceMap};
-use lab::bench_artmaps as bench;
+use npr_compiler::CompileOptions;
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_lab::bench_artmaps as bench;
 use std::path::Path;
 
 /// The filter styles shipped in `examples/filters/`.

@@ -8,8 +8,8 @@
 //!   spawned from this binary; the wall time's median over `--runs`, and
 //!   naga's share of it taken from the child's own `validate` stage time.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -29,10 +29,11 @@ pub fn in_process(styles: &[PathBuf], iterations: u32) -> Result<String, String>
         let mut naga_time = Vec::new();
         for _ in 0..iterations.max(1) {
             let mut sources = SourceMap::new();
-            let c = compiler::compile_file(style, &mut sources, &CompileOptions::default()).map_err(|e| match e {
-                compiler::CompileError::User(d) => diag::diagnostic::render(&d, &sources, false),
-                compiler::CompileError::Internal(e) => e.to_string(),
-            })?;
+            let c =
+                npr_compiler::compile_file(style, &mut sources, &CompileOptions::default()).map_err(|e| match e {
+                    npr_compiler::CompileError::User(d) => npr_diag::diagnostic::render(&d, &sources, false),
+                    npr_compiler::CompileError::Internal(e) => e.to_string(),
+                })?;
             let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
             let validate = stage_seconds(&c.timings, "validate");
             ours.push(total - validate);

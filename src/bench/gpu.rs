@@ -5,10 +5,10 @@
 use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu, scene_styles_gpu};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
-use compiler::schedule::Schedule;
-use compiler::{CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap};
-use runner::{Gpu, RunError, StyleProgram};
+use npr_compiler::schedule::Schedule;
+use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::{Gpu, RunError, StyleProgram};
 use std::path::{Path, PathBuf};
 
 /// `npr bench overhead`: the runner against the independent baseline.
@@ -24,7 +24,7 @@ pub(super) fn overhead(
         Ok(t) => t,
         Err(code) => return code,
     };
-    match lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
+    match npr_lab::bench_overhead::overhead(&gpu, &compiled.program(), &scene, size, frames, warmup) {
         Ok(r) => {
             println!(
                 "device: {}, {}x{}, style {} ({} pass(es)), scene {}",
@@ -42,7 +42,7 @@ pub(super) fn overhead(
             print!("{}", r.table());
             EXIT_OK
         }
-        Err(lab::bench_overhead::OverheadError::Run(e)) => {
+        Err(npr_lab::bench_overhead::OverheadError::Run(e)) => {
             printer.diagnostics(&e.diagnostics(), &sources);
             if e.is_user_error() {
                 EXIT_USER
@@ -50,7 +50,7 @@ pub(super) fn overhead(
                 EXIT_INTERNAL
             }
         }
-        Err(e @ lab::bench_overhead::OverheadError::Unsupported(_)) => {
+        Err(e @ npr_lab::bench_overhead::OverheadError::Unsupported(_)) => {
             printer.fail(Diagnostic::error(codes::BENCH_UNSUPPORTED, e.to_string()))
         }
         Err(e) => {
@@ -71,10 +71,10 @@ pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, plot: Option
         Ok(g) => g,
         Err(code) => return code,
     };
-    let variants = lab::bench_ops::variants();
+    let variants = npr_lab::bench_ops::variants();
     let mut programs = Vec::new();
     for v in &variants {
-        let text = lab::bench_ops::style(v);
+        let text = npr_lab::bench_ops::style(v);
         match compile_builtin(v.name, &text, &mut sources, printer) {
             Ok(p) => programs.push((v.name, p)),
             Err(code) => return code,
@@ -82,7 +82,7 @@ pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, plot: Option
     }
     // Frame-level round robin over all variants, so load changes hit every variant alike.
     let progs: Vec<&StyleProgram> = programs.iter().map(|(_, p)| p).collect();
-    let best = match lab::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
+    let best = match npr_lab::bench::time_interleaved(&gpu, &progs, &scene, size, frames) {
         Ok(t) => t,
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);
@@ -96,8 +96,8 @@ pub(super) fn ops(scene_path: &Path, size: (u32, u32), frames: u32, plot: Option
         size.1,
         scene_path.display()
     );
-    let rows = lab::bench_ops::rows(&variants, &best);
-    print!("{}", lab::bench_ops::table(&rows));
+    let rows = npr_lab::bench_ops::rows(&variants, &best);
+    print!("{}", npr_lab::bench_ops::table(&rows));
     let subtitle = format!(
         "{}, {}x{}, scene {}, fastest of {frames} interleaved frames",
         gpu.describe(),
@@ -125,7 +125,7 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
     // where the compiler's schedule changes its passes, under `tiled`
     // where it tiles, and under `recompute` where it recomputes.
     let mut programs = Vec::new();
-    for (name, text, measure) in lab::bench_contours::variants() {
+    for (name, text, measure) in npr_lab::bench_contours::variants() {
         match compile_builtin_scheduled(name, &text, Schedule::Naive, &mut sources, printer) {
             Ok((p, _)) => programs.push((name.to_string(), p, measure)),
             Err(code) => return code,
@@ -156,13 +156,13 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
         Ok(g) => g,
         Err(code) => return code,
     };
-    match lab::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
+    match npr_lab::bench_contours::run(&gpu, &programs, sizes, frames, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!(
                 "device: {}, fastest of {frames} interleaved frames per variant",
                 gpu.describe()
             );
-            println!("{}", lab::bench_contours::table(&rows));
+            println!("{}", npr_lab::bench_contours::table(&rows));
             let mut distinct = sizes.to_vec();
             distinct.sort_unstable();
             distinct.dedup();
@@ -170,7 +170,7 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
                 println!("image stage against pixels, least squares over the sizes (1.00 = linear):");
                 println!(
                     "{}",
-                    lab::bench_contours::slope_table(&lab::bench_contours::slopes(&rows))
+                    npr_lab::bench_contours::slope_table(&npr_lab::bench_contours::slopes(&rows))
                 );
             }
             let subtitle = format!("{}, fastest of {frames} interleaved frames", gpu.describe());
@@ -183,7 +183,7 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
     }
 }
 
-/// `npr bench reduce`: see `lab::bench_reduce`.
+/// `npr bench reduce`: see `npr_lab::bench_reduce`.
 pub(super) fn reduce(elements: &[usize], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
     if let Some(bad) = elements.iter().chain(objects).find(|n| **n == 0 || **n > 10_000_000) {
         return printer.fail(Diagnostic::error(
@@ -192,18 +192,18 @@ pub(super) fn reduce(elements: &[usize], objects: &[usize], frames: u32, printer
         ));
     }
     with_and_without(
-        ("reduce.npr", lab::bench_reduce::STYLE),
-        lab::bench_reduce::NULL_STYLE,
+        ("reduce.npr", npr_lab::bench_reduce::STYLE),
+        npr_lab::bench_reduce::NULL_STYLE,
         frames,
         printer,
         |gpu, programs| {
-            lab::bench_reduce::run(gpu, programs, elements, objects, frames, |m| eprintln!("{m}"))
-                .map(|rows| lab::bench_reduce::table(&rows))
+            npr_lab::bench_reduce::run(gpu, programs, elements, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| npr_lab::bench_reduce::table(&rows))
         },
     )
 }
 
-/// `npr bench pixels`: see `lab::bench_reduce_pixels`.
+/// `npr bench pixels`: see `npr_lab::bench_reduce_pixels`.
 pub(super) fn pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Printer) -> i32 {
     if let Some(bad) = sizes.iter().find(|s| **s == 0 || **s > 8192) {
         return printer.fail(Diagnostic::error(
@@ -218,13 +218,13 @@ pub(super) fn pixels(sizes: &[u32], objects: &[usize], frames: u32, printer: &Pr
         ));
     }
     with_and_without(
-        ("pixels.npr", lab::bench_reduce_pixels::STYLE),
-        lab::bench_reduce_pixels::NULL_STYLE,
+        ("pixels.npr", npr_lab::bench_reduce_pixels::STYLE),
+        npr_lab::bench_reduce_pixels::NULL_STYLE,
         frames,
         printer,
         |gpu, programs| {
-            lab::bench_reduce_pixels::run(gpu, programs, sizes, objects, frames, |m| eprintln!("{m}"))
-                .map(|rows| lab::bench_reduce_pixels::table(&rows))
+            npr_lab::bench_reduce_pixels::run(gpu, programs, sizes, objects, frames, |m| eprintln!("{m}"))
+                .map(|rows| npr_lab::bench_reduce_pixels::table(&rows))
         },
     )
 }
@@ -267,7 +267,7 @@ fn with_and_without(
     }
 }
 
-/// `npr bench styles`: see `lab::bench_styles`.
+/// `npr bench styles`: see `npr_lab::bench_styles`.
 pub(super) fn styles(
     styles: &[PathBuf],
     baseline: &Path,
@@ -292,7 +292,7 @@ pub(super) fn styles(
             Err(code) => return code,
         }
     }
-    match lab::bench_styles::run(&gpu, &scene, &base.program(), &programs, size, (frames, 5)) {
+    match npr_lab::bench_styles::run(&gpu, &scene, &base.program(), &programs, size, (frames, 5)) {
         Ok(rows) => {
             println!(
                 "device: {}, {}x{}, median of {frames} interleaved frames (wall clock)",
@@ -300,7 +300,10 @@ pub(super) fn styles(
                 size.0,
                 size.1
             );
-            println!("{}", lab::bench_styles::table(&rows, &baseline.display().to_string()));
+            println!(
+                "{}",
+                npr_lab::bench_styles::table(&rows, &baseline.display().to_string())
+            );
             EXIT_OK
         }
         Err(e) => {
@@ -336,7 +339,7 @@ pub(super) fn passes(
     // Every schedule is measured in this run, frames interleaved, so the
     // totals compare (docs/PERFORMANCE.md: ratios from one run).
     let programs: Vec<StyleProgram> = compiled.iter().map(Compiled::program).collect();
-    let all_times = match lab::bench::pass_times_interleaved(&gpu, &programs, &scene, size, frames) {
+    let all_times = match npr_lab::bench::pass_times_interleaved(&gpu, &programs, &scene, size, frames) {
         Ok(t) => t,
         Err(e) => {
             printer.diagnostics(&e.diagnostics(), &sources);

@@ -1,11 +1,11 @@
-//! `npr bench host`: the command around `lab::bench_host` (the style
+//! `npr bench host`: the command around `npr_lab::bench_host` (the style
 //! compiled with its params kept, as a host runs it; the device; the table;
 //! then the time of a frame right after the host adds an object).
 
 use crate::cli::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, Printer};
-use compiler::CompileOptions;
-use diag::{codes, Diagnostic, SourceMap};
+use npr_compiler::CompileOptions;
+use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::Path;
 
 pub fn run(style: &Path, objects: &[usize], size: u32, (frames, block): (u32, u32), printer: &Printer) -> i32 {
@@ -43,17 +43,17 @@ pub fn run(style: &Path, objects: &[usize], size: u32, (frames, block): (u32, u3
         Ok(g) => g,
         Err(code) => return code,
     };
-    match lab::bench_host::rows(&gpu, &program, objects, size, (frames, block)) {
+    match npr_lab::bench_host::rows(&gpu, &program, objects, size, (frames, block)) {
         Ok(rows) => {
             println!(
                 "device: {}, {size}x{size}, {}: median CPU time per frame of {frames}, in blocks of {block}, GPU excluded",
                 gpu.describe(),
                 style.display()
             );
-            print!("{}", lab::bench_host::table(&rows));
+            print!("{}", npr_lab::bench_host::table(&rows));
             // Issue 32: a frame right after the host adds an object.
             let spawns = frames.min(10);
-            match lab::bench_host::spawn_row(&gpu, &program, 10, size, spawns) {
+            match npr_lab::bench_host::spawn_row(&gpu, &program, 10, size, spawns) {
                 Ok(r) => {
                     println!(
                         "a frame after adding an 11th object: {:.0} µs (median of {spawns}); a steady frame {:.0} µs; \

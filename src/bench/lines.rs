@@ -1,11 +1,11 @@
-//! `npr bench lines`: the command around `lab::bench_lines` (the lines and
+//! `npr bench lines`: the command around `npr_lab::bench_lines` (the lines and
 //! LSA styles compiled, the device, the two tables).
 
 use super::{compile_builtin, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
-use diag::{codes, Diagnostic, SourceMap};
-use lab::bench_lines as bench;
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_lab::bench_lines as bench;
 use std::path::Path;
 
 pub fn run(segments: &[u32], size: u32, frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
@@ -39,7 +39,7 @@ pub fn run(segments: &[u32], size: u32, frames: u32, plot: Option<&Path>, printe
             Err(code) => return code,
         }
     }
-    let lsa: Vec<_> = lab::bench_contours::variants()
+    let lsa: Vec<_> = npr_lab::bench_contours::variants()
         .into_iter()
         .filter(|(name, _, _)| *name == "passthrough" || name.starts_with("LSA full (plane"))
         .collect();

@@ -13,10 +13,10 @@ mod studio;
 
 use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
-use compiler::schedule::Schedule;
-use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap};
-use runner::{Gpu, StyleProgram};
+use npr_compiler::schedule::Schedule;
+use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::{Gpu, StyleProgram};
 use std::path::Path;
 
 /// `cmd` with each style and scene under `examples/` that is not here
@@ -170,7 +170,7 @@ pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
                 Ok(g) => g,
                 Err(code) => return code,
             };
-            match lab::bench::frame_overhead(&gpu, &c.program(), &scene, size, frames) {
+            match npr_lab::bench::frame_overhead(&gpu, &c.program(), &scene, size, frames) {
                 Ok(r) => {
                     println!("device: {}", gpu.describe());
                     println!("{}", r.table());
@@ -316,7 +316,7 @@ fn compile_builtin_with(
         schedule,
         ..Default::default()
     };
-    match compiler::compile_source(name, text, dir, sources, &opts) {
+    match npr_compiler::compile_source(name, text, dir, sources, &opts) {
         Ok(c) => Ok((c.program(), ScheduleChanges::of(&c))),
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, sources);
@@ -337,7 +337,7 @@ pub(crate) fn scene_style_gpu(
     scene_path: &Path,
     sources: &mut SourceMap,
     printer: &Printer,
-) -> Result<(runner::scene::Scene, Compiled, Gpu), i32> {
+) -> Result<(npr_runner::scene::Scene, Compiled, Gpu), i32> {
     let (scene, mut compiled, gpu) = scene_styles_gpu(style, scene_path, &[Schedule::default()], sources, printer)?;
     let compiled = compiled.pop().ok_or(EXIT_INTERNAL)?;
     Ok((scene, compiled, gpu))
@@ -350,7 +350,7 @@ pub(crate) fn scene_styles_gpu(
     schedules: &[Schedule],
     sources: &mut SourceMap,
     printer: &Printer,
-) -> Result<(runner::scene::Scene, Vec<Compiled>, Gpu), i32> {
+) -> Result<(npr_runner::scene::Scene, Vec<Compiled>, Gpu), i32> {
     let scene = load_scene(scene_path, sources, printer)?;
     let mut compiled = Vec::new();
     for &schedule in schedules {

@@ -1,24 +1,24 @@
-//! `npr bench patterns`: the command around `lab::bench_patterns` (limits,
+//! `npr bench patterns`: the command around `npr_lab::bench_patterns` (limits,
 //! compiling the tracker for each sample count, the device, the table) and
-//! `lab::sliding` (the sliding of each pattern placement and tracker variant).
+//! `npr_lab::sliding` (the sliding of each pattern placement and tracker variant).
 
 use super::{compile_builtin, plot, plotted};
 use crate::cli::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
-use diag::{codes, Diagnostic, SourceMap};
-use runner::RunError;
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::RunError;
 use std::path::Path;
 
 pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>, printer: &Printer) -> i32 {
     if let Some(bad) = samples
         .iter()
-        .find(|n| **n == 0 || **n > abi::manifest::MAX_SAMPLES_PER_OBJECT)
+        .find(|n| **n == 0 || **n > npr_abi::manifest::MAX_SAMPLES_PER_OBJECT)
     {
         return printer.fail(Diagnostic::error(
             codes::LIMIT_EXCEEDED,
             format!(
                 "{bad} samples per object is outside 1..={}",
-                abi::manifest::MAX_SAMPLES_PER_OBJECT
+                npr_abi::manifest::MAX_SAMPLES_PER_OBJECT
             ),
         ));
     }
@@ -31,7 +31,7 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
     let sources = std::cell::RefCell::new(SourceMap::new());
     let null = match compile_builtin(
         "null.npr",
-        lab::bench_patterns::NULL_SHADE,
+        npr_lab::bench_patterns::NULL_SHADE,
         &mut sources.borrow_mut(),
         printer,
     ) {
@@ -46,21 +46,22 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
         compile_builtin("patterns.npr", text, &mut sources.borrow_mut(), printer)
             .map_err(|_| RunError::Internal("the benchmark's tracker style does not compile".into()))
     };
-    let costs = match lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
-        Ok(rows) => {
-            println!(
-                "device: {}, {}², median of {frames} interleaved frames (wall clock)",
-                gpu.describe(),
-                lab::bench_patterns::SIZE
-            );
-            println!("{}", lab::bench_patterns::table(&rows));
-            rows
-        }
-        Err(e) => {
-            printer.diagnostics(&e.diagnostics(), &sources.borrow());
-            return EXIT_INTERNAL;
-        }
-    };
+    let costs =
+        match npr_lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
+            Ok(rows) => {
+                println!(
+                    "device: {}, {}², median of {frames} interleaved frames (wall clock)",
+                    gpu.describe(),
+                    npr_lab::bench_patterns::SIZE
+                );
+                println!("{}", npr_lab::bench_patterns::table(&rows));
+                rows
+            }
+            Err(e) => {
+                printer.diagnostics(&e.diagnostics(), &sources.borrow());
+                return EXIT_INTERNAL;
+            }
+        };
     // Sliding (§4, Fig. 4): px per frame between the pattern's and the
     // surface's motion, per placement and tracker variant.
     // `examples/scenes` here, or the copy built into npr (`crate::bundled`).
@@ -68,19 +69,19 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
         Ok(d) => d,
         Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
     };
-    match lab::sliding::run(&gpu, compile, &scenes_dir, |m| eprintln!("{m}")) {
+    match npr_lab::sliding::run(&gpu, compile, &scenes_dir, |m| eprintln!("{m}")) {
         Ok(rows) => {
             println!(
                 "sliding, px/frame over covered pixels ({}×{}, {} frames at 24 fps; % of screen-fixed):",
-                lab::sliding::SIZE.0,
-                lab::sliding::SIZE.1,
-                lab::sliding::FRAMES
+                npr_lab::sliding::SIZE.0,
+                npr_lab::sliding::SIZE.1,
+                npr_lab::sliding::FRAMES
             );
-            println!("{}", lab::sliding::table(&rows));
+            println!("{}", npr_lab::sliding::table(&rows));
             let subtitle = format!(
                 "{}, {}², median of {frames} interleaved frames (wall clock)",
                 gpu.describe(),
-                lab::bench_patterns::SIZE
+                npr_lab::bench_patterns::SIZE
             );
             plotted(|| plot::figures::patterns(&costs, &rows, &subtitle), plot, printer)
         }

@@ -24,8 +24,8 @@
 use super::http_client::{request, Events};
 use crate::cli::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::Printer;
-use diag::{codes, Diagnostic, SourceMap};
-use runner::{FrameSpec, Renderer};
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::{FrameSpec, Renderer};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -122,7 +122,7 @@ fn render_frame_ms(b: &StudioBench, printer: &Printer) -> Result<f64, i32> {
     let mut sources = SourceMap::new();
     let (scene, compiled, gpu) = super::scene_style_gpu(b.style, b.scene, &mut sources, printer)?;
     let program = compiled.program();
-    let fail = |e: runner::RunError| {
+    let fail = |e: npr_runner::RunError| {
         printer.diagnostics(&e.diagnostics(), &sources);
         EXIT_INTERNAL
     };

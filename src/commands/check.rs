@@ -3,7 +3,7 @@
 
 use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
 use crate::printer::{check_options, Printer};
-use diag::SourceMap;
+use npr_diag::SourceMap;
 
 pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     let mut sources = SourceMap::new();
@@ -14,7 +14,7 @@ pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     match crate::set_params::compile(&args.style, &args.set, &mut sources, &opts, printer) {
         Ok(c) => {
             printer.diagnostics(&c.warnings, &sources);
-            let texture_errors = crate::texture_check::texture_file_errors(&c, runner::texture_file::Depth::Decode);
+            let texture_errors = crate::texture_check::texture_file_errors(&c, npr_runner::texture_file::Depth::Decode);
             if !texture_errors.is_empty() {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;

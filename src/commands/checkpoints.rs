@@ -1,6 +1,6 @@
 //! `npr render --checkpoints DIR`: a path-dependent style's sequence in
 //! chunks, each starting from the state the frames before it left
-//! (`runner::checkpoint`) instead of replaying them.
+//! (`npr_runner::checkpoint`) instead of replaying them.
 //!
 //! `DIR/frame_NNNNNN.nprstate` holds the renderer's state ready to render
 //! frame NNNNNN. A render of `--frames A..B` starts from the checkpoint of
@@ -12,9 +12,9 @@
 //! then run in parallel. A checkpoint for another render, or a damaged
 //! one, is refused (E0512, E0513), never silently replaced by a replay.
 
-use runner::checkpoint::{self, Checkpoint, Identity};
-use runner::schedule::ScheduledFrame;
-use runner::{Renderer, RunError, StyleProgram};
+use npr_runner::checkpoint::{self, Checkpoint, Identity};
+use npr_runner::schedule::ScheduledFrame;
+use npr_runner::{Renderer, RunError, StyleProgram};
 use std::path::{Path, PathBuf};
 
 /// The checkpoints of one render.
@@ -41,7 +41,7 @@ impl Checkpoints {
     pub(crate) fn new(
         dir: &Path,
         program: &StyleProgram,
-        scene: &runner::scene::Scene,
+        scene: &npr_runner::scene::Scene,
         (width, height): (u32, u32),
         fps: f64,
         every: Option<u32>,
@@ -84,8 +84,8 @@ impl Checkpoints {
         let path = path_of(&self.dir, frame);
         let c = checkpoint::read(&path, &self.identity).map_err(|d| RunError::User(vec![d]))?;
         if c.frame != frame {
-            return Err(RunError::User(vec![diag::Diagnostic::error(
-                diag::codes::BAD_CHECKPOINT,
+            return Err(RunError::User(vec![npr_diag::Diagnostic::error(
+                npr_diag::codes::BAD_CHECKPOINT,
                 format!("checkpoint {} is of frame {}, not {frame}", path.display(), c.frame),
             )
             .with_help("a checkpoint's name says its frame: do not rename them")]));

@@ -3,8 +3,8 @@
 
 use crate::cli::{CompileArgs, EXIT_OK};
 use crate::printer::{cannot_write, check_options, Printer};
-use compiler::{CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap};
+use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
 
 pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
@@ -77,5 +77,5 @@ fn write_compiled(c: &Compiled, out: &Path) -> std::io::Result<()> {
     }
     // Synced together: one journal commit rather than one per file (a cold
     // `npr compile` spent 8 of its 18 ms in 14 sequential fsyncs).
-    runner::output::write_all_atomic(&files)
+    npr_runner::output::write_all_atomic(&files)
 }

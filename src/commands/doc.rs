@@ -32,8 +32,8 @@ pub fn run(out: &Path, examples: &Path, performance: &Path, printer: &Printer) -
         Ok(f) => f,
         Err(e) => {
             return printer.fail(
-                diag::Diagnostic::error(
-                    diag::codes::BAD_ARGUMENT_VALUE,
+                npr_diag::Diagnostic::error(
+                    npr_diag::codes::BAD_ARGUMENT_VALUE,
                     format!("--performance {}: {e}", performance.display()),
                 )
                 .with_help("run `npr doc` in the repository, or give the file with `--performance PATH`"),
@@ -53,7 +53,7 @@ pub fn run(out: &Path, examples: &Path, performance: &Path, printer: &Printer) -
         .map(|(name, text)| (out.join(name), text.as_bytes()))
         .chain(images.iter().map(|(name, png)| (out.join(name), png.as_slice())))
         .collect();
-    match runner::output::write_all_atomic(&writes) {
+    match npr_runner::output::write_all_atomic(&writes) {
         Ok(()) => {
             eprintln!(
                 "wrote {} files of the reference and {} demo images into {}",

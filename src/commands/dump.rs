@@ -1,7 +1,7 @@
 //! Reading every target of a frame (`--dump-passes`, the studio's pass
 //! thumbnails), including targets whose texture a later pass reuses.
 
-use runner::{FrameSpec, Renderer, RunError};
+use npr_runner::{FrameSpec, Renderer, RunError};
 
 /// Read every target. Targets aliased onto a texture that a later pass
 /// reuses are captured by re-running the frame up to the pass that wrote
@@ -9,12 +9,12 @@ use runner::{FrameSpec, Renderer, RunError};
 /// and for the others render again and read right after their pass).
 pub(crate) fn dump_all_targets(
     r: &mut Renderer,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     width: u32,
     height: u32,
     time: f64,
     eye: u32,
-) -> Result<Vec<runner::TargetImage>, RunError> {
+) -> Result<Vec<npr_runner::TargetImage>, RunError> {
     let spec = FrameSpec {
         width,
         height,
@@ -31,13 +31,13 @@ pub(crate) fn dump_all_targets(
 /// (which neither begin a new frame nor change any history texture).
 pub(crate) fn read_all_targets(
     r: &mut Renderer,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     spec: &FrameSpec,
-) -> Result<Vec<runner::TargetImage>, RunError> {
+) -> Result<Vec<npr_runner::TargetImage>, RunError> {
     let count = r.manifest().targets.len();
     // Read every survivor of the full frame first: a partial re-render
     // overwrites the textures that aliased targets share with them.
-    let mut images: Vec<Option<runner::TargetImage>> = Vec::with_capacity(count);
+    let mut images: Vec<Option<npr_runner::TargetImage>> = Vec::with_capacity(count);
     for t in 0..count {
         images.push(if r.target_survives_frame(t) {
             Some(r.read_target(t)?)

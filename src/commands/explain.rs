@@ -1,20 +1,20 @@
 //! `npr explain CODE`: the long explanation of an error or warning code
-//! (`dsl::explain`), or E0502 with the nearest codes for one that does not
+//! (`npr_dsl::explain`), or E0502 with the nearest codes for one that does not
 //! exist.
 
 use crate::cli::EXIT_OK;
 use crate::printer::Printer;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 pub fn run(code: &str, printer: &Printer) -> i32 {
-    let numbered = dsl::explain::by_number(code);
-    let found = dsl::explain::lookup(code).or_else(|| match numbered.as_slice() {
-        [one] => dsl::explain::lookup(one),
+    let numbered = npr_dsl::explain::by_number(code);
+    let found = npr_dsl::explain::lookup(code).or_else(|| match numbered.as_slice() {
+        [one] => npr_dsl::explain::lookup(one),
         _ => None,
     });
     match found {
         Some(e) => {
-            print!("{}", dsl::explain::render(e));
+            print!("{}", npr_dsl::explain::render(e));
             EXIT_OK
         }
         None => printer.fail(unknown_code(code)),
@@ -28,18 +28,18 @@ fn unknown_code(code: &str) -> Diagnostic {
     let listed = |codes: Vec<&str>| -> String {
         codes
             .into_iter()
-            .map(|c| format!("{c} ({})", dsl::explain::summary(c).unwrap_or("")))
+            .map(|c| format!("{c} ({})", npr_dsl::explain::summary(c).unwrap_or("")))
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let words = dsl::explain::by_words(code, 4);
-    let numbered = dsl::explain::by_number(code);
+    let words = npr_dsl::explain::by_words(code, 4);
+    let numbered = npr_dsl::explain::by_number(code);
     let help = if !words.is_empty() {
         format!("codes about `{}`: {}", code.trim(), listed(words))
     } else if !numbered.is_empty() {
         format!("codes numbered {}: {}", code.trim(), listed(numbered))
     } else {
-        format!("the nearest codes are {}", listed(dsl::explain::nearest(code, 3)))
+        format!("the nearest codes are {}", listed(npr_dsl::explain::nearest(code, 3)))
     };
     Diagnostic::error(
         codes::BAD_ARGUMENT_VALUE,

@@ -11,9 +11,9 @@
 use crate::cli::EXIT_USER;
 use crate::commands::dump::read_all_targets;
 use crate::printer::cannot_write;
-use diag::{codes, Diagnostic};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer, RunError};
+use npr_diag::{codes, Diagnostic};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer, RunError};
 use std::path::{Path, PathBuf};
 
 /// What `-o` names.
@@ -150,7 +150,7 @@ impl FrameSink {
                     out.clone()
                 };
                 let img = r.read_output()?;
-                runner::output::write_target(&img, &path).map_err(|e| io(e, &path))?;
+                npr_runner::output::write_target(&img, &path).map_err(|e| io(e, &path))?;
                 Ok((!*sequence).then_some((path, img.width, img.height)))
             }
             FrameSink::Layers { out, sequence } => {
@@ -160,7 +160,7 @@ impl FrameSink {
                     out.clone()
                 };
                 let images = read_all_targets(r, scene, spec)?;
-                runner::exr_layers::write_layers(&images, &path).map_err(|e| io(e, &path))?;
+                npr_runner::exr_layers::write_layers(&images, &path).map_err(|e| io(e, &path))?;
                 Ok((!*sequence).then_some((path, spec.width, spec.height)))
             }
             FrameSink::Video(video) => {

@@ -40,7 +40,7 @@ pub fn run(cli: Cli) -> i32 {
                     sets: live.set,
                     keep_params: false,
                     paths: live.paths,
-                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
+                    schedule: live.schedule.map_or(npr_compiler::schedule::Schedule::Auto, Into::into),
                 },
                 out,
                 size: live.size,
@@ -60,7 +60,9 @@ pub fn run(cli: Cli) -> i32 {
                     keep_params: true,
                     paths: live.paths,
                     // Every declared target has a thumbnail.
-                    schedule: live.schedule.map_or(compiler::schedule::Schedule::Naive, Into::into),
+                    schedule: live
+                        .schedule
+                        .map_or(npr_compiler::schedule::Schedule::Naive, Into::into),
                 },
                 size: live.size,
                 time: live.time,

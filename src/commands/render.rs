@@ -7,10 +7,10 @@ use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
-use compiler::CompileOptions;
-use diag::{codes, Diagnostic, SourceMap};
-use runner::schedule::FrameRequest;
-use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_runner::schedule::FrameRequest;
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
 use std::path::{Path, PathBuf};
 
 pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
@@ -104,9 +104,9 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 // shows every declared target.
                 schedule: schedule.map_or(
                     if dump_passes.is_some() || layers {
-                        compiler::schedule::Schedule::Naive
+                        npr_compiler::schedule::Schedule::Naive
                     } else {
-                        compiler::schedule::Schedule::Auto
+                        npr_compiler::schedule::Schedule::Auto
                     },
                     Into::into,
                 ),
@@ -117,7 +117,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 Err(code) => return code,
             };
             printer.diagnostics(&c.warnings, &sources);
-            let texture_errors = crate::texture_check::texture_file_errors(&c, runner::texture_file::Depth::Header);
+            let texture_errors = crate::texture_check::texture_file_errors(&c, npr_runner::texture_file::Depth::Header);
             if !texture_errors.is_empty() {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;
@@ -139,12 +139,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
             return printer.fail(Diagnostic::error(codes::USAGE, "give a style or --compiled DIR"));
         }
     };
-    printer.diagnostics(&runner::scene_warnings(&program.manifest, &scene), &sources);
+    printer.diagnostics(&npr_runner::scene_warnings(&program.manifest, &scene), &sources);
     let request = match frames {
         Some((start, end)) => FrameRequest::Range { start, end },
         None => FrameRequest::At { time_s: time },
     };
-    let count = runner::schedule::frame_count(request, fps, program.manifest.is_path_dependent());
+    let count = npr_runner::schedule::frame_count(request, fps, program.manifest.is_path_dependent());
     if let Err(code) = printer.check(crate::args::check_frame_count(count as usize)) {
         return code;
     }
@@ -200,7 +200,7 @@ fn default_output(style: Option<&Path>, compiled: Option<&Path>, layers: bool) -
 pub(crate) fn render(
     gpu: &Gpu,
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     (width, height): (u32, u32),
     time: f64,
     frames: Option<(u32, u32)>,
@@ -218,7 +218,7 @@ pub(crate) fn render(
         None => FrameRequest::At { time_s: time },
     };
     let path_dependent = program.manifest.is_path_dependent();
-    let mut schedule = runner::schedule::schedule(request, fps, path_dependent);
+    let mut schedule = npr_runner::schedule::schedule(request, fps, path_dependent);
     let checkpoints = match (checkpoints, frames) {
         (Some((dir, every)), Some((start, end))) if path_dependent => {
             let c = Checkpoints::new(dir, program, scene, (width, height), fps, every, end);
@@ -320,7 +320,7 @@ pub(crate) fn render(
             }
             None => dump_all_targets(&mut r, scene, width, height, time, eye)?,
         };
-        let written = runner::output::dump_targets(&images, dir).map_err(|e| io(e, dir))?;
+        let written = npr_runner::output::dump_targets(&images, dir).map_err(|e| io(e, dir))?;
         eprintln!("wrote {} files into {}", written.len(), dir.display());
     }
     Ok(())

@@ -13,7 +13,7 @@ use crate::style_tests::run::{self, Settings, Status};
 use crate::style_tests::select;
 use crate::style_tests::sweep;
 use crate::style_tests::sweep::cases::{self, Case};
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::time::Instant;
 
 /// One line of the run: a declared test, or a style's sweep over its cases.
@@ -132,7 +132,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
                 .iter()
                 .filter(|d| {
                     d.is_error()
-                        || warned.insert(diag::diagnostic::render(
+                        || warned.insert(npr_diag::diagnostic::render(
                             std::slice::from_ref(*d),
                             &result.sources,
                             false,
@@ -162,7 +162,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     };
     match &args.report {
         Some(path) => {
-            if let Err(e) = runner::output::write_atomic(path, text.as_bytes()) {
+            if let Err(e) = npr_runner::output::write_atomic(path, text.as_bytes()) {
                 return printer.fail(cannot_write(path, e));
             }
             if args.format != ReportFormat::Human {

@@ -33,7 +33,7 @@ pub fn run(args: TexgenArgs, printer: &Printer) -> i32 {
             }
         }
     };
-    let spec = abi::NoiseSpec {
+    let spec = npr_abi::NoiseSpec {
         size,
         octaves,
         seed,
@@ -41,7 +41,7 @@ pub fn run(args: TexgenArgs, printer: &Printer) -> i32 {
         channels,
         frequency,
     };
-    let written = runner::texgen::write_png16(&runner::texgen::generate(&spec), &out);
+    let written = npr_runner::texgen::write_png16(&npr_runner::texgen::generate(&spec), &out);
     report_written(written, &out, &format!("{size}x{size}, {channels} channel(s)"), printer)
 }
 
@@ -56,14 +56,14 @@ fn report_written(result: std::io::Result<()>, out: &Path, what: &str, printer: 
     }
 }
 
-/// `npr texgen --kind paint --color "#rrggbb"`: [`runner::texgen::paint_map`] as an 8-bit PNG.
+/// `npr texgen --kind paint --color "#rrggbb"`: [`npr_runner::texgen::paint_map`] as an 8-bit PNG.
 fn texgen_paint(out: &std::path::Path, size: u32, seed: u32, base: [f64; 3], printer: &Printer) -> i32 {
-    let map = runner::texgen::paint_map(size, base, seed);
+    let map = npr_runner::texgen::paint_map(size, base, seed);
     let image = image::RgbaImage::from_fn(map.width, map.height, |x, y| {
         image::Rgba(map.pixels[(y * map.width + x) as usize])
     });
     report_written(
-        runner::output::write_png8(&image, out),
+        npr_runner::output::write_png8(&image, out),
         out,
         &format!("{size}x{size} paint map"),
         printer,

@@ -1,8 +1,8 @@
 //! What each builtin value is, for the reference and hover: one sentence
-//! per `compiler::ir::Builtin` (an exhaustive match, so a new builtin does
+//! per `npr_compiler::ir::Builtin` (an exhaustive match, so a new builtin does
 //! not build until it is described), with its type and unit from the IR.
 
-use compiler::ir::Builtin;
+use npr_compiler::ir::Builtin;
 
 /// One sentence saying what the builtin holds.
 pub fn doc(b: Builtin) -> &'static str {
@@ -69,12 +69,12 @@ pub fn availability(b: Builtin) -> &'static str {
 pub fn signature(spelling: &str, b: Builtin) -> String {
     let (ty, unit) = b.ty_unit();
     let ty = match ty {
-        compiler::ir::Ty::Float => "float",
-        compiler::ir::Ty::Int => "int",
-        compiler::ir::Ty::Bool => "bool",
-        compiler::ir::Ty::Vec2 => "vec2",
-        compiler::ir::Ty::Vec3 => "vec3",
-        compiler::ir::Ty::Vec4 => "vec4",
+        npr_compiler::ir::Ty::Float => "float",
+        npr_compiler::ir::Ty::Int => "int",
+        npr_compiler::ir::Ty::Bool => "bool",
+        npr_compiler::ir::Ty::Vec2 => "vec2",
+        npr_compiler::ir::Ty::Vec3 => "vec3",
+        npr_compiler::ir::Ty::Vec4 => "vec4",
         _ => "value",
     };
     let mut s = format!("{spelling}: {ty}");

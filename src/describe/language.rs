@@ -45,7 +45,7 @@ pub const UNITS: &[(&str, &str)] = &[
 ];
 
 /// A target format's properties in words.
-pub fn format_text(f: abi::Format) -> String {
+pub fn format_text(f: npr_abi::Format) -> String {
     format!(
         "{} channel(s), {} bytes per pixel{}{}",
         f.channels(),
@@ -64,14 +64,14 @@ pub fn format_text(f: abi::Format) -> String {
 }
 
 /// Every target format, by name.
-pub fn formats() -> impl Iterator<Item = (&'static str, abi::Format)> {
-    abi::Format::ALL.iter().copied()
+pub fn formats() -> impl Iterator<Item = (&'static str, npr_abi::Format)> {
+    npr_abi::Format::ALL.iter().copied()
 }
 
 /// What an intrinsic function does (an exhaustive match on
-/// `compiler::ir::Intrinsic`, so a new one is described before it builds).
-pub fn intrinsic_doc(i: compiler::ir::Intrinsic) -> String {
-    use compiler::ir::Intrinsic::*;
+/// `npr_compiler::ir::Intrinsic`, so a new one is described before it builds).
+pub fn intrinsic_doc(i: npr_compiler::ir::Intrinsic) -> String {
+    use npr_compiler::ir::Intrinsic::*;
     match i {
         Construct(n) => format!("`vec{n}(...)`: a {n}-vector from scalars and vectors (components in order), or one scalar in every component."),
         Map(name) => format!("WGSL `{name}`, per component; the result has the argument's type."),

@@ -8,7 +8,7 @@ pub mod builtins;
 pub mod guide;
 pub mod language;
 
-use stdlib::{Default, Operator, Param, Ty, Unit};
+use npr_stdlib::{Default, Operator, Param, Ty, Unit};
 
 /// A type as a style writes it.
 pub fn ty_name(ty: Ty) -> String {
@@ -88,26 +88,26 @@ pub fn signature(op: &Operator) -> String {
 }
 
 /// What an operator reads of each texture argument, in words, from its
-/// declared footprints (`stdlib::Footprint`): what decides fusion and a
+/// declared footprints (`npr_stdlib::Footprint`): what decides fusion and a
 /// tile's apron. Every operator runs in any pass kind that can call it.
 pub fn reads_text(op: &Operator) -> String {
     let reads: Vec<String> = op
         .footprints
         .iter()
         .map(|(param, f)| match f {
-            stdlib::Footprint::Around {
+            npr_stdlib::Footprint::Around {
                 uv,
-                radius: stdlib::Radius::Texels(0),
+                radius: npr_stdlib::Radius::Texels(0),
             } => format!("`{param}` at the texel under `{uv}` only"),
-            stdlib::Footprint::Around {
+            npr_stdlib::Footprint::Around {
                 uv,
-                radius: stdlib::Radius::Texels(r),
+                radius: npr_stdlib::Radius::Texels(r),
             } => format!("`{param}` within {r} texel(s) of `{uv}`"),
-            stdlib::Footprint::Around {
+            npr_stdlib::Footprint::Around {
                 uv,
-                radius: stdlib::Radius::Scaled { param: by, k, max },
+                radius: npr_stdlib::Radius::Scaled { param: by, k, max },
             } => format!("`{param}` within ⌈{k}·`{by}`⌉ texels of `{uv}` (at most {max})"),
-            stdlib::Footprint::Anywhere => format!("`{param}` anywhere (at a computed coordinate)"),
+            npr_stdlib::Footprint::Anywhere => format!("`{param}` anywhere (at a computed coordinate)"),
         })
         .collect();
     if reads.is_empty() {

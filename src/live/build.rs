@@ -7,9 +7,9 @@
 //! sends them to the page.
 
 use crate::set_params;
-use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{Diagnostic, SourceMap};
-use runner::scene::Scene;
+use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::{Diagnostic, SourceMap};
+use npr_runner::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -24,7 +24,7 @@ pub struct Inputs {
     /// `--root` and `--allow-path`.
     pub paths: crate::cli::PathArgs,
     /// `--schedule`, or the command's default.
-    pub schedule: compiler::schedule::Schedule,
+    pub schedule: npr_compiler::schedule::Schedule,
 }
 
 pub struct Built {
@@ -40,7 +40,7 @@ impl Built {
     /// compiler's, then the scene's bindings the style does not read (W0401).
     pub fn warnings(&self) -> Vec<Diagnostic> {
         let mut all = self.compiled.warnings.clone();
-        all.extend(runner::scene_warnings(&self.compiled.manifest, &self.scene));
+        all.extend(npr_runner::scene_warnings(&self.compiled.manifest, &self.scene));
         all
     }
 }
@@ -66,7 +66,7 @@ pub fn build(inputs: &Inputs, controls: &[String]) -> Result<Built, Failed> {
             })
         }
     };
-    let scene = match runner::scene::load_scene_in(&inputs.scene, &mut sources, Some(&paths)) {
+    let scene = match npr_runner::scene::load_scene_in(&inputs.scene, &mut sources, Some(&paths)) {
         Ok(s) => s,
         Err(diagnostics) => return Err(Failed { diagnostics, sources }),
     };
@@ -106,7 +106,7 @@ pub fn dependencies(inputs: &Inputs, sources: &SourceMap, built: Option<&Built>)
     );
     if let Some(b) = built {
         for t in &b.compiled.manifest.textures {
-            if let abi::manifest::TextureSourceManifest::Image { resolved, .. } = &t.source {
+            if let npr_abi::manifest::TextureSourceManifest::Image { resolved, .. } = &t.source {
                 files.push(PathBuf::from(resolved));
             }
         }

@@ -9,18 +9,18 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 pub fn catch<T>(step: impl FnOnce() -> T) -> Result<T, String> {
     // The state a panicking step touched is dropped by the caller (the
     // renderer is rebuilt), so observing it half-updated cannot happen.
-    // Not `diag::panics::catch`: this panic is a bug, so the hook still
+    // Not `npr_diag::panics::catch`: this panic is a bug, so the hook still
     // prints where it happened.
     catch_unwind(AssertUnwindSafe(step)).map_err(|payload| {
         format!(
             "internal error: the render thread panicked: {}",
-            diag::panics::message(payload.as_ref())
+            npr_diag::panics::message(payload.as_ref())
         )
     })
 }
 
 /// The panic as a diagnostic, for the same printers as every other error.
-pub fn panic_diagnostic(message: &str) -> diag::Diagnostic {
-    diag::Diagnostic::error(diag::codes::INTERNAL, message.to_string())
+pub fn panic_diagnostic(message: &str) -> npr_diag::Diagnostic {
+    npr_diag::Diagnostic::error(npr_diag::codes::INTERNAL, message.to_string())
         .with_help("this is a bug in npr; the previous image is kept, and the next save tries again")
 }

@@ -6,9 +6,9 @@
 
 use super::analysis::{self, Analysis};
 use crate::describe;
-use compiler::ir::{Builtin, Intrinsic};
-use dsl::ast::Item;
 use lsp_types::{CompletionItem, CompletionItemKind, Documentation, InsertTextFormat, MarkupContent, MarkupKind};
+use npr_compiler::ir::{Builtin, Intrinsic};
+use npr_dsl::ast::Item;
 
 pub fn complete(a: &Analysis, text: &str, offset: usize) -> Vec<CompletionItem> {
     let before = &text[..floor_boundary(text, offset)];
@@ -44,7 +44,7 @@ pub fn complete(a: &Analysis, text: &str, offset: usize) -> Vec<CompletionItem> 
             .collect();
     }
     let mut items = Vec::new();
-    if let Some(op) = enclosing_call(head).and_then(stdlib::find) {
+    if let Some(op) = enclosing_call(head).and_then(npr_stdlib::find) {
         for p in op.params {
             let mut it = item(
                 p.name,
@@ -147,7 +147,7 @@ fn members(a: &Analysis, base: &str) -> Vec<CompletionItem> {
 
 fn everything(a: &Analysis, offset: usize) -> Vec<CompletionItem> {
     let mut items = Vec::new();
-    for op in stdlib::all() {
+    for op in npr_stdlib::all() {
         let mut it = item(
             op.name,
             CompletionItemKind::FUNCTION,

@@ -4,8 +4,8 @@
 use super::analysis::Analysis;
 use super::position::LineIndex;
 use super::symbol::Symbol;
-use diag::Span;
 use lsp_types::Location;
+use npr_diag::Span;
 
 /// The span of the name in the symbol's declaration.
 pub fn declared_at(symbol: &Symbol) -> Option<Span> {

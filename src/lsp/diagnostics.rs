@@ -6,9 +6,9 @@
 //! information.
 
 use super::position::LineIndex;
-use compiler::{CompileError, CompileOptions};
-use diag::{Severity, SourceMap};
 use lsp_types::{Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, NumberOrString, Range};
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::{Severity, SourceMap};
 use std::path::Path;
 
 pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
@@ -24,12 +24,12 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
         // that is the one thing to report.
         Err(d) => return vec![convert(&d, &sources, &name)],
     };
-    let found = match compiler::compile_source(&name, text, dir, &mut sources, &options) {
+    let found = match npr_compiler::compile_source(&name, text, dir, &mut sources, &options) {
         Ok(c) => {
             let mut found = c.warnings.clone();
             found.extend(crate::texture_check::texture_file_errors(
                 &c,
-                runner::texture_file::Depth::Header,
+                npr_runner::texture_file::Depth::Header,
             ));
             found
         }
@@ -40,7 +40,7 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     found.iter().map(|d| convert(d, &sources, &root)).collect()
 }
 
-pub(super) fn convert(d: &diag::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
+pub(super) fn convert(d: &npr_diag::Diagnostic, sources: &SourceMap, root: &str) -> Diagnostic {
     let mut message = d.message.clone();
     let mut range = Range::default();
     let mut related = Vec::new();

@@ -54,7 +54,7 @@ pub fn markdown(a: &Analysis, symbol: &Symbol) -> String {
                 p.name,
                 describe::ty_name(p.ty),
                 p.doc,
-                if p.unit == stdlib::Unit::None {
+                if p.unit == npr_stdlib::Unit::None {
                     "none".into()
                 } else {
                     p.unit.name().to_string()

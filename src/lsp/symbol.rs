@@ -5,8 +5,8 @@
 
 use super::analysis::{self, Analysis};
 use super::tokens::Token;
-use compiler::ir::{Builtin, Intrinsic};
-use dsl::ast::{LetBinding, ParamDecl, PassDecl, TextureDecl};
+use npr_compiler::ir::{Builtin, Intrinsic};
+use npr_dsl::ast::{LetBinding, ParamDecl, PassDecl, TextureDecl};
 
 pub enum Symbol<'a> {
     Let(&'a LetBinding),
@@ -15,13 +15,13 @@ pub enum Symbol<'a> {
     Pass(&'a PassDecl),
     Target(&'a PassDecl, analysis::Target<'a>),
     Builtin(&'static str, Builtin),
-    Operator(&'static stdlib::Operator),
+    Operator(&'static npr_stdlib::Operator),
     Intrinsic(&'static str, Intrinsic),
     /// A call the compiler treats specially (`previous`, `noise`...): as written, what it does.
     Special(&'static str, &'static str),
-    OperatorParam(&'static stdlib::Operator, &'static stdlib::Param),
+    OperatorParam(&'static npr_stdlib::Operator, &'static npr_stdlib::Param),
     PassKind(String),
-    Format(&'static str, abi::Format),
+    Format(&'static str, npr_abi::Format),
 }
 
 pub fn resolve<'a>(a: &'a Analysis, token: &Token<'a>, pass: Option<&'a PassDecl>) -> Option<Symbol<'a>> {
@@ -43,13 +43,13 @@ pub fn resolve<'a>(a: &'a Analysis, token: &Token<'a>, pass: Option<&'a PassDecl
         }
         Token::Callee(call) => callee(&call.callee.name),
         Token::ArgName { call, name } => {
-            let op = stdlib::find(&call.callee.name)?;
+            let op = npr_stdlib::find(&call.callee.name)?;
             op.params
                 .iter()
                 .find(|p| p.name == name.name)
                 .map(|p| Symbol::OperatorParam(op, p))
         }
-        Token::Format(f) => abi::Format::ALL
+        Token::Format(f) => npr_abi::Format::ALL
             .iter()
             .find(|(n, _)| *n == f.name)
             .map(|(n, fmt)| Symbol::Format(n, *fmt)),
@@ -62,7 +62,7 @@ pub fn resolve<'a>(a: &'a Analysis, token: &Token<'a>, pass: Option<&'a PassDecl
 fn name<'a>(
     a: &'a Analysis,
     name: &str,
-    member: Option<&dsl::ast::Ident>,
+    member: Option<&npr_dsl::ast::Ident>,
     pass: Option<&'a PassDecl>,
 ) -> Option<Symbol<'a>> {
     if let Some(l) = pass.and_then(|p| p.body.lets.iter().find(|l| l.name.name == name)) {
@@ -93,7 +93,7 @@ fn builtin(spelling: &str) -> Option<Symbol<'static>> {
 }
 
 fn callee(name: &str) -> Option<Symbol<'static>> {
-    if let Some(op) = stdlib::find(name) {
+    if let Some(op) = npr_stdlib::find(name) {
         return Some(Symbol::Operator(op));
     }
     if let Some((n, i)) = Intrinsic::TABLE.iter().find(|(n, _)| *n == name) {

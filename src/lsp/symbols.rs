@@ -3,9 +3,9 @@
 
 use super::analysis::{self, Analysis};
 use super::position::LineIndex;
-use diag::Span;
-use dsl::ast::Item;
 use lsp_types::{DocumentSymbol, SymbolKind};
+use npr_diag::Span;
+use npr_dsl::ast::Item;
 
 pub fn outline(a: &Analysis) -> Vec<DocumentSymbol> {
     let index = LineIndex::new(a.text(a.root()));

@@ -9,8 +9,8 @@
 
 use crate::style_tests::declare;
 use crate::style_tests::run::param_settings;
-use compiler::{CompileError, CompileOptions};
 use lsp_types::Diagnostic;
+use npr_compiler::{CompileError, CompileOptions};
 use std::path::Path;
 
 /// Whether `path` is a style's test file.
@@ -34,9 +34,9 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
                 paths: super::policy::for_document(&file.style).ok(),
                 ..Default::default()
             };
-            if let Err(CompileError::User(found)) = compiler::compile_file(&file.style, &mut sources, &opts) {
+            if let Err(CompileError::User(found)) = npr_compiler::compile_file(&file.style, &mut sources, &opts) {
                 // Only what points into this buffer: the settings' errors.
-                let in_buffer: Vec<diag::Diagnostic> = found
+                let in_buffer: Vec<npr_diag::Diagnostic> = found
                     .into_iter()
                     .filter(|d| d.primary_span().is_some_and(|s| s.file == sets[0].0.span.file))
                     .collect();
@@ -48,7 +48,7 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     out
 }
 
-fn convert(found: &[diag::Diagnostic], sources: &diag::SourceMap) -> Vec<Diagnostic> {
+fn convert(found: &[npr_diag::Diagnostic], sources: &npr_diag::SourceMap) -> Vec<Diagnostic> {
     let root = sources.files().first().map(|f| f.name.clone()).unwrap_or_default();
     found
         .iter()

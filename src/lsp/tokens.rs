@@ -3,7 +3,7 @@
 //! declared name of the document's own AST, with its span; [`at`] finds the
 //! innermost one under the cursor.
 
-use dsl::ast::{Ast, Call, Expr, ExprKind, Ident, Item, PassDecl};
+use npr_dsl::ast::{Ast, Call, Expr, ExprKind, Ident, Item, PassDecl};
 
 pub enum Token<'a> {
     /// A bare name read (`bands`, `uv`, `shade` in `shade.c`); `member` is
@@ -27,7 +27,7 @@ pub enum Token<'a> {
 }
 
 impl Token<'_> {
-    fn span(&self) -> diag::Span {
+    fn span(&self) -> npr_diag::Span {
         match self {
             Token::Name { ident, .. } => ident.span,
             Token::Field { field, .. } => field.span,
@@ -61,7 +61,7 @@ pub fn at(ast: &Ast, offset: usize) -> Option<(Token<'_>, Option<&PassDecl>)> {
         .map(|t| (t, in_pass))
 }
 
-fn item_span(item: &Item) -> diag::Span {
+fn item_span(item: &Item) -> npr_diag::Span {
     match item {
         Item::Use(u) => u.span,
         Item::Param(p) => p.span,

@@ -1,14 +1,14 @@
 //! Speed against error per operator, where a benchmark has it: the rows of
-//! `npr bench ops` (`lab::bench_ops`, MetaTexture and its extensions
+//! `npr bench ops` (`npr_lab::bench_ops`, MetaTexture and its extensions
 //! against a plain `sample`) as committed in docs/PERFORMANCE.md. `npr doc`
 //! runs no benchmark: it reads the committed table (a frame time depends on
 //! the machine and its load; the reference must be the same on every run),
 //! and gives each operator the rows whose style runs it, either by calling
 //! it or through a specialization (`metatexture(…, skew: 0)` runs
-//! `metatexture4`). A variant of `lab::bench_ops::variants()` without a row
+//! `metatexture4`). A variant of `npr_lab::bench_ops::variants()` without a row
 //! in the table is an error: the table is older than the benchmark.
 
-/// The header of the `npr bench ops` table (`lab::bench_ops::table`).
+/// The header of the `npr bench ops` table (`npr_lab::bench_ops::table`).
 const HEADER: &str = "| variant | ms/frame | cost vs plain sample | scale error | anisotropy | contrast error |";
 
 /// The committed `npr bench ops` table: its device line and rows.
@@ -47,7 +47,7 @@ impl Figures {
             })
             .collect();
         let figures = Figures { device, rows };
-        for v in lab::bench_ops::variants() {
+        for v in npr_lab::bench_ops::variants() {
             if figures.row(v.name).is_none() {
                 return Err(format!(
                     "the `npr bench ops` table has no row for the variant \"{}\": run `npr bench ops` and update the table",
@@ -66,8 +66,8 @@ impl Figures {
     }
 
     /// The Markdown of `op`'s figures, or "" when no benchmark runs it.
-    pub fn markdown(&self, op: &stdlib::Operator) -> String {
-        let variants: Vec<_> = lab::bench_ops::variants()
+    pub fn markdown(&self, op: &npr_stdlib::Operator) -> String {
+        let variants: Vec<_> = npr_lab::bench_ops::variants()
             .into_iter()
             .filter(|v| runs(&format!("{}{}", v.lets, v.read), op))
             .collect();
@@ -92,10 +92,10 @@ impl Figures {
 
 /// Whether the style text `text` runs `op`: calls it, or calls an operator
 /// with a specialization to it and writes that argument (`skew: 0`).
-fn runs(text: &str, op: &stdlib::Operator) -> bool {
-    stdlib::ops::style_calls(text, op.name)
-        || stdlib::all().iter().any(|from| {
-            stdlib::ops::style_calls(text, from.name)
+fn runs(text: &str, op: &npr_stdlib::Operator) -> bool {
+    npr_stdlib::ops::style_calls(text, op.name)
+        || npr_stdlib::all().iter().any(|from| {
+            npr_stdlib::ops::style_calls(text, from.name)
                 && from.specializations.iter().any(|s| {
                     s.use_operator == op.name
                         && text.contains(&format!("{}: {}", s.param, crate::describe::number(s.value)))
@@ -107,8 +107,8 @@ fn runs(text: &str, op: &stdlib::Operator) -> bool {
 mod tests {
     use super::*;
 
-    fn op(name: &str) -> &'static stdlib::Operator {
-        stdlib::all().iter().find(|o| o.name == name).expect("an operator")
+    fn op(name: &str) -> &'static npr_stdlib::Operator {
+        npr_stdlib::all().iter().find(|o| o.name == name).expect("an operator")
     }
 
     #[test]

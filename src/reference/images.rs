@@ -1,19 +1,19 @@
-//! The demo images of the reference: each operator's `stdlib::Demo` style
+//! The demo images of the reference: each operator's `npr_stdlib::Demo` style
 //! compiled for its scene and rendered headless by the runner, as
-//! `npr render` does (the same `compiler::compile_source`, the auto
-//! schedule, `runner::Renderer`, path-dependent styles replayed from frame
-//! 0), into an 8-bit PNG of `stdlib::ops::DEMO_SIZE`. No GPU is npr doc's
+//! `npr render` does (the same `npr_compiler::compile_source`, the auto
+//! schedule, `npr_runner::Renderer`, path-dependent styles replayed from frame
+//! 0), into an 8-bit PNG of `npr_stdlib::ops::DEMO_SIZE`. No GPU is npr doc's
 //! failure with the runner's install hint; a demo that does not compile or
 //! render is npr's own (internal) error.
 
 use crate::cli::{EXIT_INTERNAL, EXIT_USER};
 use crate::printer::{headless_gpu, load_scene, Printer};
-use compiler::{CompileError, CompileOptions};
-use diag::SourceMap;
-use runner::schedule::FrameRequest;
-use runner::{FrameSpec, Gpu, Renderer};
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::SourceMap;
+use npr_runner::schedule::FrameRequest;
+use npr_runner::{FrameSpec, Gpu, Renderer};
+use npr_stdlib::ops::{Demo, DemoRender, DEMO_SIZE};
 use std::path::Path;
-use stdlib::ops::{Demo, DemoRender, DEMO_SIZE};
 
 /// The frame rate path-dependent demos are replayed at (`npr render`'s default).
 const FPS: f64 = 24.0;
@@ -29,7 +29,7 @@ pub fn image_path(op: &str) -> String {
 pub fn render_all(examples: &Path, printer: &Printer) -> Result<Vec<(String, Vec<u8>)>, i32> {
     let gpu = headless_gpu(printer)?;
     let mut out = Vec::new();
-    for def in stdlib::ops::ALL {
+    for def in npr_stdlib::ops::ALL {
         if let Demo::Render(demo) = def.demo {
             out.push((
                 image_path(def.op.name),
@@ -49,7 +49,7 @@ fn render_one(gpu: &Gpu, name: &str, demo: &DemoRender, examples: &Path, printer
         ..Default::default()
     };
     let style_name = format!("demo of {name}");
-    let program = match compiler::compile_source(&style_name, demo.style, examples, &mut sources, &opts) {
+    let program = match npr_compiler::compile_source(&style_name, demo.style, examples, &mut sources, &opts) {
         Ok(c) => c.program(),
         Err(CompileError::User(d)) => {
             printer.diagnostics(&d, &sources);
@@ -63,7 +63,7 @@ fn render_one(gpu: &Gpu, name: &str, demo: &DemoRender, examples: &Path, printer
     let rendered = (|| {
         let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene)?;
         let path_dependent = program.manifest.is_path_dependent();
-        let schedule = runner::schedule::schedule(FrameRequest::At { time_s: demo.time_s }, FPS, path_dependent);
+        let schedule = npr_runner::schedule::schedule(FrameRequest::At { time_s: demo.time_s }, FPS, path_dependent);
         for f in &schedule {
             r.render(
                 &scene,
@@ -86,8 +86,8 @@ fn render_one(gpu: &Gpu, name: &str, demo: &DemoRender, examples: &Path, printer
         }
     };
     encode_png8(&img).map_err(|e| {
-        printer.fail(diag::Diagnostic::error(
-            diag::codes::INTERNAL,
+        printer.fail(npr_diag::Diagnostic::error(
+            npr_diag::codes::INTERNAL,
             format!("cannot encode the demo image of {name}: {e}"),
         ))
     })

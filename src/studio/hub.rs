@@ -30,7 +30,7 @@ pub struct FrameImages {
 }
 
 struct Encoded {
-    image: runner::TargetImage,
+    image: npr_runner::TargetImage,
     /// PNG bytes as `npr render` writes them; or why they could not be made.
     png: OnceLock<Result<Vec<u8>, String>>,
     /// RGBA f32 texels, row-major, little-endian.
@@ -38,7 +38,7 @@ struct Encoded {
 }
 
 impl FrameImages {
-    pub fn new(id: u64, images: Vec<runner::TargetImage>) -> FrameImages {
+    pub fn new(id: u64, images: Vec<npr_runner::TargetImage>) -> FrameImages {
         let targets = images
             .into_iter()
             .map(|image| Encoded {
@@ -70,7 +70,7 @@ impl FrameImages {
         let t = self.targets.get(index)?;
         let png = t
             .png
-            .get_or_init(|| runner::output::encode_png(&t.image).map_err(|e| e.to_string()));
+            .get_or_init(|| npr_runner::output::encode_png(&t.image).map_err(|e| e.to_string()));
         Some(png.as_deref().map_err(String::as_str))
     }
 

@@ -19,7 +19,7 @@ pub mod write_back;
 use crate::cli::EXIT_INTERNAL;
 use crate::live::build::Inputs;
 use crate::printer::Printer;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::io::Write;
 use std::net::{IpAddr, SocketAddr};
 

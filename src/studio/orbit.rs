@@ -9,7 +9,7 @@
 //! is kept. The result is a still camera at that pose.
 
 use glam::{Quat, Vec3};
-use runner::scene::{Camera, CameraKey, Scene};
+use npr_runner::scene::{Camera, CameraKey, Scene};
 
 /// Pitch stays this far from straight up or down, where the view's up is
 /// undefined.

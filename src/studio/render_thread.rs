@@ -5,9 +5,9 @@
 //!
 //! - A file change rebuilds: scene + compile (with `--keep-params`, the
 //!   `--set`s and the controls' values) + a new `Renderer`, through the same
-//!   `runner::Renderer` as `npr render`.
+//!   `npr_runner::Renderer` as `npr render`.
 //! - A control change types the value by the `--set` rules against the
-//!   running manifest (`compiler::front::param_values::type_value`), writes
+//!   running manifest (`npr_compiler::front::param_values::type_value`), writes
 //!   it into the renderer's manifest (a uniform) and renders again without
 //!   recompiling. A rebuild passes the controls' values as written, after
 //!   the `--set`s, so the compiler types them against the edited style.
@@ -23,13 +23,13 @@ use crate::live::build::{self, Built, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::set_params;
-use abi::manifest::ParamBinding;
-use compiler::front::param_values::{format_literal, type_value, ParamShape};
-use compiler::ir::SettingOrigin;
-use compiler::mid::overrides::ParamOverride;
-use diag::SourceMap;
-use runner::schedule::FrameRequest;
-use runner::{FrameSpec, Gpu, Renderer, RunError};
+use npr_abi::manifest::ParamBinding;
+use npr_compiler::front::param_values::{format_literal, type_value, ParamShape};
+use npr_compiler::ir::SettingOrigin;
+use npr_compiler::mid::overrides::ParamOverride;
+use npr_diag::SourceMap;
+use npr_runner::schedule::FrameRequest;
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError};
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, Sender};
@@ -71,7 +71,7 @@ pub struct View {
 struct Session {
     built: Built,
     renderer: Renderer,
-    timer: Option<runner::pass_timer::PassTimer>,
+    timer: Option<npr_runner::pass_timer::PassTimer>,
 }
 
 /// A control moved away from the file's default.
@@ -250,7 +250,7 @@ impl Studio {
         }
     }
 
-    fn manifest_param(&self, name: &str) -> Option<abi::manifest::ParamManifest> {
+    fn manifest_param(&self, name: &str) -> Option<npr_abi::manifest::ParamManifest> {
         serde_json::from_value::<Vec<state::ParamState>>(self.params.clone())
             .ok()?
             .into_iter()
@@ -331,10 +331,11 @@ impl Studio {
             .iter()
             .find(|c| c.typed.name == name)
             .map(|c| c.literal.clone());
-        let literal = if param.ty == abi::gradient::GRADIENT_TYPE {
+        let literal = if param.ty == npr_abi::gradient::GRADIENT_TYPE {
             // A file writes a gradient as the language does,
             // `gradient(stop(0.0, #000000), ...)`, not as `--set` text.
-            abi::gradient::unpack(&o.value).map(|(stops, constant)| abi::gradient::declaration_text(&stops, constant))
+            npr_abi::gradient::unpack(&o.value)
+                .map(|(stops, constant)| npr_abi::gradient::declaration_text(&stops, constant))
         } else {
             typed
         };
@@ -425,7 +426,7 @@ impl Studio {
                     &self.written_literals(),
                 );
                 self.diagnostics = state::diagnostics_json(&built.warnings(), &built.sources, "compile");
-                let timer = runner::pass_timer::PassTimer::new(gpu, renderer.manifest().passes.len());
+                let timer = npr_runner::pass_timer::PassTimer::new(gpu, renderer.manifest().passes.len());
                 *session = Some(Session { built, renderer, timer });
             }
             Err(e) => {
@@ -486,7 +487,7 @@ fn render_frame(
     gpu: &Gpu,
     s: &mut Session,
     view: &View,
-) -> Result<(Vec<runner::TargetImage>, Option<Vec<f64>>), RunError> {
+) -> Result<(Vec<npr_runner::TargetImage>, Option<Vec<f64>>), RunError> {
     let path_dependent = s.renderer.manifest().is_path_dependent();
     if path_dependent && s.renderer.frames_begun() > 0 {
         // History must start from frame 0 again, as `npr render` starts:
@@ -496,7 +497,7 @@ fn render_frame(
         // (docs/decisions/0044, 0046).
         s.renderer.restart_history();
     }
-    let schedule = runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
+    let schedule = npr_runner::schedule::schedule(FrameRequest::At { time_s: view.time }, view.fps, path_dependent);
     // The page's orbit camera replaces the scene's for every frame.
     let orbited;
     let scene = match view.orbit {

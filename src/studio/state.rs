@@ -3,10 +3,10 @@
 //! line and column, help). One definition for the render thread, which
 //! writes it, and the tests, which read it.
 
-use abi::manifest::{ParamBinding, ParamManifest};
-use compiler::front::param_values::{format_literal, ParamShape, ValueKind};
-use compiler::mid::overrides::ParamOverride;
-use diag::{Diagnostic, SourceMap};
+use npr_abi::manifest::{ParamBinding, ParamManifest};
+use npr_compiler::front::param_values::{format_literal, ParamShape, ValueKind};
+use npr_compiler::mid::overrides::ParamOverride;
+use npr_diag::{Diagnostic, SourceMap};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -16,7 +16,7 @@ pub struct ParamState {
     #[serde(flatten)]
     pub manifest: ParamManifest,
     /// `float`, `int`, `bool`, `enum`, `color`, `range`, `unit`, `vector`,
-    /// `gradient` (a ramp strip; `manifest.default` holds its `abi::gradient`
+    /// `gradient` (a ramp strip; `manifest.default` holds its `npr_abi::gradient`
     /// slots), or `none` (no control).
     pub control: String,
     /// The unit suffix a slider's number is written with (`px`, `deg`, ...), or "".
@@ -109,7 +109,7 @@ pub fn set_values(params: &mut [Value], overrides: &[ParamOverride], written: &W
 /// help, labels with file, line and column, and the rendered text with the
 /// source lines and the span marked), plus the stage that produced them.
 pub fn diagnostics_json(diags: &[Diagnostic], sources: &SourceMap, stage: &str) -> Value {
-    let list: Vec<Value> = diag::diagnostic::render_json(diags, sources)
+    let list: Vec<Value> = npr_diag::diagnostic::render_json(diags, sources)
         .lines()
         .filter_map(|line| serde_json::from_str::<Value>(line).ok())
         .map(|mut d| {

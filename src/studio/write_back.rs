@@ -10,19 +10,20 @@ use std::path::Path;
 pub fn rewrite_default(style: &Path, name: &str, literal: &str) -> Result<(), String> {
     let text = std::fs::read_to_string(style).map_err(|e| format!("cannot read {}: {e}", style.display()))?;
     let new = replace_default(&text, name, literal)?;
-    runner::output::write_atomic(style, new.as_bytes()).map_err(|e| format!("cannot write {}: {e}", style.display()))
+    npr_runner::output::write_atomic(style, new.as_bytes())
+        .map_err(|e| format!("cannot write {}: {e}", style.display()))
 }
 
 /// `text` with `name`'s default replaced by `literal`.
 pub fn replace_default(text: &str, name: &str, literal: &str) -> Result<String, String> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("style", text.to_string());
-    let (ast, _) = dsl::parse(file, text);
+    let (ast, _) = npr_dsl::parse(file, text);
     let decl = ast
         .items
         .iter()
         .find_map(|item| match item {
-            dsl::ast::Item::Param(p) if p.name.name == name => Some(p),
+            npr_dsl::ast::Item::Param(p) if p.name.name == name => Some(p),
             _ => None,
         })
         .ok_or_else(|| format!("`{name}` is not declared in this file (is it in a file it `use`s?)"))?;
@@ -38,14 +39,14 @@ pub fn replace_default(text: &str, name: &str, literal: &str) -> Result<String, 
 /// `2px`, `45deg`): its default's text as written, by name. The studio
 /// shows these as written, not converted to the canonical unit.
 pub fn unit_defaults_as_written(text: &str) -> std::collections::BTreeMap<String, String> {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("style", text.to_string());
-    let (ast, _) = dsl::parse(file, text);
+    let (ast, _) = npr_dsl::parse(file, text);
     ast.items
         .iter()
         .filter_map(|item| match item {
-            dsl::ast::Item::Param(p) => match &p.default.kind {
-                dsl::ast::ExprKind::Number { unit: Some(_), .. } => {
+            npr_dsl::ast::Item::Param(p) => match &p.default.kind {
+                npr_dsl::ast::ExprKind::Number { unit: Some(_), .. } => {
                     Some((p.name.name.clone(), text[p.default.span.range()].to_string()))
                 }
                 _ => None,

@@ -9,10 +9,10 @@ use super::declare::{TestDecl, TestFile, When};
 use super::run::{self, Frames};
 use crate::bench::plot::{Chart, ChartKind, Figure, Point};
 use crate::cli::PathArgs;
-use compiler::{CompileError, CompileOptions};
-use diag::{Diagnostic, SourceMap};
-use runner::schedule::FrameRequest;
-use runner::{FrameSpec, Gpu};
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::{Diagnostic, SourceMap};
+use npr_runner::schedule::FrameRequest;
+use npr_runner::{FrameSpec, Gpu};
 use std::fmt::Write;
 
 /// One variant of one test, measured.
@@ -45,7 +45,7 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
     let policy = PathArgs::default()
         .policy(&file.style, Some(&test.scene.value))
         .map_err(|d| stop(vec![d], &sources, false))?;
-    let scene = runner::scene::load_scene_in(&test.scene.value, &mut sources, Some(&policy))
+    let scene = npr_runner::scene::load_scene_in(&test.scene.value, &mut sources, Some(&policy))
         .map_err(|d| stop(d, &sources, false))?;
     let request = match test.when {
         When::At { time_s } => FrameRequest::At { time_s },
@@ -64,13 +64,13 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
             settings: run::param_settings(&sets, &sources),
             ..Default::default()
         };
-        let program = match compiler::compile_file(&file.style, &mut sources, &opts) {
+        let program = match npr_compiler::compile_file(&file.style, &mut sources, &opts) {
             Ok(c) => c.program(),
             Err(CompileError::User(d)) => return Err(stop(d, &sources, false)),
             Err(CompileError::Internal(e)) => return Err(stop(vec![e.to_diagnostic()], &sources, true)),
         };
-        let frames = runner::schedule::schedule(request, test.fps, program.manifest.is_path_dependent());
-        let render = || -> Result<_, runner::RunError> {
+        let frames = npr_runner::schedule::schedule(request, test.fps, program.manifest.is_path_dependent());
+        let render = || -> Result<_, npr_runner::RunError> {
             let rendered = Frames {
                 size: test.size,
                 eye: test.eye.value,
@@ -80,7 +80,7 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
             let last = frames.iter().rev().find(|f| f.write).copied();
             let output = rendered.outputs.last().map(|(_, img)| img.to_rgba8());
             let (Some(last), Some(output)) = (last, output) else {
-                return Err(runner::RunError::Internal("the test wrote no frame".into()));
+                return Err(npr_runner::RunError::Internal("the test wrote no frame".into()));
             };
             let spec = FrameSpec {
                 width: test.size.0,
@@ -103,7 +103,7 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
         .into_iter()
         .enumerate()
         .map(|(i, (variant, cost, output))| {
-            let (errors, _) = lab::harness::flip_error_map(&output, &reference);
+            let (errors, _) = npr_lab::harness::flip_error_map(&output, &reference);
             let flip_mean = errors.iter().map(|e| f64::from(*e)).sum::<f64>() / errors.len().max(1) as f64;
             Row {
                 id: id.clone(),
@@ -111,7 +111,7 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
                 reference: i == test.reference,
                 cost,
                 flip_mean,
-                flip_p99: f64::from(lab::harness::percentile(&errors, 99.0)),
+                flip_p99: f64::from(npr_lab::harness::percentile(&errors, 99.0)),
             }
         })
         .collect())

@@ -6,15 +6,15 @@
 //! render pass writing each fragment's normal, at the same size and eye.
 //! Each cost is the fastest of [`FRAMES`] frames (submit, then wait for
 //! the device), the two renderers alternating frame by frame so machine
-//! load falls on both alike (as `lab::bench_contours` times its variants).
+//! load falls on both alike (as `npr_lab::bench_contours` times its variants).
 //! Wall clock and not GPU timestamps: lavapipe's timestamps do not bracket
 //! compute work (docs/PERFORMANCE.md, "Compute passes"), and on a GPU the
 //! wall clock of a submitted and awaited frame still bounds its GPU time.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::scene::Scene;
-use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
 use std::time::Instant;
 
 /// Frames timed per renderer; the fastest counts.
@@ -44,7 +44,7 @@ pub fn passthrough(scene: &Scene) -> Result<StyleProgram, RunError> {
         scene: Some(scene.summary("scene")),
         ..Default::default()
     };
-    compiler::compile_source(
+    npr_compiler::compile_source(
         "passthrough.npr",
         PASSTHROUGH,
         std::path::Path::new("."),
@@ -63,7 +63,7 @@ pub fn measure(gpu: &Gpu, program: &StyleProgram, scene: &Scene, spec: &FrameSpe
     let time = |r: &mut Renderer| -> Result<f64, RunError> {
         let started = Instant::now();
         r.render(scene, spec)?;
-        runner::readback::wait_idle(&gpu.device)?;
+        npr_runner::readback::wait_idle(&gpu.device)?;
         Ok(started.elapsed().as_secs_f64() * 1e3)
     };
     // One frame each first: pipelines and first-use allocations are not the frame's cost.

@@ -4,7 +4,7 @@
 //! the output against its golden within the declared tolerance.
 
 use super::declare::Golden;
-use runner::TargetImage;
+use npr_runner::TargetImage;
 
 /// Where a target holds NaN or ±Inf.
 #[derive(Debug, Clone, PartialEq)]
@@ -84,7 +84,7 @@ pub fn compare(actual: &image::RgbaImage, expected: &image::RgbaImage, golden: &
         lines.push(format!("{} {line}", if ok { "ok:" } else { "FAILED:" }));
     };
     if let Some(bound) = golden.per_pixel {
-        let (max_abs, over) = lab::harness::per_pixel(actual, expected, bound.max);
+        let (max_abs, over) = npr_lab::harness::per_pixel(actual, expected, bound.max);
         let share = over as f64 / f64::from((actual.width() * actual.height()).max(1));
         check(
             share <= bound.outliers,
@@ -98,14 +98,14 @@ pub fn compare(actual: &image::RgbaImage, expected: &image::RgbaImage, golden: &
     }
     let mut flip_picture = None;
     if let Some(bound) = &golden.flip {
-        let (errors, picture) = lab::harness::flip_error_map(actual, expected);
+        let (errors, picture) = npr_lab::harness::flip_error_map(actual, expected);
         flip_picture = Some(picture);
         if let Some(max_mean) = bound.mean {
             let mean = errors.iter().map(|e| f64::from(*e)).sum::<f64>() / errors.len().max(1) as f64;
             check(mean <= max_mean, format!("FLIP mean {mean:.5} (allowed {max_mean})"));
         }
         for (pct, max) in &bound.percentiles {
-            let at = f64::from(lab::harness::percentile(&errors, *pct));
+            let at = f64::from(npr_lab::harness::percentile(&errors, *pct));
             check(at <= *max, format!("FLIP p{pct} {at:.5} (allowed {max})"));
         }
     }
@@ -113,7 +113,7 @@ pub fn compare(actual: &image::RgbaImage, expected: &image::RgbaImage, golden: &
         passed,
         lines,
         flip_picture,
-        diff: lab::harness::diff_image(actual, expected),
+        diff: npr_lab::harness::diff_image(actual, expected),
     }
 }
 
@@ -121,8 +121,8 @@ pub fn compare(actual: &image::RgbaImage, expected: &image::RgbaImage, golden: &
 mod tests {
     use super::*;
     use crate::style_tests::declare::{FlipBound, PerPixelBound};
-    use diag::Span;
-    use runner::scene::toml_fields::At;
+    use npr_diag::Span;
+    use npr_runner::scene::toml_fields::At;
 
     fn golden(flip: Option<FlipBound>, per_pixel: Option<PerPixelBound>) -> Golden {
         Golden {
@@ -145,7 +145,7 @@ mod tests {
             name: "n".into(),
             width: 2,
             height: 2,
-            format: abi::Format::R32float,
+            format: npr_abi::Format::R32float,
             bytes,
         };
         let found = non_finite(&t).expect("non-finite texels");

@@ -8,12 +8,12 @@
 use super::checks;
 use super::declare::{Golden, TestDecl, TestFile, When};
 use crate::cli::PathArgs;
-use compiler::ir::{ParamSetting, SettingOrigin};
-use compiler::{CompileError, CompileOptions, Compiled};
-use diag::{codes, Diagnostic, SourceMap, Span};
-use runner::scene::toml_fields::At;
-use runner::schedule::{FrameRequest, ScheduledFrame};
-use runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
+use npr_compiler::ir::{ParamSetting, SettingOrigin};
+use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::{codes, Diagnostic, SourceMap, Span};
+use npr_runner::scene::toml_fields::At;
+use npr_runner::schedule::{FrameRequest, ScheduledFrame};
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -116,7 +116,7 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
     let messages = diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
+        .map(|d| npr_diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
         .collect();
     Run {
         outcome: Outcome {
@@ -141,7 +141,7 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
     let policy = PathArgs::default()
         .policy(&file.style, Some(scene_path))
         .map_err(|d| Stop::Invalid(vec![d]))?;
-    let scene = runner::scene::load_scene_in(scene_path, sources, Some(&policy)).map_err(Stop::Invalid)?;
+    let scene = npr_runner::scene::load_scene_in(scene_path, sources, Some(&policy)).map_err(Stop::Invalid)?;
     if test.eye.value == 1 && !scene.camera.is_stereo() {
         return Err(Stop::Invalid(vec![Diagnostic::error(
             codes::BAD_TEST_FILE,
@@ -176,22 +176,22 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         ..opts
     };
     let compiled = compile(&file.style, sources, &opts)?;
-    let texture_errors = crate::texture_check::texture_file_errors(&compiled, runner::texture_file::Depth::Header);
+    let texture_errors = crate::texture_check::texture_file_errors(&compiled, npr_runner::texture_file::Depth::Header);
     if !texture_errors.is_empty() {
         return Err(Stop::Invalid(texture_errors));
     }
     let program = compiled.program();
     let mut warnings = compiled.warnings.clone();
-    warnings.extend(runner::scene_warnings(&program.manifest, &scene));
+    warnings.extend(npr_runner::scene_warnings(&program.manifest, &scene));
     let request = match test.when {
         When::At { time_s } => FrameRequest::At { time_s },
         When::Range { start, end } => FrameRequest::Range { start, end },
     };
     let path_dependent = program.manifest.is_path_dependent();
-    let count = runner::schedule::frame_count(request, test.fps, path_dependent);
+    let count = npr_runner::schedule::frame_count(request, test.fps, path_dependent);
     crate::args::check_frame_count(count as usize)
         .map_err(|d| Stop::Invalid(vec![d.with_primary(test.name.span, "this test")]))?;
-    let frames = runner::schedule::schedule(request, test.fps, path_dependent);
+    let frames = npr_runner::schedule::schedule(request, test.fps, path_dependent);
     let frame = Frames {
         size: test.size,
         eye: test.eye.value,
@@ -210,10 +210,10 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
             .any(|e| matches!(e.action, "fused" | "recomputed"))
         {
             let naive = CompileOptions {
-                schedule: compiler::schedule::Schedule::Naive,
+                schedule: npr_compiler::schedule::Schedule::Naive,
                 ..opts.clone()
             };
-            let naive = compiler::compile_file(&file.style, sources, &naive)
+            let naive = npr_compiler::compile_file(&file.style, sources, &naive)
                 .map_err(|e| RunError::Internal(format!("the style compiled under auto but not naive: {e:?}")))?
                 .program();
             let stored: Vec<&str> = program.manifest.targets.iter().map(|t| t.name.as_str()).collect();
@@ -295,14 +295,14 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
 }
 
 fn compile(style: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, Stop> {
-    compiler::compile_file(style, sources, opts).map_err(|e| match e {
+    npr_compiler::compile_file(style, sources, opts).map_err(|e| match e {
         CompileError::User(d) => Stop::Invalid(d),
         CompileError::Internal(e) => Stop::Internal(vec![e.to_diagnostic()]),
     })
 }
 
 /// The test's `set` values as settings the compiler types as it types
-/// `npr render --set` (`compiler::front::param_settings`), each error
+/// `npr render --set` (`npr_compiler::front::param_settings`), each error
 /// pointing at the value in the test file.
 pub fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) -> Vec<ParamSetting> {
     sets.iter()
@@ -358,7 +358,7 @@ impl Frames<'_> {
         &self,
         gpu: &Gpu,
         program: &StyleProgram,
-        scene: &runner::scene::Scene,
+        scene: &npr_runner::scene::Scene,
         read_targets: bool,
     ) -> Result<Rendered, RunError> {
         let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
@@ -370,7 +370,7 @@ impl Frames<'_> {
     pub(super) fn render_with(
         &self,
         r: &mut Renderer,
-        scene: &runner::scene::Scene,
+        scene: &npr_runner::scene::Scene,
         read_targets: bool,
     ) -> Result<Rendered, RunError> {
         let (width, height) = self.size;
@@ -522,7 +522,7 @@ fn golden_check(
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(dir, e)]))?;
         }
-        runner::output::write_png8(actual, path)
+        npr_runner::output::write_png8(actual, path)
             .map_err(|e| RunError::User(vec![crate::printer::cannot_write(path, e)]))?;
         return Ok((Vec::new(), Some(path.clone())));
     }
@@ -574,7 +574,7 @@ fn golden_check(
     }
     std::fs::create_dir_all(&dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(&dir, e)]))?;
     for (p, img) in &images {
-        runner::output::write_png8(img, p).map_err(|e| RunError::User(vec![crate::printer::cannot_write(p, e)]))?;
+        npr_runner::output::write_png8(img, p).map_err(|e| RunError::User(vec![crate::printer::cannot_write(p, e)]))?;
     }
     Ok((
         vec![Failure {

@@ -6,7 +6,7 @@
 //! order the paths were given.
 
 use super::declare::{self, SUFFIX};
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::path::{Path, PathBuf};
 
 /// The test files under the paths given, and the styles that have none.

@@ -20,7 +20,7 @@ use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::printer::Printer;
-use diag::{Diagnostic, SourceMap};
+use npr_diag::{Diagnostic, SourceMap};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -215,7 +215,7 @@ impl<'p> App<'p> {
                 true
             }
             Err(failed) => {
-                let text = diag::diagnostic::render(&failed.diagnostics, &failed.sources, false);
+                let text = npr_diag::diagnostic::render(&failed.diagnostics, &failed.sources, false);
                 if self.last_error.as_deref() != Some(&text) {
                     self.print(&failed.diagnostics, &failed.sources);
                     self.last_error = Some(text);
@@ -254,7 +254,7 @@ impl<'p> App<'p> {
         if let Some(lost) = gpu.watch.lost() {
             self.printer.diagnostics(
                 &[Diagnostic::error(
-                    diag::codes::DEVICE_LOST,
+                    npr_diag::codes::DEVICE_LOST,
                     format!("the GPU device was lost: {lost}"),
                 )],
                 &SourceMap::new(),
@@ -384,7 +384,7 @@ impl<'p> App<'p> {
     }
 
     /// Change the camera control, given the scene camera and the time.
-    fn take_over(&mut self, change: impl FnOnce(&mut Control, &runner::scene::Camera, f64)) {
+    fn take_over(&mut self, change: impl FnOnce(&mut Control, &npr_runner::scene::Camera, f64)) {
         if let Some(shown) = &self.shown {
             change(&mut self.control, &shown.scene.camera, self.clock.time_s);
         }

@@ -11,7 +11,7 @@
 //! user moves, the view shows the scene camera itself, keys and all.
 
 use glam::{DQuat, DVec3};
-use runner::scene::{Camera, CameraKey, CameraPose};
+use npr_runner::scene::{Camera, CameraKey, CameraPose};
 
 /// Pitch stays this far from straight up or down, where the view's up is
 /// undefined (radians: 89°).

@@ -1,5 +1,5 @@
 //! `npr view`: a style on a scene in a live window, driven through the
-//! runner's embedding API (`runner::embed::StyleRuntime`), rebuilt on every
+//! runner's embedding API (`npr_runner::embed::StyleRuntime`), rebuilt on every
 //! save through `npr watch`'s builder and file watcher (`live/`).
 //!
 //! - `app.rs`: the winit application: input, rebuilds, frames;
@@ -23,7 +23,7 @@ use crate::cli::{ViewArgs, EXIT_USER};
 use crate::live::build::Inputs;
 use crate::live::watcher::FileWatcher;
 use crate::printer::Printer;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::path::PathBuf;
 
 /// What reaches the window's event loop from other threads.
@@ -57,16 +57,16 @@ pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
         // Parameters stay uniforms, so the keys step them without a recompile.
         keep_params: true,
         paths: args.paths,
-        schedule: args.schedule.map_or(compiler::schedule::Schedule::Auto, Into::into),
+        schedule: args.schedule.map_or(npr_compiler::schedule::Schedule::Auto, Into::into),
     };
     // winit loads the display's libraries (libX11, libxkbcommon-x11, ...)
     // here, and panics where one is missing: a diagnostic too.
-    let event_loop = match diag::panics::catch(|| winit::event_loop::EventLoop::<ViewEvent>::with_user_event().build())
-    {
-        Ok(Ok(l)) => l,
-        Ok(Err(e)) => return printer.fail(no_window(e.to_string())),
-        Err(panic) => return printer.fail(no_window(panic)),
-    };
+    let event_loop =
+        match npr_diag::panics::catch(|| winit::event_loop::EventLoop::<ViewEvent>::with_user_event().build()) {
+            Ok(Ok(l)) => l,
+            Ok(Err(e)) => return printer.fail(no_window(e.to_string())),
+            Err(panic) => return printer.fail(no_window(panic)),
+        };
     let proxy = event_loop.create_proxy();
     let watcher = match FileWatcher::new(move |files| {
         // The loop is gone only when the window closed.
@@ -83,7 +83,7 @@ pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
     };
     let mut app = app::App::new(printer, inputs, args.size, !args.no_vsync, args.frames, clock, watcher);
     if let Err(e) = event_loop.run_app(&mut app) {
-        printer.diagnostics(&[no_window(e.to_string())], &diag::SourceMap::new());
+        printer.diagnostics(&[no_window(e.to_string())], &npr_diag::SourceMap::new());
         return EXIT_USER;
     }
     app.exit

@@ -8,7 +8,7 @@
 //! Values are kept here (canonical units, as the manifest gives them),
 //! starting at the style's defaults, so a step needs no read back.
 
-use abi::manifest::{ParamBinding, ParamManifest};
+use npr_abi::manifest::{ParamBinding, ParamManifest};
 
 /// Steps across a declared range.
 const STEPS_PER_RANGE: f64 = 20.0;

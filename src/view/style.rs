@@ -1,5 +1,5 @@
 //! The style `npr view` shows, driven through the runner's embedding API
-//! (`runner::embed`): a `StyleRuntime` on the window's device, the scene's
+//! (`npr_runner::embed`): a `StyleRuntime` on the window's device, the scene's
 //! meshes registered once (`StyleRuntime::add_scene`, with the ocean's
 //! animated vertices and blended patches), and each frame the scene's
 //! objects as `Instance`s (posed at the frame's time: `spin`), the view's
@@ -11,9 +11,9 @@
 //! change uniforms without a recompile.
 
 use crate::live::build::Built;
-use diag::{Diagnostic, SourceMap};
-use runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
-use runner::scene::{Camera, Scene};
+use npr_diag::{Diagnostic, SourceMap};
+use npr_runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::scene::{Camera, Scene};
 
 pub struct Loaded {
     pub runtime: StyleRuntime,
@@ -25,7 +25,7 @@ pub struct Loaded {
     pub stereo: bool,
     pub sources: SourceMap,
     /// The build's texture spans, where render-time texture errors point.
-    texture_spans: Vec<diag::Span>,
+    texture_spans: Vec<npr_diag::Span>,
 }
 
 impl Loaded {
@@ -112,7 +112,7 @@ pub struct Failure {
 }
 
 impl Failure {
-    fn new(e: EmbedError, texture_spans: &[diag::Span], sources: SourceMap) -> Failure {
+    fn new(e: EmbedError, texture_spans: &[npr_diag::Span], sources: SourceMap) -> Failure {
         let diagnostics = match e {
             EmbedError::Run(run) => run.at_texture_spans(texture_spans).diagnostics(),
             other => other.diagnostics(),

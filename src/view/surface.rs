@@ -9,14 +9,14 @@
 //! of its format: the style's output is display-ready, written as is, like
 //! `npr render`'s PNG.
 
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::sync::Arc;
 use winit::window::Window;
 
 pub struct WindowGpu {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
-    pub watch: runner::DeviceWatch,
+    pub watch: npr_runner::DeviceWatch,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     /// The format the style's output is drawn in (the surface's, without sRGB).
@@ -52,9 +52,9 @@ impl WindowGpu {
             ..Default::default()
         }))
         .map_err(|e| no_device(format!("no GPU adapter can present to the window: {e}")))?;
-        let features = abi::manifest::Feature::ALL
+        let features = npr_abi::manifest::Feature::ALL
             .into_iter()
-            .map(runner::device_needs::wgpu_feature)
+            .map(npr_runner::device_needs::wgpu_feature)
             .fold(wgpu::Features::empty(), |a, b| a | b)
             & adapter.features();
         let info = adapter.get_info();
@@ -65,7 +65,7 @@ impl WindowGpu {
             ..Default::default()
         }))
         .map_err(|e| no_device(format!("the adapter `{}` refused a device: {e}", info.name)))?;
-        let watch = runner::DeviceWatch::install(&device);
+        let watch = npr_runner::DeviceWatch::install(&device);
         let caps = surface.get_capabilities(&adapter);
         // A non-sRGB format where the surface has one: the runtime checks
         // the texture's format, and a view in another one (the non-sRGB

@@ -1,9 +1,9 @@
 //! The halftone tone-correction table (Breslav et al. 2007 §3.5) is built by
-//! the runtime from the manifest (`abi::halftone::table`); this re-exports it
+//! the runtime from the manifest (`npr_abi::halftone::table`); this re-exports it
 //! for the operators' references and converts it to and from the reference
 //! images the GPU tests compare.
 
-pub use abi::halftone::table::*;
+pub use npr_abi::halftone::table::*;
 
 /// The table a 256 × 17 texture of [`HalftoneTable::texels`] holds
 /// (channel r), as the shader reads it.

@@ -70,8 +70,8 @@ impl Ty {
 }
 
 /// The physical dimension of a quantity: defined in the ABI, where the
-/// typing of parameter values (`abi::param_value`) needs it.
-pub use abi::Unit;
+/// typing of parameter values (`npr_abi::param_value`) needs it.
+pub use npr_abi::Unit;
 
 /// What a parameter gets when the call omits it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

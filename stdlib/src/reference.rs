@@ -5,7 +5,7 @@
 //! Each operator's reference lives with it in `stdlib/src/ops/<family>/`
 //! (under the operator's own name); this module keeps the shared image
 //! type and helpers, and re-exports every reference so that
-//! `stdlib::reference::<name>` reaches it.
+//! `npr_stdlib::reference::<name>` reaches it.
 
 pub use crate::ops::artmaps::reference::*;
 pub use crate::ops::breakup::reference::*;

@@ -4,8 +4,8 @@
 //! and grazing angles, live-texture period and contrast, line-boil stepping,
 //! and the hard cases (every parameter at both ends of its range included).
 
-use stdlib::metrics::{self, PlaneSample, Variant};
-use stdlib::reference::{self as r, ImageF64, MetaSettings};
+use npr_stdlib::metrics::{self, PlaneSample, Variant};
+use npr_stdlib::reference::{self as r, ImageF64, MetaSettings};
 
 type V3 = [f64; 3];
 
@@ -429,7 +429,7 @@ fn hard_cases_stay_finite_and_bounded() {
         "warp",
         "metatexture_contour_grad",
     ] {
-        let o = stdlib::find(op).expect("operator");
+        let o = npr_stdlib::find(op).expect("operator");
         for p in o.params.iter().filter(|p| p.range.is_some()) {
             let (lo, hi) = p.range.expect("range");
             for x in [lo, hi] {

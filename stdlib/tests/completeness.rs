@@ -8,10 +8,10 @@
 //! explicit reason why no image can show it.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use stdlib::ops::{style_calls as calls, Arg, Demo, Tol};
-use stdlib::{Default, Ty};
+use npr_stdlib::ops::{style_calls as calls, Arg, Demo, Tol};
+use npr_stdlib::{Default, Ty};
 
-/// The order of `stdlib::all()` when the operators moved into folders:
+/// The order of `npr_stdlib::all()` when the operators moved into folders:
 /// the IR names operators by their index, snapshots and compiled styles
 /// follow it, so registrations only ever append.
 const HISTORIC_ORDER: &[&str] = &[
@@ -61,10 +61,10 @@ const HISTORIC_ORDER: &[&str] = &[
     "oct_decode",
 ];
 
-fn wgsl_with_deps(op: &stdlib::Operator) -> String {
+fn wgsl_with_deps(op: &npr_stdlib::Operator) -> String {
     let mut src = String::new();
     for s in op.snippets {
-        src.push_str(stdlib::snippets::find(s).unwrap_or_else(|| panic!("{}: unknown snippet {s}", op.name)));
+        src.push_str(npr_stdlib::snippets::find(s).unwrap_or_else(|| panic!("{}: unknown snippet {s}", op.name)));
         src.push('\n');
     }
     // Dependencies are transitive, as the emitter resolves them.
@@ -75,14 +75,14 @@ fn wgsl_with_deps(op: &stdlib::Operator) -> String {
             continue;
         }
         deps.push(d);
-        let dep = stdlib::find(d).unwrap_or_else(|| panic!("{}: unknown dependency {d}", op.name));
+        let dep = npr_stdlib::find(d).unwrap_or_else(|| panic!("{}: unknown dependency {d}", op.name));
         todo.extend(dep.depends);
         for s in dep.snippets {
             assert!(op.snippets.contains(s), "{}: needs snippet {s} of {d}", op.name);
         }
     }
     for d in deps {
-        src.push_str(stdlib::find(d).expect("checked above").wgsl);
+        src.push_str(npr_stdlib::find(d).expect("checked above").wgsl);
         src.push('\n');
     }
     src.push_str(op.wgsl);
@@ -121,8 +121,8 @@ fn naga_type_matches(module: &naga::Module, ty: naga::Handle<naga::Type>, want: 
 
 #[test]
 fn every_operator_is_complete() {
-    assert!(!stdlib::all().is_empty());
-    for op in stdlib::all() {
+    assert!(!npr_stdlib::all().is_empty());
+    for op in npr_stdlib::all() {
         let src = wgsl_with_deps(op);
         let module =
             naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{}: {}", op.name, e.emit_to_string(&src)));
@@ -179,7 +179,8 @@ fn every_operator_is_complete() {
             "{}: the doc is one line",
             op.name
         );
-        let def = stdlib::ops::find(op.name).unwrap_or_else(|| panic!("{}: not registered in stdlib::ops", op.name));
+        let def =
+            npr_stdlib::ops::find(op.name).unwrap_or_else(|| panic!("{}: not registered in npr_stdlib::ops", op.name));
         assert_eq!(
             def.reference_fn, op.name,
             "{}: the f64 reference is not under its name",
@@ -209,7 +210,7 @@ fn every_operator_is_complete() {
 
 #[test]
 fn operator_names_are_unique() {
-    let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
+    let mut names: Vec<&str> = npr_stdlib::all().iter().map(|o| o.name).collect();
     names.sort();
     let n = names.len();
     names.dedup();
@@ -221,9 +222,10 @@ fn specializations_keep_the_remaining_parameters_in_order() {
     // The replacement takes the parameters of the original, matched by name
     // and in order, minus the specialized one (and parameters that only the
     // disabled feature reads, such as `band` when contour orientation is off).
-    for op in stdlib::all() {
+    for op in npr_stdlib::all() {
         for s in op.specializations {
-            let alt = stdlib::find(s.use_operator).unwrap_or_else(|| panic!("{}: unknown {}", op.name, s.use_operator));
+            let alt =
+                npr_stdlib::find(s.use_operator).unwrap_or_else(|| panic!("{}: unknown {}", op.name, s.use_operator));
             assert!(
                 alt.param(s.param).is_none(),
                 "{} → {} keeps {}",
@@ -252,7 +254,7 @@ fn specializations_keep_the_remaining_parameters_in_order() {
 /// real `uv` parameter (a vec2) and, for a scaled radius, a numeric one.
 #[test]
 fn every_texture_parameter_has_a_footprint() {
-    for op in stdlib::all() {
+    for op in npr_stdlib::all() {
         let textures: Vec<&str> = op
             .params
             .iter()
@@ -266,12 +268,12 @@ fn every_texture_parameter_has_a_footprint() {
             op.name
         );
         for (name, f) in op.footprints {
-            if let stdlib::Footprint::Around { uv, radius } = f {
+            if let npr_stdlib::Footprint::Around { uv, radius } = f {
                 let p = op
                     .param(uv)
                     .unwrap_or_else(|| panic!("{}.{name}: no parameter `{uv}`", op.name));
                 assert_eq!(p.ty, Ty::Vec2, "{}.{name}: `{uv}` is not a vec2", op.name);
-                if let stdlib::Radius::Scaled { param, k, max } = radius {
+                if let npr_stdlib::Radius::Scaled { param, k, max } = radius {
                     let p = op
                         .param(param)
                         .unwrap_or_else(|| panic!("{}.{name}: no parameter `{param}`", op.name));
@@ -291,12 +293,12 @@ fn every_texture_parameter_has_a_footprint() {
 /// one argument per parameter, of a kind the parameter's type takes.
 #[test]
 fn every_registered_operator_has_gpu_cases() {
-    let names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
+    let names: Vec<&str> = npr_stdlib::all().iter().map(|o| o.name).collect();
     assert!(
         names.starts_with(HISTORIC_ORDER),
-        "stdlib::all() reordered: register new operators at the end"
+        "npr_stdlib::all() reordered: register new operators at the end"
     );
-    for def in stdlib::ops::ALL {
+    for def in npr_stdlib::ops::ALL {
         let op = &def.op;
         assert!(!def.cases.is_empty(), "{}: no GPU-against-reference case", op.name);
         for (c, case) in def.cases.iter().enumerate() {
@@ -341,7 +343,7 @@ fn every_registered_operator_has_gpu_cases() {
 #[test]
 fn every_operator_has_a_demo() {
     let examples = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
-    for def in stdlib::ops::ALL {
+    for def in npr_stdlib::ops::ALL {
         let name = def.op.name;
         match def.demo {
             Demo::Missing => panic!(

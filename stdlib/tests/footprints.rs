@@ -1,4 +1,4 @@
-//! Every declared neighbourhood footprint (`stdlib::Footprint::Around`) is
+//! Every declared neighbourhood footprint (`npr_stdlib::Footprint::Around`) is
 //! measured on the GPU: the operator runs over an image, then again with one
 //! texel of the texture argument changed; every output pixel whose result
 //! changed must lie within the declared radius of that texel (the texel under
@@ -14,8 +14,8 @@
 mod harness;
 
 use harness::*;
-use stdlib::reference::ImageF64;
-use stdlib::{Footprint, Radius};
+use npr_stdlib::reference::ImageF64;
+use npr_stdlib::{Footprint, Radius};
 
 const SIZE: u32 = 33;
 
@@ -196,7 +196,7 @@ fn cases() -> Vec<Case> {
 
 /// The declared radius of `case`'s texture parameter.
 fn declared(case: &Case) -> u32 {
-    let op = stdlib::find(case.op).expect("an operator");
+    let op = npr_stdlib::find(case.op).expect("an operator");
     match op.footprint(case.param) {
         Some(Footprint::Around { radius, .. }) => {
             if matches!(radius, Radius::Scaled { .. }) {
@@ -287,7 +287,7 @@ fn every_neighbourhood_footprint_bounds_what_the_operator_reads() {
 #[test]
 fn every_neighbourhood_footprint_has_a_case() {
     let cases = cases();
-    for op in stdlib::all() {
+    for op in npr_stdlib::all() {
         for (param, f) in op.footprints {
             if matches!(f, Footprint::Around { .. }) {
                 assert!(

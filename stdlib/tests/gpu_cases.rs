@@ -1,4 +1,4 @@
-//! Every registered operator (`stdlib::ops::ALL`) on the GPU (lavapipe
+//! Every registered operator (`npr_stdlib::ops::ALL`) on the GPU (lavapipe
 //! here) against its f64 reference, over its data cases: each call is built
 //! from the operator's signature and the case's arguments by
 //! `harness::cases`, so a new operator needs no hand-written GPU test.
@@ -8,7 +8,7 @@ mod harness;
 #[test]
 fn every_operator_matches_its_reference_on_its_cases() {
     let (mut cases, mut calls) = (0, 0);
-    for def in stdlib::ops::ALL {
+    for def in npr_stdlib::ops::ALL {
         for (i, case) in def.cases.iter().enumerate() {
             calls += harness::cases::run_case(def, i, case);
             cases += 1;
@@ -16,6 +16,6 @@ fn every_operator_matches_its_reference_on_its_cases() {
     }
     println!(
         "{} operators, {cases} cases, {calls} calls compared",
-        stdlib::ops::ALL.len()
+        npr_stdlib::ops::ALL.len()
     );
 }

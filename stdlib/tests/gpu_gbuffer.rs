@@ -3,13 +3,13 @@
 //! trip through an `rg16float` target: the largest angle between a normal
 //! and its decoded code, over the sphere, the octahedron's folds and both
 //! poles, with 16-bit stores rounded to nearest or truncated (Vulkan allows
-//! both; lavapipe truncates: `abi::formats::HalfRounding`).
+//! both; lavapipe truncates: `npr_abi::formats::HalfRounding`).
 
 mod harness;
 
-use abi::formats::HalfRounding;
 use harness::*;
-use stdlib::reference_gbuffer::{oct_decode, oct_encode};
+use npr_abi::formats::HalfRounding;
+use npr_stdlib::reference_gbuffer::{oct_decode, oct_encode};
 
 fn normalize(v: [f64; 3]) -> [f64; 3] {
     let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();

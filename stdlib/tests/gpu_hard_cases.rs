@@ -6,7 +6,7 @@
 mod harness;
 
 use harness::*;
-use stdlib::reference::ImageF64;
+use npr_stdlib::reference::ImageF64;
 
 #[test]
 fn metatexture_hard_cases_stay_finite_and_bounded_on_the_gpu() {

@@ -6,8 +6,8 @@
 mod harness;
 
 use harness::*;
-use stdlib::halftone_table::{HalftoneTable, ROWS, TONES};
-use stdlib::reference::ImageF64;
+use npr_stdlib::halftone_table::{HalftoneTable, ROWS, TONES};
+use npr_stdlib::reference::ImageF64;
 
 /// A table as a texture input (Rgba32Float: the thresholds exactly as f32).
 fn table_texture(table: &HalftoneTable) -> TexIn {
@@ -122,7 +122,7 @@ fn halftone_tone_holds_over_an_lod_transition_only_with_correction() {
 fn halftone_table_is_monotone_and_spans_the_screen() {
     for edge in [0.005, 0.05, 0.1, 0.2, 0.5] {
         let table = HalftoneTable::build(edge, true);
-        for j in 0..stdlib::halftone_table::BLENDS {
+        for j in 0..npr_stdlib::halftone_table::BLENDS {
             for i in 1..TONES {
                 assert!(
                     table.at(i, j) >= table.at(i - 1, j),
@@ -133,7 +133,7 @@ fn halftone_table_is_monotone_and_spans_the_screen() {
             // tone 1 one where no ink does.
             let blend = j as f64 / 15.0;
             let (first, last) = (table.at(0, j), table.at(TONES - 1, j));
-            let mean = |t: f64| stdlib::halftone_table::mean_paper(edge, blend, t);
+            let mean = |t: f64| npr_stdlib::halftone_table::mean_paper(edge, blend, t);
             assert!(
                 mean(first) < 1e-3,
                 "edge {edge}: row {j} starts at {first}, R = {}",
@@ -149,7 +149,7 @@ fn halftone_table_is_monotone_and_spans_the_screen() {
         for (i, j) in [(10, 0), (128, 7), (200, 15), (64, 3)] {
             let tone = i as f64 / 255.0;
             let blend = j as f64 / 15.0;
-            let got = stdlib::halftone_table::mean_paper(edge, blend, table.at(i, j));
+            let got = npr_stdlib::halftone_table::mean_paper(edge, blend, table.at(i, j));
             assert!(
                 (got - tone).abs() < 1e-3,
                 "edge {edge}: R(R⁻¹({tone})) = {got} at blend {blend}"

@@ -2,7 +2,7 @@
 //! continuity, contrast compensation measured (printed factor vs 1/√c), and
 //! the WGSL checked against the f64 reference on the GPU, hard cases included.
 
-use stdlib::reference::{self as r, ImageF64, MetaSettings};
+use npr_stdlib::reference::{self as r, ImageF64, MetaSettings};
 
 /// Deterministic 64-bit LCG.
 struct Lcg(u64);

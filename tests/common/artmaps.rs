@@ -3,7 +3,7 @@
 //! source image, and one frame through the runner.
 
 use super::{gpu, root};
-use runner::{FrameSpec, Renderer};
+use npr_runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
 
 pub fn scratch(name: &str) -> PathBuf {
@@ -13,20 +13,20 @@ pub fn scratch(name: &str) -> PathBuf {
     d
 }
 
-pub fn compile(text: &str, dir: &Path) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    match compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
+pub fn compile(text: &str, dir: &Path) -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    match npr_compiler::compile_source("case.npr", text, dir, &mut sources, &Default::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
 
-pub fn scene(text: &str) -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
+pub fn scene(text: &str) -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("scene.toml", text);
-    runner::scene::parse_scene(text, file, root())
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::parse_scene(text, file, root())
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// A `size`² grey PNG (sRGB 0.5): the source of the art-maps below.
@@ -36,7 +36,11 @@ pub fn grey_png(path: &Path, size: u32, value: u8) {
         .unwrap();
 }
 
-pub fn render(program: &runner::StyleProgram, scene: &runner::scene::Scene, size: u32) -> runner::TargetImage {
+pub fn render(
+    program: &npr_runner::StyleProgram,
+    scene: &npr_runner::scene::Scene,
+    size: u32,
+) -> npr_runner::TargetImage {
     let g = gpu();
     let mut r = Renderer::new(&g.device, &g.queue, program, scene).unwrap_or_else(|e| panic!("{e:?}"));
     r.render(

@@ -13,8 +13,8 @@
 use std::collections::HashMap;
 
 use glam::{DMat4, DVec2, DVec3};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer};
 
 use super::{compile_text, gpu};
 

@@ -4,9 +4,9 @@
 //! packed G-buffer layout as replacements of `examples/lsa_contours.npr`.
 
 use super::{gpu, root};
-use lab::contours::AnalyticScene;
-use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
-use stdlib::reference::ImageF64;
+use npr_lab::contours::AnalyticScene;
+use npr_runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
+use npr_stdlib::reference::ImageF64;
 
 /// An example style with some of its text replaced (parameter defaults,
 /// formats), compiled `--schedule naive`: the tests read intermediate
@@ -20,15 +20,15 @@ pub fn style(name: &str, replacements: &[(&str, &str)]) -> StyleProgram {
         assert!(text.contains(from), "`{from}` not in {name}");
         text = text.replace(from, to);
     }
-    let mut sources = diag::SourceMap::new();
-    let opts = compiler::CompileOptions {
-        schedule: compiler::schedule::Schedule::Naive,
+    let mut sources = npr_diag::SourceMap::new();
+    let opts = npr_compiler::CompileOptions {
+        schedule: npr_compiler::schedule::Schedule::Naive,
         ..Default::default()
     };
-    match compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
+    match npr_compiler::compile_source(name, &text, &root().join("examples"), &mut sources, &opts) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
@@ -52,10 +52,10 @@ pub const PACKED: &[(&str, &str)] = &[
     ),
 ];
 
-pub fn scene_of(s: &AnalyticScene) -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
+pub fn scene_of(s: &AnalyticScene) -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
     s.scene(&mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 pub fn spec(width: u32, height: u32) -> FrameSpec {
@@ -65,7 +65,7 @@ pub fn spec(width: u32, height: u32) -> FrameSpec {
 /// Targets `names` (e.g. "gbuffer.pos") after rendering up to each one's pass.
 pub fn targets(
     program: &StyleProgram,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     size: (u32, u32),
     names: &[&str],
 ) -> Vec<TargetImage> {
@@ -85,8 +85,8 @@ pub fn targets(
         .collect()
 }
 
-pub fn output(program: &StyleProgram, scene: &runner::scene::Scene, size: u32) -> TargetImage {
-    runner::render_frame(gpu(), program, scene, &spec(size, size)).unwrap_or_else(|e| panic!("render: {e}"))
+pub fn output(program: &StyleProgram, scene: &npr_runner::scene::Scene, size: u32) -> TargetImage {
+    npr_runner::render_frame(gpu(), program, scene, &spec(size, size)).unwrap_or_else(|e| panic!("render: {e}"))
 }
 
 pub fn to_f64(t: &TargetImage) -> ImageF64 {

@@ -16,7 +16,7 @@ pub mod lsa;
 pub mod patch_strip;
 pub mod xvfb;
 
-use runner::Gpu;
+use npr_runner::Gpu;
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -32,11 +32,11 @@ pub fn gpu() -> &'static Gpu {
 
 /// A style given as text, compiled with paths relative to the repository
 /// root; a user or internal error fails the test with its rendered message.
-pub fn compile_text(text: &str) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    match compiler::compile_source("case.npr", text, root(), &mut sources, &Default::default()) {
+pub fn compile_text(text: &str) -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    match npr_compiler::compile_source("case.npr", text, root(), &mut sources, &Default::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }

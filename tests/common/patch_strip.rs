@@ -51,7 +51,7 @@ pub fn strip_obj() -> String {
 
 /// The scene file: the strip split into its two parts, blended over
 /// `rings` rings (`None`: the default).
-pub fn strip_scene(dir: &Path, rings: Option<u32>) -> runner::scene::Scene {
+pub fn strip_scene(dir: &Path, rings: Option<u32>) -> npr_runner::scene::Scene {
     std::fs::write(dir.join("strip.obj"), strip_obj()).expect("obj");
     let rings = rings.map_or(String::new(), |n| format!("blend_rings = {n}\n"));
     let text = format!(
@@ -59,9 +59,9 @@ pub fn strip_scene(dir: &Path, rings: Option<u32>) -> runner::scene::Scene {
     );
     let path = dir.join(format!("strip_{}.toml", rings.trim().replace([' ', '='], "")));
     std::fs::write(&path, text).expect("scene");
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The surface point under pixel (x, y)'s centre: a pinhole camera at

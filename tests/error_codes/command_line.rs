@@ -104,14 +104,14 @@ fn e0504_bad_compiled_directory() {
 fn e0505_no_gpu_device() {
     // No machine here lacks an adapter (lavapipe, then GL): render the
     // diagnostic the CLI prints for one.
-    let rendered = diag::diagnostic::render(
-        &[runner::DeviceError::NoAdapter.to_diagnostic()],
+    let rendered = npr_diag::diagnostic::render(
+        &[npr_runner::DeviceError::NoAdapter.to_diagnostic()],
         &SourceMap::new(),
         false,
     );
     check(
         "E0505",
-        (vec![runner::DeviceError::NoAdapter.to_diagnostic()], rendered),
+        (vec![npr_runner::DeviceError::NoAdapter.to_diagnostic()], rendered),
     );
 }
 
@@ -122,7 +122,7 @@ fn e0510_a_device_without_a_limit_the_style_needs() {
     // against WebGPU's default limits, and its rendered message.
     let text = style("pass g: render(scene) {\n  out c: rgba16float = vec4(normal, 1.0)\n}\npass b: image(g) {\n  schedule: tiled\n  let v = gaussian(g.c, sigma: 1px, axis: x)\n  out o1: rgba8unorm = v\n  out o2: rgba8unorm = v\n  out o3: rgba16float = v\n  out o4: r32float = v.r\n  out o5: rgba32float = v\n}\npass f: image(b) {\n  out c: rgba8unorm = b.o1 + b.o2 + b.o3 + vec4(b.o4) + b.o5\n}\noutput f.c\n");
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_source(
+    let compiled = npr_compiler::compile_source(
         "case.npr",
         &text,
         Path::new("."),
@@ -130,13 +130,13 @@ fn e0510_a_device_without_a_limit_the_style_needs() {
         &CompileOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e:?}"));
-    let d = runner::device_needs::unmet(
+    let d = npr_runner::device_needs::unmet(
         &compiled.manifest,
         wgpu::Features::empty(),
         &wgpu::Limits::default(),
         "this device",
     );
-    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    let rendered = npr_diag::diagnostic::render(&d, &SourceMap::new(), false);
     assert!(rendered.contains("pass `b` needs"), "{rendered}");
     check("E0510", (d, rendered));
 }
@@ -324,13 +324,13 @@ fn e9001_internal_error_names_the_npr_span() {
     // valid input; render one the way the pipeline builds it.
     let mut sources = SourceMap::new();
     let file = sources.add("case.npr", SIMPLE_PASS);
-    let err = compiler::InternalError {
+    let err = npr_compiler::InternalError {
         message: "emitted WGSL for pass `p` failed naga validation".into(),
         detail: "error: example naga message".into(),
-        span: Some(diag::Span::new(file, 0, 6)),
+        span: Some(npr_diag::Span::new(file, 0, 6)),
         wgsl: Some("// the rejected module".into()),
     };
-    let rendered = diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    let rendered = npr_diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("case.npr:1:1"), "{rendered}");
     insta::assert_snapshot!("E9001", rendered);
 }
@@ -341,13 +341,13 @@ fn e9001_without_wgsl_names_an_impossible_state() {
     // stdlib defaults) carry no module: the label says what happened.
     let mut sources = SourceMap::new();
     let file = sources.add("case.npr", SIMPLE_PASS);
-    let err = compiler::InternalError {
+    let err = npr_compiler::InternalError {
         message: "the output target has no allocated target".into(),
         detail: "`p.color` is not among the allocated targets".into(),
-        span: Some(diag::Span::new(file, 0, 6)),
+        span: Some(npr_diag::Span::new(file, 0, 6)),
         wgsl: None,
     };
-    let rendered = diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
+    let rendered = npr_diag::diagnostic::render(&[err.to_diagnostic()], &sources, false);
     assert!(rendered.contains("E9001"), "{rendered}");
     assert!(
         rendered.contains("the compiler reached an impossible state here"),

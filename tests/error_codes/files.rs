@@ -32,15 +32,15 @@ fn e0403_scene_lacks_uvs() {
     std::fs::write(dir.join("scene.toml"), "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n[light]\ndirection = [0.0, 1.0, 0.0]\n[[object]]\nname = \"tri\"\nmesh = \"tri.obj\"\n").expect("write");
     let mut sources = SourceMap::new();
     let text = style("pass p: render(scene) {\n  out color: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.color\n");
-    let compiled =
-        compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default()).expect("compiles");
+    let compiled = npr_compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default())
+        .expect("compiles");
     assert!(compiled
         .manifest
         .scene_attributes
-        .contains(&abi::manifest::Attribute::Uv));
-    let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
-    let diags = runner::check_scene(&compiled.manifest, &scene);
-    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+        .contains(&npr_abi::manifest::Attribute::Uv));
+    let scene = npr_runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
+    let diags = npr_runner::check_scene(&compiled.manifest, &scene);
+    let rendered = npr_diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     check("E0403", (diags, rendered));
 }
 
@@ -74,16 +74,16 @@ fn w0401_a_scene_binding_the_style_does_not_read() {
         "object param tint: color = #ffffff\nparam gain: float = 1.0\npass p: render(scene) {\n  out c: rgba8unorm = tint * gain\n}\noutput p.c\n",
     );
     let mut sources = SourceMap::new();
-    let compiled =
-        compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default()).expect("compiles");
+    let compiled = npr_compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default())
+        .expect("compiles");
     std::fs::write(
         dir.join("scene.toml"),
         one_sphere_scene("params = { tnit = \"#ff0000\", gain = 2.0, tint = \"#00ff00\" }"),
     )
     .expect("write scene");
-    let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
-    let diags = runner::scene_warnings(&compiled.manifest, &scene);
-    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    let scene = npr_runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
+    let diags = npr_runner::scene_warnings(&compiled.manifest, &scene);
+    let rendered = npr_diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     // The misspelt name and the style-wide param; not `tint`, which is read.
     assert_eq!(diags.len(), 2, "{rendered}");
     assert!(rendered.contains("did you mean `tint`?"), "{rendered}");
@@ -100,16 +100,16 @@ fn w0401_bindings_for_another_style_are_one_line() {
     let dir = scratch("w0401-elsewhere");
     let text = style("pass p: render(scene) {\n  out c: rgba8unorm = #808080\n}\noutput p.c\n");
     let mut sources = SourceMap::new();
-    let compiled =
-        compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default()).expect("compiles");
+    let compiled = npr_compiler::compile_source("case.npr", &text, &dir, &mut sources, &CompileOptions::default())
+        .expect("compiles");
     std::fs::write(
         dir.join("scene.toml"),
         one_sphere_scene("params = { tint = \"#ff0000\", wobble = 2.0 }"),
     )
     .expect("write scene");
-    let scene = runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
-    let diags = runner::scene_warnings(&compiled.manifest, &scene);
-    let rendered = diag::diagnostic::render(&diags, &sources, false);
+    let scene = npr_runner::scene::load_scene(&dir.join("scene.toml"), &mut sources).expect("scene loads");
+    let diags = npr_runner::scene_warnings(&compiled.manifest, &scene);
+    let rendered = npr_diag::diagnostic::render(&diags, &sources, false);
     assert_eq!(diags.len(), 1, "{rendered}");
     assert_eq!(rendered.trim_end().lines().count(), 1, "{rendered}");
     check_case("W0401", "W0401_elsewhere", (diags, rendered));
@@ -120,7 +120,7 @@ fn w0402_a_render_pass_over_a_tag_no_object_has() {
     let text = style(
         "pass ground: render(gorund) {\n  out c: rgba8unorm = #808080\n}\npass final: image(ground) {\n  out color: rgba8unorm = ground.c\n}\noutput final.color\n",
     );
-    let scene = abi::SceneSummary {
+    let scene = npr_abi::SceneSummary {
         tags: ["ground".to_string(), "caster".to_string()].into_iter().collect(),
         name: "scene.toml".into(),
     };
@@ -129,15 +129,15 @@ fn w0402_a_render_pass_over_a_tag_no_object_has() {
         ..CompileOptions::default()
     };
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_source("case.npr", &text, Path::new("."), &mut sources, &opts)
+    let compiled = npr_compiler::compile_source("case.npr", &text, Path::new("."), &mut sources, &opts)
         .unwrap_or_else(|_| panic!("compiles"));
-    let rendered = diag::diagnostic::render(&compiled.warnings, &sources, false);
+    let rendered = npr_diag::diagnostic::render(&compiled.warnings, &sources, false);
     assert!(rendered.contains("did you mean `ground`?"), "{rendered}");
     assert!(rendered.contains("caster, ground"), "{rendered}");
     check("W0402", (compiled.warnings.clone(), rendered));
     // Without a scene nothing is known about tags: no warning.
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_source(
+    let compiled = npr_compiler::compile_source(
         "case.npr",
         &text,
         Path::new("."),
@@ -178,7 +178,7 @@ fn npr_check_opens_texture_files_that_are_not_images() {
 #[test]
 fn npr_check_refuses_a_texture_past_the_size_limit_from_its_header() {
     let dir = scratch("check-too-large");
-    let wide = diag::limits::MAX_TEXTURE_SIZE + 1;
+    let wide = npr_diag::limits::MAX_TEXTURE_SIZE + 1;
     image::GrayImage::new(wide, 1)
         .save(dir.join("wide.png"))
         .expect("write png");
@@ -204,7 +204,7 @@ fn npr_check_and_render_point_at_the_style_for_a_texture_with_a_good_header_and_
     let style = style_with_texture(&dir, "paper.png");
     // The header is fine; only a whole decode finds the damage.
     assert_eq!(
-        runner::texture_file::probe(&dir.join("paper.png")).expect("header"),
+        npr_runner::texture_file::probe(&dir.join("paper.png")).expect("header"),
         (64, 64)
     );
     // `npr check` decodes it, and refuses it at the same place.
@@ -256,7 +256,7 @@ fn npr_render_reports_a_bad_texture_at_the_style_not_only_by_name() {
 fn a_texture_file_that_cannot_be_read() {
     // A directory passes no `open`: the error says it cannot be read.
     let dir = scratch("texture-unreadable");
-    let err = runner::texture_file::probe(&dir).expect_err("a directory is no image");
+    let err = npr_runner::texture_file::probe(&dir).expect_err("a directory is no image");
     let d = err.to_diagnostic("paper", "textures/");
     assert_eq!(d.code, "E0401");
     assert!(
@@ -267,7 +267,7 @@ fn a_texture_file_that_cannot_be_read() {
     // A file whose header is fine is accepted by the probe with its size.
     let ok = dir.join("ok.png");
     image::GrayImage::new(3, 2).save(&ok).expect("write png");
-    assert_eq!(runner::texture_file::probe(&ok).expect("a png"), (3, 2));
+    assert_eq!(npr_runner::texture_file::probe(&ok).expect("a png"), (3, 2));
 }
 
 #[test]
@@ -279,18 +279,18 @@ fn e0406_a_path_outside_the_root() {
         .save(dir.join("paper.png"))
         .expect("write png");
     let text = style("texture paper = image(\"../paper.png\", srgb)\npass p: render(scene) {\n  out color: rgba8unorm = paper\n}\noutput p.color\n");
-    let policy = diag::paths::PathPolicy::new(&style_dir, &[]).expect("root");
+    let policy = npr_diag::paths::PathPolicy::new(&style_dir, &[]).expect("root");
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         paths: Some(policy),
         ..Default::default()
     };
-    let Err(CompileError::User(d)) = compiler::compile_source("case.npr", &text, &style_dir, &mut sources, &opts)
+    let Err(CompileError::User(d)) = npr_compiler::compile_source("case.npr", &text, &style_dir, &mut sources, &opts)
     else {
         panic!("a texture outside the root must be refused")
     };
     let canonical = dir.canonicalize().expect("canonical").display().to_string();
-    let r = diag::diagnostic::render(&d, &sources, false).replace(&canonical, "<dir>");
+    let r = npr_diag::diagnostic::render(&d, &sources, false).replace(&canonical, "<dir>");
     check("E0406", (d, r));
 }
 
@@ -298,18 +298,19 @@ fn e0406_a_path_outside_the_root() {
 fn e0508_the_gpu_out_of_memory() {
     // Forced on the device in tests/gpu/gpu_errors.rs (under an address-space
     // limit); this is its rendered message.
-    let e = runner::RunError::OutOfMemory("the GPU ran out of memory making the targets of a 16384x16384 image".into());
+    let e =
+        npr_runner::RunError::OutOfMemory("the GPU ran out of memory making the targets of a 16384x16384 image".into());
     let d = e.diagnostics();
-    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    let rendered = npr_diag::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0508", (d, rendered));
 }
 
 #[test]
 fn e0509_a_lost_device() {
     // Forced with `Device::destroy` in tests/gpu/gpu_errors.rs; its rendered message.
-    let e = runner::RunError::DeviceLost("Destroyed: Device is dying.".into());
+    let e = npr_runner::RunError::DeviceLost("Destroyed: Device is dying.".into());
     let d = e.diagnostics();
-    let rendered = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    let rendered = npr_diag::diagnostic::render(&d, &SourceMap::new(), false);
     check("E0509", (d, rendered));
 }
 

@@ -1,19 +1,19 @@
 //! The host codes (E06xx) and the parameter codes a host's
 //! `StyleRuntime::set_param` gives: mistakes of an application embedding a
-//! style (`runner::embed`), as error values, rendered.
+//! style (`npr_runner::embed`), as error values, rendered.
 
 use super::{check, check_case, style, SIMPLE_PASS};
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
-use runner::scene::{primitives, Camera};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera};
 use std::path::Path;
 use std::sync::OnceLock;
 
-fn gpu() -> &'static runner::Gpu {
-    static GPU: OnceLock<runner::Gpu> = OnceLock::new();
+fn gpu() -> &'static npr_runner::Gpu {
+    static GPU: OnceLock<npr_runner::Gpu> = OnceLock::new();
     GPU.get_or_init(|| {
-        runner::Gpu::headless().unwrap_or_else(|e| {
+        npr_runner::Gpu::headless().unwrap_or_else(|e| {
             panic!("these cases need a GPU adapter (Mesa's lavapipe: apt-get install mesa-vulkan-drivers): {e}")
         })
     })
@@ -26,14 +26,14 @@ fn runtime(text: &str) -> StyleRuntime {
         keep_params: true,
         ..Default::default()
     };
-    let compiled = compiler::compile_source("case.npr", text, Path::new("."), &mut sources, &options)
+    let compiled = npr_compiler::compile_source("case.npr", text, Path::new("."), &mut sources, &options)
         .unwrap_or_else(|e| panic!("{e:?}"));
     StyleRuntime::new(&gpu().device, &gpu().queue, compiled.program()).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn rendered(e: EmbedError) -> (Vec<diag::Diagnostic>, String) {
+fn rendered(e: EmbedError) -> (Vec<npr_diag::Diagnostic>, String) {
     let d = e.diagnostics();
-    let r = diag::diagnostic::render(&d, &SourceMap::new(), false);
+    let r = npr_diag::diagnostic::render(&d, &SourceMap::new(), false);
     (d, r)
 }
 

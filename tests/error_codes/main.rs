@@ -1,9 +1,9 @@
 //! Every error code has a case here that triggers it, and a snapshot of its
 //! rendered message (rustc style, no colour). A completeness check makes sure
-//! no code in `diag::codes::ALL` is left without a case.
+//! no code in `npr_diag::codes::ALL` is left without a case.
 
-use compiler::{CompileError, CompileOptions};
-use diag::{Diagnostic, SourceMap};
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::{Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
 
 mod command_line;
@@ -24,10 +24,10 @@ fn scratch(name: &str) -> PathBuf {
 /// Compile `text` (as `case.npr` in `dir`) and return the rendered diagnostics.
 fn compile_errors(text: &str, dir: &Path) -> (Vec<Diagnostic>, String) {
     let mut sources = SourceMap::new();
-    match compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
+    match npr_compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => panic!("expected an error for:\n{text}"),
         Err(CompileError::User(d)) => {
-            let r = diag::diagnostic::render(&d, &sources, false);
+            let r = npr_diag::diagnostic::render(&d, &sources, false);
             (d, r)
         }
         Err(CompileError::Internal(e)) => panic!("internal error instead of a user error: {e}"),
@@ -38,10 +38,10 @@ fn scene_errors(toml: &str, dir: &Path) -> (Vec<Diagnostic>, String) {
     let mut sources = SourceMap::new();
     let path = dir.join("scene.toml");
     std::fs::write(&path, toml).expect("write scene");
-    match runner::scene::load_scene(&path, &mut sources) {
+    match npr_runner::scene::load_scene(&path, &mut sources) {
         Ok(_) => panic!("expected a scene error for:\n{toml}"),
         Err(d) => {
-            let r = diag::diagnostic::render(&d, &sources, false);
+            let r = npr_diag::diagnostic::render(&d, &sources, false);
             (d, r.replace(&dir.display().to_string(), "<dir>"))
         }
     }
@@ -62,7 +62,7 @@ fn check_case(code: &str, name: &str, (diags, rendered): (Vec<Diagnostic>, Strin
 }
 
 /// Run the `npr` binary from the repository root and return the diagnostic
-/// code of its first error line (looked up in `diag::codes::ALL`) with its
+/// code of its first error line (looked up in `npr_diag::codes::ALL`) with its
 /// whole stderr, scratch paths replaced by `<dir>`.
 fn cli_errors(args: &[&str], dir: &Path) -> (Vec<Diagnostic>, String) {
     cli_errors_with_env(args, dir, &[])
@@ -83,7 +83,7 @@ fn cli_errors_with_env(args: &[&str], dir: &Path, env: &[(&str, &Path)]) -> (Vec
         .split("error[")
         .nth(1)
         .and_then(|rest| rest.split(']').next())
-        .and_then(|c| diag::codes::ALL.iter().find(|(k, _)| *k == c))
+        .and_then(|c| npr_diag::codes::ALL.iter().find(|(k, _)| *k == c))
         .map_or("none", |(k, _)| k);
     (vec![Diagnostic::error(code, "")], stderr)
 }
@@ -91,7 +91,7 @@ fn cli_errors_with_env(args: &[&str], dir: &Path, env: &[(&str, &Path)]) -> (Vec
 /// Compile `text`, which must succeed, and return its rendered warnings.
 fn compile_warnings(text: &str) -> (Vec<Diagnostic>, String) {
     let mut sources = SourceMap::new();
-    match compiler::compile_source(
+    match npr_compiler::compile_source(
         "case.npr",
         text,
         Path::new("."),
@@ -99,10 +99,10 @@ fn compile_warnings(text: &str) -> (Vec<Diagnostic>, String) {
         &CompileOptions::default(),
     ) {
         Ok(c) => {
-            let r = diag::diagnostic::render(&c.warnings, &sources, false);
+            let r = npr_diag::diagnostic::render(&c.warnings, &sources, false);
             (c.warnings, r)
         }
-        Err(CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
@@ -141,7 +141,7 @@ fn every_code_has_a_case() {
         8 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
-    for (code, _) in diag::codes::ALL {
+    for (code, _) in npr_diag::codes::ALL {
         let needle = format!("check(\"{code}\"");
         assert!(
             cases.contains(&needle),

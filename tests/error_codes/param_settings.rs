@@ -66,11 +66,11 @@ fn filter_arguments_are_checked_against_the_filters_params() {
 fn a_filters_enum_param_takes_one_of_its_variants_by_name() {
     // As `--set mode=hard` would: the name is the filter's variant.
     let (text, dir) = filter_args_files("farg-enum-ok", "mode: hard, spacing: 8");
-    let mut sources = diag::SourceMap::new();
-    let compiled = compiler::compile_source("case.npr", &text, &dir, &mut sources, &Default::default())
+    let mut sources = npr_diag::SourceMap::new();
+    let compiled = npr_compiler::compile_source("case.npr", &text, &dir, &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let filter = match &compiled.manifest.textures[0].source {
-        abi::manifest::TextureSourceManifest::Artmap(spec) => &spec.filter,
+        npr_abi::manifest::TextureSourceManifest::Artmap(spec) => &spec.filter,
         other => panic!("not an art-map: {other:?}"),
     };
     let default = |name: &str| {

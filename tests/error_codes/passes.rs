@@ -280,13 +280,13 @@ fn check_reasons(code: &str, cases: &[(&str, &str, &str)]) {
 /// `text` fails with `code` under every `--schedule`: a forced `schedule:`
 /// wins over the run's schedule, and its refusal with it.
 fn same_code_under_every_schedule(code: &str, text: &str, dir: &Path) {
-    for schedule in compiler::schedule::Schedule::ALL {
+    for schedule in npr_compiler::schedule::Schedule::ALL {
         let mut sources = SourceMap::new();
         let opts = CompileOptions {
             schedule,
             ..CompileOptions::default()
         };
-        match compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
+        match npr_compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
             Err(CompileError::User(d)) => assert_eq!(d[0].code, code, "--schedule {}", schedule.name()),
             _ => panic!("--schedule {}: not {code}", schedule.name()),
         }

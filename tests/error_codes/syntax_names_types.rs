@@ -62,7 +62,7 @@ fn e0006_expression_too_deep() {
 #[test]
 fn e0404_a_style_file_over_the_size_limit() {
     // Short lines, so the snapshot shows one of them.
-    let big = style(&"// padding\n".repeat(diag::limits::MAX_SOURCE_BYTES / 10));
+    let big = style(&"// padding\n".repeat(npr_diag::limits::MAX_SOURCE_BYTES / 10));
     check_case(
         "E0404",
         "E0404_source_size",
@@ -120,7 +120,7 @@ fn w0201_a_colour_times_a_splat_vector_scales_its_alpha() {
 fn a_colour_times_a_number_keeps_its_alpha_and_warns_nothing() {
     let text = style("param base: color = #e07a3a\npass p: render(scene) {\n  out c: rgba8unorm = base * lambert(normal, light.dir) + vec4(0.1, 0.1, 0.1, 0.0)\n}\noutput p.c\n");
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_source(
+    let compiled = npr_compiler::compile_source(
         "case.npr",
         &text,
         Path::new("."),
@@ -265,10 +265,11 @@ fn e0007_a_style_that_is_not_utf8() {
     bytes.extend_from_slice(format!(" au lait.\nparam a: float = 1.0\n{SIMPLE_PASS}").as_bytes());
     std::fs::write(&path, bytes).expect("write");
     let mut sources = SourceMap::new();
-    let Err(CompileError::User(diags)) = compiler::compile_file(&path, &mut sources, &CompileOptions::default()) else {
+    let Err(CompileError::User(diags)) = npr_compiler::compile_file(&path, &mut sources, &CompileOptions::default())
+    else {
         panic!("expected a user error");
     };
-    let rendered = diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
+    let rendered = npr_diag::diagnostic::render(&diags, &sources, false).replace(&dir.display().to_string(), "<dir>");
     assert!(
         rendered.contains("latin1.npr:2:8"),
         "line and column of the byte: {rendered}"
@@ -289,10 +290,10 @@ fn a_used_style_or_a_scene_that_is_not_utf8() {
     let mut sources = SourceMap::new();
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, [b'#', b' ', 0xfe, 0xff, b'\n']).expect("write");
-    let Err(diags) = runner::scene::load_scene(&scene, &mut sources) else {
+    let Err(diags) = npr_runner::scene::load_scene(&scene, &mut sources) else {
         panic!("a scene that is not UTF-8 must be refused");
     };
-    let rendered = diag::diagnostic::render(&diags, &sources, false);
+    let rendered = npr_diag::diagnostic::render(&diags, &sources, false);
     assert_eq!(diags[0].code, "E0007", "{rendered}");
     assert!(rendered.contains("scene.toml:1:3"), "{rendered}");
 }
@@ -365,7 +366,7 @@ fn e0203_a_constant_call_outside_its_domain() {
         keep_params: true,
         ..Default::default()
     };
-    compiler::compile_source("case.npr", &text, &scratch("e0203-domain"), &mut sources, &kept)
+    npr_compiler::compile_source("case.npr", &text, &scratch("e0203-domain"), &mut sources, &kept)
         .unwrap_or_else(|e| panic!("a kept param is a uniform, evaluated at run time: {e:?}"));
 }
 
@@ -391,7 +392,7 @@ fn int_arguments_of_float_only_functions_are_promoted() {
                 ..Default::default()
             };
             if let Err(err) =
-                compiler::compile_source("case.npr", &text, &scratch("int-promotion"), &mut sources, &opts)
+                npr_compiler::compile_source("case.npr", &text, &scratch("int-promotion"), &mut sources, &opts)
             {
                 panic!("{e} (keep_params {keep_params}): {err:?}");
             }

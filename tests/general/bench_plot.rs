@@ -51,7 +51,7 @@ fn bench_ops_plots_every_modelled_variant_against_each_error() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     only_file(&dir, "ops.svg");
     let (circles, texts) = svg(&out);
-    let variants = lab::bench_ops::variants();
+    let variants = npr_lab::bench_ops::variants();
     let modelled: Vec<&str> = variants.iter().filter(|v| v.model.is_some()).map(|v| v.name).collect();
     // One point per modelled variant on each of the three error charts.
     assert_eq!(circles, 3 * modelled.len(), "{texts:?}");

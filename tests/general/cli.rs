@@ -377,7 +377,7 @@ fn bench_contours_reports_every_variant_with_accuracy() {
     // Every variant, plus an `auto` row for each method the schedule fuses
     // (the LSA styles fuse their ink pass), a `tiled` row for each method
     // `--schedule tiled` tiles (LSA, Sobel, normal+depth).
-    let declared = lab::bench_contours::variants().len();
+    let declared = npr_lab::bench_contours::variants().len();
     let auto = rows.iter().filter(|r| r.contains("[auto: ")).count();
     let tiled = rows.iter().filter(|r| r.contains("[tiled: ")).count();
     // And a `recompute` row for each method whose error pass `--schedule
@@ -488,7 +488,7 @@ fn bench_artmaps_reports_every_filter_and_every_read() {
         let rip_ms: f64 = cells[8].parse().expect("a number");
         assert!(rip_ms.is_finite() && rip_ms > 0.0, "{row}");
     }
-    for v in &lab::bench_artmaps::SAMPLE_VARIANTS {
+    for v in &npr_lab::bench_artmaps::SAMPLE_VARIANTS {
         let row = stdout
             .lines()
             .find(|l| l.starts_with(&format!("| {} |", v.name)))

@@ -56,11 +56,11 @@ fn clap_errors_are_usage_errors_with_clap_message() {
         (&["--no-such-flag"], "unexpected argument"),
     ] {
         let args = render_with(extra);
-        let stderr = assert_user_error(&strs(&args), diag::codes::USAGE);
+        let stderr = assert_user_error(&strs(&args), npr_diag::codes::USAGE);
         assert!(stderr.contains(says), "{extra:?}: {stderr}");
     }
     // With no command, the help is printed, then the error.
-    let stderr = assert_user_error(&[], diag::codes::USAGE);
+    let stderr = assert_user_error(&[], npr_diag::codes::USAGE);
     assert!(stderr.contains("Usage: npr"), "{stderr}");
 }
 
@@ -74,7 +74,7 @@ fn usage_errors_are_json_when_asked() {
         .unwrap_or("")
         .to_string();
     let json: serde_json::Value = serde_json::from_str(&line).expect("a JSON diagnostic");
-    assert_eq!(json["code"], diag::codes::USAGE);
+    assert_eq!(json["code"], npr_diag::codes::USAGE);
     assert!(json["message"].as_str().unwrap_or("").contains("--bogus"), "{json}");
 }
 
@@ -90,7 +90,7 @@ fn render_values_outside_their_domain() {
         &["--eye", "2"],
     ] {
         let args = render_with(extra);
-        assert_user_error(&strs(&args), diag::codes::BAD_ARGUMENT_VALUE);
+        assert_user_error(&strs(&args), npr_diag::codes::BAD_ARGUMENT_VALUE);
     }
     // Frame ranges are read after clap, pointing into the argument.
     for (extra, says) in [
@@ -100,7 +100,7 @@ fn render_values_outside_their_domain() {
         (&["--frames", "0-9", "--chunk", "3/2"], "chunk 3 of 2 does not exist"),
     ] {
         let args = render_with(extra);
-        let stderr = assert_user_error(&strs(&args), diag::codes::BAD_ARGUMENT_VALUE);
+        let stderr = assert_user_error(&strs(&args), npr_diag::codes::BAD_ARGUMENT_VALUE);
         assert!(stderr.contains(says), "{extra:?}: {stderr}");
     }
 }
@@ -109,7 +109,7 @@ fn render_values_outside_their_domain() {
 fn sizes_and_frame_counts_past_their_limits() {
     for extra in [&["--size", "16385x16"][..], &["--frames", "0..4000000000"]] {
         let args = render_with(extra);
-        assert_user_error(&strs(&args), diag::codes::LIMIT_EXCEEDED);
+        assert_user_error(&strs(&args), npr_diag::codes::LIMIT_EXCEEDED);
     }
     // A path-dependent style replays every frame up to `--time`.
     assert_user_error(
@@ -122,7 +122,7 @@ fn sizes_and_frame_counts_past_their_limits() {
             "--time",
             "1e7",
         ],
-        diag::codes::LIMIT_EXCEEDED,
+        npr_diag::codes::LIMIT_EXCEEDED,
     );
 }
 
@@ -154,11 +154,11 @@ fn texgen_argument_errors_have_a_code() {
         &["texgen", "-o", "/dev/null", "--octaves", "13"],
         &["texgen", "-o", "/dev/null", "--frequency", "0"],
     ] {
-        assert_user_error(args, diag::codes::BAD_ARGUMENT_VALUE);
+        assert_user_error(args, npr_diag::codes::BAD_ARGUMENT_VALUE);
     }
     assert_user_error(
         &["texgen", "-o", "README.md/x.png", "--size", "4"],
-        diag::codes::CANNOT_WRITE,
+        npr_diag::codes::CANNOT_WRITE,
     );
 }
 
@@ -166,6 +166,6 @@ fn texgen_argument_errors_have_a_code() {
 fn compile_onto_an_existing_file_is_refused_before_compiling() {
     assert_user_error(
         &["compile", "examples/toon.npr", "-o", "README.md"],
-        diag::codes::CANNOT_WRITE,
+        npr_diag::codes::CANNOT_WRITE,
     );
 }

@@ -1,4 +1,4 @@
-//! `examples/embed.rs`, the host application of `runner::embed`, runs: headless
+//! `examples/embed.rs`, the host application of `npr_runner::embed`, runs: headless
 //! (an offscreen texture) and in a real window under Xvfb (a wgpu surface on
 //! lavapipe, presented), each for 30 frames; both print the mean of the
 //! style's output after the last frame, which is the same frame (the

@@ -1,8 +1,8 @@
 //! Every example style compiles; its WGSL and manifest are snapshot-tested,
 //! and naga parses and validates every emitted module.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
 use std::path::{Path, PathBuf};
 
 fn examples() -> Vec<PathBuf> {
@@ -17,9 +17,9 @@ fn examples() -> Vec<PathBuf> {
     v
 }
 
-fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
+fn compile(path: &Path, keep_params: bool) -> npr_compiler::Compiled {
     let mut sources = SourceMap::new();
-    match compiler::compile_file(
+    match npr_compiler::compile_file(
         path,
         &mut sources,
         &CompileOptions {
@@ -27,17 +27,18 @@ fn compile(path: &Path, keep_params: bool) -> compiler::Compiled {
             dump_ir: false,
             scene: None,
             settings: Vec::new(),
-            schedule: compiler::schedule::Schedule::Naive,
+            schedule: npr_compiler::schedule::Schedule::Naive,
             tile_apron_deficit: 0,
             // Every example keeps to the default paths policy.
             paths: Some(
-                diag::paths::PathPolicy::new(&diag::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),
+                npr_diag::paths::PathPolicy::new(&npr_diag::paths::PathPolicy::default_root(&[path]), &[])
+                    .expect("root"),
             ),
         },
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.clone().unwrap_or_default()),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}\n{}", e.wgsl.clone().unwrap_or_default()),
     }
 }
 
@@ -82,11 +83,11 @@ fn every_example_compiles_and_validates_with_naga() {
 
 /// Absolute paths differ between machines: each texture's file and each
 /// art-map filter's source as written.
-fn relative_paths(manifest: &mut abi::Manifest) {
+fn relative_paths(manifest: &mut npr_abi::Manifest) {
     for t in &mut manifest.textures {
         match &mut t.source {
-            abi::manifest::TextureSourceManifest::Image { resolved, path, .. } => *resolved = path.clone(),
-            abi::manifest::TextureSourceManifest::Artmap(spec) => {
+            npr_abi::manifest::TextureSourceManifest::Image { resolved, path, .. } => *resolved = path.clone(),
+            npr_abi::manifest::TextureSourceManifest::Artmap(spec) => {
                 spec.resolved = spec.path.clone();
                 spec.filter.manifest.source = spec.filter.path.clone();
                 relative_paths(&mut spec.filter.manifest);
@@ -134,7 +135,7 @@ fn skew_zero_emits_no_8_tap_code() {
         .expect("read")
         .replace("skew_levels: int = 0", "skew_levels: int = 2");
     let mut sources = SourceMap::new();
-    let skewed = compiler::compile_source(
+    let skewed = npr_compiler::compile_source(
         "skew.npr",
         &text,
         path.parent().expect("dir"),
@@ -149,7 +150,7 @@ fn skew_zero_emits_no_8_tap_code() {
 }
 
 /// `examples/lsa_contours.npr` with some of its parameter defaults replaced.
-fn compile_lsa_variant(replacements: &[(&str, &str)]) -> compiler::Compiled {
+fn compile_lsa_variant(replacements: &[(&str, &str)]) -> npr_compiler::Compiled {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/lsa_contours.npr");
     let mut text = std::fs::read_to_string(&path).expect("read");
     for (from, to) in replacements {
@@ -157,7 +158,7 @@ fn compile_lsa_variant(replacements: &[(&str, &str)]) -> compiler::Compiled {
         text = text.replace(from, to);
     }
     let mut sources = SourceMap::new();
-    compiler::compile_source(
+    npr_compiler::compile_source(
         "lsa_variant.npr",
         &text,
         path.parent().expect("dir"),
@@ -174,7 +175,7 @@ fn disabled_lsa_extensions_compile_away() {
     // Markers of each extension's code in the emitted WGSL.
     let plane_code = "fn npr_lsa_plane__den(";
     let aa_code = "fn npr_lsa_aa__mix(";
-    let has = |c: &compiler::Compiled, s: &str| c.shader("error.wgsl").expect("error pass").contains(s);
+    let has = |c: &npr_compiler::Compiled, s: &str| c.shader("error.wgsl").expect("error pass").contains(s);
 
     let full = compile_lsa_variant(&[]);
     assert!(has(&full, "fn npr_lsa(") && has(&full, plane_code) && has(&full, aa_code));

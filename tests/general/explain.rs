@@ -1,10 +1,10 @@
-//! `npr explain`: every code of `diag::codes::ALL` has an explanation whose
+//! `npr explain`: every code of `npr_diag::codes::ALL` has an explanation whose
 //! two examples are run through the `npr` binary, as a user would run them:
 //! the wrong one must give exactly its code (an error exits 1, a warning
 //! 0), the fixed one no diagnostic at all. An example that cannot run here
 //! is listed in [`NOT_RUNNABLE`] with its reason; nothing else is skipped.
 
-use dsl::explain::{Example, Explanation, STYLE_FILE};
+use npr_dsl::explain::{Example, Explanation, STYLE_FILE};
 use std::collections::BTreeSet;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -13,7 +13,7 @@ use std::time::Duration;
 
 /// The examples the tests cannot run (code, which one), each with its
 /// reason in the explanation's `not_runnable`. The host codes' examples
-/// are Rust calls of `runner::embed`: tests/error_codes/host.rs makes each
+/// are Rust calls of `npr_runner::embed`: tests/error_codes/host.rs makes each
 /// mistake, and the runtime's own example renders the fixed way.
 const NOT_RUNNABLE: &[(&str, &str)] = &[
     ("E0505", "wrong"),
@@ -169,12 +169,12 @@ fn check_serves(dir: &Path, e: &Explanation) -> Result<(), String> {
 
 #[test]
 fn every_code_has_one_explanation() {
-    let explained: Vec<&str> = dsl::explain::all().map(|e| e.code).collect();
+    let explained: Vec<&str> = npr_dsl::explain::all().map(|e| e.code).collect();
     let unique: BTreeSet<&str> = explained.iter().copied().collect();
     assert_eq!(unique.len(), explained.len(), "a code explained twice: {explained:?}");
-    let codes: BTreeSet<&str> = diag::codes::ALL.iter().map(|(c, _)| *c).collect();
-    assert_eq!(unique, codes, "explanations and diag::codes::ALL differ");
-    for e in dsl::explain::all() {
+    let codes: BTreeSet<&str> = npr_diag::codes::ALL.iter().map(|(c, _)| *c).collect();
+    assert_eq!(unique, codes, "explanations and npr_diag::codes::ALL differ");
+    for e in npr_dsl::explain::all() {
         assert!(
             e.meaning.split_whitespace().count() >= 20,
             "{}: explain it at length",
@@ -187,7 +187,7 @@ fn every_code_has_one_explanation() {
 fn every_wrong_example_gives_its_code_and_every_fixed_one_compiles() {
     let mut failures = Vec::new();
     let mut not_run = Vec::new();
-    for e in dsl::explain::all() {
+    for e in npr_dsl::explain::all() {
         for (which, example, check) in [
             ("wrong", &e.wrong, check_wrong as fn(&Explanation) -> Result<(), String>),
             ("fixed", &e.fixed, check_fixed),
@@ -221,7 +221,7 @@ fn npr_explain_prints_the_explanation() {
     assert!(text.contains("Wrong:") && text.contains("Fixed:"), "{text}");
     insta::assert_snapshot!("explain_E0202", text);
     // Every code, in any letter case.
-    for (code, _) in diag::codes::ALL {
+    for (code, _) in npr_diag::codes::ALL {
         let lower = code.to_ascii_lowercase();
         let o = npr(Path::new(env!("CARGO_MANIFEST_DIR")), &["explain", &lower])
             .output()

@@ -3,10 +3,10 @@
 
 use crate::common;
 
-use abi::Format;
-use compiler::ir::{Builtin, Intrinsic};
-use compiler::{CompileError, CompileOptions};
-use diag::SourceMap;
+use npr_abi::Format;
+use npr_compiler::ir::{Builtin, Intrinsic};
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::SourceMap;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -173,10 +173,14 @@ fn tokens() -> &'static [String] {
         t.extend(grammar_keywords());
         t.extend(Builtin::SPELLINGS.iter().map(|(s, _)| s.to_string()));
         t.extend(Intrinsic::names().map(str::to_string));
-        t.extend(stdlib::all().iter().map(|o| o.name.to_string()));
+        t.extend(npr_stdlib::all().iter().map(|o| o.name.to_string()));
         t.extend(Format::ALL.iter().map(|(s, _)| s.to_string()));
-        t.extend(abi::manifest::Blend::ALL.iter().map(|(s, _)| s.to_string()));
-        t.extend(compiler::schedule::Schedule::ALL.iter().map(|s| s.name().to_string()));
+        t.extend(npr_abi::manifest::Blend::ALL.iter().map(|(s, _)| s.to_string()));
+        t.extend(
+            npr_compiler::schedule::Schedule::ALL
+                .iter()
+                .map(|s| s.name().to_string()),
+        );
         t.sort();
         t.dedup();
         t
@@ -209,7 +213,7 @@ fn token_list_covers_every_keyword_builtin_operator_format_and_pass_kind() {
         .chain(["depth", "keep", "test", "bias", "over", "multiply"])
         .chain(["schedule", "naive", "auto", "tiled"])
         .chain(Format::ALL.iter().map(|(s, _)| *s))
-        .chain(stdlib::all().iter().map(|o| o.name))
+        .chain(npr_stdlib::all().iter().map(|o| o.name))
         .chain(Intrinsic::TABLE.iter().map(|(s, _)| *s))
     {
         assert!(t.iter().any(|x| x == needed), "fuzz token list lacks `{needed}`");
@@ -219,7 +223,7 @@ fn token_list_covers_every_keyword_builtin_operator_format_and_pass_kind() {
 fn check(text: &str) {
     let mut sources = SourceMap::new();
     let dir = examples_dir();
-    match compiler::compile_source("fuzz.npr", text, &dir, &mut sources, &CompileOptions::default()) {
+    match npr_compiler::compile_source("fuzz.npr", text, &dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => {}
         Err(CompileError::User(diags)) => {
             for d in &diags {
@@ -231,7 +235,7 @@ fn check(text: &str) {
                     );
                 }
             }
-            let _ = diag::diagnostic::render(&diags, &sources, false);
+            let _ = npr_diag::diagnostic::render(&diags, &sources, false);
         }
         Err(CompileError::Internal(e)) => panic!(
             "internal compiler error on input:\n{text}\n{e}\n{}",

@@ -13,8 +13,8 @@
 
 use crate::common;
 
-use compiler::{CompileError, CompileOptions};
-use diag::SourceMap;
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::SourceMap;
 
 /// A small deterministic generator (SplitMix64).
 struct Rng(u64);
@@ -314,7 +314,7 @@ pub(crate) fn style(seed: u64) -> String {
 }
 
 /// Every module of `c` through naga again, independently of the compiler.
-fn naga_validates(c: &compiler::Compiled) -> Result<(), String> {
+fn naga_validates(c: &npr_compiler::Compiled) -> Result<(), String> {
     for (name, wgsl) in &c.shaders {
         let module = naga::front::wgsl::parse_str(wgsl).map_err(|e| format!("{name}: {}", e.emit_to_string(wgsl)))?;
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
@@ -337,7 +337,7 @@ fn generated_styles_compile_to_naga_valid_wgsl_or_get_user_errors() {
         let text = style(seed);
         let mut sources = SourceMap::new();
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            compiler::compile_source(
+            npr_compiler::compile_source(
                 "generated.npr",
                 &text,
                 std::path::Path::new("."),
@@ -356,7 +356,7 @@ fn generated_styles_compile_to_naga_valid_wgsl_or_get_user_errors() {
             Ok(Err(CompileError::User(d))) => {
                 assert!(!d.is_empty(), "case {seed}: a user error with no diagnostic");
                 for diag in &d {
-                    assert_ne!(diag.code, diag::codes::INTERNAL, "case {seed}:\n{text}");
+                    assert_ne!(diag.code, npr_diag::codes::INTERNAL, "case {seed}:\n{text}");
                     *refusals.entry(diag.code).or_default() += 1;
                 }
                 refused += 1;

@@ -221,20 +221,20 @@ proptest! {
     ) {
         let (_, text) = seed.get(scene_seeds());
         let text = mutate(text, &edits, TOML_TOKENS);
-        let mut sources = diag::SourceMap::new();
+        let mut sources = npr_diag::SourceMap::new();
         let file = sources.add("fuzz.toml", text.clone());
         // Relative meshes and images resolve against examples/scenes, as the seeds' do.
-        match runner::scene::parse_scene(&text, file, &examples().join("scenes")) {
+        match npr_runner::scene::parse_scene(&text, file, &examples().join("scenes")) {
             Ok(scene) => prop_assert!(scene.objects.len() < 1_000_000),
             Err(diags) => {
                 prop_assert!(!diags.is_empty());
                 for d in &diags {
-                    prop_assert!(diag::codes::ALL.iter().any(|(c, _)| *c == d.code), "unknown code {}", d.code);
+                    prop_assert!(npr_diag::codes::ALL.iter().any(|(c, _)| *c == d.code), "unknown code {}", d.code);
                     for l in &d.labels {
                         prop_assert!(l.span.start <= l.span.end && l.span.end as usize <= text.len(), "{d:?}");
                     }
                 }
-                let _ = diag::diagnostic::render(&diags, &sources, false);
+                let _ = npr_diag::diagnostic::render(&diags, &sources, false);
             }
         }
     }
@@ -249,13 +249,13 @@ proptest! {
         let path = scratch_file("mesh.obj");
         let path = path.with_extension("obj");
         std::fs::write(&path, &text).expect("write mesh");
-        match runner::scene::load_mesh_file(&path) {
+        match npr_runner::scene::load_mesh_file(&path) {
             Ok(mesh) => {
                 // Every index the renderer will draw names a vertex.
                 let n = mesh.positions.len() as u32;
                 prop_assert!(mesh.indices.iter().all(|i| *i < n), "an index past {n} vertices");
             }
-            Err(e) => prop_assert!(diag::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
+            Err(e) => prop_assert!(npr_diag::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
         }
     }
 }

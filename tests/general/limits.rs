@@ -1,4 +1,4 @@
-//! The limits of `diag::limits`, from both sides: input at a limit compiles to
+//! The limits of `npr_diag::limits`, from both sides: input at a limit compiles to
 //! WGSL that naga accepts (never E9001), and input past it, up to ten times
 //! past, is a user error with the limit's code, never a crash.
 //!
@@ -6,9 +6,9 @@
 //! than the main thread's (8 MiB), in debug builds: if the limits fit here,
 //! they fit in `npr`. The property test at the end runs the real binary.
 
-use compiler::{CompileError, CompileOptions};
-use diag::limits::{MAX_EXPR_DEPTH, MAX_NESTING, MAX_PARAMS, MAX_SOURCE_BYTES};
-use diag::SourceMap;
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::limits::{MAX_EXPR_DEPTH, MAX_NESTING, MAX_PARAMS, MAX_SOURCE_BYTES};
+use npr_diag::SourceMap;
 use proptest::prelude::*;
 use std::path::Path;
 use std::process::Command;
@@ -25,13 +25,13 @@ fn style_with(value: &str) -> String {
 
 /// Compile with `--keep-params`, so nothing folds away and the emitted WGSL
 /// is as deep as the source.
-fn compile(text: &str) -> Result<compiler::Compiled, CompileError> {
+fn compile(text: &str) -> Result<npr_compiler::Compiled, CompileError> {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         keep_params: true,
         ..Default::default()
     };
-    compiler::compile_source("limits.npr", text, Path::new("."), &mut sources, &opts)
+    npr_compiler::compile_source("limits.npr", text, Path::new("."), &mut sources, &opts)
 }
 
 fn assert_compiles(what: &str, text: &str) {
@@ -136,7 +136,7 @@ fn nested_normalize_stays_small() {
 fn nesting_past_the_limit_points_at_the_first_level_too_deep() {
     let text = style_with(&nested(Shape::Parens, MAX_NESTING));
     let mut sources = SourceMap::new();
-    let Err(CompileError::User(d)) = compiler::compile_source(
+    let Err(CompileError::User(d)) = npr_compiler::compile_source(
         "limits.npr",
         &text,
         Path::new("."),
@@ -158,14 +158,14 @@ fn too_many_params() {
     assert_refused(
         "params",
         &format!("style \"S\"\n{params}pass p: image() {{ out c: r8unorm = p0 }}\noutput p.c\n"),
-        diag::codes::LIMIT_EXCEEDED,
+        npr_diag::codes::LIMIT_EXCEEDED,
     );
 }
 
 #[test]
 fn a_file_past_the_size_limit_is_refused_where_the_limit_is() {
     let text = style_with(&format!("a // {}", "x".repeat(MAX_SOURCE_BYTES)));
-    assert_refused("source size", &text, diag::codes::LIMIT_EXCEEDED);
+    assert_refused("source size", &text, npr_diag::codes::LIMIT_EXCEEDED);
 }
 
 /// Runs `npr check` on `text`, written to a scratch file.
@@ -184,14 +184,14 @@ fn npr_check(name: &str, text: &str) -> std::process::Output {
 
 fn shape_strategy() -> impl Strategy<Value = (Shape, usize, &'static str)> {
     let brackets = (prop::sample::select(BRACKETS.to_vec()), MAX_NESTING..=10 * MAX_NESTING)
-        .prop_map(|(s, n)| (s, n, diag::codes::NESTED_TOO_DEEP));
+        .prop_map(|(s, n)| (s, n, npr_diag::codes::NESTED_TOO_DEEP));
     let chains = (
         prop::sample::select(CHAINS.to_vec()),
         MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH,
     )
-        .prop_map(|(s, n)| (s, n, diag::codes::EXPRESSION_TOO_DEEP));
-    let fields =
-        (MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH).prop_map(|n| (Shape::Fields, n, diag::codes::EXPRESSION_TOO_DEEP));
+        .prop_map(|(s, n)| (s, n, npr_diag::codes::EXPRESSION_TOO_DEEP));
+    let fields = (MAX_EXPR_DEPTH + 1..=10 * MAX_EXPR_DEPTH)
+        .prop_map(|n| (Shape::Fields, n, npr_diag::codes::EXPRESSION_TOO_DEEP));
     prop_oneof![brackets, chains, fields]
 }
 
@@ -218,31 +218,31 @@ fn ten_times_past_every_limit_in_process() {
         assert_refused(
             &format!("{shape:?}"),
             &style_with(&nested(shape, 10 * MAX_NESTING)),
-            diag::codes::NESTED_TOO_DEEP,
+            npr_diag::codes::NESTED_TOO_DEEP,
         );
     }
     for shape in CHAINS.into_iter().chain([Shape::Fields]) {
         assert_refused(
             &format!("{shape:?}"),
             &style_with(&nested(shape, 10 * MAX_EXPR_DEPTH)),
-            diag::codes::EXPRESSION_TOO_DEEP,
+            npr_diag::codes::EXPRESSION_TOO_DEEP,
         );
     }
     // The cases: a sum of 10⁵ terms and a thousand parentheses.
     assert_refused(
         "sum",
         &style_with(&nested(Shape::Sum, 100_000)),
-        diag::codes::EXPRESSION_TOO_DEEP,
+        npr_diag::codes::EXPRESSION_TOO_DEEP,
     );
     assert_refused(
         "parens",
         &style_with(&nested(Shape::Parens, 1000)),
-        diag::codes::NESTED_TOO_DEEP,
+        npr_diag::codes::NESTED_TOO_DEEP,
     );
     assert_refused(
         "blocks",
         &style_with(&nested(Shape::Blocks, 1000)),
-        diag::codes::NESTED_TOO_DEEP,
+        npr_diag::codes::NESTED_TOO_DEEP,
     );
 }
 
@@ -285,8 +285,8 @@ fn a_state_first_value_deep_through_lets_compiles() {
         text += &format!("  let a{i} = a{} * 1.001 + 0.5\n", i - 1);
     }
     text += "  state s: float = a199\n  s = s + 1.0\n}\npass shade: render(scene) {\n  out c: r32float = f.s\n}\noutput shade.c\n";
-    let mut sources = diag::SourceMap::new();
-    match compiler::compile_source(
+    let mut sources = npr_diag::SourceMap::new();
+    match npr_compiler::compile_source(
         "deep.npr",
         &text,
         std::path::Path::new("."),
@@ -294,8 +294,8 @@ fn a_state_first_value_deep_through_lets_compiles() {
         &Default::default(),
     ) {
         Ok(_) => {}
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
 
@@ -309,27 +309,27 @@ fn scene_of(bytes: usize) -> String {
 
 #[test]
 fn a_scene_at_the_size_limit_loads_and_one_byte_more_is_refused_where_the_limit_is() {
-    use diag::limits::MAX_SCENE_BYTES;
+    use npr_diag::limits::MAX_SCENE_BYTES;
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("limits");
     std::fs::create_dir_all(&dir).expect("scratch dir");
     let at = dir.join("at_limit.toml");
     std::fs::write(&at, scene_of(MAX_SCENE_BYTES)).expect("write scene");
     assert_eq!(std::fs::metadata(&at).expect("size").len() as usize, MAX_SCENE_BYTES);
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&at, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&at, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
 
     let over = dir.join("over_limit.toml");
     std::fs::write(&over, scene_of(MAX_SCENE_BYTES + 1)).expect("write scene");
-    let mut sources = diag::SourceMap::new();
-    let Err(d) = runner::scene::load_scene(&over, &mut sources) else {
+    let mut sources = npr_diag::SourceMap::new();
+    let Err(d) = npr_runner::scene::load_scene(&over, &mut sources) else {
         panic!("a scene of {} bytes must be refused", MAX_SCENE_BYTES + 1)
     };
     assert_eq!(d.len(), 1);
-    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED);
+    assert_eq!(d[0].code, npr_diag::codes::LIMIT_EXCEEDED);
     let span = d[0].primary_span().expect("a span");
     assert_eq!(span.start as usize, MAX_SCENE_BYTES);
-    let rendered = diag::diagnostic::render(&d, &sources, false);
+    let rendered = npr_diag::diagnostic::render(&d, &sources, false);
     assert!(rendered.contains("over the 1048576-byte limit"), "{rendered}");
 
     // Through the binary: exit 1 with the code.

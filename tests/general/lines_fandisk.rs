@@ -21,7 +21,7 @@
 use std::collections::HashMap;
 
 use glam::{DMat4, DVec2, DVec3};
-use runner::scene::Scene;
+use npr_runner::scene::Scene;
 
 use crate::common;
 use common::lines::{project, recall_precision, render_ink, style, PointGrid};
@@ -43,10 +43,10 @@ fn fandisk_scene(eye: [f32; 3]) -> Scene {
          scale = 0.4\ntranslate = [-0.966, -6.091, 0.536]\n",
         eye[0], eye[1], eye[2]
     );
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("fandisk.toml", text.clone());
-    runner::scene::parse_scene(&text, file, root())
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::parse_scene(&text, file, root())
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The mesh in world space, welded, with face normals and edge-face

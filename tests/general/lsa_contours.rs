@@ -1,6 +1,6 @@
 //! LSA contours end to end: the example styles rendered through the runner
 //! on analytic scenes and measured against exact ground truth
-//! (`lab::contours`, f64 ray casting), the GPU operators against their
+//! (`npr_lab::contours`, f64 ray casting), the GPU operators against their
 //! f64 references on the very G-buffers the GPU rendered, and the hard
 //! cases (no NaN or Inf anywhere).
 //!
@@ -8,20 +8,20 @@
 //! `npr bench contours` (docs/PERFORMANCE.md), which keeps this test fast
 //! on lavapipe.
 
-use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
-use runner::StyleProgram;
+use npr_lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy, AnalyticScene};
+use npr_runner::StyleProgram;
+use npr_stdlib::reference_lsa::{self as lsa, LsaSettings};
 use std::path::Path;
-use stdlib::reference_lsa::{self as lsa, LsaSettings};
 
 use crate::common;
 use common::lsa::{output, scene_of, style, targets, to_f64, uv};
 use common::root;
 
-fn scene_text(text: &str) -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
+fn scene_text(text: &str) -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("hard.toml", text.to_string());
-    runner::scene::parse_scene(text, file, Path::new("."))
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::parse_scene(text, file, Path::new("."))
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The styles compared, with the line threshold on the red channel of their
@@ -181,7 +181,7 @@ fn accuracy_against_analytic_ground_truth() {
 /// Renders `program` on `scene` at `size` and checks that the per-direction
 /// errors and the thinned errors are finite and in [0, 1]; returns the
 /// number of line pixels (merged thinned error > ½).
-fn checked_lines(program: &StyleProgram, scene: &runner::scene::Scene, size: (u32, u32), what: &str) -> usize {
+fn checked_lines(program: &StyleProgram, scene: &npr_runner::scene::Scene, size: (u32, u32), what: &str) -> usize {
     let t = targets(program, scene, size, &["error.e", "thin.e"]);
     let mut lines = 0;
     for img in &t {
@@ -199,9 +199,9 @@ fn checked_lines(program: &StyleProgram, scene: &runner::scene::Scene, size: (u3
     lines
 }
 
-fn facing_plane(size: f64, translate: [f64; 3]) -> lab::contours::AnalyticObject {
-    lab::contours::AnalyticObject {
-        shape: lab::contours::Shape::Plane { size },
+fn facing_plane(size: f64, translate: [f64; 3]) -> npr_lab::contours::AnalyticObject {
+    npr_lab::contours::AnalyticObject {
+        shape: npr_lab::contours::Shape::Plane { size },
         translate,
         rotate_deg: [90.0, 0.0, 0.0],
     }
@@ -209,7 +209,7 @@ fn facing_plane(size: f64, translate: [f64; 3]) -> lab::contours::AnalyticObject
 
 #[test]
 fn hard_cases_give_no_nan_or_inf() {
-    use lab::contours::{AnalyticObject, Shape};
+    use npr_lab::contours::{AnalyticObject, Shape};
     let full = style("lsa_contours.npr", &[]);
     let base = style("lsa_base.npr", &[]);
     let scenes = builtin_scenes();
@@ -341,8 +341,8 @@ fn scene_files_match_the_analytic_definitions() {
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(text, s.to_toml(), "{} is stale", path.display());
         // And it loads as a scene with one object per analytic object.
-        let mut sources = diag::SourceMap::new();
-        let scene = runner::scene::load_scene(&path, &mut sources).expect("loads");
+        let mut sources = npr_diag::SourceMap::new();
+        let scene = npr_runner::scene::load_scene(&path, &mut sources).expect("loads");
         assert_eq!(scene.objects.len(), s.objects.len());
     }
 }

@@ -9,16 +9,16 @@
 //!   G-buffers the GPU rendered, with constant flags, so the compiler's
 //!   specializations (`lsa` → `lsa_curv`, …) carry the encoding along.
 //! - Precision and recall against the analytic ground truth
-//!   (`lab::contours`) at 128² and 256², against the float32 path's.
+//!   (`npr_lab::contours`) at 128² and 256², against the float32 path's.
 
-use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
-use stdlib::reference_lsa::{self as lsa, LsaSettings};
+use npr_lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
+use npr_stdlib::reference_lsa::{self as lsa, LsaSettings};
 
 use crate::common;
 use common::lsa::{output, scene_of, style, targets, to_f64, uv, PACKED};
 
 /// `lsa_contours.npr` packed, with its two extensions set to constants.
-fn packed(plane: bool, aa: bool) -> runner::StyleProgram {
+fn packed(plane: bool, aa: bool) -> npr_runner::StyleProgram {
     let plane_line = format!("param plane: bool = {plane}");
     let aa_line = format!("param aa: bool = {aa}");
     let mut r: Vec<(&str, &str)> = PACKED.to_vec();
@@ -131,7 +131,7 @@ fn packed_accuracy_matches_float32_against_analytic_truth() {
         let scene = scene_of(&s);
         for size in [128u32, 256] {
             let truth = s.truth(size, size);
-            let measure = |p: &runner::StyleProgram| -> Accuracy {
+            let measure = |p: &npr_runner::StyleProgram| -> Accuracy {
                 accuracy(&ink_mask(&output(p, &scene, size), 0.5), &truth, 1)
             };
             let (a, b) = (measure(&full), measure(&packed));

@@ -5,7 +5,7 @@
 //! has. `UPDATE_REFERENCE_DOCS=1` rewrites `docs/reference/` with `npr doc`
 //! instead of comparing.
 
-use lab::harness::{compare_with_golden_file, Tolerance};
+use npr_lab::harness::{compare_with_golden_file, Tolerance};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
@@ -111,7 +111,7 @@ fn the_reference_covers_every_operator_builtin_and_code() {
     npr_doc(&dir);
     let files = read_dir(&dir);
     let operators = &files["operators.md"];
-    for op in stdlib::all() {
+    for op in npr_stdlib::all() {
         assert!(
             operators.contains(&format!("## `{}`\n", op.name)),
             "{} has no section",
@@ -135,17 +135,17 @@ fn the_reference_covers_every_operator_builtin_and_code() {
             );
         }
     }
-    for (name, _) in compiler::ir::Intrinsic::TABLE {
+    for (name, _) in npr_compiler::ir::Intrinsic::TABLE {
         assert!(
             operators.contains(&format!("| `{name}` |")),
             "intrinsic {name} is missing"
         );
     }
     let images = image_names(&dir);
-    for def in stdlib::ops::ALL {
+    for def in npr_stdlib::ops::ALL {
         let name = def.op.name;
         match def.demo {
-            stdlib::ops::Demo::Render(d) => {
+            npr_stdlib::ops::Demo::Render(d) => {
                 assert!(images.contains(&format!("{name}.png")), "{name} has no image");
                 assert!(
                     operators.contains(&format!("![{}](img/{name}.png)", d.shows)),
@@ -154,7 +154,7 @@ fn the_reference_covers_every_operator_builtin_and_code() {
                 let png = image::open(dir.join("img").join(format!("{name}.png"))).expect("a PNG");
                 assert_eq!(
                     (png.width(), png.height()),
-                    stdlib::ops::DEMO_SIZE,
+                    npr_stdlib::ops::DEMO_SIZE,
                     "{name}'s image size"
                 );
                 assert!(
@@ -162,24 +162,24 @@ fn the_reference_covers_every_operator_builtin_and_code() {
                     "{name}'s image is not in operators.html"
                 );
             }
-            stdlib::ops::Demo::NoDemo(why) => {
+            npr_stdlib::ops::Demo::NoDemo(why) => {
                 assert!(operators.contains(why), "{name}: the reason for no demo is missing");
             }
-            stdlib::ops::Demo::Missing => panic!("{name} has no demo (see stdlib/tests/completeness.rs)"),
+            npr_stdlib::ops::Demo::Missing => panic!("{name} has no demo (see stdlib/tests/completeness.rs)"),
         }
     }
     let builtins = &files["builtins.md"];
-    for (spelling, _) in compiler::ir::Builtin::SPELLINGS {
+    for (spelling, _) in npr_compiler::ir::Builtin::SPELLINGS {
         assert!(
             builtins.contains(&format!("| `{spelling}` |")),
             "builtin {spelling} is missing"
         );
     }
     let errors = &files["errors.md"];
-    for (code, what) in diag::codes::ALL {
+    for (code, what) in npr_diag::codes::ALL {
         assert!(errors.contains(&format!("## {code}: {what}\n")), "{code} is missing");
     }
-    for (name, _) in abi::Format::ALL {
+    for (name, _) in npr_abi::Format::ALL {
         assert!(
             files["units.md"].contains(&format!("| `{name}` |")),
             "format {name} is missing"

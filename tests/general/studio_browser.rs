@@ -451,10 +451,10 @@ fn the_page_edits_a_gradient_and_writes_its_stops_into_the_file() {
     b.step("g6_write", |b| {
         let before = b.shown_frame();
         b.eval("document.querySelector('.param[data-name=shading] button[title^=\"write\"]').click()");
-        let abi::param_literal::Literal::Stops(stops) = abi::param_literal::read_literal(&literal) else {
+        let npr_abi::param_literal::Literal::Stops(stops) = npr_abi::param_literal::read_literal(&literal) else {
             panic!("the page's value is no stops: {literal}")
         };
-        let declared = abi::gradient::declaration_text(&stops, false);
+        let declared = npr_abi::gradient::declaration_text(&stops, false);
         let start = original.find("gradient(stop").expect("the default");
         let end = start + original[start..].find('\n').expect("end of line");
         let expected = format!("{}{declared}{}", &original[..start], &original[end..]);

@@ -67,16 +67,18 @@ fn screenshot_after_frames(x: &Xvfb, v: &Live, width: u32) -> image::RgbaImage {
 
 /// Fail, writing actual and diff images, unless `actual` is within the bound of `expected`.
 fn assert_matches(actual: &image::RgbaImage, expected: &image::RgbaImage, dir: &Path, what: &str) {
-    let (max, over) = lab::harness::per_pixel(actual, expected, MAX_ABS);
+    let (max, over) = npr_lab::harness::per_pixel(actual, expected, MAX_ABS);
     if over > 0 {
         let a = dir.join(format!("{what}_actual.png"));
         let d = dir.join(format!("{what}_diff.png"));
         actual.save(&a).expect("write actual");
-        lab::harness::diff_image(actual, expected).save(&d).expect("write diff");
+        npr_lab::harness::diff_image(actual, expected)
+            .save(&d)
+            .expect("write diff");
         panic!(
             "{what}: the window differs from npr render by up to {max}/255 at {over} pixel(s) (bound {MAX_ABS}); \
              FLIP mean {:.4}; wrote {} and {}",
-            lab::harness::flip_mean(actual, expected),
+            npr_lab::harness::flip_mean(actual, expected),
             a.display(),
             d.display()
         );
@@ -168,7 +170,7 @@ fn a_save_redraws_the_window_and_a_broken_save_keeps_the_last_frame() {
     save_by_rename(&style, &edited);
     v.wait_for("view: build 2 shown");
     let second = screenshot_after_frames(&x, &v, SIZE);
-    let (changed_by, changed_pixels) = lab::harness::per_pixel(&first, &second, MAX_ABS);
+    let (changed_by, changed_pixels) = npr_lab::harness::per_pixel(&first, &second, MAX_ABS);
     assert!(
         changed_pixels > (SIZE * SIZE / 20) as usize,
         "the save changed only {changed_pixels} pixels (by up to {changed_by})"
@@ -183,7 +185,7 @@ fn a_save_redraws_the_window_and_a_broken_save_keeps_the_last_frame() {
         "no diagnostic with a code before the failure line: {printed:#?}"
     );
     let third = screenshot_after_frames(&x, &v, SIZE);
-    let (max, over) = lab::harness::per_pixel(&third, &second, 0);
+    let (max, over) = npr_lab::harness::per_pixel(&third, &second, 0);
     assert_eq!(over, 0, "a broken save changed the window (by up to {max})");
 }
 
@@ -222,7 +224,7 @@ fn without_a_display_it_says_how_to_get_one() {
 
 /// How many pixels of `a` and `b` differ by more than the bound.
 fn changed(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
-    lab::harness::per_pixel(a, b, MAX_ABS).1
+    npr_lab::harness::per_pixel(a, b, MAX_ABS).1
 }
 
 #[test]

@@ -24,8 +24,8 @@ mod descriptors;
 use crate::common;
 
 use common::chromium::{Browser, WEBGPU_FLAGS};
-use compiler::schedule::Schedule;
-use compiler::{CompileError, CompileOptions, Compiled};
+use npr_compiler::schedule::Schedule;
+use npr_compiler::{CompileError, CompileOptions, Compiled};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -48,7 +48,7 @@ const COMPILE_DEADLINE: Duration = Duration::from_secs(20);
 struct Case {
     label: String,
     text: Option<String>,
-    program: abi::StyleProgram,
+    program: npr_abi::StyleProgram,
 }
 
 /// The example styles and art-map filters (`examples/*.npr`,
@@ -70,16 +70,18 @@ fn example_files() -> Vec<PathBuf> {
 }
 
 fn compile_example(path: &Path, schedule: Schedule, keep_params: bool) -> Compiled {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let opts = CompileOptions {
         schedule,
         keep_params,
-        paths: Some(diag::paths::PathPolicy::new(&diag::paths::PathPolicy::default_root(&[path]), &[]).expect("root")),
+        paths: Some(
+            npr_diag::paths::PathPolicy::new(&npr_diag::paths::PathPolicy::default_root(&[path]), &[]).expect("root"),
+        ),
         ..Default::default()
     };
-    match compiler::compile_file(path, &mut sources, &opts) {
+    match npr_compiler::compile_file(path, &mut sources, &opts) {
         Ok(c) => c,
-        Err(CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(CompileError::Internal(e)) => panic!("{}: {e}", path.display()),
     }
 }
@@ -128,9 +130,9 @@ fn all_cases() -> Vec<Case> {
     let first = common::fuzz::first_case();
     for seed in first..first + u64::from(common::fuzz::cases(GENERATED_STYLES)) {
         let text = super::fuzz_generated::style(seed);
-        let mut sources = diag::SourceMap::new();
+        let mut sources = npr_diag::SourceMap::new();
         // Refused styles have nothing to run; `fuzz_generated` checks the refusals.
-        if let Ok(c) = compiler::compile_source(
+        if let Ok(c) = npr_compiler::compile_source(
             "generated.npr",
             &text,
             Path::new("."),

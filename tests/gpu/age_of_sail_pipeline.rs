@@ -3,11 +3,11 @@
 //! dropping the depth pass for a scene without casters, and `--dump-passes`
 //! reproducing every pass of Fig. 16.
 
-use abi::SceneSummary;
-use compiler::CompileOptions;
-use diag::SourceMap;
 use glam::{Vec3, Vec4};
-use runner::{FrameSpec, Renderer};
+use npr_abi::SceneSummary;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
 
 use crate::common;
@@ -19,26 +19,26 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-fn compile(text: &str, scene: Option<SceneSummary>) -> compiler::Compiled {
+fn compile(text: &str, scene: Option<SceneSummary>) -> npr_compiler::Compiled {
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         scene,
         ..Default::default()
     };
-    match compiler::compile_source("test.npr", text, root(), &mut sources, &opts) {
+    match npr_compiler::compile_source("test.npr", text, root(), &mut sources, &opts) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
-fn scene_from(text: &str, name: &str) -> runner::scene::Scene {
+fn scene_from(text: &str, name: &str) -> npr_runner::scene::Scene {
     let dir = scratch(name);
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 const SHADOW_STYLE: &str = r#"
@@ -83,7 +83,7 @@ tags = ["ground"]
 "#;
 
 /// Where the camera ray through pixel (x, y) meets the plane y = 0.
-fn ground_hit(scene: &runner::scene::Scene, size: u32, x: u32, y: u32) -> Option<Vec3> {
+fn ground_hit(scene: &npr_runner::scene::Scene, size: u32, x: u32, y: u32) -> Option<Vec3> {
     let pose = scene.camera.pose(0.0);
     let inv = (pose.projection(1.0) * pose.view(0)).inverse();
     let ndc_x = (x as f32 + 0.5) / size as f32 * 2.0 - 1.0;
@@ -143,18 +143,18 @@ fn cast_shadow_matches_the_analytic_disc_with_and_without_the_sigmoid_warp() {
 
 const AGE_OF_SAIL: &str = "examples/age_of_sail.npr";
 
-fn compile_example(scene: Option<SceneSummary>) -> compiler::Compiled {
+fn compile_example(scene: Option<SceneSummary>) -> npr_compiler::Compiled {
     let text = std::fs::read_to_string(root().join(AGE_OF_SAIL)).expect("example");
     let mut sources = SourceMap::new();
     let opts = CompileOptions {
         scene,
         ..Default::default()
     };
-    compiler::compile_source(AGE_OF_SAIL, &text, &root().join("examples"), &mut sources, &opts)
+    npr_compiler::compile_source(AGE_OF_SAIL, &text, &root().join("examples"), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{e:?}"))
 }
 
-fn pass_names(c: &compiler::Compiled) -> Vec<String> {
+fn pass_names(c: &npr_compiler::Compiled) -> Vec<String> {
     c.manifest.passes.iter().map(|p| p.name.clone()).collect()
 }
 
@@ -246,10 +246,10 @@ fn dump_passes_reproduces_every_pass_even_where_textures_are_shared() {
 
 fn error_text(text: &str) -> String {
     let mut sources = SourceMap::new();
-    match compiler::compile_source("bad.npr", text, root(), &mut sources, &CompileOptions::default()) {
-        Err(compiler::CompileError::User(d)) => diag::diagnostic::render(&d, &sources, false),
+    match npr_compiler::compile_source("bad.npr", text, root(), &mut sources, &CompileOptions::default()) {
+        Err(npr_compiler::CompileError::User(d)) => npr_diag::diagnostic::render(&d, &sources, false),
         Ok(_) => panic!("expected an error for:\n{text}"),
-        Err(compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("internal error: {e}"),
     }
 }
 
@@ -290,8 +290,8 @@ primitive = { kind = "plane", size = 4.0 }
 "#,
         "no-casters",
     );
-    let render = |c: &compiler::Compiled| {
-        runner::render_frame(gpu(), &c.program(), &scene, &FrameSpec::still(64, 64, 0))
+    let render = |c: &npr_compiler::Compiled| {
+        npr_runner::render_frame(gpu(), &c.program(), &scene, &FrameSpec::still(64, 64, 0))
             .expect("render")
             .to_rgba8()
     };

@@ -7,7 +7,7 @@ use crate::common;
 
 use common::artmaps::{compile, grey_png, scratch};
 use common::{gpu, root};
-use runner::Renderer;
+use npr_runner::Renderer;
 use std::path::Path;
 
 /// `npr render` with its own cache directory; its stderr.
@@ -103,10 +103,13 @@ fn a_second_renderer_in_the_same_process_reuses_the_art_map_from_memory() {
     );
     let program = compile(&text, &dir);
     let g = gpu();
-    let scene = runner::scene::Scene::empty();
+    let scene = npr_runner::scene::Scene::empty();
     let first = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
     let second = Renderer::new(&g.device, &g.queue, &program, &scene).unwrap();
     assert_eq!(first.artmap_builds().len(), 1);
-    assert_eq!(second.artmap_builds()[0].origin, runner::artmap_cache::Origin::Memory);
+    assert_eq!(
+        second.artmap_builds()[0].origin,
+        npr_runner::artmap_cache::Origin::Memory
+    );
     assert_eq!(second.artmap_builds()[0].levels, 6);
 }

@@ -42,7 +42,7 @@ where
             reads.decl,
             (reads.read)(case)
         );
-        let img = render(&compile(&text, dir), &runner::scene::Scene::empty(), 64);
+        let img = render(&compile(&text, dir), &npr_runner::scene::Scene::empty(), 64);
         let want = (reads.want)(case);
         for (x, y) in reads.pixels {
             let got = (reads.got)(img.texel(x, y));
@@ -88,8 +88,8 @@ fn sample_biased_selects_the_level_of_detail_of_the_reference() {
         ),
         read: |(k, bias): &(f64, f64)| format!("sample_biased(levels, screen_uv * {k:.4}, bias: {bias:.4})"),
         want: |&(k, bias): &(f64, f64)| {
-            let lod = stdlib::reference::sample_biased_lod([k / size, 0.0], [0.0, k / size], 256, 256, bias);
-            vec![stdlib::reference::sample_biased(lod, 9, 0.0625) / 0.0625]
+            let lod = npr_stdlib::reference::sample_biased_lod([k / size, 0.0], [0.0, k / size], 256, 256, bias);
+            vec![npr_stdlib::reference::sample_biased(lod, 9, 0.0625) / 0.0625]
         },
         got: |t: [f32; 4]| vec![f64::from(t[0]) / 0.0625],
         pixels: [(0, 0), (31, 17), (63, 63)],
@@ -102,7 +102,7 @@ fn sample_biased_selects_the_level_of_detail_of_the_reference() {
 /// The stroke period along the middle row of `img`, in px: the first strong
 /// peak of the row's autocorrelation past its first dip, refined by a
 /// parabola.
-fn stroke_period(img: &runner::TargetImage) -> Option<f64> {
+fn stroke_period(img: &npr_runner::TargetImage) -> Option<f64> {
     let y = img.height / 2;
     let row: Vec<f64> = (0..img.width)
         .map(|x| {
@@ -132,7 +132,7 @@ fn stroke_period(img: &runner::TargetImage) -> Option<f64> {
 }
 
 /// A plane facing the camera `d` m away, filling a 40° view.
-fn plane_scene(d: f64) -> runner::scene::Scene {
+fn plane_scene(d: f64) -> npr_runner::scene::Scene {
     scene(&format!(
         "[camera]\nposition = [0.0, 0.0, {d}]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\nnear = 0.1\nfar = 400.0\n\n\
          [[object]]\nname = \"wall\"\nprimitive = {{ kind = \"plane\", size = 200.0, subdivisions = 1 }}\nrotate = [90.0, 0.0, 0.0]\n"
@@ -181,15 +181,15 @@ fn art_map_strokes_keep_their_size_on_screen_where_plain_mips_shrink_as_one_over
     // the art-map's own filter run on the full-size level.
     let g = gpu();
     let filter_program = match &artmap.manifest.textures[0].source {
-        abi::manifest::TextureSourceManifest::Artmap(spec) => spec.filter.program(),
+        npr_abi::manifest::TextureSourceManifest::Artmap(spec) => spec.filter.program(),
         other => panic!("not an art-map: {other:?}"),
     };
-    let base = runner::artmap::Level {
+    let base = npr_runner::artmap::Level {
         width: texels,
         height: texels,
         pixels: vec![[0.58, 0.58, 0.58, 1.0]; (texels * texels) as usize],
     };
-    let level0 = runner::artmap::filter_level(&g.device, &g.queue, &filter_program, &base, 0).unwrap();
+    let level0 = npr_runner::artmap::filter_level(&g.device, &g.queue, &filter_program, &base, 0).unwrap();
     let plain = image::Rgba32FImage::from_fn(texels, texels, |x, y| {
         image::Rgba(level0.pixels[(y * texels + x) as usize])
     });
@@ -264,8 +264,8 @@ fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
             format!("sample_ripmap(levels, vec2(screen_uv.x * {ku:.4}, screen_uv.y * {kv:.4}))")
         },
         want: |&(ku, kv): &(f64, f64)| {
-            let lods = stdlib::reference::sample_ripmap_lods([ku / size, 0.0], [0.0, kv / size], 256, 256);
-            stdlib::reference::sample_ripmap(lods, [9, 9], 1.0).to_vec()
+            let lods = npr_stdlib::reference::sample_ripmap_lods([ku / size, 0.0], [0.0, kv / size], 256, 256);
+            npr_stdlib::reference::sample_ripmap(lods, [9, 9], 1.0).to_vec()
         },
         got: |t: [f32; 4]| vec![8.0 - 16.0 * f64::from(t[0]), 8.0 - 16.0 * f64::from(t[1])],
         pixels: [(0, 0), (40, 9), (63, 63)],
@@ -276,8 +276,8 @@ fn sample_ripmap_selects_a_level_per_axis_as_the_reference() {
 }
 
 /// The stroke period along the middle column of `img`, in px.
-fn column_period(img: &runner::TargetImage) -> Option<f64> {
-    let mut t = runner::TargetImage {
+fn column_period(img: &npr_runner::TargetImage) -> Option<f64> {
+    let mut t = npr_runner::TargetImage {
         name: img.name.clone(),
         width: img.height,
         height: img.width,
@@ -328,7 +328,7 @@ fn rip_maps_keep_the_strokes_aspect_on_oblique_planes_where_mipped_art_maps_stre
     );
     // Across / down stroke periods; `None` across when the strokes are
     // stretched past a third of the row (where the autocorrelation looks).
-    let aspect = |program: &runner::StyleProgram, tilt: f64| -> Option<f64> {
+    let aspect = |program: &npr_runner::StyleProgram, tilt: f64| -> Option<f64> {
         let scene = scene(&format!(
             "[camera]\nposition = [0.0, 0.0, {d}]\ntarget = [0.0, 0.0, 0.0]\nfov = {fov}\nnear = 0.1\nfar = 400.0\n\n\
              [[object]]\nname = \"wall\"\nprimitive = {{ kind = \"plane\", size = 200.0, subdivisions = 1 }}\nrotate = [{:.3}, 0.0, 0.0]\n",
@@ -368,7 +368,7 @@ fn one_filter_renderer_for_a_whole_chain_gives_what_a_renderer_per_level_gives()
     for filter in ["ink_blot", "hatching"] {
         let text = std::fs::read_to_string(root().join(format!("examples/filters/{filter}.npr"))).unwrap();
         let program = compile(&text, &root().join("examples/filters"));
-        let base = runner::artmap::Level {
+        let base = npr_runner::artmap::Level {
             width: 40,
             height: 24,
             pixels: (0..40 * 24)
@@ -378,10 +378,10 @@ fn one_filter_renderer_for_a_whole_chain_gives_what_a_renderer_per_level_gives()
                 })
                 .collect(),
         };
-        let chain = runner::artmap::mip_chain(base, u32::MAX);
-        let mut reused = runner::artmap::FilterRunner::new(&g.device, &g.queue, &program);
+        let chain = npr_runner::artmap::mip_chain(base, u32::MAX);
+        let mut reused = npr_runner::artmap::FilterRunner::new(&g.device, &g.queue, &program);
         for (index, level) in chain.iter().enumerate() {
-            let fresh = runner::artmap::filter_level(&g.device, &g.queue, &program, level, index as u32).unwrap();
+            let fresh = npr_runner::artmap::filter_level(&g.device, &g.queue, &program, level, index as u32).unwrap();
             let again = reused.filter(level, index as u32).unwrap();
             assert_eq!(
                 again, fresh,
@@ -419,7 +419,7 @@ fn filter_arguments_at_the_call_site_are_the_filter_with_those_defaults() {
     );
     let with_file = render(&compile(&style("\"filters/hatching8.npr\""), &dir), &plane, 64);
     let with_default = render(&compile(&style("\"filters/hatching.npr\""), &dir), &plane, 64);
-    let texels = |img: &runner::TargetImage| -> Vec<[f32; 4]> {
+    let texels = |img: &npr_runner::TargetImage| -> Vec<[f32; 4]> {
         (0..img.height)
             .flat_map(|y| (0..img.width).map(move |x| (x, y)))
             .map(|(x, y)| img.texel(x, y))
@@ -447,7 +447,7 @@ fn an_enum_filter_argument_chooses_the_filters_variant_by_name() {
             "style \"enum arg\"\ntexture t = artmap(image(\"src.png\", linear), filter: {filter})\n\
              pass read: image() {{\n  out v: rgba16float = sample(t, screen_uv)\n}}\noutput read.v\n"
         );
-        let img = render(&compile(&text, &dir), &runner::scene::Scene::empty(), 16);
+        let img = render(&compile(&text, &dir), &npr_runner::scene::Scene::empty(), 16);
         f64::from(img.texel(8, 8)[0])
     };
     for (filter, want) in [

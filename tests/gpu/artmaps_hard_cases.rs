@@ -6,7 +6,7 @@
 //! in 0..1; a rip-map whose atlas (twice the source) would pass the limit is
 //! refused with E0404, not a crash.
 
-use runner::{FrameSpec, Renderer, RunError};
+use npr_runner::{FrameSpec, Renderer, RunError};
 use std::path::{Path, PathBuf};
 
 use crate::common;
@@ -50,19 +50,19 @@ fn style(source: &str, rip: bool) -> String {
 }
 
 /// A plane seen face-on (tilt 0) or at a grazing angle (tilt 80°).
-fn plane(tilt_deg: f64) -> runner::scene::Scene {
+fn plane(tilt_deg: f64) -> npr_runner::scene::Scene {
     let text = format!(
         "[camera]\nposition = [0.0, 0.0, 2.5]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\nprimitive = {{ kind = \"plane\", size = 2.0 }}\nrotate = [{}, 0.0, 0.0]\n",
         90.0 - tilt_deg
     );
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("scene.toml", text.clone());
-    runner::scene::parse_scene(&text, file, root()).unwrap_or_else(|d| panic!("{d:?}"))
+    npr_runner::scene::parse_scene(&text, file, root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 fn build_and_sample(dir: &Path, rip: bool) -> Result<(), RunError> {
-    let mut sources = diag::SourceMap::new();
-    let compiled = match compiler::compile_source(
+    let mut sources = npr_diag::SourceMap::new();
+    let compiled = match npr_compiler::compile_source(
         "case.npr",
         &style("src.png", rip),
         dir,
@@ -70,7 +70,7 @@ fn build_and_sample(dir: &Path, rip: bool) -> Result<(), RunError> {
         &Default::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     };
     let program = compiled.program();
@@ -121,7 +121,7 @@ fn a_source_at_the_texture_limit() {
         Err(e) => {
             let diags = e.diagnostics();
             assert!(
-                diags.iter().any(|d| d.code == diag::codes::LIMIT_EXCEEDED),
+                diags.iter().any(|d| d.code == npr_diag::codes::LIMIT_EXCEEDED),
                 "a limit error, got {e}: {diags:?}"
             );
         }

@@ -1,24 +1,24 @@
-//! The independent baseline of `npr bench overhead` (`lab::bench_overhead`)
+//! The independent baseline of `npr bench overhead` (`npr_lab::bench_overhead`)
 //! draws the same image as the runner, so that the benchmark compares the
 //! same work; and it refuses styles it does not implement. Not timed: the
 //! benchmark itself is `npr bench overhead` (docs/PERFORMANCE.md).
 
-use lab::bench_overhead::{image_diff, same_image, OverheadError, SAME_IMAGE};
-use runner::scene::Scene;
-use runner::StyleProgram;
+use npr_lab::bench_overhead::{image_diff, same_image, OverheadError, SAME_IMAGE};
+use npr_runner::scene::Scene;
+use npr_runner::StyleProgram;
 
 use crate::common;
 use common::{gpu, root};
 
 fn load(style: &str, scene: &str) -> (StyleProgram, Scene) {
-    let mut sources = diag::SourceMap::new();
-    let loaded = runner::scene::load_scene(&root().join(scene), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let opts = compiler::CompileOptions {
+    let mut sources = npr_diag::SourceMap::new();
+    let loaded = npr_runner::scene::load_scene(&root().join(scene), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let opts = npr_compiler::CompileOptions {
         scene: Some(loaded.summary(scene)),
         ..Default::default()
     };
-    let compiled = compiler::compile_file(&root().join(style), &mut sources, &opts)
+    let compiled = npr_compiler::compile_file(&root().join(style), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
     (compiled.program(), loaded)
 }
@@ -32,9 +32,14 @@ fn assert_same_image(style: &str, scene: &str, size: u32) {
     let d = same_image(gpu(), &program, &scene_data, (size, size), &[0, 24]).unwrap_or_else(|e| panic!("{style}: {e}"));
     assert!(d.max_abs <= SAME_IMAGE, "{style} on {scene}: {d}");
     println!("{style} on {scene}, {size}x{size}: {d}");
-    let img = runner::render_frame(gpu(), &program, &scene_data, &runner::FrameSpec::still(size, size, 0))
-        .expect("render")
-        .to_rgba8();
+    let img = npr_runner::render_frame(
+        gpu(),
+        &program,
+        &scene_data,
+        &npr_runner::FrameSpec::still(size, size, 0),
+    )
+    .expect("render")
+    .to_rgba8();
     let mut colours: Vec<[u8; 4]> = img.pixels().map(|p| p.0).collect();
     colours.sort();
     colours.dedup();
@@ -60,9 +65,9 @@ fn the_image_check_sees_a_different_image() {
         *wgsl = wgsl.replace("0.42f, 0.5f", "0.2f, 0.3f");
     }
     assert_ne!(program.shaders, other.shaders, "the folded band is in the WGSL");
-    let spec = runner::FrameSpec::still(64, 64, 0);
-    let a = runner::render_frame(gpu(), &program, &scene, &spec).expect("render");
-    let b = runner::render_frame(gpu(), &other, &scene, &spec).expect("render");
+    let spec = npr_runner::FrameSpec::still(64, 64, 0);
+    let a = npr_runner::render_frame(gpu(), &program, &scene, &spec).expect("render");
+    let b = npr_runner::render_frame(gpu(), &other, &scene, &spec).expect("render");
     let d = image_diff(&a, &b).expect("same size and format");
     assert!(d.max_abs > SAME_IMAGE && d.texels_differing > 10, "{d}");
 }

@@ -3,7 +3,7 @@
 //!
 //! Blending: a render pass (and an image pass) writes a known colour over a
 //! known clear colour into an rgba8unorm target; every pixel must equal the
-//! blend formula of `abi::manifest::Blend` within 1/255 (the result is
+//! blend formula of `npr_abi::manifest::Blend` within 1/255 (the result is
 //! rounded to 8 bits once).
 //!
 //! Depth: a fronto-parallel wall keeps its depth, and a slope crossing it
@@ -14,11 +14,11 @@
 //! per-pixel prediction comes from a probe style that writes both surfaces'
 //! view depths, converted to window depth with the camera's near and far.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::readback::TargetImage;
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::readback::TargetImage;
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer};
 use std::path::{Path, PathBuf};
 
 use crate::common;
@@ -38,16 +38,16 @@ fn load_scene(dir: &Path, toml: &str) -> Scene {
     let path = dir.join("scene.toml");
     std::fs::write(&path, toml).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// Compile `text` and render it on `scene`: the output target.
 fn render(text: &str, dir: &Path, scene: &Scene) -> TargetImage {
     let mut sources = SourceMap::new();
-    let compiled = match compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
+    let compiled = match npr_compiler::compile_source("case.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     };
     let program = compiled.program();

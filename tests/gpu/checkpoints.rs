@@ -29,8 +29,8 @@ fn every_path_dependent_example_is_tested() {
         .collect();
     files.sort();
     for path in files {
-        let mut sources = diag::SourceMap::new();
-        let c = compiler::compile_file(&path, &mut sources, &Default::default()).unwrap_or_else(|e| {
+        let mut sources = npr_diag::SourceMap::new();
+        let c = npr_compiler::compile_file(&path, &mut sources, &Default::default()).unwrap_or_else(|e| {
             panic!("{}: {e:?}", path.display());
         });
         if c.program().manifest.is_path_dependent() {
@@ -127,31 +127,31 @@ fn chunks_from_checkpoints_are_bit_identical_to_one_run() {
 
 #[test]
 fn a_restored_state_continues_the_sequence_where_a_fresh_renderer_does_not() {
-    let mut sources = diag::SourceMap::new();
-    let program = compiler::compile_file(
+    let mut sources = npr_diag::SourceMap::new();
+    let program = npr_compiler::compile_file(
         &root().join("examples/afterimage.npr"),
         &mut sources,
         &Default::default(),
     )
     .unwrap_or_else(|e| panic!("{e:?}"))
     .program();
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/orbit.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let spec = |f: u32| runner::FrameSpec::animated(40, 32, f, runner::FrameSpec::DEFAULT_FPS, 0);
+    let scene = npr_runner::scene::load_scene(&root().join("examples/scenes/orbit.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let spec = |f: u32| npr_runner::FrameSpec::animated(40, 32, f, npr_runner::FrameSpec::DEFAULT_FPS, 0);
     let (device, queue) = (&gpu().device, &gpu().queue);
-    let mut one = runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
+    let mut one = npr_runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
     for f in 0..4 {
         one.render(&scene, &spec(f)).expect("frame");
     }
     let saved = one.save_state().expect("save");
-    let mut restored = runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
+    let mut restored = npr_runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
     restored.restore_state(&saved).expect("restore");
     assert_eq!(
         restored.save_state().expect("save again"),
         saved,
         "restore puts back what was saved"
     );
-    let mut fresh = runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
+    let mut fresh = npr_runner::Renderer::new(device, queue, &program, &scene).expect("renderer");
     for f in 4..7 {
         one.render(&scene, &spec(f)).expect("frame");
         restored.render(&scene, &spec(f)).expect("frame");

@@ -3,8 +3,8 @@
 //! (`--keep-params`, nothing folded), against the rule written out in f64.
 
 use super::common::{artmaps, gpu};
-use compiler::CompileOptions;
-use runner::{FrameSpec, Renderer};
+use npr_compiler::CompileOptions;
+use npr_runner::{FrameSpec, Renderer};
 
 /// `#c0804080` and `#204060`, as the runner gives them (byte / 255).
 const A: [f64; 4] = [192.0 / 255.0, 128.0 / 255.0, 64.0 / 255.0, 128.0 / 255.0];
@@ -38,8 +38,8 @@ fn colour_arithmetic_scales_light_and_keeps_coverage_on_the_gpu() {
             "style \"Case\"\nparam a: color = #c0804080\nparam b: color = #204060\nparam k: float = 0.25\n\
              pass p: image() {{\n  out c: rgba32float = {expr}\n}}\noutput p.c\n"
         );
-        let mut sources = diag::SourceMap::new();
-        let compiled = compiler::compile_source("case.npr", &text, &dir, &mut sources, &options)
+        let mut sources = npr_diag::SourceMap::new();
+        let compiled = npr_compiler::compile_source("case.npr", &text, &dir, &mut sources, &options)
             .unwrap_or_else(|e| panic!("{expr}: {e:?}"));
         assert!(compiled.warnings.is_empty(), "{expr}: {:?}", compiled.warnings);
         let g = gpu();

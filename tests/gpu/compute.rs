@@ -6,8 +6,8 @@
 //! test here).
 
 use glam::{DMat4, DVec3, DVec4};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 
 use crate::common;
 use common::{gpu, root};
@@ -17,16 +17,16 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn example(path: &str) -> StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    compiler::compile_file(&root().join(path), &mut sources, &Default::default())
+    let mut sources = npr_diag::SourceMap::new();
+    npr_compiler::compile_file(&root().join(path), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"))
         .program()
 }
 
 fn scene(path: &str) -> Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&root().join(path), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The slot of value `name` of compute pass `pass` (live values are packed
@@ -34,7 +34,7 @@ fn scene(path: &str) -> Scene {
 fn slot(program: &StyleProgram, pass: &str, name: &str) -> usize {
     let p = program.manifest.passes.iter().find(|p| p.name == pass).expect("pass");
     match &p.kind {
-        abi::manifest::PassKindManifest::Compute { values, .. } => values
+        npr_abi::manifest::PassKindManifest::Compute { values, .. } => values
             .iter()
             .position(|v| v.name == name)
             .unwrap_or_else(|| panic!("no live value `{pass}.{name}`")),

@@ -5,9 +5,9 @@
 //! half-resolution ID target, with a tag, and with hundreds of objects (and
 //! the workgroup count that the partials budget gives many objects).
 
-use abi::manifest::PassKindManifest;
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_abi::manifest::PassKindManifest;
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 
 use crate::common;
 use common::{gpu, root};
@@ -17,7 +17,7 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn scene_from(text: &str) -> Scene {
-    runner::scene::parse_scene(text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
+    npr_runner::scene::parse_scene(text, npr_diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 /// A grid of `n × n` small spheres that overlap on screen (so tiles hold
@@ -214,7 +214,7 @@ fn nine_hundred_objects_with_dozens_per_tile_stay_exact() {
 
 #[test]
 fn pixel_workgroups_follow_the_size_and_the_budget() {
-    use abi::manifest::{pixel_workgroups, MAX_PIXEL_WORKGROUPS, PIXEL_PARTIALS_BUDGET, PIXEL_TILE};
+    use npr_abi::manifest::{pixel_workgroups, MAX_PIXEL_WORKGROUPS, PIXEL_PARTIALS_BUDGET, PIXEL_TILE};
     assert_eq!(PIXEL_TILE, 32);
     assert_eq!(pixel_workgroups((1, 1), 1, 1), 1);
     assert_eq!(pixel_workgroups((32, 32), 3, 2), 1);

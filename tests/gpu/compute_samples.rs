@@ -4,9 +4,9 @@
 //! drawn on the CPU and transformed in f64; the count and seed settings.
 
 use glam::DVec3;
-use runner::scene::samples::{object_seed, stratified};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_runner::scene::samples::{object_seed, stratified};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 
 use crate::common;
 use common::{gpu, root};
@@ -16,9 +16,9 @@ fn program(text: &str) -> StyleProgram {
 }
 
 fn scene(path: &str) -> Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&root().join(path), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 const STYLE: &str = r#"style "Samples"
@@ -55,7 +55,7 @@ fn sample_sums_match_the_same_samples_in_f64() {
         let normal_matrix = model.inverse().transpose();
         let (mut p, mut n) = (DVec3::ZERO, DVec3::ZERO);
         for s in &drawn.samples {
-            let at = |a: &[[f32; 3]]| lab::patterns_f64::at_sample(a, s);
+            let at = |a: &[[f32; 3]]| npr_lab::patterns_f64::at_sample(a, s);
             p += model.transform_point3(at(&mesh.positions));
             n += normal_matrix.transform_vector3(at(&mesh.normals));
         }
@@ -90,11 +90,11 @@ fn sample_sums_match_the_same_samples_in_f64() {
 
 #[test]
 fn a_sample_count_that_is_not_a_whole_number_is_refused() {
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let text = STYLE.replace("count: 300", "count: 2.5");
-    match compiler::compile_source("c.npr", &text, root(), &mut sources, &Default::default()) {
-        Err(compiler::CompileError::User(d)) => {
-            let r = diag::diagnostic::render(&d, &sources, false);
+    match npr_compiler::compile_source("c.npr", &text, root(), &mut sources, &Default::default()) {
+        Err(npr_compiler::CompileError::User(d)) => {
+            let r = npr_diag::diagnostic::render(&d, &sources, false);
             assert!(r.contains("E0203") && r.contains("whole number"), "{r}");
         }
         other => panic!("expected E0203, got {:?}", other.map(|_| ())),

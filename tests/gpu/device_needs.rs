@@ -7,8 +7,8 @@
 
 use crate::common;
 
-use abi::manifest::{DeviceNeed, Feature, Limit};
-use runner::{FrameSpec, Gpu, Renderer, RunError};
+use npr_abi::manifest::{DeviceNeed, Feature, Limit};
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError};
 
 /// A tiled pass with five live outputs (five storage textures, one past
 /// the default of four) that its reader sums; naive, the same pass has
@@ -38,20 +38,20 @@ output f.c
 const PLAIN: &str =
     "style \"Plain\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(normal, 1.0)\n}\noutput p.c\n";
 
-fn scene() -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&common::root().join("examples/scenes/spot.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+fn scene() -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&common::root().join("examples/scenes/spot.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The E0510 messages of building `program` on `gpu`.
-fn refusal(gpu: &Gpu, program: &runner::StyleProgram) -> Vec<String> {
+fn refusal(gpu: &Gpu, program: &npr_runner::StyleProgram) -> Vec<String> {
     match Renderer::new(&gpu.device, &gpu.queue, program, &scene()) {
         Ok(_) => panic!("a device without what the style needs built its renderer"),
         Err(RunError::User(d)) => d
             .iter()
             .map(|d| {
-                assert_eq!(d.code, diag::codes::DEVICE_LACKS_NEED, "{}", d.message);
+                assert_eq!(d.code, npr_diag::codes::DEVICE_LACKS_NEED, "{}", d.message);
                 d.message.clone()
             })
             .collect(),
@@ -59,12 +59,12 @@ fn refusal(gpu: &Gpu, program: &runner::StyleProgram) -> Vec<String> {
     }
 }
 
-fn render(gpu: &Gpu, program: &runner::StyleProgram) -> Vec<f32> {
+fn render(gpu: &Gpu, program: &npr_runner::StyleProgram) -> Vec<f32> {
     let scene = scene();
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, &scene).unwrap_or_else(|e| {
         panic!(
             "{}",
-            diag::diagnostic::render(&e.diagnostics(), &diag::SourceMap::new(), false)
+            npr_diag::diagnostic::render(&e.diagnostics(), &npr_diag::SourceMap::new(), false)
         )
     });
     r.render(&scene, &FrameSpec::still(48, 48, 0)).expect("render");

@@ -7,8 +7,8 @@
 //! frame. The styles built on it are in `pattern_styles.rs`.
 
 use glam::{DVec2, Mat4, Vec3};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 
 use crate::common;
 use common::{gpu, root};
@@ -39,7 +39,7 @@ fn scene(object: &str) -> Scene {
         "[camera]\nposition = [0.0, 0.0, 0.0]\ntarget = [0.0, 0.0, -1.0]\nfov = 40.0\nnear = 0.1\nfar = 50.0\n\
          [light]\ndirection = [0.0, 0.0, 1.0]\n\n[[object]]\nprimitive = {object}\n"
     );
-    runner::scene::parse_scene(&text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
+    npr_runner::scene::parse_scene(&text, npr_diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"))
 }
 
 const QUAD: &str = "{ kind = \"plane\", size = 1.0, subdivisions = 4 }";
@@ -290,14 +290,14 @@ fn degenerate_frames_hold_the_pattern_frame_and_stay_finite() {
 }
 
 /// The tracker's z on the GPU against the §3.2 similarity computed in f64
-/// (`stdlib::reference::similarity`) from the same samples, projected in
+/// (`npr_stdlib::reference::similarity`) from the same samples, projected in
 /// f64, weighted from the read-back ID images of both frames, over random
 /// motions of a sphere (which is not a similarity in the image: z is the
 /// least-squares fit, so this checks the sums, not just exact cases).
 #[test]
 fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
     use glam::{DMat4, DVec3};
-    use stdlib::reference::ImageF64;
+    use npr_stdlib::reference::ImageF64;
     let size = 96u32;
     let program = program(&style(|t| t));
     let ids_target = program
@@ -310,10 +310,10 @@ fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     assert!(r.target_survives_frame(ids_target), "the ID image is a history target");
     let mesh = scene.objects[0].mesh.clone();
-    let drawn = runner::scene::samples::stratified(&mesh, 400, runner::scene::samples::object_seed(1, 0));
+    let drawn = npr_runner::scene::samples::stratified(&mesh, 400, npr_runner::scene::samples::object_seed(1, 0));
     let pose = scene.camera.pose(0.0);
     let view_proj = (pose.projection(1.0) * pose.view(0)).as_dmat4();
-    let read_ids = |r: &Renderer| lab::patterns_f64::ids_f64(&r.read_target(ids_target).expect("ids"));
+    let read_ids = |r: &Renderer| npr_lab::patterns_f64::ids_f64(&r.read_target(ids_target).expect("ids"));
     let mut rng = 0x1234_5678_9abc_def0u64;
     let mut next = || {
         rng ^= rng << 13;
@@ -332,18 +332,18 @@ fn the_gpu_similarity_matches_an_f64_solve_of_the_same_samples() {
         let (_, u, _, _) = pattern_frame(&r);
         if let Some((before, ids_before, u_before)) = previous.take() {
             let (then, now) = (
-                lab::patterns_f64::View {
+                npr_lab::patterns_f64::View {
                     model: before,
                     view_proj,
                     ids: &ids_before,
                 },
-                lab::patterns_f64::View {
+                npr_lab::patterns_f64::View {
                     model,
                     view_proj,
                     ids: &ids,
                 },
             );
-            let (_, _, z) = lab::patterns_f64::solve(&mesh, &drawn, (&then, &now), (size, size), (1.0, 2.0, true))
+            let (_, _, z) = npr_lab::patterns_f64::solve(&mesh, &drawn, (&then, &now), (size, size), (1.0, 2.0, true))
                 .expect("the sphere is visible in both frames");
             let z = DVec2::from(z);
             let tracked = cdiv(u, u_before);
@@ -386,7 +386,7 @@ fn each_object_and_patch_starts_from_its_own_pattern_frame() {
     let v0 = DVec2::new(-angle.sin(), angle.cos()) * period;
     let text = "[camera]\nposition = [0.0, 0.0, 0.0]\ntarget = [0.0, 0.0, -1.0]\n[[object]]\n\
                 primitive = { kind = \"sphere\", radius = 0.5, segments = 32, rings = 16 }\ntranslate = [0.0, 0.0, -4.0]\npatches = 4\n";
-    let scene = runner::scene::parse_scene(text, diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"));
+    let scene = npr_runner::scene::parse_scene(text, npr_diag::FileId(0), root()).unwrap_or_else(|d| panic!("{d:?}"));
     assert_eq!(scene.objects.len(), 4);
     let program = program(&style(|t| t));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");

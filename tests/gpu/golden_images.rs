@@ -1,4 +1,4 @@
-//! The golden comparison of `lab::harness` must be able to fail: an example
+//! The golden comparison of `npr_lab::harness` must be able to fail: an example
 //! rendered through the real wgpu runner, compared with an altered copy.
 //!
 //! The examples' own golden-image tests (style + scene + golden +
@@ -7,8 +7,8 @@
 //! the way a user tests a style. Bless them after an intended change with
 //! `npr test examples/ --bless`.
 
-use lab::harness::{compare_with_golden_file, Tolerance};
-use runner::FrameSpec;
+use npr_lab::harness::{compare_with_golden_file, Tolerance};
+use npr_runner::FrameSpec;
 use std::path::Path;
 
 use crate::common;
@@ -18,19 +18,19 @@ const SIZE: u32 = 192;
 
 fn render_example(style: &str, scene: &str) -> image::RgbaImage {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let scene_name = scene;
-    let scene = runner::scene::load_scene(&root.join(scene), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let scene = npr_runner::scene::load_scene(&root.join(scene), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     // Compiled for its scene, as `npr render` does.
-    let opts = compiler::CompileOptions {
+    let opts = npr_compiler::CompileOptions {
         scene: Some(scene.summary(scene_name)),
         ..Default::default()
     };
-    let compiled = compiler::compile_file(&root.join(style), &mut sources, &opts)
+    let compiled = npr_compiler::compile_file(&root.join(style), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{style} does not compile: {e:?}"));
     let program = compiled.program();
-    let img = runner::render_frame(gpu(), &program, &scene, &FrameSpec::still(SIZE, SIZE, 0))
+    let img = npr_runner::render_frame(gpu(), &program, &scene, &FrameSpec::still(SIZE, SIZE, 0))
         .unwrap_or_else(|e| panic!("render failed: {e}: {:?}", e.diagnostics()));
     img.to_rgba8()
 }
@@ -46,7 +46,7 @@ fn a_broken_image_fails_the_comparison() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("golden-self-test");
     std::fs::create_dir_all(&dir).expect("dir");
     let golden = dir.join("reference.png");
-    runner::output::write_png8(&actual, &golden).expect("write");
+    npr_runner::output::write_png8(&actual, &golden).expect("write");
     let c = compare_with_golden_file(
         &altered,
         &golden,

@@ -17,7 +17,7 @@
 use crate::common;
 
 use common::{compile_text, root};
-use runner::{FrameSpec, Gpu, Renderer, RunError};
+use npr_runner::{FrameSpec, Gpu, Renderer, RunError};
 use std::process::Command;
 
 /// Eight rgba32float targets: 4 GiB each at 16384².
@@ -99,9 +99,9 @@ pass p: image() scale 2 { out c: rgba8unorm = vec4(screen_uv, 0.0, 1.0) }
 output p.c
 ",
     );
-    let scene = runner::scene::parse_scene(
+    let scene = npr_runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        diag::FileId(0),
+        npr_diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -117,7 +117,7 @@ output p.c
         .render(&scene, &spec(max / 2 + 1))
         .expect_err("past the texture limit");
     let d = err.diagnostics();
-    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED, "{d:?}");
+    assert_eq!(d[0].code, npr_diag::codes::LIMIT_EXCEEDED, "{d:?}");
     assert!(
         d[0].message.contains(&format!("2D texture limit of {max}")),
         "{}",
@@ -138,9 +138,9 @@ pass p: image() { out c: rgba8unorm = vec4(screen_uv, 0.5, 1.0) }
 output p.c
 ",
     );
-    let scene = runner::scene::parse_scene(
+    let scene = npr_runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        diag::FileId(0),
+        npr_diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -163,7 +163,7 @@ output p.c
         other => panic!("expected a lost device, got {:?}", other.map(|_| ())),
     }
     let e = RunError::DeviceLost("Destroyed: device destroyed".into());
-    assert_eq!(e.diagnostics()[0].code, diag::codes::DEVICE_LOST);
+    assert_eq!(e.diagnostics()[0].code, npr_diag::codes::DEVICE_LOST);
     assert!(e.is_user_error(), "a lost device is not a bug in npr: exit 1");
     drop(r);
     // What the studio and `npr watch` do next: a new device.
@@ -183,9 +183,9 @@ pass p: image() { out c: rgba8unorm = vec4(screen_uv.x, screen_uv.y, 0.25, 1.0) 
 output p.c
 ",
     );
-    let scene = runner::scene::parse_scene(
+    let scene = npr_runner::scene::parse_scene(
         "[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\n",
-        diag::FileId(0),
+        npr_diag::FileId(0),
         root(),
     )
     .expect("scene");
@@ -235,20 +235,20 @@ output p.c
 fn a_format_the_adapter_cannot_create_is_a_limit_error_with_an_install_hint() {
     let gpu = common::gpu();
     let targets = vec![
-        ("ink".to_string(), abi::Format::Rgba8unorm),
-        ("shade".to_string(), abi::Format::Rgba8unormSrgb),
+        ("ink".to_string(), npr_abi::Format::Rgba8unorm),
+        ("shade".to_string(), npr_abi::Format::Rgba8unormSrgb),
     ];
     // Every target format renders here.
-    assert!(runner::gpu_error::check_target_formats(
+    assert!(npr_runner::gpu_error::check_target_formats(
         &gpu.device,
         &targets,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
     )
     .is_empty());
     // No adapter has storage on sRGB formats.
-    let d = runner::gpu_error::check_target_formats(&gpu.device, &targets, wgpu::TextureUsages::STORAGE_BINDING);
+    let d = npr_runner::gpu_error::check_target_formats(&gpu.device, &targets, wgpu::TextureUsages::STORAGE_BINDING);
     assert_eq!(d.len(), 1, "{d:?}");
-    assert_eq!(d[0].code, diag::codes::LIMIT_EXCEEDED);
+    assert_eq!(d[0].code, npr_diag::codes::LIMIT_EXCEEDED);
     assert!(
         d[0].message.contains("`rgba8unorm_srgb` targets (target `shade`)"),
         "{}",

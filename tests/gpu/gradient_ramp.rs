@@ -5,9 +5,9 @@
 //! `npr_ramp_g`), and live stops set at run time as a host sets them.
 
 use super::common::{artmaps, gpu};
-use abi::param_literal::{read_literal, SettingOrigin};
-use abi::param_value::{type_value, ParamShape};
-use runner::{FrameSpec, Renderer};
+use npr_abi::param_literal::{read_literal, SettingOrigin};
+use npr_abi::param_value::{type_value, ParamShape};
+use npr_runner::{FrameSpec, Renderer};
 
 /// (position, colour bytes): the stops of the test's gradients.
 const STOPS: [(f64, [u8; 4]); 5] = [
@@ -53,32 +53,32 @@ fn style(constant: bool) -> String {
     )
 }
 
-fn compile(text: &str, keep_params: bool) -> runner::StyleProgram {
-    compile_scheduled(text, keep_params, compiler::ir::Schedule::default())
+fn compile(text: &str, keep_params: bool) -> npr_runner::StyleProgram {
+    compile_scheduled(text, keep_params, npr_compiler::ir::Schedule::default())
 }
 
-fn compile_scheduled(text: &str, keep_params: bool, schedule: compiler::ir::Schedule) -> runner::StyleProgram {
+fn compile_scheduled(text: &str, keep_params: bool, schedule: npr_compiler::ir::Schedule) -> npr_runner::StyleProgram {
     // The style reads no file: the repository root is its directory.
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut sources = diag::SourceMap::new();
-    let opts = compiler::CompileOptions {
+    let mut sources = npr_diag::SourceMap::new();
+    let opts = npr_compiler::CompileOptions {
         keep_params,
         schedule,
         ..Default::default()
     };
-    match compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
+    match npr_compiler::compile_source("case.npr", text, dir, &mut sources, &opts) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
 
-fn scene() -> runner::scene::Scene {
+fn scene() -> npr_runner::scene::Scene {
     artmaps::scene("[camera]\nposition = [0.0, 0.0, 2.0]\ntarget = [0.0, 0.0, 0.0]\n")
 }
 
 /// One row of `WIDTH` texels, `t` = screen u at each texel's centre.
-fn row(r: &mut Renderer, scene: &runner::scene::Scene) -> Vec<[f32; 4]> {
+fn row(r: &mut Renderer, scene: &npr_runner::scene::Scene) -> Vec<[f32; 4]> {
     r.render(scene, &FrameSpec::still(WIDTH, 1, 0)).expect("render");
     let img = r.read_output().expect("read");
     (0..WIDTH).map(|x| img.texel(x, 0)).collect()
@@ -126,9 +126,9 @@ fn ramp_matches_the_f64_rule_on_the_gpu() {
 /// Kept live, the same stops give the same row as folded (every texel
 /// within 1e-6: the same operations on the same f32 values, from a
 /// uniform instead of constants) and as the f64 rule; new stops set as a
-/// host's `set_param` sets them (`abi::param_value::type_value` into the
+/// host's `set_param` sets them (`npr_abi::param_value::type_value` into the
 /// manifest's default, which the runner packs into the uniform) re-render
-/// without a recompile and follow `abi::gradient::ramp` in f64.
+/// without a recompile and follow `npr_abi::gradient::ramp` in f64.
 #[test]
 fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
     let scene = scene();
@@ -149,11 +149,11 @@ fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
         let p = &program.manifest.params[index];
         assert_eq!(
             (p.ty.as_str(), p.binding),
-            ("gradient", abi::manifest::ParamBinding::Uniform)
+            ("gradient", npr_abi::manifest::ParamBinding::Uniform)
         );
         assert_eq!(
             program.manifest.style_uniform_size,
-            16 * abi::gradient::GRADIENT_SLOTS as u64
+            16 * npr_abi::gradient::GRADIENT_SLOTS as u64
         );
         let shader = program.shaders.values().map(String::as_str).collect::<String>();
         assert!(
@@ -185,12 +185,12 @@ fn a_live_gradient_matches_the_folded_one_and_takes_new_stops() {
         )
         .expect("stops type as a gradient value");
         r.params_mut()[index].default = typed.value.clone();
-        let (stops, kept_mode) = abi::gradient::unpack(&typed.value).expect("packed stops");
+        let (stops, kept_mode) = npr_abi::gradient::unpack(&typed.value).expect("packed stops");
         assert_eq!(kept_mode, constant, "new stops keep the declared mode");
         let set = row(&mut r, &scene);
         assert_row(
             &set,
-            |t| abi::gradient::ramp(&stops, constant, t),
+            |t| npr_abi::gradient::ramp(&stops, constant, t),
             &format!("set live, constant: {constant}"),
         );
     }
@@ -230,7 +230,7 @@ fn a_live_gradient_is_the_same_under_every_schedule() {
         let mut r = Renderer::new(&g.device, &g.queue, &program, &scene).expect("renderer");
         row(&mut r, &scene)
     };
-    for schedule in compiler::ir::Schedule::ALL {
+    for schedule in npr_compiler::ir::Schedule::ALL {
         let program = compile_scheduled(&style(false), true, schedule);
         let mut r = Renderer::new(&g.device, &g.queue, &program, &scene).expect("renderer");
         let live = row(&mut r, &scene);

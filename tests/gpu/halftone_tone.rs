@@ -40,13 +40,13 @@ output ht.paper
 fn tone_errors(correction: &str) -> Vec<(f64, f64, f64)> {
     let program = common::compile_text(&style(correction));
     let text = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n[[object]]\nprimitive = { kind = \"sphere\" }\n";
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("tone.toml", text.to_string());
-    let scene = runner::scene::parse_scene(text, file, std::path::Path::new(".")).expect("scene");
+    let scene = npr_runner::scene::parse_scene(text, file, std::path::Path::new(".")).expect("scene");
     let (w, h) = (TONES * CELL, BLENDS * CELL);
-    let mut renderer = runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let mut renderer = npr_runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     renderer
-        .render(&scene, &runner::FrameSpec::still(w, h, 0))
+        .render(&scene, &npr_runner::FrameSpec::still(w, h, 0))
         .expect("render");
     let image = renderer.read_output().expect("read back").to_rgba_f32();
     let mut errors = Vec::new();

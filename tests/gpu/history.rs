@@ -6,22 +6,22 @@
 //! The afterimage golden (`examples/golden/afterimage_orbit.png`, frame 8)
 //! is a sidecar test, `examples/afterimage.tests.toml`.
 
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 
 use crate::common;
 use common::{gpu, root};
 
 fn program(text: &str) -> StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let c = compiler::compile_source("h.npr", text, root(), &mut sources, &Default::default())
+    let mut sources = npr_diag::SourceMap::new();
+    let c = npr_compiler::compile_source("h.npr", text, root(), &mut sources, &Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     c.program()
 }
 
-fn scene(path: &str) -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+fn scene(path: &str) -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&root().join(path), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn spec(size: u32, frame: u32) -> FrameSpec {
@@ -29,7 +29,7 @@ fn spec(size: u32, frame: u32) -> FrameSpec {
 }
 
 /// Every texel's red channel.
-fn reds(img: &runner::TargetImage) -> Vec<f32> {
+fn reds(img: &npr_runner::TargetImage) -> Vec<f32> {
     img.to_rgba_f32().iter().map(|t| t[0]).collect()
 }
 
@@ -80,8 +80,8 @@ fn a_pass_reads_the_previous_frame_of_a_pass_that_runs_after_it() {
 /// the rgba8unorm target does.
 #[test]
 fn afterimage_matches_its_recurrence() {
-    let mut sources = diag::SourceMap::new();
-    let c = compiler::compile_file(
+    let mut sources = npr_diag::SourceMap::new();
+    let c = npr_compiler::compile_file(
         &root().join("examples/afterimage.npr"),
         &mut sources,
         &Default::default(),

@@ -1,4 +1,4 @@
-//! Silhouette classification in a compute pass (`lab::silhouettes_gpu`,
+//! Silhouette classification in a compute pass (`npr_lab::silhouettes_gpu`,
 //! Klein et al. 2000 §5: the edges whose faces differ in facing from the
 //! eye) gives the CPU's edges (`EdgeMesh::silhouettes`, f64) on a cube, two
 //! spheres and fandisk, from eyes all around each mesh and from eyes in the
@@ -11,8 +11,8 @@
 //! every disagreement to be such a tie, and measures none on these eyes.
 
 use glam::DVec3;
-use lab::silhouettes_gpu::GpuSilhouettes;
-use runner::lines::edges::EdgeMesh;
+use npr_lab::silhouettes_gpu::GpuSilhouettes;
+use npr_runner::lines::edges::EdgeMesh;
 
 use crate::common;
 use common::{gpu, root};
@@ -23,10 +23,10 @@ const TIE: f64 = 1e-6;
 
 fn mesh(object: &str) -> EdgeMesh {
     let text = format!("[camera]\nposition = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\n{object}\n");
-    let mut sources = diag::SourceMap::new();
+    let mut sources = npr_diag::SourceMap::new();
     let file = sources.add("scene.toml", text.clone());
-    let scene = runner::scene::parse_scene(&text, file, root())
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let scene = npr_runner::scene::parse_scene(&text, file, root())
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     EdgeMesh::new(&scene.objects[0].mesh)
 }
 

@@ -13,8 +13,8 @@
 //! Ink, recall and precision are those of `tests/common/lines.rs`.
 
 use glam::{DMat4, DVec2, DVec3, Mat4};
-use runner::scene::Scene;
-use runner::{FrameSpec, Renderer};
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Renderer};
 use std::path::Path;
 
 use crate::common;
@@ -40,9 +40,9 @@ fn scene_looking_at(objects: &str, eye: DVec3, target: DVec3) -> Scene {
         eye.x, eye.y, eye.z, target.x, target.y, target.z
     );
     std::fs::write(&path, text).expect("write scene");
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn view_proj(eye: DVec3) -> DMat4 {
@@ -285,8 +285,8 @@ fn a_stereo_frame_draws_each_eyes_own_silhouette() {
         format!("[camera]\nposition = [0.0, 0.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\nfov = {FOV_DEG}\nipd = {}\nnear = 0.1\nfar = 100.0\n\n{SPHERE}", 2.0 * half),
     )
     .expect("write scene");
-    let mut sources = diag::SourceMap::new();
-    let scene = runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{d:?}"));
+    let mut sources = npr_diag::SourceMap::new();
+    let scene = npr_runner::scene::load_scene(&path, &mut sources).unwrap_or_else(|d| panic!("{d:?}"));
     let program = compile_text(&text);
     assert!(program.manifest.is_stereo(), "the style renders both eyes");
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
@@ -391,21 +391,21 @@ fn a_cylinders_rims_and_sides_are_drawn_where_they_are_seen() {
 /// Drawn patch by patch, every seam edge was a boundary edge.
 #[test]
 fn a_patched_cows_lines_are_the_undivided_cows() {
-    use runner::lines::edges::{EdgeKind, EdgeMesh};
+    use npr_runner::lines::edges::{EdgeKind, EdgeMesh};
     let root = common::root();
     let path = root.join("examples/scenes/patched_cow.toml");
-    let mut sources = diag::SourceMap::new();
-    let patched = runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let mut sources = npr_diag::SourceMap::new();
+    let patched = npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let text = std::fs::read_to_string(&path).expect("scene");
     assert!(text.contains("patches = 6\n"), "the scene splits the cow in 6");
     let whole_text = text.replace("patches = 6\n", "").replace("blend_rings = 2\n", "");
     let file = sources.add("whole_cow.toml", whole_text.clone());
-    let whole = runner::scene::parse_scene(&whole_text, file, &root.join("examples/scenes"))
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let whole = npr_runner::scene::parse_scene(&whole_text, file, &root.join("examples/scenes"))
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     assert_eq!((patched.objects.len(), whole.objects.len()), (6, 1));
 
-    let edges = |meshes: Vec<&runner::scene::Mesh>| {
+    let edges = |meshes: Vec<&npr_runner::scene::Mesh>| {
         let mut counts = [0usize; 2];
         for mesh in meshes {
             for (_, kind) in EdgeMesh::new(mesh).creases(40.0) {
@@ -417,7 +417,7 @@ fn a_patched_cows_lines_are_the_undivided_cows() {
     let surfaces = |scene: &Scene| {
         let drawn: Vec<_> = scene.objects.iter().map(|o| (o, o.mesh.as_ref())).collect();
         edges(
-            runner::lines::objects::line_objects(&drawn)
+            npr_runner::lines::objects::line_objects(&drawn)
                 .iter()
                 .map(|s| s.mesh)
                 .collect(),

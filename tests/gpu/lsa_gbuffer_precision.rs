@@ -4,7 +4,7 @@
 //! `examples/lsa_contours.npr` (the full method) is rendered with its
 //! G-buffer in four variants — positions and normals in rgba32float or
 //! rgba16float, in world or view space — on the five analytic scenes of
-//! `lab::contours`, each moved (objects, eye and target together) 0 m,
+//! `npr_lab::contours`, each moved (objects, eye and target together) 0 m,
 //! 10 m, 100 m, 1 km and 10 km from the world origin. The images are the
 //! same in exact arithmetic; precision/recall within 1 px against the f64
 //! ground truth shows what each variant loses.
@@ -22,8 +22,8 @@
 //! Print the table (docs/PERFORMANCE.md, "G-buffer precision and space"):
 //! `cargo test --test gpu lsa_gbuffer_precision:: -- --nocapture`
 
-use lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
-use runner::{FrameSpec, Gpu, StyleProgram};
+use npr_lab::contours::{accuracy, builtin_scenes, ink_mask, Accuracy};
+use npr_runner::{FrameSpec, Gpu, StyleProgram};
 use std::path::Path;
 
 const SIZE: u32 = 128;
@@ -49,8 +49,8 @@ fn variant(format: &str, space: &str) -> StyleProgram {
         assert!(text.contains(from), "`{from}` not in lsa_contours.npr");
         text = text.replace(from, &to);
     }
-    let mut sources = diag::SourceMap::new();
-    match compiler::compile_source(
+    let mut sources = npr_diag::SourceMap::new();
+    match npr_compiler::compile_source(
         "lsa_contours.npr",
         &text,
         &root.join("examples"),
@@ -58,8 +58,8 @@ fn variant(format: &str, space: &str) -> StyleProgram {
         &Default::default(),
     ) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
@@ -100,12 +100,12 @@ fn gbuffer_precision_and_space_against_distance_from_the_origin() {
         for s in builtin_scenes() {
             let moved = s.translated(DIRECTION.map(|c| c * d));
             let truth = moved.truth(SIZE, SIZE);
-            let mut sources = diag::SourceMap::new();
+            let mut sources = npr_diag::SourceMap::new();
             let scene = moved
                 .scene(&mut sources)
-                .unwrap_or_else(|e| panic!("{}", diag::diagnostic::render(&e, &sources, false)));
+                .unwrap_or_else(|e| panic!("{}", npr_diag::diagnostic::render(&e, &sources, false)));
             for (i, (name, program)) in variants.iter().enumerate() {
-                let img = runner::render_frame(&gpu, program, &scene, &spec).unwrap_or_else(|e| panic!("{e}"));
+                let img = npr_runner::render_frame(&gpu, program, &scene, &spec).unwrap_or_else(|e| panic!("{e}"));
                 let a = accuracy(&ink_mask(&img, 0.5), &truth, 1);
                 results.push((d, s.name, *name, a));
                 detail.push_str(&format!(

@@ -3,11 +3,11 @@
 //! analytic scenes with a stereo camera, for the per-eye base method and for
 //! the full method with the stereo consistency pass (`examples/lsa_stereo.npr`).
 
-use compiler::CompileOptions;
-use diag::SourceMap;
 use glam::Vec4;
-use lab::contours::{ink_mask, Mask};
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_lab::contours::{ink_mask, Mask};
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
 
 use crate::common;
@@ -15,15 +15,15 @@ use common::{gpu, root};
 
 fn program(text: &str) -> StyleProgram {
     let mut sources = SourceMap::new();
-    match compiler::compile_source("style.npr", text, root(), &mut sources, &CompileOptions::default()) {
+    match npr_compiler::compile_source("style.npr", text, root(), &mut sources, &CompileOptions::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
 /// One of the analytic contour scenes, with a stereo camera of baseline `ipd`.
-fn stereo_scene(name: &str, ipd: f64) -> runner::scene::Scene {
+fn stereo_scene(name: &str, ipd: f64) -> npr_runner::scene::Scene {
     let text = std::fs::read_to_string(root().join(format!("tests/data/contours/{name}.toml"))).expect("scene");
     let text = text.replacen("near = ", &format!("ipd = {ipd}\nnear = "), 1);
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("lsa-stereo");
@@ -31,11 +31,11 @@ fn stereo_scene(name: &str, ipd: f64) -> runner::scene::Scene {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).expect("write");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
-fn render(p: &StyleProgram, scene: &runner::scene::Scene, size: u32, eye: u32) -> runner::TargetImage {
+fn render(p: &StyleProgram, scene: &npr_runner::scene::Scene, size: u32, eye: u32) -> npr_runner::TargetImage {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, p, scene).expect("renderer");
     let spec = FrameSpec::still(size, size, eye);
     r.render(scene, &spec).expect("render");
@@ -48,9 +48,9 @@ const POSITIONS: &str = "style \"p\"\npass g: render(scene) {\n  out pos: rgba32
 /// into the other eye, has a line pixel of the other eye within 2 px
 /// (points that leave the other image are not counted).
 fn stereo_agreement(
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     lines: &[Mask; 2],
-    positions: &runner::TargetImage,
+    positions: &npr_runner::TargetImage,
     eye: u32,
     size: u32,
 ) -> f64 {

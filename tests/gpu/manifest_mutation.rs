@@ -7,13 +7,13 @@
 
 use crate::common;
 
-use abi::StyleProgram;
 use common::{gpu, root};
-use compiler::CompileOptions;
-use diag::SourceMap;
+use npr_abi::StyleProgram;
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Renderer};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use runner::{FrameSpec, Renderer};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -44,7 +44,7 @@ fn compiled() -> &'static Vec<Compiled> {
                     keep_params: true,
                     ..Default::default()
                 };
-                let c = compiler::compile_file(&root().join(s), &mut sources, &opts)
+                let c = npr_compiler::compile_file(&root().join(s), &mut sources, &opts)
                     .unwrap_or_else(|_| panic!("{s} compiles"));
                 (serde_json::to_value(&c.manifest).expect("json"), c.shaders.clone())
             })
@@ -52,11 +52,11 @@ fn compiled() -> &'static Vec<Compiled> {
     })
 }
 
-fn scene() -> &'static runner::scene::Scene {
-    static S: OnceLock<runner::scene::Scene> = OnceLock::new();
+fn scene() -> &'static npr_runner::scene::Scene {
+    static S: OnceLock<npr_runner::scene::Scene> = OnceLock::new();
     S.get_or_init(|| {
         let mut sources = SourceMap::new();
-        runner::scene::load_scene(&root().join("examples/scenes/spheres.toml"), &mut sources).expect("scene")
+        npr_runner::scene::load_scene(&root().join("examples/scenes/spheres.toml"), &mut sources).expect("scene")
     })
 }
 

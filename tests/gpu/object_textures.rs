@@ -3,9 +3,9 @@
 //! without a binding draw with the declared default, and bad bindings or a
 //! read outside a render pass give diagnostics.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Gpu, Renderer};
 use std::path::{Path, PathBuf};
 
 const RED: [u8; 3] = [200, 30, 40];
@@ -67,9 +67,9 @@ fn two_objects_draw_their_own_bound_textures_and_the_third_the_default() {
     )
     .expect("write scene");
     let mut sources = SourceMap::new();
-    let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let compiled = compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
+    let scene = npr_runner::scene::load_scene(&scene_path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let compiled = npr_compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let pass = &compiled.manifest.passes[0];
     assert_eq!(pass.object_bindings.len(), 2, "texture + sampler in group 1: {pass:?}");
@@ -112,15 +112,15 @@ fn renderer_errors(left: &str, right: &str, name: &str) -> String {
     let scene_path = dir.join("three.toml");
     std::fs::write(&scene_path, scene_text(left, right)).expect("write scene");
     let mut sources = SourceMap::new();
-    let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let compiled = compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
+    let scene = npr_runner::scene::load_scene(&scene_path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let compiled = npr_compiler::compile_source("albedo.npr", STYLE, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let program = compiled.program();
     match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("expected the renderer to refuse {left} / {right}"),
-        Err(runner::RunError::User(d)) => {
-            diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+        Err(npr_runner::RunError::User(d)) => {
+            npr_diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
         }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     }
@@ -151,15 +151,15 @@ pass p: render(scene) {
 output p.c
 ";
     let mut sources = SourceMap::new();
-    let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let compiled = compiler::compile_source("tint.npr", style, &dir, &mut sources, &CompileOptions::default())
+    let scene = npr_runner::scene::load_scene(&scene_path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let compiled = npr_compiler::compile_source("tint.npr", style, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let program = compiled.program();
     let text = match Renderer::new(&gpu.device, &gpu.queue, &program, &scene) {
         Ok(_) => panic!("an image bound to a colour param must be refused"),
-        Err(runner::RunError::User(d)) => {
-            diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
+        Err(npr_runner::RunError::User(d)) => {
+            npr_diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR")
         }
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
@@ -183,11 +183,11 @@ fn a_missing_bound_image_is_refused_while_loading_the_scene() {
     let scene_path = dir.join("three.toml");
     std::fs::write(&scene_path, scene_text("\"nope.png\"", "\"blue.png\"")).expect("write scene");
     let mut sources = SourceMap::new();
-    let d = match runner::scene::load_scene(&scene_path, &mut sources) {
+    let d = match npr_runner::scene::load_scene(&scene_path, &mut sources) {
         Ok(_) => panic!("a missing image must be refused"),
         Err(d) => d,
     };
-    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
+    insta::assert_snapshot!(npr_diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
 }
 
 #[test]
@@ -196,11 +196,11 @@ fn a_table_binding_without_an_image_is_refused_with_did_you_mean() {
     let scene_path = dir.join("three.toml");
     std::fs::write(&scene_path, scene_text("{ imag = \"red.png\" }", "{ image = 3 }")).expect("write scene");
     let mut sources = SourceMap::new();
-    let d = match runner::scene::load_scene(&scene_path, &mut sources) {
+    let d = match npr_runner::scene::load_scene(&scene_path, &mut sources) {
         Ok(_) => panic!("a binding without an image must be refused"),
         Err(d) => d,
     };
-    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
+    insta::assert_snapshot!(npr_diag::diagnostic::render(&d, &sources, false).replace(&*dir.to_string_lossy(), "$DIR"));
 }
 
 #[test]
@@ -217,12 +217,12 @@ pass q: image(p) {
 output q.c
 ";
     let mut sources = SourceMap::new();
-    let d = match compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
+    let d = match npr_compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => panic!("reading a per-object texture in an image pass must be refused"),
-        Err(compiler::CompileError::User(d)) => d,
+        Err(npr_compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(npr_diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]
@@ -237,12 +237,12 @@ pass p: render(scene) {
 output p.c
 ";
     let mut sources = SourceMap::new();
-    let d = match compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
+    let d = match npr_compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => panic!("a texture read per vertex must be refused"),
-        Err(compiler::CompileError::User(d)) => d,
+        Err(npr_compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(npr_diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]
@@ -256,12 +256,12 @@ pass p: render(scene) {
 output p.c
 ";
     let mut sources = SourceMap::new();
-    let d = match compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
+    let d = match npr_compiler::compile_source("bad.npr", style, &dir, &mut sources, &CompileOptions::default()) {
         Ok(_) => panic!("a style-wide texture param must be refused"),
-        Err(compiler::CompileError::User(d)) => d,
+        Err(npr_compiler::CompileError::User(d)) => d,
         Err(e) => panic!("expected user diagnostics, got {e:?}"),
     };
-    insta::assert_snapshot!(diag::diagnostic::render(&d, &sources, false));
+    insta::assert_snapshot!(npr_diag::diagnostic::render(&d, &sources, false));
 }
 
 #[test]
@@ -277,7 +277,7 @@ pass p: render(scene) {
 output p.c
 ";
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_source("grain.npr", style, &dir, &mut sources, &CompileOptions::default())
+    let compiled = npr_compiler::compile_source("grain.npr", style, &dir, &mut sources, &CompileOptions::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     let pass = &compiled.manifest.passes[0];
     let wgsl = &compiled
@@ -298,7 +298,7 @@ output p.c
     assert!(
         pass.bindings
             .iter()
-            .all(|b| !matches!(b.resource, abi::manifest::Resource::Texture { .. })),
+            .all(|b| !matches!(b.resource, npr_abi::manifest::Resource::Texture { .. })),
         "the per-object texture must not also be bound in group 0: {:?}",
         pass.bindings
     );

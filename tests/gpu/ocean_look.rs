@@ -21,11 +21,11 @@
 //! The renders are written to `target/tmp/ocean-look/` for a look when a
 //! bound fails.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
+use npr_stdlib::ops::colour::{overlay, saturation};
 use std::path::{Path, PathBuf};
-use stdlib::ops::colour::{overlay, saturation};
 
 use crate::common::{gpu, root};
 
@@ -49,10 +49,10 @@ fn scratch() -> PathBuf {
 fn compile(text: &str) -> StyleProgram {
     let mut sources = SourceMap::new();
     let dir = root().join("examples");
-    match compiler::compile_source("ocean.npr", text, &dir, &mut sources, &CompileOptions::default()) {
+    match npr_compiler::compile_source("ocean.npr", text, &dir, &mut sources, &CompileOptions::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
@@ -67,8 +67,8 @@ struct Frame {
 
 fn render(program: &StyleProgram, size: (u32, u32), times: &[f64], name: &str) -> Vec<Frame> {
     let mut sources = SourceMap::new();
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/ocean.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let scene = npr_runner::scene::load_scene(&root().join("examples/scenes/ocean.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let mut renderer = Renderer::new(&gpu().device, &gpu().queue, program, &scene).expect("renderer");
     times
         .iter()

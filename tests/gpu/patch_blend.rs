@@ -6,7 +6,7 @@
 //! x = 0 (patch 0 on the left, patch 1 on the right). A plane parallel to
 //! the image maps to it affinely, so every pixel centre is an exact surface
 //! point; the expected value there is the f64 weights
-//! (`runner::scene::patch_weights`, the per-vertex truth tested on its own)
+//! (`npr_runner::scene::patch_weights`, the per-vertex truth tested on its own)
 //! interpolated over the triangle under it, raised to the power.
 //!
 //! Measured: the weights drawn sum to 1 at every pixel; each patch's
@@ -18,8 +18,8 @@
 //! strip are in `tests/gpu/patch_blend_styles.rs`; the strip is
 //! `tests/common/patch_strip.rs`.
 
-use runner::scene::patch_weights::blend_weights;
-use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
+use npr_runner::scene::patch_weights::blend_weights;
+use npr_runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 use std::path::Path;
 
 use crate::common;
@@ -69,7 +69,7 @@ fn with_power(style: &str, power: f64) -> StyleProgram {
 }
 
 /// Frame 0 of `program` on `scene`.
-fn render(program: &StyleProgram, scene: &runner::scene::Scene) -> TargetImage {
+fn render(program: &StyleProgram, scene: &npr_runner::scene::Scene) -> TargetImage {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
     r.render(scene, &FrameSpec::still(W, H, 0)).expect("frame");
     r.read_output().expect("output")
@@ -77,13 +77,13 @@ fn render(program: &StyleProgram, scene: &runner::scene::Scene) -> TargetImage {
 
 /// The f64 truth: the strip mesh and its per-vertex weights over `rings`.
 struct Truth {
-    mesh: runner::scene::Mesh,
-    weights: runner::scene::patch_weights::PatchWeights,
+    mesh: npr_runner::scene::Mesh,
+    weights: npr_runner::scene::patch_weights::PatchWeights,
 }
 
 impl Truth {
     fn new(dir: &Path, rings: u32) -> Truth {
-        let mesh = runner::scene::load_mesh_file(&dir.join("strip.obj")).expect("mesh");
+        let mesh = npr_runner::scene::load_mesh_file(&dir.join("strip.obj")).expect("mesh");
         let parts = mesh.parts.clone().expect("two parts");
         let weights = blend_weights(&mesh, &parts, rings - 1);
         Truth { mesh, weights }
@@ -341,8 +341,8 @@ fn an_object_without_patches_draws_weight_one_over_its_own_faces() {
     );
     let path = dir.join("plain.toml");
     std::fs::write(&path, text).expect("scene");
-    let mut sources = diag::SourceMap::new();
-    let scene = runner::scene::load_scene(&path, &mut sources).expect("scene");
+    let mut sources = npr_diag::SourceMap::new();
+    let scene = npr_runner::scene::load_scene(&path, &mut sources).expect("scene");
     assert!(scene.objects.iter().all(|o| o.blend.is_none()));
     let img = render(&with_power(ACCUMULATE, 0.5), &scene);
     let truth = Truth::new(&dir, 1);
@@ -373,13 +373,13 @@ fn patch_weight_exists_in_render_passes_only() {
         } else {
             text
         };
-        let mut sources = diag::SourceMap::new();
-        let err = match compiler::compile_source("case.npr", &text, root(), &mut sources, &Default::default()) {
-            Err(compiler::CompileError::User(d)) => diag::diagnostic::render(&d, &sources, false),
+        let mut sources = npr_diag::SourceMap::new();
+        let err = match npr_compiler::compile_source("case.npr", &text, root(), &mut sources, &Default::default()) {
+            Err(npr_compiler::CompileError::User(d)) => npr_diag::diagnostic::render(&d, &sources, false),
             other => panic!("{kind}: {:?}", other.map(|_| ())),
         };
         assert!(
-            err.contains("`patch.weight` is not available in") && err.contains(diag::codes::BAD_PASS_INPUT),
+            err.contains("`patch.weight` is not available in") && err.contains(npr_diag::codes::BAD_PASS_INPUT),
             "{kind}:\n{err}"
         );
     }

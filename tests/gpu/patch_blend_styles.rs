@@ -27,7 +27,7 @@
 //! and 0.389, 0.870 and 0.398. Hatching and painterly turn their patterns
 //! per `object.id` too, so their seams showed before as well.
 
-use runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
+use npr_runner::{FrameSpec, Renderer, StyleProgram, TargetImage};
 
 use crate::common;
 use common::patch_strip::{half_pixel, scratch, strip_scene, surface_point, CELL, CELLS_X, CELLS_Y, H, W};
@@ -48,8 +48,8 @@ const SEAM_RATIO: [(&str, f64); 4] = [
 ];
 
 fn example(style: &str) -> StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    compiler::compile_file(
+    let mut sources = npr_diag::SourceMap::new();
+    npr_compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
         &mut sources,
         &Default::default(),
@@ -69,7 +69,7 @@ fn target(program: &StyleProgram, name: &str) -> usize {
 
 /// Frames 0..3 of `program` on `scene` (the tracker needs a previous
 /// frame): the output and the ID image of the last.
-fn frames(program: &StyleProgram, scene: &runner::scene::Scene) -> (TargetImage, TargetImage) {
+fn frames(program: &StyleProgram, scene: &npr_runner::scene::Scene) -> (TargetImage, TargetImage) {
     let ids = target(program, "ids.id");
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
     for frame in 0..3 {

@@ -11,7 +11,7 @@
 //! zooms the test reads back from the tracker. Also: the painterly stroke
 //! texture is what its documented `npr texgen` command writes.
 
-use runner::{FrameSpec, Renderer};
+use npr_runner::{FrameSpec, Renderer};
 
 use crate::common;
 use common::{gpu, root};
@@ -89,14 +89,14 @@ fn the_painterly_stroke_texture_is_what_texgen_writes() {
 }
 
 /// The slot of per-object value `name` of compute pass `pass`.
-fn value_slot(program: &runner::StyleProgram, pass: &str, name: &str) -> usize {
+fn value_slot(program: &npr_runner::StyleProgram, pass: &str, name: &str) -> usize {
     let p = program
         .manifest
         .passes
         .iter()
         .find(|p| p.name == pass)
         .unwrap_or_else(|| panic!("no pass `{pass}`"));
-    let abi::manifest::PassKindManifest::Compute { values, .. } = &p.kind else {
+    let npr_abi::manifest::PassKindManifest::Compute { values, .. } = &p.kind else {
         panic!("`{pass}` is not a compute pass");
     };
     values
@@ -123,8 +123,8 @@ const BAND_FRAME: u32 = 51;
 /// `examples/golden/<style>_cows_lod_band.png` within 2/255 per channel
 /// with at most 0.5% of the pixels further off.
 fn mid_transition_matches_its_golden(style: &str) {
-    let mut sources = diag::SourceMap::new();
-    let program = compiler::compile_file(
+    let mut sources = npr_diag::SourceMap::new();
+    let program = npr_compiler::compile_file(
         &root().join(format!("examples/{style}.npr")),
         &mut sources,
         &Default::default(),
@@ -132,8 +132,8 @@ fn mid_transition_matches_its_golden(style: &str) {
     .unwrap_or_else(|e| panic!("{e:?}"))
     .program();
     let zoom = value_slot(&program, "pattern", "zoom");
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let scene = npr_runner::scene::load_scene(&root().join("examples/scenes/cows.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     for frame in 0..=BAND_FRAME {
         let spec = FrameSpec::animated(128, 96, frame, FrameSpec::DEFAULT_FPS, 0);
@@ -171,10 +171,10 @@ fn mid_transition_matches_its_golden(style: &str) {
 /// the actual and diff images are written on failure.
 fn assert_golden(img: &image::RgbaImage, name: &str, what: &str) {
     let golden = root().join(format!("examples/golden/{name}.png"));
-    let cmp = lab::harness::compare_with_golden(
+    let cmp = npr_lab::harness::compare_with_golden(
         img,
         &golden,
-        lab::harness::Tolerance::PerPixel {
+        npr_lab::harness::Tolerance::PerPixel {
             max_abs: 2,
             outlier_fraction: 0.005,
         },

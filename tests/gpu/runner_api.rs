@@ -1,9 +1,9 @@
 //! The runner as a library: bring your own device and encoder, textures from
 //! files and from the generator, `use` of another style, stereo eyes.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::{Path, PathBuf};
 
 use crate::common;
@@ -17,17 +17,17 @@ fn scratch(name: &str) -> PathBuf {
 
 fn compile_text(text: &str, dir: &Path) -> StyleProgram {
     let mut sources = SourceMap::new();
-    match compiler::compile_source("test.npr", text, dir, &mut sources, &CompileOptions::default()) {
+    match npr_compiler::compile_source("test.npr", text, dir, &mut sources, &CompileOptions::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
-fn scene(path: &str) -> runner::scene::Scene {
+fn scene(path: &str) -> npr_runner::scene::Scene {
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&root().join(path), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&root().join(path), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 fn spec(width: u32, height: u32) -> FrameSpec {
@@ -46,7 +46,7 @@ fn bring_your_own_device_and_encoder() {
         pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default())).expect("device");
 
     let mut sources = SourceMap::new();
-    let compiled = compiler::compile_file(
+    let compiled = npr_compiler::compile_file(
         &root().join("examples/toon.npr"),
         &mut sources,
         &CompileOptions::default(),
@@ -61,7 +61,7 @@ fn bring_your_own_device_and_encoder() {
     queue.submit([encoder.finish()]);
     let ours = r.read_output().expect("read");
 
-    let reference = runner::render_frame(gpu(), &program, &scene, &spec(64, 48)).expect("render");
+    let reference = npr_runner::render_frame(gpu(), &program, &scene, &spec(64, 48)).expect("render");
     assert_eq!((ours.width, ours.height), (64, 48));
     assert_eq!(ours.bytes, reference.bytes, "same frame whoever owns the device");
     // Something was drawn: not every pixel is the clear colour.
@@ -80,7 +80,8 @@ fn image_texture_is_read_texel_for_texel() {
         "style \"T\"\ntexture grad = image(\"grad.png\", linear) { filter: nearest, wrap: clamp }\npass p: image() {\n  out c: rgba8unorm = grad\n}\noutput p.c\n",
         &dir,
     );
-    let out = runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(16, 8)).expect("render");
+    let out =
+        npr_runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(16, 8)).expect("render");
     assert_eq!(
         out.to_rgba8(),
         img,
@@ -97,7 +98,8 @@ fn srgb_texture_is_decoded_to_linear() {
         "style \"T\"\ntexture grey = image(\"grey.png\", srgb)\npass p: image() {\n  out c: rgba16float = grey\n}\noutput p.c\n",
         &dir,
     );
-    let out = runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(4, 4)).expect("render");
+    let out =
+        npr_runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(4, 4)).expect("render");
     // sRGB 188/255 is linear 0.5029 (IEC 61966-2-1).
     let expected = ((188.0f64 / 255.0 + 0.055) / 1.055).powf(2.4);
     let got = out.texel(1, 1)[0] as f64;
@@ -112,8 +114,8 @@ fn generated_noise_matches_the_cpu_generator() {
         &dir,
     );
     let out =
-        runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(32, 32)).expect("render");
-    let cpu = runner::texgen::generate(&runner::texgen::NoiseSpec {
+        npr_runner::render_frame(gpu(), &program, &scene("examples/scenes/spot.toml"), &spec(32, 32)).expect("render");
+    let cpu = npr_runner::texgen::generate(&npr_runner::texgen::NoiseSpec {
         size: 32,
         octaves: 3,
         seed: 5,
@@ -149,8 +151,8 @@ fn use_pulls_in_another_style() {
     );
     let names: Vec<&str> = program.manifest.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["base", "post"]);
-    let out =
-        runner::render_frame(gpu(), &program, &scene("examples/scenes/spheres.toml"), &spec(32, 32)).expect("render");
+    let out = npr_runner::render_frame(gpu(), &program, &scene("examples/scenes/spheres.toml"), &spec(32, 32))
+        .expect("render");
     let center = out.to_rgba8().get_pixel(16, 28).0;
     assert_eq!(
         center,
@@ -168,18 +170,18 @@ fn stereo_eyes_differ_and_mono_eyes_agree() {
     std::fs::create_dir_all(dir.join("../models")).expect("dir");
     std::fs::copy(root().join("examples/models/spot.obj"), dir.join("../models/spot.obj")).expect("copy");
     let mut sources = SourceMap::new();
-    let stereo_scene = runner::scene::load_scene(&dir.join("stereo.toml"), &mut sources).expect("scene");
+    let stereo_scene = npr_runner::scene::load_scene(&dir.join("stereo.toml"), &mut sources).expect("scene");
     let mono_scene = scene("examples/scenes/spot.toml");
     let mut compile_sources = SourceMap::new();
-    let program = compiler::compile_file(
+    let program = npr_compiler::compile_file(
         &root().join("examples/toon.npr"),
         &mut compile_sources,
         &CompileOptions::default(),
     )
     .expect("compile")
     .program();
-    let eye = |s: &runner::scene::Scene, e: u32| {
-        runner::render_frame(gpu(), &program, s, &FrameSpec { eye: e, ..spec(48, 48) })
+    let eye = |s: &npr_runner::scene::Scene, e: u32| {
+        npr_runner::render_frame(gpu(), &program, s, &FrameSpec { eye: e, ..spec(48, 48) })
             .expect("render")
             .bytes
     };

@@ -22,9 +22,9 @@
 //! fourth frame, so `previous(...)` and state have been read back and
 //! written under both schedules.
 
-use compiler::schedule::Schedule;
-use lab::harness::{compare_with_golden_file, Tolerance};
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_compiler::schedule::Schedule;
+use npr_lab::harness::{compare_with_golden_file, Tolerance};
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::{Path, PathBuf};
 
 use crate::common;
@@ -75,7 +75,7 @@ struct Compiled {
     recomputed: Vec<String>,
 }
 
-fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
+fn compile(style: &Path, scene: &npr_runner::scene::Scene, scene_name: &str, schedule: Schedule) -> Compiled {
     compile_narrowed(style, scene, scene_name, schedule, 0)
 }
 
@@ -83,20 +83,20 @@ fn compile(style: &Path, scene: &runner::scene::Scene, scene_name: &str, schedul
 /// footprints ask (`CompileOptions::tile_apron_deficit`).
 fn compile_narrowed(
     style: &Path,
-    scene: &runner::scene::Scene,
+    scene: &npr_runner::scene::Scene,
     scene_name: &str,
     schedule: Schedule,
     deficit: u32,
 ) -> Compiled {
-    let mut sources = diag::SourceMap::new();
-    let opts = compiler::CompileOptions {
+    let mut sources = npr_diag::SourceMap::new();
+    let opts = npr_compiler::CompileOptions {
         scene: Some(scene.summary(scene_name)),
         schedule,
         tile_apron_deficit: deficit,
         ..Default::default()
     };
-    let c = compiler::compile_file(style, &mut sources, &opts).unwrap_or_else(|e| match e {
-        compiler::CompileError::User(d) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+    let c = npr_compiler::compile_file(style, &mut sources, &opts).unwrap_or_else(|e| match e {
+        npr_compiler::CompileError::User(d) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         e => panic!("{}: {e:?}", style.display()),
     });
     let entries = |action: &str| -> Vec<String> {
@@ -113,7 +113,7 @@ fn compile_narrowed(
         .manifest
         .passes
         .iter()
-        .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::TiledImage { .. }))
+        .filter(|p| matches!(p.kind, npr_abi::manifest::PassKindManifest::TiledImage { .. }))
         .count();
     assert_eq!(
         tiled_passes,
@@ -130,14 +130,19 @@ fn compile_narrowed(
     }
 }
 
-fn load_scene(scene: &Path) -> runner::scene::Scene {
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(scene, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+fn load_scene(scene: &Path) -> npr_runner::scene::Scene {
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(scene, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// The output of frame `FRAMES - 1` (frames at 24 fps), per eye.
-fn render(program: &StyleProgram, scene: &runner::scene::Scene, width: u32, height: u32) -> Vec<runner::TargetImage> {
+fn render(
+    program: &StyleProgram,
+    scene: &npr_runner::scene::Scene,
+    width: u32,
+    height: u32,
+) -> Vec<npr_runner::TargetImage> {
     let g = gpu();
     let eyes = if scene.camera.is_stereo() { 2 } else { 1 };
     (0..eyes)
@@ -156,7 +161,7 @@ fn render(program: &StyleProgram, scene: &runner::scene::Scene, width: u32, heig
 
 /// Texels equal bit for bit; otherwise the two images and their diff are
 /// written and the test fails with the first differing texel.
-fn assert_bit_identical(case: &str, naive: &runner::TargetImage, scheduled: &runner::TargetImage) {
+fn assert_bit_identical(case: &str, naive: &npr_runner::TargetImage, scheduled: &npr_runner::TargetImage) {
     let (a, b) = (naive.to_rgba_f32(), scheduled.to_rgba_f32());
     assert_eq!(a.len(), b.len(), "{case}: sizes differ");
     let first = a
@@ -168,7 +173,7 @@ fn assert_bit_identical(case: &str, naive: &runner::TargetImage, scheduled: &run
     let dir = root().join("target/npr-test-output/schedule");
     std::fs::create_dir_all(&dir).expect("output dir");
     let naive_png = dir.join(format!("{case}_naive.png"));
-    runner::output::write_png8(&naive.to_rgba8(), &naive_png).expect("write naive");
+    npr_runner::output::write_png8(&naive.to_rgba8(), &naive_png).expect("write naive");
     let c = compare_with_golden_file(
         &scheduled.to_rgba8(),
         &naive_png,
@@ -435,7 +440,7 @@ fn reads_outside_a_too_narrow_tile_give_the_same_image() {
     }
 }
 
-/// The measured 16-bit float rounding (`runner::half_rounding`) is how this
+/// The measured 16-bit float rounding (`npr_runner::half_rounding`) is how this
 /// device's stores round every value, not only the probes: 8192 values over
 /// 24 octaves stored into an `rgba16float` target, next to the same values
 /// in `rgba32float`, each rounded by the measured mode equals what was
@@ -443,7 +448,7 @@ fn reads_outside_a_too_narrow_tile_give_the_same_image() {
 #[test]
 fn the_measured_half_rounding_is_how_every_store_rounds() {
     let g = gpu();
-    let mode = runner::half_rounding::measure(&g.device, &g.queue).expect("a rounding this device has");
+    let mode = npr_runner::half_rounding::measure(&g.device, &g.queue).expect("a rounding this device has");
     let style = common::compile_text(
         r#"style "stores"
 pass a: image() {
@@ -458,13 +463,13 @@ output b.c
 "#,
     );
     let scene = load_scene(&scene("spheres"));
-    let img = runner::render_frame(g, &style, &scene, &FrameSpec::still(64, 64, 0)).expect("render");
+    let img = npr_runner::render_frame(g, &style, &scene, &FrameSpec::still(64, 64, 0)).expect("render");
     let (mut checked, mut modes_differ) = (0, 0);
     for texel in img.to_rgba_f32() {
         for (stored, exact) in [(texel[0], texel[1]), (texel[2], texel[3])] {
             let other = match mode {
-                abi::formats::HalfRounding::NearestEven => abi::formats::HalfRounding::TowardZero,
-                abi::formats::HalfRounding::TowardZero => abi::formats::HalfRounding::NearestEven,
+                npr_abi::formats::HalfRounding::NearestEven => npr_abi::formats::HalfRounding::TowardZero,
+                npr_abi::formats::HalfRounding::TowardZero => npr_abi::formats::HalfRounding::NearestEven,
             };
             assert_eq!(
                 mode.round(exact).to_bits(),

@@ -2,9 +2,9 @@
 //! is exact and finite even on triangles clipped at the eye plane (a large
 //! ground plane running under the camera), at full and at reduced scale.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::{FrameSpec, Gpu, Renderer};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Gpu, Renderer};
 use std::path::Path;
 
 #[test]
@@ -23,13 +23,13 @@ fn screen_uv_is_the_pixel_centre_even_on_clipped_triangles() {
     )
     .expect("write scene");
     let mut sources = SourceMap::new();
-    let scene = runner::scene::load_scene(&scene_path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let scene = npr_runner::scene::load_scene(&scene_path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     for (scale, (w, h)) in [("1", (37u32, 23u32)), ("1/2", (37, 23))] {
         let text = format!(
             "style \"uv\"\npass p: render(scene) scale {scale} {{\n  out s: rgba32float = vec4(screen_uv, 0.0, 1.0)\n  clear: #00000000\n}}\noutput p.s\n"
         );
-        let compiled = compiler::compile_source("uv.npr", &text, &dir, &mut sources, &CompileOptions::default())
+        let compiled = npr_compiler::compile_source("uv.npr", &text, &dir, &mut sources, &CompileOptions::default())
             .unwrap_or_else(|e| panic!("{e:?}"));
         let program = compiled.program();
         let mut r = Renderer::new(&gpu.device, &gpu.queue, &program, &scene).expect("renderer");

@@ -8,7 +8,7 @@
 
 use crate::common::cli::{npr, scratch, stderr};
 use crate::common::{gpu, root};
-use lab::harness::{compare_with_golden_file, Tolerance};
+use npr_lab::harness::{compare_with_golden_file, Tolerance};
 use std::path::Path;
 
 /// Targets of every kind a layer holds: 8-bit, 16- and 32-bit float, one
@@ -83,18 +83,18 @@ fn layers_hold_every_target_bit_for_bit() {
     let layers = read_layers(&out);
 
     // The same frame in this process, naive as `--layers` is.
-    let mut sources = diag::SourceMap::new();
-    let opts = compiler::CompileOptions {
-        schedule: compiler::schedule::Schedule::Naive,
+    let mut sources = npr_diag::SourceMap::new();
+    let opts = npr_compiler::CompileOptions {
+        schedule: npr_compiler::schedule::Schedule::Naive,
         ..Default::default()
     };
-    let program = compiler::compile_source("layers.npr", LAYERS_STYLE, root(), &mut sources, &opts)
+    let program = npr_compiler::compile_source("layers.npr", LAYERS_STYLE, root(), &mut sources, &opts)
         .unwrap_or_else(|e| panic!("{e:?}"))
         .program();
-    let scene = runner::scene::load_scene(&root().join("examples/scenes/spheres.toml"), &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
-    let mut r = runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
-    let spec = runner::FrameSpec::animated(40, 30, 0, runner::FrameSpec::DEFAULT_FPS, 0);
+    let scene = npr_runner::scene::load_scene(&root().join("examples/scenes/spheres.toml"), &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+    let mut r = npr_runner::Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let spec = npr_runner::FrameSpec::animated(40, 30, 0, npr_runner::FrameSpec::DEFAULT_FPS, 0);
     r.render(&scene, &spec).expect("frame");
     let count = r.manifest().targets.len();
     let survivors: Vec<bool> = (0..count).map(|t| r.target_survives_frame(t)).collect();

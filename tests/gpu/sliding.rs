@@ -1,5 +1,5 @@
 //! The sliding ("shower-door") measure of dynamic 2D patterns (Breslav et
-//! al. 2007 §4, Fig. 4), `lab::sliding`, on the real runner: a tracked
+//! al. 2007 §4, Fig. 4), `npr_lab::sliding`, on the real runner: a tracked
 //! pattern slides far less than one fixed to the screen under a pan, a
 //! dolly and a roll; the elongated strip of Fig. 4, whose ends move
 //! differently, is where a single similarity slides most, and patches
@@ -9,14 +9,14 @@
 use crate::common;
 use common::{gpu, root};
 
-fn measure(motion: &str, samples: u32, weighting: &str) -> lab::sliding::Sliding {
-    let (_, text) = lab::sliding::motions()
+fn measure(motion: &str, samples: u32, weighting: &str) -> npr_lab::sliding::Sliding {
+    let (_, text) = npr_lab::sliding::motions()
         .into_iter()
         .find(|(name, _)| *name == motion)
         .expect("a motion");
-    let scene = lab::sliding::scene(&text, &root().join("examples/scenes")).expect("scene");
-    let program = common::compile_text(&lab::sliding::style(samples, weighting));
-    let s = lab::sliding::measure(gpu(), &program, &scene).expect("measure");
+    let scene = npr_lab::sliding::scene(&text, &root().join("examples/scenes")).expect("scene");
+    let program = common::compile_text(&npr_lab::sliding::style(samples, weighting));
+    let s = npr_lab::sliding::measure(gpu(), &program, &scene).expect("measure");
     println!(
         "{motion}, {samples} samples, {weighting}: {:.3e} px/frame, screen-fixed {:.4}",
         s.tracked, s.screen_fixed
@@ -51,7 +51,7 @@ fn the_elongated_strip_is_the_worst_case_and_patches_reduce_it() {
     // end hardly moves, which no single similarity follows.
     let bar = measure("elongated", 400, "area");
     let pan = measure("pan", 400, "area");
-    let share = |s: &lab::sliding::Sliding| s.tracked / s.screen_fixed;
+    let share = |s: &npr_lab::sliding::Sliding| s.tracked / s.screen_fixed;
     assert!(
         share(&bar) > 2.0 * share(&pan),
         "bar slides {:.3} of its motion, the panned cow {:.3}",

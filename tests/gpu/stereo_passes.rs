@@ -3,17 +3,17 @@
 //! rendered pass by pass, each reading its own targets and the other eye's,
 //! and `project_other_eye` maps a world point into the other eye's image.
 
-use compiler::CompileOptions;
-use diag::SourceMap;
-use runner::{FrameSpec, Renderer, StyleProgram};
+use npr_compiler::CompileOptions;
+use npr_diag::SourceMap;
+use npr_runner::{FrameSpec, Renderer, StyleProgram};
 use std::path::Path;
 
 use crate::common;
 use common::gpu;
 
-fn compile(text: &str) -> compiler::Compiled {
+fn compile(text: &str) -> npr_compiler::Compiled {
     let mut sources = SourceMap::new();
-    match compiler::compile_source(
+    match npr_compiler::compile_source(
         "stereo.npr",
         text,
         Path::new("."),
@@ -21,12 +21,12 @@ fn compile(text: &str) -> compiler::Compiled {
         &CompileOptions::default(),
     ) {
         Ok(c) => c,
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
-        Err(compiler::CompileError::Internal(e)) => panic!("{e}"),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::Internal(e)) => panic!("{e}"),
     }
 }
 
-fn scene(ipd: Option<f64>) -> runner::scene::Scene {
+fn scene(ipd: Option<f64>) -> npr_runner::scene::Scene {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stereo-passes");
     std::fs::create_dir_all(&dir).expect("scratch");
     let ipd_line = ipd.map(|i| format!("ipd = {i}")).unwrap_or_default();
@@ -47,13 +47,13 @@ primitive = {{ kind = "plane", size = 6.0, subdivisions = 4 }}
     let path = dir.join(format!("scene_{}.toml", ipd.is_some()));
     // Tests run in parallel and write the same file: atomically, so a
     // reader never sees another test's half-written copy.
-    runner::output::write_atomic(&path, text.as_bytes()).expect("write scene");
+    npr_runner::output::write_atomic(&path, text.as_bytes()).expect("write scene");
     let mut sources = SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
-fn render(program: &StyleProgram, scene: &runner::scene::Scene, eye: u32, size: u32) -> Vec<[f32; 4]> {
+fn render(program: &StyleProgram, scene: &npr_runner::scene::Scene, eye: u32, size: u32) -> Vec<[f32; 4]> {
     let mut r = Renderer::new(&gpu().device, &gpu().queue, program, scene).expect("renderer");
     let spec = FrameSpec::still(size, size, eye);
     r.render(scene, &spec).expect("render");
@@ -151,15 +151,18 @@ fn reprojection_into_the_other_eye_finds_the_same_surface_point() {
 fn other_eye_of_something_that_is_not_a_target_is_an_error() {
     let mut sources = SourceMap::new();
     let text = "style \"x\"\npass a: render(scene) {\n  out e: r16float = 1.0\n}\npass b: image(a) {\n  out c: r16float = other_eye(a.e * 2.0)\n}\noutput b.c\n";
-    match compiler::compile_source(
+    match npr_compiler::compile_source(
         "bad.npr",
         text,
         Path::new("."),
         &mut sources,
         &CompileOptions::default(),
     ) {
-        Err(compiler::CompileError::User(d)) => {
-            insta::assert_snapshot!("other_eye_not_a_target", diag::diagnostic::render(&d, &sources, false))
+        Err(npr_compiler::CompileError::User(d)) => {
+            insta::assert_snapshot!(
+                "other_eye_not_a_target",
+                npr_diag::diagnostic::render(&d, &sources, false)
+            )
         }
         _ => panic!("expected a user error"),
     }

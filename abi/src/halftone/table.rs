@@ -19,7 +19,7 @@
 //! and the inversion interpolates R on [`THRESHOLD_STEPS`] thresholds.
 
 /// WGSL's `smoothstep(lo, hi, x)` for lo < hi (the operators' f64
-/// references in `stdlib::reference` have the same).
+/// references in `npr_stdlib::reference` have the same).
 fn smoothstep(lo: f64, hi: f64, x: f64) -> f64 {
     let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
@@ -47,7 +47,7 @@ pub struct HalftoneTable {
 impl HalftoneTable {
     /// Tabulates and inverts R for the screen with soft edges of half-width
     /// `edge`, which must be positive (the manifest's range,
-    /// `abi::HalftoneTableSpec::EDGE_RANGE`, is checked before). With `corrected: false` the threshold is
+    /// `npr_abi::HalftoneTableSpec::EDGE_RANGE`, is checked before). With `corrected: false` the threshold is
     /// the tone itself (t = T), the uncorrected halftone, kept so that the
     /// error it makes can be shown.
     pub fn build(edge: f64, corrected: bool) -> HalftoneTable {

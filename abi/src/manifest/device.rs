@@ -2,10 +2,10 @@
 //! implementation gives without being asked: optional features, and limits
 //! above WebGPU's defaults. Each need names the pass that has it, so a
 //! device without it is refused with a message that says which pass to
-//! change. The compiler computes them (`compiler::back::device_needs`,
+//! change. The compiler computes them (`npr_compiler::back::device_needs`,
 //! from [`super::layout`] and the validated shaders); a host requests
 //! exactly [`Manifest::required_features`] and [`Manifest::required_limits`]
-//! (`runner::Gpu::for_style`, or `requestDevice` in a browser); the runner
+//! (`npr_runner::Gpu::for_style`, or `requestDevice` in a browser); the runner
 //! refuses a device that lacks one before the first frame (E0510).
 //!
 //! Names are WebGPU's own (`float32-filterable`,

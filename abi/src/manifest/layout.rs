@@ -1,9 +1,9 @@
 //! The pipeline a host builds for each pass, as the manifest implies it,
 //! in WebGPU's terms: every bind group layout (not only the manifest's
 //! group 0), the vertex buffers and the colour targets' byte cost. The
-//! runner's executors build these layouts with wgpu (`runner::exec`); the
+//! runner's executors build these layouts with wgpu (`npr_runner::exec`); the
 //! compiler counts them against WebGPU's default limits
-//! (`compiler::back::device_needs`, written into [`Manifest::device_needs`]);
+//! (`npr_compiler::back::device_needs`, written into [`Manifest::device_needs`]);
 //! `tests/general/webgpu_portability.rs` builds them in a browser's WebGPU,
 //! an implementation that is not wgpu. A host in another language reads
 //! the same rules here.

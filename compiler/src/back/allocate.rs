@@ -14,7 +14,7 @@ use crate::ir::*;
 use crate::mid::prune::Live;
 use crate::report::Report;
 use crate::InternalError;
-use abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
+use npr_abi::manifest::{ParamBinding, PhysicalTexture, OBJECT_PARAMS_OFFSET};
 use std::collections::BTreeMap;
 
 #[derive(Debug, Clone, Default)]
@@ -178,8 +178,8 @@ pub fn allocate(
         match b {
             ParamBinding::Uniform => {
                 alloc.param_offsets.insert(id, style_slots * 16);
-                // A gradient's slots are contiguous (`abi::gradient`).
-                style_slots += abi::gradient::slots_of(&ir.params[i].declared_type()) as u64;
+                // A gradient's slots are contiguous (`npr_abi::gradient`).
+                style_slots += npr_abi::gradient::slots_of(&ir.params[i].declared_type()) as u64;
             }
             ParamBinding::PerObject => {
                 alloc.param_offsets.insert(id, OBJECT_PARAMS_OFFSET + object_slots * 16);

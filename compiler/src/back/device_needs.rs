@@ -1,7 +1,7 @@
 //! What each pass needs of the WebGPU device beyond its defaults
-//! ([`abi::manifest::DeviceNeed`], written into the manifest). Two
+//! ([`npr_abi::manifest::DeviceNeed`], written into the manifest). Two
 //! sources, each read where it is exact:
-//! - the pipeline the manifest implies (`abi::manifest::layout`): bind
+//! - the pipeline the manifest implies (`npr_abi::manifest::layout`): bind
 //!   groups, bindings of each kind per shader stage, uniform block sizes,
 //!   vertex buffers and attributes, colour attachments and their bytes per
 //!   sample, and the optional features of 32-bit float targets;
@@ -12,9 +12,9 @@
 //! Only values above WebGPU's defaults become needs, so most styles need
 //! nothing and run on any conforming device as it comes.
 
-use abi::manifest::layout::{self, BindingType, Stage};
-use abi::manifest::{DeviceNeed, Feature, Limit, Manifest, PassKindManifest, PassManifest, Resource};
 use naga::valid::ModuleInfo;
+use npr_abi::manifest::layout::{self, BindingType, Stage};
+use npr_abi::manifest::{DeviceNeed, Feature, Limit, Manifest, PassKindManifest, PassManifest, Resource};
 
 /// The needs of every pass of `manifest`, in pass order; `shader(pass)`
 /// gives the pass's validated module.
@@ -69,7 +69,7 @@ fn features(manifest: &Manifest, pass: &PassManifest) -> Vec<Feature> {
         .outputs
         .iter()
         .zip(&pass.blend)
-        .any(|(t, b)| *b != abi::manifest::Blend::Replace && !manifest.targets[*t].format.is_blendable());
+        .any(|(t, b)| *b != npr_abi::manifest::Blend::Replace && !manifest.targets[*t].format.is_blendable());
     if blended_float32 {
         out.push(Feature::Float32Blendable);
     }
@@ -133,7 +133,7 @@ fn layout_limits(manifest: &Manifest, pass: &PassManifest) -> Vec<(Limit, u64)> 
         .bindings
         .iter()
         .map(|b| match b.resource {
-            Resource::FrameUniforms => abi::FRAME_UNIFORM_SIZE,
+            Resource::FrameUniforms => npr_abi::FRAME_UNIFORM_SIZE,
             Resource::StyleUniforms => manifest.style_uniform_size,
             _ => 0,
         })

@@ -15,9 +15,9 @@ pub type ValidModule = (naga::Module, naga::valid::ModuleInfo);
 
 /// Parse and validate WGSL with naga; `Err` holds naga's rendered message
 /// (or, if naga panicked, its panic message). The panic is expected
-/// (`diag::panics`): `npr` prints the internal error, not Rust's panic line.
+/// (`npr_diag::panics`): `npr` prints the internal error, not Rust's panic line.
 pub fn validate_wgsl(name: &str, wgsl: &str) -> Result<ValidModule, String> {
-    diag::panics::catch(|| parse_and_validate(name, wgsl))
+    npr_diag::panics::catch(|| parse_and_validate(name, wgsl))
         .unwrap_or_else(|why| Err(format!("naga panicked on {name}: {why}")))
 }
 

@@ -7,7 +7,7 @@
 //! (E0310), with the span of what is wrong.
 
 use crate::ir::{Ir, PassKind, TextureSource};
-use diag::{codes, Diagnostic, Span};
+use npr_diag::{codes, Diagnostic, Span};
 
 /// Whether the style reads `filter_input()`: it is a filter.
 pub fn reads_a_level(ir: &Ir) -> bool {

@@ -7,7 +7,7 @@
 //! syntax error in the run, they are dropped. Every other error of the
 //! declarations that did parse is still reported.
 
-use diag::{codes, Diagnostic, SourceMap};
+use npr_diag::{codes, Diagnostic, SourceMap};
 
 /// Drop from `diags` the errors that a syntax error in the same run
 /// explains: unknown names that are names of `broken` declarations, and a

@@ -1,15 +1,15 @@
 //! A `lines` pass's shape settings as the runner evaluates them: each must
 //! be affine in the style's parameters and the frame's time (`width: w`,
 //! `phase: time * 3Hz`, `amplitude: 2px + wobble * 0.5`), because the strips
-//! are built on the CPU (`runner::lines`) and the runner has no expression
-//! evaluator of its own: it evaluates `abi::lines::LineScalar`s. Typecheck
+//! are built on the CPU (`npr_runner::lines`) and the runner has no expression
+//! evaluator of its own: it evaluates `npr_abi::lines::LineScalar`s. Typecheck
 //! calls [`affine`] to report what is not affine; the manifest writer calls
 //! it again after specialization, when a folded parameter is a constant.
 
 use crate::ir::*;
-use abi::lines::{LineScalar, ParamTerm};
-use diag::Span;
-use dsl::ast::{BinOp, UnOp};
+use npr_abi::lines::{LineScalar, ParamTerm};
+use npr_diag::Span;
+use npr_dsl::ast::{BinOp, UnOp};
 
 /// Why a setting is not affine: where, and what to say there.
 #[derive(Debug, Clone, PartialEq)]
@@ -152,7 +152,7 @@ mod tests {
             doc: String::new(),
             ty: ParamTy::Value(Ty::Float),
             value_ty: Ty::Float,
-            unit: stdlib::Unit::Px,
+            unit: npr_stdlib::Unit::Px,
             per_object: false,
             default,
             range: None,

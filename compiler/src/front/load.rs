@@ -4,10 +4,10 @@
 //! style can build on another's parameters and passes. `use` cycles and
 //! unreadable files are reported at the `use` that caused them.
 
-use diag::limits::MAX_SOURCE_BYTES;
-use diag::paths::PathPolicy;
-use diag::{codes, Diagnostic, FileId, SourceMap, Span};
-use dsl::ast::{Ast, Item, UseTarget};
+use npr_diag::limits::MAX_SOURCE_BYTES;
+use npr_diag::paths::PathPolicy;
+use npr_diag::{codes, Diagnostic, FileId, SourceMap, Span};
+use npr_dsl::ast::{Ast, Item, UseTarget};
 use std::path::{Path, PathBuf};
 
 /// The parsed style: the root file's header, every item in dependency order,
@@ -77,7 +77,7 @@ fn load_file_as(
         }
     };
     let name = path.display().to_string();
-    let (file, text) = match diag::text::add_utf8(sources, &name, bytes) {
+    let (file, text) = match npr_diag::text::add_utf8(sources, &name, bytes) {
         Ok(added) => added,
         Err(d) => {
             diags.push(d);
@@ -122,7 +122,7 @@ fn load_added(
     diags: &mut Vec<Diagnostic>,
     with_filters: WithFilters,
 ) -> Loaded {
-    let (ast, mut parse_diags) = dsl::parse(file, text);
+    let (ast, mut parse_diags) = npr_dsl::parse(file, text);
     diags.append(&mut parse_diags);
     let mut items = Vec::new();
     let own = Path::new(name)
@@ -219,14 +219,14 @@ fn expand_uses(
                         continue;
                     }
                 };
-                let (file, text) = match diag::text::add_utf8(sources, &path.display().to_string(), bytes) {
+                let (file, text) = match npr_diag::text::add_utf8(sources, &path.display().to_string(), bytes) {
                     Ok(added) => added,
                     Err(d) => {
                         diags.push(d.with_secondary(u.span, "used here"));
                         continue;
                     }
                 };
-                let (used, mut d) = dsl::parse(file, &text);
+                let (used, mut d) = npr_dsl::parse(file, &text);
                 diags.append(&mut d);
                 broken.extend(used.broken.iter().cloned());
                 let sub_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -241,7 +241,7 @@ fn expand_uses(
 /// Read a style file's bytes, but never more than one byte past
 /// [`MAX_SOURCE_BYTES`]: the parser refuses a longer text with its limit
 /// error, and a file like `/dev/zero` must not be read for ever. Whether
-/// they are text is `diag::text::add_utf8`'s to say, with a span.
+/// they are text is `npr_diag::text::add_utf8`'s to say, with a span.
 fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();

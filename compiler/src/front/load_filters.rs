@@ -6,9 +6,9 @@
 //! in the art-map. Reading and parsing a filter file is `load.rs`'s, which
 //! calls this and hands it that as `load_one`.
 
-use diag::paths::PathPolicy;
-use diag::{codes, Diagnostic};
-use dsl::ast::{ExprKind, Item};
+use npr_diag::paths::PathPolicy;
+use npr_diag::{codes, Diagnostic};
+use npr_dsl::ast::{ExprKind, Item};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

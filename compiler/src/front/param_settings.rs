@@ -16,8 +16,8 @@
 use crate::front::param_values::{shape_of_ir, type_value};
 use crate::ir::{Ir, ParamSetting, SettingOrigin};
 use crate::mid::overrides::ParamOverride;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, SourceMap};
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, SourceMap};
 
 /// Type every setting against the params of `ir` (after typecheck): the
 /// overrides to apply, a later setting of a name replacing an earlier one,
@@ -89,7 +89,7 @@ mod tests {
     use super::*;
     use crate::front::param_values::{ParamShape, ValueKind};
     use crate::ir::Literal;
-    use diag::Span;
+    use npr_diag::Span;
 
     #[test]
     fn a_colour_is_typed_by_the_declared_type_that_the_manifest_keeps() {

@@ -1,9 +1,9 @@
 //! One value for one parameter: the rule is the ABI's
-//! (`abi::param_value`: kinds, typing, range checks, formatting), shared
+//! (`npr_abi::param_value`: kinds, typing, range checks, formatting), shared
 //! with the runner, which types a host's values by it. Here: the shape of
 //! a parameter of the IR, after typecheck.
 
-pub use abi::param_value::*;
+pub use npr_abi::param_value::*;
 
 use crate::ir::{ExprKind, Ir, Param, ParamTy};
 use crate::mid::consteval::const_eval;

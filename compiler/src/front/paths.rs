@@ -1,4 +1,4 @@
-//! The paths policy (`diag::paths`, docs/PATHS.md) applied to what a style
+//! The paths policy (`npr_diag::paths`, docs/PATHS.md) applied to what a style
 //! names, each file before it is read or even probed: a `use`d file
 //! (`load`), an art-map's filter style (`load_filters`), and every
 //! `image("…")` texture, an art-map's source included (`resolve`). Each
@@ -6,8 +6,8 @@
 //! before probing means a refused path never says whether the file
 //! outside the root exists.
 
-use diag::paths::PathPolicy;
-use diag::{Diagnostic, Span};
+use npr_diag::paths::PathPolicy;
+use npr_diag::{Diagnostic, Span};
 use std::path::Path;
 
 /// E0406 at `span` when `policy` refuses the file `written` (resolved to `resolved`).

@@ -11,13 +11,13 @@ use crate::front::load::Loaded;
 use crate::ir::*;
 use crate::mid::consteval::const_eval;
 use crate::InternalError;
-use abi::Format;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
+use npr_abi::Format;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::{self, ExprKind as AK, Item, UnitSuffix};
+use npr_stdlib::Unit;
 use std::collections::HashMap;
 use std::path::Path;
-use stdlib::Unit;
 
 mod calls;
 mod compute;
@@ -34,14 +34,14 @@ mod texture_source;
 pub use calls::signature;
 
 /// Resolution limits, stated in the error messages (the table of every
-/// limit is `diag::limits`).
-pub use diag::limits::{MAX_PARAMS, MAX_PASSES, MAX_TARGETS_PER_PASS as MAX_OUTPUTS_PER_PASS};
+/// limit is `npr_diag::limits`).
+pub use npr_diag::limits::{MAX_PARAMS, MAX_PASSES, MAX_TARGETS_PER_PASS as MAX_OUTPUTS_PER_PASS};
 pub const MAX_NOISE_SIZE: u32 = 4096;
 
 pub fn resolve(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
-    paths: Option<&diag::paths::PathPolicy>,
+    paths: Option<&npr_diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
     resolve_with_settings(loaded, scene, paths, &[], false, diags).map(|(ir, _)| ir)
@@ -56,7 +56,7 @@ pub fn resolve(
 pub fn resolve_with_settings(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
-    paths: Option<&diag::paths::PathPolicy>,
+    paths: Option<&npr_diag::paths::PathPolicy>,
     settings: &[ParamSetting],
     keep_params: bool,
     diags: &mut Vec<Diagnostic>,
@@ -110,7 +110,7 @@ struct Resolver<'d> {
     /// The scene, when the caller knows it (for `scene_has`).
     scene: Option<&'d crate::SceneSummary>,
     /// The paths policy every `image("…")` is checked against before it is probed.
-    paths: Option<&'d diag::paths::PathPolicy>,
+    paths: Option<&'d npr_diag::paths::PathPolicy>,
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,

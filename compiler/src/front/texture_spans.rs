@@ -5,7 +5,7 @@
 //! inside it, in the source text.
 
 use crate::ir::{Ir, TextureSource};
-use diag::{SourceMap, Span};
+use npr_diag::{SourceMap, Span};
 
 /// Per texture, in manifest order (the IR's): the path literal of an
 /// `image(...)` source, or the whole declaration for generated sources

@@ -4,7 +4,7 @@
 //! Checked after typecheck, on every use of a declared texture (E0201).
 
 use crate::ir::{Callee, ExprKind, Ir, TextureSource};
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::collections::HashSet;
 
 const RIPMAP_READER: &str = "sample_ripmap";
@@ -16,7 +16,7 @@ pub fn check(ir: &Ir, diags: &mut Vec<Diagnostic>) {
             TextureSource::Artmap { rip: true, .. }
         )
     };
-    let reader = stdlib::all().iter().position(|o| o.name == RIPMAP_READER);
+    let reader = npr_stdlib::all().iter().position(|o| o.name == RIPMAP_READER);
     let mut read_by_reader = HashSet::new();
     for e in &ir.exprs {
         let ExprKind::Call {

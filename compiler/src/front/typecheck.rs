@@ -15,9 +15,9 @@
 
 use crate::ir::*;
 use crate::mid::consteval::const_eval;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::{BinOp, UnOp};
-use stdlib::Unit;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::{BinOp, UnOp};
+use npr_stdlib::Unit;
 
 mod arith;
 mod calls;

@@ -74,7 +74,7 @@ pub enum Builtin {
     /// In a render pass: the blending weight of the patch being drawn at
     /// this point (Breslav et al. 2007 §3.6), interpolated from its
     /// vertices; 1 on objects without patches. A pass that reads it draws
-    /// each patch over its n-ring too (`abi::Attribute::PatchWeight`).
+    /// each patch over its n-ring too (`npr_abi::Attribute::PatchWeight`).
     PatchWeight,
 }
 

@@ -1,7 +1,7 @@
 //! The IR of a `lines` pass (Klein et al. 2000, §5): the objects whose
 //! edges it draws, which edges, the strips' shape settings as expressions
 //! (checked to be affine in parameters and time by `typecheck::lines`, and
-//! folded to `abi::lines::LineScalar`s when the manifest is written), and
+//! folded to `npr_abi::lines::LineScalar`s when the manifest is written), and
 //! its depth test.
 
 use super::{ExprId, PassDepth};
@@ -12,7 +12,7 @@ use serde::Serialize;
 pub struct LinesKind {
     /// `lines(tag)`: only objects with the tag; `None` (`lines(scene)`) takes all.
     pub tag: Option<String>,
-    pub edges: abi::lines::LineEdges,
+    pub edges: npr_abi::lines::LineEdges,
     pub shape: LineSettings,
     /// `Own` (no test) or `depth: test(pass, bias: ...)`; never `Keep`.
     pub depth: PassDepth,

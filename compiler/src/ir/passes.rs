@@ -38,7 +38,7 @@ pub enum PassKind {
         key: Option<ExprId>,
         /// `compute(samples)`: the samples per object and their seed (the
         /// pass's `count:` and `seed:` settings). `Some` exactly for `Samples`.
-        samples: Option<abi::manifest::SampleSpec>,
+        samples: Option<npr_abi::manifest::SampleSpec>,
         /// Its per-object values, one slot each, in slot order.
         values: Vec<ObjectValue>,
     },
@@ -48,13 +48,13 @@ pub enum PassKind {
 }
 
 /// What a compute pass runs over: the manifest's definition, shared.
-pub use abi::manifest::ComputeDomain;
+pub use npr_abi::manifest::ComputeDomain;
 
 /// How a per-object value of a compute pass is made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum ValueRule {
     /// `reduce n: t = sum(v)` (and `min`, `max`) over the elements of each object.
-    Reduce(abi::manifest::ReduceOp),
+    Reduce(npr_abi::manifest::ReduceOp),
     /// `out n: t = v`: computed once per object.
     Out,
     /// `state n: t = first` with its update `n = v`: kept across frames.
@@ -212,10 +212,10 @@ pub enum PassView {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassOutput {
     pub name: String,
-    pub format: abi::Format,
+    pub format: npr_abi::Format,
     pub value: ExprId,
     /// `{ blend: ... }`: how the value combines with the target.
-    pub blend: abi::manifest::Blend,
+    pub blend: npr_abi::manifest::Blend,
     pub span: Span,
 }
 

@@ -6,7 +6,7 @@
 //! module only holds their outcome, so the IR depends on no stage.
 
 use super::{PassId, TargetRef};
-use abi::manifest::TILE_SIZE;
+use npr_abi::manifest::TILE_SIZE;
 use serde::Serialize;
 
 /// `--schedule naive|auto|tiled|recompute`, and the `schedule:` setting of

@@ -3,11 +3,11 @@
 //! ([`SettingOrigin`]). The IR holds them (an art-map's filter arguments),
 //! the CLI and the test harness build them, and `front::param_settings`
 //! types them; they live here so that the IR imports no stage. The value
-//! and its origin are the ABI's (`abi::param_literal`): the runner types
+//! and its origin are the ABI's (`npr_abi::param_literal`): the runner types
 //! a host's values by the same rule.
 
-pub use abi::param_literal::{Literal, SettingOrigin};
-use diag::Span;
+pub use npr_abi::param_literal::{Literal, SettingOrigin};
+use npr_diag::Span;
 use serde::Serialize;
 
 /// One setting: `name` given the value `value`.

@@ -11,8 +11,8 @@
 
 use crate::ir::*;
 use crate::mid::prune::Live;
-use diag::{codes, Diagnostic};
-use dsl::ast::BinOp;
+use npr_diag::{codes, Diagnostic};
+use npr_dsl::ast::BinOp;
 use std::collections::HashMap;
 
 /// E0203 for each live intrinsic call on constants that has no finite value.
@@ -71,7 +71,7 @@ fn value(ir: &Ir, id: ExprId, known: &HashMap<ExprId, Vec<f64>>) -> Option<Vec<f
     match &ir.expr(id).kind {
         ExprKind::Const(c @ (Const::Float(_) | Const::Int(_) | Const::Vec(_))) => Some(c.as_f64s()),
         ExprKind::Unary {
-            op: dsl::ast::UnOp::Neg,
+            op: npr_dsl::ast::UnOp::Neg,
             operand,
         } => Some(get(operand)?.iter().map(|x| -x).collect()),
         ExprKind::Binary { op, lhs, rhs } => {

@@ -6,7 +6,7 @@
 //! next one made it exponential.
 
 use crate::ir::*;
-use dsl::ast::{BinOp, UnOp};
+use npr_dsl::ast::{BinOp, UnOp};
 use std::collections::HashMap;
 
 /// Evaluate `id` if it is built only from constants; `None` otherwise.

@@ -3,7 +3,7 @@
 //! through a target, or through its depth (`depth: test(other)`).
 
 use crate::ir::*;
-use diag::{codes, Diagnostic, Span};
+use npr_diag::{codes, Diagnostic, Span};
 
 #[derive(Debug, Clone, Default)]
 pub struct PassGraph {

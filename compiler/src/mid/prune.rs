@@ -149,14 +149,14 @@ fn live_roots(ir: &Ir, pid: PassId, live: &Live) -> Vec<ExprId> {
 
 /// A warning for each compute pass that no live pass reads: it is removed,
 /// which is rarely what its author meant.
-pub fn unread_compute_passes(ir: &Ir, live: &Live) -> Vec<diag::Diagnostic> {
+pub fn unread_compute_passes(ir: &Ir, live: &Live) -> Vec<npr_diag::Diagnostic> {
     ir.passes
         .iter()
         .enumerate()
         .filter(|(i, p)| matches!(p.kind, PassKind::Compute { .. }) && !live.passes.contains(&PassId(*i as u32)))
         .map(|(_, p)| {
-            diag::Diagnostic::warning(
-                diag::codes::UNREAD_COMPUTE,
+            npr_diag::Diagnostic::warning(
+                npr_diag::codes::UNREAD_COMPUTE,
                 format!("compute pass `{}` is never read, so it is removed", p.name),
             )
             .with_primary(p.name_span, "no live pass reads its values")

@@ -10,9 +10,9 @@
 
 use crate::ir::{Ir, PassKind};
 use crate::mid::prune::Live;
-use abi::SceneSummary;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic};
+use npr_abi::SceneSummary;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic};
 
 /// W0402 for each live `render(tag)` / `compute(domain, tag)` / `lines(tag)` pass whose
 /// tag `scene` lacks. Nothing without a scene.

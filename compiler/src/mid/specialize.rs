@@ -9,7 +9,7 @@ use crate::ir::*;
 use crate::mid::consteval::{const_eval, ConstCache};
 use crate::mid::prune::Live;
 use crate::report::Report;
-use abi::manifest::ParamBinding;
+use npr_abi::manifest::ParamBinding;
 
 pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Report) -> Vec<ParamBinding> {
     let mut bindings = vec![ParamBinding::Removed; ir.params.len()];
@@ -104,14 +104,14 @@ pub fn specialize(ir: &mut Ir, live: &Live, keep_params: bool, report: &mut Repo
 }
 
 /// Swap calls for cheaper operators where a constant argument allows it
-/// (`stdlib::Specialization`), e.g. 4-tap MetaTexture when `skew` is 0.
+/// (`npr_stdlib::Specialization`), e.g. 4-tap MetaTexture when `skew` is 0.
 /// The replacement's arguments are matched by parameter name, and a
 /// replacement may itself specialize further (contour orientation off, then
 /// skew 0: `metatexture_contour_grad` → `metatexture_grad` → `metatexture4_grad`).
 fn specialize_operators(ir: &mut Ir, report: &mut Report) {
     for i in 0..ir.exprs.len() {
         // Bounded: each step moves to a different operator of the finite table.
-        for _ in 0..stdlib::all().len() {
+        for _ in 0..npr_stdlib::all().len() {
             let ExprKind::Call {
                 callee: Callee::Operator(index),
                 args,
@@ -119,7 +119,7 @@ fn specialize_operators(ir: &mut Ir, report: &mut Report) {
             else {
                 break;
             };
-            let op = &stdlib::all()[*index as usize];
+            let op = &npr_stdlib::all()[*index as usize];
             let mut swapped = None;
             for s in op.specializations {
                 let Some(pos) = op.params.iter().position(|p| p.name == s.param) else {
@@ -128,13 +128,13 @@ fn specialize_operators(ir: &mut Ir, report: &mut Report) {
                 let Some(value) = args.get(pos).and_then(|a| const_eval(ir, *a)).and_then(|c| c.scalar()) else {
                     continue;
                 };
-                let Some(alt) = stdlib::all().iter().position(|o| o.name == s.use_operator) else {
+                let Some(alt) = npr_stdlib::all().iter().position(|o| o.name == s.use_operator) else {
                     continue;
                 };
                 if value != s.value {
                     continue;
                 }
-                let by_name: Option<Vec<ExprId>> = stdlib::all()[alt]
+                let by_name: Option<Vec<ExprId>> = npr_stdlib::all()[alt]
                     .params
                     .iter()
                     .map(|p| {

@@ -1,5 +1,5 @@
 //! What a pass reads of a target it passes to an operator, from the
-//! operator's declared footprint (`stdlib::Footprint`): only its own pixel,
+//! operator's declared footprint (`npr_stdlib::Footprint`): only its own pixel,
 //! a neighbourhood of a known radius, or anywhere. Fusion needs the first;
 //! a tiled schedule (issue 14) sizes its apron from the second; the third
 //! bounds nothing.
@@ -43,7 +43,7 @@ pub fn texture_reads(ir: &Ir, call: ExprId) -> Vec<(ExprId, Read)> {
     else {
         return Vec::new();
     };
-    let op = &stdlib::all()[*i as usize];
+    let op = &npr_stdlib::all()[*i as usize];
     let arg_of = |name: &str| {
         op.params
             .iter()
@@ -53,21 +53,21 @@ pub fn texture_reads(ir: &Ir, call: ExprId) -> Vec<(ExprId, Read)> {
     op.params
         .iter()
         .zip(args)
-        .filter(|(p, _)| matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture))
+        .filter(|(p, _)| matches!(p.ty, npr_stdlib::Ty::Texture | npr_stdlib::Ty::SampledTexture))
         .map(|(p, a)| {
             let read = match op.footprint(p.name) {
-                Some(stdlib::Footprint::Around { uv, radius }) => {
+                Some(npr_stdlib::Footprint::Around { uv, radius }) => {
                     let at_pixel =
                         arg_of(uv).is_some_and(|u| matches!(ir.expr(u).kind, ExprKind::Builtin(Builtin::ScreenUv)));
                     if at_pixel {
                         let value = match radius {
-                            stdlib::Radius::Scaled { param, .. } => {
+                            npr_stdlib::Radius::Scaled { param, .. } => {
                                 arg_of(param).and_then(|v| match &ir.expr(v).kind {
                                     ExprKind::Const(c) => c.scalar(),
                                     _ => None,
                                 })
                             }
-                            stdlib::Radius::Texels(_) => None,
+                            npr_stdlib::Radius::Texels(_) => None,
                         };
                         Read::AroundPixel {
                             radius: radius.texels(value),
@@ -78,7 +78,7 @@ pub fn texture_reads(ir: &Ir, call: ExprId) -> Vec<(ExprId, Read)> {
                 }
                 // The completeness test guarantees a footprint per texture
                 // parameter; a missing one is treated as the widest read.
-                Some(stdlib::Footprint::Anywhere) | None => Read::Anywhere,
+                Some(npr_stdlib::Footprint::Anywhere) | None => Read::Anywhere,
             };
             (*a, read)
         })

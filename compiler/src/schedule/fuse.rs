@@ -21,7 +21,7 @@ use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
 use crate::ir::*;
 use crate::mid::prune::Live;
 use crate::report::Report;
-use abi::formats::Storage;
+use npr_abi::formats::Storage;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Fuses every image pass that `plan` lets be fused and can be, in
@@ -119,7 +119,7 @@ fn consumer(ir: &Ir, live: &Live, plan: &Plan, pid: PassId) -> Result<(PassId, S
                     ExprKind::Call {
                         callee: Callee::Operator(i),
                         ..
-                    } => stdlib::all()[*i as usize].name,
+                    } => npr_stdlib::all()[*i as usize].name,
                     _ => "an operator",
                 };
                 return Err(format!("`{}` passes `{name}` to `{op}`, which {read}", reader.name));

@@ -52,7 +52,7 @@ pub use crate::ir::Schedule;
 use crate::ir::Ir;
 use crate::mid::prune::Live;
 use crate::report::Report;
-use diag::{Diagnostic, FileId, SourceMap};
+use npr_diag::{Diagnostic, FileId, SourceMap};
 use plan::Plan;
 
 /// Applies `schedule` (`--schedule`) and the passes' `schedule:` settings

@@ -4,7 +4,7 @@
 //! (`fuse.rs`, `tile.rs`, `recompute.rs`).
 
 use crate::ir::{Ir, PassId, PassKind, Schedule};
-use diag::{FileId, SourceMap, Span};
+use npr_diag::{FileId, SourceMap, Span};
 use std::collections::BTreeMap;
 
 /// A pass whose `schedule:` setting overrides the run's schedule.

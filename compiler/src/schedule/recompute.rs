@@ -33,8 +33,8 @@ use super::unstored::{must_be_stored, reader_kind_and_scale, take_over_inputs};
 use crate::ir::*;
 use crate::mid::prune::Live;
 use crate::report::Report;
-use abi::manifest::TILE_SIZE;
-use diag::{codes, Diagnostic};
+use npr_abi::manifest::TILE_SIZE;
+use npr_diag::{codes, Diagnostic};
 use std::collections::BTreeSet;
 
 /// Decides, in execution order, which image passes are computed in their
@@ -209,12 +209,12 @@ fn sole_reader(ir: &Ir, live: &Live, target: TargetRef) -> Result<(PassId, u32),
                 else {
                     continue;
                 };
-                let op = &stdlib::all()[*i as usize];
+                let op = &npr_stdlib::all()[*i as usize];
                 let loaded = op
                     .params
                     .iter()
                     .zip(args)
-                    .any(|(p, a)| *a == arg && p.ty == stdlib::Ty::Texture);
+                    .any(|(p, a)| *a == arg && p.ty == npr_stdlib::Ty::Texture);
                 match read {
                     Read::AroundPixel { radius: r } if loaded => radius = radius.max(r),
                     Read::AroundPixel { .. } => {

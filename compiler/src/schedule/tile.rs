@@ -1,6 +1,6 @@
 //! Tiled compute for neighbourhood reads (issue 14): an image pass whose
 //! operators read a target within a bounded radius of the pixel runs as a
-//! compute shader over `abi::manifest::TILE_SIZE`² workgroups. Each
+//! compute shader over `npr_abi::manifest::TILE_SIZE`² workgroups. Each
 //! workgroup loads the tile plus an apron of that radius (the operators'
 //! declared footprints, `footprint.rs`) into workgroup memory once, and the
 //! operators' `textureLoad`s of that target read it from there
@@ -28,8 +28,8 @@ use super::plan::Plan;
 use crate::ir::*;
 use crate::mid::prune::Live;
 use crate::report::Report;
-use abi::manifest::{Blend, TargetCopy, TILE_SIZE};
-use diag::{codes, Diagnostic};
+use npr_abi::manifest::{Blend, TargetCopy, TILE_SIZE};
+use npr_diag::{codes, Diagnostic};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Workgroup memory a tiled pass may use: WebGPU's default limit
@@ -253,11 +253,11 @@ pub(super) fn samples_a_texture(ir: &Ir, roots: &[ExprId], nodes: &[ExprId]) -> 
         ExprKind::Call {
             callee: Callee::Operator(i),
             args,
-        } => stdlib::all()[*i as usize]
-            .params
-            .iter()
-            .zip(args)
-            .any(|(p, a)| is_texture(*a) && !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture)),
+        } => {
+            npr_stdlib::all()[*i as usize].params.iter().zip(args).any(|(p, a)| {
+                is_texture(*a) && !matches!(p.ty, npr_stdlib::Ty::Texture | npr_stdlib::Ty::SampledTexture)
+            })
+        }
         _ => ir.operands(*n).into_iter().any(is_texture),
     })
 }
@@ -272,28 +272,32 @@ fn is_loaded(ir: &Ir, call: ExprId, arg: ExprId) -> bool {
     else {
         return false;
     };
-    let op = &stdlib::all()[*i as usize];
+    let op = &npr_stdlib::all()[*i as usize];
     op.params
         .iter()
         .zip(args)
-        .any(|(p, a)| *a == arg && p.ty == stdlib::Ty::Texture)
+        .any(|(p, a)| *a == arg && p.ty == npr_stdlib::Ty::Texture)
 }
 
 /// The name of operator `i` or of one it depends on when its WGSL takes
 /// screen derivatives (explicitly, or through an implicit-LOD sample).
 pub(super) fn uses_derivatives(i: usize) -> Option<&'static str> {
-    let op = &stdlib::all()[i];
+    let op = &npr_stdlib::all()[i];
     let takes = |wgsl: &str| {
         ["dpdx", "dpdy", "fwidth", "textureSample("]
             .iter()
             .any(|d| wgsl.contains(d))
     };
-    let own = takes(op.wgsl) || op.snippets.iter().any(|s| stdlib::snippets::find(s).is_some_and(takes));
+    let own = takes(op.wgsl)
+        || op
+            .snippets
+            .iter()
+            .any(|s| npr_stdlib::snippets::find(s).is_some_and(takes));
     if own {
         return Some(op.name);
     }
     op.depends.iter().find_map(|d| {
-        let j = stdlib::all().iter().position(|o| o.name == *d)?;
+        let j = npr_stdlib::all().iter().position(|o| o.name == *d)?;
         uses_derivatives(j)
     })
 }
@@ -303,7 +307,7 @@ mod tests {
     use super::*;
 
     fn index(name: &str) -> usize {
-        stdlib::all().iter().position(|o| o.name == name).expect("operator")
+        npr_stdlib::all().iter().position(|o| o.name == name).expect("operator")
     }
 
     #[test]

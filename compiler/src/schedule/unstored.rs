@@ -4,8 +4,8 @@
 //! and both hand the producer's inputs to the reader.
 
 use crate::ir::*;
-use abi::formats::Storage;
-use abi::manifest::Blend;
+use npr_abi::formats::Storage;
+use npr_abi::manifest::Blend;
 
 /// Why target `t` must stay stored, if it must: it is the output, blends,
 /// is a constant (`constant_why` says why that matters to the caller), or

@@ -1,5 +1,5 @@
 //! Explanations of the host codes (E06xx): mistakes of an application that
-//! embeds a style with `runner::embed::StyleRuntime`. They come from Rust
+//! embeds a style with `npr_runner::embed::StyleRuntime`. They come from Rust
 //! calls, not from `npr` commands, so the examples are the host's code,
 //! and each says where the mistake is tested.
 

@@ -1,5 +1,5 @@
 //! `npr explain CODE`: a long explanation of every code in
-//! [`diag::codes::ALL`] (what it means, a wrong example, the fixed one), as
+//! [`npr_diag::codes::ALL`] (what it means, a wrong example, the fixed one), as
 //! rustc's `--explain` gives, and the nearest codes for one that does not
 //! exist.
 //!
@@ -62,7 +62,7 @@ pub struct Example {
     /// `tests/general/explain.rs` lists these and runs everything else.
     pub not_runnable: Option<&'static str>,
     /// A host application's Rust code, shown instead of the style and the
-    /// commands: the mistake is in a call of `runner::embed`, not in a
+    /// commands: the mistake is in a call of `npr_runner::embed`, not in a
     /// file `npr` reads (the host codes, E06xx).
     pub host_rust: Option<&'static str>,
 }
@@ -159,7 +159,7 @@ impl Example {
     }
 }
 
-/// Every explanation, in the order of [`diag::codes::ALL`].
+/// Every explanation, in the order of [`npr_diag::codes::ALL`].
 pub fn all() -> impl Iterator<Item = &'static Explanation> {
     syntax::ALL
         .iter()
@@ -176,9 +176,9 @@ pub fn lookup(code: &str) -> Option<&'static Explanation> {
     all().find(|e| e.code.eq_ignore_ascii_case(code.trim()))
 }
 
-/// The one-line meaning of `code` from [`diag::codes::ALL`].
+/// The one-line meaning of `code` from [`npr_diag::codes::ALL`].
 pub fn summary(code: &str) -> Option<&'static str> {
-    diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(_, s)| *s)
+    npr_diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(_, s)| *s)
 }
 
 /// The codes nearest to one that does not exist: the same letter and the
@@ -187,7 +187,7 @@ pub fn nearest(code: &str, n: usize) -> Vec<&'static str> {
     let wanted = code.trim().to_ascii_uppercase();
     let number = |c: &str| c.get(1..).and_then(|d| d.parse::<i64>().ok());
     let letter = wanted.chars().next();
-    let mut scored: Vec<(bool, i64, f64, &'static str)> = diag::codes::ALL
+    let mut scored: Vec<(bool, i64, f64, &'static str)> = npr_diag::codes::ALL
         .iter()
         .map(|(c, _)| {
             let same_letter = c.chars().next() == letter;
@@ -215,7 +215,7 @@ pub fn by_words(query: &str, n: usize) -> Vec<&'static str> {
     if words.is_empty() {
         return Vec::new();
     }
-    let mut scored: Vec<(usize, f64, &'static str)> = diag::codes::ALL
+    let mut scored: Vec<(usize, f64, &'static str)> = npr_diag::codes::ALL
         .iter()
         .filter_map(|(code, title)| {
             let title_words: Vec<String> = title
@@ -254,7 +254,7 @@ pub fn by_number(query: &str) -> Vec<&'static str> {
         .iter()
         .filter_map(|l| {
             let code = format!("{l}{n:04}");
-            diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(c, _)| *c)
+            npr_diag::codes::ALL.iter().find(|(c, _)| *c == code).map(|(c, _)| *c)
         })
         .collect()
 }

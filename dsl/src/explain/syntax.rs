@@ -70,7 +70,7 @@ pub(super) const ALL: &[Explanation] = &[
     Explanation {
         code: "E0005",
         meaning: "Brackets, blocks, calls and `if`s may be nested at most 64 levels deep \
-            (`diag::limits::MAX_NESTING`, docs/LIMITS.md). The limit is checked on the raw text \
+            (`npr_diag::limits::MAX_NESTING`, docs/LIMITS.md). The limit is checked on the raw text \
             before parsing, so no input can overflow the parser's stack. Name the inner parts \
             with `let` instead of nesting them.",
         wrong: Example {
@@ -86,7 +86,7 @@ pub(super) const ALL: &[Explanation] = &[
     Explanation {
         code: "E0006",
         meaning: "An expression tree may be at most 256 levels deep \
-            (`diag::limits::MAX_EXPR_DEPTH`, docs/LIMITS.md). A long chain of binary operators \
+            (`npr_diag::limits::MAX_EXPR_DEPTH`, docs/LIMITS.md). A long chain of binary operators \
             counts as deep: `a + b + c` is `(a + b) + c`. Split the chain with `let`s, or \
             write it with a multiplication or a call.",
         wrong: Example {

@@ -13,8 +13,8 @@ mod recovery;
 use recovery::{content_len, recover};
 
 use crate::ast::*;
-use diag::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
-use diag::{codes, Diagnostic, FileId, Span};
+use npr_diag::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
+use npr_diag::{codes, Diagnostic, FileId, Span};
 use pest::iterators::Pair;
 use pest::Parser;
 use std::cell::{Cell, RefCell};

@@ -38,7 +38,7 @@ pub(super) struct Minimal {
 const STRIDE: u64 = 256;
 
 impl Minimal {
-    pub(super) fn new(device: &wgpu::Device, objects: usize, size: u32, mesh: &runner::scene::Mesh) -> Minimal {
+    pub(super) fn new(device: &wgpu::Device, objects: usize, size: u32, mesh: &npr_runner::scene::Mesh) -> Minimal {
         use wgpu::util::DeviceExt;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: None,

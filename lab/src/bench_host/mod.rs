@@ -1,5 +1,5 @@
 //! `npr bench host`: the CPU time of a host's frame through
-//! `runner::embed::StyleRuntime::render` (prepare: uniforms, objects,
+//! `npr_runner::embed::StyleRuntime::render` (prepare: uniforms, objects,
 //! camera; encode: every pass and the present pass into the host's
 //! encoder) and the host's `CommandEncoder::finish` (where wgpu 30
 //! validates the recorded commands and records them for the driver) for
@@ -19,9 +19,9 @@
 //! [`spawn_row`]: the frame right after the host adds an object (issue 32).
 
 use crate::thread_cpu;
-use runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
-use runner::scene::{primitives, Camera, Mesh};
-use runner::{Gpu, RunError, StyleProgram};
+use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};
+use npr_runner::scene::{primitives, Camera, Mesh};
+use npr_runner::{Gpu, RunError, StyleProgram};
 
 /// One row: objects, and the median CPU µs per frame of npr and of each baseline.
 pub struct HostRow {
@@ -72,7 +72,7 @@ fn render_pass_tags(program: &StyleProgram) -> Vec<&String> {
         .passes
         .iter()
         .filter_map(|p| match &p.kind {
-            abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
+            npr_abi::manifest::PassKindManifest::Render { tag, .. } => tag.as_ref(),
             _ => None,
         })
         .collect();
@@ -259,7 +259,7 @@ pub fn rows(
         .manifest
         .passes
         .iter()
-        .filter(|p| matches!(p.kind, abi::manifest::PassKindManifest::Render { .. }))
+        .filter(|p| matches!(p.kind, npr_abi::manifest::PassKindManifest::Render { .. }))
         .count();
     let pass_tags = render_pass_tags(program);
     // The style's other passes and the present pass: one fullscreen triangle each.

@@ -28,8 +28,8 @@
 
 use super::{block_binding, block_entry, cleared, discarded_depth, target_view, uniform_group, uniform_layout};
 use crate::bench_overhead::setup::{scaled, texture_format};
-use abi::manifest::{Binding, Manifest, PassKindManifest, PassManifest, Resource, TargetCopy};
-use runner::RunError;
+use npr_abi::manifest::{Binding, Manifest, PassKindManifest, PassManifest, Resource, TargetCopy};
+use npr_runner::RunError;
 
 /// Bytes between blocks (wgpu's minimum uniform offset alignment): the
 /// frame block at 0, object `i`'s at `STRIDE * (1 + i)`.
@@ -129,14 +129,14 @@ fn linear_sampler(device: &wgpu::Device) -> wgpu::Sampler {
 /// tracks the state of every level a bound view covers); 64², one level,
 /// where the size is made at load (a rip-map's atlas, a halftone table).
 /// Its texels are never written: no shader of this program reads them.
-fn style_texture(device: &wgpu::Device, t: &abi::manifest::TextureManifest) -> Result<wgpu::Texture, RunError> {
-    use abi::manifest::TextureSourceManifest as Source;
+fn style_texture(device: &wgpu::Device, t: &npr_abi::manifest::TextureManifest) -> Result<wgpu::Texture, RunError> {
+    use npr_abi::manifest::TextureSourceManifest as Source;
     let probe = |path: &str, resolved: &str| {
-        runner::texture_file::probe(std::path::Path::new(resolved))
+        npr_runner::texture_file::probe(std::path::Path::new(resolved))
             .map_err(|e| RunError::User(vec![e.to_diagnostic(&t.name, path)]))
     };
     // Levels to 1×1 along the longer side (abi's one definition of a chain's length).
-    let full_chain = |(width, height): (u32, u32)| abi::RipmapAtlas::levels(width.max(height));
+    let full_chain = |(width, height): (u32, u32)| npr_abi::RipmapAtlas::levels(width.max(height));
     let ((width, height), mip_level_count) = match &t.source {
         Source::Image { path, resolved, .. } => {
             let size = probe(path, resolved)?;
@@ -421,12 +421,12 @@ impl PassShaped {
         manifest: &Manifest,
         objects: usize,
         size: u32,
-        mesh: &runner::scene::Mesh,
+        mesh: &npr_runner::scene::Mesh,
     ) -> Result<PassShaped, RunError> {
         use wgpu::util::DeviceExt;
         let side = |scale: f64| scaled((size, size), scale).0;
         let target =
-            |t: &abi::manifest::TargetManifest| sampled_target(device, texture_format(t.format), side(t.scale));
+            |t: &npr_abi::manifest::TargetManifest| sampled_target(device, texture_format(t.format), side(t.scale));
         let blocks_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: None,
             size: STRIDE * (1 + objects) as u64,

@@ -2,8 +2,8 @@
 //! program that draws a compiled style's WGSL passes at one output size.
 //! It creates its own buffers, textures, views, samplers, layouts,
 //! pipelines and bind groups with plain wgpu calls and shares no object and
-//! no code with `runner::exec`; it reads only the ABI (the manifest,
-//! `abi::FrameBlock`, `abi::ObjectHead`) and the scene's CPU data (meshes,
+//! no code with `npr_runner::exec`; it reads only the ABI (the manifest,
+//! `npr_abi::FrameBlock`, `npr_abi::ObjectHead`) and the scene's CPU data (meshes,
 //! model matrices, camera, light).
 //!
 //! Each frame ([`Baseline::frame`]) does what a program written for this
@@ -21,11 +21,11 @@
 
 use super::setup::{self, Mesh};
 use super::{support, uniforms, OverheadError};
-use abi::manifest::*;
-use abi::{Format, StyleProgram};
 use glam::Mat4;
-use runner::scene::Scene;
-use runner::TargetImage;
+use npr_abi::manifest::*;
+use npr_abi::{Format, StyleProgram};
+use npr_runner::scene::Scene;
+use npr_runner::TargetImage;
 use std::collections::BTreeMap;
 
 /// Colour attachments one pass may have (the device's limit is at least 8).
@@ -221,7 +221,7 @@ impl<'d> Baseline<'d> {
         let (scene_lo, scene_hi) = scene.bounds();
         // No `view(light)` pass: the light camera covers the whole scene.
         let light_view_proj =
-            runner::scene::light_view_proj(scene.light.direction, (scene_lo, scene_hi), (scene_lo, scene_hi));
+            npr_runner::scene::light_view_proj(scene.light.direction, (scene_lo, scene_hi), (scene_lo, scene_hi));
         Ok(Baseline {
             device,
             queue,
@@ -355,7 +355,7 @@ impl<'d> Baseline<'d> {
     /// Read the style's output target back (after a frame).
     pub fn read_output(&self) -> Result<TargetImage, OverheadError> {
         let t = &self.targets[self.output];
-        runner::readback::read_texture(
+        npr_runner::readback::read_texture(
             self.device,
             self.queue,
             t,

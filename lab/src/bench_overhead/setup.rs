@@ -1,11 +1,11 @@
 //! The wgpu objects the independent baseline builds once, each with plain
 //! wgpu calls from the manifest: target and depth textures, the meshes'
 //! vertex and index buffers, group 0 of a pass, the object group, and a
-//! pass's render pipeline. Nothing here comes from `runner::exec`.
+//! pass's render pipeline. Nothing here comes from `npr_runner::exec`.
 
 use super::OverheadError;
-use abi::manifest::*;
-use abi::Format;
+use npr_abi::manifest::*;
+use npr_abi::Format;
 use std::collections::BTreeMap;
 use wgpu::util::DeviceExt;
 
@@ -70,7 +70,7 @@ pub struct Mesh {
     pub index_count: u32,
 }
 
-pub fn upload_mesh(device: &wgpu::Device, mesh: &runner::scene::Mesh, attributes: &[Attribute]) -> Mesh {
+pub fn upload_mesh(device: &wgpu::Device, mesh: &npr_runner::scene::Mesh, attributes: &[Attribute]) -> Mesh {
     let init = |label: &str, contents: &[u8], usage| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),

@@ -10,8 +10,8 @@
 //! passes, lines passes, tiled image passes, history, stereo, `view(light)`, kept and tested depth, blending,
 //! declared and per-object textures, time-varying meshes, patch weights — is refused.
 
-use abi::manifest::*;
-use runner::scene::Scene;
+use npr_abi::manifest::*;
+use npr_runner::scene::Scene;
 
 /// `Err` names the first thing the baseline does not do.
 pub fn check(manifest: &Manifest, scene: &Scene) -> Result<(), String> {

@@ -1,12 +1,12 @@
 //! The uniform blocks the independent baseline writes, filled from the ABI's
-//! definitions (`abi::FrameBlock`, `abi::ObjectHead` and the manifest's
+//! definitions (`npr_abi::FrameBlock`, `npr_abi::ObjectHead` and the manifest's
 //! parameter slots) and the scene's CPU data (camera pose, light, model
 //! matrices), without any of the runner's own uniform code.
 
-use abi::manifest::*;
-use abi::{FrameBlock, ObjectHead};
 use glam::{Mat4, Vec3};
-use runner::scene::Scene;
+use npr_abi::manifest::*;
+use npr_abi::{FrameBlock, ObjectHead};
+use npr_runner::scene::Scene;
 
 /// The `Frame` block of a mono frame (eye 0) at `time_s`; `previous_view_proj`
 /// is the previous frame's view-projection (this one's on the first frame).
@@ -137,7 +137,7 @@ pub fn style_block(manifest: &Manifest, time_s: f64, height: u32, bytes: &mut [u
 /// An object's parameter slots (after the head, `object_uniform_size −
 /// OBJECT_PARAMS_OFFSET` bytes): the scene's binding or the default; a
 /// colour given as rgb gets alpha 1.
-pub fn object_params(manifest: &Manifest, object: &runner::scene::Object) -> Vec<u8> {
+pub fn object_params(manifest: &Manifest, object: &npr_runner::scene::Object) -> Vec<u8> {
     let size = manifest.object_uniform_size.saturating_sub(OBJECT_PARAMS_OFFSET) as usize;
     let mut bytes = vec![0u8; size];
     for p in manifest.params.iter().filter(|p| p.binding == ParamBinding::PerObject) {

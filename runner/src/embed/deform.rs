@@ -9,7 +9,7 @@ use super::meshes::Entry;
 use super::{EmbedError, MeshHandle};
 use crate::scene::geometry;
 use crate::scene::Mesh;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 /// New vertex data for a registered mesh, borrowed from the host's own
 /// arrays: one entry per vertex of the mesh, in its order. The triangles

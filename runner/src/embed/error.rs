@@ -3,10 +3,10 @@
 
 use super::MeshHandle;
 use crate::RunError;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 /// Why a call of the embedding API failed. Every variant has a code
-/// ([`EmbedError::code`]) from `diag::codes`, explained by `npr explain`.
+/// ([`EmbedError::code`]) from `npr_diag::codes`, explained by `npr explain`.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum EmbedError {
@@ -46,7 +46,7 @@ impl EmbedError {
     }
 
     /// As diagnostics (no spans: a host's call has no source text), to
-    /// render with `diag::diagnostic::render` or log.
+    /// render with `npr_diag::diagnostic::render` or log.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
         match self {
             EmbedError::UnknownMesh(_) => {

@@ -81,7 +81,7 @@ impl Instance {
                 path: resolved.display().to_string(),
                 resolved,
                 srgb: None,
-                span: diag::Span::default(),
+                span: npr_diag::Span::default(),
             },
         );
         self

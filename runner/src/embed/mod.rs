@@ -4,7 +4,7 @@
 //!
 //! The host
 //! 1. makes a runtime from a compiled style ([`StyleProgram`]: from
-//!    `compiler::compile_file(..)?.program()`, or [`StyleProgram::load_dir`]
+//!    `npr_compiler::compile_file(..)?.program()`, or [`StyleProgram::load_dir`]
 //!    of a directory `npr compile -o DIR` wrote) on its device and queue;
 //!    a device lacking a feature or limit the style needs is refused here
 //!    (E0510), before any frame;
@@ -28,7 +28,7 @@
 //!
 //! Style parameters are set by name at run time with
 //! [`StyleRuntime::set_param`], typed and range-checked by the rule
-//! `npr render --set` uses (`abi::param_value`), from the manifest's
+//! `npr render --set` uses (`npr_abi::param_value`), from the manifest's
 //! parameter metadata. A style compiled without `keep_params` has its
 //! parameters folded into its shaders; only those in the manifest can
 //! change ([`StyleRuntime::params`]).
@@ -81,20 +81,20 @@
 //! `examples/embed.rs`):
 //!
 //! ```
-//! use runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
-//! use runner::scene::{primitives, Camera};
+//! use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};
+//! use npr_runner::scene::{primitives, Camera};
 //!
-//! // A compiled style: `compiler::compile_file`, or `StyleProgram::load_dir`
+//! // A compiled style: `npr_compiler::compile_file`, or `StyleProgram::load_dir`
 //! // of what `npr compile -o DIR` wrote. `keep_params` keeps `tint` settable.
 //! let style = "style \"Lit\"\nparam tint: color = #ffffff\n\
 //!              pass p: render(scene) {\n  out c: rgba8unorm = vec4(tint.rgb * lambert(normal, light.dir), 1.0)\n}\n\
 //!              output p.c\n";
-//! let options = compiler::CompileOptions { keep_params: true, ..Default::default() };
-//! let mut sources = diag::SourceMap::new();
-//! let compiled = compiler::compile_source("lit.npr", style, std::path::Path::new("."), &mut sources, &options)
+//! let options = npr_compiler::CompileOptions { keep_params: true, ..Default::default() };
+//! let mut sources = npr_diag::SourceMap::new();
+//! let compiled = npr_compiler::compile_source("lit.npr", style, std::path::Path::new("."), &mut sources, &options)
 //!     .map_err(|e| format!("{e:?}"))?;
 //!
-//! let gpu = runner::Gpu::headless()?;
+//! let gpu = npr_runner::Gpu::headless()?;
 //! let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
 //! runtime.set_param("tint", "#ff0000")?;
 //! // Mistakes are values with a code, as `--set` reports them:
@@ -122,7 +122,7 @@
 //! runtime.render(&mut encoder, &frame, Target::View(&view))?;
 //! gpu.queue.submit([encoder.finish()]);
 //!
-//! let image = runner::readback::read_texture(&gpu.device, &gpu.queue, &texture, 32, 32, abi::Format::Rgba8unorm, "out")?;
+//! let image = npr_runner::readback::read_texture(&gpu.device, &gpu.queue, &texture, 32, 32, npr_abi::Format::Rgba8unorm, "out")?;
 //! assert_eq!(image.texel(0, 0), [0.0, 0.0, 0.0, 0.0]); // the corner: the pass's clear, no object
 //! let centre = image.texel(16, 16); // the sphere, lit from the default light, in red
 //! assert!(centre[0] > 0.3 && centre[1] == 0.0 && centre[2] == 0.0, "{centre:?}");
@@ -200,8 +200,8 @@ impl StyleRuntime {
             return Err(crate::RunError::User(lacking).into());
         }
         if program.manifest.validate_filter().is_ok() {
-            return Err(crate::RunError::User(vec![diag::Diagnostic::error(
-                diag::codes::BAD_FILTER,
+            return Err(crate::RunError::User(vec![npr_diag::Diagnostic::error(
+                npr_diag::codes::BAD_FILTER,
                 format!(
                     "style \"{}\" is an art-map filter: it runs on a texture level, not on a scene",
                     program.manifest.style
@@ -243,7 +243,7 @@ impl StyleRuntime {
     }
 
     /// The style's manifest (passes, targets, parameters, device needs).
-    pub fn manifest(&self) -> &abi::manifest::Manifest {
+    pub fn manifest(&self) -> &npr_abi::manifest::Manifest {
         &self.program.manifest
     }
 
@@ -268,14 +268,14 @@ impl StyleRuntime {
     /// geometry at t = 0.
     ///
     /// ```
-    /// use runner::embed::{Instance, StyleRuntime};
-    /// use runner::scene::{ocean::Ocean, patches::PatchSpec, primitives, Primitive};
+    /// use npr_runner::embed::{Instance, StyleRuntime};
+    /// use npr_runner::scene::{ocean::Ocean, patches::PatchSpec, primitives, Primitive};
     ///
     /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
-    /// let mut sources = diag::SourceMap::new();
-    /// let compiled = compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    /// let mut sources = npr_diag::SourceMap::new();
+    /// let compiled = npr_compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
     ///     .map_err(|e| format!("{e:?}"))?;
-    /// let gpu = runner::Gpu::headless()?;
+    /// let gpu = npr_runner::Gpu::headless()?;
     /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
     ///
     /// // A small sea: every frame draws its waves at the frame's `time_s`.
@@ -365,14 +365,14 @@ impl StyleRuntime {
     /// handle (a scene change, which restarts the history).
     ///
     /// ```
-    /// use runner::embed::{Deformed, StyleRuntime};
-    /// use runner::scene::primitives;
+    /// use npr_runner::embed::{Deformed, StyleRuntime};
+    /// use npr_runner::scene::primitives;
     ///
     /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
-    /// let mut sources = diag::SourceMap::new();
-    /// let compiled = compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    /// let mut sources = npr_diag::SourceMap::new();
+    /// let compiled = npr_compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
     ///     .map_err(|e| format!("{e:?}"))?;
-    /// let gpu = runner::Gpu::headless()?;
+    /// let gpu = npr_runner::Gpu::headless()?;
     /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
     /// let ball = runtime.add_mesh(primitives::sphere(1.0, 16, 8));
     ///

@@ -78,7 +78,7 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         params: instance.params.clone(),
         param_spans: BTreeMap::new(),
         textures: instance.images.clone(),
-        mesh_span: diag::Span::default(),
+        mesh_span: npr_diag::Span::default(),
         time_varying: entry.extras.time_varying,
         casts_shadows: instance.casts_shadows,
         spin: glam::Vec3::ZERO,

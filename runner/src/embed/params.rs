@@ -1,13 +1,13 @@
 //! Style parameters set by name at run time ([`StyleRuntime::set_param`]),
 //! read and typed from the manifest's parameter metadata by the rule
-//! `--set` uses (`abi::param_literal::read_literal`, then
-//! `abi::param_value::type_value`): one definition, in the ABI.
+//! `--set` uses (`npr_abi::param_literal::read_literal`, then
+//! `npr_abi::param_value::type_value`): one definition, in the ABI.
 
 use super::{EmbedError, StyleRuntime};
-use abi::manifest::{ParamBinding, ParamManifest};
-use abi::param_literal::{did_you_mean, read_literal, SettingOrigin};
-use abi::param_value::{format_literal, type_value, ParamShape};
-use diag::{codes, Diagnostic};
+use npr_abi::manifest::{ParamBinding, ParamManifest};
+use npr_abi::param_literal::{did_you_mean, read_literal, SettingOrigin};
+use npr_abi::param_value::{format_literal, type_value, ParamShape};
+use npr_diag::{codes, Diagnostic};
 
 /// A parameter the host can set: what [`StyleRuntime::params`] lists.
 #[derive(Debug, Clone, PartialEq)]

@@ -14,8 +14,8 @@ use std::sync::Arc;
 
 /// E0405, as a scene's bad `patches` or `blend_rings` is.
 fn refuse(message: String, help: &str) -> EmbedError {
-    EmbedError::from(crate::RunError::User(vec![diag::Diagnostic::error(
-        diag::codes::BAD_SCENE,
+    EmbedError::from(crate::RunError::User(vec![npr_diag::Diagnostic::error(
+        npr_diag::codes::BAD_SCENE,
         message,
     )
     .with_help(help.to_string())]))

@@ -9,7 +9,7 @@
 
 use super::{EmbedError, Target};
 use crate::gpu_count::{Create, CreateView};
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 /// Copies a texel: in side-by-side targets the right eye's fragments are
 /// `x ≥ eye width`, so `x mod width` finds the texel in both halves.

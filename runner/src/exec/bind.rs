@@ -10,7 +10,7 @@ use crate::gpu_count::{Create, CreateView};
 use crate::scene::Scene;
 use crate::textures::{GpuTexture, ObjectTextures};
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 
 /// Every binding is visible to every stage a pass kind has (render and image
 /// passes: vertex and fragment; compute passes: compute).

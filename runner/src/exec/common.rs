@@ -10,8 +10,8 @@ use super::meshes::GpuMesh;
 use super::resources::{wgpu_format, SizedPass};
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::formats::HalfRounding;
-use abi::manifest::*;
+use npr_abi::formats::HalfRounding;
+use npr_abi::manifest::*;
 
 /// What a pass may read when it is recorded, besides its own state and its
 /// [`SizedPass`]: the scene's meshes and the group 1 shared by passes
@@ -63,8 +63,8 @@ pub(super) fn clear_color(pass: &PassManifest) -> wgpu::Color {
 /// Begin a render pass over `sized`'s colour views (cleared to `clear`) and
 /// the depth attachment `depth` with its load and store operations, if any.
 /// The most colour attachments a pass has: the compiler refuses a pass
-/// writing more targets (`diag::limits`).
-const MAX_COLOR_ATTACHMENTS: usize = diag::limits::MAX_TARGETS_PER_PASS;
+/// writing more targets (`npr_diag::limits`).
+const MAX_COLOR_ATTACHMENTS: usize = npr_diag::limits::MAX_TARGETS_PER_PASS;
 
 pub(super) fn begin_render_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
@@ -177,7 +177,7 @@ impl PassShader<'_> {
 
 /// The pipeline-overridable constants `pass`'s shader declares: the device's
 /// 16-bit float store rounding when a fused read repeats such a store
-/// (`abi::formats::HALF_ROUNDING_OVERRIDE`). A pass that needs it without a
+/// (`npr_abi::formats::HALF_ROUNDING_OVERRIDE`). A pass that needs it without a
 /// measured rounding is an internal error, never a guess.
 pub(super) fn pipeline_constants(
     pass: &PassManifest,
@@ -192,7 +192,10 @@ pub(super) fn pipeline_constants(
             pass.name
         ))
     })?;
-    Ok(vec![(abi::formats::HALF_ROUNDING_OVERRIDE, rounding.override_value())])
+    Ok(vec![(
+        npr_abi::formats::HALF_ROUNDING_OVERRIDE,
+        rounding.override_value(),
+    )])
 }
 
 /// The render pipeline of `pass` (its WGSL, its outputs' formats and blend

@@ -19,7 +19,7 @@ use super::resources::SizedPass;
 use super::values::PassBuffers;
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 pub(super) struct ComputePassExec {

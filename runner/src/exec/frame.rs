@@ -9,8 +9,8 @@ use super::{objects, Renderer};
 use crate::scene::CameraPose;
 use crate::scene::Scene;
 use crate::{animation, RunError};
-use abi::FrameBlock;
 use glam::{Mat4, Vec3};
+use npr_abi::FrameBlock;
 
 /// Where and when to render.
 #[derive(Debug, Clone, Copy)]
@@ -186,7 +186,7 @@ impl CameraMatrices {
 }
 
 impl Renderer {
-    /// The `Frame` uniform block of `eye` (`abi::FrameBlock`, `struct Frame`
+    /// The `Frame` uniform block of `eye` (`npr_abi::FrameBlock`, `struct Frame`
     /// in WGSL), from the camera's matrices ([`CameraMatrices::update`]d for
     /// `spec`) and the light camera.
     fn frame_block(

@@ -5,7 +5,7 @@ use super::bind;
 use super::common::{self, Timestamps};
 use super::resources::SizedPass;
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 
 pub(super) struct ImagePassExec {
     name: String,

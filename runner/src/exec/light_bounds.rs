@@ -14,8 +14,8 @@
 //! equal in value (a unit test compares them).
 
 use crate::scene::{union_bounds, Mesh, Object, Scene, EMPTY_BOUNDS};
-use abi::manifest::*;
 use glam::{Mat4, Vec3, Vec4};
+use npr_abi::manifest::*;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
@@ -241,8 +241,8 @@ mod tests {
                     .to_string()
             }
         };
-        let mut sources = diag::SourceMap::new();
-        compiler::compile_source(
+        let mut sources = npr_diag::SourceMap::new();
+        npr_compiler::compile_source(
             "b.npr",
             &source,
             std::path::Path::new("."),

@@ -6,7 +6,7 @@
 //! the eye, into that slot's buffers (grown, never shrunk). `encode` then
 //! draws them with the compiled shader into the pass's targets. With a
 //! depth test the shader reads the kept depth as group 1
-//! (`abi::lines::LINE_DEPTH_WGSL`) and tests each vertex's edge point; the
+//! (`npr_abi::lines::LINE_DEPTH_WGSL`) and tests each vertex's edge point; the
 //! pipeline has no depth attachment.
 
 use super::bind;
@@ -18,11 +18,11 @@ use crate::lines::draw::{vertices, DepthBias};
 use crate::lines::objects::line_objects;
 use crate::lines::strip::LineStyle;
 use crate::RunError;
-use abi::lines::{
+use glam::{DMat4, DVec2, DVec3};
+use npr_abi::lines::{
     LineEdges, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX,
 };
-use abi::manifest::*;
-use glam::{DMat4, DVec2, DVec3};
+use npr_abi::manifest::*;
 
 /// One eye slot's strips on the GPU.
 struct SlotGeometry {
@@ -172,7 +172,7 @@ impl LinesPassExec {
     /// The strips' shape at the frame's time. Settings animated past the
     /// ranges typecheck enforces on constants are held at their ends.
     fn style(&self, frame: &LinesFrame) -> Result<LineStyle, RunError> {
-        let eval = |name: &str, s: &abi::lines::LineScalar| {
+        let eval = |name: &str, s: &npr_abi::lines::LineScalar| {
             s.eval(frame.time_s, |p| {
                 crate::animation::scalar_at(frame.manifest, p, frame.time_s, frame.height)
             })
@@ -231,7 +231,7 @@ impl LinesPassExec {
             // Grown to the next power of two of twice what this frame needs,
             // so a changing view (more silhouettes, longer wavy strips)
             // seldom reallocates: the one GPU allocation a frame after the
-            // first may make (`runner::embed` docs).
+            // first may make (`npr_runner::embed` docs).
             let buffer = |label: &str, bytes: usize, usage: wgpu::BufferUsages| {
                 device.make_buffer(&wgpu::BufferDescriptor {
                     label: Some(label),

@@ -10,7 +10,7 @@
 use crate::gpu_count::Create;
 use crate::scene::{Mesh, Scene};
 use crate::RunError;
-use abi::manifest::Attribute;
+use npr_abi::manifest::Attribute;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -300,8 +300,8 @@ fn shares_buffers(object: &crate::scene::Object) -> bool {
 /// Whether `object`'s (new) mesh can be written over `gpu`'s buffers.
 fn fits(object: &crate::scene::Object, gpu: &GpuMesh) -> Result<(), RunError> {
     let refuse = |why: String| {
-        RunError::User(vec![diag::Diagnostic::error(
-            diag::codes::BAD_SCENE,
+        RunError::User(vec![npr_diag::Diagnostic::error(
+            npr_diag::codes::BAD_SCENE,
             format!("object `{}` was given another mesh: {why}", object.name),
         )
         .with_help(
@@ -331,8 +331,8 @@ fn fits(object: &crate::scene::Object, gpu: &GpuMesh) -> Result<(), RunError> {
 
 /// Objects that share one mesh's buffers were given different meshes.
 fn shared_apart(first: &str, other: &str) -> RunError {
-    RunError::User(vec![diag::Diagnostic::error(
-        diag::codes::BAD_SCENE,
+    RunError::User(vec![npr_diag::Diagnostic::error(
+        npr_diag::codes::BAD_SCENE,
         format!("objects `{first}` and `{other}` drew one mesh and were given different ones"),
     )
     .with_help(

@@ -64,12 +64,12 @@ pub use state::{FrameTransforms, RendererState, StateBlock, StateKind};
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture};
 use crate::{readback, RunError};
-use abi::manifest::*;
 use common::{EncodeContext, Timestamps};
+use npr_abi::manifest::*;
 use pass::PassExec;
 
-/// The largest image (`--size`): `diag::limits`, where every limit is listed.
-pub use diag::limits::MAX_OUTPUT_SIZE;
+/// The largest image (`--size`): `npr_diag::limits`, where every limit is listed.
+pub use npr_diag::limits::MAX_OUTPUT_SIZE;
 
 pub struct Renderer {
     /// Clones of the caller's handles (wgpu's are reference-counted), so a
@@ -142,8 +142,8 @@ impl Renderer {
         scene: &Scene,
     ) -> Result<Renderer, RunError> {
         if program.manifest.validate_filter().is_ok() {
-            return Err(RunError::User(vec![diag::Diagnostic::error(
-                diag::codes::BAD_FILTER,
+            return Err(RunError::User(vec![npr_diag::Diagnostic::error(
+                npr_diag::codes::BAD_FILTER,
                 format!(
                     "style \"{}\" is an art-map filter: it runs on a texture level, not on a scene",
                     program.manifest.style
@@ -212,7 +212,7 @@ impl Renderer {
         if !diags.is_empty() {
             return Err(RunError::User(diags));
         }
-        let targets: Vec<(String, abi::Format)> = program
+        let targets: Vec<(String, npr_abi::Format)> = program
             .manifest
             .targets
             .iter()
@@ -391,8 +391,8 @@ impl Renderer {
             )));
         }
         if scene.objects.len() != self.scene_gpu.meshes.len() {
-            return Err(RunError::User(vec![diag::Diagnostic::error(
-                diag::codes::BAD_SCENE,
+            return Err(RunError::User(vec![npr_diag::Diagnostic::error(
+                npr_diag::codes::BAD_SCENE,
                 format!(
                     "the scene has {} object(s), the renderer was built for {}",
                     scene.objects.len(),

@@ -7,9 +7,9 @@
 
 use crate::scene::Scene;
 use crate::{animation, RunError};
-use abi::manifest::*;
-use abi::ObjectHead;
 use glam::Mat4;
+use npr_abi::manifest::*;
+use npr_abi::ObjectHead;
 
 /// Which per-object params an object block writes and the params region
 /// of an object that binds none, found once per renderer (a frame then

@@ -16,8 +16,8 @@ use super::render_pass::{RenderPassExec, RenderScene};
 use super::resources::SizedPass;
 use super::tiled_pass::{TiledOutputs, TiledPassExec};
 use crate::RunError;
-use abi::formats::HalfRounding;
-use abi::manifest::*;
+use npr_abi::formats::HalfRounding;
+use npr_abi::manifest::*;
 
 pub(super) enum PassExec {
     /// `render(tag)`: draws the scene's objects (group 1: the object block).

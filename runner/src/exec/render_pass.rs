@@ -20,7 +20,7 @@ use super::meshes::attribute_format;
 use super::resources::SizedPass;
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 
 pub(super) struct RenderPassExec {
     name: String,

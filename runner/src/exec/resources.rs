@@ -15,8 +15,8 @@
 
 use super::Renderer;
 use crate::gpu_count::{Create, CreateView};
-use abi::manifest::{DepthMode, PassKindManifest};
-use abi::Format;
+use npr_abi::manifest::{DepthMode, PassKindManifest};
+use npr_abi::Format;
 use std::collections::BTreeMap;
 
 /// Size of a target at `scale` of the output: at least 1 px, rounded to nearest.

@@ -3,10 +3,10 @@
 //! texture params (E0405).
 
 use crate::scene::Scene;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 
 /// E0403 for every object that lacks a vertex attribute the style reads.
-pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<diag::Diagnostic> {
+pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<npr_diag::Diagnostic> {
     let required: Vec<crate::scene::Attribute> = manifest
         .scene_attributes
         .iter()
@@ -30,8 +30,8 @@ pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<diag::Diagnostic> 
 /// texture param of the style, or a number or colour to one that is. Names
 /// the style does not declare at all are left alone, as for numeric params
 /// (one scene may serve several styles).
-pub fn check_texture_bindings(manifest: &Manifest, scene: &Scene) -> Vec<diag::Diagnostic> {
-    use diag::{codes, Diagnostic};
+pub fn check_texture_bindings(manifest: &Manifest, scene: &Scene) -> Vec<npr_diag::Diagnostic> {
+    use npr_diag::{codes, Diagnostic};
     let mut diags = Vec::new();
     let is_object_texture = |name: &str| manifest.textures.iter().any(|t| t.per_object && t.name == name);
     for o in &scene.objects {

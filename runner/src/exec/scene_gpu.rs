@@ -12,7 +12,7 @@ use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture, ObjectImageKey};
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 use std::collections::HashMap;
 
 /// Everything a renderer holds for one scene's objects.

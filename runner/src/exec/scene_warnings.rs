@@ -11,9 +11,9 @@
 //! right, the style just does not need it here.
 
 use crate::scene::Scene;
-use abi::manifest::{Manifest, ParamBinding};
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
+use npr_abi::manifest::{Manifest, ParamBinding};
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
 
 /// W0401 for every binding of every object whose name is no per-object
 /// param or per-object texture of `manifest`.

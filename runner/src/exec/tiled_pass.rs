@@ -9,7 +9,7 @@ use super::common::{PassShader, Timestamps};
 use super::resources::{wgpu_format, SizedPass};
 use crate::gpu_count::Create;
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 
 pub(super) struct TiledPassExec {
     name: String,

@@ -6,7 +6,7 @@
 //! attributes one after the other (so each stage is one dispatch over all
 //! members), its partials buffer (one `vec4` per value per element
 //! workgroup) and its dispatch uniform; for a pass over pixels, partials
-//! per element workgroup per object (`abi::manifest::pixel_workgroups` of
+//! per element workgroup per object (`npr_abi::manifest::pixel_workgroups` of
 //! them, which depends on the ID target's size: the dispatch uniform is
 //! rewritten on every new size). Made with each scene; the value buffers
 //! are zeroed again whenever the history resets (a new size,
@@ -18,7 +18,7 @@ use super::meshes::{attribute_format, GpuMesh};
 use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::RunError;
-use abi::manifest::*;
+use npr_abi::manifest::*;
 use std::collections::BTreeMap;
 
 /// Most objects one compute pass runs over (one object-stage workgroup each,
@@ -94,7 +94,7 @@ fn attribute_data(mesh: &crate::scene::Mesh, a: Attribute) -> Option<&[u8]> {
         Attribute::Normal => bytemuck::cast_slice(&mesh.normals),
         Attribute::Uv => bytemuck::cast_slice(mesh.uvs.as_ref()?),
         Attribute::Tangent => bytemuck::cast_slice(mesh.tangents.as_ref()?),
-        // `abi::validate` refuses it in compute passes.
+        // `npr_abi::validate` refuses it in compute passes.
         Attribute::PatchWeight => return None,
     })
 }

@@ -23,7 +23,7 @@
 
 use super::strip::Strips;
 
-pub use abi::lines::LineVertex;
+pub use npr_abi::lines::LineVertex;
 
 /// How strip vertices are pulled towards the eye before the depth test
 /// (`bias: N px`; a bias in NDC depth, `bias: 0.001`, is the shader's).

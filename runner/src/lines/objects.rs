@@ -68,10 +68,10 @@ mod tests {
 
     fn scene(object: &str) -> Scene {
         let text = format!("[camera]\nposition = [0.0, 3.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\n\n[[object]]\n{object}\n");
-        let mut sources = diag::SourceMap::new();
+        let mut sources = npr_diag::SourceMap::new();
         let file = sources.add("patched.toml", text.clone());
         crate::scene::parse_scene(&text, file, std::path::Path::new("."))
-            .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+            .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
     }
 
     /// Boundary and crease edges (at 40°) over the surfaces `line_objects`

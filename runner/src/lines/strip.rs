@@ -250,7 +250,7 @@ fn backbone(screen: &[(DVec2, DVec2)], closed: bool, style: &LineStyle) -> Vec<B
 fn push_strip(strips: &mut Strips, backbone: &[BackbonePoint], closed: bool, style: &LineStyle) {
     let n = backbone.len();
     let length = backbone[n - 1].s;
-    let taper = style.taper.clamp(0.0, abi::lines::MAX_TAPER) * length;
+    let taper = style.taper.clamp(0.0, npr_abi::lines::MAX_TAPER) * length;
     let first = strips.vertices.len() as u32;
     for i in 0..n {
         let prev = if i == 0 {

@@ -3,7 +3,7 @@
 
 use super::mesh::Attribute;
 use super::Scene;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::path::Path;
 
 impl Scene {

@@ -3,9 +3,9 @@
 
 use super::geometry;
 
-/// The most triangles one mesh (file or primitive) may have: `diag::limits`,
+/// The most triangles one mesh (file or primitive) may have: `npr_diag::limits`,
 /// where every limit is listed.
-pub use diag::limits::MAX_TRIANGLES;
+pub use npr_diag::limits::MAX_TRIANGLES;
 
 /// An indexed triangle mesh. All vertex arrays have one entry per vertex.
 ///
@@ -35,7 +35,7 @@ pub struct Mesh {
 
 /// A vertex attribute a style may require of every mesh in the scene: the
 /// manifest's (one definition, in the ABI).
-pub use abi::Attribute;
+pub use npr_abi::Attribute;
 
 impl Mesh {
     pub fn vertex_count(&self) -> usize {

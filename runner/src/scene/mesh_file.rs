@@ -4,11 +4,11 @@
 
 use super::mesh::{Mesh, MAX_TRIANGLES};
 use super::{gltf_file, obj_file};
-use diag::codes;
+use npr_diag::codes;
 use std::path::Path;
 
 /// Why a mesh file could not be used. The scene parser attaches the span of
-/// the `mesh = "..."` string and turns this into a [`diag::Diagnostic`].
+/// the `mesh = "..."` string and turns this into a [`npr_diag::Diagnostic`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshLoadError {
     /// [`codes::UNREADABLE_MESH`] or [`codes::LIMIT_EXCEEDED`].
@@ -65,7 +65,7 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
     let base_dir = path.parent().unwrap_or(Path::new("."));
     // A reader that panics on a malformed file is an error about the file
     // (an expected panic: `npr` prints the error alone).
-    let parsed = diag::panics::catch(|| match extension.as_str() {
+    let parsed = npr_diag::panics::catch(|| match extension.as_str() {
         "obj" => obj_file::parse_obj(&bytes, &source),
         _ => gltf_file::parse_gltf(&bytes, base_dir, &source),
     });

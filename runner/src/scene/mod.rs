@@ -103,7 +103,7 @@
 //!
 //! # Limits and errors
 //!
-//! Every problem is a [`diag::Diagnostic`] pointing into the scene file, and
+//! Every problem is a [`npr_diag::Diagnostic`] pointing into the scene file, and
 //! as many are collected as the file allows: malformed TOML, unknown or
 //! mistyped fields and bad values are E0405 (`BAD_SCENE`); a missing,
 //! unreadable or unsupported mesh file E0402 (`UNREADABLE_MESH`); a mesh or
@@ -147,8 +147,8 @@ pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
 pub use mesh_file::{load_mesh_file, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
 
-use diag::limits::MAX_SCENE_BYTES;
-use diag::{codes, Diagnostic, FileId, SourceMap, Span};
+use npr_diag::limits::MAX_SCENE_BYTES;
+use npr_diag::{codes, Diagnostic, FileId, SourceMap, Span};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -322,8 +322,8 @@ impl Scene {
 impl Scene {
     /// What the compiler may know of this scene (its objects' tags);
     /// `name` names it in the compile report.
-    pub fn summary(&self, name: &str) -> abi::SceneSummary {
-        abi::SceneSummary {
+    pub fn summary(&self, name: &str) -> npr_abi::SceneSummary {
+        npr_abi::SceneSummary {
             tags: self.objects.iter().flat_map(|o| o.tags.iter().cloned()).collect(),
             name: name.to_string(),
         }
@@ -364,7 +364,7 @@ pub fn load_scene(path: &Path, sources: &mut SourceMap) -> Result<Scene, Vec<Dia
 pub fn load_scene_in(
     path: &Path,
     sources: &mut SourceMap,
-    paths: Option<&diag::paths::PathPolicy>,
+    paths: Option<&npr_diag::paths::PathPolicy>,
 ) -> Result<Scene, Vec<Diagnostic>> {
     let bytes = read_bounded(path).map_err(|err| {
         vec![Diagnostic::error(
@@ -376,7 +376,7 @@ pub fn load_scene_in(
     if bytes.len() > MAX_SCENE_BYTES {
         return Err(vec![too_large(sources, path, &bytes)]);
     }
-    let (file, text) = diag::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
+    let (file, text) = npr_diag::text::add_utf8(sources, &path.display().to_string(), bytes).map_err(|d| vec![d])?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
     parse::parse_scene(&text, file, base_dir, paths)
 }

@@ -9,7 +9,7 @@ use super::parse_camera::{parse_camera, parse_light};
 use super::parse_object::{parse_object, MeshCache, ObjectDecl};
 use super::toml_fields::{Fields, Report};
 use super::Scene;
-use diag::{codes, Diagnostic, FileId, Span};
+use npr_diag::{codes, Diagnostic, FileId, Span};
 use std::collections::HashMap;
 use std::path::Path;
 use toml::de::DeTable;
@@ -21,7 +21,7 @@ pub fn parse_scene(
     text: &str,
     file: FileId,
     base_dir: &Path,
-    paths: Option<&diag::paths::PathPolicy>,
+    paths: Option<&npr_diag::paths::PathPolicy>,
 ) -> Result<Scene, Vec<Diagnostic>> {
     let document = DeTable::parse(text).map_err(|err| vec![syntax_error(&err, file, text)])?;
     let mut report = Report::for_scene(file, paths.cloned());

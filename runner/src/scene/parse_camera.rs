@@ -3,8 +3,8 @@
 use super::camera::{Camera, CameraKey};
 use super::light::Light;
 use super::toml_fields::{At, Fields, Report};
-use diag::Span;
 use glam::Vec3;
+use npr_diag::Span;
 
 const DEFAULT_FOV_DEG: f64 = 40.0;
 const DEFAULT_NEAR: f64 = 0.1;
@@ -189,8 +189,8 @@ fn check_distinct_times(keys: &[At<CameraKey>], report: &mut Report) {
             .find(|earlier| earlier.value.time_s == key.value.time_s)
         {
             report.push(
-                diag::Diagnostic::error(
-                    diag::codes::BAD_SCENE,
+                npr_diag::Diagnostic::error(
+                    npr_diag::codes::BAD_SCENE,
                     format!("two camera keys at time {}", key.value.time_s),
                 )
                 .with_primary(key.span, "second key at this time")

@@ -8,8 +8,8 @@ use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::{Object, TextureBinding};
-use diag::{Diagnostic, Span};
 use glam::{Mat4, Quat, Vec3};
+use npr_diag::{Diagnostic, Span};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -118,7 +118,7 @@ fn read_mesh(
         (Some(file), Some(primitive_span)) => {
             report.push(
                 Diagnostic::error(
-                    diag::codes::BAD_SCENE,
+                    npr_diag::codes::BAD_SCENE,
                     format!("{} has both `mesh` and `primitive`", fields.context()),
                 )
                 .with_primary(primitive_span, "second shape")
@@ -329,7 +329,7 @@ fn texture_value(
     if !resolved.is_file() {
         report.diagnostics.push(
             Diagnostic::error(
-                diag::codes::MISSING_TEXTURE,
+                npr_diag::codes::MISSING_TEXTURE,
                 format!("texture file `{path}` for `{}` not found", name.value),
             )
             .with_primary(span, format!("looked for {}", resolved.display()))

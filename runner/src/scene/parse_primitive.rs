@@ -5,8 +5,8 @@ use super::mesh::MAX_TRIANGLES;
 use super::ocean::{Ocean, MAX_CELLS, MAX_DRIFT, MAX_MODES, MAX_TILES};
 use super::primitives::{Primitive, KINDS, MAX_SEGMENTS};
 use super::toml_fields::{expect_numbers, list, At, Fields, Report};
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic};
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic};
 
 /// Reads a primitive table. `None` after reporting what is wrong.
 pub fn parse_primitive(mut fields: Fields, report: &mut Report) -> Option<Primitive> {

@@ -8,9 +8,9 @@
 //! (wrong types, bad values and unknown keys together) instead of stopping at
 //! the first, and so that every value keeps its byte span.
 
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, FileId, Span};
 use glam::Vec3;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, FileId, Span};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
@@ -28,13 +28,13 @@ pub struct Report {
     /// ([`Report::for_scene`]), or another file format's own.
     pub code: &'static str,
     pub diagnostics: Vec<Diagnostic>,
-    /// Which files the scene may name (`diag::paths`); `None` reads any.
-    pub paths: Option<diag::paths::PathPolicy>,
+    /// Which files the scene may name (`npr_diag::paths`); `None` reads any.
+    pub paths: Option<npr_diag::paths::PathPolicy>,
 }
 
 impl Report {
     /// A report on the scene file `file`, read under `paths`.
-    pub fn for_scene(file: FileId, paths: Option<diag::paths::PathPolicy>) -> Report {
+    pub fn for_scene(file: FileId, paths: Option<npr_diag::paths::PathPolicy>) -> Report {
         Report {
             file,
             code: codes::BAD_SCENE,

@@ -5,8 +5,8 @@
 // Each test binary compiles this module and uses a part of it.
 #![allow(dead_code)]
 
-use runner::embed::{EmbedError, Frame, StyleRuntime, Target};
-use runner::{Gpu, TargetImage};
+use npr_runner::embed::{EmbedError, Frame, StyleRuntime, Target};
+use npr_runner::{Gpu, TargetImage};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -47,13 +47,13 @@ pub fn host_target(
 
 /// The host's Rgba8Unorm `texture`, read back at its size (waits for the GPU).
 pub fn read_host(texture: &wgpu::Texture) -> TargetImage {
-    runner::readback::read_texture(
+    npr_runner::readback::read_texture(
         &gpu().device,
         &gpu().queue,
         texture,
         texture.width(),
         texture.height(),
-        abi::Format::Rgba8unorm,
+        npr_abi::Format::Rgba8unorm,
         "host",
     )
     .unwrap_or_else(|e| panic!("read back the host's texture: {e}"))
@@ -77,15 +77,15 @@ pub fn examples() -> PathBuf {
 /// Compiles `examples/{example}` with its params kept as uniforms (a host
 /// sets them at run time); a compile error fails the test with the
 /// rendered diagnostic.
-pub fn compile(example: &str) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    let options = compiler::CompileOptions {
+pub fn compile(example: &str) -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    let options = npr_compiler::CompileOptions {
         keep_params: true,
         ..Default::default()
     };
-    match compiler::compile_file(&examples().join(example), &mut sources, &options) {
+    match npr_compiler::compile_file(&examples().join(example), &mut sources, &options) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
@@ -100,7 +100,7 @@ pub fn write_mismatch(folder: &str, name: &str, actual: &TargetImage, expected: 
         name: "diff".into(),
         width: actual.width,
         height: actual.height,
-        format: abi::Format::Rgba8unorm,
+        format: npr_abi::Format::Rgba8unorm,
         bytes: actual
             .bytes
             .chunks(4)
@@ -112,7 +112,7 @@ pub fn write_mismatch(folder: &str, name: &str, actual: &TargetImage, expected: 
             .collect(),
     };
     for (suffix, image) in [("actual", actual), ("expected", expected), ("diff", &diff)] {
-        runner::output::write_target(image, &dir.join(format!("{name}_{suffix}.png"))).expect("write image");
+        npr_runner::output::write_target(image, &dir.join(format!("{name}_{suffix}.png"))).expect("write image");
     }
     dir
 }

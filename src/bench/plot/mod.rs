@@ -15,7 +15,7 @@ mod draw;
 pub mod figures;
 
 use crate::printer::Printer;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 use std::path::Path;
 
 /// Everything one `--plot` file shows.
@@ -169,15 +169,15 @@ pub fn check_path(path: &Path) -> Result<(), Diagnostic> {
 }
 
 /// Draws `figure` and writes it to `path` atomically (temp file, fsync,
-/// rename: `runner::output::write_atomic`); the exit code.
+/// rename: `npr_runner::output::write_atomic`); the exit code.
 pub fn write(figure: &Figure, path: &Path, printer: &Printer) -> Result<(), i32> {
     let svg = render_svg(figure).map_err(|e| {
         // Drawing numbers the bench produced cannot fail on the user's input.
         let d = Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}"));
-        printer.diagnostics(&[d], &diag::SourceMap::new());
+        printer.diagnostics(&[d], &npr_diag::SourceMap::new());
         crate::cli::EXIT_INTERNAL
     })?;
-    runner::output::write_atomic(path, svg.as_bytes())
+    npr_runner::output::write_atomic(path, svg.as_bytes())
         .map_err(|e| printer.fail(crate::printer::cannot_write(path, e)))?;
     eprintln!("plot written to {}", path.display());
     Ok(())

@@ -20,7 +20,7 @@
 //! ```
 //!
 //! The file is read from toml's spanned tree with the scene reader's field
-//! helpers (`runner::scene::toml_fields`), so every problem in it is an
+//! helpers (`npr_runner::scene::toml_fields`), so every problem in it is an
 //! E0407 that points at the key or value, all of them reported at once.
 //! `set` values are kept as the text `--set` would take: they are typed
 //! against the compiled style's parameters when the test runs. The values
@@ -28,8 +28,8 @@
 
 mod values;
 
-use diag::{codes, Diagnostic, FileId, SourceMap, Span};
-use runner::scene::toml_fields::{At, Fields, Report};
+use npr_diag::{codes, Diagnostic, FileId, SourceMap, Span};
+use npr_runner::scene::toml_fields::{At, Fields, Report};
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 use values::{flip_bound, per_pixel_bound, set_entries, variants};
@@ -183,7 +183,7 @@ pub fn read(path: &Path) -> Result<TestFile, (Vec<Diagnostic>, SourceMap)> {
             return Err((vec![d], sources));
         }
     };
-    let (file, text) = match diag::text::add_utf8(&mut sources, &path.display().to_string(), bytes) {
+    let (file, text) = match npr_diag::text::add_utf8(&mut sources, &path.display().to_string(), bytes) {
         Ok(read) => read,
         Err(d) => return Err((vec![d], sources)),
     };
@@ -230,7 +230,7 @@ fn check(path: &Path, file: FileId, text: &str, sources: SourceMap) -> Result<Te
 /// `/dev/zero` is refused rather than read for ever.
 fn read_bounded(path: &Path) -> Result<Vec<u8>, String> {
     use std::io::Read;
-    let limit = diag::limits::MAX_SCENE_BYTES;
+    let limit = npr_diag::limits::MAX_SCENE_BYTES;
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .and_then(|f| f.take(limit as u64 + 1).read_to_end(&mut bytes))
@@ -360,7 +360,7 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
                 size.span,
                 format!("size `{}` is larger than the limit", size.value),
                 "too large",
-                format!("an image is at most {0}x{0}", diag::limits::MAX_OUTPUT_SIZE),
+                format!("an image is at most {0}x{0}", npr_diag::limits::MAX_OUTPUT_SIZE),
             ),
             Err(why) => report.bad_scene(
                 size.span,
@@ -463,10 +463,10 @@ fn when(fields: &mut Fields, report: &mut Report) -> Option<WhenDecl> {
         return Some(WhenDecl::Time(t.value));
     }
     if let Some(f) = frame {
-        if f.value < 0 || f.value > i64::from(diag::limits::MAX_FRAMES) {
+        if f.value < 0 || f.value > i64::from(npr_diag::limits::MAX_FRAMES) {
             report.bad_scene(
                 f.span,
-                format!("frame {} is outside 0..{}", f.value, diag::limits::MAX_FRAMES),
+                format!("frame {} is outside 0..{}", f.value, npr_diag::limits::MAX_FRAMES),
                 "no such frame",
                 "frames count from 0",
             );
@@ -476,11 +476,11 @@ fn when(fields: &mut Fields, report: &mut Report) -> Option<WhenDecl> {
     }
     let f = frames?;
     match crate::args::parse_frames(&f.value) {
-        Ok((start, end)) if end - start <= diag::limits::MAX_FRAMES => Some(WhenDecl::Frames(start, end)),
+        Ok((start, end)) if end - start <= npr_diag::limits::MAX_FRAMES => Some(WhenDecl::Frames(start, end)),
         Ok(_) => {
             report.bad_scene(
                 f.span,
-                format!("`{}` is more than {} frames", f.value, diag::limits::MAX_FRAMES),
+                format!("`{}` is more than {} frames", f.value, npr_diag::limits::MAX_FRAMES),
                 "too many frames",
                 "test a shorter range",
             );
@@ -517,7 +517,7 @@ fn merge(
         );
         return None;
     };
-    let fps = own.fps.or(defaults.fps).unwrap_or(runner::FrameSpec::DEFAULT_FPS);
+    let fps = own.fps.or(defaults.fps).unwrap_or(npr_runner::FrameSpec::DEFAULT_FPS);
     let when = match own.when.or(defaults.when) {
         None => When::At { time_s: 0.0 },
         Some(WhenDecl::Time(time_s)) => When::At { time_s },

@@ -3,8 +3,8 @@
 //! with an E0407 at the value.
 
 use super::{FlipBound, PerPixelBound, Variant, PERCENTILES};
-use diag::Span;
-use runner::scene::toml_fields::{describe, At, Fields, Report};
+use npr_diag::Span;
+use npr_runner::scene::toml_fields::{describe, At, Fields, Report};
 use toml::de::DeValue;
 
 /// A set table's entries as `--set` texts (`set = { .. }`, a variant's table).

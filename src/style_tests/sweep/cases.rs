@@ -4,7 +4,7 @@
 //! and the scenes of the style's own tests, each at a small size.
 
 use crate::style_tests::declare::When;
-use runner::schedule::FrameRequest;
+use npr_runner::schedule::FrameRequest;
 use std::path::{Path, PathBuf};
 
 /// The size a sweep renders a style's own scenes at, and most hard
@@ -75,7 +75,7 @@ impl Case {
             FrameRequest::At { .. } => {}
             FrameRequest::Range { start, end } => args.extend(["--frames".into(), format!("{start}..{end}")]),
         }
-        if self.fps != runner::FrameSpec::DEFAULT_FPS {
+        if self.fps != npr_runner::FrameSpec::DEFAULT_FPS {
             args.extend(["--fps".into(), format!("{}", self.fps)]);
         }
         if self.eye != 0 {
@@ -119,7 +119,7 @@ const HARD_FILES: &[(&str, &str)] = &[
 pub fn write_hard_scenes(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     for (name, text) in HARD_FILES {
-        runner::output::write_atomic(&dir.join(name), text.as_bytes())?;
+        npr_runner::output::write_atomic(&dir.join(name), text.as_bytes())?;
     }
     Ok(())
 }
@@ -131,7 +131,7 @@ pub fn hard_cases(dir: &Path) -> Vec<Case> {
         scene: dir.join(file),
         size,
         request,
-        fps: runner::FrameSpec::DEFAULT_FPS,
+        fps: npr_runner::FrameSpec::DEFAULT_FPS,
         eye,
         check_blank: !matches!(label, "tiny_far" | "degenerate" | "1x1" | "3x7"),
     };

@@ -19,15 +19,15 @@ pub mod points;
 use super::checks;
 use super::run::{self, Failure, Frames, Outcome, Run, Settings, Status};
 use crate::cli::PathArgs;
-use abi::manifest::{ParamBinding, ParamManifest};
 use cases::Case;
-use compiler::front::param_values::{type_value, ParamShape, ValueKind};
-use compiler::ir::SettingOrigin;
-use compiler::{CompileError, CompileOptions};
-use diag::codes;
-use diag::{Diagnostic, SourceMap};
+use npr_abi::manifest::{ParamBinding, ParamManifest};
+use npr_compiler::front::param_values::{type_value, ParamShape, ValueKind};
+use npr_compiler::ir::SettingOrigin;
+use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::codes;
+use npr_diag::{Diagnostic, SourceMap};
+use npr_runner::scene::Scene;
 use points::Combination;
-use runner::scene::Scene;
 use std::path::Path;
 use std::time::Instant;
 
@@ -190,7 +190,7 @@ fn load_cases<'c>(style: &Path, cases: &'c [Case]) -> Result<Vec<(&'c Case, Scen
             let loaded = PathArgs::default()
                 .policy(style, Some(&case.scene))
                 .map_err(|d| vec![d])
-                .and_then(|policy| runner::scene::load_scene_in(&case.scene, &mut sources, Some(&policy)));
+                .and_then(|policy| npr_runner::scene::load_scene_in(&case.scene, &mut sources, Some(&policy)));
             match loaded {
                 Ok(scene) => Ok((case, scene, sources)),
                 Err(diagnostics) => Err(Stopped { diagnostics, sources }),
@@ -209,7 +209,7 @@ fn params(style: &Path, loaded: &[(&Case, Scene, SourceMap)]) -> Result<Vec<Para
             keep_params: true,
             ..options(style, case, scene, Vec::new())
         };
-        match compiler::compile_file(style, &mut sources, &opts) {
+        match npr_compiler::compile_file(style, &mut sources, &opts) {
             Ok(c) => {
                 return Ok(c
                     .manifest
@@ -236,12 +236,12 @@ fn params(style: &Path, loaded: &[(&Case, Scene, SourceMap)]) -> Result<Vec<Para
     }))
 }
 
-fn options(style: &Path, case: &Case, scene: &Scene, settings: Vec<compiler::ir::ParamSetting>) -> CompileOptions {
+fn options(style: &Path, case: &Case, scene: &Scene, settings: Vec<npr_compiler::ir::ParamSetting>) -> CompileOptions {
     CompileOptions {
         scene: Some(scene.summary(&case.scene.display().to_string())),
         paths: PathArgs::default().policy(style, Some(&case.scene)).ok(),
         settings,
-        schedule: compiler::schedule::Schedule::Naive,
+        schedule: npr_compiler::schedule::Schedule::Naive,
         ..Default::default()
     }
 }
@@ -273,7 +273,7 @@ pub fn run_sweep(style: &Path, cases: &[Case], settings: &Settings) -> Run {
     let messages = diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .map(|d| diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
+        .map(|d| npr_diag::diagnostic::render(std::slice::from_ref(d), &sources, false))
         .collect();
     Run {
         outcome: Outcome {
@@ -313,14 +313,14 @@ fn probe(
     let mut sources = base.clone();
     let sets: Vec<String> = combination.iter().map(|(n, v)| format!("{n}={v}")).collect();
     let given = crate::set_params::settings(&sets, &mut sources);
-    let compiled = match compiler::compile_file(style, &mut sources, &options(style, case, scene, given)) {
+    let compiled = match npr_compiler::compile_file(style, &mut sources, &options(style, case, scene, given)) {
         Ok(c) => c,
         Err(CompileError::User(d)) => return Probe::Error(headline(&d)),
         Err(CompileError::Internal(e)) => return Probe::Error(headline(&[e.to_diagnostic()])),
     };
     let program = compiled.program();
     let path_dependent = program.manifest.is_path_dependent();
-    let frames = runner::schedule::schedule(case.request, case.fps, path_dependent);
+    let frames = npr_runner::schedule::schedule(case.request, case.fps, path_dependent);
     let frames = Frames {
         size: case.size,
         eye: case.eye,
@@ -334,8 +334,8 @@ fn probe(
 /// its renderer (made again per render for a style that reads earlier
 /// frames, whose history must start empty).
 struct Uniforms {
-    compiled: Result<(abi::StyleProgram, bool), String>,
-    renderer: Option<runner::Renderer>,
+    compiled: Result<(npr_abi::StyleProgram, bool), String>,
+    renderer: Option<npr_runner::Renderer>,
     case: Case,
 }
 
@@ -346,7 +346,7 @@ impl Uniforms {
             keep_params: true,
             ..options(style, case, scene, Vec::new())
         };
-        let compiled = match compiler::compile_file(style, &mut sources, &opts) {
+        let compiled = match npr_compiler::compile_file(style, &mut sources, &opts) {
             Ok(c) => {
                 let program = c.program();
                 let path_dependent = program.manifest.is_path_dependent();
@@ -377,7 +377,7 @@ impl Uniforms {
         if self.renderer.is_none() || *path_dependent {
             match gpu
                 .watch
-                .check(runner::Renderer::new(&gpu.device, &gpu.queue, program, scene))
+                .check(npr_runner::Renderer::new(&gpu.device, &gpu.queue, program, scene))
             {
                 Ok(r) => self.renderer = Some(r),
                 Err(e) => return Probe::Error(headline(&e.diagnostics())),
@@ -404,7 +404,7 @@ impl Uniforms {
                 }
             }
         }
-        let frames = runner::schedule::schedule(self.case.request, self.case.fps, *path_dependent);
+        let frames = npr_runner::schedule::schedule(self.case.request, self.case.fps, *path_dependent);
         let frames = Frames {
             size: self.case.size,
             eye: self.case.eye,
@@ -417,7 +417,7 @@ impl Uniforms {
 }
 
 /// What a render showed: its non-finite targets and whether it is blank.
-fn observe(program: &abi::StyleProgram, rendered: Result<run::Rendered, runner::RunError>) -> Probe {
+fn observe(program: &npr_abi::StyleProgram, rendered: Result<run::Rendered, npr_runner::RunError>) -> Probe {
     match rendered {
         Ok(rendered) => Probe::Rendered {
             non_finite: run::non_finite_failures(program, &rendered.non_finite)
@@ -520,7 +520,7 @@ fn report(style: &Path, cases: &[Case], f: &Finding, kept: bool) -> Failure {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use runner::schedule::FrameRequest;
+    use npr_runner::schedule::FrameRequest;
 
     #[test]
     fn a_reproduction_is_one_command_line_a_shell_reads_back() {

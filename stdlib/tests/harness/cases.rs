@@ -1,4 +1,4 @@
-//! The generic GPU runner of the operators' data cases (`stdlib::ops::Case`):
+//! The generic GPU runner of the operators' data cases (`npr_stdlib::ops::Case`):
 //! each call is built from the operator's signature (a number argument is a
 //! slot of a storage buffer, read as the parameter's WGSL type; a uv is the
 //! pixel's; a texture is bound with its sampler), and every call runs in a
@@ -7,9 +7,9 @@
 //! the GPU sees.
 
 use super::{gpu, Lcg, TexIn};
-use stdlib::ops::{Arg, Case, OpDef, TexFormat, Tol, Val, Value};
-use stdlib::reference::ImageF64;
-use stdlib::{Operator, Ty};
+use npr_stdlib::ops::{Arg, Case, OpDef, TexFormat, Tol, Val, Value};
+use npr_stdlib::reference::ImageF64;
+use npr_stdlib::{Operator, Ty};
 
 /// The operator's WGSL with its snippets and (transitive) dependencies, as the emitter assembles it.
 pub fn with_deps(op: &Operator) -> String {
@@ -20,7 +20,7 @@ pub fn with_deps(op: &Operator) -> String {
             continue;
         }
         ops.push(o);
-        todo.extend(o.depends.iter().map(|d| stdlib::find(d).expect("dependency")));
+        todo.extend(o.depends.iter().map(|d| npr_stdlib::find(d).expect("dependency")));
     }
     let mut snippets: Vec<&str> = Vec::new();
     for o in &ops {
@@ -32,7 +32,7 @@ pub fn with_deps(op: &Operator) -> String {
     }
     let mut src: Vec<&str> = snippets
         .iter()
-        .map(|s| stdlib::snippets::find(s).expect("snippet"))
+        .map(|s| npr_stdlib::snippets::find(s).expect("snippet"))
         .collect();
     src.extend(ops.iter().rev().map(|o| o.wgsl));
     src.join("\n")

@@ -6,8 +6,8 @@
 
 pub mod cases;
 
+use npr_stdlib::reference::ImageF64;
 use std::sync::OnceLock;
-use stdlib::reference::ImageF64;
 use wgpu::util::DeviceExt;
 
 pub struct Gpu {
@@ -180,7 +180,7 @@ pub fn run(prelude: &str, body: &str, inputs: &[[f32; 4]], out_size: (u32, u32),
 pub fn op_wgsl(names: &[&str]) -> String {
     let mut snippets: Vec<&str> = Vec::new();
     for n in names {
-        for s in stdlib::find(n).expect("operator").snippets {
+        for s in npr_stdlib::find(n).expect("operator").snippets {
             if !snippets.contains(s) {
                 snippets.push(s);
             }
@@ -188,9 +188,9 @@ pub fn op_wgsl(names: &[&str]) -> String {
     }
     let mut src: Vec<&str> = snippets
         .iter()
-        .map(|s| stdlib::snippets::find(s).expect("snippet"))
+        .map(|s| npr_stdlib::snippets::find(s).expect("snippet"))
         .collect();
-    src.extend(names.iter().map(|n| stdlib::find(n).expect("operator").wgsl));
+    src.extend(names.iter().map(|n| npr_stdlib::find(n).expect("operator").wgsl));
     src.join("\n")
 }
 

@@ -1,6 +1,6 @@
 //! A compiled style as the page side (`tests/data/webgpu_check.js`) takes
 //! it: per pass its WGSL and its pipelines as WebGPU descriptors, built
-//! from the manifest alone (`abi::manifest::layout`: the bind group
+//! from the manifest alone (`npr_abi::manifest::layout`: the bind group
 //! layouts, vertex buffers and colour targets it implies; the depth and
 //! blend states of `DepthMode` and `Blend`), and the device the style asks
 //! for (`Manifest::required_features`, `required_limits`). This is what a
@@ -8,9 +8,9 @@
 //! pipelines checks the manifest/WGSL contract with an implementation
 //! that is not wgpu.
 
-use abi::manifest::layout::{self, BindingType, LayoutEntry, Visibility};
-use abi::manifest::*;
-use abi::StyleProgram;
+use npr_abi::manifest::layout::{self, BindingType, LayoutEntry, Visibility};
+use npr_abi::manifest::*;
+use npr_abi::StyleProgram;
 use serde_json::{json, Value};
 
 /// One style for `nprCheck`: `label` names it in failures.
@@ -66,7 +66,7 @@ fn pipelines(manifest: &Manifest, pass: &PassManifest) -> Vec<Value> {
         .collect();
     // The runner sets the measured rounding; any value builds the pipeline.
     let constants = if pass.device_half_rounding {
-        json!({ abi::formats::HALF_ROUNDING_OVERRIDE: 0 })
+        json!({ npr_abi::formats::HALF_ROUNDING_OVERRIDE: 0 })
     } else {
         json!({})
     };

@@ -8,7 +8,7 @@
 use super::uses::Uses;
 use super::Emitter;
 use crate::ir::*;
-use abi::manifest::{Binding, ParamBinding, Resource};
+use npr_abi::manifest::{Binding, ParamBinding, Resource};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -45,7 +45,7 @@ impl Emitter<'_> {
         };
         let mut next = 0u32;
         if uses_frame {
-            d.text.push_str(abi::FRAME_WGSL);
+            d.text.push_str(npr_abi::FRAME_WGSL);
             let _ = writeln!(d.text, "@group(0) @binding({next}) var<uniform> frame: Frame;");
             d.bind(next, Resource::FrameUniforms);
             next += 1;
@@ -132,14 +132,14 @@ impl Emitter<'_> {
     /// textures, so one bind group per object carries its uniforms and images.
     fn object_group(&self, d: &mut Declared, kind: &PassKind, uses: &Uses) {
         d.text.push_str("struct Object {\n");
-        d.text.push_str(abi::OBJECT_HEAD_WGSL);
+        d.text.push_str(npr_abi::OBJECT_HEAD_WGSL);
         self.param_fields(&mut d.text, ParamBinding::PerObject);
         d.text.push_str("}\n");
         if let PassKind::Compute { .. } = kind {
             // Every object's block at once, one stride-sized slot each; each
             // invocation copies its object's into `object`, so expressions
             // read `object` as in render passes.
-            let stride = abi::manifest::object_stride(self.alloc.object_uniform_size);
+            let stride = npr_abi::manifest::object_stride(self.alloc.object_uniform_size);
             let pad = (stride - self.alloc.object_uniform_size) / 16;
             d.text.push_str("struct NprObjectSlot {\n    o: Object,\n");
             if pad > 0 {
@@ -185,12 +185,12 @@ impl Emitter<'_> {
     }
 
     /// One `p_<name>: vec4<f32>` field per parameter bound as `which`; a
-    /// gradient's slots as one array (`abi::gradient`).
+    /// gradient's slots as one array (`npr_abi::gradient`).
     fn param_fields(&self, text: &mut String, which: ParamBinding) {
         for (i, b) in self.bindings.iter().enumerate() {
             if *b == which {
                 let p = &self.ir.params[i];
-                match abi::gradient::slots_of(&p.declared_type()) {
+                match npr_abi::gradient::slots_of(&p.declared_type()) {
                     1 => {
                         let _ = writeln!(text, "    p_{}: vec4<f32>,", p.name);
                     }

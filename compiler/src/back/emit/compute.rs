@@ -25,7 +25,9 @@ use super::expr::{slot_swizzle, to_slot};
 use super::helpers::UNIT_HELPER;
 use super::{EmittedPass, Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::{Attribute, ReduceOp, ELEMENTS_PER_INVOCATION, ELEMENT_WORKGROUP, OBJECT_WORKGROUP, SAMPLE_WORDS};
+use npr_abi::manifest::{
+    Attribute, ReduceOp, ELEMENTS_PER_INVOCATION, ELEMENT_WORKGROUP, OBJECT_WORKGROUP, SAMPLE_WORDS,
+};
 use std::fmt::Write;
 
 /// Entry points of compute passes (the manifest names them).

@@ -23,7 +23,7 @@
 use super::compute::{combine, identity, object_stage, reduce_ops, reduction_trees, LiveValue, ELEMENTS_ENTRY};
 use super::{Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::{ParamBinding, ELEMENT_WORKGROUP, PIXEL_TILE};
+use npr_abi::manifest::{ParamBinding, ELEMENT_WORKGROUP, PIXEL_TILE};
 use std::fmt::Write;
 
 /// Pixels per invocation (2 × 2, 16 apart, in a 32 × 32 tile).
@@ -215,7 +215,7 @@ fn {ELEMENTS_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocat
 /// One round over object `index` (a uniform expression): its pixels among
 /// the invocation's four reduced over the workgroup, folded into workgroup
 /// g's partial of it by invocation 0, and no longer pending.
-fn round(ops: &[abi::manifest::ReduceOp], identities: &[String], index: &str) -> String {
+fn round(ops: &[npr_abi::manifest::ReduceOp], identities: &[String], index: &str) -> String {
     let mut r = format!("            {{\n                let mine = pending == vec4<u32>({index});\n");
     for (k, op) in ops.iter().enumerate() {
         let pick = |px: u32| {

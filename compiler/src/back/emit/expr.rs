@@ -5,7 +5,7 @@
 
 use super::{Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::ParamBinding;
+use npr_abi::manifest::ParamBinding;
 
 /// What the expression emitter needs to know about the kind of the pass it
 /// emits for. Decided in one place, [`KindCtx::of`].
@@ -120,8 +120,8 @@ impl Emitter<'_> {
             ExprKind::Unary { op, operand } => {
                 let o = self.expr(*operand, ctx);
                 match op {
-                    dsl::ast::UnOp::Neg => format!("(-{o})"),
-                    dsl::ast::UnOp::Not => format!("(!{o})"),
+                    npr_dsl::ast::UnOp::Neg => format!("(-{o})"),
+                    npr_dsl::ast::UnOp::Not => format!("(!{o})"),
                 }
             }
             ExprKind::Binary { op, lhs, rhs } => {
@@ -164,12 +164,12 @@ impl Emitter<'_> {
                     }
                 }
                 Callee::Operator(i) => {
-                    let op = &stdlib::all()[*i as usize];
+                    let op = &npr_stdlib::all()[*i as usize];
                     let mut a = Vec::new();
                     for (p, x) in op.params.iter().zip(args) {
                         match p.ty {
-                            stdlib::Ty::Texture => a.push(Arg::Handle(self.handle(*x, ctx))),
-                            stdlib::Ty::SampledTexture => {
+                            npr_stdlib::Ty::Texture => a.push(Arg::Handle(self.handle(*x, ctx))),
+                            npr_stdlib::Ty::SampledTexture => {
                                 a.push(Arg::Handle(self.handle(*x, ctx)));
                                 a.push(Arg::Handle(self.sampler(*x, ctx)));
                             }

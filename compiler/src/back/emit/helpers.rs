@@ -1,5 +1,5 @@
 //! WGSL text every pass kind may include: the helper functions the emitter calls (`npr_load`, `npr_project`,
-//! `npr_project_dir`, `npr_unit`, `npr_ramp_*`; the `Frame` block is `abi::FRAME_WGSL`). Constants only; which module includes
+//! `npr_project_dir`, `npr_unit`, `npr_ramp_*`; the `Frame` block is `npr_abi::FRAME_WGSL`). Constants only; which module includes
 //! which is decided in `mod.rs` and the per-kind files.
 
 /// `project(p)` and `project_other_eye(p)`.
@@ -52,15 +52,15 @@ fn npr_project_dir(vp: mat4x4<f32>, world: vec4<f32>, dir: vec3<f32>, size: vec2
 ";
 
 /// `ramp(g, t)` of gradient param `name` kept live: the folded chain's
-/// rule (`front/resolve/gradient.rs`, `abi::gradient::ramp`) as a loop
+/// rule (`front/resolve/gradient.rs`, `npr_abi::gradient::ramp`) as a loop
 /// over the param's slots of the style block, in the layout
-/// `abi::gradient` defines. One function per gradient, reading
+/// `npr_abi::gradient` defines. One function per gradient, reading
 /// `params.p_<name>` by a dynamic index into the uniform (valid WGSL for
 /// naga and Tint), rather than taking the array: an array value is copied
 /// per call, and its type's comma would not split as a parameter list
 /// (`tiled/library.rs`).
 pub(super) fn ramp_helper(name: &str) -> String {
-    use abi::gradient::{COLOUR_SLOT, MAX_STOPS, POSITION_SLOT};
+    use npr_abi::gradient::{COLOUR_SLOT, MAX_STOPS, POSITION_SLOT};
     format!(
         "// Gradient `{name}` at t: slot 0 (count, constant), colours from slot {COLOUR_SLOT}, positions from
 // slot {POSITION_SLOT} four to a slot. r = c0, then per next stop r = mix(r, c_i, f), as the folded ramp.
@@ -97,10 +97,10 @@ fn npr_unit(v: vec3<f32>) -> vec3<f32> {
 ";
 
 /// `npr_round_f16(x)`: `x` rounded to binary16 as this device rounds a store
-/// into a 16-bit float target, as an f32 (`abi::formats::HalfRounding::round`
+/// into a 16-bit float target, as an f32 (`npr_abi::formats::HalfRounding::round`
 /// is the same definition in Rust). Vulkan lets a device round to nearest
 /// even or toward zero, so the mode is the pipeline-overridable constant
-/// `abi::formats::HALF_ROUNDING_OVERRIDE`, measured and set by the runner;
+/// `npr_abi::formats::HALF_ROUNDING_OVERRIDE`, measured and set by the runner;
 /// it has no default, so a pipeline without it fails to build.
 /// Bit arithmetic, because `pack2x16float` needs a capability naga does not
 /// grant every adapter (and rounds as it likes).
@@ -130,17 +130,17 @@ fn npr_round_f16(x: f32) -> f32 {{
     return select(rounded, past, abs(rounded) > 65504.0);
 }}
 ",
-        flag = abi::formats::HALF_ROUNDING_OVERRIDE
+        flag = npr_abi::formats::HALF_ROUNDING_OVERRIDE
     )
 }
 
 /// `npr_stored_<format>(v)`: `v` as a target of `format` would give it back
-/// (abi::formats::Storage), so that a pass fused into its reader reads what
+/// (npr_abi::formats::Storage), so that a pass fused into its reader reads what
 /// the target would have held: 16-bit floats by `npr_round_f16` per channel,
 /// 8-bit unorm by WGSL's `pack4x8unorm` / `unpack4x8unorm`
 /// (⌊255·saturate(x) + 0.5⌋ / 255).
-pub(super) fn stored_helper(format: abi::Format) -> String {
-    use abi::formats::Storage;
+pub(super) fn stored_helper(format: npr_abi::Format) -> String {
+    use npr_abi::formats::Storage;
     let n = format.channels();
     let ty = crate::ir::Ty::float_vec(n).wgsl();
     let body = match (format.storage(), n) {
@@ -178,6 +178,6 @@ pub(super) fn library_texts() -> Vec<String> {
     .to_vec();
     texts.push(round_f16_helper());
     texts.push(ramp_helper("g"));
-    texts.extend(abi::Format::ALL.iter().map(|(_, f)| stored_helper(*f)));
+    texts.extend(npr_abi::Format::ALL.iter().map(|(_, f)| stored_helper(*f)));
     texts
 }

@@ -1,11 +1,11 @@
 //! `lines` passes (Klein et al. 2000, §5): the vertex shader that passes the
-//! runner's strip vertices through (`abi::lines::LineVertex`, already in NDC
+//! runner's strip vertices through (`npr_abi::lines::LineVertex`, already in NDC
 //! with the view-space bias applied on the CPU) and writes the varyings a
 //! lines fragment has: `screen_uv`, `line.s` and `line.across`. A bias in
 //! window depth (`bias: 0.001`) is applied here, as render passes do.
 //!
 //! With `depth: test(pass)`, visibility is decided per vertex at the
-//! undisplaced edge point, against the kept depth (`abi::lines::
+//! undisplaced edge point, against the kept depth (`npr_abi::lines::
 //! LINE_DEPTH_WGSL`): the edge is visible where any texel of the 3×3 around
 //! it is at or behind the edge's (biased) depth. At a silhouette the texels
 //! outside the rim are farther (background or a farther surface), so the
@@ -43,9 +43,9 @@ fn npr_line_visible(edge_px: vec2<f32>, depth: f32) -> f32 {
 impl Emitter<'_> {
     pub(super) fn lines_vertex(&self, w: &mut String, lines: &LinesKind) {
         let tested = matches!(lines.depth, PassDepth::Test { .. });
-        w.push_str(abi::lines::LINE_VERTEX_WGSL);
+        w.push_str(npr_abi::lines::LINE_VERTEX_WGSL);
         if tested {
-            w.push_str(abi::lines::LINE_DEPTH_WGSL);
+            w.push_str(npr_abi::lines::LINE_DEPTH_WGSL);
             w.push('\n');
             w.push_str(VISIBILITY);
         }

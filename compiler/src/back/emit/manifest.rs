@@ -6,8 +6,8 @@ use crate::ir::*;
 use crate::mid::consteval::const_eval;
 use crate::mid::prune::Live;
 use crate::InternalError;
-use abi::manifest::*;
-use diag::SourceMap;
+use npr_abi::manifest::*;
+use npr_diag::SourceMap;
 
 #[allow(clippy::too_many_arguments)]
 pub fn build(
@@ -18,7 +18,7 @@ pub fn build(
     emitted: &[(PassId, EmittedPass)],
     sources: &SourceMap,
     source_name: &str,
-    filters: &std::collections::BTreeMap<String, abi::FilterProgram>,
+    filters: &std::collections::BTreeMap<String, npr_abi::FilterProgram>,
 ) -> Result<Manifest, InternalError> {
     let targets = alloc
         .targets
@@ -279,7 +279,7 @@ fn blend_modes(pass: &Pass, pid: PassId, alloc: &Allocation) -> Vec<Blend> {
 /// the tested pass by its index among the emitted passes.
 /// A lines pass's settings as the runner evaluates them; typecheck has
 /// refused every setting that is not affine, so a failure is internal.
-fn line_shape(ir: &Ir, shape: &LineSettings) -> Result<abi::lines::LineShape, InternalError> {
+fn line_shape(ir: &Ir, shape: &LineSettings) -> Result<npr_abi::lines::LineShape, InternalError> {
     let fold = |id: ExprId| {
         crate::front::line_settings::affine(ir, id).map_err(|e| InternalError {
             message: "a lines setting is not affine after typecheck".into(),
@@ -288,7 +288,7 @@ fn line_shape(ir: &Ir, shape: &LineSettings) -> Result<abi::lines::LineShape, In
             wgsl: None,
         })
     };
-    Ok(abi::lines::LineShape {
+    Ok(npr_abi::lines::LineShape {
         width: fold(shape.width)?,
         amplitude: fold(shape.amplitude)?,
         wavelength: fold(shape.wavelength)?,
@@ -329,7 +329,7 @@ fn depth_mode(
 /// compiled filter.
 fn texture_source(
     t: &Texture,
-    filters: &std::collections::BTreeMap<String, abi::FilterProgram>,
+    filters: &std::collections::BTreeMap<String, npr_abi::FilterProgram>,
 ) -> Result<TextureSourceManifest, InternalError> {
     Ok(match &t.source {
         TextureSource::Image { path, resolved, srgb } => TextureSourceManifest::Image {
@@ -348,7 +348,7 @@ fn texture_source(
             levels,
             rip,
             ..
-        } => TextureSourceManifest::Artmap(abi::ArtmapSpec {
+        } => TextureSourceManifest::Artmap(npr_abi::ArtmapSpec {
             path: path.clone(),
             resolved: resolved.clone(),
             srgb: *srgb,

@@ -27,10 +27,10 @@ pub use expr::fmt_f32;
 
 use crate::back::allocate::Allocation;
 use crate::ir::*;
-use abi::manifest::{Attribute, Binding, ParamBinding};
-use diag::SourceMap;
 use expr::KindCtx;
 use helpers::{LOAD_HELPER, PROJECT_HELPER};
+use npr_abi::manifest::{Attribute, Binding, ParamBinding};
+use npr_diag::SourceMap;
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -42,7 +42,7 @@ pub struct EmittedPass {
     /// Group 1 bindings after the `Object` block (binding 0): per-object textures.
     pub object_bindings: Vec<Binding>,
     pub attributes: Vec<Attribute>,
-    /// The shader declares `abi::formats::HALF_ROUNDING_OVERRIDE`.
+    /// The shader declares `npr_abi::formats::HALF_ROUNDING_OVERRIDE`.
     pub device_half_rounding: bool,
 }
 
@@ -119,7 +119,7 @@ impl PassCtx {
 }
 
 impl Emitter<'_> {
-    fn line_of(&self, span: diag::Span) -> String {
+    fn line_of(&self, span: npr_diag::Span) -> String {
         let (line, _) = self.sources.line_col(span.file, span.start);
         let name = self.sources.get(span.file).map(|f| f.name.as_str()).unwrap_or("?");
         let file = std::path::Path::new(name)
@@ -129,7 +129,7 @@ impl Emitter<'_> {
         format!("{file}:{line}")
     }
 
-    fn snippet(&self, span: diag::Span) -> String {
+    fn snippet(&self, span: npr_diag::Span) -> String {
         let s = self.sources.snippet(span);
         let one_line: String = s.split_whitespace().collect::<Vec<_>>().join(" ");
         if one_line.len() > 80 {
@@ -303,21 +303,21 @@ impl Emitter<'_> {
         let closure = operator_closure(operators);
         let mut snippets: Vec<&str> = Vec::new();
         for op in &closure {
-            for s in stdlib::all()[*op].snippets {
+            for s in npr_stdlib::all()[*op].snippets {
                 if !snippets.contains(s) {
                     snippets.push(s);
                 }
             }
         }
         for s in snippets {
-            if let Some(src) = stdlib::snippets::find(s) {
+            if let Some(src) = npr_stdlib::snippets::find(s) {
                 let _ = writeln!(w, "// ---- stdlib helpers `{s}`");
                 w.push_str(src.trim_end());
                 w.push_str("\n\n");
             }
         }
         for op in closure {
-            let o = &stdlib::all()[op];
+            let o = &npr_stdlib::all()[op];
             let _ = writeln!(w, "// ---- stdlib operator `{}` ({})", o.name, o.reference);
             w.push_str(o.wgsl.trim_end());
             w.push_str("\n\n");
@@ -511,8 +511,8 @@ fn operator_closure(roots: &BTreeSet<usize>) -> Vec<usize> {
         if order.contains(&i) || depth > 16 {
             return;
         }
-        for d in stdlib::all()[i].depends {
-            if let Some(j) = stdlib::all().iter().position(|o| o.name == *d) {
+        for d in npr_stdlib::all()[i].depends {
+            if let Some(j) = npr_stdlib::all().iter().position(|o| o.name == *d) {
                 visit(j, order, depth + 1);
             }
         }

@@ -8,7 +8,7 @@ use super::helpers::{PROJECT_DIR_HELPER, UNIT_HELPER};
 use super::uses::Uses;
 use super::{Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::Attribute;
+use npr_abi::manifest::Attribute;
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
@@ -34,7 +34,7 @@ pub(super) fn attributes(vertex: &VertexModifiers, uses: &Uses) -> Vec<Attribute
         attributes.push(Attribute::Tangent);
     }
     // Breslav et al. 2007 §3.6: reading the weight is what makes the runner
-    // draw each patch over its n-ring (see `abi::Attribute::PatchWeight`).
+    // draw each patch over its n-ring (see `npr_abi::Attribute::PatchWeight`).
     if builtins.contains(&Builtin::PatchWeight) {
         attributes.push(Attribute::PatchWeight);
     }
@@ -216,7 +216,7 @@ fn is_screen_frame(b: Builtin) -> bool {
 }
 
 /// The size in px of a pass at `scale` of the output, as the runner allocates
-/// it (`runner::render::scaled_size`: rounded half up, at least 1).
+/// it (`npr_runner::render::scaled_size`: rounded half up, at least 1).
 pub(super) fn pass_size_wgsl(scale: f64) -> String {
     if scale == 1.0 {
         "frame.resolution".into()

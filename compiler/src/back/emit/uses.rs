@@ -6,7 +6,7 @@
 
 use super::Emitter;
 use crate::ir::*;
-use abi::manifest::ParamBinding;
+use npr_abi::manifest::ParamBinding;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Everything a pass's shaders read, collected from its live expressions.
@@ -36,7 +36,7 @@ pub(super) struct Uses {
     /// `Emitter::value_uses`); `emit_lets` shares target loads by it.
     pub value_uses: BTreeMap<ExprId, usize>,
     /// Formats whose stored value a fused read repeats (`npr_stored_*`).
-    pub stored: Vec<abi::Format>,
+    pub stored: Vec<npr_abi::Format>,
     /// The vector `if`s whose condition is built from constants alone: each
     /// `select` takes its condition through `npr_runtime_bool` (see
     /// `needs_runtime_condition`, `helpers::RUNTIME_BOOL_HELPER`).
@@ -45,9 +45,11 @@ pub(super) struct Uses {
 
 impl Uses {
     /// Whether a fused read repeats a 16-bit float store: the pass declares
-    /// `abi::formats::HALF_ROUNDING_OVERRIDE`, which the runner sets.
+    /// `npr_abi::formats::HALF_ROUNDING_OVERRIDE`, which the runner sets.
     pub fn repeats_half_stores(&self) -> bool {
-        self.stored.iter().any(|f| f.storage() == abi::formats::Storage::Half)
+        self.stored
+            .iter()
+            .any(|f| f.storage() == npr_abi::formats::Storage::Half)
     }
 
     /// Whether an expression reads the `Frame` block: any builtin other
@@ -95,10 +97,10 @@ impl Uses {
 
     /// Records that the module repeats a `format` store (its `npr_stored_*`
     /// helper), for the formats that round.
-    pub fn store(&mut self, format: abi::Format) {
+    pub fn store(&mut self, format: npr_abi::Format) {
         let rounds = matches!(
             format.storage(),
-            abi::formats::Storage::Half | abi::formats::Storage::Unorm8
+            npr_abi::formats::Storage::Half | npr_abi::formats::Storage::Unorm8
         );
         if rounds && !self.stored.contains(&format) {
             self.stored.push(format);
@@ -159,9 +161,9 @@ impl Emitter<'_> {
                     args,
                 } => {
                     u.operators.insert(*i as usize);
-                    let op = &stdlib::all()[*i as usize];
+                    let op = &npr_stdlib::all()[*i as usize];
                     for (p, a) in op.params.iter().zip(args) {
-                        if p.ty == stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.any_target_read().is_some() {
+                        if p.ty == npr_stdlib::Ty::SampledTexture && self.ir.expr(*a).kind.any_target_read().is_some() {
                             u.linear_sampler = true;
                         }
                     }
@@ -205,9 +207,9 @@ impl Emitter<'_> {
                     callee: Callee::Operator(i),
                     args,
                 } => {
-                    let op = &stdlib::all()[*i as usize];
+                    let op = &npr_stdlib::all()[*i as usize];
                     for (p, a) in op.params.iter().zip(args) {
-                        if !matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
+                        if !matches!(p.ty, npr_stdlib::Ty::Texture | npr_stdlib::Ty::SampledTexture) {
                             *uses.entry(*a).or_default() += 1;
                         }
                     }

@@ -109,8 +109,8 @@ impl Resolver<'_> {
                 span,
             );
         }
-        let Some(index) = stdlib::all().iter().position(|o| o.name == name) else {
-            let mut names: Vec<&str> = stdlib::all().iter().map(|o| o.name).collect();
+        let Some(index) = npr_stdlib::all().iter().position(|o| o.name == name) else {
+            let mut names: Vec<&str> = npr_stdlib::all().iter().map(|o| o.name).collect();
             names.extend(Intrinsic::names());
             let mut d = Diagnostic::error(codes::UNKNOWN_OPERATOR, format!("unknown operator `{name}`"))
                 .with_primary(call.callee.span, "no such operator or function");
@@ -124,7 +124,7 @@ impl Resolver<'_> {
             }
             return self.ir.add(ExprKind::Error, span);
         };
-        let op = &stdlib::all()[index];
+        let op = &npr_stdlib::all()[index];
         let mut slots: Vec<Option<ExprId>> = vec![None; op.params.len()];
         let mut positional = 0usize;
         let mut ok = true;
@@ -172,7 +172,7 @@ impl Resolver<'_> {
             };
             let param = &op.params[slot];
             let value = match (param.ty, &a.value.kind) {
-                (stdlib::Ty::Enum(variants), AK::Name(v)) if !self.is_bound(&v.name) => {
+                (npr_stdlib::Ty::Enum(variants), AK::Name(v)) if !self.is_bound(&v.name) => {
                     match variants.iter().position(|x| *x == v.name) {
                         Some(i) => {
                             self.ir
@@ -205,7 +205,7 @@ impl Resolver<'_> {
                 continue;
             }
             let v = match p.default {
-                stdlib::Default::Required => {
+                npr_stdlib::Default::Required => {
                     if ok {
                         self.error(
                             Diagnostic::error(
@@ -258,20 +258,20 @@ pub(super) fn target_copy_call(name: &str) -> Option<TargetCopy> {
 }
 
 /// `(x: float, steps: int = 3)` — an operator's signature for help lines.
-pub fn signature(op: &stdlib::Operator) -> String {
+pub fn signature(op: &npr_stdlib::Operator) -> String {
     let params: Vec<String> = op
         .params
         .iter()
         .map(|p| {
             let ty = match p.ty {
-                stdlib::Ty::Enum(v) => v.join("|"),
+                npr_stdlib::Ty::Enum(v) => v.join("|"),
                 t => format!("{t:?}").to_lowercase(),
             };
             match p.default {
-                stdlib::Default::Required => format!("{}: {ty}", p.name),
-                stdlib::Default::Number(x) => format!("{}: {ty} = {x}", p.name),
-                stdlib::Default::Builtin(b) => format!("{}: {ty} = {b}", p.name),
-                stdlib::Default::Variant(v) => format!("{}: {ty} = {v}", p.name),
+                npr_stdlib::Default::Required => format!("{}: {ty}", p.name),
+                npr_stdlib::Default::Number(x) => format!("{}: {ty} = {x}", p.name),
+                npr_stdlib::Default::Builtin(b) => format!("{}: {ty} = {b}", p.name),
+                npr_stdlib::Default::Variant(v) => format!("{}: {ty} = {v}", p.name),
             }
         })
         .collect();
@@ -283,25 +283,25 @@ pub fn signature(op: &stdlib::Operator) -> String {
 /// names no variant of its enum or no builtin is a bug in npr (E9001), so
 /// it is an error here, never a silent fallback (and a test checks that
 /// every operator's defaults resolve).
-pub(super) fn operator_default(p: &stdlib::Param) -> Result<(ExprKind, Ty, Unit), String> {
+pub(super) fn operator_default(p: &npr_stdlib::Param) -> Result<(ExprKind, Ty, Unit), String> {
     match p.default {
-        stdlib::Default::Required => Err(format!("`{}` has no default", p.name)),
-        stdlib::Default::Number(x) => {
+        npr_stdlib::Default::Required => Err(format!("`{}` has no default", p.name)),
+        npr_stdlib::Default::Number(x) => {
             let (ty, c) = match p.ty {
-                stdlib::Ty::Int => (Ty::Int, Const::Int(x as i64)),
-                stdlib::Ty::Bool => (Ty::Bool, Const::Bool(x != 0.0)),
+                npr_stdlib::Ty::Int => (Ty::Int, Const::Int(x as i64)),
+                npr_stdlib::Ty::Bool => (Ty::Bool, Const::Bool(x != 0.0)),
                 _ => (Ty::Float, Const::Float(x)),
             };
             Ok((ExprKind::Const(c), ty, p.unit))
         }
-        stdlib::Default::Variant(v) => match p.ty {
-            stdlib::Ty::Enum(vs) => match vs.iter().position(|x| *x == v) {
+        npr_stdlib::Default::Variant(v) => match p.ty {
+            npr_stdlib::Ty::Enum(vs) => match vs.iter().position(|x| *x == v) {
                 Some(i) => Ok((ExprKind::Const(Const::Int(i as i64)), Ty::Int, Unit::None)),
                 None => Err(format!("`{v}` is not one of its variants {}", vs.join("|"))),
             },
             other => Err(format!("the variant default `{v}` is on a parameter of type {other:?}")),
         },
-        stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
+        npr_stdlib::Default::Builtin(b) => match Builtin::SPELLINGS.iter().find(|(s, _)| *s == b) {
             Some((_, bi)) => {
                 let (ty, unit) = bi.ty_unit();
                 Ok((ExprKind::Builtin(*bi), ty, unit))
@@ -315,8 +315,8 @@ pub(super) fn operator_default(p: &stdlib::Param) -> Result<(ExprKind, Ty, Unit)
 mod tests {
     use super::*;
 
-    fn param(ty: stdlib::Ty, default: stdlib::Default) -> stdlib::Param {
-        stdlib::Param {
+    fn param(ty: npr_stdlib::Ty, default: npr_stdlib::Default) -> npr_stdlib::Param {
+        npr_stdlib::Param {
             name: "p",
             ty,
             unit: Unit::None,
@@ -328,9 +328,9 @@ mod tests {
 
     #[test]
     fn every_stdlib_default_resolves() {
-        for op in stdlib::all() {
+        for op in npr_stdlib::all() {
             for p in op.params {
-                if p.default != stdlib::Default::Required {
+                if p.default != npr_stdlib::Default::Required {
                     let r = operator_default(p);
                     assert!(r.is_ok(), "`{}({})`: {:?}", op.name, p.name, r.err());
                 }
@@ -340,19 +340,20 @@ mod tests {
 
     #[test]
     fn a_bad_stdlib_default_is_an_error_not_a_fallback() {
-        let e = stdlib::Ty::Enum(&["x", "y"]);
+        let e = npr_stdlib::Ty::Enum(&["x", "y"]);
         assert_eq!(
-            operator_default(&param(e, stdlib::Default::Variant("y"))).map(|(k, ..)| k),
+            operator_default(&param(e, npr_stdlib::Default::Variant("y"))).map(|(k, ..)| k),
             Ok(ExprKind::Const(Const::Int(1)))
         );
-        let err = operator_default(&param(e, stdlib::Default::Variant("z"))).unwrap_err();
+        let err = operator_default(&param(e, npr_stdlib::Default::Variant("z"))).unwrap_err();
         assert!(err.contains("`z` is not one of its variants x|y"), "{err}");
-        let err = operator_default(&param(stdlib::Ty::Float, stdlib::Default::Variant("x"))).unwrap_err();
+        let err = operator_default(&param(npr_stdlib::Ty::Float, npr_stdlib::Default::Variant("x"))).unwrap_err();
         assert!(err.contains("on a parameter of type Float"), "{err}");
-        let err = operator_default(&param(stdlib::Ty::Vec2, stdlib::Default::Builtin("screen_xy"))).unwrap_err();
+        let err =
+            operator_default(&param(npr_stdlib::Ty::Vec2, npr_stdlib::Default::Builtin("screen_xy"))).unwrap_err();
         assert!(err.contains("`screen_xy` is not a builtin"), "{err}");
         assert_eq!(
-            operator_default(&param(stdlib::Ty::Vec2, stdlib::Default::Builtin("screen_uv"))).map(|(k, ..)| k),
+            operator_default(&param(npr_stdlib::Ty::Vec2, npr_stdlib::Default::Builtin("screen_uv"))).map(|(k, ..)| k),
             Ok(ExprKind::Builtin(Builtin::ScreenUv))
         );
     }

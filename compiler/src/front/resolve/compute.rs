@@ -9,12 +9,12 @@
 
 use super::{Resolver, Symbol};
 use crate::ir::*;
-use abi::manifest::ReduceOp;
-use abi::validate::MAX_VALUE_SLOTS;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast;
-use stdlib::Unit;
+use npr_abi::manifest::ReduceOp;
+use npr_abi::validate::MAX_VALUE_SLOTS;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast;
+use npr_stdlib::Unit;
 
 /// The kind of a compute pass whose domain did not resolve (reported): a
 /// pass over objects with no values, so later stages see a well-formed pass.
@@ -156,7 +156,7 @@ impl Resolver<'_> {
             tag,
             key: key.flatten(),
             // `count:` and `seed:` settings replace these (`sample_setting`).
-            samples: (domain == ComputeDomain::Samples).then_some(abi::manifest::SampleSpec {
+            samples: (domain == ComputeDomain::Samples).then_some(npr_abi::manifest::SampleSpec {
                 count: DEFAULT_SAMPLES,
                 seed: 1,
             }),
@@ -186,7 +186,7 @@ impl Resolver<'_> {
             return;
         };
         let (lo, hi) = match s.key.name.as_str() {
-            "count" => (1.0, abi::manifest::MAX_SAMPLES_PER_OBJECT as f64),
+            "count" => (1.0, npr_abi::manifest::MAX_SAMPLES_PER_OBJECT as f64),
             _ => (0.0, u32::MAX as f64),
         };
         if v.fract() != 0.0 || !(lo..=hi).contains(&v) {

@@ -16,12 +16,12 @@
 //!   colour from its position on.
 //!
 //! Under `keep_params` a gradient is also an IR param (`ParamTy::Gradient`,
-//! the `abi::gradient` slots) and `ramp(g, t)` is `Intrinsic::Ramp(g)` of
+//! the `npr_abi::gradient` slots) and `ramp(g, t)` is `Intrinsic::Ramp(g)` of
 //! `t`, which the emitter writes as `npr_ramp_<g>`, the same rule as a loop
 //! over the uniform's stops.
 
 use super::*;
-use dsl::ast::BinOp;
+use npr_dsl::ast::BinOp;
 
 /// The most stops a gradient has (a limit, E0404, so a ramp's chain of
 /// nodes stays short).
@@ -193,7 +193,7 @@ impl Resolver<'_> {
     }
 
     /// Under `keep_params`: `g` as a parameter of the IR, a uniform of
-    /// [`abi::gradient`]'s slots whose default is its stops packed, so
+    /// [`npr_abi::gradient`]'s slots whose default is its stops packed, so
     /// `--set`, the studio and a host's `set_param` change it without a
     /// recompile. `None` (with E0404) past the parameter limit.
     pub(super) fn live_gradient(&mut self, p: &ast::ParamDecl, g: &Gradient) -> Option<ParamId> {
@@ -205,7 +205,7 @@ impl Resolver<'_> {
             );
             return None;
         }
-        let slots = abi::gradient::pack(&g.stops, g.constant);
+        let slots = npr_abi::gradient::pack(&g.stops, g.constant);
         let default = self.ir.add_typed(
             ExprKind::Const(Const::Vec(slots)),
             Ty::Unknown,

@@ -3,8 +3,8 @@
 //! target; everywhere else an argument is a plain name.
 
 use super::Resolver;
-use diag::{codes, Diagnostic};
-use dsl::ast;
+use npr_diag::{codes, Diagnostic};
+use npr_dsl::ast;
 
 impl Resolver<'_> {
     /// The kind's arguments as names; an argument written as a target

@@ -6,10 +6,10 @@
 
 use super::Resolver;
 use crate::ir::*;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::{self, ExprKind as AK, UnitSuffix};
-use stdlib::Unit;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::{self, ExprKind as AK, UnitSuffix};
+use npr_stdlib::Unit;
 
 /// The settings of a lines pass besides `depth` and `clear`.
 pub(super) const LINE_SETTINGS: [&str; 7] = [
@@ -49,7 +49,7 @@ impl Resolver<'_> {
         };
         PassKind::Lines(LinesKind {
             tag,
-            edges: abi::lines::LineEdges {
+            edges: npr_abi::lines::LineEdges {
                 silhouettes: true,
                 crease_deg: None,
             },

@@ -9,11 +9,11 @@
 use super::{Resolver, Symbol};
 use crate::ir::*;
 use crate::schedule::Schedule;
-use abi::manifest::Blend;
-use abi::Format;
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::{self, ExprKind as AK, UnitSuffix};
+use npr_abi::manifest::Blend;
+use npr_abi::Format;
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::{self, ExprKind as AK, UnitSuffix};
 
 impl Resolver<'_> {
     /// `out name: format = value { blend: mode }`: the only output setting.
@@ -216,11 +216,11 @@ impl Resolver<'_> {
                         return None;
                     };
                     match unit {
-                        Some(UnitSuffix::Px) if *value <= abi::validate::MAX_DEPTH_BIAS_PX => bias_px = *value,
+                        Some(UnitSuffix::Px) if *value <= npr_abi::validate::MAX_DEPTH_BIAS_PX => bias_px = *value,
                         None if *value < 1.0 => bias_depth = *value,
                         Some(UnitSuffix::Px) | None => {
                             let range = if unit.is_some() {
-                                format!("0px..{}px", abi::validate::MAX_DEPTH_BIAS_PX)
+                                format!("0px..{}px", npr_abi::validate::MAX_DEPTH_BIAS_PX)
                             } else {
                                 "[0, 1) of the depth range".to_string()
                             };

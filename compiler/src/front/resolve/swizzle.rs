@@ -4,8 +4,8 @@
 //! as WGSL requires; `.xg` is refused here with a span on the first letter
 //! from the other set, instead of being emitted for naga to reject.
 
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::Ident;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::Ident;
 
 const XYZW: &str = "xyzw";
 const RGBA: &str = "rgba";

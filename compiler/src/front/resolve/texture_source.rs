@@ -7,10 +7,10 @@ use super::{Resolver, MAX_NOISE_SIZE};
 use crate::front::param_values::suffix_of;
 use crate::ir::*;
 use crate::ir::{Literal, ParamSetting, SettingOrigin};
-use abi::{HalftoneTableSpec, NoiseSpec};
-use diag::diagnostic::did_you_mean;
-use diag::{codes, Diagnostic, Span};
-use dsl::ast::{self, ExprKind as AK};
+use npr_abi::{HalftoneTableSpec, NoiseSpec};
+use npr_diag::diagnostic::did_you_mean;
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::{self, ExprKind as AK};
 use std::path::Path;
 
 /// The texture sources a declaration may name.
@@ -91,7 +91,7 @@ impl Resolver<'_> {
                 (Some("levels"), AK::Name(n)) if n.name == "auto" => levels = None,
                 (Some("levels"), _) => {
                     let id = self.expr(&a.value);
-                    let max = abi::ArtmapSpec::MAX_LEVELS;
+                    let max = npr_abi::ArtmapSpec::MAX_LEVELS;
                     match self.const_scalar(id, "an art-map's levels") {
                         Some(v) if v.fract() == 0.0 && (1.0..=max as f64).contains(&v) => levels = Some(v as u32),
                         Some(v) => self.error(

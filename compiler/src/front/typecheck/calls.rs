@@ -199,7 +199,7 @@ impl Checker<'_> {
     }
 
     pub(super) fn operator(&mut self, id: ExprId, index: u32, args: Vec<ExprId>, span: Span) {
-        let op = &stdlib::all()[index as usize];
+        let op = &npr_stdlib::all()[index as usize];
         if args.iter().any(|a| self.is_error(*a)) {
             return;
         }
@@ -210,15 +210,15 @@ impl Checker<'_> {
             };
             out.push(a2);
         }
-        if op.returns == stdlib::Ty::Color {
+        if op.returns == npr_stdlib::Ty::Color {
             self.colors.insert(id);
         }
         let ty = match op.returns {
-            stdlib::Ty::Float => Ty::Float,
-            stdlib::Ty::Int | stdlib::Ty::Enum(_) => Ty::Int,
-            stdlib::Ty::Bool => Ty::Bool,
-            stdlib::Ty::Vec2 => Ty::Vec2,
-            stdlib::Ty::Vec3 => Ty::Vec3,
+            npr_stdlib::Ty::Float => Ty::Float,
+            npr_stdlib::Ty::Int | npr_stdlib::Ty::Enum(_) => Ty::Int,
+            npr_stdlib::Ty::Bool => Ty::Bool,
+            npr_stdlib::Ty::Vec2 => Ty::Vec2,
+            npr_stdlib::Ty::Vec3 => Ty::Vec3,
             _ => Ty::Vec4,
         };
         let _ = span;
@@ -229,15 +229,15 @@ impl Checker<'_> {
         self.set(id, ty, Unit::None);
     }
 
-    pub(super) fn argument(&mut self, op: &stdlib::Operator, p: &stdlib::Param, a: ExprId) -> Option<ExprId> {
+    pub(super) fn argument(&mut self, op: &npr_stdlib::Operator, p: &npr_stdlib::Param, a: ExprId) -> Option<ExprId> {
         let have = self.ir.expr(a).ty;
         let help = Some(format!("`{}` takes {}", op.name, crate::front::resolve::signature(op)));
         let converted = match p.ty {
-            stdlib::Ty::Texture | stdlib::Ty::SampledTexture => {
+            npr_stdlib::Ty::Texture | npr_stdlib::Ty::SampledTexture => {
                 let ok = match have {
                     Ty::Target(t) => {
                         let fmt = self.ir.pass(t.pass).outputs[t.output as usize].format;
-                        if p.ty == stdlib::Ty::SampledTexture && !fmt.is_filterable() {
+                        if p.ty == npr_stdlib::Ty::SampledTexture && !fmt.is_filterable() {
                             self.err(
                                 Diagnostic::error(codes::FORMAT_MISMATCH, format!("`{}` cannot be filtered", fmt.name()))
                                     .with_primary(self.span(a), format!("this target is {}", fmt.name()))
@@ -256,22 +256,22 @@ impl Checker<'_> {
                 }
                 return Some(a);
             }
-            stdlib::Ty::Float => self.coerce(a, Ty::Float),
-            stdlib::Ty::Int | stdlib::Ty::Enum(_) => (self.vt(a) == Ty::Int).then_some(a),
-            stdlib::Ty::Bool => (self.vt(a) == Ty::Bool).then_some(a),
-            stdlib::Ty::Vec2 => self.coerce(a, Ty::Vec2),
-            stdlib::Ty::Vec3 => match self.vt(a) {
+            npr_stdlib::Ty::Float => self.coerce(a, Ty::Float),
+            npr_stdlib::Ty::Int | npr_stdlib::Ty::Enum(_) => (self.vt(a) == Ty::Int).then_some(a),
+            npr_stdlib::Ty::Bool => (self.vt(a) == Ty::Bool).then_some(a),
+            npr_stdlib::Ty::Vec2 => self.coerce(a, Ty::Vec2),
+            npr_stdlib::Ty::Vec3 => match self.vt(a) {
                 Ty::Vec4 => Some(self.convert(a, Conversion::Rgb)),
                 _ => self.coerce(a, Ty::Vec3),
             },
-            stdlib::Ty::Vec4 | stdlib::Ty::Color => match self.vt(a) {
+            npr_stdlib::Ty::Vec4 | npr_stdlib::Ty::Color => match self.vt(a) {
                 Ty::Vec3 => Some(self.convert(a, Conversion::Rgb1)),
                 _ => self.coerce(a, Ty::Vec4),
             },
         };
         let Some(c) = converted else {
             let want = match p.ty {
-                stdlib::Ty::Enum(v) => format!("one of {}", v.join(", ")),
+                npr_stdlib::Ty::Enum(v) => format!("one of {}", v.join(", ")),
                 t => format!("{t:?}").to_lowercase(),
             };
             self.type_error(a, &format!("{want} for `{}`", p.name), help);

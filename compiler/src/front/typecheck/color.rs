@@ -45,7 +45,7 @@ impl Checker<'_> {
                 .pass(target.pass)
                 .outputs
                 .get(target.output as usize)
-                .is_some_and(|o| matches!(o.format, abi::Format::Rgba8unorm | abi::Format::Rgba8unormSrgb)),
+                .is_some_and(|o| matches!(o.format, npr_abi::Format::Rgba8unorm | npr_abi::Format::Rgba8unormSrgb)),
             ExprKind::Convert { conversion, operand } => match conversion {
                 Conversion::Rgb1 => true,
                 Conversion::Stored(_) => self.is_color(*operand),

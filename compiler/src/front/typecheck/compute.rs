@@ -3,7 +3,7 @@
 
 use super::Checker;
 use crate::ir::*;
-use diag::{codes, Diagnostic, Span};
+use npr_diag::{codes, Diagnostic, Span};
 use std::collections::BTreeSet;
 
 impl Checker<'_> {
@@ -225,7 +225,7 @@ impl Checker<'_> {
             return;
         };
         let format = self.ir.pass(target.pass).outputs[target.output as usize].format;
-        if format != abi::Format::R32float {
+        if format != npr_abi::Format::R32float {
             let name = self.ir.target_name(target);
             let written = self.ir.pass(target.pass).outputs[target.output as usize].value;
             let written = self.ir.expr(written).span;
@@ -271,8 +271,8 @@ impl Checker<'_> {
                 args,
             } = &self.ir.expr(n).kind
             {
-                for (p, a) in stdlib::all()[*i as usize].params.iter().zip(args) {
-                    if matches!(p.ty, stdlib::Ty::Texture | stdlib::Ty::SampledTexture) {
+                for (p, a) in npr_stdlib::all()[*i as usize].params.iter().zip(args) {
+                    if matches!(p.ty, npr_stdlib::Ty::Texture | npr_stdlib::Ty::SampledTexture) {
                         handles.insert(*a);
                     }
                 }

@@ -10,7 +10,7 @@
 
 use crate::ir::*;
 use crate::mid::consteval::const_eval;
-use diag::{codes, Diagnostic};
+use npr_diag::{codes, Diagnostic};
 
 /// E0204 for `param`'s default, unless it is a constant (or a lone `50%`,
 /// which the manifest stores as a percentage of the image height).

@@ -7,9 +7,9 @@
 use super::Checker;
 use crate::front::line_settings::affine;
 use crate::ir::*;
-use abi::lines::{MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX};
-use diag::{codes, Diagnostic};
-use stdlib::Unit;
+use npr_abi::lines::{MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX};
+use npr_diag::{codes, Diagnostic};
+use npr_stdlib::Unit;
 
 impl Checker<'_> {
     pub(super) fn line_settings(&mut self, pi: usize) {

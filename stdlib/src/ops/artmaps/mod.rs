@@ -24,7 +24,7 @@ fn level(k: u32) -> ImageF64 {
     ImageF64::new(s, s, |_, _| [v, v, v, 1.0])
 }
 
-/// A 64² rip-map atlas (128² texels, `abi::RipmapAtlas`'s layout): level
+/// A 64² rip-map atlas (128² texels, `npr_abi::RipmapAtlas`'s layout): level
 /// (i, j) holds (i·STEP, j·STEP).
 fn ripmap_atlas() -> ImageF64 {
     let offset = |k: u32| (0..k).map(|l| (64u32 >> l).max(1)).sum::<u32>();

@@ -93,7 +93,7 @@ pub fn similarity(points: &[PointPair], symmetric: bool) -> Option<([f64; 2], [f
     Some((pbar, cbar, z))
 }
 
-pub use abi::halftone::screen as halftone_screen;
+pub use npr_abi::halftone::screen as halftone_screen;
 
 /// GLSL/WGSL `smoothstep(lo, hi, x)` for lo < hi.
 pub fn smoothstep(lo: f64, hi: f64, x: f64) -> f64 {

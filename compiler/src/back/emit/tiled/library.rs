@@ -551,8 +551,8 @@ fn plain(x: f32) -> f32 { return x * 2.0e-3; }
     /// all): the scanner knows enough of the library's WGSL.
     #[test]
     fn every_library_function_splits_and_copies() {
-        let mut texts: Vec<String> = stdlib::snippets::ALL.iter().map(|(_, s)| s.to_string()).collect();
-        texts.extend(stdlib::all().iter().map(|o| o.wgsl.to_string()));
+        let mut texts: Vec<String> = npr_stdlib::snippets::ALL.iter().map(|(_, s)| s.to_string()).collect();
+        texts.extend(npr_stdlib::all().iter().map(|o| o.wgsl.to_string()));
         texts.extend(crate::back::emit::helpers::library_texts());
         let mut pieces = Vec::new();
         for text in &texts {

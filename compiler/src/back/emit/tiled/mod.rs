@@ -40,9 +40,9 @@ mod tiles;
 use super::uses::Uses;
 use super::{helpers, image, EmittedPass, Emitter, PassCtx};
 use crate::ir::*;
-use abi::formats::Storage;
-use abi::manifest::TargetCopy;
 use library::{Copies, Function, Piece};
+use npr_abi::formats::Storage;
+use npr_abi::manifest::TargetCopy;
 use recomputed::Producer;
 use std::collections::BTreeSet;
 use std::fmt::Write;
@@ -182,7 +182,7 @@ fn layout(pieces: &[Piece], calls: &CopyCalls, tiling: &Tiling, ctx: &PassCtx) -
 
 /// Appends the tiles, the storage outputs and `cs_main` to `w`; whether
 /// its stores round to binary16 (so it declares
-/// `abi::formats::HALF_ROUNDING_OVERRIDE`).
+/// `npr_abi::formats::HALF_ROUNDING_OVERRIDE`).
 fn storage_outputs(w: &mut String, tiling: &Tiling, outputs: &[&PassOutput], uses: &Uses, ctx: &PassCtx) -> bool {
     let tiled = tiled_names(tiling, ctx);
     w.push_str("// ---- tiled schedule (issue 14): workgroup tiles and the storage outputs\n");

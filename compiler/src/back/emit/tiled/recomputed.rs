@@ -9,7 +9,7 @@ use crate::back::emit::expr::KindCtx;
 use crate::back::emit::uses::Uses;
 use crate::back::emit::{Emitter, PassCtx};
 use crate::ir::*;
-use abi::manifest::TargetCopy;
+use npr_abi::manifest::TargetCopy;
 use std::collections::BTreeMap;
 use std::fmt::Write;
 

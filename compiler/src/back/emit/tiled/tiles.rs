@@ -6,8 +6,8 @@
 
 use super::TILED_ENTRY;
 use crate::ir::*;
-use abi::formats::Storage;
-use abi::manifest::TILE_SIZE;
+use npr_abi::formats::Storage;
+use npr_abi::manifest::TILE_SIZE;
 use std::fmt::Write;
 
 /// `cs_main`: the workgroup fills its tiles (`tiled`: each target's
@@ -112,7 +112,7 @@ fn {TILED_ENTRY}(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation
 /// count) is stored in it, as a `vec4<f32>` as `textureLoad` returns it:
 /// rounded where the format rounds (`npr_stored_<format>`), the missing
 /// channels (0, 0, 1).
-pub(super) fn stored_texel(format: abi::Format, value: &str) -> String {
+pub(super) fn stored_texel(format: npr_abi::Format, value: &str) -> String {
     let rounded = match format.storage() {
         Storage::Half | Storage::Unorm8 => format!("npr_stored_{}({value})", format.name()),
         Storage::Exact | Storage::Srgb8 => value.to_string(),
@@ -125,7 +125,7 @@ pub(super) fn stored_texel(format: abi::Format, value: &str) -> String {
 }
 
 /// The formats among `outputs` that round (their `npr_stored_*` helper).
-pub(super) fn stored_formats(outputs: &[&PassOutput]) -> Vec<abi::Format> {
+pub(super) fn stored_formats(outputs: &[&PassOutput]) -> Vec<npr_abi::Format> {
     let mut formats = Vec::new();
     for o in outputs {
         if matches!(o.format.storage(), Storage::Half | Storage::Unorm8) && !formats.contains(&o.format) {

@@ -2,12 +2,12 @@
 //! rendering with the code and `file:line:col`; a style that is not
 //! UTF-8 is E0007 at its first bad byte.
 
-use bevy_npr::NprStyleLoader;
+use bevy_mod_npr::NprStyleLoader;
 use std::path::Path;
 
 fn loader() -> NprStyleLoader {
     NprStyleLoader {
-        root: Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr_loader"),
+        root: Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_mod_npr_loader"),
     }
 }
 
@@ -51,5 +51,5 @@ fn a_style_that_compiles_is_an_asset_with_its_name_and_kept_params() {
         .iter()
         .find(|p| p.name == "bands")
         .expect("bands");
-    assert_eq!(bands.binding, abi::manifest::ParamBinding::Uniform);
+    assert_eq!(bands.binding, npr_abi::manifest::ParamBinding::Uniform);
 }

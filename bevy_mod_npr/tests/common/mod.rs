@@ -16,7 +16,7 @@ use bevy::render::texture::GpuImage;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
-use bevy_npr::{npr_scene_camera, spawn_npr_scene, NprPlugin, NprRuntimes, NprStyle};
+use bevy_mod_npr::{npr_scene_camera, spawn_npr_scene, NprPlugin, NprRuntimes, NprStyle};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -34,7 +34,7 @@ pub fn repo() -> PathBuf {
 
 /// A fresh folder for a test's assets (styles copied there, edited there).
 pub fn asset_dir(test: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr").join(test);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_mod_npr").join(test);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("test asset folder");
     dir
@@ -80,8 +80,8 @@ pub fn target_image(app: &mut App, format: TextureFormat) -> Handle<Image> {
 /// camera with `style`, rendering into `image`. Returns the camera.
 pub fn spawn_scene(
     app: &mut App,
-    scene: &runner::scene::Scene,
-    style: Handle<bevy_npr::NprStyleAsset>,
+    scene: &npr_runner::scene::Scene,
+    style: Handle<bevy_mod_npr::NprStyleAsset>,
     image: &Handle<Image>,
 ) -> Entity {
     spawn_npr_scene(app.world_mut(), scene);
@@ -91,8 +91,8 @@ pub fn spawn_scene(
 /// A camera at `scene`'s camera, drawn with `style` into `image`.
 pub fn spawn_camera(
     app: &mut App,
-    scene: &runner::scene::Scene,
-    style: Handle<bevy_npr::NprStyleAsset>,
+    scene: &npr_runner::scene::Scene,
+    style: Handle<bevy_mod_npr::NprStyleAsset>,
     image: &Handle<Image>,
 ) -> Entity {
     app.world_mut()
@@ -154,13 +154,13 @@ pub fn read_image_sized(app: &App, image: &Handle<Image>, size: (u32, u32)) -> i
         .expect("the target image is on the GPU");
     let device = world.resource::<RenderDevice>();
     let queue = world.resource::<RenderQueue>();
-    let read = runner::readback::read_texture(
+    let read = npr_runner::readback::read_texture(
         device.wgpu_device(),
         queue,
         &gpu.texture,
         size.0,
         size.1,
-        abi::Format::Rgba8unorm,
+        npr_abi::Format::Rgba8unorm,
         "bevy target",
     )
     .unwrap_or_else(|e| panic!("reading the camera's image back: {e}"));
@@ -168,34 +168,34 @@ pub fn read_image_sized(app: &App, image: &Handle<Image>, size: (u32, u32)) -> i
 }
 
 /// Compile `style` as `npr render` does (no kept params).
-pub fn compile(style: &Path) -> runner::StyleProgram {
-    let mut sources = diag::SourceMap::new();
-    match compiler::compile_file(style, &mut sources, &Default::default()) {
+pub fn compile(style: &Path) -> npr_runner::StyleProgram {
+    let mut sources = npr_diag::SourceMap::new();
+    match npr_compiler::compile_file(style, &mut sources, &Default::default()) {
         Ok(c) => c.program(),
-        Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+        Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
         Err(e) => panic!("{e:?}"),
     }
 }
 
-pub fn load_scene(name: &str) -> runner::scene::Scene {
+pub fn load_scene(name: &str) -> npr_runner::scene::Scene {
     let path = repo().join("examples/scenes").join(name);
-    let mut sources = diag::SourceMap::new();
-    runner::scene::load_scene(&path, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)))
+    let mut sources = npr_diag::SourceMap::new();
+    npr_runner::scene::load_scene(&path, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)))
 }
 
 /// What `npr render STYLE --scene SCENE --size 128x128 --time 0` writes:
 /// the renderer it drives, on a headless device of its own.
-pub fn npr_render(style: &Path, scene: &runner::scene::Scene) -> image::RgbaImage {
+pub fn npr_render(style: &Path, scene: &npr_runner::scene::Scene) -> image::RgbaImage {
     npr_render_sized(style, scene, (SIZE, SIZE))
 }
 
 /// [`npr_render`] at `size`.
-pub fn npr_render_sized(style: &Path, scene: &runner::scene::Scene, size: (u32, u32)) -> image::RgbaImage {
-    let gpu = runner::Gpu::headless()
+pub fn npr_render_sized(style: &Path, scene: &npr_runner::scene::Scene, size: (u32, u32)) -> image::RgbaImage {
+    let gpu = npr_runner::Gpu::headless()
         .unwrap_or_else(|e| panic!("no GPU adapter (install Mesa's lavapipe: ./setup.sh --tests): {e}"));
-    let spec = runner::FrameSpec::still(size.0, size.1, 0);
-    runner::render_frame(&gpu, &compile(style), scene, &spec)
+    let spec = npr_runner::FrameSpec::still(size.0, size.1, 0);
+    npr_runner::render_frame(&gpu, &compile(style), scene, &spec)
         .unwrap_or_else(|e| panic!("npr render: {e:?}"))
         .to_rgba8()
 }
@@ -219,7 +219,7 @@ pub fn assert_close(name: &str, actual: &image::RgbaImage, expected: &image::Rgb
         "{name}: npr render's image is nearly flat ({differing} pixels differ from the corner)"
     );
     if std::env::var_os("BEVY_NPR_KEEP_IMAGES").is_some() {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr_images");
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_mod_npr_images");
         std::fs::create_dir_all(&dir).expect("image folder");
         actual
             .save(dir.join(format!("{name}.actual.png")))
@@ -244,7 +244,7 @@ pub fn assert_close(name: &str, actual: &image::RgbaImage, expected: &image::Rgb
     let far_share = far as f64 / pixels;
     let mean = sum as f64 / (pixels * 4.0);
     if far_share > MAX_FAR || mean > MEAN {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_npr_failures");
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_mod_npr_failures");
         std::fs::create_dir_all(&dir).expect("failure folder");
         for (suffix, img) in [("actual", actual), ("expected", expected), ("diff", &diff)] {
             img.save(dir.join(format!("{name}.{suffix}.png")))

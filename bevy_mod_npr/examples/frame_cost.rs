@@ -1,6 +1,6 @@
 //! The cost of a frame, in one run with the frames interleaved (one frame
 //! of each in turn, so that the machine's load falls on all alike):
-//! - a headless Bevy app whose camera is drawn by an npr style (bevy_npr);
+//! - a headless Bevy app whose camera is drawn by an npr style (bevy_mod_npr);
 //! - the same app with the camera drawn by Bevy alone (no style: Bevy's
 //!   own frame, which draws nothing here, as the entities have no material);
 //! - with `--features bench-standard-material`, the same app with each
@@ -9,7 +9,7 @@
 //!   scene itself;
 //! - `npr render`'s renderer on its own device, for the same style and scene.
 //!
-//! Every camera has the same post-processing (none: bevy_npr turns Bevy's
+//! Every camera has the same post-processing (none: bevy_mod_npr turns Bevy's
 //! tonemapping off on its cameras, the others get `Tonemapping::None`),
 //! no MSAA, one size. Each frame is timed in two parts: the update (CPU:
 //! Bevy's schedules, extraction, encoding, submission; for the renderer,
@@ -19,7 +19,7 @@
 //! read back and checked to show the scene (over 1% of it not the
 //! corner's colour).
 //!
-//! `cargo run -p bevy_npr --example frame_cost [--features bench-standard-material] -- [STYLE] [SCENE] [--frames N] [--size WxH]`
+//! `cargo run -p bevy_mod_npr --example frame_cost [--features bench-standard-material] -- [STYLE] [SCENE] [--frames N] [--size WxH]`
 //! (defaults: examples/toon.npr, examples/scenes/spot.toml, 60, 256x256).
 
 use bevy::camera::RenderTarget;
@@ -34,7 +34,7 @@ use bevy::render::view::Tonemapping;
 use bevy::render::RenderApp;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
-use bevy_npr::{npr_scene_camera, spawn_npr_scene, NprPlugin, NprRuntimes, NprStyle};
+use bevy_mod_npr::{npr_scene_camera, spawn_npr_scene, NprPlugin, NprRuntimes, NprStyle};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -117,7 +117,7 @@ struct BevyRun {
 }
 
 impl BevyRun {
-    fn new(o: &Options, scene: &runner::scene::Scene, drawn: Drawn) -> BevyRun {
+    fn new(o: &Options, scene: &npr_runner::scene::Scene, drawn: Drawn) -> BevyRun {
         let dir = o
             .style
             .parent()
@@ -229,13 +229,13 @@ impl BevyRun {
             .expect("the image is on the GPU");
         let device = world.resource::<RenderDevice>();
         let queue = world.resource::<RenderQueue>();
-        runner::readback::read_texture(
+        npr_runner::readback::read_texture(
             device.wgpu_device(),
             queue,
             &gpu.texture,
             size.0,
             size.1,
-            abi::Format::Rgba8unorm,
+            npr_abi::Format::Rgba8unorm,
             "frame_cost",
         )
         .unwrap_or_else(|e| panic!("reading the image back: {e}"))
@@ -257,7 +257,7 @@ mod standard_material {
             world.entity_mut(entity).insert(MeshMaterial3d(material.clone()));
         }
         let lights: Vec<Entity> = world
-            .query_filtered::<Entity, With<bevy_npr::NprLight>>()
+            .query_filtered::<Entity, With<bevy_mod_npr::NprLight>>()
             .iter(world)
             .collect();
         for entity in lights {
@@ -275,23 +275,23 @@ mod standard_material {
 
 /// `npr render`'s renderer on a headless device of its own.
 struct NprRun {
-    gpu: runner::Gpu,
-    renderer: runner::Renderer,
-    spec: runner::FrameSpec,
+    gpu: npr_runner::Gpu,
+    renderer: npr_runner::Renderer,
+    spec: npr_runner::FrameSpec,
     times: Times,
 }
 
 impl NprRun {
-    fn new(o: &Options, scene: &runner::scene::Scene) -> NprRun {
-        let gpu = runner::Gpu::headless().expect("a GPU adapter (./setup.sh --tests installs lavapipe)");
-        let mut sources = diag::SourceMap::new();
-        let program = match compiler::compile_file(&o.style, &mut sources, &Default::default()) {
+    fn new(o: &Options, scene: &npr_runner::scene::Scene) -> NprRun {
+        let gpu = npr_runner::Gpu::headless().expect("a GPU adapter (./setup.sh --tests installs lavapipe)");
+        let mut sources = npr_diag::SourceMap::new();
+        let program = match npr_compiler::compile_file(&o.style, &mut sources, &Default::default()) {
             Ok(c) => c.program(),
-            Err(compiler::CompileError::User(d)) => panic!("{}", diag::diagnostic::render(&d, &sources, false)),
+            Err(npr_compiler::CompileError::User(d)) => panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)),
             Err(e) => panic!("{e:?}"),
         };
-        let renderer = runner::Renderer::new(&gpu.device, &gpu.queue, &program, scene).expect("renderer");
-        let spec = runner::FrameSpec::still(o.size.0, o.size.1, 0);
+        let renderer = npr_runner::Renderer::new(&gpu.device, &gpu.queue, &program, scene).expect("renderer");
+        let spec = npr_runner::FrameSpec::still(o.size.0, o.size.1, 0);
         let mut run = NprRun {
             gpu,
             renderer,
@@ -305,12 +305,12 @@ impl NprRun {
         run
     }
 
-    fn frame(&mut self, scene: &runner::scene::Scene) {
+    fn frame(&mut self, scene: &npr_runner::scene::Scene) {
         let t = Instant::now();
         self.renderer.render(scene, &self.spec).expect("frame");
         let update = t.elapsed().as_secs_f64() * 1e3;
         let t = Instant::now();
-        runner::readback::wait_idle(&self.gpu.device).expect("wait");
+        npr_runner::readback::wait_idle(&self.gpu.device).expect("wait");
         self.times.push(update, t.elapsed().as_secs_f64() * 1e3);
     }
 }
@@ -330,11 +330,11 @@ fn check_drawn(name: &str, image: &image::RgbaImage) {
 
 fn main() {
     let o = options();
-    let mut sources = diag::SourceMap::new();
-    let scene = runner::scene::load_scene(&o.scene, &mut sources)
-        .unwrap_or_else(|d| panic!("{}", diag::diagnostic::render(&d, &sources, false)));
+    let mut sources = npr_diag::SourceMap::new();
+    let scene = npr_runner::scene::load_scene(&o.scene, &mut sources)
+        .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
     let mut runs = vec![
-        ("Bevy + bevy_npr", BevyRun::new(&o, &scene, Drawn::Style)),
+        ("Bevy + bevy_mod_npr", BevyRun::new(&o, &scene, Drawn::Style)),
         ("Bevy alone (no material)", BevyRun::new(&o, &scene, Drawn::BevyAlone)),
     ];
     if cfg!(feature = "bench-standard-material") {
@@ -354,7 +354,7 @@ fn main() {
             }
         }
     }
-    check_drawn("Bevy + bevy_npr", &runs[0].1.image(o.size));
+    check_drawn("Bevy + bevy_mod_npr", &runs[0].1.image(o.size));
     for (name, run) in runs.iter().skip(2) {
         check_drawn(name, &run.image(o.size));
     }
@@ -377,11 +377,14 @@ fn main() {
     let (u, w, f) = npr.times.medians();
     println!("  {:<28} {u:8.3} {w:8.3} {f:8.3}", "npr render's renderer");
     let share = frame_ms[0] - frame_ms[1];
-    println!("  bevy_npr's share (npr - alone)        {share:8.3}");
+    println!("  bevy_mod_npr's share (npr - alone)        {share:8.3}");
     println!("  share / npr render's frame            {:8.2}", share / f);
     match frame_ms.get(2) {
         Some(standard) => {
-            println!("  Bevy + bevy_npr / StandardMaterial    {:8.2}", frame_ms[0] / standard);
+            println!(
+                "  Bevy + bevy_mod_npr / StandardMaterial    {:8.2}",
+                frame_ms[0] / standard
+            );
             println!(
                 "  share / StandardMaterial's share      {:8.2}",
                 share / (standard - frame_ms[1])

@@ -27,7 +27,7 @@ pub(crate) struct ExtractedNprCamera {
     pub params: BTreeMap<String, String>,
     /// npr's camera at the Bevy camera's pose; `Err` why there is none
     /// (a projection npr does not draw).
-    pub camera: Result<runner::scene::Camera, String>,
+    pub camera: Result<npr_runner::scene::Camera, String>,
 }
 
 /// A visible mesh entity.
@@ -48,7 +48,7 @@ pub(crate) struct ExtractedNprScene {
     pub objects: Vec<ExtractedObject>,
     pub meshes: HashMap<AssetId<Mesh>, Converted>,
     pub mesh_revision: u64,
-    pub lights: runner::embed::Lights,
+    pub lights: npr_runner::embed::Lights,
     pub time_s: f64,
     pub frame: u32,
 }
@@ -63,12 +63,13 @@ fn npr_vec3(v: Vec3) -> glam::Vec3 {
 }
 
 /// npr's camera for a Bevy camera at `transform` with `projection`.
-fn npr_camera(transform: &GlobalTransform, projection: &Projection) -> Result<runner::scene::Camera, String> {
+fn npr_camera(transform: &GlobalTransform, projection: &Projection) -> Result<npr_runner::scene::Camera, String> {
     let Projection::Perspective(p) = projection else {
         return Err("its projection is not perspective; npr's cameras are".into());
     };
     let position = transform.translation();
-    let mut camera = runner::scene::Camera::looking_at(npr_vec3(position), npr_vec3(position + *transform.forward()));
+    let mut camera =
+        npr_runner::scene::Camera::looking_at(npr_vec3(position), npr_vec3(position + *transform.forward()));
     camera.up = npr_vec3(*transform.up());
     camera.fov_y_rad = p.fov;
     camera.near = p.near;
@@ -76,9 +77,9 @@ fn npr_camera(transform: &GlobalTransform, projection: &Projection) -> Result<ru
     Ok(camera)
 }
 
-fn npr_light(light: &NprLight, transform: &GlobalTransform) -> runner::scene::Light {
+fn npr_light(light: &NprLight, transform: &GlobalTransform) -> npr_runner::scene::Light {
     let c = light.color.to_srgba();
-    runner::scene::Light {
+    npr_runner::scene::Light {
         direction: npr_vec3(*transform.back()),
         color: [c.red, c.green, c.blue],
         intensity: light.intensity,
@@ -168,11 +169,11 @@ pub(crate) fn extract_npr(
     sorted.sort_by_key(|(e, _, _)| *e);
     let mut found = sorted.into_iter().map(|(_, l, t)| npr_light(l, t));
     scene.lights = match found.next() {
-        Some(key) => runner::embed::Lights {
+        Some(key) => npr_runner::embed::Lights {
             key,
             more: [found.next(), found.next(), found.next()],
         },
-        None => runner::embed::Lights::default(),
+        None => npr_runner::embed::Lights::default(),
     };
     scene.time_s = time.elapsed_secs_f64();
     // The style's `frame`: 0 at the first frame drawn, as `npr render`'s first.

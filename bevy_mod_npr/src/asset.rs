@@ -24,7 +24,7 @@ use std::sync::Arc;
 /// runtime when it changes.
 #[derive(Asset, TypePath, Clone, Debug)]
 pub struct NprStyleAsset {
-    program: Arc<runner::StyleProgram>,
+    program: Arc<npr_runner::StyleProgram>,
     revision: u64,
     /// The files besides the style's own that it read (absolute paths).
     read: Vec<PathBuf>,
@@ -32,7 +32,7 @@ pub struct NprStyleAsset {
 
 impl NprStyleAsset {
     /// The compiled style (manifest and WGSL).
-    pub fn program(&self) -> &Arc<runner::StyleProgram> {
+    pub fn program(&self) -> &Arc<npr_runner::StyleProgram> {
         &self.program
     }
 
@@ -95,9 +95,9 @@ impl NprStyleLoader {
         let file = self.root.join(path);
         let name = file.display().to_string();
         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-        let mut sources = diag::SourceMap::new();
-        let fail = |diags: &[diag::Diagnostic], sources: &diag::SourceMap| {
-            let rendered = diag::diagnostic::render(diags, sources, false);
+        let mut sources = npr_diag::SourceMap::new();
+        let fail = |diags: &[npr_diag::Diagnostic], sources: &npr_diag::SourceMap| {
+            let rendered = npr_diag::diagnostic::render(diags, sources, false);
             error!("{rendered}");
             NprLoadError {
                 path: file.clone(),
@@ -105,20 +105,20 @@ impl NprStyleLoader {
                 rendered,
             }
         };
-        let text = match diag::text::add_utf8(&mut sources, &name, bytes) {
+        let text = match npr_diag::text::add_utf8(&mut sources, &name, bytes) {
             Ok((_, text)) => text,
             Err(d) => return Err(fail(&[d], &sources)),
         };
         // `add_utf8` only checked the text: the compiler adds the file itself.
-        let mut sources = diag::SourceMap::new();
-        let options = compiler::CompileOptions {
+        let mut sources = npr_diag::SourceMap::new();
+        let options = npr_compiler::CompileOptions {
             keep_params: true,
             ..Default::default()
         };
-        match compiler::compile_source(&name, &text, &dir, &mut sources, &options) {
+        match npr_compiler::compile_source(&name, &text, &dir, &mut sources, &options) {
             Ok(compiled) => {
                 if !compiled.warnings.is_empty() {
-                    warn!("{}", diag::diagnostic::render(&compiled.warnings, &sources, false));
+                    warn!("{}", npr_diag::diagnostic::render(&compiled.warnings, &sources, false));
                 }
                 let program = compiled.program();
                 let read = files_read(&file, &sources, &program);
@@ -128,22 +128,22 @@ impl NprStyleLoader {
                     read,
                 })
             }
-            Err(compiler::CompileError::User(diags)) => Err(fail(&diags, &sources)),
-            Err(compiler::CompileError::Internal(e)) => Err(fail(&[e.to_diagnostic()], &sources)),
+            Err(npr_compiler::CompileError::User(diags)) => Err(fail(&diags, &sources)),
+            Err(npr_compiler::CompileError::Internal(e)) => Err(fail(&[e.to_diagnostic()], &sources)),
         }
     }
 }
 
 /// Every file of the compilation but the style's own (`sources` holds each
 /// file by the path it was read from) and every `image("...")` file.
-fn files_read(style: &Path, sources: &diag::SourceMap, program: &runner::StyleProgram) -> Vec<PathBuf> {
+fn files_read(style: &Path, sources: &npr_diag::SourceMap, program: &npr_runner::StyleProgram) -> Vec<PathBuf> {
     let own = canonical(style);
     let mut read: Vec<PathBuf> = sources
         .files()
         .iter()
         .map(|f| canonical(Path::new(&f.name)))
         .chain(program.manifest.textures.iter().filter_map(|t| match &t.source {
-            abi::manifest::TextureSourceManifest::Image { resolved, .. } => Some(canonical(Path::new(resolved))),
+            npr_abi::manifest::TextureSourceManifest::Image { resolved, .. } => Some(canonical(Path::new(resolved))),
             _ => None,
         }))
         .filter(|p| *p != own && p.is_absolute())
@@ -205,15 +205,15 @@ impl AssetLoader for NprStyleLoader {
         let path = load_context.path().path().to_path_buf();
         let mut bytes = Vec::new();
         if let Err(e) = reader.read_to_end(&mut bytes).await {
-            let d = diag::Diagnostic::error(
-                diag::codes::BAD_USE,
+            let d = npr_diag::Diagnostic::error(
+                npr_diag::codes::BAD_USE,
                 format!("cannot read the style {}: {e}", path.display()),
             );
-            let rendered = diag::diagnostic::render(&[d], &diag::SourceMap::new(), false);
+            let rendered = npr_diag::diagnostic::render(&[d], &npr_diag::SourceMap::new(), false);
             error!("{rendered}");
             return Err(NprLoadError {
                 path,
-                codes: vec![diag::codes::BAD_USE],
+                codes: vec![npr_diag::codes::BAD_USE],
                 rendered,
             });
         }

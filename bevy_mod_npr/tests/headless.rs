@@ -1,4 +1,4 @@
-//! bevy_npr in a real Bevy app, headless on lavapipe: a camera with
+//! bevy_mod_npr in a real Bevy app, headless on lavapipe: a camera with
 //! `NprStyle` renders into an image, which is read back and compared with
 //! `npr render` of the same style on the same scene (npr's scene file,
 //! spawned as Bevy entities); a style edited on disk while the app runs is
@@ -50,11 +50,11 @@ fn wait_for_style(app: &mut bevy::app::App, camera: bevy::prelude::Entity, name:
 struct Drawing {
     app: bevy::app::App,
     image: bevy::asset::Handle<bevy::image::Image>,
-    style: bevy::asset::Handle<bevy_npr::NprStyleAsset>,
+    style: bevy::asset::Handle<bevy_mod_npr::NprStyleAsset>,
     camera: bevy::prelude::Entity,
 }
 
-fn draw(dir: &std::path::Path, file: &str, name: &str, scene: &runner::scene::Scene) -> Drawing {
+fn draw(dir: &std::path::Path, file: &str, name: &str, scene: &npr_runner::scene::Scene) -> Drawing {
     let mut app = app(dir);
     let image = target_image(&mut app, TextureFormat::Rgba8UnormSrgb);
     let style = app.world().resource::<AssetServer>().load(file.to_string());
@@ -71,10 +71,10 @@ fn draw(dir: &std::path::Path, file: &str, name: &str, scene: &runner::scene::Sc
 /// The loaded style asset `handle` names.
 fn style_asset(
     app: &bevy::app::App,
-    handle: &bevy::asset::Handle<bevy_npr::NprStyleAsset>,
-) -> Option<bevy_npr::NprStyleAsset> {
+    handle: &bevy::asset::Handle<bevy_mod_npr::NprStyleAsset>,
+) -> Option<bevy_mod_npr::NprStyleAsset> {
     app.world()
-        .resource::<bevy::asset::Assets<bevy_npr::NprStyleAsset>>()
+        .resource::<bevy::asset::Assets<bevy_mod_npr::NprStyleAsset>>()
         .get(handle)
         .cloned()
 }
@@ -84,7 +84,7 @@ fn style_asset(
 /// world draws a new revision from the next frame on); the camera's image.
 fn image_after_reload(
     app: &mut bevy::app::App,
-    handle: &bevy::asset::Handle<bevy_npr::NprStyleAsset>,
+    handle: &bevy::asset::Handle<bevy_mod_npr::NprStyleAsset>,
     revision: u64,
     image: &bevy::asset::Handle<bevy::image::Image>,
     what: &str,
@@ -116,9 +116,11 @@ fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
 
     // Params changed at run time through the reflected component draw what
     // `npr render` draws of the style with those defaults.
-    app.world_mut()
-        .entity_mut(camera)
-        .insert(bevy_npr::NprParams::default().with("bands", 2).with("base", "#3a7ae0"));
+    app.world_mut().entity_mut(camera).insert(
+        bevy_mod_npr::NprParams::default()
+            .with("bands", 2)
+            .with("base", "#3a7ae0"),
+    );
     for _ in 0..2 {
         app.update();
     }
@@ -136,13 +138,13 @@ fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     // its constant, `rim` (set here to 0.9) to its animation (0.1 at 0 s),
     // one at a time (removing `rim` rebuilds the runtime, which would reset
     // `base` too).
-    let params = |app: &mut bevy::app::App, p: bevy_npr::NprParams| {
+    let params = |app: &mut bevy::app::App, p: bevy_mod_npr::NprParams| {
         app.world_mut().entity_mut(camera).insert(p);
         for _ in 0..2 {
             app.update();
         }
     };
-    let bands = bevy_npr::NprParams::default().with("bands", 2);
+    let bands = bevy_mod_npr::NprParams::default().with("bands", 2);
     params(&mut app, bands.clone().with("base", "#3a7ae0").with("rim", 0.9));
     let blue = read_image(&app, &image);
     let with_bands = text.replace("param bands: int = 3", "param bands: int = 2");
@@ -222,7 +224,7 @@ output shade.color\n";
 #[test]
 fn bad_input_is_a_logged_code_and_the_app_keeps_running() {
     use bevy::prelude::*;
-    use bevy_npr::{NprObject, NprStyle};
+    use bevy_mod_npr::{NprObject, NprStyle};
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = asset_dir("bad_input");
     std::fs::write(dir.join("tagged.npr"), TAGGED).expect("write style");
@@ -308,7 +310,7 @@ fn bad_input_is_a_logged_code_and_the_app_keeps_running() {
     // A parameter value the style refuses: E0101 (no such name), still running.
     app.world_mut()
         .entity_mut(camera)
-        .insert(bevy_npr::NprParams::default().with("nosuch", 1));
+        .insert(bevy_mod_npr::NprParams::default().with("nosuch", 1));
     for _ in 0..3 {
         app.update();
     }
@@ -462,7 +464,7 @@ fn despawned_meshes_leave_the_runtime() {
     let mesh_count = |app: &App| {
         app.sub_app(bevy::render::RenderApp)
             .world()
-            .resource::<bevy_npr::NprRuntimes>()
+            .resource::<bevy_mod_npr::NprRuntimes>()
             .mesh_count(render)
             .expect("the camera has a runtime")
     };
@@ -480,7 +482,7 @@ fn despawned_meshes_leave_the_runtime() {
     // old ones leave the runtime.
     for round in 0..5 {
         despawn_meshes(&mut app);
-        bevy_npr::spawn_npr_scene(app.world_mut(), &scene);
+        bevy_mod_npr::spawn_npr_scene(app.world_mut(), &scene);
         for _ in 0..3 {
             app.update();
         }

@@ -1,7 +1,7 @@
 //! Drawing a camera with its style, in Bevy's render world: a system in
 //! the `Core3d` schedule, after the post-processing passes (tonemapping
 //! included) and before upscaling, that drives one
-//! [`runner::embed::StyleRuntime`] per camera on Bevy's `RenderDevice` and
+//! [`npr_runner::embed::StyleRuntime`] per camera on Bevy's `RenderDevice` and
 //! `RenderQueue`, in the command encoder of Bevy's render context, into
 //! the camera's main texture (its view target). Bevy's 3D view targets
 //! hold linear light (an sRGB view when not HDR, `Rgba16Float` when HDR),
@@ -18,15 +18,15 @@
 use crate::extract::{ExtractedNprCamera, ExtractedNprScene};
 use crate::meshes::Converted;
 use crate::report::Reports;
-use abi::manifest::{ParamBinding, PassKindManifest};
 use bevy::camera::CompositingSpace;
 use bevy::mesh::Mesh;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery};
 use bevy::render::view::{ResolvedCompositingSpace, ViewTarget};
-use diag::{codes, Diagnostic};
-use runner::embed::{Frame, Instance, MeshHandle, StyleRuntime, Target};
+use npr_abi::manifest::{ParamBinding, PassKindManifest};
+use npr_diag::{codes, Diagnostic};
+use npr_runner::embed::{Frame, Instance, MeshHandle, StyleRuntime, Target};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -36,7 +36,7 @@ struct CameraRuntime {
     /// The style asset's revision it runs.
     revision: u64,
     /// Bevy mesh → the npr mesh registered (compared by pointer) and its handle.
-    meshes: HashMap<AssetId<Mesh>, (Arc<runner::scene::Mesh>, MeshHandle)>,
+    meshes: HashMap<AssetId<Mesh>, (Arc<npr_runner::scene::Mesh>, MeshHandle)>,
     /// The parameter values given to the runtime so far.
     params: BTreeMap<String, String>,
     instances: Vec<Instance>,
@@ -213,7 +213,7 @@ pub(crate) fn draw_npr(
 fn unset_params(
     state: &CameraRuntime,
     camera: &ExtractedNprCamera,
-    program: &runner::StyleProgram,
+    program: &npr_runner::StyleProgram,
 ) -> (Vec<String>, Vec<String>) {
     state
         .params
@@ -233,12 +233,12 @@ fn unset_params(
 /// The style's own value of the parameter `name`, written as `set_param`
 /// takes it; `None` for a name the style does not have (its `set_param`
 /// was refused and logged, so nothing is to undo).
-fn default_value(program: &runner::StyleProgram, name: &str) -> Option<String> {
+fn default_value(program: &npr_runner::StyleProgram, name: &str) -> Option<String> {
     let p = program.manifest.params.iter().find(|p| p.name == name)?;
     if p.default_percent_of_height {
         return Some(format!("{}%", p.default.first().copied().unwrap_or(0.0)));
     }
-    abi::param_value::format_literal(&abi::param_value::ParamShape::of_manifest(p), &p.default)
+    npr_abi::param_value::format_literal(&npr_abi::param_value::ParamShape::of_manifest(p), &p.default)
 }
 
 /// `diags` with the camera named, for the log.

@@ -1,4 +1,4 @@
-//! `cargo run -p bevy_npr --example toon` runs in a real window under
+//! `cargo run -p bevy_mod_npr --example toon` runs in a real window under
 //! Xvfb (winit, a wgpu surface on lavapipe): the log says the camera is
 //! drawn with the toon style, and a screenshot of the window at frame 40
 //! has the style's clear colour (#202020) in its corner, not Bevy's, and
@@ -17,11 +17,11 @@ fn example() -> PathBuf {
         .join(format!("toon{}", std::env::consts::EXE_SUFFIX));
     if !path.exists() {
         let status = Command::new(env!("CARGO"))
-            .args(["build", "-p", "bevy_npr", "--example", "toon"])
+            .args(["build", "-p", "bevy_mod_npr", "--example", "toon"])
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .status()
             .expect("run cargo build --example toon");
-        assert!(status.success(), "cargo build -p bevy_npr --example toon failed");
+        assert!(status.success(), "cargo build -p bevy_mod_npr --example toon failed");
     }
     assert!(path.exists(), "no example binary at {}", path.display());
     path

@@ -4,14 +4,14 @@
 //! `base` while it runs). Its `rim` parameter is set from Bevy each frame
 //! through `NprParams`.
 //!
-//! `cargo run -p bevy_npr --example toon [-- --frames N]`: `--frames N`
+//! `cargo run -p bevy_mod_npr --example toon [-- --frames N]`: `--frames N`
 //! takes a screenshot at frame N, prints its corner colour and number of
-//! colours, and quits (bevy_npr/tests/example.rs runs it under Xvfb).
+//! colours, and quits (bevy_mod_npr/tests/example.rs runs it under Xvfb).
 
 use bevy::prelude::*;
 use bevy::render::view::window::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::WindowResolution;
-use bevy_npr::{NprLight, NprObject, NprParams, NprPlugin, NprStyle};
+use bevy_mod_npr::{NprLight, NprObject, NprParams, NprPlugin, NprStyle};
 
 /// Quit after this many frames (`--frames N`).
 #[derive(Resource)]
@@ -33,7 +33,7 @@ fn main() {
                 })
                 .set(WindowPlugin {
                     primary_window: Some(Window {
-                        title: "bevy_npr: toon".into(),
+                        title: "bevy_mod_npr: toon".into(),
                         resolution: WindowResolution::new(640, 480),
                         ..Default::default()
                     }),

@@ -6,7 +6,7 @@
 use bevy::log::{error, warn};
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::Entity;
-use diag::Diagnostic;
+use npr_diag::Diagnostic;
 
 /// What was logged, per camera (render entity).
 #[derive(Default)]
@@ -20,7 +20,7 @@ impl Reports {
     /// Log each of `diags` not logged for `camera` before.
     pub fn log(&mut self, camera: Entity, diags: &[Diagnostic]) {
         for d in diags {
-            let text = diag::diagnostic::render(std::slice::from_ref(d), &diag::SourceMap::new(), false);
+            let text = npr_diag::diagnostic::render(std::slice::from_ref(d), &npr_diag::SourceMap::new(), false);
             if self.logged.entry(camera).or_default().insert(text.clone()) {
                 self.codes.push(d.code);
                 if d.is_error() {

@@ -1,4 +1,4 @@
-//! npr's scenes (TOML files read by `runner::scene::load_scene`) as Bevy
+//! npr's scenes (TOML files read by `npr_runner::scene::load_scene`) as Bevy
 //! entities: each object a `Mesh3d` with its transform, tags and params,
 //! the key light an [`NprLight`], the camera a `Camera3d` at the scene's
 //! camera (at time 0). For tests and benchmarks that compare with `npr
@@ -13,7 +13,7 @@ fn vec3(v: glam::Vec3) -> Vec3 {
 }
 
 /// Spawn `scene`'s objects and key light into `world`.
-pub fn spawn_npr_scene(world: &mut World, scene: &runner::scene::Scene) {
+pub fn spawn_npr_scene(world: &mut World, scene: &npr_runner::scene::Scene) {
     for object in &scene.objects {
         let mesh = world.resource_mut::<Assets<Mesh>>().add(bevy_mesh(&object.mesh));
         world.spawn((
@@ -38,7 +38,7 @@ pub fn spawn_npr_scene(world: &mut World, scene: &runner::scene::Scene) {
 
 /// A `Camera3d` at `scene`'s camera (its pose at time 0, its field of
 /// view and clip planes), without MSAA: add `NprStyle` and a target.
-pub fn npr_scene_camera(scene: &runner::scene::Scene) -> impl Bundle {
+pub fn npr_scene_camera(scene: &npr_runner::scene::Scene) -> impl Bundle {
     let pose = scene.camera.pose(0.0);
     (
         Camera3d::default(),

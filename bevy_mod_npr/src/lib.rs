@@ -5,7 +5,7 @@
 //!
 //! ```no_run
 //! use bevy::prelude::*;
-//! use bevy_npr::{NprObject, NprPlugin, NprStyle};
+//! use bevy_mod_npr::{NprObject, NprPlugin, NprStyle};
 //!
 //! App::new()
 //!     .add_plugins((DefaultPlugins, NprPlugin))

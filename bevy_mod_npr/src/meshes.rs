@@ -1,4 +1,4 @@
-//! Bevy `Mesh` assets as npr's meshes ([`runner::scene::Mesh`]): positions,
+//! Bevy `Mesh` assets as npr's meshes ([`npr_runner::scene::Mesh`]): positions,
 //! normals, UVs, tangents and indices copied once per asset (and again when
 //! the asset changes), in the main world where the mesh data lives, shared
 //! with the render world as `Arc`s.
@@ -13,7 +13,7 @@ use std::sync::Arc;
 /// diagnostic): not a triangle list, no 3D positions, bad indices or
 /// numbers. Missing normals are computed (smooth); missing tangents are
 /// derived from the UVs, as for a mesh file.
-pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<runner::scene::Mesh, String> {
+pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, String> {
     if mesh.primitive_topology() != PrimitiveTopology::TriangleList {
         return Err(format!(
             "its topology is {:?}; npr draws triangle lists",
@@ -58,14 +58,14 @@ pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<runner::scene::Mesh, String> 
     if uvs.as_ref().is_some_and(|uv| uv.len() != positions.len()) {
         return Err("it has a different number of UVs than positions".into());
     }
-    let mesh = runner::scene::Mesh::from_parts(positions, normals, uvs, tangents, indices, name.to_string());
+    let mesh = npr_runner::scene::Mesh::from_parts(positions, normals, uvs, tangents, indices, name.to_string());
     mesh.validate()?;
     Ok(mesh)
 }
 
 /// An npr mesh as a Bevy mesh (positions, normals, UVs, tangents,
 /// indices): for tests and examples that show npr's own scenes in Bevy.
-pub fn bevy_mesh(mesh: &runner::scene::Mesh) -> Mesh {
+pub fn bevy_mesh(mesh: &npr_runner::scene::Mesh) -> Mesh {
     let mut out = Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::default())
         .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, mesh.positions.clone())
         .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, mesh.normals.clone());
@@ -82,7 +82,7 @@ pub fn bevy_mesh(mesh: &runner::scene::Mesh) -> Mesh {
 /// A converted mesh, or why the asset cannot be drawn.
 #[derive(Clone)]
 pub(crate) enum Converted {
-    Mesh(Arc<runner::scene::Mesh>),
+    Mesh(Arc<npr_runner::scene::Mesh>),
     Unusable,
 }
 
@@ -133,12 +133,15 @@ pub(crate) fn convert_meshes(
         let converted = match npr_mesh(mesh, &name) {
             Ok(m) => Converted::Mesh(Arc::new(m)),
             Err(why) => {
-                let d = diag::Diagnostic::error(
-                    diag::codes::UNREADABLE_MESH,
+                let d = npr_diag::Diagnostic::error(
+                    npr_diag::codes::UNREADABLE_MESH,
                     format!("npr cannot draw the mesh {name}: {why}"),
                 )
                 .with_help("give npr's cameras triangle-list meshes with Float32x3 positions");
-                error!("{}", diag::diagnostic::render(&[d], &diag::SourceMap::new(), false));
+                error!(
+                    "{}",
+                    npr_diag::diagnostic::render(&[d], &npr_diag::SourceMap::new(), false)
+                );
                 Converted::Unusable
             }
         };
