@@ -25,6 +25,10 @@ const STYLES: &[(&str, &str)] = &[
     ("age_of_sail.npr", include_str!("../examples/age_of_sail.npr")),
 ];
 
+/// The dynamic 2D pattern tracker the examples `use`, which `npr bench
+/// patterns` measures.
+pub const TRACKER: &str = include_str!("../examples/lib/dynamic_pattern.npr");
+
 /// docs/PERFORMANCE.md as built: the committed `npr bench ops` table
 /// `npr doc` shows.
 pub const PERFORMANCE_MD: &str = include_str!("../docs/PERFORMANCE.md");

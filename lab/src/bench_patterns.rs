@@ -18,8 +18,9 @@ use npr_runner::scene::Scene;
 use npr_runner::{FrameSpec, Gpu, RunError, StyleProgram};
 use std::time::Instant;
 
-/// The tracker, as the examples `use` it.
-pub const TRACKER: &str = include_str!("../../examples/lib/dynamic_pattern.npr");
+// The tracker (`examples/lib/dynamic_pattern.npr`, as the examples `use`
+// it) is the caller's to pass: it lies outside this package, which must
+// build alone from the registry.
 
 /// The halftone shading of `examples/halftone.npr`, without its LOD.
 const SHADE: &str = r#"
@@ -43,11 +44,12 @@ pass shade: render(scene) {
 output shade.color
 "#;
 
-/// The tracker with `samples` per object, and the shading pass.
-pub fn style(samples: u32) -> String {
+/// `tracker` (the text of `examples/lib/dynamic_pattern.npr`) with
+/// `samples` per object, and the shading pass.
+pub fn style(tracker: &str, samples: u32) -> String {
     format!(
         "{}\n{SHADE}",
-        TRACKER.replace("count: 400", &format!("count: {samples}"))
+        tracker.replace("count: 400", &format!("count: {samples}"))
     )
 }
 
@@ -103,6 +105,7 @@ fn model(base: Mat4, o: usize, k: u32) -> Mat4 {
 /// Measure every (samples, objects) pair; `progress` gets a line per pair.
 pub fn run(
     gpu: &Gpu,
+    tracker: &str,
     null: &StyleProgram,
     compile: impl Fn(&str) -> Result<StyleProgram, RunError>,
     (samples, objects): (&[u32], &[usize]),
@@ -111,7 +114,7 @@ pub fn run(
 ) -> Result<Vec<Row>, RunError> {
     let mut rows = Vec::new();
     for &n in samples {
-        let program = compile(&style(n))?;
+        let program = compile(&style(tracker, n))?;
         let ids_target = program
             .manifest
             .targets

@@ -57,10 +57,10 @@ output slide.error
 "#;
 
 /// The tracker with `samples` per object and `weighting`, and [`MEASURE`].
-pub fn style(samples: u32, weighting: &str) -> String {
+pub fn style(tracker: &str, samples: u32, weighting: &str) -> String {
     format!(
         "{}\n{MEASURE}",
-        crate::bench_patterns::TRACKER
+        tracker
             .replace("count: 400", &format!("count: {samples}"))
             .replace("= area\n", &format!("= {weighting}\n"))
     )
@@ -220,13 +220,14 @@ pub struct Row {
 /// `examples/scenes`, against which the cow's mesh path resolves.
 pub fn run(
     gpu: &Gpu,
+    tracker: &str,
     compile: impl Fn(&str) -> Result<StyleProgram, RunError>,
     scenes_dir: &std::path::Path,
     progress: impl Fn(&str),
 ) -> Result<Vec<Row>, RunError> {
     let programs = VARIANTS
         .iter()
-        .map(|v| compile(&style(v.samples, v.weighting)))
+        .map(|v| compile(&style(tracker, v.samples, v.weighting)))
         .collect::<Result<Vec<_>, _>>()?;
     let mut rows = Vec::new();
     for (motion, text) in motions() {

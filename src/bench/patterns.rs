@@ -46,22 +46,29 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
         compile_builtin("patterns.npr", text, &mut sources.borrow_mut(), printer)
             .map_err(|_| RunError::Internal("the benchmark's tracker style does not compile".into()))
     };
-    let costs =
-        match npr_lab::bench_patterns::run(&gpu, &null, compile, (samples, objects), frames, |m| eprintln!("{m}")) {
-            Ok(rows) => {
-                println!(
-                    "device: {}, {}², median of {frames} interleaved frames (wall clock)",
-                    gpu.describe(),
-                    npr_lab::bench_patterns::SIZE
-                );
-                println!("{}", npr_lab::bench_patterns::table(&rows));
-                rows
-            }
-            Err(e) => {
-                printer.diagnostics(&e.diagnostics(), &sources.borrow());
-                return EXIT_INTERNAL;
-            }
-        };
+    let costs = match npr_lab::bench_patterns::run(
+        &gpu,
+        crate::bundled::TRACKER,
+        &null,
+        compile,
+        (samples, objects),
+        frames,
+        |m| eprintln!("{m}"),
+    ) {
+        Ok(rows) => {
+            println!(
+                "device: {}, {}², median of {frames} interleaved frames (wall clock)",
+                gpu.describe(),
+                npr_lab::bench_patterns::SIZE
+            );
+            println!("{}", npr_lab::bench_patterns::table(&rows));
+            rows
+        }
+        Err(e) => {
+            printer.diagnostics(&e.diagnostics(), &sources.borrow());
+            return EXIT_INTERNAL;
+        }
+    };
     // Sliding (§4, Fig. 4): px per frame between the pattern's and the
     // surface's motion, per placement and tracker variant.
     // `examples/scenes` here, or the copy built into npr (`crate::bundled`).
@@ -69,7 +76,9 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
         Ok(d) => d,
         Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
     };
-    match npr_lab::sliding::run(&gpu, compile, &scenes_dir, |m| eprintln!("{m}")) {
+    match npr_lab::sliding::run(&gpu, crate::bundled::TRACKER, compile, &scenes_dir, |m| {
+        eprintln!("{m}")
+    }) {
         Ok(rows) => {
             println!(
                 "sliding, px/frame over covered pixels ({}×{}, {} frames at 24 fps; % of screen-fixed):",

@@ -24,6 +24,7 @@ mod lsa_contours;
 mod lsa_packed_gbuffer;
 mod lsp;
 mod openjd;
+mod packaging;
 mod paths;
 mod reference_docs;
 mod set_params;

@@ -9,13 +9,18 @@
 use crate::common;
 use common::{gpu, root};
 
+/// The tracker the examples `use`.
+fn tracker() -> String {
+    std::fs::read_to_string(root().join("examples/lib/dynamic_pattern.npr")).expect("examples/lib/dynamic_pattern.npr")
+}
+
 fn measure(motion: &str, samples: u32, weighting: &str) -> npr_lab::sliding::Sliding {
     let (_, text) = npr_lab::sliding::motions()
         .into_iter()
         .find(|(name, _)| *name == motion)
         .expect("a motion");
     let scene = npr_lab::sliding::scene(&text, &root().join("examples/scenes")).expect("scene");
-    let program = common::compile_text(&npr_lab::sliding::style(samples, weighting));
+    let program = common::compile_text(&npr_lab::sliding::style(&tracker(), samples, weighting));
     let s = npr_lab::sliding::measure(gpu(), &program, &scene).expect("measure");
     println!(
         "{motion}, {samples} samples, {weighting}: {:.3e} px/frame, screen-fixed {:.4}",
