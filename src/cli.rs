@@ -130,7 +130,10 @@ pub struct CompileArgs {
     pub style: PathBuf,
     #[command(flatten)]
     pub paths: PathArgs,
-    /// Output directory.
+    /// Output directory (WGSL per pass, manifest.json, report.txt), or a
+    /// file ending in `.nprb`: one bundle of the manifest, the WGSL and the
+    /// image files the style reads, for programs that ship styles without
+    /// the compiler (`npr render --compiled`, bevy_mod_npr).
     #[arg(short, long)]
     pub out: PathBuf,
     /// Print what was removed, folded or kept, and why.
@@ -167,9 +170,10 @@ pub struct RenderArgs {
     pub style: Option<PathBuf>,
     #[command(flatten)]
     pub paths: PathArgs,
-    /// Run a directory written by `npr compile -o DIR` instead of a style
-    /// (its manifest is validated first).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["style", "keep_params"])]
+    /// Run a directory written by `npr compile -o DIR`, or a bundle written
+    /// by `npr compile -o FILE.nprb`, instead of a style (its manifest is
+    /// validated first).
+    #[arg(long, value_name = "DIR|FILE.nprb", conflicts_with_all = ["style", "keep_params"])]
     pub compiled: Option<PathBuf>,
     /// Scene file (TOML).
     #[arg(long)]

@@ -31,6 +31,7 @@ impl FilterProgram {
         crate::StyleProgram {
             manifest: (*self.manifest).clone(),
             shaders: self.shaders.clone(),
+            files: BTreeMap::new(),
         }
     }
 }

@@ -20,12 +20,15 @@
 //! - [`program`]: a compiled style as the runner takes it ([`StyleProgram`]),
 //!   with [`StyleProgram::load_dir`], which validates every index of a
 //!   manifest read from disk.
+//! - [`bundle`]: a compiled style in one `.nprb` file (manifest, WGSL,
+//!   image files), for programs that ship styles without the compiler.
 //!
 //! Neither the compiler nor the runner depends on the other; both depend on
 //! this crate, which depends on neither.
 
 pub mod artmap;
 mod block;
+pub mod bundle;
 pub mod formats;
 pub mod frame;
 pub mod gradient;

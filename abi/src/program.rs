@@ -1,6 +1,7 @@
 //! A compiled style as the runner sees it: the manifest plus WGSL per pass,
 //! either straight from the compiler (`npr_compiler::Compiled::program`) or read
-//! back from `npr compile -o DIR` ([`StyleProgram::load_dir`], validated).
+//! back from `npr compile -o DIR` ([`StyleProgram::load_dir`], validated)
+//! or from one bundle file ([`StyleProgram::from_bundle`], `bundle.rs`).
 
 use crate::manifest::Manifest;
 use crate::validate::Invalid;
@@ -12,6 +13,12 @@ pub struct StyleProgram {
     pub manifest: Manifest,
     /// WGSL source by shader file name (`<pass>.wgsl`).
     pub shaders: BTreeMap<String, String>,
+    /// The image files the manifest names, by their `resolved` path, when
+    /// the program carries them ([`StyleProgram::from_bundle`]); the runtime
+    /// then reads them from here and never from disk. Empty for a program
+    /// from the compiler or [`StyleProgram::load_dir`], whose files are on
+    /// disk.
+    pub files: BTreeMap<String, Vec<u8>>,
 }
 
 /// Why a compiled directory cannot be run.
@@ -23,6 +30,9 @@ pub enum LoadError {
     Json { message: String },
     /// A value in the manifest is out of range or inconsistent.
     Invalid(Invalid),
+    /// A bundle's container is not one this runtime reads
+    /// (`crate::bundle`): `field` names the part, as `bundle.entries[3]`.
+    Bundle { field: String, message: String },
 }
 
 impl std::fmt::Display for LoadError {
@@ -31,6 +41,7 @@ impl std::fmt::Display for LoadError {
             LoadError::Io { path, message } => write!(f, "cannot read {}: {message}", path.display()),
             LoadError::Json { message } => write!(f, "bad manifest.json: {message}"),
             LoadError::Invalid(e) => write!(f, "bad manifest.json: {e}"),
+            LoadError::Bundle { field, message } => write!(f, "bad bundle: `{field}`: {message}"),
         }
     }
 }
@@ -44,6 +55,19 @@ impl From<Invalid> for LoadError {
 }
 
 impl StyleProgram {
+    /// A compiled style at `path`: a directory ([`StyleProgram::load_dir`])
+    /// or a bundle file ([`StyleProgram::from_bundle`]).
+    pub fn load(path: &Path) -> Result<StyleProgram, LoadError> {
+        if path.is_dir() {
+            return StyleProgram::load_dir(path);
+        }
+        let bytes = std::fs::read(path).map_err(|e| LoadError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        StyleProgram::from_bundle(&bytes)
+    }
+
     /// Read `manifest.json` and the WGSL files beside it; the manifest is
     /// validated ([`StyleProgram::validate`]) before anything else reads it.
     pub fn load_dir(dir: &Path) -> Result<StyleProgram, LoadError> {
@@ -63,7 +87,11 @@ impl StyleProgram {
                 shaders.insert(p.shader.clone(), read(dir.join(&p.shader))?);
             }
         }
-        let program = StyleProgram { manifest, shaders };
+        let program = StyleProgram {
+            manifest,
+            shaders,
+            files: BTreeMap::new(),
+        };
         program.validate()?;
         Ok(program)
     }

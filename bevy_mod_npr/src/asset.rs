@@ -1,21 +1,13 @@
-//! `.npr` files as Bevy assets: [`NprStyleLoader`] compiles a style with
-//! npr's compiler (its parameters kept as uniforms, so [`crate::NprParams`]
-//! can change every one) into an [`NprStyleAsset`]. A style that does not
-//! compile is logged as npr prints it (`error[E0001]: ...`, then
-//! `file:line:col` and the source line) and the load fails; on a hot
-//! reload Bevy then keeps the asset it had, so a broken save keeps the
-//! last style that compiled.
-//!
-//! The files a style reads besides its own (`use`d modules, filter styles,
-//! `image("...")` files) are read again through Bevy's `LoadContext`, which
-//! makes them the asset's loader dependencies: with hot reload on, editing
-//! one reloads the style. Files outside the asset folder cannot be asset
-//! paths; they are logged once per load and not watched.
+//! A compiled style as a Bevy asset ([`NprStyleAsset`]), its load error,
+//! and the loader of precompiled `.nprb` bundles ([`NprBundleLoader`],
+//! `npr compile -o STYLE.nprb`), which needs only npr's runtime. The
+//! loader that compiles `.npr` files is `source_loader.rs` (the `compiler`
+//! feature).
 
 use bevy::asset::io::Reader;
 use bevy::asset::{AssetLoader, LoadContext};
 use bevy::prelude::*;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
@@ -30,7 +22,24 @@ pub struct NprStyleAsset {
     read: Vec<PathBuf>,
 }
 
+static REVISIONS: AtomicU64 = AtomicU64::new(1);
+
 impl NprStyleAsset {
+    /// An asset of a compiled style the program made or loaded itself
+    /// (`npr_runner::StyleProgram::from_bundle`, `load_dir`, or the
+    /// compiler), to add to `Assets<NprStyleAsset>`.
+    pub fn from_program(program: npr_runner::StyleProgram) -> NprStyleAsset {
+        NprStyleAsset::new(program, Vec::new())
+    }
+
+    pub(crate) fn new(program: npr_runner::StyleProgram, read: Vec<PathBuf>) -> NprStyleAsset {
+        NprStyleAsset {
+            program: Arc::new(program),
+            revision: REVISIONS.fetch_add(1, Ordering::Relaxed),
+            read,
+        }
+    }
+
     /// The compiled style (manifest and WGSL).
     pub fn program(&self) -> &Arc<npr_runner::StyleProgram> {
         &self.program
@@ -78,120 +87,56 @@ impl std::fmt::Display for NprLoadError {
 
 impl std::error::Error for NprLoadError {}
 
-/// Compiles `.npr` files. `root` is the asset folder on disk: a style's
-/// `use`s and `image("...")`s are read relative to its own file, as `npr
-/// render` reads them.
-#[derive(TypePath)]
-pub struct NprStyleLoader {
-    pub root: PathBuf,
-}
-
-static REVISIONS: AtomicU64 = AtomicU64::new(1);
-
-impl NprStyleLoader {
-    /// Compile `bytes`, the text of the style at `path` (relative to the
-    /// asset root). Diagnostics (errors and warnings) go to Bevy's log.
-    pub fn compile(&self, path: &Path, bytes: Vec<u8>) -> Result<NprStyleAsset, NprLoadError> {
-        let file = self.root.join(path);
-        let name = file.display().to_string();
-        let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-        let mut sources = npr_diag::SourceMap::new();
-        let fail = |diags: &[npr_diag::Diagnostic], sources: &npr_diag::SourceMap| {
-            let rendered = npr_diag::diagnostic::render(diags, sources, false);
-            error!("{rendered}");
-            NprLoadError {
-                path: file.clone(),
-                codes: diags.iter().map(|d| d.code).collect(),
-                rendered,
-            }
-        };
-        let text = match npr_diag::text::add_utf8(&mut sources, &name, bytes) {
-            Ok((_, text)) => text,
-            Err(d) => return Err(fail(&[d], &sources)),
-        };
-        // `add_utf8` only checked the text: the compiler adds the file itself.
-        let mut sources = npr_diag::SourceMap::new();
-        let options = npr_compiler::CompileOptions {
-            keep_params: true,
-            ..Default::default()
-        };
-        match npr_compiler::compile_source(&name, &text, &dir, &mut sources, &options) {
-            Ok(compiled) => {
-                if !compiled.warnings.is_empty() {
-                    warn!("{}", npr_diag::diagnostic::render(&compiled.warnings, &sources, false));
-                }
-                let program = compiled.program();
-                let read = files_read(&file, &sources, &program);
-                Ok(NprStyleAsset {
-                    program: Arc::new(program),
-                    revision: REVISIONS.fetch_add(1, Ordering::Relaxed),
-                    read,
-                })
-            }
-            Err(npr_compiler::CompileError::User(diags)) => Err(fail(&diags, &sources)),
-            Err(npr_compiler::CompileError::Internal(e)) => Err(fail(&[e.to_diagnostic()], &sources)),
+impl NprLoadError {
+    /// The error of `diags`, logged as npr prints them.
+    pub(crate) fn logged(path: PathBuf, diags: &[npr_diag::Diagnostic], sources: &npr_diag::SourceMap) -> NprLoadError {
+        let rendered = npr_diag::diagnostic::render(diags, sources, false);
+        error!("{rendered}");
+        NprLoadError {
+            path,
+            codes: diags.iter().map(|d| d.code).collect(),
+            rendered,
         }
     }
 }
 
-/// Every file of the compilation but the style's own (`sources` holds each
-/// file by the path it was read from) and every `image("...")` file.
-fn files_read(style: &Path, sources: &npr_diag::SourceMap, program: &npr_runner::StyleProgram) -> Vec<PathBuf> {
-    let own = canonical(style);
-    let mut read: Vec<PathBuf> = sources
-        .files()
-        .iter()
-        .map(|f| canonical(Path::new(&f.name)))
-        .chain(program.manifest.textures.iter().filter_map(|t| match &t.source {
-            npr_abi::manifest::TextureSourceManifest::Image { resolved, .. } => Some(canonical(Path::new(resolved))),
-            _ => None,
-        }))
-        .filter(|p| *p != own && p.is_absolute())
-        .collect();
-    read.sort();
-    read.dedup();
-    read
-}
+/// Loads `.nprb` files, written by `npr compile STYLE -o STYLE.nprb`: the
+/// manifest, WGSL and image files of a compiled style, validated as the
+/// runtime reads them. A bundle that does not load is E0507, logged.
+#[derive(TypePath, Default)]
+pub struct NprBundleLoader;
 
-fn canonical(path: &Path) -> PathBuf {
-    path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
-}
-
-impl NprStyleLoader {
-    /// Read each file the style read through `load_context`, so that Bevy
-    /// records it as a dependency and reloads the style when it changes.
-    async fn depend_on_files_read(&self, asset: &NprStyleAsset, load_context: &mut LoadContext<'_>) {
-        let root = canonical(&self.root);
-        for file in asset.files_read() {
-            let Ok(relative) = file.strip_prefix(&root) else {
-                info!(
-                    "the style {} reads {}, outside the asset folder {}: editing it does not reload the style",
-                    load_context.path(),
-                    file.display(),
-                    root.display()
-                );
-                continue;
-            };
-            // Asset paths are written with `/` on every platform.
-            let asset_path = relative
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy())
-                .collect::<Vec<_>>()
-                .join("/");
-            if let Err(e) = load_context.read_asset_bytes(asset_path).await {
-                // The compiler read it a moment ago; a file gone since is
-                // only not watched (the runtime reports a missing image).
-                warn!(
-                    "the style {} reads {}, which Bevy cannot read ({e}): editing it does not reload the style",
-                    load_context.path(),
-                    file.display()
-                );
-            }
-        }
+impl NprBundleLoader {
+    /// The asset of a bundle's `bytes` (the file at `path`, for messages).
+    pub fn load_bytes(&self, path: &std::path::Path, bytes: &[u8]) -> Result<NprStyleAsset, NprLoadError> {
+        npr_runner::StyleProgram::from_bundle(bytes)
+            .map(NprStyleAsset::from_program)
+            .map_err(|e| {
+                let d = npr_diag::Diagnostic::error(npr_diag::codes::BAD_COMPILED_DIR, format!("{}: {e}", path.display()))
+                    .with_help("compile the style again with `npr compile STYLE -o STYLE.nprb` of the npr release this program uses");
+                NprLoadError::logged(path.to_path_buf(), &[d], &npr_diag::SourceMap::new())
+            })
     }
 }
 
-impl AssetLoader for NprStyleLoader {
+/// Reads an asset's bytes; a read error is `BAD_USE`, naming the file.
+pub(crate) async fn read_all(reader: &mut dyn Reader, path: &std::path::Path) -> Result<Vec<u8>, NprLoadError> {
+    let mut bytes = Vec::new();
+    if let Err(e) = reader.read_to_end(&mut bytes).await {
+        let d = npr_diag::Diagnostic::error(
+            npr_diag::codes::BAD_USE,
+            format!("cannot read the style {}: {e}", path.display()),
+        );
+        return Err(NprLoadError::logged(
+            path.to_path_buf(),
+            &[d],
+            &npr_diag::SourceMap::new(),
+        ));
+    }
+    Ok(bytes)
+}
+
+impl AssetLoader for NprBundleLoader {
     type Asset = NprStyleAsset;
     type Settings = ();
     type Error = NprLoadError;
@@ -203,26 +148,11 @@ impl AssetLoader for NprStyleLoader {
         load_context: &mut LoadContext<'_>,
     ) -> Result<NprStyleAsset, NprLoadError> {
         let path = load_context.path().path().to_path_buf();
-        let mut bytes = Vec::new();
-        if let Err(e) = reader.read_to_end(&mut bytes).await {
-            let d = npr_diag::Diagnostic::error(
-                npr_diag::codes::BAD_USE,
-                format!("cannot read the style {}: {e}", path.display()),
-            );
-            let rendered = npr_diag::diagnostic::render(&[d], &npr_diag::SourceMap::new(), false);
-            error!("{rendered}");
-            return Err(NprLoadError {
-                path,
-                codes: vec![npr_diag::codes::BAD_USE],
-                rendered,
-            });
-        }
-        let asset = self.compile(&path, bytes)?;
-        self.depend_on_files_read(&asset, load_context).await;
-        Ok(asset)
+        let bytes = read_all(reader, &path).await?;
+        self.load_bytes(&path, &bytes)
     }
 
     fn extensions(&self) -> &[&str] {
-        &["npr"]
+        &["nprb"]
     }
 }

@@ -23,7 +23,10 @@
 //!     .run();
 //! ```
 //!
-//! - `asset.rs`: [`NprStyleAsset`] and its loader (compilation, diagnostics);
+//! - `asset.rs`: [`NprStyleAsset`], and [`NprBundleLoader`] for precompiled
+//!   `.nprb` bundles;
+//! - `source_loader.rs`: [`NprStyleLoader`], which compiles `.npr` files
+//!   (the `compiler` feature);
 //! - `components.rs`: [`NprStyle`], [`NprParams`], [`NprObject`], [`NprLight`];
 //! - `meshes.rs`: Bevy meshes as npr's, converted once per asset;
 //! - `extract.rs`: what the render world copies each frame;
@@ -31,11 +34,22 @@
 //! - `report.rs`: diagnostics in Bevy's log, once per camera;
 //! - `scene.rs`: npr's TOML scenes as Bevy entities.
 //!
-//! Hot reload is Bevy's `file_watcher` feature, which this crate enables:
-//! the asset folder is watched unless `AssetPlugin`'s
-//! `watch_for_changes_override` is `Some(false)`. The files a style
-//! `use`s and the images it reads are its dependencies: editing one
-//! reloads the style too (inside the asset folder).
+//! # Features: developing and shipping
+//!
+//! - `compiler` (default): `.npr` assets, compiled by npr's compiler when
+//!   they load. Off, the plugin links only npr's runtime (no compiler,
+//!   stdlib, parser or pest) and loads `.nprb` bundles, which
+//!   `npr compile STYLE.npr -o STYLE.nprb` writes (the WGSL, the manifest
+//!   and the style's image files in one file); `.nprb` loads in both.
+//! - `file_watcher` (default): hot reload, Bevy's feature of that name: the
+//!   asset folder is watched unless `AssetPlugin`'s
+//!   `watch_for_changes_override` is `Some(false)`. The files a style
+//!   `use`s and the images it reads are its dependencies: editing one
+//!   reloads the style too (inside the asset folder). Off, the plugin
+//!   builds for `wasm32-unknown-unknown`.
+//!
+//! A shipped game: `bevy_mod_npr = { version = "0.1", default-features =
+//! false }` and `NprStyle(assets.load("toon.nprb"))`.
 //!
 //! The crate's feature `bench-standard-material` only serves the
 //! `frame_cost` example (Bevy's `bevy_pbr`, to time `StandardMaterial`).
@@ -47,14 +61,17 @@ mod meshes;
 mod render;
 mod report;
 mod scene;
+#[cfg(feature = "compiler")]
+mod source_loader;
 
-pub use asset::{NprLoadError, NprStyleAsset, NprStyleLoader};
+pub use asset::{NprBundleLoader, NprLoadError, NprStyleAsset};
 pub use components::{NprLight, NprObject, NprParams, NprStyle, NprValue};
 pub use meshes::{bevy_mesh, npr_mesh};
 pub use render::NprRuntimes;
 pub use scene::{npr_scene_camera, spawn_npr_scene};
+#[cfg(feature = "compiler")]
+pub use source_loader::NprStyleLoader;
 
-use bevy::asset::io::file::FileAssetReader;
 use bevy::core_pipeline::{upscaling::upscaling, Core3d, Core3dSystems};
 use bevy::prelude::*;
 use bevy::render::view::{DebandDither, Tonemapping};
@@ -66,14 +83,19 @@ pub struct NprPlugin;
 
 impl Plugin for NprPlugin {
     fn build(&self, app: &mut App) {
-        let folder = app
-            .get_added_plugins::<AssetPlugin>()
-            .first()
-            .map_or_else(|| "assets".to_string(), |p| p.file_path.clone());
-        let root = FileAssetReader::get_base_path().join(folder);
-        app.init_asset::<NprStyleAsset>()
-            .register_asset_loader(NprStyleLoader { root })
-            .register_type::<NprParams>()
+        app.init_asset::<NprStyleAsset>().register_asset_loader(NprBundleLoader);
+        #[cfg(feature = "compiler")]
+        {
+            // The compiler reads a style's `use`s and images from disk,
+            // relative to the style's file in the asset folder.
+            let folder = app
+                .get_added_plugins::<AssetPlugin>()
+                .first()
+                .map_or_else(|| "assets".to_string(), |p| p.file_path.clone());
+            let root = bevy::asset::io::file::FileAssetReader::get_base_path().join(folder);
+            app.register_asset_loader(NprStyleLoader { root });
+        }
+        app.register_type::<NprParams>()
             .register_type::<NprObject>()
             .register_type::<NprLight>()
             .init_resource::<meshes::NprMeshes>()

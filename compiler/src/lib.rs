@@ -76,6 +76,7 @@ impl Compiled {
         npr_abi::StyleProgram {
             manifest: self.manifest.clone(),
             shaders: self.shaders.iter().cloned().collect(),
+            files: Default::default(),
         }
     }
 }

@@ -29,7 +29,13 @@ type Reader = ImageReader<BufReader<std::fs::File>>;
 /// The file's reader, its format guessed from its content (then its
 /// extension), and its size, checked against the limit.
 fn header(path: &Path) -> Result<(Reader, (u32, u32)), TextureFileError> {
-    let open = || -> std::io::Result<Reader> { ImageReader::open(path)?.with_guessed_format() };
+    header_of(|| ImageReader::open(path)?.with_guessed_format())
+}
+
+/// [`header`] of a reader `open` makes (twice: the size consumes one).
+fn header_of<R: std::io::BufRead + std::io::Seek>(
+    open: impl Fn() -> std::io::Result<ImageReader<R>>,
+) -> Result<(ImageReader<R>, (u32, u32)), TextureFileError> {
     let reader = open().map_err(TextureFileError::Unreadable)?;
     // `into_dimensions` consumes a reader: read the header with a second one.
     let (width, height) = open()
@@ -53,6 +59,18 @@ pub fn probe(path: &Path) -> Result<(u32, u32), TextureFileError> {
 /// The decoded image, after [`probe`]'s checks.
 pub fn read(path: &Path) -> Result<image::DynamicImage, TextureFileError> {
     let (reader, _) = header(path)?;
+    decode(reader)
+}
+
+/// [`read`] of a file's bytes held in memory (a bundle's image files).
+pub fn read_bytes(bytes: &[u8]) -> Result<image::DynamicImage, TextureFileError> {
+    let (reader, _) = header_of(|| ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format())?;
+    decode(reader)
+}
+
+fn decode<R: std::io::BufRead + std::io::Seek>(
+    reader: ImageReader<R>,
+) -> Result<image::DynamicImage, TextureFileError> {
     reader.decode().map_err(|e| match e {
         image::ImageError::IoError(io) => TextureFileError::Unreadable(io),
         other => TextureFileError::NotAnImage(other),

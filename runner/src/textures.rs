@@ -22,19 +22,26 @@ pub struct GpuTexture {
 /// `texture_file` from the file's header.
 pub use npr_diag::limits::MAX_TEXTURE_SIZE;
 
+/// Image files held in memory by their resolved path
+/// ([`npr_abi::StyleProgram::files`], a bundle's); a file not in it is read
+/// from disk.
+pub type EmbeddedFiles = std::collections::BTreeMap<String, Vec<u8>>;
+
 /// Every declared texture of `m`, and what building its art-maps did.
-/// `input` is the level a filter style runs on (its `filter_input()`).
+/// `input` is the level a filter style runs on (its `filter_input()`);
+/// `files`, the program's embedded image files.
 pub fn load_all(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     m: &Manifest,
     input: Option<&Level>,
+    files: &EmbeddedFiles,
 ) -> Result<(Vec<GpuTexture>, Vec<ArtmapBuild>), RunError> {
     let mut out = Vec::new();
     let mut diags = Vec::new();
     let mut builds = Vec::new();
     for (i, t) in m.textures.iter().enumerate() {
-        match load_one(device, queue, t, input, &mut builds) {
+        match load_one(device, queue, t, input, files, &mut builds) {
             Ok(g) => out.push(g),
             Err(d) => {
                 diags.push((i, d));
@@ -60,7 +67,7 @@ pub(crate) fn filter_inputs(
     let mut out = Vec::new();
     for (i, t) in m.textures.iter().enumerate() {
         if matches!(t.source, TextureSourceManifest::FilterInput) {
-            let texture = load_one(device, queue, t, Some(level), &mut Vec::new())
+            let texture = load_one(device, queue, t, Some(level), &EmbeddedFiles::new(), &mut Vec::new())
                 .map_err(|d| RunError::Textures(vec![(i, d)]))?;
             out.push((i, texture));
         }
@@ -133,7 +140,7 @@ pub fn load_object_textures(
                 resolved: b.resolved.display().to_string(),
                 srgb,
             };
-            match load_one(device, queue, &decl, None, &mut Vec::new()) {
+            match load_one(device, queue, &decl, None, &EmbeddedFiles::new(), &mut Vec::new()) {
                 Ok(g) => {
                     cache.insert(key.clone(), out.images.len());
                     bound.insert(index, out.images.len());
@@ -212,12 +219,26 @@ fn halftone_table_texels(spec: &npr_abi::HalftoneTableSpec) -> (Vec<[f32; 4]>, u
     (texels, TONES as u32, ROWS as u32)
 }
 
-/// An image file decoded to linear RGBA, and the file's bytes.
-fn decode_image(t: &TextureManifest, path: &str, resolved: &str, srgb: bool) -> Result<(Level, Vec<u8>), Diagnostic> {
-    let file = std::path::Path::new(resolved);
-    let img = crate::texture_file::read(file).map_err(|e| e.to_diagnostic(&t.name, path))?;
-    let bytes = std::fs::read(file)
-        .map_err(|e| crate::texture_file::TextureFileError::Unreadable(e).to_diagnostic(&t.name, path))?;
+/// An image file decoded to linear RGBA, and the file's bytes: from
+/// `files` when it holds the file (a bundle's), else from disk.
+fn decode_image(
+    t: &TextureManifest,
+    path: &str,
+    resolved: &str,
+    srgb: bool,
+    files: &EmbeddedFiles,
+) -> Result<(Level, Vec<u8>), Diagnostic> {
+    let (img, bytes) = match files.get(resolved) {
+        Some(bytes) => (crate::texture_file::read_bytes(bytes), bytes.clone()),
+        None => {
+            let file = std::path::Path::new(resolved);
+            let img = crate::texture_file::read(file).map_err(|e| e.to_diagnostic(&t.name, path))?;
+            let bytes = std::fs::read(file)
+                .map_err(|e| crate::texture_file::TextureFileError::Unreadable(e).to_diagnostic(&t.name, path))?;
+            (Ok(img), bytes)
+        }
+    };
+    let img = img.map_err(|e| e.to_diagnostic(&t.name, path))?;
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let mut pixels: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();
@@ -236,12 +257,13 @@ fn load_one(
     queue: &wgpu::Queue,
     t: &TextureManifest,
     input: Option<&Level>,
+    files: &EmbeddedFiles,
     builds: &mut Vec<ArtmapBuild>,
 ) -> Result<GpuTexture, Diagnostic> {
     // Linear-light levels (one, or a mip chain) plus how they are stored.
     let (levels, srgb, half_float): (Vec<Level>, bool, bool) = match &t.source {
         TextureSourceManifest::Image { path, resolved, srgb } => {
-            let (base, _) = decode_image(t, path, resolved, *srgb)?;
+            let (base, _) = decode_image(t, path, resolved, *srgb, files)?;
             let count = if t.mips { u32::MAX } else { 1 };
             (crate::artmap::mip_chain(base, count), *srgb, false)
         }
@@ -260,7 +282,7 @@ fn load_one(
             (vec![Level { width, height, pixels }], false, true)
         }
         TextureSourceManifest::Artmap(spec) => {
-            let (base, bytes) = decode_image(t, &spec.path, &spec.resolved, spec.srgb)?;
+            let (base, bytes) = decode_image(t, &spec.path, &spec.resolved, spec.srgb, files)?;
             let (levels, build) = crate::artmap::build(device, queue, &t.name, spec, &bytes, base).map_err(|e| {
                 let first = e.diagnostics().into_iter().next().unwrap_or_else(|| {
                     Diagnostic::error(

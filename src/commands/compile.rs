@@ -1,5 +1,6 @@
 //! `npr compile`: a style to WGSL, one file per pass, plus manifest.json and
-//! the report, written atomically into a directory.
+//! the report, written atomically into a directory; or, for `-o FILE.nprb`,
+//! one bundle file (`npr_abi::bundle`) with the style's image files in it.
 
 use crate::cli::{CompileArgs, EXIT_OK};
 use crate::printer::{cannot_write, check_options, Printer};
@@ -21,13 +22,23 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         paths,
     } = args;
     let mut sources = SourceMap::new();
-    if out.exists() && !out.is_dir() {
+    let bundle = out.extension().is_some_and(|e| e == "nprb");
+    if bundle && out.is_dir() {
+        return printer.fail(
+            Diagnostic::error(
+                codes::CANNOT_WRITE,
+                format!("-o {}: a directory of that name exists", out.display()),
+            )
+            .with_help("`npr compile -o FILE.nprb` writes one bundle file"),
+        );
+    }
+    if !bundle && out.exists() && !out.is_dir() {
         return printer.fail(
             Diagnostic::error(
                 codes::CANNOT_WRITE,
                 format!("-o {}: a file of that name exists", out.display()),
             )
-            .with_help("`npr compile -o` names a directory, for the WGSL files and manifest.json"),
+            .with_help("`npr compile -o` names a directory, for the WGSL files and manifest.json, or a bundle file ending in `.nprb`"),
         );
     }
     let opts = match check_options(&paths, &style, scene.as_deref(), &mut sources, printer) {
@@ -44,7 +55,22 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         Err(code) => return code,
     };
     printer.diagnostics(&c.warnings, &sources);
-    if let Err(e) = write_compiled(&c, &out) {
+    if bundle {
+        let bytes = match c.program().to_bundle(|path| std::fs::read(path)) {
+            Ok(b) => b,
+            // The compiler checked every image file it names; one that
+            // vanished since is the only way here.
+            Err(e) => {
+                return printer.fail(Diagnostic::error(
+                    codes::MISSING_TEXTURE,
+                    format!("bundling {}: {e}", out.display()),
+                ))
+            }
+        };
+        if let Err(e) = npr_runner::output::write_atomic(&out, &bytes) {
+            return printer.fail(cannot_write(&out, e));
+        }
+    } else if let Err(e) = write_compiled(&c, &out) {
         return printer.fail(cannot_write(&out, e));
     }
     if report {

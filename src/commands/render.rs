@@ -85,12 +85,12 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     // compiled directory): render-time texture errors point there.
     let mut texture_spans = Vec::new();
     let program = match (compiled, style) {
-        (Some(dir), _) => match StyleProgram::load_dir(&dir) {
+        (Some(dir), _) => match StyleProgram::load(&dir) {
             Ok(p) => p,
             Err(e) => {
                 return printer.fail(
                     Diagnostic::error(codes::BAD_COMPILED_DIR, format!("{}: {e}", dir.display()))
-                        .with_help("give a directory written by `npr compile -o DIR`"),
+                        .with_help("give a directory written by `npr compile -o DIR`, or a bundle written by `npr compile -o FILE.nprb`"),
                 )
             }
         },

@@ -7,6 +7,7 @@
 mod common;
 
 mod bench_plot;
+mod bundles;
 mod cli;
 mod cli_usage;
 mod crate_boundaries;

@@ -238,7 +238,7 @@ impl Renderer {
         filter_input: Option<&crate::artmap::Level>,
     ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();
-        let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input)?;
+        let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input, &program.files)?;
         let linear_clamp = device.make_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,
