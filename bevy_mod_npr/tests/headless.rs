@@ -98,6 +98,35 @@ fn image_after_reload(
     read_image(app, image)
 }
 
+/// A shipped program's style: `npr compile -o toon.nprb` (here the same
+/// compile and `StyleProgram::to_bundle` that command runs), loaded by the
+/// plugin's bundle loader with no `.npr` file in the asset folder, draws
+/// what `npr render` draws of the style.
+#[test]
+fn a_precompiled_bundle_draws_what_npr_render_draws_of_its_style() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("toon_bundle");
+    let source = repo().join("examples/toon.npr");
+    let scene = load_scene("spot.toml");
+    let expected = npr_render(&source, &scene);
+    let mut sources = npr_diag::SourceMap::new();
+    let options = npr_compiler::CompileOptions {
+        keep_params: true,
+        ..Default::default()
+    };
+    let program = npr_compiler::compile_file(&source, &mut sources, &options)
+        .unwrap_or_else(|e| panic!("{e:?}"))
+        .program();
+    let bytes = program.to_bundle(|p| std::fs::read(p)).expect("bundle");
+    std::fs::write(dir.join("toon.nprb"), bytes).expect("write the bundle");
+    assert!(!dir.join("toon.npr").exists(), "the asset folder holds only the bundle");
+
+    let Drawing { app, image, style, .. } = draw(&dir, "toon.nprb", "Toon", &scene);
+    assert_close("toon_bundle", &read_image(&app, &image), &expected);
+    let asset = style_asset(&app, &style).expect("the bundle's asset");
+    assert_eq!(asset.program().shaders, program.shaders, "the bundle's WGSL is the compiler's");
+}
+
 #[test]
 fn toon_on_spot_equals_npr_render_and_follows_its_params_set_and_removed() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
