@@ -292,9 +292,11 @@ fn write_vertices(queue: &wgpu::Queue, gpu: &GpuMesh, mesh: &Mesh) {
 }
 
 /// Whether `upload_scene` shares the object's buffers with the other
-/// objects of its mesh (a still mesh's, neither animated nor a patch).
+/// objects of its mesh (a still mesh's, neither animated nor a patch). An
+/// object playing a clip has buffers of its own: objects of one file may
+/// play other clips, or the same at other times.
 fn shares_buffers(object: &crate::scene::Object) -> bool {
-    object.time_varying.is_none() && object.blend.is_none()
+    object.time_varying.is_none() && object.blend.is_none() && object.animation.is_none()
 }
 
 /// Whether `object`'s (new) mesh can be written over `gpu`'s buffers.
