@@ -229,6 +229,16 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     if !(0..meshes.len().min(scene.objects.len())).any(deformed) {
         return Ok(());
     }
+    // An object playing a clip has buffers of its own (`shares_buffers`):
+    // its mesh of this frame is written over them alone.
+    for (object, gpu) in scene.objects.iter().zip(meshes.iter_mut()) {
+        if object.animation.is_some() && !Arc::ptr_eq(&gpu.source, &object.mesh) {
+            fits(object, gpu)?;
+            write_vertices(queue, gpu, &object.mesh);
+            gpu.source = object.mesh.clone();
+            gpu.vertex_revision += 1;
+        }
+    }
     // Per group of shared buffers (by the mesh they were uploaded from):
     // the first deformed object's index and its new mesh.
     let mut moves: Vec<(*const Mesh, usize)> = Vec::new();
