@@ -2,7 +2,8 @@
 //! pose skinned in f64 by an independent reference
 //! (`common/skin_reference.rs`) and drawn as a rigid mesh: view depth
 //! within 1e-4 relative wherever both cover a pixel, and the lit image
-//! within a mean FLIP of 0.01, for several poses of the Blender-exported
+//! within a mean FLIP of 0.01, and the silhouette lines (built on the CPU
+//! from the frame's mesh) within a mean FLIP of 0.01, for several poses of the Blender-exported
 //! arm (skin) and blob (morph targets). On failure the images are written
 //! under the target's temporary folder.
 
@@ -44,6 +45,19 @@ pass shade: render(scene) {
   clear: #000000
 }
 output shade.z
+"#;
+
+/// Silhouettes only, drawn 2 px wide: built on the CPU from the object's
+/// mesh of the frame (`lines/`), so they follow the deformation.
+const LINES: &str = r#"
+style "skinned lines"
+pass ink: lines(scene) {
+  silhouettes: true
+  width: 2px
+  out c: rgba8unorm = vec4(1.0, 1.0, 1.0, 1.0)
+  clear: #000000
+}
+output ink.c
 "#;
 
 fn compile(name: &str, text: &str) -> StyleProgram {
@@ -132,19 +146,31 @@ fn check(text: &str, file: &str, clip: &str, time_s: f64) {
     }
     let (ca, cr) = (rgba(&render(&shade, &animated, time_s)), rgba(&render(&shade, &rigid, time_s)));
     let flip = flip_mean(&ca, &cr);
+    let lines = compile("lines.npr", LINES);
+    let (la, lr) = (rgba(&render(&lines, &animated, time_s)), rgba(&render(&lines, &rigid, time_s)));
+    let inked = lr.pixels().filter(|p| p.0[0] > 0).count();
+    let lines_flip = flip_mean(&la, &lr);
     eprintln!(
-        "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} by one only, depth error {worst:e}, FLIP {flip}"
+        "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} by one only, depth error {worst:e}, FLIP {flip}; \
+         silhouette lines: {inked} pixels inked, FLIP {lines_flip}"
     );
-    let ok = covered > 300 && coverage_differs <= 2 && worst <= 1e-4 && flip <= 0.01;
+    let ok = covered > 300
+        && coverage_differs <= 2
+        && worst <= 1e-4
+        && flip <= 0.01
+        && inked > 100
+        && lines_flip <= 0.01;
     if !ok {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("skinned_render");
         std::fs::create_dir_all(&dir).expect("scratch");
         let stem = format!("{file}-{time_s}");
         ca.save(dir.join(format!("{stem}-actual.png"))).expect("save");
         cr.save(dir.join(format!("{stem}-reference.png"))).expect("save");
+        la.save(dir.join(format!("{stem}-lines-actual.png"))).expect("save");
+        lr.save(dir.join(format!("{stem}-lines-reference.png"))).expect("save");
         panic!(
             "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} covered by one only, \
-             depth error {worst:e} relative, FLIP {flip}; images in {}",
+             depth error {worst:e} relative, FLIP {flip}; lines: {inked} inked, FLIP {lines_flip}; images in {}",
             dir.display()
         );
     }
