@@ -50,6 +50,10 @@
 //! blend_rings = 1                 # optional, with `patches`, 0..=16, default 1: render passes that
 //!                                 # read `patch.weight` draw each patch over the n rings of faces
 //!                                 # around it, where patterns cross-fade (0: hard seams)
+//! animation = { clip = "bend" }  # optional, a glTF mesh with animations: play this clip; also
+//!                                 # `speed` (default 1, clip seconds per second, may be negative),
+//!                                 # `loop` (default true; false holds the first and last pose) and
+//!                                 # `offset` (default 0, the clip's time at scene time 0)
 //! # an `object param albedo: texture` takes an image, relative to this file:
 //! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
@@ -117,6 +121,14 @@
 //! merged). glTF files are read with the `gltf` crate: every triangle
 //! primitive of the default scene, node transforms baked in. Coordinates
 //! are kept as in the file. See [`Mesh`] for the attribute conventions.
+//!
+//! A glTF file with skins, morph targets or animations is read into a
+//! [`rig::Rig`] as well ([`gltf_rig`]); its mesh is then the rest pose
+//! (skinned by the nodes' rest transforms, the default morph weights
+//! applied). An object with `animation` plays one of its clips: each frame
+//! [`Scene::posed`] gives it the mesh deformed on the CPU at the frame's
+//! time, which the renderer writes over the object's own vertex buffers
+//! (docs/decisions/0049). Objects of one file share its rig.
 
 pub mod anim_sampler;
 mod attributes;
