@@ -56,7 +56,13 @@ fn linear_translation_and_weights_are_componentwise() {
     close(&at(&s, 0.0), &[0.0, 0.0, 0.0], 0.0);
     close(&at(&s, 9.0), &[4.0, 8.0, -4.0], 0.0);
     // Two morph weights over three keys.
-    let w = sampler(Interpolation::Linear, &[0.0, 1.0, 2.0], &[0.0, 1.0, 1.0, 0.0, 0.5, 0.5], 2, false);
+    let w = sampler(
+        Interpolation::Linear,
+        &[0.0, 1.0, 2.0],
+        &[0.0, 1.0, 1.0, 0.0, 0.5, 0.5],
+        2,
+        false,
+    );
     close(&at(&w, 0.25), &[0.25, 0.75], 1e-6);
     close(&at(&w, 1.5), &[0.75, 0.25], 1e-6);
 }

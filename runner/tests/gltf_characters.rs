@@ -13,7 +13,9 @@ use npr_runner::scene::{load_mesh_and_rig, parse_scene};
 use std::path::{Path, PathBuf};
 
 fn blender(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/blender").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/data/blender")
+        .join(name)
 }
 
 fn data(name: &str) -> PathBuf {
@@ -30,7 +32,11 @@ fn the_skinned_triangle_poses_as_computed_by_hand() {
     let rig = rig.expect("a rig");
     // The rest pose: joint matrices are identity (bone1's inverse bind
     // undoes its translation), the morph weight is 0.
-    for (p, want) in rest.positions.iter().zip([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, 0.0]]) {
+    for (p, want) in rest
+        .positions
+        .iter()
+        .zip([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    {
         assert!(close(*p, want, 1e-6), "rest {p:?} vs {want:?}");
     }
     let clip = rig.clip_index("wave").expect("clip wave");
@@ -41,13 +47,25 @@ fn the_skinned_triangle_poses_as_computed_by_hand() {
     let half = rig.deform(&rig.pose(Some((clip, 0.5))));
     let v1 = [(1.0 + 2.0 * h) / 2.0, 0.5, 0.0];
     assert!(close(half.positions[1], v1, 1e-6), "{:?} vs {v1:?}", half.positions[1]);
-    assert!(close(half.positions[2], [-h, 1.0 + h, 0.0], 1e-6), "{:?}", half.positions[2]);
-    assert!(close(half.positions[0], [0.0, 0.0, 0.0], 1e-6), "{:?}", half.positions[0]);
+    assert!(
+        close(half.positions[2], [-h, 1.0 + h, 0.0], 1e-6),
+        "{:?}",
+        half.positions[2]
+    );
+    assert!(
+        close(half.positions[0], [0.0, 0.0, 0.0], 1e-6),
+        "{:?}",
+        half.positions[0]
+    );
     // t = 1: 90°, and the STEP weight has reached 1 (vertex 0 moves +0.5 z).
     let end = rig.deform(&rig.pose(Some((clip, 1.0))));
     assert!(close(end.positions[0], [0.0, 0.0, 0.5], 1e-6), "{:?}", end.positions[0]);
     assert!(close(end.positions[1], [1.0, 1.0, 0.0], 1e-6), "{:?}", end.positions[1]);
-    assert!(close(end.positions[2], [-1.0, 1.0, 0.0], 1e-6), "{:?}", end.positions[2]);
+    assert!(
+        close(end.positions[2], [-1.0, 1.0, 0.0], 1e-6),
+        "{:?}",
+        end.positions[2]
+    );
 }
 
 /// Largest distance between the runner's deformation and the f64 reference,
@@ -87,7 +105,10 @@ fn the_blender_arm_bends_as_the_f64_reference_does() {
     assert!(tip_rest - tip_bent > 0.3, "the arm bends: top {tip_rest} → {tip_bent}");
     for t in [0.0, 0.13, duration * 0.37, duration / 2.0, duration * 0.8, duration] {
         let (dp, dn) = worst_error(&path, Some(("bend", t)));
-        assert!(dp < 2e-6 * 2.0 && dn < 1e-5, "t = {t}: position error {dp}, normal error {dn}");
+        assert!(
+            dp < 2e-6 * 2.0 && dn < 1e-5,
+            "t = {t}: position error {dp}, normal error {dn}"
+        );
     }
     let (dp, dn) = worst_error(&path, None);
     assert!(dp < 4e-6 && dn < 1e-5, "rest: {dp}, {dn}");
@@ -105,11 +126,18 @@ fn the_blender_blob_morphs_as_the_f64_reference_does() {
     let duration = f64::from(rig.clips[rig.clip_index("pulse").expect("clip pulse")].duration);
     for t in [0.0, 0.2, duration / 2.0, duration * 0.9] {
         let (dp, dn) = worst_error(&path, Some(("pulse", t)));
-        assert!(dp < 4e-6 && dn < 1e-5, "t = {t}: position error {dp}, normal error {dn}");
+        assert!(
+            dp < 4e-6 && dn < 1e-5,
+            "t = {t}: position error {dp}, normal error {dn}"
+        );
     }
     // Rest: the default 0.25 of `inflate` is applied (radius 1 → 1.075).
     let (rest, _) = load_mesh_and_rig(&path).expect("loads");
-    let radius = rest.positions.iter().map(|p| Vec3::from_array(*p).length()).fold(0.0f32, f32::max);
+    let radius = rest
+        .positions
+        .iter()
+        .map(|p| Vec3::from_array(*p).length())
+        .fold(0.0f32, f32::max);
     assert!((radius - 1.075).abs() < 1e-4, "rest radius {radius}");
 }
 
@@ -128,8 +156,13 @@ fn objects_play_clips_with_speed_loop_and_offset() {
          [[object]]\nname = \"still\"\nmesh = \"arm.glb\"\n",
     );
     let scene = parse_scene(&text, npr_diag::FileId(0), &dir).expect("scene");
-    let [a, b, still] = &scene.objects[..] else { panic!("three objects") };
-    let (a, b) = (a.animation.as_ref().expect("a plays"), b.animation.as_ref().expect("b plays"));
+    let [a, b, still] = &scene.objects[..] else {
+        panic!("three objects")
+    };
+    let (a, b) = (
+        a.animation.as_ref().expect("a plays"),
+        b.animation.as_ref().expect("b plays"),
+    );
     assert!(still.animation.is_none());
     assert!(std::sync::Arc::ptr_eq(&a.rig, &b.rig), "one file's rig, shared");
     let d = f64::from(a.rig.clips[0].duration);
@@ -186,7 +219,11 @@ fn load_variant(from: &str, to: &str) -> npr_runner::scene::MeshLoadError {
     let path = dir.join(format!("variant-{}.gltf", from.len() * 31 + to.len()));
     std::fs::write(&path, text.replace(from, to)).expect("write");
     let err = load_mesh_and_rig(&path).expect_err("the variant is refused");
-    assert!(err.message.contains(&path.display().to_string()), "names the file: {}", err.message);
+    assert!(
+        err.message.contains(&path.display().to_string()),
+        "names the file: {}",
+        err.message
+    );
     err
 }
 
@@ -202,14 +239,26 @@ fn bad_rigs_get_a_code_the_file_and_the_gltf_path() {
     let joints: Vec<String> = (0..300).map(|i| (1 + i % 2).to_string()).collect();
     let err = load_variant("\"joints\":[1,2]", &format!("\"joints\":[{}]", joints.join(",")));
     assert_eq!(err.code, "E0404");
-    assert!(err.message.contains("`/skins/0/joints`") && err.message.contains("300 joints"), "{}", err.message);
+    assert!(
+        err.message.contains("`/skins/0/joints`") && err.message.contains("300 joints"),
+        "{}",
+        err.message
+    );
     let err = load_variant("\"output\":7", "\"output\":10");
     assert_eq!(err.code, "E0402");
-    assert!(err.message.contains("`/animations/0/samplers/0/output`"), "{}", err.message);
+    assert!(
+        err.message.contains("`/animations/0/samplers/0/output`"),
+        "{}",
+        err.message
+    );
     // Weights animated on a node without morph targets.
     let err = load_variant("{\"node\":3,\"path\":\"weights\"}", "{\"node\":2,\"path\":\"weights\"}");
     assert_eq!(err.code, "E0402");
-    assert!(err.message.contains("`/animations/0/channels/1/target`"), "{}", err.message);
+    assert!(
+        err.message.contains("`/animations/0/channels/1/target`"),
+        "{}",
+        err.message
+    );
     // A sampler whose accessor does not exist: the glTF reader's own check.
     let err = load_variant("\"output\":7", "\"output\":70");
     assert_eq!(err.code, "E0402");

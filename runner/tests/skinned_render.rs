@@ -20,9 +20,8 @@ use std::sync::{Arc, OnceLock};
 fn gpu() -> &'static Gpu {
     static GPU: OnceLock<Gpu> = OnceLock::new();
     GPU.get_or_init(|| {
-        Gpu::headless().unwrap_or_else(|e| {
-            panic!("runner tests need a GPU adapter (Mesa's lavapipe: `./setup.sh --tests`): {e}")
-        })
+        Gpu::headless()
+            .unwrap_or_else(|e| panic!("runner tests need a GPU adapter (Mesa's lavapipe: `./setup.sh --tests`): {e}"))
     })
 }
 
@@ -74,8 +73,7 @@ fn blender() -> PathBuf {
 }
 
 fn scene(text: &str) -> Scene {
-    npr_runner::scene::parse_scene(text, npr_diag::FileId(0), &blender())
-        .unwrap_or_else(|d| panic!("scene: {d:?}"))
+    npr_runner::scene::parse_scene(text, npr_diag::FileId(0), &blender()).unwrap_or_else(|d| panic!("scene: {d:?}"))
 }
 
 /// The scene with its one object replaced by the f64 reference's mesh at
@@ -144,22 +142,24 @@ fn check(text: &str, file: &str, clip: &str, time_s: f64) {
             _ => coverage_differs += 1,
         }
     }
-    let (ca, cr) = (rgba(&render(&shade, &animated, time_s)), rgba(&render(&shade, &rigid, time_s)));
+    let (ca, cr) = (
+        rgba(&render(&shade, &animated, time_s)),
+        rgba(&render(&shade, &rigid, time_s)),
+    );
     let flip = flip_mean(&ca, &cr);
     let lines = compile("lines.npr", LINES);
-    let (la, lr) = (rgba(&render(&lines, &animated, time_s)), rgba(&render(&lines, &rigid, time_s)));
+    let (la, lr) = (
+        rgba(&render(&lines, &animated, time_s)),
+        rgba(&render(&lines, &rigid, time_s)),
+    );
     let inked = lr.pixels().filter(|p| p.0[0] > 0).count();
     let lines_flip = flip_mean(&la, &lr);
     eprintln!(
         "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} by one only, depth error {worst:e}, FLIP {flip}; \
          silhouette lines: {inked} pixels inked, FLIP {lines_flip}"
     );
-    let ok = covered > 300
-        && coverage_differs <= 2
-        && worst <= 1e-4
-        && flip <= 0.01
-        && inked > 100
-        && lines_flip <= 0.01;
+    let ok =
+        covered > 300 && coverage_differs <= 2 && worst <= 1e-4 && flip <= 0.01 && inked > 100 && lines_flip <= 0.01;
     if !ok {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("skinned_render");
         std::fs::create_dir_all(&dir).expect("scratch");

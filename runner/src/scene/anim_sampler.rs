@@ -77,7 +77,11 @@ impl Sampler {
         let k = after - 1;
         let (t0, t1) = (self.times[k], self.times[k + 1]);
         let delta = t1 - t0;
-        let s = if delta > 0.0 { ((t - t0) / delta).clamp(0.0, 1.0) } else { 0.0 };
+        let s = if delta > 0.0 {
+            ((t - t0) / delta).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         match self.interpolation {
             Interpolation::Step => out.copy_from_slice(self.value(k)),
             Interpolation::Linear if self.rotation => {

@@ -35,7 +35,10 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<(Mesh, 
     if gltf_rig::has_rig(&document) {
         let rig = gltf_rig::read_rig(&document, &buffers, source)?;
         if rig.bind.triangle_count() > MAX_TRIANGLES {
-            return Err(MeshLoadError::too_many_triangles(Path::new(source), rig.bind.triangle_count()));
+            return Err(MeshLoadError::too_many_triangles(
+                Path::new(source),
+                rig.bind.triangle_count(),
+            ));
         }
         let rest = rig.deform(&rig.pose(None));
         return Ok((rest, Some(rig)));

@@ -76,12 +76,20 @@ pub fn read_rig(document: &gltf::Document, buffers: &[BufferData], source: &str)
     let mut pending: Vec<(gltf::Node, usize)> = roots.into_iter().rev().map(|n| (n, 0)).collect();
     while let Some((node, depth)) = pending.pop() {
         if depth > MAX_NODE_DEPTH {
-            return Err(bad(source, format!("/nodes/{}", node.index()), "the hierarchy is too deep"));
+            return Err(bad(
+                source,
+                format!("/nodes/{}", node.index()),
+                "the hierarchy is too deep",
+            ));
         }
         if let Some(mesh) = node.mesh() {
             let targets = mesh.primitives().map(|p| p.morph_targets().len()).max().unwrap_or(0);
             if targets > 0 {
-                let mut w: Vec<f32> = node.weights().or(mesh.weights()).map(<[f32]>::to_vec).unwrap_or_default();
+                let mut w: Vec<f32> = node
+                    .weights()
+                    .or(mesh.weights())
+                    .map(<[f32]>::to_vec)
+                    .unwrap_or_default();
                 w.resize(targets, 0.0);
                 default_weights[node.index()] = w;
             }
@@ -137,7 +145,9 @@ fn read_nodes(document: &gltf::Document, source: &str) -> Result<Vec<RigNode>, M
         .map(|node| {
             let (translation, rotation, scale) = node.transform().decomposed();
             RigNode {
-                name: node.name().map_or_else(|| format!("node{}", node.index()), str::to_string),
+                name: node
+                    .name()
+                    .map_or_else(|| format!("node{}", node.index()), str::to_string),
                 parent: parents[node.index()],
                 rest: Mat4::from_cols_array_2d(&node.transform().matrix()),
                 translation: Vec3::from_array(translation),
@@ -168,7 +178,11 @@ fn parent_first_order(nodes: &[RigNode], source: &str) -> Result<Vec<usize>, Mes
         let mut reached = vec![false; nodes.len()];
         order.iter().for_each(|&n| reached[n] = true);
         let lost = reached.iter().position(|r| !r).unwrap_or(0);
-        return Err(bad(source, format!("/nodes/{lost}"), "the node is in a cycle of children"));
+        return Err(bad(
+            source,
+            format!("/nodes/{lost}"),
+            "the node is in a cycle of children",
+        ));
     }
     Ok(order)
 }
@@ -261,14 +275,20 @@ impl Merged {
         let local: Vec<[f32; 3]> = positions.collect();
         let count = local.len();
         self.positions.extend(local);
-        let normals = reader.read_normals().map(|n| n.collect::<Vec<_>>()).filter(|n| n.len() == count);
+        let normals = reader
+            .read_normals()
+            .map(|n| n.collect::<Vec<_>>())
+            .filter(|n| n.len() == count);
         merge(&mut self.normals, normals);
         let uvs = reader
             .read_tex_coords(0)
             .map(|t| t.into_f32().collect::<Vec<_>>())
             .filter(|t| t.len() == count);
         merge(&mut self.uvs, uvs);
-        let tangents = reader.read_tangents().map(|t| t.collect::<Vec<_>>()).filter(|t| t.len() == count);
+        let tangents = reader
+            .read_tangents()
+            .map(|t| t.collect::<Vec<_>>())
+            .filter(|t| t.len() == count);
         merge(&mut self.tangents, tangents);
 
         let local_indices: Vec<u32> = match reader.read_indices() {
@@ -276,8 +296,13 @@ impl Merged {
             None => (0..count as u32).collect(),
         };
         for t in local_indices.chunks_exact(3) {
-            let ordered = if mirrored { [t[0], t[2], t[1]] } else { [t[0], t[1], t[2]] };
-            self.indices.extend(ordered.iter().map(|i| i.saturating_add(first_vertex)));
+            let ordered = if mirrored {
+                [t[0], t[2], t[1]]
+            } else {
+                [t[0], t[1], t[2]]
+            };
+            self.indices
+                .extend(ordered.iter().map(|i| i.saturating_add(first_vertex)));
         }
         let part = self.pieces.len() as u32;
         self.parts.resize(self.indices.len() / 3, part);
@@ -314,12 +339,24 @@ impl Merged {
     {
         let joints: Vec<[u16; 4]> = reader
             .read_joints(0)
-            .ok_or_else(|| bad(source, format!("{path}/attributes"), "a skinned primitive has no JOINTS_0"))?
+            .ok_or_else(|| {
+                bad(
+                    source,
+                    format!("{path}/attributes"),
+                    "a skinned primitive has no JOINTS_0",
+                )
+            })?
             .into_u16()
             .collect();
         let weights: Vec<[f32; 4]> = reader
             .read_weights(0)
-            .ok_or_else(|| bad(source, format!("{path}/attributes"), "a skinned primitive has no WEIGHTS_0"))?
+            .ok_or_else(|| {
+                bad(
+                    source,
+                    format!("{path}/attributes"),
+                    "a skinned primitive has no WEIGHTS_0",
+                )
+            })?
             .into_f32()
             .collect();
         if joints.len() != count || weights.len() != count {
@@ -385,7 +422,11 @@ where
                 if len == count {
                     Ok(())
                 } else {
-                    Err(bad(source, format!("{at}/{what}"), format!("{len} deltas for {count} vertices")))
+                    Err(bad(
+                        source,
+                        format!("{at}/{what}"),
+                        format!("{len} deltas for {count} vertices"),
+                    ))
                 }
             };
             let positions: Vec<[f32; 3]> = match positions {
@@ -421,7 +462,11 @@ fn read_clips(
         let mut channels = Vec::new();
         let mut duration = 0.0f32;
         for channel in animation.channels() {
-            let sampler_path = format!("/animations/{}/samplers/{}", animation.index(), channel.sampler().index());
+            let sampler_path = format!(
+                "/animations/{}/samplers/{}",
+                animation.index(),
+                channel.sampler().index()
+            );
             let channel_path = format!("/animations/{}/channels/{}", animation.index(), channel.index());
             let node = channel.target().node().index();
             if node >= nodes.len() {
@@ -461,11 +506,9 @@ fn read_clips(
                 Property::Translation | Property::Scale => 3,
                 Property::Rotation => 4,
                 Property::Weights => {
-                    let targets = channel
-                        .target()
-                        .node()
-                        .mesh()
-                        .map_or(0, |m| m.primitives().map(|p| p.morph_targets().len()).max().unwrap_or(0));
+                    let targets = channel.target().node().mesh().map_or(0, |m| {
+                        m.primitives().map(|p| p.morph_targets().len()).max().unwrap_or(0)
+                    });
                     if targets == 0 {
                         return Err(bad(
                             source,

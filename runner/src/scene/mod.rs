@@ -243,13 +243,18 @@ impl ObjectAnimation {
     pub fn clip_time(&self, time_s: f64) -> f32 {
         let t = self.offset + self.speed * time_s;
         let duration = self.rig.clips.get(self.clip).map_or(0.0, |c| f64::from(c.duration));
-        let t = if self.looping && duration > 0.0 { t.rem_euclid(duration) } else { t };
+        let t = if self.looping && duration > 0.0 {
+            t.rem_euclid(duration)
+        } else {
+            t
+        };
         t as f32
     }
 
     /// The object's mesh at scene time `time_s`.
     pub fn mesh_at(&self, time_s: f64) -> Mesh {
-        self.rig.deform(&self.rig.pose(Some((self.clip, self.clip_time(time_s)))))
+        self.rig
+            .deform(&self.rig.pose(Some((self.clip, self.clip_time(time_s)))))
     }
 }
 

@@ -3,10 +3,10 @@
 
 use super::mesh::Mesh;
 use super::mesh_file::{load_mesh_and_rig, MeshLoadError};
-use super::rig::Rig;
 use super::parse_patches::PatchRequest;
 use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
+use super::rig::Rig;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
 use super::{Object, ObjectAnimation, TextureBinding};
 use glam::{Mat4, Quat, Vec3};

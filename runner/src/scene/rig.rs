@@ -224,7 +224,10 @@ impl Rig {
             mesh.normals[v] = (sign * (cofactor(linear) * n)).normalize_or_zero().to_array();
             if let (Some(t), Some(out)) = (t, mesh.tangents.as_mut()) {
                 let handedness = if linear.determinant() < 0.0 { -t.w } else { t.w };
-                out[v] = (linear * t.truncate()).normalize_or_zero().extend(handedness).to_array();
+                out[v] = (linear * t.truncate())
+                    .normalize_or_zero()
+                    .extend(handedness)
+                    .to_array();
             }
         }
     }

@@ -25,7 +25,9 @@ fn sample(times: &[f64], values: &[Vec<f64>], step: bool, rotation: bool, t: f64
     if t >= times[n - 1] {
         return values[n - 1].clone();
     }
-    let k = (0..n - 1).find(|&k| times[k] <= t && t < times[k + 1]).expect("a segment");
+    let k = (0..n - 1)
+        .find(|&k| times[k] <= t && t < times[k + 1])
+        .expect("a segment");
     if step {
         return values[k].clone();
     }
@@ -37,7 +39,11 @@ fn sample(times: &[f64], values: &[Vec<f64>], step: bool, rotation: bool, t: f64
         let q = a.slerp(b, s);
         return vec![q.x, q.y, q.z, q.w];
     }
-    values[k].iter().zip(&values[k + 1]).map(|(a, b)| a + (b - a) * s).collect()
+    values[k]
+        .iter()
+        .zip(&values[k + 1])
+        .map(|(a, b)| a + (b - a) * s)
+        .collect()
 }
 
 /// The file at `path` deformed by clip `clip` (by name) at `t` seconds, or
@@ -103,7 +109,10 @@ pub fn deform(path: &Path, clip: Option<(&str, f64)>) -> Deformed {
     }
     // World matrices, depth first from the default scene's roots.
     let mut world = vec![DMat4::IDENTITY; count];
-    let scene = document.default_scene().or_else(|| document.scenes().next()).expect("a scene");
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .expect("a scene");
     let mut drawn = Vec::new();
     let mut stack: Vec<(gltf::Node, DMat4)> = scene.nodes().map(|n| (n, DMat4::IDENTITY)).collect();
     stack.reverse();
@@ -127,16 +136,30 @@ pub fn deform(path: &Path, clip: Option<(&str, f64)>) -> Deformed {
             let ibm: Vec<DMat4> = skin
                 .reader(get)
                 .read_inverse_bind_matrices()
-                .map(|m| m.map(|c| DMat4::from_cols_array_2d(&c.map(|r| r.map(f64::from)))).collect())
+                .map(|m| {
+                    m.map(|c| DMat4::from_cols_array_2d(&c.map(|r| r.map(f64::from))))
+                        .collect()
+                })
                 .unwrap_or_else(|| vec![DMat4::IDENTITY; skin.joints().count()]);
-            skin.joints().zip(ibm).map(|(j, m)| world[j.index()] * m).collect::<Vec<_>>()
+            skin.joints()
+                .zip(ibm)
+                .map(|(j, m)| world[j.index()] * m)
+                .collect::<Vec<_>>()
         });
         let morph = weights.get(&node.index()).cloned().unwrap_or_default();
         for primitive in mesh.primitives() {
             let reader = primitive.reader(get);
             let base = out.positions.len() as u32;
-            let mut p: Vec<DVec3> = reader.read_positions().expect("positions").map(|v| DVec3::from_array(v.map(f64::from))).collect();
-            let mut n: Vec<DVec3> = reader.read_normals().expect("normals").map(|v| DVec3::from_array(v.map(f64::from))).collect();
+            let mut p: Vec<DVec3> = reader
+                .read_positions()
+                .expect("positions")
+                .map(|v| DVec3::from_array(v.map(f64::from)))
+                .collect();
+            let mut n: Vec<DVec3> = reader
+                .read_normals()
+                .expect("normals")
+                .map(|v| DVec3::from_array(v.map(f64::from)))
+                .collect();
             for (k, (dp, dn, _)) in reader.read_morph_targets().enumerate() {
                 let w = morph.get(k).copied().unwrap_or(0.0);
                 if let Some(dp) = dp {
