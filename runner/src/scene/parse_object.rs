@@ -20,9 +20,13 @@ use toml::de::DeValue;
 /// file or the same primitive share one [`Mesh`].
 #[derive(Default)]
 pub struct MeshCache {
-    files: HashMap<PathBuf, Result<(Arc<Mesh>, Option<Arc<Rig>>), MeshLoadError>>,
+    files: HashMap<PathBuf, Result<LoadedFile, MeshLoadError>>,
     primitives: HashMap<String, Arc<Mesh>>,
 }
+
+/// A mesh file's rest mesh and, for a glTF file that has them, its skins,
+/// morph targets and clips.
+type LoadedFile = (Arc<Mesh>, Option<Arc<Rig>>);
 
 /// An object as read, with what duplicate-name checking needs.
 pub struct ObjectDecl {
