@@ -1,5 +1,5 @@
 //! Times the CPU pose and deformation of an object playing a clip
-//! (`scene::rig`, issue 48): the Blender arm of `tests/data/blender/`
+//! (`scene::rig`, issue 48): the Blender arm of `examples/models/`
 //! (2 joints, 4 weights a vertex) repeated to 10k, 100k and 1M vertices,
 //! and the blob's two morph targets likewise. Prints milliseconds per
 //! frame for `Rig::pose` + `Rig::deform` (the work a rigid object does not
@@ -59,7 +59,7 @@ fn millis_per_frame(rig: &Rig, frames: u32) -> f64 {
 }
 
 fn main() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/blender");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models");
     for file in ["arm.glb", "blob.glb"] {
         let (_, rig) = load_mesh_and_rig(&dir.join(file)).expect("test character");
         let rig = rig.expect("a rig");

@@ -2,8 +2,9 @@
 //! deformation (`scene::rig`) against hand-computed positions and against
 //! an independent f64 reference (`common/skin_reference.rs`), on a
 //! hand-built skinned triangle and on the Blender-exported characters of
-//! `tests/data/blender/`; scenes playing clips; and the coded errors of
-//! bad files and bad `animation` fields.
+//! `examples/models/` (made by `tests/data/blender/make_characters.py`);
+//! scenes playing clips; and the coded errors of bad files and bad
+//! `animation` fields.
 
 #[path = "common/skin_reference.rs"]
 mod skin_reference;
@@ -14,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 fn blender(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/data/blender")
+        .join("../examples/models")
         .join(name)
 }
 

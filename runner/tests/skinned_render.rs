@@ -69,7 +69,7 @@ fn compile(name: &str, text: &str) -> StyleProgram {
 }
 
 fn blender() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/blender")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models")
 }
 
 fn scene(text: &str) -> Scene {

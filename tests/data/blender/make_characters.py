@@ -5,7 +5,7 @@ Run with Debian's blender (3.4) and a system PATH, so that Blender's Python
 finds Debian's numpy (the exporter needs it):
 
     PATH=/usr/bin:/bin blender -b --factory-startup \
-        -P tests/data/blender/make_characters.py -- tests/data/blender
+        -P tests/data/blender/make_characters.py -- examples/models
 
 It writes `arm.glb` (a two-bone chain skinning a subdivided cylinder, clip
 `bend`) and `blob.glb` (a sphere with two shape keys, clip `pulse`). The
