@@ -95,7 +95,9 @@ fn the_blender_arm_bends_as_the_f64_reference_does() {
     let rig = rig.expect("arm.glb has a rig");
     assert_eq!(rig.skins.len(), 1);
     assert_eq!(rig.skins[0].joints.len(), 2);
-    assert_eq!(rest.vertex_count(), 12 * 17);
+    // 12 × 17 on the tube, and the UV seam's 17 again.
+    assert_eq!(rest.vertex_count(), 12 * 17 + 17);
+    assert!(rest.uvs.is_some());
     let names: Vec<&str> = rig.clips.iter().map(|c| c.name.as_str()).collect();
     assert_eq!(names, ["bend"]);
     let duration = f64::from(rig.clips[0].duration);
@@ -180,6 +182,15 @@ fn objects_play_clips_with_speed_loop_and_offset() {
     let want = a.rig.deform(&a.rig.pose(Some((0, 0.4))));
     assert_eq!(posed.objects[0].mesh.positions, want.positions);
     assert!(std::sync::Arc::ptr_eq(&posed.objects[2].mesh, &scene.objects[2].mesh));
+    // A scene where nothing plays (a rigged file drawn still) is not
+    // copied: a rigid object costs nothing per frame.
+    let still = parse_scene(
+        &scene_text("[[object]]\nmesh = \"arm.glb\"\n"),
+        npr_diag::FileId(0),
+        &dir,
+    )
+    .expect("scene");
+    assert!(matches!(still.posed(0.4), std::borrow::Cow::Borrowed(_)));
 }
 
 fn scene_errors(objects: &str, dir: &Path) -> String {

@@ -67,6 +67,16 @@ def make_arm():
     ]
     data = bpy.data.meshes.new("arm")
     data.from_pydata(verts, [], faces)
+    # Cylindrical UVs (u around, v along), so that styles reading `uv`
+    # run on it; the seam at u = 0/1 splits 17 vertices in the export.
+    uv_layer = data.uv_layers.new(name="UVMap")
+    for poly in data.polygons:
+        us = [(data.loops[i].vertex_index % segments) / segments for i in poly.loop_indices]
+        for i, u in zip(poly.loop_indices, us):
+            vertex = data.loops[i].vertex_index
+            if u == 0.0 and max(us) > 0.5:
+                u = 1.0
+            uv_layer.data[i].uv = (u, (vertex // segments) / (rings - 1))
     data.update()
     arm = bpy.data.objects.new("arm", data)
     bpy.context.collection.objects.link(arm)
