@@ -2,7 +2,8 @@
 //! pose skinned in f64 by an independent reference
 //! (`common/skin_reference.rs`) and drawn as a rigid mesh: view depth
 //! within 1e-4 relative wherever both cover a pixel, and the lit image
-//! within a mean FLIP of 0.01, and the silhouette lines (built on the CPU
+//! within a mean FLIP of 0.01, the image shadowed through a light-view
+//! depth pass likewise, and the silhouette lines (built on the CPU
 //! from the frame's mesh) within a mean FLIP of 0.01, for several poses of the Blender-exported
 //! arm (skin) and blob (morph targets). On failure the images are written
 //! under the target's temporary folder.
@@ -26,6 +27,9 @@ fn gpu() -> &'static Gpu {
 }
 
 const SIZE: u32 = 96;
+
+/// Mean FLIP bound of every image comparison's shadowed one.
+const SHADOW_FLIP_BOUND: f32 = 0.01;
 
 const SHADE: &str = r#"
 style "skinned shade"
@@ -57,6 +61,22 @@ pass ink: lines(scene) {
   clear: #000000
 }
 output ink.c
+"#;
+
+/// The light-view depth pass draws the object's vertices of the frame too:
+/// its shadow on the ground moves with the pose.
+const SHADOW: &str = r#"
+style "skinned shadow"
+pass depth: render(scene) view(light) {
+  out d: r32float = position.light.z
+  clear: #ffffff
+}
+pass shade: render(scene) {
+  let lit = lambert(normal, light.dir) * shadow(depth.d, bias: 0.02, radius: 0)
+  out c: rgba8unorm = vec4(lit, lit, lit, 1.0)
+  clear: #000000
+}
+output shade.c
 "#;
 
 fn compile(name: &str, text: &str) -> StyleProgram {
@@ -154,12 +174,23 @@ fn check(text: &str, file: &str, clip: &str, time_s: f64) {
     );
     let inked = lr.pixels().filter(|p| p.0[0] > 0).count();
     let lines_flip = flip_mean(&la, &lr);
+    let shadow = compile("shadow.npr", SHADOW);
+    let (sa, sr) = (
+        rgba(&render(&shadow, &animated, time_s)),
+        rgba(&render(&shadow, &rigid, time_s)),
+    );
+    let shadow_flip = flip_mean(&sa, &sr);
     eprintln!(
         "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} by one only, depth error {worst:e}, FLIP {flip}; \
-         silhouette lines: {inked} pixels inked, FLIP {lines_flip}"
+         silhouette lines: {inked} pixels inked, FLIP {lines_flip}; shadowed: FLIP {shadow_flip}"
     );
-    let ok =
-        covered > 300 && coverage_differs <= 2 && worst <= 1e-4 && flip <= 0.01 && inked > 100 && lines_flip <= 0.01;
+    let ok = covered > 300
+        && coverage_differs <= 2
+        && worst <= 1e-4
+        && flip <= 0.01
+        && inked > 100
+        && lines_flip <= 0.01
+        && shadow_flip <= SHADOW_FLIP_BOUND;
     if !ok {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("skinned_render");
         std::fs::create_dir_all(&dir).expect("scratch");
@@ -168,9 +199,11 @@ fn check(text: &str, file: &str, clip: &str, time_s: f64) {
         cr.save(dir.join(format!("{stem}-reference.png"))).expect("save");
         la.save(dir.join(format!("{stem}-lines-actual.png"))).expect("save");
         lr.save(dir.join(format!("{stem}-lines-reference.png"))).expect("save");
+        sa.save(dir.join(format!("{stem}-shadow-actual.png"))).expect("save");
+        sr.save(dir.join(format!("{stem}-shadow-reference.png"))).expect("save");
         panic!(
             "{file} at t = {time_s}: {covered} pixels covered, {coverage_differs} covered by one only, \
-             depth error {worst:e} relative, FLIP {flip}; lines: {inked} inked, FLIP {lines_flip}; images in {}",
+             depth error {worst:e} relative, FLIP {flip}; lines: {inked} inked, FLIP {lines_flip}; shadow FLIP {shadow_flip}; images in {}",
             dir.display()
         );
     }
@@ -184,12 +217,14 @@ fn bytemuck_f32(bytes: &[u8]) -> Vec<f32> {
 }
 
 const ARM: &str = "[camera]\nposition = [0.0, 1.0, 4.5]\ntarget = [0.0, 1.0, 0.0]\n\
-                   [light]\ndirection = [0.4, 0.6, 1.0]\n\
-                   [[object]]\nmesh = \"arm.glb\"\nrotate = [0.0, 70.0, 0.0]\nanimation = { clip = \"bend\" }\n";
+                   [light]\ndirection = [-0.6, 1.0, 0.5]\n\
+                   [[object]]\nmesh = \"arm.glb\"\nrotate = [0.0, 70.0, 0.0]\nanimation = { clip = \"bend\" }\n\
+                   [[object]]\nprimitive = { kind = \"plane\", size = 4.0 }\n";
 
 const BLOB: &str = "[camera]\nposition = [0.0, 0.8, 6.5]\ntarget = [0.0, 0.8, 0.0]\n\
-                    [light]\ndirection = [0.4, 0.6, 1.0]\n\
-                    [[object]]\nmesh = \"blob.glb\"\nanimation = { clip = \"pulse\", speed = 0.5 }\n";
+                    [light]\ndirection = [-0.6, 1.0, 0.5]\n\
+                    [[object]]\nmesh = \"blob.glb\"\nanimation = { clip = \"pulse\", speed = 0.5 }\n\
+                    [[object]]\nprimitive = { kind = \"plane\", size = 5.0 }\ntranslate = [0.0, -1.2, 0.0]\n";
 
 #[test]
 fn the_skinned_arm_renders_as_its_f64_reference() {
