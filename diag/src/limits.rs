@@ -36,6 +36,10 @@ pub const MAX_OUTPUT_SIZE: u32 = 16384;
 /// Most triangles of one mesh (a file or a primitive): past this a scene
 /// takes minutes on the software rasterizer and gigabytes of memory.
 pub const MAX_TRIANGLES: usize = 2_000_000;
+/// Most joints of one glTF skin: a GPU skinning stage's joint matrices
+/// fit one 16 KiB uniform array (256 × 64 bytes); characters use tens to
+/// about two hundred.
+pub const MAX_JOINTS: usize = 256;
 /// Most frames one `npr render` renders (`--frames A..B`, or the frames a
 /// path-dependent style replays for `--time`): 69 minutes at 24 fps.
 pub const MAX_FRAMES: u32 = 100_000;
@@ -115,6 +119,13 @@ pub const ALL: &[Limit] = &[
         what: "triangles of one mesh",
         value: MAX_TRIANGLES as u64,
         unit: "triangles",
+        code: codes::LIMIT_EXCEEDED,
+    },
+    Limit {
+        name: "MAX_JOINTS",
+        what: "joints of one glTF skin",
+        value: MAX_JOINTS as u64,
+        unit: "joints",
         code: codes::LIMIT_EXCEEDED,
     },
     Limit {

@@ -78,6 +78,7 @@ fn object(name: &str, mesh: Arc<Mesh>, model: Mat4, tags: &[&str], time_varying:
         spin: Vec3::ZERO,
         blend: None,
         patch: None,
+        animation: None,
     }
 }
 

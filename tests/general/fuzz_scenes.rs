@@ -2,6 +2,8 @@
 //! reader (issue 13). Seeds are every scene in `examples/scenes/` and every
 //! OBJ in `examples/models/`; mutations splice TOML or OBJ tokens (keys of
 //! every table, numbers that are not finite, huge or negative indices),
+//! and a skinned, morphing glTF file (`runner/tests/data/*.gltf`) its JSON
+//! tokens,
 //! delete runs and truncate. A scene either loads or gets diagnostics whose
 //! spans lie inside the file; a mesh either loads or gets a `MeshLoadError`
 //! with a code. `NPR_FUZZ_CASES` sets the count for a soak run.
@@ -131,7 +133,64 @@ const TOML_TOKENS: &[&str] = &[
     "segments",
     "1000000000",
     "4294967296",
+    "animation",
+    "{ clip = \"bend\" }",
+    "{ clip = \"bend\", speed = nan, loop = false, offset = -1e39 }",
+    "clip",
 ];
+
+/// glTF JSON tokens: keys of skins, morph targets and animations, and
+/// indices and numbers that point nowhere or are not finite.
+const GLTF_TOKENS: &[&str] = &[
+    "{",
+    "}",
+    "[",
+    "]",
+    ",",
+    ":",
+    "\"",
+    "0",
+    "1",
+    "2",
+    "3",
+    "7",
+    "9",
+    "10",
+    "-1",
+    "99",
+    "4294967296",
+    "1e39",
+    "0.5",
+    "null",
+    "\"joints\"",
+    "\"skin\"",
+    "\"weights\"",
+    "\"WEIGHTS_0\"",
+    "\"JOINTS_0\"",
+    "\"targets\"",
+    "\"inverseBindMatrices\"",
+    "\"children\"",
+    "\"input\"",
+    "\"output\"",
+    "\"node\"",
+    "\"path\"",
+    "\"rotation\"",
+    "\"translation\"",
+    "\"scale\"",
+    "\"CUBICSPLINE\"",
+    "\"STEP\"",
+    "\"count\"",
+    "\"byteOffset\"",
+];
+
+/// Skinned and morphing glTF seeds (JSON with an embedded buffer).
+fn gltf_seeds() -> &'static [(String, String)] {
+    static S: OnceLock<Vec<(String, String)>> = OnceLock::new();
+    S.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("runner/tests/data");
+        read_all(&dir, "gltf", 1)
+    })
+}
 
 const OBJ_TOKENS: &[&str] = &[
     "v",
@@ -254,6 +313,33 @@ proptest! {
                 // Every index the renderer will draw names a vertex.
                 let n = mesh.positions.len() as u32;
                 prop_assert!(mesh.indices.iter().all(|i| *i < n), "an index past {n} vertices");
+            }
+            Err(e) => prop_assert!(npr_diag::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
+        }
+    }
+
+    #[test]
+    fn mutated_skinned_gltf_files_never_panic(
+        seed in any::<prop::sample::Index>(),
+        edits in prop::collection::vec((any::<u32>(), 0u8..4, any::<prop::sample::Index>()), 1..6),
+    ) {
+        let (_, text) = seed.get(gltf_seeds());
+        let text = mutate(text, &edits, GLTF_TOKENS);
+        let path = scratch_file("rig").with_extension("gltf");
+        std::fs::write(&path, &text).expect("write mesh");
+        match npr_runner::scene::load_mesh_and_rig(&path) {
+            Ok((mesh, rig)) => {
+                let n = mesh.positions.len() as u32;
+                prop_assert!(mesh.indices.iter().all(|i| *i < n), "an index past {n} vertices");
+                // Every clip poses and deforms, at and between its keys and past them.
+                if let Some(rig) = rig {
+                    for clip in 0..rig.clips.len() {
+                        for t in [-1.0f32, 0.0, 0.5, 1.0, 1e6] {
+                            let posed = rig.deform(&rig.pose(Some((clip, t))));
+                            prop_assert_eq!(posed.positions.len(), mesh.positions.len());
+                        }
+                    }
+                }
             }
             Err(e) => prop_assert!(npr_diag::codes::ALL.iter().any(|(c, _)| *c == e.code), "code {}", e.code),
         }

@@ -65,7 +65,11 @@ pub(super) const ALL: &[Explanation] = &[
         code: "E0402",
         meaning: "A scene object's `mesh = \"file\"` (OBJ or glTF, relative to the scene file) \
             cannot be read: it is missing, or it does not parse (a face that names no vertex, a \
-            number that is not one). The message carries the reader's own error.",
+            number that is not one). The message carries the reader's own error. A glTF file's \
+            skin, morph targets or animations that cannot be used are E0402 too, naming the glTF \
+            path (`/meshes/0/primitives/0/attributes/WEIGHTS_0`): skin weights that do not sum to \
+            1 within 0.01, a joint past the skin's, a sampler whose accessor cannot be read or \
+            holds the wrong number of values.",
         wrong: Example {
             style: GREY,
             files: &[("scene.toml", TRIANGLE_SCENE), ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 three\n")],

@@ -84,6 +84,7 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         spin: glam::Vec3::ZERO,
         blend: entry.extras.blend.clone(),
         patch: entry.extras.patch.clone(),
+        animation: None,
     })
 }
 

@@ -229,6 +229,16 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     if !(0..meshes.len().min(scene.objects.len())).any(deformed) {
         return Ok(());
     }
+    // An object playing a clip has buffers of its own (`shares_buffers`):
+    // its mesh of this frame is written over them alone.
+    for (object, gpu) in scene.objects.iter().zip(meshes.iter_mut()) {
+        if object.animation.is_some() && !Arc::ptr_eq(&gpu.source, &object.mesh) {
+            fits(object, gpu)?;
+            write_vertices(queue, gpu, &object.mesh);
+            gpu.source = object.mesh.clone();
+            gpu.vertex_revision += 1;
+        }
+    }
     // Per group of shared buffers (by the mesh they were uploaded from):
     // the first deformed object's index and its new mesh.
     let mut moves: Vec<(*const Mesh, usize)> = Vec::new();
@@ -292,9 +302,11 @@ fn write_vertices(queue: &wgpu::Queue, gpu: &GpuMesh, mesh: &Mesh) {
 }
 
 /// Whether `upload_scene` shares the object's buffers with the other
-/// objects of its mesh (a still mesh's, neither animated nor a patch).
+/// objects of its mesh (a still mesh's, neither animated nor a patch). An
+/// object playing a clip has buffers of its own: objects of one file may
+/// play other clips, or the same at other times.
 fn shares_buffers(object: &crate::scene::Object) -> bool {
-    object.time_varying.is_none() && object.blend.is_none()
+    object.time_varying.is_none() && object.blend.is_none() && object.animation.is_none()
 }
 
 /// Whether `object`'s (new) mesh can be written over `gpu`'s buffers.

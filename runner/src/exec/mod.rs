@@ -403,8 +403,12 @@ impl Renderer {
                 "only objects' transforms and params may change between frames; give other objects with Renderer::set_scene",
             )]));
         }
+        // Spinning objects turn with the frame's time (`spin`), and objects
+        // playing a clip get their mesh deformed to it (on the CPU,
+        // `scene::rig`), which `update_deformed` writes like a host's.
+        let posed = scene.posed(spec.time_s);
         // A deformed mesh (same topology) is written in place, or refused before anything changed.
-        meshes::update_deformed(&self.queue, &mut self.scene_gpu.meshes, scene)?;
+        meshes::update_deformed(&self.queue, &mut self.scene_gpu.meshes, &posed)?;
         self.ensure_size(spec.width, spec.height)?;
         if begin || self.frames_begun == 0 {
             self.frames_begun += 1;
@@ -419,8 +423,6 @@ impl Renderer {
         }
         self.record_render_draws();
         meshes::update_time_varying(&self.queue, &mut self.scene_gpu.meshes, scene, spec.time_s)?;
-        // Spinning objects turn with the frame's time (`spin`).
-        let posed = scene.posed(spec.time_s);
         self.write_uniforms(&posed, spec)?;
         self.prepare_lines(&posed, spec)
     }

@@ -8,6 +8,7 @@
 
 use super::mesh::{Mesh, MAX_TRIANGLES};
 use super::mesh_file::MeshLoadError;
+use super::{gltf_rig, rig::Rig};
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use gltf::buffer::Data as BufferData;
 use gltf::mesh::Mode;
@@ -15,9 +16,12 @@ use std::path::Path;
 
 /// Node hierarchies deeper than this are treated as malformed (a cycle, or an
 /// attempt to exhaust the stack).
-const MAX_NODE_DEPTH: usize = 256;
+pub(super) const MAX_NODE_DEPTH: usize = 256;
 
-pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, MeshLoadError> {
+/// The file's mesh (its rest pose), and its rig when it has skins, morph
+/// targets or animations (`gltf_rig`); a file without them is merged with
+/// its node transforms baked in, as before rigs were read.
+pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<(Mesh, Option<Rig>), MeshLoadError> {
     let malformed = |what: String| {
         MeshLoadError::unreadable(
             format!("cannot read glTF file `{source}`: {what}"),
@@ -28,6 +32,17 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
     let buffers =
         gltf::import_buffers(&document, Some(base_dir), blob).map_err(|err| malformed(format!("buffer: {err}")))?;
 
+    if gltf_rig::has_rig(&document) {
+        let rig = gltf_rig::read_rig(&document, &buffers, source)?;
+        if rig.bind.triangle_count() > MAX_TRIANGLES {
+            return Err(MeshLoadError::too_many_triangles(
+                Path::new(source),
+                rig.bind.triangle_count(),
+            ));
+        }
+        let rest = rig.deform(&rig.pose(None));
+        return Ok((rest, Some(rig)));
+    }
     let mut merged = MergedPrimitives::new();
     // Each primitive drawn is a part (§3.6 `patches = "parts"`).
     let mut parts: Vec<u32> = Vec::new();
@@ -59,7 +74,7 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         let children: Vec<gltf::Node> = node.children().collect();
         pending.extend(children.into_iter().rev().map(|child| (child, world, depth + 1)));
     }
-    Ok(Mesh::from_parts(
+    let mesh = Mesh::from_parts(
         merged.positions,
         merged.normals,
         merged.uvs,
@@ -67,7 +82,8 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<Mesh, M
         merged.indices,
         source.to_string(),
     )
-    .with_parts(parts))
+    .with_parts(parts);
+    Ok((mesh, None))
 }
 
 /// Nodes that are nobody's child.

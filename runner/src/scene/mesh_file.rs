@@ -3,6 +3,7 @@
 //! enforces the triangle limit.
 
 use super::mesh::{Mesh, MAX_TRIANGLES};
+use super::rig::Rig;
 use super::{gltf_file, obj_file};
 use npr_diag::codes;
 use std::path::Path;
@@ -44,6 +45,12 @@ pub const SUPPORTED_EXTENSIONS: &str = "`.obj`, `.gltf` or `.glb`";
 /// Reads, parses and checks one mesh file. Never panics: a panic inside a
 /// third-party parser (on a malformed file) is caught and reported as E0402.
 pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
+    load_mesh_and_rig(path).map(|(mesh, _)| mesh)
+}
+
+/// [`load_mesh_file`], with the file's rig (a glTF file's skins, morph
+/// targets and animations; the mesh is then its rest pose).
+pub fn load_mesh_and_rig(path: &Path) -> Result<(Mesh, Option<Rig>), MeshLoadError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
@@ -66,10 +73,10 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
     // A reader that panics on a malformed file is an error about the file
     // (an expected panic: `npr` prints the error alone).
     let parsed = npr_diag::panics::catch(|| match extension.as_str() {
-        "obj" => obj_file::parse_obj(&bytes, &source),
+        "obj" => obj_file::parse_obj(&bytes, &source).map(|mesh| (mesh, None)),
         _ => gltf_file::parse_gltf(&bytes, base_dir, &source),
     });
-    let mesh = parsed.unwrap_or_else(|why| {
+    let (mesh, rig) = parsed.unwrap_or_else(|why| {
         Err(MeshLoadError::unreadable(
             format!("the mesh reader failed on `{source}`: {why}"),
             "the file is probably malformed; re-export it from a modelling tool",
@@ -84,5 +91,5 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
             "re-export the mesh as triangles from a modelling tool",
         )
     })?;
-    Ok(mesh)
+    Ok((mesh, rig))
 }

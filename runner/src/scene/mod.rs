@@ -50,6 +50,10 @@
 //! blend_rings = 1                 # optional, with `patches`, 0..=16, default 1: render passes that
 //!                                 # read `patch.weight` draw each patch over the n rings of faces
 //!                                 # around it, where patterns cross-fade (0: hard seams)
+//! animation = { clip = "bend" }  # optional, a glTF mesh with animations: play this clip; also
+//!                                 # `speed` (default 1, clip seconds per second, may be negative),
+//!                                 # `loop` (default true; false holds the first and last pose) and
+//!                                 # `offset` (default 0, the clip's time at scene time 0)
 //! # an `object param albedo: texture` takes an image, relative to this file:
 //! # `albedo = "../textures/spot.png"` or `albedo = { image = "spot.png", srgb = false }`
 //!
@@ -117,11 +121,21 @@
 //! merged). glTF files are read with the `gltf` crate: every triangle
 //! primitive of the default scene, node transforms baked in. Coordinates
 //! are kept as in the file. See [`Mesh`] for the attribute conventions.
+//!
+//! A glTF file with skins, morph targets or animations is read into a
+//! [`rig::Rig`] as well ([`gltf_rig`]); its mesh is then the rest pose
+//! (skinned by the nodes' rest transforms, the default morph weights
+//! applied). An object with `animation` plays one of its clips: each frame
+//! [`Scene::posed`] gives it the mesh deformed on the CPU at the frame's
+//! time, which the renderer writes over the object's own vertex buffers
+//! (docs/decisions/0049). Objects of one file share its rig.
 
+pub mod anim_sampler;
 mod attributes;
 mod camera;
 pub(crate) mod geometry;
 mod gltf_file;
+pub mod gltf_rig;
 mod light;
 mod mesh;
 mod mesh_file;
@@ -136,6 +150,7 @@ pub mod patch_blend;
 pub mod patch_weights;
 pub mod patches;
 pub mod primitives;
+pub mod rig;
 pub mod samples;
 #[cfg(test)]
 mod test_grid;
@@ -144,7 +159,7 @@ pub mod toml_fields;
 pub use camera::{Camera, CameraKey, CameraPose};
 pub use light::{light_view_proj, Light};
 pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
-pub use mesh_file::{load_mesh_file, MeshLoadError};
+pub use mesh_file::{load_mesh_and_rig, load_mesh_file, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
 
 use npr_diag::limits::MAX_SCENE_BYTES;
@@ -200,6 +215,47 @@ pub struct Object {
     /// A patch of a patched object: which, and the object's whole mesh.
     /// `None` for an object that is not divided.
     pub patch: Option<patches::PatchOf>,
+    /// `animation = { clip = ... }`: a clip of the object's glTF file
+    /// playing; `mesh` is the file's rest pose, and [`Scene::posed`] gives
+    /// the object its mesh deformed at each frame's time. `None`: still.
+    pub animation: Option<ObjectAnimation>,
+}
+
+/// An object's clip playing (`animation = { clip, speed, loop, offset }`).
+#[derive(Debug, Clone)]
+pub struct ObjectAnimation {
+    /// The object's file's skins, morph targets and clips (shared by every
+    /// object of the file).
+    pub rig: Arc<rig::Rig>,
+    /// Index into `rig.clips`.
+    pub clip: usize,
+    /// Clip seconds per scene second (negative plays backwards).
+    pub speed: f64,
+    /// Whether the clip repeats; else it holds its first and last pose.
+    pub looping: bool,
+    /// Clip time at scene time 0, in seconds.
+    pub offset: f64,
+}
+
+impl ObjectAnimation {
+    /// The clip's time at scene time `time_s`: `offset + speed · t`,
+    /// wrapped into [0, duration) when looping.
+    pub fn clip_time(&self, time_s: f64) -> f32 {
+        let t = self.offset + self.speed * time_s;
+        let duration = self.rig.clips.get(self.clip).map_or(0.0, |c| f64::from(c.duration));
+        let t = if self.looping && duration > 0.0 {
+            t.rem_euclid(duration)
+        } else {
+            t
+        };
+        t as f32
+    }
+
+    /// The object's mesh at scene time `time_s`.
+    pub fn mesh_at(&self, time_s: f64) -> Mesh {
+        self.rig
+            .deform(&self.rig.pose(Some((self.clip, self.clip_time(time_s)))))
+    }
 }
 
 /// `params = { lit = "textures/lit.png" }` or `{ image = "...", srgb = false }`:
@@ -237,6 +293,7 @@ impl Object {
             spin: glam::Vec3::ZERO,
             blend: None,
             patch: None,
+            animation: None,
         }
     }
 }
@@ -306,14 +363,22 @@ impl Scene {
     }
 
     /// The scene as it stands at `time_s`: every spinning object's model
-    /// turned to that time (borrowed unchanged when nothing spins).
+    /// turned to that time, every animated object's mesh deformed to it
+    /// (borrowed unchanged when nothing spins or plays a clip).
     pub fn posed(&self, time_s: f64) -> std::borrow::Cow<'_, Scene> {
-        if self.objects.iter().all(|o| o.spin == glam::Vec3::ZERO) {
+        if self
+            .objects
+            .iter()
+            .all(|o| o.spin == glam::Vec3::ZERO && o.animation.is_none())
+        {
             return std::borrow::Cow::Borrowed(self);
         }
         let mut posed = self.clone();
         for o in &mut posed.objects {
             o.model = o.model_at(time_s);
+            if let Some(animation) = &o.animation {
+                o.mesh = Arc::new(animation.mesh_at(time_s));
+            }
         }
         std::borrow::Cow::Owned(posed)
     }

@@ -2,12 +2,13 @@
 //! shadows and per-object parameter bindings.
 
 use super::mesh::Mesh;
-use super::mesh_file::{load_mesh_file, MeshLoadError};
+use super::mesh_file::{load_mesh_and_rig, MeshLoadError};
 use super::parse_patches::PatchRequest;
 use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
+use super::rig::Rig;
 use super::toml_fields::{describe, expect_numbers, parse_hex_color, At, Fields, Report};
-use super::{Object, TextureBinding};
+use super::{Object, ObjectAnimation, TextureBinding};
 use glam::{Mat4, Quat, Vec3};
 use npr_diag::{Diagnostic, Span};
 use std::collections::{BTreeMap, HashMap};
@@ -19,9 +20,13 @@ use toml::de::DeValue;
 /// file or the same primitive share one [`Mesh`].
 #[derive(Default)]
 pub struct MeshCache {
-    files: HashMap<PathBuf, Result<Arc<Mesh>, MeshLoadError>>,
+    files: HashMap<PathBuf, Result<LoadedFile, MeshLoadError>>,
     primitives: HashMap<String, Arc<Mesh>>,
 }
+
+/// A mesh file's rest mesh and, for a glTF file that has them, its skins,
+/// morph targets and clips.
+type LoadedFile = (Arc<Mesh>, Option<Arc<Rig>>);
 
 /// An object as read, with what duplicate-name checking needs.
 pub struct ObjectDecl {
@@ -62,16 +67,21 @@ pub fn parse_object(
     let spin = fields.vec3("spin", report).map_or(Vec3::ZERO, |s| s.value);
     let (params, param_spans, textures) = read_params(&mut fields, base_dir, report);
     let patches = super::parse_patches::read_request(&mut fields, report);
+    let playing = read_animation(&mut fields, report);
     fields.finish(report);
     if report.diagnostics.len() > errors_before {
         return None;
     }
-    let (mut mesh, mesh_span, derived_name, time_varying) = mesh?;
+    let (mut mesh, mesh_span, derived_name, time_varying, rig) = mesh?;
+    let animation = match playing {
+        Some(playing) => Some(playing.bind(rig.as_ref(), mesh_span, report)?),
+        None => None,
+    };
     if let Some(deg) = crease {
-        if time_varying.is_some() {
+        if time_varying.is_some() || animation.is_some() {
             report.bad_scene(
                 mesh_span,
-                "`crease_angle` cannot be used with an animated primitive",
+                "`crease_angle` cannot be used with an animated primitive or a clip",
                 "rebuilt every frame",
                 "remove `crease_angle` from this object",
             );
@@ -95,6 +105,7 @@ pub fn parse_object(
             spin,
             blend: None,
             patch: None,
+            animation,
         },
         name_span,
         patches,
@@ -102,15 +113,15 @@ pub fn parse_object(
 }
 
 /// The object's mesh (from `mesh` or `primitive`), where it was declared,
-/// a name for objects without one (the file stem or primitive kind), and the
-/// primitive again when its geometry depends on time.
+/// a name for objects without one (the file stem or primitive kind), the
+/// primitive again when its geometry depends on time, and a glTF file's rig.
 #[allow(clippy::type_complexity)]
 fn read_mesh(
     fields: &mut Fields,
     base_dir: &Path,
     cache: &mut MeshCache,
     report: &mut Report,
-) -> Option<(Arc<Mesh>, Span, String, Option<Primitive>)> {
+) -> Option<(Arc<Mesh>, Span, String, Option<Primitive>, Option<Arc<Rig>>)> {
     let file = fields.string("mesh", report);
     let primitive_span = fields.span_of("primitive", report);
     let primitive = fields.table("primitive", "the primitive", report);
@@ -135,13 +146,13 @@ fn read_mesh(
             let loaded = cache
                 .files
                 .entry(path.clone())
-                .or_insert_with(|| load_mesh_file(&path).map(Arc::new));
+                .or_insert_with(|| load_mesh_and_rig(&path).map(|(mesh, rig)| (Arc::new(mesh), rig.map(Arc::new))));
             match loaded {
-                Ok(mesh) => {
+                Ok((mesh, rig)) => {
                     let stem = Path::new(&file.value)
                         .file_stem()
                         .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
-                    Some((Arc::clone(mesh), file.span, stem, None))
+                    Some((Arc::clone(mesh), file.span, stem, None, rig.clone()))
                 }
                 Err(err) => {
                     report.push(
@@ -162,7 +173,7 @@ fn read_mesh(
                 .entry(description)
                 .or_insert_with(|| Arc::new(primitive.build()));
             let time_varying = primitive.is_time_varying().then_some(primitive);
-            Some((Arc::clone(mesh), span, kind, time_varying))
+            Some((Arc::clone(mesh), span, kind, time_varying, None))
         }
         (None, None) => {
             // A `mesh` of the wrong type was already reported.
@@ -176,6 +187,90 @@ fn read_mesh(
             }
             None
         }
+    }
+}
+
+/// `animation = { clip = "walk", speed = 1.0, loop = true, offset = 0.0 }`
+/// as written, before the clip is looked up in the mesh's file.
+struct Playing {
+    clip: super::toml_fields::At<String>,
+    speed: f64,
+    looping: bool,
+    offset: f64,
+    span: Span,
+}
+
+fn read_animation(fields: &mut Fields, report: &mut Report) -> Option<Playing> {
+    let span = fields.span_of("animation", report)?;
+    let mut table = fields.table("animation", "`animation`", report)?;
+    let clip = table.string("clip", report);
+    let speed = table.number("speed", report).map_or(1.0, |s| s.value);
+    let looping = table.boolean("loop", report).is_none_or(|l| l.value);
+    let offset = table.number("offset", report).map_or(0.0, |o| o.value);
+    table.finish(report);
+    let Some(clip) = clip else {
+        report.bad_scene(
+            span,
+            "`animation` has no `clip`",
+            "which clip?",
+            "write `animation = { clip = \"walk\" }` with the name of one of the file's animations",
+        );
+        return None;
+    };
+    Some(Playing {
+        clip,
+        speed,
+        looping,
+        offset,
+        span,
+    })
+}
+
+impl Playing {
+    /// The clip looked up in the object's file (E0405 at the clip's name
+    /// when there is no such clip, or no file with clips).
+    fn bind(self, rig: Option<&Arc<Rig>>, mesh_span: Span, report: &mut Report) -> Option<ObjectAnimation> {
+        let Some(rig) = rig.filter(|r| !r.clips.is_empty()) else {
+            report.push(
+                Diagnostic::error(
+                    npr_diag::codes::BAD_SCENE,
+                    format!("`animation` plays clip `{}`, but the object's mesh has no animations", self.clip.value),
+                )
+                .with_primary(self.span, "no clip to play")
+                .with_secondary(mesh_span, "this mesh has none")
+                .with_help("clips come from a glTF file's `animations`; remove `animation`, or export the mesh with its actions"),
+            );
+            return None;
+        };
+        let Some(clip) = rig.clip_index(&self.clip.value) else {
+            let names: Vec<&str> = rig.clips.iter().map(|c| c.name.as_str()).collect();
+            report.push(
+                Diagnostic::error(
+                    npr_diag::codes::BAD_SCENE,
+                    format!("the mesh has no clip `{}`", self.clip.value),
+                )
+                .with_primary(self.clip.span, "no such clip")
+                .with_secondary(mesh_span, "in this file")
+                .with_help(format!("the file's clips are {}", super::toml_fields::list(&names))),
+            );
+            return None;
+        };
+        if !(self.speed.is_finite() && self.offset.is_finite()) {
+            report.bad_scene(
+                self.span,
+                "`speed` and `offset` must be finite",
+                "not finite",
+                "write e.g. `speed = 1.0, offset = 0.0`",
+            );
+            return None;
+        }
+        Some(ObjectAnimation {
+            rig: rig.clone(),
+            clip,
+            speed: self.speed,
+            looping: self.looping,
+            offset: self.offset,
+        })
     }
 }
 

@@ -89,10 +89,10 @@ pub fn expand(objects: Vec<(Object, Option<PatchRequest>)>, report: &mut Report)
             out.push(object);
             continue;
         };
-        if object.time_varying.is_some() {
+        if object.time_varying.is_some() || object.animation.is_some() {
             report.bad_scene(
                 spec.span,
-                "an animated primitive cannot be divided into patches",
+                "an animated primitive or an object playing a clip cannot be divided into patches",
                 "rebuilt every frame",
                 "remove `patches` from this object",
             );

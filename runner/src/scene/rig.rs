@@ -1,0 +1,245 @@
+//! A glTF file's deformable content as read from it (its skins, morph
+//! targets, node hierarchy and animation clips), and its evaluation: the
+//! pose at a clip's time (node world matrices, joint matrices, morph
+//! weights) and the mesh deformed by it, on the CPU (f32).
+//!
+//! The formulas are glTF 2.0's (§3.7.3 skins, §3.7.2.2 morph targets):
+//! a vertex is first morphed, `p' = p + Σ_k w_k Δp_k` (normals and tangents
+//! likewise), then skinned by linear blend of 4 joints,
+//! `M = Σ_i w_i · world(joint_i) · inverseBind_i`, `p'' = M p'`; the skinned
+//! mesh node's own transform is ignored, as the spec requires. Normals go
+//! through M's cofactor matrix (the inverse transpose up to a positive
+//! factor, so it stays right under non-uniform scale), tangents through M's
+//! linear part, both normalised; the spec leaves these two open. A
+//! primitive of an unskinned node moves rigidly with its node's (possibly
+//! animated) world matrix.
+
+use super::anim_sampler::Sampler;
+use super::mesh::Mesh;
+use glam::{Mat3, Mat4, Quat, Vec3, Vec4};
+
+/// A node of the file: its parent and rest transform.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigNode {
+    pub name: String,
+    pub parent: Option<usize>,
+    /// The rest transform as written (a `matrix`, or T·R·S).
+    pub rest: Mat4,
+    /// The rest transform decomposed: what an animated property replaces.
+    pub translation: Vec3,
+    pub rotation: Quat,
+    pub scale: Vec3,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skin {
+    /// Node indices of the joints, in the order `JOINTS_0` indexes.
+    pub joints: Vec<usize>,
+    /// One per joint (identity where the file has none).
+    pub inverse_bind: Vec<Mat4>,
+}
+
+/// One morph target's deltas over its piece's vertices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MorphTarget {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Option<Vec<[f32; 3]>>,
+    pub tangents: Option<Vec<[f32; 3]>>,
+}
+
+/// The vertices of one drawn primitive (a node's mesh's primitive) inside
+/// the merged mesh, and what moves them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piece {
+    pub first_vertex: usize,
+    pub vertex_count: usize,
+    /// The node drawing the primitive: its morph weights, and its world
+    /// matrix for an unskinned piece.
+    pub node: usize,
+    pub skin: Option<usize>,
+    pub targets: Vec<MorphTarget>,
+}
+
+/// What an animation channel sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Property {
+    Translation,
+    Rotation,
+    Scale,
+    Weights,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Channel {
+    pub node: usize,
+    pub property: Property,
+    pub sampler: Sampler,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clip {
+    /// The file's name for it, or `animation<i>` when it has none.
+    pub name: String,
+    /// The last key time of any channel, in seconds.
+    pub duration: f32,
+    pub channels: Vec<Channel>,
+}
+
+/// A glTF file's skins, morph targets and clips over its merged mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rig {
+    pub nodes: Vec<RigNode>,
+    /// Node indices, every parent before its children.
+    pub order: Vec<usize>,
+    pub skins: Vec<Skin>,
+    pub pieces: Vec<Piece>,
+    /// Per node, its default morph weights (the node's `weights`, else its
+    /// mesh's, else zeros); empty for a node without morph targets.
+    pub default_weights: Vec<Vec<f32>>,
+    /// The merged mesh before any node transform, skin or morph: the
+    /// primitives' own attributes (indices already in the winding the rest
+    /// pose draws).
+    pub bind: Mesh,
+    /// Per vertex of `bind`: 4 joints (indices into its piece's skin) and
+    /// their weights, summing to 1 (zeros in unskinned pieces).
+    pub joints: Vec<[u16; 4]>,
+    pub weights: Vec<[f32; 4]>,
+    pub clips: Vec<Clip>,
+}
+
+/// A rig's state at one time: every node's world matrix and morph weights.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pose {
+    pub world: Vec<Mat4>,
+    pub weights: Vec<Vec<f32>>,
+}
+
+impl Rig {
+    pub fn clip_index(&self, name: &str) -> Option<usize> {
+        self.clips.iter().position(|c| c.name == name)
+    }
+
+    /// The pose of clip `clip` at `time_s` seconds into it (clamped to its
+    /// keys), or the rest pose for `None`.
+    pub fn pose(&self, clip: Option<(usize, f32)>) -> Pose {
+        let mut translation: Vec<Vec3> = self.nodes.iter().map(|n| n.translation).collect();
+        let mut rotation: Vec<Quat> = self.nodes.iter().map(|n| n.rotation).collect();
+        let mut scale: Vec<Vec3> = self.nodes.iter().map(|n| n.scale).collect();
+        let mut animated = vec![false; self.nodes.len()];
+        let mut weights = self.default_weights.clone();
+        if let Some(clip) = clip.and_then(|(i, t)| Some((self.clips.get(i)?, t))) {
+            let (clip, t) = clip;
+            let mut value = [0.0f32; 4];
+            for channel in &clip.channels {
+                let node = channel.node;
+                match channel.property {
+                    Property::Weights => {
+                        let w = &mut weights[node];
+                        w.resize(channel.sampler.width, 0.0);
+                        channel.sampler.sample(t, w);
+                    }
+                    Property::Translation => {
+                        channel.sampler.sample(t, &mut value[..3]);
+                        translation[node] = Vec3::new(value[0], value[1], value[2]);
+                        animated[node] = true;
+                    }
+                    Property::Scale => {
+                        channel.sampler.sample(t, &mut value[..3]);
+                        scale[node] = Vec3::new(value[0], value[1], value[2]);
+                        animated[node] = true;
+                    }
+                    Property::Rotation => {
+                        channel.sampler.sample(t, &mut value);
+                        rotation[node] = Quat::from_xyzw(value[0], value[1], value[2], value[3]).normalize();
+                        animated[node] = true;
+                    }
+                }
+            }
+        }
+        let mut world = vec![Mat4::IDENTITY; self.nodes.len()];
+        for &n in &self.order {
+            let node = &self.nodes[n];
+            let local = if animated[n] {
+                Mat4::from_scale_rotation_translation(scale[n], rotation[n], translation[n])
+            } else {
+                node.rest
+            };
+            world[n] = match node.parent {
+                Some(p) => world[p] * local,
+                None => local,
+            };
+        }
+        Pose { world, weights }
+    }
+
+    /// `bind` morphed and skinned (or moved rigidly) by `pose`.
+    pub fn deform(&self, pose: &Pose) -> Mesh {
+        let mut mesh = self.bind.clone();
+        for piece in &self.pieces {
+            self.deform_piece(piece, pose, &mut mesh);
+        }
+        mesh
+    }
+
+    fn deform_piece(&self, piece: &Piece, pose: &Pose, mesh: &mut Mesh) {
+        let range = piece.first_vertex..piece.first_vertex + piece.vertex_count;
+        let weights = pose.weights.get(piece.node).map_or(&[][..], Vec::as_slice);
+        let joint_matrices: Vec<Mat4> = match piece.skin.and_then(|s| self.skins.get(s)) {
+            Some(skin) => skin
+                .joints
+                .iter()
+                .zip(&skin.inverse_bind)
+                .map(|(&j, ibm)| pose.world[j] * *ibm)
+                .collect(),
+            None => Vec::new(),
+        };
+        let rigid = pose.world.get(piece.node).copied().unwrap_or(Mat4::IDENTITY);
+        for (local, v) in range.enumerate() {
+            let mut p = Vec3::from_array(self.bind.positions[v]);
+            let mut n = Vec3::from_array(self.bind.normals[v]);
+            let mut t = self.bind.tangents.as_ref().map(|t| Vec4::from_array(t[v]));
+            for (target, &w) in piece.targets.iter().zip(weights) {
+                if w == 0.0 {
+                    continue;
+                }
+                p += w * Vec3::from_array(target.positions[local]);
+                if let Some(dn) = &target.normals {
+                    n += w * Vec3::from_array(dn[local]);
+                }
+                if let (Some(t), Some(dt)) = (t.as_mut(), &target.tangents) {
+                    *t += (w * Vec3::from_array(dt[local])).extend(0.0);
+                }
+            }
+            let m = if joint_matrices.is_empty() {
+                rigid
+            } else {
+                let (j, w) = (self.joints[v], self.weights[v]);
+                let pick = |i: usize| joint_matrices.get(j[i] as usize).copied().unwrap_or(Mat4::ZERO);
+                pick(0) * w[0] + pick(1) * w[1] + pick(2) * w[2] + pick(3) * w[3]
+            };
+            mesh.positions[v] = m.transform_point3(p).to_array();
+            let linear = Mat3::from_mat4(m);
+            // A mirroring matrix's cofactor turns normals inside out.
+            let sign = if linear.determinant() < 0.0 { -1.0 } else { 1.0 };
+            mesh.normals[v] = (sign * (cofactor(linear) * n)).normalize_or_zero().to_array();
+            if let (Some(t), Some(out)) = (t, mesh.tangents.as_mut()) {
+                let handedness = if linear.determinant() < 0.0 { -t.w } else { t.w };
+                out[v] = (linear * t.truncate())
+                    .normalize_or_zero()
+                    .extend(handedness)
+                    .to_array();
+            }
+        }
+    }
+}
+
+/// The cofactor matrix of `m`, `det(m) · m⁻ᵀ`: normals transform by it
+/// (up to a factor the normalisation removes), and it exists even where `m`
+/// is singular.
+fn cofactor(m: Mat3) -> Mat3 {
+    Mat3::from_cols(
+        m.y_axis.cross(m.z_axis),
+        m.z_axis.cross(m.x_axis),
+        m.x_axis.cross(m.y_axis),
+    )
+}
