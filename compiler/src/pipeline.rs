@@ -1,7 +1,8 @@
 //! The compiler pipeline, in order: load → resolve (with the filter checks)
 //! → typecheck (with the rip-map checks) → apply overrides → build the pass
 //! DAG → prune → specialize → prune again (what folding made dead) → the
-//! checks of constant domains and absent tags → schedule (fusion, tiles,
+//! checks of constant domains and absent tags → value ranges (with
+//! WGSL's undefined cases) → schedule (fusion, tiles,
 //! recomputation) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
@@ -164,6 +165,9 @@ pub fn run(
     st.done("prune-after-specialize", &ir);
     diags.extend(crate::mid::const_domains::check(&ir, &live));
     fail_if_errors(&diags)?;
+    let ranges = crate::mid::ranges::analyse(&ir, &live);
+    diags.extend(ranges.warnings);
+    st.done("ranges", &ir);
     diags.extend(crate::schedule::apply(
         &mut ir,
         &mut live,
@@ -232,6 +236,7 @@ pub fn run(
         texture_spans: crate::front::texture_spans::texture_spans(&ir, sources),
         timings: st.timings,
         dumps: st.dumps,
+        ranges: ranges.targets,
     })
 }
 
