@@ -69,7 +69,14 @@ impl<'a> Eval<'a> {
     pub fn run(&mut self, roots: &[ExprId]) {
         for id in self.ir.reachable(roots) {
             if !self.vals.contains_key(&id) {
-                let v = self.node(id);
+                let mut v = self.node(id);
+                // WGSL lets an implementation assume no infinity or NaN
+                // arises (§14.6.2): past that, a value is indeterminate.
+                for c in &mut v.comps {
+                    if !c.is_finite() {
+                        *c = Iv::TOP;
+                    }
+                }
                 self.vals.insert(id, v);
             }
         }
@@ -298,6 +305,12 @@ impl<'a> Eval<'a> {
                     if w.comps.iter().any(|c| c.contains(0.0)) {
                         self.find(Domain::Division, id, &args[..2]);
                     }
+                }
+                if name == "smoothstep" {
+                    let w = self.difference(args[1], args[0]);
+                    return Val::zip(&[&vals[0], &vals[1], &vals[2], &w], |x| {
+                        Iv::smoothstep_width(x[0], x[1], x[2], x[3])
+                    });
                 }
                 Val::zip(&[&vals[0], &vals[1], &vals[2]], |x| {
                     Iv::map3(name, x[0], x[1], x[2]).unwrap_or(Iv::TOP)

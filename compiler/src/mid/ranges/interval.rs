@@ -247,34 +247,19 @@ impl Iv {
             return Iv::point(f64::NAN);
         }
         let nan = self.nan || o.nan || (self.contains(0.0) && o.contains(0.0)) || (self.can_be_inf() && o.can_be_inf());
-        if o.lo < 0.0 && o.hi > 0.0 {
-            return Iv::TOP.with_nan(nan);
-        }
-        if o.lo == 0.0 && o.hi == 0.0 {
-            // x / 0: ±∞, or NaN for 0 / 0.
+        if o.contains(0.0) {
+            // A divisor that may be 0 may be −0 or +0 (−x of x = 0): a
+            // non-zero numerator gives either infinity, 0 / 0 NaN.
             let mut c = Vec::new();
-            if self.lo < 0.0 {
-                c.push(f64::NEG_INFINITY);
+            if self.lo < 0.0 || self.hi > 0.0 {
+                c.extend([f64::NEG_INFINITY, f64::INFINITY]);
             }
-            if self.hi > 0.0 {
-                c.push(f64::INFINITY);
+            if self.contains(0.0) && (o.lo < 0.0 || o.hi > 0.0) {
+                c.push(0.0);
             }
             return Iv::hull(&c, nan);
         }
-        // One sign: a divisor end at 0 stands for the smallest values of
-        // that sign, whose quotients are infinite (0 / 0⁺ counted as 0).
-        let q = |a: f64, b: f64| -> f64 {
-            if b == 0.0 {
-                let s = if o.hi > 0.0 { 1.0 } else { -1.0 };
-                if a == 0.0 {
-                    0.0
-                } else {
-                    a.signum() * s * f64::INFINITY
-                }
-            } else {
-                a / b
-            }
-        };
+        let q = |a: f64, b: f64| a / b;
         Iv::hull(&[q(self.lo, o.lo), q(self.lo, o.hi), q(self.hi, o.lo), q(self.hi, o.hi)], nan)
     }
 
@@ -291,6 +276,10 @@ impl Iv {
     }
 
     pub fn min(self, o: Iv) -> Iv {
+        // With a NaN operand WGSL may return either operand (or NaN).
+        if self.nan || o.nan {
+            return self.join(o);
+        }
         Iv {
             lo: self.lo.min(o.lo),
             hi: self.hi.min(o.hi),
@@ -299,6 +288,10 @@ impl Iv {
     }
 
     pub fn max(self, o: Iv) -> Iv {
+        // With a NaN operand WGSL may return either operand (or NaN).
+        if self.nan || o.nan {
+            return self.join(o);
+        }
         Iv {
             lo: self.lo.max(o.lo),
             hi: self.hi.max(o.hi),
@@ -306,18 +299,17 @@ impl Iv {
         }
     }
 
-    /// A monotone non-decreasing function on `[dlo, dhi]`, NaN outside it.
+    /// A monotone non-decreasing function on `[dlo, dhi]`; outside it
+    /// WGSL's result is indeterminate (any value: some drivers return NaN,
+    /// others a number), so the range is [`Iv::TOP`].
     fn monotone(self, f: fn(f64) -> f64, dlo: f64, dhi: f64) -> Iv {
         if self.is_empty() {
             return self;
         }
-        let outside = self.lo < dlo || self.hi > dhi;
-        let lo = self.lo.clamp(dlo, dhi);
-        let hi = self.hi.clamp(dlo, dhi);
-        if lo > hi || (self.hi < dlo) || (self.lo > dhi) {
-            return Iv::point(f64::NAN);
+        if self.lo < dlo || self.hi > dhi {
+            return Iv::TOP;
         }
-        Iv::hull(&[f(lo), f(hi)], self.nan || outside)
+        Iv::hull(&[f(self.lo), f(self.hi)], self.nan)
     }
 
     /// `sin` (or `cos`, shifted by π/2): the extremes at the ends or at a
@@ -347,6 +339,22 @@ impl Iv {
     pub fn map1(self, name: &str) -> Option<Iv> {
         use std::f64::consts::{FRAC_PI_2, PI};
         let x = self;
+        // A NaN argument: WGSL's result is indeterminate (IEEE keeps some:
+        // `pow(NaN, 0)` is 1), unless the function is exact.
+        if x.nan && !matches!(name, "abs" | "floor" | "ceil" | "round" | "sign" | "saturate") {
+            return Some(Iv::TOP);
+        }
+        // Outside a function's domain WGSL's result is indeterminate.
+        let domain = match name {
+            "sqrt" | "log" | "log2" => Some((0.0, f64::INFINITY)),
+            "asin" | "acos" => Some((-1.0, 1.0)),
+            _ => None,
+        };
+        if let Some((lo, hi)) = domain {
+            if !x.is_empty() && (x.lo < lo || x.hi > hi) {
+                return Some(Iv::TOP);
+            }
+        }
         Some(match name {
             "abs" => {
                 if x.is_empty() {
@@ -365,8 +373,8 @@ impl Iv {
             }
             "floor" => x.monotone(f64::floor, f64::NEG_INFINITY, f64::INFINITY),
             "ceil" => x.monotone(f64::ceil, f64::NEG_INFINITY, f64::INFINITY),
-            // WGSL rounds half to even; the bounds are the same.
-            "round" => x.monotone(f64::round, f64::NEG_INFINITY, f64::INFINITY),
+            // WGSL rounds half to even.
+            "round" => x.monotone(f64::round_ties_even, f64::NEG_INFINITY, f64::INFINITY),
             // x − floor(x): 1.0 itself for tiny negative x (f32 rounding).
             "fract" => Iv::UNIT.with_nan(x.nan || x.can_be_inf()),
             "sqrt" => x.monotone(f64::sqrt, 0.0, f64::INFINITY),
@@ -427,19 +435,19 @@ impl Iv {
         self.max(lo).min(hi)
     }
 
-    /// `pow(x, y)`: `exp2(y · log2(x))` in WGSL, so NaN for x < 0, and
-    /// `0^y` is ∞ for y < 0 and undefined for y = 0.
+    /// `pow(x, y)`: `exp2(y · log2(x))` in WGSL, undefined for x < 0 and
+    /// for x = 0 with y ≤ 0 (any value there).
     pub fn pow(self, y: Iv) -> Iv {
         let x = self;
         if x.is_empty() || y.is_empty() {
             return Iv::point(f64::NAN);
         }
-        let nan = x.nan || y.nan || x.lo < 0.0 || (x.contains(0.0) && y.lo <= 0.0) || (x.can_be_inf() && y.contains(0.0));
-        let xl = x.lo.max(0.0);
-        let xh = x.hi.max(0.0);
-        if x.hi < 0.0 {
-            return Iv::point(f64::NAN);
+        // Outside WGSL's domain the result is indeterminate: any value.
+        if x.lo < 0.0 || (x.contains(0.0) && y.lo <= 0.0) || (x.can_be_inf() && y.contains(0.0)) {
+            return Iv::TOP;
         }
+        let nan = x.nan || y.nan;
+        let (xl, xh) = (x.lo, x.hi);
         // On x ≥ 0, x^y is monotone in each argument with the other fixed:
         // the extremes are at the corners (with 0^0 counted as 1 and 0).
         let p = |a: f64, b: f64| -> Vec<f64> {
@@ -470,7 +478,10 @@ impl Iv {
 
     /// `atan2(y, x)` (self is y): within [−π, π]; undefined at (0, 0).
     pub fn atan2(self, x: Iv) -> Iv {
-        let nan = self.nan || x.nan || (self.contains(0.0) && x.contains(0.0)) || (self.can_be_inf() && x.can_be_inf());
+        if self.contains(0.0) && x.contains(0.0) {
+            return Iv::TOP;
+        }
+        let nan = self.nan || x.nan || (self.can_be_inf() && x.can_be_inf());
         let pi = std::f64::consts::PI;
         if x.lo > 0.0 && !self.is_empty() {
             // The right half plane: atan(y / x), monotone in y / x.
@@ -482,7 +493,11 @@ impl Iv {
     /// `step(edge, x)`: 1 where `x ≥ edge`.
     pub fn step(self, x: Iv) -> Iv {
         let edge = self;
-        let nan = edge.nan || x.nan;
+        // A comparison with NaN is false: 0 or 1, never NaN.
+        let nan = false;
+        if edge.nan || x.nan {
+            return Iv::UNIT;
+        }
         if x.lo >= edge.hi {
             Iv::point(1.0).with_nan(nan)
         } else if x.hi < edge.lo {
@@ -494,7 +509,21 @@ impl Iv {
 
     /// `smoothstep(e0, e1, x)`: in [0, 1]; NaN where `e1 − e0` may be 0.
     pub fn smoothstep(e0: Iv, e1: Iv, x: Iv) -> Iv {
-        let width = e1.sub(e0);
+        Iv::smoothstep_width(e0, e1, x, e1.sub(e0))
+    }
+
+    /// `smoothstep` given the range of `e1 − e0` (which the caller may
+    /// know tighter than the difference of the edges' ranges); any value
+    /// where the edges may meet or cross (WGSL leaves `low ≥ high` to the
+    /// implementation).
+    pub fn smoothstep_width(e0: Iv, e1: Iv, x: Iv, width: Iv) -> Iv {
+        if width.lo <= 0.0 || width.is_empty() {
+            return Iv::TOP;
+        }
+        // A NaN edge or x: the clamp may give any t in [0, 1], or NaN.
+        if e0.nan || e1.nan || x.nan {
+            return Iv::UNIT.with_nan(true);
+        }
         let nan = e0.nan || e1.nan || x.nan || width.contains(0.0) || width.can_be_inf();
         if width.lo > 0.0 && x.hi <= e0.lo {
             return Iv::point(0.0).with_nan(nan);
@@ -508,6 +537,9 @@ impl Iv {
     /// `mix(a, b, t)` as WGSL defines it, `a·(1 − t) + b·t`, and within
     /// the hull of `a` and `b` (an f32 ulp out) when `t` is in [0, 1].
     pub fn mix(a: Iv, b: Iv, t: Iv) -> Iv {
+        if a.nan || b.nan || t.nan {
+            return Iv::TOP;
+        }
         let f = a.mul(Iv::point(1.0).sub(t)).add(b.mul(t));
         if t.lo >= 0.0 && t.hi <= 1.0 && !t.nan && a.is_finite() && b.is_finite() {
             let h = a.join(b);
@@ -519,6 +551,9 @@ impl Iv {
 
     /// The component-wise built-in `name` of two arguments.
     pub fn map2(self, name: &str, o: Iv) -> Option<Iv> {
+        if (self.nan || o.nan) && matches!(name, "pow" | "atan2") {
+            return Some(Iv::TOP);
+        }
         Some(match name {
             "min" => self.min(o),
             "max" => self.max(o),
