@@ -116,8 +116,7 @@ fn sources(ir: &Ir, operands: &[ExprId]) -> Vec<String> {
         let s = match &ir.expr(id).kind {
             ExprKind::Param(p) => {
                 let p = &ir.params[p.0 as usize];
-                let v = inputs::param(ir, p);
-                format!("param `{}` in {}", p.name, v)
+                format!("param `{}` in {}", p.name, inputs::param(p))
             }
             ExprKind::Builtin(b) => format!("`{}` in {}", b.name(), inputs::builtin(*b)),
             ExprKind::Target { target, .. } => format!("target `{}`", ir.target_name(*target)),

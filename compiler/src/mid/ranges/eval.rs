@@ -47,6 +47,8 @@ pub struct Reads {
 pub struct Eval<'a> {
     pub ir: &'a Ir,
     pub reads: &'a Reads,
+    /// How each param ranges (by index), `inputs::param_range`.
+    pub params: &'a [inputs::ParamRange],
     pub vals: HashMap<ExprId, Val>,
     pub findings: Vec<Finding>,
 }
@@ -56,10 +58,11 @@ fn n_of(ty: Ty) -> usize {
 }
 
 impl<'a> Eval<'a> {
-    pub fn new(ir: &'a Ir, reads: &'a Reads) -> Eval<'a> {
+    pub fn new(ir: &'a Ir, reads: &'a Reads, params: &'a [inputs::ParamRange]) -> Eval<'a> {
         Eval {
             ir,
             reads,
+            params,
             vals: HashMap::new(),
             findings: Vec::new(),
         }
@@ -103,7 +106,25 @@ impl<'a> Eval<'a> {
                 norm: None,
             },
             ExprKind::PercentOfHeight(f) => Val::scalar(Iv::point(0.0).join(Iv::new(*f, f * inputs_height_max()))),
-            ExprKind::Param(p) => inputs::param(self.ir, &self.ir.params[p.0 as usize]),
+            ExprKind::Param(p) => {
+                let param = &self.ir.params[p.0 as usize];
+                match self.params.get(p.0 as usize).copied().unwrap_or(inputs::ParamRange::Declared) {
+                    inputs::ParamRange::Declared | inputs::ParamRange::Type => inputs::param(param),
+                    inputs::ParamRange::Value => {
+                        // Its value: the default's range, keyframes joined.
+                        self.run(&[param.default]);
+                        let mut v = self.val(param.default);
+                        for k in &param.keys {
+                            let kv = Val {
+                                comps: k.value.iter().map(|x| Iv::point(*x)).collect(),
+                                norm: None,
+                            };
+                            v = v.join(&kv);
+                        }
+                        v
+                    }
+                }
+            }
             ExprKind::Builtin(b) => inputs::builtin(*b),
             ExprKind::Target { target, copy } => {
                 let map = if *copy == TargetCopy::Previous {
@@ -195,7 +216,7 @@ impl<'a> Eval<'a> {
     fn difference(&self, a: ExprId, b: ExprId) -> Val {
         let (xa, ca) = self.offset(a);
         let (xb, cb) = self.offset(b);
-        if xa == xb && self.ir.expr(a).ty == Ty::Float {
+        if self.same(xa, xb) && self.ir.expr(a).ty == Ty::Float {
             // Both rounded once in f32: the difference is within an ulp of
             // the largest magnitude of each side.
             let x = self.val(xa).hull();
@@ -203,7 +224,39 @@ impl<'a> Eval<'a> {
             let e = 4.0 * m * f32::EPSILON as f64;
             return Val::scalar(Iv::new(ca - cb - e, ca - cb + e).with_nan(x.nan || !x.is_finite()));
         }
-        Val::zip(&[&self.val(a), &self.val(b)], |x| x[0].sub(x[1]))
+        let general = Val::zip(&[&self.val(a), &self.val(b)], |x| x[0].sub(x[1]));
+        // `max(y, b + c) − b ≥ c`: the safe form of a pair of edges.
+        if let ExprKind::Call {
+            callee: Callee::Intrinsic(Intrinsic::Map2("max")),
+            args,
+        } = &self.ir.expr(a).kind
+        {
+            for arg in args {
+                let (x, c) = self.offset(*arg);
+                if self.same(x, xb) && self.ir.expr(a).ty == Ty::Float && general.comps.len() == 1 {
+                    let g = general.comps[0];
+                    let e = 4.0 * (g.lo.abs().max(g.hi.abs()) + c.abs()) * f32::EPSILON as f64;
+                    let lo = Iv::new(c - cb - e, c - cb - e).lo;
+                    if g.is_finite() {
+                        return Val::scalar(Iv { lo: lo.max(g.lo), ..g });
+                    }
+                }
+            }
+        }
+        general
+    }
+
+    /// Whether two nodes are the same value: one node, or reads of the
+    /// same param or builtin (each use is a node of its own).
+    fn same(&self, a: ExprId, b: ExprId) -> bool {
+        if a == b {
+            return true;
+        }
+        match (&self.ir.expr(a).kind, &self.ir.expr(b).kind) {
+            (ExprKind::Param(p), ExprKind::Param(q)) => p == q,
+            (ExprKind::Builtin(p), ExprKind::Builtin(q)) => p == q,
+            _ => false,
+        }
     }
 
     /// `id` as `x + c` with a constant `c` (`x − c` too; `(x, 0)` otherwise).

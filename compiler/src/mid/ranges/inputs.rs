@@ -50,31 +50,53 @@ pub fn builtin(b: Builtin) -> Val {
     }
 }
 
-/// A kept parameter's range: its declared range, else its type's.
-pub fn param(ir: &Ir, p: &crate::ir::Param) -> Val {
+/// How a parameter ranges in this compile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamRange {
+    /// Over its declared range (`in a..b`), or every value of a bool or
+    /// enum: a param nobody fixed, which the sweep, the studio or a
+    /// test's `set` may move.
+    Declared,
+    /// Its value here (a `--set` value, or an unranged param's default).
+    Value,
+    /// Anything its type holds (a kept param with no declared range).
+    Type,
+}
+
+/// How `p` ranges: fixed by `--set` (`set`), kept live (`keep`), or not.
+pub fn param_range(p: &crate::ir::Param, set: bool, keep: bool) -> ParamRange {
+    let declared = p.range.is_some() || matches!(p.ty, ParamTy::Enum(_) | ParamTy::Value(Ty::Bool));
+    match (set && !keep, declared, keep) {
+        (true, _, _) => ParamRange::Value,
+        (false, true, _) => ParamRange::Declared,
+        (false, false, true) => ParamRange::Type,
+        (false, false, false) => ParamRange::Value,
+    }
+}
+
+/// A parameter's declared range (or its type's, for a colour or
+/// gradient), its keyframes joined.
+pub fn param(p: &crate::ir::Param) -> Val {
     let n = p.value_ty.components().unwrap_or(1) as usize;
-    match &p.ty {
+    let mut v = match &p.ty {
         ParamTy::Enum(options) => Val::splat(Iv::new(0.0, options.len().saturating_sub(1) as f64), 1),
         ParamTy::Value(Ty::Bool) => Val::splat(Iv::UNIT, 1),
         ParamTy::Color | ParamTy::Gradient => Val::splat(Iv::UNIT, n),
         _ => match p.range {
-            Some((lo, hi)) => {
-                // Keyframes may step outside the range only if the range
-                // check let them; join them anyway (never narrower).
-                let mut v = Val::splat(Iv::new(lo, hi), n);
-                for k in &p.keys {
-                    let kv = Val {
-                        comps: k.value.iter().map(|x| Iv::point(*x)).collect(),
-                        norm: None,
-                    };
-                    v = v.join(&kv);
-                }
-                let _ = ir;
-                v
-            }
+            Some((lo, hi)) => Val::splat(Iv::new(lo, hi), n),
             None => finite(n),
         },
+    };
+    // An animated param takes its keyframes' values (the range check lets
+    // only values in range through; joined anyway, never narrower).
+    for k in &p.keys {
+        let kv = Val {
+            comps: k.value.iter().map(|x| Iv::point(*x)).collect(),
+            norm: None,
+        };
+        v = v.join(&kv);
     }
+    v
 }
 
 /// What sampling a texture gives: 8- and 16-bit images, noise, tables and

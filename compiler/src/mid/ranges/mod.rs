@@ -65,8 +65,10 @@ pub struct Ranges {
     pub history_widened: bool,
 }
 
-/// Analyse the live passes of `ir`.
-pub fn analyse(ir: &Ir, live: &Live) -> Ranges {
+/// Analyse the live passes of `ir` (before specialisation, so that a
+/// param not fixed still ranges over its declared range): `params` says
+/// how each ranges (`inputs::param_range`).
+pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
     let mut reads = Reads::default();
     for t in &live.history {
         let pass = ir.pass(t.pass);
@@ -77,7 +79,7 @@ pub fn analyse(ir: &Ir, live: &Live) -> Ranges {
     let mut widened = false;
     loop {
         rounds += 1;
-        let (targets, findings) = frame(ir, live, &mut reads);
+        let (targets, findings) = frame(ir, live, params, &mut reads);
         // Grow each history read by what this frame stored.
         let mut grown = false;
         for t in &live.history {
@@ -129,14 +131,14 @@ fn clear_value(pass: &Pass, n: usize) -> Val {
 
 /// One frame: every live pass in order (operands before readers), the
 /// targets' ranges and the domain findings.
-fn frame(ir: &Ir, live: &Live, reads: &mut Reads) -> (Vec<TargetRange>, Vec<Finding>) {
+fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads) -> (Vec<TargetRange>, Vec<Finding>) {
     reads.targets.clear();
     reads.values.clear();
     let mut targets = Vec::new();
     let mut findings = Vec::new();
     for pid in &live.passes {
         let pass = ir.pass(*pid);
-        let mut ev = Eval::new(ir, reads);
+        let mut ev = Eval::new(ir, reads, params);
         ev.run(&pass.roots().all());
         let mut stores = Vec::new();
         for t in live.targets_of(*pid) {
