@@ -405,6 +405,10 @@ pub mod codes {
         (OUT_OF_RANGE, "value outside its declared range"),
         (NOT_CONSTANT, "expression must be constant"),
         (COLOR_ALPHA_CHANGED, "colour arithmetic that changes alpha (warning)"),
+        (
+            BAD_GRADIENT,
+            "bad gradient: no stops, unsorted, or a position outside 0..1",
+        ),
         (LOG_DOMAIN, "`log` of a value that may be 0 or negative (warning)"),
         (SQRT_DOMAIN, "`sqrt` of a value that may be negative (warning)"),
         (POW_DOMAIN, "`pow(x, y)` with x < 0, or x = 0 and y ≤ 0, reachable (warning)"),
@@ -413,10 +417,6 @@ pub mod codes {
         (NORMALIZE_ZERO, "`normalize` of a vector that may be zero (warning)"),
         (ATAN2_ORIGIN, "`atan2(0, 0)` reachable (warning)"),
         (F16_OVERFLOW, "a value past 65504 stored in an f16 target (warning)"),
-        (
-            BAD_GRADIENT,
-            "bad gradient: no stops, unsorted, or a position outside 0..1",
-        ),
         (PASS_CYCLE, "dependency cycle between passes"),
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),

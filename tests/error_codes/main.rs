@@ -12,6 +12,7 @@ mod host;
 mod lines;
 mod param_settings;
 mod passes;
+mod ranges;
 mod syntax_names_types;
 
 /// A scratch directory for cases that need files on disk.

@@ -23,7 +23,8 @@ pub fn warnings(ir: &Ir, mut findings: Vec<Finding>) -> (Vec<Diagnostic>, Vec<Fi
     (known.iter().map(|f| warning(ir, f)).collect(), unknown)
 }
 
-fn code(d: Domain) -> &'static str {
+/// The warning code of a domain.
+pub fn code_of(d: Domain) -> &'static str {
     match d {
         Domain::Log => codes::LOG_DOMAIN,
         Domain::Sqrt => codes::SQRT_DOMAIN,
@@ -37,7 +38,7 @@ fn code(d: Domain) -> &'static str {
 }
 
 /// The function's name at a call, or the operator at a division.
-fn what(ir: &Ir, at: ExprId) -> String {
+pub fn what(ir: &Ir, at: ExprId) -> String {
     match &ir.expr(at).kind {
         ExprKind::Call {
             callee: Callee::Intrinsic(i),
@@ -100,7 +101,7 @@ fn warning(ir: &Ir, f: &Finding) -> Diagnostic {
             "clamp it (`clamp(v, -65504.0, 65504.0)`) or store it in a 32-bit float format".to_string(),
         ),
     };
-    let mut d = Diagnostic::warning(code(f.domain), message).with_primary(ir.expr(f.at).span, label);
+    let mut d = Diagnostic::warning(code_of(f.domain), message).with_primary(ir.expr(f.at).span, label);
     let sources = sources(ir, &f.operands.iter().map(|(o, _)| *o).collect::<Vec<_>>());
     if !sources.is_empty() {
         d = d.with_note(format!("the range comes from {}", sources.join("; ")));

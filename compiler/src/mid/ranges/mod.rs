@@ -50,6 +50,9 @@ pub struct TargetRange {
     /// Whether the value written (before the format's store) is proved
     /// finite: a unorm store hides a NaN as some number in [0, 1].
     pub value_finite: bool,
+    /// What stops the proof that the value is finite (empty when it is):
+    /// each node's span and what it is.
+    pub stops: Vec<(npr_diag::Span, String)>,
 }
 
 /// The analysis's result.
@@ -158,7 +161,8 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
                 // value the format holds.
                 _ => Val::splat(inputs::format_range(out.format), n),
             };
-            stores.push((t, out, v.is_finite(), stored));
+            let stops = if v.is_finite() { Vec::new() } else { stops(ir, &ev, out.value) };
+            stores.push((t, out, v.is_finite(), stored, stops));
         }
         let mut values = Vec::new();
         for (slot, value) in pass.kind.values().iter().enumerate() {
@@ -184,13 +188,14 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
             values.push(((*pid, slot as u32), r));
         }
         findings.append(&mut ev.findings);
-        for (t, out, finite, stored) in stores {
+        for (t, out, finite, stored, stops) in stores {
             targets.push(TargetRange {
                 target: t,
                 name: format!("{}.{}", pass.name, out.name),
                 format: out.format,
                 range: stored.clone(),
                 value_finite: finite,
+                stops,
             });
             reads.targets.insert(t, stored);
         }
@@ -199,4 +204,49 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
         }
     }
     (targets, findings)
+}
+
+/// Where the proof that `root` is finite stops: the domain findings under
+/// it, and the nodes whose range is unknown although their operands' are
+/// finite (an operator with no declared range, a read of a target or
+/// per-object value not proved finite, a projection). Five at most.
+fn stops(ir: &Ir, ev: &Eval, root: ExprId) -> Vec<(npr_diag::Span, String)> {
+    let mut out: Vec<(npr_diag::Span, String)> = Vec::new();
+    for id in ir.reachable(&[root]) {
+        let e = ir.expr(id);
+        if let Some(f) = ev.findings.iter().find(|f| f.at == id) {
+            let what = if f.domain == eval::Domain::F16Overflow {
+                format!("stored in an f16 target, which it may overflow ({})", domains::code_of(f.domain))
+            } else {
+                format!("`{}`, whose undefined case is not ruled out ({})", domains::what(ir, id), domains::code_of(f.domain))
+            };
+            out.push((e.span, what));
+            continue;
+        }
+        if ev.val(id).is_finite() || !ir.operands(id).iter().all(|o| ev.val(*o).is_finite()) {
+            continue;
+        }
+        let what = match &e.kind {
+            ExprKind::Call {
+                callee: Callee::Operator(i),
+                ..
+            } => match npr_stdlib::ops::ALL.get(*i as usize) {
+                Some(d) if d.range.is_some() => format!("operator `{}` with arguments outside its parameters' ranges", d.op.name),
+                Some(d) => format!("operator `{}`, which declares no result range", d.op.name),
+                None => "an operator".into(),
+            },
+            ExprKind::Target { target, .. } => format!("target `{}`, not proved finite", ir.target_name(*target)),
+            ExprKind::ObjectValue { .. } | ExprKind::StateOld { .. } => "a per-object value (sums and states are not bounded)".into(),
+            ExprKind::Texture(t) => format!("texture `{}` (an HDR image or a filter's input)", ir.textures[t.0 as usize].name),
+            ExprKind::Call {
+                callee: Callee::Intrinsic(i),
+                ..
+            } => format!("`{}` (may overflow or is unbounded here)", i.name()),
+            ExprKind::Binary { op, .. } => format!("`{}` (may overflow here)", op.as_str()),
+            _ => "an unbounded value".into(),
+        };
+        out.push((e.span, what));
+    }
+    out.truncate(5);
+    out
 }
