@@ -411,9 +411,15 @@ pub mod codes {
         ),
         (LOG_DOMAIN, "`log` of a value that may be 0 or negative (warning)"),
         (SQRT_DOMAIN, "`sqrt` of a value that may be negative (warning)"),
-        (POW_DOMAIN, "`pow(x, y)` with x < 0, or x = 0 and y ≤ 0, reachable (warning)"),
+        (
+            POW_DOMAIN,
+            "`pow(x, y)` with x < 0, or x = 0 and y ≤ 0, reachable (warning)",
+        ),
         (DIVISION_BY_ZERO, "division by a range that holds 0 (warning)"),
-        (INVERSE_TRIG_DOMAIN, "`asin`/`acos` of a value that may leave [−1, 1] (warning)"),
+        (
+            INVERSE_TRIG_DOMAIN,
+            "`asin`/`acos` of a value that may leave [−1, 1] (warning)",
+        ),
         (NORMALIZE_ZERO, "`normalize` of a vector that may be zero (warning)"),
         (ATAN2_ORIGIN, "`atan2(0, 0)` reachable (warning)"),
         (F16_OVERFLOW, "a value past 65504 stored in an f16 target (warning)"),

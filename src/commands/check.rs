@@ -47,11 +47,20 @@ pub fn ranges_text(c: &npr_compiler::Compiled, sources: &SourceMap) -> String {
         } else {
             "not proved finite".to_string()
         };
-        out.push_str(&format!("  {} ({}): {} - {}\n", t.name, t.format.name(), t.range, verdict));
+        out.push_str(&format!(
+            "  {} ({}): {} - {}\n",
+            t.name,
+            t.format.name(),
+            t.range,
+            verdict
+        ));
         for (span, what) in &t.stops {
             let (line, col) = sources.line_col(span.file, span.start as u32);
             let file = sources.get(span.file).map_or("?", |f| f.name.as_str());
-            out.push_str(&format!("    stopped at {file}:{line}:{col}: `{}`: {what}\n", sources.snippet(*span)));
+            out.push_str(&format!(
+                "    stopped at {file}:{line}:{col}: `{}`: {what}\n",
+                sources.snippet(*span)
+            ));
         }
     }
     out

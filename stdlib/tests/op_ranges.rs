@@ -60,7 +60,12 @@ fn every_declared_result_range_holds_at_the_argument_ends() {
             .iter()
             .map(|p| values(p.ty, p.range))
             .collect::<Option<_>>()
-            .unwrap_or_else(|| panic!("`{}` declares a range but reads a texture: no test for that yet", def.op.name));
+            .unwrap_or_else(|| {
+                panic!(
+                    "`{}` declares a range but reads a texture: no test for that yet",
+                    def.op.name
+                )
+            });
         let components = match def.op.returns {
             Ty::Vec2 => 2,
             Ty::Vec3 => 3,
@@ -95,5 +100,8 @@ fn every_declared_result_range_holds_at_the_argument_ends() {
             }
         }
     }
-    assert!(checked > 1000, "only {checked} calls checked: no operator declares a range?");
+    assert!(
+        checked > 1000,
+        "only {checked} calls checked: no operator declares a range?"
+    );
 }

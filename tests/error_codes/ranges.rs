@@ -7,9 +7,15 @@ use super::*;
 /// The warnings of `text`, and whether any has `code`.
 fn warnings_of(text: &str) -> Vec<Diagnostic> {
     let mut sources = SourceMap::new();
-    npr_compiler::compile_source("case.npr", text, Path::new("."), &mut sources, &CompileOptions::default())
-        .unwrap_or_else(|_| panic!("compiles:\n{text}"))
-        .warnings
+    npr_compiler::compile_source(
+        "case.npr",
+        text,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|_| panic!("compiles:\n{text}"))
+    .warnings
 }
 
 /// `--set name=value`, its text in `sources` as the CLI adds it.
@@ -77,7 +83,11 @@ fn w0205_pow_of_zero_to_a_negative_power_is_the_planted_case() {
         ..CompileOptions::default()
     };
     let c = npr_compiler::compile_source("case.npr", &wrong, Path::new("."), &mut sources, &opts).expect("compiles");
-    assert!(c.warnings.is_empty(), "sharp fixed at 2 leaves pow defined: {:?}", c.warnings);
+    assert!(
+        c.warnings.is_empty(),
+        "sharp fixed at 2 leaves pow defined: {:?}",
+        c.warnings
+    );
 }
 
 #[test]

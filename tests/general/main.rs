@@ -25,6 +25,7 @@ mod lsa_packed_gbuffer;
 mod lsp;
 mod openjd;
 mod paths;
+mod range_warnings;
 mod reference_docs;
 mod set_params;
 mod studio_browser;

@@ -213,7 +213,8 @@ mod tests {
         for (x, y) in [("a", "e"), ("b", "d"), ("a", "b")] {
             for (vx, vy) in [("0", "0"), ("0", "1"), ("1", "0"), ("1", "1")] {
                 assert!(
-                    all.iter().any(|c| c.contains(&(x.into(), vx.into())) && c.contains(&(y.into(), vy.into()))),
+                    all.iter()
+                        .any(|c| c.contains(&(x.into(), vx.into())) && c.contains(&(y.into(), vy.into()))),
                     "{x}={vx} with {y}={vy} is never rendered"
                 );
             }

@@ -108,7 +108,12 @@ impl<'a> Eval<'a> {
             ExprKind::PercentOfHeight(f) => Val::scalar(Iv::point(0.0).join(Iv::new(*f, f * inputs_height_max()))),
             ExprKind::Param(p) => {
                 let param = &self.ir.params[p.0 as usize];
-                match self.params.get(p.0 as usize).copied().unwrap_or(inputs::ParamRange::Declared) {
+                match self
+                    .params
+                    .get(p.0 as usize)
+                    .copied()
+                    .unwrap_or(inputs::ParamRange::Declared)
+                {
                     inputs::ParamRange::Declared | inputs::ParamRange::Type => inputs::param(param),
                     inputs::ParamRange::Value => {
                         // Its value: the default's range, keyframes joined.
@@ -343,7 +348,8 @@ impl<'a> Eval<'a> {
                         }
                     }
                     "atan2" => {
-                        let bad = (0..a.comps.len().max(b.comps.len())).any(|i| a.at(i).contains(0.0) && b.at(i).contains(0.0));
+                        let bad = (0..a.comps.len().max(b.comps.len()))
+                            .any(|i| a.at(i).contains(0.0) && b.at(i).contains(0.0));
                         if bad {
                             self.find(Domain::Atan2, id, &args[..2]);
                         }
@@ -423,7 +429,15 @@ fn fit(v: &Val, n: usize) -> Val {
         return v.clone();
     }
     Val {
-        comps: (0..n).map(|i| if v.comps.len() == 1 { v.comps[0] } else { v.comps.get(i).copied().unwrap_or(Iv::TOP) }).collect(),
+        comps: (0..n)
+            .map(|i| {
+                if v.comps.len() == 1 {
+                    v.comps[0]
+                } else {
+                    v.comps.get(i).copied().unwrap_or(Iv::TOP)
+                }
+            })
+            .collect(),
         norm: None,
     }
 }

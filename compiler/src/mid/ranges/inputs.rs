@@ -38,15 +38,34 @@ pub fn builtin(b: Builtin) -> Val {
             comps: vec![Iv::SIGNED_UNIT, Iv::SIGNED_UNIT, Iv::UNIT],
             norm: None,
         },
-        Time | Frame | Depth | CameraFar | SampleSpacing | FragCoord | LightColor | LightIntensity
-        | MoreLightColor(_) | MoreLightIntensity(_) | ObjectIndex | ObjectId | LineArc | CameraFocal => {
-            Val::splat(NON_NEGATIVE, n)
-        }
+        Time
+        | Frame
+        | Depth
+        | CameraFar
+        | SampleSpacing
+        | FragCoord
+        | LightColor
+        | LightIntensity
+        | MoreLightColor(_)
+        | MoreLightIntensity(_)
+        | ObjectIndex
+        | ObjectId
+        | LineArc
+        | CameraFocal => Val::splat(NON_NEGATIVE, n),
         // A perspective camera's near plane is past the eye.
         CameraNear => Val::splat(Iv::new(f32::MIN_POSITIVE as f64, F32_MAX), n),
         Resolution => Val::splat(Iv::new(1.0, F32_MAX), n),
-        Uv | PositionWorld | PositionView | CameraPosition | PositionPrevious | CameraLeftEye | CameraRightEye
-        | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter => finite(n),
+        Uv
+        | PositionWorld
+        | PositionView
+        | CameraPosition
+        | PositionPrevious
+        | CameraLeftEye
+        | CameraRightEye
+        | TangentScreen
+        | BitangentScreen
+        | TangentScreenCenter
+        | BitangentScreenCenter => finite(n),
     }
 }
 
@@ -156,7 +175,11 @@ fn f16(c: Iv) -> Iv {
         return c;
     }
     Iv {
-        lo: if c.lo < 0.0 { end(c.lo, f64::NEG_INFINITY) } else { c.lo / r },
+        lo: if c.lo < 0.0 {
+            end(c.lo, f64::NEG_INFINITY)
+        } else {
+            c.lo / r
+        },
         hi: if c.hi > 0.0 { end(c.hi, f64::INFINITY) } else { c.hi / r },
         nan: c.nan,
     }

@@ -157,11 +157,7 @@ impl Iv {
             hi = hi.max(*c);
         }
         if lo > hi {
-            return Iv {
-                lo,
-                hi,
-                nan: true,
-            };
+            return Iv { lo, hi, nan: true };
         }
         Iv::new(lo, hi).with_nan(nan)
     }
@@ -260,7 +256,10 @@ impl Iv {
             return Iv::hull(&c, nan);
         }
         let q = |a: f64, b: f64| a / b;
-        Iv::hull(&[q(self.lo, o.lo), q(self.lo, o.hi), q(self.hi, o.lo), q(self.hi, o.hi)], nan)
+        Iv::hull(
+            &[q(self.lo, o.lo), q(self.lo, o.hi), q(self.hi, o.lo), q(self.hi, o.hi)],
+            nan,
+        )
     }
 
     /// WGSL's float `%`: `x − y·trunc(x / y)`, with the sign of `x` and
@@ -422,7 +421,15 @@ impl Iv {
                 .widen(1.0 / 2048.0, 0.0)
                 .within(-FRAC_PI_2 - 1e-3, FRAC_PI_2 + 1e-3),
             "sign" => x.monotone(
-                |t| if t > 0.0 { 1.0 } else if t < 0.0 { -1.0 } else { 0.0 },
+                |t| {
+                    if t > 0.0 {
+                        1.0
+                    } else if t < 0.0 {
+                        -1.0
+                    } else {
+                        0.0
+                    }
+                },
                 f64::NEG_INFINITY,
                 f64::INFINITY,
             ),
@@ -470,7 +477,11 @@ impl Iv {
         if y.contains(0.0) && xl > 0.0 {
             c.push(1.0);
         }
-        let m = c.iter().filter(|v| v.is_finite() && **v > 0.0).map(|v| v.log2().abs()).fold(0.0, f64::max);
+        let m = c
+            .iter()
+            .filter(|v| v.is_finite() && **v > 0.0)
+            .map(|v| v.log2().abs())
+            .fold(0.0, f64::max);
         Iv::hull(&c, nan)
             .widen(1e-7, (3.0 + 2.0 * m.min(200.0)) * f32::EPSILON as f64)
             .within(0.0, f64::INFINITY)
@@ -543,7 +554,10 @@ impl Iv {
         let f = a.mul(Iv::point(1.0).sub(t)).add(b.mul(t));
         if t.lo >= 0.0 && t.hi <= 1.0 && !t.nan && a.is_finite() && b.is_finite() {
             let h = a.join(b);
-            let h = Iv::new(h.lo - h.lo.abs() * 2.0 * f32::EPSILON as f64, h.hi + h.hi.abs() * 2.0 * f32::EPSILON as f64);
+            let h = Iv::new(
+                h.lo - h.lo.abs() * 2.0 * f32::EPSILON as f64,
+                h.hi + h.hi.abs() * 2.0 * f32::EPSILON as f64,
+            );
             return f.meet(h).with_nan(f.nan);
         }
         f

@@ -148,7 +148,11 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
             let out = &pass.outputs[t.output as usize];
             let v = ev.val(out.value);
             let n = out.format.channels() as usize;
-            if inputs::is_f16(out.format) && v.comps.iter().any(|c| c.lo < -inputs::F16_MAX || c.hi > inputs::F16_MAX) {
+            if inputs::is_f16(out.format)
+                && v.comps
+                    .iter()
+                    .any(|c| c.lo < -inputs::F16_MAX || c.hi > inputs::F16_MAX)
+            {
                 ev.findings.push(Finding {
                     domain: eval::Domain::F16Overflow,
                     at: out.value,
@@ -161,7 +165,11 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
                 // value the format holds.
                 _ => Val::splat(inputs::format_range(out.format), n),
             };
-            let stops = if v.is_finite() { Vec::new() } else { stops(ir, &ev, out.value) };
+            let stops = if v.is_finite() {
+                Vec::new()
+            } else {
+                stops(ir, &ev, out.value)
+            };
             stores.push((t, out, v.is_finite(), stored, stops));
         }
         let mut values = Vec::new();
@@ -216,9 +224,16 @@ fn stops(ir: &Ir, ev: &Eval, root: ExprId) -> Vec<(npr_diag::Span, String)> {
         let e = ir.expr(id);
         if let Some(f) = ev.findings.iter().find(|f| f.at == id) {
             let what = if f.domain == eval::Domain::F16Overflow {
-                format!("stored in an f16 target, which it may overflow ({})", domains::code_of(f.domain))
+                format!(
+                    "stored in an f16 target, which it may overflow ({})",
+                    domains::code_of(f.domain)
+                )
             } else {
-                format!("`{}`, whose undefined case is not ruled out ({})", domains::what(ir, id), domains::code_of(f.domain))
+                format!(
+                    "`{}`, whose undefined case is not ruled out ({})",
+                    domains::what(ir, id),
+                    domains::code_of(f.domain)
+                )
             };
             out.push((e.span, what));
             continue;
@@ -231,13 +246,20 @@ fn stops(ir: &Ir, ev: &Eval, root: ExprId) -> Vec<(npr_diag::Span, String)> {
                 callee: Callee::Operator(i),
                 ..
             } => match npr_stdlib::ops::ALL.get(*i as usize) {
-                Some(d) if d.range.is_some() => format!("operator `{}` with arguments outside its parameters' ranges", d.op.name),
+                Some(d) if d.range.is_some() => {
+                    format!("operator `{}` with arguments outside its parameters' ranges", d.op.name)
+                }
                 Some(d) => format!("operator `{}`, which declares no result range", d.op.name),
                 None => "an operator".into(),
             },
             ExprKind::Target { target, .. } => format!("target `{}`, not proved finite", ir.target_name(*target)),
-            ExprKind::ObjectValue { .. } | ExprKind::StateOld { .. } => "a per-object value (sums and states are not bounded)".into(),
-            ExprKind::Texture(t) => format!("texture `{}` (an HDR image or a filter's input)", ir.textures[t.0 as usize].name),
+            ExprKind::ObjectValue { .. } | ExprKind::StateOld { .. } => {
+                "a per-object value (sums and states are not bounded)".into()
+            }
+            ExprKind::Texture(t) => format!(
+                "texture `{}` (an HDR image or a filter's input)",
+                ir.textures[t.0 as usize].name
+            ),
             ExprKind::Call {
                 callee: Callee::Intrinsic(i),
                 ..

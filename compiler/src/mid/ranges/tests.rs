@@ -35,13 +35,23 @@ fn expr() -> impl Strategy<Value = E> {
         prop_oneof![
             inner.clone().prop_map(|a| E::Neg(Box::new(a))),
             inner.clone().prop_map(|a| E::Sqr(Box::new(a))),
-            (prop::sample::select(ARITH), inner.clone(), inner.clone())
-                .prop_map(|(o, a, b)| E::Arith(o, Box::new(a), Box::new(b))),
+            (prop::sample::select(ARITH), inner.clone(), inner.clone()).prop_map(|(o, a, b)| E::Arith(
+                o,
+                Box::new(a),
+                Box::new(b)
+            )),
             (prop::sample::select(MAP1), inner.clone()).prop_map(|(f, a)| E::Map1(f, Box::new(a))),
-            (prop::sample::select(MAP2), inner.clone(), inner.clone())
-                .prop_map(|(f, a, b)| E::Map2(f, Box::new(a), Box::new(b))),
-            (prop::sample::select(MAP3), inner.clone(), inner.clone(), inner)
-                .prop_map(|(f, a, b, c)| E::Map3(f, Box::new(a), Box::new(b), Box::new(c))),
+            (prop::sample::select(MAP2), inner.clone(), inner.clone()).prop_map(|(f, a, b)| E::Map2(
+                f,
+                Box::new(a),
+                Box::new(b)
+            )),
+            (prop::sample::select(MAP3), inner.clone(), inner.clone(), inner).prop_map(|(f, a, b, c)| E::Map3(
+                f,
+                Box::new(a),
+                Box::new(b),
+                Box::new(c)
+            )),
         ]
     })
 }
