@@ -28,7 +28,11 @@ fn warnings(path: &Path, text: Option<&str>) -> Vec<String> {
             let span = d.primary_span().expect("a span");
             let file = sources.get(span.file).expect("file");
             let (line, _) = sources.line_col(span.file, span.start as u32);
-            let name = Path::new(&file.name).file_name().expect("name").to_string_lossy().to_string();
+            let name = Path::new(&file.name)
+                .file_name()
+                .expect("name")
+                .to_string_lossy()
+                .to_string();
             format!("{name}:{line} {}", d.code)
         })
         .collect()
