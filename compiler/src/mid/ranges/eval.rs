@@ -105,7 +105,11 @@ impl<'a> Eval<'a> {
                 comps: c.as_f64s().into_iter().map(Iv::point).collect(),
                 norm: None,
             },
-            ExprKind::PercentOfHeight(f) => Val::scalar(Iv::point(0.0).join(Iv::new(*f, f * inputs_height_max()))),
+            // `N%` of the image height in px: the height is 1 px at least.
+            ExprKind::PercentOfHeight(f) => {
+                let far = f * f32::MAX as f64;
+                Val::scalar(Iv::new(f.min(far), f.max(far)))
+            }
             ExprKind::Param(p) => {
                 let param = &self.ir.params[p.0 as usize];
                 match self
@@ -440,9 +444,4 @@ fn fit(v: &Val, n: usize) -> Val {
             .collect(),
         norm: None,
     }
-}
-
-/// The tallest image `npr` renders, as a bound for `N%` of its height.
-fn inputs_height_max() -> f64 {
-    f32::MAX as f64
 }
