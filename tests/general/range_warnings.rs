@@ -72,3 +72,30 @@ fn the_shipped_styles_warn_only_where_docs_ranges_says() {
     found.sort();
     assert_eq!(found, expected, "update docs/RANGES.md's table with what changed");
 }
+
+/// `npr check --ranges`: a proved target says "finite for all declared
+/// params" with its range; one that is not names where the proof stops.
+#[test]
+fn npr_check_ranges_prints_each_targets_range_and_what_stops_a_proof() {
+    let o = crate::common::cli::npr(&["check", "--ranges", "examples/toon.npr"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        out.contains("shade.color (rgba8unorm): [0, 1] in each component - finite for all declared params"),
+        "{out}"
+    );
+    let dir = crate::common::cli::scratch("range_warnings", "check_ranges");
+    let style = dir.join("case.npr");
+    std::fs::write(
+        &style,
+        "style \"Case\"\nparam sharp: float = 2.0 in 0.5..4\npass p: render(scene) {\n  let f = max(dot(normal, light.dir), 0.0)\n  out c: r32float = pow(f, sharp - 1.0)\n}\noutput p.c\n",
+    )
+    .expect("style");
+    let o = crate::common::cli::npr(&["check", "--ranges", &style.display().to_string()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("p.c (r32float): [-inf, +inf] or NaN - not proved finite"), "{out}");
+    assert!(
+        out.contains("case.npr:5:21: `pow(f, sharp - 1.0)`: `pow`, whose undefined case is not ruled out (W0205)"),
+        "{out}"
+    );
+}
