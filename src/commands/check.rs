@@ -55,7 +55,7 @@ pub fn ranges_text(c: &npr_compiler::Compiled, sources: &SourceMap) -> String {
             verdict
         ));
         for (span, what) in &t.stops {
-            let (line, col) = sources.line_col(span.file, span.start as u32);
+            let (line, col) = sources.line_col(span.file, span.start);
             let file = sources.get(span.file).map_or("?", |f| f.name.as_str());
             out.push_str(&format!(
                 "    stopped at {file}:{line}:{col}: `{}`: {what}\n",

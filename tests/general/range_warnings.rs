@@ -27,7 +27,7 @@ fn warnings(path: &Path, text: Option<&str>) -> Vec<String> {
         .map(|d| {
             let span = d.primary_span().expect("a span");
             let file = sources.get(span.file).expect("file");
-            let (line, _) = sources.line_col(span.file, span.start as u32);
+            let (line, _) = sources.line_col(span.file, span.start);
             let name = Path::new(&file.name)
                 .file_name()
                 .expect("name")
@@ -93,7 +93,10 @@ fn npr_check_ranges_prints_each_targets_range_and_what_stops_a_proof() {
     .expect("style");
     let o = crate::common::cli::npr(&["check", "--ranges", &style.display().to_string()]);
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("p.c (r32float): [-inf, +inf] or NaN - not proved finite"), "{out}");
+    assert!(
+        out.contains("p.c (r32float): [-inf, +inf] or NaN - not proved finite"),
+        "{out}"
+    );
     assert!(
         out.contains("case.npr:5:21: `pow(f, sharp - 1.0)`: `pow`, whose undefined case is not ruled out (W0205)"),
         "{out}"

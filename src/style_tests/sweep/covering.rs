@@ -48,10 +48,10 @@ pub fn covering_array(levels: &[usize]) -> Vec<Row> {
         }
         // Vertical growth: each pair still missing, in a row with i at its
         // level and j free, or in a new row.
-        for j in 0..i {
-            for v in 0..levels[i] {
-                for w in 0..levels[j] {
-                    if !missing[j][v][w] {
+        for (j, of_j) in missing.iter_mut().enumerate() {
+            for (v, of_v) in of_j.iter_mut().enumerate() {
+                for (w, m) in of_v.iter_mut().enumerate() {
+                    if !*m {
                         continue;
                     }
                     match rows.iter_mut().find(|r| r[i] == Some(v) && r[j].is_none()) {
@@ -63,7 +63,7 @@ pub fn covering_array(levels: &[usize]) -> Vec<Row> {
                             rows.push(r);
                         }
                     }
-                    missing[j][v][w] = false;
+                    *m = false;
                 }
             }
         }

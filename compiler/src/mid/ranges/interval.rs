@@ -54,6 +54,9 @@ pub fn up(x: f64) -> f64 {
     -down(-x)
 }
 
+// Named methods, not `std::ops` operators: each rounds outward and tracks
+// NaN, and `a.add(b)` reads as the interval operation it is.
+#[allow(clippy::should_implement_trait)]
 impl Iv {
     /// Every f32 value and NaN: what nothing is known of.
     pub const TOP: Iv = Iv {
@@ -358,9 +361,7 @@ impl Iv {
         }
         Some(match name {
             "abs" => {
-                if x.is_empty() {
-                    x
-                } else if x.lo >= 0.0 {
+                if x.is_empty() || x.lo >= 0.0 {
                     x
                 } else if x.hi <= 0.0 {
                     x.neg()

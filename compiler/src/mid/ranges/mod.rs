@@ -1,8 +1,11 @@
 //! Value ranges proved by the compiler (issue 49): a sound interval
-//! analysis over the specialised IR, run in every compile.
+//! analysis over the IR after overrides and before specialisation (so that
+//! a param nobody fixed still ranges over its declared range), run in
+//! every compile.
 //!
-//! It starts from the ranges of what a pass reads (`inputs.rs`: kept
-//! params over their declared ranges, builtins, textures), propagates
+//! It starts from the ranges of what a pass reads (`inputs.rs`: params
+//! over their declared ranges or at their `--set` values, builtins,
+//! textures), propagates
 //! through every expression (`eval.rs`, with the interval arithmetic of
 //! `interval.rs` and per-component vectors of `value.rs`), through each
 //! target's format into the passes that read it, and across frames: a
@@ -76,7 +79,11 @@ pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
     for t in &live.history {
         let pass = ir.pass(t.pass);
         let n = pass.outputs[t.output as usize].format.channels() as usize;
-        reads.history.insert(*t, clear_value(pass, n));
+        // The first frame's previous copy: the clear value, or zeros where
+        // the runtime starts it empty.
+        reads
+            .history
+            .insert(*t, clear_value(pass, n).join(&Val::splat(Iv::point(0.0), n)));
     }
     let mut rounds = 0;
     let mut widened = false;

@@ -219,3 +219,40 @@ fn pow_outside_its_domain_may_be_anything() {
     let p = Iv::new(0.0, 1.0).pow(Iv::new(1.0, 3.0));
     assert!(p.is_finite() && p.lo == 0.0 && p.hi >= 1.0 && p.hi < 1.001, "{p}");
 }
+
+/// The proved range of each target of `text` (compiled from `examples/`).
+fn target_ranges(text: &str) -> Vec<super::TargetRange> {
+    let mut sources = npr_diag::SourceMap::new();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    crate::compile_source("case.npr", text, &dir, &mut sources, &crate::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e:?}"))
+        .ranges
+}
+
+#[test]
+fn a_history_that_grows_every_frame_is_not_proved_finite_in_a_float_target() {
+    let r = target_ranges(
+        "style \"Acc\"\npass acc: image() {\n  out a: r32float = previous(acc.a) + 1.0\n}\noutput acc.a\n",
+    );
+    assert_eq!(r.len(), 1);
+    assert!(!r[0].value_finite, "x + 1 every frame has no bound: {}", r[0].range);
+}
+
+#[test]
+fn a_history_through_a_unorm_target_stays_in_its_range_and_finite() {
+    let r = target_ranges(
+        "style \"Fade\"\nparam k: float = 0.5 in 0..0.9\npass f: image() {\n  out a: r8unorm = mix(screen_uv.x, previous(f.a), k)\n}\noutput f.a\n",
+    );
+    assert!(r[0].value_finite, "{}", r[0].range);
+    assert_eq!(r[0].range.hull().to_string(), "[0, 1]");
+}
+
+#[test]
+fn a_store_in_f16_is_bounded_by_the_values_range() {
+    let r = target_ranges(
+        "style \"H\"\nparam g: float = 2.0 in 1..10\npass p: image() {\n  out a: r16float = screen_uv.x * g\n}\noutput p.a\n",
+    );
+    assert!(r[0].value_finite);
+    let c = r[0].range.comps[0];
+    assert!(c.lo == 0.0 && (10.0..10.01).contains(&c.hi), "{}", r[0].range);
+}
