@@ -118,7 +118,7 @@ impl<'a> Eval<'a> {
                     .copied()
                     .unwrap_or(inputs::ParamRange::Declared)
                 {
-                    inputs::ParamRange::Declared | inputs::ParamRange::Type => inputs::param(param),
+                    inputs::ParamRange::Declared => inputs::param(param),
                     inputs::ParamRange::Value => {
                         // Its value: the default's range, keyframes joined.
                         self.run(&[param.default]);

@@ -76,20 +76,20 @@ pub enum ParamRange {
     /// enum: a param nobody fixed, which the sweep, the studio or a
     /// test's `set` may move.
     Declared,
-    /// Its value here (a `--set` value, or an unranged param's default).
+    /// Its value here: a `--set` value, or the default of a param that
+    /// declares no range (kept live or not: the proof is over declared
+    /// ranges, as the sweep's is).
     Value,
-    /// Anything its type holds (a kept param with no declared range).
-    Type,
 }
 
-/// How `p` ranges: fixed by `--set` (`set`), kept live (`keep`), or not.
+/// How `p` ranges: fixed by `--set` (`set`), or not. A param kept live
+/// (`--keep-params`) ranges as one that is not: over its declared range.
 pub fn param_range(p: &crate::ir::Param, set: bool, keep: bool) -> ParamRange {
     let declared = p.range.is_some() || matches!(p.ty, ParamTy::Enum(_) | ParamTy::Value(Ty::Bool));
-    match (set && !keep, declared, keep) {
-        (true, _, _) => ParamRange::Value,
-        (false, true, _) => ParamRange::Declared,
-        (false, false, true) => ParamRange::Type,
-        (false, false, false) => ParamRange::Value,
+    if (set && !keep) || !declared {
+        ParamRange::Value
+    } else {
+        ParamRange::Declared
     }
 }
 
