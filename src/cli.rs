@@ -122,6 +122,10 @@ pub struct CheckArgs {
     /// `--set inflate=2px`, `--set base=#3080ff`, `--set beta=cubic`. Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::set_params::parse_set_arg)]
     pub set: Vec<String>,
+    /// Print each target's proved value range, over every param's declared
+    /// range, and whether it is finite (or what stops the proof).
+    #[arg(long)]
+    pub ranges: bool,
 }
 
 #[derive(clap::Args, Debug)]

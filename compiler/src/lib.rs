@@ -64,6 +64,8 @@ pub struct Compiled {
     pub texture_spans: Vec<Span>,
     pub timings: Vec<(&'static str, std::time::Duration)>,
     pub dumps: Vec<(&'static str, String)>,
+    /// Each live target's proved value range (`mid/ranges`, issue 49).
+    pub ranges: Vec<mid::ranges::TargetRange>,
 }
 
 impl Compiled {

@@ -1,7 +1,8 @@
 //! The compiler pipeline, in order: load → resolve (with the filter checks)
 //! → typecheck (with the rip-map checks) → apply overrides → build the pass
-//! DAG → prune → specialize → prune again (what folding made dead) → the
-//! checks of constant domains and absent tags → schedule (fusion, tiles,
+//! DAG → prune → value ranges (with WGSL's undefined cases, over the
+//! params' declared ranges) → specialize → prune again (what folding made
+//! dead) → the checks of constant domains and absent tags → schedule (fusion, tiles,
 //! recomputation) → allocate → emit → validate. Each stage is timed, and `dump_ir` records the
 //! IR after each stage.
 
@@ -131,6 +132,18 @@ pub fn run(
             },
         );
     }
+    // Value ranges before folding: a param nobody fixed ranges over its
+    // declared range, not only its default (`mid/ranges`).
+    let param_ranges: Vec<_> = ir
+        .params
+        .iter()
+        .map(|p| {
+            let set = overrides.iter().any(|o| o.name == p.name);
+            crate::mid::ranges::inputs::param_range(p, set, opts.keep_params)
+        })
+        .collect();
+    let ranges = crate::mid::ranges::analyse(&ir, &live, &param_ranges);
+    st.done("ranges", &ir);
     let bindings = crate::mid::specialize::specialize(&mut ir, &live, opts.keep_params, &mut report);
     st.done("specialize", &ir);
     // Folding may have made passes, targets and params dead: prune again.
@@ -164,6 +177,7 @@ pub fn run(
     st.done("prune-after-specialize", &ir);
     diags.extend(crate::mid::const_domains::check(&ir, &live));
     fail_if_errors(&diags)?;
+    diags.extend(ranges.warnings);
     diags.extend(crate::schedule::apply(
         &mut ir,
         &mut live,
@@ -232,6 +246,7 @@ pub fn run(
         texture_spans: crate::front::texture_spans::texture_spans(&ir, sources),
         timings: st.timings,
         dumps: st.dumps,
+        ranges: ranges.targets,
     })
 }
 

@@ -256,6 +256,23 @@ pub mod codes {
     /// shifts the colour's coverage (`c * vec4(k)`): an opaque colour may
     /// come out transparent (`compiler/src/front/typecheck/color.rs`).
     pub const COLOR_ALPHA_CHANGED: &str = "W0201";
+    /// Warning (issue 49, `compiler/src/mid/ranges/`): `log` or `log2` of
+    /// a value that the declared ranges let reach 0 or below.
+    pub const LOG_DOMAIN: &str = "W0203";
+    /// Warning: `sqrt` of a value that may be negative.
+    pub const SQRT_DOMAIN: &str = "W0204";
+    /// Warning: `pow(x, y)` with x possibly negative, or 0 with y ≤ 0.
+    pub const POW_DOMAIN: &str = "W0205";
+    /// Warning: a division (`/`, `%`, `smoothstep`'s edges) by a range holding 0.
+    pub const DIVISION_BY_ZERO: &str = "W0206";
+    /// Warning: `asin` or `acos` of a value that may leave [−1, 1].
+    pub const INVERSE_TRIG_DOMAIN: &str = "W0207";
+    /// Warning: `normalize` of a vector that may be zero.
+    pub const NORMALIZE_ZERO: &str = "W0208";
+    /// Warning: `atan2(y, x)` where both may be 0.
+    pub const ATAN2_ORIGIN: &str = "W0209";
+    /// Warning: a value stored into an f16 target that may pass 65504.
+    pub const F16_OVERFLOW: &str = "W0210";
     /// A value written into a target of an incompatible format.
     pub const FORMAT_MISMATCH: &str = "E0302";
     /// No `output`, or an output that names no target.
@@ -392,6 +409,20 @@ pub mod codes {
             BAD_GRADIENT,
             "bad gradient: no stops, unsorted, or a position outside 0..1",
         ),
+        (LOG_DOMAIN, "`log` of a value that may be 0 or negative (warning)"),
+        (SQRT_DOMAIN, "`sqrt` of a value that may be negative (warning)"),
+        (
+            POW_DOMAIN,
+            "`pow(x, y)` with x < 0, or x = 0 and y ≤ 0, reachable (warning)",
+        ),
+        (DIVISION_BY_ZERO, "division by a range that holds 0 (warning)"),
+        (
+            INVERSE_TRIG_DOMAIN,
+            "`asin`/`acos` of a value that may leave [−1, 1] (warning)",
+        ),
+        (NORMALIZE_ZERO, "`normalize` of a vector that may be zero (warning)"),
+        (ATAN2_ORIGIN, "`atan2(0, 0)` reachable (warning)"),
+        (F16_OVERFLOW, "a value past 65504 stored in an f16 target (warning)"),
         (PASS_CYCLE, "dependency cycle between passes"),
         (FORMAT_MISMATCH, "value incompatible with target format"),
         (NO_OUTPUT, "missing or bad output"),

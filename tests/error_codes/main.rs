@@ -12,6 +12,7 @@ mod host;
 mod lines;
 mod param_settings;
 mod passes;
+mod ranges;
 mod syntax_names_types;
 
 /// A scratch directory for cases that need files on disk.
@@ -128,6 +129,7 @@ fn every_code_has_a_case() {
         include_str!("command_line.rs"),
         include_str!("param_settings.rs"),
         include_str!("host.rs"),
+        include_str!("ranges.rs"),
     ]
     .concat()
     .chars()
@@ -138,7 +140,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        8 + usize::from(here.join("snapshots").exists()),
+        9 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in npr_diag::codes::ALL {

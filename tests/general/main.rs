@@ -27,6 +27,7 @@ mod lsp;
 mod openjd;
 mod packaging;
 mod paths;
+mod range_warnings;
 mod reference_docs;
 mod set_params;
 mod studio_browser;

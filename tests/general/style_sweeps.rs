@@ -93,6 +93,39 @@ fn a_range_admitting_a_division_by_zero_is_reported_with_its_reproduction() {
     );
 }
 
+/// The issue's planted style (issue 49): five params, non-finite only
+/// when the first is at the top of its range and the last at the bottom.
+/// The old sweep moved only neighbouring pairs and passed it; the covering
+/// array renders every pair of ends, and the row that fails is reduced to
+/// the pair.
+const FIRST_AND_LAST: &str = "style \"First and last\"\nparam a: float = 0.5 in 0..1\nparam b: float = 0.5 in 0..1\nparam c: float = 0.5 in 0..1\nparam d: float = 0.5 in 0..1\nparam e: float = 0.5 in 0..1\npass g: render(scene) {\n  out v: rgba16float = vec4(0.5 / (1.0 - a + e), normal.y * 0.5 + 0.5, b * c * d, 1.0)\n  clear: #000000\n}\npass show: image(g) {\n  out c: rgba8unorm = if g.v.r > 100.0 { #ff0000 } else { vec4(g.v.g, g.v.b, 0.6, 1.0) }\n}\noutput show.c\n";
+
+#[test]
+fn a_pair_that_is_not_neighbours_is_found_and_named() {
+    let dir = scratch("style_sweeps", "first_and_last");
+    std::fs::write(dir.join("planted.npr"), FIRST_AND_LAST).expect("style");
+    std::fs::write(dir.join("scene.toml"), SCENE).expect("scene");
+    std::fs::write(
+        dir.join("planted.tests.toml"),
+        "[[test]]\nname = \"ball\"\nscene = \"scene.toml\"\nsize = \"16x16\"\nsweep = true\n",
+    )
+    .expect("tests");
+    let o = npr_in(&dir, &["test", "planted.npr", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(&o);
+    let found = sweep_failures(&r);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    let message = found[0]["message"].as_str().expect("message");
+    assert!(
+        message.starts_with("a=1 e=0:") || message.starts_with("a=1, e=0:"),
+        "{message}"
+    );
+    assert_eq!(
+        found[0]["reproduce"],
+        "npr render planted.npr --scene scene.toml --size 16x16 --schedule naive --keep-params --set a=1 --set e=0 -o sweep.png"
+    );
+}
+
 /// Examples chosen for their kinds of parameter (ints, colours, px, enums,
 /// bools) and their cost: the sweep of every example is in
 /// docs/PERFORMANCE.md.

@@ -4,7 +4,7 @@
 //! exist.
 //!
 //! The explanations are data, one file per code range (`syntax.rs` E00xx,
-//! `names.rs` E01xx, `types.rs` E02xx, `passes.rs` E03xx and W03xx,
+//! `names.rs` E01xx, `types.rs` E02xx, `ranges.rs` W0203–W0210, `passes.rs` E03xx and W03xx,
 //! `files.rs` E04xx and W04xx, `command_line.rs` E05xx,
 //! `host.rs` E06xx). Each example is a
 //! set of files and `npr` command lines, so `tests/general/explain.rs` runs every
@@ -16,6 +16,7 @@ mod files;
 mod host;
 mod names;
 mod passes;
+mod ranges;
 mod syntax;
 mod types;
 
@@ -165,6 +166,7 @@ pub fn all() -> impl Iterator<Item = &'static Explanation> {
         .iter()
         .chain(names::ALL)
         .chain(types::ALL)
+        .chain(ranges::ALL)
         .chain(passes::ALL)
         .chain(files::ALL)
         .chain(command_line::ALL)

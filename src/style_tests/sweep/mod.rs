@@ -5,6 +5,7 @@
 //! errors. Each finding comes with its smallest reproduction: one
 //! `npr render` command line with the fewest `--set` values that show it
 //! (a pair is reported only where neither of its values does alone, a
+//! covering-array row is reduced to the pair in it that shows the same, a
 //! combination only where the defaults do not fail the same way) on the
 //! cheapest case where it shows.
 //!
@@ -14,6 +15,7 @@
 //! back as floats.
 
 pub mod cases;
+pub mod covering;
 pub mod points;
 
 use super::checks;
@@ -118,17 +120,21 @@ pub fn sweep(style: &Path, cases: &[Case], settings: &Settings) -> Result<SweepR
             }
         };
         let baseline = run(&Vec::new());
-        for (k, combination) in combinations.iter().enumerate() {
-            let result = if k == 0 { baseline.clone() } else { run(combination) };
-            let mut found = problems(&result, &baseline);
-            // A colour may be the background's: one colour is then the
-            // true picture (black ink on black), not a finding.
+        // A colour may be the background's: one colour is then the true
+        // picture (black ink on black), not a finding.
+        let checks_of = |result: &Probe, combination: &Combination| {
+            let mut found = problems(result, &baseline);
             let sets_colour = combination
                 .iter()
                 .any(|(n, _)| shapes.iter().any(|s| &s.name == n && s.kind == ValueKind::Colour));
             if !case.check_blank || sets_colour {
                 found.retain(|(check, _)| *check != "blank");
             }
+            found
+        };
+        for (k, combination) in combinations.iter().enumerate() {
+            let result = if k == 0 { baseline.clone() } else { run(combination) };
+            let mut found = checks_of(&result, combination);
             for (check, _) in &found {
                 failed[ci][k].push(check);
             }
@@ -150,11 +156,30 @@ pub fn sweep(style: &Path, cases: &[Case], settings: &Settings) -> Result<SweepR
             if found.is_empty() {
                 continue;
             }
-            let finding = match findings.iter_mut().position(|f| &f.combination == combination) {
+            // A covering row sets many params: reduce it to the first pair
+            // of them that shows the same check alone (its singles were
+            // ruled out above), else keep the whole row.
+            let mut shown = combination.clone();
+            if combination.len() > 2 {
+                let pairs = (0..combination.len())
+                    .flat_map(|a| (a + 1..combination.len()).map(move |b| (a, b)))
+                    .collect::<Vec<_>>();
+                for (a, b) in pairs {
+                    let pair = vec![combination[a].clone(), combination[b].clone()];
+                    let checks = checks_of(&run(&pair), &pair);
+                    let same = |c: &&str| checks.iter().any(|(d, _)| d == c);
+                    if found.iter().any(|(c, _)| same(c)) {
+                        found.retain(|(c, _)| same(c));
+                        shown = pair;
+                        break;
+                    }
+                }
+            }
+            let finding = match findings.iter_mut().position(|f| f.combination == shown) {
                 Some(i) => &mut findings[i],
                 None => {
                     findings.push(Finding {
-                        combination: combination.clone(),
+                        combination: shown.clone(),
                         seen: Vec::new(),
                     });
                     findings.last_mut().expect("just pushed")
@@ -175,6 +200,13 @@ pub fn sweep(style: &Path, cases: &[Case], settings: &Settings) -> Result<SweepR
         axes.len(),
         cases.len()
     );
+    let (covered, pairs) = points::pairs_covered(&axes);
+    if pairs > 0 {
+        summary.push_str(&format!(
+            "; {covered} of {pairs} pairs of parameter ends covered by {} combination(s)",
+            combinations.iter().filter(|c| c.len() >= 2).count()
+        ));
+    }
     if !unswept.is_empty() {
         summary.push_str(&format!("; not swept (no declared range): {}", unswept.join(", ")));
     }

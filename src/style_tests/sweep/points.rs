@@ -8,7 +8,9 @@
 //! take every value, a colour black and white, a `range` parameter its
 //! whole declared span, one point at each end and its middle (a zero-width
 //! range is where `smoothstep(a, a, x)` divides by zero). A number without
-//! a declared range has no domain to search and keeps its default.
+//! a declared range has no domain to search and keeps its default. Every
+//! pair of parameters meets at every pair of their ends in the rows of a
+//! covering array (`covering.rs`).
 //!
 //! Every value is written as `--set` takes it (`format_literal`), so a
 //! finding's reproduction is the text the sweep ran.
@@ -19,15 +21,15 @@ use npr_compiler::front::param_values::{format_literal, ParamShape, ValueKind};
 /// middle and two van der Corput points between (¼ and ¾).
 pub const POINTS_PER_RANGE: usize = 5;
 
-/// How many pairs of parameters are moved together, each at its four corners.
-pub const MAX_PAIRS: usize = 3;
-
 /// One parameter's values, as `--set` text, and why a parameter is not swept.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
     pub name: String,
     /// The values to render, the two ends (or first and last value) first.
     pub values: Vec<String>,
+    /// How many of the first values every other parameter's meet in the
+    /// covering array: a number's two ends, every bool or enum value.
+    pub levels: usize,
 }
 
 /// One rendering of the sweep: `name=value` settings over the defaults.
@@ -93,16 +95,23 @@ pub fn axis(p: &ParamShape) -> Option<Axis> {
         fresh
     });
     let values: Vec<String> = values.iter().filter_map(|v| format_literal(p, v)).collect();
+    let levels = match p.kind {
+        ValueKind::Bool | ValueKind::Enum => values.len(),
+        _ => values.len().min(2),
+    };
     (values.len() > 1 || (values.len() == 1 && p.kind == ValueKind::Range)).then(|| Axis {
         name: p.name.clone(),
         values,
+        levels,
     })
 }
 
 /// Every combination the sweep renders, the defaults (no setting) first:
-/// each parameter alone at each of its values, then up to [`MAX_PAIRS`]
-/// pairs of neighbouring parameters (in declaration order) at the four
-/// corners of their first two values (the ends of a range).
+/// each parameter alone at each of its values, then the rows of a
+/// strength-2 covering array (`covering.rs`) over the parameters with two
+/// levels or more, so that every pair of parameters meets at every pair of
+/// their ends (and bool or enum values); a parameter a row leaves free
+/// keeps its default.
 pub fn combinations(axes: &[Axis]) -> Vec<Combination> {
     let mut all: Vec<Combination> = vec![Vec::new()];
     for a in axes {
@@ -110,17 +119,35 @@ pub fn combinations(axes: &[Axis]) -> Vec<Combination> {
             all.push(vec![(a.name.clone(), v.clone())]);
         }
     }
-    let paired: Vec<&Axis> = axes.iter().filter(|a| a.values.len() >= 2).collect();
-    for pair in paired.chunks_exact(2).take(MAX_PAIRS) {
-        let (a, b) = (pair[0], pair[1]);
-        for (i, j) in [(0, 0), (1, 1), (0, 1), (1, 0)] {
-            all.push(vec![
-                (a.name.clone(), a.values[i].clone()),
-                (b.name.clone(), b.values[j].clone()),
-            ]);
+    let paired: Vec<&Axis> = axes.iter().filter(|a| a.levels >= 2).collect();
+    let levels: Vec<usize> = paired.iter().map(|a| a.levels).collect();
+    if paired.len() < 2 {
+        return all;
+    }
+    for row in super::covering::covering_array(&levels) {
+        let c: Combination = row
+            .iter()
+            .zip(&paired)
+            .filter_map(|(l, a)| l.map(|l| (a.name.clone(), a.values[l].clone())))
+            .collect();
+        if c.len() >= 2 && !all.contains(&c) {
+            all.push(c);
         }
     }
     all
+}
+
+/// How many pairs of ends the covering rows cover, of how many pairs.
+pub fn pairs_covered(axes: &[Axis]) -> (usize, usize) {
+    let levels: Vec<usize> = axes.iter().filter(|a| a.levels >= 2).map(|a| a.levels).collect();
+    if levels.len() < 2 {
+        return (0, 0);
+    }
+    let rows = super::covering::covering_array(&levels);
+    (
+        super::covering::covered_pairs(&levels, &rows),
+        super::covering::pair_count(&levels),
+    )
 }
 
 #[cfg(test)]
@@ -169,17 +196,31 @@ mod tests {
     }
 
     #[test]
-    fn combinations_are_the_defaults_each_value_alone_and_a_few_pairs_at_corners() {
-        let axes: Vec<Axis> = ["a", "b", "c"]
+    fn combinations_are_the_defaults_each_value_alone_and_every_pair_of_ends() {
+        let names = ["a", "b", "c", "d", "e"];
+        let axes: Vec<Axis> = names
             .iter()
             .map(|n| Axis {
                 name: n.to_string(),
                 values: vec!["0".into(), "1".into(), "0.5".into()],
+                levels: 2,
             })
             .collect();
         let all = combinations(&axes);
         assert_eq!(all[0], Vec::new());
-        assert_eq!(all.len(), 1 + 9 + 4, "one pair (a, b); c has no partner");
-        assert!(all.contains(&vec![("a".into(), "1".into()), ("b".into(), "0".into())]));
+        // The blind spot: the first at its top with the last at its
+        // bottom (not neighbours) is rendered together.
+        for (x, y) in [("a", "e"), ("b", "d"), ("a", "b")] {
+            for (vx, vy) in [("0", "0"), ("0", "1"), ("1", "0"), ("1", "1")] {
+                assert!(
+                    all.iter()
+                        .any(|c| c.contains(&(x.into(), vx.into())) && c.contains(&(y.into(), vy.into()))),
+                    "{x}={vx} with {y}={vy} is never rendered"
+                );
+            }
+        }
+        let rows = all.len() - 1 - 15;
+        assert!(rows <= 8, "{rows} covering rows for 5 params");
+        assert_eq!(pairs_covered(&axes), (40, 40));
     }
 }

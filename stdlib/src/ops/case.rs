@@ -195,6 +195,25 @@ pub struct OpDef {
     pub cases: &'static [Case],
     /// What `npr doc` renders to show the operator (see [`super::Demo`]).
     pub demo: super::Demo,
+    /// Bounds every component of the result stays in for finite
+    /// arguments within their parameters' declared ranges (issue 49: the compiler's range analysis starts from
+    /// them); `None` where nothing is promised. `tests/op_ranges.rs` checks
+    /// the reference at the argument ends.
+    pub range: Option<(f64, f64)>,
+}
+
+/// How far past its declared bounds an operator's result may round (a
+/// share of each bound's magnitude: a few f32 ulps, as `n·l` of unit
+/// vectors comes out 1 + 2⁻²³). The range analysis widens by it, the
+/// test of the ranges allows it.
+pub const RANGE_SLACK: f64 = 4.0 * f32::EPSILON as f64;
+
+impl OpDef {
+    /// [`OpDef::range`] widened by [`RANGE_SLACK`].
+    pub fn range_with_slack(&self) -> Option<(f64, f64)> {
+        self.range
+            .map(|(lo, hi)| (lo - RANGE_SLACK * lo.abs(), hi + RANGE_SLACK * hi.abs()))
+    }
 }
 
 /// Uniform random values in a box (shorthand for [`Arg::Random`]).
@@ -251,6 +270,15 @@ impl OpDef {
             eval,
             cases,
             demo: super::Demo::Missing,
+            range: None,
+        }
+    }
+
+    /// The same operator with the bounds of its result.
+    pub const fn with_range(self, lo: f64, hi: f64) -> OpDef {
+        OpDef {
+            range: Some((lo, hi)),
+            ..self
         }
     }
 

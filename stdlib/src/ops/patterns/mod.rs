@@ -206,7 +206,9 @@ pub const HALFTONE_SCREEN: OpDef = OpDef::new(
         Case::new("1000 cells out (coarse f32 coordinates)", &[random([-1e3; 4], [1e3; 4], 20), BLENDS], Tol::Abs(2e-6)),
         Case::new("cell corners and centres", &[Arg::Each(CELL_POINTS), BLENDS], Tol::Abs(2e-6)),
     ],
-).with_demo(demos::HALFTONE_SCREEN);
+).with_demo(demos::HALFTONE_SCREEN)
+// The result's bounds (issue 49): checked by tests/op_ranges.rs.
+.with_range(0.0, 1.0);
 
 pub const HALFTONE: OpDef = OpDef::new(
     Operator {

@@ -77,7 +77,9 @@ pub const LAMBERT: OpDef = OpDef::new(
     |a| scalar(lambert(a[0].v3(), a[1].v3())),
     DIFFUSE_CASES,
 )
-.with_demo(demos::LAMBERT);
+.with_demo(demos::LAMBERT)
+// The result's bounds (issue 49): checked by tests/op_ranges.rs.
+.with_range(0.0, 1.0);
 
 pub const HALF_LAMBERT: OpDef = OpDef::new(
     Operator {
@@ -95,7 +97,9 @@ pub const HALF_LAMBERT: OpDef = OpDef::new(
     |a| scalar(half_lambert(a[0].v3(), a[1].v3())),
     DIFFUSE_CASES,
 )
-.with_demo(demos::HALF_LAMBERT);
+.with_demo(demos::HALF_LAMBERT)
+// The result's bounds (issue 49): checked by tests/op_ranges.rs.
+.with_range(0.0, 1.0);
 
 /// Steps at both ends of the range; x outside [0, 1], on band edges, and random.
 const STEPS: Arg = each![1, 2, 3, 5, 16];
@@ -133,7 +137,9 @@ pub const TOON: OpDef = OpDef::new(
         Case::new("random x", &[random([0.0; 4], [1.0; 4], 20), STEPS], Tol::Abs(1e-6)),
     ],
 )
-.with_demo(demos::TOON);
+.with_demo(demos::TOON)
+// The result's bounds (issue 49): checked by tests/op_ranges.rs.
+.with_range(0.0, 1.0);
 
 /// Bands including lo == hi and lo > hi (a step).
 const LOS: Arg = each![0.45, 0.5, 0.6, 0.0];
@@ -180,4 +186,6 @@ pub const THRESHOLD: OpDef = OpDef::new(
         Case::new("random x", &[random([-0.2; 4], [1.2; 4], 20), LOS, HIS], Tol::Abs(1e-5)),
     ],
 )
-.with_demo(demos::THRESHOLD);
+.with_demo(demos::THRESHOLD)
+// The result's bounds (issue 49): checked by tests/op_ranges.rs.
+.with_range(0.0, 1.0);
