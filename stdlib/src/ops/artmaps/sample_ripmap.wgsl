@@ -1,7 +1,7 @@
 // A read of a rip-map (Klein et al. 2000 §4.2, Fig. 7–8): "a cascading
 // series of pre-filtered, off-angle images of the texture", here every
 // level (i, j) of the source's width halved i times and its height j
-// times, side by side in one atlas of 2W × 2H texels (abi::RipmapAtlas).
+// times, side by side in one atlas of 2W × 2H texels (npr_abi::RipmapAtlas).
 // Hardware has no rip-maps, so the level of each axis is chosen here from
 // the screen derivatives of that axis alone, log2 of the larger of
 // |du/dx|, |du/dy| in level-0 texels (and the same for v), and the four

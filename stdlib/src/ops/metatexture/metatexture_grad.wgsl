@@ -15,7 +15,7 @@ fn npr_metatexture_grad(tex: texture_2d<f32>, samp: sampler, uv: vec2<f32>, grad
         // Eqs. 14–15: skew σ = atan(ε) · cos(angle between ∇u and ∇v), with the
         // sign flipped: ∇u'·∇v' = ∇u·∇v + ½ sin 2ψ (|∇u|² + |∇v|²) for the shear of
         // eqs. 20–21, so ψ must have the opposite sign of ∇u·∇v to straighten the
-        // axes. The printed sign increases anisotropy (stdlib::metrics measures it).
+        // axes. The printed sign increases anisotropy (npr_stdlib::metrics measures it).
         let lu = max(length(grad_u), 1e-30);
         let lv_ = max(length(grad_v), 1e-30);
         let eps = min(lu, lv_) / max(lu, lv_);
