@@ -8,7 +8,8 @@
 #                       Node.js and the VS Code extension's npm packages, Xvfb
 #                       and winit's X11 libraries (the `npr view` and embedding
 #                       windows), ffmpeg (video
-#                       output) and openjd-cli (the render-farm job template).
+#                       output), openjd-cli (the render-farm job template) and
+#                       the wasm32 target (the Bevy plugin's web build check).
 #
 # Rendering an image needs none of the test tools, so the README's first
 # command does not wait for them.
@@ -19,7 +20,7 @@ want_tests=0
 for arg in "$@"; do
   case "$arg" in
     --tests) want_tests=1 ;;
-    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "setup: unknown option '$arg' (expected --tests)" >&2; exit 2 ;;
   esac
 done
@@ -97,6 +98,10 @@ if [ "$want_tests" -eq 1 ]; then
   if [ "${#missing[@]}" -gt 0 ]; then
     echo "setup: installing the test suite's tools (apt: ${missing[*]})"
     apt_install "${missing[@]}"
+  fi
+  # CI checks that bevy_mod_npr without default features builds for the web.
+  if command -v rustup >/dev/null 2>&1; then
+    rustup target add --toolchain "$toolchain" wasm32-unknown-unknown >/dev/null
   fi
   if [ ! -d editors/vscode/node_modules/vscode-textmate ]; then
     echo "setup: npm ci in editors/vscode (pinned by package-lock.json)"
