@@ -124,7 +124,11 @@ fn a_precompiled_bundle_draws_what_npr_render_draws_of_its_style() {
     let Drawing { app, image, style, .. } = draw(&dir, "toon.nprb", "Toon", &scene);
     assert_close("toon_bundle", &read_image(&app, &image), &expected);
     let asset = style_asset(&app, &style).expect("the bundle's asset");
-    assert_eq!(asset.program().shaders, program.shaders, "the bundle's WGSL is the compiler's");
+    assert_eq!(
+        asset.program().shaders,
+        program.shaders,
+        "the bundle's WGSL is the compiler's"
+    );
 }
 
 #[test]

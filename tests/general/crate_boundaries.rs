@@ -176,12 +176,27 @@ fn the_compiler_does_not_depend_on_the_runtime() {
 fn linked(package: &str, features: &[&str]) -> BTreeSet<String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let out = std::process::Command::new(cargo)
-        .args(["tree", "-p", package, "-e", "normal", "--prefix", "none", "--format", "{p}", "--offline"])
+        .args([
+            "tree",
+            "-p",
+            package,
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "--format",
+            "{p}",
+            "--offline",
+        ])
         .args(features)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("run cargo tree");
-    assert!(out.status.success(), "cargo tree: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "cargo tree: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout)
         .lines()
         .filter_map(|l| l.split_whitespace().next())
@@ -193,12 +208,24 @@ fn linked(package: &str, features: &[&str]) -> BTreeSet<String> {
 fn a_shipped_bevy_game_links_the_runtime_and_no_compiler() {
     let compiler = ["npr-compiler", "npr-stdlib", "npr-dsl", "pest"];
     let shipped = linked("bevy_mod_npr", &["--no-default-features"]);
-    assert!(shipped.contains("npr-runner"), "the plugin without features has no runtime: {shipped:?}");
+    assert!(
+        shipped.contains("npr-runner"),
+        "the plugin without features has no runtime: {shipped:?}"
+    );
     let found: Vec<_> = compiler.iter().filter(|c| shipped.contains(**c)).collect();
-    assert!(found.is_empty(), "bevy_mod_npr without default features links {found:?}");
+    assert!(
+        found.is_empty(),
+        "bevy_mod_npr without default features links {found:?}"
+    );
     // The development build does link it (the check above can fail).
     let development = linked("bevy_mod_npr", &[]);
-    assert!(development.contains("npr-compiler") && development.contains("pest"), "{development:?}");
+    assert!(
+        development.contains("npr-compiler") && development.contains("pest"),
+        "{development:?}"
+    );
     // Hot reload is a feature too: Bevy's watcher (notify) only with it.
-    assert!(!shipped.contains("notify") && development.contains("notify"), "file_watcher is not the feature that brings notify");
+    assert!(
+        !shipped.contains("notify") && development.contains("notify"),
+        "file_watcher is not the feature that brings notify"
+    );
 }
