@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod artmaps;
+pub mod cargo;
 pub mod chromium;
 pub mod cli;
 pub mod fuzz;

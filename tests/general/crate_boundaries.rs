@@ -6,6 +6,7 @@
 //! on the runtime. A forbidden edge that comes back fails here, naming the
 //! path by which it came.
 
+use crate::common::cargo::cargo_stdout;
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::sync::OnceLock;
@@ -33,19 +34,16 @@ fn normal_dependency_graph() -> &'static BTreeMap<String, Vec<String>> {
 }
 
 fn read_graph() -> BTreeMap<String, Vec<String>> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let out = std::process::Command::new(cargo)
-        .args(["metadata", "--format-version", "1", "--offline", "--filter-platform"])
-        .arg(host_triple())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run cargo metadata");
-    assert!(
-        out.status.success(),
-        "cargo metadata failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let meta: Value = serde_json::from_slice(&out.stdout).expect("cargo metadata's JSON");
+    let host = host_triple();
+    let out = cargo_stdout(&[
+        "metadata",
+        "--format-version",
+        "1",
+        "--offline",
+        "--filter-platform",
+        &host,
+    ]);
+    let meta: Value = serde_json::from_str(&out).expect("cargo metadata's JSON");
     let name_of: BTreeMap<&str, &str> = meta["packages"]
         .as_array()
         .expect("packages")
@@ -174,30 +172,20 @@ fn the_compiler_does_not_depend_on_the_runtime() {
 /// The packages `cargo tree` says `package` links with `features`
 /// (normal dependencies, this platform), by name.
 fn linked(package: &str, features: &[&str]) -> BTreeSet<String> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let out = std::process::Command::new(cargo)
-        .args([
-            "tree",
-            "-p",
-            package,
-            "-e",
-            "normal",
-            "--prefix",
-            "none",
-            "--format",
-            "{p}",
-            "--offline",
-        ])
-        .args(features)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run cargo tree");
-    assert!(
-        out.status.success(),
-        "cargo tree: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout)
+    let mut args = vec![
+        "tree",
+        "-p",
+        package,
+        "-e",
+        "normal",
+        "--prefix",
+        "none",
+        "--format",
+        "{p}",
+        "--offline",
+    ];
+    args.extend_from_slice(features);
+    cargo_stdout(&args)
         .lines()
         .filter_map(|l| l.split_whitespace().next())
         .map(str::to_string)

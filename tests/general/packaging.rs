@@ -6,29 +6,15 @@
 //! package (`../../examples/...`) builds here and fails for every user of
 //! the published crate; this catches it without a registry.
 
+use crate::common::cargo::cargo_stdout;
 use serde_json::Value;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn cargo() -> Command {
-    let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-    cmd.current_dir(env!("CARGO_MANIFEST_DIR"));
-    cmd
-}
 
 /// The workspace's own packages, from `cargo metadata`.
 fn workspace_packages() -> Vec<Value> {
-    let out = cargo()
-        .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
-        .output()
-        .expect("run cargo metadata");
-    assert!(
-        out.status.success(),
-        "cargo metadata: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let meta: Value = serde_json::from_slice(&out.stdout).expect("cargo metadata's JSON");
+    let out = cargo_stdout(&["metadata", "--format-version", "1", "--no-deps", "--offline"]);
+    let meta: Value = serde_json::from_str(&out).expect("cargo metadata's JSON");
     let packages = meta["packages"].as_array().expect("packages").clone();
     assert!(
         packages.len() >= 9,
@@ -40,16 +26,7 @@ fn workspace_packages() -> Vec<Value> {
 
 /// The files `cargo package` would put in `name`'s archive, relative to its folder.
 fn packaged_files(name: &str) -> BTreeSet<String> {
-    let out = cargo()
-        .args(["package", "--list", "--allow-dirty", "--offline", "-p", name])
-        .output()
-        .expect("run cargo package --list");
-    assert!(
-        out.status.success(),
-        "cargo package --list -p {name}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout)
+    cargo_stdout(&["package", "--list", "--allow-dirty", "--offline", "-p", name])
         .lines()
         .map(str::to_string)
         .collect()
