@@ -9,6 +9,7 @@ pub(crate) mod dump;
 mod explain;
 pub(crate) mod frame_sink;
 pub(crate) mod render;
+pub(crate) mod render_inputs;
 mod test;
 mod texgen;
 
