@@ -8,7 +8,8 @@
 #                       Node.js and the VS Code extension's npm packages, Xvfb
 #                       and winit's X11 libraries (the `npr view` and embedding
 #                       windows), ffmpeg (video
-#                       output) and openjd-cli (the render-farm job template).
+#                       output), Blender and python3-numpy (a real
+#                       renderer's passes as a style's inputs) and openjd-cli (the render-farm job template).
 #
 # Rendering an image needs none of the test tools, so the README's first
 # command does not wait for them.
@@ -94,6 +95,10 @@ if [ "$want_tests" -eq 1 ]; then
   local_lib libXrandr.so.2 || missing+=(libxrandr2)
   # Video and GIF output pipe frames to ffmpeg.
   command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)
+  # The host-inputs tests render a real renderer's passes with Blender
+  # (Cycles, headless); its Python needs Debian's numpy on the system PATH.
+  [ -x /usr/bin/blender ] || missing+=(blender)
+  PATH=/usr/bin:/bin python3 -c 'import numpy' >/dev/null 2>&1 || missing+=(python3-numpy)
   if [ "${#missing[@]}" -gt 0 ]; then
     echo "setup: installing the test suite's tools (apt: ${missing[*]})"
     apt_install "${missing[@]}"
