@@ -304,3 +304,70 @@ fn ink_over_passes_blenders_colour_through_where_it_draws_no_line() {
     }
     assert!(checked > (img.width() * img.height()) as usize / 2, "most pixels carry no line: {checked}");
 }
+
+/// Blender's passes, converted at load, hold what npr's own G-buffer of
+/// the mirrored scene holds, value by value: the depth (distance along the
+/// view axis, metres) and the world normals (Blender's Z-up turned into
+/// npr's Y-up). The line tests above compare thresholds that neither a
+/// depth scale nor a rotation of the normals would change; this compares
+/// the values themselves.
+#[test]
+fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
+    use npr_abi::{InputKind, NormalSpace};
+    use npr_runner::inputs::{convert, files};
+    let (exr_path, toml) = blender();
+    let gbuffer = scratch("npr_gbuffer_values.exr");
+    let exr = read_exr("passes", exr_path).expect("read Blender's EXR");
+    npr(&[
+        "render",
+        "tests/data/blender/gbuffer.npr",
+        "--scene",
+        toml.to_str().unwrap(),
+        "--size",
+        &format!("{}x{}", exr.width, exr.height),
+        "--layers",
+        "-o",
+        gbuffer.to_str().unwrap(),
+    ]);
+    let ours = read_exr("gbuffer", &gbuffer).expect("read npr's EXR");
+    let load = |kind: InputKind, exr: &ExrChannels, layer: &str, blender: bool| {
+        let raw = files::exr_layer("x", "f", kind, exr, layer).expect("layer");
+        convert("x", "f", kind, files::file_convention(kind, true, blender), &raw, None).expect("convert")
+    };
+    let normal = InputKind::Normal { space: NormalSpace::World };
+    let (bd, od) = (load(InputKind::Depth, &exr, "Depth", true), load(InputKind::Depth, &ours, "g.depth", false));
+    let (bn, on) = (load(normal, &exr, "Normal", true), load(normal, &ours, "g.normal", false));
+    let (w, h) = (exr.width as usize, exr.height as usize);
+    let mut compared = 0;
+    let mut worst_depth: f64 = 0.0;
+    let mut worst_normal: f64 = 0.0;
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            // Away from edges, where a pixel centre may fall on either
+            // side of a silhouette in the two tessellations.
+            let around = |l: &npr_runner::artmap::Level| {
+                [(0, 0), (1, 0), (0, 1), (-1, 0), (0, -1)]
+                    .map(|(dx, dy)| l.pixels[(y as i64 + dy) as usize * w + (x as i64 + dx) as usize][0] as f64)
+            };
+            let (b, o) = (around(&bd), around(&od));
+            let rel = |a: f64, c: f64| (a - c).abs() / a.max(c).max(1e-9);
+            if b.iter().zip(&o).any(|(b, o)| *b == 0.0 || *o == 0.0 || rel(*b, *o) > 0.02) {
+                continue;
+            }
+            let i = y * w + x;
+            worst_depth = worst_depth.max(rel(bd.pixels[i][0] as f64, od.pixels[i][0] as f64));
+            let dn: f64 = (0..3).map(|c| (bn.pixels[i][c] as f64 - on.pixels[i][c] as f64).powi(2)).sum::<f64>();
+            worst_normal = worst_normal.max(dn.sqrt());
+            compared += 1;
+        }
+    }
+    assert!(compared > (w * h) / 2, "most pixels are surfaces in both: {compared}");
+    // Depth: the same surfaces, tessellated alike (64×32 spheres), half
+    // floats in npr's target: within 0.5 %.
+    assert!(worst_depth < 0.005, "depth differs by {:.3} % of itself", worst_depth * 100.0);
+    // Normals: Cycles interpolates smooth-shaded normals as npr does; the
+    // spheres' tessellations match, so within 0.05 (about 3°).
+    assert!(worst_normal < 0.05, "normals differ by {worst_normal}");
+    let all_background = |l: &npr_runner::artmap::Level| l.pixels.iter().filter(|p| p[0] == 0.0).count();
+    assert!(all_background(&bd) > 0 && all_background(&od) > 0, "both have background (0)");
+}
