@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 mod command_line;
 mod files;
 mod host;
+mod inputs;
 mod lines;
 mod param_settings;
 mod passes;
@@ -128,6 +129,7 @@ fn every_code_has_a_case() {
         include_str!("command_line.rs"),
         include_str!("param_settings.rs"),
         include_str!("host.rs"),
+        include_str!("inputs.rs"),
     ]
     .concat()
     .chars()
@@ -138,7 +140,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        8 + usize::from(here.join("snapshots").exists()),
+        9 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in npr_diag::codes::ALL {

@@ -84,7 +84,7 @@ fn layer_names(exr: &ExrChannels) -> Vec<String> {
     let mut v: Vec<String> = exr
         .channels
         .keys()
-        .map(|k| k.rsplit_once('.').map_or(String::new(), |(l, _)| l.to_string()))
+        .map(|k| k.rsplit_once('.').map_or("(unnamed)".to_string(), |(l, _)| l.to_string()))
         .collect();
     v.dedup();
     v
