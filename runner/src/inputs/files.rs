@@ -84,7 +84,7 @@ fn layer_names(exr: &ExrChannels) -> Vec<String> {
     let mut v: Vec<String> = exr
         .channels
         .keys()
-        .map(|k| k.rsplit_once('.').map_or("(unnamed)".to_string(), |(l, _)| l.to_string()))
+        .map(|k| k.rsplit_once('.').map_or(String::new(), |(l, _)| l.to_string()))
         .collect();
     v.dedup();
     v
@@ -122,7 +122,14 @@ pub fn exr_layer(name: &str, file: &str, kind: InputKind, exr: &ExrChannels, lay
         return Err(bad_input(
             name,
             file,
-            format!("{what}; its layers are: {}", layer_names(exr).join(", ")),
+            format!(
+                "{what}; its layers are: {}",
+                layer_names(exr)
+                    .iter()
+                    .map(|l| if l.is_empty() { "(unnamed)" } else { l.as_str() })
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
             "name the layer that holds it: `--map NAME=LAYER`",
         ));
     }
@@ -172,8 +179,16 @@ pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, S
         return Ok((level, file_convention(kind, true, blender)));
     }
     let img = crate::texture_file::read(path).map_err(|e| {
-        let d = e.to_diagnostic(name, &file);
-        bad_input(name, &file, d.message, "give a PNG or EXR image")
+        use crate::texture_file::TextureFileError as E;
+        let what = match e {
+            E::Unreadable(e) => format!("cannot be read: {e}"),
+            E::NotAnImage(e) => format!("not an image npr can read: {e}"),
+            E::TooLarge { width, height } => format!(
+                "{width}x{height}, past the largest image npr loads ({} px a side)",
+                crate::textures::MAX_TEXTURE_SIZE
+            ),
+        };
+        bad_input(name, &file, what, "give a PNG or EXR image")
     })?;
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
