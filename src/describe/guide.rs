@@ -37,7 +37,7 @@ pub const TEXTURE_SOURCES: &[(&str, &str, &str)] = &[
     ),
     (
         "input(depth)",
-        "the kind: `color, linear|display`, `depth`, `normal, world|view`, `id`, `motion` or `image, FORMAT`",
+        "the kind: `color, linear` or `color, display`, `depth`, `normal, world` or `normal, view`, `id`, `motion` or `image, FORMAT`",
         "An image the host gives each frame, converted at load to the kind's one convention: depth in r (metres along the view axis, 0 where nothing was hit), unit normals in rgb, ids in r, motion in rg (px), colour as said.",
     ),
     (
