@@ -39,13 +39,19 @@ pub enum NormalSpace {
 pub enum InputKind {
     /// Colour; `display`: the style reads display-referred (sRGB-encoded)
     /// values, else linear light.
-    Color { display: bool },
+    Color {
+        display: bool,
+    },
     Depth,
-    Normal { space: NormalSpace },
+    Normal {
+        space: NormalSpace,
+    },
     Id,
     Motion,
     /// A free-form image read as `format` (its channel count and range).
-    Image { format: Format },
+    Image {
+        format: Format,
+    },
 }
 
 impl InputKind {

@@ -194,7 +194,10 @@ impl Manifest {
                     if t.per_object || t.mips {
                         return bad(
                             format!("textures[{i}]"),
-                            format!("input `{}` is one image from the host: neither per object nor mipmapped", t.name),
+                            format!(
+                                "input `{}` is one image from the host: neither per object nor mipmapped",
+                                t.name
+                            ),
                         );
                     }
                 }

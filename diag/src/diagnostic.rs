@@ -426,7 +426,10 @@ pub mod codes {
         (PATH_OUTSIDE_ROOT, "file path absolute or outside the root"),
         (BAD_TEST_FILE, "malformed style test file"),
         (BAD_GOLDEN, "golden image missing, unreadable or of another size"),
-        (BAD_INPUT, "host input image missing, unreadable, mis-sized or outside its convention"),
+        (
+            BAD_INPUT,
+            "host input image missing, unreadable, mis-sized or outside its convention",
+        ),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),

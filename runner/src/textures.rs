@@ -72,7 +72,10 @@ fn missing_input(name: &str, host: &crate::inputs::HostInputs) -> Diagnostic {
     .with_help(if given.is_empty() {
         format!("give it: `npr render STYLE --input {name}=FILE` or `--inputs FILE.exr`")
     } else {
-        format!("given were: {}; give `{name}` too (`--input {name}=FILE`)", given.join(", "))
+        format!(
+            "given were: {}; give `{name}` too (`--input {name}=FILE`)",
+            given.join(", ")
+        )
     })
 }
 

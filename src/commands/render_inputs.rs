@@ -47,8 +47,10 @@ fn pairs(flag: &str, given: &[String], names: &[&str]) -> Result<BTreeMap<String
     let mut out = BTreeMap::new();
     for g in given {
         let Some((name, value)) = g.split_once('=').filter(|(n, v)| !n.is_empty() && !v.is_empty()) else {
-            return Err(Diagnostic::error(codes::BAD_ARGUMENT_VALUE, format!("`--{flag} {g}` is not NAME=VALUE"))
-                .with_help(format!("write e.g. `--{flag} color=beauty.png`")));
+            return Err(
+                Diagnostic::error(codes::BAD_ARGUMENT_VALUE, format!("`--{flag} {g}` is not NAME=VALUE"))
+                    .with_help(format!("write e.g. `--{flag} color=beauty.png`")),
+            );
         };
         if !names.contains(&name) {
             let help = match did_you_mean(name, names.iter().copied()) {
@@ -59,7 +61,10 @@ fn pairs(flag: &str, given: &[String], names: &[&str]) -> Result<BTreeMap<String
             return Err(bad(format!("`--{flag} {g}`: the style has no input `{name}`"), help));
         }
         if out.insert(name.to_string(), value.to_string()).is_some() {
-            return Err(bad(format!("input `{name}` is given twice by `--{flag}`"), "give each input once".into()));
+            return Err(bad(
+                format!("input `{name}` is given twice by `--{flag}`"),
+                "give each input once".into(),
+            ));
         }
     }
     Ok(out)
@@ -134,7 +139,10 @@ pub(crate) fn load(m: &Manifest, args: &InputArgs, camera: Option<&CameraPose>) 
 pub(crate) fn frame_size(inputs: &HostInputs, size: Option<(u32, u32)>) -> Result<(u32, u32), Diagnostic> {
     match (inputs::size(inputs), size) {
         (Some(s), Some(asked)) if s != asked => Err(bad(
-            format!("--size {}x{} differs from the inputs' size, {}x{}", asked.0, asked.1, s.0, s.1),
+            format!(
+                "--size {}x{} differs from the inputs' size, {}x{}",
+                asked.0, asked.1, s.0, s.1
+            ),
             "leave --size out: a style over inputs renders at their size".into(),
         )),
         (Some(s), _) => Ok(s),

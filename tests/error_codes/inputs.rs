@@ -64,7 +64,11 @@ fn e0420_a_non_finite_depth() {
     let beauty = format!("beauty={}", png(&dir, "beauty.png", (8, 8)));
     let z = format!(
         "z={}",
-        exr(&dir, "z.exr", (8, 8), |x, y| if (x, y) == (3, 5) { f32::INFINITY } else { 2.0 })
+        exr(&dir, "z.exr", (8, 8), |x, y| if (x, y) == (3, 5) {
+            f32::INFINITY
+        } else {
+            2.0
+        })
     );
     let (d, r) = cli_errors(&["render", &style, "--input", &beauty, "--input", &z], &dir);
     assert!(r.contains("(3, 5)") && r.contains("`z`"), "{r}");
@@ -106,7 +110,9 @@ fn a_colour_input_says_whether_it_is_linear_or_display() {
 #[test]
 fn a_host_input_is_not_a_per_object_texture() {
     let (d, r) = compile_errors(
-        &style("object param t: texture = input(depth)\npass p: render(scene) {\n  out o: rgba8unorm = t\n}\noutput p.o\n"),
+        &style(
+            "object param t: texture = input(depth)\npass p: render(scene) {\n  out o: rgba8unorm = t\n}\noutput p.o\n",
+        ),
         Path::new("."),
     );
     check_case("E0103", "E0103_input_per_object", (d, r));

@@ -176,7 +176,11 @@ fn ink_over_blender_draws_its_lines_on_blenders_depth_discontinuities() {
     let (exr_path, _) = blender();
     let exr = read_exr("passes", exr_path).expect("read Blender's EXR");
     let (img, out) = ink_over_blender();
-    assert_eq!((img.width(), img.height()), (exr.width, exr.height), "rendered at the inputs' size");
+    assert_eq!(
+        (img.width(), img.height()),
+        (exr.width, exr.height),
+        "rendered at the inputs' size"
+    );
     let ink = inked(&img);
     // Every large jump of Blender's depth (silhouettes: a quarter of the
     // nearer depth, far above the style's 8 %) is inked within 1 px.
@@ -302,7 +306,10 @@ fn ink_over_passes_blenders_colour_through_where_it_draws_no_line() {
         }
         checked += 1;
     }
-    assert!(checked > (img.width() * img.height()) as usize / 2, "most pixels carry no line: {checked}");
+    assert!(
+        checked > (img.width() * img.height()) as usize / 2,
+        "most pixels carry no line: {checked}"
+    );
 }
 
 /// Blender's passes, converted at load, hold what npr's own G-buffer of
@@ -334,9 +341,17 @@ fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
         let raw = files::exr_layer("x", "f", kind, exr, layer).expect("layer");
         convert("x", "f", kind, files::file_convention(kind, true, blender), &raw, None).expect("convert")
     };
-    let normal = InputKind::Normal { space: NormalSpace::World };
-    let (bd, od) = (load(InputKind::Depth, &exr, "Depth", true), load(InputKind::Depth, &ours, "g.depth", false));
-    let (bn, on) = (load(normal, &exr, "Normal", true), load(normal, &ours, "g.normal", false));
+    let normal = InputKind::Normal {
+        space: NormalSpace::World,
+    };
+    let (bd, od) = (
+        load(InputKind::Depth, &exr, "Depth", true),
+        load(InputKind::Depth, &ours, "g.depth", false),
+    );
+    let (bn, on) = (
+        load(normal, &exr, "Normal", true),
+        load(normal, &ours, "g.normal", false),
+    );
     let (w, h) = (exr.width as usize, exr.height as usize);
     let mut compared = 0;
     let mut worst_depth: f64 = 0.0;
@@ -351,12 +366,17 @@ fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
             };
             let (b, o) = (around(&bd), around(&od));
             let rel = |a: f64, c: f64| (a - c).abs() / a.max(c).max(1e-9);
-            if b.iter().zip(&o).any(|(b, o)| *b == 0.0 || *o == 0.0 || rel(*b, *o) > 0.02) {
+            if b.iter()
+                .zip(&o)
+                .any(|(b, o)| *b == 0.0 || *o == 0.0 || rel(*b, *o) > 0.02)
+            {
                 continue;
             }
             let i = y * w + x;
             worst_depth = worst_depth.max(rel(bd.pixels[i][0] as f64, od.pixels[i][0] as f64));
-            let dn: f64 = (0..3).map(|c| (bn.pixels[i][c] as f64 - on.pixels[i][c] as f64).powi(2)).sum::<f64>();
+            let dn: f64 = (0..3)
+                .map(|c| (bn.pixels[i][c] as f64 - on.pixels[i][c] as f64).powi(2))
+                .sum::<f64>();
             worst_normal = worst_normal.max(dn.sqrt());
             compared += 1;
         }
@@ -364,10 +384,17 @@ fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
     assert!(compared > (w * h) / 2, "most pixels are surfaces in both: {compared}");
     // Depth: the same surfaces, tessellated alike (64×32 spheres), half
     // floats in npr's target: within 0.5 %.
-    assert!(worst_depth < 0.005, "depth differs by {:.3} % of itself", worst_depth * 100.0);
+    assert!(
+        worst_depth < 0.005,
+        "depth differs by {:.3} % of itself",
+        worst_depth * 100.0
+    );
     // Normals: Cycles interpolates smooth-shaded normals as npr does; the
     // spheres' tessellations match, so within 0.05 (about 3°).
     assert!(worst_normal < 0.05, "normals differ by {worst_normal}");
     let all_background = |l: &npr_runner::artmap::Level| l.pixels.iter().filter(|p| p[0] == 0.0).count();
-    assert!(all_background(&bd) > 0 && all_background(&od) > 0, "both have background (0)");
+    assert!(
+        all_background(&bd) > 0 && all_background(&od) > 0,
+        "both have background (0)"
+    );
 }

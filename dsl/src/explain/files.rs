@@ -274,4 +274,5 @@ pub(super) const ALL: &[Explanation] = &[
 const INPUT_STYLE: &str = "style \"Case\"\ntexture beauty = input(color, display)\npass p: image() {\n  out c: rgba8unorm = vec4(beauty.rgb * 0.5, 1.0)\n}\noutput p.c\n";
 
 /// A grey sphere: the beauty image the fixed E0420 example renders first.
-const GREY_MADE: &str = "style \"Make\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(0.5, 0.5, 0.5, 1.0)\n}\noutput p.c\n";
+const GREY_MADE: &str =
+    "style \"Make\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(0.5, 0.5, 0.5, 1.0)\n}\noutput p.c\n";

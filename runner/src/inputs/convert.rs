@@ -88,7 +88,11 @@ pub fn convert(
     }
     match (kind, source) {
         (InputKind::Color { display }, SourceConvention::Color(enc)) => {
-            let to = if display { ColorEncoding::Srgb } else { ColorEncoding::Linear };
+            let to = if display {
+                ColorEncoding::Srgb
+            } else {
+                ColorEncoding::Linear
+            };
             if to != enc {
                 let f = match to {
                     ColorEncoding::Linear => crate::srgb::srgb_to_linear,
@@ -163,7 +167,10 @@ pub fn convert(
             return Err(bad_input(
                 name,
                 file,
-                format!("the source is described as {source:?}, but the style reads it as {}", kind.name()),
+                format!(
+                    "the source is described as {source:?}, but the style reads it as {}",
+                    kind.name()
+                ),
                 "map the input to a layer of its kind (`--map NAME=LAYER`)",
             ))
         }
@@ -194,7 +201,15 @@ mod tests {
             height: 1,
             pixels: vec![[3.25, 0.0, 0.0, 1.0], [1e10, 0.0, 0.0, 1.0]],
         };
-        let c = convert("d", "f", InputKind::Depth, SourceConvention::Depth(DepthConvention::CYCLES), &l, None).unwrap();
+        let c = convert(
+            "d",
+            "f",
+            InputKind::Depth,
+            SourceConvention::Depth(DepthConvention::CYCLES),
+            &l,
+            None,
+        )
+        .unwrap();
         assert_eq!(c.pixels[0][0], 3.25);
         assert_eq!(c.pixels[1][0], 0.0);
     }
@@ -209,14 +224,28 @@ mod tests {
     #[test]
     fn a_non_finite_depth_is_e0420_naming_input_file_and_pixel() {
         let src = SourceConvention::Depth(DepthConvention::CYCLES);
-        let e = convert("depth", "shot.exr", InputKind::Depth, src, &one([f32::NAN, 0.0, 0.0, 1.0]), None).unwrap_err();
+        let e = convert(
+            "depth",
+            "shot.exr",
+            InputKind::Depth,
+            src,
+            &one([f32::NAN, 0.0, 0.0, 1.0]),
+            None,
+        )
+        .unwrap_err();
         assert_eq!(e.code, codes::BAD_INPUT);
-        assert!(e.message.contains("`depth`") && e.message.contains("shot.exr") && e.message.contains("(0, 0)"), "{}", e.message);
+        assert!(
+            e.message.contains("`depth`") && e.message.contains("shot.exr") && e.message.contains("(0, 0)"),
+            "{}",
+            e.message
+        );
     }
 
     #[test]
     fn z_up_normals_become_y_up() {
-        let kind = InputKind::Normal { space: NormalSpace::World };
+        let kind = InputKind::Normal {
+            space: NormalSpace::World,
+        };
         let src = SourceConvention::Normal(NormalConvention::WorldZUp);
         // Blender's up (+z) is npr's up (+y); Blender's +y (away from a
         // front view) is npr's −z.
@@ -229,7 +258,15 @@ mod tests {
     #[test]
     fn display_colour_from_linear_is_srgb_encoded() {
         let kind = InputKind::Color { display: true };
-        let c = convert("c", "f", kind, SourceConvention::Color(ColorEncoding::Linear), &one([0.5, 0.0, 1.0, 1.0]), None).unwrap();
+        let c = convert(
+            "c",
+            "f",
+            kind,
+            SourceConvention::Color(ColorEncoding::Linear),
+            &one([0.5, 0.0, 1.0, 1.0]),
+            None,
+        )
+        .unwrap();
         assert!((c.pixels[0][0] - crate::srgb::linear_to_srgb(0.5)).abs() < 1e-7);
         assert_eq!(c.pixels[0][3], 1.0);
     }

@@ -112,12 +112,20 @@ pub fn exr_layer(name: &str, file: &str, kind: InputKind, exr: &ExrChannels, lay
     let found = layer_channels(exr, layer);
     let want = kind.channels() as usize;
     // A colour without alpha is opaque.
-    let least = if matches!(kind, InputKind::Color { .. }) { 3 } else { want };
+    let least = if matches!(kind, InputKind::Color { .. }) {
+        3
+    } else {
+        want
+    };
     if found.len() < least {
         let what = if found.is_empty() {
             format!("no layer `{layer}`")
         } else {
-            format!("layer `{layer}` has {} channel(s), and {} needs {least}", found.len(), kind.name())
+            format!(
+                "layer `{layer}` has {} channel(s), and {} needs {least}",
+                found.len(),
+                kind.name()
+            )
         };
         return Err(bad_input(
             name,
@@ -173,7 +181,11 @@ pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, S
     if is_exr {
         let exr = read_exr(name, path)?;
         let layers = layer_names(&exr);
-        let layer = if layers.len() == 1 { layers[0].clone() } else { String::new() };
+        let layer = if layers.len() == 1 {
+            layers[0].clone()
+        } else {
+            String::new()
+        };
         let blender = blender_layer(kind).is_some_and(|b| layer == b || layer.ends_with(&format!(".{b}")));
         let level = exr_layer(name, &file, kind, &exr, &layer)?;
         return Ok((level, file_convention(kind, true, blender)));

@@ -61,9 +61,12 @@ impl Resolver<'_> {
         if words.len() > 1 + takes_one as usize {
             let (_, extra) = words[1 + takes_one as usize];
             self.error(
-                Diagnostic::error(codes::BAD_ARGUMENT, format!("too many arguments to `input({kind}, ...)`"))
-                    .with_primary(extra, "not expected here")
-                    .with_help(format!("write one of {FORMS}")),
+                Diagnostic::error(
+                    codes::BAD_ARGUMENT,
+                    format!("too many arguments to `input({kind}, ...)`"),
+                )
+                .with_primary(extra, "not expected here")
+                .with_help(format!("write one of {FORMS}")),
             );
             return None;
         }
@@ -100,8 +103,11 @@ impl Resolver<'_> {
         }
         if let Some((word, span)) = qualifier {
             if !qualifiers.contains(&word) {
-                let mut d = Diagnostic::error(codes::BAD_ARGUMENT, format!("`input({kind}, ...)` takes `{}`", qualifiers.join("` or `")))
-                    .with_primary(span, format!("`{word}` is not one of them"));
+                let mut d = Diagnostic::error(
+                    codes::BAD_ARGUMENT,
+                    format!("`input({kind}, ...)` takes `{}`", qualifiers.join("` or `")),
+                )
+                .with_primary(span, format!("`{word}` is not one of them"));
                 if let Some(s) = did_you_mean(word, qualifiers.iter().copied()) {
                     d = d.with_help(format!("did you mean `{s}`?"));
                 }
@@ -110,9 +116,15 @@ impl Resolver<'_> {
             }
         }
         Some(match (kind, qualifier.map(|q| q.0)) {
-            ("color", Some(q)) => InputKind::Color { display: q == "display" },
-            ("normal", Some("view")) => InputKind::Normal { space: NormalSpace::View },
-            ("normal", _) => InputKind::Normal { space: NormalSpace::World },
+            ("color", Some(q)) => InputKind::Color {
+                display: q == "display",
+            },
+            ("normal", Some("view")) => InputKind::Normal {
+                space: NormalSpace::View,
+            },
+            ("normal", _) => InputKind::Normal {
+                space: NormalSpace::World,
+            },
             ("depth", _) => InputKind::Depth,
             ("id", _) => InputKind::Id,
             _ => InputKind::Motion,

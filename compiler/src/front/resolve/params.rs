@@ -263,7 +263,10 @@ impl Resolver<'_> {
             self.error(
                 Diagnostic::error(codes::BAD_ARGUMENT, "a host input is one image for the whole frame")
                     .with_primary(call.span, "not a per-object texture")
-                    .with_help(format!("declare it as a texture: `texture {} = input(...)`", p.name.name)),
+                    .with_help(format!(
+                        "declare it as a texture: `texture {} = input(...)`",
+                        p.name.name
+                    )),
             );
         }
         tex.per_object = true;
