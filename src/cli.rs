@@ -37,7 +37,7 @@ pub enum Command {
     /// Compile a style to WGSL (one file per pass) plus manifest.json.
     Compile(CompileArgs),
     /// Render a style on a scene to an image.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Run styles' tests, declared beside each style in
     /// `<style>.tests.toml`: golden images (FLIP or per pixel), every
     /// target finite, not blank, deterministic. Exit 0 when all pass, 1

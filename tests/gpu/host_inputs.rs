@@ -286,11 +286,11 @@ fn ink_over_passes_blenders_colour_through_where_it_draws_no_line() {
             continue;
         }
         let i = y as usize * w + x as usize;
-        for c in 0..3 {
+        for (c, channel) in rgb.iter().enumerate() {
             // Linear light, stored as a half float, sRGB-encoded at load
             // (`input(color, display)`) and written to an 8-bit target:
             // within one step of the f64 encoding of Blender's value.
-            let linear = (rgb[c][i] as f64).clamp(0.0, 1.0);
+            let linear = (channel[i] as f64).clamp(0.0, 1.0);
             let encoded = if linear <= 0.0031308 {
                 12.92 * linear
             } else {
