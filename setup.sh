@@ -8,8 +8,10 @@
 #                       Node.js and the VS Code extension's npm packages, Xvfb
 #                       and winit's X11 libraries (the `npr view` and embedding
 #                       windows), ffmpeg (video
-#                       output), openjd-cli (the render-farm job template) and
-#                       the wasm32 target (the Bevy plugin's web build check).
+#                       output), Blender and python3-numpy (a real
+#                       renderer's passes as a style's inputs), openjd-cli (the
+#                       render-farm job template) and the wasm32 target (the
+#                       Bevy plugin's web build check).
 #
 # Rendering an image needs none of the test tools, so the README's first
 # command does not wait for them.
@@ -20,7 +22,7 @@ want_tests=0
 for arg in "$@"; do
   case "$arg" in
     --tests) want_tests=1 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "setup: unknown option '$arg' (expected --tests)" >&2; exit 2 ;;
   esac
 done
@@ -95,6 +97,10 @@ if [ "$want_tests" -eq 1 ]; then
   local_lib libXrandr.so.2 || missing+=(libxrandr2)
   # Video and GIF output pipe frames to ffmpeg.
   command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)
+  # The host-inputs tests render a real renderer's passes with Blender
+  # (Cycles, headless); its Python needs Debian's numpy on the system PATH.
+  [ -x /usr/bin/blender ] || missing+=(blender)
+  PATH=/usr/bin:/bin python3 -c 'import numpy' >/dev/null 2>&1 || missing+=(python3-numpy)
   if [ "${#missing[@]}" -gt 0 ]; then
     echo "setup: installing the test suite's tools (apt: ${missing[*]})"
     apt_install "${missing[@]}"

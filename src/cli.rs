@@ -37,7 +37,7 @@ pub enum Command {
     /// Compile a style to WGSL (one file per pass) plus manifest.json.
     Compile(CompileArgs),
     /// Render a style on a scene to an image.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Run styles' tests, declared beside each style in
     /// `<style>.tests.toml`: golden images (FLIP or per pixel), every
     /// target finite, not blank, deterministic. Exit 0 when all pass, 1
@@ -179,18 +179,35 @@ pub struct RenderArgs {
     /// validated first).
     #[arg(long, value_name = "DIR|FILE.nprb", conflicts_with_all = ["style", "keep_params"])]
     pub compiled: Option<PathBuf>,
-    /// Scene file (TOML).
-    #[arg(long)]
-    pub scene: PathBuf,
+    /// Scene file (TOML). A style that only reads host inputs needs none;
+    /// its camera turns normals between world and view space.
+    #[arg(long, required_unless_present_any = ["input", "inputs"])]
+    pub scene: Option<PathBuf>,
+    /// A host input of the style (`texture NAME = input(...)`) from an
+    /// image file (PNG: sRGB colour; EXR: linear; depth as the distance
+    /// along the view axis in metres, 1e10 or more for the background).
+    /// Repeatable.
+    #[arg(long, value_name = "NAME=FILE")]
+    pub input: Vec<String>,
+    /// Every host input from one multi-layer EXR, by layer name: Blender's
+    /// `<ViewLayer>.Combined`, `.Depth`, `.Normal` (Blender's Z-up world),
+    /// `.IndexOB` and `.Vector` for colour, depth, normal, id and motion
+    /// inputs; `--map` for others.
+    #[arg(long, value_name = "FILE.exr")]
+    pub inputs: Option<PathBuf>,
+    /// With --inputs: the EXR layer holding input NAME. Repeatable.
+    #[arg(long, value_name = "NAME=LAYER", requires = "inputs")]
+    pub map: Vec<String>,
     /// Output image (.png or .exr); without it, `<style>.png` in the current
     /// directory (none with --dump-passes or --checkpoints alone). With --frames, `{frame}`
     /// in the name is replaced by the frame number (otherwise `_NNNN` is
     /// appended); a .mp4, .webm or .gif is one video of the frames.
     #[arg(short, long)]
     pub out: Option<PathBuf>,
-    /// Output size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "512x512", value_parser = parse_size)]
-    pub size: (u32, u32),
+    /// Output size, WIDTHxHEIGHT (default 512x512; a style over host
+    /// inputs renders at their size).
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
     /// Time in seconds (for animated parameters and cameras). A style that
     /// reads `previous(...)` or keeps `state` in a compute pass depends on
     /// earlier frames: it is rendered by

@@ -11,6 +11,8 @@
 //!   ([`ObjectHead`]) and its WGSL members ([`OBJECT_HEAD_WGSL`]), the same way.
 //! - [`gradient`]: the slots of a `gradient` parameter kept live.
 //! - [`lines`]: a `lines` pass's edges, shape settings and strip vertex.
+//! - [`input`]: the images a style takes from its host ([`InputKind`]),
+//!   and the one convention each kind has inside the language.
 //! - [`noise`]: the parameters of a generated noise texture ([`NoiseSpec`]).
 //! - [`scene`]: what the compiler may know about the scene ([`SceneSummary`]).
 //! - [`param_literal`], [`param_value`]: a parameter's value as written
@@ -33,6 +35,7 @@ pub mod formats;
 pub mod frame;
 pub mod gradient;
 pub mod halftone;
+pub mod input;
 pub mod lines;
 pub mod manifest;
 pub mod noise;
@@ -48,6 +51,7 @@ pub use artmap::{ArtmapSpec, FilterProgram, RipmapAtlas};
 pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
 pub use halftone::HalftoneTableSpec;
+pub use input::{InputKind, InputSpec, NormalSpace};
 pub use manifest::{Attribute, Manifest, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
 pub use noise::NoiseSpec;
 pub use object::{ObjectHead, OBJECT_HEAD_WGSL};

@@ -23,8 +23,9 @@ pub use compute::*;
 pub use device::*;
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks
-/// changes (8: a `gradient` param kept live fills 21 slots).
-pub const MANIFEST_VERSION: u32 = 8;
+/// changes (8: a `gradient` param kept live fills 21 slots; 9: a texture
+/// may be a host input, `TextureSourceManifest::Input`).
+pub const MANIFEST_VERSION: u32 = 9;
 
 /// The side of a [`PassKindManifest::TiledImage`] workgroup, in pixels.
 pub const TILE_SIZE: u32 = 16;
@@ -517,6 +518,9 @@ pub enum TextureSourceManifest {
     /// In a filter style only: the level the filter runs on, given by the
     /// runner (`Renderer::new_filter`).
     FilterInput,
+    /// `input(kind, ...)`: an image the host gives each frame, converted
+    /// to the language's convention for its kind (`crate::input`).
+    Input(crate::input::InputSpec),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

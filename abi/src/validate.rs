@@ -188,6 +188,19 @@ impl Manifest {
                     })?;
                 }
                 TextureSourceManifest::FilterInput => {}
+                TextureSourceManifest::Input(_) => {
+                    // The host gives one image per input, for the whole
+                    // frame: not per object, no mip chain to build.
+                    if t.per_object || t.mips {
+                        return bad(
+                            format!("textures[{i}]"),
+                            format!(
+                                "input `{}` is one image from the host: neither per object nor mipmapped",
+                                t.name
+                            ),
+                        );
+                    }
+                }
             }
         }
         Ok(())

@@ -358,6 +358,8 @@ pub enum TextureSource {
     },
     /// `filter_input()`, in a filter style: the level being filtered.
     FilterInput,
+    /// `input(kind, ...)`: an image the host gives (`npr_abi::input`).
+    Input(npr_abi::InputKind),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -326,6 +326,11 @@ pub mod codes {
     /// A test's golden image is missing (and `--bless` was not given), not
     /// an image, or not the size the test renders.
     pub const BAD_GOLDEN: &str = "E0408";
+    /// A host input (`input(...)` in the style; `npr render --input`,
+    /// `--inputs`) that is not given, not an image, missing a layer, of
+    /// another size than the others, or holding values outside its kind's
+    /// convention (a non-finite or negative depth).
+    pub const BAD_INPUT: &str = "E0420";
     /// Warning: a scene binds a per-object value to a name the style does not read per object.
     pub const UNUSED_BINDING: &str = "W0401";
     /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
@@ -452,6 +457,10 @@ pub mod codes {
         (PATH_OUTSIDE_ROOT, "file path absolute or outside the root"),
         (BAD_TEST_FILE, "malformed style test file"),
         (BAD_GOLDEN, "golden image missing, unreadable or of another size"),
+        (
+            BAD_INPUT,
+            "host input image missing, unreadable, mis-sized or outside its convention",
+        ),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),

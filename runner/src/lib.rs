@@ -4,6 +4,8 @@
 //! - [`scene`]: TOML scenes with primitives, OBJ and glTF meshes, cameras, a light.
 //! - [`exec`]: the [`Renderer`], which runs the passes of a manifest (one
 //!   executor per pass kind).
+//! - [`inputs`]: host inputs (`input(...)` textures), read from files and
+//!   converted to the language's conventions.
 //! - [`output`]: PNG/EXR writing (atomic), `--dump-passes` contact sheets.
 //! - [`embed`]: [`embed::StyleRuntime`], the runtime a host application drives.
 //! - [`gpu_count`]: every GPU object the runner creates, counted.
@@ -32,6 +34,7 @@ pub mod exr_layers;
 pub mod gpu_count;
 pub mod gpu_error;
 pub mod half_rounding;
+pub mod inputs;
 pub mod lines;
 pub mod output;
 pub mod pass_timer;

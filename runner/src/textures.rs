@@ -28,20 +28,33 @@ pub use npr_diag::limits::MAX_TEXTURE_SIZE;
 pub type EmbeddedFiles = std::collections::BTreeMap<String, Vec<u8>>;
 
 /// Every declared texture of `m`, and what building its art-maps did.
-/// `input` is the level a filter style runs on (its `filter_input()`);
-/// `files`, the program's embedded image files.
+/// `input` is the level a filter style runs on (its `filter_input()`),
+/// `host` the images of its `input(...)` textures by name, `files` the
+/// program's embedded image files.
 pub fn load_all(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     m: &Manifest,
     input: Option<&Level>,
+    host: &crate::inputs::HostInputs,
     files: &EmbeddedFiles,
 ) -> Result<(Vec<GpuTexture>, Vec<ArtmapBuild>), RunError> {
     let mut out = Vec::new();
     let mut diags = Vec::new();
     let mut builds = Vec::new();
     for (i, t) in m.textures.iter().enumerate() {
-        match load_one(device, queue, t, input, files, &mut builds) {
+        let given = match &t.source {
+            TextureSourceManifest::Input(_) => match host.get(&t.name) {
+                Some(level) => Some(level),
+                None => {
+                    diags.push((i, missing_input(&t.name, host)));
+                    out.push(placeholder(device));
+                    continue;
+                }
+            },
+            _ => input,
+        };
+        match load_one(device, queue, t, given, files, &mut builds) {
             Ok(g) => out.push(g),
             Err(d) => {
                 diags.push((i, d));
@@ -54,6 +67,51 @@ pub fn load_all(
         return Err(RunError::Textures(diags));
     }
     Ok((out, builds))
+}
+
+/// E0420: the style reads input `name`, which the host did not give.
+fn missing_input(name: &str, host: &crate::inputs::HostInputs) -> Diagnostic {
+    let given: Vec<&str> = host.keys().map(String::as_str).collect();
+    Diagnostic::error(
+        npr_diag::codes::BAD_INPUT,
+        format!("the style reads input `{name}`, which was not given"),
+    )
+    .with_help(if given.is_empty() {
+        format!("give it: `npr render STYLE --input {name}=FILE` or `--inputs FILE.exr`")
+    } else {
+        format!(
+            "given were: {}; give `{name}` too (`--input {name}=FILE`)",
+            given.join(", ")
+        )
+    })
+}
+
+/// The host inputs of `m` from `host` by manifest index (a renderer moving
+/// on to the next frame's inputs).
+pub(crate) fn host_inputs(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    host: &crate::inputs::HostInputs,
+) -> Result<Vec<(usize, GpuTexture)>, RunError> {
+    let mut out = Vec::new();
+    let mut diags = Vec::new();
+    for (i, t) in m.textures.iter().enumerate() {
+        if matches!(t.source, TextureSourceManifest::Input(_)) {
+            let loaded = match host.get(&t.name) {
+                Some(level) => load_one(device, queue, t, Some(level), &EmbeddedFiles::new(), &mut Vec::new()),
+                None => Err(missing_input(&t.name, host)),
+            };
+            match loaded {
+                Ok(g) => out.push((i, g)),
+                Err(d) => diags.push((i, d)),
+            }
+        }
+    }
+    if !diags.is_empty() {
+        return Err(RunError::Textures(diags));
+    }
+    Ok(out)
 }
 
 /// The `filter_input()` textures of a filter style's manifest for `level`,
@@ -119,7 +177,8 @@ pub fn load_object_textures(
                 TextureSourceManifest::Artmap(spec) => spec.srgb,
                 TextureSourceManifest::Noise { .. }
                 | TextureSourceManifest::HalftoneTable(_)
-                | TextureSourceManifest::FilterInput => false,
+                | TextureSourceManifest::FilterInput
+                | TextureSourceManifest::Input(_) => false,
             };
             let srgb = b.srgb.unwrap_or(declared_srgb);
             let key = (index, b.resolved.clone(), srgb);
@@ -298,6 +357,17 @@ fn load_one(
             builds.push(build);
             // Half floats: a filter's output is linear and may leave [0, 1].
             ((*levels).clone(), false, true)
+        }
+        TextureSourceManifest::Input(_) => {
+            // Half floats, as a filter's level: depth keeps 11 significant
+            // bits (5 mm at 10 m), an id is exact up to 2048.
+            let level = input.ok_or_else(|| {
+                Diagnostic::error(
+                    npr_diag::codes::INTERNAL,
+                    format!("texture `{}` is a host input, but no image was given", t.name),
+                )
+            })?;
+            (vec![level.clone()], false, true)
         }
         TextureSourceManifest::FilterInput => {
             let level = input.ok_or_else(|| {

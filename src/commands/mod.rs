@@ -9,6 +9,7 @@ pub(crate) mod dump;
 mod explain;
 pub(crate) mod frame_sink;
 pub(crate) mod render;
+pub(crate) mod render_inputs;
 mod test;
 mod texgen;
 
@@ -21,7 +22,7 @@ pub fn run(cli: Cli) -> i32 {
     match cli.command {
         Command::Check(args) => check::run(&args, &printer),
         Command::Compile(args) => compile::run(args, &printer),
-        Command::Render(args) => render::run(args, &printer),
+        Command::Render(args) => render::run(*args, &printer),
         Command::Texgen(args) => texgen::run(args, &printer),
         Command::Test(args) => test::run(args, &printer),
         Command::Explain { code } => explain::run(&code, &printer),

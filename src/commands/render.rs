@@ -6,6 +6,7 @@ use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
+use crate::commands::render_inputs::{self, InputArgs};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
 use npr_compiler::CompileOptions;
 use npr_diag::{codes, Diagnostic, SourceMap};
@@ -18,6 +19,9 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         style,
         compiled,
         scene,
+        input,
+        inputs,
+        map,
         out,
         size,
         time,
@@ -58,25 +62,42 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         Err(code) => return code,
     };
     if let Err(code) = printer
-        .check(crate::args::check_size(size))
+        .check(size.map_or(Ok(()), crate::args::check_size))
         .and_then(|()| printer.check(crate::args::check_time(time, fps)))
     {
         return code;
     }
-    let scene_name = scene.display().to_string();
+    let input_args = InputArgs {
+        input: &input,
+        inputs: inputs.as_deref(),
+        map: &map,
+    };
+    let scene_path = scene;
+    let scene_name = scene_path
+        .as_ref()
+        .map_or_else(|| "no scene".to_string(), |s| s.display().to_string());
     // The root holds the style, or the compiled directory (whose textures
     // were checked when it was compiled), and the scene.
     let compiled_manifest = compiled.as_ref().map(|d| d.join("manifest.json"));
     let paths = match paths.policy(
-        style.as_deref().or(compiled_manifest.as_deref()).unwrap_or(&scene),
-        Some(&scene),
+        style
+            .as_deref()
+            .or(compiled_manifest.as_deref())
+            .or(scene_path.as_deref())
+            .unwrap_or(Path::new(".")),
+        scene_path.as_deref(),
     ) {
         Ok(p) => p,
         Err(d) => return printer.fail(d),
     };
-    let scene = match load_scene_in(&scene, &mut sources, Some(&paths), printer) {
-        Ok(s) => s,
-        Err(code) => return code,
+    // Without a scene (a style over host inputs only): no objects, and no
+    // camera to turn normals between spaces.
+    let scene = match &scene_path {
+        Some(path) => match load_scene_in(path, &mut sources, Some(&paths), printer) {
+            Ok(s) => s,
+            Err(code) => return code,
+        },
+        None => npr_runner::scene::Scene::empty(),
     };
     if let Err(code) = printer.check(crate::args::check_eye(eye, scene.camera.is_stereo())) {
         return code;
@@ -140,6 +161,22 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         }
     };
     printer.diagnostics(&npr_runner::scene_warnings(&program.manifest, &scene), &sources);
+    if scene_path.is_none() && program.manifest.passes.iter().any(|p| !p.kind.is_image()) {
+        return printer.fail(
+            Diagnostic::error(codes::USAGE, "the style draws a scene, and no --scene was given")
+                .with_help("give the scene its render passes draw: `--scene scene.toml`"),
+        );
+    }
+    // Host inputs, read and converted before anything renders.
+    let camera = scene_path.as_ref().map(|_| scene.camera.pose(time));
+    let host = match render_inputs::load(&program.manifest, &input_args, camera.as_ref()) {
+        Ok(h) => h,
+        Err(d) => return printer.fail(d),
+    };
+    let size = match render_inputs::frame_size(&host, size) {
+        Ok(s) => s,
+        Err(d) => return printer.fail(d),
+    };
     let request = match frames {
         Some((start, end)) => FrameRequest::Range { start, end },
         None => FrameRequest::At { time_s: time },
@@ -165,6 +202,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         out.as_deref().zip(out_kind),
         dump_passes.as_deref(),
         checkpoints.as_deref().map(|dir| (dir, checkpoint_every)),
+        &host,
     );
     match gpu.watch.check(result).map_err(|e| e.at_texture_spans(&texture_spans)) {
         Ok(()) => {
@@ -209,8 +247,9 @@ pub(crate) fn render(
     out: Option<(&Path, OutputKind)>,
     dump: Option<&Path>,
     checkpoints: Option<(&Path, Option<u32>)>,
+    inputs: &npr_runner::inputs::HostInputs,
 ) -> Result<(), RunError> {
-    let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
+    let mut r = Renderer::new_with_inputs(&gpu.device, &gpu.queue, program, scene, inputs)?;
     crate::printer::artmap_notes(r.artmap_builds());
     let io = |e: std::io::Error, p: &Path| RunError::User(vec![cannot_write(p, e)]);
     let request = match frames {

@@ -36,6 +36,11 @@ pub const TEXTURE_SOURCES: &[(&str, &str, &str)] = &[
         "The halftone screen's tone-correction table (Breslav et al. 2007 §3.5): pass it to `halftone(...)`; it is not read as a value.",
     ),
     (
+        "input(depth)",
+        "the kind: `color, linear` or `color, display`, `depth`, `normal, world` or `normal, view`, `id`, `motion` or `image, FORMAT`",
+        "An image the host gives each frame, converted at load to the kind's one convention: depth in r (metres along the view axis, 0 where nothing was hit), unit normals in rgb, ids in r, motion in rg (px), colour as said.",
+    ),
+    (
         "artmap(image(\"file.png\"), filter: \"filter.npr\", levels: auto)",
         "`filter`: a filter style (or `filter(\"f.npr\", arg: value)`), `levels: auto` or a count",
         "A colour: the image's mip chain, each level made by the filter (Klein et al. 2000 §4.2), read by `sample_artmap(...)`.",

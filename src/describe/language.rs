@@ -99,6 +99,7 @@ pub const SPECIAL_CALLS: &[(&str, &str, &str)] = &[
     ("image", "texture t = image(\"path.png\", srgb)", "A texture read from a PNG or EXR file (`srgb` or `linear`), relative to the style."),
     ("noise", "texture t = noise(size: 256, octaves: 4, seed: 1, kind: gradient)", "A tileable noise texture made by npr's generator (the one `npr texgen` writes)."),
     ("halftone_table", "texture t = halftone_table(edge: 0.1)", "The halftone screen's tone-correction table (Breslav et al. 2007 §3.5), for `halftone(...)`."),
+    ("input", "texture t = input(depth)", "An image the host gives each frame (`npr render --input`/`--inputs`), of a kind that fixes its convention: `color, linear` or `color, display`, `depth` (metres along the view axis, 0 = nothing), `normal, world` or `normal, view`, `id`, `motion`, `image, FORMAT`."),
     ("ramp", "ramp(g, t)", "The colour of the `gradient` param `g` at `t` in 0..1: between two stops their mix (or, with `mode: constant`, the last stop's colour at or before `t`)."),
     ("gradient", "param g: gradient = gradient(stop(0.0, #000000), stop(1.0, #ffffff))", "A colour ramp: stops of position (0..1, in order) and colour, `mode: linear` (default) or `constant`; read with `ramp(g, t)`. A constant, folded into the shader; `--set g=\"0:#000000, 1:#ffffff\"` replaces its stops."),
     ("test", "depth: test(pass, bias: 1px)", "A render pass's depth test against the kept depth buffer of another pass."),

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 mod command_line;
 mod files;
 mod host;
+mod inputs;
 mod lines;
 mod param_settings;
 mod passes;
@@ -130,6 +131,7 @@ fn every_code_has_a_case() {
         include_str!("param_settings.rs"),
         include_str!("host.rs"),
         include_str!("ranges.rs"),
+        include_str!("inputs.rs"),
     ]
     .concat()
     .chars()

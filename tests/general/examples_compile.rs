@@ -5,10 +5,12 @@ use npr_compiler::CompileOptions;
 use npr_diag::SourceMap;
 use std::path::{Path, PathBuf};
 
+/// The example styles: `examples/*.npr`, and `examples/post/*.npr`, the
+/// styles over a host's inputs.
 fn examples() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("examples dir")
+    let mut v: Vec<PathBuf> = ["examples", "examples/post"]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(d)).expect("examples dir"))
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|e| e == "npr"))
         .collect();
@@ -104,7 +106,11 @@ fn compile_snapshots() {
         let name = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
         let mut manifest = c.manifest.clone();
         // Absolute paths differ between machines.
-        manifest.source = format!("examples/{name}.npr");
+        manifest.source = path
+            .strip_prefix(env!("CARGO_MANIFEST_DIR"))
+            .expect("under the repository")
+            .display()
+            .to_string();
         relative_paths(&mut manifest);
         insta::assert_json_snapshot!(format!("{name}__manifest"), manifest);
         for (file, wgsl) in &c.shaders {

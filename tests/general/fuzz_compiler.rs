@@ -157,6 +157,7 @@ const FIXED_TOKENS: &[&str] = &[
     "nearest",
     "clamp",
     "halftone_table",
+    "input",
     "edge",
     "correction",
     "std::x",

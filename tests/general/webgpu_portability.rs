@@ -51,11 +51,12 @@ struct Case {
     program: npr_abi::StyleProgram,
 }
 
-/// The example styles and art-map filters (`examples/*.npr`,
-/// `examples/filters/*.npr`; `examples/lib/` holds modules they `use`).
+/// The example styles, art-map filters and styles over host inputs
+/// (`examples/*.npr`, `examples/filters/*.npr`, `examples/post/*.npr`;
+/// `examples/lib/` holds modules they `use`).
 fn example_files() -> Vec<PathBuf> {
     let mut files = Vec::new();
-    for dir in ["examples", "examples/filters"] {
+    for dir in ["examples", "examples/filters", "examples/post"] {
         let dir = common::root().join(dir);
         for entry in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
             let path = entry.expect("a directory entry").path();

@@ -23,6 +23,7 @@ mod gpu_errors;
 mod gradient_ramp;
 mod halftone_tone;
 mod history;
+mod host_inputs;
 mod lines_classify;
 mod lines_pass;
 mod lsa_gbuffer_precision;

@@ -23,6 +23,7 @@ mod calls;
 mod compute;
 mod expr;
 pub mod gradient;
+mod input_source;
 mod kind_args;
 mod lines;
 mod params;

@@ -247,4 +247,36 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0420",
+        meaning: "A style that declares `texture NAME = input(kind, ...)` runs over images its host \
+            gives: `npr render STYLE --input NAME=FILE` (a PNG or EXR per input) or `--inputs \
+            FILE.exr` (every input from one multi-layer EXR, found by Blender's layer names or \
+            `--map NAME=LAYER`). Each input must be given, be an image npr reads, have the \
+            layer and channels its kind needs, be the size of the other inputs (and of \
+            `--size`, when given), and hold values its kind allows: a finite depth, in front of \
+            the camera. The message names the input and the file; nothing is rendered or \
+            written until every input is good.",
+        wrong: Example {
+            style: INPUT_STYLE,
+            commands: &[&["render", "case.npr", "--input", "beauty=beauty.png", "-o", "out.png"]],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: INPUT_STYLE,
+            files: &[("scene.toml", sphere_scene!("")), ("make.npr", GREY_MADE)],
+            commands: &[
+                &["render", "make.npr", "--scene", "scene.toml", "--size", "16x16", "-o", "beauty.png"],
+                &["render", "case.npr", "--input", "beauty=beauty.png", "-o", "out.png"],
+            ],
+            ..EXAMPLE
+        },
+    },
 ];
+
+/// A style over one host input, its colour, halved.
+const INPUT_STYLE: &str = "style \"Case\"\ntexture beauty = input(color, display)\npass p: image() {\n  out c: rgba8unorm = vec4(beauty.rgb * 0.5, 1.0)\n}\noutput p.c\n";
+
+/// A grey sphere: the beauty image the fixed E0420 example renders first.
+const GREY_MADE: &str =
+    "style \"Make\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(0.5, 0.5, 0.5, 1.0)\n}\noutput p.c\n";

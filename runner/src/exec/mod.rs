@@ -141,6 +141,21 @@ impl Renderer {
         program: &crate::StyleProgram,
         scene: &Scene,
     ) -> Result<Renderer, RunError> {
+        Self::new_with_inputs(device, queue, program, scene, &crate::inputs::HostInputs::new())
+    }
+
+    /// [`Renderer::new`] for a style that reads host inputs (`input(...)`
+    /// textures), given by name in the language's conventions
+    /// ([`crate::inputs`]); each is missing (E0420) unless given. Frames
+    /// are rendered at the inputs' size. Later frames' inputs:
+    /// [`Renderer::set_inputs`].
+    pub fn new_with_inputs(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        program: &crate::StyleProgram,
+        scene: &Scene,
+        inputs: &crate::inputs::HostInputs,
+    ) -> Result<Renderer, RunError> {
         if program.manifest.validate_filter().is_ok() {
             return Err(RunError::User(vec![npr_diag::Diagnostic::error(
                 npr_diag::codes::BAD_FILTER,
@@ -153,7 +168,19 @@ impl Renderer {
                 "use it in another style: `texture t = artmap(image(\"brick.png\", srgb), filter: \"this.npr\")`",
             )]));
         }
-        Self::build(device, queue, program, scene, None)
+        Self::build(device, queue, program, scene, None, inputs)
+    }
+
+    /// The next frame's host inputs (a sequence): the input textures are
+    /// replaced, the pipelines stay, and the size-dependent resources are
+    /// rebuilt at the next frame, since their bind groups hold the old
+    /// textures.
+    pub fn set_inputs(&mut self, inputs: &crate::inputs::HostInputs) -> Result<(), RunError> {
+        for (i, texture) in textures::host_inputs(&self.device, &self.queue, &self.manifest, inputs)? {
+            self.textures[i] = texture;
+        }
+        self.sized = None;
+        Ok(())
     }
 
     /// A renderer of an art-map's filter style, whose `filter_input()` is
@@ -168,7 +195,14 @@ impl Renderer {
             .manifest
             .validate_filter()
             .map_err(|e| RunError::Internal(format!("not a filter style: {e}")))?;
-        Self::build(device, queue, program, &Scene::empty(), Some(level))
+        Self::build(
+            device,
+            queue,
+            program,
+            &Scene::empty(),
+            Some(level),
+            &crate::inputs::HostInputs::new(),
+        )
     }
 
     /// A filter renderer ([`Renderer::new_filter`]) moves on to the next
@@ -196,6 +230,7 @@ impl Renderer {
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
+        inputs: &crate::inputs::HostInputs,
     ) -> Result<Renderer, RunError> {
         // Every index the executors use is checked once here, whether the
         // program came from `load_dir` or was built in memory by an embedder.
@@ -225,7 +260,7 @@ impl Renderer {
         crate::gpu_error::scoped(
             device,
             || "building the renderer (pipelines, textures, meshes)".to_string(),
-            || Self::build_in_scopes(device, queue, program, scene, filter_input),
+            || Self::build_in_scopes(device, queue, program, scene, filter_input, inputs),
         )
     }
 
@@ -236,9 +271,11 @@ impl Renderer {
         program: &crate::StyleProgram,
         scene: &Scene,
         filter_input: Option<&crate::artmap::Level>,
+        inputs: &crate::inputs::HostInputs,
     ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();
-        let (textures, artmap_builds) = textures::load_all(device, queue, &manifest, filter_input, &program.files)?;
+        let (textures, artmap_builds) =
+            textures::load_all(device, queue, &manifest, filter_input, inputs, &program.files)?;
         let linear_clamp = device.make_sampler(&wgpu::SamplerDescriptor {
             label: Some("npr linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,

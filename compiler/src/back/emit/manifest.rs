@@ -340,6 +340,7 @@ fn texture_source(
         TextureSource::Noise(spec) => TextureSourceManifest::Noise(*spec),
         TextureSource::HalftoneTable(spec) => TextureSourceManifest::HalftoneTable(*spec),
         TextureSource::FilterInput => TextureSourceManifest::FilterInput,
+        TextureSource::Input(kind) => TextureSourceManifest::Input(npr_abi::InputSpec { kind: *kind }),
         TextureSource::Artmap {
             path,
             resolved,

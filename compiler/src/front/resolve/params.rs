@@ -259,6 +259,16 @@ impl Resolver<'_> {
             span: p.span,
         };
         let mut tex = self.texture(&decl, dir);
+        if matches!(tex.source, TextureSource::Input(_)) {
+            self.error(
+                Diagnostic::error(codes::BAD_ARGUMENT, "a host input is one image for the whole frame")
+                    .with_primary(call.span, "not a per-object texture")
+                    .with_help(format!(
+                        "declare it as a texture: `texture {} = input(...)`",
+                        p.name.name
+                    )),
+            );
+        }
         tex.per_object = true;
         Some(tex)
     }

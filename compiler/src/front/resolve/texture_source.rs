@@ -14,7 +14,15 @@ use npr_dsl::ast::{self, ExprKind as AK};
 use std::path::Path;
 
 /// The texture sources a declaration may name.
-const SOURCES: [&str; 6] = ["image", "noise", "halftone_table", "artmap", "ripmap", "filter_input"];
+const SOURCES: [&str; 7] = [
+    "image",
+    "noise",
+    "halftone_table",
+    "artmap",
+    "ripmap",
+    "filter_input",
+    "input",
+];
 
 impl Resolver<'_> {
     /// The arguments of `image("path.png", srgb|linear)`: the path as
@@ -339,6 +347,16 @@ impl Resolver<'_> {
                     tex.wrap_repeat = false;
                 }
             }
+            "input" => {
+                if let Some(kind) = self.input_kind(&t.source) {
+                    tex.source = TextureSource::Input(kind);
+                }
+                // Read texel by texel at the host's size, clamped at its
+                // edges: a depth or id must not be blended between texels.
+                tex.wrap_repeat = false;
+                tex.filter_linear = false;
+                tex.mips = false;
+            }
             "filter_input" => {
                 if !t.source.args.is_empty() {
                     self.error(
@@ -438,7 +456,7 @@ impl Resolver<'_> {
                 d = match did_you_mean(other, SOURCES) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
                     None => d.with_help(
-                        "textures come from `image(\"file.png\")`, `noise(size: 256, octaves: 4)`, `halftone_table(edge: 0.1)` or `artmap(image(\"file.png\"), filter: \"filter.npr\")`",
+                        "textures come from `image(\"file.png\")`, `noise(size: 256, octaves: 4)`, `halftone_table(edge: 0.1)`, `artmap(image(\"file.png\"), filter: \"filter.npr\")` or the host: `input(color, linear)`",
                     ),
                 };
                 self.error(d);
@@ -494,6 +512,16 @@ impl Resolver<'_> {
             }
             // The atlas's own sampler: clamped (levels sit side by side).
             tex.wrap_repeat = false;
+            tex.mips = false;
+        }
+        if matches!(tex.source, TextureSource::Input(_)) {
+            if let Some(s) = t.options.iter().find(|s| s.key.name == "mips") {
+                self.error(
+                    Diagnostic::error(codes::BAD_ARGUMENT, "a host input has no `mips` option")
+                        .with_primary(s.span, "the host gives one image per frame, with no mip chain")
+                        .with_help("remove `mips`; blur it in an image pass if the style needs a smaller copy"),
+                );
+            }
             tex.mips = false;
         }
         tex

@@ -38,7 +38,9 @@ impl Checker<'_> {
             ExprKind::Param(p) => self.ir.params[p.0 as usize].ty == ParamTy::Color,
             ExprKind::Texture(t) => matches!(
                 self.ir.textures[t.0 as usize].source,
-                TextureSource::Image { .. } | TextureSource::Artmap { .. }
+                TextureSource::Image { .. }
+                    | TextureSource::Artmap { .. }
+                    | TextureSource::Input(npr_abi::InputKind::Color { .. })
             ),
             ExprKind::Target { target, .. } => self
                 .ir
