@@ -142,7 +142,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        9 + usize::from(here.join("snapshots").exists()),
+        10 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in npr_diag::codes::ALL {
