@@ -731,7 +731,13 @@ fn render_compiled_runs_a_compiled_dir_and_rejects_a_bad_one() {
         "examples/scenes/spot.toml",
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("manifest.json"), "{}", stderr(&o));
+    // Neither a directory nor a bundle: the path, and both things it could be.
+    let text = stderr(&o);
+    assert!(
+        text.contains("error[E0504]") && text.contains("nothing: cannot read"),
+        "{text}"
+    );
+    assert!(text.contains("npr compile -o DIR") && text.contains(".nprb"), "{text}");
 }
 
 /// An installed npr outside the repository: `npr doc` writes the committed
