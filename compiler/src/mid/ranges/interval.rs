@@ -538,7 +538,12 @@ impl Iv {
         if e0.nan || e1.nan || x.nan {
             return Iv::UNIT.with_nan(true);
         }
-        let nan = e0.nan || e1.nan || x.nan || width.contains(0.0) || width.can_be_inf();
+        // An infinite width (an edge at ±inf) makes t = inf/inf, a NaN that
+        // the clamp may turn into any t in [0, 1], even past an edge.
+        if width.can_be_inf() || !e0.is_finite() || !e1.is_finite() {
+            return Iv::UNIT.with_nan(true);
+        }
+        let nan = width.contains(0.0);
         if width.lo > 0.0 && x.hi <= e0.lo {
             return Iv::point(0.0).with_nan(nan);
         }
