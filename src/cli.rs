@@ -1,14 +1,12 @@
 //! The command line: clap's definitions of every command and its
-//! arguments, and the exit codes. What each command does is in
+//! arguments (the exit codes are `exit.rs`'s). What each command does is in
 //! `commands/` and `bench/`.
 
 use crate::args::parse_size;
-use clap::{Parser, Subcommand, ValueEnum};
+use crate::path_args::PathArgs;
+use crate::printer::MessageFormat;
+use clap::{Parser, Subcommand};
 use std::path::PathBuf;
-
-pub const EXIT_OK: i32 = 0;
-pub const EXIT_USER: i32 = 1;
-pub const EXIT_INTERNAL: i32 = 2;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -22,12 +20,6 @@ pub struct Cli {
     /// How to print diagnostics.
     #[arg(long, global = true, value_enum, default_value_t = MessageFormat::Human)]
     pub message_format: MessageFormat,
-}
-
-#[derive(Copy, Clone, Debug, ValueEnum, PartialEq, Eq)]
-pub enum MessageFormat {
-    Human,
-    Json,
 }
 
 #[derive(Subcommand, Debug)]
@@ -367,21 +359,6 @@ impl From<ScheduleArg> for npr_compiler::schedule::Schedule {
             ScheduleArg::Recompute => npr_compiler::schedule::Schedule::Recompute,
         }
     }
-}
-
-/// Which files a style and its scene may read (docs/PATHS.md): every
-/// command that reads a style or a scene has these.
-#[derive(clap::Args, Debug, Clone, Default)]
-pub struct PathArgs {
-    /// Every file the style and the scene name (`use`, textures, meshes)
-    /// must be inside DIR. Default: the deepest directory holding both the
-    /// style and the scene.
-    #[arg(long, value_name = "DIR")]
-    pub root: Option<PathBuf>,
-    /// Also admit files inside DIR, even by an absolute path or outside the
-    /// root. Repeatable.
-    #[arg(long = "allow-path", value_name = "DIR")]
-    pub allow_path: Vec<PathBuf>,
 }
 
 /// What `npr watch` and `npr studio` share: the style and scene they watch

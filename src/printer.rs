@@ -2,12 +2,20 @@
 //! steps every command shares (compile, load a scene, open the GPU) turned
 //! into an exit code once their diagnostics are printed.
 
-use crate::cli::{MessageFormat, EXIT_INTERNAL, EXIT_USER};
+use crate::exit::{EXIT_INTERNAL, EXIT_USER};
+use crate::path_args::PathArgs;
 use npr_compiler::{CompileError, CompileOptions, Compiled};
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::Gpu;
 use std::io::IsTerminal;
 use std::path::Path;
+
+/// How diagnostics are printed: for people, or one JSON object per line.
+#[derive(Copy, Clone, Debug, clap::ValueEnum, PartialEq, Eq)]
+pub enum MessageFormat {
+    Human,
+    Json,
+}
 
 /// Where and how diagnostics go: `--message-format`, and colour when stderr
 /// is a terminal.
@@ -168,7 +176,7 @@ pub(crate) fn load_scene_summary(
 /// `style` (and `scene`), and the scene's summary read under it; the exit
 /// code, with the diagnostics printed, when either fails.
 pub(crate) fn check_options(
-    paths: &crate::cli::PathArgs,
+    paths: &PathArgs,
     style: &Path,
     scene: Option<&Path>,
     sources: &mut SourceMap,

@@ -81,9 +81,9 @@ pub use npr_abi::param_literal::read_literal;
 mod tests {
     use super::*;
     use npr_abi::manifest::{ParamBinding, ParamManifest};
+    use npr_abi::ParamOverride;
     use npr_compiler::front::param_values::{format_literal, type_value, ParamShape};
     use npr_compiler::ir::Literal;
-    use npr_compiler::mid::overrides::ParamOverride;
     use npr_diag::codes;
 
     fn param(ty: &str, unit: &str, default: Vec<f64>, range: Option<(f64, f64)>) -> ParamShape {

@@ -5,7 +5,8 @@
 //! `error[E0501]: ...`, or into a JSON diagnostic with
 //! `--message-format json`.
 
-use crate::cli::{Cli, EXIT_OK, EXIT_USER};
+use crate::cli::Cli;
+use crate::exit::{EXIT_OK, EXIT_USER};
 use clap::Parser;
 use npr_diag::{codes, Diagnostic};
 

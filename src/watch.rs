@@ -5,7 +5,7 @@
 //! diagnostics and keeps the last good image; fixing it renders again. It
 //! never exits on a bad save (nor on a panic, which is reported as E9001).
 
-use crate::cli::EXIT_INTERNAL;
+use crate::exit::EXIT_INTERNAL;
 use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;

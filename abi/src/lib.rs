@@ -52,7 +52,7 @@ pub use formats::Format;
 pub use frame::{FrameBlock, FRAME_WGSL};
 pub use halftone::HalftoneTableSpec;
 pub use input::{InputKind, InputSpec, NormalSpace};
-pub use manifest::{Attribute, Manifest, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
+pub use manifest::{Attribute, Manifest, ParamOverride, FRAME_UNIFORM_SIZE, MANIFEST_VERSION};
 pub use noise::NoiseSpec;
 pub use object::{ObjectHead, OBJECT_HEAD_WGSL};
 pub use program::{LoadError, StyleProgram};

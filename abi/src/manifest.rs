@@ -578,9 +578,20 @@ impl ParamManifest {
     /// so, and its keyframes go, as `--set` makes a constant at compile
     /// time (`mid::overrides`). The one place these three fields change
     /// together.
-    pub fn set_constant(&mut self, value: &crate::param_value::ParamOverride) {
+    pub fn set_constant(&mut self, value: &ParamOverride) {
         self.default.clone_from(&value.value);
         self.default_percent_of_height = value.percent_of_height;
         self.keyframes.clear();
     }
+}
+
+/// One parameter's new default, in canonical units (px, m, s, Hz, radians;
+/// an enum's variant index; a colour's four components).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamOverride {
+    pub name: String,
+    pub value: Vec<f64>,
+    /// The value is a `%` of the image height (`value[0]` in percent),
+    /// resolved by the runner per frame like a `%` default.
+    pub percent_of_height: bool,
 }

@@ -13,7 +13,7 @@
 //! running style without compiling). This is the one definition of the
 //! rule; the compiler and the runner both call it.
 
-use crate::manifest::{ParamBinding, ParamManifest};
+use crate::manifest::{ParamBinding, ParamManifest, ParamOverride};
 use crate::param_literal::{Literal, SettingOrigin};
 use crate::Unit;
 
@@ -129,17 +129,6 @@ impl ParamShape {
             default_percent_of_height: p.default_percent_of_height,
         }
     }
-}
-
-/// One parameter's new default, in canonical units (px, m, s, Hz, radians;
-/// an enum's variant index; a colour's four components).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParamOverride {
-    pub name: String,
-    pub value: Vec<f64>,
-    /// The value is a `%` of the image height (`value[0]` in percent),
-    /// resolved by the runner per frame like a `%` default.
-    pub percent_of_height: bool,
 }
 
 /// The diagnostic codes of refusals, as `npr_diag::codes` defines them (the

@@ -2,7 +2,7 @@
 //! (a host's `set_param`, a sweep, the studio) leaves in the manifest.
 
 use npr_abi::manifest::{ParamBinding, ParamManifest};
-use npr_abi::param_value::ParamOverride;
+use npr_abi::ParamOverride;
 
 /// An animated length parameter whose default was written in `%`.
 fn animated_length() -> ParamManifest {

@@ -9,7 +9,7 @@
 use crate::asset::NprStyleAsset;
 use crate::components::{NprLight, NprObject, NprParams, NprStyle};
 use crate::meshes::{Converted, NprMeshes};
-use crate::render::NprRuntimes;
+use crate::runtimes::NprRuntimes;
 use bevy::camera::Projection;
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::platform::collections::HashMap;

@@ -60,6 +60,7 @@ mod extract;
 mod meshes;
 mod render;
 mod report;
+mod runtimes;
 mod scene;
 #[cfg(feature = "compiler")]
 mod source_loader;
@@ -67,7 +68,7 @@ mod source_loader;
 pub use asset::{NprBundleLoader, NprLoadError, NprStyleAsset};
 pub use components::{NprLight, NprObject, NprParams, NprStyle, NprValue};
 pub use meshes::{bevy_mesh, npr_mesh};
-pub use render::NprRuntimes;
+pub use runtimes::NprRuntimes;
 pub use scene::{npr_scene_camera, spawn_npr_scene};
 #[cfg(feature = "compiler")]
 pub use source_loader::NprStyleLoader;
@@ -99,7 +100,7 @@ impl Plugin for NprPlugin {
             .register_type::<NprObject>()
             .register_type::<NprLight>()
             .init_resource::<meshes::NprMeshes>()
-            .add_systems(PostUpdate, meshes::convert_meshes)
+            .add_systems(PostUpdate, meshes::convert_meshes.after(bevy::asset::AssetEventSystems))
             .add_observer(no_tonemapping);
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("NprPlugin: this app has no render app (add DefaultPlugins first): npr styles will not draw");

@@ -2,9 +2,19 @@
 //! normals, UVs, tangents and indices copied once per asset (and again when
 //! the asset changes), in the main world where the mesh data lives, shared
 //! with the render world as `Arc`s.
+//!
+//! A mesh kept only in the render world (`RenderAssetUsages::RENDER_WORLD`)
+//! loses its data in the main world when Bevy extracts it, at the end of
+//! the frame it was added. So, while a camera is drawn by a style, npr
+//! converts such a mesh in that frame (after the asset events, before
+//! extraction), whether an entity draws it yet or not, and keeps the
+//! conversion while the asset lives: a mesh despawned and spawned again is
+//! drawn from it. The cost is npr's CPU copy of those meshes. A mesh whose
+//! data is gone before npr saw it (made before any styled camera existed)
+//! is logged (E0402) and skipped; nothing panics.
 
 use bevy::asset::RenderAssetUsages;
-use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology, VertexAttributeValues};
+use bevy::mesh::{Indices, Mesh, Mesh3d, MeshAccessError, PrimitiveTopology, VertexAttributeValues};
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use std::sync::Arc;
@@ -14,43 +24,80 @@ use std::sync::Arc;
 /// numbers. Missing normals are computed (smooth); missing tangents are
 /// derived from the UVs, as for a mesh file.
 pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, String> {
+    npr_mesh_of(mesh, name).map_err(|e| match e {
+        Unreadable::Invalid(why) => why,
+        Unreadable::InRenderWorldOnly => IN_RENDER_WORLD_ONLY.to_string(),
+    })
+}
+
+const IN_RENDER_WORLD_ONLY: &str =
+    "its data was extracted to the render world (RenderAssetUsages::RENDER_WORLD) before npr could read it";
+
+/// Why a Bevy mesh cannot be npr's.
+enum Unreadable {
+    /// The mesh is not one npr draws (the reason).
+    Invalid(String),
+    /// Its data is no longer in the main world.
+    InRenderWorldOnly,
+}
+
+impl From<MeshAccessError> for Unreadable {
+    fn from(e: MeshAccessError) -> Unreadable {
+        match e {
+            MeshAccessError::ExtractedToRenderWorld => Unreadable::InRenderWorldOnly,
+            MeshAccessError::NotFound => Unreadable::Invalid(e.to_string()),
+        }
+    }
+}
+
+impl From<String> for Unreadable {
+    fn from(why: String) -> Unreadable {
+        Unreadable::Invalid(why)
+    }
+}
+
+impl From<&str> for Unreadable {
+    fn from(why: &str) -> Unreadable {
+        Unreadable::Invalid(why.to_string())
+    }
+}
+
+fn npr_mesh_of(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, Unreadable> {
     if mesh.primitive_topology() != PrimitiveTopology::TriangleList {
         return Err(format!(
             "its topology is {:?}; npr draws triangle lists",
             mesh.primitive_topology()
-        ));
+        )
+        .into());
     }
-    let positions = match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
+    let positions = match mesh.try_attribute_option(Mesh::ATTRIBUTE_POSITION)? {
         Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
-        Some(other) => return Err(format!("its positions are {other:?}-typed; npr reads Float32x3")),
+        Some(other) => return Err(format!("its positions are {other:?}-typed; npr reads Float32x3").into()),
         None => return Err("it has no positions".into()),
     };
-    let normals = match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
+    let normals = match mesh.try_attribute_option(Mesh::ATTRIBUTE_NORMAL)? {
         Some(VertexAttributeValues::Float32x3(n)) => Some(n.clone()),
         _ => None,
     };
-    let uvs = match mesh.attribute(Mesh::ATTRIBUTE_UV_0) {
+    let uvs = match mesh.try_attribute_option(Mesh::ATTRIBUTE_UV_0)? {
         Some(VertexAttributeValues::Float32x2(uv)) => Some(uv.clone()),
         _ => None,
     };
-    let tangents = match mesh.attribute(Mesh::ATTRIBUTE_TANGENT) {
+    let tangents = match mesh.try_attribute_option(Mesh::ATTRIBUTE_TANGENT)? {
         Some(VertexAttributeValues::Float32x4(t)) => Some(t.clone()),
         _ => None,
     };
-    let indices: Vec<u32> = match mesh.indices() {
+    let indices: Vec<u32> = match mesh.try_indices_option()? {
         Some(Indices::U16(i)) => i.iter().map(|&i| i as u32).collect(),
         Some(Indices::U32(i)) => i.clone(),
         None => (0..positions.len() as u32).collect(),
     };
     // Checked before normals and tangents are derived from the indices.
     if indices.is_empty() || !indices.len().is_multiple_of(3) {
-        return Err(format!(
-            "it has {} indices, not a positive multiple of 3",
-            indices.len()
-        ));
+        return Err(format!("it has {} indices, not a positive multiple of 3", indices.len()).into());
     }
     if let Some(bad) = indices.iter().find(|&&i| i as usize >= positions.len()) {
-        return Err(format!("index {bad} is out of range ({} vertices)", positions.len()));
+        return Err(format!("index {bad} is out of range ({} vertices)", positions.len()).into());
     }
     if normals.as_ref().is_some_and(|n| n.len() != positions.len()) {
         return Err("it has a different number of normals than positions".into());
@@ -92,6 +139,15 @@ pub(crate) struct NprMeshes {
     pub meshes: HashMap<AssetId<Mesh>, Converted>,
     /// Bumped whenever `meshes` changes: the render world copies the map then.
     pub revision: u64,
+    /// Render-world-only meshes that no entity draws now: their data is
+    /// gone from the main world, so their conversion waits here for an
+    /// entity to draw them again (not shared with the render world).
+    pub kept: HashMap<AssetId<Mesh>, Converted>,
+}
+
+/// Is the mesh's data taken from the main world when Bevy extracts it?
+fn render_world_only(mesh: &Mesh) -> bool {
+    !mesh.asset_usage.contains(RenderAssetUsages::MAIN_WORLD)
 }
 
 /// Converts the meshes of `Mesh3d` entities that are new or changed, and
@@ -99,53 +155,102 @@ pub(crate) struct NprMeshes {
 /// another mesh) or whose asset is gone: the render world then removes
 /// them from each camera's runtime, so a game that spawns and despawns
 /// meshes does not grow the runtimes' mesh tables. A mesh that comes back
-/// is converted again.
+/// is converted again, or taken from `kept` when it is render-world-only.
+/// Runs after the asset events, before Bevy's extraction takes a new
+/// render-world-only mesh's data.
 pub(crate) fn convert_meshes(
     mut events: MessageReader<AssetEvent<Mesh>>,
     assets: Res<Assets<Mesh>>,
     drawn: Query<&Mesh3d>,
+    styled_cameras: Query<(), With<crate::components::NprStyle>>,
     mut cache: ResMut<NprMeshes>,
     mut in_use: Local<HashSet<AssetId<Mesh>>>,
 ) {
     for event in events.read() {
-        if let AssetEvent::Modified { id } | AssetEvent::Removed { id } | AssetEvent::Unused { id } = event {
-            if cache.meshes.remove(id).is_some() {
-                cache.revision += 1;
+        match event {
+            AssetEvent::Modified { id } | AssetEvent::Removed { id } | AssetEvent::Unused { id } => {
+                cache.kept.remove(id);
+                if cache.meshes.remove(id).is_some() {
+                    cache.revision += 1;
+                }
+                // A modified render-world-only mesh has its data again
+                // until this frame's extraction: convert it now.
+                if let (AssetEvent::Modified { id }, Some(mesh)) = (event, assets.get(*id)) {
+                    if render_world_only(mesh) {
+                        let converted = convert(mesh, &format!("Bevy mesh {id}"));
+                        cache.kept.insert(*id, converted);
+                    }
+                }
             }
+            // Only while a camera is drawn by a style: a game that uses no
+            // npr camera keeps its memory setting's saving.
+            AssetEvent::Added { id } if !styled_cameras.is_empty() => {
+                if let Some(mesh) = assets.get(*id).filter(|m| render_world_only(m)) {
+                    let converted = convert(mesh, &format!("Bevy mesh {id}"));
+                    cache.kept.insert(*id, converted);
+                }
+            }
+            _ => {}
         }
     }
     in_use.clear();
     in_use.extend(drawn.iter().map(|m| m.0.id()));
-    let before = cache.meshes.len();
-    cache.meshes.retain(|id, _| in_use.contains(id));
-    if cache.meshes.len() != before {
+    let unused: Vec<AssetId<Mesh>> = cache
+        .meshes
+        .keys()
+        .filter(|id| !in_use.contains(*id))
+        .copied()
+        .collect();
+    for id in unused {
+        let converted = cache.meshes.remove(&id).expect("listed above");
         cache.revision += 1;
+        if assets.get(id).is_some_and(render_world_only) {
+            cache.kept.insert(id, converted);
+        }
     }
     for Mesh3d(handle) in &drawn {
         let id = handle.id();
         if cache.meshes.contains_key(&id) {
             continue;
         }
-        let Some(mesh) = assets.get(id) else { continue };
-        let name = handle
-            .path()
-            .map_or_else(|| format!("Bevy mesh {id}"), |p| p.to_string());
-        let converted = match npr_mesh(mesh, &name) {
-            Ok(m) => Converted::Mesh(Arc::new(m)),
-            Err(why) => {
-                let d = npr_diag::Diagnostic::error(
-                    npr_diag::codes::UNREADABLE_MESH,
-                    format!("npr cannot draw the mesh {name}: {why}"),
-                )
-                .with_help("give npr's cameras triangle-list meshes with Float32x3 positions");
-                error!(
-                    "{}",
-                    npr_diag::diagnostic::render(&[d], &npr_diag::SourceMap::new(), false)
-                );
-                Converted::Unusable
+        let converted = match cache.kept.remove(&id) {
+            Some(kept) => kept,
+            None => {
+                let Some(mesh) = assets.get(id) else { continue };
+                let name = handle
+                    .path()
+                    .map_or_else(|| format!("Bevy mesh {id}"), |p| p.to_string());
+                convert(mesh, &name)
             }
         };
         cache.meshes.insert(id, converted);
         cache.revision += 1;
+    }
+}
+
+/// `mesh` converted, or `Unusable` with its diagnostic logged.
+fn convert(mesh: &Mesh, name: &str) -> Converted {
+    match npr_mesh_of(mesh, name) {
+        Ok(m) => Converted::Mesh(Arc::new(m)),
+        Err(e) => {
+            let (why, help) = match e {
+                Unreadable::Invalid(why) => (why, "give npr's cameras triangle-list meshes with Float32x3 positions"),
+                Unreadable::InRenderWorldOnly => (
+                    IN_RENDER_WORLD_ONLY.to_string(),
+                    "npr reads a render-world-only mesh in the frame its asset is added or modified; add \
+                     NprPlugin before the mesh is created, or keep RenderAssetUsages::MAIN_WORLD",
+                ),
+            };
+            let d = npr_diag::Diagnostic::error(
+                npr_diag::codes::UNREADABLE_MESH,
+                format!("npr cannot draw the mesh {name}: {why}"),
+            )
+            .with_help(help);
+            error!(
+                "{}",
+                npr_diag::diagnostic::render(&[d], &npr_diag::SourceMap::new(), false)
+            );
+            Converted::Unusable
+        }
     }
 }

@@ -17,72 +17,17 @@
 
 use crate::extract::{ExtractedNprCamera, ExtractedNprScene};
 use crate::meshes::Converted;
-use crate::report::Reports;
+use crate::runtimes::{CameraRuntime, NprRuntimes};
 use bevy::camera::CompositingSpace;
-use bevy::mesh::Mesh;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery};
 use bevy::render::view::{ResolvedCompositingSpace, ViewTarget};
 use npr_abi::manifest::{ParamBinding, PassKindManifest};
 use npr_diag::{codes, Diagnostic};
-use npr_runner::embed::{Frame, Instance, MeshHandle, StyleRuntime, Target};
+use npr_runner::embed::{Frame, Instance, StyleRuntime, Target};
 use std::collections::BTreeMap;
 use std::sync::Arc;
-
-/// One camera's runtime and what it was given.
-struct CameraRuntime {
-    runtime: StyleRuntime,
-    /// The style asset's revision it runs.
-    revision: u64,
-    /// Bevy mesh → the npr mesh registered (compared by pointer) and its handle.
-    meshes: HashMap<AssetId<Mesh>, (Arc<npr_runner::scene::Mesh>, MeshHandle)>,
-    /// The parameter values given to the runtime so far.
-    params: BTreeMap<String, String>,
-    instances: Vec<Instance>,
-    /// The revision of the scene's mesh map when `meshes` was last pruned.
-    mesh_revision: u64,
-}
-
-/// The runtimes of the cameras drawn by a style, by render entity, and the
-/// diagnostics already logged.
-#[derive(Resource, Default)]
-pub struct NprRuntimes {
-    cameras: HashMap<Entity, CameraRuntime>,
-    reports: Reports,
-}
-
-impl NprRuntimes {
-    /// Drop the runtime of a camera that is no longer drawn by a style.
-    pub(crate) fn forget(&mut self, camera: Entity) {
-        self.cameras.remove(&camera);
-        self.reports.forget(camera);
-    }
-
-    /// How many times the runtime of the camera with render entity
-    /// `camera` built its GPU resources (a test's window on hot reload and
-    /// resizing); `None` when it has no runtime.
-    pub fn builds(&self, camera: Entity) -> Option<u64> {
-        self.cameras.get(&camera).map(|c| c.runtime.builds())
-    }
-
-    /// How many meshes the camera's runtime has registered: those of the
-    /// entities drawn since Bevy last forgot a mesh (no entity has it any
-    /// more, or its asset is gone), not one per mesh ever drawn.
-    pub fn mesh_count(&self, camera: Entity) -> Option<usize> {
-        self.cameras.get(&camera).map(|c| c.runtime.mesh_count())
-    }
-
-    /// The name of the style the camera's runtime runs.
-    pub fn style_name(&self, camera: Entity) -> Option<&str> {
-        self.cameras.get(&camera).map(|c| c.runtime.manifest().style.as_str())
-    }
-
-    /// The codes of every diagnostic logged so far (tests check them).
-    pub fn logged_codes(&self) -> Vec<&'static str> {
-        self.reports.codes()
-    }
-}
 
 /// The `Core3d` system: draws the current view with its style.
 #[allow(clippy::too_many_arguments)]

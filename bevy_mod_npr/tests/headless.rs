@@ -541,6 +541,133 @@ fn despawned_meshes_leave_the_runtime() {
     assert_eq!(mesh_count(&app), 0, "no entity draws a mesh any more");
 }
 
+/// Meshes kept only in the render world (a common memory setting) are
+/// drawn, survive a despawn and a respawn with the same handles, and may
+/// be added frames before an entity draws them (Bevy has extracted their
+/// data by then); nothing panics (issue 48: this panicked the app).
+#[test]
+fn render_world_only_meshes_are_drawn_despawned_and_respawned() {
+    use bevy::asset::RenderAssetUsages;
+    use bevy::prelude::*;
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = asset_dir("render_world_meshes");
+    let style = copy_style(&dir, "toon.npr");
+    let scene = load_scene("spot.toml");
+    let Drawing {
+        mut app,
+        image,
+        style: _,
+        camera,
+    } = draw(&dir, "toon.npr", "Toon", &scene);
+    let render = render_entity(&mut app, camera);
+    let mesh_count = |app: &App| {
+        app.sub_app(bevy::render::RenderApp)
+            .world()
+            .resource::<bevy_mod_npr::NprRuntimes>()
+            .mesh_count(render)
+            .expect("the camera has a runtime")
+    };
+    let despawn_meshes = |app: &mut App| {
+        let world = app.world_mut();
+        let entities: Vec<Entity> = world.query_filtered::<Entity, With<Mesh3d>>().iter(world).collect();
+        for entity in entities {
+            world.despawn(entity);
+        }
+    };
+    let add_meshes = |app: &mut App| -> Vec<Handle<Mesh>> {
+        let mut assets = app.world_mut().resource_mut::<Assets<Mesh>>();
+        scene
+            .objects
+            .iter()
+            .map(|object| {
+                let mut mesh = bevy_mod_npr::bevy_mesh(&object.mesh);
+                mesh.asset_usage = RenderAssetUsages::RENDER_WORLD;
+                assets.add(mesh)
+            })
+            .collect()
+    };
+    let spawn = |app: &mut App, handles: &[Handle<Mesh>]| {
+        for (object, handle) in scene.objects.iter().zip(handles) {
+            app.world_mut().spawn((
+                Mesh3d(handle.clone()),
+                Transform::from_matrix(Mat4::from_cols_array(&object.model.to_cols_array())),
+                bevy_mod_npr::NprObject {
+                    tags: object.tags.clone(),
+                    params: object.params.clone(),
+                    casts_shadows: object.casts_shadows,
+                },
+            ));
+        }
+    };
+    let settle = |app: &mut App| {
+        for _ in 0..3 {
+            app.update();
+        }
+    };
+    let expected = npr_render(&style, &scene);
+    let objects = scene.objects.len();
+
+    // Added and spawned in one frame.
+    despawn_meshes(&mut app);
+    let handles = add_meshes(&mut app);
+    spawn(&mut app, &handles);
+    settle(&mut app);
+    assert_eq!(mesh_count(&app), objects, "every render-world-only mesh is drawn");
+    assert_close("render_world_meshes", &read_image(&app, &image), &expected);
+    let data_gone = {
+        let assets = app.world().resource::<Assets<Mesh>>();
+        handles.iter().all(|h| {
+            assets
+                .get(h)
+                .is_some_and(|m| m.try_attribute_option(Mesh::ATTRIBUTE_POSITION).is_err())
+        })
+    };
+    assert!(
+        data_gone,
+        "Bevy has taken the meshes' data from the main world: the test tests that case"
+    );
+
+    // Despawned: they leave the runtime; spawned again with the same
+    // handles, whose data is gone from the main world: drawn again.
+    despawn_meshes(&mut app);
+    settle(&mut app);
+    assert_eq!(mesh_count(&app), 0, "no entity draws a mesh");
+    spawn(&mut app, &handles);
+    settle(&mut app);
+    assert_eq!(mesh_count(&app), objects, "the respawned meshes are drawn");
+    assert_close("render_world_meshes_respawned", &read_image(&app, &image), &expected);
+
+    // Added, extracted by Bevy over several frames, then drawn.
+    despawn_meshes(&mut app);
+    let early = add_meshes(&mut app);
+    settle(&mut app);
+    spawn(&mut app, &early);
+    settle(&mut app);
+    assert_eq!(
+        mesh_count(&app),
+        objects,
+        "meshes added before their entities are drawn"
+    );
+    assert_close("render_world_meshes_added_early", &read_image(&app, &image), &expected);
+    assert!(
+        !logged_codes(&app).contains(&"E0402"),
+        "no mesh was refused: {:?}",
+        logged_codes(&app)
+    );
+}
+
+/// A mesh whose data Bevy has taken is refused with a reason, not a panic.
+#[test]
+fn a_mesh_without_its_data_is_refused_with_a_reason() {
+    use bevy::asset::RenderAssetUsages;
+    let scene = load_scene("spot.toml");
+    let mut mesh = bevy_mod_npr::bevy_mesh(&scene.objects[0].mesh);
+    mesh.asset_usage = RenderAssetUsages::RENDER_WORLD;
+    let _gpu_data = mesh.take_gpu_data().expect("the data is there to take");
+    let why = bevy_mod_npr::npr_mesh(&mesh, "cow").expect_err("no data to read");
+    assert!(why.contains("extracted to the render world"), "{why}");
+}
+
 #[test]
 fn an_edited_image_that_the_style_reads_is_picked_up() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());

@@ -7,6 +7,7 @@
 
 pub mod ast;
 pub mod explain;
+mod grammar;
 mod nesting;
 mod parser;
 mod syntax_error;

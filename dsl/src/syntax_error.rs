@@ -11,7 +11,7 @@
 //! (`param scale: …`), and a token missing at the end of a line (the caret
 //! goes after the last token, not on the next line).
 
-use crate::parser::Rule;
+use crate::grammar::Rule;
 use npr_diag::{codes, Diagnostic, FileId, Span};
 use pest::error::{Error, ErrorVariant, InputLocation};
 

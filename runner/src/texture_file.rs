@@ -62,9 +62,19 @@ pub fn read(path: &Path) -> Result<image::DynamicImage, TextureFileError> {
     decode(reader)
 }
 
-/// [`read`] of a file's bytes held in memory (a bundle's image files).
-pub fn read_bytes(bytes: &[u8]) -> Result<image::DynamicImage, TextureFileError> {
-    let (reader, _) = header_of(|| ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format())?;
+/// [`read`] of a file's bytes held in memory (read once, or a bundle's
+/// image files). As from disk, the format is guessed from the content,
+/// then from `name`'s extension: a corrupt `x.png` is then refused by the
+/// PNG decoder with its reason, not as "format could not be determined".
+pub fn read_bytes(bytes: &[u8], name: &Path) -> Result<image::DynamicImage, TextureFileError> {
+    let by_extension = image::ImageFormat::from_path(name).ok();
+    let (reader, _) = header_of(|| {
+        let mut reader = ImageReader::new(std::io::Cursor::new(bytes));
+        if let Some(format) = by_extension {
+            reader.set_format(format);
+        }
+        reader.with_guessed_format()
+    })?;
     decode(reader)
 }
 

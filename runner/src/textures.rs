@@ -287,17 +287,14 @@ fn decode_image(
     srgb: bool,
     files: &EmbeddedFiles,
 ) -> Result<(Level, Vec<u8>), Diagnostic> {
-    let (img, bytes) = match files.get(resolved) {
-        Some(bytes) => (crate::texture_file::read_bytes(bytes), bytes.clone()),
-        None => {
-            let file = std::path::Path::new(resolved);
-            let img = crate::texture_file::read(file).map_err(|e| e.to_diagnostic(&t.name, path))?;
-            let bytes = std::fs::read(file)
-                .map_err(|e| crate::texture_file::TextureFileError::Unreadable(e).to_diagnostic(&t.name, path))?;
-            (Ok(img), bytes)
-        }
+    let file = std::path::Path::new(resolved);
+    // One read of the file: the art-map cache keys on the same bytes.
+    let bytes = match files.get(resolved) {
+        Some(bytes) => bytes.clone(),
+        None => std::fs::read(file)
+            .map_err(|e| crate::texture_file::TextureFileError::Unreadable(e).to_diagnostic(&t.name, path))?,
     };
-    let img = img.map_err(|e| e.to_diagnostic(&t.name, path))?;
+    let img = crate::texture_file::read_bytes(&bytes, file).map_err(|e| e.to_diagnostic(&t.name, path))?;
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let mut pixels: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();

@@ -3,7 +3,7 @@
 //! `examples/`, the device, the two tables).
 
 use super::{compile_builtin_in, plot, plotted};
-use crate::cli::EXIT_INTERNAL;
+use crate::exit::EXIT_INTERNAL;
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use npr_compiler::CompileOptions;
 use npr_diag::{codes, Diagnostic, SourceMap};

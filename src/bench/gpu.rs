@@ -3,7 +3,7 @@
 //! baseline in the same run.
 
 use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu, scene_styles_gpu};
-use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use npr_compiler::schedule::Schedule;
 use npr_compiler::{CompileOptions, Compiled};

@@ -2,7 +2,7 @@
 //! compiled with its params kept, as a host runs it; the device; the table;
 //! then the time of a frame right after the host adds an object).
 
-use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use crate::exit::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, Printer};
 use npr_compiler::CompileOptions;
 use npr_diag::{codes, Diagnostic, SourceMap};

@@ -2,7 +2,7 @@
 //! LSA styles compiled, the device, the two tables).
 
 use super::{compile_builtin, plot, plotted};
-use crate::cli::EXIT_INTERNAL;
+use crate::exit::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_lab::bench_lines as bench;

@@ -11,7 +11,8 @@ mod patterns;
 pub mod plot;
 mod studio;
 
-use crate::cli::{BenchCommand, EXIT_INTERNAL, EXIT_OK};
+use crate::cli::BenchCommand;
+use crate::exit::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use npr_compiler::schedule::Schedule;
 use npr_compiler::{CompileError, CompileOptions, Compiled};

@@ -3,7 +3,7 @@
 //! `npr_lab::sliding` (the sliding of each pattern placement and tracker variant).
 
 use super::{compile_builtin, plot, plotted};
-use crate::cli::EXIT_INTERNAL;
+use crate::exit::EXIT_INTERNAL;
 use crate::printer::{headless_gpu, Printer};
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::RunError;

@@ -22,7 +22,7 @@
 //! removed at the end.
 
 use super::http_client::{request, Events};
-use crate::cli::{EXIT_INTERNAL, EXIT_OK};
+use crate::exit::{EXIT_INTERNAL, EXIT_OK};
 use crate::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::{FrameSpec, Renderer};

@@ -2,7 +2,9 @@
 //! files it names) and print its diagnostics; nothing is written. With
 //! `--ranges`, each target's proved value range (issue 49).
 
-use crate::cli::{CheckArgs, MessageFormat, EXIT_OK, EXIT_USER};
+use crate::cli::CheckArgs;
+use crate::exit::{EXIT_OK, EXIT_USER};
+use crate::printer::MessageFormat;
 use crate::printer::{check_options, Printer};
 use npr_diag::SourceMap;
 

@@ -2,7 +2,8 @@
 //! the report, written atomically into a directory; or, for `-o FILE.nprb`,
 //! one bundle file (`npr_abi::bundle`) with the style's image files in it.
 
-use crate::cli::{CompileArgs, EXIT_OK};
+use crate::cli::CompileArgs;
+use crate::exit::EXIT_OK;
 use crate::printer::{cannot_write, check_options, Printer};
 use npr_compiler::{CompileOptions, Compiled};
 use npr_diag::{codes, Diagnostic, SourceMap};

@@ -4,7 +4,7 @@
 //! `npr bench ops` figures (`crate::reference::figures`), every file
 //! atomically in one sync.
 
-use crate::cli::EXIT_OK;
+use crate::exit::EXIT_OK;
 use crate::printer::{cannot_write, Printer};
 use std::path::Path;
 

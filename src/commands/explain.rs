@@ -2,7 +2,7 @@
 //! (`npr_dsl::explain`), or E0502 with the nearest codes for one that does not
 //! exist.
 
-use crate::cli::EXIT_OK;
+use crate::exit::EXIT_OK;
 use crate::printer::Printer;
 use npr_diag::{codes, Diagnostic};
 

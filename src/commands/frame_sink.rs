@@ -8,8 +8,8 @@
 //! whose encoder is missing (E0511), so a
 //! long render never fails at its end for an output it could not write.
 
-use crate::cli::EXIT_USER;
 use crate::commands::dump::read_all_targets;
+use crate::exit::EXIT_USER;
 use crate::printer::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_runner::scene::Scene;

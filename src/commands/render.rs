@@ -2,11 +2,12 @@
 //! rendered to an image, a frame sequence, or every target (`--dump-passes`).
 //! A path-dependent style replays its earlier frames first.
 
-use crate::cli::{RenderArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::cli::RenderArgs;
 use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::commands::render_inputs::{self, InputArgs};
+use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
 use npr_compiler::CompileOptions;
 use npr_diag::{codes, Diagnostic, SourceMap};

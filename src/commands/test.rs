@@ -4,12 +4,14 @@
 //! `--shard`, run each test with a progress bar, and report. Exit 0 when every test passes, 1 when one fails or has bad
 //! input, 2 when npr itself failed.
 
-use crate::cli::{TestArgs, EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::cli::TestArgs;
+use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{cannot_write, headless_gpu, Printer};
 use crate::style_tests::bench;
 use crate::style_tests::declare::{self, TestDecl, TestFile};
+use crate::style_tests::outcome::{Settings, Status};
 use crate::style_tests::report::{self, ReportFormat, RunReport};
-use crate::style_tests::run::{self, Settings, Status};
+use crate::style_tests::run;
 use crate::style_tests::select;
 use crate::style_tests::sweep;
 use crate::style_tests::sweep::cases::{self, Case};

@@ -1,7 +1,8 @@
 //! `npr texgen`: npr's own tileable noise (the generator `noise(...)`
 //! textures use) or a painterly colour map, written as a PNG.
 
-use crate::cli::{TexgenArgs, EXIT_OK};
+use crate::cli::TexgenArgs;
+use crate::exit::EXIT_OK;
 use crate::printer::{cannot_write, Printer};
 use std::path::Path;
 

@@ -22,7 +22,7 @@ pub struct Inputs {
     /// Compile with `--keep-params` (the studio, so sliders need no recompile).
     pub keep_params: bool,
     /// `--root` and `--allow-path`.
-    pub paths: crate::cli::PathArgs,
+    pub paths: crate::path_args::PathArgs,
     /// `--schedule`, or the command's default.
     pub schedule: npr_compiler::schedule::Schedule,
 }

@@ -6,7 +6,7 @@
 //! failure with the runner's install hint; a demo that does not compile or
 //! render is npr's own (internal) error.
 
-use crate::cli::{EXIT_INTERNAL, EXIT_USER};
+use crate::exit::{EXIT_INTERNAL, EXIT_USER};
 use crate::printer::{headless_gpu, load_scene, Printer};
 use npr_compiler::{CompileError, CompileOptions};
 use npr_diag::SourceMap;

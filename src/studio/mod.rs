@@ -16,7 +16,7 @@ mod server;
 pub mod state;
 pub mod write_back;
 
-use crate::cli::EXIT_INTERNAL;
+use crate::exit::EXIT_INTERNAL;
 use crate::live::build::Inputs;
 use crate::printer::Printer;
 use npr_diag::{codes, Diagnostic};

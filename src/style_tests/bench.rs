@@ -6,9 +6,10 @@
 //! and fails only on bad input or an internal error.
 
 use super::declare::{TestDecl, TestFile, When};
-use super::run::{self, Frames};
+use super::frames::Frames;
+use super::run;
 use crate::bench::plot::{Chart, ChartKind, Figure, Point};
-use crate::cli::PathArgs;
+use crate::path_args::PathArgs;
 use npr_compiler::{CompileError, CompileOptions};
 use npr_diag::{Diagnostic, SourceMap};
 use npr_runner::schedule::FrameRequest;

@@ -5,6 +5,11 @@
 //! - `declare/`: the test file, read with spanned diagnostics (E0407);
 //! - `select.rs`: test files under the paths given, `--filter`, `--shard`;
 //! - `run.rs`: one test compiled, rendered and checked;
+//! - `outcome.rs`: what a test reports (status, failures), shared by
+//!   `run.rs` and `sweep/`; `frames.rs`: rendering a test's frames;
+//! - `coherence.rs`: temporal coherence against exact motion (flicker
+//!   after warping, pattern sliding, popping); `motion.rs`: the scene's
+//!   motion from a probe render, and the `coherence` bounds checked;
 //! - `checks.rs`: the checks on its images (finite, not blank,
 //!   deterministic, flicker, golden);
 //! - `budget.rs`: a frame's cost as a ratio to a passthrough;
@@ -18,7 +23,11 @@
 pub mod bench;
 pub mod budget;
 pub mod checks;
+pub mod coherence;
 pub mod declare;
+mod frames;
+mod motion;
+pub mod outcome;
 pub mod report;
 pub mod run;
 pub mod select;

@@ -2,7 +2,7 @@
 //! whole run as a human summary (counts, the slowest tests, each failure
 //! with the images it wrote), one JSON document, or JUnit XML for CI.
 
-use super::run::{Outcome, Status};
+use super::outcome::{Outcome, Status};
 use std::fmt::Write;
 use std::path::PathBuf;
 

@@ -7,72 +7,17 @@
 
 use super::checks;
 use super::declare::{Golden, TestDecl, TestFile, When};
-use crate::cli::PathArgs;
+use super::frames::{non_finite_failures, Frames};
+use super::outcome::{Failure, Outcome, Run, Settings, Status};
+use crate::path_args::PathArgs;
 use npr_compiler::ir::{ParamSetting, SettingOrigin};
 use npr_compiler::{CompileError, CompileOptions, Compiled};
 use npr_diag::{codes, Diagnostic, SourceMap, Span};
 use npr_runner::scene::toml_fields::At;
-use npr_runner::schedule::{FrameRequest, ScheduledFrame};
-use npr_runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram, TargetImage};
+use npr_runner::schedule::FrameRequest;
+use npr_runner::{FrameSpec, RunError, TargetImage};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// How a test ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Status {
-    Passed,
-    /// A check did not hold.
-    Failed,
-    /// Its input is wrong (diagnostics with codes): exit 1 like a failure.
-    Invalid,
-    /// npr or the device failed: exit 2.
-    Internal,
-}
-
-/// A check that did not hold.
-#[derive(Debug, Clone)]
-pub struct Failure {
-    /// `golden`, `finite`, `blank` or `deterministic`.
-    pub check: &'static str,
-    pub message: String,
-    /// The images written to look at it (actual, diff, FLIP map).
-    pub files: Vec<PathBuf>,
-    /// A sweep's finding: the one `npr render` command line that shows it.
-    pub reproduce: Option<String>,
-}
-
-/// What one test did.
-#[derive(Debug, Clone)]
-pub struct Outcome {
-    /// `<style>::<name>`: what `--filter` matches and `--shard` sorts.
-    pub id: String,
-    pub style: PathBuf,
-    pub name: String,
-    pub status: Status,
-    pub seconds: f64,
-    pub failures: Vec<Failure>,
-    /// Its diagnostics as plain text, for the JSON and JUnit reports.
-    pub messages: Vec<String>,
-    /// The golden written by `--bless`.
-    pub blessed: Option<PathBuf>,
-    /// What a sweep covered, for its line.
-    pub note: Option<String>,
-}
-
-/// What every test of a run shares.
-pub struct Settings<'a> {
-    pub gpu: &'a Gpu,
-    /// Where a failing test's images go (`<out>/<style>/<test>.*.png`).
-    pub out_dir: &'a Path,
-    pub bless: bool,
-}
-
-/// An outcome, and the diagnostics to print with the sources they point into.
-pub struct Run {
-    pub outcome: Outcome,
-    pub diagnostics: Vec<Diagnostic>,
-    pub sources: SourceMap,
-}
 
 /// Why a test stopped before its checks: bad input, or an internal error.
 enum Stop {
@@ -229,13 +174,19 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         if let Some(bound) = &test.flicker {
             failures.extend(flicker_failures(&first_run.outputs, bound.value));
         }
+        let mut notes = Vec::new();
+        if let Some(bound) = &test.coherence {
+            let measured = super::motion::measure(gpu, &scene, &frame, &first_run.outputs, &opts, bound.value.marks)?;
+            let (found, said) = super::motion::failures(&measured, &bound.value);
+            failures.extend(found);
+            notes.push(said);
+        }
         let last = first_run.outputs.last().map(|(_, img)| img.to_rgba8());
         let (golden_failures, blessed) = match (&test.golden, last) {
             (Some(golden), Some(actual)) => golden_check(file, test, golden, &actual, failures.is_empty(), settings)?,
             _ => (Vec::new(), None),
         };
         failures.extend(golden_failures);
-        let mut note = None;
         if let (Some(bound), Some(last)) = (&test.budget, frames.iter().rev().find(|f| f.write)) {
             let spec = FrameSpec {
                 width: test.size.0,
@@ -260,13 +211,13 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
                     reproduce: None,
                 });
             }
-            note = Some(said);
+            notes.push(said);
         }
         Ok(Checked {
             failures,
             warnings,
             blessed,
-            note,
+            note: (!notes.is_empty()).then(|| notes.join("; ")),
         })
     })();
     let mut checked = gpu
@@ -323,118 +274,6 @@ pub fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) ->
                 value: crate::set_params::read_literal(value.value.trim()),
                 value_span,
                 origin: SettingOrigin::TestFile,
-            }
-        })
-        .collect()
-}
-
-/// A target found holding NaN or ±Inf in one frame.
-pub(super) struct FoundNonFinite {
-    pub frame: u32,
-    pub target: usize,
-    pub found: checks::NonFinite,
-}
-
-/// The frames of one render of a test.
-pub(super) struct Rendered {
-    /// Per written frame, its number and its output.
-    pub outputs: Vec<(u32, TargetImage)>,
-    /// Per target, the first frame it was non-finite in.
-    pub non_finite: Vec<FoundNonFinite>,
-}
-
-/// What to render: the size, the eye, the frames.
-pub(super) struct Frames<'a> {
-    pub size: (u32, u32),
-    pub eye: u32,
-    pub frames: &'a [ScheduledFrame],
-}
-
-impl Frames<'_> {
-    /// Render the frames with a new renderer, as `npr render` does; with
-    /// `read_targets`, read every target of each written frame back as
-    /// floats (a target a later pass reuses by a partial re-render).
-    pub(super) fn render(
-        &self,
-        gpu: &Gpu,
-        program: &StyleProgram,
-        scene: &npr_runner::scene::Scene,
-        read_targets: bool,
-    ) -> Result<Rendered, RunError> {
-        let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene)?;
-        self.render_with(&mut r, scene, read_targets)
-    }
-
-    /// [`Frames::render`] with a renderer made before (a sweep's, whose
-    /// uniform parameters it sets between renders).
-    pub(super) fn render_with(
-        &self,
-        r: &mut Renderer,
-        scene: &npr_runner::scene::Scene,
-        read_targets: bool,
-    ) -> Result<Rendered, RunError> {
-        let (width, height) = self.size;
-        let mut rendered = Rendered {
-            outputs: Vec::new(),
-            non_finite: Vec::new(),
-        };
-        for f in self.frames {
-            let spec = FrameSpec {
-                width,
-                height,
-                time_s: f.time_s,
-                frame: f.frame,
-                eye: self.eye,
-            };
-            r.render(scene, &spec)?;
-            if !f.write {
-                continue;
-            }
-            // Before the partial re-renders of `read_all_targets`, which
-            // overwrite what shares the output's texture.
-            rendered.outputs.push((f.frame, r.read_output()?));
-            if read_targets {
-                let targets = crate::commands::dump::read_all_targets(r, scene, &spec)?;
-                for (index, image) in targets.iter().enumerate() {
-                    let seen = rendered.non_finite.iter().any(|n| n.target == index);
-                    if let Some(found) = checks::non_finite(image).filter(|_| !seen) {
-                        rendered.non_finite.push(FoundNonFinite {
-                            frame: f.frame,
-                            target: index,
-                            found,
-                        });
-                    }
-                }
-            }
-        }
-        Ok(rendered)
-    }
-}
-
-pub(super) fn non_finite_failures(program: &StyleProgram, found: &[FoundNonFinite]) -> Vec<Failure> {
-    found
-        .iter()
-        .map(|n| {
-            let target = &program.manifest.targets[n.target];
-            let writer = program
-                .manifest
-                .passes
-                .iter()
-                .find(|p| p.outputs.contains(&n.target))
-                .map_or("no pass", |p| p.name.as_str());
-            let (x, y) = n.found.first;
-            Failure {
-                check: "finite",
-                message: format!(
-                    "target `{}` ({}, written by pass `{writer}`) has {} non-finite texel(s) in frame {}; the first at ({x}, {y}) is {:?}",
-                    target.name,
-                    format!("{:?}", target.format).to_lowercase(),
-                    n.found.count,
-                    n.frame,
-                    n.found.first_value
-                ),
-                files: Vec::new(),
-                reproduce: None,
             }
         })
         .collect()

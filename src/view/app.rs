@@ -15,7 +15,7 @@ use super::params::Stepper;
 use super::style::Loaded;
 use super::surface::WindowGpu;
 use super::ViewEvent;
-use crate::cli::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::live::build::{self, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;

@@ -19,7 +19,8 @@ mod params;
 mod style;
 mod surface;
 
-use crate::cli::{ViewArgs, EXIT_USER};
+use crate::cli::ViewArgs;
+use crate::exit::EXIT_USER;
 use crate::live::build::Inputs;
 use crate::live::watcher::FileWatcher;
 use crate::printer::Printer;

@@ -7,7 +7,7 @@ pub use npr_abi::halftone::table::*;
 
 /// The table a 256 × 17 texture of [`HalftoneTable::texels`] holds
 /// (channel r), as the shader reads it.
-pub fn table_from_image(image: &crate::reference::ImageF64) -> HalftoneTable {
+pub fn table_from_image(image: &crate::image_f64::ImageF64) -> HalftoneTable {
     assert_eq!(
         (image.width, image.height),
         (TONES as u32, ROWS as u32),
@@ -21,9 +21,9 @@ pub fn table_from_image(image: &crate::reference::ImageF64) -> HalftoneTable {
 }
 
 /// The table as a 256 × 17 texture (f32 texels, in channel r).
-pub fn table_image(table: &HalftoneTable) -> crate::reference::ImageF64 {
+pub fn table_image(table: &HalftoneTable) -> crate::image_f64::ImageF64 {
     let texels = table.texels();
-    crate::reference::ImageF64::new(TONES as u32, ROWS as u32, |x, y| {
+    crate::image_f64::ImageF64::new(TONES as u32, ROWS as u32, |x, y| {
         [f64::from(texels[y as usize * TONES + x as usize]), 0.0, 0.0, 1.0]
     })
 }

@@ -21,6 +21,7 @@
 //!   seconds, hertz, radians.
 
 pub mod halftone_table;
+pub mod image_f64;
 pub mod metrics;
 pub mod ops;
 pub mod reference;

@@ -24,6 +24,7 @@ mod lines_fandisk;
 mod lsa_contours;
 mod lsa_packed_gbuffer;
 mod lsp;
+mod module_cycles;
 mod openjd;
 mod packaging;
 mod paths;

@@ -15,7 +15,7 @@
 
 use crate::front::param_values::{shape_of_ir, type_value};
 use crate::ir::{Ir, ParamSetting, SettingOrigin};
-use crate::mid::overrides::ParamOverride;
+use npr_abi::ParamOverride;
 use npr_diag::diagnostic::did_you_mean;
 use npr_diag::{codes, Diagnostic, SourceMap};
 

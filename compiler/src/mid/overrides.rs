@@ -13,7 +13,7 @@ use crate::ir::{Const, ExprKind, Ir, Ty};
 use crate::InternalError;
 
 /// One parameter's new default: the ABI's, which typing a value gives.
-pub use npr_abi::param_value::ParamOverride;
+use npr_abi::ParamOverride;
 
 /// Replace the defaults of the overridden parameters. An animated parameter
 /// loses its keyframes: a set value is a constant.

@@ -13,15 +13,12 @@ mod recovery;
 use recovery::{content_len, recover};
 
 use crate::ast::*;
+use crate::grammar::{NprParser, Rule};
 use npr_diag::limits::{MAX_EXPR_DEPTH, MAX_SOURCE_BYTES};
 use npr_diag::{codes, Diagnostic, FileId, Span};
 use pest::iterators::Pair;
 use pest::Parser;
 use std::cell::{Cell, RefCell};
-
-#[derive(pest_derive::Parser)]
-#[grammar = "grammar.pest"]
-struct NprParser;
 
 type P<'a> = Pair<'a, Rule>;
 

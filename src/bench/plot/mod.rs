@@ -175,7 +175,7 @@ pub fn write(figure: &Figure, path: &Path, printer: &Printer) -> Result<(), i32>
         // Drawing numbers the bench produced cannot fail on the user's input.
         let d = Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}"));
         printer.diagnostics(&[d], &npr_diag::SourceMap::new());
-        crate::cli::EXIT_INTERNAL
+        crate::exit::EXIT_INTERNAL
     })?;
     npr_runner::output::write_atomic(path, svg.as_bytes())
         .map_err(|e| printer.fail(crate::printer::cannot_write(path, e)))?;

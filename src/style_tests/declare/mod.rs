@@ -14,6 +14,8 @@
 //! flip = { mean = 0.01, p99 = 0.3 }
 //! sweep = true        # also sweep every parameter's range on this scene
 //! # frames = "0..12" and flicker = 0.02: the mean change between frames
+//! # coherence = { flicker = 0.02, sliding = 0.3, popping = 0.1 }: the same,
+//! #   warped by the scene's motion (a moving camera too), and more
 //! budget = 40         # the frame at most 40× a passthrough, timed in the run
 //! variants = { fast = { samples = 4 }, exact = { samples = 64 } }
 //! reference = "exact" # `npr test --bench`: each variant's cost against its FLIP
@@ -32,7 +34,7 @@ use npr_diag::{codes, Diagnostic, FileId, SourceMap, Span};
 use npr_runner::scene::toml_fields::{At, Fields, Report};
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;
-use values::{flip_bound, per_pixel_bound, set_entries, variants};
+use values::{coherence_bound, flip_bound, per_pixel_bound, set_entries, variants};
 
 /// The file name suffix that makes a TOML file a style's tests.
 pub const SUFFIX: &str = ".tests.toml";
@@ -72,6 +74,9 @@ pub struct TestDecl {
     /// absolute change of the output between consecutive frames (channels
     /// in 0..1) stays at or under this.
     pub flicker: Option<At<f64>>,
+    /// `coherence = { … }`: over `frames`, bounds on the temporal coherence
+    /// measures against the scene's exact motion (`coherence.rs`).
+    pub coherence: Option<At<CoherenceBound>>,
     /// `budget = 40`: the frame costs at most this many times a
     /// passthrough measured in the same run (`budget.rs`).
     pub budget: Option<At<f64>>,
@@ -97,6 +102,27 @@ pub enum When {
     At { time_s: f64 },
     /// `frames = "A..B"`: every frame is checked, the last one compared with the golden.
     Range { start: u32, end: u32 },
+}
+
+/// Bounds on the temporal coherence measures; each is checked when given.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoherenceBound {
+    /// Motion-compensated flicker: the mean change of a channel (0..1).
+    pub flicker: Option<f64>,
+    /// Pattern sliding against the surface, px per frame.
+    pub sliding: Option<f64>,
+    /// The share of marks that appear or vanish per frame (0..1).
+    pub popping: Option<f64>,
+    pub marks: Marks,
+}
+
+/// Which pixels are marks (strokes, dots, foam shapes) for popping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Marks {
+    /// Darker than mid grey (ink on paper).
+    Dark,
+    /// Lighter than mid grey (foam, highlights).
+    Light,
 }
 
 /// `golden = "file.png"` and the tolerance it is compared with.
@@ -149,6 +175,7 @@ struct Partial {
     may_be_blank: Option<bool>,
     sweep: Option<bool>,
     flicker: Option<At<f64>>,
+    coherence: Option<At<CoherenceBound>>,
     budget: Option<At<f64>>,
 }
 
@@ -422,6 +449,9 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
             );
         }
     }
+    if let Some(c) = fields.table("coherence", "`coherence`", report) {
+        p.coherence = coherence_bound(c, report);
+    }
     if let Some(b) = fields.number("budget", report) {
         if b.value > 0.0 && b.value.is_finite() {
             p.budget = Some(b);
@@ -536,6 +566,16 @@ fn merge(
         );
         return None;
     }
+    let coherence = own.coherence.or_else(|| defaults.coherence.clone());
+    if let (Some(c), When::At { .. }) = (&coherence, when) {
+        report.bad_scene(
+            c.span,
+            format!("test `{}` bounds coherence but renders one frame", name.value),
+            "coherence is measured between frames",
+            "give the test a range, e.g. `frames = \"0..12\"`",
+        );
+        return None;
+    }
     let flip = own.flip.or_else(|| defaults.flip.clone());
     let per_pixel = own.per_pixel.or(defaults.per_pixel);
     let golden = match golden {
@@ -577,6 +617,7 @@ fn merge(
         may_be_blank: own.may_be_blank.or(defaults.may_be_blank).unwrap_or(false),
         sweep: own.sweep.or(defaults.sweep).unwrap_or(false),
         flicker,
+        coherence,
         budget: own.budget.or_else(|| defaults.budget.clone()),
         variants: Vec::new(),
         reference: 0,

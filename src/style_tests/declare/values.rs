@@ -2,7 +2,7 @@
 //! text `--set` takes, and the `flip` and `per_pixel` bounds, each checked
 //! with an E0407 at the value.
 
-use super::{FlipBound, PerPixelBound, Variant, PERCENTILES};
+use super::{CoherenceBound, FlipBound, Marks, PerPixelBound, Variant, PERCENTILES};
 use npr_diag::Span;
 use npr_runner::scene::toml_fields::{describe, At, Fields, Report};
 use toml::de::DeValue;
@@ -187,4 +187,58 @@ pub(super) fn fields_missing(header: Span, table: &str, key: &str, example: &str
         format!("`{key}` is required here"),
         format!("add `{example}`"),
     );
+}
+
+/// `coherence = { flicker = 0.02, sliding = 0.3, popping = 0.1, marks = "dark" }`:
+/// bounds on the temporal coherence measures (`coherence.rs`), at least one.
+pub(super) fn coherence_bound(mut fields: Fields, report: &mut Report) -> Option<At<CoherenceBound>> {
+    let header = fields.header();
+    let flicker = unit_interval(&mut fields, "flicker", report);
+    let popping = unit_interval(&mut fields, "popping", report);
+    let sliding = fields.number("sliding", report).and_then(|n| {
+        if n.value >= 0.0 && n.value.is_finite() {
+            Some(n.value)
+        } else {
+            report.bad_scene(
+                n.span,
+                format!("`sliding` must be a distance in px of 0 or more, not {}", n.value),
+                "not a distance",
+                "`sliding` bounds how many px per frame a pattern moves against its surface",
+            );
+            None
+        }
+    });
+    let marks = match fields.string("marks", report) {
+        None => Marks::Dark,
+        Some(m) if m.value == "dark" => Marks::Dark,
+        Some(m) if m.value == "light" => Marks::Light,
+        Some(m) => {
+            report.bad_scene(
+                m.span,
+                format!("`marks` is `dark` or `light`, not `{}`", m.value),
+                "unknown marks",
+                "`marks` says which pixels are the strokes or dots whose popping is counted",
+            );
+            return None;
+        }
+    };
+    fields.finish(report);
+    if flicker.is_none() && sliding.is_none() && popping.is_none() {
+        report.bad_scene(
+            header,
+            "`coherence` bounds nothing",
+            "no `flicker`, `sliding` or `popping`",
+            "write e.g. `coherence = { flicker = 0.02, sliding = 0.5 }`",
+        );
+        return None;
+    }
+    Some(At {
+        value: CoherenceBound {
+            flicker,
+            sliding,
+            popping,
+            marks,
+        },
+        span: header,
+    })
 }

@@ -19,8 +19,9 @@ pub mod covering;
 pub mod points;
 
 use super::checks;
-use super::run::{self, Failure, Frames, Outcome, Run, Settings, Status};
-use crate::cli::PathArgs;
+use super::frames::{self, Frames};
+use super::outcome::{Failure, Outcome, Run, Settings, Status};
+use crate::path_args::PathArgs;
 use cases::Case;
 use npr_abi::manifest::{ParamBinding, ParamManifest};
 use npr_compiler::front::param_values::{type_value, ParamShape, ValueKind};
@@ -449,10 +450,10 @@ impl Uniforms {
 }
 
 /// What a render showed: its non-finite targets and whether it is blank.
-fn observe(program: &npr_abi::StyleProgram, rendered: Result<run::Rendered, npr_runner::RunError>) -> Probe {
+fn observe(program: &npr_abi::StyleProgram, rendered: Result<frames::Rendered, npr_runner::RunError>) -> Probe {
     match rendered {
         Ok(rendered) => Probe::Rendered {
-            non_finite: run::non_finite_failures(program, &rendered.non_finite)
+            non_finite: frames::non_finite_failures(program, &rendered.non_finite)
                 .into_iter()
                 .map(|f| f.message)
                 .collect(),

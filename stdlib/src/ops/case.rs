@@ -6,7 +6,7 @@
 //! signature and these cases, so a new operator needs no hand-written GPU
 //! test; the completeness test requires at least one case per operator.
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::Operator;
 
 /// One argument's value in one call: a number in `.0[0]` (an int, enum

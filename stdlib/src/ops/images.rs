@@ -1,7 +1,7 @@
 //! Deterministic synthetic images for the operators' GPU cases: ramps,
 //! checkers (steps, hard for blurs), noise, and a small generator.
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 
 /// A 64-bit LCG: the same sequence on every machine.
 pub struct Lcg(pub u64);

@@ -11,7 +11,7 @@ pub use reference::*;
 mod demos;
 
 use super::{p, tex8_mipmapped, Arg, Case, OpDef, Tol};
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// The value per level (exact in 8 bits: 17/255).

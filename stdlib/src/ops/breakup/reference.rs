@@ -4,7 +4,7 @@
 //! Breakup operators (§4.2 line boil, §4.3 camera roll, §4.4 distance, the
 //! warp itself). Each follows its WGSL file beside it.
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 
 fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]

@@ -8,7 +8,7 @@
 mod demos;
 
 use super::{images, p, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
-use crate::reference::{dot3, ImageF64};
+use crate::image_f64::{dot3, ImageF64};
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 /// Largest blur radius in texels (as in gaussian.wgsl).

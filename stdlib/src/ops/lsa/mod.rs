@@ -15,7 +15,7 @@ pub use reference::*;
 mod demos;
 
 use super::{images, p, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Radius, Specialization, Ty, Unit};
 
 /// The G-buffers' size.

@@ -4,7 +4,7 @@
 //! paper's; see the WGSL files for the reasoning behind each choice (the
 //! e_plane offsets, the background and border rules).
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 
 /// The half neighbourhood: E, SE, S, SW in image coordinates (y down).
 pub const DIRS: [(i64, i64); 4] = [(1, 0), (1, 1), (0, 1), (-1, 1)];

@@ -17,7 +17,7 @@ pub use reference::*;
 mod demos;
 
 use super::{p, random, Arg, Case, OpDef, Tol, Value};
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Specialization, Ty, Unit};
 
 /// The MetaTexture settings shared by both variants, after the texture/uv/gradients.

@@ -5,7 +5,7 @@
 //! The variants that take fragment derivatives are the gradient ones with
 //! ∇u = (∂u/∂x, ∂u/∂y), ∇v = (∂v/∂x, ∂v/∂y).
 
-use crate::reference::{sample_repeat, ImageF64};
+use crate::image_f64::{sample_repeat, ImageF64};
 
 fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]

@@ -21,7 +21,7 @@ macro_rules! id_case {
             $what,
             &[
                 tex32(|| {
-                    crate::reference::ImageF64::new($w, $h, |x, y| [f64::from((x / 3 + y / 2) % 3), 0.0, 0.0, 1.0])
+                    crate::image_f64::ImageF64::new($w, $h, |x, y| [f64::from((x / 3 + y / 2) % 3), 0.0, 0.0, 1.0])
                 }),
                 Arg::ScreenUv {
                     origin: [-0.5, -0.5],

@@ -5,7 +5,7 @@
 //! threshold up in a [`HalftoneTable`].
 
 use crate::halftone_table::HalftoneTable;
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 
 /// `npr_id_share`: the share of the (2r+1)² texels centred on `uv` whose
 /// r is within 0.5 of `id`; texels outside the image count as another's.

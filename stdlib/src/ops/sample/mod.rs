@@ -5,7 +5,7 @@
 mod demos;
 
 use super::{p, tex8, Arg, Case, OpDef, Tol};
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// Bilinear filtering with clamp-to-edge addressing at level 0.

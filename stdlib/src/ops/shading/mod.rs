@@ -4,7 +4,7 @@
 mod demos;
 
 use super::{nums, p, random, scalar, Arg, Case, OpDef, Tol, Value};
-use crate::reference::{dot3, unit};
+use crate::image_f64::{dot3, unit};
 use crate::{Default, Operator, Param, Ty, Unit};
 
 pub fn lambert(n: [f64; 3], l: [f64; 3]) -> f64 {

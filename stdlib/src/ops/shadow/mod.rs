@@ -9,7 +9,7 @@ pub use reference::*;
 mod demos;
 
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, Value};
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use crate::{Default, Footprint, Operator, Param, Ty, Unit};
 
 /// A 24×16 depth map, depths on a 1/8 grid.

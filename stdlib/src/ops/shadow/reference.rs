@@ -1,7 +1,7 @@
 //! f64 references for the Age of Sail pipeline operators (§5): shadow-map
 //! visibility with the sigmoid-warped depth pass.
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 
 /// The depth pass's sigmoid warp of a light-space coordinate in [−1, 1]:
 /// x' = tanh(k·x) / tanh(k); the identity for k → 0. Odd, monotonic, and it

@@ -8,7 +8,7 @@ pub use reference::*;
 mod demos;
 
 use super::{p, random, scalar, tex32, Arg, Case, OpDef, Tol, UV_SCREEN};
-use crate::reference::{unit, ImageF64};
+use crate::image_f64::{unit, ImageF64};
 use crate::{Default, Footprint, Operator, Param, Radius, Ty, Unit};
 
 const LEFT: Arg = Arg::Const([-0.032, 0.01, 0.0, 0.0]);

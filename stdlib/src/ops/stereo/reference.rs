@@ -2,7 +2,7 @@
 //! fade-out, the reprojection mask (eqs. 9–11) and the consistency bound.
 //! They follow `{contour_fade,reprojection_mask,stereo_consistency}.wgsl` beside it.
 
-use crate::reference::ImageF64;
+use crate::image_f64::ImageF64;
 use std::f64::consts::FRAC_PI_2;
 
 type V3 = [f64; 3];
