@@ -2,7 +2,9 @@
 //! index buffer per object, uploaded once in `Renderer::new`; time-varying
 //! primitives (the ocean) have their vertices rewritten in place per frame,
 //! and so does an object given another mesh of the same topology (a host's
-//! deforming mesh: `StyleRuntime::update_mesh`, docs/decisions/0045).
+//! deforming mesh: `StyleRuntime::update_mesh`, docs/decisions/0045);
+//! an object playing a clip has buffers of its own, which the GPU
+//! deformation stage writes (`deform.rs`, docs/decisions/0053).
 //! When a render pass reads `patch.weight` (Breslav et al. 2007 §3.6), every
 //! mesh also gets a weight buffer (all 1), and each blended patch a second
 //! mesh: its faces and n-ring with its weights, which such passes draw.
@@ -229,16 +231,10 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     if !(0..meshes.len().min(scene.objects.len())).any(deformed) {
         return Ok(());
     }
-    // An object playing a clip has buffers of its own (`shares_buffers`):
-    // its mesh of this frame is written over them alone.
-    for (object, gpu) in scene.objects.iter().zip(meshes.iter_mut()) {
-        if object.animation.is_some() && !Arc::ptr_eq(&gpu.source, &object.mesh) {
-            fits(object, gpu)?;
-            write_vertices(queue, gpu, &object.mesh);
-            gpu.source = object.mesh.clone();
-            gpu.vertex_revision += 1;
-        }
-    }
+    // An object playing a clip has buffers of its own (`shares_buffers`),
+    // which the GPU deformation stage writes (`deform.rs`, decision 0053):
+    // its mesh of the frame, deformed on the CPU for the lines and the
+    // light bounds, is not written (the loop below skips it).
     // Per group of shared buffers (by the mesh they were uploaded from):
     // the first deformed object's index and its new mesh.
     let mut moves: Vec<(*const Mesh, usize)> = Vec::new();
