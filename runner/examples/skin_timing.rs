@@ -7,10 +7,13 @@
 //!   when a lines pass or a light-view pass reads the deformed vertices);
 //! - `rigid`: a whole frame (prepare, encode, submit, wait) of a 64 × 64
 //!   style drawing the same mesh as a rigid object;
-//! - `gpu`: the same frame with the object playing the clip, deformed by
-//!   the GPU stage (`exec/deform.rs`), at a new pose every frame.
+//! - `cpu-deformed`: the same frame with the object given its mesh
+//!   deformed on the CPU and written in place every frame (decision
+//!   0049's path, which this stage replaced for the passes);
+//! - `gpu-deformed`: the same frame with the object playing the clip,
+//!   deformed by the GPU stage (`exec/deform.rs`), at a new pose every frame.
 //!
-//! `cargo run --release -p npr-runner --example skin_timing`
+//! `cargo run -p npr-runner --example skin_timing`
 
 use npr_compiler::CompileOptions;
 use npr_runner::scene::Scene;
@@ -79,14 +82,22 @@ output shade.c
 "#;
 
 /// Milliseconds per whole frame of `scene` (GPU work waited for), the
-/// scene time moving every frame.
-fn frame_millis(gpu: &Gpu, program: &npr_runner::StyleProgram, scene: &Scene, frames: u32) -> f64 {
+/// scene time moving every frame. With `cpu_rig`, the object is drawn
+/// rigid and given its mesh deformed on the CPU each frame, written in
+/// place (decision 0049's path, through 0045's).
+fn frame_millis(
+    gpu: &Gpu,
+    program: &npr_runner::StyleProgram,
+    scene: &Scene,
+    cpu_rig: Option<&Rig>,
+    frames: u32,
+) -> f64 {
     let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene).expect("renderer");
     let spec = |f: u32| FrameSpec {
         width: 64,
         height: 64,
         time_s: 0.013 * f64::from(f),
-        frame: u64::from(f),
+        frame: f,
         eye: 0,
     };
     let wait = || {
@@ -94,12 +105,19 @@ fn frame_millis(gpu: &Gpu, program: &npr_runner::StyleProgram, scene: &Scene, fr
             .poll(wgpu::PollType::wait_indefinitely())
             .expect("the device finishes the frame");
     };
-    r.render(scene, &spec(0)).expect("frame");
-    wait();
+    let mut scene = scene.clone();
+    let mut frame = |f: u32| {
+        if let Some(rig) = cpu_rig {
+            let t = spec(f).time_s as f32 % rig.clips[0].duration;
+            scene.objects[0].mesh = Arc::new(rig.deform(&rig.pose(Some((0, t)))));
+        }
+        r.render(&scene, &spec(f)).expect("frame");
+        wait();
+    };
+    frame(0);
     let start = Instant::now();
     for f in 1..=frames {
-        r.render(scene, &spec(f)).expect("frame");
-        wait();
+        frame(f);
     }
     start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames)
 }
@@ -137,12 +155,15 @@ fn main() {
             let mut rigid = animated.clone();
             rigid.objects[0].animation = None;
             let cpu = millis_per_frame(&big, frames);
-            let still = frame_millis(&gpu, &program, &rigid, frames);
-            let deformed = frame_millis(&gpu, &program, &animated, frames);
+            let still = frame_millis(&gpu, &program, &rigid, None, frames);
+            let on_cpu = frame_millis(&gpu, &program, &rigid, Some(&big), frames);
+            let on_gpu = frame_millis(&gpu, &program, &animated, None, frames);
             println!(
-                "{file}: {} vertices: cpu {cpu:.2} ms; frame rigid {still:.2} ms, gpu-deformed {deformed:.2} ms (+{:.2})",
+                "{file}: {} vertices: cpu deform {cpu:.2} ms; frame rigid {still:.2} ms, \
+                 cpu-deformed {on_cpu:.2} ms (+{:.2}), gpu-deformed {on_gpu:.2} ms (+{:.2})",
                 big.bind.vertex_count(),
-                deformed - still
+                on_cpu - still,
+                on_gpu - still
             );
         }
     }

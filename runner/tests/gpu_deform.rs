@@ -196,3 +196,125 @@ fn the_gpu_morphed_blob_equals_its_f64_reference_at_several_weights() {
         );
     }
 }
+
+/// Screen motion of each vertex from the previous frame, in px, summed
+/// (and its length summed) over the object's vertices.
+const MOTION: &str = r#"
+style "motion"
+pass motion: compute(vertices) {
+  let moved = (project(position).xy - project_previous(position.previous).xy) * resolution
+  reduce n: float = sum(1.0)
+  reduce d: vec2 = sum(moved)
+  reduce travel: float = sum(length(moved))
+}
+pass sampled: compute(samples) {
+  count: 300
+  seed: 5
+  let moved = (project(position).xy - project_previous(position.previous).xy) * resolution
+  reduce n: float = sum(1.0)
+  reduce d: vec2 = sum(moved)
+}
+pass shade: render(scene) {
+  out c: rgba32float = vec4(motion.d + sampled.d, motion.travel + sampled.n, motion.n)
+  clear: #000000
+}
+output shade.c
+"#;
+
+/// `position.previous` sees the previous pose: between two frames of the
+/// bending arm, each vertex's screen motion (`project(position)` against
+/// `project_previous(position.previous)`) summed over the vertices equals
+/// the f64 reference's (both poses skinned in f64, projected with the
+/// same camera), within the position bound's image on screen; and so does
+/// a pass over surface samples (the same points of the triangles in both
+/// poses, Breslav et al. 2007 §3.1).
+#[test]
+fn position_previous_sees_the_previous_pose() {
+    let scene = scene(ARM);
+    let program = compile(MOTION);
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let animation = scene.objects[0].animation.clone().expect("the arm plays a clip");
+    let model = scene.objects[0].model.as_dmat4();
+    let size = 256u32;
+    let spec = |time_s: f64| FrameSpec {
+        width: size,
+        height: size,
+        time_s,
+        frame: 0,
+        eye: 0,
+    };
+    // A frame's motion: the first has none; then the arm bends between frames.
+    r.render(&scene, &spec(0.3)).expect("frame");
+    let first = r.read_object_values("motion").expect("motion");
+    assert_eq!(first[0][2][0], 0.0, "no motion at the first frame: {first:?}");
+    let (t0, t1) = (0.3, 0.4);
+    r.render(&scene, &spec(t1)).expect("frame");
+    let got = r.read_object_values("motion").expect("motion");
+    let pose = scene.camera.pose(t1);
+    let view_proj = (pose.projection(1.0) * pose.view(0)).as_dmat4();
+    let screen = |p: DVec3| {
+        let c = view_proj * model.transform_point3(p).extend(1.0);
+        let ndc = c.truncate() / c.w;
+        glam::DVec2::new(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f64::from(size)
+    };
+    let reference = |t: f64| {
+        let clip_t = f64::from(animation.clip_time(t));
+        skin_reference::deform(&models().join("arm.glb"), Some(("bend", clip_t))).positions
+    };
+    let (before, after) = (reference(t0), reference(t1));
+    let (mut d, mut travel) = (glam::DVec2::ZERO, 0.0f64);
+    for (a, b) in after.iter().zip(&before) {
+        let moved = screen(*a) - screen(*b);
+        d += moved;
+        travel += moved.length();
+    }
+    let n = after.len() as f64;
+    // A vertex within POSITION_BOUND in each pose moves at most 2 ×
+    // POSITION_BOUND × (px per metre at the arm's nearest, < 200) further
+    // on screen; and 1e-4 px of f32 projection rounding per vertex.
+    let per_vertex = 2.0 * POSITION_BOUND * 200.0 + 1e-4;
+    let got_d = glam::DVec2::new(f64::from(got[0][1][0]), f64::from(got[0][1][1]));
+    let got_travel = f64::from(got[0][2][0]);
+    eprintln!(
+        "arm from t = {t0} to {t1}: {n} vertices; summed screen motion {got_d:?} px (f64: {d:?}), \
+         travel {got_travel} px (f64: {travel})"
+    );
+    assert_eq!(got[0][0][0] as usize, after.len());
+    assert!(
+        travel > n,
+        "the arm moves more than a pixel a vertex on average ({travel} px over {n})"
+    );
+    assert!(
+        (got_d - d).length() <= n * per_vertex * std::f64::consts::SQRT_2 + 1e-5 * travel,
+        "summed motion {got_d:?} against {d:?}"
+    );
+    assert!(
+        (got_travel - travel).abs() <= n * per_vertex * 2.0 + 1e-5 * travel,
+        "travel {got_travel} against {travel}"
+    );
+    // The samples: the same triangles and barycentrics in both poses.
+    let sampled = r.read_object_values("sampled").expect("sampled");
+    let mesh = &scene.objects[0].mesh;
+    let drawn = npr_runner::scene::samples::stratified(mesh, 300, npr_runner::scene::samples::object_seed(5, 0));
+    let at = |positions: &[DVec3], s: &npr_runner::scene::samples::Sample| {
+        let [a, b, c] = s.triangle.map(|i| positions[i as usize]);
+        let (b1, b2) = (f64::from(s.b1), f64::from(s.b2));
+        a * (1.0 - b1 - b2) + b * b1 + c * b2
+    };
+    let mut sample_d = glam::DVec2::ZERO;
+    for s in &drawn.samples {
+        sample_d += screen(at(&after, s)) - screen(at(&before, s));
+    }
+    let m = drawn.samples.len() as f64;
+    let got_sample_d = glam::DVec2::new(f64::from(sampled[0][1][0]), f64::from(sampled[0][1][1]));
+    eprintln!("{m} samples: summed screen motion {got_sample_d:?} px (f64: {sample_d:?})");
+    assert_eq!(sampled[0][0][0] as usize, drawn.samples.len());
+    assert!(
+        sample_d.length() > m,
+        "the samples move more than a pixel each on average"
+    );
+    assert!(
+        (got_sample_d - sample_d).length() <= m * per_vertex * std::f64::consts::SQRT_2 + 1e-5 * sample_d.length(),
+        "samples' summed motion {got_sample_d:?} against {sample_d:?}"
+    );
+}

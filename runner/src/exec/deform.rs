@@ -12,6 +12,12 @@
 //! deformed-mesh path of decision 0045), posed with vectors kept from
 //! frame to frame: a steady frame creates no GPU object and allocates
 //! nothing.
+//!
+//! The previous pose: an animated object has a previous-positions buffer
+//! of its own (`Attribute::PreviousPosition`, which compute passes read for
+//! `position.previous`). When its pose moved, the stage copies the
+//! positions there before deforming; at its first frame, after (so the
+//! previous frame is the current one, as `previous_model` is).
 
 use super::meshes::GpuMesh;
 use crate::gpu_count::Create;
@@ -20,6 +26,7 @@ use crate::scene::Scene;
 use crate::RunError;
 use glam::Mat4;
 use npr_abi::manifest::Attribute;
+use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::{Arc, OnceLock};
 
 /// The stage's WGSL (naga-validated by `runner/tests/gpu_deform.rs`).
@@ -209,6 +216,13 @@ impl RigGpu {
     }
 }
 
+/// What the next encode does with an object's previous positions.
+const KEEP: u8 = 0;
+/// The pose moved: the positions become the previous ones before the dispatch.
+const MOVED: u8 = 1;
+/// The first frame: the previous positions are the current ones, after it.
+const FIRST: u8 = 2;
+
 /// One animated object's part of the stage.
 struct DeformedObject {
     /// Its index in the scene.
@@ -226,6 +240,13 @@ struct DeformedObject {
     weight_values: Vec<f32>,
     /// The clip time the palette was last written for.
     posed_at: Option<f32>,
+    /// Its position buffer and its previous positions' (`bytes` long).
+    positions: wgpu::Buffer,
+    previous: wgpu::Buffer,
+    bytes: u64,
+    /// [`KEEP`], [`MOVED`] or [`FIRST`], set by `prepare`, reset by `encode`
+    /// (atomic: `encode` takes `&self`).
+    step: AtomicU8,
 }
 
 /// The stage over one scene's animated objects (none: it does nothing).
@@ -273,12 +294,13 @@ impl DeformStage {
             );
             let empty = || storage(device, "npr deform no tangents", &[0u8; 16], true);
             let tangents = mesh.buffers.get(&Attribute::Tangent).cloned().unwrap_or_else(empty);
-            let (Some(positions), Some(normals)) = (
+            let (Some(positions), Some(normals), Some(previous)) = (
                 mesh.buffers.get(&Attribute::Position),
                 mesh.buffers.get(&Attribute::Normal),
+                mesh.buffers.get(&Attribute::PreviousPosition),
             ) else {
                 return Err(RunError::Internal(format!(
-                    "object `{}` has no position or normal buffer to deform",
+                    "object `{}` has no position, normal or previous-position buffer to deform",
                     object.name
                 )));
             };
@@ -319,6 +341,10 @@ impl DeformStage {
                 },
                 scratch: PoseScratch::default(),
                 posed_at: None,
+                positions: positions.clone(),
+                previous: previous.clone(),
+                bytes: 12 * mesh.vertex_count as u64,
+                step: AtomicU8::new(KEEP),
             });
         }
         Ok(DeformStage { objects })
@@ -359,6 +385,8 @@ impl DeformStage {
             if !o.weight_values.is_empty() {
                 queue.write_buffer(&o.weights, 0, bytemuck::cast_slice(&o.weight_values));
             }
+            let step = if o.posed_at.is_none() { FIRST } else { MOVED };
+            o.step.store(step, Ordering::Relaxed);
             o.posed_at = Some(clip_time);
             if let Some(mesh) = meshes.get_mut(o.object) {
                 mesh.vertex_revision += 1;
@@ -371,18 +399,32 @@ impl DeformStage {
         let (Some(pipeline), false) = (pipeline.get(), self.objects.is_empty()) else {
             return;
         };
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("npr deform"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&pipeline.pipeline);
+        // The pose moved: this frame's previous positions are the last deformed ones.
         for o in &self.objects {
-            if o.workgroups == 0 {
-                continue;
+            if o.step.load(Ordering::Relaxed) == MOVED && o.bytes > 0 {
+                encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes);
             }
-            pass.set_bind_group(0, &o.group, &[]);
-            // `deform.wgsl` numbers workgroups `x + y × 65535`.
-            pass.dispatch_workgroups(o.workgroups.min(65535), o.workgroups.div_ceil(65535), 1);
+        }
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("npr deform"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&pipeline.pipeline);
+            for o in &self.objects {
+                if o.workgroups == 0 {
+                    continue;
+                }
+                pass.set_bind_group(0, &o.group, &[]);
+                // `deform.wgsl` numbers workgroups `x + y × 65535`.
+                pass.dispatch_workgroups(o.workgroups.min(65535), o.workgroups.div_ceil(65535), 1);
+            }
+        }
+        // The first frame: no motion yet. Either way, done until the next pose.
+        for o in &self.objects {
+            if o.step.swap(KEEP, Ordering::Relaxed) == FIRST && o.bytes > 0 {
+                encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes);
+            }
         }
     }
 }
