@@ -117,9 +117,28 @@ pub enum Attribute {
     /// weights sum to 1 at every pixel; every other pass draws a patch's own
     /// faces only. Render passes only: compute passes never read it.
     PatchWeight,
+    /// Three `f32`s per vertex: its object-space position in the previous
+    /// frame, which `position.previous` of compute passes over vertices
+    /// and samples reads (through the previous `model`). An object playing
+    /// a clip has its previous pose's (the GPU deformation stage keeps it,
+    /// docs/decisions/0053); every other mesh's is its position buffer
+    /// itself. Compute passes only, and without a binding of its own
+    /// ([`Attribute::has_compute_binding`]).
+    PreviousPosition,
 }
 
 impl Attribute {
+    /// Whether a compute pass binds this attribute's pooled vertices as a
+    /// storage buffer of its own (`a_<name>`, group 1, in list order after
+    /// the objects and the members). The previous position has none: it is
+    /// pooled in the position's buffer after every member's current
+    /// positions (so `arrayLength(&a_position) / 6` vertices in), which
+    /// keeps the pattern tracker's passes over samples within WebGPU's
+    /// default of 8 storage buffers a stage.
+    pub fn has_compute_binding(self) -> bool {
+        self != Attribute::PreviousPosition
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Attribute::Position => "position",
@@ -127,6 +146,7 @@ impl Attribute {
             Attribute::Uv => "uv",
             Attribute::Tangent => "tangent",
             Attribute::PatchWeight => "patch_weight",
+            Attribute::PreviousPosition => "previous_position",
         }
     }
 
@@ -134,7 +154,7 @@ impl Attribute {
     /// `float32x2`, ...), tightly packed in its own vertex buffer.
     pub fn components(self) -> u32 {
         match self {
-            Attribute::Position | Attribute::Normal => 3,
+            Attribute::Position | Attribute::Normal | Attribute::PreviousPosition => 3,
             Attribute::Uv => 2,
             Attribute::Tangent => 4,
             Attribute::PatchWeight => 1,
@@ -149,6 +169,7 @@ impl Attribute {
             Attribute::Uv => "UVs",
             Attribute::Tangent => "tangents",
             Attribute::PatchWeight => "patch weights",
+            Attribute::PreviousPosition => "previous positions",
         }
     }
 }

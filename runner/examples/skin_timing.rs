@@ -1,11 +1,24 @@
-//! Times the CPU pose and deformation of an object playing a clip
-//! (`scene::rig`, issue 48): the Blender arm of `examples/models/`
+//! Times the deformation of an object playing a clip (issue 48,
+//! docs/decisions/0049 and 0053): the Blender arm of `examples/models/`
 //! (2 joints, 4 weights a vertex) repeated to 10k, 100k and 1M vertices,
-//! and the blob's two morph targets likewise. Prints milliseconds per
-//! frame for `Rig::pose` + `Rig::deform` (the work a rigid object does not
-//! do at all).
+//! and the blob's two morph targets likewise. Prints, in milliseconds per
+//! frame:
+//! - `cpu`: `Rig::pose` + `Rig::deform` on the CPU (what a frame adds
+//!   when a lines pass or a light-view pass reads the deformed vertices);
+//! - `rigid`: a whole frame (prepare, encode, submit, wait) of a 64 × 64
+//!   style drawing the same mesh as a rigid object;
+//! - `cpu-deformed`: the same frame with the object given its mesh
+//!   deformed on the CPU and written in place every frame (decision
+//!   0049's path, which this stage replaced for the passes);
+//! - `gpu-deformed`: the same frame with the object playing the clip,
+//!   deformed by the GPU stage (`exec/deform.rs`), at a new pose every frame.
 //!
 //! `cargo run -p npr-runner --example skin_timing`
+
+use npr_compiler::CompileOptions;
+use npr_runner::scene::Scene;
+use npr_runner::{FrameSpec, Gpu, Renderer};
+use std::sync::Arc;
 
 use npr_runner::scene::load_mesh_and_rig;
 use npr_runner::scene::rig::Rig;
@@ -58,18 +71,99 @@ fn millis_per_frame(rig: &Rig, frames: u32) -> f64 {
     start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames)
 }
 
+const STYLE: &str = r#"
+style "timing"
+pass shade: render(scene) {
+  let lit = lambert(normal, light.dir)
+  out c: rgba8unorm = vec4(lit, lit, lit, 1.0)
+  clear: #000000
+}
+output shade.c
+"#;
+
+/// Milliseconds per whole frame of `scene` (GPU work waited for), the
+/// scene time moving every frame. With `cpu_rig`, the object is drawn
+/// rigid and given its mesh deformed on the CPU each frame, written in
+/// place (decision 0049's path, through 0045's).
+fn frame_millis(
+    gpu: &Gpu,
+    program: &npr_runner::StyleProgram,
+    scene: &Scene,
+    cpu_rig: Option<&Rig>,
+    frames: u32,
+) -> f64 {
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, program, scene).expect("renderer");
+    let spec = |f: u32| FrameSpec {
+        width: 64,
+        height: 64,
+        time_s: 0.013 * f64::from(f),
+        frame: f,
+        eye: 0,
+    };
+    let wait = || {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("the device finishes the frame");
+    };
+    let mut scene = scene.clone();
+    let mut frame = |f: u32| {
+        if let Some(rig) = cpu_rig {
+            let t = spec(f).time_s as f32 % rig.clips[0].duration;
+            scene.objects[0].mesh = Arc::new(rig.deform(&rig.pose(Some((0, t)))));
+        }
+        r.render(&scene, &spec(f)).expect("frame");
+        wait();
+    };
+    frame(0);
+    let start = Instant::now();
+    for f in 1..=frames {
+        frame(f);
+    }
+    start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames)
+}
+
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models");
-    for file in ["arm.glb", "blob.glb"] {
+    let gpu = Gpu::headless().expect("a GPU adapter (lavapipe: ./setup.sh --tests)");
+    println!("adapter: {}", gpu.adapter_info.name);
+    let mut sources = npr_diag::SourceMap::new();
+    let program = npr_compiler::compile_source(
+        "timing.npr",
+        STYLE,
+        Path::new("."),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|_| panic!("the timing style compiles"))
+    .program();
+    for (file, clip) in [("arm.glb", "bend"), ("blob.glb", "pulse")] {
         let (_, rig) = load_mesh_and_rig(&dir.join(file)).expect("test character");
         let rig = rig.expect("a rig");
+        let text = format!(
+            "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
+             [[object]]\nmesh = \"{file}\"\nanimation = {{ clip = \"{clip}\", loop = true }}\n"
+        );
+        let base = npr_runner::scene::parse_scene(&text, npr_diag::FileId(0), &dir).expect("timing scene");
         for vertices in [10_000, 100_000, 1_000_000] {
             let big = scaled(&rig, vertices);
             let frames = (2_000_000 / vertices).clamp(3, 100) as u32;
+            let mut animated = base.clone();
+            animated.objects[0].mesh = Arc::new(big.bind.clone());
+            if let Some(animation) = animated.objects[0].animation.as_mut() {
+                animation.rig = Arc::new(big.clone());
+            }
+            let mut rigid = animated.clone();
+            rigid.objects[0].animation = None;
+            let cpu = millis_per_frame(&big, frames);
+            let still = frame_millis(&gpu, &program, &rigid, None, frames);
+            let on_cpu = frame_millis(&gpu, &program, &rigid, Some(&big), frames);
+            let on_gpu = frame_millis(&gpu, &program, &animated, None, frames);
             println!(
-                "{file}: {} vertices: {:.2} ms per frame",
+                "{file}: {} vertices: cpu deform {cpu:.2} ms; frame rigid {still:.2} ms, \
+                 cpu-deformed {on_cpu:.2} ms (+{:.2}), gpu-deformed {on_gpu:.2} ms (+{:.2})",
                 big.bind.vertex_count(),
-                millis_per_frame(&big, frames)
+                on_cpu - still,
+                on_gpu - still
             );
         }
     }

@@ -5,8 +5,11 @@
 //! within a mean FLIP of 0.01, the image shadowed through a light-view
 //! depth pass likewise, and the silhouette lines (built on the CPU
 //! from the frame's mesh) within a mean FLIP of 0.01, for several poses of the Blender-exported
-//! arm (skin) and blob (morph targets). On failure the images are written
-//! under the target's temporary folder.
+//! arm (skin) and blob (morph targets). The passes draw the GPU
+//! deformation stage's vertices (docs/decisions/0053); the lines, and the
+//! light camera of the shadowed style, read the CPU's deformation of the
+//! same pose. On failure the images are written under the target's
+//! temporary folder.
 
 #[path = "common/skin_reference.rs"]
 mod skin_reference;

@@ -165,7 +165,8 @@ pub fn bind_group_layouts(manifest: &Manifest, pass: &PassManifest) -> Vec<Vec<L
             elements_entry,
             ..
         } => {
-            let inputs = 2 + attributes.len() + usize::from(*domain == ComputeDomain::Samples);
+            let bound = attributes.iter().filter(|a| a.has_compute_binding()).count();
+            let inputs = 2 + bound + usize::from(*domain == ComputeDomain::Samples);
             groups.push((0..inputs as u32).map(|b| storage(b, true)).collect());
             let mut own = vec![storage(0, false)];
             if elements_entry.is_some() {

@@ -88,6 +88,8 @@ pub fn upload_mesh(device: &wgpu::Device, mesh: &npr_runner::scene::Mesh, attrib
             Attribute::Tangent => mesh.tangents.as_deref().map(bytemuck::cast_slice).unwrap_or_default(),
             // `support::check` refuses styles that read patch weights.
             Attribute::PatchWeight => &[],
+            // Compute passes only; the baseline draws render passes.
+            Attribute::PreviousPosition => bytemuck::cast_slice(&mesh.positions),
         };
         vertices.insert(*a, init(a.name(), bytes, wgpu::BufferUsages::VERTEX));
     }
@@ -219,7 +221,7 @@ pub fn group0(
 
 fn vertex_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
     match a {
-        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
+        Attribute::Position | Attribute::Normal | Attribute::PreviousPosition => (wgpu::VertexFormat::Float32x3, 12),
         Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
         Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
         Attribute::PatchWeight => (wgpu::VertexFormat::Float32, 4),

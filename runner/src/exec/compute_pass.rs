@@ -123,7 +123,8 @@ impl ComputePassExec {
         };
         // Group 1: the objects, the members, the members' attributes, the
         // samples (a pass over samples: `values::create` makes them).
-        let group1_len = 2 + attributes.len() + usize::from(*domain == ComputeDomain::Samples);
+        let bound = attributes.iter().filter(|a| a.has_compute_binding()).count();
+        let group1_len = 2 + bound + usize::from(*domain == ComputeDomain::Samples);
         let storage = group1_len
             + if elements_entry.is_some() || *history { 2 } else { 1 }
             + pass
@@ -221,7 +222,7 @@ impl ComputePassExec {
             )));
         };
         let mut group1_buffers = vec![object_buffer, &buffers.members];
-        for a in attributes {
+        for a in attributes.iter().filter(|a| a.has_compute_binding()) {
             group1_buffers.push(buffers.attributes.get(a).ok_or_else(|| {
                 RunError::Internal(format!(
                     "pass `{}` has no `{}` buffer of its members",
@@ -275,11 +276,17 @@ impl ComputePassExec {
         for &(object, first, revision) in &buffers.member_vertices {
             for (a, pooled) in &buffers.attributes {
                 let bytes_per_vertex = attribute_format(*a).1;
+                // Previous positions follow every member's current ones.
+                let base = if *a == Attribute::PreviousPosition {
+                    buffers.pooled_vertices
+                } else {
+                    0
+                };
                 member_copies.push(MemberCopy {
                     object,
                     attribute: *a,
                     pooled: pooled.clone(),
-                    offset: first * bytes_per_vertex,
+                    offset: (base + first) * bytes_per_vertex,
                     bytes_per_vertex,
                     copied: AtomicU64::new(revision),
                 });

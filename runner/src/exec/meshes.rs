@@ -2,7 +2,9 @@
 //! index buffer per object, uploaded once in `Renderer::new`; time-varying
 //! primitives (the ocean) have their vertices rewritten in place per frame,
 //! and so does an object given another mesh of the same topology (a host's
-//! deforming mesh: `StyleRuntime::update_mesh`, docs/decisions/0045).
+//! deforming mesh: `StyleRuntime::update_mesh`, docs/decisions/0045);
+//! an object playing a clip has buffers of its own, which the GPU
+//! deformation stage writes (`deform.rs`, docs/decisions/0053).
 //! When a render pass reads `patch.weight` (Breslav et al. 2007 §3.6), every
 //! mesh also gets a weight buffer (all 1), and each blended patch a second
 //! mesh: its faces and n-ring with its weights, which such passes draw.
@@ -18,7 +20,7 @@ use std::sync::Arc;
 /// (one buffer per attribute, tightly packed f32s).
 pub(super) fn attribute_format(a: Attribute) -> (wgpu::VertexFormat, u64) {
     match a {
-        Attribute::Position | Attribute::Normal => (wgpu::VertexFormat::Float32x3, 12),
+        Attribute::Position | Attribute::Normal | Attribute::PreviousPosition => (wgpu::VertexFormat::Float32x3, 12),
         Attribute::Uv => (wgpu::VertexFormat::Float32x2, 8),
         Attribute::Tangent => (wgpu::VertexFormat::Float32x4, 16),
         Attribute::PatchWeight => (wgpu::VertexFormat::Float32, 4),
@@ -88,6 +90,14 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) 
                 return gpu.share();
             }
             let mut gpu = upload_mesh(device, &o.mesh, o.mesh.clone());
+            if o.animation.is_some() {
+                // Its previous pose, which the deformation stage keeps
+                // (`deform.rs`); every other mesh's is its position buffer.
+                gpu.buffers.insert(
+                    Attribute::PreviousPosition,
+                    attribute_buffer(device, "previous positions", bytemuck::cast_slice(&o.mesh.positions)),
+                );
+            }
             // `Object::mesh` is a time-varying primitive's geometry at t = 0.
             gpu.built_for_s = o.time_varying.map(|_| 0.0);
             if weights {
@@ -127,22 +137,11 @@ fn vertex_buffer(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffe
 /// ([`GpuMesh::source`]).
 pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, source: Arc<Mesh>) -> GpuMesh {
     let mut buffers = BTreeMap::new();
-    let mk = |label: &str, data: &[u8]| {
-        device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: if data.is_empty() { &[0u8; 16] } else { data },
-            // COPY_DST: time-varying primitives are rewritten per frame;
-            // STORAGE, COPY_SRC: compute passes over vertices read them (time-varying ones copied each frame).
-            usage: wgpu::BufferUsages::VERTEX
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC,
-        })
-    };
-    buffers.insert(
-        Attribute::Position,
-        mk("positions", bytemuck::cast_slice(&mesh.positions)),
-    );
+    let mk = |label: &str, data: &[u8]| attribute_buffer(device, label, data);
+    let positions = mk("positions", bytemuck::cast_slice(&mesh.positions));
+    // `position.previous` of a mesh nothing deforms: its current position.
+    buffers.insert(Attribute::PreviousPosition, positions.clone());
+    buffers.insert(Attribute::Position, positions);
     buffers.insert(Attribute::Normal, mk("normals", bytemuck::cast_slice(&mesh.normals)));
     if let Some(uv) = &mesh.uvs {
         buffers.insert(Attribute::Uv, mk("uvs", bytemuck::cast_slice(uv)));
@@ -169,6 +168,21 @@ pub(super) fn upload_mesh(device: &wgpu::Device, mesh: &Mesh, source: Arc<Mesh>)
         vertex_revision: 0,
         blend: None,
     }
+}
+
+/// A vertex attribute's buffer holding `data` (16 zero bytes when empty).
+fn attribute_buffer(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffer {
+    device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: if data.is_empty() { &[0u8; 16] } else { data },
+        // COPY_DST: time-varying primitives are rewritten per frame;
+        // STORAGE, COPY_SRC: compute passes over vertices read them (time-varying ones
+        // copied each frame), the deformation stage writes them and copies the positions.
+        usage: wgpu::BufferUsages::VERTEX
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC,
+    })
 }
 
 /// Rebuilds the vertices of time-varying primitives (the ocean of Age of
@@ -229,16 +243,10 @@ pub(super) fn update_deformed(queue: &wgpu::Queue, meshes: &mut [GpuMesh], scene
     if !(0..meshes.len().min(scene.objects.len())).any(deformed) {
         return Ok(());
     }
-    // An object playing a clip has buffers of its own (`shares_buffers`):
-    // its mesh of this frame is written over them alone.
-    for (object, gpu) in scene.objects.iter().zip(meshes.iter_mut()) {
-        if object.animation.is_some() && !Arc::ptr_eq(&gpu.source, &object.mesh) {
-            fits(object, gpu)?;
-            write_vertices(queue, gpu, &object.mesh);
-            gpu.source = object.mesh.clone();
-            gpu.vertex_revision += 1;
-        }
-    }
+    // An object playing a clip has buffers of its own (`shares_buffers`),
+    // which the GPU deformation stage writes (`deform.rs`, decision 0053):
+    // its mesh of the frame, deformed on the CPU for the lines and the
+    // light bounds, is not written (the loop below skips it).
     // Per group of shared buffers (by the mesh they were uploaded from):
     // the first deformed object's index and its new mesh.
     let mut moves: Vec<(*const Mesh, usize)> = Vec::new();

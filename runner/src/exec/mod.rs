@@ -19,6 +19,8 @@
 //! - `resources.rs`: size-dependent textures and views;
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
+//! - `deform.rs`: the GPU stage that morphs and skins objects playing a
+//!   glTF clip, at the start of each frame (decision 0053);
 //! - `scene_check.rs`: scene-against-style checks (E0403, E0405);
 //! - `scene_gpu.rs`: the scene-level resources, made apart from the
 //!   style's ([`Renderer::set_scene`]);
@@ -37,6 +39,7 @@ mod bind;
 mod common;
 mod compute_pass;
 mod continuity;
+pub mod deform;
 mod frame;
 mod image_pass;
 mod light_bounds;
@@ -105,6 +108,14 @@ pub struct Renderer {
     animated_style_params: Vec<usize>,
     /// Whether a pass draws lines (a frame without one skips their preparation).
     has_lines: bool,
+    /// Whether a CPU stage reads the frame's deformed vertices: the lines
+    /// passes, and the light bounds a light-view pass is fitted to. Only
+    /// then does a frame also deform animated objects on the CPU
+    /// (`Scene::posed`); the passes draw the GPU stage's (decision 0053).
+    cpu_pose: bool,
+    /// The GPU deformation stage's pipeline, made at the first scene with
+    /// an object playing a clip and kept across scenes.
+    deform_pipeline: std::sync::OnceLock<deform::DeformPipeline>,
     sized: Option<resources::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
@@ -323,6 +334,7 @@ impl Renderer {
             mapped_at_creation: false,
         });
         let object_params = objects::ObjectParams::new(&manifest, object_stride);
+        let deform_pipeline = std::sync::OnceLock::new();
         // The scene's part, made as `set_scene` makes another's.
         let style = scene_gpu::StyleParts {
             manifest: &manifest,
@@ -333,12 +345,17 @@ impl Renderer {
             passes: &passes,
             eyes,
             object_images: &Default::default(),
+            deform_pipeline: &deform_pipeline,
         };
         let (scene_gpu, pass_scenes) = scene_gpu::SceneGpu::make(device, queue, &style, scene)?;
         for (exec, part) in passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
         let has_lines = passes.iter().any(|p| matches!(p, PassExec::Lines(_)));
+        let light_view = manifest
+            .passes
+            .iter()
+            .any(|p| matches!(p.kind, PassKindManifest::Render { light_view: true, .. }));
         Ok(Renderer {
             device: device.clone(),
             queue: queue.clone(),
@@ -354,6 +371,8 @@ impl Renderer {
             object_params,
             animated_style_params: Vec::new(),
             has_lines,
+            cpu_pose: has_lines || light_view,
+            deform_pipeline,
             manifest,
             sized: None,
             frames_begun: 0,
@@ -440,12 +459,16 @@ impl Renderer {
                 "only objects' transforms and params may change between frames; give other objects with Renderer::set_scene",
             )]));
         }
-        // Spinning objects turn with the frame's time (`spin`), and objects
-        // playing a clip get their mesh deformed to it (on the CPU,
-        // `scene::rig`), which `update_deformed` writes like a host's.
-        let posed = scene.posed(spec.time_s);
-        // A deformed mesh (same topology) is written in place, or refused before anything changed.
+        // Spinning objects turn with the frame's time (`spin`). Objects
+        // playing a clip are deformed by the GPU stage (`deform.rs`) for
+        // every pass; their mesh is deformed on the CPU too (`scene::rig`)
+        // only for the CPU stages that read it (lines, light bounds).
+        let posed = scene.posed_with(spec.time_s, self.cpu_pose);
+        // A host's deformed mesh (same topology) is written in place, or refused before anything changed.
         meshes::update_deformed(&self.queue, &mut self.scene_gpu.meshes, &posed)?;
+        self.scene_gpu
+            .deform
+            .prepare(&self.queue, scene, spec.time_s, &mut self.scene_gpu.meshes);
         self.ensure_size(spec.width, spec.height)?;
         if begin || self.frames_begun == 0 {
             self.frames_begun += 1;
@@ -528,6 +551,8 @@ impl Renderer {
             &self.style_buffer,
             &self.scene_gpu.object_buffer,
         );
+        // Objects playing a clip, deformed into the vertex buffers every pass binds.
+        self.scene_gpu.deform.encode(encoder, &self.deform_pipeline);
         let ctx = EncodeContext {
             meshes: &self.scene_gpu.meshes,
             object_group: &self.scene_gpu.object_group,
@@ -575,6 +600,28 @@ impl Renderer {
             t.format,
             &t.name,
         )
+    }
+
+    /// Object `object`'s vertex attribute `attribute` as its vertex buffer
+    /// holds it after the last submitted frame (the GPU deformation
+    /// stage's output for an object playing a clip): tightly packed f32s,
+    /// `attribute.components()` per vertex. For tests and tools.
+    pub fn read_vertices(&self, object: usize, attribute: Attribute) -> Result<Vec<f32>, RunError> {
+        let mesh = self
+            .scene_gpu
+            .meshes
+            .get(object)
+            .ok_or_else(|| RunError::Internal(format!("no object #{object}")))?;
+        let buffer = mesh
+            .buffers
+            .get(&attribute)
+            .ok_or_else(|| RunError::Internal(format!("object #{object} has no {} buffer", attribute.name())))?;
+        let bytes = readback::read_buffer(&self.device, &self.queue, buffer)?;
+        Ok(bytes
+            .chunks_exact(4)
+            .take(mesh.vertex_count * attribute.components() as usize)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect())
     }
 
     /// The per-object values of compute pass `pass` (its name), as this

@@ -16,6 +16,7 @@ pub fn check_scene(manifest: &Manifest, scene: &Scene) -> Vec<npr_diag::Diagnost
             Attribute::Uv => crate::scene::Attribute::Uv,
             Attribute::Tangent => crate::scene::Attribute::Tangent,
             Attribute::PatchWeight => crate::scene::Attribute::PatchWeight,
+            Attribute::PreviousPosition => crate::scene::Attribute::PreviousPosition,
         })
         .collect();
     let mut diags = scene.check_attributes(

@@ -7,7 +7,7 @@
 
 use super::bind::{self, ObjectResources};
 use super::pass::{PassExec, PassScene};
-use super::{continuity, light_bounds, meshes, objects, upload, values, Renderer};
+use super::{continuity, deform, light_bounds, meshes, objects, upload, values, Renderer};
 use crate::gpu_count::Create;
 use crate::scene::Scene;
 use crate::textures::{self, GpuTexture, ObjectImageKey};
@@ -22,6 +22,8 @@ pub(super) struct SceneGpu {
     /// Group 1 of passes that read no per-object texture.
     pub object_group: wgpu::BindGroup,
     pub meshes: Vec<meshes::GpuMesh>,
+    /// The GPU deformation of the objects playing a clip (decision 0053).
+    pub deform: deform::DeformStage,
     /// Per manifest pass: a compute pass's buffers.
     pub values: Vec<Option<values::PassBuffers>>,
     pub light_bounds: light_bounds::LightBounds,
@@ -50,6 +52,8 @@ pub(super) struct StyleParts<'a> {
     pub eyes: usize,
     /// The per-object images the previous scene bound (none at a build).
     pub object_images: &'a HashMap<ObjectImageKey, GpuTexture>,
+    /// The deformation stage's pipeline (made at the first scene needing it).
+    pub deform_pipeline: &'a std::sync::OnceLock<deform::DeformPipeline>,
 }
 
 impl SceneGpu {
@@ -102,6 +106,7 @@ impl SceneGpu {
                 matches!(&p.kind, PassKindManifest::Render { attributes, .. } if attributes.contains(&Attribute::PatchWeight))
             }),
         );
+        let deform = deform::DeformStage::new(device, style.deform_pipeline, scene, &meshes)?;
         let values = values::create(device, manifest, scene, &meshes)?;
         values::reset(queue, &values);
         let pass_scenes = style
@@ -127,6 +132,7 @@ impl SceneGpu {
             object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
             vertex_counts: meshes.iter().map(|m| m.vertex_count).collect(),
             meshes,
+            deform,
             object_images: object_textures.keys.into_iter().zip(object_textures.images).collect(),
         };
         Ok((made, pass_scenes))
@@ -175,6 +181,7 @@ impl Renderer {
                     passes: &self.passes,
                     eyes: self.frame_buffers.len(),
                     object_images: &self.scene_gpu.object_images,
+                    deform_pipeline: &self.deform_pipeline,
                 };
                 SceneGpu::make(&self.device, &self.queue, &style, scene)
             },

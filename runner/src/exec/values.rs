@@ -37,7 +37,11 @@ pub(super) struct PassBuffers {
     /// Element workgroups of all members (passes over vertices).
     pub element_workgroups: u32,
     /// The members' vertices per attribute (passes over vertices).
+    /// (The previous positions' entry is the position buffer: they follow
+    /// the `pooled_vertices` current positions in it.)
     pub attributes: BTreeMap<Attribute, wgpu::Buffer>,
+    /// Every member's vertices together (0 for a pass not over meshes).
+    pub pooled_vertices: u64,
     /// Every member's (object, first vertex, the object's
     /// `GpuMesh::vertex_revision` its vertices here are of): a member whose
     /// vertices change (a time-varying primitive, a deformed mesh) is copied
@@ -90,7 +94,8 @@ pub(super) fn element_workgroups(vertices: usize) -> u32 {
 /// The CPU data of attribute `a` of `mesh`, as bytes.
 fn attribute_data(mesh: &crate::scene::Mesh, a: Attribute) -> Option<&[u8]> {
     Some(match a {
-        Attribute::Position => bytemuck::cast_slice(&mesh.positions),
+        // At the first frame the previous position is the current one.
+        Attribute::Position | Attribute::PreviousPosition => bytemuck::cast_slice(&mesh.positions),
         Attribute::Normal => bytemuck::cast_slice(&mesh.normals),
         Attribute::Uv => bytemuck::cast_slice(mesh.uvs.as_ref()?),
         Attribute::Tangent => bytemuck::cast_slice(mesh.tangents.as_ref()?),
@@ -209,25 +214,36 @@ pub(super) fn create(
         let mut pooled = BTreeMap::new();
         let mut member_vertices = Vec::new();
         if domain.on_meshes() {
-            for a in attributes {
+            // The previous positions are pooled in the position's buffer,
+            // after every member's current ones (`Attribute::has_compute_binding`).
+            let previous = attributes.contains(&Attribute::PreviousPosition);
+            for a in attributes.iter().filter(|a| a.has_compute_binding()) {
                 let mut bytes = Vec::with_capacity((first_vertex * attribute_format(*a).1) as usize);
-                for &o in &members {
-                    let data = attribute_data(&scene.objects[o].mesh, *a).ok_or_else(|| {
-                        RunError::Internal(format!("object #{o} has no `{}` for pass `{}`", a.name(), p.name))
-                    })?;
-                    bytes.extend_from_slice(data);
+                let pooled_with = if previous && *a == Attribute::Position {
+                    &[Attribute::Position, Attribute::PreviousPosition][..]
+                } else {
+                    std::slice::from_ref(a)
+                };
+                for a in pooled_with {
+                    for &o in &members {
+                        let data = attribute_data(&scene.objects[o].mesh, *a).ok_or_else(|| {
+                            RunError::Internal(format!("object #{o} has no `{}` for pass `{}`", a.name(), p.name))
+                        })?;
+                        bytes.extend_from_slice(data);
+                    }
                 }
                 if bytes.is_empty() {
                     bytes.resize(16, 0);
                 }
-                pooled.insert(
-                    *a,
-                    device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(&format!("npr `{}` of `{}`'s members", a.name(), p.name)),
-                        contents: &bytes,
-                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    }),
-                );
+                let buffer = device.make_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&format!("npr `{}` of `{}`'s members", a.name(), p.name)),
+                    contents: &bytes,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                });
+                if previous && *a == Attribute::Position {
+                    pooled.insert(Attribute::PreviousPosition, buffer.clone());
+                }
+                pooled.insert(*a, buffer);
             }
             member_vertices = table
                 .iter()
@@ -275,6 +291,7 @@ pub(super) fn create(
             member_count: members.len() as u32,
             element_workgroups: first_workgroup as u32,
             attributes: pooled,
+            pooled_vertices: if domain.on_meshes() { first_vertex } else { 0 },
             member_vertices,
             partials,
             dispatch,

@@ -54,6 +54,8 @@ impl Mesh {
             Attribute::Tangent => self.tangents.is_some(),
             // 1 at every vertex of an object without patches (§3.6).
             Attribute::PatchWeight => true,
+            // The current position where nothing deforms (decision 0053).
+            Attribute::PreviousPosition => true,
         }
     }
 

@@ -125,10 +125,11 @@
 //! A glTF file with skins, morph targets or animations is read into a
 //! [`rig::Rig`] as well ([`gltf_rig`]); its mesh is then the rest pose
 //! (skinned by the nodes' rest transforms, the default morph weights
-//! applied). An object with `animation` plays one of its clips: each frame
-//! [`Scene::posed`] gives it the mesh deformed on the CPU at the frame's
-//! time, which the renderer writes over the object's own vertex buffers
-//! (docs/decisions/0049). Objects of one file share its rig.
+//! applied). An object with `animation` plays one of its clips: a renderer
+//! deforms it on the GPU each frame into the object's own vertex buffers
+//! (`exec/deform.rs`, docs/decisions/0053), and [`Scene::posed`] gives
+//! the CPU stages that read vertices (lines, light bounds) the same pose
+//! deformed on the CPU (`rig::Rig::deform`). Objects of one file share its rig.
 
 pub mod anim_sampler;
 mod attributes;
@@ -363,20 +364,24 @@ impl Scene {
     }
 
     /// The scene as it stands at `time_s`: every spinning object's model
-    /// turned to that time, every animated object's mesh deformed to it
-    /// (borrowed unchanged when nothing spins or plays a clip).
+    /// turned to that time, every animated object's mesh deformed to it on
+    /// the CPU (borrowed unchanged when nothing spins or plays a clip).
     pub fn posed(&self, time_s: f64) -> std::borrow::Cow<'_, Scene> {
-        if self
-            .objects
-            .iter()
-            .all(|o| o.spin == glam::Vec3::ZERO && o.animation.is_none())
-        {
+        self.posed_with(time_s, true)
+    }
+
+    /// [`Scene::posed`]; with `deform_meshes` false, animated objects keep
+    /// their rest mesh (a renderer whose passes draw the GPU stage's
+    /// deformation and which has no CPU stage reading vertices: decision 0053).
+    pub fn posed_with(&self, time_s: f64, deform_meshes: bool) -> std::borrow::Cow<'_, Scene> {
+        let moves = |o: &Object| o.spin != glam::Vec3::ZERO || (deform_meshes && o.animation.is_some());
+        if !self.objects.iter().any(moves) {
             return std::borrow::Cow::Borrowed(self);
         }
         let mut posed = self.clone();
         for o in &mut posed.objects {
             o.model = o.model_at(time_s);
-            if let Some(animation) = &o.animation {
+            if let (Some(animation), true) = (&o.animation, deform_meshes) {
                 o.mesh = Arc::new(animation.mesh_at(time_s));
             }
         }

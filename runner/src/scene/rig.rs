@@ -107,6 +107,16 @@ pub struct Rig {
     pub clips: Vec<Clip>,
 }
 
+/// The per-node vectors [`Rig::pose_into`] fills before it composes the
+/// world matrices, kept between frames.
+#[derive(Debug, Clone, Default)]
+pub struct PoseScratch {
+    translation: Vec<Vec3>,
+    rotation: Vec<Quat>,
+    scale: Vec<Vec3>,
+    animated: Vec<bool>,
+}
+
 /// A rig's state at one time: every node's world matrix and morph weights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pose {
@@ -122,11 +132,34 @@ impl Rig {
     /// The pose of clip `clip` at `time_s` seconds into it (clamped to its
     /// keys), or the rest pose for `None`.
     pub fn pose(&self, clip: Option<(usize, f32)>) -> Pose {
-        let mut translation: Vec<Vec3> = self.nodes.iter().map(|n| n.translation).collect();
-        let mut rotation: Vec<Quat> = self.nodes.iter().map(|n| n.rotation).collect();
-        let mut scale: Vec<Vec3> = self.nodes.iter().map(|n| n.scale).collect();
-        let mut animated = vec![false; self.nodes.len()];
-        let mut weights = self.default_weights.clone();
+        let mut pose = Pose {
+            world: Vec::new(),
+            weights: Vec::new(),
+        };
+        self.pose_into(clip, &mut pose, &mut PoseScratch::default());
+        pose
+    }
+
+    /// [`Rig::pose`] into `pose`, reusing its vectors and `scratch`'s: once
+    /// they have grown to the rig's size, a frame's pose allocates nothing
+    /// (the GPU deformation stage poses every animated object every frame).
+    pub fn pose_into(&self, clip: Option<(usize, f32)>, pose: &mut Pose, scratch: &mut PoseScratch) {
+        let PoseScratch {
+            translation,
+            rotation,
+            scale,
+            animated,
+        } = scratch;
+        translation.clear();
+        translation.extend(self.nodes.iter().map(|n| n.translation));
+        rotation.clear();
+        rotation.extend(self.nodes.iter().map(|n| n.rotation));
+        scale.clear();
+        scale.extend(self.nodes.iter().map(|n| n.scale));
+        animated.clear();
+        animated.resize(self.nodes.len(), false);
+        let weights = &mut pose.weights;
+        weights.clone_from(&self.default_weights);
         if let Some(clip) = clip.and_then(|(i, t)| Some((self.clips.get(i)?, t))) {
             let (clip, t) = clip;
             let mut value = [0.0f32; 4];
@@ -156,7 +189,9 @@ impl Rig {
                 }
             }
         }
-        let mut world = vec![Mat4::IDENTITY; self.nodes.len()];
+        let world = &mut pose.world;
+        world.clear();
+        world.resize(self.nodes.len(), Mat4::IDENTITY);
         for &n in &self.order {
             let node = &self.nodes[n];
             let local = if animated[n] {
@@ -169,7 +204,19 @@ impl Rig {
                 None => local,
             };
         }
-        Pose { world, weights }
+    }
+
+    /// Joint `joint` of skin `skin` in `pose`: `world(joint's node) ·
+    /// inverseBind` (glTF §3.7.3); zero for a joint the skin lacks, as
+    /// [`Rig::deform`] takes it.
+    pub fn skin_joint_matrix(&self, skin: usize, joint: usize, pose: &Pose) -> Mat4 {
+        match self.skins.get(skin) {
+            Some(s) => match (s.joints.get(joint), s.inverse_bind.get(joint)) {
+                (Some(&j), Some(ibm)) => pose.world[j] * *ibm,
+                _ => Mat4::ZERO,
+            },
+            None => Mat4::ZERO,
+        }
     }
 
     /// `bind` morphed and skinned (or moved rigidly) by `pose`.

@@ -70,7 +70,8 @@ impl Emitter<'_> {
         w.push_str("struct VertexIn {\n");
         for (loc, a) in attributes.iter().enumerate() {
             let ty = match a {
-                Attribute::Position | Attribute::Normal => "vec3<f32>",
+                // `attributes` lists no previous position (compute passes only).
+                Attribute::Position | Attribute::Normal | Attribute::PreviousPosition => "vec3<f32>",
                 Attribute::Uv => "vec2<f32>",
                 Attribute::Tangent => "vec4<f32>",
                 Attribute::PatchWeight => "f32",
