@@ -8,6 +8,7 @@ mod bundled;
 mod cli;
 mod commands;
 mod describe;
+mod frame_pattern;
 mod frame_range;
 mod live;
 mod lsp;

@@ -331,6 +331,12 @@ pub mod codes {
     /// another size than the others, or holding values outside its kind's
     /// convention (a non-finite or negative depth).
     pub const BAD_INPUT: &str = "E0420";
+    /// A frame of a host input sequence (`--input NAME='beauty/{frame}.png'`,
+    /// `--inputs 'shots/{frame:04}.exr'`) whose file does not exist.
+    pub const INPUT_FRAME_MISSING: &str = "E0421";
+    /// A frame of a host input sequence of another size than the
+    /// sequence's first frame.
+    pub const INPUT_FRAME_SIZE: &str = "E0422";
     /// Warning: a scene binds a per-object value to a name the style does not read per object.
     pub const UNUSED_BINDING: &str = "W0401";
     /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
@@ -460,6 +466,11 @@ pub mod codes {
         (
             BAD_INPUT,
             "host input image missing, unreadable, mis-sized or outside its convention",
+        ),
+        (INPUT_FRAME_MISSING, "a frame of a host input sequence is missing"),
+        (
+            INPUT_FRAME_SIZE,
+            "a frame of a host input sequence differs in size from its first frame",
         ),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),

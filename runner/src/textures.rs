@@ -114,6 +114,36 @@ pub(crate) fn host_inputs(
     Ok(out)
 }
 
+/// Write `host`'s images over the input textures among `textures` in place
+/// (a sequence's next frame), so the bind groups holding them stay valid
+/// and the history goes on. `false`, writing nothing, when an image is not
+/// its texture's size: the textures must then be made anew
+/// ([`host_inputs`]).
+pub(crate) fn write_host_inputs(
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    host: &crate::inputs::HostInputs,
+    textures: &[GpuTexture],
+) -> Result<bool, RunError> {
+    let mut writes = Vec::new();
+    for (i, t) in m.textures.iter().enumerate() {
+        if matches!(t.source, TextureSourceManifest::Input(_)) {
+            let level = host
+                .get(&t.name)
+                .ok_or_else(|| RunError::Textures(vec![(i, missing_input(&t.name, host))]))?;
+            let size = textures[i].texture.size();
+            if (size.width, size.height) != (level.width, level.height) {
+                return Ok(false);
+            }
+            writes.push((i, level));
+        }
+    }
+    for (i, level) in writes {
+        write_levels(queue, &textures[i].texture, std::slice::from_ref(level), false, true);
+    }
+    Ok(true)
+}
+
 /// The `filter_input()` textures of a filter style's manifest for `level`,
 /// by manifest index (a filter renderer moving on to its next level).
 pub(crate) fn filter_inputs(
@@ -219,6 +249,50 @@ pub fn load_object_textures(
         return Err(RunError::User(diags));
     }
     Ok(out)
+}
+
+/// Write `levels` (linear light) over `texture`'s mips: as half floats, or
+/// as 8-bit values (sRGB-encoded when `srgb`).
+fn write_levels(queue: &wgpu::Queue, texture: &wgpu::Texture, levels: &[Level], srgb: bool, half_float: bool) {
+    for (mip, level) in levels.iter().enumerate() {
+        let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
+        let (bytes, bpp): (Vec<u8>, u32) = if half_float {
+            let halves: Vec<u16> = px
+                .iter()
+                .flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits()))
+                .collect();
+            (bytemuck::cast_slice(&halves).to_vec(), 8)
+        } else {
+            let enc = |c: f32| if srgb { crate::srgb::linear_to_srgb(c) } else { c };
+            (
+                px.iter()
+                    .flat_map(|p| {
+                        [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+                    })
+                    .collect(),
+                4,
+            )
+        };
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &bytes,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(lw * bpp),
+                rows_per_image: Some(*lh),
+            },
+            wgpu::Extent3d {
+                width: *lw,
+                height: *lh,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
 }
 
 fn placeholder(device: &wgpu::Device) -> GpuTexture {
@@ -387,45 +461,7 @@ fn load_one(
         wgpu::TextureFormat::Rgba8Unorm
     };
     let texture = device.make_texture(&desc(levels[0].width, levels[0].height, levels.len() as u32, format));
-    for (mip, level) in levels.iter().enumerate() {
-        let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
-        let (bytes, bpp): (Vec<u8>, u32) = if half_float {
-            let halves: Vec<u16> = px
-                .iter()
-                .flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits()))
-                .collect();
-            (bytemuck::cast_slice(&halves).to_vec(), 8)
-        } else {
-            let enc = |c: f32| if srgb { crate::srgb::linear_to_srgb(c) } else { c };
-            (
-                px.iter()
-                    .flat_map(|p| {
-                        [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-                    })
-                    .collect(),
-                4,
-            )
-        };
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: mip as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            &bytes,
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(lw * bpp),
-                rows_per_image: Some(*lh),
-            },
-            wgpu::Extent3d {
-                width: *lw,
-                height: *lh,
-                depth_or_array_layers: 1,
-            },
-        );
-    }
+    write_levels(queue, &texture, &levels, srgb, half_float);
     let address = if t.wrap_repeat {
         wgpu::AddressMode::Repeat
     } else {

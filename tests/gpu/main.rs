@@ -24,6 +24,7 @@ mod gradient_ramp;
 mod halftone_tone;
 mod history;
 mod host_inputs;
+mod input_sequences;
 mod lines_classify;
 mod lines_pass;
 mod lsa_gbuffer_precision;

@@ -171,11 +171,16 @@ impl Renderer {
         Self::build(device, queue, program, scene, None, inputs)
     }
 
-    /// The next frame's host inputs (a sequence): the input textures are
-    /// replaced, the pipelines stay, and the size-dependent resources are
-    /// rebuilt at the next frame, since their bind groups hold the old
-    /// textures.
+    /// The next frame's host inputs (a sequence). Of the size of the
+    /// last ones, they are written over the input textures in place: the
+    /// history goes on (`previous(...)` reads the frame before). Of
+    /// another size, the input textures are made anew, the pipelines stay,
+    /// and the size-dependent resources are rebuilt at the next frame,
+    /// since their bind groups hold the old textures.
     pub fn set_inputs(&mut self, inputs: &crate::inputs::HostInputs) -> Result<(), RunError> {
+        if textures::write_host_inputs(&self.queue, &self.manifest, inputs, &self.textures)? {
+            return Ok(());
+        }
         for (i, texture) in textures::host_inputs(&self.device, &self.queue, &self.manifest, inputs)? {
             self.textures[i] = texture;
         }
