@@ -384,6 +384,18 @@ pub mod codes {
     /// for a mesh without UVs, or a mesh whose vertices the runtime derives
     /// itself (an animated primitive, a patch of a patched surface).
     pub const BAD_MESH_UPDATE: &str = "E0603";
+    /// A host application gave `StyleRuntime::set_input` a name the style
+    /// declares no `input(...)` texture of.
+    pub const UNKNOWN_HOST_INPUT: &str = "E0604";
+    /// A host application gave `StyleRuntime::set_input` a texture view the
+    /// input cannot be read from (not 2D, one layer, mip and sample; no
+    /// `TEXTURE_BINDING`; a format not read as floats), or a convention
+    /// not of the input's kind.
+    pub const BAD_HOST_INPUT: &str = "E0605";
+    /// A host input of another size than the target a frame renders into.
+    pub const HOST_INPUT_SIZE: &str = "E0606";
+    /// A frame of a style that reads a host input the host has not given.
+    pub const MISSING_HOST_INPUT: &str = "E0607";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -490,5 +502,12 @@ pub mod codes {
         (UNKNOWN_MESH, "a host used a mesh handle that was removed"),
         (BAD_RENDER_TARGET, "a host's texture view the style cannot render into"),
         (BAD_MESH_UPDATE, "a host's deformed vertices do not fit the mesh"),
+        (UNKNOWN_HOST_INPUT, "a host gave an input the style does not declare"),
+        (
+            BAD_HOST_INPUT,
+            "a host's input view or convention the input cannot be read from",
+        ),
+        (HOST_INPUT_SIZE, "a host's input of another size than the target"),
+        (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
     ];
 }

@@ -208,7 +208,7 @@ impl InputFrames {
             let Some((want, first_file)) = self
                 .first
                 .get(name)
-                .map(|l| (l.width, l.height))
+                .map(|l| (l.raw.width, l.raw.height))
                 .zip(self.first_files.get(name))
             else {
                 continue;
@@ -276,7 +276,7 @@ impl InputFrames {
             if pattern.has_frame() && !path.is_file() {
                 return Err(missing_frame(name, pattern, frame, &[frame], &[frame]));
             }
-            let (raw, source) = match from {
+            let (raw, source, unorm) = match from {
                 Origin::File(_) | Origin::Missing => files::single_file(name, *kind, &path)?,
                 Origin::Layer(layer) => {
                     if exr.as_ref().is_none_or(|(p, _)| *p != path) {
@@ -286,16 +286,16 @@ impl InputFrames {
                     let raw = files::exr_layer(name, &path.display().to_string(), *kind, channels, layer)?;
                     let blender =
                         files::blender_layer(*kind).is_some_and(|b| layer == b || layer.ends_with(&format!(".{b}")));
-                    (raw, files::file_convention(*kind, true, blender))
+                    (raw, files::file_convention(*kind, true, blender), false)
                 }
             };
             let shown = path.display().to_string();
-            let level = inputs::convert(name, &shown, *kind, source, &raw, pose.as_ref())?;
-            let size = (level.width, level.height);
+            let level = inputs::prepare(name, &shown, *kind, source, raw, pose.as_ref(), unorm)?;
+            let size = (level.raw.width, level.raw.height);
             // A sequence's frame against its first (E0422), then against
             // the frame's other inputs (E0420).
             if let Some((first_level, first_file)) = self.first.get(name).zip(self.first_files.get(name)) {
-                let want = (first_level.width, first_level.height);
+                let want = (first_level.raw.width, first_level.raw.height);
                 if size != want {
                     return Err(frame_of_another_size(
                         name,

@@ -18,6 +18,7 @@ mod compute_pixels;
 mod compute_samples;
 mod device_needs;
 mod dynamic_patterns;
+mod embed_inputs;
 mod golden_images;
 mod gpu_errors;
 mod gradient_ramp;

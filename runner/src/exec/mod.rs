@@ -178,7 +178,7 @@ impl Renderer {
     /// and the size-dependent resources are rebuilt at the next frame,
     /// since their bind groups hold the old textures.
     pub fn set_inputs(&mut self, inputs: &crate::inputs::HostInputs) -> Result<(), RunError> {
-        if textures::write_host_inputs(&self.queue, &self.manifest, inputs, &self.textures)? {
+        if textures::write_host_inputs(&self.device, &self.queue, &self.manifest, inputs, &self.textures)? {
             return Ok(());
         }
         for (i, texture) in textures::host_inputs(&self.device, &self.queue, &self.manifest, inputs)? {
@@ -186,6 +186,16 @@ impl Renderer {
         }
         self.sized = None;
         Ok(())
+    }
+
+    /// The texture a host input `name` is converted into (`input(...)`),
+    /// of the inputs' size: what `embed` draws a host's views into.
+    pub fn input_texture(&self, name: &str) -> Option<&wgpu::Texture> {
+        self.manifest
+            .textures
+            .iter()
+            .position(|t| t.name == name && matches!(t.source, TextureSourceManifest::Input(_)))
+            .map(|i| &self.textures[i].texture)
     }
 
     /// A renderer of an art-map's filter style, whose `filter_input()` is

@@ -175,7 +175,9 @@ pub fn file_convention(kind: InputKind, exr: bool, blender_normals: bool) -> Sou
 
 /// One input from its own file: an EXR's un-prefixed channels (or its one
 /// layer), or any image npr reads as a texture (PNG).
-pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, SourceConvention), Diagnostic> {
+/// Also says whether the file holds normalized integers (a PNG: normals in
+/// it are stored as n·0.5 + 0.5).
+pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, SourceConvention, bool), Diagnostic> {
     let file = path.display().to_string();
     let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     if is_exr {
@@ -188,7 +190,7 @@ pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, S
         };
         let blender = blender_layer(kind).is_some_and(|b| layer == b || layer.ends_with(&format!(".{b}")));
         let level = exr_layer(name, &file, kind, &exr, &layer)?;
-        return Ok((level, file_convention(kind, true, blender)));
+        return Ok((level, file_convention(kind, true, blender), false));
     }
     let img = crate::texture_file::read(path)
         .map_err(|e| bad_input(name, &file, texture_error(e), "give a PNG or EXR image"))?;
@@ -197,7 +199,11 @@ pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, S
     let pixels = rgba.pixels().map(|p| p.0).collect();
     // 16- and 32-bit float images are linear; 8- and 16-bit integer ones sRGB.
     let float = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
-    Ok((Level { width, height, pixels }, file_convention(kind, float, false)))
+    Ok((
+        Level { width, height, pixels },
+        file_convention(kind, float, false),
+        !float,
+    ))
 }
 
 /// The size of input `name`'s file `path` from its header alone: a
