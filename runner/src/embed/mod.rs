@@ -61,7 +61,9 @@
 //! **Mistakes are values.** A removed mesh handle (E0601), an unknown
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
 //! of the wrong format or size (E0602), deformed vertices that do not fit
-//! their mesh (E0603): every call returns an
+//! their mesh (E0603), a host input the style does not declare, cannot
+//! read, of another size than the target or not given (E0604-E0607):
+//! every call returns an
 //! [`EmbedError`] with a code, and leaves the runtime as it was.
 //!
 //! - `meshes.rs`: the generational mesh table (with what a mesh draws
@@ -71,6 +73,8 @@
 //! - `params.rs`: setting style parameters by name;
 //! - `patched.rs`: a host's mesh divided into blended patches;
 //! - `deform.rs`: a host's deformed vertices ([`Deformed`]), checked;
+//! - `inputs.rs`: the host's own images as the style's inputs
+//!   ([`StyleRuntime::set_input`]), converted on the GPU every frame;
 //! - `present.rs`: target checks and the present pass;
 //! - `error.rs`: [`EmbedError`].
 //!
