@@ -9,6 +9,7 @@ mod cli;
 mod commands;
 mod describe;
 mod exit;
+mod frame_pattern;
 mod frame_range;
 mod live;
 mod lsp;

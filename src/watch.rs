@@ -103,7 +103,7 @@ fn once(args: &WatchArgs, gpu: &npr_runner::Gpu, printer: &Printer, last_good: &
         Some((args.out.as_path(), crate::commands::frame_sink::OutputKind::Image)),
         None,
         None,
-        &npr_runner::inputs::HostInputs::new(),
+        &crate::commands::render_inputs::InputFrames::none(),
     );
     let rendered = gpu
         .watch

@@ -331,6 +331,12 @@ pub mod codes {
     /// another size than the others, or holding values outside its kind's
     /// convention (a non-finite or negative depth).
     pub const BAD_INPUT: &str = "E0420";
+    /// A frame of a host input sequence (`--input NAME='beauty/{frame}.png'`,
+    /// `--inputs 'shots/{frame:04}.exr'`) whose file does not exist.
+    pub const INPUT_FRAME_MISSING: &str = "E0421";
+    /// A frame of a host input sequence of another size than the
+    /// sequence's first frame.
+    pub const INPUT_FRAME_SIZE: &str = "E0422";
     /// Warning: a scene binds a per-object value to a name the style does not read per object.
     pub const UNUSED_BINDING: &str = "W0401";
     /// Warning: a `render(tag)` or `compute(domain, tag)` pass whose tag no object of the scene has.
@@ -378,6 +384,18 @@ pub mod codes {
     /// for a mesh without UVs, or a mesh whose vertices the runtime derives
     /// itself (an animated primitive, a patch of a patched surface).
     pub const BAD_MESH_UPDATE: &str = "E0603";
+    /// A host application gave `StyleRuntime::set_input` a name the style
+    /// declares no `input(...)` texture of.
+    pub const UNKNOWN_HOST_INPUT: &str = "E0604";
+    /// A host application gave `StyleRuntime::set_input` a texture view the
+    /// input cannot be read from (not 2D, one layer, mip and sample; no
+    /// `TEXTURE_BINDING`; a format not read as floats), or a convention
+    /// not of the input's kind.
+    pub const BAD_HOST_INPUT: &str = "E0605";
+    /// A host input of another size than the target a frame renders into.
+    pub const HOST_INPUT_SIZE: &str = "E0606";
+    /// A frame of a style that reads a host input the host has not given.
+    pub const MISSING_HOST_INPUT: &str = "E0607";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -461,6 +479,11 @@ pub mod codes {
             BAD_INPUT,
             "host input image missing, unreadable, mis-sized or outside its convention",
         ),
+        (INPUT_FRAME_MISSING, "a frame of a host input sequence is missing"),
+        (
+            INPUT_FRAME_SIZE,
+            "a frame of a host input sequence differs in size from its first frame",
+        ),
         (UNUSED_BINDING, "scene binding the style does not read (warning)"),
         (ABSENT_TAG, "pass over a tag no object has (warning)"),
         (USAGE, "command line does not parse"),
@@ -479,5 +502,12 @@ pub mod codes {
         (UNKNOWN_MESH, "a host used a mesh handle that was removed"),
         (BAD_RENDER_TARGET, "a host's texture view the style cannot render into"),
         (BAD_MESH_UPDATE, "a host's deformed vertices do not fit the mesh"),
+        (UNKNOWN_HOST_INPUT, "a host gave an input the style does not declare"),
+        (
+            BAD_HOST_INPUT,
+            "a host's input view or convention the input cannot be read from",
+        ),
+        (HOST_INPUT_SIZE, "a host's input of another size than the target"),
+        (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
     ];
 }

@@ -4,6 +4,7 @@
 
 use crate::artmap::{ArtmapBuild, Level};
 use crate::gpu_count::Create;
+use crate::inputs::gpu::Converter;
 use crate::scene::Scene;
 use crate::texgen;
 use crate::RunError;
@@ -42,19 +43,22 @@ pub fn load_all(
     let mut out = Vec::new();
     let mut diags = Vec::new();
     let mut builds = Vec::new();
+    let mut converter: Option<Converter> = None;
     for (i, t) in m.textures.iter().enumerate() {
-        let given = match &t.source {
-            TextureSourceManifest::Input(_) => match host.get(&t.name) {
-                Some(level) => Some(level),
+        if matches!(t.source, TextureSourceManifest::Input(_)) {
+            match host.get(&t.name) {
+                Some(image) => {
+                    let converter = converter.get_or_insert_with(|| Converter::new(device));
+                    out.push(input_texture(device, queue, converter, t, image));
+                }
                 None => {
                     diags.push((i, missing_input(&t.name, host)));
                     out.push(placeholder(device));
-                    continue;
                 }
-            },
-            _ => input,
-        };
-        match load_one(device, queue, t, given, files, &mut builds) {
+            }
+            continue;
+        }
+        match load_one(device, queue, t, input, files, &mut builds) {
             Ok(g) => out.push(g),
             Err(d) => {
                 diags.push((i, d));
@@ -96,15 +100,12 @@ pub(crate) fn host_inputs(
 ) -> Result<Vec<(usize, GpuTexture)>, RunError> {
     let mut out = Vec::new();
     let mut diags = Vec::new();
+    let converter = Converter::new(device);
     for (i, t) in m.textures.iter().enumerate() {
         if matches!(t.source, TextureSourceManifest::Input(_)) {
-            let loaded = match host.get(&t.name) {
-                Some(level) => load_one(device, queue, t, Some(level), &EmbeddedFiles::new(), &mut Vec::new()),
-                None => Err(missing_input(&t.name, host)),
-            };
-            match loaded {
-                Ok(g) => out.push((i, g)),
-                Err(d) => diags.push((i, d)),
+            match host.get(&t.name) {
+                Some(image) => out.push((i, input_texture(device, queue, &converter, t, image))),
+                None => diags.push((i, missing_input(&t.name, host))),
             }
         }
     }
@@ -112,6 +113,64 @@ pub(crate) fn host_inputs(
         return Err(RunError::Textures(diags));
     }
     Ok(out)
+}
+
+/// Write `host`'s images over the input textures among `textures` in place
+/// (a sequence's next frame), so the bind groups holding them stay valid
+/// and the history goes on. `false`, writing nothing, when an image is not
+/// its texture's size: the textures must then be made anew
+/// ([`host_inputs`]).
+pub(crate) fn write_host_inputs(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    m: &Manifest,
+    host: &crate::inputs::HostInputs,
+    textures: &[GpuTexture],
+) -> Result<bool, RunError> {
+    let mut writes = Vec::new();
+    for (i, t) in m.textures.iter().enumerate() {
+        if matches!(t.source, TextureSourceManifest::Input(_)) {
+            let image = host
+                .get(&t.name)
+                .ok_or_else(|| RunError::Textures(vec![(i, missing_input(&t.name, host))]))?;
+            let size = textures[i].texture.size();
+            if (size.width, size.height) != (image.raw.width, image.raw.height) {
+                return Ok(false);
+            }
+            writes.push((i, image));
+        }
+    }
+    if !writes.is_empty() {
+        let converter = Converter::new(device);
+        for (i, image) in writes {
+            crate::inputs::gpu::convert_level(
+                device,
+                queue,
+                &converter,
+                &image.raw,
+                &image.conversion,
+                &textures[i].texture,
+            );
+        }
+    }
+    Ok(true)
+}
+
+/// Input `t`'s texture: `image` drawn in the language's convention by the
+/// one conversion (`inputs::gpu`).
+fn input_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    converter: &Converter,
+    t: &TextureManifest,
+    image: &crate::inputs::HostImage,
+) -> GpuTexture {
+    let texture = crate::inputs::gpu::input_texture(device, &t.name, image.raw.width, image.raw.height);
+    crate::inputs::gpu::convert_level(device, queue, converter, &image.raw, &image.conversion, &texture);
+    GpuTexture {
+        texture,
+        sampler: sampler(device, t),
+    }
 }
 
 /// The `filter_input()` textures of a filter style's manifest for `level`,
@@ -219,6 +278,78 @@ pub fn load_object_textures(
         return Err(RunError::User(diags));
     }
     Ok(out)
+}
+
+/// Write `levels` (linear light) over `texture`'s mips: as half floats, or
+/// as 8-bit values (sRGB-encoded when `srgb`).
+fn write_levels(queue: &wgpu::Queue, texture: &wgpu::Texture, levels: &[Level], srgb: bool, half_float: bool) {
+    for (mip, level) in levels.iter().enumerate() {
+        let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
+        let (bytes, bpp): (Vec<u8>, u32) = if half_float {
+            let halves: Vec<u16> = px
+                .iter()
+                .flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits()))
+                .collect();
+            (bytemuck::cast_slice(&halves).to_vec(), 8)
+        } else {
+            let enc = |c: f32| if srgb { crate::srgb::linear_to_srgb(c) } else { c };
+            (
+                px.iter()
+                    .flat_map(|p| {
+                        [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+                    })
+                    .collect(),
+                4,
+            )
+        };
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &bytes,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(lw * bpp),
+                rows_per_image: Some(*lh),
+            },
+            wgpu::Extent3d {
+                width: *lw,
+                height: *lh,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+}
+
+/// The sampler texture `t` declares (wrap and filter).
+fn sampler(device: &wgpu::Device, t: &TextureManifest) -> wgpu::Sampler {
+    let address = if t.wrap_repeat {
+        wgpu::AddressMode::Repeat
+    } else {
+        wgpu::AddressMode::ClampToEdge
+    };
+    let filter = if t.filter_linear {
+        wgpu::FilterMode::Linear
+    } else {
+        wgpu::FilterMode::Nearest
+    };
+    device.make_sampler(&wgpu::SamplerDescriptor {
+        label: Some(&t.name),
+        address_mode_u: address,
+        address_mode_v: address,
+        address_mode_w: address,
+        mag_filter: filter,
+        min_filter: filter,
+        mipmap_filter: if t.filter_linear {
+            wgpu::MipmapFilterMode::Linear
+        } else {
+            wgpu::MipmapFilterMode::Nearest
+        },
+        ..Default::default()
+    })
 }
 
 fn placeholder(device: &wgpu::Device) -> GpuTexture {
@@ -356,15 +487,11 @@ fn load_one(
             ((*levels).clone(), false, true)
         }
         TextureSourceManifest::Input(_) => {
-            // Half floats, as a filter's level: depth keeps 11 significant
-            // bits (5 mm at 10 m), an id is exact up to 2048.
-            let level = input.ok_or_else(|| {
-                Diagnostic::error(
-                    npr_diag::codes::INTERNAL,
-                    format!("texture `{}` is a host input, but no image was given", t.name),
-                )
-            })?;
-            (vec![level.clone()], false, true)
+            // Converted by `input_texture`, never loaded as a file.
+            return Err(Diagnostic::error(
+                npr_diag::codes::INTERNAL,
+                format!("texture `{}` is a host input, loaded as a file", t.name),
+            ));
         }
         TextureSourceManifest::FilterInput => {
             let level = input.ok_or_else(|| {
@@ -384,68 +511,7 @@ fn load_one(
         wgpu::TextureFormat::Rgba8Unorm
     };
     let texture = device.make_texture(&desc(levels[0].width, levels[0].height, levels.len() as u32, format));
-    for (mip, level) in levels.iter().enumerate() {
-        let (px, lw, lh) = (&level.pixels, &level.width, &level.height);
-        let (bytes, bpp): (Vec<u8>, u32) = if half_float {
-            let halves: Vec<u16> = px
-                .iter()
-                .flat_map(|p| p.map(|c| half::f16::from_f32(c).to_bits()))
-                .collect();
-            (bytemuck::cast_slice(&halves).to_vec(), 8)
-        } else {
-            let enc = |c: f32| if srgb { crate::srgb::linear_to_srgb(c) } else { c };
-            (
-                px.iter()
-                    .flat_map(|p| {
-                        [enc(p[0]), enc(p[1]), enc(p[2]), p[3]].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-                    })
-                    .collect(),
-                4,
-            )
-        };
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: mip as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            &bytes,
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(lw * bpp),
-                rows_per_image: Some(*lh),
-            },
-            wgpu::Extent3d {
-                width: *lw,
-                height: *lh,
-                depth_or_array_layers: 1,
-            },
-        );
-    }
-    let address = if t.wrap_repeat {
-        wgpu::AddressMode::Repeat
-    } else {
-        wgpu::AddressMode::ClampToEdge
-    };
-    let filter = if t.filter_linear {
-        wgpu::FilterMode::Linear
-    } else {
-        wgpu::FilterMode::Nearest
-    };
-    let sampler = device.make_sampler(&wgpu::SamplerDescriptor {
-        label: Some(&t.name),
-        address_mode_u: address,
-        address_mode_v: address,
-        address_mode_w: address,
-        mag_filter: filter,
-        min_filter: filter,
-        mipmap_filter: if t.filter_linear {
-            wgpu::MipmapFilterMode::Linear
-        } else {
-            wgpu::MipmapFilterMode::Nearest
-        },
-        ..Default::default()
-    });
+    write_levels(queue, &texture, &levels, srgb, half_float);
+    let sampler = sampler(device, t);
     Ok(GpuTexture { texture, sampler })
 }

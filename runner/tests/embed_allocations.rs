@@ -277,3 +277,74 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
         "the host's view differs from npr render's output"
     );
 }
+
+/// A style over a host's G-buffer (`examples/post/ink_over.npr`): each frame
+/// the host gives its colour, reverse-Z depth and world normals again (the
+/// same views) and the camera moves, so the normals' conversion into view
+/// space changes every frame; converting them creates nothing. A new size
+/// (new views, a new target) makes the input textures anew, then steady again.
+#[test]
+fn a_style_over_host_inputs_allocates_nothing_per_frame() {
+    use npr_runner::inputs::{ColorEncoding, DepthConvention, NormalConvention, SourceConvention};
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("post/ink_over.npr")).expect("runtime");
+    let image = |format: wgpu::TextureFormat, (w, h): (u32, u32)| {
+        gpu().device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("host G-buffer"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+    };
+    let views = |size: (u32, u32)| {
+        [
+            wgpu::TextureFormat::Rgba16Float,
+            wgpu::TextureFormat::Depth32Float,
+            wgpu::TextureFormat::Rgba16Float,
+        ]
+        .map(|f| image(f, size).create_view(&Default::default()))
+    };
+    let give = |runtime: &mut StyleRuntime, [colour, depth, normal]: &[wgpu::TextureView; 3]| {
+        runtime
+            .set_input("color_in", colour, SourceConvention::Color(ColorEncoding::Linear))
+            .expect("colour");
+        runtime
+            .set_input(
+                "depth_in",
+                depth,
+                SourceConvention::Depth(DepthConvention::ReverseZ { near: 0.1 }),
+            )
+            .expect("depth");
+        runtime
+            .set_input("normal_in", normal, SourceConvention::Normal(NormalConvention::World))
+            .expect("normal");
+    };
+    let run = |runtime: &mut StyleRuntime, frames: std::ops::Range<u32>, size: (u32, u32), what: &str| {
+        let inputs = views(size);
+        let texture = target(size.0, size.1);
+        let view = texture.create_view(&Default::default());
+        // The first frame at this size makes what the size needs.
+        give(runtime, &inputs);
+        frame(runtime, &[], frames.start, &view);
+        let before = created_on_this_thread();
+        for k in frames.start + 1..frames.end {
+            give(runtime, &inputs);
+            frame(runtime, &[], k, &view);
+        }
+        let after = created_on_this_thread();
+        assert_eq!(
+            after, before,
+            "{what}: frames created GPU objects: {before:?} → {after:?}"
+        );
+    };
+    run(&mut runtime, 0..6, (64, 48), "ink over inputs");
+    run(&mut runtime, 6..10, (80, 60), "ink over inputs at a new size");
+    assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
+}

@@ -3,13 +3,14 @@
 //! layer of one EXR per frame (`--layers`), or one video of the sequence
 //! (`.mp4`, `.webm`, `.gif`; `video.rs`).
 //!
-//! [`check`] refuses a bad combination (E0502) or an extension npr does not
+//! [`check`] refuses a bad combination or a bad `{frame}` pattern (E0502) or an extension npr does not
 //! write (E0503) before anything is compiled or rendered, and a video
 //! whose encoder is missing (E0511), so a
 //! long render never fails at its end for an output it could not write.
 
 use crate::commands::dump::read_all_targets;
 use crate::exit::EXIT_USER;
+use crate::frame_pattern::FramePattern;
 use crate::printer::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_runner::scene::Scene;
@@ -32,6 +33,9 @@ fn extension(out: &Path) -> String {
 
 /// The kind of output `out` is, or why it cannot be one.
 pub(crate) fn check(out: &Path, layers: bool, sequence: bool) -> Result<OutputKind, Diagnostic> {
+    FramePattern::parse_path(out).map_err(|e| {
+        Diagnostic::error(codes::BAD_ARGUMENT_VALUE, format!("-o: {e}")).with_help(crate::frame_pattern::FORMS)
+    })?;
     let ext = extension(out);
     if let Some(container) = crate::video::Container::from_extension(&ext) {
         if layers {
@@ -80,12 +84,12 @@ pub(crate) fn check_or_exit(
     }
 }
 
-/// The file frame `frame` of a sequence is written to: `{frame}` in `out`
-/// replaced by the frame number, or `_NNNN` appended to its stem.
+/// The file frame `frame` of a sequence is written to: each `{frame}` or
+/// `{frame:0N}` in `out` replaced by the frame number (`crate::frame_pattern`),
+/// or, without one, `_NNNN` appended to its stem.
 pub(crate) fn frame_path(out: &Path, frame: u32) -> PathBuf {
-    let s = out.to_string_lossy();
-    if s.contains("{frame}") {
-        return PathBuf::from(s.replace("{frame}", &format!("{frame:04}")));
+    if let Some(pattern) = FramePattern::parse_path(out).ok().filter(FramePattern::has_frame) {
+        return pattern.path(frame);
     }
     let stem = out
         .file_stem()

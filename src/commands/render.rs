@@ -6,7 +6,7 @@ use crate::cli::RenderArgs;
 use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::{dump_all_targets, read_all_targets};
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
-use crate::commands::render_inputs::{self, InputArgs};
+use crate::commands::render_inputs::{self, InputArgs, InputFrames};
 use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
 use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
 use npr_compiler::CompileOptions;
@@ -168,16 +168,6 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 .with_help("give the scene its render passes draw: `--scene scene.toml`"),
         );
     }
-    // Host inputs, read and converted before anything renders.
-    let camera = scene_path.as_ref().map(|_| scene.camera.pose(time));
-    let host = match render_inputs::load(&program.manifest, &input_args, camera.as_ref()) {
-        Ok(h) => h,
-        Err(d) => return printer.fail(d),
-    };
-    let size = match render_inputs::frame_size(&host, size) {
-        Ok(s) => s,
-        Err(d) => return printer.fail(d),
-    };
     let request = match frames {
         Some((start, end)) => FrameRequest::Range { start, end },
         None => FrameRequest::At { time_s: time },
@@ -186,6 +176,20 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     if let Err(code) = printer.check(crate::args::check_frame_count(count as usize)) {
         return code;
     }
+    // Host inputs, read and converted (those of the first frame to render,
+    // for a sequence) before anything renders.
+    let first = npr_runner::schedule::schedule(request, fps, program.manifest.is_path_dependent())
+        .first()
+        .map_or((0, time), |f| (f.frame, f.time_s));
+    let camera = scene_path.as_ref().map(|_| &scene.camera);
+    let host = match InputFrames::new(&program.manifest, &input_args, camera, first.0, first.1) {
+        Ok(h) => h,
+        Err(d) => return printer.fail(d),
+    };
+    let size = match render_inputs::frame_size(host.first(), size) {
+        Ok(s) => s,
+        Err(d) => return printer.fail(d),
+    };
     // Exactly what this style needs of the device (`Manifest::device_needs`).
     let gpu = match style_gpu(&program.manifest, printer) {
         Ok(g) => g,
@@ -248,9 +252,9 @@ pub(crate) fn render(
     out: Option<(&Path, OutputKind)>,
     dump: Option<&Path>,
     checkpoints: Option<(&Path, Option<u32>)>,
-    inputs: &npr_runner::inputs::HostInputs,
+    inputs: &InputFrames,
 ) -> Result<(), RunError> {
-    let mut r = Renderer::new_with_inputs(&gpu.device, &gpu.queue, program, scene, inputs)?;
+    let mut r = Renderer::new_with_inputs(&gpu.device, &gpu.queue, program, scene, inputs.first())?;
     crate::printer::artmap_notes(r.artmap_builds());
     let io = |e: std::io::Error, p: &Path| RunError::User(vec![cannot_write(p, e)]);
     let request = match frames {
@@ -276,6 +280,12 @@ pub(crate) fn render(
         }
         (None, _) => None,
     };
+    // A sequence's missing frames and sizes, before the first is rendered.
+    let user = |d| RunError::User(vec![d]);
+    if inputs.is_sequence() {
+        let frames: Vec<u32> = schedule.iter().map(|f| f.frame).collect();
+        inputs.check_frames(&frames).map_err(user)?;
+    }
     let replayed = schedule.iter().filter(|f| !f.write).count();
     if replayed > 0 {
         eprintln!(
@@ -300,6 +310,11 @@ pub(crate) fn render(
     };
     for scheduled in &schedule {
         let frame = scheduled.frame;
+        // Every input of the frame read before it renders: a frame is
+        // written only from inputs that all loaded.
+        if let Some(next) = inputs.frame(frame, scheduled.time_s).map_err(user)? {
+            r.set_inputs(&next)?;
+        }
         r.render(
             scene,
             &FrameSpec {

@@ -6,6 +6,7 @@ use super::{check, check_case, style, SIMPLE_PASS};
 use npr_compiler::CompileOptions;
 use npr_diag::SourceMap;
 use npr_runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::inputs::{ColorEncoding, DepthConvention, SourceConvention};
 use npr_runner::scene::{primitives, Camera};
 use std::path::Path;
 use std::sync::OnceLock;
@@ -163,4 +164,98 @@ fn set_param_mistakes_are_the_codes_of_set() {
         "E0203_set_param",
         rendered(rt.set_param("bands", "9").expect_err("out of range")),
     );
+}
+
+/// A style over a colour and a depth input.
+const INPUTS: &str = "texture c = input(color, linear)\ntexture z = input(depth)\n\
+    pass p: image() {\n  out o: rgba8unorm = vec4(c.rgb * z.r, 1.0)\n}\noutput p.o\n";
+
+/// A host's image of `size`, `format`, sampled by the style.
+fn host_image(format: wgpu::TextureFormat, (width, height): (u32, u32)) -> wgpu::Texture {
+    gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    })
+}
+
+const LINEAR: SourceConvention = SourceConvention::Color(ColorEncoding::Linear);
+const DISTANCE: SourceConvention = SourceConvention::Depth(DepthConvention::CYCLES);
+
+#[test]
+fn e0604_an_input_the_style_does_not_have() {
+    let mut rt = runtime(&style(INPUTS));
+    let colour = host_image(wgpu::TextureFormat::Rgba16Float, (16, 16));
+    let e = rt
+        .set_input("colour", &colour.create_view(&Default::default()), LINEAR)
+        .expect_err("no such input");
+    let (d, r) = rendered(e);
+    assert!(
+        r.contains("did you mean `c`?") || r.contains("the style's inputs are: c, z"),
+        "{r}"
+    );
+    check("E0604", (d, r));
+}
+
+#[test]
+fn e0605_a_view_or_convention_the_input_cannot_be_read_from() {
+    let mut rt = runtime(&style(INPUTS));
+    // A depth image described as colour.
+    let depth = host_image(wgpu::TextureFormat::R32Float, (16, 16));
+    let e = rt
+        .set_input("z", &depth.create_view(&Default::default()), LINEAR)
+        .expect_err("colour convention for depth");
+    check("E0605", rendered(e));
+    // An integer format, which the GPU does not read as floats.
+    let ids = host_image(wgpu::TextureFormat::R32Uint, (16, 16));
+    let e = rt
+        .set_input("z", &ids.create_view(&Default::default()), DISTANCE)
+        .expect_err("an integer format");
+    check_case("E0605", "E0605_integer_format", rendered(e));
+    // An sRGB texture said to hold sRGB values: the GPU decodes it when read.
+    let srgb = host_image(wgpu::TextureFormat::Rgba8UnormSrgb, (16, 16));
+    let e = rt
+        .set_input(
+            "c",
+            &srgb.create_view(&Default::default()),
+            SourceConvention::Color(ColorEncoding::Srgb),
+        )
+        .expect_err("sRGB twice");
+    check_case("E0605", "E0605_srgb", rendered(e));
+}
+
+#[test]
+fn e0606_inputs_of_another_size_than_the_target() {
+    let mut rt = runtime(&style(INPUTS));
+    let colour = host_image(wgpu::TextureFormat::Rgba16Float, (16, 16));
+    let depth = host_image(wgpu::TextureFormat::R32Float, (8, 8));
+    rt.set_input("c", &colour.create_view(&Default::default()), LINEAR)
+        .expect("colour");
+    rt.set_input("z", &depth.create_view(&Default::default()), DISTANCE)
+        .expect("depth");
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let e = render(&mut rt, &[], &target.create_view(&Default::default())).expect_err("8x8 depth, 16x16 target");
+    let (d, r) = rendered(e);
+    assert!(r.contains("`z`") && r.contains("8x8") && r.contains("16x16"), "{r}");
+    check("E0606", (d, r));
+}
+
+#[test]
+fn e0607_an_input_the_host_did_not_give() {
+    let mut rt = runtime(&style(INPUTS));
+    let colour = host_image(wgpu::TextureFormat::Rgba16Float, (16, 16));
+    rt.set_input("c", &colour.create_view(&Default::default()), LINEAR)
+        .expect("colour");
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let e = render(&mut rt, &[], &target.create_view(&Default::default())).expect_err("no depth given");
+    check("E0607", rendered(e));
 }

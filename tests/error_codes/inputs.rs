@@ -117,3 +117,62 @@ fn a_host_input_is_not_a_per_object_texture() {
     );
     check_case("E0103", "E0103_input_per_object", (d, r));
 }
+
+/// A two-frame sequence `b_0000.png`, `b_0001.png` of `sizes`, and one depth
+/// file for all frames; the `--input` arguments naming them.
+fn sequence(dir: &Path, sizes: [(u32, u32); 2]) -> [String; 2] {
+    for (frame, size) in sizes.into_iter().enumerate() {
+        png(dir, &format!("b_{frame:04}.png"), size);
+    }
+    [
+        format!("beauty={}", dir.join("b_{frame}.png").display()),
+        format!("z={}", exr(dir, "z.exr", (8, 8), |_, _| 2.0)),
+    ]
+}
+
+#[test]
+fn e0421_a_frame_of_an_input_sequence_is_missing() {
+    let dir = scratch("e0421");
+    let style = style_file(&dir, TWO_INPUTS);
+    let [beauty, z] = sequence(&dir, [(8, 8), (8, 8)]);
+    let out = dir.join("out_{frame}.png").display().to_string();
+    let args = [
+        "render", &style, "--input", &beauty, "--input", &z, "--frames", "0..4", "-o", &out,
+    ];
+    let (d, r) = cli_errors(&args, &dir);
+    assert!(
+        r.contains("`beauty`") && r.contains("b_0002.png") && r.contains("2, 3"),
+        "{r}"
+    );
+    // Found before the first frame: nothing was written.
+    assert!(!dir.join("out_0000.png").exists(), "a frame was written: {r}");
+    check("E0421", (d, r));
+}
+
+#[test]
+fn e0422_a_frame_of_another_size_than_the_first() {
+    let dir = scratch("e0422");
+    let style = style_file(&dir, TWO_INPUTS);
+    let [beauty, z] = sequence(&dir, [(8, 8), (8, 6)]);
+    let out = dir.join("out_{frame}.png").display().to_string();
+    let args = [
+        "render", &style, "--input", &beauty, "--input", &z, "--frames", "0..2", "-o", &out,
+    ];
+    let (d, r) = cli_errors(&args, &dir);
+    assert!(
+        r.contains("frame 1") && r.contains("8x6") && r.contains("b_0000.png"),
+        "{r}"
+    );
+    assert!(!dir.join("out_0000.png").exists(), "a frame was written: {r}");
+    check("E0422", (d, r));
+}
+
+#[test]
+fn e0502_an_input_pattern_that_is_not_a_frame_number() {
+    let dir = scratch("e0502_pattern");
+    let style = style_file(&dir, TWO_INPUTS);
+    let beauty = format!("beauty={}", dir.join("b_{frame:4}.png").display());
+    let (d, r) = cli_errors(&["render", &style, "--input", &beauty, "--frames", "0..2"], &dir);
+    assert!(r.contains("{frame:4}") && r.contains("{frame:0N}"), "{r}");
+    check_case("E0502", "E0502_input_pattern", (d, r));
+}

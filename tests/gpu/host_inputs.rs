@@ -312,7 +312,8 @@ fn ink_over_passes_blenders_colour_through_where_it_draws_no_line() {
     );
 }
 
-/// Blender's passes, converted at load, hold what npr's own G-buffer of
+/// Blender's passes, converted at load (by the GPU draw every input goes
+/// through, read back), hold what npr's own G-buffer of
 /// the mirrored scene holds, value by value: the depth (distance along the
 /// view axis, metres) and the world normals (Blender's Z-up turned into
 /// npr's Y-up). The line tests above compare thresholds that neither a
@@ -321,7 +322,7 @@ fn ink_over_passes_blenders_colour_through_where_it_draws_no_line() {
 #[test]
 fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
     use npr_abi::{InputKind, NormalSpace};
-    use npr_runner::inputs::{convert, files};
+    use npr_runner::inputs::{converted, files, prepare};
     let (exr_path, toml) = blender();
     let gbuffer = scratch("npr_gbuffer_values.exr");
     let exr = read_exr("passes", exr_path).expect("read Blender's EXR");
@@ -339,7 +340,18 @@ fn blenders_depth_and_normals_convert_to_npr_gbuffer_values() {
     let ours = read_exr("gbuffer", &gbuffer).expect("read npr's EXR");
     let load = |kind: InputKind, exr: &ExrChannels, layer: &str, blender: bool| {
         let raw = files::exr_layer("x", "f", kind, exr, layer).expect("layer");
-        convert("x", "f", kind, files::file_convention(kind, true, blender), &raw, None).expect("convert")
+        let image = prepare(
+            "x",
+            "f",
+            kind,
+            files::file_convention(kind, true, blender),
+            raw,
+            None,
+            false,
+        )
+        .expect("prepare");
+        let g = crate::common::gpu();
+        converted(&g.device, &g.queue, &image).expect("convert on the GPU")
     };
     let normal = InputKind::Normal {
         space: NormalSpace::World,

@@ -272,6 +272,77 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0421",
+        meaning: "A host input given with a `{frame}` pattern (`--input NAME='beauty/{frame}.png'`, \
+            `--inputs 'shots/{frame:04}.exr'`; `{frame}` is the frame number in 4 digits, \
+            `{frame:0N}` in N, as `-o` writes them) is a sequence: each frame rendered reads \
+            its own file. Every frame asked for with `--frames` (and, for a style that reads \
+            `previous(...)` or keeps `state`, every frame it replays from 0 or from its \
+            checkpoint) must have its file. The message names the input, the first missing \
+            file and how many frames are missing; they are looked for before the first frame \
+            renders, so nothing is written.",
+        wrong: Example {
+            style: INPUT_STYLE,
+            files: &[("scene.toml", sphere_scene!("")), ("make.npr", GREY_MADE)],
+            commands: &[
+                MAKE_TWO_FRAMES,
+                &["render", "case.npr", "--input", "beauty=b_{frame}.png", "--frames", "0..3", "-o", "out_{frame}.png"],
+            ],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: INPUT_STYLE,
+            files: &[("scene.toml", sphere_scene!("")), ("make.npr", GREY_MADE)],
+            commands: &[
+                MAKE_TWO_FRAMES,
+                &["render", "case.npr", "--input", "beauty=b_{frame}.png", "--frames", "0..2", "-o", "out_{frame}.png"],
+            ],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0422",
+        meaning: "Every frame of a host input sequence (a `{frame}` pattern in `--input` or \
+            `--inputs`) is the size of the sequence's first frame: a style over inputs renders \
+            at their size, and its targets and history keep one size through a sequence. The \
+            sizes are read from the files' headers before the first frame renders, so nothing \
+            is written; re-render the odd frame at the sequence's size.",
+        wrong: Example {
+            style: INPUT_STYLE,
+            files: &[("scene.toml", sphere_scene!("")), ("make.npr", GREY_MADE)],
+            commands: &[
+                &["render", "make.npr", "--scene", "scene.toml", "--size", "16x16", "--frames", "0..1", "-o", "b_{frame}.png"],
+                &["render", "make.npr", "--scene", "scene.toml", "--size", "16x8", "--frames", "1..2", "-o", "b_{frame}.png"],
+                &["render", "case.npr", "--input", "beauty=b_{frame}.png", "--frames", "0..2", "-o", "out_{frame}.png"],
+            ],
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: INPUT_STYLE,
+            files: &[("scene.toml", sphere_scene!("")), ("make.npr", GREY_MADE)],
+            commands: &[
+                MAKE_TWO_FRAMES,
+                &["render", "case.npr", "--input", "beauty=b_{frame}.png", "--frames", "0..2", "-o", "out_{frame}.png"],
+            ],
+            ..EXAMPLE
+        },
+    },
+];
+
+/// Frames 0 and 1 of a grey sphere, the beauty sequence of the E0421 and
+/// E0422 examples.
+const MAKE_TWO_FRAMES: &[&str] = &[
+    "render",
+    "make.npr",
+    "--scene",
+    "scene.toml",
+    "--size",
+    "16x16",
+    "--frames",
+    "0..2",
+    "-o",
+    "b_{frame}.png",
 ];
 
 /// A style over one host input, its colour, halved.

@@ -105,4 +105,102 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0604",
+        meaning: "A host application called `StyleRuntime::set_input` with a name the style does \
+            not declare. A style's inputs are its `texture NAME = input(kind, ...)` declarations \
+            (`StyleRuntime::manifest().textures`, those whose source is an input); give each \
+            by that name.",
+        wrong: Example {
+            host_rust: Some(
+                "// The style declares `texture color_in = input(color, display)`.\n\
+                 runtime.set_input(\"color\", &color_view, SourceConvention::Color(ColorEncoding::Linear))?; // E0604\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives an input the style does not have"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "runtime.set_input(\"color_in\", &color_view, SourceConvention::Color(ColorEncoding::Linear))?;\n",
+            ),
+            not_runnable: Some("runner/examples/host_gbuffer.rs gives ink_over.npr its three inputs"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0605",
+        meaning: "A host application gave `StyleRuntime::set_input` a texture view, or a \
+            convention, that the input cannot be read from. The view's texture must be 2D with \
+            one layer, one mip level and one sample, have `TEXTURE_BINDING` usage and a format \
+            the GPU reads as floats (float, normalized or depth; not an integer format, not a \
+            depth format with stencil). The convention must be of the input's kind: \
+            `SourceConvention::Color` for a colour input, `Depth` for depth, `Normal` for \
+            normals, `AsIs` for any. An sRGB texture is decoded by the GPU when it is read, so \
+            its colour is `ColorEncoding::Linear`. Normals turned between world and view space \
+            use the frame's camera.",
+        wrong: Example {
+            host_rust: Some(
+                "// A depth input described as colour:\n\
+                 runtime.set_input(\"depth_in\", &depth_view, SourceConvention::Color(ColorEncoding::Linear))?; // E0605\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives a wrong convention, an integer format and sRGB twice"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "// Bevy's and most games' depth: infinite reverse-Z with the camera's near plane.\n\
+                 runtime.set_input(\"depth_in\", &depth_view, SourceConvention::Depth(DepthConvention::ReverseZ { near: 0.1 }))?;\n",
+            ),
+            not_runnable: Some("runner/examples/host_gbuffer.rs gives a reverse-Z Depth32Float view"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0606",
+        meaning: "A style over inputs renders at their size: every input a host gives with \
+            `StyleRuntime::set_input` must be the size of the target it renders into (per eye). \
+            A host that resizes its window gives the new G-buffer's views and renders into \
+            the new target in the same frame.",
+        wrong: Example {
+            host_rust: Some(
+                "// A half-resolution depth buffer under a full-resolution frame:\n\
+                 runtime.set_input(\"depth_in\", &half_depth_view, depth)?;\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0606\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives an 8x8 input to a 16x16 target"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "runtime.set_input(\"depth_in\", &full_depth_view, depth)?;\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("tests/gpu/embed_inputs.rs renders over inputs of the target's size"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0607",
+        meaning: "A host application rendered a style that reads an input it has not given. Give \
+            every `input(...)` texture of the style with `StyleRuntime::set_input` before the \
+            first frame; a view given once is read every frame until another is given.",
+        wrong: Example {
+            host_rust: Some(
+                "runtime.set_input(\"color_in\", &color_view, colour)?;\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0607: depth_in, normal_in\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs renders without one of two inputs"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "runtime.set_input(\"color_in\", &color_view, colour)?;\n\
+                 runtime.set_input(\"depth_in\", &depth_view, depth)?;\n\
+                 runtime.set_input(\"normal_in\", &normal_view, normals)?;\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("runner/examples/host_gbuffer.rs gives every input before its frame"),
+            ..EXAMPLE
+        },
+    },
 ];

@@ -28,6 +28,12 @@ pub enum EmbedError {
     /// animated primitive, a patch) (E0603).
     #[error("{}", .0.message)]
     MeshUpdate(Box<Diagnostic>),
+    /// A host input the runtime cannot use: a name the style does not
+    /// declare (E0604), a view or convention it cannot be read from
+    /// (E0605), a size other than the target's (E0606), or one not given
+    /// before a frame (E0607).
+    #[error("{}", .0.message)]
+    Input(Box<Diagnostic>),
     /// What the runner reports: a device lacking a feature or limit the
     /// style needs (E0510), objects the style cannot draw (E0403, E0405),
     /// out of memory (E0508), a lost device (E0509), a bug (E9001).
@@ -40,7 +46,7 @@ impl EmbedError {
     pub fn code(&self) -> &'static str {
         match self {
             EmbedError::UnknownMesh(_) => codes::UNKNOWN_MESH,
-            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) => d.code,
+            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) | EmbedError::Input(d) => d.code,
             EmbedError::Run(e) => e.diagnostics().first().map_or(codes::INTERNAL, |d| d.code),
         }
     }
@@ -55,7 +61,9 @@ impl EmbedError {
                          remove it only after the last frame that draws it",
                 )]
             }
-            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) => vec![(**d).clone()],
+            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) | EmbedError::Input(d) => {
+                vec![(**d).clone()]
+            }
             EmbedError::Run(e) => e.diagnostics(),
         }
     }

@@ -61,7 +61,9 @@
 //! **Mistakes are values.** A removed mesh handle (E0601), an unknown
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
 //! of the wrong format or size (E0602), deformed vertices that do not fit
-//! their mesh (E0603): every call returns an
+//! their mesh (E0603), a host input the style does not declare, cannot
+//! read, of another size than the target or not given (E0604-E0607):
+//! every call returns an
 //! [`EmbedError`] with a code, and leaves the runtime as it was.
 //!
 //! - `meshes.rs`: the generational mesh table (with what a mesh draws
@@ -71,6 +73,8 @@
 //! - `params.rs`: setting style parameters by name;
 //! - `patched.rs`: a host's mesh divided into blended patches;
 //! - `deform.rs`: a host's deformed vertices ([`Deformed`]), checked;
+//! - `inputs.rs`: the host's own images as the style's inputs
+//!   ([`StyleRuntime::set_input`]), converted on the GPU every frame;
 //! - `present.rs`: target checks and the present pass;
 //! - `error.rs`: [`EmbedError`].
 //!
@@ -132,6 +136,7 @@
 mod deform;
 mod error;
 mod frame;
+mod inputs;
 mod meshes;
 mod objects;
 mod params;
@@ -185,6 +190,8 @@ pub struct StyleRuntime {
     /// Meshes divided by [`StyleRuntime::add_patches`] so far: names each
     /// division, whose patches `lines` passes join into one surface.
     patch_sets: u64,
+    /// The host's images for the style's `input(...)` textures.
+    inputs: inputs::HostViews,
 }
 
 impl StyleRuntime {
@@ -213,6 +220,7 @@ impl StyleRuntime {
         let id = RUNTIMES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         Ok(StyleRuntime {
             eye_slots: if program.manifest.is_stereo() { 2 } else { 1 },
+            inputs: inputs::HostViews::new(&program.manifest),
             presenter: present::Presenter::new(device),
             device: device.clone(),
             queue: queue.clone(),
@@ -477,6 +485,36 @@ impl StyleRuntime {
         }
     }
 
+    /// Give input `name` of the style (its `texture name = input(kind,
+    /// ...)`) from the host's own `view`, written in `source`'s convention:
+    /// colour linear or sRGB-encoded, depth reverse-Z NDC with its near
+    /// plane or a distance along the view axis (metres), normals in world
+    /// space (y or z up) or view space, stored as they are in a float
+    /// format and as n·0.5 + 0.5 in a normalized one. Every frame from the
+    /// next on reads the view, converted into the language's convention
+    /// inside the frame's encoder by the draw `npr render --input` files
+    /// go through (`npr_runner::inputs::gpu`): the same images give the
+    /// same pixels either way. Normals turned between world and view space
+    /// use the frame's camera.
+    ///
+    /// The view is kept (a clone) until another is given: a host whose
+    /// G-buffer stays gives its views once, or again every frame; a frame
+    /// makes the conversion's bind group only for a view it has not read
+    /// before. Refused, changing nothing: a name the style does not
+    /// declare (E0604); a texture that is not 2D with one layer, mip level
+    /// and sample, lacks `TEXTURE_BINDING`, or has a format not read as
+    /// floats, or a convention not of the input's kind (E0605). At
+    /// [`StyleRuntime::render`]: an input not given (E0607), or not of the
+    /// target's size (E0606).
+    pub fn set_input(
+        &mut self,
+        name: &str,
+        view: &wgpu::TextureView,
+        source: crate::inputs::SourceConvention,
+    ) -> Result<(), EmbedError> {
+        self.inputs.set(name, view, source)
+    }
+
     /// Record one frame into `encoder`: the style's passes, then the
     /// output drawn into `target`'s views at their size. Nothing is
     /// submitted; the host submits `encoder`. On an error nothing was
@@ -488,6 +526,10 @@ impl StyleRuntime {
         target: Target,
     ) -> Result<(), EmbedError> {
         let checked = present::check_target(&target, self.eye_slots, frame.eye)?;
+        let size = (checked.width, checked.height);
+        if self.inputs.any() {
+            self.inputs.check(size)?;
+        }
         if self.scene.sync(frame, &self.meshes)? {
             // Other meshes, tags, images or shadow flags: only the
             // scene-level resources are made anew; the style's stay.
@@ -505,11 +547,19 @@ impl StyleRuntime {
         let renderer = match &mut self.renderer {
             Some(r) => r,
             slot => {
-                let built = Renderer::new(&self.device, &self.queue, &self.program, self.scene.scene())?;
+                let blank = self.inputs.blank(size);
+                let built =
+                    Renderer::new_with_inputs(&self.device, &self.queue, &self.program, self.scene.scene(), &blank)?;
+                self.inputs.made(size);
                 self.builds += 1;
                 slot.insert(built)
             }
         };
+        if self.inputs.any() && !self.inputs.made_at(size) {
+            // The host's size changed: input textures of the new one.
+            renderer.set_inputs(&self.inputs.blank(size))?;
+            self.inputs.made(size);
+        }
         let spec = FrameSpec {
             width: checked.width,
             height: checked.height,
@@ -518,6 +568,11 @@ impl StyleRuntime {
             eye: frame.eye,
         };
         renderer.prepare(self.scene.scene(), &spec)?;
+        if self.inputs.any() {
+            let camera = frame.camera.pose(frame.time_s);
+            self.inputs
+                .encode(&self.device, &self.queue, encoder, renderer, &camera)?;
+        }
         renderer.encode(encoder);
         self.presenter.encode(&self.device, encoder, renderer, &checked)
     }

@@ -182,16 +182,31 @@ impl Renderer {
         Self::build(device, queue, program, scene, None, inputs)
     }
 
-    /// The next frame's host inputs (a sequence): the input textures are
-    /// replaced, the pipelines stay, and the size-dependent resources are
-    /// rebuilt at the next frame, since their bind groups hold the old
-    /// textures.
+    /// The next frame's host inputs (a sequence). Of the size of the
+    /// last ones, they are written over the input textures in place: the
+    /// history goes on (`previous(...)` reads the frame before). Of
+    /// another size, the input textures are made anew, the pipelines stay,
+    /// and the size-dependent resources are rebuilt at the next frame,
+    /// since their bind groups hold the old textures.
     pub fn set_inputs(&mut self, inputs: &crate::inputs::HostInputs) -> Result<(), RunError> {
+        if textures::write_host_inputs(&self.device, &self.queue, &self.manifest, inputs, &self.textures)? {
+            return Ok(());
+        }
         for (i, texture) in textures::host_inputs(&self.device, &self.queue, &self.manifest, inputs)? {
             self.textures[i] = texture;
         }
         self.sized = None;
         Ok(())
+    }
+
+    /// The texture a host input `name` is converted into (`input(...)`),
+    /// of the inputs' size: what `embed` draws a host's views into.
+    pub fn input_texture(&self, name: &str) -> Option<&wgpu::Texture> {
+        self.manifest
+            .textures
+            .iter()
+            .position(|t| t.name == name && matches!(t.source, TextureSourceManifest::Input(_)))
+            .map(|i| &self.textures[i].texture)
     }
 
     /// A renderer of an art-map's filter style, whose `filter_input()` is

@@ -175,7 +175,9 @@ pub fn file_convention(kind: InputKind, exr: bool, blender_normals: bool) -> Sou
 
 /// One input from its own file: an EXR's un-prefixed channels (or its one
 /// layer), or any image npr reads as a texture (PNG).
-pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, SourceConvention), Diagnostic> {
+/// Also says whether the file holds normalized integers (a PNG: normals in
+/// it are stored as n·0.5 + 0.5).
+pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, SourceConvention, bool), Diagnostic> {
     let file = path.display().to_string();
     let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     if is_exr {
@@ -188,24 +190,60 @@ pub fn single_file(name: &str, kind: InputKind, path: &Path) -> Result<(Level, S
         };
         let blender = blender_layer(kind).is_some_and(|b| layer == b || layer.ends_with(&format!(".{b}")));
         let level = exr_layer(name, &file, kind, &exr, &layer)?;
-        return Ok((level, file_convention(kind, true, blender)));
+        return Ok((level, file_convention(kind, true, blender), false));
     }
-    let img = crate::texture_file::read(path).map_err(|e| {
-        use crate::texture_file::TextureFileError as E;
-        let what = match e {
-            E::Unreadable(e) => format!("cannot be read: {e}"),
-            E::NotAnImage(e) => format!("not an image npr can read: {e}"),
-            E::TooLarge { width, height } => format!(
-                "{width}x{height}, past the largest image npr loads ({} px a side)",
-                crate::textures::MAX_TEXTURE_SIZE
-            ),
-        };
-        bad_input(name, &file, what, "give a PNG or EXR image")
-    })?;
+    let img = crate::texture_file::read(path)
+        .map_err(|e| bad_input(name, &file, texture_error(e), "give a PNG or EXR image"))?;
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let pixels = rgba.pixels().map(|p| p.0).collect();
     // 16- and 32-bit float images are linear; 8- and 16-bit integer ones sRGB.
     let float = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
-    Ok((Level { width, height, pixels }, file_convention(kind, float, false)))
+    Ok((
+        Level { width, height, pixels },
+        file_convention(kind, float, false),
+        !float,
+    ))
+}
+
+/// The size of input `name`'s file `path` from its header alone: a
+/// sequence's frames are checked before any is read.
+pub fn header_size(name: &str, path: &Path) -> Result<(u32, u32), Diagnostic> {
+    let file = path.display().to_string();
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| {
+            bad_input(
+                name,
+                &file,
+                format!("not a readable OpenEXR file: {e}"),
+                "give a PNG or EXR image (a multi-layer EXR with --inputs)",
+            )
+        })?;
+        return meta
+            .headers
+            .first()
+            .map(|h| (h.layer_size.x() as u32, h.layer_size.y() as u32))
+            .ok_or_else(|| {
+                bad_input(
+                    name,
+                    &file,
+                    "an OpenEXR file without a part".into(),
+                    "re-render the file",
+                )
+            });
+    }
+    crate::texture_file::probe(path).map_err(|e| bad_input(name, &file, texture_error(e), "give a PNG or EXR image"))
+}
+
+/// What is wrong with an image file npr reads as a texture.
+fn texture_error(e: crate::texture_file::TextureFileError) -> String {
+    use crate::texture_file::TextureFileError as E;
+    match e {
+        E::Unreadable(e) => format!("cannot be read: {e}"),
+        E::NotAnImage(e) => format!("not an image npr can read: {e}"),
+        E::TooLarge { width, height } => format!(
+            "{width}x{height}, past the largest image npr loads ({} px a side)",
+            crate::textures::MAX_TEXTURE_SIZE
+        ),
+    }
 }
