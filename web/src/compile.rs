@@ -144,7 +144,7 @@ mod tests {
     }
 
     const STYLE: &str =
-        "style \"S\"\nuse \"lib/a.npr\"\npass final: image() {\n  out color: rgba8unorm = vec4(a, a, a, 1.0)\n}\n";
+        "style \"S\"\nuse \"lib/a.npr\"\npass final: image() {\n  out color: rgba8unorm = vec4(a, a, a, 1.0)\n}\noutput final.color\n";
 
     #[test]
     fn a_style_and_its_files_compile_from_memory() {

@@ -72,7 +72,7 @@ mod tests {
     use crate::compile::{compile, Request};
 
     fn params(keep_params: bool) -> Vec<ParamManifest> {
-        let source = "style \"S\"\nparam bands: int = 3 in 1..8\nparam unused: float = 1\npass final: image() {\n  out color: rgba8unorm = vec4(f32(bands) / 8.0, 0.0, 0.0, 1.0)\n}\n";
+        let source = "style \"S\"\nparam bands: int = 3 in 1..8\nparam unused: float = 1\npass final: image() {\n  let v = toon(0.5, steps: bands)\n  out color: rgba8unorm = vec4(v, v, v, 1.0)\n}\noutput final.color\n";
         let request = Request {
             name: "s.npr".into(),
             source: source.into(),
