@@ -10,8 +10,10 @@
 #                       windows), ffmpeg (video
 #                       output), Blender and python3-numpy (a real
 #                       renderer's passes as a style's inputs), openjd-cli (the
-#                       render-farm job template) and the wasm32 target (the
-#                       Bevy plugin's web build check).
+#                       render-farm job template), the wasm32 target (the
+#                       Bevy plugin's web build check, the npr-web package)
+#                       and wasm-bindgen-cli at Cargo.lock's version
+#                       (web/build.sh).
 #
 # Rendering an image needs none of the test tools, so the README's first
 # command does not wait for them.
@@ -22,7 +24,7 @@ want_tests=0
 for arg in "$@"; do
   case "$arg" in
     --tests) want_tests=1 ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "setup: unknown option '$arg' (expected --tests)" >&2; exit 2 ;;
   esac
 done
@@ -108,6 +110,20 @@ if [ "$want_tests" -eq 1 ]; then
   # CI checks that bevy_mod_npr without default features builds for the web.
   if command -v rustup >/dev/null 2>&1; then
     rustup target add --toolchain "$toolchain" wasm32-unknown-unknown >/dev/null
+  fi
+  # web/build.sh binds npr-web with wasm-bindgen, whose command-line tool
+  # must be exactly the version of the wasm-bindgen crate in Cargo.lock.
+  bindgen_want=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
+  bindgen_have=$(wasm-bindgen --version 2>/dev/null | awk '{ print $2 }' || true)
+  if [ "$bindgen_have" != "$bindgen_want" ]; then
+    echo "setup: installing wasm-bindgen-cli $bindgen_want (cargo install; found: ${bindgen_have:-none})"
+    # --locked first (the tool's own lock file); a registry that lacks one of
+    # the versions it pins (seen: webpki-roots) gets a fresh resolution of
+    # its dependencies, the tool's version still exact.
+    if ! cargo install --locked --quiet wasm-bindgen-cli --version "$bindgen_want"; then
+      echo "setup: wasm-bindgen-cli $bindgen_want with its lock file failed; installing it with its dependencies resolved afresh"
+      cargo install --quiet wasm-bindgen-cli --version "$bindgen_want"
+    fi
   fi
   if [ ! -d editors/vscode/node_modules/vscode-textmate ]; then
     echo "setup: npm ci in editors/vscode (pinned by package-lock.json)"

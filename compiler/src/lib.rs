@@ -40,6 +40,11 @@ pub struct CompileOptions {
     /// any path (library use); the `npr` commands always give one
     /// (`npr_diag::paths`, docs/PATHS.md).
     pub paths: Option<npr_diag::paths::PathPolicy>,
+    /// Where the files the style names are read from: the disk by default;
+    /// in memory (`npr_diag::files::MemoryFiles`, with
+    /// `PathPolicy::in_memory`) where there is no file system, as in the
+    /// WebAssembly build (decision 0052).
+    pub files: npr_diag::files::Files,
     /// How the passes run (`--schedule`): `Auto` fuses pointwise image
     /// chains; `Naive` keeps every declared pass and target.
     pub schedule: schedule::Schedule,
@@ -123,7 +128,8 @@ pub enum CompileError {
 /// Compile a `.npr` file (and what it `use`s). Files read are added to `sources`.
 pub fn compile_file(path: &Path, sources: &mut SourceMap, opts: &CompileOptions) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let Some(loaded) = front::load::load_file(path, sources, opts.paths.as_ref(), &mut diags) else {
+    let Some(loaded) = front::load::load_file_from(opts.files.source(), path, sources, opts.paths.as_ref(), &mut diags)
+    else {
         return Err(CompileError::User(diags));
     };
     pipeline::run(loaded, sources, &path.display().to_string(), opts, diags)
@@ -138,6 +144,14 @@ pub fn compile_source(
     opts: &CompileOptions,
 ) -> Result<Compiled, CompileError> {
     let mut diags = Vec::new();
-    let loaded = front::load::load_source(name, text, dir, sources, opts.paths.as_ref(), &mut diags);
+    let loaded = front::load::load_source_from(
+        opts.files.source(),
+        name,
+        text,
+        dir,
+        sources,
+        opts.paths.as_ref(),
+        &mut diags,
+    );
     pipeline::run(loaded, sources, name, opts, diags)
 }

@@ -13,7 +13,11 @@ use crate::report::Report;
 use crate::{CompileError, CompileOptions, Compiled, InternalError};
 use npr_abi::manifest::ParamBinding;
 use npr_diag::{Diagnostic, SourceMap};
+#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
 use std::time::Instant;
+// std's `Instant::now` panics on the web; this one reads `performance.now()`.
+#[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+use web_time::Instant;
 
 struct Stages<'o> {
     opts: &'o CompileOptions,
@@ -86,6 +90,7 @@ pub fn run(
         &loaded,
         opts.scene.as_ref(),
         opts.paths.as_ref(),
+        opts.files.source(),
         &opts.settings,
         opts.keep_params,
         &mut diags,
@@ -111,7 +116,7 @@ pub fn run(
         .collect();
     let overrides = crate::front::param_settings::type_settings(&ir, &settings, sources).map_err(CompileError::User)?;
     crate::mid::overrides::apply(&mut ir, &overrides).map_err(CompileError::Internal)?;
-    let filters = compile_filters(&ir, loaded.filters, sources)?;
+    let filters = compile_filters(&ir, loaded.filters, sources, &opts.files)?;
     let graph = crate::mid::dag::build(&ir, &mut diags);
     st.done("dag", &ir);
     fail_if_errors(&diags)?;
@@ -259,6 +264,7 @@ fn compile_filters(
     ir: &crate::ir::Ir,
     loaded: std::collections::BTreeMap<String, Loaded>,
     sources: &SourceMap,
+    files: &npr_diag::files::Files,
 ) -> Result<std::collections::BTreeMap<String, npr_abi::FilterProgram>, CompileError> {
     let mut out = std::collections::BTreeMap::new();
     for t in &ir.textures {
@@ -300,6 +306,7 @@ fn compile_filters(
         };
         let opts = CompileOptions {
             settings: filter_args.clone(),
+            files: files.clone(),
             ..CompileOptions::default()
         };
         let c = run(filter_loaded.clone(), sources, filter_file, &opts, Vec::new()).map_err(from_filter)?;

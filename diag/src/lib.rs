@@ -2,7 +2,8 @@
 //! CLI report problems in: [`Diagnostic`] with its error [`codes`], spans
 //! into a [`SourceMap`] (style files, scene files, `--set` arguments), the
 //! terminal and JSON renderings, the [`limits`] on every input, the
-//! [`paths`] policy for files a style or scene may read, UTF-8 text
+//! [`paths`] policy for files a style or scene may read and the [`files`]
+//! they are read from (the disk, or memory in the web build), UTF-8 text
 //! loading, and the catcher of panics npr expects from its dependencies.
 //!
 //! It holds no parser: the runtime (`runner`), which reports scene and
@@ -10,6 +11,7 @@
 //! or pest.
 
 pub mod diagnostic;
+pub mod files;
 pub mod limits;
 pub mod panics;
 pub mod paths;

@@ -14,6 +14,11 @@
 //!
 //! A file that does not exist is not refused here: the reader reports it
 //! (E0004, E0401, E0402) with its own wording.
+//!
+//! Files held in memory (`crate::files::MemoryFiles`, the WebAssembly
+//! build) follow the same rules under [`PathPolicy::in_memory`]: the root
+//! is the directory the style and its files are named relative to, and
+//! paths are compared on their text (memory has no links).
 
 use crate::{codes, Diagnostic};
 use std::path::{Path, PathBuf};
@@ -23,6 +28,17 @@ use std::path::{Path, PathBuf};
 pub struct PathPolicy {
     root: PathBuf,
     allowed: Vec<PathBuf>,
+    on: Storage,
+}
+
+/// Where the files the policy judges are: what a path is compared as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Storage {
+    /// Canonical paths, links resolved.
+    Disk,
+    /// Relative paths with `.` and `..` applied to their text, the root
+    /// being where they start.
+    Memory,
 }
 
 impl PathPolicy {
@@ -44,7 +60,19 @@ impl PathPolicy {
                 .iter()
                 .map(|a| dir("--allow-path", a))
                 .collect::<Result<_, _>>()?,
+            on: Storage::Disk,
         })
+    }
+
+    /// The policy for files held in memory (`crate::files::MemoryFiles`):
+    /// the root is the directory the style is named relative to (the
+    /// empty path), and nothing outside it is admitted.
+    pub fn in_memory() -> PathPolicy {
+        PathPolicy {
+            root: PathBuf::new(),
+            allowed: Vec::new(),
+            on: Storage::Memory,
+        }
     }
 
     /// The default root for `files` (the style, and the scene when there
@@ -77,6 +105,9 @@ impl PathPolicy {
     /// `resolved` (joined to the naming file's directory), may be read. The
     /// refusal has no span: the caller labels the path where it is written.
     pub fn check(&self, written: &str, resolved: &Path) -> Result<(), Diagnostic> {
+        if self.on == Storage::Memory {
+            return self.check_in_memory(written, resolved);
+        }
         let canonical = canonical_even_if_missing(resolved);
         let admitted = self.allowed.iter().any(|a| canonical.starts_with(a));
         if admitted {
@@ -112,6 +143,33 @@ impl PathPolicy {
             "the root is the deepest directory holding both the style and the scene, unless --root DIR gives another",
         )
         .with_help("move the file inside the root, or give --root DIR or --allow-path DIR to admit it"))
+    }
+}
+
+impl PathPolicy {
+    /// [`PathPolicy::check`] of a file held in memory: the same refusals,
+    /// on the path's text.
+    fn check_in_memory(&self, written: &str, resolved: &Path) -> Result<(), Diagnostic> {
+        let root = "the directory of the style given in memory";
+        let note = "files given in memory are named relative to the style, inside its directory";
+        if Path::new(written).is_absolute() {
+            return Err(Diagnostic::error(
+                codes::PATH_OUTSIDE_ROOT,
+                format!("`{written}` is an absolute path; files are named relative to the file that names them"),
+            )
+            .with_note(format!("the root is {root}"))
+            .with_help(note));
+        }
+        let normalized = crate::files::lexical(resolved);
+        if crate::files::lexically_inside_root(&normalized) {
+            return Ok(());
+        }
+        Err(Diagnostic::error(
+            codes::PATH_OUTSIDE_ROOT,
+            format!("`{written}` leaves the root, {root} (it is {})", normalized.display()),
+        )
+        .with_note(note)
+        .with_help("give the file in memory under a path inside the style's directory, and name it so"))
     }
 }
 
@@ -206,5 +264,25 @@ mod tests {
             canonical_root.join("y/z.png")
         );
         std::fs::remove_dir_all(&root).ok();
+    }
+
+    #[test]
+    fn in_memory_the_root_is_where_the_style_is_named_from() {
+        let policy = PathPolicy::in_memory();
+        for (written, resolved) in [
+            ("lib/a.npr", "lib/a.npr"),
+            ("../a.npr", "lib/../a.npr"),
+            ("x/../y.png", "styles/x/../y.png"),
+        ] {
+            assert!(policy.check(written, Path::new(resolved)).is_ok(), "{resolved}");
+        }
+        for (written, resolved) in [
+            ("../a.npr", "../a.npr"),
+            ("../../a.npr", "lib/../../a.npr"),
+            ("/etc/passwd", "/etc/passwd"),
+        ] {
+            let refusal = policy.check(written, Path::new(resolved)).expect_err(resolved);
+            assert_eq!(refusal.code, codes::PATH_OUTSIDE_ROOT, "{resolved}");
+        }
     }
 }

@@ -36,6 +36,7 @@ fn compile(path: &Path, keep_params: bool) -> npr_compiler::Compiled {
                 npr_diag::paths::PathPolicy::new(&npr_diag::paths::PathPolicy::default_root(&[path]), &[])
                     .expect("root"),
             ),
+            files: Default::default(),
         },
     ) {
         Ok(c) => c,

@@ -40,4 +40,5 @@ mod style_tests_examples;
 mod view;
 mod vscode_extension;
 mod watch;
+mod web_package;
 mod webgpu_portability;

@@ -2,8 +2,11 @@
 //!
 //! Items of a used file come before the items of the file that uses it, so a
 //! style can build on another's parameters and passes. `use` cycles and
-//! unreadable files are reported at the `use` that caused them.
+//! unreadable files are reported at the `use` that caused them. Every file
+//! is read through the options' [`FileSource`] (the disk, or memory in the
+//! web build: `npr_diag::files`).
 
+use npr_diag::files::{Disk, FileSource};
 use npr_diag::limits::MAX_SOURCE_BYTES;
 use npr_diag::paths::PathPolicy;
 use npr_diag::{codes, Diagnostic, FileId, SourceMap, Span};
@@ -35,7 +38,18 @@ pub fn load_file(
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Option<Loaded> {
-    load_file_as(path, sources, paths, diags, WithFilters::Yes)
+    load_file_from(&Disk, path, sources, paths, diags)
+}
+
+/// [`load_file`] with every file read from `files`.
+pub fn load_file_from(
+    files: &dyn FileSource,
+    path: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Loaded> {
+    load_file_as(files, path, sources, paths, diags, WithFilters::Yes)
 }
 
 /// Whether the art-maps' filter styles are loaded too: not for a filter,
@@ -48,22 +62,24 @@ pub enum WithFilters {
 
 /// [`load_file`] of a filter style: its art-maps' filters are not loaded.
 pub fn load_filter_file(
+    files: &dyn FileSource,
     path: &Path,
     sources: &mut SourceMap,
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Option<Loaded> {
-    load_file_as(path, sources, paths, diags, WithFilters::No)
+    load_file_as(files, path, sources, paths, diags, WithFilters::No)
 }
 
 fn load_file_as(
+    files: &dyn FileSource,
     path: &Path,
     sources: &mut SourceMap,
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
     with_filters: WithFilters,
 ) -> Option<Loaded> {
-    let bytes = match read_bounded(path) {
+    let bytes = match files.read(path, MAX_SOURCE_BYTES as u64) {
         Ok(b) => b,
         Err(e) => {
             diags.push(
@@ -86,6 +102,7 @@ fn load_file_as(
     };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     Some(load_added(
+        files,
         file,
         &name,
         &text,
@@ -106,13 +123,27 @@ pub fn load_source(
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Loaded {
+    load_source_from(&Disk, name, text, dir, sources, paths, diags)
+}
+
+/// [`load_source`] with every file it names read from `files`.
+pub fn load_source_from(
+    files: &dyn FileSource,
+    name: &str,
+    text: &str,
+    dir: &Path,
+    sources: &mut SourceMap,
+    paths: Option<&PathPolicy>,
+    diags: &mut Vec<Diagnostic>,
+) -> Loaded {
     let file = sources.add(name, text);
-    load_added(file, name, text, dir, sources, paths, diags, WithFilters::Yes)
+    load_added(files, file, name, text, dir, sources, paths, diags, WithFilters::Yes)
 }
 
 /// [`load_source`] of a file already in `sources`.
 #[allow(clippy::too_many_arguments)] // each is a separate input of one load; a struct would only rename them
 fn load_added(
+    files: &dyn FileSource,
     file: FileId,
     name: &str,
     text: &str,
@@ -129,13 +160,18 @@ fn load_added(
         .file_name()
         .map(|f| dir.join(f))
         .unwrap_or_else(|| dir.to_path_buf());
-    let mut stack = vec![canonical(&own)];
+    let mut stack = vec![files.identity(&own)];
     let mut broken = ast.broken.clone();
-    let mut reader = Reader { sources, diags, paths };
+    let mut reader = Reader {
+        files,
+        sources,
+        diags,
+        paths,
+    };
     expand_uses(&ast, dir, &mut reader, &mut items, &mut stack, &mut broken);
     let filters = match with_filters {
-        WithFilters::Yes => crate::front::load_filters::load(&items, paths, diags, |path, diags| {
-            load_filter_file(path, sources, paths, diags)
+        WithFilters::Yes => crate::front::load_filters::load(files, &items, paths, diags, |path, diags| {
+            load_filter_file(files, path, sources, paths, diags)
         }),
         WithFilters::No => Default::default(),
     };
@@ -149,16 +185,13 @@ fn load_added(
     }
 }
 
-fn canonical(p: &Path) -> PathBuf {
-    p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
-}
-
 /// Depth limit for nested `use`, far above any real style.
 const MAX_USE_DEPTH: usize = 32;
 
-/// What reading `use`d files needs: the run's sources, its diagnostics,
-/// and the paths policy.
+/// What reading `use`d files needs: where they are, the run's sources,
+/// its diagnostics, and the paths policy.
 struct Reader<'a> {
+    files: &'a dyn FileSource,
     sources: &'a mut SourceMap,
     diags: &'a mut Vec<Diagnostic>,
     paths: Option<&'a PathPolicy>,
@@ -173,7 +206,12 @@ fn expand_uses(
     broken: &mut Vec<String>,
 ) {
     for item in &ast.items {
-        let Reader { sources, diags, paths } = reader;
+        let Reader {
+            files,
+            sources,
+            diags,
+            paths,
+        } = reader;
         let Item::Use(u) = item else {
             items.push((item.clone(), dir.to_path_buf()));
             continue;
@@ -192,7 +230,7 @@ fn expand_uses(
             }
             UseTarget::File(rel) => {
                 let path = dir.join(rel);
-                let key = canonical(&path);
+                let key = files.identity(&path);
                 if stack.contains(&key) {
                     diags.push(
                         Diagnostic::error(codes::BAD_USE, format!("`use` cycle through `{rel}`"))
@@ -212,7 +250,7 @@ fn expand_uses(
                     diags.push(d);
                     continue;
                 }
-                let bytes = match read_bounded(&path) {
+                let bytes = match files.read(&path, MAX_SOURCE_BYTES as u64) {
                     Ok(b) => b,
                     Err(e) => {
                         diags.push(use_error(u.span, rel, &e.to_string()));
@@ -236,19 +274,6 @@ fn expand_uses(
             }
         }
     }
-}
-
-/// Read a style file's bytes, but never more than one byte past
-/// [`MAX_SOURCE_BYTES`]: the parser refuses a longer text with its limit
-/// error, and a file like `/dev/zero` must not be read for ever. Whether
-/// they are text is `npr_diag::text::add_utf8`'s to say, with a span.
-fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
-    use std::io::Read;
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(MAX_SOURCE_BYTES as u64 + 1)
-        .read_to_end(&mut bytes)?;
-    Ok(bytes)
 }
 
 fn use_error(span: Span, rel: &str, err: &str) -> Diagnostic {

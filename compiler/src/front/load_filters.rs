@@ -6,6 +6,7 @@
 //! in the art-map. Reading and parsing a filter file is `load.rs`'s, which
 //! calls this and hands it that as `load_one`.
 
+use npr_diag::files::FileSource;
 use npr_diag::paths::PathPolicy;
 use npr_diag::{codes, Diagnostic};
 use npr_dsl::ast::{ExprKind, Item};
@@ -17,8 +18,9 @@ pub const FILTERED_SOURCES: [&str; 2] = ["artmap", "ripmap"];
 
 /// Every filter the items name, by the path they resolve to (the key
 /// `resolve` records in the IR), each loaded by `load_one` (`None` when it
-/// cannot be, its diagnostics in the vector it is given).
+/// cannot be, its diagnostics in the vector it is given), probed in `files`.
 pub fn load<Loaded>(
+    files: &dyn FileSource,
     items: &[(Item, PathBuf)],
     paths: Option<&PathPolicy>,
     diags: &mut Vec<Diagnostic>,
@@ -60,7 +62,7 @@ pub fn load<Loaded>(
             diags.push(d);
             continue;
         }
-        if !path.is_file() {
+        if !files.is_file(&path) {
             diags.push(
                 Diagnostic::error(codes::BAD_USE, format!("filter style `{rel}` not found"))
                     .with_primary(span, format!("looked for {}", path.display()))

@@ -45,7 +45,7 @@ pub fn resolve(
     paths: Option<&npr_diag::paths::PathPolicy>,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<Ir, InternalError> {
-    resolve_with_settings(loaded, scene, paths, &[], false, diags).map(|(ir, _)| ir)
+    resolve_with_settings(loaded, scene, paths, &npr_diag::files::Disk, &[], false, diags).map(|(ir, _)| ir)
 }
 
 /// [`resolve`], with the settings of `gradient` params (`--set g="0:#000,
@@ -54,10 +54,12 @@ pub fn resolve(
 /// took, which the typing of the others after typecheck leaves out. With
 /// `keep_params` (`CompileOptions::keep_params`) a gradient is also a
 /// parameter of the IR, a uniform its `ramp`s read (`ParamTy::Gradient`).
+/// Each `image("…")` is probed in `files`.
 pub fn resolve_with_settings(
     loaded: &Loaded,
     scene: Option<&crate::SceneSummary>,
     paths: Option<&npr_diag::paths::PathPolicy>,
+    files: &dyn npr_diag::files::FileSource,
     settings: &[ParamSetting],
     keep_params: bool,
     diags: &mut Vec<Diagnostic>,
@@ -67,6 +69,7 @@ pub fn resolve_with_settings(
         diags,
         scene,
         paths,
+        files,
         names: HashMap::new(),
         pass_outputs: Vec::new(),
         pass_values: Vec::new(),
@@ -112,6 +115,8 @@ struct Resolver<'d> {
     scene: Option<&'d crate::SceneSummary>,
     /// The paths policy every `image("…")` is checked against before it is probed.
     paths: Option<&'d npr_diag::paths::PathPolicy>,
+    /// Where the files are: an `image("…")` must name one.
+    files: &'d dyn npr_diag::files::FileSource,
     names: HashMap<String, (Symbol, Span)>,
     /// Output names of each pass, declared before bodies are resolved.
     pass_outputs: Vec<Vec<String>>,

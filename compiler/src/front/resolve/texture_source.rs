@@ -56,7 +56,7 @@ impl Resolver<'_> {
             self.error(refused);
             return None;
         }
-        if !resolved.is_file() {
+        if !self.files.is_file(&resolved) {
             self.error(
                 Diagnostic::error(codes::MISSING_TEXTURE, format!("texture file `{p}` not found"))
                     .with_primary(span, format!("looked for {}", resolved.display()))
