@@ -59,12 +59,10 @@ fn rgba(path: &Path) -> image::RgbaImage {
 /// Every pixel of `img` within 1 of `want` in each of r, g, b.
 fn assert_all(img: &image::RgbaImage, want: [f64; 3], what: &str) {
     for p in img.pixels() {
-        for c in 0..3 {
+        for (c, (got, want)) in p.0.iter().zip(want).enumerate() {
             assert!(
-                (p.0[c] as f64 - want[c]).abs() <= 1.0,
-                "{what}: channel {c} is {}, expected {:.1}",
-                p.0[c],
-                want[c]
+                (f64::from(*got) - want).abs() <= 1.0,
+                "{what}: channel {c} is {got}, expected {want:.1}"
             );
         }
     }
