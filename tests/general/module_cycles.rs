@@ -28,7 +28,14 @@ type Module = Vec<String>;
 const KNOWN_CYCLES: &[(&str, &[&str])] = &[
     (
         "npr-runner (npr_runner)",
-        &["artmap", "artmap_cache", "inputs", "textures"],
+        &[
+            "artmap",
+            "artmap_cache",
+            "inputs",
+            "inputs::convert",
+            "inputs::gpu",
+            "textures",
+        ],
     ),
     (
         "npr-runner (npr_runner)",
