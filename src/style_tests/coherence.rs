@@ -266,38 +266,31 @@ pub fn popping(current: &Frame, previous: &Frame, motion: &MotionField, is_mark:
     let marks_then = components(previous, &is_mark);
     let (w, h) = (i64::from(current.width), i64::from(current.height));
     let mut reached_then = vec![false; marks_then.count];
-    let mut judged_now = vec![false; marks_now.count];
-    let mut persists_now = vec![false; marks_now.count];
-    for y in 0..current.height {
-        for x in 0..current.width {
-            let Some(label) = marks_now.label[(y * current.width + x) as usize] else {
-                continue;
-            };
-            let Some(at) = motion.at(x, y) else { continue };
-            judged_now[label] = true;
-            let (px, py) = (at[0].floor() as i64, at[1].floor() as i64);
-            for (dx, dy) in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)] {
-                let (qx, qy) = (px + dx, py + dy);
-                if qx < 0 || qy < 0 || qx >= w || qy >= h {
-                    continue;
-                }
-                if let Some(then) = marks_then.label[(qy * w + qx) as usize] {
-                    persists_now[label] = true;
-                    reached_then[then] = true;
-                }
-            }
-        }
-    }
     // A previous mark is judged when its pixels are seen now: some current
     // pixel's point came from one of them.
     let mut judged_then = vec![false; marks_then.count];
+    let mut judged_now = vec![false; marks_now.count];
+    let mut persists_now = vec![false; marks_now.count];
+    let then_at = |qx: i64, qy: i64| {
+        (qx >= 0 && qy >= 0 && qx < w && qy < h)
+            .then(|| marks_then.label[(qy * w + qx) as usize])
+            .flatten()
+    };
     for y in 0..current.height {
         for x in 0..current.width {
             let Some(at) = motion.at(x, y) else { continue };
             let (px, py) = (at[0].floor() as i64, at[1].floor() as i64);
-            if px >= 0 && py >= 0 && px < w && py < h {
-                if let Some(then) = marks_then.label[(py * w + px) as usize] {
-                    judged_then[then] = true;
+            if let Some(then) = then_at(px, py) {
+                judged_then[then] = true;
+            }
+            let Some(label) = marks_now.label[(y * current.width + x) as usize] else {
+                continue;
+            };
+            judged_now[label] = true;
+            for (dx, dy) in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)] {
+                if let Some(then) = then_at(px + dx, py + dy) {
+                    persists_now[label] = true;
+                    reached_then[then] = true;
                 }
             }
         }
