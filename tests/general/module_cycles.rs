@@ -47,15 +47,6 @@ const KNOWN_CYCLES: &[(&str, &[&str])] = &[
             "exec::values",
         ],
     ),
-    (
-        "npr-runner (npr_runner)",
-        &[
-            "scene::gltf_file",
-            "scene::gltf_rig",
-            "scene::mesh_file",
-            "scene::obj_file",
-        ],
-    ),
 ];
 
 #[test]

@@ -6,17 +6,14 @@
 //! never decoded: npr needs geometry only, and a missing texture should not
 //! stop a mesh from loading.
 
+use super::gltf_rig::{self, MAX_NODE_DEPTH};
 use super::mesh::{Mesh, MAX_TRIANGLES};
-use super::mesh_file::MeshLoadError;
-use super::{gltf_rig, rig::Rig};
+use super::mesh_error::MeshLoadError;
+use super::rig::Rig;
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use gltf::buffer::Data as BufferData;
 use gltf::mesh::Mode;
 use std::path::Path;
-
-/// Node hierarchies deeper than this are treated as malformed (a cycle, or an
-/// attempt to exhaust the stack).
-pub(super) const MAX_NODE_DEPTH: usize = 256;
 
 /// The file's mesh (its rest pose), and its rig when it has skins, morph
 /// targets or animations (`gltf_rig`); a file without them is merged with

@@ -12,9 +12,8 @@
 //! renormalising would draw something the artist never saw.
 
 use super::anim_sampler::{Interpolation, Sampler};
-use super::gltf_file::MAX_NODE_DEPTH;
 use super::mesh::Mesh;
-use super::mesh_file::MeshLoadError;
+use super::mesh_error::MeshLoadError;
 use super::rig::{Channel, Clip, MorphTarget, Piece, Property, Rig, RigNode, Skin};
 use glam::{Mat3, Mat4, Quat, Vec3};
 use gltf::buffer::Data as BufferData;
@@ -25,6 +24,11 @@ use npr_diag::codes;
 /// one 16 KiB uniform array (256 × 64 bytes), a quarter of WebGPU's
 /// guaranteed binding size; real characters use tens to about two hundred.
 pub use npr_diag::limits::MAX_JOINTS;
+
+/// Node hierarchies deeper than this are treated as malformed (a cycle, or an
+/// attempt to exhaust the stack); the rig reader and the static glTF reader
+/// both walk them.
+pub(super) const MAX_NODE_DEPTH: usize = 256;
 
 /// How far a vertex's skin weights may sum from 1 and still be
 /// renormalised (a 4-weight u8 set is off by at most 4 × 0.5/255 ≈ 0.008).

@@ -139,6 +139,7 @@ mod gltf_file;
 pub mod gltf_rig;
 mod light;
 mod mesh;
+mod mesh_error;
 mod mesh_file;
 mod obj_file;
 pub mod ocean;

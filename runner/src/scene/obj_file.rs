@@ -1,7 +1,7 @@
 //! Wavefront OBJ meshes, read with `tobj` (triangulated, single index).
 
 use super::mesh::Mesh;
-use super::mesh_file::MeshLoadError;
+use super::mesh_error::MeshLoadError;
 
 /// Parses OBJ text. Every model (`o`/`g`) in the file is merged into one
 /// mesh, each triangle remembering its model as its part; materials are
