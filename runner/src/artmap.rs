@@ -9,17 +9,10 @@
 //! (`artmap_cache`): a second build of the same inputs filters nothing.
 
 use crate::artmap_cache::{self, Origin};
+pub use crate::image_level::{halve_axis, mip_chain, Level};
 use crate::{FrameSpec, Renderer, RunError};
 use npr_abi::ArtmapSpec;
 use std::sync::Arc;
-
-/// One level: linear RGBA texels, row by row.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Level {
-    pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<[f32; 4]>,
-}
 
 /// What building one art-map did, for the caller to report.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,48 +22,6 @@ pub struct ArtmapBuild {
     pub origin: Origin,
     /// Wall time of the build (cache lookup included).
     pub ms: f64,
-}
-
-/// The mip chain of `base` (2×2 box filter, odd edges clamped), `count` levels.
-pub fn mip_chain(base: Level, count: u32) -> Vec<Level> {
-    let mut levels = vec![base];
-    while (levels.len() as u32) < count {
-        let last = &levels[levels.len() - 1];
-        if last.width == 1 && last.height == 1 {
-            break;
-        }
-        let (pixels, width, height) = crate::textures::downsample_box(&last.pixels, last.width, last.height);
-        levels.push(Level { width, height, pixels });
-    }
-    levels
-}
-
-/// Halve `level` along x (`axis` 0) or y (1) with a 2-tap box filter (an
-/// odd last texel is kept alone): a rip-map's anisotropic reduction.
-pub fn halve_axis(level: &Level, axis: usize) -> Level {
-    let (w, h) = (level.width, level.height);
-    let (nw, nh) = if axis == 0 {
-        ((w / 2).max(1), h)
-    } else {
-        (w, (h / 2).max(1))
-    };
-    let at = |x: u32, y: u32| level.pixels[(y.min(h - 1) * w + x.min(w - 1)) as usize];
-    let mut pixels = Vec::with_capacity((nw * nh) as usize);
-    for y in 0..nh {
-        for x in 0..nw {
-            let (a, b) = if axis == 0 {
-                (at(2 * x, y), at(2 * x + 1, y))
-            } else {
-                (at(x, 2 * y), at(x, 2 * y + 1))
-            };
-            pixels.push(std::array::from_fn(|c| 0.5 * (a[c] + b[c])));
-        }
-    }
-    Level {
-        width: nw,
-        height: nh,
-        pixels,
-    }
 }
 
 /// A rip-map (§4.2, Fig. 7–8): every level (i, j) of the source halved i
@@ -87,14 +38,14 @@ pub fn ripmap_atlas(
         height: base.height,
     };
     let (aw, ah) = layout.atlas_size();
-    if aw > crate::textures::MAX_TEXTURE_SIZE || ah > crate::textures::MAX_TEXTURE_SIZE {
+    if aw > npr_diag::limits::MAX_TEXTURE_SIZE || ah > npr_diag::limits::MAX_TEXTURE_SIZE {
         return Err(RunError::User(vec![npr_diag::Diagnostic::error(
             npr_diag::codes::LIMIT_EXCEEDED,
             format!(
                 "a rip-map of a {}x{} image needs a {aw}x{ah} atlas, over the {} texel limit",
                 base.width,
                 base.height,
-                crate::textures::MAX_TEXTURE_SIZE
+                npr_diag::limits::MAX_TEXTURE_SIZE
             ),
         )
         .with_help(

@@ -11,7 +11,7 @@
 //! written atomically, and one that does not parse is rebuilt (and
 //! overwritten), never trusted.
 
-use crate::artmap::Level;
+use crate::image_level::Level;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -163,8 +163,8 @@ fn decode(bytes: &[u8]) -> Option<Vec<Level>> {
         let texels = (width as usize).checked_mul(height as usize)?;
         if width == 0
             || height == 0
-            || width > crate::textures::MAX_TEXTURE_SIZE
-            || height > crate::textures::MAX_TEXTURE_SIZE
+            || width > npr_diag::limits::MAX_TEXTURE_SIZE
+            || height > npr_diag::limits::MAX_TEXTURE_SIZE
         {
             return None;
         }

@@ -34,6 +34,7 @@ pub mod exr_layers;
 pub mod gpu_count;
 pub mod gpu_error;
 pub mod half_rounding;
+pub mod image_level;
 pub mod inputs;
 pub mod lines;
 pub mod output;

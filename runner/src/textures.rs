@@ -2,8 +2,9 @@
 //! optional mip chain), generated noise and halftone tone tables, each with
 //! its sampler.
 
-use crate::artmap::{ArtmapBuild, Level};
+use crate::artmap::ArtmapBuild;
 use crate::gpu_count::Create;
+use crate::image_level::Level;
 use crate::inputs::gpu::Converter;
 use crate::scene::Scene;
 use crate::texgen;
@@ -377,27 +378,6 @@ fn desc(w: u32, h: u32, mips: u32, format: wgpu::TextureFormat) -> wgpu::Texture
     }
 }
 
-/// Halve an RGBA float image with a 2×2 box filter (odd edges clamp).
-pub fn downsample_box(pixels: &[[f32; 4]], w: u32, h: u32) -> (Vec<[f32; 4]>, u32, u32) {
-    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-    let mut out = vec![[0.0f32; 4]; (nw * nh) as usize];
-    for y in 0..nh {
-        for x in 0..nw {
-            let mut acc = [0.0f32; 4];
-            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                let sx = (2 * x + dx).min(w - 1);
-                let sy = (2 * y + dy).min(h - 1);
-                let p = pixels[(sy * w + sx) as usize];
-                for c in 0..4 {
-                    acc[c] += p[c] * 0.25;
-                }
-            }
-            out[(y * nw + x) as usize] = acc;
-        }
-    }
-    (out, nw, nh)
-}
-
 /// The texels of a `halftone_table(...)`, built for the edge as the shader
 /// will read it back from the half-float texture (so that table and shader
 /// use the same edge to the bit), in the red channel.
@@ -452,7 +432,7 @@ fn load_one(
         TextureSourceManifest::Image { path, resolved, srgb } => {
             let (base, _) = decode_image(t, path, resolved, *srgb, files)?;
             let count = if t.mips { u32::MAX } else { 1 };
-            (crate::artmap::mip_chain(base, count), *srgb, false)
+            (crate::image_level::mip_chain(base, count), *srgb, false)
         }
         TextureSourceManifest::Noise(spec) => {
             let img = texgen::generate(spec);
@@ -462,7 +442,7 @@ fn load_one(
                 pixels: img.pixels,
             };
             let count = if t.mips { u32::MAX } else { 1 };
-            (crate::artmap::mip_chain(base, count), false, true)
+            (crate::image_level::mip_chain(base, count), false, true)
         }
         TextureSourceManifest::HalftoneTable(spec) => {
             let (pixels, width, height) = halftone_table_texels(spec);

@@ -213,7 +213,7 @@ impl HostViews {
         if self.slots.is_empty() {
             return HostInputs::new();
         }
-        let blank = crate::artmap::Level {
+        let blank = crate::image_level::Level {
             width: size.0,
             height: size.1,
             pixels: vec![[0.0; 4]; (size.0 * size.1) as usize],

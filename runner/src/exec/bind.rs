@@ -220,7 +220,7 @@ impl Renderer {
         pi: usize,
         slot: usize,
         parity: usize,
-        physical: &super::resources::Physical,
+        physical: &super::sized::Physical,
     ) -> wgpu::BindGroup {
         let pass = &self.manifest.passes[pi];
         let slots = physical.slots.len();

@@ -7,7 +7,7 @@
 //! this, so no executor imports the dispatcher.
 
 use super::meshes::GpuMesh;
-use super::resources::{wgpu_format, SizedPass};
+use super::sized::{wgpu_format, SizedPass};
 use crate::gpu_count::Create;
 use crate::RunError;
 use npr_abi::formats::HalfRounding;

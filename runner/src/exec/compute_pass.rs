@@ -15,7 +15,7 @@
 use super::bind;
 use super::common::{EncodeContext, Timestamps};
 use super::meshes::{attribute_format, GpuMesh};
-use super::resources::SizedPass;
+use super::sized::SizedPass;
 use super::values::PassBuffers;
 use crate::gpu_count::Create;
 use crate::RunError;

@@ -3,7 +3,7 @@
 
 use super::bind;
 use super::common::{self, Timestamps};
-use super::resources::SizedPass;
+use super::sized::SizedPass;
 use crate::RunError;
 use npr_abi::manifest::*;
 

@@ -11,7 +11,7 @@
 
 use super::bind;
 use super::common::{self, Timestamps};
-use super::resources::SizedPass;
+use super::sized::SizedPass;
 use crate::gpu_count::Create;
 use crate::lines::cache::{EdgeSelection, LinesCache};
 use crate::lines::draw::{vertices, DepthBias};
@@ -207,7 +207,7 @@ impl LinesPassExec {
             .collect();
         // A patched object's patches are one surface: its whole mesh.
         let objects = line_objects(&drawn);
-        let (w, h) = super::resources::scaled_size(frame.width, frame.height, scale);
+        let (w, h) = super::sized::scaled_size(frame.width, frame.height, scale);
         let size = DVec2::new(f64::from(w), f64::from(h));
         let selection = EdgeSelection {
             silhouettes: self.edges.silhouettes,

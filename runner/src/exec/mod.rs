@@ -16,7 +16,8 @@
 //! - `objects.rs`: object uniform blocks;
 //! - `light_bounds.rs`: the world bounds the light camera is fitted to;
 //! - `upload.rs`: the frame's uniforms through a reused staging buffer, copied into their buffers;
-//! - `resources.rs`: size-dependent textures and views;
+//! - `sized.rs`: the types of the size-dependent resources (a leaf the
+//!   executors share); `resources.rs` builds them per size;
 //! - `bind.rs`: bind group layouts and bind groups;
 //! - `meshes.rs`: GPU meshes and time-varying vertex updates;
 //! - `deform.rs`: the GPU stage that morphs and skins objects playing a
@@ -53,15 +54,16 @@ mod resources;
 mod scene_check;
 mod scene_gpu;
 mod scene_warnings;
+mod sized;
 mod state;
 mod tiled_pass;
 mod upload;
 mod values;
 
 pub use frame::FrameSpec;
-pub use resources::{scaled_size, wgpu_format};
 pub use scene_check::{check_scene, check_texture_bindings};
 pub use scene_warnings::scene_warnings;
+pub use sized::{scaled_size, wgpu_format};
 pub use state::{FrameTransforms, RendererState, StateBlock, StateKind};
 
 use crate::scene::Scene;
@@ -116,7 +118,7 @@ pub struct Renderer {
     /// The GPU deformation stage's pipeline, made at the first scene with
     /// an object playing a clip and kept across scenes.
     deform_pipeline: std::sync::OnceLock<deform::DeformPipeline>,
-    sized: Option<resources::SizedResources>,
+    sized: Option<sized::SizedResources>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
     /// styles with history textures.
@@ -215,7 +217,7 @@ impl Renderer {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         program: &crate::StyleProgram,
-        level: &crate::artmap::Level,
+        level: &crate::image_level::Level,
     ) -> Result<Renderer, RunError> {
         program
             .manifest
@@ -236,7 +238,7 @@ impl Renderer {
     /// pipelines stay (what building them costs is most of a level's
     /// filtering on lavapipe), the size-dependent resources are rebuilt at
     /// the next frame, since their bind groups hold the old texture.
-    pub fn set_filter_input(&mut self, level: &crate::artmap::Level) -> Result<(), RunError> {
+    pub fn set_filter_input(&mut self, level: &crate::image_level::Level) -> Result<(), RunError> {
         for (i, texture) in textures::filter_inputs(&self.device, &self.queue, &self.manifest, level)? {
             self.textures[i] = texture;
         }
@@ -255,7 +257,7 @@ impl Renderer {
         queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
-        filter_input: Option<&crate::artmap::Level>,
+        filter_input: Option<&crate::image_level::Level>,
         inputs: &crate::inputs::HostInputs,
     ) -> Result<Renderer, RunError> {
         // Every index the executors use is checked once here, whether the
@@ -296,7 +298,7 @@ impl Renderer {
         queue: &wgpu::Queue,
         program: &crate::StyleProgram,
         scene: &Scene,
-        filter_input: Option<&crate::artmap::Level>,
+        filter_input: Option<&crate::image_level::Level>,
         inputs: &crate::inputs::HostInputs,
     ) -> Result<Renderer, RunError> {
         let manifest = program.manifest.clone();

@@ -17,7 +17,7 @@
 use super::bind::{self, ObjectResources};
 use super::common::{self, EncodeContext, Timestamps};
 use super::meshes::attribute_format;
-use super::resources::SizedPass;
+use super::sized::SizedPass;
 use crate::gpu_count::Create;
 use crate::RunError;
 use npr_abi::manifest::*;
@@ -156,7 +156,7 @@ impl RenderPassExec {
             color_formats: pass
                 .outputs
                 .iter()
-                .map(|t| Some(super::resources::wgpu_format(manifest.targets[*t].format)))
+                .map(|t| Some(super::sized::wgpu_format(manifest.targets[*t].format)))
                 .collect(),
             pipeline,
             depth_ops,

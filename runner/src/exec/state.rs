@@ -14,7 +14,7 @@
 //! bit for bit what the single run gives (`tests/gpu/checkpoints.rs`).
 
 use super::frame::Motion;
-use super::resources::scaled_size;
+use super::sized::scaled_size;
 use super::Renderer;
 use crate::{readback, RunError};
 

@@ -6,7 +6,7 @@
 
 use super::bind;
 use super::common::{PassShader, Timestamps};
-use super::resources::{wgpu_format, SizedPass};
+use super::sized::{wgpu_format, SizedPass, TiledOutputs};
 use crate::gpu_count::Create;
 use crate::RunError;
 use npr_abi::manifest::*;
@@ -115,11 +115,4 @@ impl TiledPassExec {
         cp.set_bind_group(1, &outputs.group, &[]);
         cp.dispatch_workgroups(outputs.workgroups[0], outputs.workgroups[1], 1);
     }
-}
-
-/// What a tiled pass needs per eye slot and size: its output group and
-/// the workgroup grid.
-pub(super) struct TiledOutputs {
-    group: wgpu::BindGroup,
-    workgroups: [u32; 2],
 }

@@ -69,7 +69,7 @@ impl PassBuffers {
     pub fn pixel_workgroups(&self, manifest: &Manifest, width: u32, height: u32) -> u32 {
         match self.pixels_of.and_then(|t| manifest.targets.get(t)) {
             Some(target) => pixel_workgroups(
-                super::resources::scaled_size(width, height, target.scale),
+                super::sized::scaled_size(width, height, target.scale),
                 self.objects,
                 self.reduced,
             ),

@@ -5,7 +5,7 @@
 //! converts (`gpu.rs`), for files and a host's textures alike; and a
 //! file's values are checked before they are drawn ([`check_values`]).
 
-use crate::artmap::Level;
+use crate::image_level::Level;
 use crate::scene::CameraPose;
 use npr_abi::{InputKind, NormalSpace};
 use npr_diag::{codes, Diagnostic};
@@ -244,7 +244,7 @@ pub fn prepare(
     file: &str,
     kind: InputKind,
     source: SourceConvention,
-    raw: crate::artmap::Level,
+    raw: crate::image_level::Level,
     camera: Option<&CameraPose>,
     unorm: bool,
 ) -> Result<super::HostImage, Diagnostic> {

@@ -8,7 +8,7 @@
 //! past the first.
 
 use super::convert::{bad_input, ColorEncoding, DepthConvention, NormalConvention, SourceConvention};
-use crate::artmap::Level;
+use crate::image_level::Level;
 use npr_abi::InputKind;
 use npr_diag::Diagnostic;
 use std::collections::BTreeMap;
@@ -243,7 +243,7 @@ fn texture_error(e: crate::texture_file::TextureFileError) -> String {
         E::NotAnImage(e) => format!("not an image npr can read: {e}"),
         E::TooLarge { width, height } => format!(
             "{width}x{height}, past the largest image npr loads ({} px a side)",
-            crate::textures::MAX_TEXTURE_SIZE
+            npr_diag::limits::MAX_TEXTURE_SIZE
         ),
     }
 }

@@ -8,8 +8,8 @@
 //! (`embed::inputs`), so one image gives the same texels either way.
 
 use super::convert::Conversion;
-use crate::artmap::Level;
 use crate::gpu_count::{Create, CreateView};
+use crate::image_level::Level;
 
 /// What every input texture is: linear half floats, as a filter's level
 /// (depth keeps 11 significant bits, 5 mm at 10 m; an id is exact up to

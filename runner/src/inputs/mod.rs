@@ -17,7 +17,7 @@ pub mod gpu;
 
 pub use convert::{prepare, ColorEncoding, Conversion, DepthConvention, Mismatch, NormalConvention, SourceConvention};
 
-use crate::artmap::Level;
+use crate::image_level::Level;
 use std::collections::BTreeMap;
 
 /// One input read from a file: its image as the file holds it, and how it
