@@ -396,6 +396,10 @@ pub mod codes {
     pub const HOST_INPUT_SIZE: &str = "E0606";
     /// A frame of a style that reads a host input the host has not given.
     pub const MISSING_HOST_INPUT: &str = "E0607";
+    /// A frame's camera (embedding API) whose projection cannot be drawn
+    /// with: a field of view outside (0, π), a near plane not past the eye,
+    /// a far plane not past the near one, a negative or non-finite IPD.
+    pub const BAD_HOST_CAMERA: &str = "E0616";
     /// Internal compiler error (a bug in npr, not in the style).
     pub const INTERNAL: &str = "E9001";
 
@@ -509,5 +513,6 @@ pub mod codes {
         ),
         (HOST_INPUT_SIZE, "a host's input of another size than the target"),
         (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
+        (BAD_HOST_CAMERA, "a host's camera whose projection cannot be drawn with"),
     ];
 }

@@ -58,9 +58,19 @@ fn texture(format: wgpu::TextureFormat) -> wgpu::Texture {
 /// Render one frame of `objects` into `view`.
 fn render(runtime: &mut StyleRuntime, objects: &[Instance], view: &wgpu::TextureView) -> Result<(), EmbedError> {
     let camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+    render_with(runtime, objects, view, &camera)
+}
+
+/// Render one frame of `objects` into `view`, seen by `camera`.
+fn render_with(
+    runtime: &mut StyleRuntime,
+    objects: &[Instance],
+    view: &wgpu::TextureView,
+    camera: &Camera,
+) -> Result<(), EmbedError> {
     let lights = Lights::default();
     let frame = Frame {
-        camera: &camera,
+        camera,
         objects,
         lights: &lights,
         time_s: 0.0,
@@ -258,4 +268,25 @@ fn e0607_an_input_the_host_did_not_give() {
     let target = texture(wgpu::TextureFormat::Rgba8Unorm);
     let e = render(&mut rt, &[], &target.create_view(&Default::default())).expect_err("no depth given");
     check("E0607", rendered(e));
+}
+
+#[test]
+fn e0616_a_camera_whose_projection_cannot_be_drawn_with() {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let view = target.create_view(&Default::default());
+    let mut camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+    camera.near = 0.0;
+    let (d, r) = rendered(render_with(&mut rt, &[], &view, &camera).expect_err("a zero near plane"));
+    assert!(r.contains("near plane is at 0 m"), "{r}");
+    check("E0616", (d, r));
+    // A field of view of 0 or π: no perspective projection (`camera.focal`
+    // would be infinite or 0), and the frame is refused, not drawn.
+    for fov in [0.0, std::f32::consts::PI, f32::NAN] {
+        let mut camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+        camera.fov_y_rad = fov;
+        let e = render_with(&mut rt, &[], &view, &camera).expect_err("no perspective");
+        assert_eq!(e.code(), "E0616", "fov {fov}: {e}");
+    }
+    render(&mut rt, &[], &view).expect("a good camera after the refused ones draws");
 }

@@ -203,4 +203,30 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0616",
+        meaning: "A host application rendered a frame whose camera has a projection npr cannot \
+            draw with. `Frame::camera` is a perspective camera: its vertical field of view \
+            `fov_y_rad` is in (0, π), its `near` plane is a positive distance and its `far` plane \
+            lies beyond it (`f32::INFINITY` is allowed), and a stereo camera's `ipd_m` is a \
+            finite distance, 0 or more. Scene files are held to the same rules (E0405). The \
+            compiler counts on them: `camera.near` and `camera.focal` are positive, so a style \
+            may divide by them.",
+        wrong: Example {
+            host_rust: Some(
+                "let mut camera = Camera::looking_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO);\n\
+                 camera.near = 0.0; // E0616 at the next render\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs renders with a zero near plane and a zero field of view"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let mut camera = Camera::looking_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO);\n\
+                 camera.near = 0.05;\n",
+            ),
+            not_runnable: Some("examples/embed.rs renders with a checked camera every frame"),
+            ..EXAMPLE
+        },
+    },
 ];

@@ -133,6 +133,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod camera_check;
 mod deform;
 mod error;
 mod frame;
@@ -526,6 +527,7 @@ impl StyleRuntime {
         target: Target,
     ) -> Result<(), EmbedError> {
         let checked = present::check_target(&target, self.eye_slots, frame.eye)?;
+        camera_check::check_camera(frame.camera)?;
         let size = (checked.width, checked.height);
         if self.inputs.any() {
             self.inputs.check(size)?;

@@ -50,10 +50,12 @@ pub fn builtin(b: Builtin) -> Val {
         | MoreLightIntensity(_)
         | ObjectIndex
         | ObjectId
-        | LineArc
-        | CameraFocal => Val::splat(NON_NEGATIVE, n),
-        // A perspective camera's near plane is past the eye.
-        CameraNear => Val::splat(Iv::new(f32::MIN_POSITIVE as f64, F32_MAX), n),
+        | LineArc => Val::splat(NON_NEGATIVE, n),
+        // A perspective camera's near plane is past the eye, and its
+        // focal lengths (P₀₀, P₁₁ = cot(fov/2) over the aspect and 1) are
+        // positive: its fov is in (0°, 180°). Scenes check both (E0405),
+        // and so does the embedding API for every frame's camera (E0616).
+        CameraNear | CameraFocal => Val::splat(Iv::new(f32::MIN_POSITIVE as f64, F32_MAX), n),
         Resolution => Val::splat(Iv::new(1.0, F32_MAX), n),
         Uv
         | PositionWorld
