@@ -10,66 +10,12 @@
 //! the test then checks what this Blender writes, not a file that could
 //! drift from the script, and nothing binary is committed.
 
+use crate::blender_scene::{blender, channel, npr, scratch};
 use npr_runner::inputs::files::{read_exr, ExrChannels};
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::OnceLock;
+use std::path::PathBuf;
 
 const STYLE: &str = "examples/post/ink_over.npr";
 const INK: [u8; 3] = [20, 20, 20];
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Blender's passes and the mirrored scene, rendered once per test run.
-fn blender() -> &'static (PathBuf, PathBuf) {
-    static ONCE: OnceLock<(PathBuf, PathBuf)> = OnceLock::new();
-    ONCE.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("host_inputs");
-        std::fs::create_dir_all(&dir).expect("scratch dir");
-        let (exr, toml) = (dir.join("blender_passes.exr"), dir.join("blender_scene.toml"));
-        assert!(
-            Path::new("/usr/bin/blender").exists(),
-            "Blender is not installed: run `./setup.sh --tests` (apt-get install -y blender python3-numpy)"
-        );
-        // The system PATH: Blender's Python finds Debian's numpy there.
-        let out = Command::new("/usr/bin/blender")
-            .env("PATH", "/usr/bin:/bin")
-            .args(["-b", "--factory-startup", "-P"])
-            .arg(root().join("tests/data/blender/render_passes.py"))
-            .arg("--")
-            .args([&exr, &toml])
-            .output()
-            .expect("run blender");
-        assert!(
-            out.status.success() && exr.is_file() && toml.is_file(),
-            "blender failed:\n{}\n{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        (exr, toml)
-    })
-}
-
-fn npr(args: &[&str]) {
-    let out = Command::new(env!("CARGO_BIN_EXE_npr"))
-        .args(args)
-        .current_dir(root())
-        .env("XDG_RUNTIME_DIR", "/tmp/npr-xdg-runtime")
-        .output()
-        .expect("run npr");
-    assert!(
-        out.status.success(),
-        "npr {}: {}",
-        args.join(" "),
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-fn scratch(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR")).join("host_inputs").join(name)
-}
 
 /// The style over Blender's passes: the image, and its path (kept for a
 /// failure to look at).
@@ -99,12 +45,6 @@ fn inked(img: &image::RgbaImage) -> Vec<Vec<bool>> {
 fn near(m: &[Vec<bool>], x: usize, y: usize) -> bool {
     let (h, w) = (m.len(), m[0].len());
     (y.saturating_sub(1)..(y + 2).min(h)).any(|yy| (x.saturating_sub(1)..(x + 2).min(w)).any(|xx| m[yy][xx]))
-}
-
-fn channel<'a>(exr: &'a ExrChannels, name: &str) -> &'a [f32] {
-    exr.channels
-        .get(name)
-        .unwrap_or_else(|| panic!("no channel {name}: {:?}", exr.channels.keys().collect::<Vec<_>>()))
 }
 
 /// Where Blender's own depth jumps, measured in f64 from the EXR: between
