@@ -54,6 +54,12 @@ pub fn doc(b: Builtin) -> &'static str {
 pub fn availability(b: Builtin) -> &'static str {
     if b == Builtin::PatchWeight {
         "render passes only"
+    } else if matches!(b, Builtin::Depth | Builtin::PositionView) {
+        "render passes, compute passes over geometry, and image passes of a style with `input(depth)`"
+    } else if b == Builtin::NormalView {
+        "render passes, compute passes over geometry, and image passes of a style with `input(normal, view)`"
+    } else if b == Builtin::NormalWorld {
+        "render passes, compute passes over geometry, and image passes of a style with `input(normal, world)`"
     } else if b.needs_geometry() {
         "render passes and compute passes over geometry"
     } else if b.is_per_fragment() {

@@ -477,3 +477,25 @@ fn geometry_in_a_pass_over_pixels() {
     assert!(rendered.contains("no geometry in a pass over pixels"), "{rendered}");
     check_case("E0304", "E0304_normal_over_pixels", (diags, rendered));
 }
+
+#[test]
+fn geometry_in_an_image_pass_names_the_input_that_would_give_it() {
+    // No `input(normal, view)`: `normal.view` stays a render pass's.
+    let text = style(
+        "texture z = input(depth)\npass p: image() {\n  out c: rgba8unorm = vec4(normal.view, 1.0)\n}\noutput p.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("image-normal-no-input"));
+    assert!(rendered.contains("`texture n = input(normal, view)`"), "{rendered}");
+    check_case("E0304", "E0304_normal_in_image_pass_without_input", (diags, rendered));
+}
+
+#[test]
+fn position_in_an_image_pass_over_two_depth_inputs_is_ambiguous() {
+    let text = style(
+        "texture a = input(depth)\ntexture b = input(depth)\n\
+         pass p: image() {\n  out c: rgba8unorm = vec4(position.view / 1m, 1.0)\n}\noutput p.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("image-two-depths"));
+    assert!(rendered.contains("any of the inputs `a`, `b`"), "{rendered}");
+    check_case("E0304", "E0304_builtin_over_two_inputs", (diags, rendered));
+}

@@ -25,6 +25,7 @@ mod gpu_errors;
 mod gradient_ramp;
 mod halftone_tone;
 mod history;
+mod host_builtins;
 mod host_inputs;
 mod input_sequences;
 mod lines_classify;

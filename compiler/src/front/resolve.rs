@@ -23,6 +23,7 @@ mod calls;
 mod compute;
 mod expr;
 pub mod gradient;
+mod host_builtins;
 mod input_source;
 mod kind_args;
 mod lines;
@@ -80,6 +81,7 @@ pub fn resolve_with_settings(
         current_pass: None,
         draws_objects: false,
         in_vertex: false,
+        in_image_pass: false,
         internal: None,
         gradients: Vec::new(),
         gradient_params: Vec::new(),
@@ -138,6 +140,9 @@ struct Resolver<'d> {
     /// Resolving a `vertex { ... }` modifier: no texture may be sampled
     /// there (`textureSample` is fragment-only in WGSL).
     in_vertex: bool,
+    /// Whether the pass being resolved is an image pass: its geometry
+    /// builtins are read from the host's inputs (`host_builtins.rs`).
+    in_image_pass: bool,
     /// The first impossible state met (a bug in npr, not in the style).
     internal: Option<InternalError>,
     /// The declared gradients (`gradient.rs`): constants, read by `ramp`;

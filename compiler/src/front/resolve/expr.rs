@@ -103,6 +103,18 @@ impl Resolver<'_> {
         }
     }
 
+    /// A builtin named in a pass: in an image pass over a host's frame,
+    /// the reads of the inputs it stands for (`host_builtins.rs`).
+    fn builtin_read(&mut self, b: Builtin, span: Span) -> ExprId {
+        if self.in_image_pass && !self.in_vertex {
+            if let Some(read) = self.host_builtin(b, span) {
+                return read;
+            }
+        }
+        let (ty, unit) = b.ty_unit();
+        self.ir.add_typed(ExprKind::Builtin(b), ty, unit, span)
+    }
+
     pub(super) fn name(&mut self, id: &ast::Ident) -> ExprId {
         let span = id.span;
         for scope in self.scopes.iter().rev() {
@@ -174,8 +186,7 @@ impl Resolver<'_> {
             None => {}
         }
         if let Some((_, b)) = Builtin::SPELLINGS.iter().find(|(s, _)| *s == id.name) {
-            let (ty, unit) = b.ty_unit();
-            return self.ir.add_typed(ExprKind::Builtin(*b), ty, unit, span);
+            return self.builtin_read(*b, span);
         }
         // Enum variants are global constants (their index).
         for p in &self.ir.params {
@@ -226,8 +237,7 @@ impl Resolver<'_> {
                 }
                 let spelled = format!("{}.{}", b.name, field.name);
                 if let Some((_, bi)) = Builtin::SPELLINGS.iter().find(|(s, _)| *s == spelled) {
-                    let (ty, unit) = bi.ty_unit();
-                    return self.ir.add_typed(ExprKind::Builtin(*bi), ty, unit, span);
+                    return self.builtin_read(*bi, span);
                 }
                 if matches!(b.name.as_str(), "light" | "camera") {
                     let members: Vec<&str> = Builtin::SPELLINGS

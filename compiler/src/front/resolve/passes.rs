@@ -56,6 +56,7 @@ impl Resolver<'_> {
         };
         self.draws_objects = kind.draws_objects();
         self.has_object = kind.has_object();
+        self.in_image_pass = matches!(kind, PassKind::Image { .. });
         let scale = match &p.scale {
             None => 1.0,
             Some(e) => {
@@ -218,6 +219,7 @@ impl Resolver<'_> {
         self.current_pass = None;
         self.draws_objects = false;
         self.has_object = false;
+        self.in_image_pass = false;
         self.states.clear();
     }
 

@@ -1,0 +1,187 @@
+//! Geometry builtins in an image pass over a host's frame (issue 47): a
+//! style that declares `input(depth)` reads `depth` and `position.view` in
+//! its image passes, and one that declares `input(normal, view|world)` reads
+//! `normal.view` or `normal` (world), as a render pass reads them from npr's
+//! own geometry. Each is rewritten here into the reads of those inputs it
+//! stands for, so every later stage (types, units, value ranges, bindings,
+//! fusion) sees ordinary texture reads at the pixel:
+//!
+//! - `depth` = the depth input's r (distance along the view axis, metres;
+//!   0 where the host hit nothing);
+//! - `position.view` = (x_ndc·d / f_x, y_ndc·d / f_y, −d), with
+//!   x_ndc = 2u − 1, y_ndc = 1 − 2v at `screen_uv` (u, v) and f =
+//!   `camera.focal` (P₀₀, P₁₁ of a symmetric perspective projection): the
+//!   point on the pixel's ray at view depth d;
+//! - `normal.view` / `normal.world` = the normal input's rgb when it is
+//!   declared in that space (the runner converts the host's at load).
+//!
+//! A builtin that needs an input the style does not declare stays a
+//! builtin, and the typechecker refuses it in an image pass (E0304) with a
+//! help that names the input. Two inputs of one kind make the reading
+//! ambiguous: E0304 here, naming both.
+
+use super::Resolver;
+use crate::ir::*;
+use npr_abi::{InputKind, NormalSpace};
+use npr_diag::{codes, Diagnostic, Span};
+use npr_dsl::ast::BinOp;
+use npr_stdlib::Unit;
+
+impl Resolver<'_> {
+    /// `b` read at `span` in an image pass, as the reads of the style's
+    /// inputs it stands for; `None` when no declared input provides it.
+    pub(super) fn host_builtin(&mut self, b: Builtin, span: Span) -> Option<ExprId> {
+        match b {
+            Builtin::Depth => {
+                let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
+                Some(self.view_depth(depth, span))
+            }
+            Builtin::PositionView => {
+                let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
+                Some(self.view_position(depth, span))
+            }
+            Builtin::NormalView | Builtin::NormalWorld => {
+                let space = if b == Builtin::NormalView {
+                    NormalSpace::View
+                } else {
+                    NormalSpace::World
+                };
+                let normals = self.host_input(b, span, |k| *k == InputKind::Normal { space })?;
+                let read = self.texture_read(normals, span);
+                Some(self.ir.add(
+                    ExprKind::Swizzle {
+                        base: read,
+                        components: vec![0, 1, 2],
+                    },
+                    span,
+                ))
+            }
+            _ => None,
+        }
+    }
+
+    /// The one declared input of a kind `fits`; `None` when there is none,
+    /// and an error (with `None`) when there are several.
+    fn host_input(&mut self, b: Builtin, span: Span, fits: impl Fn(&InputKind) -> bool) -> Option<TextureId> {
+        let found: Vec<TextureId> = self
+            .ir
+            .textures
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| matches!(&t.source, TextureSource::Input(k) if fits(k)))
+            .map(|(i, _)| TextureId(i as u32))
+            .collect();
+        match found.as_slice() {
+            [] => None,
+            [one] => Some(*one),
+            several => {
+                let names: Vec<String> = several
+                    .iter()
+                    .map(|t| format!("`{}`", self.ir.textures[t.0 as usize].name))
+                    .collect();
+                let mut d = Diagnostic::error(
+                    codes::BAD_PASS_INPUT,
+                    format!(
+                        "`{}` could be read from any of the inputs {}",
+                        b.name(),
+                        names.join(", ")
+                    ),
+                )
+                .with_primary(span, "which input is meant is ambiguous")
+                .with_help(format!(
+                    "read the input you mean yourself, e.g. `{}.r` for a depth",
+                    self.ir.textures[several[0].0 as usize].name
+                ));
+                for t in several {
+                    d = d.with_secondary(self.ir.textures[t.0 as usize].span, "one of them");
+                }
+                self.error(d);
+                Some(several[0])
+            }
+        }
+    }
+
+    /// The input texture as a value at the pixel (an image pass samples it
+    /// at `screen_uv`).
+    fn texture_read(&mut self, t: TextureId, span: Span) -> ExprId {
+        self.ir
+            .add_typed(ExprKind::Texture(t), Ty::Texture(t), Unit::None, span)
+    }
+
+    /// The depth input's r, in metres (the language's depth convention).
+    fn view_depth(&mut self, depth: TextureId, span: Span) -> ExprId {
+        let read = self.texture_read(depth, span);
+        let r = self.ir.add(
+            ExprKind::Swizzle {
+                base: read,
+                components: vec![0],
+            },
+            span,
+        );
+        let metre = self
+            .ir
+            .add_typed(ExprKind::Const(Const::Float(1.0)), Ty::Float, Unit::Meters, span);
+        self.binary(BinOp::Mul, r, metre, span)
+    }
+
+    /// (x_ndc·d / f_x, y_ndc·d / f_y, −d): the view-space point at depth d
+    /// on the pixel's ray.
+    fn view_position(&mut self, depth: TextureId, span: Span) -> ExprId {
+        let d = self.view_depth(depth, span);
+        let uv = self.builtin(Builtin::ScreenUv, span);
+        let focal = self.builtin(Builtin::CameraFocal, span);
+        let two = self.plain_number(2.0, span);
+        let one = self.plain_number(1.0, span);
+        let u = self.component(uv, 0, span);
+        let v = self.component(uv, 1, span);
+        // x_ndc = 2u − 1; y_ndc = 1 − 2v (screen_uv's v grows downwards).
+        let two_u = self.binary(BinOp::Mul, two, u, span);
+        let x_ndc = self.binary(BinOp::Sub, two_u, one, span);
+        let two_v = self.binary(BinOp::Mul, two, v, span);
+        let y_ndc = self.binary(BinOp::Sub, one, two_v, span);
+        let fx = self.component(focal, 0, span);
+        let fy = self.component(focal, 1, span);
+        let xd = self.binary(BinOp::Mul, x_ndc, d, span);
+        let x = self.binary(BinOp::Div, xd, fx, span);
+        let yd = self.binary(BinOp::Mul, y_ndc, d, span);
+        let y = self.binary(BinOp::Div, yd, fy, span);
+        let z = self.ir.add(
+            ExprKind::Unary {
+                op: npr_dsl::ast::UnOp::Neg,
+                operand: d,
+            },
+            span,
+        );
+        self.ir.add(
+            ExprKind::Call {
+                callee: Callee::Intrinsic(Intrinsic::Construct(3)),
+                args: vec![x, y, z],
+            },
+            span,
+        )
+    }
+
+    fn builtin(&mut self, b: Builtin, span: Span) -> ExprId {
+        let (ty, unit) = b.ty_unit();
+        self.ir.add_typed(ExprKind::Builtin(b), ty, unit, span)
+    }
+
+    fn plain_number(&mut self, v: f64, span: Span) -> ExprId {
+        self.ir
+            .add_typed(ExprKind::Const(Const::Float(v)), Ty::Float, Unit::None, span)
+    }
+
+    fn component(&mut self, base: ExprId, c: u8, span: Span) -> ExprId {
+        self.ir.add(
+            ExprKind::Swizzle {
+                base,
+                components: vec![c],
+            },
+            span,
+        )
+    }
+
+    fn binary(&mut self, op: BinOp, lhs: ExprId, rhs: ExprId, span: Span) -> ExprId {
+        self.ir.add(ExprKind::Binary { op, lhs, rhs }, span)
+    }
+}

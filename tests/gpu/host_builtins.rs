@@ -1,0 +1,129 @@
+//! Geometry builtins in image passes over a host's frame (issue 47):
+//! `depth`, `position.view` and `normal.view`, read from the style's
+//! `input(depth)` and `input(normal, view)`, equal what a render pass reads
+//! from npr's own geometry. npr renders a scene's G-buffer (render-pass
+//! builtins, float32) into EXR layers; a second style reads those layers
+//! as its inputs and writes the same builtins from an image pass. A file's
+//! normals are world normals (the convention of files that are not
+//! Blender's), which the runner turns into the view space the input
+//! declares, so `normal.view` is compared with the first style's own. The two
+//! must agree to what the inputs keep (each style's last pass reads every
+//! target, so that all are kept and written as layers): they are stored as half floats, so
+//! a depth keeps 11 significant bits.
+
+use crate::blender_scene::{npr, scratch};
+use npr_runner::inputs::files::read_exr;
+
+const OWN: &str = "style \"own\"\n\
+pass g: render(scene) {\n\
+  out p: rgba32float = vec4(position.view, 1.0)\n\
+  out n: rgba32float = vec4(normal, 1.0)\n\
+  out v: rgba32float = vec4(normal.view, 1.0)\n\
+  out d: r32float = depth\n\
+  clear: #000000\n\
+}\n\
+pass all: image(g) {\n\
+  out c: rgba32float = vec4(g.p.x, g.n.y + g.v.y, g.d, 1.0)\n\
+}\n\
+output all.c\n";
+
+const OVER: &str = "style \"over\"\n\
+texture depth_in = input(depth)\n\
+texture normal_in = input(normal, view)\n\
+pass q: image() {\n\
+  out p: rgba32float = vec4(position.view, 1.0)\n\
+  out n: rgba32float = vec4(normal.view, depth)\n\
+}\n\
+pass all: image(q) {\n\
+  out c: rgba32float = vec4(q.p.x, q.n.y, q.n.w, 1.0)\n\
+}\n\
+output all.c\n";
+
+#[test]
+fn image_pass_builtins_over_inputs_equal_the_render_pass_builtins() {
+    std::fs::create_dir_all(scratch("")).expect("scratch dir");
+    let (own_style, over_style) = (scratch("builtins_own.npr"), scratch("builtins_over.npr"));
+    std::fs::write(&own_style, OWN).expect("write");
+    std::fs::write(&over_style, OVER).expect("write");
+    let (own, over) = (scratch("builtins_own.exr"), scratch("builtins_over.exr"));
+    let scene = "examples/scenes/spheres.toml";
+    npr(&[
+        "render",
+        own_style.to_str().unwrap(),
+        "--scene",
+        scene,
+        "--size",
+        "96x72",
+        "--layers",
+        "-o",
+        own.to_str().unwrap(),
+    ]);
+    npr(&[
+        "render",
+        over_style.to_str().unwrap(),
+        "--inputs",
+        own.to_str().unwrap(),
+        "--map",
+        "depth_in=g.d",
+        "--map",
+        "normal_in=g.n",
+        "--scene",
+        scene,
+        "--layers",
+        "-o",
+        over.to_str().unwrap(),
+    ]);
+    let a = read_exr("own", &own).expect("read own");
+    let b = read_exr("over", &over).expect("read over");
+    let ch = |e: &npr_runner::inputs::files::ExrChannels, n: &str| {
+        e.channels
+            .get(n)
+            .unwrap_or_else(|| panic!("no channel {n}: {:?}", e.channels.keys().collect::<Vec<_>>()))
+            .clone()
+    };
+    let (own_p, own_n, own_d) = (
+        ["R", "G", "B"].map(|c| ch(&a, &format!("g.p.{c}"))),
+        ["R", "G", "B"].map(|c| ch(&a, &format!("g.v.{c}"))),
+        ch(&a, "g.d.R"),
+    );
+    let (over_p, over_n, over_d) = (
+        ["R", "G", "B"].map(|c| ch(&b, &format!("q.p.{c}"))),
+        ["R", "G", "B"].map(|c| ch(&b, &format!("q.n.{c}"))),
+        ch(&b, "q.n.A"),
+    );
+    let (mut surface, mut worst_p, mut worst_n, mut worst_d) = (0, 0.0f64, 0.0f64, 0.0f64);
+    for i in 0..own_d.len() {
+        let d = own_d[i] as f64;
+        if d == 0.0 {
+            // Nothing drawn: the input's depth is 0, and so is the rebuilt point.
+            assert_eq!(over_d[i], 0.0, "pixel {i}: background depth");
+            continue;
+        }
+        surface += 1;
+        worst_d = worst_d.max((over_d[i] as f64 - d).abs() / d);
+        // The rebuilt point against the rasterized one, relative to its length.
+        let dp = (0..3)
+            .map(|c| (over_p[c][i] as f64 - own_p[c][i] as f64).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let length = (0..3).map(|c| (own_p[c][i] as f64).powi(2)).sum::<f64>().sqrt();
+        worst_p = worst_p.max(dp / length);
+        let dn = (0..3)
+            .map(|c| (over_n[c][i] as f64 - own_n[c][i] as f64).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        worst_n = worst_n.max(dn);
+    }
+    assert!(surface > 96 * 72 / 10, "the scene covers the image: {surface} pixels");
+    // Half-float depth: 11 significant bits, and the GPU may round toward
+    // zero when it stores one (Vulkan leaves the mode to the driver;
+    // lavapipe truncates: 8.2807 is kept as 8.2734): less than one step,
+    // 2⁻¹⁰ (9.8e-4) of the value.
+    assert!(worst_d < 9.8e-4, "depth differs by {worst_d:e} of itself");
+    // The point on the pixel centre's ray at that depth: scaled by the
+    // depth, so off by the depth's rounding of its length, plus f32
+    // rounding of the ray (1e-6).
+    assert!(worst_p < 9.9e-4, "position.view differs by {worst_p:e} of its length");
+    // Unit normals in half floats: 2⁻¹¹ per component.
+    assert!(worst_n <= 2e-3, "normal.view differs by {worst_n:e}");
+}
