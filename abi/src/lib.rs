@@ -35,6 +35,7 @@ pub mod formats;
 pub mod frame;
 pub mod gradient;
 pub mod halftone;
+pub mod host_param;
 pub mod input;
 pub mod lines;
 pub mod manifest;

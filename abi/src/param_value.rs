@@ -135,6 +135,7 @@ impl ParamShape {
 /// ABI depends on no other npr crate; `abi/tests/refusal_codes.rs` holds
 /// these equal to diag's).
 pub mod codes {
+    pub const UNKNOWN_NAME: &str = "E0101";
     pub const BAD_ARGUMENT_VALUE: &str = "E0502";
     pub const TYPE_MISMATCH: &str = "E0201";
     pub const UNIT_MISMATCH: &str = "E0202";

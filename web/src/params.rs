@@ -1,75 +1,27 @@
-//! `Style.setParam` without a GPU: a value written as `--set` takes it,
-//! typed against the compiled style's manifest by the ABI's one rule
-//! (`npr_abi::param_value::type_value`), and made the parameter's constant
-//! in the style's manifest, which a runtime reads. The refusals are those
-//! of `npr_runner::embed::StyleRuntime::set_param`: an unknown name E0101,
-//! a wrong type, unit or range E0201-E0203, a parameter folded into the
-//! shaders or bound per object E0502.
+//! `Style.setParam` without a GPU: the rule every host API follows
+//! (`npr_abi::host_param`: a value written as `--set` takes it, typed
+//! against the compiled style's manifest; an unknown name E0101, a wrong
+//! type, unit or range E0201-E0203, a parameter folded into the shaders or
+//! bound per object E0502), made the parameter's constant in the style's
+//! manifest, which a runtime reads.
 
-use npr_abi::manifest::{ParamBinding, ParamManifest};
-use npr_abi::param_literal::{did_you_mean, read_literal, SettingOrigin};
-use npr_abi::param_value::{type_value, ParamShape};
-use npr_diag::{codes, Diagnostic};
-
-/// Whether the running style reads `p` from its uniform block.
-fn settable(p: &ParamManifest) -> bool {
-    p.binding == ParamBinding::Uniform
-}
+use npr_abi::host_param::{type_host_setting, JS_API};
+use npr_abi::manifest::ParamManifest;
+use npr_diag::Diagnostic;
 
 /// Set `name` to `value` in `params`; on a refusal nothing changes.
 pub fn set_param(params: &mut [ParamManifest], name: &str, value: &str) -> Result<(), Diagnostic> {
-    let Some(index) = params.iter().position(|p| p.name == name) else {
-        return Err(unknown_param(name, params));
-    };
-    let param = &params[index];
-    let typed = type_value(
-        &ParamShape::of_manifest(param),
-        &read_literal(value.trim()),
-        value.trim(),
-        &SettingOrigin::Host,
-    )
-    .map_err(|r| {
-        Diagnostic::error(r.code, format!("{}: {}", SettingOrigin::Host.subject(name), r.message))
-            .with_help(format!("{} ({})", r.help, r.label))
-    })?;
-    if !settable(param) {
-        return Err(Diagnostic::error(
-            codes::BAD_ARGUMENT_VALUE,
-            format!(
-                "setParam(\"{name}\"): `{name}` cannot change at run time: {}",
-                if param.binding == ParamBinding::Removed {
-                    "nothing the style's output depends on reads it"
-                } else {
-                    "it was folded into the style's shaders when the style was compiled"
-                }
-            ),
-        )
-        .with_help("compile the style with `{ keepParams: true }` to change its parameters at run time"));
-    }
+    let (index, typed) = type_host_setting(params, name, value, &JS_API)
+        .map_err(|r| Diagnostic::error(r.code, r.message).with_help(r.help))?;
     params[index].set_constant(&typed);
     Ok(())
-}
-
-/// E0101 for a name the style has no settable parameter of.
-fn unknown_param(name: &str, params: &[ParamManifest]) -> Diagnostic {
-    let names: Vec<&str> = params.iter().filter(|p| settable(p)).map(|p| p.name.as_str()).collect();
-    let d = Diagnostic::error(
-        codes::UNKNOWN_NAME,
-        format!("setParam(\"{name}\"): the style has no parameter `{name}` that can change at run time"),
-    );
-    match did_you_mean(name, names.iter().copied()) {
-        Some(close) => d.with_help(format!("did you mean `{close}`?")),
-        None if names.is_empty() => d.with_help(
-            "this style has no run-time parameters: compile it with `{ keepParams: true }` to keep them in a uniform block",
-        ),
-        None => d.with_help(format!("its parameters are: {}", names.join(", "))),
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::compile::{compile, Request};
+    use npr_diag::codes;
 
     fn params(keep_params: bool) -> Vec<ParamManifest> {
         let source = "style \"S\"\nparam bands: int = 3 in 1..8\nparam unused: float = 1\npass final: image() {\n  let v = toon(0.5, steps: bands)\n  out color: rgba8unorm = vec4(v, v, v, 1.0)\n}\noutput final.color\n";

@@ -1,13 +1,12 @@
 //! Style parameters set by name at run time ([`StyleRuntime::set_param`]),
-//! read and typed from the manifest's parameter metadata by the rule
-//! `--set` uses (`npr_abi::param_literal::read_literal`, then
-//! `npr_abi::param_value::type_value`): one definition, in the ABI.
+//! by the rule every host API follows (`npr_abi::host_param`, which types
+//! values as `--set` does): one definition, in the ABI.
 
 use super::{EmbedError, StyleRuntime};
-use npr_abi::manifest::{ParamBinding, ParamManifest};
-use npr_abi::param_literal::{did_you_mean, read_literal, SettingOrigin};
-use npr_abi::param_value::{format_literal, type_value, ParamShape};
-use npr_diag::{codes, Diagnostic};
+use npr_abi::host_param::{settable, type_host_setting, RUST_API};
+use npr_abi::manifest::ParamManifest;
+use npr_abi::param_value::{format_literal, ParamShape};
+use npr_diag::Diagnostic;
 
 /// A parameter the host can set: what [`StyleRuntime::params`] lists.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,12 +18,6 @@ pub struct ParamInfo {
     pub range: Option<(f64, f64)>,
     /// The current value, written as [`StyleRuntime::set_param`] takes it.
     pub value: String,
-}
-
-/// Whether a host can change `p` at run time: a slot of the style's
-/// uniform block (a folded one is a constant in the shaders).
-fn settable(p: &ParamManifest) -> bool {
-    p.binding == ParamBinding::Uniform
 }
 
 fn value_text(p: &ParamManifest) -> String {
@@ -62,60 +55,13 @@ impl StyleRuntime {
     /// one the compiler folded into the shaders, E0502. On an error
     /// nothing changes.
     pub fn set_param(&mut self, name: &str, value: &str) -> Result<(), EmbedError> {
-        let params = &self.program.manifest.params;
-        let Some(index) = params.iter().position(|p| p.name == name) else {
-            return Err(EmbedError::Param(Box::new(unknown_param(name, params))));
-        };
-        let param = &params[index];
-        let shape = ParamShape::of_manifest(param);
-        let typed =
-            type_value(&shape, &read_literal(value.trim()), value.trim(), &SettingOrigin::Host).map_err(|r| {
-                EmbedError::Param(Box::new(
-                    Diagnostic::error(r.code, format!("{}: {}", SettingOrigin::Host.subject(name), r.message))
-                        .with_help(format!("{} ({})", r.help, r.label)),
-                ))
-            })?;
-        if !settable(param) {
-            return Err(EmbedError::Param(Box::new(
-                Diagnostic::error(
-                    codes::BAD_ARGUMENT_VALUE,
-                    format!(
-                        "set_param(\"{name}\"): `{name}` cannot change at run time: {}",
-                        if param.binding == ParamBinding::Removed {
-                            "nothing the style's output depends on reads it"
-                        } else {
-                            "it was folded into the style's shaders when the style was compiled"
-                        }
-                    ),
-                )
-                .with_help(
-                    "compile the style with `keep_params` (`CompileOptions::keep_params`, \
-                     `npr compile --keep-params`) to change its parameters at run time",
-                ),
-            )));
-        }
+        let (index, typed) = type_host_setting(&self.program.manifest.params, name, value, &RUST_API)
+            .map_err(|r| EmbedError::Param(Box::new(Diagnostic::error(r.code, r.message).with_help(r.help))))?;
         for params in
             std::iter::once(&mut self.program.manifest.params).chain(self.renderer.as_mut().map(|r| r.params_mut()))
         {
             params[index].set_constant(&typed);
         }
         Ok(())
-    }
-}
-
-/// E0101 for a name the style has no settable parameter of.
-fn unknown_param(name: &str, params: &[ParamManifest]) -> Diagnostic {
-    let names: Vec<&str> = params.iter().filter(|p| settable(p)).map(|p| p.name.as_str()).collect();
-    let d = Diagnostic::error(
-        codes::UNKNOWN_NAME,
-        format!("set_param(\"{name}\"): the style has no parameter `{name}` that can change at run time"),
-    );
-    match did_you_mean(name, names.iter().copied()) {
-        Some(close) => d.with_help(format!("did you mean `{close}`?")),
-        None if names.is_empty() => d.with_help(
-            "this style has no run-time parameters: compile it with `keep_params` to keep them \
-             in a uniform block",
-        ),
-        None => d.with_help(format!("its parameters are: {}", names.join(", "))),
     }
 }
