@@ -40,7 +40,7 @@ const PROBES: [f32; 20] = [
     0.7,
 ];
 
-const SHADER: &str = "
+pub(crate) const SHADER: &str = "
 @group(0) @binding(0) var<storage, read> probes: array<vec4<f32>>;
 
 @vertex

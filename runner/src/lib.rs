@@ -38,6 +38,7 @@ pub mod image_level;
 pub mod inputs;
 pub mod lines;
 pub mod output;
+pub mod own_shaders;
 pub mod pass_timer;
 pub mod readback;
 pub mod scene;

@@ -142,7 +142,7 @@ mod meshes;
 mod objects;
 mod params;
 mod patched;
-mod present;
+pub(crate) mod present;
 
 pub use deform::Deformed;
 pub use error::EmbedError;

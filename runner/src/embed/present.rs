@@ -13,7 +13,7 @@ use npr_diag::{codes, Diagnostic};
 
 /// Copies a texel: in side-by-side targets the right eye's fragments are
 /// `x ≥ eye width`, so `x mod width` finds the texel in both halves.
-const PRESENT_WGSL: &str = "
+pub(crate) const PRESENT_WGSL: &str = "
 @group(0) @binding(0) var source: texture_2d<f32>;
 
 @vertex

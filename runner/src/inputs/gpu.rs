@@ -21,7 +21,7 @@ pub const INPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// `c.mode.y`: colour 1 decodes sRGB, 2 encodes it; `c.mode.z`: normals
 /// stored as n·0.5 + 0.5 (a normalized-integer texture); `c.param.x`: the
 /// depth sentinel or near plane; `c.m0..m2`: the normals' matrix columns.
-const CONVERT_WGSL: &str = "
+pub(crate) const CONVERT_WGSL: &str = "
 struct Conversion {
     m0: vec4<f32>,
     m1: vec4<f32>,
