@@ -81,8 +81,8 @@ pub use npr_abi::param_literal::read_literal;
 mod tests {
     use super::*;
     use npr_abi::manifest::{ParamBinding, ParamManifest};
+    use npr_abi::param_value::{format_literal, type_value, ParamShape};
     use npr_abi::ParamOverride;
-    use npr_compiler::front::param_values::{format_literal, type_value, ParamShape};
     use npr_compiler::ir::Literal;
     use npr_diag::codes;
 

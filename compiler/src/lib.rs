@@ -17,6 +17,11 @@ pub mod pipeline;
 pub mod report;
 pub mod schedule;
 
+/// The loading stage alone, for tools that need a style's declarations
+/// without compiling it (the language server): the document and every
+/// file it `use`s, parsed with recovery.
+pub use front::load::{load_source, Loaded};
+
 use npr_abi::SceneSummary;
 use npr_diag::{Diagnostic, SourceMap, Span};
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! the compiler loads a style (the document and every file it `use`s,
 //! parsed with recovery), and the declarations of all of them by name.
 
-use npr_compiler::front::load::Loaded;
+use npr_compiler::Loaded;
 use npr_diag::{FileId, SourceMap, Span};
 use npr_dsl::ast::{Item, ParamDecl, PassDecl, TextureDecl};
 use std::path::{Path, PathBuf};
@@ -32,8 +32,7 @@ impl Analysis {
         // Without a policy (the directory is gone) nothing `use`d can be
         // read anyway; `diagnostics::check` reports why.
         let policy = super::policy::for_document(path).ok();
-        let loaded =
-            npr_compiler::front::load::load_source(&name, text, dir, &mut sources, policy.as_ref(), &mut diags);
+        let loaded = npr_compiler::load_source(&name, text, dir, &mut sources, policy.as_ref(), &mut diags);
         Analysis { sources, loaded }
     }
 

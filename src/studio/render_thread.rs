@@ -7,7 +7,7 @@
 //!   `--set`s and the controls' values) + a new `Renderer`, through the same
 //!   `npr_runner::Renderer` as `npr render`.
 //! - A control change types the value by the `--set` rules against the
-//!   running manifest (`npr_compiler::front::param_values::type_value`), writes
+//!   running manifest (`npr_abi::param_value::type_value`), writes
 //!   it into the renderer's manifest (a uniform) and renders again without
 //!   recompiling. A rebuild passes the controls' values as written, after
 //!   the `--set`s, so the compiler types them against the edited style.
@@ -24,8 +24,8 @@ use crate::live::guard;
 use crate::live::watcher::FileWatcher;
 use crate::set_params;
 use npr_abi::manifest::ParamBinding;
+use npr_abi::param_value::{format_literal, type_value, ParamShape};
 use npr_abi::ParamOverride;
-use npr_compiler::front::param_values::{format_literal, type_value, ParamShape};
 use npr_compiler::ir::SettingOrigin;
 use npr_diag::SourceMap;
 use npr_runner::schedule::FrameRequest;

@@ -4,8 +4,8 @@
 //! writes it, and the tests, which read it.
 
 use npr_abi::manifest::{ParamBinding, ParamManifest};
+use npr_abi::param_value::{format_literal, ParamShape, ValueKind};
 use npr_abi::ParamOverride;
-use npr_compiler::front::param_values::{format_literal, ParamShape, ValueKind};
 use npr_diag::{Diagnostic, SourceMap};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;

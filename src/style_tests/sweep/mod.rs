@@ -24,7 +24,7 @@ use super::outcome::{Failure, Outcome, Run, Settings, Status};
 use crate::path_args::PathArgs;
 use cases::Case;
 use npr_abi::manifest::{ParamBinding, ParamManifest};
-use npr_compiler::front::param_values::{type_value, ParamShape, ValueKind};
+use npr_abi::param_value::{type_value, ParamShape, ValueKind};
 use npr_compiler::ir::SettingOrigin;
 use npr_compiler::{CompileError, CompileOptions};
 use npr_diag::codes;

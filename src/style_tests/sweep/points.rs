@@ -15,7 +15,7 @@
 //! Every value is written as `--set` takes it (`format_literal`), so a
 //! finding's reproduction is the text the sweep ran.
 
-use npr_compiler::front::param_values::{format_literal, ParamShape, ValueKind};
+use npr_abi::param_value::{format_literal, ParamShape, ValueKind};
 
 /// How many points of a numeric range the sweep renders: both ends, the
 /// middle and two van der Corput points between (¼ and ¾).
