@@ -233,12 +233,11 @@ fn watercolor_over_is_the_blurred_colour_with_its_density_off_and_edge_darkening
     // blur runs on half floats).
     for (x, y, p) in plain.enumerate_pixels() {
         let b = blurred[y as usize * w + x as usize];
-        for c in 0..3 {
+        for (c, (got, want)) in p.0.iter().zip(b).enumerate() {
             assert!(
-                (p.0[c] as f64 - (b[c] * 255.0).round()).abs() <= 1.0,
-                "pixel ({x}, {y}) channel {c}: {} where the f64 blur gives {:.1} (image: {})",
-                p.0[c],
-                b[c] * 255.0,
+                (*got as f64 - (want * 255.0).round()).abs() <= 1.0,
+                "pixel ({x}, {y}) channel {c}: {got} where the f64 blur gives {:.1} (image: {})",
+                want * 255.0,
                 plain_out.display()
             );
         }

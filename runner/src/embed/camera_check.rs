@@ -21,7 +21,7 @@ pub fn check_camera(camera: &Camera) -> Result<(), EmbedError> {
             "the camera's near plane is at {} m: it must be a positive distance",
             camera.near
         ))
-    } else if !(camera.far > camera.near) {
+    } else if camera.far.is_nan() || camera.far <= camera.near {
         Some(format!(
             "the camera's far plane ({} m) is not beyond its near plane ({} m)",
             camera.far, camera.near
