@@ -90,7 +90,7 @@ pub(super) const ALL: &[Explanation] = &[
                  let finer = primitives::sphere(1.0, 64, 32);\n\
                  runtime.update_mesh(ball, Deformed::positions(&finer.positions))?; // E0603\n",
             ),
-            not_runnable: Some("runner/tests/embed_deform.rs gives too few and too many positions, and non-finite ones"),
+            not_runnable: Some("runner/tests/runner/embed_deform.rs gives too few and too many positions, and non-finite ones"),
             ..EXAMPLE
         },
         fixed: Example {

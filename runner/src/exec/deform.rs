@@ -29,7 +29,7 @@ use npr_abi::manifest::Attribute;
 use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::{Arc, OnceLock};
 
-/// The stage's WGSL (naga-validated by `runner/tests/gpu_deform.rs`).
+/// The stage's WGSL (naga-validated by `runner/tests/runner/gpu_deform.rs`).
 pub const DEFORM_WGSL: &str = include_str!("deform.wgsl");
 
 /// Vertices per workgroup (`@workgroup_size` in `deform.wgsl`).

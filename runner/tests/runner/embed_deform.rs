@@ -31,7 +31,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{compile, gpu, host_target, read_host, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};

@@ -6,8 +6,7 @@
 //! scenes playing clips; and the coded errors of bad files and bad
 //! `animation` fields.
 
-#[path = "common/skin_reference.rs"]
-mod skin_reference;
+use crate::skin_reference;
 
 use glam::Vec3;
 use npr_runner::scene::{load_mesh_and_rig, parse_scene};

@@ -18,7 +18,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{examples, gpu, host_target, render_frame, write_mismatch};
 
 use glam::{Mat4, Vec3};

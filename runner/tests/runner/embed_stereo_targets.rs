@@ -8,7 +8,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{gpu, host_target, read_host, render_frame};
 
 use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};

@@ -11,8 +11,7 @@
 //! same pose. On failure the images are written under the target's
 //! temporary folder.
 
-#[path = "common/skin_reference.rs"]
-mod skin_reference;
+use crate::skin_reference;
 
 use npr_compiler::CompileOptions;
 use npr_diag::SourceMap;

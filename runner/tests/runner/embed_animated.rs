@@ -19,7 +19,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{compile, examples, gpu, host_target, read_host, render_frame, write_mismatch};
 
 use npr_runner::embed::{Frame, Instance, Lights, StyleRuntime, Target};

@@ -7,8 +7,7 @@
 //! and light bounds read) within stated bounds; a compute pass over
 //! vertices sees them; and a frame at a new time creates no GPU object.
 
-#[path = "common/skin_reference.rs"]
-mod skin_reference;
+use crate::skin_reference;
 
 use glam::{DVec3, Vec3};
 use npr_abi::manifest::Attribute;

@@ -18,7 +18,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{compile, examples, gpu, host_target, render_frame, write_mismatch};
 
 use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};

@@ -10,7 +10,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{compile, gpu, host_target, read_host, write_mismatch};
 
 use npr_runner::embed::{Frame, Instance, Lights, MeshHandle, StyleRuntime, Target};

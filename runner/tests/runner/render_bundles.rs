@@ -13,7 +13,7 @@
 
 #![allow(clippy::disallowed_methods)]
 
-mod common;
+use crate::common;
 use common::{compile, examples, gpu, write_mismatch};
 
 use npr_runner::gpu_count::created_on_this_thread;
