@@ -187,8 +187,7 @@ pub struct LineVertex {
 pub const LINE_VERTEX_WGSL: &str = "struct LineIn {
     // x, y: NDC; z: NDC depth of the edge point, biased towards the eye; w: arc length in px.
     @location(0) position: vec4<f32>,
-    // x, y: the undisplaced edge point in px; z: -1 on one side of the strip, +1 on the other;
-    // w: the index of the line set that drew it.
+    // x, y: the undisplaced edge point in px; z: -1 on one side of the strip, +1 on the other.
     @location(1) line: vec4<f32>,
 }
 ";

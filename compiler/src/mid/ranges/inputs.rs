@@ -51,6 +51,7 @@ pub fn builtin(b: Builtin) -> Val {
         | ObjectIndex
         | ObjectId
         | LineArc
+        | LineSet
         | CameraFocal => Val::splat(NON_NEGATIVE, n),
         // A perspective camera's near plane is past the eye.
         CameraNear => Val::splat(Iv::new(f32::MIN_POSITIVE as f64, F32_MAX), n),
