@@ -133,10 +133,17 @@ fn each_set_draws_its_edges_in_its_colour_and_a_shared_edge_once() {
 fn the_higher_set_takes_every_edge_it_selects() {
     // The detail set first: every silhouette side of a cube is a crease.
     let (red, blue) = render(&two_sets(-1));
-    assert!(red.is_empty(), "{} red px: the outline set drew edges the crease set took", red.len());
+    assert!(
+        red.is_empty(),
+        "{} red px: the outline set drew edges the crease set took",
+        red.len()
+    );
     let vp = view_proj();
     let mut all = silhouette();
     all.extend(inner_creases());
     let (recall, precision) = recall_precision(&blue, &samples(vp, &all, SIZE), 1.0);
-    assert!(recall >= 0.95 && precision >= 0.95, "recall {recall}, precision {precision}");
+    assert!(
+        recall >= 0.95 && precision >= 0.95,
+        "recall {recall}, precision {precision}"
+    );
 }

@@ -57,11 +57,15 @@ pub(super) const ALL: &[Explanation] = &[
             would draw nothing. Give it a higher priority, or edge types or a tag the other set \
             does not take.",
         wrong: Example {
-            style: sets_case!("  set all { edges: silhouette | crease(30deg), priority: 1 }\n  set detail { edges: crease(45deg) }"),
+            style: sets_case!(
+                "  set all { edges: silhouette | crease(30deg), priority: 1 }\n  set detail { edges: crease(45deg) }"
+            ),
             ..EXAMPLE
         },
         fixed: Example {
-            style: sets_case!("  set all { edges: silhouette | crease(30deg) }\n  set detail { edges: crease(45deg), priority: 1 }"),
+            style: sets_case!(
+                "  set all { edges: silhouette | crease(30deg) }\n  set detail { edges: crease(45deg), priority: 1 }"
+            ),
             ..EXAMPLE
         },
     },

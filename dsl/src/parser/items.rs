@@ -292,7 +292,9 @@ impl Builder {
         let name = self.ident(it.next()?);
         let (mut edges, mut settings) = (Vec::new(), Vec::new());
         for item in it {
-            let Some(inner) = item.into_inner().next() else { continue };
+            let Some(inner) = item.into_inner().next() else {
+                continue;
+            };
             match inner.as_rule() {
                 Rule::edge_union => {
                     let union_span = self.span(&inner);

@@ -60,7 +60,8 @@ impl Emitter<'_> {
     @location(2) @interpolate(linear) line_across: f32,
     // 1 where the edge is visible; fragments under 0.5 are discarded.
     @location(3) @interpolate(linear) line_visible: f32,
-");
+",
+        );
         if with_sets {
             w.push_str("    // line.set: the index of the line set drawing the strip (decision 0056).\n    @location(4) @interpolate(flat) line_set: f32,\n");
         }

@@ -49,13 +49,10 @@ impl Resolver<'_> {
         for s in &p.body.settings {
             if matches!(s.key.name.as_str(), "silhouettes" | "creases") {
                 self.error(
-                    Diagnostic::error(
-                        codes::MISPLACED_LINE_SET,
-                        format!("`{}` beside line sets", s.key.name),
-                    )
-                    .with_primary(s.key.span.to(s.value.span), "a pass-level edge selection")
-                    .with_secondary(p.body.line_sets[0].name.span, "this pass draws its sets")
-                    .with_help("a pass with sets draws what its sets select: move the edges into a set's `edges:`"),
+                    Diagnostic::error(codes::MISPLACED_LINE_SET, format!("`{}` beside line sets", s.key.name))
+                        .with_primary(s.key.span.to(s.value.span), "a pass-level edge selection")
+                        .with_secondary(p.body.line_sets[0].name.span, "this pass draws its sets")
+                        .with_help("a pass with sets draws what its sets select: move the edges into a set's `edges:`"),
                 );
             }
         }
@@ -86,10 +83,16 @@ impl Resolver<'_> {
                 .find(|higher| (higher.tag.is_none() || higher.tag == set.tag) && higher.edges.covers(&set.edges));
             if let Some(higher) = covering {
                 self.error(
-                    Diagnostic::error(codes::EMPTY_LINE_SET, format!("line set `{}` selects nothing", set.name))
-                        .with_primary(set.span, "every edge it selects is drawn by a set before it")
-                        .with_secondary(higher.span, "this set takes them (an edge is drawn once, by the higher set)")
-                        .with_help("give it a higher `priority:`, or edge types or a `tag:` the other set does not take"),
+                    Diagnostic::error(
+                        codes::EMPTY_LINE_SET,
+                        format!("line set `{}` selects nothing", set.name),
+                    )
+                    .with_primary(set.span, "every edge it selects is drawn by a set before it")
+                    .with_secondary(
+                        higher.span,
+                        "this set takes them (an edge is drawn once, by the higher set)",
+                    )
+                    .with_help("give it a higher `priority:`, or edge types or a `tag:` the other set does not take"),
                 );
             }
         }
@@ -115,12 +118,15 @@ impl Resolver<'_> {
         };
         match &decl.edges[..] {
             [] => self.error(
-                Diagnostic::error(codes::EMPTY_LINE_SET, format!("line set `{}` selects nothing", set.name))
-                    .with_primary(decl.name.span, "no `edges:`")
-                    .with_help(format!(
-                        "add `edges: silhouette | crease(40deg)`; the edge types are {}",
-                        quoted(&EDGE_TYPES)
-                    )),
+                Diagnostic::error(
+                    codes::EMPTY_LINE_SET,
+                    format!("line set `{}` selects nothing", set.name),
+                )
+                .with_primary(decl.name.span, "no `edges:`")
+                .with_help(format!(
+                    "add `edges: silhouette | crease(40deg)`; the edge types are {}",
+                    quoted(&EDGE_TYPES)
+                )),
             ),
             [union, more @ ..] => {
                 set.edges = self.edge_union(union);
@@ -172,12 +178,15 @@ impl Resolver<'_> {
                             _ => "this".to_string(),
                         };
                         self.error(
-                            Diagnostic::error(codes::BAD_LINE_VISIBILITY, format!("{written} is not a line visibility"))
-                                .with_primary(s.value.span, "not `visible`")
-                                .with_help(
-                                    "line sets draw the visible edges (`visibility: visible`, the default); \
+                            Diagnostic::error(
+                                codes::BAD_LINE_VISIBILITY,
+                                format!("{written} is not a line visibility"),
+                            )
+                            .with_primary(s.value.span, "not `visible`")
+                            .with_help(
+                                "line sets draw the visible edges (`visibility: visible`, the default); \
                                      hidden lines by quantitative invisibility are not in npr yet (issue 51)",
-                                ),
+                            ),
                         );
                     }
                 },
@@ -188,8 +197,7 @@ impl Resolver<'_> {
                     AK::Unary {
                         op: ast::UnOp::Neg,
                         operand,
-                    } if matches!(&operand.kind, AK::Number { value, unit: None, .. } if value.fract() == 0.0 && value.abs() < 1e6) =>
-                    {
+                    } if matches!(&operand.kind, AK::Number { value, unit: None, .. } if value.fract() == 0.0 && value.abs() < 1e6) => {
                         if let AK::Number { value, .. } = &operand.kind {
                             set.priority = -(*value as i64);
                         }
@@ -237,7 +245,9 @@ impl Resolver<'_> {
                     self.error(
                         Diagnostic::error(codes::UNKNOWN_EDGE_TYPE, format!("`{name}` takes no argument"))
                             .with_primary(arg.span, "an argument")
-                            .with_help("only `crease(angle)` takes one: the dihedral angle over which an edge is a crease"),
+                            .with_help(
+                                "only `crease(angle)` takes one: the dihedral angle over which an edge is a crease",
+                            ),
                     );
                     continue;
                 }
@@ -331,8 +341,12 @@ impl Resolver<'_> {
     /// black for a set without one), chosen on `line.set`.
     fn line_color(&mut self, colors: &[Option<ExprId>], span: Span) -> ExprId {
         let black = |r: &mut Self| {
-            r.ir
-                .add_typed(ExprKind::Const(Const::Vec(DEFAULT_COLOR.to_vec())), Ty::Vec4, Unit::None, span)
+            r.ir.add_typed(
+                ExprKind::Const(Const::Vec(DEFAULT_COLOR.to_vec())),
+                Ty::Vec4,
+                Unit::None,
+                span,
+            )
         };
         let mut chosen = black(self);
         for (index, color) in colors.iter().enumerate().rev() {

@@ -139,7 +139,9 @@ impl Resolver<'_> {
                     self.error(
                         Diagnostic::error(codes::MISPLACED_LINE_SET, "a line set outside a lines pass")
                             .with_primary(set.name.span, format!("in a {} pass", kind.name()))
-                            .with_help("line sets belong in `pass ink: lines(scene) { set outline { edges: silhouette } }`"),
+                            .with_help(
+                                "line sets belong in `pass ink: lines(scene) { set outline { edges: silhouette } }`",
+                            ),
                     );
                 }
             }
