@@ -54,6 +54,7 @@ const EXPECTED: &[&str] = &[
     "stipple.npr::patched_cow_00",
     "stipple.npr::patched_cow_12",
     "stipple.npr::patched_cow_24",
+    "technical_lines.npr::technical",
     "toon.npr::spheres",
     "toon.npr::spot",
     "toon_ramp.npr::spheres",
