@@ -20,12 +20,16 @@ const SIZE: u32 = 256;
 const EYE: DVec3 = DVec3::new(3.0, 2.5, 4.0);
 
 fn cube_scene() -> Scene {
+    scene_of("cube", "[[object]]\nprimitive = { kind = \"cube\", size = 2.0 }\n")
+}
+
+/// A scene seen from EYE with `objects`, written as `name`.
+fn scene_of(name: &str, objects: &str) -> Scene {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("lines-sets");
     std::fs::create_dir_all(&dir).expect("scratch dir");
-    let path = dir.join(format!("cube-{}.toml", std::process::id()));
+    let path = dir.join(format!("{name}-{}.toml", std::process::id()));
     let text = format!(
-        "[camera]\nposition = [{}, {}, {}]\ntarget = [0, 0, 0]\nfov = 40\nnear = 0.1\nfar = 100.0\n\n\
-         [[object]]\nprimitive = {{ kind = \"cube\", size = 2.0 }}\n",
+        "[camera]\nposition = [{}, {}, {}]\ntarget = [0, 0, 0]\nfov = 40\nnear = 0.1\nfar = 100.0\n\n{objects}",
         EYE.x, EYE.y, EYE.z
     );
     std::fs::write(&path, text).expect("write scene");
@@ -58,7 +62,11 @@ output ink.ink
 
 /// (red pixels, blue pixels) of the rendered style.
 fn render(text: &str) -> (Vec<DVec2>, Vec<DVec2>) {
-    let scene = cube_scene();
+    render_on(text, &cube_scene())
+}
+
+fn render_on(text: &str, scene: &Scene) -> (Vec<DVec2>, Vec<DVec2>) {
+    let scene = scene.clone();
     let program = compile_text(text);
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     r.render(&scene, &FrameSpec::still(SIZE, SIZE, 0)).expect("render");
@@ -146,4 +154,35 @@ fn the_higher_set_takes_every_edge_it_selects() {
         recall >= 0.95 && precision >= 0.95,
         "recall {recall}, precision {precision}"
     );
+}
+
+#[test]
+fn a_sets_tag_narrows_the_passs_objects() {
+    // Two cubes side by side (x = ∓1.6); only the right one is `hero`. The
+    // red set draws the hero's silhouette, the blue one every object's
+    // silhouette it has left: the other cube's. A set's tag selects
+    // objects, so neither draws the other's edges.
+    let objects = "[[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\ntranslate = [1.0, 0.0, -1.0]\ntags = [\"hero\"]\n\n\
+                   [[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\ntranslate = [-1.0, 0.0, 1.0]\n";
+    let scene = scene_of("two-cubes", objects);
+    let text = "style \"Sets\"
+pass ink: lines(scene) {
+  amplitude: 0px
+  set hero { edges: silhouette, tag: hero, color: #ff0000, priority: 1 }
+  set rest { edges: silhouette, color: #0000ff }
+  out ink: rgba8unorm = vec4(line.color.rgb, 1.0) { blend: over }
+  clear: #ffffff
+}
+output ink.ink
+";
+    let (red, blue) = render_on(text, &scene);
+    let vp = view_proj();
+    let screen_x = |x: f64, z: f64| common::lines::project(vp, DVec3::new(x, 0.0, z), SIZE).x;
+    // Each cube's centre on screen, and the midpoint between them.
+    let (hero_x, other_x) = (screen_x(1.0, -1.0), screen_x(-1.0, 1.0));
+    let middle = 0.5 * (hero_x + other_x);
+    assert!(red.len() > 100 && blue.len() > 100, "{} red, {} blue", red.len(), blue.len());
+    let on_hero_side = |p: &DVec2| (p.x - middle) * (hero_x - middle) > 0.0;
+    assert!(red.iter().all(on_hero_side), "red ink off the hero cube");
+    assert!(blue.iter().all(|p| !on_hero_side(p)), "blue ink on the hero cube");
 }
