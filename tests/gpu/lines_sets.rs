@@ -162,7 +162,8 @@ fn a_sets_tag_narrows_the_passs_objects() {
     // red set draws the hero's silhouette, the blue one every object's
     // silhouette it has left: the other cube's. A set's tag selects
     // objects, so neither draws the other's edges.
-    let objects = "[[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\ntranslate = [1.0, 0.0, -1.0]\ntags = [\"hero\"]\n\n\
+    let objects =
+        "[[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\ntranslate = [1.0, 0.0, -1.0]\ntags = [\"hero\"]\n\n\
                    [[object]]\nprimitive = { kind = \"cube\", size = 1.0 }\ntranslate = [-1.0, 0.0, 1.0]\n";
     let scene = scene_of("two-cubes", objects);
     let text = "style \"Sets\"
@@ -181,8 +182,28 @@ output ink.ink
     // Each cube's centre on screen, and the midpoint between them.
     let (hero_x, other_x) = (screen_x(1.0, -1.0), screen_x(-1.0, 1.0));
     let middle = 0.5 * (hero_x + other_x);
-    assert!(red.len() > 100 && blue.len() > 100, "{} red, {} blue", red.len(), blue.len());
+    assert!(
+        red.len() > 100 && blue.len() > 100,
+        "{} red, {} blue",
+        red.len(),
+        blue.len()
+    );
     let on_hero_side = |p: &DVec2| (p.x - middle) * (hero_x - middle) > 0.0;
     assert!(red.iter().all(on_hero_side), "red ink off the hero cube");
     assert!(blue.iter().all(|p| !on_hero_side(p)), "blue ink on the hero cube");
+}
+
+#[test]
+fn set_strips_are_rebuilt_only_when_the_view_or_an_object_changes() {
+    let mut scene = cube_scene();
+    let program = compile_text(&two_sets(1));
+    let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let spec = FrameSpec::still(SIZE, SIZE, 0);
+    let rebuilds = |r: &Renderer| r.lines_rebuilds()[0].1;
+    r.render(&scene, &spec).expect("frame 1");
+    r.render(&scene, &spec).expect("frame 2");
+    assert_eq!(rebuilds(&r), 1, "an unchanged frame reuses the sets' strips");
+    scene.objects[0].model = glam::Mat4::from_translation(glam::Vec3::new(0.3, 0.0, 0.0));
+    r.render(&scene, &spec).expect("frame 3");
+    assert_eq!(rebuilds(&r), 2, "a moved object rebuilds them");
 }
