@@ -18,6 +18,7 @@ pub struct LinesKind {
     pub depth: PassDepth,
     /// The pass's line sets (decision 0056), highest priority first (ties
     /// in the order written); with any, they replace `edges` and `shape`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sets: Vec<LineSet>,
 }
 
