@@ -209,9 +209,9 @@ impl Resolver<'_> {
                     ),
                 },
                 "color" => set.color = Some(self.expr(&s.value)),
-                _ if set_shape_slot(&mut set.shape, key).is_some() => {
+                _ if set.shape.get_mut(key).is_some() => {
                     let value = self.expr(&s.value);
-                    if let Some(slot) = set_shape_slot(&mut set.shape, key) {
+                    if let Some(slot) = set.shape.get_mut(key) {
                         *slot = value;
                     }
                 }
@@ -379,11 +379,6 @@ impl Resolver<'_> {
         }
         chosen
     }
-}
-
-/// A shape setting of a set by name.
-fn set_shape_slot<'a>(shape: &'a mut LineSettings, key: &str) -> Option<&'a mut ExprId> {
-    shape.get_mut(key)
 }
 
 /// `a`, `b` and `c` as a list in prose.
