@@ -18,6 +18,72 @@ pub struct LineEdges {
     pub crease_deg: Option<f64>,
 }
 
+/// The edge types one line set draws (decision 0056), a union: Freestyle's
+/// and Blender Line Art's names. Each is found exactly as the runner's
+/// `lines::edges` and `lines::intersections` document.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct EdgeTypes {
+    /// Edges between a front and a back face, per eye and frame.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub silhouette: bool,
+    /// Edges with one face: an open mesh's rim.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub border: bool,
+    /// Two-face edges whose dihedral angle exceeds this, in degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crease_deg: Option<f64>,
+    /// Edges between faces of different parts of a mesh (OBJ `o`/`g`, glTF
+    /// primitives: one material each).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub material_boundary: bool,
+    /// Where two surfaces (or one surface and itself) pass through each
+    /// other: lines across faces, not mesh edges.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub intersection: bool,
+}
+
+fn is_false(v: &bool) -> bool {
+    !*v
+}
+
+impl EdgeTypes {
+    /// Whether the union is empty.
+    pub fn is_empty(&self) -> bool {
+        *self == EdgeTypes::default()
+    }
+
+    /// Every edge `other` selects is selected here too (a lower crease
+    /// threshold takes every edge a higher one does).
+    pub fn covers(&self, other: &EdgeTypes) -> bool {
+        (self.silhouette || !other.silhouette)
+            && (self.border || !other.border)
+            && (self.material_boundary || !other.material_boundary)
+            && (self.intersection || !other.intersection)
+            && match (self.crease_deg, other.crease_deg) {
+                (_, None) => true,
+                (Some(mine), Some(theirs)) => mine <= theirs,
+                (None, Some(_)) => false,
+            }
+    }
+}
+
+/// One line set of a `lines` pass (decision 0056): the objects (a tag, or
+/// the pass's objects), the edge types, and the strips' shape. A pass's sets
+/// are listed highest priority first: an edge two sets select is drawn once,
+/// by the first, and a strip vertex carries its set's index in that list
+/// (`LineVertex::line.w`), which the shader's `line.color` reads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LineSet {
+    pub name: String,
+    /// Only the pass's objects that also have this tag.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tag: Option<String>,
+    pub edges: EdgeTypes,
+    pub shape: LineShape,
+    /// The priority as written (higher first; ties in the order written).
+    pub priority: i64,
+}
+
 /// One term of a [`LineScalar`]: `coefficient × first component of param`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ParamTerm {
@@ -112,7 +178,8 @@ pub struct LineVertex {
     pub position: [f32; 4],
     /// x, y: the undisplaced edge point in the pass's px (where visibility
     /// is tested); z: −1 on one side of the strip, +1 on the other
-    /// (`line.across`); w: 0.
+    /// (`line.across`); w: the index of the line set that drew it (0 for a
+    /// pass without sets).
     pub line: [f32; 4],
 }
 

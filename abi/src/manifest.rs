@@ -254,6 +254,10 @@ pub enum PassKindManifest {
         tag: Option<String>,
         edges: crate::lines::LineEdges,
         shape: crate::lines::LineShape,
+        /// The pass's line sets, highest priority first (decision 0056);
+        /// with any, they replace `edges` and `shape`.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        sets: Vec<crate::lines::LineSet>,
         /// `Own`: no depth test (every edge drawn, hidden ones too). `Test`:
         /// against the depth an earlier pass kept; for lines `bias_px`
         /// moves every strip vertex towards the eye, along its view ray, by

@@ -19,7 +19,7 @@ mod schedule;
 mod settings;
 pub use builtins::Builtin;
 pub use intrinsics::Intrinsic;
-pub use lines::{LineSettings, LinesKind};
+pub use lines::{LineSet, LineSettings, LinesKind};
 pub use passes::*;
 pub use roots::PassRoots;
 pub use schedule::{Recomputed, Schedule, TileRead, TileSource, Tiling};

@@ -307,6 +307,22 @@ pub mod codes {
     /// is not read by one same-scale image pass around the pixel, or that
     /// reader cannot be tiled with it (`compiler/src/schedule/recompute.rs`).
     pub const CANNOT_RECOMPUTE: &str = "E0312";
+    /// A line set's `edges:` names an edge type there is not (decision 0056),
+    /// or is not a union of edge types.
+    pub const UNKNOWN_EDGE_TYPE: &str = "E0313";
+    /// A line set's `crease(angle)` without an angle in `deg` in 0..180.
+    pub const BAD_CREASE_ANGLE: &str = "E0314";
+    /// A line set that selects nothing: no `edges:`, or every edge it
+    /// selects goes to a set of higher priority over the same objects.
+    pub const EMPTY_LINE_SET: &str = "E0315";
+    /// Two line sets of one pass with one name.
+    pub const DUPLICATE_LINE_SET: &str = "E0316";
+    /// A line set where there can be none: `set` outside a lines pass, the
+    /// pass-level `silhouettes:`/`creases:` beside sets, a setting a set
+    /// does not have, or `line.color`/`line.set` in a pass without sets.
+    pub const MISPLACED_LINE_SET: &str = "E0317";
+    /// A line set's `visibility:` other than `visible`.
+    pub const BAD_LINE_VISIBILITY: &str = "E0318";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -471,6 +487,12 @@ pub mod codes {
             CANNOT_RECOMPUTE,
             "`schedule: recompute` on a pass that its reader cannot compute in its tiles",
         ),
+        (UNKNOWN_EDGE_TYPE, "a line set's unknown edge type"),
+        (BAD_CREASE_ANGLE, "a line set's crease without an angle in 0..180deg"),
+        (EMPTY_LINE_SET, "a line set that selects nothing"),
+        (DUPLICATE_LINE_SET, "two line sets with one name"),
+        (MISPLACED_LINE_SET, "a line set, or its values, where there can be none"),
+        (BAD_LINE_VISIBILITY, "a line set's visibility other than `visible`"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

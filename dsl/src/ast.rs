@@ -193,6 +193,35 @@ pub struct PassBody {
     pub reductions: Vec<Reduction>,
     /// `name = value`: a state's new value.
     pub updates: Vec<StateUpdate>,
+    /// `set name { ... }`: the line sets of a lines pass (decision 0056).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub line_sets: Vec<LineSetDecl>,
+}
+
+/// `set name { edges: silhouette | crease(35deg), width: 3px, ... }`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LineSetDecl {
+    pub name: Ident,
+    /// Each `edges: a | b` written (more than one is an error).
+    pub edges: Vec<EdgeUnion>,
+    /// The other `key: value` settings.
+    pub settings: Vec<Setting>,
+    pub span: Span,
+}
+
+/// `edges: a | b(arg)`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EdgeUnion {
+    pub terms: Vec<EdgeTerm>,
+    pub span: Span,
+}
+
+/// One edge type in a union: a name and an optional argument.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EdgeTerm {
+    pub name: Ident,
+    pub arg: Option<Expr>,
+    pub span: Span,
 }
 
 /// `state name: type = first`.

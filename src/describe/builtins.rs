@@ -46,6 +46,7 @@ pub fn doc(b: Builtin) -> &'static str {
         PositionPrevious => "The surface point in world space in the previous frame (equal to `position` on the first frame).",
         LineArc => "In a lines pass: the arc length along the line on screen, in px (the s of Klein et al. 2000 §5's wave).",
         LineAcross => "In a lines pass: -1 on one edge of the strip, +1 on the other, interpolated across it.",
+        LineSet => "In a lines pass with line sets: the index of the set drawing the strip, highest priority first (0, 1, ...). `line.color` is that set's `color:`.",
         PatchWeight => "The blending weight of the patch being drawn (Breslav et al. 2007 §3.6), interpolated from its vertices: 1 inside a patch, falling to 0 over the scene's `blend_rings` rings outside it; the patches' weights sum to 1 at every point. 1 on objects without patches. A pass that reads it draws each patch over that n-ring too.",
     }
 }

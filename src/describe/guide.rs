@@ -65,6 +65,7 @@ pub const PASS_SETTINGS: &[(&str, &str, &str)] = &[
     ("view(light)", "render (after the kind)", "Draw from the scene's light instead of the camera (a shadow map; `position.light`)."),
     ("vertex { inflate: 2px, shadow_warp: w }", "render", "Vertex modifiers: push each vertex out along its screen-space normal by a width (outlines by inflated back faces), warp a light-view pass."),
     ("silhouettes, creases, width, amplitude, wavelength, phase, taper", "lines", "The strips' shape: `silhouettes: true`, `creases: 40deg` or `off`, `width: 3px`, `amplitude: 1px`, `wavelength: 40px`, `phase`, `taper`."),
+    ("set name { edges: silhouette, width: 3px, color: ink }", "lines", "A line set (decision 0056): `edges:` a union of edge types joined by a vertical bar, from `silhouette`, `border`, `crease(35deg)`, `material_boundary`, `intersection`; `tag: name` narrows the pass's objects; `priority: n` (higher first, ties in the order written: an edge two sets select is drawn once, by the higher); `visibility: visible`; `color:`, which `line.color` reads in the pass's outputs (`line.set` is the set's index); and the shape settings, the pass's where unset. With sets, the pass's `silhouettes:`/`creases:` are refused (E0317)."),
     ("count: n, seed: n", "compute(samples)", "How many stratified surface samples per object, and their seed."),
 ];
 

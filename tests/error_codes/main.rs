@@ -10,6 +10,7 @@ mod command_line;
 mod files;
 mod host;
 mod inputs;
+mod line_sets;
 mod lines;
 mod param_settings;
 mod passes;
@@ -127,6 +128,7 @@ fn every_code_has_a_case() {
         include_str!("passes.rs"),
         include_str!("files.rs"),
         include_str!("lines.rs"),
+        include_str!("line_sets.rs"),
         include_str!("command_line.rs"),
         include_str!("param_settings.rs"),
         include_str!("host.rs"),
@@ -142,7 +144,7 @@ fn every_code_has_a_case() {
     let files = std::fs::read_dir(&here).expect("tests/error_codes").count();
     assert_eq!(
         files,
-        10 + usize::from(here.join("snapshots").exists()),
+        11 + usize::from(here.join("snapshots").exists()),
         "a case file is not listed"
     );
     for (code, _) in npr_diag::codes::ALL {

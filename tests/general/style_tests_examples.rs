@@ -73,6 +73,7 @@ const EXPECTED: &[&str] = &[
     "stipple.npr::patched_cow_00",
     "stipple.npr::patched_cow_12",
     "stipple.npr::patched_cow_24",
+    "technical_lines.npr::technical",
     "toon.npr::coherence",
     "toon.npr::spheres",
     "toon.npr::spot",

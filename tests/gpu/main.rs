@@ -30,6 +30,7 @@ mod host_inputs;
 mod input_sequences;
 mod lines_classify;
 mod lines_pass;
+mod lines_sets;
 mod lsa_gbuffer_precision;
 mod lsa_stereo;
 mod manifest_mutation;

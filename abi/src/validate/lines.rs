@@ -1,5 +1,6 @@
 //! Checks of a `lines` pass in a manifest read from disk: its crease
-//! threshold is an angle, its shape settings are finite and name only
+//! thresholds are angles, its line sets select something under distinct
+//! names, its shape settings are finite and name only
 //! parameters the manifest has (as plain numbers the runner can read on the
 //! CPU), and its constant parts are inside the ranges the runner builds
 //! strips for.
@@ -10,18 +11,27 @@ use crate::manifest::*;
 
 impl Manifest {
     pub(super) fn validate_lines(&self, field: &str, p: &PassManifest) -> Result<(), Invalid> {
-        let PassKindManifest::Lines { edges, shape, .. } = &p.kind else {
+        let PassKindManifest::Lines { edges, shape, sets, .. } = &p.kind else {
             return Ok(());
         };
         let f = format!("{field}.kind");
-        if let Some(deg) = edges.crease_deg {
-            if !(0.0..=180.0).contains(&deg) {
-                return bad(
-                    format!("{f}.edges.crease_deg"),
-                    format!("{deg} is outside 0..=180 degrees"),
-                );
+        validate_crease(&format!("{f}.edges.crease_deg"), edges.crease_deg)?;
+        self.validate_line_shape(&f, shape)?;
+        for (k, set) in sets.iter().enumerate() {
+            let sf = format!("{f}.sets[{k}]");
+            if set.edges.is_empty() {
+                return bad(format!("{sf}.edges"), "selects no edge type");
             }
+            if sets[..k].iter().any(|s| s.name == set.name) {
+                return bad(format!("{sf}.name"), format!("`{}` names two sets", set.name));
+            }
+            validate_crease(&format!("{sf}.edges.crease_deg"), set.edges.crease_deg)?;
+            self.validate_line_shape(&sf, &set.shape)?;
         }
+        Ok(())
+    }
+
+    fn validate_line_shape(&self, f: &str, shape: &crate::lines::LineShape) -> Result<(), Invalid> {
         for (name, s) in shape.named() {
             self.validate_line_scalar(&format!("{f}.shape.{name}"), s)?;
         }
@@ -63,5 +73,13 @@ impl Manifest {
             }
         }
         Ok(())
+    }
+}
+
+/// A crease threshold is a dihedral angle in 0..=180°.
+fn validate_crease(field: &str, deg: Option<f64>) -> Result<(), Invalid> {
+    match deg {
+        Some(deg) if !(0.0..=180.0).contains(&deg) => bad(field, format!("{deg} is outside 0..=180 degrees")),
+        _ => Ok(()),
     }
 }

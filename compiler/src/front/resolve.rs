@@ -26,6 +26,7 @@ pub mod gradient;
 mod host_builtins;
 mod input_source;
 mod kind_args;
+mod line_sets;
 mod lines;
 mod params;
 mod passes;
@@ -79,6 +80,7 @@ pub fn resolve_with_settings(
         has_object: false,
         scopes: Vec::new(),
         current_pass: None,
+        line_set_colors: None,
         draws_objects: false,
         in_vertex: false,
         in_image_pass: false,
@@ -134,6 +136,9 @@ struct Resolver<'d> {
     /// Let scopes: innermost last. Each maps a name to its value node.
     scopes: Vec<Vec<(String, ExprId)>>,
     current_pass: Option<PassId>,
+    /// In a lines pass with line sets: each set's `color:` (highest priority
+    /// first), what `line.color` chooses among; `None` in any other pass.
+    line_set_colors: Option<Vec<Option<ExprId>>>,
     /// Whether the pass being resolved draws objects (`render(...)`): only
     /// those may read per-object textures.
     draws_objects: bool,

@@ -71,6 +71,10 @@ pub enum Builtin {
     /// In a `lines` pass: −1 on one edge of the strip, +1 on the other,
     /// interpolated across it (for soft edges or a brush profile).
     LineAcross,
+    /// In a `lines` pass with line sets: the index of the set drawing the
+    /// strip, highest priority first (decision 0056); `line.color` chooses
+    /// on it.
+    LineSet,
     /// In a render pass: the blending weight of the patch being drawn at
     /// this point (Breslav et al. 2007 §3.6), interpolated from its
     /// vertices; 1 on objects without patches. A pass that reads it draws
@@ -127,6 +131,7 @@ impl Builtin {
         ("sample.spacing", Builtin::SampleSpacing),
         ("line.s", Builtin::LineArc),
         ("line.across", Builtin::LineAcross),
+        ("line.set", Builtin::LineSet),
         ("patch.weight", Builtin::PatchWeight),
     ];
 
@@ -153,7 +158,7 @@ impl Builtin {
             Time => (Ty::Float, Unit::Seconds),
             LineArc => (Ty::Float, Unit::Px),
             LineAcross | PatchWeight => (Ty::Float, Unit::None),
-            Frame | Eye => (Ty::Int, Unit::None),
+            Frame | Eye | LineSet => (Ty::Int, Unit::None),
             LightColor | MoreLightColor(_) | MoreLightDir(_) => (Ty::Vec3, Unit::None),
             LightIntensity | MoreLightIntensity(_) => (Ty::Float, Unit::None),
             // px per metre has no unit of its own; NDC focal lengths are ratios.
@@ -177,7 +182,7 @@ impl Builtin {
 
     /// Exists only in the fragments of a `lines` pass's strips.
     pub fn is_line_value(self) -> bool {
-        matches!(self, Builtin::LineArc | Builtin::LineAcross)
+        matches!(self, Builtin::LineArc | Builtin::LineAcross | Builtin::LineSet)
     }
 
     /// Only meaningful on scene geometry (needs vertex data).

@@ -2,7 +2,7 @@
 //! edges it draws, which edges, the strips' shape settings as expressions
 //! (checked to be affine in parameters and time by `typecheck::lines`, and
 //! folded to `npr_abi::lines::LineScalar`s when the manifest is written), and
-//! its depth test.
+//! its depth test, and its line sets (decision 0056).
 
 use super::{ExprId, PassDepth};
 use serde::Serialize;
@@ -16,6 +16,28 @@ pub struct LinesKind {
     pub shape: LineSettings,
     /// `Own` (no test) or `depth: test(pass, bias: ...)`; never `Keep`.
     pub depth: PassDepth,
+    /// The pass's line sets (decision 0056), highest priority first (ties
+    /// in the order written); with any, they replace `edges` and `shape`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sets: Vec<LineSet>,
+}
+
+/// `set name { edges: silhouette | border, width: 3px, color: ink }`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LineSet {
+    pub name: String,
+    /// The set's name where it is written.
+    pub span: npr_diag::Span,
+    /// `tag: name`: only the pass's objects that also have this tag.
+    pub tag: Option<String>,
+    pub edges: npr_abi::lines::EdgeTypes,
+    /// Each unset setting is the pass's own (its default or its setting).
+    pub shape: LineSettings,
+    /// `color: value`, what `line.color` is on this set's strips (opaque
+    /// black when unset).
+    pub color: Option<ExprId>,
+    /// `priority: n` (0 when unset); higher first.
+    pub priority: i64,
 }
 
 /// The shape settings of a `lines` pass, each an expression of the pass's

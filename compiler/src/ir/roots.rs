@@ -52,7 +52,14 @@ impl Pass {
                 roots.values = values.iter().map(|v| v.roots()).collect();
                 roots.key = *key;
             }
-            PassKind::Lines(lines) => roots.settings = lines.shape.roots().to_vec(),
+            PassKind::Lines(lines) => {
+                roots.settings = lines.shape.roots().to_vec();
+                for set in &lines.sets {
+                    roots.settings.extend(set.shape.roots());
+                }
+                roots.settings.sort_unstable();
+                roots.settings.dedup();
+            }
         }
         roots
     }

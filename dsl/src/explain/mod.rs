@@ -4,7 +4,7 @@
 //! exist.
 //!
 //! The explanations are data, one file per code range (`syntax.rs` E00xx,
-//! `names.rs` E01xx, `types.rs` E02xx, `ranges.rs` W0203–W0210, `passes.rs` E03xx and W03xx,
+//! `names.rs` E01xx, `types.rs` E02xx, `ranges.rs` W0203–W0210, `passes.rs` E03xx and W03xx, `line_sets.rs` E0313–E0318,
 //! `files.rs` E04xx and W04xx, `command_line.rs` E05xx,
 //! `host.rs` E06xx). Each example is a
 //! set of files and `npr` command lines, so `tests/general/explain.rs` runs every
@@ -14,6 +14,7 @@
 mod command_line;
 mod files;
 mod host;
+mod line_sets;
 mod names;
 mod passes;
 mod ranges;
@@ -168,6 +169,7 @@ pub fn all() -> impl Iterator<Item = &'static Explanation> {
         .chain(types::ALL)
         .chain(ranges::ALL)
         .chain(passes::ALL)
+        .chain(line_sets::ALL)
         .chain(files::ALL)
         .chain(command_line::ALL)
         .chain(host::ALL)

@@ -226,6 +226,7 @@ impl Builder {
         for stmt in p.into_inner() {
             let Some(s) = stmt.into_inner().next() else { continue };
             match s.as_rule() {
+                Rule::line_set => body.line_sets.push(self.line_set(s)?),
                 Rule::vertex_block => {
                     if let Some(block) = s.into_inner().next() {
                         body.vertex.extend(self.settings(block));
@@ -282,6 +283,51 @@ impl Builder {
             }
         }
         Some(body)
+    }
+
+    /// `set name { edges: a | b(arg), key: value, ... }`.
+    fn line_set(&self, p: P) -> Option<LineSetDecl> {
+        let span = self.span(&p);
+        let mut it = p.into_inner().filter(|i| i.as_rule() != Rule::set_keyword);
+        let name = self.ident(it.next()?);
+        let (mut edges, mut settings) = (Vec::new(), Vec::new());
+        for item in it {
+            let Some(inner) = item.into_inner().next() else {
+                continue;
+            };
+            match inner.as_rule() {
+                Rule::edge_union => {
+                    let union_span = self.span(&inner);
+                    let mut terms = Vec::new();
+                    for term in inner.into_inner().filter(|t| t.as_rule() == Rule::edge_term) {
+                        let term_span = self.span(&term);
+                        let mut parts = term.into_inner();
+                        let name = self.ident(parts.next()?);
+                        let arg = match parts.next() {
+                            Some(e) => Some(self.expr(e)?),
+                            None => None,
+                        };
+                        terms.push(EdgeTerm {
+                            name,
+                            arg,
+                            span: term_span,
+                        });
+                    }
+                    edges.push(EdgeUnion {
+                        terms,
+                        span: union_span,
+                    });
+                }
+                Rule::setting => settings.push(self.setting(inner)?),
+                _ => {}
+            }
+        }
+        Some(LineSetDecl {
+            name,
+            edges,
+            settings,
+            span,
+        })
     }
 
     pub(super) fn let_stmt(&self, p: P) -> Option<LetBinding> {

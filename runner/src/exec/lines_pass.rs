@@ -3,7 +3,8 @@
 //! the frame's time, asks the pass's [`LinesCache`] for the strips of the
 //! objects it draws (rebuilt only when the view, an object, a mesh, the
 //! size or the shape changed) and uploads their vertices, biased towards
-//! the eye, into that slot's buffers (grown, never shrunk). `encode` then
+//! the eye, into that slot's buffers (a pass with line sets builds each
+//! set's strips, every vertex carrying its set's index: decision 0056) (grown, never shrunk). `encode` then
 //! draws them with the compiled shader into the pass's targets. With a
 //! depth test the shader reads the kept depth as group 1
 //! (`npr_abi::lines::LINE_DEPTH_WGSL`) and tests each vertex's edge point; the
@@ -13,14 +14,14 @@ use super::bind;
 use super::common::{self, Timestamps};
 use super::sized::SizedPass;
 use crate::gpu_count::Create;
-use crate::lines::cache::{EdgeSelection, LinesCache};
+use crate::lines::cache::{EdgeSelection, LinesCache, SetRequest};
 use crate::lines::draw::{vertices, DepthBias};
 use crate::lines::objects::line_objects;
 use crate::lines::strip::LineStyle;
 use crate::RunError;
 use glam::{DMat4, DVec2, DVec3};
 use npr_abi::lines::{
-    LineEdges, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX,
+    LineEdges, LineSet, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX,
 };
 use npr_abi::manifest::*;
 
@@ -37,6 +38,9 @@ pub(super) struct LinesPassExec {
     tag: Option<String>,
     edges: LineEdges,
     shape: LineShape,
+    /// The line sets, highest priority first; with any, they replace
+    /// `edges` and `shape`.
+    sets: Vec<LineSet>,
     /// `Some` with a depth test: the view-space bias in px.
     depth_test: Option<f64>,
     pipeline: wgpu::RenderPipeline,
@@ -80,6 +84,7 @@ impl LinesPassExec {
             tag,
             edges,
             shape,
+            sets,
             depth,
             ..
         } = &pass.kind
@@ -139,6 +144,7 @@ impl LinesPassExec {
             tag: tag.clone(),
             edges: *edges,
             shape: shape.clone(),
+            sets: sets.clone(),
             depth_test,
             pipeline,
             layout0,
@@ -171,7 +177,7 @@ impl LinesPassExec {
 
     /// The strips' shape at the frame's time. Settings animated past the
     /// ranges typecheck enforces on constants are held at their ends.
-    fn style(&self, frame: &LinesFrame) -> Result<LineStyle, RunError> {
+    fn style(&self, frame: &LinesFrame, shape: &LineShape) -> Result<LineStyle, RunError> {
         let eval = |name: &str, s: &npr_abi::lines::LineScalar| {
             s.eval(frame.time_s, |p| {
                 crate::animation::scalar_at(frame.manifest, p, frame.time_s, frame.height)
@@ -179,12 +185,46 @@ impl LinesPassExec {
             .ok_or_else(|| RunError::Internal(format!("lines pass `{}`: `{name}` reads a missing param", self.name)))
         };
         Ok(LineStyle {
-            width_px: eval("width", &self.shape.width)?.clamp(0.0, MAX_LINE_WIDTH_PX),
-            amplitude_px: eval("amplitude", &self.shape.amplitude)?.max(0.0),
-            wavelength_px: eval("wavelength", &self.shape.wavelength)?.max(MIN_WAVELENGTH_PX),
-            phase: eval("phase", &self.shape.phase)?,
-            taper: eval("taper", &self.shape.taper)?.clamp(0.0, MAX_TAPER),
+            width_px: eval("width", &shape.width)?.clamp(0.0, MAX_LINE_WIDTH_PX),
+            amplitude_px: eval("amplitude", &shape.amplitude)?.max(0.0),
+            wavelength_px: eval("wavelength", &shape.wavelength)?.max(MIN_WAVELENGTH_PX),
+            phase: eval("phase", &shape.phase)?,
+            taper: eval("taper", &shape.taper)?.clamp(0.0, MAX_TAPER),
         })
+    }
+
+    /// Per line set, its surfaces among the pass's `objects` (the drawn
+    /// objects that also have the set's tag, patched ones as their whole
+    /// mesh, as `line_objects` gives them) and its style at the frame's time.
+    fn set_requests(
+        &self,
+        frame: &LinesFrame,
+        drawn: &[(&crate::scene::Object, &crate::scene::Mesh)],
+        objects: &[crate::lines::cache::LineObject<'_>],
+    ) -> Result<Vec<SetRequest>, RunError> {
+        self.sets
+            .iter()
+            .map(|set| {
+                let mine: Vec<_> = drawn
+                    .iter()
+                    .filter(|(o, _)| set.tag.as_ref().is_none_or(|t| o.tags.contains(t)))
+                    .copied()
+                    .collect();
+                let surfaces = line_objects(&mine)
+                    .iter()
+                    .filter_map(|s| {
+                        objects
+                            .iter()
+                            .position(|o| std::ptr::eq(o.mesh, s.mesh) && o.model == s.model)
+                    })
+                    .collect();
+                Ok(SetRequest {
+                    surfaces,
+                    edges: set.edges,
+                    style: self.style(frame, &set.shape)?,
+                })
+            })
+            .collect()
     }
 
     /// Build (or reuse) the strips of one eye slot and upload them.
@@ -196,7 +236,6 @@ impl LinesPassExec {
         eye: &LinesEye,
         scale: f64,
     ) -> Result<(), RunError> {
-        let style = self.style(frame)?;
         let drawn: Vec<(&crate::scene::Object, &crate::scene::Mesh)> = frame
             .scene
             .objects
@@ -209,13 +248,19 @@ impl LinesPassExec {
         let objects = line_objects(&drawn);
         let (w, h) = super::sized::scaled_size(frame.width, frame.height, scale);
         let size = DVec2::new(f64::from(w), f64::from(h));
-        let selection = EdgeSelection {
-            silhouettes: self.edges.silhouettes,
-            crease_deg: self.edges.crease_deg,
+        let strips = if self.sets.is_empty() {
+            let style = self.style(frame, &self.shape)?;
+            let selection = EdgeSelection {
+                silhouettes: self.edges.silhouettes,
+                crease_deg: self.edges.crease_deg,
+            };
+            self.cache
+                .strips(eye.eye, &objects, eye.position, eye.view_proj, size, &style, selection)
+        } else {
+            let requests = self.set_requests(frame, &drawn, &objects)?;
+            self.cache
+                .set_strips(eye.eye, &objects, &requests, eye.position, eye.view_proj, size)
         };
-        let strips = self
-            .cache
-            .strips(eye.eye, &objects, eye.position, eye.view_proj, size, &style, selection);
         let eye_clip_z = (eye.view_proj * eye.position.extend(1.0)).z;
         let bias = DepthBias::view_space_px(self.depth_test.unwrap_or(0.0), eye.focal_y, size.y, eye_clip_z);
         let gpu_vertices = vertices(strips, [size.x, size.y], bias);

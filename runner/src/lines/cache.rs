@@ -16,12 +16,16 @@
 //! that must read as one stroke, §5); the creases are then chained from the
 //! crease edges that are not silhouettes from this eye. Without silhouettes
 //! the crease chains are static and cached.
+//!
+//! A pass with line sets (decision 0056) shares the edge meshes; its strips
+//! are rebuilt as a whole (`sets::build`) when its view key changes.
 
 use std::collections::HashMap;
 
 use glam::{DMat4, DVec2, DVec3};
 
 use super::edges::{EdgeMesh, Polyline};
+use super::sets::{self, SetInput, SetSurface};
 use super::strip::{self, LineStyle, Strips};
 use crate::scene::Mesh;
 
@@ -63,6 +67,27 @@ struct ViewKey {
     size: [u64; 2],
     style: [u64; 5],
     selection: (bool, Option<u64>),
+    /// With line sets: per set, its surfaces, style and edge types.
+    sets: Vec<(Vec<usize>, [u64; 5], String)>,
+}
+
+/// One line set as the cache takes it: the indices of its surfaces among
+/// the pass's objects, its edge types and its style.
+pub struct SetRequest {
+    pub surfaces: Vec<usize>,
+    pub edges: npr_abi::lines::EdgeTypes,
+    pub style: LineStyle,
+}
+
+fn style_bits(style: &LineStyle) -> [u64; 5] {
+    [
+        style.width_px,
+        style.amplitude_px,
+        style.wavelength_px,
+        style.phase,
+        style.taper,
+    ]
+    .map(f64::to_bits)
 }
 
 /// Edge meshes by content, and each eye's strips with the key they were
@@ -116,15 +141,9 @@ impl LinesCache {
             models: objects.iter().map(|o| bits(o.model)).collect(),
             meshes: hashes.clone(),
             size: [size.x.to_bits(), size.y.to_bits()],
-            style: [
-                style.width_px,
-                style.amplitude_px,
-                style.wavelength_px,
-                style.phase,
-                style.taper,
-            ]
-            .map(f64::to_bits),
+            style: style_bits(style),
             selection: (selection.silhouettes, selection.crease_deg.map(f64::to_bits)),
+            sets: Vec::new(),
         };
         let fresh = matches!(self.eyes.get(&eye_index), Some((k, _)) if *k == key);
         if !fresh {
@@ -182,18 +201,81 @@ impl LinesCache {
                 }
             }
             let strips = strip::build(&polylines, view_proj, size, style);
-            self.rebuilds += 1;
-            self.eyes.insert(eye_index, (key, strips));
-            // A mesh whose vertices change (the ocean, a host's deforming
-            // mesh) is a new content every frame: edge meshes no eye draws
-            // now go once they outnumber the drawn ones, so the cache stays
-            // bounded.
-            if self.meshes.len() > 2 * hashes.len() + 8 {
-                let eyes = &self.eyes;
-                self.meshes
-                    .retain(|hash, _| eyes.values().any(|(key, _)| key.meshes.contains(hash)));
-            }
+            self.store(eye_index, key, strips);
         }
         &self.eyes[&eye_index].1
+    }
+
+    /// The strips of a pass's line sets (decision 0056; highest priority
+    /// first) for eye `eye_index`, as [`LinesCache::strips`] without sets:
+    /// the cached ones when nothing they depend on changed.
+    pub fn set_strips(
+        &mut self,
+        eye_index: u32,
+        objects: &[LineObject<'_>],
+        sets: &[SetRequest],
+        eye_position: DVec3,
+        view_proj: DMat4,
+        size: DVec2,
+    ) -> &Strips {
+        let hashes: Vec<blake3::Hash> = objects.iter().map(|o| mesh_hash(o.mesh)).collect();
+        let key = ViewKey {
+            view_proj: bits(view_proj),
+            models: objects.iter().map(|o| bits(o.model)).collect(),
+            meshes: hashes.clone(),
+            size: [size.x.to_bits(), size.y.to_bits()],
+            style: [0; 5],
+            selection: (false, None),
+            sets: sets
+                .iter()
+                .map(|s| (s.surfaces.clone(), style_bits(&s.style), format!("{:?}", s.edges)))
+                .collect(),
+        };
+        let fresh = matches!(self.eyes.get(&eye_index), Some((k, _)) if *k == key);
+        if !fresh {
+            for (object, hash) in objects.iter().zip(&hashes) {
+                self.meshes.entry(*hash).or_insert_with(|| {
+                    self.mesh_builds += 1;
+                    MeshEdges {
+                        edges: EdgeMesh::new(object.mesh),
+                        creases: HashMap::new(),
+                    }
+                });
+            }
+            let inputs: Vec<SetInput<'_>> = sets
+                .iter()
+                .map(|set| SetInput {
+                    surfaces: set
+                        .surfaces
+                        .iter()
+                        .map(|&i| SetSurface {
+                            edges: &self.meshes[&hashes[i]].edges,
+                            model: objects[i].model,
+                            key: i,
+                        })
+                        .collect(),
+                    edges: set.edges,
+                    style: set.style,
+                })
+                .collect();
+            let strips = sets::build(&inputs, eye_position, view_proj, size);
+            self.store(eye_index, key, strips);
+        }
+        &self.eyes[&eye_index].1
+    }
+
+    fn store(&mut self, eye_index: u32, key: ViewKey, strips: Strips) {
+        let drawn = key.meshes.len();
+        self.rebuilds += 1;
+        self.eyes.insert(eye_index, (key, strips));
+        // A mesh whose vertices change (the ocean, a host's deforming
+        // mesh) is a new content every frame: edge meshes no eye draws
+        // now go once they outnumber the drawn ones, so the cache stays
+        // bounded.
+        if self.meshes.len() > 2 * drawn + 8 {
+            let eyes = &self.eyes;
+            self.meshes
+                .retain(|hash, _| eyes.values().any(|(key, _)| key.meshes.contains(hash)));
+        }
     }
 }

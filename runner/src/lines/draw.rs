@@ -67,7 +67,7 @@ pub fn vertices(strips: &Strips, size: [f64; 2], bias: DepthBias) -> Vec<LineVer
                 bias.apply(v.depth, v.inv_w).clamp(0.0, 1.0) as f32,
                 v.s as f32,
             ],
-            line: [v.base.x as f32, v.base.y as f32, v.across as f32, 0.0],
+            line: [v.base.x as f32, v.base.y as f32, v.across as f32, v.set as f32],
         })
         .collect()
 }

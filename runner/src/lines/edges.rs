@@ -11,6 +11,13 @@
 //!   threshold, and cached by the caller.
 //! - [`EdgeMesh::silhouettes`]: edges between a front- and a back-facing
 //!   face as seen from one eye (object space). Per frame and per eye.
+//! - [`EdgeMesh::borders`], [`EdgeMesh::creases_over`],
+//!   [`EdgeMesh::part_boundaries`]: the static edge types of line sets
+//!   (decision 0056), each alone: an open mesh's rim, a dihedral angle over
+//!   a threshold between two faces, and edges between faces of different
+//!   parts (`Mesh::parts`: OBJ `o`/`g`, glTF primitives, so one material
+//!   each in a glTF file). Intersection lines are not mesh edges: they are
+//!   in `intersections.rs`.
 //! - [`chain`]: edges joined into polylines through vertices of degree 2,
 //!   so a line's phase runs on continuously along a chain (BRIEF §5: without
 //!   chaining the phase jumps at every edge).
@@ -62,6 +69,9 @@ pub struct EdgeMesh {
     /// Unit normals of `faces` (counter-clockwise is front).
     pub normals: Vec<DVec3>,
     pub edges: Vec<Edge>,
+    /// Per face, the part of the mesh it came from (`Mesh::parts`; all 0
+    /// for a mesh of one part).
+    pub face_parts: Vec<u32>,
 }
 
 /// Relative size under which two vertices weld and a face counts as
@@ -113,7 +123,8 @@ impl EdgeMesh {
         let mut normals = Vec::new();
         let mut by_pair: HashMap<(u32, u32), usize> = HashMap::new();
         let mut edges: Vec<Edge> = Vec::new();
-        for tri in mesh.indices.chunks_exact(3) {
+        let mut face_parts = Vec::new();
+        for (t, tri) in mesh.indices.chunks_exact(3).enumerate() {
             let [a, b, c] = [remap[tri[0] as usize], remap[tri[1] as usize], remap[tri[2] as usize]];
             // A welded-away edge (two corners at one point) makes the face
             // a zero-area sliver: it has no normal, so no facing, and its
@@ -130,6 +141,7 @@ impl EdgeMesh {
             let face = faces.len() as u32;
             faces.push([a, b, c]);
             normals.push(cross / length);
+            face_parts.push(mesh.parts.as_ref().and_then(|p| p.get(t).copied()).unwrap_or(0));
             for (p, q) in [(a, b), (b, c), (c, a)] {
                 let key = (p.min(q), p.max(q));
                 let index = *by_pair.entry(key).or_insert_with(|| {
@@ -148,7 +160,39 @@ impl EdgeMesh {
             faces,
             normals,
             edges,
+            face_parts,
         }
+    }
+
+    /// Border edges: those with one face, the rim of an open mesh (a
+    /// plane's outline, a box without its lid). Indices into `edges`.
+    pub fn borders(&self) -> Vec<u32> {
+        self.edges_where(|_, e| e.faces.len() == 1)
+    }
+
+    /// Crease edges alone: two faces whose dihedral angle exceeds
+    /// `threshold_deg` (unlike [`EdgeMesh::creases`], no border or
+    /// non-manifold edge). Indices into `edges`.
+    pub fn creases_over(&self, threshold_deg: f64) -> Vec<u32> {
+        self.edges_where(|mesh, e| e.faces.len() == 2 && mesh.dihedral_deg(e).is_some_and(|a| a > threshold_deg))
+    }
+
+    /// Material (part) boundaries: edges whose faces are not all in one
+    /// part (`Mesh::parts`). Indices into `edges`.
+    pub fn part_boundaries(&self) -> Vec<u32> {
+        self.edges_where(|mesh, e| {
+            let part = mesh.face_parts[e.faces[0] as usize];
+            e.faces.iter().any(|&f| mesh.face_parts[f as usize] != part)
+        })
+    }
+
+    fn edges_where(&self, keep: impl Fn(&EdgeMesh, &Edge) -> bool) -> Vec<u32> {
+        self.edges
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| keep(self, e))
+            .map(|(i, _)| i as u32)
+            .collect()
     }
 
     /// The dihedral angle of a two-face edge in degrees: the angle between

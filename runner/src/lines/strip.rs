@@ -84,6 +84,9 @@ pub struct StripVertex {
     pub s: f64,
     /// +1 on one side of the strip, −1 on the other.
     pub across: f64,
+    /// The index of the line set that drew it (0 without sets; see
+    /// `sets::build`).
+    pub set: u32,
 }
 
 /// The strips of one eye: every piece's backbone (for tests and
@@ -93,6 +96,17 @@ pub struct Strips {
     pub backbones: Vec<Vec<BackbonePoint>>,
     pub vertices: Vec<StripVertex>,
     pub indices: Vec<u32>,
+}
+
+impl Strips {
+    /// Appends `other`, its vertices marked as drawn by line set `set`.
+    pub fn append(&mut self, other: Strips, set: u32) {
+        let first = self.vertices.len() as u32;
+        self.vertices
+            .extend(other.vertices.into_iter().map(|v| StripVertex { set, ..v }));
+        self.indices.extend(other.indices.into_iter().map(|i| i + first));
+        self.backbones.extend(other.backbones);
+    }
 }
 
 /// Builds the strips of `polylines` (world-space points, closed or not)
@@ -294,6 +308,7 @@ fn push_strip(strips: &mut Strips, backbone: &[BackbonePoint], closed: bool, sty
                 inv_w: backbone[i].inv_w,
                 s,
                 across: side,
+                set: 0,
             });
         }
     }

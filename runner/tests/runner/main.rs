@@ -26,6 +26,7 @@ mod embed_stereo_targets;
 mod gltf_animation_sampler;
 mod gltf_characters;
 mod gpu_deform;
+mod lines_edge_types;
 mod lines_edges;
 mod lines_pixels;
 mod lines_strip;

@@ -287,6 +287,7 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::SampleSpacing => "in.spacing".into(),
         Builtin::LineArc => "in.line_s".into(),
         Builtin::LineAcross => "in.line_across".into(),
+        Builtin::LineSet => "i32(in.line_set)".into(),
         Builtin::PatchWeight => "in.patch_weight".into(),
     }
 }

@@ -49,6 +49,7 @@ impl Emitter<'_> {
             w.push('\n');
             w.push_str(VISIBILITY);
         }
+        let with_sets = !lines.sets.is_empty();
         w.push_str(
             "struct Varyings {
     @builtin(position) clip: vec4<f32>,
@@ -59,7 +60,13 @@ impl Emitter<'_> {
     @location(2) @interpolate(linear) line_across: f32,
     // 1 where the edge is visible; fragments under 0.5 are discarded.
     @location(3) @interpolate(linear) line_visible: f32,
-}
+",
+        );
+        if with_sets {
+            w.push_str("    // line.set: the index of the line set drawing the strip (decision 0056).\n    @location(4) @interpolate(flat) line_set: f32,\n");
+        }
+        w.push_str(
+            "}
 
 // The runner builds the strips on the CPU (screen-space px, so w = 1).
 @vertex
@@ -89,7 +96,13 @@ fn vs_main(v: LineIn) -> Varyings {
     out.screen_uv = clip.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5);
     out.line_s = v.position.w;
     out.line_across = v.line.z;
-    return out;
+",
+        );
+        if with_sets {
+            w.push_str("    out.line_set = v.line.w;\n");
+        }
+        w.push_str(
+            "    return out;
 }
 
 ",

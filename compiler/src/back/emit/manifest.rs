@@ -80,6 +80,19 @@ pub fn build(
                         tag: lines.tag.clone(),
                         edges: lines.edges,
                         shape: line_shape(ir, &lines.shape)?,
+                        sets: lines
+                            .sets
+                            .iter()
+                            .map(|set| {
+                                Ok(npr_abi::lines::LineSet {
+                                    name: set.name.clone(),
+                                    tag: set.tag.clone(),
+                                    edges: set.edges,
+                                    shape: line_shape(ir, &set.shape)?,
+                                    priority: set.priority,
+                                })
+                            })
+                            .collect::<Result<Vec<_>, InternalError>>()?,
                         depth: depth_mode(*pid, lines.depth, live, emitted)?,
                         vertex_entry: "vs_main".into(),
                         fragment_entry: "fs_main".into(),

@@ -236,6 +236,9 @@ impl Resolver<'_> {
                     };
                 }
                 let spelled = format!("{}.{}", b.name, field.name);
+                if matches!(spelled.as_str(), "line.color" | "line.set") {
+                    return self.line_set_value(&spelled, span);
+                }
                 if let Some((_, bi)) = Builtin::SPELLINGS.iter().find(|(s, _)| *s == spelled) {
                     return self.builtin_read(*bi, span);
                 }

@@ -55,6 +55,7 @@ impl Resolver<'_> {
             },
             shape,
             depth: PassDepth::Own,
+            sets: Vec::new(),
         })
     }
 

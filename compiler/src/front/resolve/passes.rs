@@ -127,6 +127,26 @@ impl Resolver<'_> {
                 }
             }
         }
+        self.line_set_colors = None;
+        match &mut kind {
+            PassKind::Lines(lines) => {
+                self.line_sets(lines, p);
+                if !lines.sets.is_empty() {
+                    self.line_set_colors = Some(lines.sets.iter().map(|s| s.color).collect());
+                }
+            }
+            _ => {
+                if let Some(set) = p.body.line_sets.first() {
+                    self.error(
+                        Diagnostic::error(codes::MISPLACED_LINE_SET, "a line set outside a lines pass")
+                            .with_primary(set.name.span, format!("in a {} pass", kind.name()))
+                            .with_help(
+                                "line sets belong in `pass ink: lines(scene) { set outline { edges: silhouette } }`",
+                            ),
+                    );
+                }
+            }
+        }
         let compute_domain = match &kind {
             PassKind::Compute { domain, .. } => Some(*domain),
             PassKind::Render { .. } | PassKind::Image { .. } | PassKind::Lines(_) => None,
@@ -217,6 +237,7 @@ impl Resolver<'_> {
         pass.lets = lets;
         pass.outputs = outputs;
         self.current_pass = None;
+        self.line_set_colors = None;
         self.draws_objects = false;
         self.has_object = false;
         self.in_image_pass = false;

@@ -2,7 +2,8 @@
 //! wavelength in px, phase in radians (or a plain number), taper a plain
 //! number; constants inside the ranges the runner builds strips for; and
 //! every setting affine in params and `time` (`line_settings::affine`),
-//! since the runner evaluates them on the CPU.
+//! since the runner evaluates them on the CPU; the same for each line set's
+//! own settings, and a set's `color:` is a colour.
 
 use super::Checker;
 use crate::front::line_settings::affine;
@@ -16,7 +17,23 @@ impl Checker<'_> {
         let PassKind::Lines(lines) = &self.ir.passes[pi].kind else {
             return;
         };
-        for (name, id) in lines.shape.named() {
+        // The pass's settings, then each set's own (a set's unset setting is
+        // the pass's node: checked once).
+        let mut settings: Vec<(&'static str, ExprId)> = lines.shape.named().to_vec();
+        for set in &lines.sets {
+            for (name, id) in set.shape.named() {
+                if !settings.iter().any(|(_, seen)| *seen == id) {
+                    settings.push((name, id));
+                }
+            }
+        }
+        let colors: Vec<ExprId> = lines.sets.iter().filter_map(|s| s.color).collect();
+        for id in colors {
+            if !self.is_error(id) && self.vt(id) != Ty::Vec4 {
+                self.type_error(id, "a colour (vec4)", None);
+            }
+        }
+        for (name, id) in settings {
             if self.is_error(id) {
                 continue;
             }

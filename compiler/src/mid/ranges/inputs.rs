@@ -50,7 +50,8 @@ pub fn builtin(b: Builtin) -> Val {
         | MoreLightIntensity(_)
         | ObjectIndex
         | ObjectId
-        | LineArc => Val::splat(NON_NEGATIVE, n),
+        | LineArc
+        | LineSet => Val::splat(NON_NEGATIVE, n),
         // A perspective camera's near plane is past the eye, and its
         // focal lengths (P₀₀, P₁₁ = cot(fov/2) over the aspect and 1) are
         // positive: its fov is in (0°, 180°). Scenes check both (E0405),
