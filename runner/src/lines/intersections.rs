@@ -16,8 +16,10 @@
 //! 4. the segments' ends are welded by position and chained ([`chain`]) so
 //!    a sphere through a plane gives one closed loop.
 //!
-//! Cost: O(faces + candidate pairs); static per placement, so the cache
-//! recomputes them only when an object moves or a mesh changes.
+//! Cost: O(faces + candidate pairs). The lines depend only on the
+//! placements, but they are found again with every rebuild of the set's
+//! strips (`sets::build`, on a change of view): keeping them per placement
+//! is not done yet.
 
 use std::collections::HashMap;
 
