@@ -34,6 +34,11 @@ pub enum EmbedError {
     /// before a frame (E0607).
     #[error("{}", .0.message)]
     Input(Box<Diagnostic>),
+    /// A skin that does not fit its mesh (E0615), or a pose that does not
+    /// fit its mesh's skin: joint matrices (E0612), morph weights (E0614),
+    /// a number that is not finite (E0613).
+    #[error("{}", .0.message)]
+    Skin(Box<Diagnostic>),
     /// What the runner reports: a device lacking a feature or limit the
     /// style needs (E0510), objects the style cannot draw (E0403, E0405),
     /// out of memory (E0508), a lost device (E0509), a bug (E9001).
@@ -46,7 +51,11 @@ impl EmbedError {
     pub fn code(&self) -> &'static str {
         match self {
             EmbedError::UnknownMesh(_) => codes::UNKNOWN_MESH,
-            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) | EmbedError::Input(d) => d.code,
+            EmbedError::Param(d)
+            | EmbedError::Target(d)
+            | EmbedError::MeshUpdate(d)
+            | EmbedError::Input(d)
+            | EmbedError::Skin(d) => d.code,
             EmbedError::Run(e) => e.diagnostics().first().map_or(codes::INTERNAL, |d| d.code),
         }
     }
@@ -61,7 +70,11 @@ impl EmbedError {
                          remove it only after the last frame that draws it",
                 )]
             }
-            EmbedError::Param(d) | EmbedError::Target(d) | EmbedError::MeshUpdate(d) | EmbedError::Input(d) => {
+            EmbedError::Param(d)
+            | EmbedError::Target(d)
+            | EmbedError::MeshUpdate(d)
+            | EmbedError::Input(d)
+            | EmbedError::Skin(d) => {
                 vec![(**d).clone()]
             }
             EmbedError::Run(e) => e.diagnostics(),
