@@ -20,7 +20,11 @@
 //! of its own (`Attribute::PreviousPosition`, which compute passes read for
 //! `position.previous`). When its pose moved, the stage copies the
 //! positions there before deforming; at its first frame, after (so the
-//! previous frame is the current one, as `previous_model` is).
+//! previous frame is the current one, as `previous_model` is), unless it
+//! continues a deformed object of the scene before a scene change (the
+//! same name, docs/decisions/0046): then that object's last positions are
+//! copied there before (`carry_previous`), so the first frame after the
+//! change shows the true motion.
 
 use super::meshes::GpuMesh;
 use crate::gpu_count::Create;
@@ -225,6 +229,10 @@ const KEEP: u8 = 0;
 const MOVED: u8 = 1;
 /// The first frame: the previous positions are the current ones, after it.
 const FIRST: u8 = 2;
+/// The first frame after a scene change of an object that continues a
+/// deformed one: the previous positions are its last deformed positions,
+/// copied before the dispatch.
+const CARRIED: u8 = 3;
 
 /// Which pose an object's palette holds: a clip's time, or a host pose's
 /// revision (`HostPose::revision`).
@@ -264,9 +272,14 @@ struct DeformedObject {
     positions: wgpu::Buffer,
     previous: wgpu::Buffer,
     bytes: u64,
-    /// [`KEEP`], [`MOVED`] or [`FIRST`], set by `prepare`, reset by `encode`
-    /// (atomic: `encode` takes `&self`).
+    /// [`KEEP`], [`MOVED`], [`FIRST`] or [`CARRIED`], set by `prepare`,
+    /// reset by `encode` (atomic: `encode` takes `&self`).
     step: AtomicU8,
+    /// After a scene change, the position buffer of the deformed object
+    /// of the previous scene it continues (same vertex count): its last
+    /// pose, which becomes this object's previous positions at its first
+    /// frame. Dropped when its pose next moves.
+    carried: Option<wgpu::Buffer>,
 }
 
 /// `pose`'s joint matrices (column-major) and morph weights in the order
@@ -386,6 +399,7 @@ impl DeformStage {
                 previous: previous.clone(),
                 bytes: 12 * mesh.vertex_count as u64,
                 step: AtomicU8::new(KEEP),
+                carried: None,
             });
         }
         Ok(DeformStage { objects })
@@ -417,15 +431,39 @@ impl DeformStage {
                 (None, None) => continue,
             };
             write_palette(&o.rig, pose, &mut o.palette_values, &mut o.weight_values);
+            let first = o.posed_at.is_none();
             queue.write_buffer(&o.palette, 0, bytemuck::cast_slice(&o.palette_values));
             if !o.weight_values.is_empty() {
                 queue.write_buffer(&o.weights, 0, bytemuck::cast_slice(&o.weight_values));
             }
-            let step = if o.posed_at.is_none() { FIRST } else { MOVED };
+            let step = match (first, &o.carried) {
+                (true, Some(_)) => CARRIED,
+                (true, None) => FIRST,
+                (false, _) => {
+                    o.carried = None;
+                    MOVED
+                }
+            };
             o.step.store(step, Ordering::Relaxed);
             o.posed_at = Some(key);
             if let Some(mesh) = meshes.get_mut(o.object) {
                 mesh.vertex_revision += 1;
+            }
+        }
+    }
+
+    /// After a scene change: each deformed object that continues a
+    /// deformed object of `old` (`continuing`, by index; the same vertex
+    /// count) takes its last deformed positions as its previous ones at
+    /// its first frame, so `position.previous` shows the true motion
+    /// across the change instead of none.
+    pub fn carry_previous(&mut self, old: &DeformStage, continuing: &[Option<usize>]) {
+        for o in &mut self.objects {
+            let Some(Some(from)) = continuing.get(o.object) else { continue };
+            if let Some(before) = old.objects.iter().find(|b| b.object == *from) {
+                if before.bytes == o.bytes && before.posed_at.is_some() {
+                    o.carried = Some(before.positions.clone());
+                }
             }
         }
     }
@@ -435,10 +473,13 @@ impl DeformStage {
         let (Some(pipeline), false) = (pipeline.get(), self.objects.is_empty()) else {
             return;
         };
-        // The pose moved: this frame's previous positions are the last deformed ones.
+        // The pose moved: this frame's previous positions are the last
+        // deformed ones (after a scene change, those of the object it continues).
         for o in &self.objects {
-            if o.step.load(Ordering::Relaxed) == MOVED && o.bytes > 0 {
-                encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes);
+            match (o.step.load(Ordering::Relaxed), &o.carried) {
+                (MOVED, _) if o.bytes > 0 => encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes),
+                (CARRIED, Some(old)) if o.bytes > 0 => encoder.copy_buffer_to_buffer(old, 0, &o.previous, 0, o.bytes),
+                _ => {}
             }
         }
         {
