@@ -182,7 +182,6 @@ pub(crate) enum Converted {
     Unusable,
 }
 
-
 /// The npr meshes of the Bevy meshes that entities draw, by asset id.
 #[derive(Resource, Default)]
 pub(crate) struct NprMeshes {

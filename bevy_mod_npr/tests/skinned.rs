@@ -102,11 +102,12 @@ fn spawn_arm(world: &mut World, object: &npr_runner::scene::Object, mesh: Handle
         world.entity_mut(nodes[k]).insert(ChildOf(parent));
     }
     let skin = &rig.skins[rig.pieces[0].skin.expect("the arm is skinned")];
-    let inverse_bindposes = world
-        .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()
-        .add(SkinnedMeshInverseBindposes::from(
-            skin.inverse_bind.iter().map(|m| bevy_mat4(*m)).collect::<Vec<_>>(),
-        ));
+    let inverse_bindposes =
+        world
+            .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()
+            .add(SkinnedMeshInverseBindposes::from(
+                skin.inverse_bind.iter().map(|m| bevy_mat4(*m)).collect::<Vec<_>>(),
+            ));
     world.spawn((
         Mesh3d(mesh),
         // Bevy ignores a skinned mesh entity's own transform; npr places
@@ -140,7 +141,12 @@ fn skinned_bevy_mesh(rig: &Rig) -> Mesh {
 /// skinned (one mesh asset, shared); per arm object, its node entities.
 fn spawn(app: &mut App, scene: &Scene) -> Vec<(usize, Vec<Entity>)> {
     let rigid = Scene {
-        objects: scene.objects.iter().filter(|o| o.animation.is_none()).cloned().collect(),
+        objects: scene
+            .objects
+            .iter()
+            .filter(|o| o.animation.is_none())
+            .cloned()
+            .collect(),
         ..scene.clone()
     };
     bevy_mod_npr::spawn_npr_scene(app.world_mut(), &rigid);
@@ -235,7 +241,10 @@ fn skinned_arms_bend_as_npr_render_draws_their_clip() {
     }
     // The two times differ (a static drawing cannot pass both).
     let moved = drawn[0].pixels().zip(drawn[1].pixels()).filter(|(a, b)| a != b).count();
-    assert!(moved > 100, "the arms barely moved between the two times ({moved} pixels)");
+    assert!(
+        moved > 100,
+        "the arms barely moved between the two times ({moved} pixels)"
+    );
     assert!(logged_codes(&app).is_empty(), "{:?}", logged_codes(&app));
 }
 

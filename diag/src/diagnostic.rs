@@ -527,7 +527,10 @@ pub mod codes {
         (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
         (POSE_JOINTS, "a host's pose does not fit its mesh's joints"),
         (NON_FINITE_POSE, "a host's pose has a number that is not finite"),
-        (POSE_MORPH_WEIGHTS, "a host's morph weights do not fit its mesh's targets"),
+        (
+            POSE_MORPH_WEIGHTS,
+            "a host's morph weights do not fit its mesh's targets",
+        ),
         (BAD_SKIN, "a host's skin does not fit its mesh"),
     ];
 }

@@ -132,9 +132,7 @@ fn render_both(style: &str) -> Vec<(npr_runner::readback::TargetImage, npr_runne
         // The host's animation: each posed instance's clip at its time.
         for (instance, object) in instances.iter_mut().zip(&scene.objects) {
             if let (Some(animation), Some(pose)) = (&object.animation, instance.pose.as_mut()) {
-                let sampled = animation
-                    .rig
-                    .pose(Some((animation.clip, animation.clip_time(time_s))));
+                let sampled = animation.rig.pose(Some((animation.clip, animation.clip_time(time_s))));
                 host_pose(&animation.rig, &sampled, pose);
             }
         }
@@ -165,13 +163,20 @@ fn render_both(style: &str) -> Vec<(npr_runner::readback::TargetImage, npr_runne
         renderer.render(&scene, &spec).expect("render");
         frames.push((hosted, renderer.read_output().expect("read back the output")));
     }
-    assert_eq!(runtime.builds(), 1, "{style}: the runtime rebuilt its scene between frames");
+    assert_eq!(
+        runtime.builds(),
+        1,
+        "{style}: the runtime rebuilt its scene between frames"
+    );
     frames
 }
 
 /// Every frame equals the renderer's byte for byte, and the characters
 /// moved between frames (a static drawing would pass the equality too).
-fn assert_equal_and_moving(frames: &[(npr_runner::readback::TargetImage, npr_runner::readback::TargetImage)], name: &str) {
+fn assert_equal_and_moving(
+    frames: &[(npr_runner::readback::TargetImage, npr_runner::readback::TargetImage)],
+    name: &str,
+) {
     let mut failures = Vec::new();
     for ((hosted, direct), time_s) in frames.iter().zip(TIMES) {
         if hosted.bytes != direct.bytes {

@@ -294,7 +294,12 @@ fn render_pose(targets: usize, pose: SkinPose) -> EmbedError {
     // The bind pose renders: the mistakes below are the pose's.
     let good = [Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(SkinPose::bind(2, targets))];
     render(&mut rt, &good, &view).expect("the bind pose");
-    render(&mut rt, &[Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(pose)], &view).expect_err("a bad pose")
+    render(
+        &mut rt,
+        &[Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(pose)],
+        &view,
+    )
+    .expect_err("a bad pose")
 }
 
 #[test]
@@ -349,7 +354,10 @@ fn e0615_a_skin_that_does_not_fit_its_mesh() {
     check_case(
         "E0615",
         "E0615_joint",
-        rendered(rt.add_skinned_mesh(mesh.clone(), skinning).expect_err("a joint past the skin's")),
+        rendered(
+            rt.add_skinned_mesh(mesh.clone(), skinning)
+                .expect_err("a joint past the skin's"),
+        ),
     );
     let (_, mut skinning) = skinned_box(1);
     skinning.morph_targets[0].positions.pop();

@@ -259,7 +259,10 @@ fn an_unknown_code_gives_e0502_with_the_nearest_codes() {
         stderr.contains("error[E0502]: `E9999` is not an npr error code"),
         "{stderr}"
     );
-    assert!(stderr.contains("E0615 (a host's skin does not fit its mesh)"), "{stderr}");
+    assert!(
+        stderr.contains("E0615 (a host's skin does not fit its mesh)"),
+        "{stderr}"
+    );
     insta::assert_snapshot!("explain_unknown_code", stderr);
     let o = npr(Path::new("."), &["explain", "E0z02"]).output().expect("run npr");
     assert_eq!(codes_printed(&o), BTreeSet::from(["E0502".to_string()]));

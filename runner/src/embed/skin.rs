@@ -145,7 +145,11 @@ pub(super) fn rig_of(mesh: Mesh, skinning: Skinning) -> Result<Rig, EmbedError> 
                 "leave the tangent deltas out for a mesh without UVs",
             ));
         }
-        let deltas = [Some(&target.positions), target.normals.as_ref(), target.tangents.as_ref()];
+        let deltas = [
+            Some(&target.positions),
+            target.normals.as_ref(),
+            target.tangents.as_ref(),
+        ];
         if let Some(v) = deltas
             .into_iter()
             .flatten()

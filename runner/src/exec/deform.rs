@@ -411,7 +411,9 @@ impl DeformStage {
     /// (compute passes copy its vertices again after the stage has run).
     pub fn prepare(&mut self, queue: &wgpu::Queue, scene: &Scene, time_s: f64, meshes: &mut [GpuMesh]) {
         for o in &mut self.objects {
-            let Some(object) = scene.objects.get(o.object) else { continue };
+            let Some(object) = scene.objects.get(o.object) else {
+                continue;
+            };
             let (key, pose) = match (&object.animation, &object.pose) {
                 (Some(animation), _) => {
                     let clip_time = animation.clip_time(time_s);
@@ -459,7 +461,9 @@ impl DeformStage {
     /// across the change instead of none.
     pub fn carry_previous(&mut self, old: &DeformStage, continuing: &[Option<usize>]) {
         for o in &mut self.objects {
-            let Some(Some(from)) = continuing.get(o.object) else { continue };
+            let Some(Some(from)) = continuing.get(o.object) else {
+                continue;
+            };
             if let Some(before) = old.objects.iter().find(|b| b.object == *from) {
                 if before.bytes == o.bytes && before.posed_at.is_some() {
                     o.carried = Some(before.positions.clone());
