@@ -49,7 +49,8 @@ pub(crate) fn joint_matrices(
         .zip(inverse_bind.iter())
         .enumerate()
         .map(|(j, (&joint, ibm))| match joints.get(joint) {
-            Ok(g) => Ok(crate::extract::npr_mat4(to_mesh * g.to_matrix() * *ibm)),
+            // Bevy's glam may be another release than npr's: by the columns.
+            Ok(g) => Ok(glam::Mat4::from_cols_array(&(to_mesh * g.to_matrix() * *ibm).to_cols_array())),
             Err(_) => Err(format!(
                 "its SkinnedMesh's joint {j}, entity {joint}, is gone (or has no GlobalTransform)"
             )),

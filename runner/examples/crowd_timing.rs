@@ -13,6 +13,9 @@
 //!
 //! `cargo run -p npr-runner --example crowd_timing`
 
+// A host's own texture, as a host makes it (not counted: not the runner's).
+#![allow(clippy::disallowed_methods)]
+
 use npr_compiler::CompileOptions;
 use npr_runner::embed::{Frame, Instance, Lights, SkinPose, Skinning, StyleRuntime, Target};
 use npr_runner::scene::load_mesh_and_rig;
