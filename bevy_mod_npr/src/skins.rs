@@ -50,7 +50,9 @@ pub(crate) fn joint_matrices(
         .enumerate()
         .map(|(j, (&joint, ibm))| match joints.get(joint) {
             // Bevy's glam may be another release than npr's: by the columns.
-            Ok(g) => Ok(glam::Mat4::from_cols_array(&(to_mesh * g.to_matrix() * *ibm).to_cols_array())),
+            Ok(g) => Ok(glam::Mat4::from_cols_array(
+                &(to_mesh * g.to_matrix() * *ibm).to_cols_array(),
+            )),
             Err(_) => Err(format!(
                 "its SkinnedMesh's joint {j}, entity {joint}, is gone (or has no GlobalTransform)"
             )),
