@@ -2,8 +2,8 @@
 //! Bevy's `ExtractSchedule`: per [`crate::NprStyle`] camera an
 //! [`ExtractedNprCamera`] on its render entity; once, the
 //! [`ExtractedNprScene`] (the compiled styles, the visible mesh entities
-//! with their transforms, tags and params, the converted meshes, the
-//! lights and the time). Copies are of small values and `Arc`s; the mesh
+//! with their transforms, tags, params and skinned poses, the converted
+//! meshes, the lights and the time). Copies are of small values and `Arc`s; the mesh
 //! map only when it changed.
 
 use crate::asset::NprStyleAsset;
@@ -11,6 +11,7 @@ use crate::components::{NprLight, NprObject, NprParams, NprStyle};
 use crate::meshes::{Converted, NprMeshes};
 use crate::runtimes::NprRuntimes;
 use bevy::camera::Projection;
+use bevy::mesh::skinning::{SkinnedMesh, SkinnedMeshInverseBindposes};
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -37,6 +38,9 @@ pub(crate) struct ExtractedObject {
     /// Object to world, as npr's glam.
     pub transform: glam::Mat4,
     pub object: Option<NprObject>,
+    /// A `SkinnedMesh` entity's joint matrices in its mesh's skin space
+    /// (`skins.rs`), or why there are none; `None` for an entity without one.
+    pub joints: Option<Result<Vec<glam::Mat4>, String>>,
 }
 
 /// The scene every npr camera draws this frame.
@@ -103,6 +107,7 @@ type MeshEntityData = (
     &'static GlobalTransform,
     &'static InheritedVisibility,
     Option<&'static NprObject>,
+    Option<&'static SkinnedMesh>,
 );
 
 /// Frames extracted so far.
@@ -115,6 +120,8 @@ pub(crate) fn extract_npr(
     cameras: Extract<Query<NprCameraData>>,
     objects: Extract<Query<MeshEntityData>>,
     lights: Extract<Query<(Entity, &NprLight, &GlobalTransform)>>,
+    joints: Extract<Query<&GlobalTransform>>,
+    bindposes: Extract<Res<Assets<SkinnedMeshInverseBindposes>>>,
     styles: Extract<Res<Assets<NprStyleAsset>>>,
     meshes: Extract<Res<NprMeshes>>,
     time: Extract<Res<Time>>,
@@ -148,13 +155,14 @@ pub(crate) fn extract_npr(
     *drawn_before = drawn;
 
     scene.objects.clear();
-    for (entity, mesh, transform, visibility, object) in &objects {
+    for (entity, mesh, transform, visibility, object, skinned) in &objects {
         if visibility.get() {
             scene.objects.push(ExtractedObject {
                 entity,
                 mesh: mesh.0.id(),
                 transform: npr_mat4(transform.to_matrix()),
                 object: object.cloned(),
+                joints: skinned.map(|s| crate::skins::joint_matrices(transform, s, &joints, &bindposes)),
             });
         }
     }

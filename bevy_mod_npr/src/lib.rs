@@ -29,6 +29,7 @@
 //!   (the `compiler` feature);
 //! - `components.rs`: [`NprStyle`], [`NprParams`], [`NprObject`], [`NprLight`];
 //! - `meshes.rs`: Bevy meshes as npr's, converted once per asset;
+//! - `skins.rs`: `SkinnedMesh` entities as npr's posed instances;
 //! - `extract.rs`: what the render world copies each frame;
 //! - `render.rs`: the `Core3d` system that drives a runtime per camera;
 //! - `report.rs`: diagnostics in Bevy's log, once per camera;
@@ -62,6 +63,7 @@ mod render;
 mod report;
 mod runtimes;
 mod scene;
+mod skins;
 #[cfg(feature = "compiler")]
 mod source_loader;
 

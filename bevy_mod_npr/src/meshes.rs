@@ -12,11 +12,18 @@
 //! drawn from it. The cost is npr's CPU copy of those meshes. A mesh whose
 //! data is gone before npr saw it (made before any styled camera existed)
 //! is logged (E0402) and skipped; nothing panics.
+//!
+//! A mesh with joint indices and weights (`ATTRIBUTE_JOINT_INDEX`,
+//! `ATTRIBUTE_JOINT_WEIGHT`: a glTF skin's `JOINTS_0`/`WEIGHTS_0`) keeps
+//! them as npr's [`Skinning`]: an entity drawing it with a `SkinnedMesh`
+//! is deformed by its joints' pose each frame (`extract.rs`), through the
+//! embedding API's skinned meshes (docs/decisions/0055).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, Mesh, Mesh3d, MeshAccessError, PrimitiveTopology, VertexAttributeValues};
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
+use npr_runner::embed::Skinning;
 use std::sync::Arc;
 
 /// `mesh` as npr's mesh; `Err` says why it cannot be (for an E0402
@@ -24,7 +31,7 @@ use std::sync::Arc;
 /// numbers. Missing normals are computed (smooth); missing tangents are
 /// derived from the UVs, as for a mesh file.
 pub fn npr_mesh(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, String> {
-    npr_mesh_of(mesh, name).map_err(|e| match e {
+    npr_mesh_of(mesh, name).map(|(m, _)| m).map_err(|e| match e {
         Unreadable::Invalid(why) => why,
         Unreadable::InRenderWorldOnly => IN_RENDER_WORLD_ONLY.to_string(),
     })
@@ -62,7 +69,47 @@ impl From<&str> for Unreadable {
     }
 }
 
-fn npr_mesh_of(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, Unreadable> {
+/// The mesh's joint indices and weights, if it has both, as npr's
+/// skinning (its joint count: one past the highest joint index with a
+/// weight); `Err` for arrays of another length than the positions or of
+/// a format Bevy does not draw.
+fn skinning_of(mesh: &Mesh, vertices: usize) -> Result<Option<Skinning>, Unreadable> {
+    let joints: Vec<[u16; 4]> = match mesh.try_attribute_option(Mesh::ATTRIBUTE_JOINT_INDEX)? {
+        Some(VertexAttributeValues::Uint16x4(j)) => j.clone(),
+        Some(VertexAttributeValues::Uint8x4(j)) => j.iter().map(|j| j.map(u16::from)).collect(),
+        Some(other) => return Err(format!("its joint indices are {other:?}-typed; npr reads Uint16x4").into()),
+        None => return Ok(None),
+    };
+    let weights: Vec<[f32; 4]> = match mesh.try_attribute_option(Mesh::ATTRIBUTE_JOINT_WEIGHT)? {
+        Some(VertexAttributeValues::Float32x4(w)) => w.clone(),
+        Some(VertexAttributeValues::Unorm16x4(w)) => w.iter().map(|w| w.map(|x| f32::from(x) / 65535.0)).collect(),
+        Some(VertexAttributeValues::Unorm8x4(w)) => w.iter().map(|w| w.map(|x| f32::from(x) / 255.0)).collect(),
+        Some(other) => return Err(format!("its joint weights are {other:?}-typed; npr reads Float32x4").into()),
+        None => return Ok(None),
+    };
+    if joints.len() != vertices || weights.len() != vertices {
+        return Err(format!(
+            "it has {} joint index sets and {} weight sets for {vertices} vertices",
+            joints.len(),
+            weights.len()
+        )
+        .into());
+    }
+    let joint_count = joints
+        .iter()
+        .zip(&weights)
+        .flat_map(|(j, w)| (0..4).filter(|&k| w[k] > 0.0).map(move |k| usize::from(j[k]) + 1))
+        .max()
+        .unwrap_or(0);
+    Ok(Some(Skinning {
+        joint_count,
+        joints,
+        weights,
+        morph_targets: Vec::new(),
+    }))
+}
+
+fn npr_mesh_of(mesh: &Mesh, name: &str) -> Result<(npr_runner::scene::Mesh, Option<Skinning>), Unreadable> {
     if mesh.primitive_topology() != PrimitiveTopology::TriangleList {
         return Err(format!(
             "its topology is {:?}; npr draws triangle lists",
@@ -105,9 +152,10 @@ fn npr_mesh_of(mesh: &Mesh, name: &str) -> Result<npr_runner::scene::Mesh, Unrea
     if uvs.as_ref().is_some_and(|uv| uv.len() != positions.len()) {
         return Err("it has a different number of UVs than positions".into());
     }
+    let skinning = skinning_of(mesh, positions.len())?;
     let mesh = npr_runner::scene::Mesh::from_parts(positions, normals, uvs, tangents, indices, name.to_string());
     mesh.validate()?;
-    Ok(mesh)
+    Ok((mesh, skinning))
 }
 
 /// An npr mesh as a Bevy mesh (positions, normals, UVs, tangents,
@@ -129,7 +177,8 @@ pub fn bevy_mesh(mesh: &npr_runner::scene::Mesh) -> Mesh {
 /// A converted mesh, or why the asset cannot be drawn.
 #[derive(Clone)]
 pub(crate) enum Converted {
-    Mesh(Arc<npr_runner::scene::Mesh>),
+    /// The mesh, with its joints and weights if it has them.
+    Mesh(Arc<npr_runner::scene::Mesh>, Option<Arc<Skinning>>),
     Unusable,
 }
 
@@ -231,7 +280,7 @@ pub(crate) fn convert_meshes(
 /// `mesh` converted, or `Unusable` with its diagnostic logged.
 fn convert(mesh: &Mesh, name: &str) -> Converted {
     match npr_mesh_of(mesh, name) {
-        Ok(m) => Converted::Mesh(Arc::new(m)),
+        Ok((m, skinning)) => Converted::Mesh(Arc::new(m), skinning.map(Arc::new)),
         Err(e) => {
             let (why, help) = match e {
                 Unreadable::Invalid(why) => (why, "give npr's cameras triangle-list meshes with Float32x3 positions"),

@@ -209,7 +209,7 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
         // changed leave the runtime; those drawn again are registered again.
         let runtime = &mut state.runtime;
         state.meshes.retain(|id, (registered, handle)| {
-            let kept = matches!(scene.meshes.get(id), Some(Converted::Mesh(m)) if Arc::ptr_eq(m, registered));
+            let kept = matches!(scene.meshes.get(id), Some(Converted::Mesh(m, _)) if Arc::ptr_eq(m, registered));
             if !kept {
                 let _ = runtime.remove_mesh(*handle);
             }
@@ -226,7 +226,7 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
         .map(|p| (p.name.clone(), p.components, p.ty.clone()))
         .collect();
     for object in &scene.objects {
-        let Some(Converted::Mesh(mesh)) = scene.meshes.get(&object.mesh) else {
+        let Some(Converted::Mesh(mesh, skinning)) = scene.meshes.get(&object.mesh) else {
             // Not converted yet (next frame), or unusable (logged once when converted).
             continue;
         };
@@ -237,7 +237,7 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
                     // The asset changed: its old npr mesh goes.
                     let _ = state.runtime.remove_mesh(*stale);
                 }
-                let handle = state.runtime.add_shared_mesh(mesh.clone());
+                let handle = crate::skins::register(&mut state.runtime, mesh, skinning.as_deref(), &mut problems);
                 state.meshes.insert(object.mesh, (mesh.clone(), handle));
                 handle
             }
@@ -245,6 +245,15 @@ fn instances(state: &mut CameraRuntime, scene: &ExtractedNprScene) -> Vec<Diagno
         // The entity is who the object is from frame to frame: a despawn or
         // spawn elsewhere in the list keeps its state (docs/decisions/0046).
         let mut instance = Instance::new(handle, object.transform).with_id(object.entity.to_bits());
+        crate::skins::attach_pose(
+            &state.runtime,
+            handle,
+            &mut instance,
+            object.entity,
+            skinning.as_deref(),
+            object.joints.as_ref(),
+            &mut problems,
+        );
         if let Some(o) = &object.object {
             instance.tags.clone_from(&o.tags);
             instance.casts_shadows = o.casts_shadows;

@@ -8,6 +8,10 @@
 //! input is a logged code, never a panic.
 
 mod common;
+// Tests of other features in the same binary (a Bevy test binary is slow
+// to link: one more per feature would cost CI minutes).
+#[path = "headless/skinned.rs"]
+mod skinned;
 
 use bevy::asset::{AssetServer, LoadState};
 use bevy::render::render_resource::TextureFormat;

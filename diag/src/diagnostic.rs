@@ -412,6 +412,22 @@ pub mod codes {
     pub const HOST_INPUT_SIZE: &str = "E0606";
     /// A frame of a style that reads a host input the host has not given.
     pub const MISSING_HOST_INPUT: &str = "E0607";
+    /// A host's pose whose joint matrices do not fit its mesh's skin:
+    /// another number of them than the skin's joints, or a pose for a mesh
+    /// registered without a skin (the embedding API's `SkinPose`; in Bevy,
+    /// a `SkinnedMesh` whose joint entities are missing or do not match
+    /// its mesh).
+    pub const POSE_JOINTS: &str = "E0612";
+    /// A host's pose with a joint matrix or morph weight that is not finite.
+    pub const NON_FINITE_POSE: &str = "E0613";
+    /// A host's pose with another number of morph weights than its mesh
+    /// has morph targets.
+    pub const POSE_MORPH_WEIGHTS: &str = "E0614";
+    /// A host's skin or morph targets that do not fit the mesh it registers
+    /// them with (`StyleRuntime::add_skinned_mesh`): joint indices or
+    /// weights not one set per vertex, weights not summing to 1, a joint
+    /// past the skin's, too many joints, morph deltas not one per vertex.
+    pub const BAD_SKIN: &str = "E0615";
     /// A frame's camera (embedding API) whose projection cannot be drawn
     /// with: a field of view outside (0, π), a near plane not past the eye,
     /// a far plane not past the near one, a negative or non-finite IPD.
@@ -535,6 +551,13 @@ pub mod codes {
         ),
         (HOST_INPUT_SIZE, "a host's input of another size than the target"),
         (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
+        (POSE_JOINTS, "a host's pose does not fit its mesh's joints"),
+        (NON_FINITE_POSE, "a host's pose has a number that is not finite"),
+        (
+            POSE_MORPH_WEIGHTS,
+            "a host's morph weights do not fit its mesh's targets",
+        ),
+        (BAD_SKIN, "a host's skin does not fit its mesh"),
         (BAD_HOST_CAMERA, "a host's camera whose projection cannot be drawn with"),
     ];
 }

@@ -348,3 +348,66 @@ fn a_style_over_host_inputs_allocates_nothing_per_frame() {
     run(&mut runtime, 6..10, (80, 60), "ink over inputs at a new size");
     assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
 }
+
+/// A host's skinned mesh (`add_skinned_mesh`) drawn as three instances
+/// with poses of their own, new every frame (joint matrices and a morph
+/// weight): the poses are written over buffers made with the scene, and
+/// the GPU stage deforms each instance into its own vertex buffers,
+/// creating nothing. Over a plain style and a `lines` style (whose edges
+/// the CPU makes from the same poses each frame).
+#[test]
+fn posed_skinned_instances_allocate_nothing_per_frame() {
+    use npr_runner::embed::{SkinPose, Skinning};
+    for example in ["toon.npr", "wavy_lines.npr"] {
+        let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile(example)).expect("runtime");
+        // A tall box, its upper half bound to joint 1, its lower to joint 0.
+        let body = primitives::cube(0.6);
+        let joints = body
+            .positions
+            .iter()
+            .map(|p| if p[1] > 0.0 { [1, 0, 0, 0] } else { [0; 4] })
+            .collect();
+        let stretch = npr_runner::scene::rig::MorphTarget {
+            positions: body.positions.iter().map(|p| [p[0] * 0.3, 0.0, p[2] * 0.3]).collect(),
+            normals: None,
+            tangents: None,
+        };
+        let skinning = Skinning {
+            joint_count: 2,
+            weights: vec![[1.0, 0.0, 0.0, 0.0]; body.vertex_count()],
+            joints,
+            morph_targets: vec![stretch],
+        };
+        let handle = runtime.add_skinned_mesh(body, skinning).expect("a good skin");
+        let mut instances: Vec<Instance> = (0..3)
+            .map(|i| {
+                Instance::new(handle, glam::Mat4::from_translation(glam::Vec3::X * (i as f32 - 1.0)))
+                    .with_pose(SkinPose::bind(2, 1))
+            })
+            .collect();
+        let pose = |instances: &mut [Instance], k: u32| {
+            for (i, instance) in instances.iter_mut().enumerate() {
+                let pose = instance.pose.as_mut().expect("posed");
+                let angle = 0.2 * k as f32 + i as f32;
+                pose.joints[1] = glam::Mat4::from_rotation_z(0.5 * angle.sin());
+                pose.morph_weights[0] = 0.5 + 0.5 * angle.cos();
+            }
+        };
+        let texture = target(64, 48);
+        let view = texture.create_view(&Default::default());
+        pose(&mut instances, 0);
+        frame(&mut runtime, &instances, 0, &view);
+        let before = created_on_this_thread();
+        for k in 1..8 {
+            pose(&mut instances, k);
+            frame(&mut runtime, &instances, k, &view);
+        }
+        let after = created_on_this_thread();
+        assert_eq!(
+            after, before,
+            "{example}: frames of new poses created GPU objects: {before:?} → {after:?}"
+        );
+        assert_eq!(runtime.builds(), 1, "{example}: the posed frames rebuilt the scene");
+        assert_eq!(runtime.scene_changes(), 0, "{example}: a new pose is no scene change");
+    }
+}

@@ -5,7 +5,7 @@
 use super::{check, check_case, style, SIMPLE_PASS};
 use npr_compiler::CompileOptions;
 use npr_diag::SourceMap;
-use npr_runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
+use npr_runner::embed::{Deformed, EmbedError, Frame, Instance, Lights, SkinPose, Skinning, StyleRuntime, Target};
 use npr_runner::inputs::{ColorEncoding, DepthConvention, SourceConvention};
 use npr_runner::scene::{primitives, Camera};
 use std::path::Path;
@@ -268,6 +268,115 @@ fn e0607_an_input_the_host_did_not_give() {
     let target = texture(wgpu::TextureFormat::Rgba8Unorm);
     let e = render(&mut rt, &[], &target.create_view(&Default::default())).expect_err("no depth given");
     check("E0607", rendered(e));
+}
+
+/// A box of two joints (its lower half follows joint 0, its upper joint 1)
+/// and, with `targets`, as many morph targets lifting it.
+fn skinned_box(targets: usize) -> (npr_runner::scene::Mesh, Skinning) {
+    let cube = primitives::cube(0.8);
+    let joints = cube
+        .positions
+        .iter()
+        .map(|p| if p[1] > 0.0 { [1, 0, 0, 0] } else { [0; 4] })
+        .collect();
+    let weights = vec![[1.0, 0.0, 0.0, 0.0]; cube.vertex_count()];
+    let lift = npr_runner::scene::rig::MorphTarget {
+        positions: vec![[0.0, 0.2, 0.0]; cube.vertex_count()],
+        normals: None,
+        tangents: None,
+    };
+    let skinning = Skinning {
+        joint_count: 2,
+        joints,
+        weights,
+        morph_targets: vec![lift; targets],
+    };
+    (cube, skinning)
+}
+
+/// Render one frame of `pose` on a skinned box (two joints, `targets` morph targets).
+fn render_pose(targets: usize, pose: SkinPose) -> EmbedError {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let (mesh, skinning) = skinned_box(targets);
+    let boxed = rt.add_skinned_mesh(mesh, skinning).expect("a good skin");
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let view = target.create_view(&Default::default());
+    // The bind pose renders: the mistakes below are the pose's.
+    let good = [Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(SkinPose::bind(2, targets))];
+    render(&mut rt, &good, &view).expect("the bind pose");
+    render(
+        &mut rt,
+        &[Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(pose)],
+        &view,
+    )
+    .expect_err("a bad pose")
+}
+
+#[test]
+fn e0612_a_pose_of_other_joints_than_the_skin() {
+    let e = render_pose(0, SkinPose::bind(3, 0));
+    assert!(matches!(e, EmbedError::Skin(_)), "{e:?}");
+    check("E0612", rendered(e));
+    // A pose for a mesh registered without a skin.
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let ball = rt.add_mesh(primitives::sphere(0.5, 8, 4));
+    let target = texture(wgpu::TextureFormat::Rgba8Unorm);
+    let e = render(
+        &mut rt,
+        &[Instance::new(ball, glam::Mat4::IDENTITY)
+            .with_id(7)
+            .with_pose(SkinPose::bind(2, 0))],
+        &target.create_view(&Default::default()),
+    )
+    .expect_err("a pose for a rigid mesh");
+    check_case("E0612", "E0612_no_skin", rendered(e));
+}
+
+#[test]
+fn e0613_a_pose_that_is_not_finite() {
+    let mut pose = SkinPose::bind(2, 1);
+    pose.joints[1] = glam::Mat4::from_scale(glam::Vec3::ZERO).inverse();
+    let e = render_pose(1, pose);
+    check("E0613", rendered(e));
+    let mut pose = SkinPose::bind(2, 1);
+    pose.morph_weights[0] = f32::NAN;
+    check_case("E0613", "E0613_weight", rendered(render_pose(1, pose)));
+}
+
+#[test]
+fn e0614_morph_weights_of_other_targets_than_the_mesh() {
+    let e = render_pose(2, SkinPose::bind(2, 1));
+    check("E0614", rendered(e));
+}
+
+#[test]
+fn e0615_a_skin_that_does_not_fit_its_mesh() {
+    let mut rt = runtime(&style(SIMPLE_PASS));
+    let (mesh, mut skinning) = skinned_box(0);
+    skinning.weights[0] = [0.0; 4];
+    let e = rt
+        .add_skinned_mesh(mesh.clone(), skinning)
+        .expect_err("weights summing to 0");
+    assert!(matches!(e, EmbedError::Skin(_)), "{e:?}");
+    check("E0615", rendered(e));
+    let (_, mut skinning) = skinned_box(0);
+    skinning.joints[3] = [2, 0, 0, 0];
+    check_case(
+        "E0615",
+        "E0615_joint",
+        rendered(
+            rt.add_skinned_mesh(mesh.clone(), skinning)
+                .expect_err("a joint past the skin's"),
+        ),
+    );
+    let (_, mut skinning) = skinned_box(1);
+    skinning.morph_targets[0].positions.pop();
+    check_case(
+        "E0615",
+        "E0615_morph",
+        rendered(rt.add_skinned_mesh(mesh, skinning).expect_err("a short morph target")),
+    );
+    assert_eq!(rt.mesh_count(), 0, "a refused skin registers nothing");
 }
 
 #[test]

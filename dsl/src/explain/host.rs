@@ -90,7 +90,7 @@ pub(super) const ALL: &[Explanation] = &[
                  let finer = primitives::sphere(1.0, 64, 32);\n\
                  runtime.update_mesh(ball, Deformed::positions(&finer.positions))?; // E0603\n",
             ),
-            not_runnable: Some("runner/tests/runner/embed_deform.rs gives too few and too many positions, and non-finite ones"),
+            not_runnable: Some("runner/tests/embed_deform.rs gives too few and too many positions, and non-finite ones"),
             ..EXAMPLE
         },
         fixed: Example {
@@ -200,6 +200,109 @@ pub(super) const ALL: &[Explanation] = &[
                  runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
             ),
             not_runnable: Some("runner/examples/host_gbuffer.rs gives every input before its frame"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0612",
+        meaning: "A host application gave an instance a pose whose joint matrices do not fit its \
+            mesh: a skinned mesh (`StyleRuntime::add_skinned_mesh`) takes one matrix per joint of \
+            its `Skinning`, in the order its joint indices name them, and a mesh registered \
+            with `add_mesh` takes no pose. In Bevy, a `SkinnedMesh` whose joint entities are \
+            gone, or that names another number of joints than its inverse bindposes or its \
+            mesh's joint indices, gets this code and is drawn unskinned.",
+        wrong: Example {
+            host_rust: Some(
+                "let arm = runtime.add_skinned_mesh(mesh, Skinning { joint_count: 2, joints, weights, morph_targets: vec![] })?;\n\
+                 let pose = SkinPose::bind(3, 0); // three joints for a skin of two\n\
+                 let objects = [Instance::new(arm, Mat4::IDENTITY).with_pose(pose)];\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0612\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives a pose of three joints to a skin of two"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let pose = SkinPose::bind(2, 0); // one matrix per joint of the skin\n\
+                 let objects = [Instance::new(arm, Mat4::IDENTITY).with_pose(pose)];\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("runner/tests/runner/embed_skinned.rs poses the Blender-made arms this way"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0613",
+        meaning: "A host application gave an instance a pose with a joint matrix or a morph \
+            weight that is not a finite number (NaN or infinite): the deformed vertices would \
+            be nowhere. Such a pose usually comes from inverting a matrix with a scale of zero, \
+            or from weights read before they were written.",
+        wrong: Example {
+            host_rust: Some(
+                "let mut pose = SkinPose::bind(2, 0);\n\
+                 pose.joints[1] = Mat4::from_scale(Vec3::ZERO).inverse(); // not finite\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0613\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives a joint matrix of NaN"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let mut pose = SkinPose::bind(2, 0);\n\
+                 pose.joints[1] = Mat4::from_translation(Vec3::Y * 0.5);\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("runner/src/embed/mod.rs's example of add_skinned_mesh poses a box this way"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0614",
+        meaning: "A host application gave an instance a pose with another number of morph \
+            weights than its mesh has morph targets: one weight per target of the mesh's \
+            `Skinning`, in its order (none for a mesh without targets).",
+        wrong: Example {
+            host_rust: Some(
+                "// The face has two morph targets.\n\
+                 let pose = SkinPose { joints: vec![], morph_weights: vec![0.5] };\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?; // E0614\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs gives one weight for two targets"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let pose = SkinPose { joints: vec![], morph_weights: vec![0.5, 0.0] };\n\
+                 runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
+            ),
+            not_runnable: Some("runner/tests/runner/embed_skinned.rs gives the blob's two weights each frame"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0615",
+        meaning: "A host application registered a skinned or morphing mesh \
+            (`StyleRuntime::add_skinned_mesh`) with a `Skinning` that does not fit it: joint \
+            indices and weights must be one set of 4 per vertex, the weights finite, not \
+            negative and summing to 1 (within 0.01; they are renormalised), every weighted \
+            joint index below `joint_count`, at most 256 joints (the glTF reader's limit), and \
+            each morph target one finite delta per vertex. A mesh with neither joints nor \
+            morph targets is registered with `add_mesh`.",
+        wrong: Example {
+            host_rust: Some(
+                "// Vertex 0 is bound to nothing: its weights sum to 0.\n\
+                 weights[0] = [0.0; 4];\n\
+                 runtime.add_skinned_mesh(mesh, Skinning { joint_count: 2, joints, weights, morph_targets: vec![] })?; // E0615\n",
+            ),
+            not_runnable: Some("tests/error_codes/host.rs registers weights summing to 0 and a joint past the skin's"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "weights[0] = [1.0, 0.0, 0.0, 0.0];\n\
+                 runtime.add_skinned_mesh(mesh, Skinning { joint_count: 2, joints, weights, morph_targets: vec![] })?;\n",
+            ),
+            not_runnable: Some("runner/src/embed/mod.rs's example of add_skinned_mesh registers a skinned box"),
             ..EXAMPLE
         },
     },

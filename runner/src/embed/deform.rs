@@ -76,6 +76,12 @@ pub(super) fn deformed_mesh(handle: MeshHandle, entry: &Entry, vertices: &Deform
             "to deform a primitive's geometry yourself, register it with `add_mesh(primitive.build())`",
         ));
     }
+    if entry.extras.rig.is_some() {
+        return Err(refuse(
+            format!("{name} is a skinned mesh: the GPU deforms it by each instance's pose"),
+            "give each instance's `pose` instead, or register the host-deformed mesh with `add_mesh`",
+        ));
+    }
     if entry.extras.blend.is_some() || entry.extras.patch.is_some() {
         return Err(refuse(
             format!("{name} is a patch of a patched surface: its blended n-ring and weights are made from the whole mesh's vertices"),

@@ -39,6 +39,11 @@ pub enum EmbedError {
     /// past the near one (E0616).
     #[error("{}", .0.message)]
     Camera(Box<Diagnostic>),
+    /// A skin that does not fit its mesh (E0615), or a pose that does not
+    /// fit its mesh's skin: joint matrices (E0612), morph weights (E0614),
+    /// a number that is not finite (E0613).
+    #[error("{}", .0.message)]
+    Skin(Box<Diagnostic>),
     /// What the runner reports: a device lacking a feature or limit the
     /// style needs (E0510), objects the style cannot draw (E0403, E0405),
     /// out of memory (E0508), a lost device (E0509), a bug (E9001).
@@ -55,7 +60,8 @@ impl EmbedError {
             | EmbedError::Target(d)
             | EmbedError::MeshUpdate(d)
             | EmbedError::Input(d)
-            | EmbedError::Camera(d) => d.code,
+            | EmbedError::Camera(d)
+            | EmbedError::Skin(d) => d.code,
             EmbedError::Run(e) => e.diagnostics().first().map_or(codes::INTERNAL, |d| d.code),
         }
     }
@@ -74,7 +80,8 @@ impl EmbedError {
             | EmbedError::Target(d)
             | EmbedError::MeshUpdate(d)
             | EmbedError::Input(d)
-            | EmbedError::Camera(d) => {
+            | EmbedError::Camera(d)
+            | EmbedError::Skin(d) => {
                 vec![(**d).clone()]
             }
             EmbedError::Run(e) => e.diagnostics(),

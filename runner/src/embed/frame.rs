@@ -1,7 +1,7 @@
 //! What a host gives every frame: a [`Frame`] (camera, objects, lights,
 //! time) and a [`Target`] (the texture views to render into).
 
-use super::MeshHandle;
+use super::{MeshHandle, SkinPose};
 use crate::scene::{Camera, Light, TextureBinding};
 use glam::Mat4;
 use std::collections::BTreeMap;
@@ -37,6 +37,12 @@ pub struct Instance {
     /// (docs/decisions/0046). Without one, an object continues the
     /// previous frame's object at its position in the list that had none.
     pub id: Option<u64>,
+    /// Its pose this frame, for an instance of a skinned or morphing mesh
+    /// (`StyleRuntime::add_skinned_mesh`): its joint matrices and morph
+    /// weights, which the GPU deforms the mesh by (as a scene file's clip).
+    /// `None`: the mesh as registered (its bind pose). Having a pose or not
+    /// is a change of the scene; the pose's values change freely.
+    pub pose: Option<SkinPose>,
 }
 
 impl Instance {
@@ -50,7 +56,14 @@ impl Instance {
             casts_shadows: true,
             images: BTreeMap::new(),
             id: None,
+            pose: None,
         }
+    }
+
+    /// With `pose` ([`Instance::pose`]).
+    pub fn with_pose(mut self, pose: SkinPose) -> Instance {
+        self.pose = Some(pose);
+        self
     }
 
     /// With the identity `id` ([`Instance::id`]).

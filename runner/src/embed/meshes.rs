@@ -2,12 +2,13 @@
 //! table, so a handle used after its mesh was removed is an error
 //! (E0601), never another mesh. A mesh may come with what the renderer
 //! draws beyond its vertices ([`MeshExtras`]): the time-varying primitive
-//! it is the geometry of (the ocean), or the patch of a patched surface it
-//! is (with its blended n-ring).
+//! it is the geometry of (the ocean), the patch of a patched surface it
+//! is (with its blended n-ring), or the rig a host's poses deform.
 
 use super::EmbedError;
 use crate::scene::patch_blend::PatchBlend;
 use crate::scene::patches::PatchOf;
+use crate::scene::rig::Rig;
 use crate::scene::{Mesh, Primitive};
 use std::sync::Arc;
 
@@ -34,6 +35,9 @@ pub(super) struct MeshExtras {
     pub blend: Option<Arc<PatchBlend>>,
     /// Which patch of which surface the mesh is (`Object::patch`).
     pub patch: Option<PatchOf>,
+    /// A skinned or morphing mesh's rig, which its instances' poses deform
+    /// (`StyleRuntime::add_skinned_mesh`; `Object::pose`).
+    pub rig: Option<Arc<Rig>>,
 }
 
 /// A registered mesh and its extras.

@@ -14,7 +14,12 @@
 //!    are; [`StyleRuntime::add_patches`] one per patch of a mesh divided
 //!    into blended patches; [`StyleRuntime::add_scene`] a TOML scene's),
 //!    and deforms its own meshes when it likes ([`StyleRuntime::update_mesh`]:
-//!    new vertices, same triangles);
+//!    new vertices, same triangles); a skinned or morphing mesh is
+//!    registered with its joints, weights and morph targets
+//!    ([`StyleRuntime::add_skinned_mesh`]), and each of its instances
+//!    carries its pose ([`Instance::pose`]: joint matrices, morph
+//!    weights), which the GPU deforms it by every frame, as it deforms a
+//!    scene file's clips;
 //! 3. every frame, gives a [`Frame`] (the camera, or a stereo pair; the
 //!    objects as [`Instance`]s: mesh handle, transform, tags, per-object
 //!    params; the [`Lights`]; the time) and a [`Target`] (its texture view,
@@ -62,8 +67,10 @@
 //! parameter (E0101) or a bad value (E0201, E0202, E0203), a texture view
 //! of the wrong format or size (E0602), deformed vertices that do not fit
 //! their mesh (E0603), a host input the style does not declare, cannot
-//! read, of another size than the target or not given (E0604-E0607):
-//! every call returns an
+//! read, of another size than the target or not given (E0604-E0607), a
+//! pose whose joint matrices (E0612) or morph weights (E0614) do not fit
+//! its mesh, or are not finite (E0613), a skin that does not fit its mesh
+//! (E0615): every call returns an
 //! [`EmbedError`] with a code, and leaves the runtime as it was.
 //!
 //! - `meshes.rs`: the generational mesh table (with what a mesh draws
@@ -73,6 +80,8 @@
 //! - `params.rs`: setting style parameters by name;
 //! - `patched.rs`: a host's mesh divided into blended patches;
 //! - `deform.rs`: a host's deformed vertices ([`Deformed`]), checked;
+//! - `skin.rs`: a host's skinned meshes ([`Skinning`]) and their
+//!   instances' poses ([`SkinPose`]), checked;
 //! - `inputs.rs`: the host's own images as the style's inputs
 //!   ([`StyleRuntime::set_input`]), converted on the GPU every frame;
 //! - `present.rs`: target checks and the present pass;
@@ -143,12 +152,14 @@ mod objects;
 mod params;
 mod patched;
 pub(crate) mod present;
+mod skin;
 
 pub use deform::Deformed;
 pub use error::EmbedError;
 pub use frame::{Frame, Instance, Lights, Target};
 pub use meshes::MeshHandle;
 pub use params::ParamInfo;
+pub use skin::{SkinPose, Skinning};
 
 use crate::scene::patches::PatchSpec;
 use crate::scene::{Mesh, Primitive, Scene};
@@ -265,6 +276,74 @@ impl StyleRuntime {
     /// [`StyleRuntime::add_mesh`] of a mesh the host shares (no copy).
     pub fn add_shared_mesh(&mut self, mesh: Arc<Mesh>) -> MeshHandle {
         self.meshes.add(mesh, MeshExtras::default())
+    }
+
+    /// Register a skinned or morphing mesh: `mesh` in its bind pose, with
+    /// its joints, weights and morph targets. Each [`Instance`] of the
+    /// handle then gives its pose every frame ([`Instance::pose`]: one
+    /// matrix per joint, in skin space, and one weight per morph target),
+    /// and the GPU morphs and skins its vertices by it before the style's
+    /// passes, with the stage that plays a scene file's glTF clips (glTF
+    /// 2.0's linear blend skinning of 4 joints and morph targets,
+    /// docs/decisions/0053 and 0055): every pass sees the deformed surface,
+    /// `position.previous` the previous frame's pose, and the CPU stages
+    /// (a `lines` pass, a light view's bounds) the same pose deformed on
+    /// the CPU. Instances of one handle share the mesh and have poses of
+    /// their own (a crowd); an instance without a pose draws the bind
+    /// pose. A frame whose poses changed and nothing else allocates
+    /// nothing.
+    ///
+    /// Refused (E0615), registering nothing: joint indices or weights that
+    /// are not one set per vertex, weights that are negative, not finite
+    /// or do not sum to 1 (within
+    /// [`WEIGHT_SUM_TOLERANCE`](crate::scene::gltf_rig::WEIGHT_SUM_TOLERANCE);
+    /// they are renormalised), a weighted joint index past `joint_count`,
+    /// more than [`MAX_JOINTS`](crate::scene::gltf_rig::MAX_JOINTS) joints,
+    /// morph deltas that are not one per vertex or not finite, neither
+    /// joints nor morph targets.
+    ///
+    /// ```
+    /// use npr_runner::embed::{Instance, SkinPose, Skinning, StyleRuntime};
+    /// use npr_runner::scene::primitives;
+    ///
+    /// let style = "style \"Flat\"\npass p: render(scene) {\n  out c: rgba8unorm = vec4(1.0)\n}\noutput p.c\n";
+    /// let mut sources = npr_diag::SourceMap::new();
+    /// let compiled = npr_compiler::compile_source("flat.npr", style, std::path::Path::new("."), &mut sources, &Default::default())
+    ///     .map_err(|e| format!("{e:?}"))?;
+    /// let gpu = npr_runner::Gpu::headless()?;
+    /// let mut runtime = StyleRuntime::new(&gpu.device, &gpu.queue, compiled.program())?;
+    ///
+    /// // A box bound to two joints: its lower half to joint 0, its upper to joint 1.
+    /// let cube = primitives::cube(1.0);
+    /// let joints = cube.positions.iter().map(|p| if p[1] > 0.0 { [1, 0, 0, 0] } else { [0; 4] }).collect();
+    /// let weights = vec![[1.0, 0.0, 0.0, 0.0]; cube.vertex_count()];
+    /// let skinning = Skinning { joint_count: 2, joints, weights, morph_targets: Vec::new() };
+    /// let boxed = runtime.add_skinned_mesh(cube, skinning)?;
+    ///
+    /// // Each frame: the instance's pose, here the upper joint lifted.
+    /// let mut pose = SkinPose::bind(2, 0);
+    /// pose.joints[1] = glam::Mat4::from_translation(glam::Vec3::Y * 0.5);
+    /// let objects = [Instance::new(boxed, glam::Mat4::IDENTITY).with_pose(pose)];
+    /// // `objects` go in each `Frame`; a pose of 3 matrices would be E0612.
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_skinned_mesh(&mut self, mesh: Mesh, skinning: Skinning) -> Result<MeshHandle, EmbedError> {
+        let rig = Arc::new(skin::rig_of(mesh, skinning)?);
+        // The drawn mesh is the bind mesh, which the GPU stage deforms.
+        let bind = Arc::new(rig.bind.clone());
+        let extras = MeshExtras {
+            rig: Some(rig),
+            ..MeshExtras::default()
+        };
+        Ok(self.meshes.add(bind, extras))
+    }
+
+    /// The joint count and morph target count of a mesh registered with
+    /// [`StyleRuntime::add_skinned_mesh`] (what its instances' poses give);
+    /// `None` for another mesh or a removed handle.
+    pub fn skin(&self, handle: MeshHandle) -> Option<(usize, usize)> {
+        let rig = self.meshes.entry(handle).ok()?.extras.rig.as_ref()?;
+        Some(skin::sizes(rig))
     }
 
     /// Register a primitive's geometry ([`Primitive::build`]). A
@@ -443,6 +522,7 @@ impl StyleRuntime {
                             time_varying: o.time_varying,
                             blend: o.blend.clone(),
                             patch: o.patch.clone(),
+                            rig: None,
                         };
                         let h = self.meshes.add(o.mesh.clone(), extras);
                         registered.push((key, h));
@@ -457,6 +537,7 @@ impl StyleRuntime {
                     casts_shadows: o.casts_shadows,
                     images: o.textures.clone(),
                     id: None,
+                    pose: None,
                 }
             })
             .collect()

@@ -1,13 +1,13 @@
 //! The host's [`Instance`]s as the renderer's [`Scene`]: one scene object
-//! per instance, updated in place each frame (transform, params, camera,
-//! lights), and rebuilt only when the objects' structure changes (their
+//! per instance, updated in place each frame (transform, params, a skinned
+//! mesh's pose, camera, lights), and rebuilt only when the objects' structure changes (their
 //! meshes, tags, images, shadow flags or ids, or their number). An object
 //! is named by its [`Instance::id`] (`entity 7`) or, without one, by its
 //! position (`object 2`): the renderer's scene change carries an object's
 //! state over to the new object of the same name.
 
 use super::meshes::MeshTable;
-use super::{EmbedError, Frame, Instance, MeshHandle};
+use super::{skin, EmbedError, Frame, Instance, MeshHandle};
 use crate::scene::{Camera, Mesh, Object, Scene, TextureBinding};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -22,6 +22,9 @@ struct Shape {
     /// Who it is: ids that change (an entity despawned and another spawned
     /// in the same frame) are a scene change, which remaps its state.
     id: Option<u64>,
+    /// Whether it has a pose (the GPU stage deforms it, into buffers of
+    /// its own).
+    posed: bool,
 }
 
 impl Shape {
@@ -32,6 +35,7 @@ impl Shape {
             casts_shadows: instance.casts_shadows,
             images: instance.images.clone(),
             id: instance.id,
+            posed: instance.pose.is_some(),
         }
     }
 
@@ -41,6 +45,7 @@ impl Shape {
             && self.casts_shadows == instance.casts_shadows
             && self.images == instance.images
             && self.id == instance.id
+            && self.posed == instance.pose.is_some()
     }
 }
 
@@ -64,14 +69,22 @@ impl Default for HostScene {
     }
 }
 
+/// The renderer's identity of an object from one scene to the next.
+fn name_of(index: usize, instance: &Instance) -> String {
+    match instance.id {
+        Some(id) => format!("entity {id}"),
+        None => format!("object {index}"),
+    }
+}
+
 fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Object, EmbedError> {
     let entry = meshes.entry(instance.mesh)?;
+    let pose = match (&instance.pose, &entry.extras.rig) {
+        (Some(pose), Some(rig)) => Some(skin::host_pose(rig, pose)),
+        _ => None,
+    };
     Ok(Object {
-        // The renderer's identity of an object from one scene to the next.
-        name: match instance.id {
-            Some(id) => format!("entity {id}"),
-            None => format!("object {index}"),
-        },
+        name: name_of(index, instance),
         mesh: entry.mesh.clone(),
         model: instance.transform,
         tags: instance.tags.clone(),
@@ -85,6 +98,7 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         blend: entry.extras.blend.clone(),
         patch: entry.extras.patch.clone(),
         animation: None,
+        pose,
     })
 }
 
@@ -99,6 +113,14 @@ impl HostScene {
     /// first changed one may have taken this frame's transform and params,
     /// which the renderer has not seen: the next frame sets them again).
     pub fn sync(&mut self, frame: &Frame, meshes: &MeshTable) -> Result<bool, EmbedError> {
+        // Poses are checked before anything changes: one table look-up per
+        // posed instance.
+        for (k, instance) in frame.objects.iter().enumerate() {
+            if let Some(pose) = &instance.pose {
+                let entry = meshes.entry(instance.mesh)?;
+                skin::check_pose(|| name_of(k, instance), instance.mesh, entry, pose)?;
+            }
+        }
         let same = self.mesh_revision == meshes.revision
             && self.shapes.len() == frame.objects.len()
             && self.move_objects(frame.objects);
@@ -134,6 +156,9 @@ impl HostScene {
             o.model = i.transform;
             if o.params != i.params {
                 o.params.clone_from(&i.params);
+            }
+            if let (Some(host), Some(pose)) = (&mut o.pose, &i.pose) {
+                skin::copy_pose(host, pose);
             }
         }
         true

@@ -78,6 +78,7 @@ pub(super) fn divide(
                     index,
                     count,
                 }),
+                rig: None,
             };
             (Arc::new(patch_mesh(mesh, &labels, index)), extras)
         })

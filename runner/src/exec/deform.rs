@@ -1,5 +1,7 @@
 //! The GPU deformation stage (docs/decisions/0053): every object playing a
-//! glTF clip has its vertices morphed and skinned by a compute dispatch
+//! glTF clip, or posed by its host (`Object::pose`: the embedding API's
+//! skinned meshes, Bevy's `SkinnedMesh`, docs/decisions/0055), has its
+//! vertices morphed and skinned by a compute dispatch
 //! (`deform.wgsl`) at the start of each encoded frame, written over the
 //! object's own position, normal and tangent buffers, which every pass
 //! binds (render passes, the light view, both eyes; compute passes copy
@@ -7,8 +9,9 @@
 //!
 //! Per file (`Rig`, shared by its objects): the rest vertices with their
 //! joints, weights and morph ranges, and the morph deltas, uploaded once.
-//! Per object: its joint-matrix palette and morph weights, written each
-//! frame into buffers made with the scene (`queue.write_buffer`, the
+//! Per object: its joint-matrix palette and morph weights (sampled from
+//! its clip, or as its host gave them), written each frame its pose moved
+//! into buffers made with the scene (`queue.write_buffer`, the
 //! deformed-mesh path of decision 0045), posed with vectors kept from
 //! frame to frame: a steady frame creates no GPU object and allocates
 //! nothing.
@@ -17,12 +20,16 @@
 //! of its own (`Attribute::PreviousPosition`, which compute passes read for
 //! `position.previous`). When its pose moved, the stage copies the
 //! positions there before deforming; at its first frame, after (so the
-//! previous frame is the current one, as `previous_model` is).
+//! previous frame is the current one, as `previous_model` is), unless it
+//! continues a deformed object of the scene before a scene change (the
+//! same name, docs/decisions/0046): then that object's last positions are
+//! copied there before (`carry_previous`), so the first frame after the
+//! change shows the true motion.
 
 use super::meshes::GpuMesh;
 use crate::gpu_count::Create;
 use crate::scene::rig::{Pose, PoseScratch, Rig};
-use crate::scene::Scene;
+use crate::scene::{Object, Scene};
 use crate::RunError;
 use glam::Mat4;
 use npr_abi::manifest::Attribute;
@@ -222,6 +229,27 @@ const KEEP: u8 = 0;
 const MOVED: u8 = 1;
 /// The first frame: the previous positions are the current ones, after it.
 const FIRST: u8 = 2;
+/// The first frame after a scene change of an object that continues a
+/// deformed one: the previous positions are its last deformed positions,
+/// copied before the dispatch.
+const CARRIED: u8 = 3;
+
+/// Which pose an object's palette holds: a clip's time, or a host pose's
+/// revision (`HostPose::revision`).
+#[derive(Clone, Copy, PartialEq)]
+enum PoseKey {
+    Clip(f32),
+    Host(u64),
+}
+
+/// The rig deforming `object`: its clip's, or its host pose's.
+fn rig_of(object: &Object) -> Option<&Arc<Rig>> {
+    match (&object.animation, &object.pose) {
+        (Some(animation), _) => Some(&animation.rig),
+        (None, Some(host)) => Some(&host.rig),
+        (None, None) => None,
+    }
+}
 
 /// One animated object's part of the stage.
 struct DeformedObject {
@@ -238,15 +266,40 @@ struct DeformedObject {
     /// Column-major, as WGSL's `mat4x4<f32>`.
     palette_values: Vec<[f32; 16]>,
     weight_values: Vec<f32>,
-    /// The clip time the palette was last written for.
-    posed_at: Option<f32>,
+    /// The pose the palette was last written for.
+    posed_at: Option<PoseKey>,
     /// Its position buffer and its previous positions' (`bytes` long).
     positions: wgpu::Buffer,
     previous: wgpu::Buffer,
     bytes: u64,
-    /// [`KEEP`], [`MOVED`] or [`FIRST`], set by `prepare`, reset by `encode`
-    /// (atomic: `encode` takes `&self`).
+    /// [`KEEP`], [`MOVED`], [`FIRST`] or [`CARRIED`], set by `prepare`,
+    /// reset by `encode` (atomic: `encode` takes `&self`).
     step: AtomicU8,
+    /// After a scene change, the position buffer of the deformed object
+    /// of the previous scene it continues (same vertex count): its last
+    /// pose, which becomes this object's previous positions at its first
+    /// frame. Dropped when its pose next moves.
+    carried: Option<wgpu::Buffer>,
+}
+
+/// `pose`'s joint matrices (column-major) and morph weights in the order
+/// of `rig`'s palette and morph slots, into vectors kept between frames.
+fn write_palette(rig: &RigGpu, pose: &Pose, palette: &mut Vec<[f32; 16]>, weights: &mut Vec<f32>) {
+    palette.clear();
+    palette.extend(rig.palette.iter().map(|entry| {
+        match *entry {
+            PaletteEntry::Identity => Mat4::IDENTITY,
+            PaletteEntry::Joint { skin, joint } => rig.rig.skin_joint_matrix(skin, joint, pose),
+            PaletteEntry::Node(node) => pose.world.get(node).copied().unwrap_or(Mat4::IDENTITY),
+        }
+        .to_cols_array()
+    }));
+    weights.clear();
+    weights.extend(
+        rig.morph_slots
+            .iter()
+            .map(|&(node, k)| pose.weights.get(node).and_then(|w| w.get(k)).copied().unwrap_or(0.0)),
+    );
 }
 
 /// The stage over one scene's animated objects (none: it does nothing).
@@ -256,7 +309,8 @@ pub(super) struct DeformStage {
 }
 
 impl DeformStage {
-    /// The stage for `scene`'s objects playing a clip, over their buffers
+    /// The stage for `scene`'s objects playing a clip or posed by their
+    /// host, over their buffers
     /// in `meshes`; the pipeline is made at the first scene that needs it.
     pub fn new(
         device: &wgpu::Device,
@@ -267,19 +321,19 @@ impl DeformStage {
         let mut rigs: Vec<Arc<RigGpu>> = Vec::new();
         let mut objects = Vec::new();
         for (index, (object, mesh)) in scene.objects.iter().zip(meshes).enumerate() {
-            let Some(animation) = &object.animation else { continue };
-            if mesh.vertex_count != animation.rig.bind.vertex_count() {
+            let Some(object_rig) = rig_of(object) else { continue };
+            if mesh.vertex_count != object_rig.bind.vertex_count() {
                 return Err(RunError::Internal(format!(
-                    "object `{}` plays a clip of a rig of {} vertices over a mesh of {}",
+                    "object `{}` is deformed by a rig of {} vertices over a mesh of {}",
                     object.name,
-                    animation.rig.bind.vertex_count(),
+                    object_rig.bind.vertex_count(),
                     mesh.vertex_count
                 )));
             }
-            let rig = match rigs.iter().find(|r| Arc::ptr_eq(&r.rig, &animation.rig)) {
+            let rig = match rigs.iter().find(|r| Arc::ptr_eq(&r.rig, object_rig)) {
                 Some(r) => r.clone(),
                 None => {
-                    let r = Arc::new(RigGpu::new(device, &animation.rig));
+                    let r = Arc::new(RigGpu::new(device, object_rig));
                     rigs.push(r.clone());
                     r
                 }
@@ -345,51 +399,75 @@ impl DeformStage {
                 previous: previous.clone(),
                 bytes: 12 * mesh.vertex_count as u64,
                 step: AtomicU8::new(KEEP),
+                carried: None,
             });
         }
         Ok(DeformStage { objects })
     }
 
-    /// Poses every animated object of `scene` at scene time `time_s` and
-    /// writes its palette and morph weights; an object whose clip time
-    /// moved has its `vertex_revision` bumped (compute passes copy its
-    /// vertices again after the stage has run).
+    /// Poses every animated object of `scene` at scene time `time_s` (a
+    /// host-posed one as its host gave it) and writes its palette and morph
+    /// weights; an object whose pose moved has its `vertex_revision` bumped
+    /// (compute passes copy its vertices again after the stage has run).
     pub fn prepare(&mut self, queue: &wgpu::Queue, scene: &Scene, time_s: f64, meshes: &mut [GpuMesh]) {
         for o in &mut self.objects {
-            let Some(animation) = scene.objects.get(o.object).and_then(|x| x.animation.as_ref()) else {
+            let Some(object) = scene.objects.get(o.object) else {
                 continue;
             };
-            let clip_time = animation.clip_time(time_s);
-            if o.posed_at == Some(clip_time) {
-                continue;
-            }
-            let rig = &o.rig.rig;
-            rig.pose_into(Some((animation.clip, clip_time)), &mut o.pose, &mut o.scratch);
-            o.palette_values.clear();
-            o.palette_values.extend(o.rig.palette.iter().map(|entry| {
-                match *entry {
-                    PaletteEntry::Identity => Mat4::IDENTITY,
-                    PaletteEntry::Joint { skin, joint } => rig.skin_joint_matrix(skin, joint, &o.pose),
-                    PaletteEntry::Node(node) => o.pose.world.get(node).copied().unwrap_or(Mat4::IDENTITY),
+            let (key, pose) = match (&object.animation, &object.pose) {
+                (Some(animation), _) => {
+                    let clip_time = animation.clip_time(time_s);
+                    if o.posed_at == Some(PoseKey::Clip(clip_time)) {
+                        continue;
+                    }
+                    let rig = &o.rig.rig;
+                    rig.pose_into(Some((animation.clip, clip_time)), &mut o.pose, &mut o.scratch);
+                    (PoseKey::Clip(clip_time), &o.pose)
                 }
-                .to_cols_array()
-            }));
-            o.weight_values.clear();
-            o.weight_values.extend(
-                o.rig
-                    .morph_slots
-                    .iter()
-                    .map(|&(node, k)| o.pose.weights.get(node).and_then(|w| w.get(k)).copied().unwrap_or(0.0)),
-            );
+                (None, Some(host)) => {
+                    if o.posed_at == Some(PoseKey::Host(host.revision)) {
+                        continue;
+                    }
+                    (PoseKey::Host(host.revision), &host.pose)
+                }
+                (None, None) => continue,
+            };
+            write_palette(&o.rig, pose, &mut o.palette_values, &mut o.weight_values);
+            let first = o.posed_at.is_none();
             queue.write_buffer(&o.palette, 0, bytemuck::cast_slice(&o.palette_values));
             if !o.weight_values.is_empty() {
                 queue.write_buffer(&o.weights, 0, bytemuck::cast_slice(&o.weight_values));
             }
-            let step = if o.posed_at.is_none() { FIRST } else { MOVED };
+            let step = match (first, &o.carried) {
+                (true, Some(_)) => CARRIED,
+                (true, None) => FIRST,
+                (false, _) => {
+                    o.carried = None;
+                    MOVED
+                }
+            };
             o.step.store(step, Ordering::Relaxed);
-            o.posed_at = Some(clip_time);
+            o.posed_at = Some(key);
             if let Some(mesh) = meshes.get_mut(o.object) {
                 mesh.vertex_revision += 1;
+            }
+        }
+    }
+
+    /// After a scene change: each deformed object that continues a
+    /// deformed object of `old` (`continuing`, by index; the same vertex
+    /// count) takes its last deformed positions as its previous ones at
+    /// its first frame, so `position.previous` shows the true motion
+    /// across the change instead of none.
+    pub fn carry_previous(&mut self, old: &DeformStage, continuing: &[Option<usize>]) {
+        for o in &mut self.objects {
+            let Some(Some(from)) = continuing.get(o.object) else {
+                continue;
+            };
+            if let Some(before) = old.objects.iter().find(|b| b.object == *from) {
+                if before.bytes == o.bytes && before.posed_at.is_some() {
+                    o.carried = Some(before.positions.clone());
+                }
             }
         }
     }
@@ -399,10 +477,13 @@ impl DeformStage {
         let (Some(pipeline), false) = (pipeline.get(), self.objects.is_empty()) else {
             return;
         };
-        // The pose moved: this frame's previous positions are the last deformed ones.
+        // The pose moved: this frame's previous positions are the last
+        // deformed ones (after a scene change, those of the object it continues).
         for o in &self.objects {
-            if o.step.load(Ordering::Relaxed) == MOVED && o.bytes > 0 {
-                encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes);
+            match (o.step.load(Ordering::Relaxed), &o.carried) {
+                (MOVED, _) if o.bytes > 0 => encoder.copy_buffer_to_buffer(&o.positions, 0, &o.previous, 0, o.bytes),
+                (CARRIED, Some(old)) if o.bytes > 0 => encoder.copy_buffer_to_buffer(old, 0, &o.previous, 0, o.bytes),
+                _ => {}
             }
         }
         {

@@ -90,7 +90,7 @@ pub(super) fn upload_scene(device: &wgpu::Device, scene: &Scene, weights: bool) 
                 return gpu.share();
             }
             let mut gpu = upload_mesh(device, &o.mesh, o.mesh.clone());
-            if o.animation.is_some() {
+            if o.deforms() {
                 // Its previous pose, which the deformation stage keeps
                 // (`deform.rs`); every other mesh's is its position buffer.
                 gpu.buffers.insert(
@@ -311,10 +311,11 @@ fn write_vertices(queue: &wgpu::Queue, gpu: &GpuMesh, mesh: &Mesh) {
 
 /// Whether `upload_scene` shares the object's buffers with the other
 /// objects of its mesh (a still mesh's, neither animated nor a patch). An
-/// object playing a clip has buffers of its own: objects of one file may
-/// play other clips, or the same at other times.
+/// object playing a clip or posed by its host has buffers of its own:
+/// objects of one file may play other clips, or the same at other times,
+/// and a host's instances of one skinned mesh have poses of their own.
 fn shares_buffers(object: &crate::scene::Object) -> bool {
-    object.time_varying.is_none() && object.blend.is_none() && object.animation.is_none()
+    object.time_varying.is_none() && object.blend.is_none() && !object.deforms()
 }
 
 /// Whether `object`'s (new) mesh can be written over `gpu`'s buffers.

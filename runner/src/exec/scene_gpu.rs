@@ -190,6 +190,9 @@ impl Renderer {
             exec.set_scene(part);
         }
         let continuing = continuity::continuing(&self.scene_gpu.object_names, scene);
+        // A deformed object that continues one keeps its last pose as its previous.
+        let mut made = made;
+        made.deform.carry_previous(&self.scene_gpu.deform, &continuing);
         let rows = continuity::value_rows(&self.scene_gpu.values, &made.values, &continuing);
         self.carried_rows.lock().unwrap_or_else(|e| e.into_inner()).extend(rows);
         self.scene_gpu = made;

@@ -130,6 +130,8 @@
 //! (`exec/deform.rs`, docs/decisions/0053), and [`Scene::posed`] gives
 //! the CPU stages that read vertices (lines, light bounds) the same pose
 //! deformed on the CPU (`rig::Rig::deform`). Objects of one file share its rig.
+//! A host's skinned mesh (the embedding API, Bevy) is deformed the same
+//! way, from the pose its host gives each frame ([`Object::pose`]).
 
 pub mod anim_sampler;
 mod attributes;
@@ -221,6 +223,11 @@ pub struct Object {
     /// playing; `mesh` is the file's rest pose, and [`Scene::posed`] gives
     /// the object its mesh deformed at each frame's time. `None`: still.
     pub animation: Option<ObjectAnimation>,
+    /// A pose its host gives every frame (the embedding API's skinned
+    /// meshes, Bevy's `SkinnedMesh`): `mesh` is the rig's bind mesh,
+    /// deformed as a clip's is (the GPU stage for the passes, the CPU for
+    /// [`Scene::posed`]). `None`: not posed by a host.
+    pub pose: Option<rig::HostPose>,
 }
 
 /// An object's clip playing (`animation = { clip, speed, loop, offset }`).
@@ -296,11 +303,18 @@ impl Object {
             blend: None,
             patch: None,
             animation: None,
+            pose: None,
         }
     }
 }
 
 impl Object {
+    /// Whether its vertices are deformed every frame by a rig: it plays a
+    /// clip, or its host poses it.
+    pub fn deforms(&self) -> bool {
+        self.animation.is_some() || self.pose.is_some()
+    }
+
     pub fn has_tag(&self, tag: &str) -> bool {
         self.tags.iter().any(|t| t == tag)
     }
@@ -375,7 +389,7 @@ impl Scene {
     /// their rest mesh (a renderer whose passes draw the GPU stage's
     /// deformation and which has no CPU stage reading vertices: decision 0053).
     pub fn posed_with(&self, time_s: f64, deform_meshes: bool) -> std::borrow::Cow<'_, Scene> {
-        let moves = |o: &Object| o.spin != glam::Vec3::ZERO || (deform_meshes && o.animation.is_some());
+        let moves = |o: &Object| o.spin != glam::Vec3::ZERO || (deform_meshes && o.deforms());
         if !self.objects.iter().any(moves) {
             return std::borrow::Cow::Borrowed(self);
         }
@@ -384,6 +398,8 @@ impl Scene {
             o.model = o.model_at(time_s);
             if let (Some(animation), true) = (&o.animation, deform_meshes) {
                 o.mesh = Arc::new(animation.mesh_at(time_s));
+            } else if let (Some(host), true) = (&o.pose, deform_meshes) {
+                o.mesh = Arc::new(host.rig.deform(&host.pose));
             }
         }
         std::borrow::Cow::Owned(posed)

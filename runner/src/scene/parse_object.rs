@@ -106,6 +106,7 @@ pub fn parse_object(
             blend: None,
             patch: None,
             animation,
+            pose: None,
         },
         name_span,
         patches,

@@ -17,6 +17,7 @@
 use super::anim_sampler::Sampler;
 use super::mesh::Mesh;
 use glam::{Mat3, Mat4, Quat, Vec3, Vec4};
+use std::sync::Arc;
 
 /// A node of the file: its parent and rest transform.
 #[derive(Debug, Clone, PartialEq)]
@@ -124,7 +125,105 @@ pub struct Pose {
     pub weights: Vec<Vec<f32>>,
 }
 
+/// A rig its host poses every frame (the embedding API's skinned meshes,
+/// `StyleRuntime::add_skinned_mesh`; Bevy's `SkinnedMesh`), rather than
+/// one of its clips: the pose is given, not sampled. Its rig is
+/// [`Rig::posed_by_host`]'s, so `pose.world[j]` is joint `j`'s matrix in
+/// skin space and `pose.weights[joints]` the morph weights.
+#[derive(Debug, Clone)]
+pub struct HostPose {
+    pub rig: Arc<Rig>,
+    pub pose: Pose,
+    /// Bumped each time `pose` changes: the GPU stage writes a pose once.
+    pub revision: u64,
+}
+
+impl HostPose {
+    /// `rig` in its bind pose: identity joint matrices, zero morph weights.
+    pub fn bind(rig: Arc<Rig>) -> HostPose {
+        let pose = Pose {
+            world: vec![Mat4::IDENTITY; rig.nodes.len()],
+            weights: rig.default_weights.clone(),
+        };
+        HostPose { rig, pose, revision: 0 }
+    }
+
+    /// The joint matrices (all of `pose.world` but the mesh's own node, the last).
+    pub fn joints_mut(&mut self) -> &mut [Mat4] {
+        let n = self.pose.world.len().saturating_sub(1);
+        &mut self.pose.world[..n]
+    }
+
+    /// The morph weights of the mesh's node (empty without morph targets).
+    pub fn weights_mut(&mut self) -> &mut [f32] {
+        match self.pose.weights.last_mut() {
+            Some(w) => w,
+            None => &mut [],
+        }
+    }
+}
+
 impl Rig {
+    /// The rig of a mesh whose host gives its joint matrices: `bind` with
+    /// `joint_count` joints, whose matrices map bind-pose positions into
+    /// skin space (`world · inverseBind` already multiplied, as a glTF
+    /// rig's [`Rig::skin_joint_matrix`]), and `targets` over all its
+    /// vertices. Its nodes are the joints, `0..joint_count` (each its own
+    /// root, at rest the identity, its inverse bind the identity), then the
+    /// mesh's node (identity, holding the morph weights); one piece, skinned
+    /// when there are joints. The caller has checked the arrays (one entry
+    /// per vertex, joints in range, weights summing to 1).
+    pub fn posed_by_host(
+        bind: Mesh,
+        joint_count: usize,
+        joints: Vec<[u16; 4]>,
+        weights: Vec<[f32; 4]>,
+        targets: Vec<MorphTarget>,
+    ) -> Rig {
+        let node = |name: String| RigNode {
+            name,
+            parent: None,
+            rest: Mat4::IDENTITY,
+            translation: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            scale: Vec3::ONE,
+        };
+        let mut nodes: Vec<RigNode> = (0..joint_count).map(|j| node(format!("joint {j}"))).collect();
+        nodes.push(node("mesh".into()));
+        let mut default_weights = vec![Vec::new(); joint_count];
+        default_weights.push(vec![0.0; targets.len()]);
+        let skins = if joint_count > 0 {
+            vec![Skin {
+                joints: (0..joint_count).collect(),
+                inverse_bind: vec![Mat4::IDENTITY; joint_count],
+            }]
+        } else {
+            Vec::new()
+        };
+        let (joints, weights) = if joint_count > 0 {
+            (joints, weights)
+        } else {
+            (vec![[0; 4]; bind.vertex_count()], vec![[0.0; 4]; bind.vertex_count()])
+        };
+        Rig {
+            order: (0..nodes.len()).collect(),
+            nodes,
+            skins,
+            pieces: vec![Piece {
+                first_vertex: 0,
+                vertex_count: bind.vertex_count(),
+                node: joint_count,
+                skin: (joint_count > 0).then_some(0),
+                targets,
+            }],
+            default_weights,
+            bind,
+            joints,
+            weights,
+            clips: Vec::new(),
+        }
+    }
+
     pub fn clip_index(&self, name: &str) -> Option<usize> {
         self.clips.iter().position(|c| c.name == name)
     }

@@ -79,6 +79,7 @@ fn object(name: &str, mesh: Arc<Mesh>, model: Mat4, tags: &[&str], time_varying:
         blend: None,
         patch: None,
         animation: None,
+        pose: None,
     }
 }
 

@@ -317,3 +317,50 @@ fn position_previous_sees_the_previous_pose() {
         "samples' summed motion {got_sample_d:?} against {sample_d:?}"
     );
 }
+
+/// The previous pose survives a scene change (an object spawned beside
+/// the arm): at the first frame after it, the arm's `position.previous`
+/// is its pose of the frame before the change, so its screen motion is
+/// what a renderer without the change sees between the same two frames,
+/// not zero (docs/decisions/0055).
+#[test]
+fn the_previous_pose_survives_a_scene_change() {
+    let scene = scene(ARM);
+    let program = compile(MOTION);
+    let spec = |time_s: f64, frame: u32| FrameSpec {
+        width: 128,
+        height: 128,
+        time_s,
+        frame,
+        eye: 0,
+    };
+    let mut steady = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let mut changed = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
+    let mut more = scene.clone();
+    let mut other = scene.objects[0].clone();
+    other.name = "spawned".into();
+    other.animation = None;
+    other.model = glam::Mat4::from_translation(glam::Vec3::new(3.0, 0.0, -4.0));
+    more.objects.push(other);
+    for (k, t) in [0.3, 0.4].into_iter().enumerate() {
+        steady.render(&scene, &spec(t, k as u32)).expect("frame");
+        if k == 1 {
+            changed.set_scene(&more).expect("a scene change");
+            changed.render(&more, &spec(t, k as u32)).expect("frame");
+        } else {
+            changed.render(&scene, &spec(t, k as u32)).expect("frame");
+        }
+    }
+    let want = steady.read_object_values("motion").expect("motion");
+    let got = changed.read_object_values("motion").expect("motion");
+    let travel = |v: &Vec<Vec<[f32; 4]>>| v[0][2][0];
+    assert!(
+        travel(&want) > want[0][0][0],
+        "the arm moves more than a pixel a vertex between the frames: {want:?}"
+    );
+    assert_eq!(
+        got[0][..3],
+        want[0][..3],
+        "the arm's motion at the first frame after the scene change"
+    );
+}

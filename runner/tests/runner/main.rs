@@ -22,6 +22,7 @@ mod embed_history_across_scene;
 mod embed_linear_view;
 mod embed_params;
 mod embed_scene_change;
+mod embed_skinned;
 mod embed_stereo_targets;
 mod gltf_animation_sampler;
 mod gltf_characters;
