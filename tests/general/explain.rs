@@ -35,6 +35,10 @@ const NOT_RUNNABLE: &[(&str, &str)] = &[
     ("E0606", "fixed"),
     ("E0607", "wrong"),
     ("E0607", "fixed"),
+    ("E0608", "wrong"),
+    ("E0608", "fixed"),
+    ("E0609", "wrong"),
+    ("E0609", "fixed"),
 ];
 
 fn npr(dir: &Path, args: &[&str]) -> Command {
