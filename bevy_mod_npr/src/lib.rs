@@ -1,7 +1,10 @@
 //! npr styles in Bevy: a `.npr` file is an asset (compiled by npr's
 //! compiler, reloaded when the file changes), and a camera with
 //! [`NprStyle`] is drawn by that style's passes, run by npr's runner inside
-//! Bevy's renderer, on Bevy's own device, into the camera's image.
+//! Bevy's renderer, on Bevy's own device, into the camera's image. A style
+//! that declares inputs (`input(color)`, `input(depth)`, ...) post-processes
+//! the frame Bevy drew instead: the camera's image and its prepass textures
+//! are the inputs (`post.rs`, decision 0054).
 //!
 //! ```no_run
 //! use bevy::prelude::*;
