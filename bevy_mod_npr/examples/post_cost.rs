@@ -159,14 +159,26 @@ impl Run {
 
 /// Three `StandardMaterial` spheres on a plane, and a directional light.
 fn scene(world: &mut World) {
-    for (centre, radius) in [([-1.3, 0.8, 0.0], 0.8), ([1.25, 0.6, 0.7], 0.6), ([0.4, 0.5, -1.6], 0.5)] {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(Sphere::new(radius).mesh().uv(96, 48));
+    for (centre, radius) in [
+        ([-1.3, 0.8, 0.0], 0.8),
+        ([1.25, 0.6, 0.7], 0.6),
+        ([0.4, 0.5, -1.6], 0.5),
+    ] {
+        let mesh = world
+            .resource_mut::<Assets<Mesh>>()
+            .add(Sphere::new(radius).mesh().uv(96, 48));
         let material = world
             .resource_mut::<Assets<StandardMaterial>>()
             .add(StandardMaterial::from_color(Color::srgb(0.9, 0.4, 0.3)));
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), Transform::from_translation(Vec3::from_array(centre))));
+        world.spawn((
+            Mesh3d(mesh),
+            MeshMaterial3d(material),
+            Transform::from_translation(Vec3::from_array(centre)),
+        ));
     }
-    let plane = world.resource_mut::<Assets<Mesh>>().add(Plane3d::default().mesh().size(8.0, 8.0));
+    let plane = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(Plane3d::default().mesh().size(8.0, 8.0));
     let grey = world
         .resource_mut::<Assets<StandardMaterial>>()
         .add(StandardMaterial::from_color(Color::srgb(0.7, 0.7, 0.68)));

@@ -134,16 +134,11 @@ struct TonemappingBeforeNpr(Tonemapping, DebandDither);
 /// tonemapping pass, which would be work thrown away (and Bevy's default,
 /// TonyMcMapface, needs a feature this crate leaves off to keep the build
 /// small). What the camera had is kept for [`tonemapping_over_bevy`].
-fn no_tonemapping(
-    event: On<Add<NprStyle>>,
-    cameras: Query<(&Tonemapping, &DebandDither)>,
-    mut commands: Commands,
-) {
-    let before = cameras
-        .get(event.entity)
-        .map_or(TonemappingBeforeNpr(Tonemapping::None, DebandDither::Disabled), |(t, d)| {
-            TonemappingBeforeNpr(*t, *d)
-        });
+fn no_tonemapping(event: On<Add<NprStyle>>, cameras: Query<(&Tonemapping, &DebandDither)>, mut commands: Commands) {
+    let before = cameras.get(event.entity).map_or(
+        TonemappingBeforeNpr(Tonemapping::None, DebandDither::Disabled),
+        |(t, d)| TonemappingBeforeNpr(*t, *d),
+    );
     commands
         .entity(event.entity)
         .insert((Tonemapping::None, DebandDither::Disabled, before));

@@ -27,9 +27,7 @@ use npr_abi::manifest::{Manifest, TextureSourceManifest};
 use npr_abi::InputKind;
 use npr_diag::{codes, Diagnostic};
 use npr_runner::embed::StyleRuntime;
-use npr_runner::inputs::{
-    ColorEncoding, DepthConvention, MotionConvention, NormalConvention, SourceConvention,
-};
+use npr_runner::inputs::{ColorEncoding, DepthConvention, MotionConvention, NormalConvention, SourceConvention};
 
 /// The codes of this module: cleared from a camera's log once every input
 /// is given, so that a prepass removed again is reported again.
@@ -112,12 +110,9 @@ fn bevy_image<'a>(
         InputKind::Normal { .. } => views
             .and_then(|p| p.normal_view())
             .map(|v| (&**v, SourceConvention::Normal(NormalConvention::World))),
-        InputKind::Motion => views.and_then(|p| p.motion_vectors_view()).map(|v| {
-            (
-                &**v,
-                SourceConvention::Motion(MotionConvention::ScreenFraction),
-            )
-        }),
+        InputKind::Motion => views
+            .and_then(|p| p.motion_vectors_view())
+            .map(|v| (&**v, SourceConvention::Motion(MotionConvention::ScreenFraction))),
         InputKind::Id | InputKind::Image { .. } => {
             return Err(Diagnostic::error(
                 codes::BEVY_INPUT_NOT_PRODUCED,

@@ -33,7 +33,11 @@ const INK: [u8; 3] = [0x14, 0x14, 0x14];
 const RED_INK: [u8; 3] = [0xc0, 0x10, 0x10];
 
 /// The scene, in metres: spheres resting on a square plane at y = 0.
-const SPHERES: [([f64; 3], f64); 3] = [([-1.3, 0.8, 0.0], 0.8), ([1.25, 0.6, 0.7], 0.6), ([0.4, 0.5, -1.6], 0.5)];
+const SPHERES: [([f64; 3], f64); 3] = [
+    ([-1.3, 0.8, 0.0], 0.8),
+    ([1.25, 0.6, 0.7], 0.6),
+    ([0.4, 0.5, -1.6], 0.5),
+];
 const PLANE_HALF: f64 = 4.0;
 const EYE: [f64; 3] = [0.0, 2.5, 7.0];
 const LOOK_AT: [f64; 3] = [0.0, 0.6, 0.0];
@@ -92,9 +96,11 @@ fn spawn_scene(app: &mut App) {
             Transform::from_translation(vec3(*centre)),
         ));
     }
-    let plane = world
-        .resource_mut::<Assets<Mesh>>()
-        .add(Plane3d::default().mesh().size(2.0 * PLANE_HALF as f32, 2.0 * PLANE_HALF as f32));
+    let plane = world.resource_mut::<Assets<Mesh>>().add(
+        Plane3d::default()
+            .mesh()
+            .size(2.0 * PLANE_HALF as f32, 2.0 * PLANE_HALF as f32),
+    );
     let grey = world.resource_mut::<Assets<StandardMaterial>>().add(StandardMaterial {
         base_color: Color::srgb(0.7, 0.7, 0.68),
         perceptual_roughness: 0.9,
@@ -159,7 +165,11 @@ fn traced() -> Vec<Vec<(f64, DVec3)>> {
 fn depth_jumps(scene: &[Vec<(f64, DVec3)>], ratio: f64) -> Vec<Vec<bool>> {
     marked(scene, |a, b| {
         let (a, b) = (far_if_none(a.0), far_if_none(b.0));
-        let jump = if a.is_infinite() && b.is_infinite() { 0.0 } else { (a - b).abs() };
+        let jump = if a.is_infinite() && b.is_infinite() {
+            0.0
+        } else {
+            (a - b).abs()
+        };
         jump > ratio * a.min(b)
     })
 }
@@ -225,7 +235,9 @@ fn save_failure(name: &str, styled: &image::RgbaImage, reference: &image::RgbaIm
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_mod_npr_failures");
     std::fs::create_dir_all(&dir).expect("failure folder");
     styled.save(dir.join(format!("{name}.actual.png"))).expect("write");
-    reference.save(dir.join(format!("{name}.reference.png"))).expect("write");
+    reference
+        .save(dir.join(format!("{name}.reference.png")))
+        .expect("write");
     let jumps = depth_jumps(&traced(), 0.04);
     let mut diff = image::RgbaImage::new(SIZE, SIZE);
     for (x, y, p) in diff.enumerate_pixels_mut() {
@@ -249,8 +261,13 @@ fn assert_inked_over(name: &str, styled: &image::RgbaImage, reference: &image::R
     // style's 8 %.
     let silhouettes = depth_jumps(&scene, 0.25);
     let silhouette_count = pixels().filter(|&(x, y)| silhouettes[y][x]).count();
-    assert!(silhouette_count > 300, "{name}: the scene has silhouettes ({silhouette_count} pixels)");
-    let missed: Vec<_> = pixels().filter(|&(x, y)| silhouettes[y][x] && !near(&lines, x, y)).collect();
+    assert!(
+        silhouette_count > 300,
+        "{name}: the scene has silhouettes ({silhouette_count} pixels)"
+    );
+    let missed: Vec<_> = pixels()
+        .filter(|&(x, y)| silhouettes[y][x] && !near(&lines, x, y))
+        .collect();
     // Every line pixel within 1 px of a jump or crease at half the style's
     // thresholds (a pixel just at a threshold counts either way).
     let support_d = depth_jumps(&scene, 0.04);
@@ -284,7 +301,11 @@ fn assert_inked_over(name: &str, styled: &image::RgbaImage, reference: &image::R
 /// and plane (not a flat fill), few of them the ink.
 fn assert_shaded(reference: &image::RgbaImage) {
     let colours: std::collections::BTreeSet<[u8; 4]> = reference.pixels().map(|p| p.0).collect();
-    assert!(colours.len() > 200, "Bevy's image is nearly flat: {} colours", colours.len());
+    assert!(
+        colours.len() > 200,
+        "Bevy's image is nearly flat: {} colours",
+        colours.len()
+    );
 }
 
 /// Bevy's pipelines compiled and `done` true, then one more frame (the
@@ -345,9 +366,7 @@ fn ink_over_bevy_pbr_lies_on_its_silhouettes_and_follows_prepasses_and_reloads()
     camera(&mut app, &plain_image, 0);
     let styled = camera(&mut app, &styled_image, 1);
     let style = app.world().resource::<AssetServer>().load("ink_over.npr");
-    app.world_mut()
-        .entity_mut(styled)
-        .insert(bevy_mod_npr::NprStyle(style));
+    app.world_mut().entity_mut(styled).insert(bevy_mod_npr::NprStyle(style));
     settle(&mut app, "the ink style over Bevy's frame", |app| {
         drawn_with(app, styled, "Ink over")
     });
@@ -364,7 +383,10 @@ fn ink_over_bevy_pbr_lies_on_its_silhouettes_and_follows_prepasses_and_reloads()
         codes_logged(app, "E0608") == 1
     });
     let message = last_message(&app, "E0608", styled);
-    assert!(message.contains("`normal_in`") && message.contains("NormalPrepass"), "{message}");
+    assert!(
+        message.contains("`normal_in`") && message.contains("NormalPrepass"),
+        "{message}"
+    );
     insta::assert_snapshot!("E0608_normal_prepass_removed", message);
     let plain = read_image(&app, &styled_image);
     let reference = read_image(&app, &plain_image);

@@ -22,9 +22,17 @@ fn motions() -> Level {
 
 fn convert(source: MotionConvention) -> Level {
     let g = common::gpu();
-    let conversion = Conversion::resolve(InputKind::Motion, SourceConvention::Motion(source), None, false)
-        .expect("motion converts");
-    converted(&g.device, &g.queue, &HostImage { raw: motions(), conversion }).expect("convert on the GPU")
+    let conversion =
+        Conversion::resolve(InputKind::Motion, SourceConvention::Motion(source), None, false).expect("motion converts");
+    converted(
+        &g.device,
+        &g.queue,
+        &HostImage {
+            raw: motions(),
+            conversion,
+        },
+    )
+    .expect("convert on the GPU")
 }
 
 #[test]
@@ -45,7 +53,11 @@ fn motion_in_fractions_of_the_image_becomes_pixels() {
         }
     }
     // Not the identity: the scale is applied.
-    assert!(out.pixels.iter().zip(&raw.pixels).any(|(o, r)| (o[0] - r[0]).abs() > 0.1));
+    assert!(out
+        .pixels
+        .iter()
+        .zip(&raw.pixels)
+        .any(|(o, r)| (o[0] - r[0]).abs() > 0.1));
 }
 
 #[test]

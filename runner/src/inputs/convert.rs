@@ -209,10 +209,9 @@ impl Conversion {
                     ..Self::AS_IS
                 }
             }
-            (InputKind::Motion, SourceConvention::Motion(MotionConvention::ScreenFraction)) => Conversion {
-                mode: 5,
-                ..Self::AS_IS
-            },
+            (InputKind::Motion, SourceConvention::Motion(MotionConvention::ScreenFraction)) => {
+                Conversion { mode: 5, ..Self::AS_IS }
+            }
             _ => Self::AS_IS,
         })
     }
