@@ -41,14 +41,12 @@ fn motion_in_fractions_of_the_image_becomes_pixels() {
     let out = convert(MotionConvention::ScreenFraction);
     for (i, (r, o)) in raw.pixels.iter().zip(&out.pixels).enumerate() {
         let expected = [r[0] as f64 * raw.width as f64, r[1] as f64 * raw.height as f64];
-        for c in 0..2 {
+        for (c, (got, want)) in o.iter().zip(expected).enumerate() {
             // The input texture holds half floats: 11 significant bits.
-            let bound = expected[c].abs() / 1024.0 + 1e-6;
+            let bound = want.abs() / 1024.0 + 1e-6;
             assert!(
-                (o[c] as f64 - expected[c]).abs() <= bound,
-                "texel {i}, channel {c}: {} for {} (bound {bound})",
-                o[c],
-                expected[c]
+                (*got as f64 - want).abs() <= bound,
+                "texel {i}, channel {c}: {got} for {want} (bound {bound})"
             );
         }
     }
@@ -65,8 +63,8 @@ fn motion_in_pixels_is_taken_as_it_is() {
     let raw = motions();
     let out = convert(MotionConvention::Pixels);
     for (r, o) in raw.pixels.iter().zip(&out.pixels) {
-        for c in 0..2 {
-            assert!((o[c] - r[c]).abs() <= r[c].abs() / 1024.0 + 1e-6, "{o:?} for {r:?}");
+        for (got, want) in o.iter().zip(r).take(2) {
+            assert!((got - want).abs() <= want.abs() / 1024.0 + 1e-6, "{o:?} for {r:?}");
         }
     }
 }
