@@ -136,7 +136,7 @@ pub(super) const ALL: &[Explanation] = &[
             the GPU reads as floats (float, normalized or depth; not an integer format, not a \
             depth format with stencil). The convention must be of the input's kind: \
             `SourceConvention::Color` for a colour input, `Depth` for depth, `Normal` for \
-            normals, `AsIs` for any. An sRGB texture is decoded by the GPU when it is read, so \
+            normals, `Motion` for motion vectors, `AsIs` for any. An sRGB texture is decoded by the GPU when it is read, so \
             its colour is `ColorEncoding::Linear`. Normals turned between world and view space \
             use the frame's camera.",
         wrong: Example {
