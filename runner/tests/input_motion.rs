@@ -4,6 +4,9 @@
 //! texel's value times the image's size, against the f64 product; motion
 //! already in pixels passes through as it is.
 
+// The shared test module makes its textures with wgpu directly (not counted).
+#![allow(clippy::disallowed_methods)]
+
 mod common;
 
 use npr_abi::InputKind;
