@@ -1,7 +1,10 @@
 //! npr styles in Bevy: a `.npr` file is an asset (compiled by npr's
 //! compiler, reloaded when the file changes), and a camera with
 //! [`NprStyle`] is drawn by that style's passes, run by npr's runner inside
-//! Bevy's renderer, on Bevy's own device, into the camera's image.
+//! Bevy's renderer, on Bevy's own device, into the camera's image. A style
+//! that declares inputs (`input(color)`, `input(depth)`, ...) post-processes
+//! the frame Bevy drew instead: the camera's image and its prepass textures
+//! are the inputs (`post.rs`, decision 0054).
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -32,6 +35,8 @@
 //! - `skins.rs`: `SkinnedMesh` entities as npr's posed instances;
 //! - `extract.rs`: what the render world copies each frame;
 //! - `render.rs`: the `Core3d` system that drives a runtime per camera;
+//! - `post.rs`: a style over Bevy's own frame: the camera's image and
+//!   prepass textures as the style's inputs;
 //! - `report.rs`: diagnostics in Bevy's log, once per camera;
 //! - `scene.rs`: npr's TOML scenes as Bevy entities.
 //!
@@ -59,6 +64,7 @@ mod asset;
 mod components;
 mod extract;
 mod meshes;
+mod post;
 mod render;
 mod report;
 mod runtimes;
@@ -103,6 +109,7 @@ impl Plugin for NprPlugin {
             .register_type::<NprLight>()
             .init_resource::<meshes::NprMeshes>()
             .add_systems(PostUpdate, meshes::convert_meshes.after(bevy::asset::AssetEventSystems))
+            .add_systems(PostUpdate, tonemapping_over_bevy)
             .add_observer(no_tonemapping);
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("NprPlugin: this app has no render app (add DefaultPlugins first): npr styles will not draw");
@@ -119,12 +126,41 @@ impl Plugin for NprPlugin {
     }
 }
 
+/// The tonemapping and debanding a camera had before its style turned
+/// them off, given back when the style turns out to read Bevy's frame.
+#[derive(Component)]
+struct TonemappingBeforeNpr(Tonemapping, DebandDither);
+
 /// A camera drawn by a style gets `Tonemapping::None` and no debanding:
-/// the style replaces its image after Bevy's tonemapping pass, which would
-/// be work thrown away (and Bevy's default, TonyMcMapface, needs a feature
-/// this crate leaves off to keep the build small).
-fn no_tonemapping(event: On<Add<NprStyle>>, mut commands: Commands) {
+/// a style that draws the scene itself replaces the image after Bevy's
+/// tonemapping pass, which would be work thrown away (and Bevy's default,
+/// TonyMcMapface, needs a feature this crate leaves off to keep the build
+/// small). What the camera had is kept for [`tonemapping_over_bevy`].
+fn no_tonemapping(event: On<Add<NprStyle>>, cameras: Query<(&Tonemapping, &DebandDither)>, mut commands: Commands) {
+    let before = cameras.get(event.entity).map_or(
+        TonemappingBeforeNpr(Tonemapping::None, DebandDither::Disabled),
+        |(t, d)| TonemappingBeforeNpr(*t, *d),
+    );
     commands
         .entity(event.entity)
-        .insert((Tonemapping::None, DebandDither::Disabled));
+        .insert((Tonemapping::None, DebandDither::Disabled, before));
+}
+
+/// A style over Bevy's frame (one that declares inputs) reads the image
+/// Bevy tonemapped: once the style has loaded, the camera gets back the
+/// tonemapping and debanding it had before (decision 0054).
+fn tonemapping_over_bevy(
+    cameras: Query<(Entity, &NprStyle, &TonemappingBeforeNpr)>,
+    styles: Res<Assets<NprStyleAsset>>,
+    mut commands: Commands,
+) {
+    for (entity, style, before) in &cameras {
+        let Some(asset) = styles.get(&style.0) else { continue };
+        if !post::declared_inputs(&asset.program().manifest).is_empty() {
+            commands
+                .entity(entity)
+                .insert((before.0, before.1))
+                .remove::<TonemappingBeforeNpr>();
+        }
+    }
 }

@@ -9,6 +9,12 @@
 //! upscaling to the window or image, the pixels are what `npr render`
 //! writes.
 //!
+//! A style that declares inputs runs over Bevy's frame at the same place:
+//! after Bevy's tonemapping, because npr's output is display-referred in
+//! every host (decision 0054). It reads the main image as Bevy left it
+//! and the camera's prepass textures (`post.rs`), and its output replaces
+//! the image.
+//!
 //! Nothing here panics on bad input: each problem (a style the device
 //! cannot run, a parameter value, a per-object param of the wrong type, a
 //! tag no object has, a target the style cannot write) is logged once per
@@ -19,8 +25,10 @@ use crate::extract::{ExtractedNprCamera, ExtractedNprScene};
 use crate::meshes::Converted;
 use crate::runtimes::{CameraRuntime, NprRuntimes};
 use bevy::camera::CompositingSpace;
+use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
+use bevy::render::camera::ExtractedCamera;
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery};
 use bevy::render::view::{ResolvedCompositingSpace, ViewTarget};
 use npr_abi::manifest::{ParamBinding, PassKindManifest};
@@ -37,6 +45,7 @@ pub(crate) fn draw_npr(
         &ViewTarget,
         &ExtractedNprCamera,
         Option<&ResolvedCompositingSpace>,
+        (&ExtractedCamera, &Msaa, Option<&ViewPrepassTextures>),
     )>,
     scene: Res<ExtractedNprScene>,
     mut runtimes: ResMut<NprRuntimes>,
@@ -44,7 +53,7 @@ pub(crate) fn draw_npr(
     queue: Res<RenderQueue>,
     mut ctx: RenderContext,
 ) {
-    let (entity, view_target, camera, space) = view.into_inner();
+    let (entity, view_target, camera, space, (extracted, msaa, prepass)) = view.into_inner();
     let Some(style) = scene.styles.get(&camera.style) else {
         // Not loaded yet, or it never compiled (logged by the loader).
         return;
@@ -126,6 +135,23 @@ pub(crate) fn draw_npr(
 
     let format = view_target.main_texture_format();
     let view = view_target.main_texture_view();
+    if !crate::post::declared_inputs(state.runtime.manifest()).is_empty() {
+        let frame = crate::post::BevyFrame {
+            main: view,
+            space: ResolvedCompositingSpace::space(space),
+            prepass,
+            msaa_samples: msaa.samples(),
+            viewport: extracted.viewport.is_some(),
+            near: npr_camera.near,
+        };
+        let problems = crate::post::give_inputs(&mut state.runtime, &frame);
+        if !problems.is_empty() {
+            // Left as Bevy drew it; checked again next frame.
+            reports.log(entity, &prefixed(&camera.main, problems));
+            return;
+        }
+        reports.forget_codes(entity, &crate::post::CODES);
+    }
     let target = match ResolvedCompositingSpace::space(space) {
         None | Some(CompositingSpace::Linear) => Target::LinearView { view, format },
         // A 2D-style stack that composites in sRGB keeps encoded values.

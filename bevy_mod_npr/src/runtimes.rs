@@ -63,4 +63,9 @@ impl NprRuntimes {
     pub fn logged_codes(&self) -> Vec<&'static str> {
         self.reports.codes()
     }
+
+    /// The text of every diagnostic logged so far, as npr prints it.
+    pub fn logged_messages(&self) -> Vec<String> {
+        self.reports.messages()
+    }
 }

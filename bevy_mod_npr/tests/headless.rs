@@ -10,6 +10,8 @@
 mod common;
 // Tests of other features in the same binary (a Bevy test binary is slow
 // to link: one more per feature would cost CI minutes).
+#[path = "headless/post.rs"]
+mod post;
 #[path = "headless/skinned.rs"]
 mod skinned;
 

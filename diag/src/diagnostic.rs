@@ -412,6 +412,15 @@ pub mod codes {
     pub const HOST_INPUT_SIZE: &str = "E0606";
     /// A frame of a style that reads a host input the host has not given.
     pub const MISSING_HOST_INPUT: &str = "E0607";
+    /// A Bevy camera drawn by a style that reads an input the camera does
+    /// not produce: depth without `DepthPrepass`, normals without
+    /// `NormalPrepass`, motion without `MotionVectorPrepass`, or a kind Bevy
+    /// renders no image of (ids, free-form images).
+    pub const BEVY_INPUT_NOT_PRODUCED: &str = "E0608";
+    /// A Bevy camera whose frame a style over inputs cannot read as the
+    /// camera is set up: multisampled prepass textures (MSAA on), or a
+    /// viewport (a part of the target).
+    pub const BEVY_INPUT_UNREADABLE: &str = "E0609";
     /// A host's pose whose joint matrices do not fit its mesh's skin:
     /// another number of them than the skin's joints, or a pose for a mesh
     /// registered without a skin (the embedding API's `SkinPose`; in Bevy,
@@ -551,6 +560,14 @@ pub mod codes {
         ),
         (HOST_INPUT_SIZE, "a host's input of another size than the target"),
         (MISSING_HOST_INPUT, "a host did not give an input the style reads"),
+        (
+            BEVY_INPUT_NOT_PRODUCED,
+            "a Bevy camera does not produce an input its style reads",
+        ),
+        (
+            BEVY_INPUT_UNREADABLE,
+            "a Bevy camera's frame a style over inputs cannot read (MSAA, a viewport)",
+        ),
         (POSE_JOINTS, "a host's pose does not fit its mesh's joints"),
         (NON_FINITE_POSE, "a host's pose has a number that is not finite"),
         (

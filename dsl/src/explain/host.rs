@@ -1,5 +1,6 @@
 //! Explanations of the host codes (E06xx): mistakes of an application that
-//! embeds a style with `npr_runner::embed::StyleRuntime`. They come from Rust
+//! embeds a style with `npr_runner::embed::StyleRuntime`, or draws one over
+//! a Bevy camera's frame with `bevy_mod_npr` (E0608, E0609). They come from Rust
 //! calls, not from `npr` commands, so the examples are the host's code,
 //! and each says where the mistake is tested.
 
@@ -135,7 +136,7 @@ pub(super) const ALL: &[Explanation] = &[
             the GPU reads as floats (float, normalized or depth; not an integer format, not a \
             depth format with stencil). The convention must be of the input's kind: \
             `SourceConvention::Color` for a colour input, `Depth` for depth, `Normal` for \
-            normals, `AsIs` for any. An sRGB texture is decoded by the GPU when it is read, so \
+            normals, `Motion` for motion vectors, `AsIs` for any. An sRGB texture is decoded by the GPU when it is read, so \
             its colour is `ColorEncoding::Linear`. Normals turned between world and view space \
             use the frame's camera.",
         wrong: Example {
@@ -200,6 +201,58 @@ pub(super) const ALL: &[Explanation] = &[
                  runtime.render(&mut encoder, &frame, Target::View(&view))?;\n",
             ),
             not_runnable: Some("runner/examples/host_gbuffer.rs gives every input before its frame"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0608",
+        meaning: "A Bevy camera is drawn by a style that reads an input the camera does not \
+            produce. bevy_mod_npr gives a style over Bevy's frame the camera's image as `color`, \
+            `DepthPrepass`'s texture as `depth`, `NormalPrepass`'s as `normal` and \
+            `MotionVectorPrepass`'s as `motion`; Bevy renders no `id` or free-form image. The \
+            camera shows what Bevy drew, and the problem is logged once, until the component \
+            is added: the style then draws from the next frame on, without a restart.",
+        wrong: Example {
+            host_rust: Some(
+                "// ink_over.npr reads `depth_in` and `normal_in`:\n\
+                 let style = NprStyle(assets.load(\"ink_over.npr\"));\n\
+                 commands.spawn((Camera3d::default(), Msaa::Off, DepthPrepass, style)); // E0608: no NormalPrepass\n",
+            ),
+            not_runnable: Some("bevy_mod_npr/tests/headless/post.rs removes NormalPrepass from an inked camera"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let style = NprStyle(assets.load(\"ink_over.npr\"));\n\
+                 commands.spawn((Camera3d::default(), Msaa::Off, DepthPrepass, NormalPrepass, style));\n",
+            ),
+            not_runnable: Some("bevy_mod_npr/tests/headless/post.rs inks Bevy's PBR frame"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0609",
+        meaning: "A Bevy camera is drawn by a style over Bevy's frame, and the camera is set up \
+            so that the style cannot read it: with MSAA on, Bevy's prepass textures hold several \
+            samples per pixel, which an input is not read from; with a viewport, the camera \
+            draws a part of a target that a style over inputs would draw whole. Give the camera \
+            `Msaa::Off` (the style smooths its own lines) and its own render target. The camera \
+            shows what Bevy drew until then.",
+        wrong: Example {
+            host_rust: Some(
+                "// Bevy's default is 4 samples per pixel:\n\
+                 let style = NprStyle(assets.load(\"ink_over.npr\"));\n\
+                 commands.spawn((Camera3d::default(), DepthPrepass, NormalPrepass, style)); // E0609\n",
+            ),
+            not_runnable: Some("bevy_mod_npr/tests/headless/post.rs turns MSAA on under an inked camera"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            host_rust: Some(
+                "let style = NprStyle(assets.load(\"ink_over.npr\"));\n\
+                 commands.spawn((Camera3d::default(), Msaa::Off, DepthPrepass, NormalPrepass, style));\n",
+            ),
+            not_runnable: Some("bevy_mod_npr/tests/headless/post.rs inks Bevy's PBR frame"),
             ..EXAMPLE
         },
     },

@@ -60,13 +60,26 @@ pub enum NormalConvention {
     View,
 }
 
+/// How a source measures motion vectors (both: from the previous frame
+/// to this one, +x right, +y down).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotionConvention {
+    /// In pixels: the language's convention, taken as it is.
+    Pixels,
+    /// In fractions of the image's width and height, as Bevy's
+    /// `MotionVectorPrepass` writes them (the change of the UV, current
+    /// minus previous): scaled by the image's size.
+    ScreenFraction,
+}
+
 /// What a source says of one input.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SourceConvention {
     Color(ColorEncoding),
     Depth(DepthConvention),
     Normal(NormalConvention),
-    /// Ids, motion and free-form images: taken as they are.
+    Motion(MotionConvention),
+    /// Ids, motion in pixels and free-form images: taken as they are.
     AsIs,
 }
 
@@ -88,7 +101,7 @@ pub struct Mismatch {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Conversion {
     /// 0 as it is, 1 colour, 2 depth as a view distance, 3 reverse-Z
-    /// depth, 4 normals.
+    /// depth, 4 normals, 5 motion in fractions of the image.
     pub(crate) mode: u32,
     /// Colour: 0 kept, 1 decoded from sRGB, 2 encoded to sRGB.
     pub(crate) colour: u32,
@@ -106,6 +119,7 @@ pub fn fits(kind: InputKind, source: SourceConvention) -> Result<(), Mismatch> {
         (InputKind::Color { .. }, SourceConvention::Color(_))
         | (InputKind::Depth, SourceConvention::Depth(_))
         | (InputKind::Normal { .. }, SourceConvention::Normal(_))
+        | (InputKind::Motion, SourceConvention::Motion(_))
         | (_, SourceConvention::AsIs) => Ok(()),
         (kind, source) => Err(Mismatch {
             message: format!(
@@ -194,6 +208,9 @@ impl Conversion {
                     encoded_normals: unorm,
                     ..Self::AS_IS
                 }
+            }
+            (InputKind::Motion, SourceConvention::Motion(MotionConvention::ScreenFraction)) => {
+                Conversion { mode: 5, ..Self::AS_IS }
             }
             _ => Self::AS_IS,
         })
@@ -310,6 +327,21 @@ mod tests {
         );
         let behind = check_values("depth", "f", InputKind::Depth, src, &one([-1.0, 0.0, 0.0, 1.0])).unwrap_err();
         assert!(behind.message.contains("behind the camera"), "{}", behind.message);
+    }
+
+    #[test]
+    fn motion_in_fractions_of_the_image_is_scaled_and_motion_in_pixels_kept() {
+        let fraction = SourceConvention::Motion(MotionConvention::ScreenFraction);
+        assert_eq!(
+            Conversion::resolve(InputKind::Motion, fraction, None, false).map(|c| c.mode),
+            Ok(5)
+        );
+        let pixels = SourceConvention::Motion(MotionConvention::Pixels);
+        assert_eq!(
+            Conversion::resolve(InputKind::Motion, pixels, None, false),
+            Ok(Conversion::AS_IS)
+        );
+        assert!(Conversion::resolve(InputKind::Depth, fraction, None, false).is_err());
     }
 
     #[test]

@@ -17,7 +17,8 @@ use crate::image_level::Level;
 pub const INPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The draw. `c.mode.x`: 0 as it is, 1 colour, 2 depth as a view
-/// distance with a background sentinel, 3 reverse-Z depth, 4 normals;
+/// distance with a background sentinel, 3 reverse-Z depth, 4 normals, 5
+/// motion in fractions of the image (scaled to pixels by its size);
 /// `c.mode.y`: colour 1 decodes sRGB, 2 encodes it; `c.mode.z`: normals
 /// stored as n·0.5 + 0.5 (a normalized-integer texture); `c.param.x`: the
 /// depth sentinel or near plane; `c.m0..m2`: the normals' matrix columns.
@@ -81,6 +82,10 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
                 n = n * 2.0 - 1.0;
             }
             return vec4<f32>(mat3x3<f32>(c.m0.xyz, c.m1.xyz, c.m2.xyz) * n, 1.0);
+        }
+        case 5u: {
+            // A change of UV (Bevy's motion vectors) in pixels of this image.
+            return vec4<f32>(v.xy * vec2<f32>(textureDimensions(source)), 0.0, 1.0);
         }
         default: {
             return v;

@@ -15,7 +15,9 @@ pub mod convert;
 pub mod files;
 pub mod gpu;
 
-pub use convert::{prepare, ColorEncoding, Conversion, DepthConvention, Mismatch, NormalConvention, SourceConvention};
+pub use convert::{
+    prepare, ColorEncoding, Conversion, DepthConvention, Mismatch, MotionConvention, NormalConvention, SourceConvention,
+};
 
 use crate::image_level::Level;
 use std::collections::BTreeMap;
