@@ -37,16 +37,21 @@ use npr_runner::embed::{Frame, Instance, StyleRuntime, Target};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
+/// What `draw_npr` reads of the view: its target, its npr camera, how it
+/// composites, and what a style over Bevy's frame reads (camera, MSAA,
+/// prepass textures).
+type NprView<'a> = (
+    Entity,
+    &'a ViewTarget,
+    &'a ExtractedNprCamera,
+    Option<&'a ResolvedCompositingSpace>,
+    (&'a ExtractedCamera, &'a Msaa, Option<&'a ViewPrepassTextures>),
+);
+
 /// The `Core3d` system: draws the current view with its style.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_npr(
-    view: ViewQuery<(
-        Entity,
-        &ViewTarget,
-        &ExtractedNprCamera,
-        Option<&ResolvedCompositingSpace>,
-        (&ExtractedCamera, &Msaa, Option<&ViewPrepassTextures>),
-    )>,
+    view: ViewQuery<NprView>,
     scene: Res<ExtractedNprScene>,
     mut runtimes: ResMut<NprRuntimes>,
     device: Res<RenderDevice>,
