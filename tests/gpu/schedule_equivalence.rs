@@ -54,6 +54,7 @@ const EXAMPLES: &[(&str, &str)] = &[
     ("rounded_shadows", "spot"),
     ("sobel_outline", "spheres"),
     ("stipple", "cows"),
+    ("technical_lines", "technical"),
     ("toon", "spot"),
     ("toon_ramp", "spot"),
     ("wavy_lines", "fandisk"),
