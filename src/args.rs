@@ -1,56 +1,18 @@
 //! Checks of command-line values that clap's types cannot express: an fps
-//! above 0, a finite time, an eye the scene has, frame counts and sizes under
-//! `npr_diag::limits`, and `texgen`'s ranges. Each failure is a diagnostic with a
+//! above 0, a finite time, an eye the scene has, and `texgen`'s ranges
+//! (sizes and frame counts are `npr_diag::sizes`, shared with test files). Each failure is a diagnostic with a
 //! code (E0502 for a value outside its domain, E0404 for a limit), which the
 //! CLI prints and exits 1 with, before any work starts.
 //!
-//! The syntax of `--size WxH` and `--frames A..B` is checked by clap's value
-//! parsers here too; what they refuse is a usage error (E0501, `usage.rs`).
+//! The syntax of `--size WxH` is checked by clap's value parser
+//! (`npr_diag::sizes::parse_size`); what it refuses is a usage error (E0501,
+//! `usage.rs`).
 
 use npr_diag::codes;
-use npr_diag::limits::{MAX_FRAMES, MAX_OUTPUT_SIZE};
 use npr_diag::Diagnostic;
-
-/// `--size WIDTHxHEIGHT`.
-pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 512x512")?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
-    if w == 0 || h == 0 {
-        return Err("width and height must be at least 1".into());
-    }
-    Ok((w, h))
-}
-
-/// `--frames A..B` (B exclusive, after A).
-pub fn parse_frames(s: &str) -> Result<(u32, u32), String> {
-    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 0..48")?;
-    let a: u32 = a.trim().parse().map_err(|_| format!("bad frame `{a}`"))?;
-    let b: u32 = b.trim().parse().map_err(|_| format!("bad frame `{b}`"))?;
-    if b <= a {
-        return Err(format!(
-            "empty frame range {a}..{b}: the end is exclusive, so it must be after the start"
-        ));
-    }
-    Ok((a, b))
-}
 
 fn bad_value(message: String, help: &str) -> Diagnostic {
     Diagnostic::error(codes::BAD_ARGUMENT_VALUE, message).with_help(help)
-}
-
-/// An image size (`--size`, or one of `bench contours --sizes`) under the limit.
-pub fn check_size((w, h): (u32, u32)) -> Result<(), Diagnostic> {
-    if w > MAX_OUTPUT_SIZE || h > MAX_OUTPUT_SIZE {
-        return Err(Diagnostic::error(
-            codes::LIMIT_EXCEEDED,
-            format!("--size {w}x{h} is larger than {MAX_OUTPUT_SIZE}x{MAX_OUTPUT_SIZE}"),
-        )
-        .with_help(format!(
-            "an image is at most {MAX_OUTPUT_SIZE} pixels wide and tall (the 2D texture limit)"
-        )));
-    }
-    Ok(())
 }
 
 /// `--fps` and `--time` of `npr render`.
@@ -65,21 +27,6 @@ pub fn check_time(time: f64, fps: f64) -> Result<(), Diagnostic> {
         return Err(bad_value(
             format!("--time {time}: the time must be a finite number of seconds"),
             "times before 0 are allowed and clamp to frame 0",
-        ));
-    }
-    Ok(())
-}
-
-/// How many frames a render will run: `--frames A..B`, or for a
-/// path-dependent style at `--time t`, the replay of frames 0..=t·fps.
-pub fn check_frame_count(frames: usize) -> Result<(), Diagnostic> {
-    if frames > MAX_FRAMES as usize {
-        return Err(Diagnostic::error(
-            codes::LIMIT_EXCEEDED,
-            format!("this render would run {frames} frames, more than the limit of {MAX_FRAMES}"),
-        )
-        .with_help(
-            "render a shorter --frames range; a style that reads `previous(...)` or keeps `state` replays from frame 0",
         ));
     }
     Ok(())
@@ -185,13 +132,5 @@ mod tests {
         assert!(check_time(-1.0, 24.0).is_ok());
         assert!(check_eye(0, false).is_ok() && check_eye(1, true).is_ok());
         assert!(check_eye(1, false).is_err() && check_eye(2, true).is_err());
-        assert_eq!(check_size((16385, 1)).unwrap_err().code, codes::LIMIT_EXCEEDED);
-        assert!(check_size((16384, 16384)).is_ok());
-        assert!(check_frame_count(MAX_FRAMES as usize).is_ok());
-        assert_eq!(
-            check_frame_count(MAX_FRAMES as usize + 1).unwrap_err().code,
-            codes::LIMIT_EXCEEDED
-        );
-        assert!(parse_frames("5..2").is_err() && parse_frames("3..3").is_err() && parse_frames("0..1").is_ok());
     }
 }

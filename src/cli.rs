@@ -4,10 +4,10 @@
 //! table, read top to bottom as `npr --help` prints it; splitting it by
 //! command would scatter the shared argument groups.
 
-use crate::args::parse_size;
 use crate::path_args::PathArgs;
 use crate::printer::MessageFormat;
 use clap::{Parser, Subcommand};
+use npr_diag::sizes::parse_size;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -273,7 +273,7 @@ pub struct TestArgs {
     pub bless: bool,
     /// How to report the run.
     #[arg(long, value_enum, default_value = "human")]
-    pub format: crate::style_tests::report::ReportFormat,
+    pub format: npr_test::report::ReportFormat,
     /// Write the report to FILE instead of stdout.
     #[arg(short = 'o', long = "report", value_name = "FILE")]
     pub report: Option<PathBuf>,

@@ -18,8 +18,6 @@ mod printer;
 mod reference;
 mod set_params;
 mod studio;
-mod style_tests;
-mod texture_check;
 mod usage;
 mod video;
 mod view;

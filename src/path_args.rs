@@ -2,7 +2,7 @@
 //! style has, and their paths policy
 //! (`npr_diag::paths::PathPolicy`, docs/PATHS.md) for a style and its scene.
 
-use npr_diag::paths::PathPolicy;
+use npr_diag::paths::{PathChoice, PathPolicy};
 use npr_diag::Diagnostic;
 use std::path::{Path, PathBuf};
 
@@ -22,18 +22,17 @@ pub struct PathArgs {
 }
 
 impl PathArgs {
-    /// The policy for `style` (and `scene`, when there is one): `--root`,
-    /// or the deepest directory holding both; E0502 for a `--root` or
-    /// `--allow-path` that is not a directory.
+    /// The choice as the libraries take it (`npr_diag::paths::PathChoice`).
+    pub fn choice(&self) -> PathChoice {
+        PathChoice {
+            root: self.root.clone(),
+            allowed: self.allow_path.clone(),
+        }
+    }
+
+    /// The policy for `style` (and `scene`, when there is one):
+    /// [`PathChoice::policy`].
     pub fn policy(&self, style: &Path, scene: Option<&Path>) -> Result<PathPolicy, Diagnostic> {
-        let root = match &self.root {
-            Some(r) => r.clone(),
-            None => {
-                let mut files = vec![style];
-                files.extend(scene);
-                PathPolicy::default_root(&files)
-            }
-        };
-        PathPolicy::new(&root, &self.allow_path)
+        self.choice().policy(style, scene)
     }
 }

@@ -1,40 +1,15 @@
-//! `--set name=value`: a parameter's value given on the command line (or by
-//! a studio control), read here into a [`Literal`] the way the language
-//! writes a default: `5`, `2px`, `50%`, `50mm`, `30deg`, `#ff8800`, `cubic`,
-//! `true`, `0.2..0.6`, `1, 0.5` (a vector), `0:#000000, 1:#ffffff` (a
-//! gradient's stops).
-//!
-//! Each argument is added to the [`SourceMap`] as a file named `--set`, and
-//! the settings go to the compiler, which types them against the style's
-//! params after typecheck in its one compile (`npr_compiler::front::
-//! param_settings`, the same function that types a filter's arguments):
-//! an unknown name with "did you mean" (E0101), a value of the wrong type
-//! (E0201) or unit (E0202), outside the declared range (E0203), and a
-//! per-object parameter, which a single value cannot set (E0502), each
-//! pointing into the `--set` argument itself.
+//! `--set name=value` on the command line: clap's check of its shape, and
+//! the one-shot commands' compile with the settings
+//! (`npr_compiler::set_values`, which reads and types them), diagnostics
+//! printed.
 
 use crate::printer::Printer;
-use npr_compiler::ir::{ParamSetting, SettingOrigin};
-use npr_compiler::{CompileError, CompileOptions, Compiled};
-use npr_diag::{SourceMap, Span};
+use npr_compiler::set_values::compile_with_sets;
+use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::SourceMap;
 use std::path::Path;
 
-/// Compile `style` once, with `sets` (`name=value`, in order: a later one
-/// of a name wins) typed against its params.
-pub fn compile_with_sets(
-    style: &Path,
-    sets: &[String],
-    sources: &mut SourceMap,
-    opts: &CompileOptions,
-) -> Result<Compiled, CompileError> {
-    let opts = CompileOptions {
-        settings: settings(sets, sources),
-        ..opts.clone()
-    };
-    npr_compiler::compile_file(style, sources, &opts)
-}
-
-/// [`compile_with_sets`] for the one-shot commands: diagnostics printed, the
+/// `npr_compiler::set_values::compile_with_sets` for the one-shot commands: diagnostics printed, the
 /// error is the exit code.
 pub(crate) fn compile(
     style: &Path,
@@ -55,35 +30,13 @@ pub fn parse_set_arg(s: &str) -> Result<String, String> {
     }
 }
 
-/// Every `name=value` as a setting, its text added to `sources` as a file
-/// named `--set`, so that the compiler's diagnostics point into it.
-pub fn settings(sets: &[String], sources: &mut SourceMap) -> Vec<ParamSetting> {
-    sets.iter()
-        .map(|arg| {
-            let file = sources.add("--set", arg.clone());
-            let (name, value) = arg.split_once('=').unwrap_or((arg.as_str(), ""));
-            ParamSetting {
-                name: name.trim().to_string(),
-                name_span: Span::new(file, 0, name.len()),
-                value: read_literal(value.trim()),
-                value_span: Span::new(file, name.len() + 1, arg.len()),
-                origin: SettingOrigin::CommandLine,
-            }
-        })
-        .collect()
-}
-
-/// `text` (one `--set` value, trimmed) as the literal it writes: the
-/// ABI's reader, which a host's `StyleRuntime::set_param` uses too.
-pub use npr_abi::param_literal::read_literal;
-
 #[cfg(test)]
 mod tests {
-    use super::*;
     use npr_abi::manifest::{ParamBinding, ParamManifest};
+    use npr_abi::param_literal::read_literal;
     use npr_abi::param_value::{format_literal, type_value, ParamShape};
     use npr_abi::ParamOverride;
-    use npr_compiler::ir::Literal;
+    use npr_compiler::ir::{Literal, SettingOrigin};
     use npr_diag::codes;
 
     fn param(ty: &str, unit: &str, default: Vec<f64>, range: Option<(f64, f64)>) -> ParamShape {

@@ -26,7 +26,7 @@ pub struct WatchArgs {
 
 /// Run until interrupted; returns only when watching itself fails.
 pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
-    if let Err(d) = crate::args::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
+    if let Err(d) = npr_diag::sizes::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
         return printer.fail(d);
     }
     let mut gpu = match crate::printer::headless_gpu(printer) {

@@ -16,6 +16,7 @@ pub mod mid;
 pub mod pipeline;
 pub mod report;
 pub mod schedule;
+pub mod set_values;
 
 /// The loading stage alone, for tools that need a style's declarations
 /// without compiling it (the language server): the document and every

@@ -15,8 +15,10 @@ pub mod files;
 pub mod limits;
 pub mod panics;
 pub mod paths;
+pub mod sizes;
 pub mod span;
 pub mod text;
+pub mod writes;
 
 pub use diagnostic::{codes, Diagnostic, Label, Severity};
 pub use span::{FileId, SourceMap, Span};

@@ -231,6 +231,36 @@ fn lexically_inside(path: &Path, root: &Path) -> bool {
             .is_some_and(|p| p.starts_with(root))
 }
 
+/// The paths a user chose for a command (`--root`, `--allow-path`) before
+/// the style and the scene are known; [`PathChoice::policy`] makes the
+/// policy once they are. The CLI's arguments and a test file's runner
+/// (`npr-test`) both hold one.
+#[derive(Debug, Clone, Default)]
+pub struct PathChoice {
+    /// Every file must be inside this directory; `None`: the deepest
+    /// directory holding both the style and the scene.
+    pub root: Option<PathBuf>,
+    /// Directories also admitted, even by an absolute path or outside the root.
+    pub allowed: Vec<PathBuf>,
+}
+
+impl PathChoice {
+    /// The policy for `style` (and `scene`, when there is one): the chosen
+    /// root, or the deepest directory holding both; E0502 for a root or an
+    /// allowed path that is not a directory.
+    pub fn policy(&self, style: &Path, scene: Option<&Path>) -> Result<PathPolicy, Diagnostic> {
+        let root = match &self.root {
+            Some(r) => r.clone(),
+            None => {
+                let mut files = vec![style];
+                files.extend(scene);
+                PathPolicy::default_root(&files)
+            }
+        };
+        PathPolicy::new(&root, &self.allowed)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -18,6 +18,7 @@
 //! - [`silhouettes_gpu`]: silhouette classification in a compute pass, timed
 //!   against the CPU's by `npr bench lines` (not used by the renderer).
 //! - [`bench_ops`]: `npr bench ops`, the MetaTexture variants and their error models.
+//! - [`plot`]: the benchmarks' figures as SVG (`--plot`).
 //! - [`bench_patterns`]: `npr bench patterns`, the pattern tracker's cost and its error against f64.
 //! - [`bench_styles`]: `npr bench styles`, whole styles' frame cost against a baseline style.
 //! - [`patterns_f64`]: the dynamic 2D pattern tracker in f64 (tests, `npr bench patterns`).
@@ -40,6 +41,7 @@ pub mod contours;
 pub mod fit;
 pub mod harness;
 pub mod patterns_f64;
+pub mod plot;
 pub mod silhouettes_gpu;
 pub mod sliding;
 pub mod thread_cpu;

@@ -23,7 +23,7 @@ pub fn run(sizes: &[u32], size: (u32, u32), frames: u32, plot: Option<&Path>, pr
     // `examples/` here, or the copy built into npr (`crate::bundled`).
     let examples = match crate::bundled::resolve(Path::new("examples")) {
         Ok(e) => e,
-        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+        Err(e) => return printer.fail(npr_diag::writes::cannot_write(&std::env::temp_dir(), e)),
     };
     let mut sources = SourceMap::new();
     let mut filters = Vec::new();

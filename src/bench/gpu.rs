@@ -116,7 +116,7 @@ pub(super) fn contours(sizes: &[u32], frames: u32, plot: Option<&Path>, printer:
         ));
     }
     for s in sizes {
-        if let Err(code) = printer.check(crate::args::check_size((*s, *s))) {
+        if let Err(code) = printer.check(npr_diag::sizes::check_size((*s, *s))) {
             return code;
         }
     }

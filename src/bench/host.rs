@@ -27,7 +27,7 @@ pub fn run(style: &Path, objects: &[usize], size: u32, (frames, block): (u32, u3
             "--block 0: each program runs at least one frame per turn",
         ));
     }
-    if let Err(code) = printer.check(crate::args::check_size((size, size))) {
+    if let Err(code) = printer.check(npr_diag::sizes::check_size((size, size))) {
         return code;
     }
     let mut sources = SourceMap::new();

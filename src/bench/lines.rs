@@ -15,7 +15,7 @@ pub fn run(segments: &[u32], size: u32, frames: u32, plot: Option<&Path>, printe
             format!("--segments {bad}: a sphere here has 4..=1024 segments"),
         ));
     }
-    if let Err(code) = printer.check(crate::args::check_size((size, size))) {
+    if let Err(code) = printer.check(npr_diag::sizes::check_size((size, size))) {
         return code;
     }
     let mut sources = SourceMap::new();

@@ -8,7 +8,6 @@ mod host;
 mod http_client;
 mod lines;
 mod patterns;
-pub mod plot;
 mod studio;
 
 use crate::cli::BenchCommand;
@@ -17,6 +16,7 @@ use crate::printer::{compile, headless_gpu, load_scene, Printer};
 use npr_compiler::schedule::Schedule;
 use npr_compiler::{CompileError, CompileOptions, Compiled};
 use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_lab::plot;
 use npr_runner::{Gpu, StyleProgram};
 use std::path::Path;
 
@@ -33,7 +33,7 @@ fn bundled_paths(mut cmd: BenchCommand) -> std::io::Result<BenchCommand> {
 pub fn run(cmd: BenchCommand, printer: &Printer) -> i32 {
     let cmd = match bundled_paths(cmd) {
         Ok(c) => c,
-        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+        Err(e) => return printer.fail(npr_diag::writes::cannot_write(&std::env::temp_dir(), e)),
     };
     // A bad `--plot` path is refused before minutes of measuring.
     if let Some(path) = cmd.plot() {
@@ -223,11 +223,28 @@ impl BenchCommand {
 /// Writes `figure` when `--plot` was given: the exit code of the command.
 fn plotted(figure: impl FnOnce() -> plot::Figure, path: Option<&Path>, printer: &Printer) -> i32 {
     match path {
-        Some(path) => match plot::write(&figure(), path, printer) {
+        Some(path) => match write_plot(&figure(), path, printer) {
             Ok(()) => EXIT_OK,
             Err(code) => code,
         },
         None => EXIT_OK,
+    }
+}
+
+/// Writes a `--plot` figure and says where, or prints why not: a figure
+/// that cannot be drawn is npr's failure (exit 2), a path that cannot be
+/// written the user's (exit 1).
+pub(crate) fn write_plot(figure: &plot::Figure, path: &Path, printer: &Printer) -> Result<(), i32> {
+    match plot::write(figure, path) {
+        Ok(()) => {
+            eprintln!("plot written to {}", path.display());
+            Ok(())
+        }
+        Err(d) if d.code == codes::INTERNAL => {
+            printer.diagnostics(&[d], &SourceMap::new());
+            Err(EXIT_INTERNAL)
+        }
+        Err(d) => Err(printer.fail(d)),
     }
 }
 

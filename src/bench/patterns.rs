@@ -74,7 +74,7 @@ pub fn run(samples: &[u32], objects: &[usize], frames: u32, plot: Option<&Path>,
     // `examples/scenes` here, or the copy built into npr (`crate::bundled`).
     let scenes_dir = match crate::bundled::resolve(Path::new("examples/scenes")) {
         Ok(d) => d,
-        Err(e) => return printer.fail(crate::printer::cannot_write(&std::env::temp_dir(), e)),
+        Err(e) => return printer.fail(npr_diag::writes::cannot_write(&std::env::temp_dir(), e)),
     };
     match npr_lab::sliding::run(&gpu, crate::bundled::TRACKER, compile, &scenes_dir, |m| {
         eprintln!("{m}")

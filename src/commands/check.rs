@@ -17,7 +17,8 @@ pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
     match crate::set_params::compile(&args.style, &args.set, &mut sources, &opts, printer) {
         Ok(c) => {
             printer.diagnostics(&c.warnings, &sources);
-            let texture_errors = crate::texture_check::texture_file_errors(&c, npr_runner::texture_file::Depth::Decode);
+            let texture_errors =
+                npr_test::texture_files::texture_file_errors(&c, npr_runner::texture_file::Depth::Decode);
             if !texture_errors.is_empty() {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;

@@ -108,6 +108,6 @@ impl Checkpoints {
             state: r.save_state()?,
         };
         let path = path_of(&self.dir, next);
-        checkpoint::write(&path, &c).map_err(|e| RunError::User(vec![crate::printer::cannot_write(&path, e)]))
+        checkpoint::write(&path, &c).map_err(|e| RunError::User(vec![npr_diag::writes::cannot_write(&path, e)]))
     }
 }

@@ -4,8 +4,9 @@
 
 use crate::cli::CompileArgs;
 use crate::exit::EXIT_OK;
-use crate::printer::{cannot_write, check_options, Printer};
+use crate::printer::{check_options, Printer};
 use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,8 @@
 //! atomically in one sync.
 
 use crate::exit::EXIT_OK;
-use crate::printer::{cannot_write, Printer};
+use crate::printer::Printer;
+use npr_diag::writes::cannot_write;
 use std::path::Path;
 
 /// `--performance`'s default; when it is not here, the copy built into npr.

@@ -8,10 +8,9 @@
 //! whose encoder is missing (E0511), so a
 //! long render never fails at its end for an output it could not write.
 
-use crate::commands::dump::read_all_targets;
 use crate::exit::EXIT_USER;
 use crate::frame_pattern::FramePattern;
-use crate::printer::cannot_write;
+use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_runner::scene::Scene;
 use npr_runner::{FrameSpec, Renderer, RunError};
@@ -163,7 +162,7 @@ impl FrameSink {
                 } else {
                     out.clone()
                 };
-                let images = read_all_targets(r, scene, spec)?;
+                let images = r.read_all_targets(scene, spec)?;
                 npr_runner::exr_layers::write_layers(&images, &path).map_err(|e| io(e, &path))?;
                 Ok((!*sequence).then_some((path, spec.width, spec.height)))
             }

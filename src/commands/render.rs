@@ -4,12 +4,13 @@
 
 use crate::cli::RenderArgs;
 use crate::commands::checkpoints::Checkpoints;
-use crate::commands::dump::{dump_all_targets, read_all_targets};
+use crate::commands::dump::dump_all_targets;
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::commands::render_inputs::{self, InputArgs, InputFrames};
 use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
-use crate::printer::{cannot_write, load_scene_in, style_gpu, Printer};
+use crate::printer::{load_scene_in, style_gpu, Printer};
 use npr_compiler::CompileOptions;
+use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::schedule::FrameRequest;
 use npr_runner::{FrameSpec, Gpu, Renderer, RunError, StyleProgram};
@@ -63,7 +64,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         Err(code) => return code,
     };
     if let Err(code) = printer
-        .check(size.map_or(Ok(()), crate::args::check_size))
+        .check(size.map_or(Ok(()), npr_diag::sizes::check_size))
         .and_then(|()| printer.check(crate::args::check_time(time, fps)))
     {
         return code;
@@ -139,7 +140,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
                 Err(code) => return code,
             };
             printer.diagnostics(&c.warnings, &sources);
-            let texture_errors = crate::texture_check::texture_file_errors(&c, npr_runner::texture_file::Depth::Header);
+            let texture_errors = npr_test::texture_files::texture_file_errors(&c, npr_runner::texture_file::Depth::Header);
             if !texture_errors.is_empty() {
                 printer.diagnostics(&texture_errors, &sources);
                 return EXIT_USER;
@@ -173,7 +174,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
         None => FrameRequest::At { time_s: time },
     };
     let count = npr_runner::schedule::frame_count(request, fps, program.manifest.is_path_dependent());
-    if let Err(code) = printer.check(crate::args::check_frame_count(count as usize)) {
+    if let Err(code) = printer.check(npr_diag::sizes::check_frame_count(count as usize)) {
         return code;
     }
     // Host inputs, read and converted (those of the first frame to render,
@@ -371,7 +372,7 @@ pub(crate) fn render(
                     frame: last.frame,
                     eye,
                 };
-                read_all_targets(&mut r, scene, &spec)?
+                r.read_all_targets(scene, &spec)?
             }
             None => dump_all_targets(&mut r, scene, width, height, time, eye)?,
         };

@@ -6,16 +6,17 @@
 
 use crate::cli::TestArgs;
 use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
-use crate::printer::{cannot_write, headless_gpu, Printer};
-use crate::style_tests::bench;
-use crate::style_tests::declare::{self, TestDecl, TestFile};
-use crate::style_tests::outcome::{Settings, Status};
-use crate::style_tests::report::{self, ReportFormat, RunReport};
-use crate::style_tests::run;
-use crate::style_tests::select;
-use crate::style_tests::sweep;
-use crate::style_tests::sweep::cases::{self, Case};
+use crate::printer::{headless_gpu, Printer};
+use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic};
+use npr_test::bench;
+use npr_test::declare::{self, TestDecl, TestFile};
+use npr_test::outcome::{Settings, Status};
+use npr_test::report::{self, ReportFormat, RunReport};
+use npr_test::run;
+use npr_test::select;
+use npr_test::sweep;
+use npr_test::sweep::cases::{self, Case};
 use std::time::Instant;
 
 /// One line of the run: a declared test, or a style's sweep over its cases.
@@ -186,7 +187,7 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
 /// table (and draw it with `--plot`). Exit 1 on bad input, 2 on npr's.
 fn bench(args: &TestArgs, jobs: &[Job], selected: &[usize], printer: &Printer) -> i32 {
     if let Some(plot) = &args.plot {
-        if let Err(d) = crate::bench::plot::check_path(plot) {
+        if let Err(d) = npr_lab::plot::check_path(plot) {
             return printer.fail(d);
         }
     }
@@ -221,7 +222,7 @@ fn bench(args: &TestArgs, jobs: &[Job], selected: &[usize], printer: &Printer) -
     print!("{}", bench::table(&rows));
     if let Some(plot) = &args.plot {
         let subtitle = format!("{}, one run", gpu.adapter_info.name);
-        if let Err(code) = crate::bench::plot::write(&bench::figure(&rows, &subtitle), plot, printer) {
+        if let Err(code) = crate::bench::write_plot(&bench::figure(&rows, &subtitle), plot, printer) {
             return code;
         }
     }

@@ -3,7 +3,8 @@
 
 use crate::cli::TexgenArgs;
 use crate::exit::EXIT_OK;
-use crate::printer::{cannot_write, Printer};
+use crate::printer::Printer;
+use npr_diag::writes::cannot_write;
 use std::path::Path;
 
 pub fn run(args: TexgenArgs, printer: &Printer) -> i32 {

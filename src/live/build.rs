@@ -6,7 +6,6 @@
 //! Nothing here prints: `npr watch` prints the diagnostics, `npr studio`
 //! sends them to the page.
 
-use crate::set_params;
 use npr_compiler::{CompileError, CompileOptions, Compiled};
 use npr_diag::{Diagnostic, SourceMap};
 use npr_runner::scene::Scene;
@@ -78,7 +77,7 @@ pub fn build(inputs: &Inputs, controls: &[String]) -> Result<Built, Failed> {
         ..Default::default()
     };
     let sets: Vec<String> = inputs.sets.iter().chain(controls).cloned().collect();
-    match set_params::compile_with_sets(&inputs.style, &sets, &mut sources, &opts) {
+    match npr_compiler::set_values::compile_with_sets(&inputs.style, &sets, &mut sources, &opts) {
         Ok(compiled) => Ok(Built {
             compiled,
             scene,

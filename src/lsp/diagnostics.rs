@@ -27,7 +27,7 @@ pub fn check(path: &Path, text: &str) -> Vec<Diagnostic> {
     let found = match npr_compiler::compile_source(&name, text, dir, &mut sources, &options) {
         Ok(c) => {
             let mut found = c.warnings.clone();
-            found.extend(crate::texture_check::texture_file_errors(
+            found.extend(npr_test::texture_files::texture_file_errors(
                 &c,
                 npr_runner::texture_file::Depth::Header,
             ));

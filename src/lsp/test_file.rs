@@ -7,10 +7,10 @@
 //! document and are not repeated here; the scene is not loaded (a test's
 //! meshes may be large), so what depends on it is left to `npr test`.
 
-use crate::style_tests::declare;
-use crate::style_tests::run::param_settings;
 use lsp_types::Diagnostic;
 use npr_compiler::{CompileError, CompileOptions};
+use npr_test::declare;
+use npr_test::run::param_settings;
 use std::path::Path;
 
 /// Whether `path` is a style's test file.

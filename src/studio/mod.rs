@@ -36,7 +36,7 @@ pub struct StudioArgs {
 /// Bind, print the address, and serve until interrupted.
 pub fn run(args: StudioArgs, printer: &Printer) -> i32 {
     malloc::single_arena();
-    if let Err(d) = crate::args::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
+    if let Err(d) = npr_diag::sizes::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
         return printer.fail(d);
     }
     let ip: IpAddr = match args.host.parse() {

@@ -22,7 +22,6 @@ use super::state;
 use crate::live::build::{self, Built, Inputs};
 use crate::live::guard;
 use crate::live::watcher::FileWatcher;
-use crate::set_params;
 use npr_abi::manifest::ParamBinding;
 use npr_abi::param_value::{format_literal, type_value, ParamShape};
 use npr_abi::ParamOverride;
@@ -282,7 +281,7 @@ impl Studio {
             return None;
         };
         let literal = literal.trim();
-        let value = set_params::read_literal(literal);
+        let value = npr_abi::param_literal::read_literal(literal);
         match type_value(
             &ParamShape::of_manifest(&param),
             &value,
@@ -528,7 +527,7 @@ fn render_frame(
             None
         }
     };
-    let images = crate::commands::dump::read_all_targets(&mut s.renderer, scene, &spec)?;
+    let images = s.renderer.read_all_targets(scene, &spec)?;
     Ok((images, times))
 }
 

@@ -46,7 +46,7 @@ fn no_window(e: String) -> Diagnostic {
 
 pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
     if let Err(code) = printer
-        .check(crate::args::check_size(args.size))
+        .check(npr_diag::sizes::check_size(args.size))
         .and_then(|()| printer.check(crate::args::check_time(args.time, args.fps)))
     {
         return code;

@@ -121,7 +121,15 @@ fn the_runtime_links_no_compiler_stdlib_parser_or_benchmarks() {
     assert_no_edge(
         graph,
         "npr-runner",
-        &["npr-compiler", "npr-stdlib", "npr-dsl", "pest", "npr-lab", "npr-cli"],
+        &[
+            "npr-compiler",
+            "npr-stdlib",
+            "npr-dsl",
+            "pest",
+            "npr-lab",
+            "npr-test",
+            "npr-cli",
+        ],
     );
     // The path finder finds what is there: the runner does reach wgpu and abi.
     assert!(path(graph, "npr-runner", "wgpu").is_some() && path(graph, "npr-runner", "npr-abi").is_some());
@@ -161,12 +169,23 @@ fn the_contract_crates_depend_on_no_other_npr_crate() {
 #[test]
 fn the_compiler_does_not_depend_on_the_runtime() {
     let graph = normal_dependency_graph();
-    assert_no_edge(graph, "npr-compiler", &["npr-runner", "npr-lab", "wgpu"]);
+    assert_no_edge(graph, "npr-compiler", &["npr-runner", "npr-lab", "npr-test", "wgpu"]);
     assert_no_edge(
         graph,
         "npr-stdlib",
         &["npr-compiler", "npr-runner", "npr-lab", "npr-dsl", "wgpu"],
     );
+}
+
+#[test]
+fn the_libraries_behind_the_command_line_do_not_depend_on_it() {
+    let graph = normal_dependency_graph();
+    // The binary is a thin front end: what it runs is in libraries a Rust
+    // program can depend on, none of which reaches back into it.
+    for library in ["npr-test", "npr-lab", "npr-web"] {
+        assert_no_edge(graph, library, &["npr-cli"]);
+    }
+    assert!(path(graph, "npr-cli", "npr-test").is_some());
 }
 
 /// The packages `cargo tree` says `package` links with `features`

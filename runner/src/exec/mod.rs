@@ -49,6 +49,7 @@ mod meshes;
 mod objects;
 mod pass;
 mod prepare_lines;
+mod read_all;
 mod render_pass;
 mod resources;
 mod scene_check;

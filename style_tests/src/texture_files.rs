@@ -11,7 +11,7 @@ use npr_diag::Diagnostic;
 /// E0401/E0404 for every texture file that cannot be used, each pointing at
 /// the path in the style; `depth` says how far each file is opened
 /// (`npr_runner::texture_file::Depth`).
-pub(crate) fn texture_file_errors(c: &Compiled, depth: npr_runner::texture_file::Depth) -> Vec<Diagnostic> {
+pub fn texture_file_errors(c: &Compiled, depth: npr_runner::texture_file::Depth) -> Vec<Diagnostic> {
     npr_runner::texture_file::check_files(&c.manifest, depth)
         .into_iter()
         .map(|(i, d)| match c.texture_spans.get(i) {

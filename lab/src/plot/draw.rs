@@ -21,8 +21,8 @@ const LINE: u32 = 17;
 
 /// Text is measured with this font (plotters' `ab_glyph` feature needs one
 /// registered; the SVG itself only names `sans-serif`). DejaVu Sans,
-/// unmodified, under its own licence: `assets/fonts/LICENSE-DejaVu`.
-static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+/// unmodified, under its own licence: `lab/assets/fonts/LICENSE-DejaVu`.
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const FAMILY: &str = "sans-serif";
 
 fn register_font() -> Result<(), String> {

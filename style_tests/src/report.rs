@@ -9,8 +9,9 @@ use std::path::PathBuf;
 /// How many of the slowest tests the summary names.
 const SLOWEST: usize = 3;
 
-/// `--format`.
-#[derive(Copy, Clone, Debug, clap::ValueEnum, PartialEq, Eq)]
+/// `--format` (with the `clap` feature, a `clap::ValueEnum`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum ReportFormat {
     Human,
     Json,

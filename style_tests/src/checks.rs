@@ -120,7 +120,7 @@ pub fn compare(actual: &image::RgbaImage, expected: &image::RgbaImage, golden: &
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::style_tests::declare::{FlipBound, PerPixelBound};
+    use crate::declare::{FlipBound, PerPixelBound};
     use npr_diag::Span;
     use npr_runner::scene::toml_fields::At;
 

@@ -21,13 +21,13 @@ pub mod points;
 use super::checks;
 use super::frames::{self, Frames};
 use super::outcome::{Failure, Outcome, Run, Settings, Status};
-use crate::path_args::PathArgs;
 use cases::Case;
 use npr_abi::manifest::{ParamBinding, ParamManifest};
 use npr_abi::param_value::{type_value, ParamShape, ValueKind};
 use npr_compiler::ir::SettingOrigin;
 use npr_compiler::{CompileError, CompileOptions};
 use npr_diag::codes;
+use npr_diag::paths::PathChoice;
 use npr_diag::{Diagnostic, SourceMap};
 use npr_runner::scene::Scene;
 use points::Combination;
@@ -220,7 +220,7 @@ fn load_cases<'c>(style: &Path, cases: &'c [Case]) -> Result<Vec<(&'c Case, Scen
         .iter()
         .map(|case| {
             let mut sources = SourceMap::new();
-            let loaded = PathArgs::default()
+            let loaded = PathChoice::default()
                 .policy(style, Some(&case.scene))
                 .map_err(|d| vec![d])
                 .and_then(|policy| npr_runner::scene::load_scene_in(&case.scene, &mut sources, Some(&policy)));
@@ -272,7 +272,7 @@ fn params(style: &Path, loaded: &[(&Case, Scene, SourceMap)]) -> Result<Vec<Para
 fn options(style: &Path, case: &Case, scene: &Scene, settings: Vec<npr_compiler::ir::ParamSetting>) -> CompileOptions {
     CompileOptions {
         scene: Some(scene.summary(&case.scene.display().to_string())),
-        paths: PathArgs::default().policy(style, Some(&case.scene)).ok(),
+        paths: PathChoice::default().policy(style, Some(&case.scene)).ok(),
         settings,
         schedule: npr_compiler::schedule::Schedule::Naive,
         ..Default::default()
@@ -345,7 +345,7 @@ fn probe(
 ) -> Probe {
     let mut sources = base.clone();
     let sets: Vec<String> = combination.iter().map(|(n, v)| format!("{n}={v}")).collect();
-    let given = crate::set_params::settings(&sets, &mut sources);
+    let given = npr_compiler::set_values::settings(&sets, &mut sources);
     let compiled = match npr_compiler::compile_file(style, &mut sources, &options(style, case, scene, given)) {
         Ok(c) => c,
         Err(CompileError::User(d)) => return Probe::Error(headline(&d)),
@@ -424,7 +424,7 @@ impl Uniforms {
             let Some(shape) = shapes.iter().find(|s| &s.name == name) else {
                 continue;
             };
-            let literal = crate::set_params::read_literal(text);
+            let literal = npr_abi::param_literal::read_literal(text);
             match type_value(shape, &literal, text, &SettingOrigin::CommandLine) {
                 Ok(o) => {
                     if let Some(p) = r.params_mut().iter_mut().find(|p| &p.name == name) {

@@ -9,9 +9,9 @@ use super::checks;
 use super::declare::{Golden, TestDecl, TestFile, When};
 use super::frames::{non_finite_failures, Frames};
 use super::outcome::{Failure, Outcome, Run, Settings, Status};
-use crate::path_args::PathArgs;
 use npr_compiler::ir::{ParamSetting, SettingOrigin};
 use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::paths::PathChoice;
 use npr_diag::{codes, Diagnostic, SourceMap, Span};
 use npr_runner::scene::toml_fields::At;
 use npr_runner::schedule::FrameRequest;
@@ -83,7 +83,7 @@ pub fn run(file: &TestFile, test: &TestDecl, settings: &Settings) -> Run {
 fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut SourceMap) -> Result<Checked, Stop> {
     let gpu = settings.gpu;
     let scene_path = &test.scene.value;
-    let policy = PathArgs::default()
+    let policy = PathChoice::default()
         .policy(&file.style, Some(scene_path))
         .map_err(|d| Stop::Invalid(vec![d]))?;
     let scene = npr_runner::scene::load_scene_in(scene_path, sources, Some(&policy)).map_err(Stop::Invalid)?;
@@ -121,7 +121,7 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
         ..opts
     };
     let compiled = compile(&file.style, sources, &opts)?;
-    let texture_errors = crate::texture_check::texture_file_errors(&compiled, npr_runner::texture_file::Depth::Header);
+    let texture_errors = crate::texture_files::texture_file_errors(&compiled, npr_runner::texture_file::Depth::Header);
     if !texture_errors.is_empty() {
         return Err(Stop::Invalid(texture_errors));
     }
@@ -134,7 +134,7 @@ fn execute(file: &TestFile, test: &TestDecl, settings: &Settings, sources: &mut 
     };
     let path_dependent = program.manifest.is_path_dependent();
     let count = npr_runner::schedule::frame_count(request, test.fps, path_dependent);
-    crate::args::check_frame_count(count as usize)
+    npr_diag::sizes::check_frame_count(count as usize)
         .map_err(|d| Stop::Invalid(vec![d.with_primary(test.name.span, "this test")]))?;
     let frames = npr_runner::schedule::schedule(request, test.fps, path_dependent);
     let frame = Frames {
@@ -271,7 +271,7 @@ pub fn param_settings(sets: &[(At<String>, At<String>)], sources: &SourceMap) ->
             ParamSetting {
                 name: name.value.clone(),
                 name_span: name.span,
-                value: crate::set_params::read_literal(value.value.trim()),
+                value: npr_abi::param_literal::read_literal(value.value.trim()),
                 value_span,
                 origin: SettingOrigin::TestFile,
             }
@@ -359,10 +359,10 @@ fn golden_check(
             return Ok((Vec::new(), None));
         }
         if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(dir, e)]))?;
+            std::fs::create_dir_all(dir).map_err(|e| RunError::User(vec![npr_diag::writes::cannot_write(dir, e)]))?;
         }
         npr_runner::output::write_png8(actual, path)
-            .map_err(|e| RunError::User(vec![crate::printer::cannot_write(path, e)]))?;
+            .map_err(|e| RunError::User(vec![npr_diag::writes::cannot_write(path, e)]))?;
         return Ok((Vec::new(), Some(path.clone())));
     }
     if !path.exists() {
@@ -411,9 +411,10 @@ fn golden_check(
     if let Some(flip) = verdict.flip_picture {
         images.push((dir.join(format!("{name}.flip.png")), flip));
     }
-    std::fs::create_dir_all(&dir).map_err(|e| RunError::User(vec![crate::printer::cannot_write(&dir, e)]))?;
+    std::fs::create_dir_all(&dir).map_err(|e| RunError::User(vec![npr_diag::writes::cannot_write(&dir, e)]))?;
     for (p, img) in &images {
-        npr_runner::output::write_png8(img, p).map_err(|e| RunError::User(vec![crate::printer::cannot_write(p, e)]))?;
+        npr_runner::output::write_png8(img, p)
+            .map_err(|e| RunError::User(vec![npr_diag::writes::cannot_write(p, e)]))?;
     }
     Ok((
         vec![Failure {

@@ -11,7 +11,7 @@
 //! | `lines` | ms over the base pass against 1 − min precision and 1 − min recall | strip build and frames, and CPU against compute classification, against mesh edges |
 
 use super::{Chart, ChartKind, Figure, Point};
-use npr_lab::{bench_artmaps, bench_contours, bench_lines, bench_ops, bench_patterns, sliding};
+use crate::{bench_artmaps, bench_contours, bench_lines, bench_ops, bench_patterns, sliding};
 
 /// Whether `xs` holds two different sizes: a cost-against-size chart of
 /// one size would be a column of dots.

@@ -8,10 +8,10 @@
 use super::declare::{TestDecl, TestFile, When};
 use super::frames::Frames;
 use super::run;
-use crate::bench::plot::{Chart, ChartKind, Figure, Point};
-use crate::path_args::PathArgs;
 use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::paths::PathChoice;
 use npr_diag::{Diagnostic, SourceMap};
+use npr_lab::plot::{Chart, ChartKind, Figure, Point};
 use npr_runner::schedule::FrameRequest;
 use npr_runner::{FrameSpec, Gpu};
 use std::fmt::Write;
@@ -43,7 +43,7 @@ pub fn measure(file: &TestFile, test: &TestDecl, gpu: &Gpu) -> Result<Vec<Row>, 
         sources: sources.clone(),
         internal,
     };
-    let policy = PathArgs::default()
+    let policy = PathChoice::default()
         .policy(&file.style, Some(&test.scene.value))
         .map_err(|d| stop(vec![d], &sources, false))?;
     let scene = npr_runner::scene::load_scene_in(&test.scene.value, &mut sources, Some(&policy))

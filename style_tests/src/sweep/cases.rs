@@ -3,7 +3,7 @@
 //! the run's images so that a reproduction line names a file that exists),
 //! and the scenes of the style's own tests, each at a small size.
 
-use crate::style_tests::declare::When;
+use crate::declare::When;
 use npr_runner::schedule::FrameRequest;
 use std::path::{Path, PathBuf};
 
@@ -30,7 +30,7 @@ pub struct Case {
 
 impl Case {
     /// A declared test's own scene, size, frames and eye.
-    pub fn of_test(test: &crate::style_tests::declare::TestDecl) -> Case {
+    pub fn of_test(test: &crate::declare::TestDecl) -> Case {
         Case {
             label: test.name.value.clone(),
             scene: test.scene.value.clone(),
@@ -46,7 +46,7 @@ impl Case {
     }
 
     /// A test's case at the sweep's small size, for `--sweep`.
-    pub fn of_test_small(test: &crate::style_tests::declare::TestDecl) -> Case {
+    pub fn of_test_small(test: &crate::declare::TestDecl) -> Case {
         Case {
             size: (SWEEP_SIZE.0.min(test.size.0), SWEEP_SIZE.1.min(test.size.1)),
             ..Case::of_test(test)

@@ -1,4 +1,4 @@
-//! `npr bench … --plot PATH.svg`: the benchmarks' figures drawn as SVG with
+//! `npr bench … --plot PATH.svg` and `npr test --bench --plot`: the benchmarks' figures drawn as SVG with
 //! plotters, from the same rows the command prints (no second measurement).
 //!
 //! One model for every benchmark: a [`Figure`] is a stack of [`Chart`]s
@@ -14,7 +14,6 @@ mod axis;
 mod draw;
 pub mod figures;
 
-use crate::printer::Printer;
 use npr_diag::{codes, Diagnostic};
 use std::path::Path;
 
@@ -169,18 +168,14 @@ pub fn check_path(path: &Path) -> Result<(), Diagnostic> {
 }
 
 /// Draws `figure` and writes it to `path` atomically (temp file, fsync,
-/// rename: `npr_runner::output::write_atomic`); the exit code.
-pub fn write(figure: &Figure, path: &Path, printer: &Printer) -> Result<(), i32> {
-    let svg = render_svg(figure).map_err(|e| {
-        // Drawing numbers the bench produced cannot fail on the user's input.
-        let d = Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}"));
-        printer.diagnostics(&[d], &npr_diag::SourceMap::new());
-        crate::exit::EXIT_INTERNAL
-    })?;
-    npr_runner::output::write_atomic(path, svg.as_bytes())
-        .map_err(|e| printer.fail(crate::printer::cannot_write(path, e)))?;
-    eprintln!("plot written to {}", path.display());
-    Ok(())
+/// rename: `npr_runner::output::write_atomic`). A figure that cannot be
+/// drawn is npr's fault (E9001, `codes::INTERNAL`); a path that cannot be
+/// written is E0503.
+pub fn write(figure: &Figure, path: &Path) -> Result<(), Diagnostic> {
+    // Drawing numbers the bench produced cannot fail on the user's input.
+    let svg = render_svg(figure)
+        .map_err(|e| Diagnostic::error(codes::INTERNAL, format!("the plot could not be drawn: {e}")))?;
+    npr_runner::output::write_atomic(path, svg.as_bytes()).map_err(|e| npr_diag::writes::cannot_write(path, e))
 }
 
 #[cfg(test)]

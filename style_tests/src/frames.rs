@@ -73,7 +73,7 @@ impl Frames<'_> {
             // overwrite what shares the output's texture.
             rendered.outputs.push((f.frame, r.read_output()?));
             if read_targets {
-                let targets = crate::commands::dump::read_all_targets(r, scene, &spec)?;
+                let targets = r.read_all_targets(scene, &spec)?;
                 for (index, image) in targets.iter().enumerate() {
                     let seen = rendered.non_finite.iter().any(|n| n.target == index);
                     if let Some(found) = checks::non_finite(image).filter(|_| !seen) {
@@ -110,7 +110,7 @@ impl Frames<'_> {
             };
             r.render(scene, &spec)?;
             if f.write {
-                out.push((f.frame, crate::commands::dump::read_all_targets(&mut r, scene, &spec)?));
+                out.push((f.frame, r.read_all_targets(scene, &spec)?));
             }
         }
         Ok(out)

@@ -384,8 +384,8 @@ fn partial_fields(fields: &mut Fields, dir: &Path, report: &mut Report) -> Parti
         }
     }
     if let Some(size) = fields.string("size", report) {
-        match crate::args::parse_size(&size.value) {
-            Ok(s) if crate::args::check_size(s).is_ok() => p.size = Some(s),
+        match npr_diag::sizes::parse_size(&size.value) {
+            Ok(s) if npr_diag::sizes::check_size(s).is_ok() => p.size = Some(s),
             Ok(_) => report.bad_scene(
                 size.span,
                 format!("size `{}` is larger than the limit", size.value),
@@ -508,7 +508,7 @@ fn when(fields: &mut Fields, report: &mut Report) -> Option<WhenDecl> {
         return Some(WhenDecl::Frame(f.value as u32));
     }
     let f = frames?;
-    match crate::args::parse_frames(&f.value) {
+    match npr_diag::sizes::parse_frames(&f.value) {
         Ok((start, end)) if end - start <= npr_diag::limits::MAX_FRAMES => Some(WhenDecl::Frames(start, end)),
         Ok(_) => {
             report.bad_scene(
