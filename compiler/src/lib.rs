@@ -9,6 +9,7 @@
 //! does not depend on the runner, nor the runner on it.
 
 pub mod back;
+pub mod describe;
 pub mod dump;
 pub mod front;
 pub mod ir;

@@ -26,7 +26,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::Texgen(args) => texgen::run(args, &printer),
         Command::Test(args) => test::run(args, &printer),
         Command::Explain { code } => explain::run(&code, &printer),
-        Command::Lsp => crate::lsp::run(),
+        Command::Lsp => npr_lsp::run(),
         Command::Doc {
             out,
             examples,

@@ -98,7 +98,7 @@ fn runs(text: &str, op: &npr_stdlib::Operator) -> bool {
             npr_stdlib::ops::style_calls(text, from.name)
                 && from.specializations.iter().any(|s| {
                     s.use_operator == op.name
-                        && text.contains(&format!("{}: {}", s.param, crate::describe::number(s.value)))
+                        && text.contains(&format!("{}: {}", s.param, npr_compiler::describe::number(s.value)))
                 })
         })
 }

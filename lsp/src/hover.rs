@@ -1,11 +1,11 @@
 //! Hover: the Markdown shown for what is under the cursor. Operators,
 //! builtins, pass kinds and formats say what `npr doc` says
-//! (`crate::describe`); params, textures, passes and targets show their
+//! (`npr_compiler::describe`); params, textures, passes and targets show their
 //! declaration and doc comment.
 
 use super::analysis::{snippet, Analysis};
 use super::symbol::Symbol;
-use crate::describe;
+use npr_compiler::describe;
 
 pub fn markdown(a: &Analysis, symbol: &Symbol) -> String {
     match symbol {

@@ -69,9 +69,9 @@ pub fn formats() -> impl Iterator<Item = (&'static str, npr_abi::Format)> {
 }
 
 /// What an intrinsic function does (an exhaustive match on
-/// `npr_compiler::ir::Intrinsic`, so a new one is described before it builds).
-pub fn intrinsic_doc(i: npr_compiler::ir::Intrinsic) -> String {
-    use npr_compiler::ir::Intrinsic::*;
+/// `crate::ir::Intrinsic`, so a new one is described before it builds).
+pub fn intrinsic_doc(i: crate::ir::Intrinsic) -> String {
+    use crate::ir::Intrinsic::*;
     match i {
         Construct(n) => format!("`vec{n}(...)`: a {n}-vector from scalars and vectors (components in order), or one scalar in every component."),
         Map(name) => format!("WGSL `{name}`, per component; the result has the argument's type."),

@@ -5,8 +5,8 @@
 //! params, textures, passes, the pass's `let`s and builtins.
 
 use super::analysis::{self, Analysis};
-use crate::describe;
 use lsp_types::{CompletionItem, CompletionItemKind, Documentation, InsertTextFormat, MarkupContent, MarkupKind};
+use npr_compiler::describe;
 use npr_compiler::ir::{Builtin, Intrinsic};
 use npr_dsl::ast::Item;
 

@@ -99,7 +99,7 @@ fn callee(name: &str) -> Option<Symbol<'static>> {
     if let Some((n, i)) = Intrinsic::TABLE.iter().find(|(n, _)| *n == name) {
         return Some(Symbol::Intrinsic(n, *i));
     }
-    crate::describe::language::SPECIAL_CALLS
+    npr_compiler::describe::language::SPECIAL_CALLS
         .iter()
         .find(|(n, ..)| *n == name)
         .map(|(_, written, what)| Symbol::Special(written, what))

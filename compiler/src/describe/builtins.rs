@@ -2,7 +2,7 @@
 //! per `npr_compiler::ir::Builtin` (an exhaustive match, so a new builtin does
 //! not build until it is described), with its type and unit from the IR.
 
-use npr_compiler::ir::Builtin;
+use crate::ir::Builtin;
 
 /// One sentence saying what the builtin holds.
 pub fn doc(b: Builtin) -> &'static str {
@@ -76,12 +76,12 @@ pub fn availability(b: Builtin) -> &'static str {
 pub fn signature(spelling: &str, b: Builtin) -> String {
     let (ty, unit) = b.ty_unit();
     let ty = match ty {
-        npr_compiler::ir::Ty::Float => "float",
-        npr_compiler::ir::Ty::Int => "int",
-        npr_compiler::ir::Ty::Bool => "bool",
-        npr_compiler::ir::Ty::Vec2 => "vec2",
-        npr_compiler::ir::Ty::Vec3 => "vec3",
-        npr_compiler::ir::Ty::Vec4 => "vec4",
+        crate::ir::Ty::Float => "float",
+        crate::ir::Ty::Int => "int",
+        crate::ir::Ty::Bool => "bool",
+        crate::ir::Ty::Vec2 => "vec2",
+        crate::ir::Ty::Vec3 => "vec3",
+        crate::ir::Ty::Vec4 => "vec4",
         _ => "value",
     };
     let mut s = format!("{spelling}: {ty}");

@@ -1,4 +1,4 @@
-//! `npr lsp`: a language server over stdio (JSON-RPC framed by
+//! npr's language server (`npr lsp` runs [`run`]): a language server over stdio (JSON-RPC framed by
 //! `lsp-server`). Diagnostics on open and change, hover, completion, go to
 //! definition and document symbols for `.npr` documents; diagnostics for a
 //! style's `.tests.toml` (`test_file.rs`).
@@ -8,6 +8,15 @@
 //! "invalid params", a document that is not `.npr` is ignored, and a panic
 //! in a handler becomes an internal error for that request. It exits on
 //! `exit` or when stdin closes.
+//!
+//! # Example
+//!
+//! A program of your own that is the server (what `npr lsp` does):
+//!
+//! ```no_run
+//! // The whole of a program that is the server:
+//! std::process::exit(npr_lsp::run());
+//! ```
 
 mod analysis;
 mod completion;
