@@ -1,6 +1,6 @@
-//! Checks of command-line values that clap's types cannot express: an fps
-//! above 0, a finite time, an eye the scene has, and `texgen`'s ranges
-//! (sizes and frame counts are `npr_diag::sizes`, shared with test files). Each failure is a diagnostic with a
+//! Checks of command-line values that clap's types cannot express: an eye
+//! the scene has, and `texgen`'s ranges (sizes, frame counts, times and
+//! frame rates are `npr_diag::sizes`, shared with the libraries). Each failure is a diagnostic with a
 //! code (E0502 for a value outside its domain, E0404 for a limit), which the
 //! CLI prints and exits 1 with, before any work starts.
 //!
@@ -13,23 +13,6 @@ use npr_diag::Diagnostic;
 
 fn bad_value(message: String, help: &str) -> Diagnostic {
     Diagnostic::error(codes::BAD_ARGUMENT_VALUE, message).with_help(help)
-}
-
-/// `--fps` and `--time` of `npr render`.
-pub fn check_time(time: f64, fps: f64) -> Result<(), Diagnostic> {
-    if !(fps.is_finite() && fps > 0.0) {
-        return Err(bad_value(
-            format!("--fps {fps}: the frame rate must be a number above 0"),
-            "frame n is at time n / fps; 24 is the default",
-        ));
-    }
-    if !time.is_finite() {
-        return Err(bad_value(
-            format!("--time {time}: the time must be a finite number of seconds"),
-            "times before 0 are allowed and clamp to frame 0",
-        ));
-    }
-    Ok(())
 }
 
 /// `--eye` against the scene's camera: 0 always, 1 only when it is stereo.
@@ -122,14 +105,6 @@ mod tests {
 
     #[test]
     fn values_outside_their_domain_are_refused_with_a_code() {
-        assert_eq!(check_time(0.0, 0.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
-        assert_eq!(check_time(0.0, -24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
-        assert_eq!(check_time(f64::NAN, 24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
-        assert_eq!(
-            check_time(f64::INFINITY, 24.0).unwrap_err().code,
-            codes::BAD_ARGUMENT_VALUE
-        );
-        assert!(check_time(-1.0, 24.0).is_ok());
         assert!(check_eye(0, false).is_ok() && check_eye(1, true).is_ok());
         assert!(check_eye(1, false).is_err() && check_eye(2, true).is_err());
     }

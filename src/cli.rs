@@ -5,8 +5,8 @@
 //! command would scatter the shared argument groups.
 
 use crate::path_args::PathArgs;
-use crate::printer::MessageFormat;
 use clap::{Parser, Subcommand};
+use npr_diag::printer::MessageFormat;
 use npr_diag::sizes::parse_size;
 use std::path::PathBuf;
 
@@ -52,7 +52,7 @@ pub enum Command {
     /// side, the frame time in the title, and a rebuild on every save (a
     /// bad save prints diagnostics and keeps the last good frame). Needs a
     /// display (X11 or Wayland).
-    #[command(after_help = crate::view::keys::help())]
+    #[command(after_help = npr_live::view::keys::help())]
     View(ViewArgs),
     /// Live authoring in the browser: a local web server with the rendered
     /// image, controls for the parameters, every pass, diagnostics in place

@@ -7,18 +7,14 @@ mod bench;
 mod bundled;
 mod cli;
 mod commands;
-mod exit;
 mod frame_pattern;
 mod frame_range;
-mod live;
 mod path_args;
 mod printer;
 mod reference;
 mod set_params;
-mod studio;
 mod usage;
 mod video;
-mod view;
 mod watch;
 
 fn main() {

@@ -1,60 +1,14 @@
-//! How a command reports: diagnostics printed as text or JSON, and the
-//! steps every command shares (compile, load a scene, open the GPU) turned
-//! into an exit code once their diagnostics are printed.
+//! The steps every command shares (compile, load a scene, open the GPU)
+//! turned into an exit code once their diagnostics are printed
+//! (`npr_diag::printer::Printer`).
 
-use crate::exit::{EXIT_INTERNAL, EXIT_USER};
 use crate::path_args::PathArgs;
 use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_USER};
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::Gpu;
-use std::io::IsTerminal;
 use std::path::Path;
-
-/// How diagnostics are printed: for people, or one JSON object per line.
-#[derive(Copy, Clone, Debug, clap::ValueEnum, PartialEq, Eq)]
-pub enum MessageFormat {
-    Human,
-    Json,
-}
-
-/// Where and how diagnostics go: `--message-format`, and colour when stderr
-/// is a terminal.
-pub(crate) struct Printer {
-    pub(crate) format: MessageFormat,
-    color: bool,
-}
-
-impl Printer {
-    /// Colour when stderr is a terminal.
-    pub(crate) fn new(format: MessageFormat) -> Self {
-        Printer {
-            format,
-            color: std::io::stderr().is_terminal(),
-        }
-    }
-
-    pub(crate) fn diagnostics(&self, diags: &[Diagnostic], sources: &SourceMap) {
-        if diags.is_empty() {
-            return;
-        }
-        match self.format {
-            MessageFormat::Json => print!("{}", npr_diag::diagnostic::render_json(diags, sources)),
-            MessageFormat::Human => eprint!("{}", npr_diag::diagnostic::render(diags, sources, self.color)),
-        }
-    }
-
-    /// Print one diagnostic that points into no file (a command-line value,
-    /// an output path, the device) and give the user-error exit code.
-    pub(crate) fn fail(&self, d: Diagnostic) -> i32 {
-        self.diagnostics(&[d], &SourceMap::new());
-        EXIT_USER
-    }
-
-    /// [`Printer::fail`] for a check of the arguments.
-    pub(crate) fn check(&self, checked: Result<(), Diagnostic>) -> Result<(), i32> {
-        checked.map_err(|d| self.fail(d))
-    }
-}
 
 /// E0503 for an output image whose extension npr cannot write.
 pub(crate) fn unsupported_image(path: &Path, ext: &str) -> Diagnostic {

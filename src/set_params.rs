@@ -3,9 +3,9 @@
 //! (`npr_compiler::set_values`, which reads and types them), diagnostics
 //! printed.
 
-use crate::printer::Printer;
 use npr_compiler::set_values::compile_with_sets;
 use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::printer::Printer;
 use npr_diag::SourceMap;
 use std::path::Path;
 

@@ -6,8 +6,8 @@
 //! `--message-format json`.
 
 use crate::cli::Cli;
-use crate::exit::{EXIT_OK, EXIT_USER};
 use clap::Parser;
+use npr_diag::exit::{EXIT_OK, EXIT_USER};
 use npr_diag::{codes, Diagnostic};
 
 /// The parsed command line, or the exit code after printing why there is none.

@@ -5,12 +5,12 @@
 //! diagnostics and keeps the last good image; fixing it renders again. It
 //! never exits on a bad save (nor on a panic, which is reported as E9001).
 
-use crate::exit::EXIT_INTERNAL;
-use crate::live::build::{self, Inputs};
-use crate::live::guard;
-use crate::live::watcher::FileWatcher;
-use crate::printer::Printer;
-use npr_diag::{codes, Diagnostic, SourceMap};
+use npr_diag::exit::EXIT_INTERNAL;
+use npr_diag::printer::Printer;
+use npr_diag::SourceMap;
+use npr_live::build::{self, Inputs};
+use npr_live::guard;
+use npr_live::watcher::{cannot_watch, FileWatcher};
 use std::path::PathBuf;
 use std::sync::mpsc;
 
@@ -26,7 +26,9 @@ pub struct WatchArgs {
 
 /// Run until interrupted; returns only when watching itself fails.
 pub fn run(args: WatchArgs, printer: &Printer) -> i32 {
-    if let Err(d) = npr_diag::sizes::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
+    if let Err(d) =
+        npr_diag::sizes::check_size(args.size).and_then(|()| npr_diag::sizes::check_time(args.time, args.fps))
+    {
         return printer.fail(d);
     }
     let mut gpu = match crate::printer::headless_gpu(printer) {
@@ -114,10 +116,4 @@ fn once(args: &WatchArgs, gpu: &npr_runner::Gpu, printer: &Printer, last_good: &
         eprintln!("watch: kept the last good image; fix the error and save");
     }
     files
-}
-
-/// The watcher could not start or stopped: E0507.
-pub fn cannot_watch(e: String) -> Diagnostic {
-    Diagnostic::error(codes::CANNOT_SERVE, e)
-        .with_help("on Linux, raise fs.inotify.max_user_watches if it is exhausted (sysctl)")
 }

@@ -11,10 +11,12 @@
 //! or pest.
 
 pub mod diagnostic;
+pub mod exit;
 pub mod files;
 pub mod limits;
 pub mod panics;
 pub mod paths;
+pub mod printer;
 pub mod sizes;
 pub mod span;
 pub mod text;

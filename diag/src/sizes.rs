@@ -1,5 +1,5 @@
-//! Image sizes (`512x512`) and frame ranges (`0..48`) as a user writes
-//! them, on a command line or in a test file, read and checked against
+//! Image sizes (`512x512`), frame ranges (`0..48`), times and frame rates
+//! as a user writes them, on a command line or in a test file, read and checked against
 //! [`crate::limits`]: one reading for the CLI's arguments and `npr-test`'s
 //! declarations. A syntax error is a plain message (the CLI's usage error,
 //! E0501, or the test file's E0407 around it); a value past a limit is E0404.
@@ -61,6 +61,25 @@ pub fn check_frame_count(frames: usize) -> Result<(), Diagnostic> {
     Ok(())
 }
 
+/// `--fps` and `--time` (of `npr render`, `watch`, `view` and `studio`):
+/// E0502 for a frame rate that is not above 0 or a time that is not finite.
+pub fn check_time(time: f64, fps: f64) -> Result<(), Diagnostic> {
+    let bad_value = |message: String, help: &str| Diagnostic::error(codes::BAD_ARGUMENT_VALUE, message).with_help(help);
+    if !(fps.is_finite() && fps > 0.0) {
+        return Err(bad_value(
+            format!("--fps {fps}: the frame rate must be a number above 0"),
+            "frame n is at time n / fps; 24 is the default",
+        ));
+    }
+    if !time.is_finite() {
+        return Err(bad_value(
+            format!("--time {time}: the time must be a finite number of seconds"),
+            "times before 0 are allowed and clamp to frame 0",
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -82,6 +101,14 @@ mod tests {
         assert_eq!(parse_size(" 4 X 3 "), Ok((4, 3)));
         assert!(parse_size("0x4").is_err() && parse_size("512").is_err() && parse_size("ax4").is_err());
         assert!(parse_frames("5..2").is_err() && parse_frames("3..3").is_err());
+        assert_eq!(check_time(0.0, 0.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(check_time(0.0, -24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(check_time(f64::NAN, 24.0).unwrap_err().code, codes::BAD_ARGUMENT_VALUE);
+        assert_eq!(
+            check_time(f64::INFINITY, 24.0).unwrap_err().code,
+            codes::BAD_ARGUMENT_VALUE
+        );
+        assert!(check_time(-1.0, 24.0).is_ok());
         assert_eq!(parse_frames("0..1"), Ok((0, 1)));
     }
 }

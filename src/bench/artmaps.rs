@@ -3,9 +3,10 @@
 //! `examples/`, the device, the two tables).
 
 use super::{compile_builtin_in, plot, plotted};
-use crate::exit::EXIT_INTERNAL;
-use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use crate::printer::{compile, headless_gpu, load_scene};
 use npr_compiler::CompileOptions;
+use npr_diag::exit::EXIT_INTERNAL;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_lab::bench_artmaps as bench;
 use std::path::Path;

@@ -3,10 +3,11 @@
 //! baseline in the same run.
 
 use super::{compile_builtin, compile_builtin_scheduled, plot, plotted, scene_style_gpu, scene_styles_gpu};
-use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
-use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use crate::printer::{compile, headless_gpu, load_scene};
 use npr_compiler::schedule::Schedule;
 use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::{Gpu, RunError, StyleProgram};
 use std::path::{Path, PathBuf};

@@ -2,9 +2,10 @@
 //! compiled with its params kept, as a host runs it; the device; the table;
 //! then the time of a frame right after the host adds an object).
 
-use crate::exit::{EXIT_INTERNAL, EXIT_OK};
-use crate::printer::{compile, headless_gpu, Printer};
+use crate::printer::{compile, headless_gpu};
 use npr_compiler::CompileOptions;
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK};
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::Path;
 

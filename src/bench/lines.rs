@@ -2,8 +2,9 @@
 //! LSA styles compiled, the device, the two tables).
 
 use super::{compile_builtin, plot, plotted};
-use crate::exit::EXIT_INTERNAL;
-use crate::printer::{headless_gpu, Printer};
+use crate::printer::headless_gpu;
+use npr_diag::exit::EXIT_INTERNAL;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_lab::bench_lines as bench;
 use std::path::Path;

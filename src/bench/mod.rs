@@ -11,10 +11,11 @@ mod patterns;
 mod studio;
 
 use crate::cli::BenchCommand;
-use crate::exit::{EXIT_INTERNAL, EXIT_OK};
-use crate::printer::{compile, headless_gpu, load_scene, Printer};
+use crate::printer::{compile, headless_gpu, load_scene};
 use npr_compiler::schedule::Schedule;
 use npr_compiler::{CompileError, CompileOptions, Compiled};
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK};
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_lab::plot;
 use npr_runner::{Gpu, StyleProgram};

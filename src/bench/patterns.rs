@@ -3,8 +3,9 @@
 //! `npr_lab::sliding` (the sliding of each pattern placement and tracker variant).
 
 use super::{compile_builtin, plot, plotted};
-use crate::exit::EXIT_INTERNAL;
-use crate::printer::{headless_gpu, Printer};
+use crate::printer::headless_gpu;
+use npr_diag::exit::EXIT_INTERNAL;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::RunError;
 use std::path::Path;

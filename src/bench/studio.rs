@@ -11,7 +11,7 @@
 //! - **save → image**: the style saved by rename (a comment changed) until
 //!   the rebuilt frame's PNG is fetched; overhead = that − the build's
 //!   compile time (the studio's own figure) − the `npr render` frame. It
-//!   includes the file watcher's debounce (`live::watcher::QUIET`).
+//!   includes the file watcher's debounce (`npr_live::watcher::QUIET`).
 //! - **memory**: the studio's resident memory and wgpu's allocated GPU
 //!   memory (the frame's `memory`), after edits 10, 100, 250, 500 and 750
 //!   and after all `--edits` (alternating slider moves and saves), so a
@@ -22,8 +22,8 @@
 //! removed at the end.
 
 use super::http_client::{request, Events};
-use crate::exit::{EXIT_INTERNAL, EXIT_OK};
-use crate::printer::Printer;
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK};
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::{FrameSpec, Renderer};
 use serde_json::{json, Value};

@@ -3,9 +3,10 @@
 //! `--ranges`, each target's proved value range (issue 49).
 
 use crate::cli::CheckArgs;
-use crate::exit::{EXIT_OK, EXIT_USER};
-use crate::printer::MessageFormat;
-use crate::printer::{check_options, Printer};
+use crate::printer::check_options;
+use npr_diag::exit::{EXIT_OK, EXIT_USER};
+use npr_diag::printer::MessageFormat;
+use npr_diag::printer::Printer;
 use npr_diag::SourceMap;
 
 pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {

@@ -3,9 +3,10 @@
 //! one bundle file (`npr_abi::bundle`) with the style's image files in it.
 
 use crate::cli::CompileArgs;
-use crate::exit::EXIT_OK;
-use crate::printer::{check_options, Printer};
+use crate::printer::check_options;
 use npr_compiler::{CompileOptions, Compiled};
+use npr_diag::exit::EXIT_OK;
+use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use std::path::{Path, PathBuf};

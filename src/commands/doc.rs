@@ -4,8 +4,8 @@
 //! `npr bench ops` figures (`crate::reference::figures`), every file
 //! atomically in one sync.
 
-use crate::exit::EXIT_OK;
-use crate::printer::Printer;
+use npr_diag::exit::EXIT_OK;
+use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use std::path::Path;
 

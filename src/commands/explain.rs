@@ -2,8 +2,8 @@
 //! (`npr_dsl::explain`), or E0502 with the nearest codes for one that does not
 //! exist.
 
-use crate::exit::EXIT_OK;
-use crate::printer::Printer;
+use npr_diag::exit::EXIT_OK;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic};
 
 pub fn run(code: &str, printer: &Printer) -> i32 {

@@ -8,8 +8,8 @@
 //! whose encoder is missing (E0511), so a
 //! long render never fails at its end for an output it could not write.
 
-use crate::exit::EXIT_USER;
 use crate::frame_pattern::FramePattern;
+use npr_diag::exit::EXIT_USER;
 use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_runner::scene::Scene;
@@ -71,7 +71,7 @@ pub(crate) fn check_or_exit(
     out: Option<&Path>,
     layers: bool,
     sequence: bool,
-    printer: &crate::printer::Printer,
+    printer: &npr_diag::printer::Printer,
 ) -> Result<Option<OutputKind>, i32> {
     match out.map(|o| check(o, layers, sequence)) {
         None => Ok(None),

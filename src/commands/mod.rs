@@ -14,8 +14,8 @@ mod test;
 mod texgen;
 
 use crate::cli::{Cli, Command};
-use crate::live::build::Inputs;
-use crate::printer::Printer;
+use npr_diag::printer::Printer;
+use npr_live::build::Inputs;
 
 pub fn run(cli: Cli) -> i32 {
     let printer = Printer::new(cli.message_format);
@@ -40,7 +40,7 @@ pub fn run(cli: Cli) -> i32 {
                     scene: live.scene,
                     sets: live.set,
                     keep_params: false,
-                    paths: live.paths,
+                    paths: live.paths.choice(),
                     schedule: live.schedule.map_or(npr_compiler::schedule::Schedule::Auto, Into::into),
                 },
                 out,
@@ -51,15 +51,34 @@ pub fn run(cli: Cli) -> i32 {
             },
             &printer,
         ),
-        Command::View(args) => crate::view::run(args, &printer),
-        Command::Studio { live, host, port } => crate::studio::run(
-            crate::studio::StudioArgs {
+        Command::View(args) => npr_live::view::run(
+            npr_live::view::ViewOptions {
+                inputs: Inputs {
+                    style: args.style,
+                    scene: args.scene,
+                    sets: args.set,
+                    // Parameters stay uniforms, so the keys step them without a recompile.
+                    keep_params: true,
+                    paths: args.paths.choice(),
+                    schedule: args.schedule.map_or(npr_compiler::schedule::Schedule::Auto, Into::into),
+                },
+                size: args.size,
+                time: args.time,
+                paused: args.paused,
+                fps: args.fps,
+                frames: args.frames,
+                vsync: !args.no_vsync,
+            },
+            &printer,
+        ),
+        Command::Studio { live, host, port } => npr_live::studio::run(
+            npr_live::studio::StudioArgs {
                 inputs: Inputs {
                     style: live.style,
                     scene: live.scene,
                     sets: live.set,
                     keep_params: true,
-                    paths: live.paths,
+                    paths: live.paths.choice(),
                     // Every declared target has a thumbnail.
                     schedule: live
                         .schedule

@@ -7,9 +7,10 @@ use crate::commands::checkpoints::Checkpoints;
 use crate::commands::dump::dump_all_targets;
 use crate::commands::frame_sink::{self, FrameSink, OutputKind};
 use crate::commands::render_inputs::{self, InputArgs, InputFrames};
-use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
-use crate::printer::{load_scene_in, style_gpu, Printer};
+use crate::printer::{load_scene_in, style_gpu};
 use npr_compiler::CompileOptions;
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic, SourceMap};
 use npr_runner::schedule::FrameRequest;
@@ -65,7 +66,7 @@ pub fn run(args: RenderArgs, printer: &Printer) -> i32 {
     };
     if let Err(code) = printer
         .check(size.map_or(Ok(()), npr_diag::sizes::check_size))
-        .and_then(|()| printer.check(crate::args::check_time(time, fps)))
+        .and_then(|()| printer.check(npr_diag::sizes::check_time(time, fps)))
     {
         return code;
     }

@@ -5,8 +5,9 @@
 //! input, 2 when npr itself failed.
 
 use crate::cli::TestArgs;
-use crate::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
-use crate::printer::{headless_gpu, Printer};
+use crate::printer::headless_gpu;
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_OK, EXIT_USER};
+use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_test::bench;

@@ -2,8 +2,8 @@
 //! textures use) or a painterly colour map, written as a PNG.
 
 use crate::cli::TexgenArgs;
-use crate::exit::EXIT_OK;
-use crate::printer::Printer;
+use npr_diag::exit::EXIT_OK;
+use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use std::path::Path;
 

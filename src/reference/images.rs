@@ -6,9 +6,10 @@
 //! failure with the runner's install hint; a demo that does not compile or
 //! render is npr's own (internal) error.
 
-use crate::exit::{EXIT_INTERNAL, EXIT_USER};
-use crate::printer::{headless_gpu, load_scene, Printer};
+use crate::printer::{headless_gpu, load_scene};
 use npr_compiler::{CompileError, CompileOptions};
+use npr_diag::exit::{EXIT_INTERNAL, EXIT_USER};
+use npr_diag::printer::Printer;
 use npr_diag::SourceMap;
 use npr_runner::schedule::FrameRequest;
 use npr_runner::{FrameSpec, Gpu, Renderer};

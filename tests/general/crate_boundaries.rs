@@ -182,10 +182,14 @@ fn the_libraries_behind_the_command_line_do_not_depend_on_it() {
     let graph = normal_dependency_graph();
     // The binary is a thin front end: what it runs is in libraries a Rust
     // program can depend on, none of which reaches back into it.
-    for library in ["npr-test", "npr-lsp", "npr-lab", "npr-web"] {
+    for library in ["npr-test", "npr-lsp", "npr-live", "npr-lab", "npr-web"] {
         assert_no_edge(graph, library, &["npr-cli"]);
     }
-    assert!(path(graph, "npr-cli", "npr-test").is_some() && path(graph, "npr-cli", "npr-lsp").is_some());
+    assert!(
+        path(graph, "npr-cli", "npr-test").is_some()
+            && path(graph, "npr-cli", "npr-lsp").is_some()
+            && path(graph, "npr-cli", "npr-live").is_some()
+    );
 }
 
 /// The packages `cargo tree` says `package` links with `features`

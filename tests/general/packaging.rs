@@ -17,8 +17,8 @@ fn workspace_packages() -> Vec<Value> {
     let meta: Value = serde_json::from_str(&out).expect("cargo metadata's JSON");
     let packages = meta["packages"].as_array().expect("packages").clone();
     assert!(
-        packages.len() >= 11,
-        "expected the 11 npr packages, found {}",
+        packages.len() >= 12,
+        "expected the 12 npr packages, found {}",
         packages.len()
     );
     packages

@@ -21,7 +21,7 @@ pub struct Inputs {
     /// Compile with `--keep-params` (the studio, so sliders need no recompile).
     pub keep_params: bool,
     /// `--root` and `--allow-path`.
-    pub paths: crate::path_args::PathArgs,
+    pub paths: npr_diag::paths::PathChoice,
     /// `--schedule`, or the command's default.
     pub schedule: npr_compiler::schedule::Schedule,
 }

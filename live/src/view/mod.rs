@@ -19,11 +19,10 @@ mod params;
 mod style;
 mod surface;
 
-use crate::cli::ViewArgs;
-use crate::exit::EXIT_USER;
-use crate::live::build::Inputs;
-use crate::live::watcher::FileWatcher;
-use crate::printer::Printer;
+use crate::build::Inputs;
+use crate::watcher::FileWatcher;
+use npr_diag::exit::EXIT_USER;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic};
 use std::path::PathBuf;
 
@@ -44,22 +43,35 @@ fn no_window(e: String) -> Diagnostic {
     )
 }
 
-pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
+/// What `npr view` shows, and how.
+pub struct ViewOptions {
+    /// The style, its scene and how to build it (`keep_params: true` lets
+    /// the keys step parameters without a recompile).
+    pub inputs: Inputs,
+    /// The window's inner size in pixels.
+    pub size: (u32, u32),
+    /// The style's time at the first frame, in seconds.
+    pub time: f64,
+    /// Start with the clock stopped.
+    pub paused: bool,
+    /// The frame rate that frame numbers and `time` are counted in.
+    pub fps: f64,
+    /// Close the window after this many frames (tests, screenshots).
+    pub frames: Option<u32>,
+    /// Present at the display's refresh rate.
+    pub vsync: bool,
+}
+
+/// Open the window and run until it closes; the exit code
+/// (`npr_diag::exit`).
+pub fn run(options: ViewOptions, printer: &Printer) -> i32 {
     if let Err(code) = printer
-        .check(npr_diag::sizes::check_size(args.size))
-        .and_then(|()| printer.check(crate::args::check_time(args.time, args.fps)))
+        .check(npr_diag::sizes::check_size(options.size))
+        .and_then(|()| printer.check(npr_diag::sizes::check_time(options.time, options.fps)))
     {
         return code;
     }
-    let inputs = Inputs {
-        style: args.style,
-        scene: args.scene,
-        sets: args.set,
-        // Parameters stay uniforms, so the keys step them without a recompile.
-        keep_params: true,
-        paths: args.paths,
-        schedule: args.schedule.map_or(npr_compiler::schedule::Schedule::Auto, Into::into),
-    };
+    let inputs = options.inputs;
     // winit loads the display's libraries (libX11, libxkbcommon-x11, ...)
     // here, and panics where one is missing: a diagnostic too.
     let event_loop =
@@ -74,15 +86,23 @@ pub fn run(args: ViewArgs, printer: &Printer) -> i32 {
         let _ = proxy.send_event(ViewEvent::Changed(files));
     }) {
         Ok(w) => w,
-        Err(e) => return printer.fail(crate::watch::cannot_watch(e)),
+        Err(e) => return printer.fail(crate::watcher::cannot_watch(e)),
     };
     eprintln!("{}", keys::help());
     let clock = clock::Clock {
-        time_s: args.time,
-        paused: args.paused,
-        fps: args.fps,
+        time_s: options.time,
+        paused: options.paused,
+        fps: options.fps,
     };
-    let mut app = app::App::new(printer, inputs, args.size, !args.no_vsync, args.frames, clock, watcher);
+    let mut app = app::App::new(
+        printer,
+        inputs,
+        options.size,
+        options.vsync,
+        options.frames,
+        clock,
+        watcher,
+    );
     if let Err(e) = event_loop.run_app(&mut app) {
         printer.diagnostics(&[no_window(e.to_string())], &npr_diag::SourceMap::new());
         return EXIT_USER;

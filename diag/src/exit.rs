@@ -1,5 +1,7 @@
-//! The exit codes of every command: a leaf that the commands, the printer
-//! and `main` share without importing the command line's definitions.
+//! The exit codes of npr's programs and of the libraries that run as one
+//! (the language server, the live view and studio, the style tests): one
+//! definition, so `npr`'s commands and a program built on the libraries
+//! mean the same by 1 and 2.
 
 /// The command did what was asked.
 pub const EXIT_OK: i32 = 0;

@@ -16,9 +16,9 @@ mod server;
 pub mod state;
 pub mod write_back;
 
-use crate::exit::EXIT_INTERNAL;
-use crate::live::build::Inputs;
-use crate::printer::Printer;
+use crate::build::Inputs;
+use npr_diag::exit::EXIT_INTERNAL;
+use npr_diag::printer::Printer;
 use npr_diag::{codes, Diagnostic};
 use std::io::Write;
 use std::net::{IpAddr, SocketAddr};
@@ -36,7 +36,9 @@ pub struct StudioArgs {
 /// Bind, print the address, and serve until interrupted.
 pub fn run(args: StudioArgs, printer: &Printer) -> i32 {
     malloc::single_arena();
-    if let Err(d) = npr_diag::sizes::check_size(args.size).and_then(|()| crate::args::check_time(args.time, args.fps)) {
+    if let Err(d) =
+        npr_diag::sizes::check_size(args.size).and_then(|()| npr_diag::sizes::check_time(args.time, args.fps))
+    {
         return printer.fail(d);
     }
     let ip: IpAddr = match args.host.parse() {

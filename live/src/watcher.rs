@@ -22,6 +22,7 @@
 //! sleeps on a channel, so an idle watcher wakes nothing.
 
 use notify::{EventKind, RecommendedWatcher, RecursiveMode, Watcher};
+use npr_diag::{codes, Diagnostic};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{channel, RecvTimeoutError};
@@ -130,4 +131,10 @@ impl FileWatcher {
         self.dirs = watching;
         *self.files.lock().unwrap_or_else(|e| e.into_inner()) = files;
     }
+}
+
+/// The watcher could not start or stopped: E0507.
+pub fn cannot_watch(e: String) -> Diagnostic {
+    Diagnostic::error(codes::CANNOT_SERVE, e)
+        .with_help("on Linux, raise fs.inotify.max_user_watches if it is exhausted (sysctl)")
 }

@@ -19,9 +19,9 @@
 use super::hub::{FrameImages, Hub};
 use super::orbit::Orbit;
 use super::state;
-use crate::live::build::{self, Built, Inputs};
-use crate::live::guard;
-use crate::live::watcher::FileWatcher;
+use crate::build::{self, Built, Inputs};
+use crate::guard;
+use crate::watcher::FileWatcher;
 use npr_abi::manifest::ParamBinding;
 use npr_abi::param_value::{format_literal, type_value, ParamShape};
 use npr_abi::ParamOverride;

@@ -10,7 +10,7 @@
 //! studio` make, compiled with `keep_params` so that the parameter keys
 //! change uniforms without a recompile.
 
-use crate::live::build::Built;
+use crate::build::Built;
 use npr_diag::{Diagnostic, SourceMap};
 use npr_runner::embed::{EmbedError, Frame, Instance, Lights, StyleRuntime, Target};
 use npr_runner::scene::{Camera, Scene};
