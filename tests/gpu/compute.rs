@@ -92,7 +92,7 @@ fn cpu_reduction(scene: &Scene, size: u32, time_s: f64) -> Vec<Reduced> {
 }
 
 /// Issue 34's sweep found the example blank on a ground plane seen at a
-/// grazing angle (`scenes/hard/grazing.toml`): half the plane's vertices
+/// grazing angle (`style_tests/hard_scenes/grazing.toml`): half the plane's vertices
 /// are behind the eye, and counted at `npr_project`'s far-off-screen
 /// point they dragged the centroid a billion pixels away. The reduction
 /// counts only the vertices in front (between near and far), so the
@@ -101,7 +101,7 @@ fn cpu_reduction(scene: &Scene, size: u32, time_s: f64) -> Vec<Reduced> {
 #[test]
 fn centroids_on_a_grazing_plane_count_only_the_vertices_in_front() {
     let program = example("examples/object_centroids.npr");
-    let scene = scene("examples/scenes/hard/grazing.toml");
+    let scene = scene("style_tests/hard_scenes/grazing.toml");
     let size = 64;
     let mut r = Renderer::new(&gpu().device, &gpu().queue, &program, &scene).expect("renderer");
     r.render(&scene, &spec(size, 0)).expect("frame");

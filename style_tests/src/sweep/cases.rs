@@ -1,5 +1,5 @@
 //! Where a stability sweep renders: the hard scenes npr ships
-//! (`examples/scenes/hard/`, built into the binary and written out beside
+//! (`hard_scenes/` in this package, built into the library and written out beside
 //! the run's images so that a reproduction line names a file that exists),
 //! and the scenes of the style's own tests, each at a small size.
 
@@ -85,34 +85,34 @@ impl Case {
     }
 }
 
-/// The hard scenes' files, as shipped in `examples/scenes/hard/`.
+/// The hard scenes' files, as shipped in `hard_scenes/`.
 const HARD_FILES: &[(&str, &str)] = &[
     (
         "grazing.toml",
-        include_str!("../../../examples/scenes/hard/grazing.toml"),
+        include_str!("../../hard_scenes/grazing.toml"),
     ),
     (
         "near_plane.toml",
-        include_str!("../../../examples/scenes/hard/near_plane.toml"),
+        include_str!("../../hard_scenes/near_plane.toml"),
     ),
     (
         "tiny_far.toml",
-        include_str!("../../../examples/scenes/hard/tiny_far.toml"),
+        include_str!("../../hard_scenes/tiny_far.toml"),
     ),
     (
         "degenerate.toml",
-        include_str!("../../../examples/scenes/hard/degenerate.toml"),
+        include_str!("../../hard_scenes/degenerate.toml"),
     ),
     (
         "degenerate.obj",
-        include_str!("../../../examples/scenes/hard/degenerate.obj"),
+        include_str!("../../hard_scenes/degenerate.obj"),
     ),
     (
         "camera_cut.toml",
-        include_str!("../../../examples/scenes/hard/camera_cut.toml"),
+        include_str!("../../hard_scenes/camera_cut.toml"),
     ),
-    ("small.toml", include_str!("../../../examples/scenes/hard/small.toml")),
-    ("stereo.toml", include_str!("../../../examples/scenes/hard/stereo.toml")),
+    ("small.toml", include_str!("../../hard_scenes/small.toml")),
+    ("stereo.toml", include_str!("../../hard_scenes/stereo.toml")),
 ];
 
 /// Write the hard scenes into `dir` (each file atomically).
@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn every_hard_scene_is_shipped_and_named_by_a_case() {
-        let dir = Path::new("examples/scenes/hard");
+        let dir = Path::new("hard_scenes");
         for (name, text) in HARD_FILES {
             let on_disk = std::fs::read_to_string(dir.join(name)).expect("shipped file");
             assert_eq!(&on_disk, text);
