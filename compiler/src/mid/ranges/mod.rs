@@ -356,7 +356,7 @@ fn stops(ir: &Ir, ev: &Eval, root: ExprId) -> Vec<(npr_diag::Span, String)> {
             },
             ExprKind::Target { target, .. } => format!("target `{}`, not proved finite", ir.target_name(*target)),
             ExprKind::ObjectValue { .. } | ExprKind::StateOld { .. } => {
-                "a per-object value (sums and states are not bounded)".into()
+                "a per-object value with no bound (a sum, or a state that grows without one)".into()
             }
             ExprKind::Texture(t) => format!(
                 "texture `{}` (an HDR image or a filter's input)",
