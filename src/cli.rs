@@ -134,7 +134,8 @@ pub struct CompileArgs {
     /// the compiler (`npr render --compiled`, bevy_mod_npr).
     #[arg(short, long)]
     pub out: PathBuf,
-    /// Print what was removed, folded or kept, and why.
+    /// Print what was removed, folded or kept, and why, then each target's
+    /// proved value range (what `npr check --ranges` prints).
     #[arg(long)]
     pub report: bool,
     /// Keep parameters as uniforms (for live tweaking) instead of folding them.

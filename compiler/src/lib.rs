@@ -93,6 +93,12 @@ impl Compiled {
             files: Default::default(),
         }
     }
+
+    /// Each live target's proved range as text (`mid/ranges/text.rs`):
+    /// what `npr check --ranges` and `npr compile --report` print.
+    pub fn ranges_text(&self, sources: &npr_diag::SourceMap) -> String {
+        mid::ranges::text::render(&self.ranges, sources)
+    }
 }
 
 /// A bug in npr. Reported with the `.npr` span that produced the bad code.

@@ -25,7 +25,7 @@ pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
                 return EXIT_USER;
             }
             if args.ranges {
-                print!("{}", ranges_text(&c, &sources));
+                print!("{}", c.ranges_text(&sources));
             }
             if printer.format == MessageFormat::Human {
                 eprintln!(
@@ -39,33 +39,4 @@ pub fn run(args: &CheckArgs, printer: &Printer) -> i32 {
         }
         Err(code) => code,
     }
-}
-
-/// Each target's proved range, one line each, and under a target not
-/// proved finite what stops the proof (`file:line:col: what`).
-pub fn ranges_text(c: &npr_compiler::Compiled, sources: &SourceMap) -> String {
-    let mut out = String::from("value ranges (each param over its declared range; `--set` values fixed):\n");
-    for t in &c.ranges {
-        let verdict = if t.value_finite {
-            "finite for all declared params".to_string()
-        } else {
-            "not proved finite".to_string()
-        };
-        out.push_str(&format!(
-            "  {} ({}): {} - {}\n",
-            t.name,
-            t.format.name(),
-            t.range,
-            verdict
-        ));
-        for (span, what) in &t.stops {
-            let (line, col) = sources.line_col(span.file, span.start);
-            let file = sources.get(span.file).map_or("?", |f| f.name.as_str());
-            out.push_str(&format!(
-                "    stopped at {file}:{line}:{col}: `{}`: {what}\n",
-                sources.snippet(*span)
-            ));
-        }
-    }
-    out
 }

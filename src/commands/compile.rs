@@ -73,11 +73,11 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
         if let Err(e) = npr_runner::output::write_atomic(&out, &bytes) {
             return printer.fail(cannot_write(&out, e));
         }
-    } else if let Err(e) = write_compiled(&c, &out) {
+    } else if let Err(e) = write_compiled(&c, &sources, &out) {
         return printer.fail(cannot_write(&out, e));
     }
     if report {
-        print!("{}", c.report.render());
+        print!("{}{}", c.report.render(), c.ranges_text(&sources));
     }
     if time_passes {
         let total: f64 = c.timings.iter().map(|(_, d)| d.as_secs_f64()).sum();
@@ -90,10 +90,12 @@ pub fn run(args: CompileArgs, printer: &Printer) -> i32 {
     EXIT_OK
 }
 
-fn write_compiled(c: &Compiled, out: &Path) -> std::io::Result<()> {
+fn write_compiled(c: &Compiled, sources: &SourceMap, out: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(out)?;
     let manifest = serde_json::to_string_pretty(&c.manifest).map_err(std::io::Error::other)?;
-    let report = c.report.render();
+    // The report says what the compiler removed and why, then what it
+    // proved of each target's values.
+    let report = format!("{}{}", c.report.render(), c.ranges_text(sources));
     let mut files: Vec<(PathBuf, &[u8])> = c
         .shaders
         .iter()

@@ -74,6 +74,17 @@ fn compile_writes_wgsl_manifest_and_report() {
         "{stdout}"
     );
     assert!(stdout.contains("validate"), "stage timings printed: {stdout}");
+    // The report ends with the proved ranges, the very text of `npr check
+    // --ranges` (issue 49), and so does report.txt.
+    let check = npr(&["check", "--ranges", "examples/outline.npr"]);
+    let ranges = String::from_utf8_lossy(&check.stdout);
+    assert!(
+        ranges.starts_with("value ranges") && ranges.contains("finite for all declared params"),
+        "{ranges}"
+    );
+    assert!(stdout.contains(ranges.as_ref()), "{stdout}");
+    let written = std::fs::read_to_string(dir.join("report.txt")).expect("report.txt");
+    assert!(written.ends_with(ranges.as_ref()), "{written}");
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).expect("manifest")).expect("json");
     let passes: Vec<&str> = manifest["passes"]

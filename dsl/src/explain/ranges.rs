@@ -16,7 +16,9 @@ macro_rules! ranges_meaning {
             driver return what it likes: lavapipe may give 0 where another GPU gives +inf or \
             NaN, so a style clean on one machine is broken on another. The warning names the \
             operand's range and the params and builtins it comes from; the help gives a safe \
-            form that the analysis proves. `docs/RANGES.md` says what the analysis knows."
+            form that the analysis proves. `docs/RANGES.md` says what the analysis knows. \
+            No warning covers a float-to-int conversion: the language has none (an int comes \
+            only from an int or enum param or an int builtin)."
         )
     };
 }

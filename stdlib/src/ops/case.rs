@@ -200,6 +200,13 @@ pub struct OpDef {
     /// them); `None` where nothing is promised. `tests/op_ranges.rs` checks
     /// the reference at the argument ends.
     pub range: Option<(f64, f64)>,
+    /// The texture parameter whose texels bound the result: each
+    /// component is a convex combination (weights ≥ 0 summing to 1) of
+    /// that component of the texture's texels, for finite texels and
+    /// finite other arguments (issue 49: the range analysis bounds a
+    /// filter's result by what its input target or image holds).
+    /// `tests/op_ranges.rs` checks the reference on random textures.
+    pub texel_hull: Option<&'static str>,
 }
 
 /// How far past its declared bounds an operator's result may round (a
@@ -271,6 +278,7 @@ impl OpDef {
             cases,
             demo: super::Demo::Missing,
             range: None,
+            texel_hull: None,
         }
     }
 
@@ -280,6 +288,28 @@ impl OpDef {
             range: Some((lo, hi)),
             ..self
         }
+    }
+
+    /// The same operator with its result in the hull of texture parameter
+    /// `param`'s texels (a filter whose weights are convex).
+    pub const fn with_texel_hull(self, param: &'static str) -> OpDef {
+        OpDef {
+            texel_hull: Some(param),
+            ..self
+        }
+    }
+
+    /// How far past its texels' hull a [`OpDef::texel_hull`] operator's
+    /// f32 result may round: a share of the hull's largest magnitude, for
+    /// up to 97 taps (the Gaussian's 48-texel radius) summed and divided
+    /// by their weights' sum. Not past 0 from a hull on one side of it:
+    /// non-negative terms never round below 0.
+    pub fn hull_with_slack(lo: f64, hi: f64) -> (f64, f64) {
+        let slack = 256.0 * f32::EPSILON as f64;
+        let m = lo.abs().max(hi.abs());
+        let lo = if lo >= 0.0 { lo * (1.0 - slack) } else { lo - slack * m };
+        let hi = if hi <= 0.0 { hi * (1.0 - slack) } else { hi + slack * m };
+        (lo, hi)
     }
 
     /// The same operator with its demo (every operator needs one).

@@ -41,6 +41,9 @@ pub struct Reads {
     pub targets: HashMap<TargetRef, Val>,
     pub history: HashMap<TargetRef, Val>,
     pub values: HashMap<(PassId, u32), Val>,
+    /// Each per-object state's old value (per compute pass and slot): its
+    /// first value joined with every update so far, once a frame ran.
+    pub states: HashMap<(PassId, u32), Val>,
 }
 
 /// Evaluates nodes in order, memoised: `vals[id]` once computed.
@@ -51,6 +54,8 @@ pub struct Eval<'a> {
     pub params: &'a [inputs::ParamRange],
     pub vals: HashMap<ExprId, Val>,
     pub findings: Vec<Finding>,
+    /// The pass evaluated (whose states `StateOld` reads).
+    pub pass: Option<PassId>,
 }
 
 fn n_of(ty: Ty) -> usize {
@@ -65,6 +70,7 @@ impl<'a> Eval<'a> {
             params,
             vals: HashMap::new(),
             findings: Vec::new(),
+            pass: None,
         }
     }
 
@@ -90,6 +96,31 @@ impl<'a> Eval<'a> {
             .get(&id)
             .cloned()
             .unwrap_or_else(|| Val::top(n_of(self.ir.expr(id).ty)))
+    }
+
+    /// The old value of state `slot` of the pass evaluated, as its reads
+    /// see it this frame.
+    pub fn val_of_state(&mut self, slot: u32, n: usize) -> Val {
+        let Some(pass) = self.pass else {
+            return Val::top(n);
+        };
+        if let Some(v) = self.reads.states.get(&(pass, slot)) {
+            return fit(v, n);
+        }
+        match self
+            .ir
+            .pass(pass)
+            .kind
+            .values()
+            .get(slot as usize)
+            .and_then(|v| v.first)
+        {
+            Some(first) => {
+                self.run(&[first]);
+                fit(&self.val(first), n)
+            }
+            None => Val::top(n),
+        }
     }
 
     fn find(&mut self, domain: Domain, at: ExprId, operands: &[ExprId]) {
@@ -151,9 +182,9 @@ impl<'a> Eval<'a> {
                 Some(v) => fit(v, n),
                 None => Val::top(n),
             },
-            // A state's old value: whatever the frames before left (the
-            // analysis does not iterate per-object state).
-            ExprKind::StateOld { .. } => Val::top(n),
+            // A state's old value: what the frames before left, or on the
+            // first frame (before any ran) its first value.
+            ExprKind::StateOld { slot } => self.val_of_state(*slot, n),
             ExprKind::Swizzle { base, components } => {
                 let b = self.val(*base);
                 Val {
@@ -257,7 +288,7 @@ impl<'a> Eval<'a> {
 
     /// Whether two nodes are the same value: one node, or reads of the
     /// same param or builtin (each use is a node of its own).
-    fn same(&self, a: ExprId, b: ExprId) -> bool {
+    pub(super) fn same(&self, a: ExprId, b: ExprId) -> bool {
         if a == b {
             return true;
         }
@@ -266,6 +297,36 @@ impl<'a> Eval<'a> {
             (ExprKind::Builtin(p), ExprKind::Builtin(q)) => p == q,
             _ => false,
         }
+    }
+
+    /// Whether two nodes compute the same value: [`Eval::same`], or the
+    /// same operation on operands that are (`depth` levels down at most;
+    /// `n1 - n0` written twice is two nodes).
+    pub(super) fn same_tree(&self, a: ExprId, b: ExprId, depth: u32) -> bool {
+        if self.same(a, b) {
+            return true;
+        }
+        if depth == 0 {
+            return false;
+        }
+        let (ea, eb) = (&self.ir.expr(a).kind, &self.ir.expr(b).kind);
+        let shallow = match (ea, eb) {
+            (ExprKind::Const(_), ExprKind::Const(_))
+            | (ExprKind::Target { .. }, ExprKind::Target { .. })
+            | (ExprKind::Texture(_), ExprKind::Texture(_)) => return ea == eb,
+            (ExprKind::Binary { op: p, .. }, ExprKind::Binary { op: q, .. }) => p == q,
+            (ExprKind::Unary { op: p, .. }, ExprKind::Unary { op: q, .. }) => p == q,
+            (ExprKind::Swizzle { components: p, .. }, ExprKind::Swizzle { components: q, .. }) => p == q,
+            (ExprKind::Call { callee: p, .. }, ExprKind::Call { callee: q, .. }) => p == q,
+            (ExprKind::Convert { conversion: p, .. }, ExprKind::Convert { conversion: q, .. }) => p == q,
+            (ExprKind::Select { .. }, ExprKind::Select { .. }) => true,
+            _ => false,
+        };
+        let (oa, ob) = (self.ir.operands(a), self.ir.operands(b));
+        shallow
+            && self.ir.expr(a).ty == self.ir.expr(b).ty
+            && oa.len() == ob.len()
+            && oa.iter().zip(&ob).all(|(x, y)| self.same_tree(*x, *y, depth - 1))
     }
 
     /// `id` as `x + c` with a constant `c` (`x − c` too; `(x, 0)` otherwise).
@@ -293,6 +354,9 @@ impl<'a> Eval<'a> {
                 let Some(def) = npr_stdlib::ops::ALL.get(i as usize) else {
                     return Val::top(n);
                 };
+                if let Some(hull) = self.texel_hull(def, args, &vals, n) {
+                    return hull;
+                }
                 // The range holds for arguments within the parameters'
                 // declared ranges (and finite): checked here.
                 let args_ok = def.op.params.iter().zip(&vals).all(|(p, v)| match p.range {
@@ -384,6 +448,9 @@ impl<'a> Eval<'a> {
                 let d = Val::zip(&[&vals[0], &vals[1]], |x| x[0].sub(x[1]));
                 Val::scalar(d.length())
             }
+            // `dot(x, x)` is |x|² ≥ 0 (each term a square), not a sum of
+            // products of independent ranges.
+            Intrinsic::Dot if self.same_tree(args[0], args[1], 8) => Val::scalar(vals[0].length_sq()),
             Intrinsic::Dot => {
                 let (a, b) = (&vals[0], &vals[1]);
                 let k = a.comps.len().max(b.comps.len());
@@ -410,18 +477,79 @@ impl<'a> Eval<'a> {
                 }
                 v
             }
-            Intrinsic::Cross => {
-                let (a, b) = (&vals[0], &vals[1]);
-                let c = |i: usize, j: usize| a.at(i).mul(b.at(j)).sub(a.at(j).mul(b.at(i)));
-                Val {
-                    comps: vec![c(1, 2), c(2, 0), c(0, 1)],
-                    norm: None,
-                }
-            }
+            // Per path of an `if` argument (`paths.rs`), joined.
+            Intrinsic::Cross => self
+                .paths(args, &vals)
+                .iter()
+                .map(|p| Eval::cross(&p[0], &p[1]))
+                .reduce(|a, b| a.join(&b))
+                .unwrap_or_else(|| Val::top(3)),
             // A point on the eye's plane projects to ±∞ or NaN.
             Intrinsic::Project | Intrinsic::ProjectOtherEye | Intrinsic::ProjectPrevious => Val::top(n),
             // A gradient's stops are colours: the ramp stays in their hull.
             Intrinsic::Ramp(_) => Val::splat(Iv::UNIT.with_nan(any_nan), n),
+        }
+    }
+}
+
+impl Eval<'_> {
+    /// A filter's result when it declares it within its texture's texels
+    /// (`OpDef::texel_hull`: `sample`, `gaussian`, `downsample`): each
+    /// component in the hull of that component of what the texture holds
+    /// (a target's proved stored range, an image's format's), widened by
+    /// f32 rounding; `None` when that is not proved (texels or other
+    /// arguments maybe NaN or infinite: a NaN coordinate reads anything).
+    fn texel_hull(&self, def: &npr_stdlib::ops::OpDef, args: &[ExprId], vals: &[Val], n: usize) -> Option<Val> {
+        let param = def.texel_hull?;
+        let at = def.op.params.iter().position(|p| p.name == param)?;
+        let others_finite = vals
+            .iter()
+            .enumerate()
+            .all(|(i, v)| i == at || v.comps.iter().all(|c| c.is_finite()));
+        let texels = self.texels(*args.get(at)?)?;
+        if !others_finite || !texels.comps.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        Some(Val {
+            comps: (0..n)
+                .map(|i| {
+                    let c = texels.at(i);
+                    let (lo, hi) = npr_stdlib::ops::OpDef::hull_with_slack(c.lo, c.hi);
+                    Iv::new(lo, hi)
+                })
+                .collect(),
+            norm: None,
+        })
+    }
+
+    /// What a texture argument's texels hold, as the four components a
+    /// read returns: a target's stored range, with a format of fewer
+    /// channels read as (r, g, 0, 1) as WGSL does; an image's format's.
+    fn texels(&self, tex: ExprId) -> Option<Val> {
+        match &self.ir.expr(tex).kind {
+            ExprKind::Target { target, copy } => {
+                let map = if *copy == TargetCopy::Previous {
+                    &self.reads.history
+                } else {
+                    &self.reads.targets
+                };
+                let stored = map.get(target)?;
+                let channels = self.ir.pass(target.pass).outputs[target.output as usize]
+                    .format
+                    .channels() as usize;
+                Some(Val {
+                    comps: (0..4)
+                        .map(|i| match stored.comps.get(i).filter(|_| i < channels) {
+                            Some(c) => *c,
+                            None if i == 3 => Iv::point(1.0),
+                            None => Iv::point(0.0),
+                        })
+                        .collect(),
+                    norm: None,
+                })
+            }
+            ExprKind::Texture(t) => Some(inputs::texture(self.ir, *t, 4)),
+            _ => None,
         }
     }
 }

@@ -11,10 +11,14 @@
 //! target's format into the passes that read it, and across frames: a
 //! `previous(...)` read starts at the target's clear value and is joined
 //! with what the frame stores until nothing grows, or widened to the
-//! format's whole range after [`MAX_FRAME_ROUNDS`] rounds. Each operation
-//! whose operands reach a value where WGSL's result is undefined or not
-//! finite becomes a warning (`domains.rs`); each live target's proved range
-//! is kept for `npr check --ranges`.
+//! format's whole range after [`MAX_FRAME_ROUNDS`] rounds; a per-object
+//! `state` starts at its first value and is joined with its update the
+//! same way, its growing bounds then widened to thresholds ([`widen`]).
+//! An `if` argument that narrows another argument is split (`paths.rs`).
+//! Each operation whose operands reach a value where WGSL's result is
+//! undefined or not finite becomes a warning (`domains.rs`); each live
+//! target's proved range is kept for `npr check --ranges` and
+//! `npr compile --report` (`text.rs`).
 //!
 //! Sound means: every f32 value the shader can compute lies in the range
 //! (under the runtime contract of `inputs.rs`); "finite" is never claimed
@@ -25,6 +29,8 @@ pub mod domains;
 pub mod eval;
 pub mod inputs;
 pub mod interval;
+mod paths;
+pub mod text;
 pub mod value;
 
 #[cfg(test)]
@@ -89,9 +95,24 @@ pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
     let mut widened = false;
     loop {
         rounds += 1;
-        let (targets, findings) = frame(ir, live, params, &mut reads);
-        // Grow each history read by what this frame stored.
+        let (targets, findings, states) = frame(ir, live, params, &mut reads);
+        // Grow each history read by what this frame stored, and each
+        // state by its update (past the rounds, to anything).
         let mut grown = false;
+        for (key, (old, update)) in states {
+            let joined = old.join(&update);
+            let new = if rounds >= MAX_STATE_ROUNDS {
+                Val::top(update.comps.len())
+            } else if rounds >= MAX_FRAME_ROUNDS {
+                widen(&old, &joined)
+            } else {
+                joined
+            };
+            if reads.states.get(&key) != Some(&new) {
+                grown = true;
+                reads.states.insert(key, new);
+            }
+        }
         for t in &live.history {
             let stored = reads.targets.get(t).cloned().unwrap_or_else(|| Val::top(4));
             let old = reads.history[t].clone();
@@ -107,7 +128,11 @@ pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
                 targets,
                 warnings,
                 unproved,
-                frame_rounds: if live.history.is_empty() { 0 } else { rounds },
+                frame_rounds: if live.history.is_empty() && reads.states.is_empty() {
+                    0
+                } else {
+                    rounds
+                },
                 history_widened: widened,
             };
         }
@@ -131,6 +156,60 @@ pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
     }
 }
 
+/// Rounds of frames before a state is unknown: past [`MAX_FRAME_ROUNDS`]
+/// its growing bounds jump to the next threshold each round ([`widen`]).
+pub const MAX_STATE_ROUNDS: usize = MAX_FRAME_ROUNDS + STATE_THRESHOLDS.len() + 1;
+
+/// Where a state's growing bound is widened to: a state that decays
+/// towards 0 or 1 (a fade, a smoothing) reaches its fixed point there in
+/// one step instead of never.
+const STATE_THRESHOLDS: [f64; 9] = [
+    -interval::F32_MAX,
+    -1e6,
+    -1e3,
+    -1.0,
+    0.0,
+    1.0,
+    1e3,
+    1e6,
+    interval::F32_MAX,
+];
+
+/// `new` (which holds `old`) with each bound that moved out past `old`'s
+/// moved further, to the next threshold (interval widening with
+/// thresholds): sound, since it only grows the range.
+fn widen(old: &Val, new: &Val) -> Val {
+    let comps = new
+        .comps
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let o = old.at(i);
+            let lo = if c.lo < o.lo {
+                STATE_THRESHOLDS
+                    .iter()
+                    .rev()
+                    .copied()
+                    .find(|t| *t <= c.lo)
+                    .unwrap_or(f64::NEG_INFINITY)
+            } else {
+                c.lo
+            };
+            let hi = if c.hi > o.hi {
+                STATE_THRESHOLDS
+                    .iter()
+                    .copied()
+                    .find(|t| *t >= c.hi)
+                    .unwrap_or(f64::INFINITY)
+            } else {
+                c.hi
+            };
+            Iv { lo, hi, nan: c.nan }
+        })
+        .collect();
+    Val { comps, norm: None }
+}
+
 /// A pass's clear value, as `n` components.
 fn clear_value(pass: &Pass, n: usize) -> Val {
     Val {
@@ -139,16 +218,26 @@ fn clear_value(pass: &Pass, n: usize) -> Val {
     }
 }
 
+/// Per compute pass and slot: a state's old value this frame and its update.
+type StateUpdates = Vec<((PassId, u32), (Val, Val))>;
+
 /// One frame: every live pass in order (operands before readers), the
-/// targets' ranges and the domain findings.
-fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads) -> (Vec<TargetRange>, Vec<Finding>) {
+/// targets' ranges, the domain findings and the states' updates.
+fn frame(
+    ir: &Ir,
+    live: &Live,
+    params: &[inputs::ParamRange],
+    reads: &mut Reads,
+) -> (Vec<TargetRange>, Vec<Finding>, StateUpdates) {
     reads.targets.clear();
     reads.values.clear();
     let mut targets = Vec::new();
     let mut findings = Vec::new();
+    let mut states = Vec::new();
     for pid in &live.passes {
         let pass = ir.pass(*pid);
         let mut ev = Eval::new(ir, reads, params);
+        ev.pass = Some(*pid);
         ev.run(&pass.roots().all());
         let mut stores = Vec::new();
         for t in live.targets_of(*pid) {
@@ -198,7 +287,13 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
                         .collect(),
                     norm: None,
                 },
-                ValueRule::State => Val::top(n),
+                // What other passes read: the state after this frame's
+                // update (or kept, where the pass did not run for an object).
+                ValueRule::State => {
+                    let old = ev.val_of_state(slot as u32, n);
+                    states.push(((*pid, slot as u32), (old.clone(), v.clone())));
+                    v.join(&old)
+                }
             };
             values.push(((*pid, slot as u32), r));
         }
@@ -218,7 +313,7 @@ fn frame(ir: &Ir, live: &Live, params: &[inputs::ParamRange], reads: &mut Reads)
             reads.values.insert(k, v);
         }
     }
-    (targets, findings)
+    (targets, findings, states)
 }
 
 /// Where the proof that `root` is finite stops: the domain findings under
@@ -261,7 +356,7 @@ fn stops(ir: &Ir, ev: &Eval, root: ExprId) -> Vec<(npr_diag::Span, String)> {
             },
             ExprKind::Target { target, .. } => format!("target `{}`, not proved finite", ir.target_name(*target)),
             ExprKind::ObjectValue { .. } | ExprKind::StateOld { .. } => {
-                "a per-object value (sums and states are not bounded)".into()
+                "a per-object value with no bound (a sum, or a state that grows without one)".into()
             }
             ExprKind::Texture(t) => format!(
                 "texture `{}` (an HDR image or a filter's input)",

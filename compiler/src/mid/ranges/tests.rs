@@ -256,3 +256,122 @@ fn a_store_in_f16_is_bounded_by_the_values_range() {
     let c = r[0].range.comps[0];
     assert!(c.lo == 0.0 && (10.0..10.01).contains(&c.hi), "{}", r[0].range);
 }
+
+/// The range codes of the warnings compiling `text`, and its targets' ranges.
+fn range_warnings(text: &str) -> (Vec<&'static str>, Vec<super::TargetRange>) {
+    let mut sources = npr_diag::SourceMap::new();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    let c = crate::compile_source("case.npr", text, &dir, &mut sources, &crate::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let codes = c
+        .warnings
+        .iter()
+        .map(|d| d.code)
+        .filter(|c| c.starts_with("W02"))
+        .collect();
+    (codes, c.ranges)
+}
+
+fn tangent_style(axis: &str) -> String {
+    format!(
+        "style \"T\"\npass p: render(scene) {{\n  let t1 = normalize(cross(normal, {axis}))\n  out c: rgba16float = vec4(t1, 1.0)\n}}\noutput p.c\n"
+    )
+}
+
+#[test]
+fn a_tangent_from_an_axis_the_normal_is_kept_away_from_is_proved_non_zero() {
+    // dynamic_pattern.npr's frame: in each branch of the `if`, the normal
+    // is narrowed by the condition, and Lagrange's identity bounds the
+    // cross product's length below (0.43 and 0.9).
+    let guarded = "if abs(normal.x) < 0.9 { vec3(1.0, 0.0, 0.0) } else { vec3(0.0, 1.0, 0.0) }";
+    let (codes, ranges) = range_warnings(&tangent_style(guarded));
+    assert!(codes.is_empty(), "{codes:?}");
+    assert!(ranges[0].value_finite, "{}", ranges[0].range);
+    // The same with the comparison the other way round.
+    let flipped = "if 0.9 > abs(normal.x) { vec3(1.0, 0.0, 0.0) } else { vec3(0.0, 1.0, 0.0) }";
+    assert!(range_warnings(&tangent_style(flipped)).0.is_empty());
+    // Controls: an axis the normal may lie along, and a guard on the wrong
+    // component, stay warned (W0208).
+    for unsafe_axis in [
+        "vec3(1.0, 0.0, 0.0)",
+        "if abs(normal.y) < 0.9 { vec3(1.0, 0.0, 0.0) } else { vec3(0.0, 1.0, 0.0) }",
+        "if abs(normal.x) < 0.9 { vec3(0.0, 1.0, 0.0) } else { vec3(1.0, 0.0, 0.0) }",
+    ] {
+        let (codes, _) = range_warnings(&tangent_style(unsafe_axis));
+        assert_eq!(codes, ["W0208"], "{unsafe_axis}");
+    }
+}
+
+#[test]
+fn a_filters_result_stays_within_its_inputs_texels() {
+    let style = |read: &str| {
+        format!(
+            "style \"F\"\npass g: render(scene) {{\n  out d: r16float = saturate(depth) + 2.0\n}}\npass b: image(g) {{\n  out e: r32float = {read}\n}}\noutput b.e\n"
+        )
+    };
+    // A target in [2, 3] where drawn, 0 where cleared: blurred and sampled
+    // it stays in [0, 3] (an f16 step or so above), so sqrt and log(x + 1)
+    // are safe.
+    for read in [
+        "sqrt(gaussian(g.d, sigma: 2.0, axis: x).r)",
+        "log(sample(g.d, uv: screen_uv).r + 1.0)",
+        "sqrt(downsample(g.d).r)",
+        // A one-channel target reads as (r, 0, 0, 1): its alpha is 1.
+        "log(sample(g.d, uv: screen_uv).a)",
+    ] {
+        let (codes, ranges) = range_warnings(&style(read));
+        assert!(codes.is_empty(), "{read}: {codes:?}");
+        let b = ranges.iter().find(|r| r.name == "b.e").expect("b.e");
+        assert!(b.value_finite, "{read}: {}", b.range);
+    }
+    let (_, ranges) = range_warnings(&style("gaussian(g.d, sigma: 2.0, axis: x).r"));
+    let c = ranges.iter().find(|r| r.name == "b.e").expect("b.e").range.comps[0];
+    // (r16float rounds 3 up by 2⁻¹¹ of itself at most.)
+    assert!(c.lo == 0.0 && c.hi > 3.0 && c.hi < 3.002, "{c}");
+    // The cleared 0 is in the hull: x − 1 may be negative (W0204); and the
+    // green of a one-channel target is 0 (W0203).
+    assert_eq!(
+        range_warnings(&style("sqrt(gaussian(g.d, sigma: 2.0, axis: x).r - 1.0)")).0,
+        ["W0204"]
+    );
+    assert_eq!(range_warnings(&style("log(sample(g.d, uv: screen_uv).g)")).0, ["W0203"]);
+    // A float target with no bound keeps its filter unbounded.
+    let (_, ranges) =
+        range_warnings(&style("gaussian(g.d, sigma: 2.0, axis: x).r").replace("saturate(depth) + 2.0", "depth * 1e30"));
+    assert!(!ranges.iter().find(|r| r.name == "b.e").expect("b.e").value_finite);
+}
+
+fn state_style(update: &str) -> String {
+    format!(
+        "style \"S\"\npass st: compute(objects) {{\n  state s: float = 1.0\n  s = {update}\n}}\npass p: render(scene) {{\n  out c: r32float = sqrt(st.s)\n}}\noutput p.c\n"
+    )
+}
+
+#[test]
+fn a_per_object_state_is_followed_across_frames() {
+    // Halved every frame from 1: in [0, 1] on every frame, so its sqrt is
+    // safe and the target proved finite.
+    let (codes, ranges) = range_warnings(&state_style("s * 0.5"));
+    assert!(codes.is_empty(), "{codes:?}");
+    let c = ranges.iter().find(|r| r.name == "p.c").expect("p.c");
+    assert!(c.value_finite, "{}", c.range);
+    assert_eq!(c.range.hull().to_string(), "[0, 1]");
+    // Made negative from the second frame on (down to −1): sqrt is warned.
+    assert_eq!(range_warnings(&state_style("max(s - 2.0, -1.0)")).0, ["W0204"]);
+    // Doubled every frame: no bound, widened, not proved finite.
+    let (_, ranges) = range_warnings(&state_style("s * 2.0 + 1.0"));
+    assert!(!ranges.iter().find(|r| r.name == "p.c").expect("p.c").value_finite);
+}
+
+#[test]
+fn the_dot_of_a_difference_with_itself_is_not_negative() {
+    // `dot(a − b, a − b)` written twice is two nodes of one value: |a − b|².
+    let style = "style \"D\"\npass p: render(scene) {\n  out c: r32float = sqrt(dot(normal - view_dir, normal - view_dir))\n}\noutput p.c\n";
+    assert!(range_warnings(style).0.is_empty());
+    // A different second operand is a dot product, which may be negative.
+    let other = style.replace(
+        "dot(normal - view_dir, normal - view_dir)",
+        "dot(normal - view_dir, view_dir - normal)",
+    );
+    assert_eq!(range_warnings(&other).0, ["W0204"]);
+}

@@ -174,6 +174,9 @@ pub const GAUSSIAN: OpDef = OpDef::new(
         gaussian_case!("32×24 noise", 32, 24, images::noise(32, 24, 12)),
     ],
 )
+// Weights exp(−d²/2σ²) > 0, divided by their sum: convex, and so
+// within the hull of the source's texels.
+.with_texel_hull("src")
 .with_demo(demos::GAUSSIAN);
 
 pub const DOWNSAMPLE: OpDef = OpDef::new(
@@ -222,6 +225,8 @@ pub const DOWNSAMPLE: OpDef = OpDef::new(
         .over(16, 12),
     ],
 )
+// Four texels at 0.25 each: convex.
+.with_texel_hull("src")
 .with_demo(demos::DOWNSAMPLE);
 
 pub const SOBEL: OpDef = OpDef::new(

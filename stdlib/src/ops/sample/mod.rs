@@ -67,4 +67,6 @@ pub const SAMPLE: OpDef = OpDef::new(
     )
     .over(37, 29)],
 )
+// Bilinear weights are convex: the read stays in the hull of the texels.
+.with_texel_hull("tex")
 .with_demo(demos::SAMPLE);
