@@ -330,6 +330,9 @@ pub mod codes {
     /// at another scale than the output's, or through the light's view:
     /// the host's depth is the camera's, at the output's size.
     pub const INPUT_DEPTH_MISMATCH: &str = "E0320";
+    /// `uv` in an image pass of a style over a host's frame: the host's
+    /// frame carries no surface coordinates and they cannot be rebuilt.
+    pub const NO_HOST_UV: &str = "E0321";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -533,6 +536,7 @@ pub mod codes {
             INPUT_DEPTH_MISMATCH,
             "a depth test against the host's depth at another scale or view",
         ),
+        (NO_HOST_UV, "`uv` in an image pass over a host's frame"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

@@ -557,3 +557,14 @@ fn a_depth_test_against_the_hosts_depth_compiles() {
         ink.kind
     );
 }
+
+#[test]
+fn e0321_uv_in_an_image_pass_over_a_hosts_frame() {
+    let text = style(
+        "texture c = input(color, linear)\ntexture z = input(depth)\n\
+         pass p: image() {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("e0321"));
+    assert!(rendered.contains("screen_uv"), "the help offers screen_uv: {rendered}");
+    check("E0321", (diags, rendered));
+}

@@ -278,4 +278,21 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0321",
+        meaning: "In an image pass of a style over a host's frame, npr rebuilds `depth`, \
+            `position.view`, `position.world` and `view_dir` from the host's `input(depth)` and \
+            the camera, and reads `normal` from `input(normal, ...)`. Texture coordinates cannot \
+            be rebuilt: the host's frame does not say how its surfaces are parametrised. Read \
+            `screen_uv` instead, or take the host's UVs as an input of their own \
+            (`input(image, rg16float)`).",
+        wrong: Example {
+            style: "style \"Case\"\ntexture c = input(color, linear)\npass p: image() {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture c = input(color, linear)\npass p: image() {\n  out c: rgba8unorm = vec4(screen_uv, 0.0, 1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
 ];
