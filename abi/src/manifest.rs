@@ -437,11 +437,39 @@ pub enum DepthMode {
         #[serde(default, skip_serializing_if = "is_zero")]
         bias_px: f64,
     },
+    /// `depth: test(input)`: as `Test`, against the host's depth instead
+    /// of an earlier pass's: each frame the runner draws the
+    /// `input(depth)` texture (the language's convention, a view distance
+    /// in metres, 0 for nothing hit) through the frame camera's
+    /// projection into a depth buffer of the output's size, which the
+    /// pass loads and tests against without writing it.
+    TestInput {
+        /// Index into [`Manifest::textures`] of an `input(depth)` texture;
+        /// the pass renders at scale 1 through the camera's view.
+        input: usize,
+        /// As [`DepthMode::Test`]'s.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        bias_px: f64,
+    },
 }
 
 impl DepthMode {
     pub fn is_own(&self) -> bool {
         *self == DepthMode::Own
+    }
+
+    /// Whether the pass loads a depth it does not write: a test against an
+    /// earlier pass's kept depth or the host's depth.
+    pub fn is_test(&self) -> bool {
+        matches!(self, DepthMode::Test { .. } | DepthMode::TestInput { .. })
+    }
+
+    /// The slope-scaled bias of a test (`None` for a pass's own depth).
+    pub fn test_bias_px(&self) -> Option<f64> {
+        match self {
+            DepthMode::Test { bias_px, .. } | DepthMode::TestInput { bias_px, .. } => Some(*bias_px),
+            DepthMode::Own | DepthMode::Keep => None,
+        }
     }
 }
 

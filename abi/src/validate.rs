@@ -379,6 +379,15 @@ impl Manifest {
                 depth: DepthMode::Test { pass, bias_px },
                 ..
             } => (pass, bias_px, false),
+            PassKindManifest::Render {
+                depth: DepthMode::TestInput { input, bias_px },
+                light_view,
+                ..
+            } => return self.validate_input_depth(field, p, (*input, *bias_px), *light_view),
+            PassKindManifest::Lines {
+                depth: DepthMode::TestInput { input, bias_px },
+                ..
+            } => return self.validate_input_depth(field, p, (*input, *bias_px), false),
             PassKindManifest::Lines {
                 depth: DepthMode::Keep, ..
             } => {
@@ -424,6 +433,52 @@ impl Manifest {
             );
         }
         if !(0.0..=MAX_DEPTH_BIAS_PX).contains(bias_px) {
+            return bad(
+                format!("{f}.bias_px"),
+                format!("{bias_px} is outside 0..={MAX_DEPTH_BIAS_PX}"),
+            );
+        }
+        Ok(())
+    }
+
+    /// A depth test against the host's depth reads an `input(depth)`
+    /// texture, which has the output's size and the camera's view: the
+    /// pass renders at scale 1 through the camera.
+    fn validate_input_depth(
+        &self,
+        field: &str,
+        p: &PassManifest,
+        (input, bias_px): (usize, f64),
+        light_view: bool,
+    ) -> Result<(), Invalid> {
+        let f = format!("{field}.kind.depth");
+        let is_depth_input = self.textures.get(input).is_some_and(|t| {
+            matches!(
+                t.source,
+                TextureSourceManifest::Input(crate::input::InputSpec {
+                    kind: crate::input::InputKind::Depth
+                })
+            )
+        });
+        if !is_depth_input {
+            return bad(
+                format!("{f}.input"),
+                format!(
+                    "pass `{}` tests against texture #{input}, which is not an `input(depth)`",
+                    p.name
+                ),
+            );
+        }
+        if p.scale != 1.0 || light_view {
+            return bad(
+                format!("{f}.input"),
+                format!(
+                    "pass `{}` tests against the host's depth from another scale or view than the camera's",
+                    p.name
+                ),
+            );
+        }
+        if !(0.0..=MAX_DEPTH_BIAS_PX).contains(&bias_px) {
             return bad(
                 format!("{f}.bias_px"),
                 format!("{bias_px} is outside 0..={MAX_DEPTH_BIAS_PX}"),

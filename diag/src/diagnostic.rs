@@ -323,6 +323,16 @@ pub mod codes {
     pub const MISPLACED_LINE_SET: &str = "E0317";
     /// A line set's `visibility:` other than `visible`.
     pub const BAD_LINE_VISIBILITY: &str = "E0318";
+    /// `depth: test(name)` where `name` is neither a pass nor an
+    /// `input(depth)` texture (a colour input, a param).
+    pub const NOT_A_TESTED_DEPTH: &str = "E0319";
+    /// A pass that tests against the host's depth (`depth: test(input)`)
+    /// at another scale than the output's, or through the light's view:
+    /// the host's depth is the camera's, at the output's size.
+    pub const INPUT_DEPTH_MISMATCH: &str = "E0320";
+    /// `uv` in an image pass of a style over a host's frame: the host's
+    /// frame carries no surface coordinates and they cannot be rebuilt.
+    pub const NO_HOST_UV: &str = "E0321";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -518,6 +528,15 @@ pub mod codes {
         (DUPLICATE_LINE_SET, "two line sets with one name"),
         (MISPLACED_LINE_SET, "a line set, or its values, where there can be none"),
         (BAD_LINE_VISIBILITY, "a line set's visibility other than `visible`"),
+        (
+            NOT_A_TESTED_DEPTH,
+            "a depth test against neither a pass nor a depth input",
+        ),
+        (
+            INPUT_DEPTH_MISMATCH,
+            "a depth test against the host's depth at another scale or view",
+        ),
+        (NO_HOST_UV, "`uv` in an image pass over a host's frame"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

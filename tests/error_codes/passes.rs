@@ -499,3 +499,72 @@ fn position_in_an_image_pass_over_two_depth_inputs_is_ambiguous() {
     assert!(rendered.contains("any of the inputs `a`, `b`"), "{rendered}");
     check_case("E0304", "E0304_builtin_over_two_inputs", (diags, rendered));
 }
+
+/// A style over inputs whose pass `ink` tests its depth with `depth`.
+fn input_depth_passes(ink_header: &str, depth: &str) -> String {
+    style(&format!(
+        "texture color_in = input(color, display)\ntexture depth_in = input(depth)\n\
+         {ink_header} {{\n  out c: rgba8unorm = #000000\n  depth: {depth}\n  clear: #ffffff\n}}\n\
+         pass final: image(ink) {{\n  out color: rgba8unorm = sample(color_in, screen_uv) * ink.c\n}}\noutput final.color\n"
+    ))
+}
+
+#[test]
+fn e0319_depth_test_against_a_colour_input() {
+    let text = input_depth_passes("pass ink: render(scene)", "test(color_in, bias: 1px)");
+    let (diags, rendered) = compile_errors(&text, &scratch("e0319"));
+    assert!(
+        rendered.contains("`depth_in`"),
+        "the help names the depth input: {rendered}"
+    );
+    check("E0319", (diags, rendered));
+}
+
+#[test]
+fn e0320_depth_test_against_the_hosts_depth_at_another_scale() {
+    let text = input_depth_passes("pass ink: render(scene) scale 1/2", "test(depth_in)");
+    check("E0320", compile_errors(&text, &scratch("e0320")));
+}
+
+#[test]
+fn a_depth_test_against_the_hosts_depth_compiles() {
+    let text = input_depth_passes("pass ink: render(scene)", "test(depth_in, bias: 1px)");
+    let mut sources = SourceMap::new();
+    let compiled = npr_compiler::compile_source(
+        "case.npr",
+        &text,
+        &scratch("input-depth-ok"),
+        &mut sources,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    let manifest = &compiled.program().manifest;
+    let ink = manifest.passes.iter().find(|p| p.name == "ink").expect("pass ink");
+    let input = manifest
+        .textures
+        .iter()
+        .position(|t| t.name == "depth_in")
+        .expect("depth_in");
+    assert!(
+        matches!(
+            ink.kind,
+            npr_abi::manifest::PassKindManifest::Render {
+                depth: npr_abi::manifest::DepthMode::TestInput { input: i, .. },
+                ..
+            } if i == input
+        ),
+        "{:?}",
+        ink.kind
+    );
+}
+
+#[test]
+fn e0321_uv_in_an_image_pass_over_a_hosts_frame() {
+    let text = style(
+        "texture c = input(color, linear)\ntexture z = input(depth)\n\
+         pass p: image() {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+    );
+    let (diags, rendered) = compile_errors(&text, &scratch("e0321"));
+    assert!(rendered.contains("screen_uv"), "the help offers screen_uv: {rendered}");
+    check("E0321", (diags, rendered));
+}

@@ -318,19 +318,19 @@ fn every_module_npr_emits_passes_tint_and_builds_its_pipelines_from_the_manifest
 }
 
 /// The runner's own modules (`npr_runner::own_shaders`: the deformation
-/// stage, the host-input conversion, the present draw, the half-rounding
-/// probe) compile in Tint without an error or a warning, as every style's
+/// stage, the host-input conversion, the host depth draw, the present
+/// draw, the half-rounding probe) compile in Tint without an error or a warning, as every style's
 /// module does: they run wherever the runtime runs. Compiled only (their
 /// pipelines are the runner's, built and tested on wgpu).
 #[test]
 fn the_runners_own_modules_pass_tint() {
     let scratch = common::live::scratch("webgpu-portability", "own-shaders");
     let mut b = webgpu_page(&scratch);
-    let passes: Vec<Value> = npr_runner::own_shaders::ALL
+    let passes: Vec<Value> = npr_runner::own_shaders::all()
         .iter()
         .map(|(name, code)| json!({"name": name, "shader": name, "code": code, "pipelines": []}))
         .collect();
-    assert_eq!(passes.len(), 4, "the runner's modules: {passes:#?}");
+    assert_eq!(passes.len(), 5, "the runner's modules: {passes:#?}");
     let style = json!({"label": "runner", "features": [], "limits": {}, "passes": passes});
     let result = check(&mut b, &[style]);
     assert_eq!(result.checked, 1, "nprCheck checked the runner's modules");

@@ -29,6 +29,7 @@ mod host_builtins;
 mod host_inputs;
 mod input_sequences;
 mod lines_classify;
+mod lines_over;
 mod lines_pass;
 mod lines_sets;
 mod lsa_gbuffer_precision;

@@ -311,6 +311,11 @@ fn bad_depth_tests_and_blends_are_rejected_naming_the_field() {
             "`passes[1].kind.depth.pass`",
         ),
         (
+            "a test of the host's depth naming no `input(depth)`",
+            |m| m["passes"][1]["kind"]["depth"] = serde_json::json!({"mode": "test_input", "input": 0}),
+            "`passes[1].kind.depth.input`",
+        ),
+        (
             "a negative bias",
             |m| m["passes"][1]["kind"]["depth"]["bias_px"] = Value::from(-1.0),
             "`passes[1].kind.depth.bias_px`",

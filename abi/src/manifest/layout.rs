@@ -184,7 +184,7 @@ pub fn bind_group_layouts(manifest: &Manifest, pass: &PassManifest) -> Vec<Vec<L
             groups.push(own);
         }
         PassKindManifest::Lines { depth, .. } => {
-            if matches!(depth, DepthMode::Test { .. }) {
+            if depth.is_test() {
                 groups.push(vec![LayoutEntry {
                     binding: 0,
                     visibility: Visibility::Vertex,

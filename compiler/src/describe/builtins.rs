@@ -37,6 +37,8 @@ pub fn doc(b: Builtin) -> &'static str {
         CameraLeftEye => "The left eye's position of a stereo camera (the camera position in mono).",
         CameraRightEye => "The right eye's position of a stereo camera (the camera position in mono).",
         CameraForward => "The camera's unit view direction.",
+        CameraRight => "The camera's unit right direction in world space (x of its view).",
+        CameraUp => "The camera's unit up direction in world space (y of its view).",
         TangentScreen => "T_s: the world tangent projected to the screen, px per metre, from the projection's Jacobian (Age of Sail §3.2).",
         BitangentScreen => "B_s: the bitangent projected to the screen, px per metre (Age of Sail §3.2).",
         TangentScreenCenter => "T_s projected with the stereo camera's centre (equal to `tangent.screen` in mono).",

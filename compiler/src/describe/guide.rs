@@ -58,7 +58,7 @@ pub const TEXTURE_OPTIONS: &[(&str, &str)] = &[
 pub const PASS_SETTINGS: &[(&str, &str, &str)] = &[
     ("clear: #rrggbb", "render, image, lines", "The colour every output starts from before the pass draws (default `#00000000`, transparent black); a number `k` is `(k, k, k, 1)`."),
     ("depth: keep", "render", "Keep this pass's depth buffer so later render and lines passes can test against it."),
-    ("depth: test(pass, bias: 1px)", "render, lines", "Test against the depth `pass` kept, without writing it; `bias` in px (slope-scaled) or in depth units (a plain number) lets a surface pass its own depth."),
+    ("depth: test(pass, bias: 1px)", "render, lines", "Test against the depth `pass` kept, without writing it; `bias` in px (slope-scaled) or in depth units (a plain number) lets a surface pass its own depth. `pass` may instead be an `input(depth)` texture: the host's depth, drawn each frame through the camera's projection, hides npr's own lines or surfaces behind the host's (the pass at scale 1, through the camera: E0320; any other name: E0319)."),
     ("out name: format = value { blend: over }", "render, image, lines", "How an output combines with what the target holds: `replace` (default), `over` (straight-alpha Porter-Duff over), `add`, `multiply`. 32-bit float formats cannot blend (E0307)."),
     ("schedule: naive | auto | tiled | recompute", "image", "Force how this pass runs whatever `--schedule` says: `naive` as written, `tiled` as compute over workgroup tiles, `recompute` in its reader's tiles, `auto` leaves it to `--schedule`."),
     ("scale 1/2", "image, render (after the kind)", "The pass's image size relative to the output, in (0, 4]."),

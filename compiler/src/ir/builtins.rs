@@ -46,6 +46,11 @@ pub enum Builtin {
     CameraLeftEye,
     CameraRightEye,
     CameraForward,
+    /// The camera's unit right and up directions in world space (the view
+    /// matrix's first two rows): with `camera.forward`, the frame that
+    /// turns a view-space point into a world one.
+    CameraRight,
+    CameraUp,
     /// Screen-space projection T_s of the unit world tangent (direction of
     /// increasing u), in px per metre, computed in the vertex shader from the
     /// analytic Jacobian of the projection and interpolated (Age of Sail §3.2).
@@ -121,6 +126,8 @@ impl Builtin {
         ("camera.left_eye", Builtin::CameraLeftEye),
         ("camera.right_eye", Builtin::CameraRightEye),
         ("camera.forward", Builtin::CameraForward),
+        ("camera.right", Builtin::CameraRight),
+        ("camera.up", Builtin::CameraUp),
         ("tangent.screen", Builtin::TangentScreen),
         ("bitangent.screen", Builtin::BitangentScreen),
         ("tangent.screen_center", Builtin::TangentScreenCenter),
@@ -153,7 +160,7 @@ impl Builtin {
             ObjectIndex | ObjectId => (Ty::Int, Unit::None),
             Depth | CameraNear | CameraFar | SampleSpacing => (Ty::Float, Unit::Meters),
             CameraLeftEye | CameraRightEye => (Ty::Vec3, Unit::Meters),
-            CameraForward => (Ty::Vec3, Unit::None),
+            CameraForward | CameraRight | CameraUp => (Ty::Vec3, Unit::None),
             FragCoord | Resolution => (Ty::Vec2, Unit::Px),
             Time => (Ty::Float, Unit::Seconds),
             LineArc => (Ty::Float, Unit::Px),

@@ -149,9 +149,10 @@ pub enum PassDepth {
     /// `depth: keep`: stored for later passes' depth tests.
     Keep,
     /// `depth: test(pass, bias: b)`: test against the depth `pass` kept,
-    /// without writing it. One of the biases is non-zero at most.
+    /// or the host's `input(depth)`, without writing it. One of the biases
+    /// is non-zero at most.
     Test {
-        pass: PassId,
+        against: TestedDepth,
         /// `bias: N px`: slope-scaled, by the runner (`DepthBiasState`).
         bias_px: f64,
         /// `bias: b`: in window depth (0 near, 1 far), by the vertex shader.
@@ -161,19 +162,65 @@ pub enum PassDepth {
     },
 }
 
+/// What `depth: test(name)` names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum TestedDepth {
+    /// An earlier render pass with `depth: keep`.
+    Pass(PassId),
+    /// An `input(depth)` texture: the host's depth, drawn by the runner
+    /// through the camera's projection each frame.
+    Input(TextureId),
+}
+
 impl Pass {
     /// The pass whose kept depth this pass tests against, if any, with the
-    /// span of the setting.
+    /// span of the setting (a test against the host's depth names none).
     pub fn depth_test(&self) -> Option<(PassId, Span)> {
         match self.kind {
             PassKind::Render {
-                depth: PassDepth::Test { pass, span, .. },
+                depth:
+                    PassDepth::Test {
+                        against: TestedDepth::Pass(pass),
+                        span,
+                        ..
+                    },
                 ..
             }
             | PassKind::Lines(LinesKind {
-                depth: PassDepth::Test { pass, span, .. },
+                depth:
+                    PassDepth::Test {
+                        against: TestedDepth::Pass(pass),
+                        span,
+                        ..
+                    },
                 ..
             }) => Some((pass, span)),
+            _ => None,
+        }
+    }
+
+    /// The `input(depth)` texture this pass tests against, if any, with
+    /// the span of the setting.
+    pub fn input_depth_test(&self) -> Option<(TextureId, Span)> {
+        match self.kind {
+            PassKind::Render {
+                depth:
+                    PassDepth::Test {
+                        against: TestedDepth::Input(texture),
+                        span,
+                        ..
+                    },
+                ..
+            }
+            | PassKind::Lines(LinesKind {
+                depth:
+                    PassDepth::Test {
+                        against: TestedDepth::Input(texture),
+                        span,
+                        ..
+                    },
+                ..
+            }) => Some((texture, span)),
             _ => None,
         }
     }

@@ -79,6 +79,10 @@ fn walk(ir: &Ir, graph: &PassGraph, seeds: &BTreeSet<TargetRef>) -> Live {
         if let Some((tested, _)) = ir.pass(*pid).depth_test() {
             live.depth.insert(tested);
         }
+        // The host's depth, drawn into this pass's depth buffer.
+        if let Some((input, _)) = ir.pass(*pid).input_depth_test() {
+            live.textures.insert(input);
+        }
         // A state read inside its own pass (`StateOld`) makes that value
         // live too, which adds roots of this same pass: repeat until none.
         loop {

@@ -245,4 +245,54 @@ pub(super) const ALL: &[Explanation] = &[
             ..EXAMPLE
         },
     },
+    Explanation {
+        code: "E0319",
+        meaning: "`depth: test(name)` draws a render or lines pass against a depth it does not \
+            write: `name` is either an earlier pass with `depth: keep`, or a texture declared \
+            `input(depth)`, the host's depth (issue 47), which the runner draws through the \
+            camera's projection each frame, so that npr's lines over a host's frame are hidden \
+            behind the host's surfaces. Any other name (a colour or normal input, a texture from \
+            a file, a parameter) has no depth to test against.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture color_in = input(color, display)\ntexture depth_in = input(depth)\npass ink: lines(scene) {\n  depth: test(color_in, bias: 1px)\n  out ink: rgba8unorm = vec4(0.0, 0.0, 0.0, 1.0) { blend: over }\n  clear: #ffffff\n}\npass final: image(ink) {\n  out color: rgba8unorm = sample(color_in, screen_uv) * ink.ink\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture color_in = input(color, display)\ntexture depth_in = input(depth)\npass ink: lines(scene) {\n  depth: test(depth_in, bias: 1px)\n  out ink: rgba8unorm = vec4(0.0, 0.0, 0.0, 1.0) { blend: over }\n  clear: #ffffff\n}\npass final: image(ink) {\n  out color: rgba8unorm = sample(color_in, screen_uv) * ink.ink\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0320",
+        meaning: "The host's depth (`input(depth)`) is the camera's view at the output's size. A \
+            pass that tests against it (`depth: test(depth_in)`) renders at scale 1 through the \
+            camera: at another scale its depth buffer would not fit, and a `view(light)` pass \
+            sees the scene from elsewhere. Test such a pass against an earlier pass of its own \
+            scale and view with `depth: keep` instead.",
+        wrong: Example {
+            style: "style \"Case\"\ntexture color_in = input(color, display)\ntexture depth_in = input(depth)\npass ink: render(scene) scale 1/2 {\n  out c: rgba8unorm = #000000\n  depth: test(depth_in)\n  clear: #ffffff\n}\npass final: image(ink) {\n  out color: rgba8unorm = sample(color_in, screen_uv) * ink.c\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture color_in = input(color, display)\ntexture depth_in = input(depth)\npass ink: render(scene) {\n  out c: rgba8unorm = #000000\n  depth: test(depth_in)\n  clear: #ffffff\n}\npass final: image(ink) {\n  out color: rgba8unorm = sample(color_in, screen_uv) * ink.c\n}\noutput final.color\n",
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0321",
+        meaning: "In an image pass of a style over a host's frame, npr rebuilds `depth`, \
+            `position.view`, `position.world` and `view_dir` from the host's `input(depth)` and \
+            the camera, and reads `normal` from `input(normal, ...)`. Texture coordinates cannot \
+            be rebuilt: the host's frame does not say how its surfaces are parametrised. Read \
+            `screen_uv` instead, or take the host's UVs as an input of their own \
+            (`input(image, rg16float)`).",
+        wrong: Example {
+            style: "style \"Case\"\ntexture c = input(color, linear)\npass p: image() {\n  out c: rgba8unorm = vec4(uv, 0.0, 1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: "style \"Case\"\ntexture c = input(color, linear)\npass p: image() {\n  out c: rgba8unorm = vec4(screen_uv, 0.0, 1.0)\n}\noutput p.c\n",
+            ..EXAMPLE
+        },
+    },
 ];

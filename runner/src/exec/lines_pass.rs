@@ -117,7 +117,7 @@ impl LinesPassExec {
         })];
         let depth_test = match depth {
             DepthMode::Own => None,
-            DepthMode::Test { bias_px, .. } => Some(*bias_px),
+            DepthMode::Test { bias_px, .. } | DepthMode::TestInput { bias_px, .. } => Some(*bias_px),
             DepthMode::Keep => return Err(RunError::Internal(format!("lines pass `{}` keeps a depth", pass.name))),
         };
         let depth_layout = depth_test.map(|_| {

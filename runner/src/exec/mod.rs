@@ -33,6 +33,8 @@
 //!   `compute_pass.rs` and `lines_pass.rs`;
 //! - `common.rs`: what the executors share (they import it, never `pass.rs`);
 //! - `prepare_lines.rs`: each frame's strips of the `lines` passes;
+//! - `host_depth.rs`: the host's `input(depth)` drawn into a depth buffer
+//!   each frame, for passes with `depth: test(input)`;
 //! - `state.rs`: what outlives a frame, saved and restored (checkpoints).
 
 use crate::gpu_count::Create;
@@ -42,6 +44,7 @@ mod compute_pass;
 mod continuity;
 pub mod deform;
 mod frame;
+mod host_depth;
 mod image_pass;
 mod light_bounds;
 mod lines_pass;
@@ -62,6 +65,7 @@ mod upload;
 mod values;
 
 pub use frame::FrameSpec;
+pub(crate) use host_depth::host_depth_wgsl;
 pub use scene_check::{check_scene, check_texture_bindings};
 pub use scene_warnings::scene_warnings;
 pub use sized::{scaled_size, wgpu_format};
@@ -120,6 +124,8 @@ pub struct Renderer {
     /// an object playing a clip and kept across scenes.
     deform_pipeline: std::sync::OnceLock<deform::DeformPipeline>,
     sized: Option<sized::SizedResources>,
+    /// The host depth draw, made when a pass tests against an `input(depth)`.
+    host_depth: Option<host_depth::HostDepthPipeline>,
     /// Frames begun (by [`Renderer::prepare`]) since the textures were
     /// made: the current frame's parity is `(frames_begun - 1) % 2` for
     /// styles with history textures.
@@ -369,6 +375,8 @@ impl Renderer {
         for (exec, part) in passes.iter_mut().zip(pass_scenes) {
             exec.set_scene(part);
         }
+        let host_depth =
+            (!host_depth::tested_inputs(&manifest).is_empty()).then(|| host_depth::HostDepthPipeline::new(device));
         let has_lines = passes.iter().any(|p| matches!(p, PassExec::Lines(_)));
         let light_view = manifest
             .passes
@@ -393,6 +401,7 @@ impl Renderer {
             deform_pipeline,
             manifest,
             sized: None,
+            host_depth,
             frames_begun: 0,
             motion: frame::Motion::default(),
             camera: frame::CameraMatrices::default(),
@@ -571,6 +580,10 @@ impl Renderer {
         );
         // Objects playing a clip, deformed into the vertex buffers every pass binds.
         self.scene_gpu.deform.encode(encoder, &self.deform_pipeline);
+        // The host's depth, for the passes that test against it.
+        if let Some(host_depth) = &self.host_depth {
+            host_depth.encode(encoder, &sized.host_depths);
+        }
         let ctx = EncodeContext {
             meshes: &self.scene_gpu.meshes,
             object_group: &self.scene_gpu.object_group,

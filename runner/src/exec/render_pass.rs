@@ -80,7 +80,7 @@ fn depth_state(mode: &DepthMode) -> (wgpu::DepthStencilState, wgpu::Operations<f
             wgpu::LoadOp::Clear(1.0),
             wgpu::StoreOp::Store,
         ),
-        DepthMode::Test { bias_px, .. } => (
+        DepthMode::Test { bias_px, .. } | DepthMode::TestInput { bias_px, .. } => (
             false,
             wgpu::CompareFunction::LessEqual,
             wgpu::DepthBiasState {

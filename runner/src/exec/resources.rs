@@ -4,6 +4,8 @@
 //! depth texture per pass size for the passes that need one, a depth
 //! texture of its own per eye slot for each pass with `depth: keep` (never
 //! shared, so it lives through the frame: to its last tester and beyond),
+//! a depth texture per eye slot for each host `input(depth)` a pass tests
+//! against (`host_depth.rs` draws it each frame),
 //! and per frame parity, eye slot and pass its attachment views and group 0.
 //!
 //! History textures (`previous(...)` reads): frames alternate between parity
@@ -68,6 +70,24 @@ impl Renderer {
         // Kept depths by (eye slot, keeping pass); every parity shares them,
         // as each frame clears and rewrites them before any test reads them.
         let mut kept: BTreeMap<(usize, usize), wgpu::Texture> = BTreeMap::new();
+        // The host's depth by (eye slot, input texture), drawn each frame
+        // (`host_depth.rs`) and tested like a kept depth.
+        let mut host: BTreeMap<(usize, usize), wgpu::Texture> = BTreeMap::new();
+        for slot in 0..slots {
+            for input in super::host_depth::tested_inputs(&self.manifest) {
+                let name = &self.manifest.textures[input].name;
+                host.insert(
+                    (slot, input),
+                    texture_2d(
+                        &self.device,
+                        &format!("npr host depth `{name}`"),
+                        (width, height),
+                        wgpu::TextureFormat::Depth32Float,
+                        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                    ),
+                );
+            }
+        }
         let mut passes: Vec<Vec<Vec<SizedPass>>> = Vec::new();
         for parity in 0..parities {
             let mut parity_passes = Vec::new();
@@ -103,17 +123,33 @@ impl Renderer {
                         } => Some(*pass),
                         _ => None,
                     };
+                    // `Manifest::validate`: a test of the host's depth is at scale 1.
+                    let host_tested = match &pass.kind {
+                        PassKindManifest::Render {
+                            depth: DepthMode::TestInput { input, .. },
+                            ..
+                        }
+                        | PassKindManifest::Lines {
+                            depth: DepthMode::TestInput { input, .. },
+                            ..
+                        } => host.get(&(slot, *input)),
+                        _ => None,
+                    };
+                    // A render pass loads it as its attachment; a lines
+                    // pass reads it (below) and draws with its own.
+                    let host_attachment = host_tested.filter(|_| matches!(pass.kind, PassKindManifest::Render { .. }));
                     let depth_view = self.passes[pi].needs_depth().then(|| {
-                        match kept_by {
-                            Some(k) => kept.entry((slot, k)).or_insert_with(|| {
+                        match (host_attachment, kept_by) {
+                            (Some(h), _) => h,
+                            (None, Some(k)) => kept.entry((slot, k)).or_insert_with(|| {
                                 depth_texture(&format!("npr kept depth of `{}`", self.manifest.passes[k].name))
                             }),
-                            None => depth.entry((w, h)).or_insert_with(|| depth_texture("npr depth")),
+                            (None, None) => depth.entry((w, h)).or_insert_with(|| depth_texture("npr depth")),
                         }
                         .make_view(&Default::default())
                     });
-                    // A lines pass's test reads the kept depth as a texture
-                    // (group 1), made above for the earlier keeping pass.
+                    // A lines pass's test reads the kept depth, or the
+                    // host's, as a texture (group 1), made above.
                     let tested_depth = match &pass.kind {
                         PassKindManifest::Lines {
                             depth: DepthMode::Test { pass: tested, .. },
@@ -127,6 +163,12 @@ impl Renderer {
                             })?;
                             self.passes[pi].tested_depth_group(&self.device, &texture.make_view(&Default::default()))
                         }
+                        PassKindManifest::Lines {
+                            depth: DepthMode::TestInput { .. },
+                            ..
+                        } => host_tested.and_then(|texture| {
+                            self.passes[pi].tested_depth_group(&self.device, &texture.make_view(&Default::default()))
+                        }),
                         _ => None,
                     };
                     let tiled_outputs = self.passes[pi].tiled_outputs(&self.device, &color_views, (w, h));
@@ -146,6 +188,20 @@ impl Renderer {
             }
             passes.push(parity_passes);
         }
+        let host_depths = match &self.host_depth {
+            Some(pipeline) => host
+                .iter()
+                .map(|(&(slot, input), texture)| super::host_depth::HostDepthDraw {
+                    view: texture.make_view(&Default::default()),
+                    group: pipeline.bind(
+                        &self.device,
+                        &self.frame_buffers[slot],
+                        &self.textures[input].texture.make_view(&Default::default()),
+                    ),
+                })
+                .collect(),
+            None => Vec::new(),
+        };
         // New textures hold no history: the next frame is frame 0 again,
         // and compute passes' state starts again from its first values.
         self.frames_begun = 0;
@@ -159,6 +215,7 @@ impl Renderer {
             height,
             physical,
             passes,
+            host_depths,
             output_slot: 0,
         });
         Ok(())

@@ -85,6 +85,9 @@ pub(super) struct SizedResources {
     /// Per frame parity (two when the style has history textures, else
     /// one), per eye slot, per pass: its views and bind group.
     pub passes: Vec<Vec<Vec<SizedPass>>>,
+    /// The host's depth per eye slot and tested input (`host_depth.rs`),
+    /// drawn at the start of each frame.
+    pub host_depths: Vec<super::host_depth::HostDepthDraw>,
     /// Which eye's textures hold the requested image (`FrameSpec::eye` for
     /// stereo styles, else 0).
     pub output_slot: usize,

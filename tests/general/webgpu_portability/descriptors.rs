@@ -172,7 +172,7 @@ fn depth_stencil(kind: &PassKindManifest) -> Value {
     };
     let (write, compare, slope) = match depth {
         DepthMode::Own | DepthMode::Keep => (true, "less", 0.0),
-        DepthMode::Test { bias_px, .. } => (false, "less-equal", -bias_px),
+        DepthMode::Test { bias_px, .. } | DepthMode::TestInput { bias_px, .. } => (false, "less-equal", -bias_px),
     };
     json!({"format": "depth32float", "depthWriteEnabled": write, "depthCompare": compare, "depthBiasSlopeScale": slope})
 }

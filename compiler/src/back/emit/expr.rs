@@ -277,6 +277,9 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         Builtin::CameraLeftEye => "frame.eye_left.xyz".into(),
         Builtin::CameraRightEye => "frame.eye_right.xyz".into(),
         Builtin::CameraForward => "frame.camera_forward.xyz".into(),
+        // The view matrix's rows: its rotation's inverse is its transpose.
+        Builtin::CameraRight => "vec3<f32>(frame.view[0].x, frame.view[1].x, frame.view[2].x)".into(),
+        Builtin::CameraUp => "vec3<f32>(frame.view[0].y, frame.view[1].y, frame.view[2].y)".into(),
         Builtin::TangentScreen => "in.tangent_screen".into(),
         Builtin::BitangentScreen => "in.bitangent_screen".into(),
         Builtin::TangentScreenCenter => "in.tangent_screen_center".into(),

@@ -321,7 +321,19 @@ fn depth_mode(
         PassDepth::Keep if live.depth.contains(&pid) => DepthMode::Keep,
         PassDepth::Keep => DepthMode::Own,
         PassDepth::Test {
-            pass, bias_px, span, ..
+            against: TestedDepth::Input(texture),
+            bias_px,
+            ..
+        } => DepthMode::TestInput {
+            // Every texture is emitted, in IR order.
+            input: texture.0 as usize,
+            bias_px,
+        },
+        PassDepth::Test {
+            against: TestedDepth::Pass(pass),
+            bias_px,
+            span,
+            ..
         } => {
             // Prune keeps every pass a live pass tests against.
             let index = emitted

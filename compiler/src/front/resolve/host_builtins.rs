@@ -12,8 +12,17 @@
 //!   x_ndc = 2u − 1, y_ndc = 1 − 2v at `screen_uv` (u, v) and f =
 //!   `camera.focal` (P₀₀, P₁₁ of a symmetric perspective projection): the
 //!   point on the pixel's ray at view depth d;
+//! - `position.world` = `camera.position` + right·x + up·y + forward·d,
+//!   the view-space point turned back into the world (the view's rotation
+//!   is orthonormal: its inverse is its transpose, whose columns are
+//!   `camera.right`, `camera.up` and −`camera.forward`);
+//! - `view_dir` = normalize(`camera.position` − `position.world`), towards
+//!   the eye;
 //! - `normal.view` / `normal.world` = the normal input's rgb when it is
 //!   declared in that space (the runner converts the host's at load).
+//!
+//! `uv` has no value over a host's frame (E0321): nothing carries the
+//! host's surface parametrisation, and it cannot be rebuilt.
 //!
 //! A builtin that needs an input the style does not declare stays a
 //! builtin, and the typechecker refuses it in an image pass (E0304) with a
@@ -39,6 +48,51 @@ impl Resolver<'_> {
             Builtin::PositionView => {
                 let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
                 Some(self.view_position(depth, span))
+            }
+            Builtin::PositionWorld => {
+                let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
+                let offset = self.view_to_world_offset(depth, span);
+                let camera = self.builtin(Builtin::CameraPosition, span);
+                Some(self.binary(BinOp::Add, camera, offset, span))
+            }
+            Builtin::ViewDir => {
+                let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
+                let offset = self.view_to_world_offset(depth, span);
+                let towards_eye = self.ir.add(
+                    ExprKind::Unary {
+                        op: npr_dsl::ast::UnOp::Neg,
+                        operand: offset,
+                    },
+                    span,
+                );
+                Some(self.ir.add(
+                    ExprKind::Call {
+                        callee: Callee::Intrinsic(Intrinsic::Normalize),
+                        args: vec![towards_eye],
+                    },
+                    span,
+                ))
+            }
+            Builtin::Uv
+                if self
+                    .ir
+                    .textures
+                    .iter()
+                    .any(|t| matches!(t.source, TextureSource::Input(_))) =>
+            {
+                self.error(
+                    Diagnostic::error(
+                        codes::NO_HOST_UV,
+                        "`uv` has no value in an image pass over a host's frame",
+                    )
+                    .with_primary(span, "no surface coordinates here")
+                    .with_help(
+                        "a host's frame carries no texture coordinates, and npr cannot rebuild them from depth \
+                         and normals as it rebuilds positions; use `screen_uv`, or take the host's UVs as an \
+                         input: `texture host_uv = input(image, rg16float)`",
+                    ),
+                );
+                Some(self.builtin(Builtin::ScreenUv, span))
             }
             Builtin::NormalView | Builtin::NormalWorld => {
                 let space = if b == Builtin::NormalView {
@@ -159,6 +213,26 @@ impl Resolver<'_> {
             },
             span,
         )
+    }
+
+    /// position.world − camera.position = right·x + up·y + forward·d for
+    /// the rebuilt view-space point (x, y, −d): the view's rotation undone
+    /// (its inverse is its transpose; `camera.right`, `camera.up` and
+    /// `camera.forward` are its rows, the last negated).
+    fn view_to_world_offset(&mut self, depth: TextureId, span: Span) -> ExprId {
+        let p = self.view_position(depth, span);
+        let x = self.component(p, 0, span);
+        let y = self.component(p, 1, span);
+        let d = self.view_depth(depth, span);
+        let axes = [Builtin::CameraRight, Builtin::CameraUp, Builtin::CameraForward];
+        let mut terms = [x, y, d].into_iter().zip(axes).map(|(along, axis)| {
+            let axis = self.builtin(axis, span);
+            self.binary(BinOp::Mul, axis, along, span)
+        });
+        let first = terms.next().expect("three terms");
+        let rest: Vec<ExprId> = terms.collect();
+        rest.into_iter()
+            .fold(first, |sum, t| self.binary(BinOp::Add, sum, t, span))
     }
 
     fn builtin(&mut self, b: Builtin, span: Span) -> ExprId {

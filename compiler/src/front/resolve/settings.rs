@@ -10,7 +10,7 @@ use super::{Resolver, Symbol};
 use crate::ir::*;
 use crate::schedule::Schedule;
 use npr_abi::manifest::Blend;
-use npr_abi::Format;
+use npr_abi::{Format, InputKind};
 use npr_diag::diagnostic::did_you_mean;
 use npr_diag::{codes, Diagnostic, Span};
 use npr_dsl::ast::{self, ExprKind as AK, UnitSuffix};
@@ -185,8 +185,44 @@ impl Resolver<'_> {
         *schedule = Some(PassSchedule { schedule: mode, span });
     }
 
-    /// `test(pass, bias: b)`: the tested pass, and the bias, a literal in px
-    /// (slope-scaled) or without unit (window depth).
+    /// E0319: `depth: test(name)` where `name` is declared, but neither a
+    /// pass nor an `input(depth)` texture.
+    fn not_a_tested_depth(&self, name: &str, at: Span, symbol: Symbol, declared: Span) -> Diagnostic {
+        let what = match symbol {
+            Symbol::Texture(tid) => match &self.ir.textures[tid.0 as usize].source {
+                TextureSource::Input(kind) => format!("an `input({})` texture", kind.name()),
+                _ => "a texture".to_string(),
+            },
+            Symbol::Param(_) | Symbol::Gradient(_) => "a parameter".to_string(),
+            Symbol::Pass(_) => "a pass".to_string(),
+        };
+        let depth_inputs: Vec<&str> = self
+            .ir
+            .textures
+            .iter()
+            .filter(|t| t.source == TextureSource::Input(InputKind::Depth))
+            .map(|t| t.name.as_str())
+            .collect();
+        let help = match depth_inputs.as_slice() {
+            [] => "a depth test names an earlier pass with `depth: keep`, or the host's depth: declare \
+                   `texture depth = input(depth)` and write `depth: test(depth)`"
+                .to_string(),
+            names => format!(
+                "a depth test names an earlier pass with `depth: keep`, or an `input(depth)` texture: {}",
+                names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        Diagnostic::error(
+            codes::NOT_A_TESTED_DEPTH,
+            format!("`{name}` is {what}, not a depth to test against"),
+        )
+        .with_primary(at, "neither a pass nor a depth input")
+        .with_secondary(declared, format!("`{name}` is declared here as {what}"))
+        .with_help(help)
+    }
+
+    /// `test(pass, bias: b)`: the tested pass or depth input, and the bias,
+    /// a literal in px (slope-scaled) or without unit (window depth).
     fn depth_test(&mut self, c: &ast::Call, span: Span) -> Option<PassDepth> {
         let mut pass = None;
         let (mut bias_px, mut bias_depth) = (0.0, 0.0);
@@ -194,8 +230,17 @@ impl Resolver<'_> {
         for a in &c.args {
             match (&a.name, &a.value.kind) {
                 (None, AK::Name(n)) if pass.is_none() => match self.names.get(&n.name).copied() {
-                    Some((Symbol::Pass(pid), _)) => pass = Some(pid),
-                    _ => {
+                    Some((Symbol::Pass(pid), _)) => pass = Some(TestedDepth::Pass(pid)),
+                    Some((Symbol::Texture(tid), _))
+                        if self.ir.textures[tid.0 as usize].source == TextureSource::Input(InputKind::Depth) =>
+                    {
+                        pass = Some(TestedDepth::Input(tid));
+                    }
+                    Some((symbol, declared)) => {
+                        self.error(self.not_a_tested_depth(&n.name, n.span, symbol, declared));
+                        return None;
+                    }
+                    None => {
                         let passes: Vec<String> = self.ir.passes.iter().map(|p| p.name.clone()).collect();
                         let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("no pass named `{}`", n.name))
                             .with_primary(n.span, "not a pass");
@@ -262,7 +307,7 @@ impl Resolver<'_> {
             return None;
         };
         Some(PassDepth::Test {
-            pass,
+            against: pass,
             bias_px,
             bias_depth,
             span,

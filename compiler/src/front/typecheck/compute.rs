@@ -46,7 +46,7 @@ impl Checker<'_> {
             PassKind::Image { .. } if b.needs_geometry() => Some((
                 "no geometry in an image pass",
                 match b {
-                    Builtin::Depth | Builtin::PositionView => "declare the host's depth, `texture d = input(depth)`, to read `depth` and `position.view` here; or write it to a target in a render pass and read that target here",
+                    Builtin::Depth | Builtin::PositionView | Builtin::PositionWorld | Builtin::ViewDir => "declare the host's depth, `texture d = input(depth)`, to read `depth`, `position.view`, `position.world` and `view_dir` here; or write it to a target in a render pass and read that target here",
                     Builtin::NormalView => "declare the host's normals, `texture n = input(normal, view)`, to read `normal.view` here; or write it to a target in a render pass and read that target here",
                     Builtin::NormalWorld => "declare the host's normals, `texture n = input(normal, world)`, to read `normal` here; or write it to a target in a render pass and read that target here",
                     _ => "write it to a target in a render pass and read that target here",

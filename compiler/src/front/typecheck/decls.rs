@@ -195,9 +195,55 @@ impl Checker<'_> {
         }
     }
 
+    /// `depth: test(input)` against the host's depth: the input is the
+    /// camera's view at the output's size, so the pass renders at scale 1
+    /// through the camera (E0320 otherwise).
+    pub(super) fn input_depth_test(&mut self, pi: usize) {
+        let pass = &self.ir.passes[pi];
+        let Some((texture, span)) = pass.input_depth_test() else {
+            return;
+        };
+        let input = &self.ir.textures[texture.0 as usize];
+        let light = matches!(
+            pass.kind,
+            PassKind::Render {
+                view: PassView::Light,
+                ..
+            }
+        );
+        let (problem, label, help) = if pass.scale != 1.0 {
+            (
+                "at another size",
+                format!("`{}` renders at scale {}", pass.name, pass.scale),
+                "the host's depth has the output's size: render this pass at scale 1".to_string(),
+            )
+        } else if light {
+            (
+                "from another view",
+                format!("`{}` is seen from the light", pass.name),
+                "the host's depth is seen from the camera: test a `view(light)` pass against a pass with `depth: keep`"
+                    .to_string(),
+            )
+        } else {
+            return;
+        };
+        let d = Diagnostic::error(
+            codes::INPUT_DEPTH_MISMATCH,
+            format!(
+                "pass `{}` tests against the host's depth `{}` {problem}",
+                pass.name, input.name
+            ),
+        )
+        .with_primary(span, label)
+        .with_secondary(input.span, "the host's depth: the camera's view, at the output's size")
+        .with_help(help);
+        self.err(d);
+    }
+
     pub(super) fn passes(&mut self) {
         for pi in 0..self.ir.passes.len() {
             self.depth_test(pi);
+            self.input_depth_test(pi);
             self.line_settings(pi);
             let pass = self.ir.passes[pi].clone();
             if let PassKind::Render { vertex, .. } = &pass.kind {

@@ -30,7 +30,8 @@ pub fn builtin(b: Builtin) -> Val {
     use Builtin::*;
     let n = b.ty_unit().0.components().unwrap_or(1) as usize;
     match b {
-        NormalWorld | NormalView | Tangent | ViewDir | LightDir | MoreLightDir(_) | CameraForward => Val::unit(n),
+        NormalWorld | NormalView | Tangent | ViewDir | LightDir | MoreLightDir(_) | CameraForward | CameraRight
+        | CameraUp => Val::unit(n),
         ScreenUv | PatchWeight | Eye => Val::splat(Iv::UNIT, n),
         LineAcross => Val::splat(Iv::SIGNED_UNIT, n),
         // Light-space NDC: x, y in [−1, 1], z in [0, 1] (builtins.rs).
