@@ -271,7 +271,9 @@ fn reference_silhouette(scene: &Scene, clip_t: f64) -> Vec<(glam::DVec2, glam::D
             (0.5 - c.y / c.w * 0.5) * f64::from(SIZE),
         )
     };
-    let mut faces_of_edge: HashMap<(usize, usize), Vec<(bool, usize, usize)>> = HashMap::new();
+    // Per welded edge: each face's facing, and the edge's two vertices.
+    type FacesOfEdge = HashMap<(usize, usize), Vec<(bool, usize, usize)>>;
+    let mut faces_of_edge: FacesOfEdge = HashMap::new();
     for t in deformed.indices.chunks_exact(3) {
         let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
         let normal = (world[b] - world[a]).cross(world[c] - world[a]);
