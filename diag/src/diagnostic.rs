@@ -352,6 +352,12 @@ pub mod codes {
     /// A test's golden image is missing (and `--bless` was not given), not
     /// an image, or not the size the test renders.
     pub const BAD_GOLDEN: &str = "E0408";
+    /// A glTF material, texture, image or sampler refers to one that does
+    /// not exist (an index out of range), at its glTF path.
+    pub const BAD_MATERIAL_REFERENCE: &str = "E0409";
+    /// A glTF material's image that cannot be used: it does not decode, is
+    /// not PNG, or its bytes cannot be read; at its glTF path.
+    pub const BAD_MATERIAL_IMAGE: &str = "E0410";
     /// A host input (`input(...)` in the style; `npr render --input`,
     /// `--inputs`) that is not given, not an image, missing a layer, of
     /// another size than the others, or holding values outside its kind's
@@ -545,6 +551,11 @@ pub mod codes {
         (PATH_OUTSIDE_ROOT, "file path absolute or outside the root"),
         (BAD_TEST_FILE, "malformed style test file"),
         (BAD_GOLDEN, "golden image missing, unreadable or of another size"),
+        (
+            BAD_MATERIAL_REFERENCE,
+            "a glTF material, texture or image index out of range",
+        ),
+        (BAD_MATERIAL_IMAGE, "a glTF material's image does not decode"),
         (
             BAD_INPUT,
             "host input image missing, unreadable, mis-sized or outside its convention",

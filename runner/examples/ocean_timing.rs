@@ -3,7 +3,7 @@
 //! against summing sines directly (`Spectrum::sample`, the f64 reference),
 //! and the whole mesh (`ocean_mesh`). Prints milliseconds per call.
 //!
-//! `cargo run -p npr-runner --example ocean_timing`
+//! `cargo build --workspace --example ocean_timing && target/debug/examples/ocean_timing`
 
 use npr_runner::scene::ocean::{ocean_mesh, Ocean, Spectrum};
 use std::time::Instant;

@@ -13,7 +13,7 @@
 //! - `gpu-deformed`: the same frame with the object playing the clip,
 //!   deformed by the GPU stage (`exec/deform.rs`), at a new pose every frame.
 //!
-//! `cargo run -p npr-runner --example skin_timing`
+//! `cargo build --workspace --example skin_timing && target/debug/examples/skin_timing`
 
 use npr_compiler::CompileOptions;
 use npr_runner::scene::Scene;

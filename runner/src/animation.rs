@@ -161,7 +161,21 @@ pub fn write_object_params(
         let Some(off) = p.offset else { continue };
         let rgba: [f64; 4];
         let mut v: &[f64] = &p.default;
-        if let Some(bound) = o.params.get(&p.name) {
+        // A scene's binding, else the object's glTF material under the
+        // documented names (`gltf_material`), else the default.
+        let material = o.material.as_ref().and_then(|m| m.value(&p.name));
+        let from_material = !o.params.contains_key(&p.name) && material.is_some();
+        let bound = o
+            .params
+            .get(&p.name)
+            .map(Vec::as_slice)
+            .or(material.as_ref().map(|(values, n)| &values[..*n]));
+        let origin = if from_material {
+            "'s glTF material gives"
+        } else {
+            " binds"
+        };
+        if let Some(bound) = bound {
             let n = p.components as usize;
             // A colour may be given as rgb; alpha defaults to 1.
             if bound.len() == n || (n == 4 && bound.len() == 3) {
@@ -174,7 +188,7 @@ pub fn write_object_params(
                     if let Some(bad) = v.iter().find(|x| **x < lo || **x > hi) {
                         let mut d = Diagnostic::error(
                             codes::OUT_OF_RANGE,
-                            format!("object `{}` binds `{}` outside its range", o.name, p.name),
+                            format!("object `{}`{origin} `{}` outside its range", o.name, p.name),
                         )
                         .with_help(format!("`{}` is declared in {lo}..{hi}", p.name));
                         if let Some(s) = o.param_spans.get(&p.name) {
@@ -187,7 +201,7 @@ pub fn write_object_params(
                 let mut d = Diagnostic::error(
                     codes::BAD_SCENE,
                     format!(
-                        "object `{}` binds `{}` with {} value(s), expected {n}",
+                        "object `{}`{origin} `{}` with {} value(s), expected {n}",
                         o.name,
                         p.name,
                         bound.len()

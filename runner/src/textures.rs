@@ -228,7 +228,25 @@ pub fn load_object_textures(
     let mut diags = Vec::new();
     for o in &scene.objects {
         let mut bound = BTreeMap::new();
-        for (name, b) in &o.textures {
+        // The glTF material's base colour image, where the style declares
+        // the name and the scene binds no image to it (decision 0058).
+        let mut files = EmbeddedFiles::new();
+        let material_image = o
+            .material
+            .as_ref()
+            .and_then(|m| m.base_color_map.as_ref())
+            .filter(|_| !o.textures.contains_key(crate::scene::gltf_material::BASE_COLOR_MAP))
+            .map(|image| {
+                files.insert(image.key.clone(), image.bytes.to_vec());
+                let binding = crate::scene::TextureBinding {
+                    path: image.key.clone(),
+                    resolved: std::path::PathBuf::from(&image.key),
+                    srgb: None,
+                    span: o.mesh_span,
+                };
+                (crate::scene::gltf_material::BASE_COLOR_MAP.to_string(), binding)
+            });
+        for (name, b) in o.textures.iter().chain(material_image.iter().map(|(n, b)| (n, b))) {
             let Some(index) = m.textures.iter().position(|t| t.per_object && t.name == *name) else {
                 continue;
             };
@@ -259,7 +277,7 @@ pub fn load_object_textures(
                 resolved: b.resolved.display().to_string(),
                 srgb,
             };
-            match load_one(device, queue, &decl, None, &EmbeddedFiles::new(), &mut Vec::new()) {
+            match load_one(device, queue, &decl, None, &files, &mut Vec::new()) {
                 Ok(g) => {
                     cache.insert(key.clone(), out.images.len());
                     bound.insert(index, out.images.len());

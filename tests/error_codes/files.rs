@@ -59,6 +59,46 @@ fn e0405_bad_scene() {
     );
 }
 
+/// A one-triangle glTF file whose material's base colour texture has image
+/// `source`, the image at `uri`.
+fn textured_triangle(source: usize, uri: &str) -> String {
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"material":0}}]}}],
+"materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}],
+"textures":[{{"source":{source}}}],"images":[{{"uri":"{uri}"}}],
+"buffers":[{{"byteLength":60,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}}],
+"bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":24}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}}]}}"#
+    )
+}
+
+const GLTF_TRIANGLE_SCENE: &str = "[camera]\nposition = [0.5, 0.5, 3.0]\ntarget = [0.5, 0.5, 0.0]\nfov = 40.0\n[light]\ndirection = [0.0, 1.0, 0.0]\n[[object]]\nname = \"tri\"\nmesh = \"tri.gltf\"\n";
+
+#[test]
+fn e0409_material_texture_index_out_of_range() {
+    let dir = scratch("e0409");
+    let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGM4UaHxHwAF3AJoiJKY8QAAAABJRU5ErkJggg==";
+    std::fs::write(dir.join("tri.gltf"), textured_triangle(3, png)).expect("write");
+    let (d, r) = scene_errors(GLTF_TRIANGLE_SCENE, &dir);
+    assert!(r.contains("/textures/0/source"), "the glTF path is named: {r}");
+    check("E0409", (d, r.replace(&dir.display().to_string(), "<dir>")));
+}
+
+#[test]
+fn e0410_material_image_that_does_not_decode() {
+    let dir = scratch("e0410");
+    std::fs::write(
+        dir.join("tri.gltf"),
+        textured_triangle(0, "data:image/png;base64,bm90IGEgcG5n"),
+    )
+    .expect("write");
+    let (d, r) = scene_errors(GLTF_TRIANGLE_SCENE, &dir);
+    assert!(r.contains("/images/0"), "the glTF path is named: {r}");
+    check("E0410", (d, r.replace(&dir.display().to_string(), "<dir>")));
+}
+
 /// A camera, a light and one sphere whose object table ends with `extra`.
 fn one_sphere_scene(extra: &str) -> String {
     format!(

@@ -2,8 +2,8 @@
 //! reader (issue 13). Seeds are every scene in `examples/scenes/` and every
 //! OBJ in `examples/models/`; mutations splice TOML or OBJ tokens (keys of
 //! every table, numbers that are not finite, huge or negative indices),
-//! and a skinned, morphing glTF file (`runner/tests/data/*.gltf`) its JSON
-//! tokens,
+//! and the glTF files of `runner/tests/data/` (skinned and morphing; a
+//! textured material with a `data:` image) their JSON tokens,
 //! delete runs and truncate. A scene either loads or gets diagnostics whose
 //! spans lie inside the file; a mesh either loads or gets a `MeshLoadError`
 //! with a code. `NPR_FUZZ_CASES` sets the count for a soak run.

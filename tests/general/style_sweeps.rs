@@ -60,10 +60,10 @@ fn a_range_admitting_a_division_by_zero_is_reported_with_its_reproduction() {
     assert_eq!(found.len(), 1, "{found:#?}");
     let message = found[0]["message"].as_str().expect("message");
     // Every case but the speck 400 m away, which covers no pixel.
-    assert!(message.starts_with("k=0: finite on 8 of 9 case(s)"), "{message}");
+    assert!(message.starts_with("k=0: finite on 9 of 10 case(s)"), "{message}");
     assert!(!message.contains("tiny_far"), "{message}");
     assert!(message.contains("target `g.v`"), "{message}");
-    // The cheapest case of the nine: the 1x1 image.
+    // The cheapest case of the ten: the 1x1 image.
     let line = found[0]["reproduce"].as_str().expect("a reproduction");
     assert_eq!(
         line,

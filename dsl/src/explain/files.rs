@@ -17,6 +17,37 @@ macro_rules! sphere_scene {
 /// A scene of one mesh file, `tri.obj`.
 const TRIANGLE_SCENE: &str = "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 40.0\n\n[light]\ndirection = [0.0, 1.0, 0.0]\n\n[[object]]\nname = \"tri\"\nmesh = \"tri.obj\"\n";
 
+/// A scene of one glTF file, `tri.gltf`.
+const GLTF_TRIANGLE_SCENE: &str = "[camera]\nposition = [0.5, 0.5, 3.0]\ntarget = [0.5, 0.5, 0.0]\nfov = 40.0\n\n[light]\ndirection = [0.0, 1.0, 0.0]\n\n[[object]]\nname = \"tri\"\nmesh = \"tri.gltf\"\n";
+
+/// A one-triangle glTF file whose material has a base colour texture:
+/// `$source` is the texture's image index, `$image` the image's URI
+/// (`png`: a 1×1 PNG).
+macro_rules! textured_triangle {
+    ($source:literal, png) => {
+        textured_triangle!(
+            $source,
+            "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGM4UaHxHwAF3AJoiJKY8QAAAABJRU5ErkJggg=="
+        )
+    };
+    ($source:literal, $image:literal) => {
+        concat!(
+            r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"#,
+            r#""meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],"#,
+            r#""materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],"#,
+            r#""textures":[{"source":"#,
+            $source,
+            r#"}],"images":[{"uri":""#,
+            $image,
+            r#""}],"buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,"#,
+            r#"AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],"#,
+            r#""bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],"#,
+            r#""accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},"#,
+            r#"{"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}]}"#
+        )
+    };
+}
+
 /// Render `case.npr` on `scene.toml`, small.
 const RENDER: &[&[&str]] = &[&[
     "render",
@@ -244,6 +275,60 @@ pub(super) const ALL: &[Explanation] = &[
             style: GREY,
             files: &[("scene.toml", sphere_scene!("")), ("case.tests.toml", GOLDEN_TEST)],
             commands: &[&["test", "case.npr", "--bless"], &["test", "case.npr"]],
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0409",
+        meaning: "A glTF file's material names a texture, a texture names an image or a sampler, \
+            that the file does not have: an index past the end of its list. The message gives \
+            the file and the glTF path of the index (`/textures/0/source`). npr reads the \
+            material of the file's first triangle primitive that has one, and gives styles its \
+            values and base colour texture (`base_color`, `metallic`, `roughness`, `emissive`, \
+            `base_color_map`; the scene-file reference). Re-export the file, or fix the index.",
+        wrong: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", GLTF_TRIANGLE_SCENE),
+                ("tri.gltf", textured_triangle!("3", png)),
+            ],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", GLTF_TRIANGLE_SCENE),
+                ("tri.gltf", textured_triangle!("0", png)),
+            ],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0410",
+        meaning: "A glTF file's material has a base colour image that npr cannot use: its bytes \
+            are not a PNG that decodes (a JPEG, a truncated or corrupt file), or they cannot be \
+            read (a buffer view outside its buffer, an image file that is missing or outside the \
+            glTF file's folder). The message gives the file and the image's glTF path \
+            (`/images/0`). Images are checked when the file loads, whether or not a style reads \
+            them. Re-export the textures as PNG (Blender's glTF exporter: Images › PNG).",
+        wrong: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", GLTF_TRIANGLE_SCENE),
+                ("tri.gltf", textured_triangle!("0", "data:image/png;base64,bm90IGEgcG5n")),
+            ],
+            commands: RENDER,
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: GREY,
+            files: &[
+                ("scene.toml", GLTF_TRIANGLE_SCENE),
+                ("tri.gltf", textured_triangle!("0", png)),
+            ],
+            commands: RENDER,
             ..EXAMPLE
         },
     },

@@ -2,7 +2,7 @@
 //! time) and a [`Target`] (the texture views to render into).
 
 use super::{MeshHandle, SkinPose};
-use crate::scene::{Camera, Light, TextureBinding};
+use crate::scene::{Camera, Light, ObjectAnimation, TextureBinding};
 use glam::Mat4;
 use std::collections::BTreeMap;
 
@@ -43,6 +43,13 @@ pub struct Instance {
     /// `None`: the mesh as registered (its bind pose). Having a pose or not
     /// is a change of the scene; the pose's values change freely.
     pub pose: Option<SkinPose>,
+    /// A clip of its mesh's glTF file playing at the frame's `time_s`, as
+    /// a scene file's `animation = { clip, speed, loop, offset }` plays it
+    /// (`StyleRuntime::add_scene` sets it from the scene): the GPU deforms
+    /// the mesh (its rest pose) by the clip's pose at that time, and the
+    /// CPU the same pose for lines and light bounds. Having one or not is
+    /// a change of the scene; its clip, speed and offset change freely.
+    pub animation: Option<ObjectAnimation>,
 }
 
 impl Instance {
@@ -57,6 +64,7 @@ impl Instance {
             images: BTreeMap::new(),
             id: None,
             pose: None,
+            animation: None,
         }
     }
 

@@ -503,8 +503,10 @@ impl StyleRuntime {
     /// [`StyleRuntime::add_primitive`] and [`StyleRuntime::add_patches`]
     /// register them: the ocean's vertices follow the frame's time, and a
     /// patched object's patches blend over their n-rings and are one
-    /// surface for `lines` passes. What a TOML scene has beyond an instance
-    /// is the host's to animate: a spinning object's transform is
+    /// surface for `lines` passes. An object playing a clip
+    /// (`animation = {...}`) plays it at each frame's time
+    /// ([`Instance::animation`]). What else a TOML scene has beyond an
+    /// instance is the host's to animate: a spinning object's transform is
     /// `scene.objects[i].model_at(t)`.
     pub fn add_scene(&mut self, scene: &Scene) -> Vec<Instance> {
         // Objects naming the same file or primitive share one mesh (and
@@ -538,6 +540,7 @@ impl StyleRuntime {
                     images: o.textures.clone(),
                     id: None,
                     pose: None,
+                    animation: o.animation.clone(),
                 }
             })
             .collect()

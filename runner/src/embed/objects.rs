@@ -25,6 +25,8 @@ struct Shape {
     /// Whether it has a pose (the GPU stage deforms it, into buffers of
     /// its own).
     posed: bool,
+    /// Whether it plays a clip (the GPU stage deforms it too).
+    animated: bool,
 }
 
 impl Shape {
@@ -36,6 +38,7 @@ impl Shape {
             images: instance.images.clone(),
             id: instance.id,
             posed: instance.pose.is_some(),
+            animated: instance.animation.is_some(),
         }
     }
 
@@ -46,6 +49,7 @@ impl Shape {
             && self.images == instance.images
             && self.id == instance.id
             && self.posed == instance.pose.is_some()
+            && self.animated == instance.animation.is_some()
     }
 }
 
@@ -97,8 +101,9 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         spin: glam::Vec3::ZERO,
         blend: entry.extras.blend.clone(),
         patch: entry.extras.patch.clone(),
-        animation: None,
+        animation: instance.animation.clone(),
         pose,
+        material: None,
     })
 }
 
@@ -159,6 +164,9 @@ impl HostScene {
             }
             if let (Some(host), Some(pose)) = (&mut o.pose, &i.pose) {
                 skin::copy_pose(host, pose);
+            }
+            if o.animation != i.animation {
+                o.animation.clone_from(&i.animation);
             }
         }
         true

@@ -77,7 +77,7 @@ pub(super) fn write_object_blocks(
         };
         block[..params_at].copy_from_slice(bytemuck::bytes_of(&head));
         let params = &mut block[params_at..params_end];
-        if o.params.is_empty() {
+        if o.params.is_empty() && o.material.is_none() {
             params.copy_from_slice(&object_params.defaults);
         } else {
             animation::write_object_params(&manifest.params, &object_params.indices, o, params, &mut diags);

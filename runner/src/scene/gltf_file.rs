@@ -2,10 +2,11 @@
 //!
 //! Every triangle-list primitive reachable from the default scene (or the
 //! first scene, or all root nodes when there is none) is merged into one
-//! mesh, with each node's world transform baked into its vertices. Images are
-//! never decoded: npr needs geometry only, and a missing texture should not
-//! stop a mesh from loading.
+//! mesh, with each node's world transform baked into its vertices. The
+//! first material's values and base colour image are read by
+//! `gltf_material` (decision 0058).
 
+use super::gltf_material::{self, MeshMaterial};
 use super::gltf_rig::{self, MAX_NODE_DEPTH};
 use super::mesh::{Mesh, MAX_TRIANGLES};
 use super::mesh_error::MeshLoadError;
@@ -17,17 +18,23 @@ use std::path::Path;
 
 /// The file's mesh (its rest pose), and its rig when it has skins, morph
 /// targets or animations (`gltf_rig`); a file without them is merged with
-/// its node transforms baked in, as before rigs were read.
-pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<(Mesh, Option<Rig>), MeshLoadError> {
+/// its node transforms baked in, as before rigs were read; and its material.
+pub fn parse_gltf(
+    bytes: &[u8],
+    base_dir: &Path,
+    source: &str,
+) -> Result<(Mesh, Option<Rig>, Option<MeshMaterial>), MeshLoadError> {
     let malformed = |what: String| {
         MeshLoadError::unreadable(
             format!("cannot read glTF file `{source}`: {what}"),
             "the file is not valid glTF 2.0; check it with the Khronos glTF validator",
         )
     };
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|err| malformed(err.to_string()))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes)
+        .map_err(|err| gltf_material::validation_error(&err, source).unwrap_or_else(|| malformed(err.to_string())))?;
     let buffers =
         gltf::import_buffers(&document, Some(base_dir), blob).map_err(|err| malformed(format!("buffer: {err}")))?;
+    let material = gltf_material::read_material(&document, &buffers, base_dir, source)?;
 
     if gltf_rig::has_rig(&document) {
         let rig = gltf_rig::read_rig(&document, &buffers, source)?;
@@ -38,7 +45,7 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<(Mesh, 
             ));
         }
         let rest = rig.deform(&rig.pose(None));
-        return Ok((rest, Some(rig)));
+        return Ok((rest, Some(rig), material));
     }
     let mut merged = MergedPrimitives::new();
     // Each primitive drawn is a part (§3.6 `patches = "parts"`).
@@ -80,7 +87,7 @@ pub fn parse_gltf(bytes: &[u8], base_dir: &Path, source: &str) -> Result<(Mesh, 
         source.to_string(),
     )
     .with_parts(parts);
-    Ok((mesh, None))
+    Ok((mesh, None, material))
 }
 
 /// Nodes that are nobody's child.

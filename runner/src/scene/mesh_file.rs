@@ -2,6 +2,7 @@
 //! turns OS and parser failures into messages for E0402 diagnostics, and
 //! enforces the triangle limit.
 
+use super::gltf_material::MeshMaterial;
 use super::mesh::{Mesh, MAX_TRIANGLES};
 pub use super::mesh_error::MeshLoadError;
 use super::rig::Rig;
@@ -20,6 +21,22 @@ pub fn load_mesh_file(path: &Path) -> Result<Mesh, MeshLoadError> {
 /// [`load_mesh_file`], with the file's rig (a glTF file's skins, morph
 /// targets and animations; the mesh is then its rest pose).
 pub fn load_mesh_and_rig(path: &Path) -> Result<(Mesh, Option<Rig>), MeshLoadError> {
+    load_mesh_file_parts(path).map(|loaded| (loaded.mesh, loaded.rig))
+}
+
+/// What one mesh file holds for a scene.
+#[derive(Debug)]
+pub struct LoadedMesh {
+    /// The mesh (a rigged glTF file's rest pose).
+    pub mesh: Mesh,
+    /// A glTF file's skins, morph targets and animations.
+    pub rig: Option<Rig>,
+    /// A glTF file's material (`gltf_material`).
+    pub material: Option<MeshMaterial>,
+}
+
+/// [`load_mesh_and_rig`], with the file's material.
+pub fn load_mesh_file_parts(path: &Path) -> Result<LoadedMesh, MeshLoadError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
@@ -42,10 +59,10 @@ pub fn load_mesh_and_rig(path: &Path) -> Result<(Mesh, Option<Rig>), MeshLoadErr
     // A reader that panics on a malformed file is an error about the file
     // (an expected panic: `npr` prints the error alone).
     let parsed = npr_diag::panics::catch(|| match extension.as_str() {
-        "obj" => obj_file::parse_obj(&bytes, &source).map(|mesh| (mesh, None)),
+        "obj" => obj_file::parse_obj(&bytes, &source).map(|mesh| (mesh, None, None)),
         _ => gltf_file::parse_gltf(&bytes, base_dir, &source),
     });
-    let (mesh, rig) = parsed.unwrap_or_else(|why| {
+    let (mesh, rig, material) = parsed.unwrap_or_else(|why| {
         Err(MeshLoadError::unreadable(
             format!("the mesh reader failed on `{source}`: {why}"),
             "the file is probably malformed; re-export it from a modelling tool",
@@ -60,5 +77,5 @@ pub fn load_mesh_and_rig(path: &Path) -> Result<(Mesh, Option<Rig>), MeshLoadErr
             "re-export the mesh as triangles from a modelling tool",
         )
     })?;
-    Ok((mesh, rig))
+    Ok(LoadedMesh { mesh, rig, material })
 }

@@ -138,6 +138,7 @@ mod attributes;
 mod camera;
 pub(crate) mod geometry;
 mod gltf_file;
+pub mod gltf_material;
 pub mod gltf_rig;
 mod light;
 mod mesh;
@@ -163,7 +164,7 @@ pub mod toml_fields;
 pub use camera::{Camera, CameraKey, CameraPose};
 pub use light::{light_view_proj, Light};
 pub use mesh::{Attribute, Mesh, MAX_TRIANGLES};
-pub use mesh_file::{load_mesh_and_rig, load_mesh_file, MeshLoadError};
+pub use mesh_file::{load_mesh_and_rig, load_mesh_file, load_mesh_file_parts, LoadedMesh, MeshLoadError};
 pub use primitives::{Primitive, MAX_SEGMENTS};
 
 use npr_diag::limits::MAX_SCENE_BYTES;
@@ -228,6 +229,11 @@ pub struct Object {
     /// deformed as a clip's is (the GPU stage for the passes, the CPU for
     /// [`Scene::posed`]). `None`: not posed by a host.
     pub pose: Option<rig::HostPose>,
+    /// The material of its glTF file (`gltf_material`): per-object values
+    /// and the base colour texture under fixed names, each used where the
+    /// style declares the name and the scene binds none. `None`: an OBJ
+    /// file, a primitive, or a glTF file without materials.
+    pub material: Option<Arc<gltf_material::MeshMaterial>>,
 }
 
 /// An object's clip playing (`animation = { clip, speed, loop, offset }`).
@@ -244,6 +250,19 @@ pub struct ObjectAnimation {
     pub looping: bool,
     /// Clip time at scene time 0, in seconds.
     pub offset: f64,
+}
+
+/// Equal when they play the same clip of the same rig (one `Arc`: one
+/// file's), at the same speed, looping and offset; the rig is not
+/// compared deeply (a host's frame compares instances).
+impl PartialEq for ObjectAnimation {
+    fn eq(&self, other: &ObjectAnimation) -> bool {
+        Arc::ptr_eq(&self.rig, &other.rig)
+            && self.clip == other.clip
+            && self.speed == other.speed
+            && self.looping == other.looping
+            && self.offset == other.offset
+    }
 }
 
 impl ObjectAnimation {
@@ -304,6 +323,7 @@ impl Object {
             patch: None,
             animation: None,
             pose: None,
+            material: None,
         }
     }
 }

@@ -1,8 +1,9 @@
 //! `[[object]]` in a scene: the mesh or primitive, the transform, tags,
 //! shadows and per-object parameter bindings.
 
+use super::gltf_material::MeshMaterial;
 use super::mesh::Mesh;
-use super::mesh_file::{load_mesh_and_rig, MeshLoadError};
+use super::mesh_file::{load_mesh_file_parts, MeshLoadError};
 use super::parse_patches::PatchRequest;
 use super::parse_primitive::parse_primitive;
 use super::primitives::Primitive;
@@ -25,8 +26,20 @@ pub struct MeshCache {
 }
 
 /// A mesh file's rest mesh and, for a glTF file that has them, its skins,
-/// morph targets and clips.
-type LoadedFile = (Arc<Mesh>, Option<Arc<Rig>>);
+/// morph targets and clips, and its material.
+type LoadedFile = (Arc<Mesh>, Option<Arc<Rig>>, Option<Arc<MeshMaterial>>);
+
+/// What [`read_mesh`] found: the mesh, where it was declared, a name for
+/// an object without one, the primitive when its geometry depends on
+/// time, a glTF file's rig and material.
+type ReadMesh = (
+    Arc<Mesh>,
+    Span,
+    String,
+    Option<Primitive>,
+    Option<Arc<Rig>>,
+    Option<Arc<MeshMaterial>>,
+);
 
 /// An object as read, with what duplicate-name checking needs.
 pub struct ObjectDecl {
@@ -72,7 +85,7 @@ pub fn parse_object(
     if report.diagnostics.len() > errors_before {
         return None;
     }
-    let (mut mesh, mesh_span, derived_name, time_varying, rig) = mesh?;
+    let (mut mesh, mesh_span, derived_name, time_varying, rig, material) = mesh?;
     let animation = match playing {
         Some(playing) => Some(playing.bind(rig.as_ref(), mesh_span, report)?),
         None => None,
@@ -107,6 +120,7 @@ pub fn parse_object(
             patch: None,
             animation,
             pose: None,
+            material,
         },
         name_span,
         patches,
@@ -115,14 +129,9 @@ pub fn parse_object(
 
 /// The object's mesh (from `mesh` or `primitive`), where it was declared,
 /// a name for objects without one (the file stem or primitive kind), the
-/// primitive again when its geometry depends on time, and a glTF file's rig.
-#[allow(clippy::type_complexity)]
-fn read_mesh(
-    fields: &mut Fields,
-    base_dir: &Path,
-    cache: &mut MeshCache,
-    report: &mut Report,
-) -> Option<(Arc<Mesh>, Span, String, Option<Primitive>, Option<Arc<Rig>>)> {
+/// primitive again when its geometry depends on time, and a glTF file's
+/// rig and material.
+fn read_mesh(fields: &mut Fields, base_dir: &Path, cache: &mut MeshCache, report: &mut Report) -> Option<ReadMesh> {
     let file = fields.string("mesh", report);
     let primitive_span = fields.span_of("primitive", report);
     let primitive = fields.table("primitive", "the primitive", report);
@@ -144,16 +153,15 @@ fn read_mesh(
             if !report.path_allowed(file.span, &file.value, &path) {
                 return None;
             }
-            let loaded = cache
-                .files
-                .entry(path.clone())
-                .or_insert_with(|| load_mesh_and_rig(&path).map(|(mesh, rig)| (Arc::new(mesh), rig.map(Arc::new))));
+            let loaded = cache.files.entry(path.clone()).or_insert_with(|| {
+                load_mesh_file_parts(&path).map(|l| (Arc::new(l.mesh), l.rig.map(Arc::new), l.material.map(Arc::new)))
+            });
             match loaded {
-                Ok((mesh, rig)) => {
+                Ok((mesh, rig, material)) => {
                     let stem = Path::new(&file.value)
                         .file_stem()
                         .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
-                    Some((Arc::clone(mesh), file.span, stem, None, rig.clone()))
+                    Some((Arc::clone(mesh), file.span, stem, None, rig.clone(), material.clone()))
                 }
                 Err(err) => {
                     report.push(
@@ -174,7 +182,7 @@ fn read_mesh(
                 .entry(description)
                 .or_insert_with(|| Arc::new(primitive.build()));
             let time_varying = primitive.is_time_varying().then_some(primitive);
-            Some((Arc::clone(mesh), span, kind, time_varying, None))
+            Some((Arc::clone(mesh), span, kind, time_varying, None, None))
         }
         (None, None) => {
             // A `mesh` of the wrong type was already reported.

@@ -6,6 +6,8 @@
 //! `patch.weight` (not each patch's own faces at weight 1), and are one
 //! surface for `lines` passes (their seams are no edges). A host that
 //! divides the cow in code (`StyleRuntime::add_patches`) draws the same.
+//! Objects playing a glTF clip (`animation = {...}`) play it at each
+//! frame's time (`Instance::animation`), as the renderer does.
 //! Each comparison fails without what the runtime carries (checked by
 //! leaving it out when this was written). The runtime's frames after the
 //! first create no GPU object (`npr_runner::gpu_count`).
@@ -160,6 +162,31 @@ fn the_ocean_moves_through_the_runtime_as_through_the_renderer() {
             "the sea barely moved between {} s and {} s ({changed} pixels changed)",
             TIMES[k],
             TIMES[k + 1]
+        );
+    }
+}
+
+/// The Blender arms bending out of step and the blob pulsing
+/// (`characters.toml`'s `animation = {...}`): `add_scene` gives each
+/// instance its clip, and the runtime's frames equal the renderer's, for a
+/// render pass and for a `lines` pass (CPU-posed silhouettes). The
+/// renderer's frames at 0 s and 1.5 s differ (the arms are straight at
+/// 0 s, half bent at 1.5 s), so the runtime did not draw the rest pose.
+#[test]
+fn a_scenes_clips_play_through_the_runtime_as_through_the_renderer() {
+    for style in ["toon.npr", "wavy_lines.npr"] {
+        let frames = render_both(style, "characters.toml", |r, s| r.add_scene(s));
+        assert_equal(&frames, &format!("characters_{style}"));
+        let changed = frames[0]
+            .1
+            .bytes
+            .chunks(4)
+            .zip(frames[1].1.bytes.chunks(4))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert!(
+            changed > 100,
+            "{style}: the characters barely moved between 0 s and 1.5 s ({changed} pixels changed)"
         );
     }
 }

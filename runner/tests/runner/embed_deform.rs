@@ -80,6 +80,7 @@ fn object(name: &str, mesh: Arc<Mesh>, model: Mat4, tags: &[&str], time_varying:
         patch: None,
         animation: None,
         pose: None,
+        material: None,
     }
 }
 

@@ -241,3 +241,128 @@ fn the_morphing_blob_renders_as_its_f64_reference() {
         check(BLOB, "blob.glb", "pulse", t);
     }
 }
+
+/// The silhouette edges of the f64-skinned arm at clip time `clip_t`, seen
+/// from the scene's camera, projected to pixels (y down): interior edges
+/// (vertices welded by position across the UV seam) whose two triangles
+/// face opposite ways from the camera (the definition of
+/// `lines::edges`, computed here independently from the f64 mesh).
+fn reference_silhouette(scene: &Scene, clip_t: f64) -> Vec<(glam::DVec2, glam::DVec2)> {
+    use std::collections::HashMap;
+    let deformed = skin_reference::deform(&blender().join("arm.glb"), Some(("bend", clip_t)));
+    let model = scene.objects[0].model.as_dmat4();
+    let world: Vec<glam::DVec3> = deformed.positions.iter().map(|p| model.transform_point3(*p)).collect();
+    let key = |p: glam::DVec3| ((p * 1e5).round().as_i64vec3()).to_array();
+    let mut welded: HashMap<[i64; 3], usize> = HashMap::new();
+    let ids: Vec<usize> = world
+        .iter()
+        .map(|p| {
+            let n = welded.len();
+            *welded.entry(key(*p)).or_insert(n)
+        })
+        .collect();
+    let pose = scene.camera.pose(0.0);
+    let eye = pose.position(0).as_dvec3();
+    let view_projection = (pose.projection(1.0) * pose.view(0)).as_dmat4();
+    let project = |p: glam::DVec3| {
+        let c = view_projection * p.extend(1.0);
+        glam::DVec2::new(
+            (c.x / c.w * 0.5 + 0.5) * f64::from(SIZE),
+            (0.5 - c.y / c.w * 0.5) * f64::from(SIZE),
+        )
+    };
+    // Per welded edge: each face's facing, and the edge's two vertices.
+    type FacesOfEdge = HashMap<(usize, usize), Vec<(bool, usize, usize)>>;
+    let mut faces_of_edge: FacesOfEdge = HashMap::new();
+    for t in deformed.indices.chunks_exact(3) {
+        let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
+        let normal = (world[b] - world[a]).cross(world[c] - world[a]);
+        let front = normal.dot(eye - (world[a] + world[b] + world[c]) / 3.0) > 0.0;
+        for (u, v) in [(a, b), (b, c), (c, a)] {
+            let edge = (ids[u].min(ids[v]), ids[u].max(ids[v]));
+            faces_of_edge.entry(edge).or_default().push((front, u, v));
+        }
+    }
+    faces_of_edge
+        .values()
+        .filter(|faces| faces.len() == 2 && faces[0].0 != faces[1].0)
+        .map(|faces| (project(world[faces[0].1]), project(world[faces[0].2])))
+        .collect()
+}
+
+fn distance_to_segment(p: glam::DVec2, (a, b): (glam::DVec2, glam::DVec2)) -> f64 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t).distance(p)
+}
+
+/// The silhouette lines of the skinned arm (built on the CPU from the
+/// frame's deformed mesh, drawn 2 px wide) lie on the silhouette of the
+/// mesh skinned in f64 by the independent reference, for three poses:
+/// every pixel inked at least half has its centre within 2.5 px of a
+/// reference silhouette edge (the stroke's half width, 1 px; half a pixel
+/// of antialiased coverage; and 1 px of tolerance on the line itself),
+/// and at least 90 % of points sampled every 0.5 px along the reference
+/// silhouette have such ink within that distance (parts hidden behind
+/// the arm itself are not drawn: the remaining 10 % allow for them).
+#[test]
+fn lines_on_the_skinned_arm_lie_on_the_f64_skinned_silhouette() {
+    let lines = compile("lines.npr", LINES);
+    let animated = scene(ARM);
+    for clip_t in [0.2, 0.55, 0.8] {
+        let truth = reference_silhouette(&animated, clip_t);
+        assert!(truth.len() > 20, "t {clip_t}: {} silhouette edges", truth.len());
+        let image = rgba(&render(&lines, &animated, clip_t));
+        let inked: Vec<glam::DVec2> = image
+            .enumerate_pixels()
+            .filter(|(_, _, p)| p.0[0] >= 128)
+            .map(|(x, y, _)| glam::DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5))
+            .collect();
+        assert!(inked.len() > 50, "t {clip_t}: only {} pixels inked", inked.len());
+        let reach = 2.5;
+        let stray: Vec<&glam::DVec2> = inked
+            .iter()
+            .filter(|p| truth.iter().all(|s| distance_to_segment(**p, *s) > reach))
+            .collect();
+        let samples: Vec<glam::DVec2> = truth
+            .iter()
+            .flat_map(|&(a, b)| {
+                let n = ((b - a).length() / 0.5).ceil().max(1.0) as usize;
+                (0..=n).map(move |k| a.lerp(b, k as f64 / n as f64))
+            })
+            .filter(|p| p.x >= 0.0 && p.y >= 0.0 && p.x < f64::from(SIZE) && p.y < f64::from(SIZE))
+            .collect();
+        let covered = samples
+            .iter()
+            .filter(|s| inked.iter().any(|p| p.distance(**s) <= reach))
+            .count();
+        let recall = covered as f64 / samples.len() as f64;
+        let farthest = stray
+            .iter()
+            .map(|p| {
+                truth
+                    .iter()
+                    .map(|s| distance_to_segment(**p, *s))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        if !stray.is_empty() || recall < 0.9 {
+            let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("skinned-silhouette");
+            std::fs::create_dir_all(&dir).expect("output dir");
+            image.save(dir.join(format!("arm-lines-{clip_t}.png"))).expect("save");
+        }
+        assert!(
+            stray.is_empty() && recall >= 0.9,
+            "t {clip_t}: {} of {} inked pixels farther than {reach} px from the f64 silhouette (first {:?}, \
+             farthest {farthest:.2} px); recall {recall:.3} of {} samples",
+            stray.len(),
+            inked.len(),
+            stray.first(),
+            samples.len()
+        );
+    }
+}

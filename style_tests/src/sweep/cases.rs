@@ -113,13 +113,23 @@ const HARD_FILES: &[(&str, &str)] = &[
     ),
     ("small.toml", include_str!("../../hard_scenes/small.toml")),
     ("stereo.toml", include_str!("../../hard_scenes/stereo.toml")),
+    ("walking.toml", include_str!("../../hard_scenes/walking.toml")),
 ];
+
+/// The binary files the hard scenes name, written beside them: the
+/// Blender-made walker of `walking.toml`, a copy of
+/// `examples/models/walker.glb` kept in this package so that it publishes
+/// whole (`tests/general/packaging.rs` checks the two are the same bytes).
+const HARD_MESHES: &[(&str, &[u8])] = &[("walker.glb", include_bytes!("../../hard_scenes/walker.glb"))];
 
 /// Write the hard scenes into `dir` (each file atomically).
 pub fn write_hard_scenes(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     for (name, text) in HARD_FILES {
         npr_runner::output::write_atomic(&dir.join(name), text.as_bytes())?;
+    }
+    for (name, bytes) in HARD_MESHES {
+        npr_runner::output::write_atomic(&dir.join(name), bytes)?;
     }
     Ok(())
 }
@@ -152,6 +162,15 @@ pub fn hard_cases(dir: &Path) -> Vec<Case> {
         case("3x7", "small.toml", (3, 7), still, 0),
         case("stereo_left", "stereo.toml", SWEEP_SIZE, still, 0),
         case("stereo_right", "stereo.toml", SWEEP_SIZE, still, 1),
+        // Mid-stride (0.3 s): the GPU deformation and the CPU pose of
+        // lines and light views, in one frame.
+        case(
+            "walking",
+            "walking.toml",
+            SWEEP_SIZE,
+            FrameRequest::At { time_s: 0.3 },
+            0,
+        ),
     ]
 }
 
@@ -169,5 +188,18 @@ mod tests {
         for case in hard_cases(dir) {
             assert!(case.scene.is_file(), "{}", case.scene.display());
         }
+    }
+
+    /// The hard scenes as a sweep writes them load, the walker with the
+    /// mesh written beside it, playing its clip.
+    #[test]
+    fn the_written_hard_scenes_load_with_their_meshes() {
+        let dir = std::env::temp_dir().join(format!("npr-hard-scenes-{}", std::process::id()));
+        write_hard_scenes(&dir).expect("write the hard scenes");
+        let mut sources = npr_diag::SourceMap::new();
+        let scene = npr_runner::scene::load_scene(&dir.join("walking.toml"), &mut sources)
+            .unwrap_or_else(|d| panic!("{}", npr_diag::diagnostic::render(&d, &sources, false)));
+        assert!(scene.objects[0].animation.is_some(), "the walker plays its clip");
+        std::fs::remove_dir_all(&dir).expect("remove the scratch folder");
     }
 }
