@@ -87,30 +87,12 @@ impl Case {
 
 /// The hard scenes' files, as shipped in `hard_scenes/`.
 const HARD_FILES: &[(&str, &str)] = &[
-    (
-        "grazing.toml",
-        include_str!("../../hard_scenes/grazing.toml"),
-    ),
-    (
-        "near_plane.toml",
-        include_str!("../../hard_scenes/near_plane.toml"),
-    ),
-    (
-        "tiny_far.toml",
-        include_str!("../../hard_scenes/tiny_far.toml"),
-    ),
-    (
-        "degenerate.toml",
-        include_str!("../../hard_scenes/degenerate.toml"),
-    ),
-    (
-        "degenerate.obj",
-        include_str!("../../hard_scenes/degenerate.obj"),
-    ),
-    (
-        "camera_cut.toml",
-        include_str!("../../hard_scenes/camera_cut.toml"),
-    ),
+    ("grazing.toml", include_str!("../../hard_scenes/grazing.toml")),
+    ("near_plane.toml", include_str!("../../hard_scenes/near_plane.toml")),
+    ("tiny_far.toml", include_str!("../../hard_scenes/tiny_far.toml")),
+    ("degenerate.toml", include_str!("../../hard_scenes/degenerate.toml")),
+    ("degenerate.obj", include_str!("../../hard_scenes/degenerate.obj")),
+    ("camera_cut.toml", include_str!("../../hard_scenes/camera_cut.toml")),
     ("small.toml", include_str!("../../hard_scenes/small.toml")),
     ("stereo.toml", include_str!("../../hard_scenes/stereo.toml")),
     ("walking.toml", include_str!("../../hard_scenes/walking.toml")),
