@@ -43,7 +43,9 @@ macro_rules! uniform_block {
         pub struct $block {
             $(
                 $(#[doc = $above])*
-                $(#[doc = $trail])?
+                // A trailing comment is WGSL's as much as rustdoc's: it may
+                // write `proj[0][0]`, which is no link.
+                $(#[doc = $trail] #[allow(rustdoc::broken_intra_doc_links)])?
                 pub $name: $rust,
             )*
         }

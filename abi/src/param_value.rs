@@ -61,7 +61,7 @@ pub enum ValueKind {
 }
 
 impl ValueKind {
-    /// The kind of a declared type as [`Param::declared_type`] (and so the
+    /// The kind of a declared type as `Param::declared_type` (and so the
     /// manifest) writes it: the one mapping from types to kinds.
     pub fn of(declared: &str) -> ValueKind {
         match declared {
@@ -101,7 +101,7 @@ impl ValueKind {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParamShape {
     pub name: String,
-    /// As declared ([`Param::declared_type`]): `color`, `px`, `enum(a|b)`.
+    /// As declared (`Param::declared_type`): `color`, `px`, `enum(a|b)`.
     pub ty: String,
     pub kind: ValueKind,
     pub components: u32,

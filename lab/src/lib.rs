@@ -5,7 +5,7 @@
 //!   actual and diff images written on failure.
 //! - [`contours`]: analytic contour ground truth (f64 ray casting) and
 //!   precision/recall of a rendered line mask.
-//! - [`bench`]: frame overhead against the runner's own passes, frame time
+//! - [`bench`](mod@bench): frame overhead against the runner's own passes, frame time
 //!   and per-pass GPU time.
 //!   (`npr bench passes`, `npr studio`).
 //! - [`bench_overhead`]: `npr bench overhead`, the runner against an

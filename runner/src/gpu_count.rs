@@ -1,5 +1,5 @@
-//! Every GPU object the runner creates goes through [`Create`] (and
-//! [`CreateView`]), which counts it on the calling thread: what
+//! Every GPU object the runner creates goes through `Create` (and
+//! `CreateView`), which counts it on the calling thread: what
 //! `runner/tests/embed_allocations.rs` reads to show that a frame after
 //! the first creates nothing. wgpu's own `Device::get_internal_counters`
 //! counts live objects (with its `counters` feature), so a bind group made

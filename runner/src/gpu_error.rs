@@ -3,7 +3,7 @@
 //!
 //! Every piece of GPU work the runner starts (building a [`crate::Renderer`],
 //! sizing its textures, a frame's submission, a read-back) runs in
-//! [`scoped`], inside out-of-memory, validation and internal error scopes:
+//! `scoped`, inside out-of-memory, validation and internal error scopes:
 //! - out of memory is [`RunError::OutOfMemory`] (E0508, exit 1) with a hint;
 //! - a validation or internal error is [`RunError::Internal`] (E9001): the
 //!   compiler's WGSL is validated by naga and its manifest by

@@ -3,7 +3,7 @@
 //! unreadable) without decoding, and so that render refuses an image past
 //! `MAX_TEXTURE_SIZE` before allocating its pixels.
 //!
-//! Both go through [`header`], the one definition of what a readable
+//! Both go through `header`, the one definition of what a readable
 //! texture file is; [`TextureFileError::to_diagnostic`] is the one wording.
 
 use image::ImageReader;

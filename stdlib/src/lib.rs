@@ -5,7 +5,7 @@
 //! signature, parameter types, units, defaults, ranges, docs, and the paper
 //! and equation numbers it implements), a CPU f64 reference under its own
 //! name, and the GPU-against-reference cases the generic test runs. Every
-//! reference is re-exported by [`reference`]; [`all`] is the registry of
+//! reference is re-exported by [`reference`](mod@reference); [`all`] is the registry of
 //! [`ops`], in order.
 //!
 //! WGSL conventions (the compiler relies on them):

@@ -15,7 +15,7 @@
 //! - [`checks`]: the checks on its images (finite, not blank,
 //!   deterministic, flicker, golden);
 //! - [`budget`]: a frame's cost as a ratio to a passthrough;
-//! - [`bench`]: `--bench`, each variant's cost against its FLIP;
+//! - [`bench`](mod@bench): `--bench`, each variant's cost against its FLIP;
 //! - [`report`]: the lines, the summary, JSON and JUnit XML;
 //! - [`sweep`]: stability sweeps over every parameter's range, on the
 //!   style's scenes and the hard scenes npr ships (`--sweep`, `sweep = true`);

@@ -4,7 +4,7 @@
 //! spacing: 8)` in a host style's art-map (Klein et al. 2000 §4.2), which
 //! are new defaults for the filter style's params.
 //!
-//! Each is a name and a [`Literal`] with their spans, read where the text
+//! Each is a name and a `Literal` with their spans, read where the text
 //! is (the CLI reads `--set` text, resolve reads a filter's arguments from
 //! the host's AST). [`type_settings`] types them all against the params
 //! the style declares, in the one compile, after typecheck: the name (E0101

@@ -43,7 +43,7 @@ pub enum PassKind {
         values: Vec<ObjectValue>,
     },
     /// Wavy strips along the silhouettes and creases of scene objects
-    /// (Klein et al. 2000, §5); see [`lines`].
+    /// (Klein et al. 2000, §5); see `lines`.
     Lines(LinesKind),
 }
 

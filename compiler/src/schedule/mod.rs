@@ -5,7 +5,7 @@
 //! - `naive`: one GPU pass per declared pass, each target stored and read
 //!   back, exactly as written.
 //! - `auto`: image passes whose only reader reads them at its own pixel are
-//!   fused into that reader ([`fuse`]); the rounding of the skipped target's
+//!   fused into that reader (`fuse`); the rounding of the skipped target's
 //!   format is repeated, so the image does not change. Each remaining
 //!   image pass that a tile would serve is reported with its apron.
 //! - `tiled`: `auto`, then image passes whose operators read targets
@@ -20,7 +20,7 @@
 //!   "Recomputed tiles").
 //!
 //! `--schedule` sets the run's schedule; an image pass's `schedule:`
-//! setting overrides it for that pass ([`Plan`]). `schedule: recompute`
+//! setting overrides it for that pass (`Plan`). `schedule: recompute`
 //! asks that the pass be computed in its reader's tiles, under every
 //! `--schedule`; where that cannot be, it is E0312 at the setting. `schedule: naive` runs
 //! the pass as written: it is never fused into its reader, nothing is

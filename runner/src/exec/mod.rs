@@ -3,7 +3,7 @@
 //!
 //! A [`Renderer`] borrows a device and queue, so it works in someone else's
 //! wgpu application as well as headless. It builds one executor per pass
-//! ([`pass::PassExec`], pipelines built once and cached for the renderer's
+//! (`pass::PassExec`, pipelines built once and cached for the renderer's
 //! life: they depend on the style and the device, never on the scene),
 //! uploads the scene's meshes once (again only when
 //! [`Renderer::set_scene`] gives it other objects), allocates the physical textures
@@ -28,7 +28,7 @@
 //! - `continuity.rs`: what a scene change carries over (continuing
 //!   objects, their compute state and transforms; [`Renderer::restart_history`]);
 //! - `values.rs`: compute passes' buffers (per-object values, partials);
-//! - `pass.rs`: [`pass::PassExec`], one variant per pass kind, dispatching
+//! - `pass.rs`: `pass::PassExec`, one variant per pass kind, dispatching
 //!   to the executors `render_pass.rs`, `image_pass.rs`, `tiled_pass.rs`,
 //!   `compute_pass.rs` and `lines_pass.rs`;
 //! - `common.rs`: what the executors share (they import it, never `pass.rs`);

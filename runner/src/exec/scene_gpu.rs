@@ -143,7 +143,7 @@ impl Renderer {
     /// Render `scene`'s objects from now on: other meshes, tags, bound
     /// images or shadow flags than the renderer was built or last set
     /// with (a game spawning or despawning an object). Only the
-    /// scene-level resources are made anew ([`SceneGpu`]; per-object images
+    /// scene-level resources are made anew (`SceneGpu`; per-object images
     /// the previous objects bound too are kept); the shader
     /// modules, pipelines and their layouts, the style's textures and
     /// art-maps, the sampler, the frame and style buffers, and the targets

@@ -116,7 +116,7 @@ impl Mesh {
     }
 
     /// The mesh with its normals split where faces meet at more than
-    /// `crease_deg` degrees ([`geometry::crease_normals`]): vertices on a
+    /// `crease_deg` degrees (`geometry::crease_normals`): vertices on a
     /// crease are duplicated, UVs copied, tangents recomputed for the new
     /// normals. For CAD parts whose file has no normals.
     pub fn with_crease_normals(&self, crease_deg: f32) -> Mesh {

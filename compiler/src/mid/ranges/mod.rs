@@ -13,7 +13,7 @@
 //! with what the frame stores until nothing grows, or widened to the
 //! format's whole range after [`MAX_FRAME_ROUNDS`] rounds; a per-object
 //! `state` starts at its first value and is joined with its update the
-//! same way, its growing bounds then widened to thresholds ([`widen`]).
+//! same way, its growing bounds then widened to thresholds (`widen`).
 //! An `if` argument that narrows another argument is split (`paths.rs`).
 //! Each operation whose operands reach a value where WGSL's result is
 //! undefined or not finite becomes a warning (`domains.rs`); each live
@@ -157,7 +157,7 @@ pub fn analyse(ir: &Ir, live: &Live, params: &[inputs::ParamRange]) -> Ranges {
 }
 
 /// Rounds of frames before a state is unknown: past [`MAX_FRAME_ROUNDS`]
-/// its growing bounds jump to the next threshold each round ([`widen`]).
+/// its growing bounds jump to the next threshold each round (`widen`).
 pub const MAX_STATE_ROUNDS: usize = MAX_FRAME_ROUNDS + STATE_THRESHOLDS.len() + 1;
 
 /// Where a state's growing bound is widened to: a state that decays
