@@ -177,13 +177,17 @@ pub struct Row {
 /// does not tilt the fit of cost against pixels ([`slopes`]). Every
 /// (variant, size) keeps its own renderer and targets meanwhile: about
 /// 70 bytes a pixel per variant, some 2 GB for 28 variants at 1024².
+/// The renderers are returned with their frame specs, `[size]`, for the
+/// accuracy renders to reuse (a new renderer compiles every pipeline
+/// again, which is most of the cost at small sizes).
+#[allow(clippy::type_complexity)]
 fn min_frame_times(
     gpu: &Gpu,
     programs: &[(String, StyleProgram, bool)],
     scene: &npr_runner::scene::Scene,
     sizes: &[u32],
     frames: u32,
-) -> Result<Vec<Vec<f64>>, RunError> {
+) -> Result<(Vec<Vec<f64>>, Vec<(FrameSpec, Vec<npr_runner::Renderer>)>), RunError> {
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for &size in sizes {
@@ -208,7 +212,7 @@ fn min_frame_times(
             }
         }
     }
-    Ok(best)
+    Ok((best, renderers))
 }
 
 /// The timing scene: a coarse sphere before a plane that covers every
@@ -237,18 +241,23 @@ pub fn run(
     let timing_scene = timing_scene(&mut sources)?;
     let mut rows = Vec::new();
     progress("timing every size, frames interleaved");
-    let bests = min_frame_times(gpu, programs, &timing_scene, sizes, frames)?;
-    for (&size, best) in sizes.iter().zip(&bests) {
+    let (bests, mut renderers) = min_frame_times(gpu, programs, &timing_scene, sizes, frames)?;
+    for ((&size, best), (spec, size_renderers)) in sizes.iter().zip(&bests).zip(&mut renderers) {
         let t_chain = (best[1] - best[0]) / (CHAINED_PASSTHROUGHS - 1) as f64;
         let measured_pass = t_chain > T_PASS_FLOOR_S;
         let t_pass = t_chain.max(T_PASS_FLOOR_S);
         let gbuffer = best[0] - t_pass;
-        for (i, (name, p, measure)) in programs.iter().enumerate() {
+        for (i, ((name, _, measure), renderer)) in programs.iter().zip(size_renderers.iter_mut()).enumerate() {
             let accuracy = if *measure {
                 progress(&format!("accuracy of {name} at {size}x{size}"));
                 let (mut min_p, mut min_r, mut planes_r) = (1.0f64, 1.0f64, 1.0f64);
                 for (s, scene) in scenes.iter().zip(&loaded) {
-                    let img = npr_runner::render_frame(gpu, p, scene, &FrameSpec::still(size, size, 0))?;
+                    // The timing renderer, given the analytic scene: the
+                    // same image a new renderer would draw (the contour
+                    // styles keep no history), without compiling again.
+                    renderer.set_scene(scene)?;
+                    renderer.render(scene, spec)?;
+                    let img = renderer.read_output()?;
                     let a: Accuracy = accuracy(&ink_mask(&img, 0.5), &s.truth(size, size), 1);
                     if s.name == "parallel_planes" {
                         planes_r = a.recall;
