@@ -1,8 +1,8 @@
-//! `npr test PATH...`: find the test files, read them all (any mistake in
-//! one is reported with the others and stops the run before rendering),
-//! add a sweep per style with `--sweep`, select by `--filter` and
-//! `--shard`, run each test with a progress bar, and report. Exit 0 when every test passes, 1 when one fails or has bad
-//! input, 2 when npr itself failed.
+//! `npr test PATH...`: the run's jobs come from `npr_test::plan` (the test
+//! files, sweeps with `--sweep`, `--filter`, `--shard`); this command
+//! shows a progress bar, prints each result and a style's warnings once,
+//! and writes the report. Exit 0 when every test passes, 1 when one fails
+//! or has bad input, 2 when npr itself failed.
 
 use crate::cli::TestArgs;
 use crate::printer::headless_gpu;
@@ -11,20 +11,13 @@ use npr_diag::printer::Printer;
 use npr_diag::writes::cannot_write;
 use npr_diag::{codes, Diagnostic};
 use npr_test::bench;
-use npr_test::declare::{self, TestDecl, TestFile};
+use npr_test::declare::{TestDecl, TestFile};
 use npr_test::outcome::{Settings, Status};
+use npr_test::plan::{Job, Plan, PlanError, PlanOptions};
 use npr_test::report::{self, ReportFormat, RunReport};
 use npr_test::run;
 use npr_test::select;
-use npr_test::sweep;
-use npr_test::sweep::cases::{self, Case};
 use std::time::Instant;
-
-/// One line of the run: a declared test, or a style's sweep over its cases.
-enum Job<'a> {
-    Test(&'a TestFile, &'a TestDecl),
-    Sweep(&'a std::path::Path, Vec<Case>),
-}
 
 pub fn run(args: TestArgs, printer: &Printer) -> i32 {
     let started = Instant::now();
@@ -32,78 +25,29 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
         Ok(s) => s,
         Err(d) => return printer.fail(d),
     };
-    let found = match select::find(&args.paths) {
-        Ok(f) => f,
-        Err(d) => return printer.fail(d),
+    let plan = match Plan::new(&PlanOptions {
+        paths: &args.paths,
+        sweep: args.sweep,
+        filter: args.filter.as_deref(),
+        shard,
+        out_dir: &args.out,
+    }) {
+        Ok(p) => p,
+        Err(PlanError::Argument(d)) => return printer.fail(d),
+        Err(PlanError::TestFiles(bad)) => {
+            for (diags, sources) in &bad {
+                printer.diagnostics(diags, sources);
+            }
+            return EXIT_USER;
+        }
     };
-    let mut files: Vec<TestFile> = Vec::new();
-    let mut bad_input = false;
-    for path in &found.test_files {
-        match declare::read(path) {
-            Ok(f) => files.push(f),
-            Err((diags, sources)) => {
-                printer.diagnostics(&diags, &sources);
-                bad_input = true;
-            }
-        }
-    }
-    if bad_input {
-        return EXIT_USER;
-    }
-    let mut jobs: Vec<Job> = files
-        .iter()
-        .flat_map(|f| f.tests.iter().map(move |t| Job::Test(f, t)))
-        .collect();
-    let hard_dir = args.out.join("hard_scenes");
-    if args.sweep {
-        let mut styles: Vec<&std::path::Path> = files.iter().map(|f| f.style.as_path()).collect();
-        styles.extend(found.named_untested.iter().map(|p| p.as_path()));
-        for style in styles {
-            let mut cases: Vec<Case> = Vec::new();
-            for test in files.iter().filter(|f| f.style == style).flat_map(|f| &f.tests) {
-                let case = Case::of_test_small(test);
-                if !cases
-                    .iter()
-                    .any(|c| (&c.scene, c.size, c.request, c.eye) == (&case.scene, case.size, case.request, case.eye))
-                {
-                    cases.push(case);
-                }
-            }
-            cases.extend(cases::hard_cases(&hard_dir));
-            jobs.push(Job::Sweep(style, cases));
-        }
-    }
-    let ids: Vec<String> = jobs
-        .iter()
-        .map(|j| match j {
-            Job::Test(f, t) => run::id(f, t),
-            Job::Sweep(style, _) => sweep::sweep_id(style),
-        })
-        .collect();
-    if let Some(filter) = &args.filter {
-        if !ids.iter().any(|id| id.contains(filter.as_str())) {
-            return printer.fail(
-                Diagnostic::error(
-                    codes::BAD_ARGUMENT_VALUE,
-                    format!("--filter {filter}: no test's id contains it"),
-                )
-                .with_help(format!(
-                    "the ids are `style.npr::name` (and `style.npr::@sweep` with --sweep); there are {} test(s)",
-                    ids.len()
-                )),
-            );
-        }
-    }
-    let selected = select::select(&ids, args.filter.as_deref(), shard);
-    if selected.iter().any(|&i| matches!(jobs[i], Job::Sweep(..))) {
-        if let Err(e) = cases::write_hard_scenes(&hard_dir) {
-            return printer.fail(cannot_write(&hard_dir, e));
-        }
+    if let Err((dir, e)) = plan.write_hard_scenes() {
+        return printer.fail(cannot_write(&dir, e));
     }
     if args.bench {
-        return bench(&args, &jobs, &selected, printer);
+        return bench(&args, &plan, printer);
     }
-    let gpu = if selected.is_empty() {
+    let gpu = if plan.is_empty() {
         None
     } else {
         match headless_gpu(printer) {
@@ -111,53 +55,53 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
             Err(code) => return code,
         }
     };
-    let bar = indicatif::ProgressBar::new(selected.len() as u64);
+    let bar = indicatif::ProgressBar::new(plan.selected().count() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} tests {elapsed_precise} {wide_msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let mut outcomes = Vec::with_capacity(selected.len());
     // A style's warnings would repeat for each of its tests: each once.
     let mut warned = std::collections::HashSet::new();
-    if let Some(gpu) = &gpu {
-        let settings = Settings {
-            gpu,
-            out_dir: &args.out,
-            bless: args.bless,
-        };
-        for &i in &selected {
-            bar.set_message(ids[i].clone());
-            let result = match &jobs[i] {
-                Job::Test(file, test) => run::run(file, test, &settings),
-                Job::Sweep(style, cases) => sweep::run_sweep(style, cases, &settings),
+    let outcomes = match &gpu {
+        Some(gpu) => {
+            let settings = Settings {
+                gpu,
+                out_dir: &args.out,
+                bless: args.bless,
             };
-            let fresh: Vec<Diagnostic> = result
-                .diagnostics
-                .iter()
-                .filter(|d| {
-                    d.is_error()
-                        || warned.insert(npr_diag::diagnostic::render(
-                            std::slice::from_ref(*d),
-                            &result.sources,
-                            false,
-                        ))
-                })
-                .cloned()
-                .collect();
-            bar.suspend(|| {
-                printer.diagnostics(&fresh, &result.sources);
-                eprintln!("{}", report::line(&result.outcome));
-            });
-            outcomes.push(result.outcome);
-            bar.inc(1);
+            plan.run(
+                &settings,
+                |id| bar.set_message(id.to_string()),
+                |result| {
+                    let fresh: Vec<Diagnostic> = result
+                        .diagnostics
+                        .iter()
+                        .filter(|d| {
+                            d.is_error()
+                                || warned.insert(npr_diag::diagnostic::render(
+                                    std::slice::from_ref(*d),
+                                    &result.sources,
+                                    false,
+                                ))
+                        })
+                        .cloned()
+                        .collect();
+                    bar.suspend(|| {
+                        printer.diagnostics(&fresh, &result.sources);
+                        eprintln!("{}", report::line(&result.outcome));
+                    });
+                    bar.inc(1);
+                },
+            )
         }
-    }
+        None => Vec::new(),
+    };
     bar.finish_and_clear();
     let run_report = RunReport {
         outcomes: &outcomes,
         seconds: started.elapsed().as_secs_f64(),
-        untested: &found.untested,
-        not_selected: jobs.len() - selected.len(),
+        untested: &plan.untested,
+        not_selected: plan.not_selected(),
     };
     let text = match args.format {
         ReportFormat::Human => report::human(&run_report),
@@ -186,15 +130,15 @@ pub fn run(args: TestArgs, printer: &Printer) -> i32 {
 
 /// `--bench`: measure the selected tests that declare variants; print the
 /// table (and draw it with `--plot`). Exit 1 on bad input, 2 on npr's.
-fn bench(args: &TestArgs, jobs: &[Job], selected: &[usize], printer: &Printer) -> i32 {
+fn bench(args: &TestArgs, plan: &Plan, printer: &Printer) -> i32 {
     if let Some(plot) = &args.plot {
         if let Err(d) = npr_lab::plot::check_path(plot) {
             return printer.fail(d);
         }
     }
-    let tests: Vec<(&TestFile, &TestDecl)> = selected
-        .iter()
-        .filter_map(|&i| match jobs[i] {
+    let tests: Vec<(&TestFile, &TestDecl)> = plan
+        .selected()
+        .filter_map(|(_, job)| match job {
             Job::Test(f, t) if !t.variants.is_empty() => Some((f, t)),
             _ => None,
         })

@@ -6,6 +6,8 @@
 //!
 //! - [`declare`]: the test file, read with spanned diagnostics (E0407);
 //! - [`select`]: test files under the paths given, `--filter`, `--shard`;
+//! - [`plan`]: a run's jobs (tests and sweeps), selected and run in order,
+//!   each result handed to the caller;
 //! - [`run`]: one test compiled, rendered and checked;
 //! - [`outcome`]: what a test reports (status, failures), shared by
 //!   [`run`] and [`sweep`]; `frames.rs`: rendering a test's frames;
@@ -53,6 +55,7 @@ pub mod declare;
 mod frames;
 mod motion;
 pub mod outcome;
+pub mod plan;
 pub mod report;
 pub mod run;
 pub mod select;
