@@ -40,6 +40,10 @@ pub struct EdgeTypes {
     /// other: lines across faces, not mesh edges.
     #[serde(default, skip_serializing_if = "is_false")]
     pub intersection: bool,
+    /// Edges the mesh's file marks (Freestyle's edge marks; a glTF file's
+    /// `_NPR_EDGE_MARK` face-corner attribute, decision 0063).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub marked: bool,
 }
 
 fn is_false(v: &bool) -> bool {
@@ -59,6 +63,7 @@ impl EdgeTypes {
             && (self.border || !other.border)
             && (self.material_boundary || !other.material_boundary)
             && (self.intersection || !other.intersection)
+            && (self.marked || !other.marked)
             && match (self.crease_deg, other.crease_deg) {
                 (_, None) => true,
                 (Some(mine), Some(theirs)) => mine <= theirs,

@@ -21,8 +21,9 @@ pub(super) const ALL: &[Explanation] = &[
             between a face turned to the eye and one turned away), `border` (edges of one face: an \
             open mesh's rim), `crease(angle)` (edges whose two faces turn by more than the angle), \
             `material_boundary` (edges between faces of different parts of the mesh: OBJ `o`/`g`, \
-            glTF primitives) and `intersection` (where two surfaces, or one and itself, pass \
-            through each other). Another name, an argument to a type other than `crease`, or a \
+            glTF primitives), `intersection` (where two surfaces, or one and itself, pass \
+            through each other) and `marked` (edges the mesh's file marks: a glTF file's \
+            `_NPR_EDGE_MARK` face-corner attribute). Another name, an argument to a type other than `crease`, or a \
             value that is not a union is this error.",
         wrong: Example {
             style: sets_case!("  set outline { edges: silhouette | bordr }"),

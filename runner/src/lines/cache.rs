@@ -113,6 +113,10 @@ fn mesh_hash(mesh: &Mesh) -> blake3::Hash {
     let mut hasher = blake3::Hasher::new();
     hasher.update(bytemuck::cast_slice(&mesh.positions));
     hasher.update(bytemuck::cast_slice(&mesh.indices));
+    // Two meshes of one shape with different marks have different edges.
+    if let Some(marks) = &mesh.edge_marks {
+        hasher.update(marks);
+    }
     hasher.finalize()
 }
 

@@ -83,6 +83,9 @@ pub fn select(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
                 if set.edges.material_boundary {
                     others.extend(mesh.part_boundaries());
                 }
+                if set.edges.marked {
+                    others.extend(mesh.marked());
+                }
                 others.sort_unstable();
                 others.dedup();
                 let others = claim(others);

@@ -28,6 +28,7 @@ mod gltf_animation_sampler;
 mod gltf_characters;
 mod gpu_deform;
 mod input_motion;
+mod lines_edge_marks;
 mod lines_edge_types;
 mod lines_edges;
 mod lines_pixels;

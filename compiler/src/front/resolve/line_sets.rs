@@ -22,7 +22,14 @@ use npr_dsl::ast::{self, BinOp, ExprKind as AK, UnitSuffix};
 use npr_stdlib::Unit;
 
 /// The edge types a set's `edges:` may name (Freestyle's names).
-pub(super) const EDGE_TYPES: [&str; 5] = ["silhouette", "border", "crease", "material_boundary", "intersection"];
+pub(super) const EDGE_TYPES: [&str; 6] = [
+    "silhouette",
+    "border",
+    "crease",
+    "material_boundary",
+    "intersection",
+    "marked",
+];
 
 /// The settings of a set besides `edges`.
 const SET_SETTINGS: [&str; 9] = [
@@ -257,6 +264,7 @@ impl Resolver<'_> {
                 "border" => edges.border = true,
                 "material_boundary" => edges.material_boundary = true,
                 "intersection" => edges.intersection = true,
+                "marked" => edges.marked = true,
                 "crease" => {
                     if let Some(deg) = self.crease_angle(term) {
                         edges.crease_deg = Some(edges.crease_deg.map_or(deg, |d: f64| d.min(deg)));
