@@ -98,6 +98,8 @@ fn a_set_of_marked_edges_draws_them_and_a_mesh_without_marks_has_none() {
         }],
         edges,
         style,
+        visibility: None,
+        dash: None,
     };
     let marked = EdgeTypes {
         marked: true,

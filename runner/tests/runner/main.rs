@@ -33,6 +33,7 @@ mod lines_edge_types;
 mod lines_edges;
 mod lines_pixels;
 mod lines_strip;
+mod lines_visibility;
 mod metatexture_contrast;
 mod object_motion;
 mod ocean_textures;
