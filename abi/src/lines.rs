@@ -40,6 +40,10 @@ pub struct EdgeTypes {
     /// other: lines across faces, not mesh edges.
     #[serde(default, skip_serializing_if = "is_false")]
     pub intersection: bool,
+    /// Edges the mesh's file marks (Freestyle's edge marks; a glTF file's
+    /// `_NPR_EDGE_MARK` face-corner attribute, decision 0063).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub marked: bool,
 }
 
 fn is_false(v: &bool) -> bool {
@@ -59,6 +63,7 @@ impl EdgeTypes {
             && (self.border || !other.border)
             && (self.material_boundary || !other.material_boundary)
             && (self.intersection || !other.intersection)
+            && (self.marked || !other.marked)
             && match (self.crease_deg, other.crease_deg) {
                 (_, None) => true,
                 (Some(mine), Some(theirs)) => mine <= theirs,
@@ -82,6 +87,51 @@ pub struct LineSet {
     pub shape: LineShape,
     /// The priority as written (higher first; ties in the order written).
     pub priority: i64,
+    /// Which lines by their quantitative invisibility (decision 0063);
+    /// `None` draws every line the set selects and leaves hiding to the
+    /// pass's depth test, as before QI.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub visibility: Option<LineVisibility>,
+    /// Dashes along the screen arc length: `(on, off)` in px.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dash: Option<[f64; 2]>,
+}
+
+/// The QIs a set shows, inclusive: `(lowest, highest)`.
+pub type QiRange = (u32, u32);
+
+impl LineVisibility {
+    /// The QIs a set of this visibility shows; a set without one shows
+    /// every QI (the depth test hides what is behind).
+    pub fn qi_range(visibility: Option<LineVisibility>) -> QiRange {
+        match visibility {
+            Some(LineVisibility::Visible) => (0, 0),
+            Some(LineVisibility::Hidden) => (1, u32::MAX),
+            Some(LineVisibility::Behind(n)) => (n, n),
+            Some(LineVisibility::All) | None => (0, u32::MAX),
+        }
+    }
+
+    /// Whether a set of this visibility shows a piece of QI `qi`.
+    pub fn shows(visibility: Option<LineVisibility>, qi: u32) -> bool {
+        let (lo, hi) = LineVisibility::qi_range(visibility);
+        (lo..=hi).contains(&qi)
+    }
+}
+
+/// Which lines a set draws by their quantitative invisibility (QI: the
+/// number of surfaces between the eye and the line; decision 0063).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LineVisibility {
+    /// QI 0.
+    Visible,
+    /// QI 1 or more.
+    Hidden,
+    /// QI exactly n (`hidden(n)`).
+    Behind(u32),
+    /// Every QI.
+    All,
 }
 
 /// One term of a [`LineScalar`]: `coefficient × first component of param`.

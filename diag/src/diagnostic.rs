@@ -321,7 +321,8 @@ pub mod codes {
     /// pass-level `silhouettes:`/`creases:` beside sets, a setting a set
     /// does not have, or `line.color`/`line.set` in a pass without sets.
     pub const MISPLACED_LINE_SET: &str = "E0317";
-    /// A line set's `visibility:` other than `visible`.
+    /// A line set's `visibility:` other than `visible`, `hidden`,
+    /// `hidden(n)` (n a whole number from 1) or `all`.
     pub const BAD_LINE_VISIBILITY: &str = "E0318";
     /// `depth: test(name)` where `name` is neither a pass nor an
     /// `input(depth)` texture (a colour input, a param).
@@ -333,6 +334,9 @@ pub mod codes {
     /// `uv` in an image pass of a style over a host's frame: the host's
     /// frame carries no surface coordinates and they cannot be rebuilt.
     pub const NO_HOST_UV: &str = "E0321";
+    /// A line set's `dash:` that is not one or two lengths in px over 0
+    /// (`dash: 6px`, `dash: dashes(6px, 4px)`).
+    pub const BAD_LINE_DASH: &str = "E0323";
     /// A texture file is missing or unreadable.
     pub const MISSING_TEXTURE: &str = "E0401";
     /// A mesh file is missing or unreadable.
@@ -533,7 +537,7 @@ pub mod codes {
         (EMPTY_LINE_SET, "a line set that selects nothing"),
         (DUPLICATE_LINE_SET, "two line sets with one name"),
         (MISPLACED_LINE_SET, "a line set, or its values, where there can be none"),
-        (BAD_LINE_VISIBILITY, "a line set's visibility other than `visible`"),
+        (BAD_LINE_VISIBILITY, "a line set's unknown visibility"),
         (
             NOT_A_TESTED_DEPTH,
             "a depth test against neither a pass nor a depth input",
@@ -543,6 +547,7 @@ pub mod codes {
             "a depth test against the host's depth at another scale or view",
         ),
         (NO_HOST_UV, "`uv` in an image pass over a host's frame"),
+        (BAD_LINE_DASH, "a line set's dash that is not lengths in px"),
         (MISSING_TEXTURE, "missing texture file"),
         (UNREADABLE_MESH, "unreadable mesh"),
         (MISSING_ATTRIBUTE, "scene lacks a required attribute"),

@@ -105,6 +105,7 @@ pub fn scene(elements: usize, objects: usize) -> Result<Scene, RunError> {
             indices: Vec::new(),
             source: format!("{per} points"),
             parts: None,
+            edge_marks: None,
         };
         let mut object = template.clone();
         object.name = format!("points{o}");

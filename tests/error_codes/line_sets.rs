@@ -1,8 +1,9 @@
 //! The diagnostics of line sets (decision 0056): an unknown edge type
 //! (E0313), a crease without an angle in 0..180deg (E0314), a set that
 //! selects nothing (E0315), two sets with one name (E0316), a set or its
-//! values where there can be none (E0317), and a visibility other than
-//! `visible` (E0318). Every case snapshots the rendered message.
+//! values where there can be none (E0317), an unknown visibility (E0318)
+//! and a dash that is not lengths in px (E0323, decision 0063). Every case
+//! snapshots the rendered message.
 
 use super::*;
 
@@ -96,7 +97,25 @@ fn e0317_a_set_where_there_can_be_none() {
 }
 
 #[test]
-fn e0318_a_visibility_other_than_visible() {
-    let text = sets_style("  set hidden { edges: silhouette, visibility: hidden }");
+fn e0318_an_unknown_visibility() {
+    let text = sets_style("  set hidden { edges: silhouette, visibility: hiden }");
     check("E0318", compile_errors(&text, &scratch("sets-hidden")));
+    let text = sets_style("  set hidden { edges: silhouette, visibility: hidden(0) }");
+    check_case(
+        "E0318",
+        "E0318_hidden_count",
+        compile_errors(&text, &scratch("sets-hidden-count")),
+    );
+}
+
+#[test]
+fn e0323_a_dash_that_is_not_lengths_in_px() {
+    let text = sets_style("  set hidden { edges: silhouette, visibility: hidden, dash: 6 }");
+    check("E0323", compile_errors(&text, &scratch("sets-dash")));
+    let text = sets_style("  set hidden { edges: silhouette, visibility: hidden, dash: dashes(6px, 0px) }");
+    check_case(
+        "E0323",
+        "E0323_zero_gap",
+        compile_errors(&text, &scratch("sets-dash-zero")),
+    );
 }

@@ -32,6 +32,7 @@ const EXPECTED: &[&str] = &[
     "hatching.npr::patched_cow_00",
     "hatching.npr::patched_cow_12",
     "hatching.npr::patched_cow_24",
+    "hidden_lines.npr::boxes",
     "live_contour.npr::coherence",
     "live_contour.npr::spheres",
     "lsa_base.npr::coherence",

@@ -29,7 +29,7 @@ pub const PASS_KINDS: &[(&str, &str)] = &[
     ),
     (
         "lines(scene)",
-        "Wavy strips along the visible silhouettes and creases of the objects (or those with a tag: `lines(rocks)`; Klein et al. 2000 §5): `silhouettes: true`, `creases: 40deg` or `creases: off`, `width`, `amplitude`, `wavelength` (px), `phase`, `taper`, each a sum of numbers, params and `time`; `depth: test(pass, bias: 1px)` hides edges behind a kept depth. Fragments have `line.s` (arc length, px) and `line.across` (-1..1). Line sets (`set outline { edges: silhouette, width: 3px, color: ink }`) draw several edge types (silhouette, border, crease(angle), material_boundary, intersection, joined in a set's `edges:` by a vertical bar), each in its own style, every edge once by priority; `line.color` is the drawing set's colour.",
+        "Wavy strips along the visible silhouettes and creases of the objects (or those with a tag: `lines(rocks)`; Klein et al. 2000 §5): `silhouettes: true`, `creases: 40deg` or `creases: off`, `width`, `amplitude`, `wavelength` (px), `phase`, `taper`, each a sum of numbers, params and `time`; `depth: test(pass, bias: 1px)` hides edges behind a kept depth. Fragments have `line.s` (arc length, px) and `line.across` (-1..1). Line sets (`set outline { edges: silhouette, width: 3px, color: ink }`) draw several edge types (silhouette, border, crease(angle), material_boundary, intersection, marked, joined in a set's `edges:` by a vertical bar), each in its own style, every edge once by priority; `line.color` is the drawing set's colour.",
     ),
 ];
 

@@ -38,6 +38,10 @@ pub struct LineSet {
     pub color: Option<ExprId>,
     /// `priority: n` (0 when unset); higher first.
     pub priority: i64,
+    /// `visibility:` (decision 0063); `None` when unset.
+    pub visibility: Option<npr_abi::lines::LineVisibility>,
+    /// `dash: 6px` or `dash: dashes(6px, 4px)`: (on, off) in px.
+    pub dash: Option<[f64; 2]>,
 }
 
 /// The shape settings of a `lines` pass, each an expression of the pass's

@@ -1,4 +1,5 @@
-//! The explanations of line sets' codes, E0313–E0318 (decision 0056).
+//! The explanations of line sets' codes, E0313–E0318 (decision 0056) and
+//! E0323 (decision 0063).
 
 use super::{Example, Explanation, EXAMPLE};
 
@@ -21,8 +22,9 @@ pub(super) const ALL: &[Explanation] = &[
             between a face turned to the eye and one turned away), `border` (edges of one face: an \
             open mesh's rim), `crease(angle)` (edges whose two faces turn by more than the angle), \
             `material_boundary` (edges between faces of different parts of the mesh: OBJ `o`/`g`, \
-            glTF primitives) and `intersection` (where two surfaces, or one and itself, pass \
-            through each other). Another name, an argument to a type other than `crease`, or a \
+            glTF primitives), `intersection` (where two surfaces, or one and itself, pass \
+            through each other) and `marked` (edges the mesh's file marks: a glTF file's \
+            `_NPR_EDGE_MARK` face-corner attribute). Another name, an argument to a type other than `crease`, or a \
             value that is not a union is this error.",
         wrong: Example {
             style: sets_case!("  set outline { edges: silhouette | bordr }"),
@@ -101,16 +103,33 @@ pub(super) const ALL: &[Explanation] = &[
     },
     Explanation {
         code: "E0318",
-        meaning: "A line set draws the visible edges: those not behind a surface, as the pass's \
-            `depth: test(pass)` decides. `visibility: visible` says so (it is the default). \
-            Hidden lines by quantitative invisibility (`visibility: hidden`) are not in npr yet \
-            (issue 51); any other visibility is this error.",
+        meaning: "A line set's `visibility:` picks its lines by quantitative invisibility, the \
+            number of surfaces between the eye and the line, counted per piece of line \
+            (decision 0063): `visible` (none), `hidden` (one or more), `hidden(n)` (exactly n, \
+            a whole number from 1) or `all`. Without `visibility:` a set draws every line it \
+            selects and the pass's `depth: test(pass)` hides what is behind. Another name, or \
+            `hidden` with anything but one whole number from 1, is this error.",
         wrong: Example {
-            style: sets_case!("  set hidden { edges: silhouette, visibility: hidden }"),
+            style: sets_case!("  set hidden { edges: silhouette, visibility: hiden }"),
             ..EXAMPLE
         },
         fixed: Example {
-            style: sets_case!("  set outline { edges: silhouette, visibility: visible }"),
+            style: sets_case!("  set hidden { edges: silhouette, visibility: hidden }"),
+            ..EXAMPLE
+        },
+    },
+    Explanation {
+        code: "E0323",
+        meaning: "A line set's `dash:` draws its lines dashed along the screen arc length: \
+            `dash: 6px` draws 6px and leaves 6px out, `dash: dashes(6px, 4px)` draws 6px and \
+            leaves 4px out (decision 0063). Lengths are in px and over 0; anything else is this \
+            error.",
+        wrong: Example {
+            style: sets_case!("  set hidden { edges: silhouette, visibility: hidden, dash: 6 }"),
+            ..EXAMPLE
+        },
+        fixed: Example {
+            style: sets_case!("  set hidden { edges: silhouette, visibility: hidden, dash: dashes(6px, 4px) }"),
             ..EXAMPLE
         },
     },

@@ -4,7 +4,7 @@
 //! exist.
 //!
 //! The explanations are data, one file per code range (`syntax.rs` E00xx,
-//! `names.rs` E01xx, `types.rs` E02xx, `ranges.rs` W0203–W0210, `passes.rs` E03xx (E0319–E0321 too) and W03xx, `line_sets.rs` E0313–E0318,
+//! `names.rs` E01xx, `types.rs` E02xx, `ranges.rs` W0203–W0210, `passes.rs` E03xx (E0319–E0321 too) and W03xx, `line_sets.rs` E0313–E0318 and E0323,
 //! `files.rs` E04xx and W04xx, `command_line.rs` E05xx,
 //! `host.rs` E06xx). Each example is a
 //! set of files and `npr` command lines, so `tests/general/explain.rs` runs every

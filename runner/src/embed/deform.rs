@@ -145,5 +145,6 @@ pub(super) fn deformed_mesh(handle: MeshHandle, entry: &Entry, vertices: &Deform
         indices: mesh.indices.clone(),
         source: mesh.source.clone(),
         parts: mesh.parts.clone(),
+        edge_marks: mesh.edge_marks.clone(),
     })
 }

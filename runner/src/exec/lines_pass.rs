@@ -222,6 +222,8 @@ impl LinesPassExec {
                     surfaces,
                     edges: set.edges,
                     style: self.style(frame, &set.shape)?,
+                    visibility: set.visibility,
+                    dash: set.dash,
                 })
             })
             .collect()

@@ -77,6 +77,10 @@ pub struct SetRequest {
     pub surfaces: Vec<usize>,
     pub edges: npr_abi::lines::EdgeTypes,
     pub style: LineStyle,
+    /// Which lines by QI (decision 0063); `None` draws all.
+    pub visibility: Option<npr_abi::lines::LineVisibility>,
+    /// Dashes `(on, off)` in px.
+    pub dash: Option<[f64; 2]>,
 }
 
 fn style_bits(style: &LineStyle) -> [u64; 5] {
@@ -113,6 +117,10 @@ fn mesh_hash(mesh: &Mesh) -> blake3::Hash {
     let mut hasher = blake3::Hasher::new();
     hasher.update(bytemuck::cast_slice(&mesh.positions));
     hasher.update(bytemuck::cast_slice(&mesh.indices));
+    // Two meshes of one shape with different marks have different edges.
+    if let Some(marks) = &mesh.edge_marks {
+        hasher.update(marks);
+    }
     hasher.finalize()
 }
 
@@ -228,7 +236,15 @@ impl LinesCache {
             selection: (false, None),
             sets: sets
                 .iter()
-                .map(|s| (s.surfaces.clone(), style_bits(&s.style), format!("{:?}", s.edges)))
+                .map(|s| {
+                    let how = format!(
+                        "{:?} {:?} {:?}",
+                        s.edges,
+                        s.visibility,
+                        s.dash.map(|d| d.map(f64::to_bits))
+                    );
+                    (s.surfaces.clone(), style_bits(&s.style), how)
+                })
                 .collect(),
         };
         let fresh = matches!(self.eyes.get(&eye_index), Some((k, _)) if *k == key);
@@ -256,6 +272,8 @@ impl LinesCache {
                         .collect(),
                     edges: set.edges,
                     style: set.style,
+                    visibility: set.visibility,
+                    dash: set.dash,
                 })
                 .collect();
             let strips = sets::build(&inputs, eye_position, view_proj, size);

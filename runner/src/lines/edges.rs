@@ -16,7 +16,8 @@
 //!   (decision 0056), each alone: an open mesh's rim, a dihedral angle over
 //!   a threshold between two faces, and edges between faces of different
 //!   parts (`Mesh::parts`: OBJ `o`/`g`, glTF primitives, so one material
-//!   each in a glTF file). Intersection lines are not mesh edges: they are
+//!   each in a glTF file). [`EdgeMesh::marked`]: edges the file marks
+//!   (decision 0063). Intersection lines are not mesh edges: they are
 //!   in `intersections.rs`.
 //! - [`chain`]: edges joined into polylines through vertices of degree 2,
 //!   so a line's phase runs on continuously along a chain (BRIEF §5: without
@@ -72,6 +73,9 @@ pub struct EdgeMesh {
     /// Per face, the part of the mesh it came from (`Mesh::parts`; all 0
     /// for a mesh of one part).
     pub face_parts: Vec<u32>,
+    /// Per edge, whether the file marks it (`Mesh::edge_marks`, decision
+    /// 0063): every face of the edge marks it from its side.
+    pub marked: Vec<bool>,
 }
 
 /// Relative size under which two vertices weld and a face counts as
@@ -124,6 +128,8 @@ impl EdgeMesh {
         let mut by_pair: HashMap<(u32, u32), usize> = HashMap::new();
         let mut edges: Vec<Edge> = Vec::new();
         let mut face_parts = Vec::new();
+        // Per edge, how many of its faces mark it.
+        let mut marked_by: Vec<u32> = Vec::new();
         for (t, tri) in mesh.indices.chunks_exact(3).enumerate() {
             let [a, b, c] = [remap[tri[0] as usize], remap[tri[1] as usize], remap[tri[2] as usize]];
             // A welded-away edge (two corners at one point) makes the face
@@ -142,7 +148,8 @@ impl EdgeMesh {
             faces.push([a, b, c]);
             normals.push(cross / length);
             face_parts.push(mesh.parts.as_ref().and_then(|p| p.get(t).copied()).unwrap_or(0));
-            for (p, q) in [(a, b), (b, c), (c, a)] {
+            let marks = mesh.edge_marks.as_ref().and_then(|m| m.get(t).copied()).unwrap_or(0);
+            for (k, (p, q)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
                 let key = (p.min(q), p.max(q));
                 let index = *by_pair.entry(key).or_insert_with(|| {
                     edges.push(Edge {
@@ -150,17 +157,27 @@ impl EdgeMesh {
                         b: key.1,
                         faces: Vec::new(),
                     });
+                    marked_by.push(0);
                     edges.len() - 1
                 });
                 edges[index].faces.push(face);
+                marked_by[index] += u32::from(marks >> k & 1);
             }
         }
+        // A mark on one side only is a diagonal of a polygon whose outer
+        // edge was marked (an untriangulated source), not a marked edge.
+        let marked = edges
+            .iter()
+            .zip(&marked_by)
+            .map(|(e, &n)| n > 0 && n as usize == e.faces.len())
+            .collect();
         EdgeMesh {
             positions,
             faces,
             normals,
             edges,
             face_parts,
+            marked,
         }
     }
 
@@ -184,6 +201,14 @@ impl EdgeMesh {
             let part = mesh.face_parts[e.faces[0] as usize];
             e.faces.iter().any(|&f| mesh.face_parts[f as usize] != part)
         })
+    }
+
+    /// Edges marked in the mesh's file (Freestyle's edge marks, decision
+    /// 0063). Indices into `edges`.
+    pub fn marked(&self) -> Vec<u32> {
+        (0..self.edges.len() as u32)
+            .filter(|&e| self.marked[e as usize])
+            .collect()
     }
 
     fn edges_where(&self, keep: impl Fn(&EdgeMesh, &Edge) -> bool) -> Vec<u32> {

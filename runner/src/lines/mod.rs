@@ -7,6 +7,8 @@
 //! as its whole mesh). [`intersections`] finds where surfaces pass through
 //! each other, and [`sets`] builds a pass's line sets (decision 0056): each
 //! set's edge types, one owner per edge by priority, its own style.
+//! [`visibility`] counts the surfaces in front of each piece of a set's
+//! lines (quantitative invisibility, decision 0063).
 
 pub mod cache;
 pub mod draw;
@@ -15,3 +17,4 @@ pub mod intersections;
 pub mod objects;
 pub mod sets;
 pub mod strip;
+pub mod visibility;

@@ -126,6 +126,86 @@ pub fn build(polylines: &[(Vec<DVec3>, bool)], view_proj: DMat4, size: DVec2, st
     strips
 }
 
+/// [`build`] with dashes: `dash[0]` px drawn, then `dash[1]` px left out,
+/// along each piece's screen arc length from its start (a closed piece's
+/// pattern runs on across its start). Each dash is an open strip whose
+/// vertices keep the piece's arc length `s`; dashes take no taper.
+pub fn build_dashed(
+    polylines: &[(Vec<DVec3>, bool)],
+    view_proj: DMat4,
+    size: DVec2,
+    style: &LineStyle,
+    dash: [f64; 2],
+) -> Strips {
+    let mut strips = Strips::default();
+    let untapered = LineStyle { taper: 0.0, ..*style };
+    for (points, closed) in polylines {
+        for (piece, piece_closed) in clip_pieces(points, *closed, view_proj) {
+            let screen: Vec<(DVec2, DVec2)> = piece.iter().map(|c| to_screen(*c, size)).collect();
+            let backbone = backbone(&screen, piece_closed, style);
+            for run in dash_runs(&backbone, dash) {
+                if run.len() >= 2 {
+                    push_strip(&mut strips, &run, false, &untapered);
+                    strips.backbones.push(run);
+                }
+            }
+        }
+    }
+    strips
+}
+
+/// The parts of `backbone` where `s mod (on + off) < on`, cut exactly at
+/// the pattern's boundaries (every field interpolated linearly there).
+pub fn dash_runs(backbone: &[BackbonePoint], [on, off]: [f64; 2]) -> Vec<Vec<BackbonePoint>> {
+    let period = on + off;
+    if !(on > 0.0 && off >= 0.0 && period.is_finite()) {
+        return Vec::new();
+    }
+    let drawn = |s: f64| s.rem_euclid(period) < on;
+    let lerp = |a: &BackbonePoint, b: &BackbonePoint, t: f64| BackbonePoint {
+        base: a.base.lerp(b.base, t),
+        normal: if t < 0.5 { a.normal } else { b.normal },
+        px: a.px.lerp(b.px, t),
+        depth: a.depth + (b.depth - a.depth) * t,
+        inv_w: a.inv_w + (b.inv_w - a.inv_w) * t,
+        s: a.s + (b.s - a.s) * t,
+    };
+    let mut runs: Vec<Vec<BackbonePoint>> = Vec::new();
+    let mut current: Vec<BackbonePoint> = Vec::new();
+    for (i, point) in backbone.iter().enumerate() {
+        if i > 0 {
+            let a = &backbone[i - 1];
+            let (first, last) = ((a.s / period).floor() as i64, (point.s / period).floor() as i64);
+            for k in first..=last {
+                let start = k as f64 * period;
+                // A dash starts at k·period and ends at k·period + on.
+                for (boundary, ends) in [(start, false), (start + on, true)] {
+                    if boundary > a.s && boundary < point.s {
+                        let cut = lerp(a, point, (boundary - a.s) / (point.s - a.s));
+                        if ends {
+                            current.push(cut);
+                            runs.push(std::mem::take(&mut current));
+                        } else {
+                            current = vec![cut];
+                        }
+                    }
+                }
+            }
+        }
+        if drawn(point.s) {
+            current.push(*point);
+        } else if !current.is_empty() {
+            // A dash ending exactly on this sample.
+            current.push(*point);
+            runs.push(std::mem::take(&mut current));
+        }
+    }
+    runs.push(current);
+    // A dash that starts on the last sample has no length.
+    runs.retain(|run| run.len() >= 2);
+    runs
+}
+
 /// Clips a polyline to the near plane in clip space: the pieces of
 /// consecutive visible points, and whether a piece is still closed.
 fn clip_pieces(points: &[DVec3], closed: bool, view_proj: DMat4) -> Vec<(Vec<DVec4>, bool)> {

@@ -4,8 +4,10 @@
 //! first scene, or all root nodes when there is none) is merged into one
 //! mesh, with each node's world transform baked into its vertices. The
 //! first material's values and base colour image are read by
-//! `gltf_material` (decision 0058).
+//! `gltf_material` (decision 0058). Edges marked for line art are read by
+//! `edge_marks` (decision 0063).
 
+use super::edge_marks;
 use super::gltf_material::{self, MeshMaterial};
 use super::gltf_rig::{self, MAX_NODE_DEPTH};
 use super::mesh::{Mesh, MAX_TRIANGLES};
@@ -86,7 +88,8 @@ pub fn parse_gltf(
         merged.indices,
         source.to_string(),
     )
-    .with_parts(parts);
+    .with_parts(parts)
+    .with_edge_marks(merged.edge_marks);
     Ok((mesh, None, material))
 }
 
@@ -114,6 +117,8 @@ struct MergedPrimitives {
     uvs: Option<Vec<[f32; 2]>>,
     tangents: Option<Vec<[f32; 4]>>,
     indices: Vec<u32>,
+    /// Per triangle, its marked edges (`edge_marks::triangle_marks`).
+    edge_marks: Vec<u8>,
 }
 
 impl MergedPrimitives {
@@ -124,6 +129,7 @@ impl MergedPrimitives {
             uvs: Some(Vec::new()),
             tangents: Some(Vec::new()),
             indices: Vec::new(),
+            edge_marks: Vec::new(),
         }
     }
 
@@ -189,9 +195,12 @@ impl MergedPrimitives {
             Some(indices) => indices.into_u32().collect(),
             None => (0..vertex_count as u32).collect(),
         };
+        let corner_marks = edge_marks::read_corner_marks(primitive, buffers, vertex_count, source)?;
         for triangle in local_indices.chunks_exact(3) {
             let [a, b, c] = [triangle[0], triangle[1], triangle[2]];
             let ordered = if mirrored { [a, c, b] } else { [a, b, c] };
+            self.edge_marks
+                .push(edge_marks::triangle_marks(corner_marks.as_deref(), [a, b, c], ordered));
             for index in ordered {
                 // Out-of-range indices are kept out of range (not wrapped) so
                 // that `Mesh::validate` reports them.

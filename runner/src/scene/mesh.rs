@@ -31,6 +31,10 @@ pub struct Mesh {
     /// primitive), numbered from 0; `None` for a mesh of one part. A scene's
     /// `patches = "parts"` splits the object along these (§3.6).
     pub parts: Option<Vec<u32>>,
+    /// Per triangle, its edges marked in the file for line art (Freestyle's
+    /// edge marks; decision 0063): bit k is the edge from corner k to corner
+    /// k+1 (mod 3). `None` when the file marks no edge.
+    pub edge_marks: Option<Vec<u8>>,
 }
 
 /// A vertex attribute a style may require of every mesh in the scene: the
@@ -100,6 +104,7 @@ impl Mesh {
             indices,
             source,
             parts: None,
+            edge_marks: None,
         }
     }
 
@@ -109,6 +114,18 @@ impl Mesh {
         debug_assert_eq!(parts.len(), self.indices.len() / 3);
         self.parts = if parts.iter().any(|&p| p != parts[0]) {
             Some(parts)
+        } else {
+            None
+        };
+        self
+    }
+
+    /// The mesh with `marks` (one byte of edge bits per triangle, see
+    /// [`Mesh::edge_marks`]), or without them when no edge is marked.
+    pub fn with_edge_marks(mut self, marks: Vec<u8>) -> Mesh {
+        debug_assert_eq!(marks.len(), self.indices.len() / 3);
+        self.edge_marks = if marks.iter().any(|&m| m != 0) {
+            Some(marks)
         } else {
             None
         };
@@ -137,6 +154,7 @@ impl Mesh {
             source: format!("{} (creases > {crease_deg}°)", self.source),
             // The split keeps every triangle in its place.
             parts: self.parts.clone(),
+            edge_marks: self.edge_marks.clone(),
         }
     }
 

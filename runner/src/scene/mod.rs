@@ -136,6 +136,7 @@
 pub mod anim_sampler;
 mod attributes;
 mod camera;
+mod edge_marks;
 pub(crate) mod geometry;
 mod gltf_file;
 pub mod gltf_material;

@@ -535,6 +535,7 @@ pub fn ocean_mesh(ocean: &Ocean, time_s: f64) -> Mesh {
         indices,
         source: description(ocean),
         parts: None,
+        edge_marks: None,
     }
 }
 

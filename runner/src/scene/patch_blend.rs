@@ -102,6 +102,7 @@ pub fn sub_mesh(mesh: &Mesh, faces: &[usize], source: String) -> (Mesh, Vec<u32>
         indices,
         source,
         parts: None,
+        edge_marks: None,
     };
     (sub, used)
 }

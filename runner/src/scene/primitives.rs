@@ -401,6 +401,7 @@ impl Builder {
             indices: self.indices,
             source,
             parts: None,
+            edge_marks: None,
         }
     }
 }

@@ -346,6 +346,7 @@ mod tests {
             indices,
             source: "square".into(),
             parts: None,
+            edge_marks: None,
         }
     }
 

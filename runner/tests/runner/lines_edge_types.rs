@@ -323,6 +323,8 @@ fn an_edge_in_two_sets_is_drawn_once_by_the_first() {
         }],
         edges,
         style: STYLE,
+        visibility: None,
+        dash: None,
     };
     let silhouette = EdgeTypes {
         silhouette: true,
@@ -352,6 +354,8 @@ fn an_edge_in_two_sets_is_drawn_once_by_the_first() {
             }],
             edges: crease,
             style: STYLE,
+            visibility: None,
+            dash: None,
         },
     ];
     let drawn = select(&twice, eye);
@@ -390,11 +394,15 @@ fn an_intersection_in_two_sets_is_drawn_once_by_the_first() {
             surfaces: surfaces(),
             edges: intersection,
             style: STYLE,
+            visibility: None,
+            dash: None,
         },
         SetInput {
             surfaces: surfaces(),
             edges: border_and_intersection,
             style: STYLE,
+            visibility: None,
+            dash: None,
         },
     ];
     let eye = DVec3::new(0.5, 1.0, 5.0);

@@ -90,6 +90,8 @@ pub fn build(
                                     edges: set.edges,
                                     shape: line_shape(ir, &set.shape)?,
                                     priority: set.priority,
+                                    visibility: set.visibility,
+                                    dash: set.dash,
                                 })
                             })
                             .collect::<Result<Vec<_>, InternalError>>()?,

@@ -6,8 +6,9 @@
 //! ```
 //!
 //! Each set has `edges:` (a union of edge types), optionally `tag:` (only
-//! the pass's objects with that tag), `visibility: visible` (the only
-//! visibility for now), `priority: n` (higher first; ties in the order
+//! the pass's objects with that tag), `visibility:` (`visible`,
+//! `hidden`, `hidden(n)` or `all`, by quantitative invisibility; decision
+//! 0063), `dash:` (`6px` or `dashes(6px, 4px)`), `priority: n` (higher first; ties in the order
 //! written), `color:` (what `line.color` is on its strips) and the pass's
 //! shape settings (`width`, `amplitude`, `wavelength`, `phase`, `taper`),
 //! each the pass's own where unset. The sets are sorted by priority here,
@@ -16,18 +17,27 @@
 
 use super::Resolver;
 use crate::ir::*;
+use npr_abi::lines::LineVisibility;
 use npr_diag::diagnostic::did_you_mean;
 use npr_diag::{codes, Diagnostic, Span};
 use npr_dsl::ast::{self, BinOp, ExprKind as AK, UnitSuffix};
 use npr_stdlib::Unit;
 
 /// The edge types a set's `edges:` may name (Freestyle's names).
-pub(super) const EDGE_TYPES: [&str; 5] = ["silhouette", "border", "crease", "material_boundary", "intersection"];
+pub(super) const EDGE_TYPES: [&str; 6] = [
+    "silhouette",
+    "border",
+    "crease",
+    "material_boundary",
+    "intersection",
+    "marked",
+];
 
 /// The settings of a set besides `edges`.
-const SET_SETTINGS: [&str; 9] = [
+const SET_SETTINGS: [&str; 10] = [
     "tag",
     "visibility",
+    "dash",
     "priority",
     "color",
     "width",
@@ -78,9 +88,15 @@ impl Resolver<'_> {
             if set.edges.is_empty() {
                 continue; // reported where its `edges:` is
             }
-            let covering = sets[..k]
-                .iter()
-                .find(|higher| (higher.tag.is_none() || higher.tag == set.tag) && higher.edges.covers(&set.edges));
+            let covering = sets[..k].iter().find(|higher| {
+                let (mine, theirs) = (
+                    LineVisibility::qi_range(set.visibility),
+                    LineVisibility::qi_range(higher.visibility),
+                );
+                // Sets of disjoint visibilities both draw an edge.
+                let overlap = theirs.0 <= mine.1 && mine.0 <= theirs.1;
+                (higher.tag.is_none() || higher.tag == set.tag) && overlap && higher.edges.covers(&set.edges)
+            });
             if let Some(higher) = covering {
                 self.error(
                     Diagnostic::error(
@@ -115,6 +131,8 @@ impl Resolver<'_> {
             shape: lines.shape,
             color: None,
             priority: 0,
+            visibility: None,
+            dash: None,
         };
         match &decl.edges[..] {
             [] => self.error(
@@ -170,26 +188,8 @@ impl Resolver<'_> {
                             .with_help("write `tag: hero` to draw only the pass's objects tagged `hero`"),
                     ),
                 },
-                "visibility" => match &s.value.kind {
-                    AK::Name(n) if n.name == "visible" => {}
-                    _ => {
-                        let written = match &s.value.kind {
-                            AK::Name(n) => format!("`{}`", n.name),
-                            _ => "this".to_string(),
-                        };
-                        self.error(
-                            Diagnostic::error(
-                                codes::BAD_LINE_VISIBILITY,
-                                format!("{written} is not a line visibility"),
-                            )
-                            .with_primary(s.value.span, "not `visible`")
-                            .with_help(
-                                "line sets draw the visible edges (`visibility: visible`, the default); \
-                                     hidden lines by quantitative invisibility are not in npr yet (issue 51)",
-                            ),
-                        );
-                    }
-                },
+                "visibility" => set.visibility = self.line_visibility(&s.value),
+                "dash" => set.dash = self.line_dash(&s.value),
                 "priority" => match &s.value.kind {
                     AK::Number { value, unit: None, .. } if value.fract() == 0.0 && value.abs() < 1e6 => {
                         set.priority = *value as i64
@@ -235,6 +235,96 @@ impl Resolver<'_> {
         set
     }
 
+    /// `visible`, `hidden`, `hidden(n)` or `all` (decision 0063).
+    fn line_visibility(&mut self, value: &ast::Expr) -> Option<LineVisibility> {
+        let help = "write `visibility: visible` (no surface in front), `hidden` (one or more), \
+                    `hidden(1)` (exactly one) or `all`";
+        match &value.kind {
+            AK::Name(n) => match n.name.as_str() {
+                "visible" => return Some(LineVisibility::Visible),
+                "hidden" => return Some(LineVisibility::Hidden),
+                "all" => return Some(LineVisibility::All),
+                _ => {}
+            },
+            AK::Call(call) if call.callee.name == "hidden" => {
+                if let [ast::Arg {
+                    name: None, value: n, ..
+                }] = &call.args[..]
+                {
+                    if let AK::Number {
+                        value: count,
+                        unit: None,
+                        ..
+                    } = &n.kind
+                    {
+                        if count.fract() == 0.0 && (1.0..1e6).contains(count) {
+                            return Some(LineVisibility::Behind(*count as u32));
+                        }
+                    }
+                }
+                self.error(
+                    Diagnostic::error(codes::BAD_LINE_VISIBILITY, "`hidden(n)` counts surfaces")
+                        .with_primary(value.span, "not one whole number from 1")
+                        .with_help("write `hidden(1)`: the lines behind exactly one surface"),
+                );
+                return None;
+            }
+            _ => {}
+        }
+        let written = match &value.kind {
+            AK::Name(n) => format!("`{}`", n.name),
+            _ => "this".to_string(),
+        };
+        let mut d = Diagnostic::error(
+            codes::BAD_LINE_VISIBILITY,
+            format!("{written} is not a line visibility"),
+        )
+        .with_primary(value.span, "not a visibility");
+        d = match &value.kind {
+            AK::Name(n) => match did_you_mean(&n.name, ["visible", "hidden", "all"]) {
+                Some(k) => d.with_help(format!("did you mean `{k}`? {help}")),
+                None => d.with_help(help),
+            },
+            _ => d.with_help(help),
+        };
+        self.error(d);
+        None
+    }
+
+    /// `dash: 6px` (as long as the gaps) or `dash: dashes(6px, 4px)`.
+    fn line_dash(&mut self, value: &ast::Expr) -> Option<[f64; 2]> {
+        let px = |e: &ast::Expr| match &e.kind {
+            AK::Number {
+                value,
+                unit: Some(UnitSuffix::Px),
+                ..
+            } => Some(*value),
+            _ => None,
+        };
+        let pattern = match &value.kind {
+            AK::Call(call) if call.callee.name == "dashes" => match &call.args[..] {
+                [ast::Arg {
+                    name: None, value: on, ..
+                }, ast::Arg {
+                    name: None, value: off, ..
+                }] => px(on).zip(px(off)).map(|(on, off)| [on, off]),
+                _ => None,
+            },
+            _ => px(value).map(|on| [on, on]),
+        };
+        match pattern {
+            Some([on, off]) if on > 0.0 && off > 0.0 && on.is_finite() && off.is_finite() => Some([on, off]),
+            _ => {
+                self.error(
+                    Diagnostic::error(codes::BAD_LINE_DASH, "a dash is lengths in px over 0")
+                        .with_primary(value.span, "not a dash pattern")
+                        .with_help("write `dash: 6px` (dashes and gaps of 6px) or `dash: dashes(6px, 4px)` (6px drawn, 4px left out)"),
+                );
+                None
+            }
+        }
+    }
+
     /// `silhouette | border | crease(35deg)` as edge types.
     fn edge_union(&mut self, union: &ast::EdgeUnion) -> npr_abi::lines::EdgeTypes {
         let mut edges = npr_abi::lines::EdgeTypes::default();
@@ -257,6 +347,7 @@ impl Resolver<'_> {
                 "border" => edges.border = true,
                 "material_boundary" => edges.material_boundary = true,
                 "intersection" => edges.intersection = true,
+                "marked" => edges.marked = true,
                 "crease" => {
                     if let Some(deg) = self.crease_angle(term) {
                         edges.crease_deg = Some(edges.crease_deg.map_or(deg, |d: f64| d.min(deg)));
