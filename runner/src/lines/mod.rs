@@ -15,3 +15,4 @@ pub mod intersections;
 pub mod objects;
 pub mod sets;
 pub mod strip;
+pub mod viewpoint;

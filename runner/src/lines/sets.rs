@@ -24,6 +24,7 @@ use npr_abi::lines::EdgeTypes;
 use super::edges::EdgeMesh;
 use super::intersections::{intersection_segments, weld_and_chain, PlacedMesh};
 use super::strip::{self, LineStyle, Strips};
+use super::viewpoint::Viewpoint;
 
 /// A surface's identity across sets: its index among the pass's surfaces.
 pub type SurfaceKey = usize;
@@ -48,7 +49,8 @@ pub type Polylines = Vec<(Vec<DVec3>, bool)>;
 /// Per set (in the order given, highest priority first), the world-space
 /// polylines it draws from the eye at `eye_position`: each edge in exactly
 /// one set, the first that selects it.
-pub fn select(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
+pub fn select(sets: &[SetInput<'_>], eye_position: impl Into<Viewpoint>) -> Vec<Polylines> {
+    let eye_position = eye_position.into();
     let mut taken_edges: HashSet<(SurfaceKey, u32)> = HashSet::new();
     let mut taken_segments: HashSet<[u64; 6]> = HashSet::new();
     sets.iter()
@@ -62,7 +64,7 @@ pub fn select(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
                         .map(|&v| surface.model.transform_point3(mesh.positions[v as usize]));
                     (points.collect(), closed)
                 };
-                let local_eye = surface.model.inverse().transform_point3(eye_position);
+                let local_eye = eye_position.transformed(surface.model.inverse());
                 let mut claim = |indices: Vec<u32>| -> Vec<u32> {
                     indices
                         .into_iter()
@@ -118,7 +120,7 @@ fn segment_key(a: DVec3, b: DVec3) -> [u64; 6] {
 
 /// The strips of every set from one eye, each vertex marked with its set's
 /// index (`LineVertex::line.w`, which the shader's `line.color` reads).
-pub fn build(sets: &[SetInput<'_>], eye_position: DVec3, view_proj: DMat4, size: DVec2) -> Strips {
+pub fn build(sets: &[SetInput<'_>], eye_position: impl Into<Viewpoint>, view_proj: DMat4, size: DVec2) -> Strips {
     let mut strips = Strips::default();
     for (index, (set, polylines)) in sets.iter().zip(select(sets, eye_position)).enumerate() {
         strips.append(strip::build(&polylines, view_proj, size, &set.style), index as u32);
