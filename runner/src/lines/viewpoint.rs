@@ -41,22 +41,3 @@ impl From<DVec3> for Viewpoint {
         Viewpoint(position.extend(1.0))
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_point_and_a_direction_see_from_where_they_should() {
-        let p = DVec3::new(1.0, 2.0, 3.0);
-        assert_eq!(Viewpoint::from(DVec3::ZERO).towards_from(p), -p);
-        assert_eq!(Viewpoint::direction(DVec3::Z).towards_from(p), DVec3::Z);
-        // A translation moves a point eye but not a direction.
-        let shift = DMat4::from_translation(DVec3::X);
-        assert_eq!(
-            Viewpoint::from(DVec3::ZERO).transformed(shift).0,
-            DVec4::new(1.0, 0.0, 0.0, 1.0)
-        );
-        assert_eq!(Viewpoint::direction(DVec3::Z).transformed(shift).0, DVec4::Z);
-    }
-}

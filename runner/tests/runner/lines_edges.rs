@@ -77,6 +77,23 @@ fn cube_silhouette_is_a_closed_hexagon() {
     assert_eq!(lines[0].vertices.len(), 6);
 }
 
+/// A point eye and a direction eye see from where they should, and a
+/// translation moves the first but not the second.
+#[test]
+fn a_viewpoint_is_a_point_or_a_direction() {
+    use glam::{DMat4, DVec4};
+    use npr_runner::lines::viewpoint::Viewpoint;
+    let p = DVec3::new(1.0, 2.0, 3.0);
+    assert_eq!(Viewpoint::from(DVec3::ZERO).towards_from(p), -p);
+    assert_eq!(Viewpoint::direction(DVec3::Z).towards_from(p), DVec3::Z);
+    let shift = DMat4::from_translation(DVec3::X);
+    assert_eq!(
+        Viewpoint::from(DVec3::ZERO).transformed(shift).0,
+        DVec4::new(1.0, 0.0, 0.0, 1.0)
+    );
+    assert_eq!(Viewpoint::direction(DVec3::Z).transformed(shift).0, DVec4::Z);
+}
+
 /// An orthographic camera sees every face along one direction (decision
 /// 0062), so a face's facing does not depend on where it is. From (3, 0.3,
 /// 0.3) a perspective eye sees only the +X face of the cube [−1, 1]³ (the
