@@ -189,7 +189,8 @@ fn main() {
                 on_gpu - still
             );
         }
-    }    let (_, rig) = load_mesh_and_rig(&dir.join("arm.glb")).expect("test character");
+    }
+    let (_, rig) = load_mesh_and_rig(&dir.join("arm.glb")).expect("test character");
     let rig = rig.expect("a rig");
     let text = "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
                 [[object]]\nmesh = \"arm.glb\"\nanimation = { clip = \"bend\", loop = true }\n";
