@@ -153,7 +153,7 @@ impl StyleProgram {
             ));
         }
         let text = manifest_text.ok_or_else(|| bad("entries", "no manifest.json".into()))?;
-        let manifest: Manifest = serde_json::from_str(&text).map_err(|e| LoadError::Json { message: e.to_string() })?;
+        let manifest = crate::program::parse_manifest(&text)?;
         manifest.validate()?;
         for resolved in image_files(&manifest) {
             if !files.contains_key(&resolved) {

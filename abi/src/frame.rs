@@ -10,6 +10,17 @@
 //! `frame_layout_matches_naga` checks every offset against naga's layouter.
 //!
 //! The block grows only at its end (docs/decisions/0011).
+//!
+//! ## The camera model (decision 0062)
+//! `ortho_height` is 0 for a perspective camera and the view's height in
+//! metres for an orthographic one. A view-space point (x, y, −d) has clip
+//! w = d through a perspective projection and 1 through an orthographic
+//! one, so the view-space point of a pixel at NDC (x_ndc, y_ndc) and depth
+//! d is (x_ndc·w / P₀₀, y_ndc·w / P₁₁, −d) with P₀₀, P₁₁ in `focal.xy`; the
+//! direction towards the eye is `camera_pos` − p for a perspective camera
+//! and −`camera_forward` at every point for an orthographic one. Shaders,
+//! the compiler's rebuilt positions and the runner's silhouette test all
+//! follow this.
 
 use crate::block::{render, uniform_block};
 pub use crate::block::{BlockField, Mat4x4, Vec2, Vec4};
@@ -31,7 +42,7 @@ uniform_block! {
     eye: f32 = "f32", "0 = left (or mono), 1 = right";
     near: f32 = "f32";
     far: f32 = "f32";
-    _pad: f32 = "f32";
+    ortho_height: f32 = "f32", "0: perspective; > 0: orthographic view height in m (decision 0062)";
     /// Orthographic light camera fitted to the scene bounds, for `view(light)`
     /// passes and `position.light` (z in [0, 1], w = 1).
     light_view_proj: Mat4x4 = "mat4x4<f32>";

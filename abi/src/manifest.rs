@@ -23,9 +23,15 @@ pub use compute::*;
 pub use device::*;
 
 /// Bumped whenever the layout of the manifest or of the fixed uniform blocks
-/// changes (8: a `gradient` param kept live fills 21 slots; 9: a texture
-/// may be a host input, `TextureSourceManifest::Input`).
-pub const MANIFEST_VERSION: u32 = 9;
+/// changes, or what a field means (8: a `gradient` param kept live fills 21
+/// slots; 9: a texture may be a host input, `TextureSourceManifest::Input`;
+/// 10: a pass may test against a host's depth, `DepthMode::TestInput`
+/// (decision 0057), and `Frame::ortho_height` says whether the camera is
+/// orthographic (decision 0062), which shaders of version 9 ignore). The
+/// loader reads `version` before the rest, so a manifest of another version
+/// is refused by its number (`crate::program::parse_manifest`), not as
+/// JSON of an unknown shape.
+pub const MANIFEST_VERSION: u32 = 10;
 
 /// The side of a [`PassKindManifest::TiledImage`] workgroup, in pixels.
 pub const TILE_SIZE: u32 = 16;

@@ -48,6 +48,35 @@ impl std::fmt::Display for LoadError {
 
 impl std::error::Error for LoadError {}
 
+/// `manifest.json`'s text as a [`Manifest`]. Its `version` is read first:
+/// a manifest of another version is refused by its number (with what to
+/// do), not as JSON of an unknown shape, so an older runner given a newer
+/// style's manifest says so even when the newer one has fields it cannot
+/// parse.
+pub fn parse_manifest(text: &str) -> Result<Manifest, LoadError> {
+    #[derive(serde::Deserialize)]
+    struct VersionOnly {
+        version: u32,
+    }
+    if let Ok(VersionOnly { version }) = serde_json::from_str::<VersionOnly>(text) {
+        if version != crate::MANIFEST_VERSION {
+            return Err(LoadError::Invalid(crate::validate::Invalid {
+                field: "version".into(),
+                message: format!(
+                    "manifest version {version} is not supported (expected {}); {}",
+                    crate::MANIFEST_VERSION,
+                    if version > crate::MANIFEST_VERSION {
+                        "the style was compiled by a newer npr: update this runner, or recompile the style"
+                    } else {
+                        "recompile the style"
+                    }
+                ),
+            }));
+        }
+    }
+    serde_json::from_str(text).map_err(|e| LoadError::Json { message: e.to_string() })
+}
+
 impl From<Invalid> for LoadError {
     fn from(e: Invalid) -> LoadError {
         LoadError::Invalid(e)
@@ -78,7 +107,7 @@ impl StyleProgram {
             })
         };
         let text = read(dir.join("manifest.json"))?;
-        let manifest: Manifest = serde_json::from_str(&text).map_err(|e| LoadError::Json { message: e.to_string() })?;
+        let manifest = parse_manifest(&text)?;
         // Before the shader names are used as paths.
         manifest.validate()?;
         let mut shaders = BTreeMap::new();
@@ -108,5 +137,29 @@ impl StyleProgram {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A newer compiler's manifest, with a field this runner cannot parse,
+    /// is refused by its version number, saying which side to update.
+    #[test]
+    fn another_version_is_refused_by_its_number_before_its_shape() {
+        let newer = format!(
+            "{{\"version\": {}, \"passes\": [{{\"depth\": \"some_future_mode\"}}]}}",
+            crate::MANIFEST_VERSION + 1
+        );
+        let e = parse_manifest(&newer).expect_err("a newer version");
+        assert!(matches!(&e, LoadError::Invalid(i) if i.field == "version"), "{e}");
+        assert!(e.to_string().contains("newer npr"), "{e}");
+        let older = "{\"version\": 8}";
+        let e = parse_manifest(older).expect_err("an older version");
+        assert!(e.to_string().contains("recompile the style"), "{e}");
+        // This version's own shape errors stay JSON errors.
+        let bad = format!("{{\"version\": {}}}", crate::MANIFEST_VERSION);
+        assert!(matches!(parse_manifest(&bad), Err(LoadError::Json { .. })));
     }
 }

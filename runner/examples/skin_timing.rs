@@ -13,6 +13,14 @@
 //! - `gpu-deformed`: the same frame with the object playing the clip,
 //!   deformed by the GPU stage (`exec/deform.rs`), at a new pose every frame.
 //!
+//!
+//! Then, for the arm at 10k and 100k vertices, whole frames of two example
+//! styles whose CPU or compute stages read the deformed surface: the
+//! `lines` pass of `wavy_lines.npr` (silhouettes found and strips built on
+//! the CPU from the CPU-deformed mesh every frame) and the Breslav tracker
+//! of `halftone.npr` (a compute pass over the deformed samples): each
+//! drawn rigid and playing the clip, in the same run.
+//!
 //! `cargo build --workspace --example skin_timing && target/debug/examples/skin_timing`
 
 use npr_compiler::CompileOptions;
@@ -122,6 +130,21 @@ fn frame_millis(
     start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames)
 }
 
+/// An example style of `examples/`, compiled as `npr compile` does.
+fn example(name: &str) -> npr_runner::StyleProgram {
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    let text = std::fs::read_to_string(examples.join(name)).expect("example style");
+    npr_compiler::compile_source(
+        name,
+        &text,
+        &examples,
+        &mut npr_diag::SourceMap::new(),
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|_| panic!("{name} compiles"))
+    .program()
+}
+
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models");
     let gpu = Gpu::headless().expect("a GPU adapter (lavapipe: ./setup.sh --tests)");
@@ -164,6 +187,32 @@ fn main() {
                 big.bind.vertex_count(),
                 on_cpu - still,
                 on_gpu - still
+            );
+        }
+    }
+    let (_, rig) = load_mesh_and_rig(&dir.join("arm.glb")).expect("test character");
+    let rig = rig.expect("a rig");
+    let text = "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
+                [[object]]\nmesh = \"arm.glb\"\nanimation = { clip = \"bend\", loop = true }\n";
+    let base = npr_runner::scene::parse_scene(text, npr_diag::FileId(0), &dir).expect("timing scene");
+    for style in ["wavy_lines.npr", "halftone.npr"] {
+        let program = example(style);
+        for vertices in [10_000, 100_000] {
+            let big = scaled(&rig, vertices);
+            let frames = (1_000_000 / vertices).clamp(3, 100) as u32;
+            let mut animated = base.clone();
+            animated.objects[0].mesh = Arc::new(big.bind.clone());
+            if let Some(animation) = animated.objects[0].animation.as_mut() {
+                animation.rig = Arc::new(big.clone());
+            }
+            let mut rigid = animated.clone();
+            rigid.objects[0].animation = None;
+            let still = frame_millis(&gpu, &program, &rigid, None, frames);
+            let deformed = frame_millis(&gpu, &program, &animated, None, frames);
+            println!(
+                "{style}, arm: {} vertices: frame rigid {still:.2} ms, playing the clip {deformed:.2} ms (x{:.2})",
+                big.bind.vertex_count(),
+                deformed / still
             );
         }
     }

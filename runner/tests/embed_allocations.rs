@@ -9,8 +9,9 @@
 //! anew, allowed; `embed_scene_change.rs` counts that frame) and the frames
 //! after it are counted again, then the size changes. Over examples with a
 //! render and image passes, a compute pass, a lines pass, a history
-//! (previous-frame) target and Age of Sail's seven passes; and the animated
-//! ocean, whose vertex buffers every frame rewrites in place.
+//! (previous-frame) target and Age of Sail's seven passes; the animated
+//! ocean, whose vertex buffers every frame rewrites in place; styles over a
+//! host's inputs, one of them with lines tested against the host's depth.
 
 #![allow(clippy::disallowed_methods)]
 
@@ -240,6 +241,19 @@ fn per_object_images_render_through_the_runtime_as_through_the_renderer() {
     toml_scene_through_the_runtime("age_of_sail.npr", "age_of_sail.toml");
 }
 
+/// The walker's glTF material (its base colour texture and factor,
+/// decision 0058) reaches the runtime's instances through `add_scene`, as
+/// it reaches `npr render`'s objects: `age_of_sail.npr` tints its paint by
+/// `base_color_map × base_color`, and the two frames are equal byte for byte.
+#[test]
+fn gltf_materials_render_through_the_runtime_as_through_the_renderer() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/walker.toml");
+    let scene = npr_runner::scene::load_scene(&path, &mut npr_diag::SourceMap::new()).expect("scene");
+    let material = scene.objects[0].material.as_ref().expect("the walker has a material");
+    assert!(material.base_color_map.is_some(), "the walker's material has a texture");
+    toml_scene_through_the_runtime("age_of_sail.npr", "walker.toml");
+}
+
 fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
     let program = compile(style);
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -346,6 +360,76 @@ fn a_style_over_host_inputs_allocates_nothing_per_frame() {
     };
     run(&mut runtime, 0..6, (64, 48), "ink over inputs");
     run(&mut runtime, 6..10, (80, 60), "ink over inputs at a new size");
+    assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
+}
+
+/// npr's own lines hidden behind a host's depth (`examples/post/lines_over.npr`,
+/// `depth: test(depth_in)`, decision 0057): each frame the host gives its
+/// colour and depth again, the objects and the camera move, and the
+/// host-depth draw turns the depth input into a depth buffer through the
+/// frame's projection, creating nothing. A new size makes the input
+/// textures and that depth buffer anew, then steady again.
+#[test]
+fn lines_tested_against_a_host_depth_allocate_nothing_per_frame() {
+    use npr_runner::inputs::{ColorEncoding, DepthConvention, SourceConvention};
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("post/lines_over.npr")).expect("runtime");
+    let meshes = [
+        runtime.add_mesh(primitives::sphere(0.6, 24, 12)),
+        runtime.add_mesh(primitives::cube(0.8)),
+    ];
+    let image = |format: wgpu::TextureFormat, (w, h): (u32, u32)| {
+        gpu()
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("host frame"),
+                size: wgpu::Extent3d {
+                    width: w,
+                    height: h,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&Default::default())
+    };
+    let give = |runtime: &mut StyleRuntime, [colour, depth]: &[wgpu::TextureView; 2]| {
+        runtime
+            .set_input("color_in", colour, SourceConvention::Color(ColorEncoding::Srgb))
+            .expect("colour");
+        runtime
+            .set_input(
+                "depth_in",
+                depth,
+                SourceConvention::Depth(DepthConvention::ReverseZ { near: 0.1 }),
+            )
+            .expect("depth");
+    };
+    let run = |runtime: &mut StyleRuntime, frames: std::ops::Range<u32>, size: (u32, u32), what: &str| {
+        let inputs = [
+            image(wgpu::TextureFormat::Rgba8Unorm, size),
+            image(wgpu::TextureFormat::Depth32Float, size),
+        ];
+        let texture = target(size.0, size.1);
+        let view = texture.create_view(&Default::default());
+        give(runtime, &inputs);
+        frame(runtime, &objects(&meshes, frames.start, &[], None), frames.start, &view);
+        let before = created_on_this_thread();
+        for k in frames.start + 1..frames.end {
+            give(runtime, &inputs);
+            frame(runtime, &objects(&meshes, k, &[], None), k, &view);
+        }
+        let after = created_on_this_thread();
+        assert_eq!(
+            after, before,
+            "{what}: frames created GPU objects: {before:?} → {after:?}"
+        );
+    };
+    run(&mut runtime, 0..6, (64, 48), "lines over a host's depth");
+    run(&mut runtime, 6..10, (80, 60), "lines over a host's depth at a new size");
     assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
 }
 

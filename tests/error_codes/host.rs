@@ -397,5 +397,16 @@ fn e0616_a_camera_whose_projection_cannot_be_drawn_with() {
         let e = render_with(&mut rt, &[], &view, &camera).expect_err("no perspective");
         assert_eq!(e.code(), "E0616", "fov {fov}: {e}");
     }
+    // An orthographic camera (decision 0062) needs a positive height, a
+    // finite far plane and no stereo eyes; its field of view is unused.
+    for (height, far, ipd) in [(0.0, 50.0, None), (2.0, f32::INFINITY, None), (2.0, 50.0, Some(0.06))] {
+        let mut camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+        (camera.ortho_height_m, camera.far, camera.ipd_m, camera.fov_y_rad) = (Some(height), far, ipd, 0.0);
+        let e = render_with(&mut rt, &[], &view, &camera).expect_err("a bad orthographic camera");
+        assert_eq!(e.code(), "E0616", "height {height}, far {far}, ipd {ipd:?}: {e}");
+    }
+    let mut camera = Camera::looking_at(glam::Vec3::new(0.0, 0.0, 3.0), glam::Vec3::ZERO);
+    (camera.ortho_height_m, camera.fov_y_rad) = (Some(2.0), 0.0);
+    render_with(&mut rt, &[], &view, &camera).expect("a good orthographic camera draws");
     render(&mut rt, &[], &view).expect("a good camera after the refused ones draws");
 }

@@ -40,14 +40,46 @@ pass all: image(q) {\n\
 }\n\
 output all.c\n";
 
+const SPHERES: &str = "examples/scenes/spheres.toml";
+
+/// `spheres.toml` through an orthographic camera 3.2 m high (decision
+/// 0062), written beside the test's other files (its objects are
+/// primitives, so nothing is read relative to it).
+fn orthographic_spheres() -> String {
+    let text = std::fs::read_to_string(SPHERES).expect("read spheres.toml");
+    assert!(text.contains("fov = 40.0\n"), "spheres.toml's lens changed");
+    let ortho = text.replace("fov = 40.0\n", "projection = \"orthographic\"\nheight = 3.2\n");
+    std::fs::create_dir_all(scratch("")).expect("scratch dir");
+    let path = scratch("spheres_ortho.toml");
+    std::fs::write(&path, ortho).expect("write");
+    path.to_str().expect("utf-8 path").to_owned()
+}
+
 #[test]
 fn image_pass_builtins_over_inputs_equal_the_render_pass_builtins() {
+    builtins_over_inputs_equal_the_render_pass_ones(SPHERES, "persp");
+}
+
+/// The same through an orthographic camera: `position.view` is rebuilt
+/// with clip w = 1 (x_ndc / P₀₀, y_ndc / P₁₁, −d), not the perspective
+/// divide.
+#[test]
+fn orthographic_image_pass_builtins_over_inputs_equal_the_render_pass_builtins() {
+    builtins_over_inputs_equal_the_render_pass_ones(&orthographic_spheres(), "ortho");
+}
+
+fn builtins_over_inputs_equal_the_render_pass_ones(scene: &str, tag: &str) {
     std::fs::create_dir_all(scratch("")).expect("scratch dir");
-    let (own_style, over_style) = (scratch("builtins_own.npr"), scratch("builtins_over.npr"));
+    let (own_style, over_style) = (
+        scratch(&format!("builtins_own_{tag}.npr")),
+        scratch(&format!("builtins_over_{tag}.npr")),
+    );
     std::fs::write(&own_style, OWN).expect("write");
     std::fs::write(&over_style, OVER).expect("write");
-    let (own, over) = (scratch("builtins_own.exr"), scratch("builtins_over.exr"));
-    let scene = "examples/scenes/spheres.toml";
+    let (own, over) = (
+        scratch(&format!("builtins_own_{tag}.exr")),
+        scratch(&format!("builtins_over_{tag}.exr")),
+    );
     npr(&[
         "render",
         own_style.to_str().unwrap(),
@@ -159,12 +191,28 @@ output all.c\n";
 /// own, on a camera that looks down and sideways at the spheres.
 #[test]
 fn image_pass_world_position_and_view_dir_over_inputs_equal_the_render_pass_ones() {
+    world_position_and_view_dir_equal_the_render_pass_ones(SPHERES, "persp");
+}
+
+/// The same through an orthographic camera, where `view_dir` is
+/// −`camera.forward` at every pixel, in the render pass and rebuilt.
+#[test]
+fn orthographic_image_pass_world_position_and_view_dir_equal_the_render_pass_ones() {
+    world_position_and_view_dir_equal_the_render_pass_ones(&orthographic_spheres(), "ortho");
+}
+
+fn world_position_and_view_dir_equal_the_render_pass_ones(scene: &str, tag: &str) {
     std::fs::create_dir_all(scratch("")).expect("scratch dir");
-    let (own_style, over_style) = (scratch("world_own.npr"), scratch("world_over.npr"));
+    let (own_style, over_style) = (
+        scratch(&format!("world_own_{tag}.npr")),
+        scratch(&format!("world_over_{tag}.npr")),
+    );
     std::fs::write(&own_style, OWN_WORLD).expect("write");
     std::fs::write(&over_style, OVER_WORLD).expect("write");
-    let (own, over) = (scratch("world_own.exr"), scratch("world_over.exr"));
-    let scene = "examples/scenes/spheres.toml";
+    let (own, over) = (
+        scratch(&format!("world_own_{tag}.exr")),
+        scratch(&format!("world_over_{tag}.exr")),
+    );
     let render = |style: &std::path::Path, extra: &[&str], out: &std::path::Path| {
         let mut args = vec!["render", style.to_str().unwrap(), "--scene", scene, "--layers"];
         args.extend_from_slice(extra);

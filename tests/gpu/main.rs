@@ -12,6 +12,7 @@ mod artmaps_hard_cases;
 mod bench_overhead;
 mod blend_depth;
 mod blender_scene;
+mod blender_sequence;
 mod checkpoints;
 mod colour_alpha;
 mod compute;

@@ -75,8 +75,8 @@ pub const UNIT_CONVERSIONS: &[(&str, &str)] = &[
     ("plain number → px", "multiply by one pixel: `k * 1px`, or write the literal with its unit (`3px`)."),
     ("% → px", "`50%` is half the image height, in px, at run time; `resolution.y` is the pass's height in px."),
     ("mm → m", "at compile time: `20mm` is `0.02m` (a param declared `m` takes either)."),
-    ("m → px at a surface point", "`size / depth * camera.focal.y * resolution.y * 0.5`: a world length `size` seen at view distance `depth` (both m) spans that many px (`camera.focal.y` is the projection's P₁₁)."),
-    ("px → m at a surface point", "the inverse: `w / (camera.focal.y * resolution.y * 0.5) * depth`."),
+    ("m → px at a surface point", "`size / depth * camera.focal.y * resolution.y * 0.5`: a world length `size` seen at view distance `depth` (both m) spans that many px (`camera.focal.y` is the projection's P₁₁). That is a perspective camera's; through an orthographic one (`camera.orthographic` is 1) leave out the division by `depth`: P₁₁ is then 2 / the view height."),
+    ("px → m at a surface point", "the inverse: `w / (camera.focal.y * resolution.y * 0.5) * depth` (orthographic: without `* depth`)."),
     ("deg → radians", "operators take `deg` and receive radians; `45deg` is π/4 in the shader."),
     ("s and Hz", "`time * 2Hz` is a plain number (cycles); `1 / 2Hz` is `0.5s`."),
 ];

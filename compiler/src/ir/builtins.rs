@@ -51,6 +51,10 @@ pub enum Builtin {
     /// turns a view-space point into a world one.
     CameraRight,
     CameraUp,
+    /// 1 for an orthographic camera, 0 for a perspective one (decision
+    /// 0062): a view-space point at depth d has clip w = d through a
+    /// perspective projection and 1 through an orthographic one.
+    CameraOrthographic,
     /// Screen-space projection T_s of the unit world tangent (direction of
     /// increasing u), in px per metre, computed in the vertex shader from the
     /// analytic Jacobian of the projection and interpolated (Age of Sail §3.2).
@@ -128,6 +132,7 @@ impl Builtin {
         ("camera.forward", Builtin::CameraForward),
         ("camera.right", Builtin::CameraRight),
         ("camera.up", Builtin::CameraUp),
+        ("camera.orthographic", Builtin::CameraOrthographic),
         ("tangent.screen", Builtin::TangentScreen),
         ("bitangent.screen", Builtin::BitangentScreen),
         ("tangent.screen_center", Builtin::TangentScreenCenter),
@@ -167,7 +172,7 @@ impl Builtin {
             LineAcross | PatchWeight => (Ty::Float, Unit::None),
             Frame | Eye | LineSet => (Ty::Int, Unit::None),
             LightColor | MoreLightColor(_) | MoreLightDir(_) => (Ty::Vec3, Unit::None),
-            LightIntensity | MoreLightIntensity(_) => (Ty::Float, Unit::None),
+            LightIntensity | MoreLightIntensity(_) | CameraOrthographic => (Ty::Float, Unit::None),
             // px per metre has no unit of its own; NDC focal lengths are ratios.
             CameraFocal | TangentScreen | BitangentScreen | TangentScreenCenter | BitangentScreenCenter => {
                 (Ty::Vec2, Unit::None)

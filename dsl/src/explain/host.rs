@@ -362,12 +362,13 @@ pub(super) const ALL: &[Explanation] = &[
     Explanation {
         code: "E0616",
         meaning: "A host application rendered a frame whose camera has a projection npr cannot \
-            draw with. `Frame::camera` is a perspective camera: its vertical field of view \
-            `fov_y_rad` is in (0, π), its `near` plane is a positive distance and its `far` plane \
-            lies beyond it (`f32::INFINITY` is allowed), and a stereo camera's `ipd_m` is a \
-            finite distance, 0 or more. Scene files are held to the same rules (E0405). The \
-            compiler counts on them: `camera.near` and `camera.focal` are positive, so a style \
-            may divide by them.",
+            draw with. A perspective `Frame::camera` has its vertical field of view \
+            `fov_y_rad` in (0, π), its `near` plane at a positive distance and its `far` plane \
+            beyond it (`f32::INFINITY` is allowed), and a stereo camera's `ipd_m` is a finite \
+            distance, 0 or more. An orthographic one (`ortho_height_m = Some(h)`, decision \
+            0062) has a positive finite height h, a finite `far` beyond `near`, and no `ipd_m`. \
+            Scene files are held to the same rules (E0405). The compiler counts on them: \
+            `camera.near` and `camera.focal` are positive, so a style may divide by them.",
         wrong: Example {
             host_rust: Some(
                 "let mut camera = Camera::looking_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO);\n\

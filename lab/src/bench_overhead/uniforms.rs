@@ -40,7 +40,7 @@ pub fn frame_block(
         eye: 0.0,
         near: pose.near,
         far: pose.far,
-        _pad: 0.0,
+        ortho_height: 0.0,
         light_view_proj: light_view_proj.to_cols_array_2d(),
         other_view_proj: (proj * pose.view(1)).to_cols_array_2d(),
         center_view_proj: (proj * pose.center_view()).to_cols_array_2d(),

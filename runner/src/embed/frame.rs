@@ -2,9 +2,11 @@
 //! time) and a [`Target`] (the texture views to render into).
 
 use super::{MeshHandle, SkinPose};
+use crate::scene::gltf_material::MeshMaterial;
 use crate::scene::{Camera, Light, ObjectAnimation, TextureBinding};
 use glam::Mat4;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// One object of the host's scene this frame: a registered mesh placed by
 /// `transform`. A scene built in code is made of these; a TOML scene's
@@ -50,6 +52,13 @@ pub struct Instance {
     /// CPU the same pose for lines and light bounds. Having one or not is
     /// a change of the scene; its clip, speed and offset change freely.
     pub animation: Option<ObjectAnimation>,
+    /// The material of its mesh's glTF file, as a scene's object carries
+    /// it (`StyleRuntime::add_scene` sets it from the scene): per-object
+    /// `base_color`, `metallic`, `roughness`, `emissive` and the texture
+    /// `base_color_map` for styles that read them (decision 0058). Its
+    /// image is a scene-level resource: another material (another `Arc`)
+    /// is a change of the scene.
+    pub material: Option<Arc<MeshMaterial>>,
 }
 
 impl Instance {
@@ -65,6 +74,7 @@ impl Instance {
             id: None,
             pose: None,
             animation: None,
+            material: None,
         }
     }
 

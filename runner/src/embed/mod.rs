@@ -541,6 +541,7 @@ impl StyleRuntime {
                     id: None,
                     pose: None,
                     animation: o.animation.clone(),
+                    material: o.material.clone(),
                 }
             })
             .collect()

@@ -8,6 +8,7 @@
 
 use super::meshes::MeshTable;
 use super::{skin, EmbedError, Frame, Instance, MeshHandle};
+use crate::scene::gltf_material::MeshMaterial;
 use crate::scene::{Camera, Mesh, Object, Scene, TextureBinding};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -27,6 +28,8 @@ struct Shape {
     posed: bool,
     /// Whether it plays a clip (the GPU stage deforms it too).
     animated: bool,
+    /// Its glTF material, by identity: its image is a scene-level resource.
+    material: Option<Arc<MeshMaterial>>,
 }
 
 impl Shape {
@@ -39,6 +42,7 @@ impl Shape {
             id: instance.id,
             posed: instance.pose.is_some(),
             animated: instance.animation.is_some(),
+            material: instance.material.clone(),
         }
     }
 
@@ -50,6 +54,11 @@ impl Shape {
             && self.id == instance.id
             && self.posed == instance.pose.is_some()
             && self.animated == instance.animation.is_some()
+            && match (&self.material, &instance.material) {
+                (None, None) => true,
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                _ => false,
+            }
     }
 }
 
@@ -103,7 +112,7 @@ fn object(index: usize, instance: &Instance, meshes: &MeshTable) -> Result<Objec
         patch: entry.extras.patch.clone(),
         animation: instance.animation.clone(),
         pose,
-        material: None,
+        material: instance.material.clone(),
     })
 }
 

@@ -119,7 +119,7 @@ pub(super) struct CameraMatrices {
     /// The bits of the pose and the size these were made for (bits, so
     /// that −0 and 0, which may give different matrices, differ, and a
     /// NaN pose is made anew every frame).
-    key: Option<[u32; 16]>,
+    key: Option<[u32; 17]>,
     proj: Mat4,
     center_view_proj: Mat4,
     forward: Vec3,
@@ -127,9 +127,11 @@ pub(super) struct CameraMatrices {
     eyes: [(Mat4, Mat4, Vec3); 2],
     near: f32,
     far: f32,
+    /// 0 for a perspective camera (`Frame::ortho_height`).
+    ortho_height_m: f32,
 }
 
-fn pose_key(pose: &CameraPose, width: u32, height: u32) -> [u32; 16] {
+fn pose_key(pose: &CameraPose, width: u32, height: u32) -> [u32; 17] {
     let v = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
     let [e0, e1, e2] = v(pose.eye);
     let [t0, t1, t2] = v(pose.target);
@@ -149,6 +151,7 @@ fn pose_key(pose: &CameraPose, width: u32, height: u32) -> [u32; 16] {
         pose.far.to_bits(),
         u32::from(pose.ipd_m.is_some()),
         pose.ipd_m.map_or(0, f32::to_bits),
+        pose.ortho_height_m.map_or(0, f32::to_bits),
         width,
         height,
     ]
@@ -176,6 +179,7 @@ impl CameraMatrices {
             eyes: [eye(0), eye(1)],
             near: pose.near,
             far: pose.far,
+            ortho_height_m: pose.ortho_height_m.unwrap_or(0.0),
         };
     }
 
@@ -217,7 +221,7 @@ impl Renderer {
             eye: eye as f32,
             near: camera.near,
             far: camera.far,
-            _pad: 0.0,
+            ortho_height: camera.ortho_height_m,
             light_view_proj: light_view_proj.to_cols_array_2d(),
             other_view_proj: other_view_proj.to_cols_array_2d(),
             // Age of Sail §3.2: a single (centre) camera for T_s/B_s in stereo; §3.3 eq. 12: P₀₀, P₁₁.

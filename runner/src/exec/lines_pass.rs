@@ -18,8 +18,9 @@ use crate::lines::cache::{EdgeSelection, LinesCache, SetRequest};
 use crate::lines::draw::{vertices, DepthBias};
 use crate::lines::objects::line_objects;
 use crate::lines::strip::LineStyle;
+use crate::lines::viewpoint::Viewpoint;
 use crate::RunError;
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DMat4, DVec2};
 use npr_abi::lines::{
     LineEdges, LineSet, LineShape, LineVertex, LINE_VERTEX_ATTRIBUTES, MAX_LINE_WIDTH_PX, MAX_TAPER, MIN_WAVELENGTH_PX,
 };
@@ -56,7 +57,9 @@ pub(super) struct LinesEye {
     pub slot: usize,
     /// The eye index the cache keys the strips by (0 mono/left, 1 right).
     pub eye: u32,
-    pub position: DVec3,
+    /// The eye's homogeneous position: (position, 1), or (−forward, 0)
+    /// for an orthographic camera (`lines::viewpoint`).
+    pub position: Viewpoint,
     pub view_proj: DMat4,
     /// P₁₁ of the projection (px per view depth, in NDC units).
     pub focal_y: f64,
@@ -263,7 +266,9 @@ impl LinesPassExec {
             self.cache
                 .set_strips(eye.eye, &objects, &requests, eye.position, eye.view_proj, size)
         };
-        let eye_clip_z = (eye.view_proj * eye.position.extend(1.0)).z;
+        // Clip space is linear in homogeneous points, so an orthographic
+        // eye's point at infinity pulls along the view axis (w = 0 there).
+        let eye_clip_z = (eye.view_proj * eye.position.0).z;
         let bias = DepthBias::view_space_px(self.depth_test.unwrap_or(0.0), eye.focal_y, size.y, eye_clip_z);
         let gpu_vertices = vertices(strips, [size.x, size.y], bias);
         let index_bytes: &[u8] = bytemuck::cast_slice(&strips.indices);

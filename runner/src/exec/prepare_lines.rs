@@ -54,7 +54,7 @@ impl super::Renderer {
                 LinesEye {
                     slot,
                     eye,
-                    position: pose.position(eye).as_dvec3(),
+                    position: crate::lines::viewpoint::Viewpoint(pose.homogeneous_eye(eye).as_dvec4()),
                     view_proj: self.view_proj(scene, spec, eye).as_dmat4(),
                     focal_y,
                 }

@@ -27,6 +27,7 @@ use glam::{DMat4, DVec2, DVec3};
 use super::edges::{EdgeMesh, Polyline};
 use super::sets::{self, SetInput, SetSurface};
 use super::strip::{self, LineStyle, Strips};
+use super::viewpoint::Viewpoint;
 use crate::scene::Mesh;
 
 /// Which feature edges a pass draws.
@@ -137,12 +138,13 @@ impl LinesCache {
         &mut self,
         eye_index: u32,
         objects: &[LineObject<'_>],
-        eye_position: DVec3,
+        eye_position: impl Into<Viewpoint>,
         view_proj: DMat4,
         size: DVec2,
         style: &LineStyle,
         selection: EdgeSelection,
     ) -> &Strips {
+        let eye_position: Viewpoint = eye_position.into();
         let hashes: Vec<blake3::Hash> = objects.iter().map(|o| mesh_hash(o.mesh)).collect();
         let key = ViewKey {
             view_proj: bits(view_proj),
@@ -181,7 +183,7 @@ impl LinesCache {
                 });
                 // The eye in the object's own space: facing is decided
                 // against the object-space face normals.
-                let local_eye = object.model.inverse().transform_point3(eye_position);
+                let local_eye = eye_position.transformed(object.model.inverse());
                 let silhouettes = if selection.silhouettes && local_eye.is_finite() {
                     edges.silhouettes(local_eye)
                 } else {
@@ -222,10 +224,11 @@ impl LinesCache {
         eye_index: u32,
         objects: &[LineObject<'_>],
         sets: &[SetRequest],
-        eye_position: DVec3,
+        eye_position: impl Into<Viewpoint>,
         view_proj: DMat4,
         size: DVec2,
     ) -> &Strips {
+        let eye_position: Viewpoint = eye_position.into();
         let hashes: Vec<blake3::Hash> = objects.iter().map(|o| mesh_hash(o.mesh)).collect();
         let key = ViewKey {
             view_proj: bits(view_proj),

@@ -36,6 +36,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use super::viewpoint::Viewpoint;
 use crate::scene::Mesh;
 
 /// Why an edge is a feature edge.
@@ -254,19 +255,21 @@ impl EdgeMesh {
             .collect()
     }
 
-    /// Whether face `f` faces the eye at `eye` (object space). A face whose
+    /// Whether face `f` faces the eye at `eye` (object space: a point, or
+    /// an orthographic eye's direction, [`Viewpoint`]). A face whose
     /// plane holds the eye (edge-on) counts as back-facing, so every face
     /// has exactly one answer and edge-on faces cannot make a silhouette
     /// with each other.
-    pub fn is_front(&self, f: u32, eye: DVec3) -> bool {
+    pub fn is_front(&self, f: u32, eye: impl Into<Viewpoint>) -> bool {
         let corner = self.positions[self.faces[f as usize][0] as usize];
-        self.normals[f as usize].dot(eye - corner) > 0.0
+        self.normals[f as usize].dot(eye.into().towards_from(corner)) > 0.0
     }
 
     /// Silhouette edges from the eye at `eye` in object space (per frame,
     /// per eye): two-face edges whose faces differ in facing. Indices into
     /// `edges`.
-    pub fn silhouettes(&self, eye: DVec3) -> Vec<u32> {
+    pub fn silhouettes(&self, eye: impl Into<Viewpoint>) -> Vec<u32> {
+        let eye = eye.into();
         let front: Vec<bool> = (0..self.faces.len() as u32).map(|f| self.is_front(f, eye)).collect();
         self.edges
             .iter()

@@ -17,4 +17,5 @@ pub mod intersections;
 pub mod objects;
 pub mod sets;
 pub mod strip;
+pub mod viewpoint;
 pub mod visibility;

@@ -33,6 +33,7 @@ use npr_abi::lines::{EdgeTypes, LineVisibility, QiRange};
 use super::edges::EdgeMesh;
 use super::intersections::{intersection_segments, weld_and_chain, PlacedMesh};
 use super::strip::{self, LineStyle, Strips};
+use super::viewpoint::Viewpoint;
 use super::visibility::Occluders;
 
 /// A surface's identity across sets: its index among the pass's surfaces.
@@ -68,7 +69,8 @@ pub type Polylines = Vec<(Vec<DVec3>, bool)>;
 /// invisibility it shows ([`visibility`]), counted against every surface
 /// some set of the pass draws; the edges it selects are its own whether or
 /// not a piece is drawn (an edge is owned, then cut by visibility).
-pub fn select(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
+pub fn select(sets: &[SetInput<'_>], eye_position: impl Into<Viewpoint>) -> Vec<Polylines> {
+    let eye_position = eye_position.into();
     let occluders = sets.iter().any(|s| s.visibility.is_some()).then(|| {
         let mut seen: HashSet<SurfaceKey> = HashSet::new();
         Occluders::new(
@@ -91,7 +93,7 @@ pub fn select(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
 
 /// The pieces of `polylines` whose QI `shown` takes; neighbouring pieces of
 /// two QIs it takes stay one line (the arc length runs on).
-fn visible_pieces(polylines: &Polylines, occluders: &Occluders, eye: DVec3, shown: LineVisibility) -> Polylines {
+fn visible_pieces(polylines: &Polylines, occluders: &Occluders, eye: Viewpoint, shown: LineVisibility) -> Polylines {
     let mut out: Polylines = Vec::new();
     for (points, closed) in polylines {
         let runs = occluders.runs(points, *closed, eye);
@@ -113,7 +115,7 @@ fn visible_pieces(polylines: &Polylines, occluders: &Occluders, eye: DVec3, show
 
 /// Per set, the polylines of the edges it owns (the first set that selects
 /// an edge owns it), before visibility.
-fn select_edges(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
+fn select_edges(sets: &[SetInput<'_>], eye_position: Viewpoint) -> Vec<Polylines> {
     let mut taken_edges: HashMap<(SurfaceKey, u32), Vec<QiRange>> = HashMap::new();
     let mut taken_segments: HashMap<[u64; 6], Vec<QiRange>> = HashMap::new();
     sets.iter()
@@ -128,7 +130,7 @@ fn select_edges(sets: &[SetInput<'_>], eye_position: DVec3) -> Vec<Polylines> {
                         .map(|&v| surface.model.transform_point3(mesh.positions[v as usize]));
                     (points.collect(), closed)
                 };
-                let local_eye = surface.model.inverse().transform_point3(eye_position);
+                let local_eye = eye_position.transformed(surface.model.inverse());
                 let mut claim = |indices: Vec<u32>| -> Vec<u32> {
                     indices
                         .into_iter()
@@ -198,7 +200,7 @@ fn segment_key(a: DVec3, b: DVec3) -> [u64; 6] {
 
 /// The strips of every set from one eye, each vertex marked with its set's
 /// index (`LineVertex::line.w`, which the shader's `line.color` reads).
-pub fn build(sets: &[SetInput<'_>], eye_position: DVec3, view_proj: DMat4, size: DVec2) -> Strips {
+pub fn build(sets: &[SetInput<'_>], eye_position: impl Into<Viewpoint>, view_proj: DMat4, size: DVec2) -> Strips {
     let mut strips = Strips::default();
     for (index, (set, polylines)) in sets.iter().zip(select(sets, eye_position)).enumerate() {
         let mut built = match set.dash {

@@ -27,6 +27,7 @@
 use glam::{DMat4, DVec3};
 
 use super::edges::EdgeMesh;
+use super::viewpoint::Viewpoint;
 
 /// Samples per segment at least, whatever its length.
 pub const SAMPLES_PER_SEGMENT: usize = 4;
@@ -133,12 +134,22 @@ impl Occluders {
         index
     }
 
-    /// The number of surfaces between `eye` and `point` (see the module
-    /// header for what counts).
-    pub fn qi(&self, eye: DVec3, point: DVec3) -> u32 {
+    /// The number of surfaces between `viewpoint` and `point` (see the
+    /// module header for what counts). An orthographic viewpoint (a
+    /// direction, decision 0062) is taken as a point that far along it
+    /// from `point` which lies past every occluder.
+    pub fn qi(&self, viewpoint: impl Into<Viewpoint>, point: DVec3) -> u32 {
+        let viewpoint = viewpoint.into();
         if self.nodes.is_empty() {
             return 0;
         }
+        let eye = if viewpoint.0.w != 0.0 {
+            viewpoint.0.truncate() / viewpoint.0.w
+        } else {
+            let root = &self.nodes[0];
+            let reach = (point - root.lo).abs().max((point - root.hi).abs()).length() + 1.0;
+            point + viewpoint.0.truncate().normalize() * reach
+        };
         let direction = point - eye;
         let inverse = direction.recip();
         let mut hits: Vec<f64> = Vec::new();
@@ -169,7 +180,8 @@ impl Occluders {
     /// `polyline` (world space, closed or not) cut into runs of one QI seen
     /// from `eye`: each run's points and QI, in order along the line. A
     /// closed line of one QI all round is one closed run.
-    pub fn runs(&self, points: &[DVec3], closed: bool, eye: DVec3) -> Vec<(Vec<DVec3>, bool, u32)> {
+    pub fn runs(&self, points: &[DVec3], closed: bool, eye: impl Into<Viewpoint>) -> Vec<(Vec<DVec3>, bool, u32)> {
+        let eye = eye.into();
         if points.len() < 2 {
             return Vec::new();
         }
@@ -243,7 +255,7 @@ impl Occluders {
 
     /// Where along `at` between `u0` (QI `q0`) and `u1` the QI changes, by
     /// bisection.
-    fn change(&self, eye: DVec3, at: &impl Fn(f64) -> DVec3, mut u0: f64, q0: u32, mut u1: f64) -> f64 {
+    fn change(&self, eye: Viewpoint, at: &impl Fn(f64) -> DVec3, mut u0: f64, q0: u32, mut u1: f64) -> f64 {
         for _ in 0..BISECTIONS {
             let mid = 0.5 * (u0 + u1);
             if self.qi(eye, at(mid)) == q0 {

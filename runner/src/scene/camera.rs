@@ -1,5 +1,6 @@
-//! The camera: keyframed eye and target, a perspective lens, and an optional
-//! interpupillary distance that makes it stereo.
+//! The camera: keyframed eye and target, a perspective or orthographic
+//! lens (decision 0062), and an optional interpupillary distance that makes
+//! it stereo.
 
 use glam::{Mat4, Vec3};
 
@@ -14,7 +15,8 @@ pub struct CameraKey {
     pub roll_rad: f32,
 }
 
-/// A perspective camera whose eye and target may move over time.
+/// A camera whose eye and target may move over time: perspective, or
+/// orthographic when `ortho_height_m` is set.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
     /// At least one key, sorted by strictly increasing time. A still camera
@@ -26,6 +28,9 @@ pub struct Camera {
     pub far: f32,
     /// Interpupillary distance in metres; `Some` makes the camera stereo.
     pub ipd_m: Option<f32>,
+    /// The view's height in metres; `Some` makes the camera orthographic
+    /// (`fov_y_rad` is then unused).
+    pub ortho_height_m: Option<f32>,
 }
 
 /// The camera at one instant: everything needed for view and projection.
@@ -38,6 +43,7 @@ pub struct CameraPose {
     pub near: f32,
     pub far: f32,
     pub ipd_m: Option<f32>,
+    pub ortho_height_m: Option<f32>,
 }
 
 impl Camera {
@@ -55,6 +61,7 @@ impl Camera {
             near: 0.1,
             far: 100.0,
             ipd_m: None,
+            ortho_height_m: None,
         }
     }
 
@@ -81,6 +88,10 @@ impl Camera {
 
     pub fn is_stereo(&self) -> bool {
         self.ipd_m.is_some()
+    }
+
+    pub fn is_orthographic(&self) -> bool {
+        self.ortho_height_m.is_some()
     }
 
     /// The time of the last key: how long the camera animation lasts.
@@ -111,6 +122,7 @@ impl Camera {
             near: self.near,
             far: self.far,
             ipd_m: self.ipd_m,
+            ortho_height_m: self.ortho_height_m,
         }
     }
 
@@ -178,9 +190,27 @@ impl CameraPose {
         Mat4::look_at_rh(self.eye, self.target, self.true_up())
     }
 
-    /// Right-handed perspective with wgpu's 0..1 depth range.
+    /// Right-handed perspective, or orthographic `ortho_height_m` high and
+    /// `aspect` times as wide, with wgpu's 0..1 depth range.
     pub fn projection(&self, aspect: f32) -> Mat4 {
-        Mat4::perspective_rh(self.fov_y_rad, aspect, self.near, self.far)
+        match self.ortho_height_m {
+            None => Mat4::perspective_rh(self.fov_y_rad, aspect, self.near, self.far),
+            Some(height) => {
+                let (half_w, half_h) = (0.5 * height * aspect, 0.5 * height);
+                Mat4::orthographic_rh(-half_w, half_w, -half_h, half_h, self.near, self.far)
+            }
+        }
+    }
+
+    /// Eye `eye_index` in homogeneous world coordinates: (position, 1) for
+    /// a perspective camera, the point at infinity (−forward, 0) behind an
+    /// orthographic one. A face faces this eye where n · (e.xyz − p·e.w) > 0,
+    /// and it transforms with any matrix as a point does.
+    pub fn homogeneous_eye(&self, eye_index: u32) -> glam::Vec4 {
+        match self.ortho_height_m {
+            None => self.position(eye_index).extend(1.0),
+            Some(_) => (-self.forward()).extend(0.0),
+        }
     }
 
     fn eye_offset(&self, eye_index: u32) -> Vec3 {

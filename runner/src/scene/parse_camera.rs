@@ -20,6 +20,8 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
     let near = fields.number("near", report);
     let far = fields.number("far", report);
     let ipd = fields.number("ipd", report);
+    let projection = fields.string("projection", report);
+    let height = fields.number("height", report);
     let key_tables = fields.tables("keys", |index| format!("camera key #{}", index + 1), report);
     let header = fields.header();
 
@@ -69,6 +71,17 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
         );
     }
 
+    let ortho_height_m = parse_projection(
+        &Lens {
+            projection: projection.as_ref(),
+            height: height.as_ref(),
+            fov: fov.as_ref(),
+            ipd: ipd.as_ref(),
+        },
+        fields.header(),
+        report,
+    );
+
     let up_axis = up.as_ref().map_or(Vec3::Y, |up| up.value);
     let keys = if key_tables.is_empty() {
         match (&position, &target) {
@@ -113,7 +126,86 @@ pub fn parse_camera(mut fields: Fields, report: &mut Report) -> Option<Camera> {
     template.near = near_m as f32;
     template.far = far_m as f32;
     template.ipd_m = ipd.map(|ipd| ipd.value as f32);
+    template.ortho_height_m = ortho_height_m;
     Camera::with_keys(keys.into_iter().map(|key| key.value).collect(), &template)
+}
+
+/// The lens keys of `[camera]` that choose the projection.
+struct Lens<'a> {
+    projection: Option<&'a At<String>>,
+    height: Option<&'a At<f64>>,
+    fov: Option<&'a At<f64>>,
+    ipd: Option<&'a At<f64>>,
+}
+
+/// `projection = "perspective"` (the default, with `fov`) or
+/// `projection = "orthographic"` with `height`, the view's height in metres
+/// (decision 0062). Returns the orthographic height, `None` for a
+/// perspective camera (or after reporting what is wrong).
+fn parse_projection(lens: &Lens<'_>, header: Span, report: &mut Report) -> Option<f32> {
+    let orthographic = match lens.projection {
+        None => false,
+        Some(p) if p.value == "perspective" => false,
+        Some(p) if p.value == "orthographic" => true,
+        Some(p) => {
+            report.bad_scene(
+                p.span,
+                format!("unknown camera projection \"{}\"", p.value),
+                "not a projection",
+                "write `projection = \"perspective\"` (the default) or `projection = \"orthographic\"` with a `height` in metres",
+            );
+            return None;
+        }
+    };
+    if !orthographic {
+        if let Some(height) = lens.height {
+            report.bad_scene(
+                height.span,
+                "`height` is the view height of an orthographic camera, and this camera is perspective",
+                "needs `projection = \"orthographic\"`",
+                "add `projection = \"orthographic\"` to make the camera orthographic, or remove `height` and give `fov`",
+            );
+        }
+        return None;
+    }
+    let span = lens.projection.map_or(header, |p| p.span);
+    if let Some(fov) = lens.fov {
+        report.bad_scene(
+            fov.span,
+            "an orthographic camera has no field of view",
+            "perspective only",
+            "remove `fov`; the view's size is its `height` in metres",
+        );
+    }
+    if let Some(ipd) = lens.ipd {
+        report.bad_scene(
+            ipd.span,
+            "an orthographic camera cannot be stereo: its parallel eyes would see the same image shifted",
+            "stereo needs a perspective camera",
+            "remove `ipd`, or remove `projection = \"orthographic\"`",
+        );
+    }
+    match lens.height {
+        None => {
+            report.bad_scene(
+                span,
+                "an orthographic camera needs a `height`",
+                "no view height",
+                "add the view's height in metres, e.g. `height = 4.0` (its width follows the image's aspect)",
+            );
+            None
+        }
+        Some(h) if !(h.value > 0.0 && h.value.is_finite() && (h.value as f32).is_finite()) => {
+            report.bad_scene(
+                h.span,
+                format!("`height` must be a positive number of metres, not {}", h.value),
+                "must be > 0",
+                "write the view's height in metres, e.g. `height = 4.0`",
+            );
+            None
+        }
+        Some(h) => Some(h.value as f32),
+    }
 }
 
 /// One `[[camera.keys]]`: `time` is required; `position` and `target`

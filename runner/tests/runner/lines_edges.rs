@@ -77,6 +77,75 @@ fn cube_silhouette_is_a_closed_hexagon() {
     assert_eq!(lines[0].vertices.len(), 6);
 }
 
+/// A point eye and a direction eye see from where they should, and a
+/// translation moves the first but not the second.
+#[test]
+fn a_viewpoint_is_a_point_or_a_direction() {
+    use glam::{DMat4, DVec4};
+    use npr_runner::lines::viewpoint::Viewpoint;
+    let p = DVec3::new(1.0, 2.0, 3.0);
+    assert_eq!(Viewpoint::from(DVec3::ZERO).towards_from(p), -p);
+    assert_eq!(Viewpoint::direction(DVec3::Z).towards_from(p), DVec3::Z);
+    let shift = DMat4::from_translation(DVec3::X);
+    assert_eq!(
+        Viewpoint::from(DVec3::ZERO).transformed(shift).0,
+        DVec4::new(1.0, 0.0, 0.0, 1.0)
+    );
+    assert_eq!(Viewpoint::direction(DVec3::Z).transformed(shift).0, DVec4::Z);
+}
+
+/// An orthographic camera sees every face along one direction (decision
+/// 0062), so a face's facing does not depend on where it is. From (3, 0.3,
+/// 0.3) a perspective eye sees only the +X face of the cube [−1, 1]³ (the
+/// eye is below the +Y and +Z planes): its silhouette is that face's square.
+/// An orthographic camera there looking at the origin sees +X, +Y and +Z
+/// (each normal has a positive dot with the direction towards it): the
+/// hexagon, the same wherever the cube is moved.
+#[test]
+fn an_orthographic_cube_silhouette_is_the_hexagon_wherever_the_cube_is() {
+    use npr_runner::lines::viewpoint::Viewpoint;
+    use npr_runner::scene::Camera;
+    let mesh = EdgeMesh::new(&cube(2.0));
+    let position = glam::Vec3::new(3.0, 0.3, 0.3);
+    let mut camera = Camera::looking_at(position, glam::Vec3::ZERO);
+    let perspective = Viewpoint(camera.pose(0.0).homogeneous_eye(0).as_dvec4());
+    let square = mesh.silhouettes(perspective);
+    assert_eq!(square.len(), 4);
+    for &e in &square {
+        let edge = &mesh.edges[e as usize];
+        let (p, q) = (mesh.positions[edge.a as usize], mesh.positions[edge.b as usize]);
+        assert!(p.x == 1.0 && q.x == 1.0, "an edge of the +X face: {p} {q}");
+    }
+    camera.ortho_height_m = Some(3.0);
+    let eye = Viewpoint(camera.pose(0.0).homogeneous_eye(0).as_dvec4());
+    assert_eq!(eye.0.w, 0.0, "the orthographic eye is at infinity");
+    for shift in [DVec3::ZERO, DVec3::new(0.0, 40.0, -25.0), DVec3::new(-60.0, 0.0, 0.0)] {
+        // The cube moved by `shift`: the eye in its own space.
+        let local = eye.transformed(glam::DMat4::from_translation(-shift));
+        let hexagon = mesh.silhouettes(local);
+        assert_eq!(hexagon.len(), 6, "cube at {shift}");
+        for &e in &hexagon {
+            let edge = &mesh.edges[e as usize];
+            let [f, g] = edge.faces[..] else { panic!("two faces") };
+            let towards = local.0.truncate();
+            let (nf, ng) = (
+                mesh.normals[f as usize].dot(towards),
+                mesh.normals[g as usize].dot(towards),
+            );
+            assert!(
+                (nf > 0.0) != (ng > 0.0),
+                "one face towards the camera's direction: {nf} {ng}"
+            );
+            let (p, q) = (mesh.positions[edge.a as usize], mesh.positions[edge.b as usize]);
+            for c in [p, q] {
+                assert!(c != DVec3::ONE && c != -DVec3::ONE, "{c}");
+            }
+        }
+        let lines = mesh.chain(&hexagon);
+        assert!(lines.len() == 1 && lines[0].closed && lines[0].vertices.len() == 6);
+    }
+}
+
 #[test]
 fn cylinder_rims_are_two_closed_creases() {
     let segments = 32;

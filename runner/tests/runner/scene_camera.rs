@@ -172,3 +172,81 @@ fn looking_at_builds_a_still_camera() {
     assert_eq!(camera.keys().len(), 1);
     assert_eq!(camera.pose(123.0).eye, Vec3::new(0.0, 0.0, 2.0));
 }
+
+const ORTHO: &str = r#"
+[camera]
+position = [1.0, 2.0, 5.0]
+target = [0.5, 0.25, -1.0]
+projection = "orthographic"
+height = 4.0
+near = 0.5
+far = 50.0
+"#;
+
+/// An orthographic camera (decision 0062): a point `height`/2 above the
+/// view axis lands on the top edge at every depth, the width follows the
+/// aspect, and near and far still map to wgpu's depth 0 and 1.
+#[test]
+fn an_orthographic_camera_is_height_high_at_every_depth() {
+    let camera = scene(ORTHO).camera;
+    assert_eq!(camera.ortho_height_m, Some(4.0));
+    let pose = camera.pose(0.0);
+    let aspect = 1.5;
+    for distance in [0.5, 3.0, 40.0] {
+        let centre = pose.eye + pose.forward() * distance;
+        let top = ndc(&pose, 0, aspect, centre + pose.true_up() * 2.0);
+        assert!(
+            (top.y - 1.0).abs() < 1e-5 && top.x.abs() < 1e-5,
+            "{top:?} at {distance} m"
+        );
+        let side = ndc(&pose, 0, aspect, centre + pose.right() * 3.0);
+        assert!(
+            (side.x - 1.0).abs() < 1e-5 && side.y.abs() < 1e-5,
+            "{side:?} at {distance} m"
+        );
+    }
+    let at_near = ndc(&pose, 0, 1.0, pose.eye + pose.forward() * pose.near);
+    let at_far = ndc(&pose, 0, 1.0, pose.eye + pose.forward() * pose.far);
+    assert!(
+        at_near.z.abs() < 1e-5 && (at_far.z - 1.0).abs() < 1e-5,
+        "{at_near:?} {at_far:?}"
+    );
+    // The eye is at infinity behind the camera: (−forward, 0).
+    let eye = pose.homogeneous_eye(0);
+    assert_eq!(eye.w, 0.0);
+    assert!((eye.truncate() + pose.forward()).length() < 1e-6);
+}
+
+/// Each wrong orthographic lens is E0405 at the key that is wrong.
+#[test]
+fn a_wrong_orthographic_lens_is_refused_at_its_key() {
+    let base = "[camera]\nposition = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n";
+    for (lens, key, says) in [
+        ("projection = \"orthographic\"\n", "projection", "needs a `height`"),
+        ("projection = \"orthographic\"\nheight = -1.0\n", "height", "positive"),
+        (
+            "projection = \"orthographic\"\nheight = 2.0\nfov = 30.0\n",
+            "fov",
+            "no field of view",
+        ),
+        (
+            "projection = \"orthographic\"\nheight = 2.0\nipd = 0.06\n",
+            "ipd",
+            "cannot be stereo",
+        ),
+        ("height = 2.0\n", "height", "this camera is perspective"),
+        ("projection = \"fisheye\"\n", "projection", "unknown camera projection"),
+    ] {
+        let text = format!("{base}{lens}");
+        let Err(diagnostics) = parse_scene(&text, npr_diag::FileId(0), Path::new(".")) else {
+            panic!("{lens:?} parsed");
+        };
+        let d = &diagnostics[0];
+        assert_eq!(d.code, "E0405", "{lens:?}: {d:?}");
+        assert!(d.message.contains(says), "{lens:?}: {}", d.message);
+        // The label is on the key's line (its value, or the key).
+        let start = d.labels[0].span.start as usize;
+        let line = text[..start].rsplit('\n').next().unwrap_or("").to_owned() + &text[start..];
+        assert!(line.starts_with(key), "{lens:?}: label at {line:?}");
+    }
+}

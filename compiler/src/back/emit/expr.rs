@@ -256,7 +256,12 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         // The light camera is orthographic (w = 1), so this is already NDC.
         Builtin::PositionLight => "(frame.light_view_proj * vec4<f32>(in.position_world, 1.0)).xyz".into(),
         Builtin::Tangent => "npr_unit(in.tangent.xyz)".into(),
-        Builtin::ViewDir => "npr_unit(frame.camera_pos.xyz - in.position_world)".into(),
+        // An orthographic camera's eye is at infinity behind it: every point
+        // sees it along −forward (decision 0062).
+        Builtin::ViewDir => {
+            "select(npr_unit(frame.camera_pos.xyz - in.position_world), -frame.camera_forward.xyz, frame.ortho_height > 0.0)"
+                .into()
+        }
         Builtin::Depth => "(-(frame.view * vec4<f32>(in.position_world, 1.0)).z)".into(),
         Builtin::FragCoord => "in.clip.xy".into(),
         Builtin::ScreenUv => "in.screen_uv".into(),
@@ -280,6 +285,7 @@ pub(super) fn builtin_wgsl(b: Builtin) -> String {
         // The view matrix's rows: its rotation's inverse is its transpose.
         Builtin::CameraRight => "vec3<f32>(frame.view[0].x, frame.view[1].x, frame.view[2].x)".into(),
         Builtin::CameraUp => "vec3<f32>(frame.view[0].y, frame.view[1].y, frame.view[2].y)".into(),
+        Builtin::CameraOrthographic => "select(0.0, 1.0, frame.ortho_height > 0.0)".into(),
         Builtin::TangentScreen => "in.tangent_screen".into(),
         Builtin::BitangentScreen => "in.bitangent_screen".into(),
         Builtin::TangentScreenCenter => "in.tangent_screen_center".into(),

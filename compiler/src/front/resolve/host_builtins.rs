@@ -8,16 +8,19 @@
 //!
 //! - `depth` = the depth input's r (distance along the view axis, metres;
 //!   0 where the host hit nothing);
-//! - `position.view` = (x_ndc·d / f_x, y_ndc·d / f_y, −d), with
-//!   x_ndc = 2u − 1, y_ndc = 1 − 2v at `screen_uv` (u, v) and f =
-//!   `camera.focal` (P₀₀, P₁₁ of a symmetric perspective projection): the
-//!   point on the pixel's ray at view depth d;
+//! - `position.view` = (x_ndc·w / f_x, y_ndc·w / f_y, −d), with
+//!   x_ndc = 2u − 1, y_ndc = 1 − 2v at `screen_uv` (u, v), f =
+//!   `camera.focal` (P₀₀, P₁₁ of a symmetric projection) and w the clip w
+//!   of view depth d: d through a perspective projection, 1 m through an
+//!   orthographic one (w = d + (1 m − d)·`camera.orthographic`, decision
+//!   0062): the point on the pixel's ray at view depth d;
 //! - `position.world` = `camera.position` + right·x + up·y + forward·d,
 //!   the view-space point turned back into the world (the view's rotation
 //!   is orthonormal: its inverse is its transpose, whose columns are
 //!   `camera.right`, `camera.up` and −`camera.forward`);
 //! - `view_dir` = normalize(`camera.position` − `position.world`), towards
-//!   the eye;
+//!   the eye, or −`camera.forward` for an orthographic camera (n + (−f −
+//!   n)·`camera.orthographic`, exact for its values 0 and 1);
 //! - `normal.view` / `normal.world` = the normal input's rgb when it is
 //!   declared in that space (the runner converts the host's at load).
 //!
@@ -58,20 +61,17 @@ impl Resolver<'_> {
             Builtin::ViewDir => {
                 let depth = self.host_input(b, span, |k| matches!(k, InputKind::Depth))?;
                 let offset = self.view_to_world_offset(depth, span);
-                let towards_eye = self.ir.add(
-                    ExprKind::Unary {
-                        op: npr_dsl::ast::UnOp::Neg,
-                        operand: offset,
-                    },
-                    span,
-                );
-                Some(self.ir.add(
+                let towards_eye = self.negate(offset, span);
+                let perspective = self.ir.add(
                     ExprKind::Call {
                         callee: Callee::Intrinsic(Intrinsic::Normalize),
                         args: vec![towards_eye],
                     },
                     span,
-                ))
+                );
+                let forward = self.builtin(Builtin::CameraForward, span);
+                let orthographic = self.negate(forward, span);
+                Some(self.by_projection(perspective, orthographic, span))
             }
             Builtin::Uv
                 if self
@@ -178,10 +178,14 @@ impl Resolver<'_> {
         self.binary(BinOp::Mul, r, metre, span)
     }
 
-    /// (x_ndc·d / f_x, y_ndc·d / f_y, −d): the view-space point at depth d
-    /// on the pixel's ray.
+    /// (x_ndc·w / f_x, y_ndc·w / f_y, −d): the view-space point at depth d
+    /// on the pixel's ray, w the clip w of depth d (d, or 1 m orthographic).
     fn view_position(&mut self, depth: TextureId, span: Span) -> ExprId {
         let d = self.view_depth(depth, span);
+        let metre = self
+            .ir
+            .add_typed(ExprKind::Const(Const::Float(1.0)), Ty::Float, Unit::Meters, span);
+        let w = self.by_projection(d, metre, span);
         let uv = self.builtin(Builtin::ScreenUv, span);
         let focal = self.builtin(Builtin::CameraFocal, span);
         let two = self.plain_number(2.0, span);
@@ -195,17 +199,11 @@ impl Resolver<'_> {
         let y_ndc = self.binary(BinOp::Sub, one, two_v, span);
         let fx = self.component(focal, 0, span);
         let fy = self.component(focal, 1, span);
-        let xd = self.binary(BinOp::Mul, x_ndc, d, span);
-        let x = self.binary(BinOp::Div, xd, fx, span);
-        let yd = self.binary(BinOp::Mul, y_ndc, d, span);
-        let y = self.binary(BinOp::Div, yd, fy, span);
-        let z = self.ir.add(
-            ExprKind::Unary {
-                op: npr_dsl::ast::UnOp::Neg,
-                operand: d,
-            },
-            span,
-        );
+        let xw = self.binary(BinOp::Mul, x_ndc, w, span);
+        let x = self.binary(BinOp::Div, xw, fx, span);
+        let yw = self.binary(BinOp::Mul, y_ndc, w, span);
+        let y = self.binary(BinOp::Div, yw, fy, span);
+        let z = self.negate(d, span);
         self.ir.add(
             ExprKind::Call {
                 callee: Callee::Intrinsic(Intrinsic::Construct(3)),
@@ -233,6 +231,27 @@ impl Resolver<'_> {
         let rest: Vec<ExprId> = terms.collect();
         rest.into_iter()
             .fold(first, |sum, t| self.binary(BinOp::Add, sum, t, span))
+    }
+
+    /// `perspective` for a perspective camera, `orthographic` for an
+    /// orthographic one: p + (o − p)·`camera.orthographic`, exact for its
+    /// two values (p is finite wherever it is read: a safe normalise, or a
+    /// depth).
+    fn by_projection(&mut self, perspective: ExprId, orthographic: ExprId, span: Span) -> ExprId {
+        let is_orthographic = self.builtin(Builtin::CameraOrthographic, span);
+        let change = self.binary(BinOp::Sub, orthographic, perspective, span);
+        let scaled = self.binary(BinOp::Mul, change, is_orthographic, span);
+        self.binary(BinOp::Add, perspective, scaled, span)
+    }
+
+    fn negate(&mut self, operand: ExprId, span: Span) -> ExprId {
+        self.ir.add(
+            ExprKind::Unary {
+                op: npr_dsl::ast::UnOp::Neg,
+                operand,
+            },
+            span,
+        )
     }
 
     fn builtin(&mut self, b: Builtin, span: Span) -> ExprId {

@@ -32,7 +32,7 @@ pub fn builtin(b: Builtin) -> Val {
     match b {
         NormalWorld | NormalView | Tangent | ViewDir | LightDir | MoreLightDir(_) | CameraForward | CameraRight
         | CameraUp => Val::unit(n),
-        ScreenUv | PatchWeight | Eye => Val::splat(Iv::UNIT, n),
+        ScreenUv | PatchWeight | Eye | CameraOrthographic => Val::splat(Iv::UNIT, n),
         LineAcross => Val::splat(Iv::SIGNED_UNIT, n),
         // Light-space NDC: x, y in [−1, 1], z in [0, 1] (builtins.rs).
         PositionLight => Val {
@@ -55,8 +55,10 @@ pub fn builtin(b: Builtin) -> Val {
         | LineSet => Val::splat(NON_NEGATIVE, n),
         // A perspective camera's near plane is past the eye, and its
         // focal lengths (P₀₀, P₁₁ = cot(fov/2) over the aspect and 1) are
-        // positive: its fov is in (0°, 180°). Scenes check both (E0405),
-        // and so does the embedding API for every frame's camera (E0616).
+        // positive: its fov is in (0°, 180°). An orthographic camera's
+        // (2 / width, 2 / height) are positive: its height is. Scenes check
+        // these (E0405), and so does the embedding API for every frame's
+        // camera (E0616).
         CameraNear | CameraFocal => Val::splat(Iv::new(f32::MIN_POSITIVE as f64, F32_MAX), n),
         Resolution => Val::splat(Iv::new(1.0, F32_MAX), n),
         Uv
