@@ -408,3 +408,34 @@ fn dashes_are_cut_exactly_at_the_pattern_along_the_screen_arc_length() {
     }
     assert!(dash_runs(&backbone, [0.0, 4.0]).is_empty());
 }
+
+/// An orthographic camera (decision 0062) sees along one direction: a
+/// point behind a box counts the box's two faces whatever its distance,
+/// and a point just beside the box counts none, where rays to a
+/// perspective eye on the box's axis pass through the box (slab test:
+/// they enter the front face and leave by the back one).
+#[test]
+fn an_orthographic_viewpoint_counts_along_its_direction() {
+    use npr_runner::lines::viewpoint::Viewpoint;
+    let block = Box3 {
+        lo: DVec3::new(-1.0, -1.0, -1.0),
+        hi: DVec3::new(1.0, 1.0, 1.0),
+    };
+    let unit = EdgeMesh::new(&cube(2.0));
+    let occluders = Occluders::new([(&unit, block.model())]);
+    // Looking down −z: the eye lies towards +z.
+    let towards_eye = Viewpoint::direction(DVec3::Z);
+    let perspective_eye = DVec3::new(0.0, 0.0, 3.0);
+    for z in [-1.5, -4.0, -40.0] {
+        let behind = DVec3::new(0.95, 0.95, z);
+        assert_eq!(occluders.qi(towards_eye, behind), 2, "behind the box at z = {z}");
+        let beside = DVec3::new(1.05, 0.0, z);
+        assert_eq!(occluders.qi(towards_eye, beside), 0, "beside the box at z = {z}");
+        assert_eq!(block.crossings(perspective_eye, beside), 2, "the slab test at z = {z}");
+        assert_eq!(
+            occluders.qi(perspective_eye, beside),
+            2,
+            "perspective, beside the box at z = {z}"
+        );
+    }
+}
