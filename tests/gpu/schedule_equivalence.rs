@@ -38,6 +38,7 @@ const EXAMPLES: &[(&str, &str)] = &[
     ("artmap_gallery", "gallery"),
     ("edge_breakup", "spot"),
     ("halftone", "cows"),
+    ("hidden_lines", "hidden_lines"),
     ("hatching", "patched_cow"),
     ("live_contour", "spheres"),
     ("lsa_base", "spheres"),
