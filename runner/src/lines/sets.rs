@@ -66,7 +66,7 @@ pub type Polylines = Vec<(Vec<DVec3>, bool)>;
 /// one set, the first that selects it.
 ///
 /// A set with a visibility keeps the pieces of its lines whose quantitative
-/// invisibility it shows ([`visibility`]), counted against every surface
+/// invisibility it shows ([`super::visibility`]), counted against every surface
 /// some set of the pass draws; the edges it selects are its own whether or
 /// not a piece is drawn (an edge is owned, then cut by visibility).
 pub fn select(sets: &[SetInput<'_>], eye_position: impl Into<Viewpoint>) -> Vec<Polylines> {
