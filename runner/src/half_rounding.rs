@@ -40,20 +40,17 @@ const PROBES: [f32; 20] = [
     0.7,
 ];
 
-pub(crate) const SHADER: &str = "
+pub(crate) const SHADER: &str = concat!(
+    crate::fullscreen::fullscreen_vertex_wgsl!(),
+    "
 @group(0) @binding(0) var<storage, read> probes: array<vec4<f32>>;
-
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
-}
 
 @fragment
 fn fs_main(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     return probes[u32(at.x)];
 }
-";
+"
+);
 
 /// The device's rounding of stores into 16-bit float targets.
 pub fn measure(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HalfRounding, RunError> {
@@ -109,7 +106,7 @@ fn render_probes(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<f32>,
                 layout: None,
                 vertex: wgpu::VertexState {
                     module: &module,
-                    entry_point: Some("vs_main"),
+                    entry_point: Some("vs"),
                     compilation_options: Default::default(),
                     buffers: &[],
                 },

@@ -10,6 +10,8 @@
 //! - [`embed`]: [`embed::StyleRuntime`], the runtime a host application drives.
 //! - [`gpu_count`]: every GPU object the runner creates, counted.
 //! - [`pass_timer`]: each pass's GPU time in a frame, from timestamp queries.
+//! - `fullscreen`: the vertex stage and sRGB functions the runner's own
+//!   fullscreen draws share (host depth, input conversion, presenting).
 //!
 //! The runner depends on neither the compiler, the stdlib nor the parser
 //! (`dsl`, pest); its errors are `diag` diagnostics, and what it runs is
@@ -31,6 +33,7 @@ pub mod device_needs;
 pub mod embed;
 pub mod exec;
 pub mod exr_layers;
+mod fullscreen;
 pub mod gpu_count;
 pub mod gpu_error;
 pub mod half_rounding;

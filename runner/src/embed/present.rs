@@ -13,14 +13,11 @@ use npr_diag::{codes, Diagnostic};
 
 /// Copies a texel: in side-by-side targets the right eye's fragments are
 /// `x ≥ eye width`, so `x mod width` finds the texel in both halves.
-pub(crate) const PRESENT_WGSL: &str = "
+pub(crate) const PRESENT_WGSL: &str = concat!(
+    crate::fullscreen::fullscreen_vertex_wgsl!(),
+    crate::fullscreen::srgb_wgsl!(),
+    "
 @group(0) @binding(0) var source: texture_2d<f32>;
-
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-}
 
 @fragment
 fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
@@ -29,22 +26,17 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     return textureLoad(source, texel, 0);
 }
 
-// The sRGB EOTF (IEC 61966-2-1), the inverse of what an sRGB view's
-// store does: a linear-light host encodes these back to the output's values.
-fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        return c / 12.92;
-    }
-    return pow((c + 0.055) / 1.055, 2.4);
-}
-
+// `fs_linear` decodes with the sRGB EOTF (`srgb_to_linear`), the inverse
+// of what an sRGB view's store does: a linear-light host encodes these
+// back to the output's values.
 @fragment
 fn fs_linear(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     let size = vec2<i32>(textureDimensions(source));
     let c = textureLoad(source, vec2<i32>(p.xy) % size, 0);
     return vec4<f32>(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b), c.a);
 }
-";
+"
+);
 
 /// One view a checked target draws into.
 pub(super) struct PresentView<'a> {

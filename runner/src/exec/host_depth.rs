@@ -25,12 +25,7 @@ pub(crate) fn host_depth_wgsl() -> String {
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var host_depth: texture_2d<f32>;
 
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {{
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-}}
-
+{vertex}
 @fragment
 fn fs(@builtin(position) p: vec4<f32>) -> @builtin(frag_depth) f32 {{
     let d = textureLoad(host_depth, vec2<i32>(p.xy), 0).r;
@@ -41,7 +36,8 @@ fn fs(@builtin(position) p: vec4<f32>) -> @builtin(frag_depth) f32 {{
     return clamp(clip.z / clip.w, 0.0, 1.0);
 }}
 ",
-        frame = npr_abi::FRAME_WGSL
+        frame = npr_abi::FRAME_WGSL,
+        vertex = crate::fullscreen::fullscreen_vertex_wgsl!()
     )
 }
 

@@ -22,7 +22,10 @@ pub const INPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// `c.mode.y`: colour 1 decodes sRGB, 2 encodes it; `c.mode.z`: normals
 /// stored as n·0.5 + 0.5 (a normalized-integer texture); `c.param.x`: the
 /// depth sentinel or near plane; `c.m0..m2`: the normals' matrix columns.
-pub(crate) const CONVERT_WGSL: &str = "
+pub(crate) const CONVERT_WGSL: &str = concat!(
+    crate::fullscreen::fullscreen_vertex_wgsl!(),
+    crate::fullscreen::srgb_wgsl!(),
+    "
 struct Conversion {
     m0: vec4<f32>,
     m1: vec4<f32>,
@@ -33,27 +36,6 @@ struct Conversion {
 
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var<uniform> c: Conversion;
-
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-}
-
-// The sRGB transfer function (IEC 61966-2-1) both ways, as `crate::srgb`.
-fn srgb_to_linear(x: f32) -> f32 {
-    if x <= 0.04045 {
-        return x / 12.92;
-    }
-    return pow((x + 0.055) / 1.055, 2.4);
-}
-
-fn linear_to_srgb(x: f32) -> f32 {
-    if x <= 0.0031308 {
-        return x * 12.92;
-    }
-    return 1.055 * pow(x, 1.0 / 2.4) - 0.055;
-}
 
 @fragment
 fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
@@ -92,7 +74,8 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
         }
     }
 }
-";
+"
+);
 
 /// The size of the `Conversion` uniform block.
 pub const UNIFORM_SIZE: u64 = 80;
