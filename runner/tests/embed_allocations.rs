@@ -292,21 +292,16 @@ fn toml_scene_through_the_runtime(style: &str, scene_file: &str) {
     );
 }
 
-/// A style over a host's G-buffer (`examples/post/ink_over.npr`): each frame
-/// the host gives its colour, reverse-Z depth and world normals again (the
-/// same views) and the camera moves, so the normals' conversion into view
-/// space changes every frame; converting them creates nothing. A new size
-/// (new views, a new target) makes the input textures anew, then steady again.
-#[test]
-fn a_style_over_host_inputs_allocates_nothing_per_frame() {
-    use npr_runner::inputs::{ColorEncoding, DepthConvention, NormalConvention, SourceConvention};
-    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("post/ink_over.npr")).expect("runtime");
-    let image = |format: wgpu::TextureFormat, (w, h): (u32, u32)| {
-        gpu().device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("host G-buffer"),
+/// A view of a host texture of `format` at `size`, which a style may read
+/// as an input.
+fn host_view(format: wgpu::TextureFormat, (width, height): (u32, u32)) -> wgpu::TextureView {
+    gpu()
+        .device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("host image"),
             size: wgpu::Extent3d {
-                width: w,
-                height: h,
+                width,
+                height,
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
@@ -316,16 +311,57 @@ fn a_style_over_host_inputs_allocates_nothing_per_frame() {
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         })
-    };
-    let views = |size: (u32, u32)| {
-        [
-            wgpu::TextureFormat::Rgba16Float,
-            wgpu::TextureFormat::Depth32Float,
-            wgpu::TextureFormat::Rgba16Float,
-        ]
-        .map(|f| image(f, size).create_view(&Default::default()))
-    };
-    let give = |runtime: &mut StyleRuntime, [colour, depth, normal]: &[wgpu::TextureView; 3]| {
+        .create_view(&Default::default())
+}
+
+/// Frames `frames` at `size` over new host images of `formats`, which
+/// `give` hands to the runtime again before each frame, with `instances(k)`
+/// drawn: the first frame makes what the size needs, the others create no
+/// GPU object.
+fn steady_over_inputs(
+    runtime: &mut StyleRuntime,
+    formats: &[wgpu::TextureFormat],
+    give: &dyn Fn(&mut StyleRuntime, &[wgpu::TextureView]),
+    instances: &dyn Fn(u32) -> Vec<Instance>,
+    frames: std::ops::Range<u32>,
+    size: (u32, u32),
+    what: &str,
+) {
+    let inputs: Vec<wgpu::TextureView> = formats.iter().map(|&f| host_view(f, size)).collect();
+    let texture = target(size.0, size.1);
+    let view = texture.create_view(&Default::default());
+    give(runtime, &inputs);
+    frame(runtime, &instances(frames.start), frames.start, &view);
+    let before = created_on_this_thread();
+    for k in frames.start + 1..frames.end {
+        give(runtime, &inputs);
+        frame(runtime, &instances(k), k, &view);
+    }
+    let after = created_on_this_thread();
+    assert_eq!(
+        after, before,
+        "{what}: frames created GPU objects: {before:?} → {after:?}"
+    );
+}
+
+/// A style over a host's G-buffer (`examples/post/ink_over.npr`): each frame
+/// the host gives its colour, reverse-Z depth and world normals again (the
+/// same views) and the camera moves, so the normals' conversion into view
+/// space changes every frame; converting them creates nothing. A new size
+/// (new views, a new target) makes the input textures anew, then steady again.
+#[test]
+fn a_style_over_host_inputs_allocates_nothing_per_frame() {
+    use npr_runner::inputs::{ColorEncoding, DepthConvention, NormalConvention, SourceConvention};
+    let mut runtime = StyleRuntime::new(&gpu().device, &gpu().queue, compile("post/ink_over.npr")).expect("runtime");
+    let formats = [
+        wgpu::TextureFormat::Rgba16Float,
+        wgpu::TextureFormat::Depth32Float,
+        wgpu::TextureFormat::Rgba16Float,
+    ];
+    let give = |runtime: &mut StyleRuntime, views: &[wgpu::TextureView]| {
+        let [colour, depth, normal] = views else {
+            panic!("three host images")
+        };
         runtime
             .set_input("color_in", colour, SourceConvention::Color(ColorEncoding::Linear))
             .expect("colour");
@@ -340,26 +376,11 @@ fn a_style_over_host_inputs_allocates_nothing_per_frame() {
             .set_input("normal_in", normal, SourceConvention::Normal(NormalConvention::World))
             .expect("normal");
     };
-    let run = |runtime: &mut StyleRuntime, frames: std::ops::Range<u32>, size: (u32, u32), what: &str| {
-        let inputs = views(size);
-        let texture = target(size.0, size.1);
-        let view = texture.create_view(&Default::default());
-        // The first frame at this size makes what the size needs.
-        give(runtime, &inputs);
-        frame(runtime, &[], frames.start, &view);
-        let before = created_on_this_thread();
-        for k in frames.start + 1..frames.end {
-            give(runtime, &inputs);
-            frame(runtime, &[], k, &view);
-        }
-        let after = created_on_this_thread();
-        assert_eq!(
-            after, before,
-            "{what}: frames created GPU objects: {before:?} → {after:?}"
-        );
-    };
-    run(&mut runtime, 0..6, (64, 48), "ink over inputs");
-    run(&mut runtime, 6..10, (80, 60), "ink over inputs at a new size");
+    let no_objects = |_| Vec::new();
+    let what = "ink over inputs";
+    steady_over_inputs(&mut runtime, &formats, &give, &no_objects, 0..6, (64, 48), what);
+    let what = "ink over inputs at a new size";
+    steady_over_inputs(&mut runtime, &formats, &give, &no_objects, 6..10, (80, 60), what);
     assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
 }
 
@@ -377,26 +398,11 @@ fn lines_tested_against_a_host_depth_allocate_nothing_per_frame() {
         runtime.add_mesh(primitives::sphere(0.6, 24, 12)),
         runtime.add_mesh(primitives::cube(0.8)),
     ];
-    let image = |format: wgpu::TextureFormat, (w, h): (u32, u32)| {
-        gpu()
-            .device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some("host frame"),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
-            .create_view(&Default::default())
-    };
-    let give = |runtime: &mut StyleRuntime, [colour, depth]: &[wgpu::TextureView; 2]| {
+    let formats = [wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureFormat::Depth32Float];
+    let give = |runtime: &mut StyleRuntime, views: &[wgpu::TextureView]| {
+        let [colour, depth] = views else {
+            panic!("two host images")
+        };
         runtime
             .set_input("color_in", colour, SourceConvention::Color(ColorEncoding::Srgb))
             .expect("colour");
@@ -408,28 +414,11 @@ fn lines_tested_against_a_host_depth_allocate_nothing_per_frame() {
             )
             .expect("depth");
     };
-    let run = |runtime: &mut StyleRuntime, frames: std::ops::Range<u32>, size: (u32, u32), what: &str| {
-        let inputs = [
-            image(wgpu::TextureFormat::Rgba8Unorm, size),
-            image(wgpu::TextureFormat::Depth32Float, size),
-        ];
-        let texture = target(size.0, size.1);
-        let view = texture.create_view(&Default::default());
-        give(runtime, &inputs);
-        frame(runtime, &objects(&meshes, frames.start, &[], None), frames.start, &view);
-        let before = created_on_this_thread();
-        for k in frames.start + 1..frames.end {
-            give(runtime, &inputs);
-            frame(runtime, &objects(&meshes, k, &[], None), k, &view);
-        }
-        let after = created_on_this_thread();
-        assert_eq!(
-            after, before,
-            "{what}: frames created GPU objects: {before:?} → {after:?}"
-        );
-    };
-    run(&mut runtime, 0..6, (64, 48), "lines over a host's depth");
-    run(&mut runtime, 6..10, (80, 60), "lines over a host's depth at a new size");
+    let moving = |k| objects(&meshes, k, &[], None);
+    let what = "lines over a host's depth";
+    steady_over_inputs(&mut runtime, &formats, &give, &moving, 0..6, (64, 48), what);
+    let what = "lines over a host's depth at a new size";
+    steady_over_inputs(&mut runtime, &formats, &give, &moving, 6..10, (80, 60), what);
     assert_eq!(runtime.builds(), 1, "the frames rebuilt the style");
 }
 
