@@ -145,6 +145,31 @@ fn example(name: &str) -> npr_runner::StyleProgram {
     .program()
 }
 
+/// `file` (a character in `dir`) playing `clip` in a timing scene, and its rig.
+fn playing(dir: &Path, file: &str, clip: &str) -> (Scene, Rig) {
+    let (_, rig) = load_mesh_and_rig(&dir.join(file)).expect("test character");
+    let text = format!(
+        "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
+         [[object]]\nmesh = \"{file}\"\nanimation = {{ clip = \"{clip}\", loop = true }}\n"
+    );
+    let scene = npr_runner::scene::parse_scene(&text, npr_diag::FileId(0), dir).expect("timing scene");
+    (scene, rig.expect("a rig"))
+}
+
+/// `base`'s character scaled to about `vertices` vertices: the scaled rig,
+/// the scene playing its clip, and the same scene with it rigid.
+fn animated_and_rigid(base: &Scene, rig: &Rig, vertices: usize) -> (Rig, Scene, Scene) {
+    let big = scaled(rig, vertices);
+    let mut animated = base.clone();
+    animated.objects[0].mesh = Arc::new(big.bind.clone());
+    if let Some(animation) = animated.objects[0].animation.as_mut() {
+        animation.rig = Arc::new(big.clone());
+    }
+    let mut rigid = animated.clone();
+    rigid.objects[0].animation = None;
+    (big, animated, rigid)
+}
+
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models");
     let gpu = Gpu::headless().expect("a GPU adapter (lavapipe: ./setup.sh --tests)");
@@ -160,23 +185,10 @@ fn main() {
     .unwrap_or_else(|_| panic!("the timing style compiles"))
     .program();
     for (file, clip) in [("arm.glb", "bend"), ("blob.glb", "pulse")] {
-        let (_, rig) = load_mesh_and_rig(&dir.join(file)).expect("test character");
-        let rig = rig.expect("a rig");
-        let text = format!(
-            "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
-             [[object]]\nmesh = \"{file}\"\nanimation = {{ clip = \"{clip}\", loop = true }}\n"
-        );
-        let base = npr_runner::scene::parse_scene(&text, npr_diag::FileId(0), &dir).expect("timing scene");
+        let (base, rig) = playing(&dir, file, clip);
         for vertices in [10_000, 100_000, 1_000_000] {
-            let big = scaled(&rig, vertices);
+            let (big, animated, rigid) = animated_and_rigid(&base, &rig, vertices);
             let frames = (2_000_000 / vertices).clamp(3, 100) as u32;
-            let mut animated = base.clone();
-            animated.objects[0].mesh = Arc::new(big.bind.clone());
-            if let Some(animation) = animated.objects[0].animation.as_mut() {
-                animation.rig = Arc::new(big.clone());
-            }
-            let mut rigid = animated.clone();
-            rigid.objects[0].animation = None;
             let cpu = millis_per_frame(&big, frames);
             let still = frame_millis(&gpu, &program, &rigid, None, frames);
             let on_cpu = frame_millis(&gpu, &program, &rigid, Some(&big), frames);
@@ -190,23 +202,12 @@ fn main() {
             );
         }
     }
-    let (_, rig) = load_mesh_and_rig(&dir.join("arm.glb")).expect("test character");
-    let rig = rig.expect("a rig");
-    let text = "[camera]\nposition = [0.0, 1.0, 6.0]\ntarget = [0.0, 1.0, 0.0]\n\
-                [[object]]\nmesh = \"arm.glb\"\nanimation = { clip = \"bend\", loop = true }\n";
-    let base = npr_runner::scene::parse_scene(text, npr_diag::FileId(0), &dir).expect("timing scene");
+    let (base, rig) = playing(&dir, "arm.glb", "bend");
     for style in ["wavy_lines.npr", "halftone.npr"] {
         let program = example(style);
         for vertices in [10_000, 100_000] {
-            let big = scaled(&rig, vertices);
+            let (big, animated, rigid) = animated_and_rigid(&base, &rig, vertices);
             let frames = (1_000_000 / vertices).clamp(3, 100) as u32;
-            let mut animated = base.clone();
-            animated.objects[0].mesh = Arc::new(big.bind.clone());
-            if let Some(animation) = animated.objects[0].animation.as_mut() {
-                animation.rig = Arc::new(big.clone());
-            }
-            let mut rigid = animated.clone();
-            rigid.objects[0].animation = None;
             let still = frame_millis(&gpu, &program, &rigid, None, frames);
             let deformed = frame_millis(&gpu, &program, &animated, None, frames);
             println!(
