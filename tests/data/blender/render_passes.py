@@ -12,10 +12,14 @@ Every pixel is sampled at its centre (a pixel filter 0.01 px wide), as a
 rasterizer does, so that depth and normals are not blended across edges.
 """
 
-import math
+import os
 import sys
 
 import bpy
+
+# The shared set-up lives beside this script (cycles_scene.py).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_scene import add_sun_and_camera, cycles_scene, to_blender  # noqa: E402
 
 WIDTH, HEIGHT = 160, 120
 # In npr's axes (y up).
@@ -27,39 +31,13 @@ SPHERES = [("left", (-0.9, 0.6, 0.0), 0.6), ("right", (0.8, 0.45, 0.6), 0.45)]
 PLANE = ("ground", 6.0)
 
 
-def to_blender(p):
-    x, y, z = p
-    return (x, -z, y)
-
-
 def main():
     argv = sys.argv[sys.argv.index("--") + 1 :]
     exr_out, toml_out = argv[0], argv[1]
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = 4
-    scene.cycles.use_denoising = False
-    scene.cycles.use_adaptive_sampling = False
-    scene.cycles.seed = 0
-    scene.cycles.filter_width = 0.01
-    scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
-    scene.render.resolution_percentage = 100
-    scene.render.use_motion_blur = False
-    scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
-    scene.render.image_settings.color_depth = "32"
-    scene.render.image_settings.exr_codec = "ZIP"
-    layer = scene.view_layers[0]
-    layer.name = "ViewLayer"
-    layer.use_pass_z = True
+    scene, layer = cycles_scene(WIDTH, HEIGHT, 32)
     layer.use_pass_normal = True
     layer.use_pass_object_index = True
     layer.use_pass_vector = True
-
-    world = bpy.data.worlds.new("world")
-    world.color = (0.05, 0.05, 0.05)
-    scene.world = world
 
     for i, (name, centre, radius) in enumerate(SPHERES):
         bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius, location=to_blender(centre))
@@ -71,22 +49,7 @@ def main():
     bpy.context.active_object.name = PLANE[0]
     bpy.context.active_object.pass_index = len(SPHERES) + 1
 
-    bpy.ops.object.light_add(type="SUN", location=(0.0, 0.0, 5.0))
-    sun = bpy.context.active_object
-    sun.data.energy = 3.0
-    sun.rotation_euler = (math.radians(40.0), math.radians(20.0), 0.0)
-
-    bpy.ops.object.camera_add(location=to_blender(CAMERA))
-    cam = bpy.context.active_object
-    cam.data.sensor_fit = "VERTICAL"
-    cam.data.angle_y = math.radians(FOV_Y_DEG)
-    cam.data.clip_start, cam.data.clip_end = NEAR, FAR
-    # Look at the target: the camera's -Z towards it, its +Y up.
-    import mathutils
-
-    direction = mathutils.Vector(to_blender(TARGET)) - mathutils.Vector(to_blender(CAMERA))
-    cam.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
-    scene.camera = cam
+    add_sun_and_camera(scene, CAMERA, TARGET, FOV_Y_DEG, NEAR, FAR)
 
     scene.render.filepath = exr_out
     bpy.ops.render.render(write_still=True)

@@ -13,12 +13,14 @@ the sphere moves 0.4 m along x per frame. Samples, seed and pixel filter
 are fixed, so re-running gives the same pixels.
 """
 
-import math
 import os
 import sys
 
 import bpy
-import mathutils
+
+# The shared set-up lives beside this script (cycles_scene.py).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_scene import add_sun_and_camera, cycles_scene, to_blender  # noqa: E402
 
 WIDTH, HEIGHT = 64, 48
 FRAMES = 4
@@ -30,36 +32,10 @@ RADIUS = 0.5
 START_X, STEP_X = -0.6, 0.4
 
 
-def to_blender(p):
-    x, y, z = p
-    return (x, -z, y)
-
-
 def main():
     out_dir = sys.argv[sys.argv.index("--") + 1]
     os.makedirs(out_dir, exist_ok=True)
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = 4
-    scene.cycles.use_denoising = False
-    scene.cycles.use_adaptive_sampling = False
-    scene.cycles.seed = 0
-    scene.cycles.filter_width = 0.01
-    scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
-    scene.render.resolution_percentage = 100
-    scene.render.use_motion_blur = False
-    scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
-    scene.render.image_settings.color_depth = "16"
-    scene.render.image_settings.exr_codec = "ZIP"
-    layer = scene.view_layers[0]
-    layer.name = "ViewLayer"
-    layer.use_pass_z = True
-
-    world = bpy.data.worlds.new("world")
-    world.color = (0.05, 0.05, 0.05)
-    scene.world = world
+    scene, _ = cycles_scene(WIDTH, HEIGHT, 16)
 
     bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=RADIUS)
     sphere = bpy.context.active_object
@@ -67,19 +43,7 @@ def main():
     bpy.ops.object.shade_smooth()
     bpy.ops.mesh.primitive_plane_add(size=6.0, location=(0.0, 0.0, 0.0))
 
-    bpy.ops.object.light_add(type="SUN", location=(0.0, 0.0, 5.0))
-    sun = bpy.context.active_object
-    sun.data.energy = 3.0
-    sun.rotation_euler = (math.radians(40.0), math.radians(20.0), 0.0)
-
-    bpy.ops.object.camera_add(location=to_blender(CAMERA))
-    cam = bpy.context.active_object
-    cam.data.sensor_fit = "VERTICAL"
-    cam.data.angle_y = math.radians(FOV_Y_DEG)
-    cam.data.clip_start, cam.data.clip_end = NEAR, FAR
-    direction = mathutils.Vector(to_blender(TARGET)) - mathutils.Vector(to_blender(CAMERA))
-    cam.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
-    scene.camera = cam
+    add_sun_and_camera(scene, CAMERA, TARGET, FOV_Y_DEG, NEAR, FAR)
 
     for frame in range(FRAMES):
         x = START_X + STEP_X * frame
