@@ -284,7 +284,9 @@ fn the_triangle_pair_test_meets_a_worked_case_and_refuses_touching_and_coplanar(
     assert!(triangle_pair_segment(&t, &coplanar, 1e-12).is_none());
 }
 
-const STYLE: LineStyle = LineStyle {
+/// A straight 2 px line: the sets' style in the set tests here and in
+/// `lines_visibility`.
+pub(crate) const STYLE: LineStyle = LineStyle {
     width_px: 2.0,
     amplitude_px: 0.0,
     wavelength_px: 24.0,

@@ -12,18 +12,11 @@ use glam::{DMat4, DVec3};
 use npr_abi::lines::{EdgeTypes, LineVisibility};
 use npr_runner::lines::edges::EdgeMesh;
 use npr_runner::lines::sets::{select, SetInput, SetSurface};
-use npr_runner::lines::strip::LineStyle;
 use npr_runner::lines::visibility::Occluders;
 use npr_runner::scene::primitives::{cube, torus};
 use npr_runner::scene::Mesh;
 
-const STYLE: LineStyle = LineStyle {
-    width_px: 2.0,
-    amplitude_px: 0.0,
-    wavelength_px: 24.0,
-    phase: 0.0,
-    taper: 0.0,
-};
+use super::lines_edge_types::STYLE;
 
 /// An axis-aligned box by its corners.
 #[derive(Clone, Copy)]
