@@ -171,6 +171,9 @@ pub struct Row {
     pub accuracy: Option<(f64, f64, f64)>,
 }
 
+/// Per size, its frame spec and a renderer per variant.
+type SizeRenderers = Vec<(FrameSpec, Vec<npr_runner::Renderer>)>;
+
 /// The fastest of `frames` frames per variant and size, `[size][variant]`,
 /// frames interleaved across variants and sizes (render + GPU wait; one
 /// warm-up frame each): a change of load falls on every size alike, so it
@@ -180,14 +183,13 @@ pub struct Row {
 /// The renderers are returned with their frame specs, `[size]`, for the
 /// accuracy renders to reuse (a new renderer compiles every pipeline
 /// again, which is most of the cost at small sizes).
-#[allow(clippy::type_complexity)]
 fn min_frame_times(
     gpu: &Gpu,
     programs: &[(String, StyleProgram, bool)],
     scene: &npr_runner::scene::Scene,
     sizes: &[u32],
     frames: u32,
-) -> Result<(Vec<Vec<f64>>, Vec<(FrameSpec, Vec<npr_runner::Renderer>)>), RunError> {
+) -> Result<(Vec<Vec<f64>>, SizeRenderers), RunError> {
     let wait = || wait_idle(gpu);
     let mut renderers = Vec::new();
     for &size in sizes {
